@@ -1,0 +1,12 @@
+//! CANopen: identifiers, the EMCY frame and its codes, error control and the
+//! monitors built on them (CiA 301, CiA 402, CiA 405; SPEC §2–§3).
+
+mod emcy;
+mod error_code;
+mod error_register;
+mod node_id;
+
+pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
+pub use error_code::{ErrorClass, ErrorCode};
+pub use error_register::ErrorRegister;
+pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};

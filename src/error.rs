@@ -1,0 +1,96 @@
+//! The crate's one error type.
+//!
+//! Every fallible decoder and checked constructor returns [`Error`]. Each
+//! variant says *what* was being decoded, what was *expected* and what was
+//! *found*, so that a message such as
+//! `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
+//! to a person without further context (STYLE.md, "errors carry context").
+
+/// What went wrong while decoding or constructing a value.
+///
+/// The enum is `#[non_exhaustive]`: later protocol layers add variants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A buffer is shorter than the frame or field that must be read from it.
+    #[error("{what}: buffer of {found} bytes where {expected} are needed")]
+    Length {
+        /// The frame or field that was being read, e.g. `"EMCY frame"`.
+        what: &'static str,
+        /// The number of bytes the frame needs.
+        expected: usize,
+        /// The number of bytes that were given.
+        found: usize,
+    },
+    /// A number lies outside the range its field allows.
+    #[error("{what}: {found} is outside {min}..={max}")]
+    OutOfRange {
+        /// The field, e.g. `"node-ID"`.
+        what: &'static str,
+        /// The value that was given.
+        found: u32,
+        /// The smallest valid value.
+        min: u32,
+        /// The largest valid value.
+        max: u32,
+    },
+    /// A value is in range for its type but is not one of the values the
+    /// protocol defines (e.g. an NMT state byte of `0x12`).
+    #[error("{what}: {found:#x} is not one of {expected}")]
+    InvalidValue {
+        /// The field, e.g. `"NMT state"`.
+        what: &'static str,
+        /// The value that was given.
+        found: u32,
+        /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
+        expected: &'static str,
+    },
+}
+
+/// The crate's result type.
+pub type Result<T, E = Error> = core::result::Result<T, E>;
+
+/// Check that `buf` holds at least `expected` bytes for `what`.
+#[inline]
+pub(crate) const fn check_len(what: &'static str, buf: &[u8], expected: usize) -> Result<()> {
+    if buf.len() < expected {
+        Err(Error::Length {
+            what,
+            expected,
+            found: buf.len(),
+        })
+    } else {
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_say_expected_and_found() {
+        let e = check_len("servo command frame", &[0; 7], 10).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "servo command frame: buffer of 7 bytes where 10 are needed"
+        );
+        let e = Error::OutOfRange {
+            what: "node-ID",
+            found: 128,
+            min: 1,
+            max: 127,
+        };
+        assert_eq!(e.to_string(), "node-ID: 128 is outside 1..=127");
+        let e = Error::InvalidValue {
+            what: "NMT state",
+            found: 0x12,
+            expected: "0x00, 0x04, 0x05, 0x7f",
+        };
+        assert_eq!(
+            e.to_string(),
+            "NMT state: 0x12 is not one of 0x00, 0x04, 0x05, 0x7f"
+        );
+        assert!(check_len("x", &[0; 10], 10).is_ok());
+    }
+}
