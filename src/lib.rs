@@ -25,3 +25,6 @@ pub mod canopen;
 mod error;
 
 pub use error::{Error, Result};
+
+#[cfg(test)]
+mod test_gens;

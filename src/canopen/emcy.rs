@@ -266,3 +266,31 @@ mod tests {
         assert_eq!(emcy.to_bytes(), [0; 8]);
     }
 }
+
+#[cfg(test)]
+mod proptests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::test_gens::canopen::emcy;
+
+    proptest! {
+        #[test]
+        fn bytes_owned_bytes(bytes in any::<[u8; 8]>()) {
+            prop_assert_eq!(Emcy::from_bytes(&bytes).to_bytes(), bytes);
+        }
+
+        #[test]
+        fn owned_bytes_owned(value in emcy()) {
+            prop_assert_eq!(Emcy::from_bytes(&value.to_bytes()), value);
+        }
+
+        #[test]
+        fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
+            match Emcy::parse(&data) {
+                Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
+                Err(e) => prop_assert_eq!(e, crate::Error::Length { what: "EMCY frame", expected: 8, found: data.len() }),
+            }
+        }
+    }
+}

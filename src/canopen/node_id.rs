@@ -373,3 +373,23 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod proptests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::test_gens::canopen::node_id;
+
+    proptest! {
+        #[test]
+        fn cob_ids_classify_back_to_their_node(node in node_id()) {
+            prop_assert_eq!(CobFunction::classify(node.emcy_cob_id()), CobFunction::Emcy(node));
+            prop_assert_eq!(
+                CobFunction::classify(node.error_control_cob_id()),
+                CobFunction::ErrorControl(node)
+            );
+            prop_assert_eq!(NodeId::try_from(node.get()), Ok(node));
+        }
+    }
+}
