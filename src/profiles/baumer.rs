@@ -1167,3 +1167,713 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         variant: Variant::Redundant,
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const STARTUP: Appearance = Appearance::Startup;
+    const RUNTIME: Appearance = Appearance::Runtime;
+    const BOTH: Variant = Variant::Both;
+    const REDUNDANT: Variant = Variant::Redundant;
+    const NON_REDUNDANT: Variant = Variant::NonRedundant;
+    const AT_RUNTIME: Option<ResetBehaviour> = Some(ResetBehaviour::AtRuntime);
+    const AT_REBOOT: Option<ResetBehaviour> = Some(ResetBehaviour::AtReboot);
+    const AT_REBOOT_1: Option<ResetBehaviour> = Some(ResetBehaviour::AtRebootExceptRedundant);
+    const NO_RESET: Option<ResetBehaviour> = Some(ResetBehaviour::NoReset);
+
+    /// One row of SPEC §4's table, written out as the SPEC writes it:
+    /// signalling as lists of bit numbers.
+    struct SpecRow {
+        name: &'static str,
+        source: &'static str,
+        /// A phrase of SPEC §4's (or, where SPEC has none, the manual's)
+        /// description that the row's description contains.
+        says: &'static str,
+        code: Option<u16>,
+        appearance: Appearance,
+        register_bits: &'static [u8],
+        alarm_bits: &'static [u8],
+        warning_bits: &'static [u8],
+        reset: Option<ResetBehaviour>,
+        injection: Option<u32>,
+        variant: Variant,
+    }
+
+    #[rustfmt::skip]
+    const SPEC_TABLE: [SpecRow; 27] = [
+        SpecRow { name: "error_reset_or_no_error", source: "error reset or no error", says: "no error", code: Some(0x0000), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: None, injection: Some(0x0000_0000), variant: BOTH },
+        SpecRow { name: "temperature_monitoring", source: "temperature monitoring", says: "temperature out of range", code: Some(0x4200), appearance: RUNTIME, register_bits: &[0, 3], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: Some(0x0008_0020), variant: BOTH },
+        SpecRow { name: "non_volatile_data_manager_startup", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 1], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0024), variant: BOTH },
+        SpecRow { name: "non_volatile_data_manager_runtime", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[3], reset: AT_REBOOT, injection: Some(0x0008_0024), variant: BOTH },
+        SpecRow { name: "reset_reason_watchdog", source: "reset reason watchdog", says: "watchdog timer issue", code: Some(0x6100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[2], reset: AT_REBOOT, injection: Some(0x0008_0025), variant: BOTH },
+        SpecRow { name: "can_controller_bus_warning", source: "can controller bus warning", says: "bus warning", code: Some(0x8100), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        SpecRow { name: "can_controller_rx_buffer_overflow", source: "can controller rx buffer overflow", says: "receive buffer overflow", code: Some(0x8110), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        SpecRow { name: "can_controller_bus_passive", source: "can controller bus passive", says: "error passive mode", code: Some(0x8120), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        SpecRow { name: "can_controller_bus_off", source: "can controller bus off", says: "bus-off mode", code: None, appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        SpecRow { name: "lifeguard_or_heartbeat", source: "lifeguard or heartbeat", says: "life guard error or heartbeat error", code: Some(0x8130), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        SpecRow { name: "battery_monitoring_warning_non_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_RUNTIME, injection: Some(0x0008_0005), variant: NON_REDUNDANT },
+        SpecRow { name: "battery_monitoring_warning_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_REBOOT, injection: Some(0x0004_001C), variant: REDUNDANT },
+        SpecRow { name: "battery_monitoring_error_startup", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: AT_REBOOT_1, injection: Some(0x0001_0004), variant: BOTH },
+        SpecRow { name: "battery_monitoring_error_runtime", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT_1, injection: Some(0x0008_0004), variant: BOTH },
+        SpecRow { name: "multiturn_magnetic_field_sequence_non_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0004_0003), variant: NON_REDUNDANT },
+        SpecRow { name: "multiturn_magnetic_field_sequence_non_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0008_0003), variant: NON_REDUNDANT },
+        SpecRow { name: "multiturn_magnetic_field_sequence_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001A), variant: REDUNDANT },
+        SpecRow { name: "multiturn_magnetic_field_sequence_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001A), variant: REDUNDANT },
+        SpecRow { name: "multiturn_magnetic_field_strength_redundant_startup", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001B), variant: REDUNDANT },
+        SpecRow { name: "multiturn_magnetic_field_strength_redundant_runtime", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001B), variant: REDUNDANT },
+        SpecRow { name: "multiturn_communication_monitor_startup", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 12], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0009), variant: BOTH },
+        SpecRow { name: "multiturn_communication_monitor_runtime", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT, injection: Some(0x0008_0009), variant: BOTH },
+        SpecRow { name: "speed_monitoring", source: "speed monitoring", says: "maximum rotation speed exceeded", code: Some(0xFF05), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[0], reset: AT_REBOOT, injection: Some(0x0008_0021), variant: BOTH },
+        SpecRow { name: "singleturn_magnetic_field_strength", source: "singleturn magnetic field strength", says: "amplitude out of range", code: Some(0xFF06), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[14], reset: AT_REBOOT, injection: Some(0x0008_0022), variant: BOTH },
+        SpecRow { name: "singleturn_multiturn_supervision", source: "singleturn/multiturn supervision", says: "out of sync", code: Some(0xFF07), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[15], reset: AT_REBOOT, injection: Some(0x0008_0023), variant: BOTH },
+        SpecRow { name: "multiturn_power_on_reset_redundant_startup", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_0014), variant: REDUNDANT },
+        SpecRow { name: "multiturn_power_on_reset_redundant_runtime", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: NO_RESET, injection: Some(0x0008_0014), variant: REDUNDANT },
+    ];
+
+    /// The word with the listed bits set.
+    fn bits(list: &[u8]) -> u16 {
+        list.iter().fold(0, |word, &bit| word | 1 << bit)
+    }
+
+    fn names<'a>(rows: impl Iterator<Item = &'a DiagnosticSource>) -> Vec<&'static str> {
+        rows.map(|row| row.name()).collect()
+    }
+
+    #[test]
+    fn every_row_matches_spec_table_field_by_field() {
+        assert_eq!(DIAGNOSTIC_SOURCES.len(), SPEC_TABLE.len());
+        for (row, spec) in DIAGNOSTIC_SOURCES.iter().zip(&SPEC_TABLE) {
+            let name = spec.name;
+            assert_eq!(row.name(), name);
+            assert_eq!(row.source().to_lowercase(), spec.source, "{name}: source");
+            assert!(
+                row.description().to_lowercase().contains(spec.says),
+                "{name}: description {:?} should say {:?}",
+                row.description(),
+                spec.says
+            );
+            assert_eq!(row.code(), spec.code.map(ErrorCode::new), "{name}: code");
+            assert_eq!(row.appearance(), spec.appearance, "{name}: appearance");
+            let signalling = row.signalling();
+            assert_eq!(
+                u16::from(signalling.register.bits()),
+                bits(spec.register_bits),
+                "{name}: 1001h bits"
+            );
+            assert_eq!(
+                signalling.alarms.bits(),
+                bits(spec.alarm_bits),
+                "{name}: 6503h bits"
+            );
+            assert_eq!(
+                signalling.warnings.bits(),
+                bits(spec.warning_bits),
+                "{name}: 6505h bits"
+            );
+            assert_eq!(row.reset(), spec.reset, "{name}: reset");
+            assert_eq!(
+                row.injection().map(InjectionCode::get),
+                spec.injection,
+                "{name}: injection"
+            );
+            assert_eq!(row.variant(), spec.variant, "{name}: variant");
+        }
+    }
+
+    #[test]
+    fn row_count_is_spec_table_row_count() {
+        assert_eq!(DIAGNOSTIC_SOURCE_COUNT, 27);
+        // The reset row and the bus-off row (no EMCY) are both present.
+        assert_eq!(DIAGNOSTIC_SOURCES[0].code(), Some(ErrorCode::NO_ERROR));
+        let no_emcy: Vec<_> = names(DIAGNOSTIC_SOURCES.iter().filter(|s| s.code().is_none()));
+        assert_eq!(no_emcy, ["can_controller_bus_off"]);
+    }
+
+    #[test]
+    fn names_are_unique_snake_case() {
+        for (i, row) in DIAGNOSTIC_SOURCES.iter().enumerate() {
+            let name = row.name();
+            assert!(
+                !name.is_empty()
+                    && !name.starts_with('_')
+                    && !name.ends_with('_')
+                    && !name.contains("__")
+                    && name.bytes().all(|b| b.is_ascii_lowercase() || b == b'_'),
+                "{name:?} is not snake_case"
+            );
+            for other in &DIAGNOSTIC_SOURCES[i + 1..] {
+                assert_ne!(name, other.name());
+            }
+            assert_eq!(source_by_name(name), Some(row));
+        }
+        assert_eq!(source_by_name("battery_monitoring_error"), None);
+        assert_eq!(source_by_name(""), None);
+    }
+
+    #[test]
+    fn injection_codes_are_unique() {
+        let codes: Vec<_> = DIAGNOSTIC_SOURCES
+            .iter()
+            .filter_map(|s| s.injection())
+            .collect();
+        // Every row but the four CAN controller rows and lifeguard/heartbeat.
+        assert_eq!(codes.len(), DIAGNOSTIC_SOURCE_COUNT - 5);
+        for (i, code) in codes.iter().enumerate() {
+            assert!(!codes[i + 1..].contains(code), "{code} twice");
+        }
+    }
+
+    #[test]
+    fn injection_high_word_matches_appearance() {
+        for row in DIAGNOSTIC_SOURCES.iter() {
+            let Some(injection) = row.injection() else {
+                continue;
+            };
+            let name = row.name();
+            match injection.kind() {
+                None => {
+                    assert_eq!(injection, InjectionCode::NO_ERROR, "{name}");
+                    assert_eq!(row.code(), Some(ErrorCode::NO_ERROR), "{name}");
+                }
+                Some(kind) => {
+                    assert_eq!(kind.appearance(), row.appearance(), "{name}");
+                    let high = injection.get() >> 16;
+                    let expected = match row.appearance() {
+                        Appearance::Startup => [0x0001, 0x0004].contains(&high),
+                        Appearance::Runtime => high == 0x0008,
+                    };
+                    assert!(expected, "{name}: {injection}");
+                    // A startup alarm signals 6503h bits, a startup warning
+                    // only 6505h bits.
+                    match kind {
+                        InjectionKind::StartupAlarm => {
+                            assert!(!row.signalling().alarms.is_empty(), "{name}")
+                        }
+                        InjectionKind::StartupWarning => {
+                            assert!(row.signalling().alarms.is_empty(), "{name}");
+                            assert!(!row.signalling().warnings.is_empty(), "{name}");
+                        }
+                        InjectionKind::Runtime => {}
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn look_up_by_injection_code_finds_at_most_one_row() {
+        for row in DIAGNOSTIC_SOURCES.iter() {
+            if let Some(injection) = row.injection() {
+                assert_eq!(source_for_injection(injection), Some(row), "{injection}");
+            }
+        }
+        let unknown = [
+            InjectionCode::new(InjectionKind::Runtime, 0x0001),
+            InjectionCode::new(InjectionKind::StartupWarning, 0x0024),
+            InjectionCode::new(InjectionKind::StartupAlarm, 0x0005),
+        ];
+        for injection in unknown {
+            assert_eq!(source_for_injection(injection), None, "{injection}");
+        }
+    }
+
+    /// SPEC §4: every EMCY code of the table and the rows it has, in order.
+    #[rustfmt::skip]
+    const ROWS_BY_CODE: &[(u16, &[&str])] = &[
+        (0x0000, &["error_reset_or_no_error"]),
+        (0x4200, &["temperature_monitoring"]),
+        (0x5100, &["non_volatile_data_manager_startup", "non_volatile_data_manager_runtime"]),
+        (0x6100, &["reset_reason_watchdog"]),
+        (0x8100, &["can_controller_bus_warning"]),
+        (0x8110, &["can_controller_rx_buffer_overflow"]),
+        (0x8120, &["can_controller_bus_passive"]),
+        (0x8130, &["lifeguard_or_heartbeat"]),
+        (0xFF00, &["battery_monitoring_warning_non_redundant", "battery_monitoring_warning_redundant"]),
+        (0xFF01, &["battery_monitoring_error_startup", "battery_monitoring_error_runtime"]),
+        (0xFF02, &[
+            "multiturn_magnetic_field_sequence_non_redundant_startup",
+            "multiturn_magnetic_field_sequence_non_redundant_runtime",
+            "multiturn_magnetic_field_sequence_redundant_startup",
+            "multiturn_magnetic_field_sequence_redundant_runtime",
+        ]),
+        (0xFF03, &["multiturn_magnetic_field_strength_redundant_startup", "multiturn_magnetic_field_strength_redundant_runtime"]),
+        (0xFF04, &["multiturn_communication_monitor_startup", "multiturn_communication_monitor_runtime"]),
+        (0xFF05, &["speed_monitoring"]),
+        (0xFF06, &["singleturn_magnetic_field_strength"]),
+        (0xFF07, &["singleturn_multiturn_supervision"]),
+        (0xFF17, &["multiturn_power_on_reset_redundant_startup", "multiturn_power_on_reset_redundant_runtime"]),
+    ];
+
+    #[test]
+    fn look_up_by_code_returns_exactly_the_expected_rows() {
+        for raw in 0..=u16::MAX {
+            let expected: &[&str] = ROWS_BY_CODE
+                .iter()
+                .find(|&&(code, _)| code == raw)
+                .map_or(&[], |&(_, rows)| rows);
+            assert_eq!(
+                names(sources_for_code(ErrorCode::new(raw))),
+                expected,
+                "{raw:#06x}"
+            );
+        }
+        // Together the codes cover every row but bus off.
+        let total: usize = ROWS_BY_CODE.iter().map(|(_, rows)| rows.len()).sum();
+        assert_eq!(total, DIAGNOSTIC_SOURCE_COUNT - 1);
+    }
+
+    /// An EMCY with `code`, alarms and warnings as the encoder sends it.
+    fn emcy(code: u16, alarms: u16, warnings: u16) -> Emcy {
+        BaumerEmcy::new(
+            ErrorCode::new(code),
+            ErrorRegister::empty(),
+            BaumerManufacturer::new(
+                Alarms::from_bits_retain(alarms),
+                Warnings::from_bits_retain(warnings),
+            ),
+        )
+        .to_emcy()
+    }
+
+    #[test]
+    fn startup_and_runtime_rows_told_apart_by_alarm_and_warning_bits() {
+        #[rustfmt::skip]
+        let table: &[(u16, u16, u16, &[&str])] = &[
+            // code, 6503h, 6505h, rows
+            (0x5100, 0x0003, 0x0000, &["non_volatile_data_manager_startup"]),
+            (0x5100, 0x0000, 0x0008, &["non_volatile_data_manager_runtime"]),
+            (0xFF01, 0x8001, 0x0000, &["battery_monitoring_error_startup"]),
+            (0xFF01, 0x0000, 0x2000, &["battery_monitoring_error_runtime"]),
+            (0xFF02, 0x0001, 0x0000, &["multiturn_magnetic_field_sequence_redundant_startup"]),
+            (0xFF02, 0x0000, 0x1000, &[
+                "multiturn_magnetic_field_sequence_non_redundant_startup",
+                "multiturn_magnetic_field_sequence_non_redundant_runtime",
+                "multiturn_magnetic_field_sequence_redundant_runtime",
+            ]),
+            (0xFF03, 0x0001, 0x0000, &["multiturn_magnetic_field_strength_redundant_startup"]),
+            (0xFF03, 0x0000, 0x1000, &["multiturn_magnetic_field_strength_redundant_runtime"]),
+            (0xFF04, 0x1001, 0x0000, &["multiturn_communication_monitor_startup"]),
+            (0xFF04, 0x0000, 0x2000, &["multiturn_communication_monitor_runtime"]),
+            (0xFF17, 0x8001, 0x0000, &["multiturn_power_on_reset_redundant_startup"]),
+            (0xFF17, 0x0000, 0x2000, &["multiturn_power_on_reset_redundant_runtime"]),
+            // Other active alarms and warnings do not hide a row's bits.
+            (0x5100, 0x8103, 0x0004, &["non_volatile_data_manager_startup"]),
+            (0xFF01, 0x0001, 0x2010, &["battery_monitoring_error_runtime"]),
+        ];
+        for &(code, alarms, warnings, expected) in table {
+            assert_eq!(
+                names(matching_sources(&emcy(code, alarms, warnings))),
+                expected,
+                "{code:#06x} alarms {alarms:#06x} warnings {warnings:#06x}"
+            );
+        }
+    }
+
+    #[test]
+    fn without_telling_bits_every_row_of_the_code() {
+        #[rustfmt::skip]
+        let table: &[(u16, u16, u16)] = &[
+            (0x5100, 0x0000, 0x0000), // no bits at all
+            (0x5100, 0x0001, 0x0000), // bit 1 of the startup row missing
+            (0xFF04, 0x0001, 0x0000), // bit 12 of the startup row missing
+            (0xFF01, 0x8001, 0x2000), // both rows' bits present
+            (0xFF00, 0x0000, 0x0010), // both rows signal warning bit 4
+            (0xFF02, 0x0001, 0x1000), // every row's bits present
+        ];
+        for &(code, alarms, warnings) in table {
+            let all = names(sources_for_code(ErrorCode::new(code)));
+            assert!(all.len() > 1);
+            assert_eq!(
+                names(matching_sources(&emcy(code, alarms, warnings))),
+                all,
+                "{code:#06x} alarms {alarms:#06x} warnings {warnings:#06x}"
+            );
+        }
+    }
+
+    #[test]
+    fn rows_without_alarm_or_warning_bits_match_on_the_code_alone() {
+        for (code, rows) in [
+            (0x4200, ["temperature_monitoring"]),
+            (0x8100, ["can_controller_bus_warning"]),
+            (0x8130, ["lifeguard_or_heartbeat"]),
+        ] {
+            for (alarms, warnings) in [(0, 0), (0xFFFF, 0xFFFF), (0x0001, 0x1000)] {
+                assert_eq!(names(matching_sources(&emcy(code, alarms, warnings))), rows);
+            }
+        }
+    }
+
+    #[test]
+    fn codes_outside_the_table_match_no_row() {
+        for code in [0x1000, 0x5000, 0x8110 + 1, 0xFF08, 0xFF09, 0xFF0A, 0xFF18] {
+            assert_eq!(matching_sources(&emcy(code, 0xFFFF, 0xFFFF)).count(), 0);
+        }
+    }
+
+    #[test]
+    fn any_reset_code_is_the_reset_row() {
+        // SPEC §2.3, Decision: any 0x00xx is "error reset or no error".
+        for code in [0x0000, 0x0001, 0x00FF] {
+            assert_eq!(
+                names(matching_sources(&emcy(code, 0, 0))),
+                ["error_reset_or_no_error"],
+                "{code:#06x}"
+            );
+        }
+        assert_eq!(sources_for_code(ErrorCode::new(0x0001)).count(), 0);
+    }
+
+    #[test]
+    fn each_rows_own_emcy_finds_the_row() {
+        for row in DIAGNOSTIC_SOURCES.iter() {
+            let Some(sent) = row.emcy() else {
+                assert_eq!(row.name(), "can_controller_bus_off");
+                continue;
+            };
+            assert_eq!(Some(sent.code), row.code());
+            assert_eq!(sent.register, row.signalling().register);
+            assert!(sent.sources().any(|found| found == row), "{}", row.name());
+            // The row's own bits never select a row of another appearance
+            // unless that row signals the same bits.
+            for found in sent.sources() {
+                assert!(
+                    found.appearance() == row.appearance()
+                        || found.signalling().alarms == row.signalling().alarms
+                            && found.signalling().warnings == row.signalling().warnings,
+                    "{} found {}",
+                    row.name(),
+                    found.name()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn signalled_register_bits_are_the_ones_the_encoder_uses() {
+        let used = DIAGNOSTIC_SOURCES
+            .iter()
+            .fold(ErrorRegister::empty(), |acc, s| {
+                acc | s.signalling().register
+            });
+        assert_eq!(used, ERROR_REGISTER_BITS);
+        assert_eq!(ERROR_REGISTER_BITS.bits(), 0b0001_1001);
+    }
+
+    #[test]
+    fn named_bits_are_the_ones_the_table_uses() {
+        let (alarms, warnings) = DIAGNOSTIC_SOURCES
+            .iter()
+            .fold((Alarms::empty(), Warnings::empty()), |(a, w), s| {
+                (a | s.signalling().alarms, w | s.signalling().warnings)
+            });
+        assert_eq!(alarms, Alarms::all());
+        assert_eq!(warnings, Warnings::all());
+    }
+
+    #[test]
+    fn alarm_and_warning_bit_positions() {
+        let alarms = [
+            (Alarms::POSITION_ERROR, 0),
+            (Alarms::NON_VOLATILE_MEMORY, 1),
+            (Alarms::ENCODER_DATA_INVALID, 12),
+            (Alarms::BATTERY_EMPTY, 15),
+        ];
+        for (flag, bit) in alarms {
+            assert_eq!(flag.bits(), 1 << bit, "{flag:?}");
+        }
+        let warnings = [
+            (Warnings::FREQUENCY_EXCEEDED, 0),
+            (Warnings::CPU_WATCHDOG, 2),
+            (Warnings::NON_VOLATILE_MEMORY, 3),
+            (Warnings::BATTERY_LOW, 4),
+            (Warnings::MOUNTING_ERROR, 12),
+            (Warnings::MULTITURN_SYSTEM, 13),
+            (Warnings::SINGLETURN_SYSTEM, 14),
+            (Warnings::MULTITURN_SUPERVISION, 15),
+        ];
+        for (flag, bit) in warnings {
+            assert_eq!(flag.bits(), 1 << bit, "{flag:?}");
+        }
+        assert_eq!(Alarms::OBJECT_INDEX, 0x6503);
+        assert_eq!(Warnings::OBJECT_INDEX, 0x6505);
+    }
+
+    #[test]
+    fn encoder_facts() {
+        assert_eq!(ERROR_HISTORY_LEN, 8);
+        assert_eq!(INJECTION_OBJECT_INDEX, 0x2116);
+        assert_eq!(MANUFACTURER_LEN, 5);
+    }
+
+    #[test]
+    fn reserved_codes() {
+        for raw in 0..=u16::MAX {
+            let reserved = (0xFF0A..=0xFF16).contains(&raw) || (0xFF18..=0xFFFF).contains(&raw);
+            let code = ErrorCode::new(raw);
+            assert_eq!(is_reserved_code(code), reserved, "{raw:#06x}");
+            if reserved {
+                assert_eq!(sources_for_code(code).count(), 0, "{raw:#06x}");
+            }
+        }
+        for (raw, reserved) in [
+            (0xFF07, false),
+            (0xFF09, false),
+            (0xFF0A, true),
+            (0xFF16, true),
+            (0xFF17, false),
+            (0xFF18, true),
+            (0xFFFF, true),
+        ] {
+            assert_eq!(
+                is_reserved_code(ErrorCode::new(raw)),
+                reserved,
+                "{raw:#06x}"
+            );
+        }
+    }
+
+    #[test]
+    fn reset_behaviour_on_each_variant() {
+        use ResetBehaviour::*;
+        let table = [
+            (AtRebootExceptRedundant, Variant::Redundant, NoReset),
+            (AtRebootExceptRedundant, Variant::NonRedundant, AtReboot),
+            (
+                AtRebootExceptRedundant,
+                Variant::Both,
+                AtRebootExceptRedundant,
+            ),
+            (AtReboot, Variant::Redundant, AtReboot),
+            (AtRuntime, Variant::NonRedundant, AtRuntime),
+            (NoReset, Variant::Both, NoReset),
+        ];
+        for (behaviour, variant, expected) in table {
+            assert_eq!(behaviour.on(variant), expected, "{behaviour:?} {variant:?}");
+        }
+    }
+
+    #[test]
+    fn injection_code_construction() {
+        let table = [
+            (0x0000_0000, Ok(None)),
+            (0x0001_0024, Ok(Some(InjectionKind::StartupAlarm))),
+            (0x0004_001C, Ok(Some(InjectionKind::StartupWarning))),
+            (0x0008_FFFF, Ok(Some(InjectionKind::Runtime))),
+            (0x0000_0001, Err(())),
+            (0x0002_0000, Err(())),
+            (0x0010_0020, Err(())),
+            (0xFFFF_FFFF, Err(())),
+        ];
+        for (raw, expected) in table {
+            let code = InjectionCode::try_new(raw);
+            match expected {
+                Ok(kind) => {
+                    let code = code.unwrap();
+                    assert_eq!(code.get(), raw);
+                    assert_eq!(code.kind(), kind);
+                    assert_eq!(code.number(), (raw & 0xFFFF) as u16);
+                }
+                Err(()) => assert_eq!(
+                    code,
+                    Err(Error::InvalidValue {
+                        what: "error injection code",
+                        found: raw,
+                        expected: "0x00000000 or a high word of 0x0001, 0x0004 or 0x0008",
+                    }),
+                    "{raw:#010x}"
+                ),
+            }
+        }
+        assert_eq!(
+            InjectionCode::new(InjectionKind::Runtime, 0x0020).get(),
+            0x0008_0020
+        );
+        assert_eq!(
+            InjectionCode::new(InjectionKind::StartupWarning, 0x001C).to_string(),
+            "0x0004_001C"
+        );
+        for kind in [
+            InjectionKind::StartupAlarm,
+            InjectionKind::StartupWarning,
+            InjectionKind::Runtime,
+        ] {
+            assert_eq!(InjectionKind::from_high_word(kind.high_word()), Some(kind));
+        }
+    }
+
+    /// Multiturn communication monitor at startup (SPEC §4): code 0xFF04,
+    /// register bit 0, alarms bits 0 and 12, unused byte 0xA5.
+    static FRAME_BYTES: [u8; 8] = [0x04, 0xFF, 0x01, 0x01, 0x10, 0x00, 0x00, 0xA5];
+
+    #[test]
+    fn deconstruct() {
+        let emcy = BaumerEmcy::from_bytes(&FRAME_BYTES);
+        assert_eq!(emcy.code, ErrorCode::new(0xFF04));
+        assert_eq!(emcy.register, ErrorRegister::GENERIC);
+        assert_eq!(
+            emcy.manufacturer.alarms,
+            Alarms::POSITION_ERROR | Alarms::ENCODER_DATA_INVALID
+        );
+        assert_eq!(emcy.manufacturer.warnings, Warnings::empty());
+        assert_eq!(emcy.manufacturer.unused, 0xA5);
+        assert_eq!(
+            names(emcy.sources()),
+            ["multiturn_communication_monitor_startup"]
+        );
+    }
+
+    #[test]
+    fn construct() {
+        let mut manufacturer = BaumerManufacturer::new(
+            Alarms::POSITION_ERROR | Alarms::ENCODER_DATA_INVALID,
+            Warnings::empty(),
+        );
+        manufacturer.unused = 0xA5;
+        let emcy = BaumerEmcy::new(ErrorCode::new(0xFF04), ErrorRegister::GENERIC, manufacturer);
+        assert_eq!(emcy.to_bytes(), FRAME_BYTES);
+        assert_eq!(Emcy::from(emcy).to_bytes(), FRAME_BYTES);
+    }
+
+    #[test]
+    fn manufacturer_field_is_little_endian() {
+        // Alarms 0x8001 in bytes 3–4, warnings 0x2010 in bytes 5–6.
+        let field = BaumerManufacturer::from_bytes(&[0x01, 0x80, 0x10, 0x20, 0x00]);
+        assert_eq!(field.alarms, Alarms::POSITION_ERROR | Alarms::BATTERY_EMPTY);
+        assert_eq!(
+            field.warnings,
+            Warnings::BATTERY_LOW | Warnings::MULTITURN_SYSTEM
+        );
+        assert_eq!(field.to_bytes(), [0x01, 0x80, 0x10, 0x20, 0x00]);
+    }
+
+    #[test]
+    fn unnamed_bits_survive() {
+        let bytes = [0x00, 0x00, 0x00, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF];
+        let emcy = BaumerEmcy::from_bytes(&bytes);
+        assert_eq!(emcy.manufacturer.alarms.bits(), 0xFFFF);
+        assert_eq!(emcy.manufacturer.warnings.bits(), 0xFFFF);
+        assert_eq!(emcy.to_bytes(), bytes);
+    }
+
+    #[test]
+    fn parse_and_emit() {
+        let emcy = BaumerEmcy::parse(&FRAME_BYTES).unwrap();
+        assert_eq!(emcy, BaumerEmcy::from_bytes(&FRAME_BYTES));
+        assert_eq!(emcy.to_emcy(), Emcy::from_bytes(&FRAME_BYTES));
+        assert_eq!(BaumerEmcy::from(Emcy::from_bytes(&FRAME_BYTES)), emcy);
+        // Bytes after the eighth are not part of the EMCY.
+        let mut longer = [0u8; 12];
+        longer[..8].copy_from_slice(&FRAME_BYTES);
+        assert_eq!(BaumerEmcy::parse(&longer), Ok(emcy));
+    }
+
+    #[test]
+    fn every_short_length_is_an_exact_error() {
+        for len in 0..EMCY_LEN {
+            assert_eq!(
+                BaumerEmcy::parse(&FRAME_BYTES[..len]),
+                Err(Error::Length {
+                    what: "EMCY frame",
+                    expected: 8,
+                    found: len,
+                })
+            );
+        }
+    }
+
+    #[test]
+    fn display() {
+        let row = source_by_name("speed_monitoring").unwrap();
+        assert_eq!(
+            row.to_string(),
+            "Speed monitoring: Maximum rotation speed exceeded"
+        );
+        assert_eq!(Appearance::Startup.name(), "startup");
+        assert_eq!(Appearance::Runtime.name(), "runtime");
+        assert_eq!(Variant::NonRedundant.name(), "non_redundant");
+        assert_eq!(Variant::Redundant.name(), "redundant");
+        assert_eq!(Variant::Both.name(), "both");
+    }
+}
+
+#[cfg(test)]
+mod proptests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::test_gens::baumer::{baumer_emcy, injection_code, manufacturer, table_emcy};
+
+    proptest! {
+        #[test]
+        fn bytes_decoded_encoded_are_the_same_bytes(bytes in any::<[u8; 8]>()) {
+            let emcy = BaumerEmcy::from_bytes(&bytes);
+            prop_assert_eq!(emcy.to_bytes(), bytes);
+            prop_assert_eq!(emcy.to_emcy(), Emcy::from_bytes(&bytes));
+            prop_assert_eq!(BaumerEmcy::from_emcy(&Emcy::from_bytes(&bytes)).to_emcy().to_bytes(), bytes);
+        }
+
+        #[test]
+        fn owned_encoded_decoded_is_the_same_value(value in baumer_emcy()) {
+            prop_assert_eq!(BaumerEmcy::from_bytes(&value.to_bytes()), value);
+            prop_assert_eq!(BaumerEmcy::from_emcy(&value.to_emcy()), value);
+        }
+
+        #[test]
+        fn manufacturer_round_trip(value in manufacturer()) {
+            prop_assert_eq!(BaumerManufacturer::from_bytes(&value.to_bytes()), value);
+        }
+
+        #[test]
+        fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
+            match BaumerEmcy::parse(&data) {
+                Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
+                Err(e) => prop_assert_eq!(e, Error::Length { what: "EMCY frame", expected: 8, found: data.len() }),
+            }
+        }
+
+        #[test]
+        fn matching_rows_are_rows_of_the_code(bytes in any::<[u8; 8]>()) {
+            let emcy = Emcy::from_bytes(&bytes);
+            let code = if emcy.code.is_reset() { ErrorCode::NO_ERROR } else { emcy.code };
+            let all: Vec<_> = sources_for_code(code).collect();
+            let found: Vec<_> = matching_sources(&emcy).collect();
+            prop_assert_eq!(found.is_empty(), all.is_empty());
+            for row in &found {
+                prop_assert!(all.contains(row));
+            }
+        }
+
+        #[test]
+        fn a_table_code_always_matches_some_row(emcy in table_emcy()) {
+            let field = BaumerManufacturer::from_bytes(&emcy.manufacturer);
+            let found: Vec<_> = matching_sources(&emcy).collect();
+            prop_assert!(!found.is_empty());
+            // Either every found row's bits are present, or none of the
+            // code's rows has its bits present and all of them are returned.
+            let told_apart = sources_for_code(emcy.code).any(|row| row.is_signalled_in(&field));
+            if told_apart {
+                prop_assert!(found.iter().all(|row| row.is_signalled_in(&field)));
+            } else {
+                prop_assert_eq!(found.len(), sources_for_code(emcy.code).count());
+            }
+        }
+
+        #[test]
+        fn injection_code_accepts_exactly_the_known_high_words(raw in any::<u32>()) {
+            let valid = raw == 0 || [0x0001, 0x0004, 0x0008].contains(&(raw >> 16));
+            let code = InjectionCode::try_new(raw);
+            prop_assert_eq!(code.is_ok(), valid);
+            if let Ok(code) = code {
+                prop_assert_eq!(code.get(), raw);
+                prop_assert!(source_for_injection(code).map_or(true, |row| row.injection() == Some(code)));
+            }
+        }
+
+        #[test]
+        fn injection_code_from_parts_round_trips(code in injection_code()) {
+            prop_assert_eq!(InjectionCode::try_new(code.get()), Ok(code));
+        }
+    }
+}
