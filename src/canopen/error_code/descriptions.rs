@@ -73,6 +73,26 @@ pub enum Specificity {
     Unknown,
 }
 
+impl Specificity {
+    /// Return the specificity in words: `exact`, `sub-class`, `class` or
+    /// `unknown`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Specificity::Exact => "exact",
+            Specificity::SubClass => "sub-class",
+            Specificity::Class => "class",
+            Specificity::Unknown => "unknown",
+        }
+    }
+}
+
+impl fmt::Display for Specificity {
+    /// Format the specificity as its name.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The most specific description known for an error code, and where it
 /// comes from (SPEC §2.3); returned by [`ErrorCode::describe`].
 ///
@@ -929,5 +949,13 @@ mod tests {
         assert!(DescriptionSource::Cia301.document().contains("Table 26"));
         assert!(DescriptionSource::Cia402.document().contains("603Fh"));
         assert!(Specificity::Exact < Specificity::Unknown);
+        let names = [
+            Specificity::Exact,
+            Specificity::SubClass,
+            Specificity::Class,
+            Specificity::Unknown,
+        ]
+        .map(|s| s.to_string());
+        assert_eq!(names, ["exact", "sub-class", "class", "unknown"]);
     }
 }
