@@ -14,6 +14,8 @@
 //!
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes (CiA 301 §7.2.7, SPEC §2).
+//! - [`profiles`]: device-specific layouts of the manufacturer field
+//!   (Kollmorgen AKD, SPEC §2.4).
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -23,6 +25,7 @@
 
 pub mod canopen;
 mod error;
+pub mod profiles;
 
 pub use error::{Error, Result};
 
