@@ -15,7 +15,7 @@
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes (CiA 301 §7.2.7, SPEC §2).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
-//!   diagnostic sources (Baumer EAM580, SPEC §4).
+//!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]

@@ -4,6 +4,10 @@ use core::fmt;
 
 use super::ErrorRegister;
 
+mod descriptions;
+
+pub use descriptions::{Description, DescriptionSource, Specificity};
+
 /// An emergency error code, bytes 0–1 of an EMCY (CiA 301 §7.2.7.3.2; SPEC §2.3).
 ///
 /// Every `u16` is a valid code: [`ErrorCode::class`] sorts it into one of the

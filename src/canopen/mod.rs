@@ -7,6 +7,6 @@ mod error_register;
 mod node_id;
 
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
-pub use error_code::{ErrorClass, ErrorCode};
+pub use error_code::{Description, DescriptionSource, ErrorClass, ErrorCode, Specificity};
 pub use error_register::ErrorRegister;
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};

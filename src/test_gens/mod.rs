@@ -1,5 +1,6 @@
 //! Shared proptest strategies, one file per area, used by every module's
 //! tests (after etherparse's `test_gens`).
 
+pub(crate) mod akd;
 pub(crate) mod baumer;
 pub(crate) mod canopen;

@@ -1,0 +1,38 @@
+//! Strategies for the Kollmorgen AKD profile (SPEC §2.4).
+
+use proptest::prelude::*;
+
+use super::canopen::{error_code, error_register};
+use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
+
+/// Any axis id, 0..=15.
+pub(crate) fn axis_id() -> impl Strategy<Value = AxisId> {
+    (0u8..=15).prop_map(|raw| AxisId::new(raw).expect("0..=15 is an axis id"))
+}
+
+/// Any valid feedback id: none or FB1..FB5.
+pub(crate) fn feedback_id() -> impl Strategy<Value = FeedbackId> {
+    prop::sample::select(FeedbackId::ALL.to_vec())
+}
+
+/// Any valid AKD manufacturer field, reserved bytes arbitrary.
+pub(crate) fn akd_manufacturer() -> impl Strategy<Value = AkdManufacturer> {
+    (axis_id(), feedback_id(), any::<[u8; 4]>()).prop_map(|(axis, feedback, reserved)| {
+        AkdManufacturer {
+            axis,
+            feedback,
+            reserved,
+        }
+    })
+}
+
+/// Any valid AKD EMCY.
+pub(crate) fn akd_emcy() -> impl Strategy<Value = AkdEmcy> {
+    (error_code(), error_register(), akd_manufacturer()).prop_map(
+        |(code, register, manufacturer)| AkdEmcy {
+            code,
+            register,
+            manufacturer,
+        },
+    )
+}
