@@ -804,3 +804,674 @@ impl RecvEmcy {
         self.call(storage).into()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn n(raw: u8) -> NodeId {
+        NodeId::new(raw).unwrap()
+    }
+
+    // EMCY frames as devices send them (8 data bytes, SPEC §2.1).
+    /// 0x4310 excess temperature (CiA 402), register generic + temperature.
+    const OVER_TEMPERATURE: [u8; 8] = [0x10, 0x43, 0x09, 0, 0, 0, 0, 0];
+    /// 0x3210 DC link over-voltage (CiA 402), register generic + voltage.
+    const OVER_VOLTAGE: [u8; 8] = [0x10, 0x32, 0x05, 0, 0, 0, 0, 0];
+    /// 0x8130 life guard or heartbeat error, register generic + communication,
+    /// AKD axis 1 in byte 3 (seed 000).
+    const LIFE_GUARD: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0];
+    /// 0x8210 PDO not processed due to length error.
+    const PDO_LENGTH: [u8; 8] = [0x10, 0x82, 0x11, 0, 0, 0, 0, 0];
+    /// 0x5100 non-volatile memory problem (Baumer EAM580, SPEC §4).
+    const MEMORY: [u8; 8] = [0x00, 0x51, 0x01, 0x03, 0x00, 0, 0, 0];
+    /// 0x0000 error reset, no error remaining (SPEC §2.5 transition 4).
+    const RESET: [u8; 8] = [0; 8];
+
+    /// One line of a scenario: what arrives on the bus, what the
+    /// configuration changes, or a call of a CiA 405 block with the outputs
+    /// the PLC must see.
+    #[derive(Debug, Clone, Copy)]
+    enum Step {
+        /// An EMCY frame from a device (COB-ID 0x080 + node-ID).
+        Rx(u8, [u8; 8]),
+        /// `RECV_EMCY` → CONFIRM, ERROR, DEVICE, ERRORINFO's error code.
+        RecvEmcy(bool, u16, u8, u16),
+        /// `RECV_EMCY_DEV(DEVICE)` → CONFIRM, ERROR, ERRORINFO's error code.
+        RecvEmcyDev(u8, bool, u16, u16),
+        /// A device is configured.
+        Add(u8),
+        /// A device is removed from the configuration.
+        Remove(u8),
+    }
+    use Step::{Add, RecvEmcy as Call, RecvEmcyDev as Dev, Remove, Rx};
+
+    /// Run `steps` over a storage with `devices` configured and a fresh
+    /// `RECV_EMCY` block, checking every call's outputs; the typed result of
+    /// every call must give the same raw outputs.
+    fn run(devices: &[u8], steps: &[Step]) {
+        let mut storage = EmcyStorage::with_devices(devices.iter().map(|&d| n(d)).collect());
+        let mut block = RecvEmcy::new();
+        for (line, &step) in steps.iter().enumerate() {
+            match step {
+                Rx(node, frame) => {
+                    storage.receive(n(node), Emcy::parse(&frame).unwrap());
+                }
+                Add(node) => {
+                    storage.add_device(n(node));
+                }
+                Remove(node) => {
+                    storage.remove_device(n(node));
+                }
+                Call(confirm, error, device, code) => {
+                    let typed = block.clone().call(&storage);
+                    let raw = block.call_outputs(&storage);
+                    assert_eq!(RecvEmcyOutputs::from(typed), raw, "line {line}");
+                    let seen = (
+                        raw.confirm(),
+                        raw.error().code(),
+                        raw.device(),
+                        raw.errorinfo().code.get(),
+                    );
+                    assert_eq!(
+                        seen,
+                        (confirm, error, device, code),
+                        "line {line}: {step:?}"
+                    );
+                    assert_eq!(raw.emergency_received(), device != 0 && code != 0);
+                    assert_eq!(
+                        typed.is_ok_and(|t| t.emergency_received()),
+                        raw.emergency_received()
+                    );
+                }
+                Dev(node, confirm, error, code) => {
+                    let raw = storage.recv_emcy_dev_outputs(n(node));
+                    let seen = (
+                        raw.confirm(),
+                        raw.error().code(),
+                        raw.errorinfo().code.get(),
+                    );
+                    assert_eq!(seen, (confirm, error, code), "line {line}: {step:?}");
+                    assert_eq!(raw.emergency_received(), code != 0);
+                    let typed = storage.recv_emcy_dev(n(node));
+                    match typed {
+                        Ok(Some(emcy)) => assert_eq!(emcy, raw.errorinfo()),
+                        Ok(None) => assert!(confirm && code == 0),
+                        Err(e) => assert_eq!(e.code(), error),
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn several_devices_with_errors_and_resets() {
+        run(
+            &[2, 5, 9],
+            &[
+                //                      CONFIRM ERROR   DEVICE ERRORINFO
+                Call(true, 0x0000, 0, 0x0000),
+                Rx(5, OVER_VOLTAGE),
+                Rx(9, LIFE_GUARD),
+                Call(true, 0x0000, 5, 0x3210),
+                Call(true, 0x0000, 9, 0x8130),
+                Call(true, 0x0000, 5, 0x3210), // pending: delivered again
+                Rx(5, RESET),
+                Call(true, 0x0000, 9, 0x8130), // the scan goes on after 5
+                Call(true, 0x0000, 5, 0x0000), // "reset error" of 5
+                Call(true, 0x0000, 9, 0x8130),
+                Rx(9, RESET),
+                Call(true, 0x0000, 9, 0x0000), // "reset error" of 9
+                Call(true, 0x0000, 0, 0x0000), // all devices error-free
+                Dev(2, true, 0x0000, 0x0000),
+                Dev(5, true, 0x0000, 0x0000),
+                Dev(9, true, 0x0000, 0x0000),
+            ],
+        );
+    }
+
+    #[test]
+    fn no_error_is_delivered_once() {
+        run(
+            &[4],
+            &[
+                Rx(4, OVER_TEMPERATURE),
+                Call(true, 0x0000, 4, 0x4310),
+                Rx(4, RESET),
+                Call(true, 0x0000, 4, 0x0000),
+                Call(true, 0x0000, 0, 0x0000),
+                Call(true, 0x0000, 0, 0x0000),
+                Rx(4, RESET), // a second reset changes nothing
+                Call(true, 0x0000, 0, 0x0000),
+            ],
+        );
+    }
+
+    #[test]
+    fn all_clear_only_after_a_complete_scan_found_nothing() {
+        run(
+            &[1, 2, 3],
+            &[
+                Rx(1, OVER_VOLTAGE),
+                Rx(3, MEMORY),
+                Call(true, 0x0000, 1, 0x3210),
+                Call(true, 0x0000, 3, 0x5100),
+                Rx(1, RESET),
+                Call(true, 0x0000, 1, 0x0000),
+                Call(true, 0x0000, 3, 0x5100), // 3 is still pending: no all-clear
+                Call(true, 0x0000, 3, 0x5100),
+                Rx(3, RESET),
+                Call(true, 0x0000, 3, 0x0000),
+                Call(true, 0x0000, 0, 0x0000), // complete scan, nothing found
+            ],
+        );
+    }
+
+    #[test]
+    fn the_root_cause_is_kept_over_later_errors() {
+        run(
+            &[6],
+            &[
+                Rx(6, OVER_TEMPERATURE),
+                Rx(6, LIFE_GUARD),
+                Rx(6, PDO_LENGTH),
+                Call(true, 0x0000, 6, 0x4310),
+                Dev(6, true, 0x0000, 0x4310),
+                Dev(6, true, 0x0000, 0x4310), // on every call until the reset
+                Call(true, 0x0000, 6, 0x4310),
+                Rx(6, RESET),
+                Dev(6, true, 0x0000, 0x0000),
+                Rx(6, LIFE_GUARD), // first error after the reset: new root cause
+                Dev(6, true, 0x0000, 0x8130),
+                Call(true, 0x0000, 6, 0x8130),
+            ],
+        );
+    }
+
+    #[test]
+    fn a_reset_overwrites_the_slot() {
+        let node = n(8);
+        let mut storage = EmcyStorage::with_devices(DeviceSet::new().with(node));
+        let error = Emcy::parse(&LIFE_GUARD).unwrap();
+        // AKD: code 0x0000, the remaining register, axis 1 still in byte 3.
+        let partial_reset = Emcy::parse(&[0x00, 0x00, 0x05, 0x01, 0, 0, 0, 0]).unwrap();
+        assert_eq!(storage.receive(node, error), SlotUpdate::RootCause);
+        assert_eq!(
+            storage.receive(node, partial_reset),
+            SlotUpdate::Reset {
+                cleared: Some(error)
+            }
+        );
+        assert_eq!(storage.slot(node), partial_reset);
+        assert_eq!(storage.root_cause(node), None);
+        assert_eq!(storage.recv_emcy_dev(node), Ok(None));
+        assert_eq!(
+            storage.receive(node, Emcy::parse(&RESET).unwrap()),
+            SlotUpdate::Reset { cleared: None }
+        );
+        assert_eq!(storage.slot(node).to_bytes(), RESET);
+    }
+
+    #[test]
+    fn a_reset_notification_carries_the_reset_emcy() {
+        let node = n(8);
+        let mut storage = EmcyStorage::with_devices(DeviceSet::new().with(node));
+        let mut block = RecvEmcy::new();
+        storage.receive(node, Emcy::parse(&LIFE_GUARD).unwrap());
+        block.call(&storage).unwrap();
+        // A device sending 0x0001 (a 0x00xx reset, SPEC §2.3) with register 0x05.
+        let reset = Emcy::parse(&[0x01, 0x00, 0x05, 0x01, 0, 0, 0, 0]).unwrap();
+        storage.receive(node, reset);
+        let typed = block.clone().call(&storage);
+        assert_eq!(
+            typed,
+            Ok(RecvEmcyResult::ResetError {
+                device: node,
+                reset
+            })
+        );
+        assert!(!typed.unwrap().emergency_received());
+        let raw = block.call_outputs(&storage);
+        assert_eq!(raw.device(), 8);
+        // ERRORINFO: code exactly 0, register and manufacturer bytes kept.
+        assert_eq!(raw.errorinfo().to_bytes(), [0, 0, 0x05, 0x01, 0, 0, 0, 0]);
+        assert!(!raw.emergency_received());
+        let dev = storage.recv_emcy_dev_outputs(node);
+        assert_eq!(dev.errorinfo().to_bytes(), [0, 0, 0x05, 0x01, 0, 0, 0, 0]);
+        assert!(!dev.emergency_received());
+    }
+
+    #[test]
+    fn the_scan_resumes_where_it_stopped_and_wraps_past_127() {
+        run(
+            &[1, 64, 126, 127],
+            &[
+                Rx(127, OVER_VOLTAGE),
+                Rx(64, LIFE_GUARD),
+                Rx(1, OVER_TEMPERATURE),
+                Call(true, 0x0000, 1, 0x4310), // a new block starts at 1
+                Call(true, 0x0000, 64, 0x8130),
+                Call(true, 0x0000, 127, 0x3210),
+                Call(true, 0x0000, 1, 0x4310), // past 127 back to 1
+                Rx(126, MEMORY),
+                Call(true, 0x0000, 64, 0x8130),
+                Call(true, 0x0000, 126, 0x5100),
+                Call(true, 0x0000, 127, 0x3210),
+                Rx(1, RESET),
+                Rx(64, RESET),
+                Call(true, 0x0000, 1, 0x0000),
+                Call(true, 0x0000, 64, 0x0000),
+                Call(true, 0x0000, 126, 0x5100),
+                Call(true, 0x0000, 127, 0x3210),
+                Call(true, 0x0000, 126, 0x5100), // 1 and 64 are skipped now
+            ],
+        );
+    }
+
+    #[test]
+    fn unconfigured_devices() {
+        run(
+            &[],
+            &[
+                Call(false, 0x0024, 0, 0x0000), // no device: CANOPEN_NODEID_UNKNOWN
+                Dev(10, false, 0x0024, 0x0000),
+                Add(10),
+                Rx(11, OVER_VOLTAGE), // stored, but 11 is not configured
+                Call(true, 0x0000, 0, 0x0000),
+                Dev(11, false, 0x0024, 0x0000),
+                Dev(10, true, 0x0000, 0x0000),
+                Add(11), // configured later: its pending error shows
+                Dev(11, true, 0x0000, 0x3210),
+                Call(true, 0x0000, 11, 0x3210),
+                Remove(11),
+                Call(true, 0x0000, 0, 0x0000),
+                Rx(11, RESET),
+                Add(11), // its error was delivered: the reset is notified once
+                Call(true, 0x0000, 11, 0x0000),
+                Call(true, 0x0000, 0, 0x0000),
+                Remove(10),
+                Remove(11),
+                Call(false, 0x0024, 0, 0x0000),
+            ],
+        );
+    }
+
+    #[test]
+    fn a_device_errs_again_after_its_reset_was_delivered() {
+        run(
+            &[20],
+            &[
+                Rx(20, OVER_TEMPERATURE),
+                Call(true, 0x0000, 20, 0x4310),
+                Rx(20, RESET),
+                Call(true, 0x0000, 20, 0x0000),
+                Rx(20, LIFE_GUARD),
+                Call(true, 0x0000, 20, 0x8130),
+                Call(true, 0x0000, 20, 0x8130),
+                Rx(20, RESET),
+                Call(true, 0x0000, 20, 0x0000),
+                Call(true, 0x0000, 0, 0x0000),
+            ],
+        );
+    }
+
+    #[test]
+    fn what_comes_and_goes_between_two_calls() {
+        run(
+            &[7],
+            &[
+                // An error reset before any call: never delivered.
+                Rx(7, OVER_VOLTAGE),
+                Rx(7, RESET),
+                Call(true, 0x0000, 0, 0x0000),
+                // A delivered error replaced by a new one before the next
+                // call: the new error, no reset notification in between.
+                Rx(7, OVER_VOLTAGE),
+                Call(true, 0x0000, 7, 0x3210),
+                Rx(7, RESET),
+                Rx(7, PDO_LENGTH),
+                Call(true, 0x0000, 7, 0x8210),
+                Rx(7, RESET),
+                Call(true, 0x0000, 7, 0x0000),
+                Call(true, 0x0000, 0, 0x0000),
+            ],
+        );
+    }
+
+    #[test]
+    fn two_blocks_over_one_storage_each_deliver_the_reset() {
+        let node = n(3);
+        let mut storage = EmcyStorage::with_devices(DeviceSet::new().with(node));
+        let (mut plc, mut hmi) = (RecvEmcy::new(), RecvEmcy::default());
+        let error = Emcy::parse(&MEMORY).unwrap();
+        storage.receive(node, error);
+        assert_eq!(plc.call(&storage).unwrap().device(), Some(node));
+        assert_eq!(hmi.call(&storage).unwrap().device(), Some(node));
+        storage.receive(node, Emcy::parse(&RESET).unwrap());
+        for block in [&mut plc, &mut hmi] {
+            assert!(matches!(
+                block.call(&storage),
+                Ok(RecvEmcyResult::ResetError { .. })
+            ));
+            assert_eq!(block.call(&storage), Ok(RecvEmcyResult::AllClear));
+        }
+    }
+
+    #[test]
+    fn slot_updates() {
+        let node = n(1);
+        let mut storage = EmcyStorage::default();
+        let first = Emcy::parse(&OVER_TEMPERATURE).unwrap();
+        let later = Emcy::parse(&LIFE_GUARD).unwrap();
+        let reset = Emcy::parse(&RESET).unwrap();
+        let table = [
+            (first, SlotUpdate::RootCause),
+            (later, SlotUpdate::FollowUp { root_cause: first }),
+            (later, SlotUpdate::FollowUp { root_cause: first }),
+            (
+                reset,
+                SlotUpdate::Reset {
+                    cleared: Some(first),
+                },
+            ),
+            (reset, SlotUpdate::Reset { cleared: None }),
+            (later, SlotUpdate::RootCause),
+        ];
+        for (i, (emcy, update)) in table.into_iter().enumerate() {
+            assert_eq!(storage.receive(node, emcy), update, "row {i}");
+        }
+        assert_eq!(storage.devices_in_error(), DeviceSet::new().with(node));
+        assert_eq!(storage.devices(), DeviceSet::EMPTY);
+    }
+
+    #[test]
+    fn fresh_storage_holds_no_error_everywhere() {
+        let storage = EmcyStorage::new();
+        for node in NodeId::all() {
+            assert_eq!(storage.slot(node).to_bytes(), [0; 8]);
+            assert_eq!(storage.root_cause(node), None);
+            assert!(!storage.is_configured(node));
+        }
+        let all = EmcyStorage::with_devices(DeviceSet::ALL);
+        assert!(NodeId::all().all(|node| all.recv_emcy_dev(node) == Ok(None)));
+        assert_eq!(RecvEmcy::new().call(&all), Ok(RecvEmcyResult::AllClear));
+    }
+
+    #[test]
+    fn device_set_first_from() {
+        let set: DeviceSet = [n(3), n(64), n(127)].into_iter().collect();
+        // (start, first device at or after start, wrapping)
+        let table = [(1, 3), (3, 3), (4, 64), (64, 64), (65, 127), (127, 127)];
+        for (start, first) in table {
+            assert_eq!(set.first_from(n(start)), Some(n(first)), "from {start}");
+        }
+        let without_127 = set.without(n(127));
+        assert_eq!(without_127.first_from(n(65)), Some(n(3)));
+        assert_eq!(without_127.first_from(n(127)), Some(n(3)));
+        assert_eq!(DeviceSet::EMPTY.first_from(n(1)), None);
+        assert_eq!(DeviceSet::ALL.first_from(n(127)), Some(n(127)));
+    }
+
+    #[test]
+    fn device_set_operations() {
+        let mut set = DeviceSet::new();
+        assert!(set.is_empty());
+        assert!(set.insert(n(127)));
+        assert!(!set.insert(n(127)));
+        assert!(set.insert(n(1)));
+        assert_eq!(set.len(), 2);
+        assert_eq!(set.iter().collect::<Vec<_>>(), [n(1), n(127)]);
+        assert!(set.remove(n(1)));
+        assert!(!set.remove(n(1)));
+        assert_eq!(set, DeviceSet::EMPTY.with(n(127)));
+        set.extend([n(2), n(3)]);
+        assert_eq!(set.intersection(DeviceSet::EMPTY.with(n(3))).len(), 1);
+        assert_eq!(set.union(DeviceSet::ALL), DeviceSet::ALL);
+        assert_eq!(DeviceSet::ALL.len(), 127);
+        assert_eq!(
+            DeviceSet::ALL.iter().collect::<Vec<_>>(),
+            NodeId::all().collect::<Vec<_>>()
+        );
+    }
+
+    /// CiA 405 `CANOPEN_KERNEL_ERROR` (CODESYS for 0x0024): (value, name).
+    const KERNEL_ERRORS: [(u16, &str); 7] = [
+        (0x0000, "CANOPEN_KERNEL_NO_ERROR"),
+        (0x0001, "CANOPEN_KERNEL_OTHER_ERROR"),
+        (0x0002, "CANOPEN_KERNEL_DATA_OVERFLOW"),
+        (0x0003, "CANOPEN_KERNEL_TIMEOUT"),
+        (0x0010, "CANOPEN_KERNEL_CANBUS_OFF"),
+        (0x0011, "CANOPEN_KERNEL_CAN_ERROR_PASSIVE"),
+        (0x0024, "CANOPEN_NODEID_UNKNOWN"),
+    ];
+
+    #[test]
+    fn kernel_error_table() {
+        for (code, name) in KERNEL_ERRORS {
+            let error = KernelError::from_code(code);
+            assert_eq!(error.name(), name);
+            assert!(!matches!(error, KernelError::Unlisted(_)), "{name}");
+            assert_eq!(error.is_error(), code != 0);
+        }
+        for code in 0..=u16::MAX {
+            let error = KernelError::from(code);
+            assert_eq!(u16::from(error), code);
+            let listed = KERNEL_ERRORS.iter().any(|&(c, _)| c == code);
+            assert_eq!(matches!(error, KernelError::Unlisted(_)), !listed);
+        }
+    }
+
+    #[test]
+    fn kernel_error_texts() {
+        let table = [
+            (0x0000, "no error"),
+            (0x0024, "unknown node-ID"),
+            (0x0005, "reserved for further SDO errors 0x0005"),
+            (0x0012, "reserved for further kernel errors 0x0012"),
+            (0x0020, "unassigned 0x0020"),
+            (0x0042, "manufacturer-specific error 0x0042"),
+            (0x0100, "reserved by CiA 0x0100"),
+        ];
+        for (code, text) in table {
+            assert_eq!(KernelError::from_code(code).to_string(), text);
+        }
+        assert_eq!(KernelError::Unlisted(0x0042).name(), "unlisted");
+    }
+
+    #[test]
+    fn outputs_of_an_error_of_the_call() {
+        let raw = RecvEmcyOutputs::from(Err(KernelError::NodeIdUnknown));
+        assert_eq!(
+            (raw.confirm(), raw.error(), raw.device(), raw.errorinfo()),
+            (false, KernelError::NodeIdUnknown, 0, NO_ERROR)
+        );
+        assert!(!raw.emergency_received());
+        let dev = EmcyStorage::new().recv_emcy_dev_outputs(n(1));
+        assert_eq!(
+            (dev.confirm(), dev.error(), dev.errorinfo()),
+            (false, KernelError::NodeIdUnknown, NO_ERROR)
+        );
+    }
+}
+
+#[cfg(test)]
+mod proptests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::test_gens::recv_emcy::{device_set, ops, Op};
+
+    /// CiA 405's recommendation read literally, one device at a time: the
+    /// first error since the last reset per device, the last reset, and a
+    /// linear scan of 127 positions from where the last call stopped.
+    struct Model {
+        first_error: [Option<Emcy>; DEVICES],
+        last_reset: [Emcy; DEVICES],
+        configured: [bool; DEVICES],
+        last_delivered_error: [bool; DEVICES],
+        next: usize,
+    }
+
+    impl Model {
+        fn new(devices: DeviceSet) -> Self {
+            let mut configured = [false; DEVICES];
+            for node in devices.iter() {
+                configured[node.index()] = true;
+            }
+            Model {
+                first_error: [None; DEVICES],
+                last_reset: [NO_ERROR; DEVICES],
+                configured,
+                last_delivered_error: [false; DEVICES],
+                next: 0,
+            }
+        }
+
+        fn receive(&mut self, node: NodeId, emcy: Emcy) {
+            let i = node.index();
+            if emcy.is_reset() {
+                self.first_error[i] = None;
+                self.last_reset[i] = emcy;
+            } else if self.first_error[i].is_none() {
+                self.first_error[i] = Some(emcy);
+            }
+        }
+
+        fn call(&mut self) -> Result<RecvEmcyResult, KernelError> {
+            if !self.configured.contains(&true) {
+                return Err(KernelError::NodeIdUnknown);
+            }
+            for step in 0..DEVICES {
+                let i = (self.next + step) % DEVICES;
+                let device = NodeId::new(i as u8 + 1).unwrap();
+                if !self.configured[i] {
+                    continue;
+                }
+                if let Some(emcy) = self.first_error[i] {
+                    self.last_delivered_error[i] = true;
+                    self.next = (i + 1) % DEVICES;
+                    return Ok(RecvEmcyResult::Error { device, emcy });
+                }
+                if self.last_delivered_error[i] {
+                    self.last_delivered_error[i] = false;
+                    self.next = (i + 1) % DEVICES;
+                    return Ok(RecvEmcyResult::ResetError {
+                        device,
+                        reset: self.last_reset[i],
+                    });
+                }
+            }
+            Ok(RecvEmcyResult::AllClear)
+        }
+    }
+
+    /// What `RECV_EMCY` delivered last for a device.
+    #[derive(Clone, Copy, PartialEq, Eq)]
+    enum Last {
+        Nothing,
+        Error,
+        Reset,
+    }
+
+    proptest! {
+        /// Over random receives, calls and configuration changes: RECV_EMCY
+        /// never delivers a reset of a device twice without an error of it
+        /// in between (nor one with no error before it), delivers DEVICE = 0
+        /// only when no configured device holds an error, and delivers what
+        /// the literal reading of CiA 405 delivers; RECV_EMCY_DEV always
+        /// returns the first error since the last reset. Nothing panics.
+        #[test]
+        fn recv_emcy_over_random_sequences(devices in device_set(), ops in ops()) {
+            let mut storage = EmcyStorage::with_devices(devices);
+            let mut block = RecvEmcy::new();
+            let mut model = Model::new(devices);
+            let mut last = [Last::Nothing; DEVICES];
+            for op in ops {
+                match op {
+                    Op::Receive(node, emcy) => {
+                        storage.receive(node, emcy);
+                        model.receive(node, emcy);
+                    }
+                    Op::AddDevice(node) => {
+                        storage.add_device(node);
+                        model.configured[node.index()] = true;
+                    }
+                    Op::RemoveDevice(node) => {
+                        storage.remove_device(node);
+                        model.configured[node.index()] = false;
+                    }
+                    Op::CallDev(node) => {
+                        let expected = if storage.is_configured(node) {
+                            Ok(model.first_error[node.index()])
+                        } else {
+                            Err(KernelError::NodeIdUnknown)
+                        };
+                        prop_assert_eq!(storage.recv_emcy_dev(node), expected);
+                        let raw = storage.recv_emcy_dev_outputs(node);
+                        prop_assert_eq!(raw.confirm(), expected.is_ok());
+                        prop_assert_eq!(
+                            raw.emergency_received(),
+                            matches!(expected, Ok(Some(_)))
+                        );
+                    }
+                    Op::Call => {
+                        let in_error = storage.devices().intersection(storage.devices_in_error());
+                        let result = block.clone().call(&storage);
+                        let raw = block.call_outputs(&storage);
+                        prop_assert_eq!(RecvEmcyOutputs::from(result), raw);
+                        prop_assert_eq!(result, model.call());
+                        match result {
+                            Ok(RecvEmcyResult::Error { device, emcy }) => {
+                                prop_assert!(!emcy.is_reset());
+                                prop_assert_eq!(storage.recv_emcy_dev(device), Ok(Some(emcy)));
+                                last[device.index()] = Last::Error;
+                            }
+                            Ok(RecvEmcyResult::ResetError { device, reset }) => {
+                                prop_assert!(reset.is_reset());
+                                prop_assert!(
+                                    last[device.index()] == Last::Error,
+                                    "reset of {} without an error delivered before it",
+                                    device
+                                );
+                                last[device.index()] = Last::Reset;
+                            }
+                            Ok(RecvEmcyResult::AllClear) => {
+                                prop_assert!(in_error.is_empty(), "all clear while {:?} hold errors", in_error);
+                                prop_assert_eq!((raw.device(), raw.errorinfo()), (0, NO_ERROR));
+                            }
+                            Err(error) => {
+                                prop_assert_eq!(error, KernelError::NodeIdUnknown);
+                                prop_assert!(storage.devices().is_empty());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+
+        /// Every configured device holding an error is delivered within as
+        /// many calls as there are configured devices.
+        #[test]
+        fn every_pending_error_is_delivered_within_one_scan(devices in device_set(), ops in ops()) {
+            let mut storage = EmcyStorage::with_devices(devices);
+            let mut block = RecvEmcy::new();
+            for op in ops {
+                match op {
+                    Op::Receive(node, emcy) => { storage.receive(node, emcy); }
+                    Op::AddDevice(node) => { storage.add_device(node); }
+                    Op::RemoveDevice(node) => { storage.remove_device(node); }
+                    Op::Call => { let _ = block.call(&storage); }
+                    Op::CallDev(_) => {}
+                }
+            }
+            let pending = storage.devices().intersection(storage.devices_in_error());
+            let mut seen = DeviceSet::new();
+            for _ in 0..storage.devices().len() {
+                if let Ok(RecvEmcyResult::Error { device, .. }) = block.call(&storage) {
+                    seen.insert(device);
+                }
+            }
+            prop_assert_eq!(seen, pending);
+        }
+    }
+}
