@@ -4,3 +4,4 @@
 pub(crate) mod akd;
 pub(crate) mod baumer;
 pub(crate) mod canopen;
+pub(crate) mod recv_emcy;
