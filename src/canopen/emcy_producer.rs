@@ -10,73 +10,8 @@
 //! exceeded. There is no clock, no I/O and no heap: the active errors live in
 //! an array of `N` slots (default [`DEFAULT_ACTIVE_ERRORS`]).
 //!
-//! The rules, with the **Decision**s this module takes where SPEC leaves a
-//! choice:
-//!
-//! - The error register (object 1001h) has bit 0 set whenever any error is
-//!   active; its class bits are the union of every active error's
-//!   *contribution*: the bits the caller supplied for that error, or else
-//!   [`ErrorCode::register_class_bits`] (SPEC §2.5). The reserved bit 6 is
-//!   always cleared from a contribution (SPEC §2.2: always 0 when produced).
-//! - Transitions 1 and 3 send the error's code, the accumulated register of
-//!   all active errors including the new one, and the error's manufacturer
-//!   bytes. Transition 2 sends code 0x0000, the register of the remaining
-//!   errors and a zero manufacturer area; transition 4 sends code 0x0000,
-//!   register 0x00 and a zero manufacturer area.
-//! - An error that is already active occurring again sends nothing and leaves
-//!   the state as it is (the first report's register contribution stays).
-//!   Resetting an error that is not active sends nothing. "All errors reset"
-//!   from error-occurred is transition 4; from error-free it sends nothing.
-//! - **Decision:** an "error occurred" event whose code is a reset code
-//!   (0x00xx, SPEC §2.3) is refused: nothing is sent and the state is
-//!   unchanged ([`IgnoredEvent::ResetCodeIsNotAnError`]). Treating it as
-//!   "reset all" would let one wrong call clear real faults from the error
-//!   register; a device that means "all errors are gone" says
-//!   [`EmcyEvent::AllErrorsReset`].
-//! - **Decision (capacity overflow):** when an error occurs while all `N`
-//!   slots hold other active errors, its EMCY is still sent, with the
-//!   register accumulated with that error's bits, and
-//!   [`EmcyOutcome::overflow`] names its code. The error is not tracked, but
-//!   the machine remembers that an untracked error may be active and the
-//!   bits it contributed: they stay in the register, and the state stays
-//!   error-occurred, until [`EmcyEvent::AllErrorsReset`] or
-//!   [`EmcyEvent::Initialised`]. Resetting an untracked code therefore sends
-//!   nothing (the machine cannot tell which untracked error it was) and
-//!   resetting the last *tracked* error is transition 2, not 4. The register
-//!   a device sends never claims "no error" while an error may be present.
-//! - [`EmcyEvent::Initialised`] is transition 0 from any state: the machine
-//!   starts again error-free, without sending anything (seed 000: "No error
-//!   signal is generated in this condition").
-//! - The manufacturer area of a reset EMCY is zero (SPEC §2.5). The AKD keeps
-//!   its axis id in byte 3 of reset EMCYs (seed 000, SPEC §2.4); a device
-//!   that wants that sets it on the [`Emcy`] before sending.
-//!
-//! ```
-//! use motionwire::canopen::{
-//!     EmcyEvent, EmcyProducer, EmcyTransition, ErrorCode, ErrorCondition,
-//! };
-//!
-//! let mut producer: EmcyProducer = EmcyProducer::new();
-//!
-//! // Transition 1: device temperature (0x4210) on axis 1.
-//! let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x4210), [1, 0, 0, 0, 0]));
-//! assert_eq!(out.transition, Some(EmcyTransition::FirstError));
-//! assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x42, 0x09, 1, 0, 0, 0, 0]);
-//!
-//! // Transition 3: a CAN overrun (0x8110) adds the communication bit.
-//! let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x8110), [0; 5]));
-//! assert_eq!(out.transition.map(EmcyTransition::number), Some(3));
-//! assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x81, 0x19, 0, 0, 0, 0, 0]);
-//!
-//! // Transition 2: the temperature error goes, the overrun remains.
-//! let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x4210)));
-//! assert_eq!(out.emcy.unwrap().to_bytes(), [0x00, 0x00, 0x11, 0, 0, 0, 0, 0]);
-//!
-//! // Transition 4: the last error goes.
-//! let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x8110)));
-//! assert_eq!(out.emcy.unwrap().to_bytes(), [0; 8]);
-//! assert_eq!(producer.condition(), ErrorCondition::ErrorFree);
-//! ```
+//! The rules, the **Decision**s taken where SPEC leaves a choice, and an
+//! example are on [`EmcyProducer`].
 
 use core::fmt;
 
@@ -84,8 +19,9 @@ use super::{Emcy, ErrorCode, ErrorRegister};
 
 /// The default number of active errors an [`EmcyProducer`] tracks, 8.
 ///
-/// SPEC §2.5 asks for a fixed capacity without fixing it; 8 covers the
-/// distinct error classes of CiA 301 Table 26 that a drive reports at once.
+/// SPEC §2.5 asks for a fixed capacity without naming it (**Decision**: 8,
+/// enough for one error of each register class bit at once; a device that
+/// needs more chooses its own `N`).
 pub const DEFAULT_ACTIVE_ERRORS: usize = 8;
 
 /// The two error conditions of the EMCY state machine (seed 000: "The error
@@ -180,7 +116,7 @@ pub enum EmcyEvent {
     /// An error occurred.
     ErrorOccurred {
         /// The error's emergency error code (SPEC §2.3). A reset code
-        /// (0x00xx) is refused, see the module documentation.
+        /// (0x00xx) is refused, see [`EmcyProducer`].
         code: ErrorCode,
         /// The error-register bits this error contributes; `None` derives
         /// them from the code ([`ErrorCode::register_class_bits`]). Bit 0 is
@@ -238,12 +174,12 @@ pub enum IgnoredEvent {
     /// The error that occurred is already active.
     AlreadyActive,
     /// The error that was reset is not active (or was never tracked, after a
-    /// capacity overflow).
+    /// capacity overflow; a reset code 0x00xx is never active).
     NotActive,
     /// "All errors reset" while already error-free.
     AlreadyErrorFree,
     /// An "error occurred" event carried a reset code (0x00xx), which names
-    /// no error (**Decision**, see the module documentation).
+    /// no error (**Decision**, see [`EmcyProducer`]).
     ResetCodeIsNotAnError,
 }
 
@@ -269,7 +205,7 @@ pub struct EmcyOutcome {
 }
 
 impl EmcyOutcome {
-    const fn transition(transition: EmcyTransition, emcy: Option<Emcy>) -> Self {
+    const fn taken(transition: EmcyTransition, emcy: Option<Emcy>) -> Self {
         EmcyOutcome {
             emcy,
             transition: Some(transition),
@@ -278,7 +214,7 @@ impl EmcyOutcome {
         }
     }
 
-    const fn ignored(reason: IgnoredEvent) -> Self {
+    const fn refused(reason: IgnoredEvent) -> Self {
         EmcyOutcome {
             emcy: None,
             transition: None,
@@ -321,8 +257,75 @@ impl ActiveError {
 /// The value is the state: it is `Copy`, and two states compare equal when
 /// they hold the same active errors with the same register contributions
 /// (the order in which the errors occurred does not matter) and the same
-/// untracked-overflow memory. See the [module documentation](self) for the
-/// rules and an example.
+/// untracked-overflow memory.
+///
+/// The rules, with the **Decision**s taken where SPEC leaves a choice:
+///
+/// - The error register (object 1001h) has bit 0 set whenever any error is
+///   active; its class bits are the union of every active error's
+///   *contribution*: the bits the caller supplied for that error, or else
+///   [`ErrorCode::register_class_bits`] (SPEC §2.5). The reserved bit 6 is
+///   always cleared from a contribution (SPEC §2.2: always 0 when produced).
+/// - Transitions 1 and 3 send the error's code, the accumulated register of
+///   all active errors including the new one, and the error's manufacturer
+///   bytes. Transition 2 sends code 0x0000, the register of the remaining
+///   errors and a zero manufacturer area; transition 4 sends code 0x0000,
+///   register 0x00 and a zero manufacturer area.
+/// - An error that is already active occurring again sends nothing and leaves
+///   the state as it is (the first report's register contribution stays).
+///   Resetting an error that is not active sends nothing. "All errors reset"
+///   from error-occurred is transition 4; from error-free it sends nothing.
+/// - **Decision:** an "error occurred" event whose code is a reset code
+///   (0x00xx, SPEC §2.3) is refused: nothing is sent and the state is
+///   unchanged ([`IgnoredEvent::ResetCodeIsNotAnError`]). Treating it as
+///   "reset all" would let one wrong call clear real faults from the error
+///   register; a device that means "all errors are gone" says
+///   [`EmcyEvent::AllErrorsReset`].
+/// - **Decision (capacity overflow):** when an error occurs while all `N`
+///   slots hold other active errors, its EMCY is still sent, with the
+///   register accumulated with that error's bits, and
+///   [`EmcyOutcome::overflow`] names its code. The error is not tracked, but
+///   the machine remembers that an untracked error may be active and the
+///   bits it contributed: they stay in the register, and the state stays
+///   error-occurred, until [`EmcyEvent::AllErrorsReset`] or
+///   [`EmcyEvent::Initialised`]. Resetting an untracked code therefore sends
+///   nothing (the machine cannot tell which untracked error it was) and
+///   resetting the last *tracked* error is transition 2, not 4. The register
+///   a device sends never claims "no error" while an error may be present.
+/// - **Decision:** [`EmcyEvent::Initialised`] is transition 0 from any state
+///   (a re-initialised device starts over, e.g. after an NMT reset): the machine
+///   starts again error-free, without sending anything (seed 000: "No error
+///   signal is generated in this condition").
+/// - The manufacturer area of a reset EMCY is zero (SPEC §2.5). The AKD keeps
+///   its axis id in byte 3 of reset EMCYs (seed 000, SPEC §2.4); a device
+///   that wants that sets it on the [`Emcy`] before sending.
+///
+/// ```
+/// use motionwire::canopen::{
+///     EmcyEvent, EmcyProducer, EmcyTransition, ErrorCode, ErrorCondition,
+/// };
+///
+/// let mut producer: EmcyProducer = EmcyProducer::new();
+///
+/// // Transition 1: device temperature (0x4210) on axis 1.
+/// let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x4210), [1, 0, 0, 0, 0]));
+/// assert_eq!(out.transition, Some(EmcyTransition::FirstError));
+/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x42, 0x09, 1, 0, 0, 0, 0]);
+///
+/// // Transition 3: a CAN overrun (0x8110) adds the communication bit.
+/// let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x8110), [0; 5]));
+/// assert_eq!(out.transition.map(EmcyTransition::number), Some(3));
+/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x81, 0x19, 0, 0, 0, 0, 0]);
+///
+/// // Transition 2: the temperature error goes, the overrun remains.
+/// let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x4210)));
+/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x00, 0x00, 0x11, 0, 0, 0, 0, 0]);
+///
+/// // Transition 4: the last error goes.
+/// let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x8110)));
+/// assert_eq!(out.emcy.unwrap().to_bytes(), [0; 8]);
+/// assert_eq!(producer.condition(), ErrorCondition::ErrorFree);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct EmcyProducer<const N: usize = DEFAULT_ACTIVE_ERRORS> {
     /// The active errors in ascending code order in `active[..len]`; every
@@ -401,7 +404,7 @@ impl<const N: usize> EmcyProducer<N> {
     }
 
     /// Return whether an error may be active that could not be tracked for
-    /// lack of a slot (see the module documentation's overflow rule).
+    /// lack of a slot (see [`EmcyProducer`]'s overflow rule).
     pub const fn has_untracked_errors(&self) -> bool {
         self.untracked.is_some()
     }
@@ -419,7 +422,7 @@ impl<const N: usize> EmcyProducer<N> {
         match event {
             EmcyEvent::Initialised => {
                 *self = Self::new();
-                EmcyOutcome::transition(EmcyTransition::Initialised, None)
+                EmcyOutcome::taken(EmcyTransition::Initialised, None)
             }
             EmcyEvent::ErrorOccurred {
                 code,
@@ -429,10 +432,10 @@ impl<const N: usize> EmcyProducer<N> {
             EmcyEvent::ErrorReset { code } => self.error_reset(code),
             EmcyEvent::AllErrorsReset => {
                 if self.is_error_free() {
-                    EmcyOutcome::ignored(IgnoredEvent::AlreadyErrorFree)
+                    EmcyOutcome::refused(IgnoredEvent::AlreadyErrorFree)
                 } else {
                     *self = Self::new();
-                    EmcyOutcome::transition(
+                    EmcyOutcome::taken(
                         EmcyTransition::AllErrorsReset,
                         Some(Emcy::reset(ErrorRegister::empty())),
                     )
@@ -448,10 +451,10 @@ impl<const N: usize> EmcyProducer<N> {
         manufacturer: [u8; 5],
     ) -> EmcyOutcome {
         if code.is_reset() {
-            return EmcyOutcome::ignored(IgnoredEvent::ResetCodeIsNotAnError);
+            return EmcyOutcome::refused(IgnoredEvent::ResetCodeIsNotAnError);
         }
         if self.is_active(code) {
-            return EmcyOutcome::ignored(IgnoredEvent::AlreadyActive);
+            return EmcyOutcome::refused(IgnoredEvent::AlreadyActive);
         }
         let transition = if self.is_error_free() {
             EmcyTransition::FirstError
@@ -474,7 +477,7 @@ impl<const N: usize> EmcyProducer<N> {
         };
         EmcyOutcome {
             overflow,
-            ..EmcyOutcome::transition(
+            ..EmcyOutcome::taken(
                 transition,
                 Some(Emcy::new(code, self.error_register(), manufacturer)),
             )
@@ -483,15 +486,15 @@ impl<const N: usize> EmcyProducer<N> {
 
     fn error_reset(&mut self, code: ErrorCode) -> EmcyOutcome {
         if !self.remove(code) {
-            return EmcyOutcome::ignored(IgnoredEvent::NotActive);
+            return EmcyOutcome::refused(IgnoredEvent::NotActive);
         }
         if self.is_error_free() {
-            EmcyOutcome::transition(
+            EmcyOutcome::taken(
                 EmcyTransition::AllErrorsReset,
                 Some(Emcy::reset(ErrorRegister::empty())),
             )
         } else {
-            EmcyOutcome::transition(
+            EmcyOutcome::taken(
                 EmcyTransition::ErrorReset,
                 Some(Emcy::reset(self.error_register())),
             )

@@ -9,48 +9,8 @@
 //! [`ErrorHistory::read`] and [`ErrorHistory::write`] answer SDO accesses
 //! with the value or the [`SdoAbortCode`] CiA 301 prescribes.
 //!
-//! **Decisions** where SPEC §2.6 leaves a choice:
-//!
-//! - [`ErrorHistory::record`] fills bits 16–31 from the EMCY's
-//!   manufacturer-specific bytes 0–1 (frame bytes 3–4) read little-endian,
-//!   so an AKD entry carries the axis and feedback id in bits 16–23
-//!   (SPEC §2.4).
-//! - Sub-indices `count + 1 ..= N` exist but hold no data: reading one is
-//!   refused with [`SdoAbortCode::NO_DATA_AVAILABLE`] (SPEC §2.6). Sub-indices
-//!   above `N` do not exist in the object dictionary: reading or writing one
-//!   is refused with [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`] (CiA 301
-//!   Table 22).
-//! - Writing sub-indices 1..=N is refused with
-//!   [`SdoAbortCode::WRITE_OF_READ_ONLY`]: CiA 301 gives them read-only
-//!   access.
-//! - `N` is 1..=254 (sub-indices 1..=FEh of CiA 301); another `N` fails to
-//!   compile when the history is created.
-//!
-//! ```
-//! use motionwire::canopen::{
-//!     EmcyEvent, EmcyProducer, ErrorCode, ErrorHistory, SdoAbortCode,
-//! };
-//!
-//! let mut producer: EmcyProducer = EmcyProducer::new();
-//! let mut history: ErrorHistory = ErrorHistory::new();
-//!
-//! for event in [
-//!     EmcyEvent::error(ErrorCode::new(0x4210), [0x01, 0, 0, 0, 0]),
-//!     EmcyEvent::error(ErrorCode::new(0x8110), [0; 5]),
-//!     EmcyEvent::reset(ErrorCode::new(0x4210)), // a reset EMCY: not recorded
-//! ] {
-//!     history.record_outcome(&producer.apply(event));
-//! }
-//!
-//! assert_eq!(history.read(0), Ok(2));
-//! assert_eq!(history.read(1), Ok(0x0000_8110)); // newest
-//! assert_eq!(history.read(2), Ok(0x0001_4210)); // axis 1 in bits 16–23
-//! assert_eq!(history.read(3), Err(SdoAbortCode::NO_DATA_AVAILABLE));
-//!
-//! assert_eq!(history.write(0, 1), Err(SdoAbortCode::INVALID_VALUE));
-//! assert_eq!(history.write(0, 0), Ok(()));
-//! assert!(history.is_empty());
-//! ```
+//! The **Decision**s taken where SPEC leaves a choice, and an example, are
+//! on [`ErrorHistory`].
 
 use byteorder::{ByteOrder, LittleEndian};
 
@@ -91,7 +51,7 @@ impl ErrorHistoryEntry {
 
     /// Return the entry an EMCY makes: its code, and its manufacturer bytes
     /// 0–1 (frame bytes 3–4), little-endian, as the additional information
-    /// (**Decision**, see the module documentation).
+    /// (**Decision**, see [`ErrorHistory`]).
     pub fn from_emcy(emcy: &Emcy) -> Self {
         ErrorHistoryEntry::new(emcy.code, LittleEndian::read_u16(&emcy.manufacturer[..2]))
     }
@@ -123,7 +83,58 @@ impl From<ErrorHistoryEntry> for u32 {
 }
 
 /// The pre-defined error field, object 1003h, holding the last `N` errors
-/// (CiA 301 §7.5.2.3; SPEC §2.6). See the [module documentation](self).
+/// (CiA 301 §7.5.2.3; SPEC §2.6).
+///
+/// Sub-index 0 is the number of entries, sub-index 1 the newest; a new error
+/// shifts the older ones down and the oldest falls off when full; reset
+/// EMCYs (0x00xx) are not recorded.
+///
+/// **Decisions** where SPEC §2.6 leaves a choice:
+///
+/// - [`ErrorHistory::record`] fills bits 16–31 from the EMCY's
+///   manufacturer-specific bytes 0–1 (frame bytes 3–4) read little-endian,
+///   so an AKD entry carries the axis and feedback id in bits 16–23
+///   (SPEC §2.4).
+/// - Sub-indices `count + 1 ..= N` exist but hold no data: reading one is
+///   refused with [`SdoAbortCode::NO_DATA_AVAILABLE`] (SPEC §2.6). Sub-indices
+///   above `N` do not exist in the object dictionary: reading or writing one
+///   is refused with [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`] (CiA 301
+///   Table 22).
+/// - Writing sub-indices 1..=N is refused with
+///   [`SdoAbortCode::WRITE_OF_READ_ONLY`]: CiA 301 gives them read-only
+///   access.
+/// - `N` is 1..=254 (sub-indices 1..=FEh of CiA 301); another `N` fails to
+///   compile when the history is created:
+///
+/// ```compile_fail
+/// let history = motionwire::canopen::ErrorHistory::<255>::new();
+/// ```
+///
+/// ```
+/// use motionwire::canopen::{
+///     EmcyEvent, EmcyProducer, ErrorCode, ErrorHistory, SdoAbortCode,
+/// };
+///
+/// let mut producer: EmcyProducer = EmcyProducer::new();
+/// let mut history: ErrorHistory = ErrorHistory::new();
+///
+/// for event in [
+///     EmcyEvent::error(ErrorCode::new(0x4210), [0x01, 0, 0, 0, 0]),
+///     EmcyEvent::error(ErrorCode::new(0x8110), [0; 5]),
+///     EmcyEvent::reset(ErrorCode::new(0x4210)), // a reset EMCY: not recorded
+/// ] {
+///     history.record_outcome(&producer.apply(event));
+/// }
+///
+/// assert_eq!(history.read(0), Ok(2));
+/// assert_eq!(history.read(1), Ok(0x0000_8110)); // newest
+/// assert_eq!(history.read(2), Ok(0x0001_4210)); // axis 1 in bits 16–23
+/// assert_eq!(history.read(3), Err(SdoAbortCode::NO_DATA_AVAILABLE));
+///
+/// assert_eq!(history.write(0, 1), Err(SdoAbortCode::INVALID_VALUE));
+/// assert_eq!(history.write(0, 0), Ok(()));
+/// assert!(history.is_empty());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ErrorHistory<const N: usize = DEFAULT_ERROR_HISTORY_LEN> {
     /// Newest first in `entries[..count]`; every other slot is zero, so the
@@ -151,7 +162,6 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Return an empty history.
     pub const fn new() -> Self {
-        #[allow(clippy::let_unit_value)]
         let () = Self::VALID_CAPACITY;
         ErrorHistory {
             entries: [Self::EMPTY; N],
@@ -206,8 +216,8 @@ impl<const N: usize> ErrorHistory<N> {
     }
 
     /// Record an EMCY that was sent: its code and, as additional
-    /// information, its manufacturer bytes 0–1 (see the module
-    /// documentation). Reset EMCYs are not recorded (SPEC §2.6); return
+    /// information, its manufacturer bytes 0–1 (**Decision**, see
+    /// [`ErrorHistory`]). Reset EMCYs are not recorded (SPEC §2.6); return
     /// whether it was.
     pub fn record(&mut self, emcy: &Emcy) -> bool {
         self.push(ErrorHistoryEntry::from_emcy(emcy))
