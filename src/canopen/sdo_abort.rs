@@ -4,15 +4,6 @@
 //! dictionary entry with a 32-bit abort code. [`SdoAbortCode`] holds any
 //! `u32`; the codes of CiA 301 Table 22 are named constants with their
 //! descriptions.
-//!
-//! ```
-//! use motionwire::canopen::SdoAbortCode;
-//!
-//! let abort = SdoAbortCode::NO_DATA_AVAILABLE;
-//! assert_eq!(abort.get(), 0x0800_0024);
-//! assert_eq!(abort.to_string(), "0x08000024: No data available");
-//! assert!(!SdoAbortCode::new(0x1234_5678).is_known());
-//! ```
 
 use core::fmt;
 
@@ -21,6 +12,15 @@ use core::fmt;
 ///
 /// Every `u32` is a value of this type; [`SdoAbortCode::description`] names
 /// the codes of CiA 301 Table 22 and reports any other as unknown.
+///
+/// ```
+/// use motionwire::canopen::SdoAbortCode;
+///
+/// let abort = SdoAbortCode::NO_DATA_AVAILABLE;
+/// assert_eq!(abort.get(), 0x0800_0024);
+/// assert_eq!(abort.to_string(), "0x08000024: No data available");
+/// assert!(!SdoAbortCode::new(0x1234_5678).is_known());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct SdoAbortCode(u32);
 
