@@ -1,17 +1,29 @@
 //! CANopen: identifiers, the EMCY frame and its codes, error control and the
 //! monitors built on them (CiA 301, CiA 402, CiA 405; SPEC §2–§3).
+//!
+//! Each submodule holds one frame, register or state machine and documents
+//! its decisions; the types are re-exported here.
 
-mod emcy;
-mod error_code;
-mod error_register;
-mod node_id;
-mod recv_emcy;
+pub mod emcy;
+pub mod emcy_producer;
+pub mod error_code;
+pub mod error_history;
+pub mod error_register;
+pub mod node_id;
+pub mod recv_emcy;
+pub mod sdo_abort;
 
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
+pub use emcy_producer::{
+    ActiveError, EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCondition,
+    IgnoredEvent, DEFAULT_ACTIVE_ERRORS,
+};
 pub use error_code::{Description, DescriptionSource, ErrorClass, ErrorCode, Specificity};
+pub use error_history::{ErrorHistory, ErrorHistoryEntry, DEFAULT_ERROR_HISTORY_LEN};
 pub use error_register::ErrorRegister;
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,
     RecvEmcyResult, SlotUpdate,
 };
+pub use sdo_abort::SdoAbortCode;

@@ -4,4 +4,5 @@
 pub(crate) mod akd;
 pub(crate) mod baumer;
 pub(crate) mod canopen;
+pub(crate) mod emcy_producer;
 pub(crate) mod recv_emcy;
