@@ -14,6 +14,9 @@
 //!
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes (CiA 301 §7.2.7, SPEC §2).
+//! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,
+//!   status and error words, and the enable, error-clear and zero-pulse
+//!   handshakes (SPEC §1).
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -23,6 +26,7 @@
 
 pub mod canopen;
 mod error;
+pub mod servo;
 
 pub use error::{Error, Result};
 
