@@ -45,6 +45,16 @@ pub enum Error {
         /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
         expected: &'static str,
     },
+    /// A text is not written in the form its value needs (e.g. `"E5x"` for a
+    /// servo E-code, which is `E` followed by decimal digits). Text cannot be
+    /// kept without a heap, so the message says what form was expected.
+    #[error("{what}: text is not of the form {expected}")]
+    Malformed {
+        /// The value that was being read from text, e.g. `"servo E-code"`.
+        what: &'static str,
+        /// The form the text must have, in words.
+        expected: &'static str,
+    },
 }
 
 /// The crate's result type.
@@ -90,6 +100,14 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "NMT state: 0x12 is not one of 0x00, 0x04, 0x05, 0x7f"
+        );
+        let e = Error::Malformed {
+            what: "servo E-code",
+            expected: "E followed by one or two decimal digits, e.g. E05",
+        };
+        assert_eq!(
+            e.to_string(),
+            "servo E-code: text is not of the form E followed by one or two decimal digits, e.g. E05"
         );
         assert!(check_len("x", &[0; 10], 10).is_ok());
     }

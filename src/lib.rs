@@ -16,6 +16,54 @@
 //!   error codes (CiA 301 §7.2.7, SPEC §2).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
 //!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
+//! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,
+//!   status and error words, and the enable, error-clear and zero-pulse
+//!   handshakes (SPEC §1).
+//!
+//! ## Example
+//!
+//! A servo's answer to one NC cycle: build a [`servo::Feedback`], emit it
+//! into the 40 bytes of the process image, and parse it back.
+//!
+//! ```
+//! use motionwire::servo::{
+//!     ActualPosition, ECode, Feedback, Message, MessageKind, ServoErrorWord, ServoFault,
+//!     ServoStatusWord, FEEDBACK_LEN,
+//! };
+//!
+//! let mut feedback = Feedback {
+//!     position: 0,
+//!     status: ServoStatusWord::SERVO_EN | ServoStatusWord::PULSE_ENABLED,
+//!     errors: ServoErrorWord::from_e_code(ECode::E09).summarized(),
+//!     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+//!     extra_data: [0.0; 4],
+//! };
+//! feedback.set_actual_position(ActualPosition::Incremental {
+//!     position: 123_456,
+//!     zero_pulse_position: 4_096,
+//! });
+//!
+//! let bytes: [u8; FEEDBACK_LEN] = feedback.to_bytes();
+//! assert_eq!(bytes[..8], [0x40, 0xE2, 0x01, 0x00, 0x00, 0x10, 0x00, 0x00]);
+//!
+//! let back = Feedback::parse(&bytes)?;
+//! assert_eq!(back.to_bytes(), bytes);
+//! assert_eq!(
+//!     back.actual_position(),
+//!     ActualPosition::Incremental { position: 123_456, zero_pulse_position: 4_096 }
+//! );
+//! assert_eq!(back.message.kind().name(), "motor_speed");
+//! assert_eq!(back.message.data, 1500.0);
+//! let faults: Vec<_> = back.errors.faults().map(ServoFault::name).collect();
+//! assert_eq!(faults, ["ServoErrors", "FollowerErr"]);
+//!
+//! // Fewer than 40 bytes is an error that says so; nothing panics.
+//! assert_eq!(
+//!     Feedback::parse(&bytes[..39]).unwrap_err().to_string(),
+//!     "servo feedback frame: buffer of 39 bytes where 40 are needed"
+//! );
+//! # Ok::<(), motionwire::Error>(())
+//! ```
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -26,6 +74,7 @@
 pub mod canopen;
 mod error;
 pub mod profiles;
+pub mod servo;
 
 pub use error::{Error, Result};
 

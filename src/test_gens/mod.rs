@@ -6,3 +6,4 @@ pub(crate) mod baumer;
 pub(crate) mod canopen;
 pub(crate) mod emcy_producer;
 pub(crate) mod recv_emcy;
+pub(crate) mod servo;

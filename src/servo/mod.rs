@@ -1,0 +1,43 @@
+//! The EtherCAT servo ↔ NC cyclic process data (SPEC §1; seed 002, "EtherCat
+//! Communication interface V0.18").
+//!
+//! Once per NC control cycle the NC sends a 10-byte [`Command`] (speed set
+//! point, [`ServoControlWord`], extra data code) and the servo answers with a
+//! 40-byte [`Feedback`] (actual position, [`ServoStatusWord`],
+//! [`ServoErrorWord`], a multiplexed [`Message`], four extra floats). Each
+//! frame has a zero-copy view ([`CommandFrame`], [`FeedbackFrame`]) and an
+//! owned `Copy` value sharing one set of offsets.
+//!
+//! The behaviours of SPEC §1.6 are pure functions and state machines:
+//! [`servo_ready`] (the ServoRDY truth table), [`enable_handshake`] (SE
+//! 0b01 → 0b10), and the NC side of the two request/ack handshakes,
+//! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
+//!
+//! Layout, one file per word or frame:
+//! - `control_word`: [`ServoControlWord`], [`ServoEnable`],
+//!   [`RegulatorMode`], [`ParameterTable`] (SPEC §1.3);
+//! - `status_word`: [`ServoStatusWord`], [`EncoderKind`] (SPEC §1.4);
+//! - `error_word`: [`ServoErrorWord`], [`ServoFault`], [`ECode`] (SPEC §1.5);
+//! - `command`: [`CommandFrame`], [`Command`] (SPEC §1.1);
+//! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
+//! - `message`: [`Message`], [`MessageKind`] (SPEC §1.2);
+//! - `behaviour`: the pure behaviours (SPEC §1.6).
+
+mod behaviour;
+mod command;
+mod control_word;
+mod error_word;
+mod feedback;
+mod message;
+mod status_word;
+
+pub use behaviour::{
+    enable_handshake, servo_ready, ErrorClear, ErrorClearHandshake, Handshake, HandshakeBits,
+    HandshakePhase, ServoReadyMode, ZeroPulse, ZeroPulseHandshake,
+};
+pub use command::{Command, CommandFrame, COMMAND_LEN};
+pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
+pub use error_word::{ECode, ServoErrorWord, ServoFault};
+pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
+pub use message::{Message, MessageKind};
+pub use status_word::{EncoderKind, ServoStatusWord};
