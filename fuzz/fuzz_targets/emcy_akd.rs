@@ -1,0 +1,170 @@
+//! The Kollmorgen AKD EMCY (SPEC §2.4).
+//!
+//! Arbitrary bytes → `AkdEmcy::parse`. Invariants:
+//! - fewer than 8 bytes is exactly the EMCY `Error::Length`;
+//! - with 8 or more, the feedback nibble (byte 3, bits 4–7) decides: 0..=5
+//!   decodes, the fields are byte 3's nibbles and the reserved bytes 4–7 as
+//!   sent, and re-encoding gives the 8 bytes back; 6..=15 is exactly
+//!   `Error::InvalidValue { what: "AKD feedback id", found: nibble, .. }`,
+//!   and the zero-copy view still reads every field;
+//! - the 5-byte manufacturer field on its own (`AkdManufacturer::parse`)
+//!   obeys the same rules with its own length error;
+//! - `AxisId` / `FeedbackId` constructors accept exactly their ranges and
+//!   name the value they refuse.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use motionwire::canopen::{Emcy, EmcyFrame, EMCY_LEN};
+use motionwire::profiles::akd::{
+    AkdEmcy, AkdManufacturer, AkdManufacturerField, AxisId, FeedbackId, AKD_MANUFACTURER_LEN,
+};
+use motionwire::Error;
+
+const FEEDBACK_EXPECTED: &str = "0 (none), 1..=5 (FB1..FB5)";
+
+fuzz_target!(|data: &[u8]| {
+    check_ids(data);
+    check_field(data);
+
+    let result = AkdEmcy::parse(data);
+    if data.len() < EMCY_LEN {
+        assert_eq!(
+            result,
+            Err(Error::Length {
+                what: "EMCY frame",
+                expected: EMCY_LEN,
+                found: data.len(),
+            })
+        );
+        return;
+    }
+    let bytes: [u8; EMCY_LEN] = data[..EMCY_LEN].try_into().unwrap();
+    let nibble = bytes[3] >> 4;
+    assert_eq!(AkdEmcy::from_bytes(&bytes), result);
+    assert_eq!(AkdEmcy::parse_frame(&EmcyFrame::new_unchecked(&bytes)), result);
+    let emcy = Emcy::from_bytes(&bytes);
+    assert_eq!(AkdEmcy::from_emcy(&emcy), result);
+    assert_eq!(AkdEmcy::try_from(emcy), result);
+
+    match result {
+        Ok(akd) => {
+            assert!(nibble <= 5);
+            assert_eq!(akd.code, emcy.code);
+            assert_eq!(akd.register, emcy.register);
+            assert_eq!(akd.manufacturer.axis.get(), bytes[3] & 0x0F);
+            assert_eq!(akd.manufacturer.feedback.get(), nibble);
+            assert_eq!(akd.manufacturer.reserved, bytes[4..8]);
+            assert_eq!(akd.is_reset(), emcy.is_reset());
+            // Re-encoding gives the input back.
+            assert_eq!(akd.to_bytes(), bytes);
+            assert_eq!(akd.to_emcy(), emcy);
+            assert_eq!(Emcy::from(akd), emcy);
+            let mut image = [0x3Cu8; EMCY_LEN];
+            akd.emit(&mut EmcyFrame::new_unchecked(&mut image[..]));
+            assert_eq!(image, bytes);
+        }
+        Err(error) => {
+            assert!(nibble >= 6, "nibble {nibble} refused: {error}");
+            assert_eq!(
+                error,
+                Error::InvalidValue {
+                    what: "AKD feedback id",
+                    found: u32::from(nibble),
+                    expected: FEEDBACK_EXPECTED,
+                }
+            );
+            let _ = error.to_string();
+        }
+    }
+});
+
+/// The 5-byte field from the front of the input.
+fn check_field(data: &[u8]) {
+    let result = AkdManufacturer::parse(data);
+    let Ok(view) = AkdManufacturerField::new_checked(data) else {
+        assert_eq!(
+            result,
+            Err(Error::Length {
+                what: "AKD manufacturer field",
+                expected: AKD_MANUFACTURER_LEN,
+                found: data.len(),
+            })
+        );
+        return;
+    };
+    // The view reads every field, whatever the nibble.
+    let nibble = view.feedback_nibble();
+    assert_eq!(nibble, data[0] >> 4);
+    assert_eq!(view.axis_id().get(), data[0] & 0x0F);
+    assert_eq!(view.reserved(), data[1..5]);
+    assert_eq!(view.feedback_id(), FeedbackId::try_new(nibble));
+    let bytes: [u8; AKD_MANUFACTURER_LEN] = data[..AKD_MANUFACTURER_LEN].try_into().unwrap();
+    assert_eq!(AkdManufacturer::from_bytes(&bytes), result);
+    assert_eq!(AkdManufacturer::parse_field(&view), result);
+    match result {
+        Ok(field) => {
+            assert_eq!(field.to_bytes(), bytes);
+            let mut image = [0xFFu8; AKD_MANUFACTURER_LEN];
+            field.emit(&mut AkdManufacturerField::new_unchecked(&mut image[..]));
+            assert_eq!(image, bytes);
+        }
+        Err(error) => assert_eq!(
+            error,
+            Error::InvalidValue {
+                what: "AKD feedback id",
+                found: u32::from(nibble),
+                expected: FEEDBACK_EXPECTED,
+            }
+        ),
+    }
+}
+
+/// The sub-byte newtypes on any byte.
+fn check_ids(data: &[u8]) {
+    let Some(&raw) = data.first() else {
+        return;
+    };
+    match AxisId::try_new(raw) {
+        Ok(axis) => {
+            assert!(raw <= 15);
+            assert_eq!(axis.get(), raw);
+            assert_eq!(axis.is_given(), raw != 0);
+        }
+        Err(error) => assert_eq!(
+            error,
+            Error::OutOfRange {
+                what: "AKD axis id",
+                found: u32::from(raw),
+                min: 0,
+                max: 15,
+            }
+        ),
+    }
+    match FeedbackId::try_new(raw) {
+        Ok(feedback) => {
+            assert!(raw <= 5);
+            assert_eq!(feedback.get(), raw);
+            assert_eq!(feedback.number(), (raw != 0).then_some(raw));
+            assert_eq!(FeedbackId::ALL[usize::from(raw)], feedback);
+        }
+        Err(error) if raw <= 15 => assert_eq!(
+            error,
+            Error::InvalidValue {
+                what: "AKD feedback id",
+                found: u32::from(raw),
+                expected: FEEDBACK_EXPECTED,
+            }
+        ),
+        Err(error) => assert_eq!(
+            error,
+            Error::OutOfRange {
+                what: "AKD feedback id",
+                found: u32::from(raw),
+                min: 0,
+                max: 15,
+            }
+        ),
+    }
+    assert_eq!(FeedbackId::new(raw), FeedbackId::try_new(raw).ok());
+    assert_eq!(AxisId::new(raw), AxisId::try_new(raw).ok());
+}

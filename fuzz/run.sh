@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Run every fuzz target of motionwire for a bounded time (libFuzzer through
+# cargo-fuzz), failing on any crash or broken invariant.
+#
+#   fuzz/run.sh [SECONDS]      SECONDS per target, default 20
+#
+# Prints one line per target and a closing count; exits non-zero when a
+# target fails (its log and crashing input are named in its line; the input
+# is kept under fuzz/artifacts/<target>/). Installs cargo-fuzz when missing.
+#
+# Environment:
+#   FUZZ_SANITIZER  cargo-fuzz sanitizer, default "none": the library has no
+#                   unsafe code, so AddressSanitizer adds little but halves the
+#                   speed and needs a nightly toolchain ("address" works with one).
+#   FUZZ_TARGETS    space-separated subset of targets, default all.
+#
+# The committed seeds in fuzz/corpus/<target>/ are read only; new inputs go
+# to fuzz/target/corpus/<target>/, which a later run on the same machine
+# starts from.
+set -euo pipefail
+
+seconds="${1:-20}"
+if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
+    echo "usage: fuzz/run.sh [SECONDS]   (SECONDS per target, a positive integer)" >&2
+    exit 2
+fi
+sanitizer="${FUZZ_SANITIZER:-none}"
+
+cd "$(dirname "$0")"
+
+# cargo-fuzz's sanitizer flags need nightly; with no sanitizer the stable
+# toolchain works too, so use nightly only when it is installed.
+toolchain=()
+if command -v rustup >/dev/null 2>&1 && rustup toolchain list 2>/dev/null | grep -q '^nightly'; then
+    toolchain=(+nightly)
+elif [ "$sanitizer" != none ]; then
+    echo "fuzz: FUZZ_SANITIZER=$sanitizer needs a nightly toolchain, none is installed" >&2
+    exit 2
+fi
+
+if ! cargo "${toolchain[@]}" fuzz --version >/dev/null 2>&1; then
+    echo "fuzz: installing cargo-fuzz from crates.io"
+    cargo install cargo-fuzz --locked --quiet
+fi
+
+# -a: debug assertions and overflow checks on, so that an arithmetic
+# overflow on outside data is a crash as the crate's rules say.
+flags=(--sanitizer "$sanitizer" --debug-assertions)
+
+start=$(date +%s)
+if ! build_log=$(cargo "${toolchain[@]}" fuzz build "${flags[@]}" 2>&1); then
+    echo "$build_log" | tail -n 40
+    echo "fuzz: build failed"
+    exit 1
+fi
+echo "fuzz: built every target in $(( $(date +%s) - start )) s ($(cargo "${toolchain[@]}" fuzz --version), sanitizer $sanitizer)"
+
+if [ -n "${FUZZ_TARGETS:-}" ]; then
+    read -r -a targets <<< "$FUZZ_TARGETS"
+else
+    mapfile -t targets < <(cargo "${toolchain[@]}" fuzz list)
+fi
+
+passed=0
+failed=0
+for target in "${targets[@]}"; do
+    work="target/corpus/$target"
+    log="target/logs/$target.log"
+    mkdir -p "$work" "$(dirname "$log")" "corpus/$target"
+    status=0
+    cargo "${toolchain[@]}" fuzz run "${flags[@]}" "$target" "$work" "corpus/$target" -- \
+        -max_total_time="$seconds" -timeout=10 -print_final_stats=1 >"$log" 2>&1 || status=$?
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+    speed=$(grep -oE 'exec/s: [0-9]+' "$log" | tail -n 1 | grep -oE '[0-9]+' || true)
+    cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -n 1 | grep -oE '[0-9]+' || true)
+    if [ "$status" -eq 0 ]; then
+        passed=$((passed + 1))
+        echo "fuzz $target: ok, ${runs:-?} runs in ${seconds} s (${speed:-?} exec/s, coverage ${cov:-?} edges)"
+    else
+        failed=$((failed + 1))
+        artifact=$(grep -oE 'artifacts/[^ ]+' "$log" | tail -n 1 || true)
+        echo "fuzz $target: FAILED (exit $status) after ${runs:-?} runs; input ${artifact:+fuzz/}${artifact:-none saved}; log fuzz/$log"
+        grep -E "panicked at|assertion|left:|right:|ERROR: libFuzzer" "$log" | head -n 8 | sed 's/^/    /'
+    fi
+done
+
+echo "fuzz: ${#targets[@]} targets, $(( $(date +%s) - start )) s in all"
+echo "fuzz: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
