@@ -111,7 +111,10 @@ fn check_code(code: ErrorCode) {
         "{code}: class {class}, specificity {}",
         description.specificity
     );
-    assert_eq!(description.source.is_none(), description.specificity == Specificity::Unknown);
+    assert_eq!(
+        description.source.is_none(),
+        description.specificity == Specificity::Unknown
+    );
     match description.specificity {
         Specificity::Unknown | Specificity::Class => {
             assert_eq!(description.text, class.description())
@@ -122,7 +125,10 @@ fn check_code(code: ErrorCode) {
     // code has a description at least as specific.
     if description.specificity == Specificity::SubClass {
         let head = ErrorCode::new(raw & 0xFF00).describe();
-        assert!(head.specificity <= Specificity::SubClass, "{code}: head {head:?}");
+        assert!(
+            head.specificity <= Specificity::SubClass,
+            "{code}: head {head:?}"
+        );
     }
     let _ = (description.to_string(), description.specificity.name());
     if let Some(source) = description.source {
@@ -186,7 +192,10 @@ fn check_numbers(data: &[u8]) {
     // SDO abort codes (CiA 301 Table 22).
     let abort = SdoAbortCode::new(u32_value);
     assert_eq!(abort.get(), u32_value);
-    assert_eq!(abort.is_known(), abort.description() != "Unknown SDO abort code");
+    assert_eq!(
+        abort.is_known(),
+        abort.description() != "Unknown SDO abort code"
+    );
     let _ = abort.to_string();
 
     // CiA 405 kernel errors round-trip every value.

@@ -41,7 +41,10 @@ fuzz_target!(|data: &[u8]| {
     let bytes: [u8; EMCY_LEN] = data[..EMCY_LEN].try_into().unwrap();
     let nibble = bytes[3] >> 4;
     assert_eq!(AkdEmcy::from_bytes(&bytes), result);
-    assert_eq!(AkdEmcy::parse_frame(&EmcyFrame::new_unchecked(&bytes)), result);
+    assert_eq!(
+        AkdEmcy::parse_frame(&EmcyFrame::new_unchecked(&bytes)),
+        result
+    );
     let emcy = Emcy::from_bytes(&bytes);
     assert_eq!(AkdEmcy::from_emcy(&emcy), result);
     assert_eq!(AkdEmcy::try_from(emcy), result);

@@ -51,8 +51,14 @@ fuzz_target!(|data: &[u8]| {
     // Decoding keeps every bit; encoding gives the bytes back.
     assert_eq!(baumer.code, emcy.code);
     assert_eq!(baumer.register, emcy.register);
-    assert_eq!(baumer.manufacturer.alarms.bits(), u16::from_le_bytes([bytes[3], bytes[4]]));
-    assert_eq!(baumer.manufacturer.warnings.bits(), u16::from_le_bytes([bytes[5], bytes[6]]));
+    assert_eq!(
+        baumer.manufacturer.alarms.bits(),
+        u16::from_le_bytes([bytes[3], bytes[4]])
+    );
+    assert_eq!(
+        baumer.manufacturer.warnings.bits(),
+        u16::from_le_bytes([bytes[5], bytes[6]])
+    );
     assert_eq!(baumer.manufacturer.unused, bytes[7]);
     assert_eq!(baumer.to_bytes(), bytes);
     assert_eq!(baumer.to_emcy(), emcy);
@@ -73,7 +79,13 @@ fn check_matching(emcy: &Emcy, baumer: &BaumerEmcy) {
     let of_code: Vec<&'static DiagnosticSource> = sources_for_code(code).collect();
 
     for source in &matched {
-        assert_eq!(source.code(), Some(code), "{} for {}", source.name(), emcy.code);
+        assert_eq!(
+            source.code(),
+            Some(code),
+            "{} for {}",
+            source.name(),
+            emcy.code
+        );
     }
     // Rows in table order, none twice: a subsequence of the code's rows.
     let mut rest = of_code.iter();
@@ -89,19 +101,33 @@ fn check_matching(emcy: &Emcy, baumer: &BaumerEmcy) {
         .copied()
         .filter(|row| row.is_signalled_in(&baumer.manufacturer))
         .collect();
-    let expected = if signalled.is_empty() { &of_code } else { &signalled };
+    let expected = if signalled.is_empty() {
+        &of_code
+    } else {
+        &signalled
+    };
     assert_eq!(names(&matched), names(expected));
-    if DIAGNOSTIC_SOURCES.iter().all(|row| row.code() != Some(code)) {
+    if DIAGNOSTIC_SOURCES
+        .iter()
+        .all(|row| row.code() != Some(code))
+    {
         assert!(matched.is_empty());
     }
-    assert_eq!(names(&baumer.sources().collect::<Vec<_>>()), names(&matched));
+    assert_eq!(
+        names(&baumer.sources().collect::<Vec<_>>()),
+        names(&matched)
+    );
 
     // The reserved codes are no row's code.
     if is_reserved_code(emcy.code) {
         assert!(of_code.is_empty(), "reserved {} has rows", emcy.code);
     }
     for source in &matched {
-        let _ = (source.to_string(), source.appearance().name(), source.variant().name());
+        let _ = (
+            source.to_string(),
+            source.appearance().name(),
+            source.variant().name(),
+        );
         if let Some(sent) = source.emcy() {
             assert_eq!(Some(sent.code), source.code());
         }

@@ -59,7 +59,11 @@ fn next_op(input: &mut Reader) -> Option<Op> {
         2 => {
             let code = ErrorCode::new(input.u16()?);
             let register = ErrorRegister::from_bits_retain(input.u8()?);
-            Op::Event(EmcyEvent::error_with_register(code, register, input.array()?))
+            Op::Event(EmcyEvent::error_with_register(
+                code,
+                register,
+                input.array()?,
+            ))
         }
         3 => Op::Event(EmcyEvent::reset(ErrorCode::new(input.u16()?))),
         4 => Op::Event(EmcyEvent::AllErrorsReset),
@@ -106,7 +110,11 @@ impl ProducerModel {
         if self.error_free() {
             return 0;
         }
-        self.tracked.iter().fold(1 | self.untracked.unwrap_or(0), |acc, &(_, bits)| acc | bits)
+        self.tracked
+            .iter()
+            .fold(1 | self.untracked.unwrap_or(0), |acc, &(_, bits)| {
+                acc | bits
+            })
     }
 }
 
@@ -133,7 +141,11 @@ impl<const N: usize, const H: usize> Checked<N, H> {
         let (stepped, stepped_outcome) = before.step(event);
         assert_eq!(before, self.producer, "step changed the state it was given");
         let outcome = self.producer.apply(event);
-        assert_eq!((stepped, stepped_outcome), (self.producer, outcome), "step and apply differ");
+        assert_eq!(
+            (stepped, stepped_outcome),
+            (self.producer, outcome),
+            "step and apply differ"
+        );
 
         let was_error_free = self.model.error_free();
         let expected = self.model_step(event);
@@ -158,7 +170,10 @@ impl<const N: usize, const H: usize> Checked<N, H> {
         );
         if let Some(transition) = outcome.transition {
             assert_eq!(transition.target(), producer.condition());
-            assert_eq!(EmcyTransition::from_number(transition.number()), Some(transition));
+            assert_eq!(
+                EmcyTransition::from_number(transition.number()),
+                Some(transition)
+            );
         }
         assert_eq!(producer.error_register().bits(), self.model.register());
         assert!(!producer.error_register().contains(ErrorRegister::RESERVED));
@@ -185,7 +200,8 @@ impl<const N: usize, const H: usize> Checked<N, H> {
             Some(emcy) if !emcy.code.is_reset() => {
                 assert!(recorded);
                 let [a, b, ..] = emcy.manufacturer;
-                let entry = u32::from(emcy.code.get()) | u32::from(u16::from_le_bytes([a, b])) << 16;
+                let entry =
+                    u32::from(emcy.code.get()) | u32::from(u16::from_le_bytes([a, b])) << 16;
                 self.history_model.insert(0, entry);
                 self.history_model.truncate(H);
             }
@@ -198,7 +214,11 @@ impl<const N: usize, const H: usize> Checked<N, H> {
     fn model_step(
         &mut self,
         event: EmcyEvent,
-    ) -> (Option<EmcyTransition>, Option<IgnoredEvent>, Option<ErrorCode>) {
+    ) -> (
+        Option<EmcyTransition>,
+        Option<IgnoredEvent>,
+        Option<ErrorCode>,
+    ) {
         let model = &mut self.model;
         match event {
             EmcyEvent::Initialised => {
@@ -258,7 +278,10 @@ impl<const N: usize, const H: usize> Checked<N, H> {
             _ if usize::from(sub_index) > H => Err(SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST),
             _ => Err(SdoAbortCode::WRITE_OF_READ_ONLY),
         };
-        assert_eq!(result, expected, "write {value:#x} to 1003h sub {sub_index}");
+        assert_eq!(
+            result, expected,
+            "write {value:#x} to 1003h sub {sub_index}"
+        );
         match result {
             Ok(()) => self.history_model.clear(),
             Err(_) => assert_eq!(self.history, before, "a refused write changed the history"),
@@ -273,7 +296,10 @@ impl<const N: usize, const H: usize> Checked<N, H> {
         assert_eq!(history.read(0), Ok(history.len() as u32));
         let entries: Vec<u32> = history.iter().map(|entry| entry.to_u32()).collect();
         assert_eq!(entries, self.history_model);
-        assert_eq!(history.newest().map(|e| e.to_u32()), self.history_model.first().copied());
+        assert_eq!(
+            history.newest().map(|e| e.to_u32()),
+            self.history_model.first().copied()
+        );
         for entry in history.iter() {
             assert!(!entry.code.is_reset());
         }
@@ -287,7 +313,11 @@ impl<const N: usize, const H: usize> Checked<N, H> {
                 None if index <= H => Err(SdoAbortCode::NO_DATA_AVAILABLE),
                 None => Err(SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST),
             };
-            assert_eq!(history.read(sub_index), expected, "read 1003h sub {sub_index}");
+            assert_eq!(
+                history.read(sub_index),
+                expected,
+                "read 1003h sub {sub_index}"
+            );
             assert_eq!(history.entry(sub_index).map(|e| e.to_u32()), expected.ok());
         }
     }

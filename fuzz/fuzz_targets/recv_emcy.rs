@@ -39,13 +39,17 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
-    Emcy, EmcyStorage, ErrorCode, KernelError, NodeId, RecvEmcy, RecvEmcyOutputs,
-    RecvEmcyResult, SlotUpdate,
+    Emcy, EmcyStorage, ErrorCode, KernelError, NodeId, RecvEmcy, RecvEmcyOutputs, RecvEmcyResult,
+    SlotUpdate,
 };
 use motionwire_fuzz::Reader;
 
 fn node(raw: u8) -> NodeId {
-    let id = if raw < 0x80 { raw % 8 + 1 } else { raw % 127 + 1 };
+    let id = if raw < 0x80 {
+        raw % 8 + 1
+    } else {
+        raw % 127 + 1
+    };
     NodeId::new(id).expect("1..=127")
 }
 
@@ -186,7 +190,10 @@ impl Fixture {
                 Some(error) => assert_eq!(outputs.errorinfo(), error),
                 None => assert_eq!(outputs.errorinfo().code, ErrorCode::NO_ERROR),
             }
-            assert_eq!(outputs.emergency_received(), self.model.root_cause[i].is_some());
+            assert_eq!(
+                outputs.emergency_received(),
+                self.model.root_cause[i].is_some()
+            );
         } else {
             assert_eq!(result, Err(KernelError::NodeIdUnknown));
             assert!(!outputs.confirm());
@@ -284,7 +291,10 @@ impl Fixture {
             }
         }
         for id in &in_error {
-            assert!(delivered.contains(id), "device {id} in error not delivered by a full scan");
+            assert!(
+                delivered.contains(id),
+                "device {id} in error not delivered by a full scan"
+            );
         }
         if in_error.is_empty() {
             if !all_clear {

@@ -108,5 +108,10 @@ fn check_control_word(control: ServoControlWord) {
         .map(|(_, name)| *name)
         .collect();
     assert_eq!(names, expected);
-    let _ = (se.to_string(), table.to_string(), mode.to_string(), mode.name());
+    let _ = (
+        se.to_string(),
+        table.to_string(),
+        mode.to_string(),
+        mode.name(),
+    );
 }

@@ -49,11 +49,20 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(frame.status_word(), feedback.status);
     assert_eq!(frame.error_word(), feedback.errors);
     assert_eq!(frame.message_code(), feedback.message.code);
-    assert_eq!(frame.message_data().to_bits(), feedback.message.data.to_bits());
+    assert_eq!(
+        frame.message_data().to_bits(),
+        feedback.message.data.to_bits()
+    );
     assert_eq!(frame.message().code, feedback.message.code);
-    assert_eq!(frame.message().data.to_bits(), feedback.message.data.to_bits());
+    assert_eq!(
+        frame.message().data.to_bits(),
+        feedback.message.data.to_bits()
+    );
     let extra_bits = |extra: [f32; 4]| extra.map(f32::to_bits);
-    assert_eq!(extra_bits(frame.extra_data()), extra_bits(feedback.extra_data));
+    assert_eq!(
+        extra_bits(frame.extra_data()),
+        extra_bits(feedback.extra_data)
+    );
     assert_eq!(frame.actual_position(), feedback.actual_position());
     assert_eq!(Feedback::parse_frame(&frame).to_bytes(), bytes);
     assert_eq!(Feedback::from_bytes(&bytes).to_bytes(), bytes);

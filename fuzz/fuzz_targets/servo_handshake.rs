@@ -81,7 +81,10 @@ fuzz_target!(|data: &[u8]| {
 });
 
 /// Apply the NC's wish (1 = start, 2 = cancel) and check what it did.
-fn nc_action<B: HandshakeBits + PartialEq + core::fmt::Debug>(state: Handshake<B>, wish: u8) -> Handshake<B> {
+fn nc_action<B: HandshakeBits + PartialEq + core::fmt::Debug>(
+    state: Handshake<B>,
+    wish: u8,
+) -> Handshake<B> {
     match wish {
         1 => {
             let next = state.start();
@@ -115,10 +118,17 @@ fn step_checked<B: HandshakeBits + PartialEq + core::fmt::Debug>(
     status: ServoStatusWord,
 ) -> (Handshake<B>, ServoControlWord) {
     let (next, written) = state.step(last_command, status);
-    assert_eq!(state.step(last_command, status), (next, written), "step is pure");
+    assert_eq!(
+        state.step(last_command, status),
+        (next, written),
+        "step is pure"
+    );
 
     // Only the request bit changes, and it is 1 exactly in Requested.
-    assert_eq!(written.bits() & !B::REQUEST.bits(), last_command.bits() & !B::REQUEST.bits());
+    assert_eq!(
+        written.bits() & !B::REQUEST.bits(),
+        last_command.bits() & !B::REQUEST.bits()
+    );
     assert_eq!(written.contains(B::REQUEST), next.phase() == Requested);
     assert_eq!(next.request_bit(), next.phase() == Requested);
     assert_eq!(next.apply(last_command), written);
@@ -130,7 +140,10 @@ fn step_checked<B: HandshakeBits + PartialEq + core::fmt::Debug>(
     if ack {
         assert!(!matches!(to, Idle | Done), "{from} → {to} with the ack up");
     } else {
-        assert!(!matches!(to, Releasing | UnsolicitedAck), "{from} → {to} with the ack down");
+        assert!(
+            !matches!(to, Releasing | UnsolicitedAck),
+            "{from} → {to} with the ack down"
+        );
     }
     // Only an unsolicited ack holds a start back, and it keeps holding it
     // while the ack stays up.
@@ -140,19 +153,22 @@ fn step_checked<B: HandshakeBits + PartialEq + core::fmt::Debug>(
     }
 
     if from == to {
-        assert_eq!(next.cycles_in_phase(), state.cycles_in_phase().saturating_add(1));
+        assert_eq!(
+            next.cycles_in_phase(),
+            state.cycles_in_phase().saturating_add(1)
+        );
     } else {
         assert_eq!(next.cycles_in_phase(), 0);
         match to {
             Requested => assert!(from == UnsolicitedAck && state.start_held_back() && !ack),
             Acknowledged => assert!(from == Requested && requested && ack),
             Releasing => assert!(from == Acknowledged && !requested && ack),
-            Done => assert!(
-                (from == Acknowledged && !requested && !ack) || (from == Releasing && !ack)
-            ),
-            UnsolicitedAck => assert!(
-                ack && (matches!(from, Idle | Done) || (from == Requested && !requested))
-            ),
+            Done => {
+                assert!((from == Acknowledged && !requested && !ack) || (from == Releasing && !ack))
+            }
+            UnsolicitedAck => {
+                assert!(ack && (matches!(from, Idle | Done) || (from == Requested && !requested)))
+            }
             Idle => assert!(from == UnsolicitedAck && !state.start_held_back() && !ack),
         }
     }
