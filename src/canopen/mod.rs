@@ -4,9 +4,14 @@
 mod emcy;
 mod error_code;
 mod error_register;
+mod nmt;
 mod node_id;
 
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
 pub use error_code::{ErrorClass, ErrorCode};
 pub use error_register::ErrorRegister;
+pub use nmt::{
+    GuardAnswer, GuardAnswerFrame, Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN,
+    HEARTBEAT_LEN,
+};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};

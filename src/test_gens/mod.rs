@@ -2,3 +2,4 @@
 //! tests (after etherparse's `test_gens`).
 
 pub(crate) mod canopen;
+pub(crate) mod error_control;
