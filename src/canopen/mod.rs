@@ -7,8 +7,12 @@
 pub mod emcy;
 pub mod emcy_producer;
 pub mod error_code;
+pub mod error_control;
 pub mod error_history;
 pub mod error_register;
+pub mod guarding;
+pub mod heartbeat;
+pub mod nmt;
 pub mod node_id;
 pub mod recv_emcy;
 pub mod sdo_abort;
@@ -19,8 +23,20 @@ pub use emcy_producer::{
     IgnoredEvent, DEFAULT_ACTIVE_ERRORS,
 };
 pub use error_code::{Description, DescriptionSource, ErrorClass, ErrorCode, Specificity};
+pub use error_control::{millis_to_micros, ErrorControlConfig, ErrorControlMethod, Events, Micros};
 pub use error_history::{ErrorHistory, ErrorHistoryEntry, DEFAULT_ERROR_HISTORY_LEN};
 pub use error_register::ErrorRegister;
+pub use guarding::{
+    AcceptedStates, GuardingEvent, GuardingEvents, LifeGuard, LifeGuardExpiry, NodeGuardingMaster,
+};
+pub use heartbeat::{
+    ConsumerEntry, HeartbeatConsumer, HeartbeatEvent, HeartbeatEvents, HeartbeatProducer,
+    MonitorState,
+};
+pub use nmt::{
+    GuardAnswer, GuardAnswerFrame, Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN,
+    HEARTBEAT_LEN,
+};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

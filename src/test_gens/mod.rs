@@ -5,5 +5,6 @@ pub(crate) mod akd;
 pub(crate) mod baumer;
 pub(crate) mod canopen;
 pub(crate) mod emcy_producer;
+pub(crate) mod error_control;
 pub(crate) mod recv_emcy;
 pub(crate) mod servo;

@@ -1,0 +1,130 @@
+//! Strategies for the error-control types: NMT states, heartbeat and
+//! node-guarding messages, and timed input sequences for the heartbeat
+//! consumer, the node-guarding master and life guarding (SPEC §2.7).
+
+use proptest::prelude::*;
+
+use crate::canopen::{GuardAnswer, Heartbeat, Micros, NmtState, NodeId};
+
+/// Any NMT state.
+pub(crate) fn nmt_state() -> impl Strategy<Value = NmtState> {
+    proptest::sample::select(NmtState::ALL.to_vec())
+}
+
+/// Any heartbeat a producer sends (bit 7 clear) or a device was seen to
+/// send (bit 7 set), decoded from its byte.
+pub(crate) fn heartbeat() -> impl Strategy<Value = Heartbeat> {
+    (nmt_state(), any::<bool>()).prop_map(|(state, bit7)| {
+        let byte = state.to_byte() | if bit7 { 0x80 } else { 0 };
+        Heartbeat::from_bytes(&[byte]).expect("a defined state decodes")
+    })
+}
+
+/// Any node-guarding answer.
+pub(crate) fn guard_answer() -> impl Strategy<Value = GuardAnswer> {
+    (any::<bool>(), nmt_state()).prop_map(|(toggle, state)| GuardAnswer::new(toggle, state))
+}
+
+/// Steps at arbitrary times (µs): jumping backwards, repeating, up to
+/// `u64::MAX`; for "never panics" properties of the saturating arithmetic.
+pub(crate) fn any_times<S: Strategy>(step: S) -> impl Strategy<Value = Vec<(Micros, S::Value)>> {
+    let time = prop_oneof![
+        any::<u64>(),
+        (u64::MAX - 1_000_000)..=u64::MAX,
+        0u64..1_000_000,
+    ];
+    proptest::collection::vec((time, step), 0..40)
+}
+
+/// Turn steps with time increments (µs) into steps with a monotonic time,
+/// starting anywhere in the first hour.
+fn timed<S: Strategy>(
+    step: S,
+    max_increment: Micros,
+) -> impl Strategy<Value = Vec<(Micros, S::Value)>> {
+    (
+        0..3_600_000_000u64,
+        proptest::collection::vec((0..=max_increment, step), 0..80),
+    )
+        .prop_map(|(start, steps)| {
+            let mut now = start;
+            steps
+                .into_iter()
+                .map(|(increment, step)| {
+                    now += increment;
+                    (now, step)
+                })
+                .collect()
+        })
+}
+
+/// One input to the heartbeat consumer.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum ConsumerStep {
+    /// A heartbeat or boot-up from a node.
+    Rx(NodeId, NmtState),
+    /// A poll.
+    Poll,
+}
+
+/// Timed consumer inputs over nodes 1..=5 (more than a 3-entry consumer
+/// holds), with gaps from 0 to 0.5 s.
+pub(crate) fn consumer_steps() -> impl Strategy<Value = Vec<(Micros, ConsumerStep)>> {
+    timed(consumer_step(), 500_000)
+}
+
+/// One consumer input, from nodes 1..=5.
+pub(crate) fn consumer_step() -> impl Strategy<Value = ConsumerStep> {
+    let node = (1u8..=5).prop_map(|raw| NodeId::new(raw).expect("1..=5 is a node-ID"));
+    prop_oneof![
+        3 => (node, nmt_state()).prop_map(|(node, state)| ConsumerStep::Rx(node, state)),
+        1 => Just(ConsumerStep::Poll),
+    ]
+}
+
+/// One input to the node-guarding master.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum GuardingStep {
+    /// A guard request sent or seen.
+    Request,
+    /// An answer from the node.
+    Answer(GuardAnswer),
+    /// The node's boot-up message.
+    BootUp,
+    /// A poll.
+    Poll,
+}
+
+/// Timed guarding inputs with gaps from 0 to 0.3 s.
+pub(crate) fn guarding_steps() -> impl Strategy<Value = Vec<(Micros, GuardingStep)>> {
+    timed(guarding_step(), 300_000)
+}
+
+/// One guarding input.
+pub(crate) fn guarding_step() -> impl Strategy<Value = GuardingStep> {
+    prop_oneof![
+        3 => Just(GuardingStep::Request),
+        3 => guard_answer().prop_map(GuardingStep::Answer),
+        1 => Just(GuardingStep::BootUp),
+        2 => Just(GuardingStep::Poll),
+    ]
+}
+
+/// One input to life guarding.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum LifeStep {
+    /// A guard request received.
+    Request,
+    /// A poll.
+    Poll,
+}
+
+/// Timed life-guarding inputs with gaps from 0 to 0.6 s.
+pub(crate) fn life_steps() -> impl Strategy<Value = Vec<(Micros, LifeStep)>> {
+    timed(life_step(), 600_000)
+}
+
+/// One life-guarding input.
+pub(crate) fn life_step() -> impl Strategy<Value = LifeStep> {
+    prop_oneof![Just(LifeStep::Request), Just(LifeStep::Poll)]
+}
