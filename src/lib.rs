@@ -23,6 +23,28 @@
 //!   status and error words, and the enable, error-clear and zero-pulse
 //!   handshakes (SPEC §1).
 //!
+//! ## Optional features
+//!
+//! - `std`: implements conveniences that need the standard library.
+//! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
+//!   the zero-copy views, not the state machines).
+//!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],
+//!     [`servo::ParameterTable`], [`profiles::akd::AxisId`],
+//!     [`profiles::baumer::InjectionCode`] — are their number, and
+//!     deserializing checks it as their `try_new` does: no invalid value can
+//!     be made. [`canopen::DeviceSet`] is the list of its node-IDs.
+//!   - Flag words ([`canopen::ErrorRegister`], the servo words, the Baumer
+//!     alarms and warnings) use bitflags 2's format: in text formats the
+//!     names of the set flags joined by `|`, with every bit that no name
+//!     covers (reserved bits, multi-bit fields) as one hex number, e.g.
+//!     `"ENCODER_DATA_INVALID | 0x104"`; in binary formats the integer.
+//!     Every bit survives a round trip.
+//!   - Enums and structs have serde's derived format: variant and field
+//!     names as written in Rust.
+//!   - Floats are numbers. A text format without NaN and infinity (JSON)
+//!     cannot carry those: `serde_json` writes `null` and refuses it back.
+//!     For a bit-exact copy use a binary format or the frames' `to_bytes`.
+//!
 //! ## Example
 //!
 //! A servo's answer to one NC cycle: build a [`servo::Feedback`], emit it
@@ -81,5 +103,7 @@ pub mod servo;
 
 pub use error::{Error, Result};
 
+#[cfg(all(test, feature = "serde"))]
+mod serde_tests;
 #[cfg(test)]
 mod test_gens;

@@ -19,7 +19,15 @@ use crate::error::{Error, Result};
 /// assert!(NodeId::new(0).is_none());
 /// assert!(NodeId::new(128).is_none());
 /// ```
+///
+/// With the `serde` feature a node-ID serializes as its number;
+/// deserializing refuses any number outside 1..=127.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u8", into = "u8")
+)]
 pub struct NodeId(u8);
 
 impl NodeId {

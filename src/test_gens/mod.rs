@@ -6,5 +6,7 @@ pub(crate) mod baumer;
 pub(crate) mod canopen;
 pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
+#[cfg(feature = "serde")]
+pub(crate) mod owned;
 pub(crate) mod recv_emcy;
 pub(crate) mod servo;
