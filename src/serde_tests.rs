@@ -9,9 +9,10 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use crate::canopen::{
-    DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister,
-    GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent, KernelError, NmtState, NodeId,
-    RecvEmcyResult, SdoAbortCode, SlotUpdate,
+    CanData, CanOpenMessage, CanPayload, CobFunction, DeviceSet, Dlc, Emcy, EmcyTransition,
+    ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat,
+    HeartbeatEvent, KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult,
+    SdoAbortCode, SlotUpdate,
 };
 use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
 use crate::profiles::baumer::{
@@ -22,7 +23,7 @@ use crate::servo::{
     ActualPosition, Command, ECode, EncoderKind, Feedback, Message, MessageKind, ParameterTable,
     RegulatorMode, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoStatusWord,
 };
-use crate::test_gens::{akd, baumer, canopen, error_control, owned, recv_emcy, servo};
+use crate::test_gens::{akd, baumer, can, canopen, error_control, owned, recv_emcy, servo};
 
 fn to_json<T: Serialize>(value: &T) -> String {
     serde_json::to_string(value).expect("every value of the crate serializes to JSON")
@@ -499,4 +500,55 @@ fn akd_manufacturer_refuses_an_undefined_feedback() {
         extra_data: [0.5, -0.0, 1e-40, f32::MAX],
     };
     assert_eq!(round_trip(&feedback).to_bytes(), feedback.to_bytes());
+}
+
+// ---------------------------------------------------------------------------
+// Whole CAN frames read as CANopen
+
+#[test]
+fn can_frames_are_their_fields() {
+    check_json(CanData::new(&[0x40, 0x00, 0x10]).unwrap(), "[64,0,16]");
+    check_json(CanPayload::remote(1).unwrap(), r#"{"Remote":1}"#);
+    check_json(
+        NmtNodeControl::new(NmtCommand::ResetCommunication, None),
+        r#"{"command":"ResetCommunication","node":null}"#,
+    );
+    check_json(
+        CanOpenMessage::GuardRequest { node: n(5) },
+        r#"{"GuardRequest":{"node":5}}"#,
+    );
+    check_json(
+        CanOpenMessage::decode(0x285, CanPayload::data(&[1, 2]).unwrap()).unwrap(),
+        r#"{"Pdo":{"node":5,"number":2,"direction":"Transmit","data":[1,2]}}"#,
+    );
+    check_json(CobFunction::classify(0x705), r#"{"ErrorControl":5}"#);
+}
+
+#[test]
+fn can_data_and_dlc_refuse_more_than_8() {
+    assert!(refusal::<CanData>("[1,2,3,4,5,6,7,8,9]").contains("invalid length 9"));
+    assert!(refusal::<CanData>("[256]").contains("invalid value"));
+    assert_eq!(
+        refusal::<Dlc>("9"),
+        "CAN remote frame DLC: 9 is outside 0..=8"
+    );
+    assert!(
+        refusal::<NmtNodeControl>(r#"{"command":"StartRemoteNode","node":0}"#)
+            .starts_with("node-ID: 0 is outside 1..=127")
+    );
+}
+
+proptest! {
+    #[test]
+    fn can_values_round_trip(
+        message in can::canopen_message(),
+        payload in can::can_payload(),
+        control in can::nmt_node_control(),
+        id in 0u16..=0x7FF,
+    ) {
+        same(message)?;
+        same(payload)?;
+        same(control)?;
+        same(CobFunction::classify(id))?;
+    }
 }

@@ -133,6 +133,7 @@ pub mod cob_id {
 
 /// Which way a PDO goes, seen from the device that owns it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PdoDirection {
     /// TPDO: the device transmits (0x180, 0x280, 0x380, 0x480 + node-ID).
     Transmit,
@@ -143,6 +144,7 @@ pub enum PdoDirection {
 /// The function an 11-bit CAN identifier has in the CANopen pre-defined
 /// connection set (CiA 301 Table 72).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CobFunction {
     /// 0x000: NMT node control.
     NmtCommand,
