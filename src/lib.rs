@@ -44,6 +44,13 @@
 //!   - Floats are numbers. A text format without NaN and infinity (JSON)
 //!     cannot carry those: `serde_json` writes `null` and refuses it back.
 //!     For a bit-exact copy use a binary format or the frames' `to_bytes`.
+//! - `embedded-can`: read any `embedded_can::Frame` as a
+//!   [`canopen::CanOpenMessage`] (`CanOpenMessage::from_frame`) and write
+//!   one back (`to_frame` on the message, and on [`canopen::Emcy`],
+//!   [`canopen::Heartbeat`], [`canopen::GuardAnswer`] and
+//!   [`canopen::NmtNodeControl`]). Without the feature,
+//!   [`canopen::CanOpenMessage::decode`] does the same from an identifier
+//!   and a payload.
 //!
 //! ## Example
 //!
@@ -96,6 +103,8 @@
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+#[cfg(feature = "embedded-can")]
+mod can;
 pub mod canopen;
 mod error;
 pub mod profiles;

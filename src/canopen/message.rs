@@ -415,7 +415,7 @@ pub enum CanOpenMessage {
     /// A frame with a 29-bit identifier: not CANopen, whose pre-defined
     /// connection set uses 11-bit identifiers (CiA 301 §7.3.5; SPEC §6.1).
     Extended {
-        /// The 29-bit identifier.
+        /// The 29-bit identifier, at most [`MAX_EXTENDED_ID`].
         id: u32,
         /// What the frame carries.
         payload: CanPayload,
