@@ -14,6 +14,8 @@
 //!
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes (CiA 301 §7.2.7, SPEC §2).
+//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
+//!   parsed without allocation and written back (SPEC §5).
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -21,6 +23,7 @@
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod candump;
 pub mod canopen;
 mod error;
 
