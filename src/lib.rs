@@ -12,6 +12,8 @@
 //!
 //! ## Layout
 //!
+//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
+//!   parsed without allocation and written back (SPEC §5).
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes with their descriptions, the EMCY producer state machine
 //!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
@@ -74,6 +76,7 @@
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod candump;
 pub mod canopen;
 mod error;
 pub mod profiles;
