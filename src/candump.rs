@@ -587,8 +587,16 @@ impl<'a> CandumpFrame<'a> {
             let flags = self.fd_flags();
             w.write_str("  ")?;
             w.write_str(direction.screen())?;
-            w.write_str(if flags.contains(FdFlags::BRS) { " B" } else { " -" })?;
-            w.write_str(if flags.contains(FdFlags::ESI) { " E" } else { " -" })?;
+            w.write_str(if flags.contains(FdFlags::BRS) {
+                " B"
+            } else {
+                " -"
+            })?;
+            w.write_str(if flags.contains(FdFlags::ESI) {
+                " E"
+            } else {
+                " -"
+            })?;
         }
         w.write_str("  ")?;
         self.write_id(w)?;
@@ -1024,7 +1032,9 @@ fn decode_hex(
     let mut outs = out.chunks_exact_mut(8);
     let mut at = start;
     for (chunk, dst) in (&mut chunks).zip(&mut outs) {
-        let w = chunk.first_chunk::<16>().map_or(0, |c| u128::from_le_bytes(*c));
+        let w = chunk
+            .first_chunk::<16>()
+            .map_or(0, |c| u128::from_le_bytes(*c));
         let (values, bad) = swar::hex_lanes(w);
         if bad != 0 {
             return Err(at + swar::lanes_before(bad));
@@ -1704,7 +1714,9 @@ fn find_newline(buf: &[u8]) -> Option<usize> {
     let mut chunks = buf.chunks_exact(16);
     let mut at = 0;
     for chunk in &mut chunks {
-        let w = chunk.first_chunk::<16>().map_or(0, |c| u128::from_le_bytes(*c));
+        let w = chunk
+            .first_chunk::<16>()
+            .map_or(0, |c| u128::from_le_bytes(*c));
         let hits = swar::first_eq(w, b'\n');
         if hits != 0 {
             return Some(at + swar::lanes_before(hits));
@@ -1717,4 +1729,3 @@ fn find_newline(buf: &[u8]) -> Option<usize> {
         .position(|&b| b == b'\n')
         .map(|i| at + i)
 }
-

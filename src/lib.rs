@@ -84,5 +84,10 @@ pub mod servo;
 
 pub use error::{Error, Result};
 
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 #[cfg(test)]
 mod test_gens;
