@@ -363,27 +363,29 @@ class Bus:
     def cycle(self, t0: int, index: int) -> None:
         """SYNC and the synchronous PDOs of one 10 ms cycle starting at `t0`."""
         emit = self.frames.append
-        rnd = self.rng.random
-        ts = t0 + int(rnd() * 40)
+        # one draw gives every jitter of the cycle (bit fields of 40 bits)
+        r = self.rng.getrandbits(40)
+        ts = t0 + (r & 0x1F) + (r >> 5 & 0x07)
         emit((ts, 0x080, False, b"", None))
 
         if self.nmt[AKD] == OPERATIONAL:
             # the drive answers the SYNC with TPDO1, the master then sends RPDO1
             sw = self.akd_sw
+            t183 = ts + 150 + (r >> 8 & 0x7F)
+            t203 = ts + 900 + (r >> 15 & 0x1FF)
             if sw == SW_OPERATION_ENABLED and not self.akd_emcy.active:
                 # steady state: moving at the target velocity
-                self.akd_pos = pos = (self.akd_pos + 1_200 + int(rnd() * 6)) & 0xFFFFFFFF
-                emit((ts + 150 + int(rnd() * 120), 0x183, False, PACK_TPDO_AKD(sw, pos), None))
-                emit((ts + 900 + int(rnd() * 400), 0x203, False, RPDO_ENABLED, None))
+                self.akd_pos = pos = (self.akd_pos + 1_200 + (r >> 24 & 0x07)) & 0xFFFFFFFF
+                emit((t183, 0x183, False, PACK_TPDO_AKD(sw, pos), None))
+                emit((t203, 0x203, False, RPDO_ENABLED, None))
             else:
-                emit((ts + 150 + int(rnd() * 120), 0x183, False, PACK_TPDO_AKD(sw, self.akd_pos), None))
+                emit((t183, 0x183, False, PACK_TPDO_AKD(sw, self.akd_pos), None))
                 self.akd_cw = cw = self.master_controlword(index)
-                emit((ts + 900 + int(rnd() * 400), 0x203, False,
-                      PACK_RPDO_AKD(cw, 120_000 if cw == 0x000F else 0), None))
+                emit((t203, 0x203, False, PACK_RPDO_AKD(cw, 120_000 if cw == 0x000F else 0), None))
                 self.drive_apply_controlword()
         if self.nmt[ENC] == OPERATIONAL:
-            self.enc_pos = pos = (self.enc_pos + 41 + int(rnd() * 3)) & 0xFFFFFFFF
-            emit((ts + 200 + int(rnd() * 150), 0x185, False, pos.to_bytes(4, "little"), None))
+            self.enc_pos = pos = (self.enc_pos + 41 + (r >> 27 & 0x03)) & 0xFFFFFFFF
+            emit((ts + 200 + (r >> 29 & 0xFF), 0x185, False, pos.to_bytes(4, "little"), None))
 
         if t0 + CYCLE_US > self.next_timer:
             self.timers(t0, ts, index)
