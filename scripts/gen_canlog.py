@@ -34,7 +34,32 @@ them (``000#0100``), sends SYNC ``080#`` every 10 ms and TIME 0x100 every
 second, reads 1003h of nodes 3 and 5 by SDO (one read past the end is
 aborted with 0x08000024) and restarts node 5 after its boot-up.
 
-One run of this scenario ("episode") lasts 10 s and gives about 4 100
+Timeline of one run (seconds after the first SYNC; the exact lines of the
+default output are listed in samples/machine.truth.json, key "events"):
+
+    0.00  NMT reset all; boot-ups of nodes 5 (0.12), 10 (0.18), 3 (0.45)
+    0.60  SDO: node 10 guard time 200 ms, life time factor 3; guarding from 0.70
+    1.00  NMT start all; PDOs flow, the drive enables (CiA 402)
+    1.5   node 5 EMCY 0xFF00 battery warning (6505h bit 4)
+    2.0   node 3 EMCY 0x7305 feedback FB1; 2.3 reset (drive error-free)
+    2.8   node 5 EMCY 0x8120 bus passive; 3.1 reset (battery warning remains)
+    3.1   node 10 guarding answer with a wrong toggle (the only one)
+    3.5   node 3 EMCY 0x4310, 3.8 0x3210 (register accumulates)
+    3.9   node 5 EMCY 0x4200 temperature
+    4.2   node 5 silent (watchdog reset); 4.4 node 3 EMCY 0x8130 (its
+          heartbeat consumer of node 5)
+    5.0   node 3 resets 0x3210, 5.6 0x4310 (errors remain: 0x8130)
+    5.95  node 10 bus-off: guard requests 6.1 .. 6.7 unanswered; 6.7 it
+          recovers, sends EMCY 0x8130 (life guarding expired), answers as
+          pre-operational at 6.9 and the master starts it again
+    7.5   node 5 boot-up (heartbeat gap ~3.4 s); node 3 resets 0x8130;
+          node 5 EMCY 0x6100 watchdog reset reason; 7.8 NMT start node 5
+    7.9   node 10 reset EMCY
+    8.3   node 5 EMCY 0xFF00 again
+    8.8   node 3 EMCY 0x7305 feedback FB2 (root cause at the end), 9.1 0x4310
+    9.4   SDO: node 3 1003h read, sub 7 aborted 0x08000024
+
+One run of this scenario ("episode") lasts 10 s and gives about 3 700
 frames; that is the default output. ``--frames N`` repeats the scenario
 (episodes after the first skip the power-on reset and start with the drive's
 fault reset) until N frames exist and cuts the log at exactly N frames.
@@ -132,11 +157,6 @@ RPDO_ENABLED = PACK_RPDO_AKD(0x000F, 120_000)
 # Bit time of a classic base-format frame: 47 bits of overhead + 8 per data
 # byte, plus about 10 % stuff bits.
 FRAME_US = [((47 + 8 * n) * 11 // 10) * 1_000_000 // BITRATE for n in range(9)]
-
-
-def frame_duration_us(dlc: int) -> int:
-    """Time a frame of `dlc` data bytes occupies the bus."""
-    return FRAME_US[dlc]
 
 
 # ---------------------------------------------------------------------------
@@ -902,7 +922,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--seed", type=int, default=1, help="random seed for timing jitter and payload noise (default 1)")
     parser.add_argument("--frames", type=int, metavar="N",
-                        help="repeat the 10 s scenario and cut at exactly N frames (default: one run, about 4100 frames)")
+                        help="repeat the 10 s scenario and cut at exactly N frames (default: one run, about 3700 frames)")
     parser.add_argument("--format", choices=("log", "screen"), default="log",
                         help="text format: candump -l log lines (default) or candump screen lines")
     parser.add_argument("-o", "--output", metavar="FILE", help="text output file (default standard output)")
