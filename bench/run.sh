@@ -71,7 +71,7 @@ gen() {
     start=$(date +%s.%N)
     python3 scripts/gen_canlog.py --frames "$FRAMES" -o "$LOG" --pcap "$PCAP"
     end=$(date +%s.%N)
-    python3 -c "import sys; s=float(sys.argv[2])-float(sys.argv[1]); print(f'{int(sys.argv[3])} frames in {s:.2f} s, {int(sys.argv[3])/s:,.0f} lines/s')" "$start" "$end" "$FRAMES"
+    python3 -c "import sys; s=float(sys.argv[2])-float(sys.argv[1]); print(f'{int(sys.argv[3])} frames (log + pcap) in {s:.2f} s, {int(sys.argv[3])/s:,.0f} frames/s')" "$start" "$end" "$FRAMES"
     ls -l "$LOG" "$PCAP"
 }
 
