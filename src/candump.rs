@@ -587,8 +587,16 @@ impl<'a> CandumpFrame<'a> {
             let flags = self.fd_flags();
             w.write_str("  ")?;
             w.write_str(direction.screen())?;
-            w.write_str(if flags.contains(FdFlags::BRS) { " B" } else { " -" })?;
-            w.write_str(if flags.contains(FdFlags::ESI) { " E" } else { " -" })?;
+            w.write_str(if flags.contains(FdFlags::BRS) {
+                " B"
+            } else {
+                " -"
+            })?;
+            w.write_str(if flags.contains(FdFlags::ESI) {
+                " E"
+            } else {
+                " -"
+            })?;
         }
         w.write_str("  ")?;
         self.write_id(w)?;
@@ -918,6 +926,15 @@ mod swar {
         (values, bad & HIGH)
     }
 
+    pub const ZERO_CHARS64: u64 = ZERO_CHARS as u64;
+
+    /// [`non_digits`] for the 8 lanes of a `u64`.
+    #[inline(always)]
+    pub const fn non_digits64(d: u64) -> u64 {
+        let low7 = LOW7 as u64;
+        ((d & low7).wrapping_add(splat(0x76) as u64) | d) & HIGH as u64
+    }
+
     /// A mask with the high bit of every lane that is not a decimal digit;
     /// `d` is the characters XOR `'0'`.
     #[inline(always)]
@@ -1024,7 +1041,9 @@ fn decode_hex(
     let mut outs = out.chunks_exact_mut(8);
     let mut at = start;
     for (chunk, dst) in (&mut chunks).zip(&mut outs) {
-        let w = chunk.first_chunk::<16>().map_or(0, |c| u128::from_le_bytes(*c));
+        let w = chunk
+            .first_chunk::<16>()
+            .map_or(0, |c| u128::from_le_bytes(*c));
         let (values, bad) = swar::hex_lanes(w);
         if bad != 0 {
             return Err(at + swar::lanes_before(bad));
@@ -1099,12 +1118,209 @@ fn trim_end(mut line: &[u8]) -> &[u8] {
     line
 }
 
+/// Hex values by character; 0xF0 marks a character that is no hex digit.
+const HEX_TABLE: [u8; 256] = {
+    let mut table = [0xF0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        if let Some(v) = hex_value(i as u8) {
+            table[i] = v;
+        }
+        i += 1;
+    }
+    table
+};
+
+/// The line shape `candump -l` writes, read in one pass from the start of
+/// `buf`: `(` 10 digits `.` 6 digits `) ` interface (1 to 15 bytes) space,
+/// identifier `#`, `R[len]`, `#<flags><data>` or `<data>`, optional ` R`/`
+/// T`, then `\n`, `\r\n` or the end of `buf`. Return the frame and the
+/// number of bytes read (line end included), or `None` for any other shape
+/// (which [`parse_general`] then reads, or reports). On every line it
+/// accepts it returns what [`parse_general`] returns.
+#[inline(always)]
+fn parse_canonical_log(buf: &[u8]) -> Option<(CandumpFrame<'_>, usize)> {
+    // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `: the 16 digits in two
+    // words, seconds 1–8, then seconds 9–10 and microseconds 1–6.
+    let head = buf.first_chunk::<20>()?;
+    if head[0] != b'(' || head[11] != b'.' || head[18] != b')' || head[19] != b' ' {
+        return None;
+    }
+    let word = |at: usize| head.get(at..).and_then(|s| s.first_chunk::<8>()).copied();
+    let high = u64::from_le_bytes(word(1)?) ^ swar::ZERO_CHARS64;
+    let low = (u64::from(u16::from_le_bytes([head[9], head[10]]))
+        | u64::from_le_bytes(word(12)?) << 16)
+        ^ swar::ZERO_CHARS64;
+    if swar::non_digits64(high) | swar::non_digits64(low) != 0 {
+        return None;
+    }
+    let all = swar::decimal8(high) * 100_000_000 + swar::decimal8(low);
+    let (secs, micros) = (all / 1_000_000, (all % 1_000_000) as u32);
+
+    // Interface: printable ASCII up to a space, not starting with `(`/`#`.
+    let iface_start = 20;
+    let word = u64::from_le_bytes(*buf.get(iface_start..)?.first_chunk::<8>()?);
+    let stop = swar::non_graphic(u128::from(word)) as u64;
+    let iface_len = if stop != 0 {
+        (stop.trailing_zeros() / 8) as usize
+    } else {
+        swar::lanes_before(swar::non_graphic(load16(buf, iface_start)))
+    };
+    let id_start = iface_start + iface_len + 1;
+    if iface_len == 0
+        || iface_len == 16
+        || buf.get(id_start - 1) != Some(&b' ')
+        || matches!(buf.get(iface_start), Some(b'(' | b'#'))
+    {
+        return None;
+    }
+    let iface = buf.get(iface_start..id_start - 1)?;
+
+    // Identifier: 3 hex digits and `#`, else 8 and `#`.
+    let ids = buf.get(id_start..)?;
+    let (id, body) = match ids.first_chunk::<4>()? {
+        &[a, b, c, b'#'] => {
+            let (a, b, c) = (
+                HEX_TABLE[usize::from(a)],
+                HEX_TABLE[usize::from(b)],
+                HEX_TABLE[usize::from(c)],
+            );
+            if (a | b | c) & 0xF0 != 0 {
+                return None;
+            }
+            let raw = u32::from(a) << 8 | u32::from(b) << 4 | u32::from(c);
+            (CanId::standard(raw)?, id_start + 4)
+        }
+        _ => {
+            let chunk = ids.first_chunk::<9>()?;
+            if chunk[8] != b'#' {
+                return None;
+            }
+            let w =
+                u128::from(u64::from_le_bytes(*chunk.first_chunk::<8>()?)) | swar::ZERO_CHARS << 64;
+            let (values, bad) = swar::hex_lanes(w);
+            if bad != 0 {
+                return None;
+            }
+            let raw = (swar::pack_hex(values) as u32).swap_bytes();
+            (CanId::extended(raw)?, id_start + 9)
+        }
+    };
+
+    let mut data = [0; FD_MAX_LEN];
+    let (kind, len, end) = match buf.get(body) {
+        Some(b'R' | b'r') => match buf.get(body + 1) {
+            Some(&d @ b'0'..=b'8') => (Kind::Remote, d - b'0', body + 2),
+            _ => (Kind::Remote, 0, body + 1),
+        },
+        Some(b'#') => {
+            let flags = HEX_TABLE[usize::from(*buf.get(body + 1)?)];
+            if flags & 0xF0 != 0 {
+                return None;
+            }
+            let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
+            (Kind::Fd(FdFlags(flags)), len, end)
+        }
+        _ => {
+            // Classic data: at most 16 hex digits, so one word holds them
+            // and the byte after them.
+            let (values, bad) = swar::hex_lanes(load16(buf, body));
+            let digits = swar::lanes_before(bad);
+            if digits % 2 != 0 {
+                return None;
+            }
+            let packed = swar::pack_hex(values) & KEEP_BYTES[(digits / 2) & 15];
+            if let Some(first) = data.first_chunk_mut::<8>() {
+                *first = packed.to_le_bytes();
+            }
+            (Kind::Data, (digits / 2) as u8, body + digits)
+        }
+    };
+
+    // Optional direction, then the line end.
+    let mut direction = None;
+    let mut used = end;
+    if let Some(&[b' ', d @ (b'R' | b'T')]) = buf.get(end..).and_then(|r| r.first_chunk::<2>()) {
+        direction = Some(if d == b'R' {
+            Direction::Rx
+        } else {
+            Direction::Tx
+        });
+        used += 2;
+    }
+    match buf.get(used) {
+        None => {}
+        Some(b'\n') => used += 1,
+        Some(b'\r') => match buf.get(used + 1) {
+            None => used += 1,
+            Some(b'\n') => used += 2,
+            Some(_) => return None,
+        },
+        Some(_) => return None,
+    }
+    let frame = CandumpFrame {
+        timestamp: Some(Timestamp { secs, micros }),
+        iface,
+        id,
+        kind,
+        direction,
+        len,
+        data,
+    };
+    Some((frame, used))
+}
+
+/// A mask of the low `n` bytes of a `u64`, for `n` in 0..=8.
+const KEEP_BYTES: [u64; 16] = {
+    let mut table = [u64::MAX; 16];
+    let mut n = 0;
+    while n < 8 {
+        table[n] = (1u64 << (8 * n)) - 1;
+        n += 1;
+    }
+    table
+};
+
+/// Decode the hex digits of CAN FD data from `start` up to the first other
+/// byte, 16 at a time, into `data`; return the number of bytes and the index
+/// after the digits, or `None` for an odd count (which [`parse_general`]
+/// reports). Stops after 64 bytes.
+#[inline(never)]
+fn decode_fd_data(buf: &[u8], start: usize, data: &mut [u8; FD_MAX_LEN]) -> Option<(u8, usize)> {
+    let mut end = start;
+    let mut len = 0;
+    for dst in data.chunks_exact_mut(8) {
+        let (values, bad) = swar::hex_lanes(load16(buf, end));
+        let digits = swar::lanes_before(bad);
+        if digits % 2 != 0 {
+            return None;
+        }
+        let packed = swar::pack_hex(values) & KEEP_BYTES[(digits / 2) & 15];
+        dst.copy_from_slice(&packed.to_le_bytes());
+        end += digits;
+        len += digits / 2;
+        if digits < 16 {
+            break;
+        }
+    }
+    Some((len as u8, end))
+}
+
 /// Parse one candump line in either format of SPEC §5 (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the
 /// frame for a frame line, and an [`Error::Candump`] with the column and
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
 #[inline]
 pub fn parse_line(line: &[u8]) -> Result<Option<CandumpFrame<'_>>> {
+    match parse_canonical_log(line) {
+        Some((frame, used)) if used == line.len() => Ok(Some(frame)),
+        _ => parse_general(line),
+    }
+}
+
+/// Parse one line of any shape, byte by byte where the shape varies.
+#[inline(never)]
+fn parse_general(line: &[u8]) -> Result<Option<CandumpFrame<'_>>> {
     let line = trim_end(line);
     let mut at = 0;
     match line.first() {
@@ -1667,22 +1883,57 @@ pub struct CandumpLines<'a> {
     line_number: usize,
 }
 
+impl<'a> Iterator for CandumpLines<'a> {
+    type Item = (usize, Result<Option<CandumpFrame<'a>>>);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        self.line_number += 1;
+        if let Some((frame, used)) = parse_canonical_log(self.rest) {
+            self.rest = self.rest.get(used..).unwrap_or_default();
+            return Some((self.line_number, Ok(Some(frame))));
+        }
+        Some(self.next_general())
+    }
+
+    /// Read every line, handing each to `f` straight from the parser (what
+    /// `for_each`, `count`, `sum` and most adapters use).
+    #[inline]
+    fn fold<B, F>(mut self, init: B, mut f: F) -> B
+    where
+        F: FnMut(B, Self::Item) -> B,
+    {
+        let mut acc = init;
+        while !self.rest.is_empty() {
+            self.line_number += 1;
+            acc = match parse_canonical_log(self.rest) {
+                Some((frame, used)) => {
+                    self.rest = self.rest.get(used..).unwrap_or_default();
+                    f(acc, (self.line_number, Ok(Some(frame))))
+                }
+                None => {
+                    let item = self.next_general();
+                    f(acc, item)
+                }
+            };
+        }
+        acc
+    }
+}
+
 impl<'a> CandumpLines<'a> {
     /// Return the part of the buffer not read yet.
     #[inline]
     pub fn remainder(&self) -> &'a [u8] {
         self.rest
     }
-}
 
-impl<'a> Iterator for CandumpLines<'a> {
-    type Item = (usize, Result<Option<CandumpFrame<'a>>>);
-
-    #[inline]
-    fn next(&mut self) -> Option<Self::Item> {
-        if self.rest.is_empty() {
-            return None;
-        }
+    /// Read the next line when it is not in the canonical log shape.
+    #[inline(never)]
+    fn next_general(&mut self) -> (usize, Result<Option<CandumpFrame<'a>>>) {
         let (line, rest) = match find_newline(self.rest) {
             Some(i) => (
                 self.rest.get(..i).unwrap_or_default(),
@@ -1691,8 +1942,7 @@ impl<'a> Iterator for CandumpLines<'a> {
             None => (self.rest, &[][..]),
         };
         self.rest = rest;
-        self.line_number += 1;
-        Some((self.line_number, parse_line(line)))
+        (self.line_number, parse_general(line))
     }
 }
 
@@ -1704,7 +1954,9 @@ fn find_newline(buf: &[u8]) -> Option<usize> {
     let mut chunks = buf.chunks_exact(16);
     let mut at = 0;
     for chunk in &mut chunks {
-        let w = chunk.first_chunk::<16>().map_or(0, |c| u128::from_le_bytes(*c));
+        let w = chunk
+            .first_chunk::<16>()
+            .map_or(0, |c| u128::from_le_bytes(*c));
         let hits = swar::first_eq(w, b'\n');
         if hits != 0 {
             return Some(at + swar::lanes_before(hits));
@@ -1717,4 +1969,3 @@ fn find_newline(buf: &[u8]) -> Option<usize> {
         .position(|&b| b == b'\n')
         .map(|i| at + i)
 }
-
