@@ -1,7 +1,7 @@
 //! `motionwire decode`: candump text → one record per CAN frame (SPEC §6.1).
 
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
+use std::io::{self, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -399,21 +399,12 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     let mut err = BufWriter::new(stderr.lock());
     let mut summary = args.summary.then(|| Summary::new(args.heartbeat_ms));
     let mut skipped: u64 = 0;
-    let mut buf = Vec::with_capacity(256);
 
     for input in inputs {
-        let mut reader = BufReader::with_capacity(1 << 17, input.reader);
-        let mut line: u64 = 0;
-        loop {
-            buf.clear();
-            let n = reader
-                .read_until(b'\n', &mut buf)
-                .map_err(|e| read_failure(&input.name, input.path.as_deref(), e))?;
-            if n == 0 {
-                break;
-            }
-            line += 1;
-            match candump::parse_line(&buf) {
+        let name = input.name.clone();
+        let path = input.path.clone();
+        for_each_line(input.reader, |line, parsed| {
+            match parsed {
                 Ok(None) => {}
                 Ok(Some(frame)) => {
                     let record = Record::new(line, &frame);
@@ -431,10 +422,15 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 }
                 Err(e) => {
                     skipped += 1;
-                    writeln!(err, "{}:{line}: {e}", input.name)?;
+                    writeln!(err, "{name}:{line}: {e}")?;
                 }
             }
-        }
+            Ok(())
+        })
+        .map_err(|e| match e {
+            LineError::Read(e) => read_failure(&input.name, path.as_deref(), e),
+            LineError::Write(e) => Failure::Io(e),
+        })?;
     }
     if let Some(summary) = summary {
         summary.write(&mut out, args.json)?;
@@ -448,6 +444,63 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     }
     err.flush()?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Why reading the lines of one input stopped.
+enum LineError {
+    /// The input could not be read.
+    Read(io::Error),
+    /// The handler could not write its output.
+    Write(io::Error),
+}
+
+/// Read `reader` in large blocks and hand every line, with its 1-based
+/// number, to `handle` as the crate's candump parser reads it. Whole lines
+/// are parsed straight out of the block (no copy per line); a line that
+/// runs past the block is carried to the front and completed by the next
+/// read. Memory stays at one block, whatever the input's size, unless a
+/// single line is longer than a block.
+fn for_each_line(
+    mut reader: Box<dyn Read>,
+    mut handle: impl FnMut(u64, motionwire::Result<Option<CandumpFrame<'_>>>) -> io::Result<()>,
+) -> Result<(), LineError> {
+    const BLOCK: usize = 1 << 18;
+    let mut buf = vec![0u8; BLOCK];
+    let mut filled = 0;
+    let mut base: u64 = 0;
+    loop {
+        if filled == buf.len() {
+            // A line longer than the block: make room for the rest of it.
+            buf.resize(buf.len() * 2, 0);
+        }
+        let n = match reader.read(&mut buf[filled..]) {
+            Ok(n) => n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(LineError::Read(e)),
+        };
+        let at_end = n == 0;
+        filled += n;
+        // Parse up to the last complete line (all of it at the end).
+        let complete = if at_end {
+            filled
+        } else {
+            match buf[..filled].iter().rposition(|&b| b == b'\n') {
+                Some(i) => i + 1,
+                None => continue,
+            }
+        };
+        let mut lines = 0;
+        for (number, parsed) in candump::lines(&buf[..complete]) {
+            lines = number;
+            handle(base + number as u64, parsed).map_err(LineError::Write)?;
+        }
+        base += lines as u64;
+        if at_end {
+            return Ok(());
+        }
+        buf.copy_within(complete..filled, 0);
+        filled -= complete;
+    }
 }
 
 fn read_failure(name: &str, path: Option<&Path>, e: io::Error) -> Failure {
