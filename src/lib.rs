@@ -12,6 +12,8 @@
 //!
 //! ## Layout
 //!
+//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
+//!   parsed without allocation and written back (SPEC §5).
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes with their descriptions, the EMCY producer state machine
 //!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
@@ -105,6 +107,7 @@
 
 #[cfg(feature = "embedded-can")]
 mod can;
+pub mod candump;
 pub mod canopen;
 mod error;
 pub mod profiles;
@@ -114,5 +117,10 @@ pub use error::{Error, Result};
 
 #[cfg(all(test, feature = "serde"))]
 mod serde_tests;
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 #[cfg(test)]
 mod test_gens;

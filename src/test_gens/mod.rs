@@ -4,6 +4,7 @@
 pub(crate) mod akd;
 pub(crate) mod baumer;
 pub(crate) mod can;
+pub(crate) mod candump;
 pub(crate) mod canopen;
 pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
