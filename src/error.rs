@@ -55,6 +55,15 @@ pub enum Error {
         /// The form the text must have, in words.
         expected: &'static str,
     },
+    /// A candump text line does not follow the formats of SPEC §5; the
+    /// reason says what was expected at `column` and what was found there.
+    #[error("candump line, column {column}: {reason}")]
+    Candump {
+        /// The 1-based byte column in the line where the problem starts.
+        column: usize,
+        /// What was expected there and what was found.
+        reason: crate::candump::CandumpErrorKind,
+    },
 }
 
 /// The crate's result type.

@@ -12,6 +12,8 @@
 //!
 //! ## Layout
 //!
+//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
+//!   parsed without allocation and written back (SPEC §5).
 //! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
 //!   error codes with their descriptions, the EMCY producer state machine
 //!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
@@ -22,6 +24,35 @@
 //! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,
 //!   status and error words, and the enable, error-clear and zero-pulse
 //!   handshakes (SPEC §1).
+//!
+//! ## Optional features
+//!
+//! - `std`: implements conveniences that need the standard library.
+//! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
+//!   the zero-copy views, not the state machines).
+//!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],
+//!     [`servo::ParameterTable`], [`profiles::akd::AxisId`],
+//!     [`profiles::baumer::InjectionCode`] — are their number, and
+//!     deserializing checks it as their `try_new` does: no invalid value can
+//!     be made. [`canopen::DeviceSet`] is the list of its node-IDs.
+//!   - Flag words ([`canopen::ErrorRegister`], the servo words, the Baumer
+//!     alarms and warnings) use bitflags 2's format: in text formats the
+//!     names of the set flags joined by `|`, with every bit that no name
+//!     covers (reserved bits, multi-bit fields) as one hex number, e.g.
+//!     `"ENCODER_DATA_INVALID | 0x104"`; in binary formats the integer.
+//!     Every bit survives a round trip.
+//!   - Enums and structs have serde's derived format: variant and field
+//!     names as written in Rust.
+//!   - Floats are numbers. A text format without NaN and infinity (JSON)
+//!     cannot carry those: `serde_json` writes `null` and refuses it back.
+//!     For a bit-exact copy use a binary format or the frames' `to_bytes`.
+//! - `embedded-can`: read any `embedded_can::Frame` as a
+//!   [`canopen::CanOpenMessage`] (`CanOpenMessage::from_frame`) and write
+//!   one back (`to_frame` on the message, and on [`canopen::Emcy`],
+//!   [`canopen::Heartbeat`], [`canopen::GuardAnswer`] and
+//!   [`canopen::NmtNodeControl`]). Without the feature,
+//!   [`canopen::CanOpenMessage::decode`] does the same from an identifier
+//!   and a payload.
 //!
 //! ## Example
 //!
@@ -74,12 +105,22 @@
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+#[cfg(feature = "embedded-can")]
+mod can;
+pub mod candump;
 pub mod canopen;
 mod error;
 pub mod profiles;
 pub mod servo;
 
 pub use error::{Error, Result};
+
+#[cfg(all(test, feature = "serde"))]
+mod serde_tests;
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
 
 #[cfg(test)]
 mod test_gens;

@@ -54,6 +54,7 @@ impl fmt::Display for ErrorCondition {
 /// A transition of the EMCY state machine, numbered as in SPEC §2.5's table
 /// and seed 000 ("Transition 0" … "Transition 4").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EmcyTransition {
     /// 0: (init) → error-free; initialisation, no EMCY.
     Initialised = 0,

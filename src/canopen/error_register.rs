@@ -16,7 +16,16 @@ bitflags! {
     /// assert!(reg.contains(ErrorRegister::GENERIC | ErrorRegister::COMMUNICATION));
     /// assert_eq!(reg.names().collect::<Vec<_>>(), ["generic", "communication"]);
     /// ```
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct ErrorRegister: u8 {
         /// Bit 0: generic error; set whenever any error is present.
         const GENERIC = 1 << 0;

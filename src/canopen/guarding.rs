@@ -103,6 +103,7 @@ impl Default for AcceptedStates {
 ///
 /// Every time is in µs on the caller's clock.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GuardingEvent {
     /// The answer's toggle bit is not the one expected (the node missed a
     /// request, an answer was lost, or the node was reset unseen).

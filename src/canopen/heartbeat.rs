@@ -233,6 +233,7 @@ pub enum MonitorState {
 /// whenever the poll happened; a `Recovered` or `RemoteReset` closes that
 /// gap at `at`, so the gap is `at − last_heartbeat` ([`HeartbeatEvent::gap`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum HeartbeatEvent {
     /// Heartbeat event: no heartbeat within the consumer time after the one
     /// at `last_heartbeat`. Reported once until the node is heard again.

@@ -12,7 +12,9 @@ pub mod error_history;
 pub mod error_register;
 pub mod guarding;
 pub mod heartbeat;
+pub mod message;
 pub mod nmt;
+pub mod nmt_command;
 pub mod node_id;
 pub mod recv_emcy;
 pub mod sdo_abort;
@@ -33,10 +35,14 @@ pub use heartbeat::{
     ConsumerEntry, HeartbeatConsumer, HeartbeatEvent, HeartbeatEvents, HeartbeatProducer,
     MonitorState,
 };
+pub use message::{
+    CanData, CanOpenMessage, CanPayload, Dlc, CAN_MAX_DATA_LEN, MAX_EXTENDED_ID, MAX_STANDARD_ID,
+};
 pub use nmt::{
     GuardAnswer, GuardAnswerFrame, Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN,
     HEARTBEAT_LEN,
 };
+pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

@@ -74,6 +74,7 @@ const GUARD_ANSWER_WHAT: &str = "node-guarding answer";
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum NmtState {
     /// 0x00: boot-up; sent once, when the node enters pre-operational after
@@ -253,6 +254,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> HeartbeatFrame<T> {
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Heartbeat {
     state: NmtState,
     reserved_bit: bool,
@@ -416,6 +418,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> GuardAnswerFrame<T> {
 /// A node-guarding answer, owned: the node's reply to the master's remote
 /// frame (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GuardAnswer {
     /// Toggle bit (bit 7): 0 in the first answer after initialisation or a
     /// communication reset, alternating with every answer afterwards.

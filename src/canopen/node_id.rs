@@ -19,7 +19,15 @@ use crate::error::{Error, Result};
 /// assert!(NodeId::new(0).is_none());
 /// assert!(NodeId::new(128).is_none());
 /// ```
+///
+/// With the `serde` feature a node-ID serializes as its number;
+/// deserializing refuses any number outside 1..=127.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u8", into = "u8")
+)]
 pub struct NodeId(u8);
 
 impl NodeId {
@@ -125,6 +133,7 @@ pub mod cob_id {
 
 /// Which way a PDO goes, seen from the device that owns it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PdoDirection {
     /// TPDO: the device transmits (0x180, 0x280, 0x380, 0x480 + node-ID).
     Transmit,
@@ -135,6 +144,7 @@ pub enum PdoDirection {
 /// The function an 11-bit CAN identifier has in the CANopen pre-defined
 /// connection set (CiA 301 Table 72).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CobFunction {
     /// 0x000: NMT node control.
     NmtCommand,

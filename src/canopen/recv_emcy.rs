@@ -91,6 +91,7 @@ const NO_ERROR: Emcy = Emcy::reset(ErrorRegister::empty());
 /// assert!(!KernelError::NoError.is_error());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum KernelError {
     /// 0x0000 `CANOPEN_KERNEL_NO_ERROR`: the call completed without error.
     NoError,
@@ -233,6 +234,9 @@ impl fmt::Display for KernelError {
 /// assert_eq!(devices.first_from(n(65)), Some(n(127)));
 /// assert_eq!(devices.without(n(127)).first_from(n(65)), Some(n(3)));
 /// ```
+///
+/// With the `serde` feature a set serializes as the list of its node-IDs
+/// in ascending order (`[3, 64, 127]` in JSON); deserializing checks each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct DeviceSet(u128);
 
@@ -350,12 +354,53 @@ impl Extend<NodeId> for DeviceSet {
     }
 }
 
+/// With the `serde` feature, a set serializes as the sequence of its
+/// node-IDs in ascending order (`[3, 64, 127]` in JSON), not as its 128-bit
+/// mask: readable, and carried by formats without 128-bit integers.
+/// Deserializing checks every node-ID (1..=127) and accepts any order and
+/// repeats, as [`FromIterator`] does.
+#[cfg(feature = "serde")]
+impl serde::Serialize for DeviceSet {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for DeviceSet {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct NodeIds;
+
+        impl<'de> serde::de::Visitor<'de> for NodeIds {
+            type Value = DeviceSet;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a sequence of node-IDs 1..=127")
+            }
+
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<DeviceSet, A::Error> {
+                let mut set = DeviceSet::EMPTY;
+                while let Some(node) = seq.next_element::<NodeId>()? {
+                    set.insert(node);
+                }
+                Ok(set)
+            }
+        }
+
+        deserializer.deserialize_seq(NodeIds)
+    }
+}
+
 // ---------------------------------------------------------------------------
 // Per-device storage: RECV_EMCY_DEV
 
 /// What [`EmcyStorage::receive`] did with a received EMCY (CiA 405,
 /// recommendation for `RECV_EMCY_DEV`; SPEC §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SlotUpdate {
     /// The slot held "no error": the error is stored and is now the device's
     /// root cause.
@@ -602,6 +647,7 @@ impl RecvEmcyDevOutputs {
 
 /// What one `RECV_EMCY` call delivers (CiA 405 `RECV_EMCY`; SPEC §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum RecvEmcyResult {
     /// `device` holds an error: `DEVICE` = device, `ERRORINFO` = the error.
     /// Delivered again on every scan as long as it is pending.

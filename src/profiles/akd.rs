@@ -81,7 +81,15 @@ const FEEDBACK_WHAT: &str = "AKD feedback id";
 /// assert!(!AxisId::NOT_GIVEN.is_given());
 /// assert!(AxisId::new(16).is_none());
 /// ```
+///
+/// With the `serde` feature an axis id serializes as its number;
+/// deserializing refuses any number above 15.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u8", into = "u8")
+)]
 pub struct AxisId(u8);
 
 impl AxisId {
@@ -174,6 +182,7 @@ impl fmt::Display for AxisId {
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FeedbackId {
     /// 0: no feedback fault.
     #[default]
@@ -379,6 +388,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> AkdManufacturerField<T> {
 
 /// The AKD's manufacturer field, owned and typed (EMCY bytes 3–7; SPEC §2.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AkdManufacturer {
     /// The axis the EMCY reports (byte 3, bits 0–3).
     pub axis: AxisId,
@@ -443,6 +453,7 @@ impl AkdManufacturer {
 /// An EMCY from a Kollmorgen AKD: the generic code and register with a typed
 /// manufacturer field (seed 000; SPEC §2.1, §2.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AkdEmcy {
     /// Emergency error code (bytes 0–1).
     pub code: ErrorCode,

@@ -52,7 +52,16 @@ bitflags! {
     ///
     /// Decode a word that the encoder sent with [`Alarms::from_bits_retain`]
     /// so that unnamed bits survive a round trip.
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct Alarms: u16 {
         /// Bit 0: position error (CiA 406); set with every alarm the encoder
         /// raises at startup (SPEC §4).
@@ -83,7 +92,16 @@ bitflags! {
     ///
     /// Decode a word that the encoder sent with [`Warnings::from_bits_retain`]
     /// so that unnamed bits survive a round trip.
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct Warnings: u16 {
         /// Bit 0: frequency exceeded, the maximum rotation speed was exceeded
         /// (CiA 406; SPEC §4, speed monitoring).
@@ -176,6 +194,7 @@ pub const MANUFACTURER_LEN: usize = field::UNUSED + 1;
 /// assert_eq!(field.to_bytes(), [0x00, 0x00, 0x00, 0x20, 0x00]);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BaumerManufacturer {
     /// Alarms, object 6503h (EMCY bytes 3–4, little-endian).
     pub alarms: Alarms,
@@ -224,6 +243,7 @@ impl BaumerManufacturer {
 ///
 /// Every 8-byte EMCY decodes, and encoding gives the same bytes back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BaumerEmcy {
     /// Emergency error code (bytes 0–1).
     pub code: ErrorCode,
@@ -306,6 +326,7 @@ impl From<BaumerEmcy> for Emcy {
 
 /// When a diagnostic source is signalled (SPEC §4, column "appearance").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Appearance {
     /// At startup.
     Startup,
@@ -325,6 +346,7 @@ impl Appearance {
 
 /// Which encoder design a diagnostic source exists on (SPEC §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Variant {
     /// Both the redundant and the non-redundant encoder.
     Both,
@@ -349,6 +371,7 @@ impl Variant {
 /// When the signalling of a diagnostic source is reset (SPEC §4, column
 /// "reset").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ResetBehaviour {
     /// Reset at runtime, once the cause is gone.
     AtRuntime,
@@ -382,6 +405,7 @@ impl ResetBehaviour {
 
 /// What an error injection code simulates, told by its high word (SPEC §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum InjectionKind {
     /// High word 0x0001: an alarm at startup.
     StartupAlarm,
@@ -436,7 +460,15 @@ impl InjectionKind {
 /// assert_eq!(code.kind(), Some(InjectionKind::StartupWarning));
 /// assert!(InjectionCode::try_new(0x0002_0000).is_err());
 /// ```
+///
+/// With the `serde` feature a code serializes as its number;
+/// deserializing refuses what [`InjectionCode::try_new`] refuses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u32", into = "u32")
+)]
 pub struct InjectionCode(u32);
 
 impl InjectionCode {
@@ -480,6 +512,21 @@ impl InjectionCode {
     #[inline]
     pub const fn number(self) -> u16 {
         (self.0 & 0xFFFF) as u16
+    }
+}
+
+impl TryFrom<u32> for InjectionCode {
+    type Error = Error;
+
+    /// [`InjectionCode::try_new`].
+    fn try_from(raw: u32) -> Result<Self> {
+        Self::try_new(raw)
+    }
+}
+
+impl From<InjectionCode> for u32 {
+    fn from(code: InjectionCode) -> u32 {
+        code.0
     }
 }
 

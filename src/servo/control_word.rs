@@ -51,7 +51,16 @@ bitflags! {
     /// mean *normal* operation; clear means emergency / internal braking.
     /// Prefer the accessors [`emergency_active`](Self::emergency_active) and
     /// [`internal_brake_active`](Self::internal_brake_active).
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct ServoControlWord: u32 {
         /// Bit 2, EMGON, **active low**: 1 = normal mode, 0 = emergency
         /// state (ramp to the drive's "Emergency Feed" speed).
@@ -218,7 +227,15 @@ impl ServoControlWord {
 /// assert!(ServoEnable::new(4).is_none());
 /// assert!(ServoEnable::try_new(4).is_err());
 /// ```
+///
+/// With the `serde` feature an SE value serializes as its number;
+/// deserializing refuses any number above 3.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u8", into = "u8")
+)]
 pub struct ServoEnable(u8);
 
 impl ServoEnable {
@@ -294,6 +311,7 @@ impl fmt::Display for ServoEnable {
 /// The regulator mode selected by ModeSel, control-word bits 6–7
 /// (SPEC §1.3; seed 002, "Mode Select", documented as not used yet).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum RegulatorMode {
     /// 0b00: speed regulation.
@@ -400,7 +418,15 @@ impl fmt::Display for RegulatorMode {
 /// assert!(ParameterTable::try_new(9).is_err());
 /// # Ok::<(), motionwire::Error>(())
 /// ```
+///
+/// With the `serde` feature a table serializes as its number;
+/// deserializing refuses any number outside 1..=8.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "u8", into = "u8")
+)]
 pub struct ParameterTable(u8);
 
 impl ParameterTable {

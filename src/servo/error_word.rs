@@ -37,7 +37,16 @@ bitflags! {
     /// [`ServoErrorWord::from_bits_retain`] and every flag operation; they
     /// are never reported as faults. Each flag's meaning is
     /// [`ServoFault::description`].
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct ServoErrorWord: u32 {
         /// Bit 0, ServoErrors: summary, some drive error is present.
         const SERVO_ERRORS = 1 << 0;
@@ -139,6 +148,7 @@ impl ServoErrorWord {
 /// The variant names spell SPEC's names in Rust's case; [`ServoFault::name`]
 /// returns SPEC's spelling exactly (e.g. `I2tEndat` → `"I2t_Endat"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum ServoFault {
     /// Bit 0, ServoErrors: summary, some drive error is present.
@@ -352,6 +362,7 @@ impl fmt::Display for ServoFault {
 /// [`ServoFault`]. Parse one from its number ([`ECode::from_number`]) or from
 /// its text (`"E05".parse()`); [`Display`](fmt::Display) prints `E05`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum ECode {
     /// E01: encoder error (bit 1, EncoderErr).

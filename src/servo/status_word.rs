@@ -28,7 +28,16 @@ bitflags! {
     /// declared as known to bitflags, so the field and the reserved bits
     /// 13–31 survive decoding with [`ServoStatusWord::from_bits_retain`] and
     /// every flag operation.
+    ///
+    /// With the `serde` feature the word serializes in bitflags' format (in
+    /// text, e.g. JSON, flag names joined by `|` and any other bits as hex);
+    /// every bit survives a round trip.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    #[cfg_attr(
+        feature = "serde",
+        derive(serde::Serialize, serde::Deserialize),
+        serde(transparent)
+    )]
     pub struct ServoStatusWord: u32 {
         /// Bit 0, ServoEn: the drive is enabled (motor live).
         const SERVO_EN = 1 << 0;
@@ -143,6 +152,7 @@ impl ServoStatusWord {
 
 /// The kind of position encoder, from SSW bit 2 Abs/Incr (SPEC §1.2, §1.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EncoderKind {
     /// Abs/Incr = 0: absolute (EnDat) encoder; ActPos is a 64-bit position.
     Absolute,

@@ -3,8 +3,12 @@
 
 pub(crate) mod akd;
 pub(crate) mod baumer;
+pub(crate) mod can;
+pub(crate) mod candump;
 pub(crate) mod canopen;
 pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
+#[cfg(feature = "serde")]
+pub(crate) mod owned;
 pub(crate) mod recv_emcy;
 pub(crate) mod servo;

@@ -1,0 +1,186 @@
+#!/usr/bin/env bash
+# Peer benchmark for `motionwire decode` (SPEC 6.1).
+#
+# Goals (from the issue): `decode --summary` at least 50x faster than a
+# python peer (python-can + python-canopen, bench/peer_python.py), and
+# `decode --json` at least 10x faster than tshark dissecting the same frames
+# as CANopen. Inputs: a 1 000 000-frame candump log and the same frames as a
+# SocketCAN pcap, both made by scripts/gen_canlog.py.
+#
+# Usage: bench/run.sh [STEP...]
+#   all          (default) setup build gen verify-tshark summary json ratios
+#   setup        install hyperfine, tshark (apt) and python-can, canopen (pip)
+#   build        cargo build --release --features cli
+#   gen          write $BENCH_DIR/1m.log and 1m.pcap (skipped when up to date)
+#   verify-tshark  check that tshark dissects the sample's EMCYs as CANopen EMCY
+#   summary      hyperfine: motionwire decode --summary  vs  python peer
+#   json         hyperfine: motionwire decode --json     vs  tshark -T json
+#   python-only  hyperfine: the python peer alone (no motionwire needed)
+#   tshark-only  hyperfine: tshark alone (no motionwire needed)
+#   peers        setup gen verify-tshark python-only tshark-only
+#   ratios       print peer/motionwire ratios from bench/results/*.json
+#
+# Environment: BENCH_DIR (default /tmp/motionwire-bench), BENCH_FRAMES
+# (default 1000000), BENCH_RUNS (default 3), MOTIONWIRE (default
+# target/release/motionwire).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BENCH_DIR=${BENCH_DIR:-/tmp/motionwire-bench}
+FRAMES=${BENCH_FRAMES:-1000000}
+RUNS=${BENCH_RUNS:-3}
+MOTIONWIRE=${MOTIONWIRE:-target/release/motionwire}
+RESULTS=bench/results
+LOG=$BENCH_DIR/1m.log
+PCAP=$BENCH_DIR/1m.pcap
+# Wireshark's SocketCAN dissector hands the payload to the dissector chosen in
+# its "can.subdissector" Decode-As table; without this it guesses (heuristics,
+# e.g. AUTOSAR NM) or shows raw CAN data.
+TSHARK_CANOPEN=(-d can.subdissector,canopen)
+
+step() { printf '\n==> %s\n' "$*"; }
+
+setup() {
+    step "setup: hyperfine, tshark, python-can, canopen"
+    if ! command -v hyperfine >/dev/null || ! command -v tshark >/dev/null; then
+        apt-get update
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -q hyperfine tshark
+    fi
+    if ! python3 -c 'import can, canopen' 2>/dev/null; then
+        python3 -m pip install -q python-can canopen
+    fi
+    hyperfine --version
+    tshark --version 2>/dev/null | head -n 1
+    python3 -c 'import can, canopen; print("python-can", can.__version__, "canopen", canopen.__version__)'
+}
+
+build() {
+    step "cargo build --release --features cli"
+    cargo build --release --features cli
+}
+
+gen() {
+    step "generate $FRAMES frames: $LOG, $PCAP"
+    mkdir -p "$BENCH_DIR"
+    if [[ -s $LOG && -s $PCAP && $LOG -nt scripts/gen_canlog.py && $PCAP -nt scripts/gen_canlog.py
+          && $(wc -l <"$LOG") -eq $FRAMES ]]; then
+        echo "up to date"
+        return
+    fi
+    local start end
+    start=$(date +%s.%N)
+    python3 scripts/gen_canlog.py --frames "$FRAMES" -o "$LOG" --pcap "$PCAP"
+    end=$(date +%s.%N)
+    python3 -c "import sys; s=float(sys.argv[2])-float(sys.argv[1]); print(f'{int(sys.argv[3])} frames (log + pcap) in {s:.2f} s, {int(sys.argv[3])/s:,.0f} frames/s')" "$start" "$end" "$FRAMES"
+    ls -l "$LOG" "$PCAP"
+}
+
+verify_tshark() {
+    step "verify: tshark ${TSHARK_CANOPEN[*]} dissects EMCYs as CANopen EMCY"
+    mkdir -p "$BENCH_DIR"
+    python3 scripts/gen_canlog.py --no-text --pcap "$BENCH_DIR/machine.pcap"
+    local out
+    out=$(tshark -r "$BENCH_DIR/machine.pcap" "${TSHARK_CANOPEN[@]}" -V -Y 'canopen.em.err_code' 2>/dev/null)
+    grep -m1 -F 'Error code: Communication - CAN in error passive mode (0x8120)' <<<"$out"
+    grep -m1 -F 'Error code: Error reset or no error (0x0000)' <<<"$out"
+    local n
+    n=$(grep -c -F 'Type: EMCY' <<<"$out" || true)
+    echo "EMCY frames dissected as CANopen EMCY: $n"
+    [[ $n -gt 0 ]]
+}
+
+need_motionwire() {
+    if [[ ! -x $MOTIONWIRE ]]; then
+        echo "error: $MOTIONWIRE not built (run: bench/run.sh build); the CLI (SPEC 6.1) must exist" >&2
+        exit 1
+    fi
+}
+
+summary() {
+    need_motionwire
+    step "hyperfine: decode --summary vs python peer ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --warmup 1 --runs "$RUNS" \
+        --export-markdown "$RESULTS/summary.md" --export-json "$RESULTS/summary.json" \
+        -n "motionwire decode --summary" "$MOTIONWIRE decode --summary $LOG >/dev/null" \
+        -n "python-can + canopen peer" "python3 bench/peer_python.py $LOG >/dev/null"
+}
+
+json() {
+    need_motionwire
+    step "hyperfine: decode --json vs tshark -T json ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --runs "$RUNS" \
+        --export-markdown "$RESULTS/json.md" --export-json "$RESULTS/json.json" \
+        -n "motionwire decode --json" "$MOTIONWIRE decode --json $LOG >/dev/null" \
+        -n "tshark -T json (CANopen)" "tshark -r $PCAP ${TSHARK_CANOPEN[*]} -T json >/dev/null 2>&1"
+}
+
+python_only() {
+    step "hyperfine: python peer alone ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --warmup 1 --runs "$RUNS" \
+        --export-markdown "$RESULTS/python-only.md" --export-json "$RESULTS/python-only.json" \
+        -n "python-can + canopen peer" "python3 bench/peer_python.py $LOG >/dev/null"
+}
+
+tshark_only() {
+    step "hyperfine: tshark alone ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --runs "$RUNS" \
+        --export-markdown "$RESULTS/tshark-only.md" --export-json "$RESULTS/tshark-only.json" \
+        -n "tshark -T json (CANopen)" "tshark -r $PCAP ${TSHARK_CANOPEN[*]} -T json >/dev/null 2>&1"
+}
+
+ratios() {
+    step "ratios (peer mean / motionwire mean)"
+    python3 - "$RESULTS" <<'EOF'
+import json, os, sys
+results = sys.argv[1]
+goals = {"summary": 50.0, "json": 10.0}
+failed = False
+for name, goal in goals.items():
+    path = os.path.join(results, f"{name}.json")
+    if not os.path.exists(path):
+        print(f"{name}: no results ({path} missing)")
+        continue
+    runs = json.load(open(path))["results"]
+    ours = next(r for r in runs if r["command"].startswith("motionwire"))
+    peer = next(r for r in runs if not r["command"].startswith("motionwire"))
+    ratio = peer["mean"] / ours["mean"]
+    verdict = "OK" if ratio >= goal else "BELOW GOAL"
+    failed |= ratio < goal
+    print(f"decode --{name}: {peer['command']} {peer['mean']:.3f} s / "
+          f"{ours['command']} {ours['mean']:.4f} s = {ratio:.1f}x (goal >= {goal:.0f}x) {verdict}")
+for name in ("python-only", "tshark-only"):
+    path = os.path.join(results, f"{name}.json")
+    if os.path.exists(path):
+        r = json.load(open(path))["results"][0]
+        print(f"{name}: {r['command']} mean {r['mean']:.2f} s (min {r['min']:.2f}, max {r['max']:.2f}, {len(r['times'])} runs)")
+sys.exit(1 if failed else 0)
+EOF
+}
+
+run_step() {
+    case $1 in
+        all) setup; build; gen; verify_tshark; summary; json; ratios ;;
+        peers) setup; gen; verify_tshark; python_only; tshark_only; ratios ;;
+        setup) setup ;;
+        build) build ;;
+        gen) gen ;;
+        verify-tshark) verify_tshark ;;
+        summary) gen; summary ;;
+        json) gen; json ;;
+        python-only) gen; python_only ;;
+        tshark-only) gen; tshark_only ;;
+        ratios) ratios ;;
+        *) echo "unknown step: $1 (see the header of $0)" >&2; exit 2 ;;
+    esac
+}
+
+if [[ $# -eq 0 ]]; then
+    set -- all
+fi
+for s in "$@"; do
+    run_step "$s"
+done

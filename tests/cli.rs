@@ -1,0 +1,572 @@
+//! Integration tests of the `motionwire` program: they run the built binary
+//! on files and standard input and check its output against SPEC §6.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+use serde_json::{json, Value};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_motionwire"))
+}
+
+/// Run the program with `args`, feeding `stdin`.
+fn run(args: &[&str], stdin: &str) -> Output {
+    let mut child = bin()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the motionwire binary runs");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8(out.stderr.clone()).unwrap()
+}
+
+/// Parse every stdout line as JSON.
+fn records(out: &Output) -> Vec<Value> {
+    stdout(out)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect()
+}
+
+/// Write `text` to a fresh file in the target directory and return its path.
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+const FORMATS: &str = "\
+(1700000000.000500) can0 081#1081110000000000 R
+(1700000000.000600) can0 701#R
+(1700000000.000700) can0 18FF1234#0102
+(1700000000.000800) can0 123##1AABB
+  can0  085   [8]  10 81 11 00 00 00 00 00
+  can0  705   [1]  remote request
+  can0  000   [2]  01 00
+(1.5) vcan1 080#
+(1.5) can0 581#4300100000000000
+(1.5) can0 77F#FF
+(1.5) can0 100#
+(1.5) can0 283#00
+";
+
+#[test]
+fn every_format_and_kind_as_json() {
+    let out = run(&["decode", "--json"], FORMATS);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    assert_eq!(recs.len(), 12);
+    let common: Vec<_> = recs
+        .iter()
+        .map(|r| {
+            (
+                r["line"].as_u64().unwrap(),
+                r["id"].as_u64().unwrap(),
+                r["kind"].as_str().unwrap().to_owned(),
+                r["extended"].as_bool().unwrap(),
+                r["rtr"].as_bool().unwrap(),
+                r["fd"].as_bool().unwrap(),
+                r["data"].as_str().unwrap().to_owned(),
+            )
+        })
+        .collect();
+    let expected: Vec<(u64, u64, &str, bool, bool, bool, &str)> = vec![
+        (1, 0x081, "emcy", false, false, false, "1081110000000000"),
+        (2, 0x701, "guard_request", false, true, false, ""),
+        (3, 0x18FF1234, "other", true, false, false, "0102"),
+        (4, 0x123, "other", false, false, true, "aabb"),
+        (5, 0x085, "emcy", false, false, false, "1081110000000000"),
+        (6, 0x705, "guard_request", false, true, false, ""),
+        (7, 0x000, "nmt_command", false, false, false, "0100"),
+        (8, 0x080, "sync", false, false, false, ""),
+        (9, 0x581, "sdo", false, false, false, "4300100000000000"),
+        (10, 0x77F, "heartbeat", false, false, false, "ff"),
+        (11, 0x100, "other", false, false, false, ""),
+        (12, 0x283, "pdo", false, false, false, "00"),
+    ];
+    for (got, want) in common.iter().zip(&expected) {
+        assert_eq!(
+            (
+                got.0,
+                got.1,
+                got.2.as_str(),
+                got.3,
+                got.4,
+                got.5,
+                got.6.as_str()
+            ),
+            *want
+        );
+    }
+    // Timestamps, interfaces and nodes.
+    assert_eq!(recs[0]["ts"].as_f64(), Some(1_700_000_000.000_5));
+    assert_eq!(recs[0]["iface"], "can0");
+    assert_eq!(recs[4]["ts"], Value::Null);
+    assert_eq!(recs[7]["iface"], "vcan1");
+    assert_eq!(recs[7]["ts"].as_f64(), Some(1.5));
+    let nodes: Vec<_> = recs.iter().map(|r| r.get("node").cloned()).collect();
+    assert_eq!(
+        nodes,
+        [
+            Some(json!(1)),
+            Some(json!(1)),
+            None,
+            None,
+            Some(json!(5)),
+            Some(json!(5)),
+            None,
+            None,
+            Some(json!(1)),
+            Some(json!(127)),
+            None,
+            Some(json!(3)),
+        ]
+    );
+    // The EMCY keys (SPEC §6.1).
+    let emcy = &recs[0];
+    assert_eq!(emcy["code"], 0x8110);
+    assert_eq!(emcy["class"], "monitoring");
+    assert_eq!(emcy["description"], "CAN overrun (objects lost)");
+    assert_eq!(emcy["register"], 0x11);
+    assert_eq!(emcy["register_flags"], json!(["generic", "communication"]));
+    assert_eq!(emcy["manufacturer"], "0000000000");
+    assert!(emcy.get("axis").is_none() && emcy.get("alarms").is_none());
+    // The heartbeat keys: bit 7 is the toggle, masked off in state_raw.
+    assert_eq!(recs[9]["state"], "pre_operational");
+    assert_eq!(recs[9]["state_raw"], 0x7F);
+    assert_eq!(recs[9]["toggle"], true);
+}
+
+#[test]
+fn frames_that_cannot_be_decoded_as_their_kind_carry_an_error() {
+    let out = run(
+        &["decode", "--json"],
+        "(1.0) can0 081#1081\n(1.0) can0 701#\n(1.0) can0 702#12\n",
+    );
+    assert!(out.status.success());
+    let recs = records(&out);
+    assert_eq!(recs[0]["kind"], "emcy");
+    assert_eq!(
+        recs[0]["error"],
+        "EMCY frame: buffer of 2 bytes where 8 are needed"
+    );
+    assert!(recs[0].get("code").is_none());
+    assert_eq!(recs[1]["kind"], "heartbeat");
+    assert!(recs[1]["error"]
+        .as_str()
+        .unwrap()
+        .contains("0 bytes where 1"));
+    // 0x12 is not an NMT state: decoded, reported as invalid.
+    assert_eq!(recs[2]["state"], "invalid");
+    assert_eq!(recs[2]["state_raw"], 0x12);
+}
+
+#[test]
+fn profiles() {
+    let log = "\
+(1.0) can0 083#0573012100000000
+(1.1) can0 083#0000002100000000
+(1.2) can0 083#0573017100000000
+(1.3) can0 085#01FF010180000000
+(1.4) can0 085#0051000000080000
+";
+    let akd = records(&run(&["decode", "--json", "--profile", "akd"], log));
+    assert_eq!(
+        (&akd[0]["axis"], &akd[0]["feedback"]),
+        (&json!(1), &json!(2))
+    );
+    // The reset EMCY still carries the axis and feedback ids (SPEC §2.4).
+    assert_eq!(
+        (&akd[1]["axis"], &akd[1]["feedback"]),
+        (&json!(1), &json!(2))
+    );
+    // Feedback nibble 7 is invalid: reported, not guessed.
+    assert_eq!(akd[2]["feedback"], Value::Null);
+    assert!(akd[2]["error"].as_str().unwrap().contains("feedback"));
+    assert!(akd[3].get("alarms").is_none());
+
+    let baumer = records(&run(&["decode", "--json", "--profile", "baumer"], log));
+    assert_eq!(baumer[3]["alarms"], 0x8001);
+    assert_eq!(baumer[3]["warnings"], 0);
+    assert_eq!(
+        baumer[3]["sources"],
+        json!(["battery_monitoring_error_startup"])
+    );
+    // 0x5100 at runtime: 6505h bit 3 tells it from the startup row.
+    assert_eq!(baumer[4]["warnings"], 0x0008);
+    assert_eq!(
+        baumer[4]["sources"],
+        json!(["non_volatile_data_manager_runtime"])
+    );
+    assert!(baumer[0].get("axis").is_none());
+}
+
+/// A crafted log whose summary is worked out by hand in the comments.
+const SUMMARY_LOG: &str = "\
+(100.000000) can0 705#00
+(100.100000) can0 705#05
+(100.200000) can0 085#1042090000000000
+(100.300000) can0 085#1023020000000000
+(100.400000) can0 705#05
+(101.000000) can0 705#05
+(101.100000) can0 085#0000000000000000
+(101.200000) can0 085#1081110000000000
+(101.300000) can0 70A#R
+(101.301000) can0 70A#05
+(101.400000) can0 70A#R
+(101.401000) can0 70A#85
+(101.500000) can0 70A#R
+(101.501000) can0 70A#85
+(101.600000) can0 70A#R
+(101.601000) can0 70A#05
+(101.700000) can0 70A#00
+(101.800000) can0 70A#R
+(101.801000) can0 70A#85
+(103.000000) can0 705#05
+(103.100000) can0 181#0102
+";
+
+#[test]
+fn summary_keys_on_a_crafted_log() {
+    let path = temp_file("summary.log", SUMMARY_LOG);
+    let out = run(
+        &[
+            "decode",
+            "--summary",
+            "--json",
+            "--heartbeat-ms",
+            "500",
+            path.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let nodes: Vec<_> = recs.iter().map(|r| r["node"].as_u64().unwrap()).collect();
+    assert_eq!(nodes, [1, 5, 10]);
+
+    let n1 = &recs[0];
+    assert_eq!(n1["frames"]["pdo"], 1);
+    assert_eq!(n1["emcy"], 0);
+    assert_eq!(n1["first_error"], Value::Null);
+    assert_eq!(n1["active_error"], Value::Null);
+    assert_eq!(n1["heartbeat"]["last_state"], Value::Null);
+
+    let n5 = &recs[1];
+    assert_eq!(
+        n5["frames"],
+        json!({"emcy": 4, "heartbeat": 5, "guard_request": 0, "nmt_command": 0,
+               "sync": 0, "pdo": 0, "sdo": 0, "other": 0})
+    );
+    assert_eq!(n5["emcy"], 4);
+    assert_eq!(n5["resets"], 1);
+    // The first error stays the first; the root cause (0x4210) was kept over
+    // 0x2310 until the reset on line 7; 0x8110 on line 8 is the new slot.
+    assert_eq!(
+        n5["first_error"],
+        json!({"line": 3, "ts": 100.2, "code": 0x4210})
+    );
+    assert_eq!(
+        n5["active_error"],
+        json!({"line": 8, "ts": 101.2, "code": 0x8110})
+    );
+    assert_eq!(n5["heartbeat"]["count"], 5);
+    assert_eq!(n5["heartbeat"]["last_state"], "operational");
+    assert_eq!(n5["heartbeat"]["boot_ups"], json!([1]));
+    // Gaps above 500 ms: 600 ms after line 5, 2000 ms after line 6.
+    assert_eq!(
+        n5["heartbeat"]["timeouts"],
+        json!([{"after_line": 5, "gap_ms": 600.0}, {"after_line": 6, "gap_ms": 2000.0}])
+    );
+    assert_eq!(n5["guarding"], json!({"answers": 0, "toggle_errors": []}));
+
+    let n10 = &recs[2];
+    assert_eq!(n10["frames"]["guard_request"], 5);
+    assert_eq!(n10["frames"]["heartbeat"], 6);
+    // Guarding answers are not heartbeats; the boot-up on line 17 is.
+    assert_eq!(n10["heartbeat"]["count"], 1);
+    assert_eq!(n10["heartbeat"]["boot_ups"], json!([17]));
+    assert_eq!(n10["heartbeat"]["timeouts"], json!([]));
+    // Line 10 sets the baseline (no boot-up before it); line 14 repeats the
+    // toggle of line 12; line 19 is the first answer after the boot-up on
+    // line 17 and must carry toggle 0.
+    assert_eq!(
+        n10["guarding"],
+        json!({"answers": 5, "toggle_errors": [14, 19]})
+    );
+}
+
+#[test]
+fn summary_timeout_runs_to_the_end_of_the_input_and_needs_the_option() {
+    let log = "(10.0) can0 705#05\n(10.1) can0 705#05\n(12.6) can0 085#0000000000000000\n";
+    let recs = records(&run(
+        &["decode", "--summary", "--json", "--heartbeat-ms", "1000"],
+        log,
+    ));
+    assert_eq!(
+        recs[0]["heartbeat"]["timeouts"],
+        json!([{"after_line": 2, "gap_ms": 2500.0}])
+    );
+    let recs = records(&run(&["decode", "--summary", "--json"], log));
+    assert!(recs[0]["heartbeat"].get("timeouts").is_none());
+    let out = run(&["decode", "--heartbeat-ms", "100"], log);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn summary_as_text() {
+    let out = run(&["decode", "--summary"], SUMMARY_LOG);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    assert!(text.contains("node   5"), "{text}");
+    assert!(text.contains("first error: 0x4210"), "{text}");
+    assert!(text.contains("wrong toggle at lines 14, 19"), "{text}");
+}
+
+#[test]
+fn malformed_lines_are_reported_and_decoding_goes_on() {
+    let log =
+        "(1.0) can0 081#1081110000000000\nnot a frame\n\n(1.0) can0 800#00\n(1.0) can0 705#05\n";
+    let path = temp_file("malformed.log", log);
+    let out = run(&["decode", "--json", path.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    let recs = records(&out);
+    let lines: Vec<_> = recs.iter().map(|r| r["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [1, 5]);
+    let err = stderr(&out);
+    let name = path.display().to_string();
+    assert!(
+        err.contains(&format!("{name}:2: candump line, column 5")),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("{name}:4: candump line, column 12")),
+        "{err}"
+    );
+    assert!(err.contains("2 malformed lines skipped"), "{err}");
+}
+
+#[test]
+fn exit_statuses_for_files_and_arguments() {
+    let out = run(&["decode", "/nonexistent/motionwire.log"], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("/nonexistent/motionwire.log"));
+    assert_eq!(
+        run(&["decode", "--profile", "nope"], "").status.code(),
+        Some(2)
+    );
+    assert_eq!(
+        run(&["decode", "--only", "nope"], "").status.code(),
+        Some(2)
+    );
+    assert_eq!(run(&["frobnicate"], "").status.code(), Some(2));
+    let ok = run(&["decode"], "");
+    assert_eq!(ok.status.code(), Some(0));
+    assert!(ok.stdout.is_empty());
+}
+
+#[test]
+fn standard_input_files_and_dash() {
+    let a = temp_file("a.log", "(1.0) can0 705#05\n");
+    let out = run(
+        &["decode", "--json", a.to_str().unwrap(), "-"],
+        "(2.0) can0 706#7F\n",
+    );
+    assert!(out.status.success());
+    let recs = records(&out);
+    assert_eq!(recs.len(), 2);
+    assert_eq!((&recs[0]["node"], &recs[0]["line"]), (&json!(5), &json!(1)));
+    // Line numbers restart in each input.
+    assert_eq!((&recs[1]["node"], &recs[1]["line"]), (&json!(6), &json!(1)));
+}
+
+#[test]
+fn only_keeps_the_named_kinds() {
+    let recs = records(&run(&["decode", "--json", "--only", "emcy,sync"], FORMATS));
+    let kinds: Vec<_> = recs.iter().map(|r| r["kind"].as_str().unwrap()).collect();
+    assert_eq!(kinds, ["emcy", "emcy", "sync"]);
+}
+
+#[test]
+fn text_mode_is_one_aligned_line_per_frame() {
+    let out = run(&["decode"], FORMATS);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    let lines: Vec<_> = text.lines().collect();
+    assert_eq!(lines.len(), 12);
+    assert!(lines[0].contains("0x8110 monitoring: CAN overrun (objects lost)"));
+    assert!(lines[0].contains("[generic, communication]"));
+    assert!(lines[1].contains("remote request"));
+    // The kind column starts at the same place on every line.
+    let col = lines[0].find("emcy").unwrap();
+    assert_eq!(lines[6].find("nmt_command"), Some(col));
+    assert_eq!(lines[2].find("other"), Some(col));
+}
+
+#[test]
+fn servo_command_json() {
+    let out = run(
+        &["servo", "command", "--json", "e8030000 96140000 ffff"],
+        "",
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(stdout(&out).trim()).unwrap();
+    assert_eq!(
+        v,
+        json!({
+            "speed_setpoint": 1000,
+            "speed_setpoint_word": 1000,
+            "control": 0x1496,
+            "control_flags": ["EMGON", "Brake", "ExtPRMTBL"],
+            "servo_enable": 2,
+            "regulator_mode": "position",
+            "parameter_table": 6,
+            "extra_data_code": -1
+        })
+    );
+}
+
+#[test]
+fn servo_feedback_json() {
+    let hex = "40e20100 00100000 0f000000 01000800 00000000 0080bb44 \
+               00000000 0000c07f 0000803f 000020c0";
+    let out = run(&["servo", "feedback", "--json", hex], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(stdout(&out).trim()).unwrap();
+    assert_eq!(
+        v,
+        json!({
+            "position": (4096i64 << 32) + 123_456,
+            "encoder": "incremental",
+            "incremental_position": 123_456,
+            "zero_pulse_position": 4096,
+            "status": 0xF,
+            "status_flags": ["ServoEn", "ServoRDY", "AbsIncr", "ZPulseAck"],
+            "parameter_table": 1,
+            "errors": 0x80001,
+            "faults": [
+                {"bit": 0, "name": "ServoErrors", "e_code": null},
+                {"bit": 19, "name": "FollowerErr", "e_code": "E09"}
+            ],
+            "message_code": 0,
+            "message": "motor_speed",
+            "message_value": 1500.0,
+            "extra": [0.0, null, 1.0, -2.5]
+        })
+    );
+}
+
+#[test]
+fn servo_absolute_encoder_and_text() {
+    let hex = format!("{}{}", "ffffffffffffffff", "0".repeat(64));
+    let v: Value =
+        serde_json::from_str(stdout(&run(&["servo", "feedback", "--json", &hex], "")).trim())
+            .unwrap();
+    assert_eq!(v["position"], -1);
+    assert_eq!(v["encoder"], "absolute");
+    assert_eq!(v["incremental_position"], Value::Null);
+    assert_eq!(v["zero_pulse_position"], Value::Null);
+    let text = stdout(&run(&["servo", "command", "00000000 00000000 0000"], ""));
+    assert!(
+        text.contains("emergency       active (EMGON = 0)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn servo_bad_hex_or_length_is_exit_2() {
+    let out = run(&["servo", "command", "e80300000000000000zz"], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("not a hex digit"), "{}", stderr(&out));
+    let out = run(&["servo", "feedback", "00112233"], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("needs 80 hex digits (40 bytes), found 8"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn sample_log_summary_matches_its_ground_truth() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let log = root.join("samples/machine.log");
+    let truth: Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("samples/machine.truth.json")).unwrap(),
+    )
+    .unwrap();
+    let out = run(
+        &[
+            "decode",
+            "--summary",
+            "--json",
+            "--heartbeat-ms",
+            "300",
+            log.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    for rec in &recs {
+        let node = rec["node"].as_u64().unwrap().to_string();
+        let Some(t) = truth["nodes"].get(&node) else {
+            continue;
+        };
+        for (kind, count) in t["frames"].as_object().unwrap() {
+            assert_eq!(&rec["frames"][kind], count, "node {node} {kind}");
+        }
+        assert_eq!(rec["emcy"], t["emcy"]["count"], "node {node}");
+        assert_eq!(rec["resets"], t["emcy"]["resets"], "node {node}");
+        assert_eq!(
+            rec["first_error"]["line"], t["emcy"]["first_error"]["line"],
+            "node {node}"
+        );
+        let slot = &t["emcy"]["slot_at_end"];
+        if slot["state"] == "error" {
+            assert_eq!(rec["active_error"]["line"], slot["line"], "node {node}");
+            assert_eq!(rec["active_error"]["code"], slot["code"], "node {node}");
+        } else {
+            assert_eq!(rec["active_error"], Value::Null, "node {node}");
+        }
+        assert_eq!(
+            rec["heartbeat"]["boot_ups"], t["boot_up_lines"],
+            "node {node}"
+        );
+        if !t["guarding"].is_null() {
+            assert_eq!(
+                rec["guarding"]["toggle_errors"], t["guarding"]["wrong_toggle_lines"],
+                "node {node}"
+            );
+            assert_eq!(rec["guarding"]["answers"], t["guarding"]["answers"]);
+        }
+    }
+    // Node 5 went silent: one heartbeat gap, at the line the truth names.
+    let n5 = recs.iter().find(|r| r["node"] == 5).unwrap();
+    let gap = &truth["nodes"]["5"]["heartbeat_gaps"][0];
+    assert_eq!(
+        n5["heartbeat"]["timeouts"][0]["after_line"],
+        gap["line_before"]
+    );
+    assert_eq!(n5["heartbeat"]["timeouts"][0]["gap_ms"], gap["gap_ms"]);
+}
