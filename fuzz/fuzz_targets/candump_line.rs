@@ -1,0 +1,202 @@
+//! candump text lines (SPEC §5): the fast (SWAR) log-format path, the
+//! general path, the line iterator and the two writers.
+//!
+//! Arbitrary bytes → `candump::parse_line` and `candump::lines`. Invariants:
+//! - nothing panics; an error is an `Error::Candump` whose column lies in
+//!   the line (1-based, at most one past its end) and whose message prints;
+//! - a parsed frame keeps the formats' invariants: a non-empty printable
+//!   interface name not starting with `(` or `#`, an identifier in range,
+//!   at most 8 data bytes (64 for CAN FD), a remote request without data
+//!   and with a length 0..=8;
+//! - a parsed frame written back with `write_log` (and `Display`) parses to
+//!   the same frame; written with `write_screen` it parses to the same frame
+//!   but for the CAN FD flags the screen cannot show (SPEC §5 decision:
+//!   only BRS/ESI, only with a direction);
+//! - the same line with one leading space (which the fast path never takes)
+//!   gives the same frame, or the same error one column further right: the
+//!   fast path and the general parser agree;
+//! - `parse_line_str` agrees with `parse_line`;
+//! - `lines(input)` yields one item per line, numbered 1, 2, …, each equal
+//!   to `parse_line` of that line, whether read with `next` or `fold`.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use motionwire::candump::{self, CandumpFrame, FdFlags, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use motionwire::Error;
+
+fuzz_target!(|data: &[u8]| {
+    check_lines(data);
+
+    // The first line on its own, as a caller that splits lines would pass it.
+    let line = match data.iter().position(|&b| b == b'\n') {
+        Some(end) => &data[..=end],
+        None => data,
+    };
+    let result = candump::parse_line(line);
+    if let Ok(text) = std::str::from_utf8(line) {
+        assert_eq!(candump::parse_line_str(text), result);
+    }
+    check_leading_space(line, &result);
+
+    match result {
+        Ok(Some(frame)) => {
+            check_frame(&frame);
+            check_written(&frame);
+        }
+        Ok(None) => {}
+        Err(error) => check_error(line, error),
+    }
+});
+
+fn check_error(line: &[u8], error: Error) {
+    match error {
+        Error::Candump { column, reason } => {
+            assert!(column >= 1, "column 0 for {line:?}");
+            assert!(
+                column <= line.len() + 1,
+                "column {column} past the line {line:?}"
+            );
+            let _ = reason.to_string();
+        }
+        other => panic!("parse_line gave {other:?}, not a candump error"),
+    }
+    let _ = error.to_string();
+}
+
+fn check_frame(frame: &CandumpFrame) {
+    let iface = frame.iface();
+    assert!(!iface.is_empty());
+    assert!(
+        iface.iter().all(u8::is_ascii_graphic),
+        "interface {iface:?}"
+    );
+    assert!(!matches!(iface[0], b'(' | b'#'));
+    assert_eq!(frame.iface_str().as_bytes(), iface);
+    let id = frame.id();
+    assert_eq!(id.is_extended(), frame.is_extended());
+    assert!(id.raw() <= if id.is_extended() { 0x1FFF_FFFF } else { 0x7FF });
+    if frame.is_fd() {
+        assert!(frame.data().len() <= FD_MAX_LEN);
+        assert!(frame.fd_flags().bits() <= 0xF);
+        assert!(frame.dlc() <= 15);
+        assert!(!frame.is_rtr());
+    } else {
+        assert!(frame.data().len() <= CLASSIC_MAX_LEN);
+        assert_eq!(frame.fd_flags(), FdFlags::EMPTY);
+    }
+    if frame.is_rtr() {
+        assert!(frame.data().is_empty());
+        assert!(frame.dlc() <= 8);
+    } else if !frame.is_fd() {
+        assert_eq!(usize::from(frame.dlc()), frame.data().len());
+    }
+    if let Some(ts) = frame.timestamp() {
+        assert!(ts.micros() < 1_000_000);
+        let _ = ts.as_secs_f64();
+    }
+}
+
+/// Written back in either format, the frame parses to itself.
+fn check_written(frame: &CandumpFrame) {
+    let mut log = String::new();
+    frame.write_log(&mut log).expect("a String takes any text");
+    assert_eq!(frame.to_string(), log);
+    assert!(!log.contains('\n'));
+    assert_eq!(
+        candump::parse_line(log.as_bytes()),
+        Ok(Some(*frame)),
+        "log form {log:?}"
+    );
+    let with_end = format!("{log}\r\n");
+    assert_eq!(candump::parse_line(with_end.as_bytes()), Ok(Some(*frame)));
+
+    let mut screen = String::new();
+    frame
+        .write_screen(&mut screen)
+        .expect("a String takes any text");
+    assert!(!screen.contains('\n'));
+    let expected = if frame.is_fd() {
+        // The screen shows only BRS and ESI, and only after a direction.
+        let shown = match frame.direction() {
+            Some(_) => FdFlags::new(frame.fd_flags().bits() & 0x3).expect("a nibble"),
+            None => FdFlags::EMPTY,
+        };
+        let mut rebuilt = CandumpFrame::new_fd(frame.iface_str(), frame.id(), shown, frame.data())
+            .expect("the frame's own fields");
+        if let Some(ts) = frame.timestamp() {
+            rebuilt = rebuilt.with_timestamp(ts);
+        }
+        if let Some(direction) = frame.direction() {
+            rebuilt = rebuilt.with_direction(direction);
+        }
+        rebuilt
+    } else {
+        *frame
+    };
+    assert_eq!(
+        candump::parse_line(screen.as_bytes()),
+        Ok(Some(expected)),
+        "screen form {screen:?}"
+    );
+}
+
+/// One more leading space changes nothing but error columns.
+fn check_leading_space(line: &[u8], result: &Result<Option<CandumpFrame>, Error>) {
+    let mut spaced = Vec::with_capacity(line.len() + 1);
+    spaced.push(b' ');
+    spaced.extend_from_slice(line);
+    let shifted = candump::parse_line(&spaced);
+    match (result, shifted) {
+        (Ok(frame), Ok(shifted)) => assert_eq!(*frame, shifted, "{line:?}"),
+        (
+            Err(Error::Candump { column, reason }),
+            Err(Error::Candump {
+                column: shifted_column,
+                reason: shifted_reason,
+            }),
+        ) => {
+            assert_eq!(shifted_column, column + 1, "{line:?}: {reason}");
+            assert_eq!(shifted_reason, *reason, "{line:?}");
+        }
+        (result, shifted) => panic!("{line:?}: {result:?}, with a leading space {shifted:?}"),
+    }
+}
+
+/// The line iterator agrees with `parse_line` on each line.
+fn check_lines(data: &[u8]) {
+    let expected: Vec<_> = split_lines(data)
+        .enumerate()
+        .map(|(i, line)| (i + 1, candump::parse_line(line)))
+        .collect();
+    let mut by_next = Vec::new();
+    let mut iter = candump::lines(data);
+    // A `for` loop calls `next`, the path `fold` does not take.
+    for item in iter.by_ref() {
+        by_next.push(item);
+        assert!(by_next.len() <= expected.len(), "more items than lines");
+    }
+    assert!(iter.remainder().is_empty());
+    assert_eq!(by_next, expected);
+    let by_fold = candump::lines(data).fold(Vec::new(), |mut items, item| {
+        items.push(item);
+        items
+    });
+    assert_eq!(by_fold, expected);
+}
+
+/// Lines as `lines` documents them: ending at `\n`, a last line without one
+/// counting too, nothing after a final `\n`.
+fn split_lines(data: &[u8]) -> impl Iterator<Item = &[u8]> {
+    let mut rest = data;
+    std::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        let (line, next) = match rest.iter().position(|&b| b == b'\n') {
+            Some(i) => (&rest[..i], &rest[i + 1..]),
+            None => (rest, &[][..]),
+        };
+        rest = next;
+        Some(line)
+    })
+}
