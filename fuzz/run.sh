@@ -13,6 +13,7 @@
 #                   unsafe code, so AddressSanitizer adds little but halves the
 #                   speed and needs a nightly toolchain ("address" works with one).
 #   FUZZ_TARGETS    space-separated subset of targets, default all.
+#   FUZZ_JOBS       targets fuzzed at once, default the number of cores.
 #
 # The committed seeds in fuzz/corpus/<target>/ are read only; new inputs go
 # to fuzz/target/corpus/<target>/, which a later run on the same machine
@@ -61,27 +62,56 @@ else
     mapfile -t targets < <(cargo "${toolchain[@]}" fuzz list)
 fi
 
-passed=0
-failed=0
-for target in "${targets[@]}"; do
-    work="target/corpus/$target"
-    log="target/logs/$target.log"
-    mkdir -p "$work" "$(dirname "$log")" "corpus/$target"
-    status=0
+# Run one target; its exit status goes to target/logs/<target>.status.
+run_target() {
+    local target="$1" status=0
+    local work="target/corpus/$target" log="target/logs/$target.log"
+    mkdir -p "$work" "corpus/$target"
     cargo "${toolchain[@]}" fuzz run "${flags[@]}" "$target" "$work" "corpus/$target" -- \
         -max_total_time="$seconds" -timeout=10 -print_final_stats=1 >"$log" 2>&1 || status=$?
+    echo "$status" >"target/logs/$target.status"
+}
+
+# Print one target's line; return its status.
+report() {
+    local target="$1" log="target/logs/$1.log" status runs speed cov artifact
+    status=$(cat "target/logs/$target.status" 2>/dev/null || echo 1)
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
-    speed=$(grep -oE 'exec/s: [0-9]+' "$log" | tail -n 1 | grep -oE '[0-9]+' || true)
+    speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -n 1)
     cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -n 1 | grep -oE '[0-9]+' || true)
     if [ "$status" -eq 0 ]; then
-        passed=$((passed + 1))
         echo "fuzz $target: ok, ${runs:-?} runs in ${seconds} s (${speed:-?} exec/s, coverage ${cov:-?} edges)"
     else
-        failed=$((failed + 1))
         artifact=$(grep -oE 'artifacts/[^ ]+' "$log" | tail -n 1 || true)
         echo "fuzz $target: FAILED (exit $status) after ${runs:-?} runs; input ${artifact:+fuzz/}${artifact:-none saved}; log fuzz/$log"
         grep -E "panicked at|assertion|left:|right:|ERROR: libFuzzer" "$log" | head -n 8 | sed 's/^/    /'
     fi
+    return "$status"
+}
+
+# libFuzzer runs on one core: run as many targets at once as there are
+# cores (FUZZ_JOBS overrides), each for the full time.
+jobs="${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 1)}"
+if ! [[ "$jobs" =~ ^[0-9]+$ ]] || [ "$jobs" -lt 1 ]; then
+    jobs=1
+fi
+mkdir -p target/logs
+passed=0
+failed=0
+for ((i = 0; i < ${#targets[@]}; i += jobs)); do
+    batch=("${targets[@]:i:jobs}")
+    for target in "${batch[@]}"; do
+        rm -f "target/logs/$target.status"
+        run_target "$target" &
+    done
+    wait
+    for target in "${batch[@]}"; do
+        if report "$target"; then
+            passed=$((passed + 1))
+        else
+            failed=$((failed + 1))
+        fi
+    done
 done
 
 echo "fuzz: ${#targets[@]} targets, $(( $(date +%s) - start )) s in all"
