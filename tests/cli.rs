@@ -570,3 +570,31 @@ fn sample_log_summary_matches_its_ground_truth() {
     );
     assert_eq!(n5["heartbeat"]["timeouts"][0]["gap_ms"], gap["gap_ms"]);
 }
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    // Enough frames that the program is still writing when the reader goes.
+    let log: String = (0..200_000)
+        .map(|i| {
+            format!(
+                "({}.{:06}) can0 705#05\n",
+                1000 + i / 1000,
+                (i % 1000) * 1000
+            )
+        })
+        .collect();
+    let path = temp_file("pipe.log", &log);
+    let mut child = bin()
+        .args(["decode", path.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 64];
+    std::io::Read::read_exact(&mut stdout, &mut first).unwrap();
+    drop(stdout);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(stderr(&out), "");
+}
