@@ -598,3 +598,29 @@ fn a_closed_pipe_ends_quietly() {
     assert_eq!(out.status.code(), Some(0));
     assert_eq!(stderr(&out), "");
 }
+
+#[test]
+fn profiles_per_node() {
+    let log = "(1.0) can0 083#0573012100000000\n(1.3) can0 085#01FF010180000000\n(1.4) can0 08A#3081110000000000\n";
+    let recs = records(&run(
+        &["decode", "--json", "--profile", "3=akd,5=baumer"],
+        log,
+    ));
+    assert_eq!(recs[0]["axis"], 1);
+    assert!(recs[0].get("alarms").is_none());
+    assert_eq!(recs[1]["alarms"], 0x8001);
+    assert!(recs[1].get("axis").is_none());
+    // Node 10 is not named: the default, generic.
+    assert!(recs[2].get("axis").is_none() && recs[2].get("alarms").is_none());
+    // A bare profile is the default for the nodes not named.
+    let recs = records(&run(
+        &["decode", "--json", "--profile", "akd,5=baumer"],
+        log,
+    ));
+    assert_eq!(recs[2]["axis"], 0);
+    assert_eq!(recs[1]["warnings"], 0);
+    for bad in ["0=akd", "128=akd", "x=akd", "3=nope"] {
+        let out = run(&["decode", "--profile", bad], log);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+    }
+}
