@@ -1133,8 +1133,8 @@ const HEX_TABLE: [u8; 256] = {
 
 /// The line shape `candump -l` writes, read in one pass from the start of
 /// `buf`: `(` 10 digits `.` 6 digits `) ` interface (1 to 15 bytes) space,
-/// identifier `#`, `R[len]`, `#<flags><data>` or `<data>`, optional ` R`/`
-/// T`, then `\n`, `\r\n` or the end of `buf`. Return the frame and the
+/// identifier `#`, `R[len]`, `#<flags><data>` or `<data>`, an optional
+/// direction (` R`, ` T`), then `\n`, `\r\n` or the end of `buf`. Return the frame and the
 /// number of bytes read (line end included), or `None` for any other shape
 /// (which [`parse_general`] then reads, or reports). On every line it
 /// accepts it returns what [`parse_general`] returns.

@@ -570,3 +570,57 @@ fn sample_log_summary_matches_its_ground_truth() {
     );
     assert_eq!(n5["heartbeat"]["timeouts"][0]["gap_ms"], gap["gap_ms"]);
 }
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    // Enough frames that the program is still writing when the reader goes.
+    let log: String = (0..200_000)
+        .map(|i| {
+            format!(
+                "({}.{:06}) can0 705#05\n",
+                1000 + i / 1000,
+                (i % 1000) * 1000
+            )
+        })
+        .collect();
+    let path = temp_file("pipe.log", &log);
+    let mut child = bin()
+        .args(["decode", path.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 64];
+    std::io::Read::read_exact(&mut stdout, &mut first).unwrap();
+    drop(stdout);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(stderr(&out), "");
+}
+
+#[test]
+fn profiles_per_node() {
+    let log = "(1.0) can0 083#0573012100000000\n(1.3) can0 085#01FF010180000000\n(1.4) can0 08A#3081110000000000\n";
+    let recs = records(&run(
+        &["decode", "--json", "--profile", "3=akd,5=baumer"],
+        log,
+    ));
+    assert_eq!(recs[0]["axis"], 1);
+    assert!(recs[0].get("alarms").is_none());
+    assert_eq!(recs[1]["alarms"], 0x8001);
+    assert!(recs[1].get("axis").is_none());
+    // Node 10 is not named: the default, generic.
+    assert!(recs[2].get("axis").is_none() && recs[2].get("alarms").is_none());
+    // A bare profile is the default for the nodes not named.
+    let recs = records(&run(
+        &["decode", "--json", "--profile", "akd,5=baumer"],
+        log,
+    ));
+    assert_eq!(recs[2]["axis"], 0);
+    assert_eq!(recs[1]["warnings"], 0);
+    for bad in ["0=akd", "128=akd", "x=akd", "3=nope"] {
+        let out = run(&["decode", "--profile", bad], log);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+    }
+}

@@ -13,7 +13,7 @@ use motionwire::profiles::baumer::BaumerEmcy;
 
 use crate::json::{self, Object};
 use crate::summary::Summary;
-use crate::{DecodeArgs, Failure, Profile};
+use crate::{DecodeArgs, Failure, Profile, Profiles};
 
 /// The kind of a frame, from its identifier (SPEC §6.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, ValueEnum)]
@@ -388,6 +388,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         ));
     }
     let inputs = open_inputs(&args.files)?;
+    let profiles = Profiles::new(&args.profile);
     let mut keep = [args.only.is_empty(); Kind::ALL.len()];
     for kind in &args.only {
         keep[kind.index()] = true;
@@ -412,9 +413,9 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                         Some(summary) => summary.add(&record),
                         None if keep[record.kind.index()] => {
                             if args.json {
-                                record.write_json(&mut out, args.profile)?;
+                                record.write_json(&mut out, profiles.of(record.node))?;
                             } else {
-                                record.write_text(&mut out, args.profile)?;
+                                record.write_text(&mut out, profiles.of(record.node))?;
                             }
                         }
                         None => {}

@@ -4,7 +4,7 @@
 //! (SPEC §6): names and meanings change only with a CHANGELOG entry.
 //!
 //! ```text
-//! motionwire decode [--json] [--profile generic|akd|baumer] [--summary]
+//! motionwire decode [--json] [--profile generic|akd|baumer|NODE=PROFILE,…] [--summary]
 //!                   [--heartbeat-ms N] [--only KIND[,KIND]] [FILE…]
 //! motionwire servo command  [--json] HEX
 //! motionwire servo feedback [--json] HEX
@@ -46,9 +46,17 @@ pub struct DecodeArgs {
     /// Write one JSON object per line instead of aligned text.
     #[arg(long)]
     pub json: bool,
-    /// How to read the manufacturer-specific bytes of EMCY frames.
-    #[arg(long, value_enum, default_value_t = Profile::Generic)]
-    pub profile: Profile,
+    /// How to read the manufacturer-specific bytes of EMCY frames:
+    /// `generic`, `akd` or `baumer` for every node, or per node as
+    /// `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`); a bare profile sets
+    /// the default for the nodes not named.
+    #[arg(
+        long,
+        value_name = "PROFILE|NODE=PROFILE",
+        value_delimiter = ',',
+        value_parser = parse_profile_choice,
+    )]
+    pub profile: Vec<ProfileChoice>,
     /// After the input, write one record per node seen instead of one per
     /// frame: frame counts, EMCYs with the root cause, heartbeats, guarding.
     #[arg(long)]
@@ -75,6 +83,59 @@ pub enum Profile {
     Akd,
     /// Baumer EAM580: alarms, warnings and diagnostic sources (SPEC §4).
     Baumer,
+}
+
+/// One `--profile` item: for every node, or for one node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProfileChoice {
+    /// The profile of every node not named otherwise.
+    Default(Profile),
+    /// The profile of one node.
+    Node(motionwire::canopen::NodeId, Profile),
+}
+
+fn parse_profile_choice(text: &str) -> Result<ProfileChoice, String> {
+    let profile = |name: &str| Profile::from_str(name, false);
+    match text.split_once('=') {
+        None => profile(text).map(ProfileChoice::Default),
+        Some((node, name)) => {
+            let raw: u8 = node
+                .parse()
+                .map_err(|_| format!("{node:?} is not a node-ID (1..=127)"))?;
+            let node = motionwire::canopen::NodeId::try_new(raw).map_err(|e| e.to_string())?;
+            Ok(ProfileChoice::Node(node, profile(name)?))
+        }
+    }
+}
+
+/// The profile of each node, from the `--profile` items.
+#[derive(Debug, Clone)]
+pub struct Profiles([Profile; 128]);
+
+impl Profiles {
+    /// Build the table; later items win over earlier ones.
+    pub fn new(choices: &[ProfileChoice]) -> Self {
+        let default = choices
+            .iter()
+            .rev()
+            .find_map(|c| match c {
+                ProfileChoice::Default(p) => Some(*p),
+                ProfileChoice::Node(..) => None,
+            })
+            .unwrap_or(Profile::Generic);
+        let mut table = [default; 128];
+        for choice in choices {
+            if let ProfileChoice::Node(node, profile) = choice {
+                table[usize::from(node.get())] = *profile;
+            }
+        }
+        Profiles(table)
+    }
+
+    /// The profile of `node` (the default for frames without a node).
+    pub fn of(&self, node: Option<motionwire::canopen::NodeId>) -> Profile {
+        self.0[node.map_or(0, |n| usize::from(n.get()))]
+    }
 }
 
 #[derive(Debug, Subcommand)]
