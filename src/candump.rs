@@ -1230,12 +1230,8 @@ fn parse_canonical_log(buf: &[u8]) -> Option<(CandumpFrame<'_>, usize)> {
                 return None;
             }
             let packed = swar::pack_hex(values) & KEEP_BYTES[(digits / 2) & 15];
-            // One 16-byte store, not 8: the frame is copied on in 16-byte
-            // words, and a word that a single store wrote is forwarded to
-            // its load at once, where one pieced together from an 8-byte
-            // store and the zeroing stalls until both reach the cache.
-            if let Some(first) = data.first_chunk_mut::<16>() {
-                *first = u128::from(packed).to_le_bytes();
+            if let Some(first) = data.first_chunk_mut::<8>() {
+                *first = packed.to_le_bytes();
             }
             (Kind::Data, (digits / 2) as u8, body + digits)
         }
