@@ -178,7 +178,7 @@ impl Emcy {
     }
 
     /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is an
-    /// [`Error::Length`](crate::Error::Length) (SPEC §2.1: a decoder does not guess).
+    /// [`Error::Length`] (SPEC §2.1: a decoder does not guess).
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
         // Through the fixed-size array rather than the view over the slice:
