@@ -1,21 +1,57 @@
-//! Decoding speed of candump log text (SPEC §5).
+//! Decoding speed of the hot paths: the servo frames (SPEC §1), the EMCY
+//! (SPEC §2.1) and candump log text (SPEC §5). Run it with
+//! `cargo bench --bench decode`; BENCHMARKS.md has the numbers.
 //!
-//! `candump/parse` runs `motionwire::candump::lines` over a generated log of
-//! realistic CANopen traffic; `candump/byte_by_byte` runs a plain
+//! Every frame group decodes a buffer of [`FRAMES`] frames per iteration,
+//! with varied, realistic contents generated deterministically, and times
+//! five ways of reading the same fields:
+//!
+//! - `copy`: copy each frame into an output array and read its words as
+//!   they lie in memory (native byte order, no decoding at all): the
+//!   physical floor;
+//! - `view`: every field through the zero-copy view (`FeedbackFrame`, …);
+//! - `owned`: the owned value (`Feedback::parse`, …);
+//! - `byteorder_cursor`: the common hand-written alternative, a
+//!   `byteorder::ReadBytesExt` reader over a `std::io::Cursor`, one `?` per
+//!   field, into a plain struct;
+//! - `deku`: the common derive-based alternative, a `#[derive(DekuRead)]`
+//!   little-endian struct of the same layout.
+//!
+//! Each variant folds the same fields into the same checksum (the sums of
+//! `fold_*`), and the checksums of all variants are compared before
+//! anything is timed. The input goes through `black_box`, and the checksum
+//! is returned from the timed closure, which criterion passes to
+//! `black_box`, so nothing can be optimised away. `emcy8/describe` also
+//! looks up each code's description and class.
+//!
+//! The candump groups run over a generated log of realistic CANopen
+//! traffic: `candump/parse` parses every line with
+//! `motionwire::candump::lines`, `candump/byte_by_byte` is a plain
 //! byte-at-a-time parser of the same lines (written here as the baseline),
-//! so that one run shows the ratio. Both read every field into a frame and
-//! fold the frames into the same checksum, which is compared before timing.
+//! and `candump/decode` does the library-level work of `motionwire decode`
+//! without the output: parse, classify the identifier with
+//! `CobFunction::classify`, decode EMCY and heartbeat payloads, look up
+//! each EMCY code's class and description.
 
 use std::hint::black_box;
+use std::io::Cursor;
 
+use byteorder::{LittleEndian, ReadBytesExt};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use motionwire::candump;
+use deku::prelude::*;
+use motionwire::candump::{self, CandumpFrame};
+use motionwire::canopen::{
+    CobFunction, Emcy, EmcyFrame, ErrorCode, HeartbeatFrame, NmtState, EMCY_LEN,
+};
+use motionwire::servo::{
+    Command, CommandFrame, Feedback, FeedbackFrame, COMMAND_LEN, FEEDBACK_LEN,
+};
 
-/// Lines in the generated log.
-const LINES: usize = 20_000;
+/// Frames per buffer in the frame groups.
+const FRAMES: usize = 1024;
 
 /// A small deterministic generator (xorshift64*), so that every run times
-/// the same log.
+/// the same inputs.
 struct Rng(u64);
 
 impl Rng {
@@ -29,16 +65,663 @@ impl Rng {
     fn below(&mut self, n: u64) -> u64 {
         self.next() % n
     }
+
+    /// A value in `centre ± spread`.
+    fn around(&mut self, centre: f32, spread: f32) -> f32 {
+        let unit = (self.next() >> 40) as f32 / (1u64 << 24) as f32;
+        centre + spread * (2.0 * unit - 1.0)
+    }
 }
 
-/// A candump `-l` log of CANopen traffic: PDOs, SDOs, heartbeats, EMCYs,
-/// SYNC, node-guarding RTRs, some extended identifiers (J1939-like), a few
-/// CAN FD frames and a few lines with a direction.
-fn generate_log() -> Vec<u8> {
+/// The bytes at `at..at + N` of a frame copied into an array.
+#[inline(always)]
+fn take<const N: usize, const L: usize>(frame: &[u8; L], at: usize) -> [u8; N] {
+    let mut out = [0; N];
+    out.copy_from_slice(&frame[at..at + N]);
+    out
+}
+
+// ------------------------------------------------------- feedback, 40 bytes
+
+/// `FRAMES` feedback frames of 8 axes, one after the other as a master
+/// would collect them over successive cycles: incremental and absolute
+/// encoders, positions and zero pulses moving, status words of enabled
+/// axes in various parameter tables, a rare fault, the message channel
+/// cycling through speed, current, relative current, bus voltage and
+/// temperature, and the extra data carrying floats.
+fn feedback_frames() -> Vec<u8> {
+    let mut rng = Rng(0x51ED_2701_F00D_BEEF);
+    let mut out = Vec::with_capacity(FRAMES * FEEDBACK_LEN);
+    let mut positions = [0i64; 8];
+    for (axis, p) in positions.iter_mut().enumerate() {
+        *p = (axis as i64 + 1) * 1_000_003;
+    }
+    for i in 0..FRAMES {
+        let axis = i % 8;
+        let incremental = axis < 5;
+        positions[axis] += rng.below(4_000) as i64 - 1_500;
+        let position = if incremental {
+            let zero_pulse = (positions[axis] as i32) & !0xFFF;
+            (i64::from(zero_pulse) << 32) | i64::from(positions[axis] as u32)
+        } else {
+            positions[axis] << 12 | rng.below(4096) as i64
+        };
+        let mut status: u32 = 0b11 | 1 << 7 | ((axis as u32 % 4) << 8);
+        if incremental {
+            status |= 1 << 2 | 1 << 3;
+        }
+        if rng.below(8) == 0 {
+            status |= 1 << 5;
+        }
+        if rng.below(100) == 0 {
+            status |= 1 << 11;
+        }
+        let errors: u32 = match rng.below(64) {
+            0 => 1 | 1 << 5,
+            1 => 1 | 1 << 19,
+            _ => 0,
+        };
+        let code = (i / 8 % 5) as i32;
+        let data = match code {
+            0 => rng.around(1500.0, 300.0),
+            1 => rng.around(4.2, 1.5),
+            2 => rng.around(35.0, 20.0),
+            3 => rng.around(560.0, 8.0),
+            _ => rng.around(45.0, 10.0),
+        };
+        let extra = [
+            rng.around(0.0, 1.0),
+            rng.around(100.0, 50.0),
+            rng.around(-3.0, 3.0),
+            if rng.below(4) == 0 {
+                0.0
+            } else {
+                rng.around(1.0, 0.1)
+            },
+        ];
+        out.extend_from_slice(&position.to_le_bytes());
+        out.extend_from_slice(&status.to_le_bytes());
+        out.extend_from_slice(&errors.to_le_bytes());
+        out.extend_from_slice(&code.to_le_bytes());
+        out.extend_from_slice(&data.to_le_bytes());
+        for x in extra {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    out
+}
+
+/// Fold the fields of one feedback frame into the checksum: the sum of
+/// every field (floats by their bits).
+#[inline(always)]
+fn fold_feedback(
+    acc: u64,
+    position: i64,
+    status: u32,
+    errors: u32,
+    code: i32,
+    data: f32,
+    extra: [f32; 4],
+) -> u64 {
+    let [e0, e1, e2, e3] = extra.map(|x| u64::from(x.to_bits()));
+    acc.wrapping_add(position as u64)
+        .wrapping_add(u64::from(status))
+        .wrapping_add(u64::from(errors))
+        .wrapping_add(i64::from(code) as u64)
+        .wrapping_add(u64::from(data.to_bits()))
+        .wrapping_add(e0)
+        .wrapping_add(e1)
+        .wrapping_add(e2)
+        .wrapping_add(e3)
+}
+
+#[inline(never)]
+fn feedback_copy(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(FEEDBACK_LEN) {
+        let Ok(bytes) = <[u8; FEEDBACK_LEN]>::try_from(chunk) else {
+            continue;
+        };
+        let f = |at| f32::from_ne_bytes(take(&bytes, at));
+        acc = fold_feedback(
+            acc,
+            i64::from_ne_bytes(take(&bytes, 0)),
+            u32::from_ne_bytes(take(&bytes, 8)),
+            u32::from_ne_bytes(take(&bytes, 12)),
+            i32::from_ne_bytes(take(&bytes, 16)),
+            f(20),
+            [f(24), f(28), f(32), f(36)],
+        );
+    }
+    acc
+}
+
+#[inline(never)]
+fn feedback_view(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(FEEDBACK_LEN) {
+        if let Ok(frame) = FeedbackFrame::new_checked(chunk) {
+            acc = fold_feedback(
+                acc,
+                frame.position(),
+                frame.status_word().bits(),
+                frame.error_word().bits(),
+                frame.message_code(),
+                frame.message_data(),
+                frame.extra_data(),
+            );
+        }
+    }
+    acc
+}
+
+#[inline(never)]
+fn feedback_owned(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(FEEDBACK_LEN) {
+        if let Ok(f) = Feedback::parse(chunk) {
+            acc = fold_feedback(
+                acc,
+                f.position,
+                f.status.bits(),
+                f.errors.bits(),
+                f.message.code,
+                f.message.data,
+                f.extra_data,
+            );
+        }
+    }
+    acc
+}
+
+/// The feedback frame as a hand-written decoder would hold it.
+struct PlainFeedback {
+    position: i64,
+    status: u32,
+    errors: u32,
+    message_code: i32,
+    message_data: f32,
+    extra_data: [f32; 4],
+}
+
+/// The hand-written decoder: a `Cursor` and one `ReadBytesExt` call per
+/// field.
+fn read_feedback(bytes: &[u8]) -> std::io::Result<PlainFeedback> {
+    let mut rdr = Cursor::new(bytes);
+    let position = rdr.read_i64::<LittleEndian>()?;
+    let status = rdr.read_u32::<LittleEndian>()?;
+    let errors = rdr.read_u32::<LittleEndian>()?;
+    let message_code = rdr.read_i32::<LittleEndian>()?;
+    let message_data = rdr.read_f32::<LittleEndian>()?;
+    let mut extra_data = [0.0; 4];
+    for x in &mut extra_data {
+        *x = rdr.read_f32::<LittleEndian>()?;
+    }
+    Ok(PlainFeedback {
+        position,
+        status,
+        errors,
+        message_code,
+        message_data,
+        extra_data,
+    })
+}
+
+#[inline(never)]
+fn feedback_byteorder_cursor(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(FEEDBACK_LEN) {
+        if let Ok(f) = read_feedback(chunk) {
+            acc = fold_feedback(
+                acc,
+                f.position,
+                f.status,
+                f.errors,
+                f.message_code,
+                f.message_data,
+                f.extra_data,
+            );
+        }
+    }
+    acc
+}
+
+/// The feedback frame as a derive-based decoder reads it.
+#[derive(DekuRead)]
+#[deku(endian = "little")]
+struct DekuFeedback {
+    position: i64,
+    status: u32,
+    errors: u32,
+    message_code: i32,
+    message_data: f32,
+    extra_data: [f32; 4],
+}
+
+#[inline(never)]
+fn feedback_deku(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(FEEDBACK_LEN) {
+        if let Ok((_, f)) = DekuFeedback::from_bytes((chunk, 0)) {
+            acc = fold_feedback(
+                acc,
+                f.position,
+                f.status,
+                f.errors,
+                f.message_code,
+                f.message_data,
+                f.extra_data,
+            );
+        }
+    }
+    acc
+}
+
+// -------------------------------------------------------- command, 10 bytes
+
+/// `FRAMES` command frames of 8 axes: speed set points ramping both ways,
+/// control words with EMGON and Brake, the servo-enable field, parameter
+/// tables and regulator modes varying, sometimes POSLOCK or an error
+/// clear, and the extra data code word mostly 0.
+fn command_frames() -> Vec<u8> {
+    let mut rng = Rng(0xC0FF_EE00_1234_5678);
+    let mut out = Vec::with_capacity(FRAMES * COMMAND_LEN);
+    let mut speeds = [0i32; 8];
+    for i in 0..FRAMES {
+        let axis = i % 8;
+        speeds[axis] = speeds[axis]
+            .wrapping_add(rng.below(20_001) as i32 - 10_000)
+            .clamp(-3_000_000, 3_000_000);
+        let mut control: u32 = 1 << 2 | 1 << 10; // EMGON, Brake
+        control |= [0b01, 0b10, 0b10, 0b10, 0b11][rng.below(5) as usize];
+        control |= (axis as u32 % 4) << 4 | (rng.below(4) as u32) << 6;
+        if rng.below(10) == 0 {
+            control |= 1 << 3;
+        }
+        if rng.below(50) == 0 {
+            control |= 1 << 9;
+        }
+        let extra: i16 = if rng.below(8) == 0 {
+            rng.below(200) as i16 - 100
+        } else {
+            0
+        };
+        out.extend_from_slice(&speeds[axis].to_le_bytes());
+        out.extend_from_slice(&control.to_le_bytes());
+        out.extend_from_slice(&extra.to_le_bytes());
+    }
+    out
+}
+
+/// Fold the fields of one command frame into the checksum.
+#[inline(always)]
+fn fold_command(acc: u64, speed: i32, control: u32, extra: i16) -> u64 {
+    acc.wrapping_add(i64::from(speed) as u64)
+        .wrapping_add(u64::from(control))
+        .wrapping_add(i64::from(extra) as u64)
+}
+
+#[inline(never)]
+fn command_copy(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(COMMAND_LEN) {
+        let Ok(bytes) = <[u8; COMMAND_LEN]>::try_from(chunk) else {
+            continue;
+        };
+        acc = fold_command(
+            acc,
+            i32::from_ne_bytes(take(&bytes, 0)),
+            u32::from_ne_bytes(take(&bytes, 4)),
+            i16::from_ne_bytes(take(&bytes, 8)),
+        );
+    }
+    acc
+}
+
+#[inline(never)]
+fn command_view(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(COMMAND_LEN) {
+        if let Ok(frame) = CommandFrame::new_checked(chunk) {
+            acc = fold_command(
+                acc,
+                frame.speed_setpoint(),
+                frame.control_word().bits(),
+                frame.extra_data_code(),
+            );
+        }
+    }
+    acc
+}
+
+#[inline(never)]
+fn command_owned(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(COMMAND_LEN) {
+        if let Ok(c) = Command::parse(chunk) {
+            acc = fold_command(acc, c.speed_setpoint, c.control.bits(), c.extra_data_code);
+        }
+    }
+    acc
+}
+
+/// The command frame as a hand-written decoder would hold it.
+struct PlainCommand {
+    speed_setpoint: i32,
+    control: u32,
+    extra_data_code: i16,
+}
+
+/// The hand-written decoder: a `Cursor` and one `ReadBytesExt` call per
+/// field.
+fn read_command(bytes: &[u8]) -> std::io::Result<PlainCommand> {
+    let mut rdr = Cursor::new(bytes);
+    Ok(PlainCommand {
+        speed_setpoint: rdr.read_i32::<LittleEndian>()?,
+        control: rdr.read_u32::<LittleEndian>()?,
+        extra_data_code: rdr.read_i16::<LittleEndian>()?,
+    })
+}
+
+#[inline(never)]
+fn command_byteorder_cursor(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(COMMAND_LEN) {
+        if let Ok(c) = read_command(chunk) {
+            acc = fold_command(acc, c.speed_setpoint, c.control, c.extra_data_code);
+        }
+    }
+    acc
+}
+
+/// The command frame as a derive-based decoder reads it.
+#[derive(DekuRead)]
+#[deku(endian = "little")]
+struct DekuCommand {
+    speed_setpoint: i32,
+    control: u32,
+    extra_data_code: i16,
+}
+
+#[inline(never)]
+fn command_deku(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(COMMAND_LEN) {
+        if let Ok((_, c)) = DekuCommand::from_bytes((chunk, 0)) {
+            acc = fold_command(acc, c.speed_setpoint, c.control, c.extra_data_code);
+        }
+    }
+    acc
+}
+
+// ------------------------------------------------------------ EMCY, 8 bytes
+
+/// Error codes as drives and I/O nodes send them: CiA 301 communication
+/// codes, CiA 402 drive codes, sub-class-only and class-only codes,
+/// manufacturer-specific 0xFFxx, resets, and a rare code outside every
+/// class.
+const EMCY_CODES: [u16; 24] = [
+    0x0000, 0x8130, 0x8110, 0x8120, 0x8140, 0x8210, 0x8250, 0x2310, 0x2320, 0x2350, 0x3210, 0x3220,
+    0x4310, 0x5530, 0x6320, 0x7121, 0x7305, 0x8611, 0x1000, 0x2399, 0x5A00, 0xFF01, 0xFF42, 0xA000,
+];
+
+/// The 8 data bytes of one realistic EMCY: a code from [`EMCY_CODES`],
+/// the error register it implies (generic plus the class bit; 0 after a
+/// reset) and a manufacturer field with an axis number and a small
+/// device-specific value.
+fn emcy_bytes(rng: &mut Rng) -> [u8; 8] {
+    let code = EMCY_CODES[rng.below(EMCY_CODES.len() as u64) as usize];
+    let register = if code == 0 {
+        0
+    } else {
+        1 | ErrorCode::new(code).register_class_bits().bits()
+    };
+    let [c0, c1] = code.to_le_bytes();
+    let detail = rng.below(0x1_0000) as u16;
+    let [d0, d1] = detail.to_le_bytes();
+    let axis = 1 + rng.below(2) as u8;
+    [c0, c1, register, axis, d0, d1, 0, rng.below(4) as u8]
+}
+
+/// `FRAMES` EMCY data fields from [`emcy_bytes`].
+fn emcy_frames() -> Vec<u8> {
+    let mut rng = Rng(0xE4C7_0081_8130_0001);
+    let mut out = Vec::with_capacity(FRAMES * EMCY_LEN);
+    for _ in 0..FRAMES {
+        out.extend_from_slice(&emcy_bytes(&mut rng));
+    }
+    out
+}
+
+/// Fold the fields of one EMCY into the checksum.
+#[inline(always)]
+fn fold_emcy(acc: u64, code: u16, register: u8, manufacturer: [u8; 5]) -> u64 {
+    let [m0, m1, m2, m3, m4] = manufacturer.map(u64::from);
+    acc.wrapping_add(u64::from(code))
+        .wrapping_add(u64::from(register))
+        .wrapping_add(m0)
+        .wrapping_add(m1)
+        .wrapping_add(m2)
+        .wrapping_add(m3)
+        .wrapping_add(m4)
+}
+
+#[inline(never)]
+fn emcy_copy(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        let Ok(bytes) = <[u8; EMCY_LEN]>::try_from(chunk) else {
+            continue;
+        };
+        acc = fold_emcy(
+            acc,
+            u16::from_ne_bytes(take(&bytes, 0)),
+            bytes[2],
+            take(&bytes, 3),
+        );
+    }
+    acc
+}
+
+#[inline(never)]
+fn emcy_view(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        if let Ok(frame) = EmcyFrame::new_checked(chunk) {
+            acc = fold_emcy(
+                acc,
+                frame.error_code().get(),
+                frame.error_register().bits(),
+                frame.manufacturer(),
+            );
+        }
+    }
+    acc
+}
+
+#[inline(never)]
+fn emcy_owned(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        if let Ok(e) = Emcy::parse(chunk) {
+            acc = fold_emcy(acc, e.code.get(), e.register.bits(), e.manufacturer);
+        }
+    }
+    acc
+}
+
+/// Decode every EMCY and look up its code's description and class; fold
+/// the fields and the lookups (text length, specificity, class).
+#[inline(never)]
+fn emcy_describe(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        if let Ok(e) = Emcy::parse(chunk) {
+            let description = e.code.describe();
+            acc = fold_emcy(acc, e.code.get(), e.register.bits(), e.manufacturer)
+                .wrapping_add(description.text.len() as u64)
+                .wrapping_add(description.specificity as u64)
+                .wrapping_add(e.code.class() as u64);
+        }
+    }
+    acc
+}
+
+/// The EMCY as a hand-written decoder would hold it.
+struct PlainEmcy {
+    code: u16,
+    register: u8,
+    manufacturer: [u8; 5],
+}
+
+/// The hand-written decoder: a `Cursor` and one `ReadBytesExt` call per
+/// field.
+fn read_emcy(bytes: &[u8]) -> std::io::Result<PlainEmcy> {
+    let mut rdr = Cursor::new(bytes);
+    let code = rdr.read_u16::<LittleEndian>()?;
+    let register = rdr.read_u8()?;
+    let mut manufacturer = [0; 5];
+    std::io::Read::read_exact(&mut rdr, &mut manufacturer)?;
+    Ok(PlainEmcy {
+        code,
+        register,
+        manufacturer,
+    })
+}
+
+#[inline(never)]
+fn emcy_byteorder_cursor(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        if let Ok(e) = read_emcy(chunk) {
+            acc = fold_emcy(acc, e.code, e.register, e.manufacturer);
+        }
+    }
+    acc
+}
+
+/// The EMCY as a derive-based decoder reads it.
+#[derive(DekuRead)]
+#[deku(endian = "little")]
+struct DekuEmcy {
+    code: u16,
+    register: u8,
+    manufacturer: [u8; 5],
+}
+
+#[inline(never)]
+fn emcy_deku(frames: &[u8]) -> u64 {
+    let mut acc = 0;
+    for chunk in frames.chunks_exact(EMCY_LEN) {
+        if let Ok((_, e)) = DekuEmcy::from_bytes((chunk, 0)) {
+            acc = fold_emcy(acc, e.code, e.register, e.manufacturer);
+        }
+    }
+    acc
+}
+
+// ------------------------------------------------------------ frame groups
+
+/// One variant of a frame group: its id and the function it times.
+type Variant = (&'static str, fn(&[u8]) -> u64);
+
+/// Check that every variant folds `frames` into the same checksum, then
+/// time each of them, and each of `more` (which do more work, so are not
+/// compared), over the whole buffer.
+fn frame_group(
+    c: &mut Criterion,
+    name: &str,
+    frames: &[u8],
+    variants: &[Variant],
+    more: &[Variant],
+) {
+    let expected = variants[0].1(frames);
+    for (id, f) in variants {
+        assert_eq!(f(frames), expected, "{name}/{id} reads the same fields");
+    }
+    let mut group = c.benchmark_group(name);
+    group.throughput(Throughput::Bytes(frames.len() as u64));
+    for &(id, f) in variants.iter().chain(more) {
+        group.bench_function(id, |b| b.iter(|| f(black_box(frames))));
+    }
+    group.finish();
+}
+
+fn feedback40(c: &mut Criterion) {
+    let frames = feedback_frames();
+    frame_group(
+        c,
+        "feedback40",
+        &frames,
+        &[
+            ("copy", feedback_copy),
+            ("view", feedback_view),
+            ("owned", feedback_owned),
+            ("byteorder_cursor", feedback_byteorder_cursor),
+            ("deku", feedback_deku),
+        ],
+        &[],
+    );
+}
+
+fn command10(c: &mut Criterion) {
+    let frames = command_frames();
+    frame_group(
+        c,
+        "command10",
+        &frames,
+        &[
+            ("copy", command_copy),
+            ("view", command_view),
+            ("owned", command_owned),
+            ("byteorder_cursor", command_byteorder_cursor),
+            ("deku", command_deku),
+        ],
+        &[],
+    );
+}
+
+fn emcy8(c: &mut Criterion) {
+    let frames = emcy_frames();
+    frame_group(
+        c,
+        "emcy8",
+        &frames,
+        &[
+            ("copy", emcy_copy),
+            ("view", emcy_view),
+            ("owned", emcy_owned),
+            ("byteorder_cursor", emcy_byteorder_cursor),
+            ("deku", emcy_deku),
+        ],
+        // Decoding plus the description lookup.
+        &[("describe", emcy_describe)],
+    );
+}
+
+// ------------------------------------------------------------ candump log
+
+/// Lines in the generated log.
+const LINES: usize = 20_000;
+
+/// How many lines of each kind [`generate_log`] wrote.
+#[derive(Debug, Default, PartialEq, Eq)]
+struct LogKinds {
+    emcy: usize,
+    heartbeat: usize,
+    guard_request: usize,
+}
+
+/// A candump `-l` log of CANopen traffic: PDOs, SDOs, heartbeats, EMCYs
+/// (realistic codes, [`emcy_bytes`]), SYNC, node-guarding RTRs, some
+/// extended identifiers (J1939-like), a few CAN FD frames and a few lines
+/// with a direction.
+fn generate_log() -> (Vec<u8>, LogKinds) {
     use std::fmt::Write;
 
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     let mut out = String::with_capacity(LINES * 48);
+    let mut kinds = LogKinds::default();
     let mut micros: u64 = 1_700_000_000 * 1_000_000;
     for _ in 0..LINES {
         micros += 50 + rng.below(900);
@@ -64,15 +747,20 @@ fn generate_log() -> Vec<u8> {
             }
             // Heartbeat: operational or pre-operational.
             50..=64 => {
+                kinds.heartbeat += 1;
                 let state = if rng.below(4) == 0 { "7F" } else { "05" };
                 (format!("{:03X}", 0x700 + node), state.to_string())
             }
             // EMCY, 8 bytes.
-            65..=74 => (format!("{:03X}", 0x080 + node), hex(&data[..8])),
+            65..=74 => {
+                kinds.emcy += 1;
+                (format!("{:03X}", 0x080 + node), hex(&emcy_bytes(&mut rng)))
+            }
             // SYNC, no data.
             75..=79 => ("080".to_string(), String::new()),
             // Node guarding / remote PDO requests.
             80..=84 => {
+                kinds.guard_request += 1;
                 let body = if rng.below(2) == 0 { "R" } else { "R8" };
                 (format!("{:03X}", 0x700 + node), body.to_string())
             }
@@ -103,7 +791,7 @@ fn generate_log() -> Vec<u8> {
         )
         .expect("writing to a String");
     }
-    out.into_bytes()
+    (out.into_bytes(), kinds)
 }
 
 fn hex(bytes: &[u8]) -> String {
@@ -343,8 +1031,103 @@ fn fd_dlc(len: usize) -> u64 {
     }
 }
 
-fn candump_parse(c: &mut Criterion) {
-    let log = generate_log();
+/// `candump/parse`: parse every line and read the fields of each frame,
+/// handing its data to `black_box`.
+#[inline(never)]
+fn candump_parse(log: &[u8]) -> u64 {
+    let mut sum = 0u64;
+    candump::lines(log).for_each(|(_, result)| {
+        if let Ok(Some(f)) = result {
+            let ts = f
+                .timestamp()
+                .map_or(0, |t| t.secs() ^ u64::from(t.micros()));
+            sum = sum.wrapping_add(
+                ts ^ u64::from(f.id().raw()) ^ u64::from(f.dlc()) ^ f.iface().len() as u64,
+            );
+            black_box(f.data());
+        }
+    });
+    sum
+}
+
+/// `candump/byte_by_byte`: the same with the baseline parser.
+#[inline(never)]
+fn candump_byte_by_byte(log: &[u8]) -> u64 {
+    let mut sum = 0u64;
+    for_each_byte_by_byte(log, |f| {
+        let dlc = if f.fd { fd_dlc(f.len) } else { f.len as u64 };
+        sum = sum.wrapping_add(
+            (f.secs ^ u64::from(f.micros)) ^ u64::from(f.id) ^ dlc ^ f.iface.len() as u64,
+        );
+        black_box(if f.rtr { &[][..] } else { &f.data[..f.len] });
+    });
+    sum
+}
+
+/// One frame as `motionwire decode` reads it before writing it: the
+/// identifier classified (CiA 301's pre-defined connection set), EMCY and
+/// heartbeat payloads decoded, an EMCY code's class and description looked
+/// up; folded into a checksum with the timestamp and identifier. The kinds
+/// are counted into `kinds`.
+#[inline(always)]
+fn decode_frame(frame: &CandumpFrame<'_>, kinds: &mut LogKinds) -> u64 {
+    let ts = frame
+        .timestamp()
+        .map_or(0, |t| t.secs() ^ u64::from(t.micros()));
+    let common = ts ^ u64::from(frame.id().raw());
+    if frame.is_extended() {
+        return common;
+    }
+    // A standard identifier is at most 0x7FF, so it fits a u16.
+    let id = u16::try_from(frame.id().raw()).unwrap_or(u16::MAX);
+    let function = CobFunction::classify(id);
+    let node = function.node().map_or(0, |n| u64::from(n.get()));
+    let payload = match function {
+        CobFunction::Emcy(_) => match Emcy::parse(frame.data()) {
+            Ok(emcy) => {
+                kinds.emcy += 1;
+                let description = emcy.code.describe();
+                fold_emcy(0, emcy.code.get(), emcy.register.bits(), emcy.manufacturer)
+                    .wrapping_add(description.text.len() as u64)
+                    .wrapping_add(emcy.code.class() as u64)
+            }
+            Err(_) => 1,
+        },
+        CobFunction::ErrorControl(_) if frame.is_rtr() => {
+            kinds.guard_request += 1;
+            2
+        }
+        CobFunction::ErrorControl(_) => match HeartbeatFrame::new_checked(frame.data()) {
+            Ok(view) => {
+                kinds.heartbeat += 1;
+                let raw = view.state_raw() & 0x7F;
+                let state = NmtState::from_byte(raw).map_or(0xFF, NmtState::to_byte);
+                u64::from(raw) << 8 | u64::from(view.reserved_bit()) << 16 | u64::from(state)
+            }
+            Err(_) => 3,
+        },
+        _ => 4,
+    };
+    common.wrapping_add(node << 32).wrapping_add(payload)
+}
+
+/// Parse, classify and decode every line of `log` (the library-level work
+/// of `motionwire decode`); return the checksum.
+#[inline(never)]
+fn candump_decode(log: &[u8], kinds: &mut LogKinds) -> u64 {
+    let mut sum = 0u64;
+    candump::lines(log).for_each(|(line, result)| {
+        sum = sum.wrapping_add(match result {
+            Ok(Some(frame)) => decode_frame(&frame, kinds),
+            Ok(None) => 0,
+            Err(_) => line as u64,
+        });
+    });
+    sum
+}
+
+fn candump_group(c: &mut Criterion) {
+    let (log, expected_kinds) = generate_log();
     // Both parsers must read the same frames before their speed means
     // anything.
     let frames = candump::lines(&log)
@@ -356,44 +1139,31 @@ fn candump_parse(c: &mut Criterion) {
         checksum_byte_by_byte(&log),
         "both parsers read the same frames"
     );
+    let mut kinds = LogKinds::default();
+    candump_decode(&log, &mut kinds);
+    assert_eq!(
+        kinds, expected_kinds,
+        "decode finds every EMCY, heartbeat and request"
+    );
 
     // The timed consumer reads the fields of each frame and hands its data
     // to `black_box`, the same for both parsers, so that nothing the parser
     // decodes can be optimised away.
     let mut group = c.benchmark_group("candump");
     group.throughput(Throughput::Bytes(log.len() as u64));
-    group.bench_function("parse", |b| {
-        b.iter(|| {
-            let mut sum = 0u64;
-            candump::lines(black_box(&log)).for_each(|(_, result)| {
-                if let Ok(Some(f)) = result {
-                    let ts = f
-                        .timestamp()
-                        .map_or(0, |t| t.secs() ^ u64::from(t.micros()));
-                    sum = sum.wrapping_add(
-                        ts ^ u64::from(f.id().raw()) ^ u64::from(f.dlc()) ^ f.iface().len() as u64,
-                    );
-                    black_box(f.data());
-                }
-            });
-            sum
-        })
-    });
+    group.bench_function("parse", |b| b.iter(|| candump_parse(black_box(&log))));
     group.bench_function("byte_by_byte", |b| {
+        b.iter(|| candump_byte_by_byte(black_box(&log)))
+    });
+    group.bench_function("decode", |b| {
         b.iter(|| {
-            let mut sum = 0u64;
-            for_each_byte_by_byte(black_box(&log), |f| {
-                let dlc = if f.fd { fd_dlc(f.len) } else { f.len as u64 };
-                sum = sum.wrapping_add(
-                    (f.secs ^ u64::from(f.micros)) ^ u64::from(f.id) ^ dlc ^ f.iface.len() as u64,
-                );
-                black_box(if f.rtr { &[][..] } else { &f.data[..f.len] });
-            });
-            sum
+            let mut kinds = LogKinds::default();
+            let sum = candump_decode(black_box(&log), &mut kinds);
+            (sum, kinds.emcy)
         })
     });
     group.finish();
 }
 
-criterion_group!(benches, candump_parse);
+criterion_group!(benches, feedback40, command10, emcy8, candump_group);
 criterion_main!(benches);
