@@ -822,7 +822,8 @@ impl fmt::Display for CandumpErrorKind {
             ),
             CandumpErrorKind::IdentifierDigits { digits } => write!(
                 f,
-                "expected a CAN identifier of 3 or 8 hex digits, found {digits} digits"
+                "expected a CAN identifier of 3 or 8 hex digits, found {digits} digit{}",
+                if digits == 1 { "" } else { "s" }
             ),
             CandumpErrorKind::IdentifierOutOfRange { id, max } => {
                 write!(f, "expected an identifier at most {max:#X}, found {id:#X}")
