@@ -95,232 +95,10 @@
 use core::fmt;
 use core::iter::FusedIterator;
 
+pub use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use crate::error::{Error, Result};
 
 // ------------------------------------------------------------------ values
-
-/// A CAN identifier: standard (11-bit) or extended (29-bit) (ISO 11898-1;
-/// SPEC §5: 3 hex digits in candump text for a standard identifier, 8 for an
-/// extended one).
-///
-/// ```
-/// use motionwire::candump::CanId;
-///
-/// assert_eq!(CanId::standard(0x7FF).map(CanId::raw), Some(0x7FF));
-/// assert!(CanId::standard(0x800).is_none());
-/// assert!(CanId::extended(0x1FFF_FFFF).unwrap().is_extended());
-/// assert!(CanId::extended(0x2000_0000).is_none());
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct CanId {
-    raw: u32,
-    extended: bool,
-}
-
-impl CanId {
-    /// The largest standard identifier, `0x7FF` (ISO 11898-1).
-    pub const STANDARD_MAX: u32 = 0x7FF;
-    /// The largest extended identifier, `0x1FFFFFFF` (ISO 11898-1).
-    pub const EXTENDED_MAX: u32 = 0x1FFF_FFFF;
-
-    /// Return the standard identifier `raw`, or `None` above `0x7FF`.
-    #[inline]
-    pub const fn standard(raw: u32) -> Option<Self> {
-        if raw <= Self::STANDARD_MAX {
-            Some(CanId {
-                raw,
-                extended: false,
-            })
-        } else {
-            None
-        }
-    }
-
-    /// Return the extended identifier `raw`, or `None` above `0x1FFFFFFF`.
-    #[inline]
-    pub const fn extended(raw: u32) -> Option<Self> {
-        if raw <= Self::EXTENDED_MAX {
-            Some(CanId {
-                raw,
-                extended: true,
-            })
-        } else {
-            None
-        }
-    }
-
-    /// Return the identifier as a number.
-    #[inline]
-    pub const fn raw(self) -> u32 {
-        self.raw
-    }
-
-    /// Return whether this is an extended (29-bit) identifier.
-    #[inline]
-    pub const fn is_extended(self) -> bool {
-        self.extended
-    }
-}
-
-/// The flags nibble of a CAN FD frame, `123##<flags>…` in candump's log
-/// format (SPEC §5; bit values from Linux `linux/can.h`, `CANFD_BRS`,
-/// `CANFD_ESI`, `CANFD_FDF`). Bits the kernel may add later are kept.
-///
-/// ```
-/// use motionwire::candump::FdFlags;
-///
-/// let flags = FdFlags::new(0x3).unwrap();
-/// assert!(flags.contains(FdFlags::BRS) && flags.contains(FdFlags::ESI));
-/// assert!(FdFlags::new(0x10).is_none());
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-pub struct FdFlags(u8);
-
-impl FdFlags {
-    /// No flag set.
-    pub const EMPTY: FdFlags = FdFlags(0);
-    /// Bit rate switch: the data phase ran at the higher bit rate (`CANFD_BRS`, 0x1).
-    pub const BRS: FdFlags = FdFlags(0x1);
-    /// Error state indicator: the sender was error passive (`CANFD_ESI`, 0x2).
-    pub const ESI: FdFlags = FdFlags(0x2);
-    /// FD frame marker that newer kernels set on every CAN FD frame (`CANFD_FDF`, 0x4).
-    pub const FDF: FdFlags = FdFlags(0x4);
-
-    /// Return the flags `bits`, or `None` when they do not fit a nibble.
-    #[inline]
-    pub const fn new(bits: u8) -> Option<Self> {
-        if bits <= 0xF {
-            Some(FdFlags(bits))
-        } else {
-            None
-        }
-    }
-
-    /// Return the flags as a nibble, 0..=15.
-    #[inline]
-    pub const fn bits(self) -> u8 {
-        self.0
-    }
-
-    /// Return whether every flag of `other` is set here.
-    #[inline]
-    pub const fn contains(self, other: FdFlags) -> bool {
-        self.0 & other.0 == other.0
-    }
-
-    /// Return the flags of both.
-    #[inline]
-    pub const fn union(self, other: FdFlags) -> FdFlags {
-        FdFlags(self.0 | other.0)
-    }
-}
-
-/// Whether the logging host received the frame or sent it itself: the ` R`
-/// / ` T` suffix of candump's log format and the `RX`/`TX` column of its
-/// screen output, both written with `candump -x` (SPEC §5).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Direction {
-    /// Received from the bus (`R`, `RX`).
-    Rx,
-    /// Sent by the logging host (`T`, `TX`).
-    Tx,
-}
-
-impl Direction {
-    /// Return the letter candump's log format writes, `R` or `T`.
-    #[inline]
-    pub const fn letter(self) -> char {
-        match self {
-            Direction::Rx => 'R',
-            Direction::Tx => 'T',
-        }
-    }
-
-    const fn screen(self) -> &'static str {
-        match self {
-            Direction::Rx => "RX",
-            Direction::Tx => "TX",
-        }
-    }
-}
-
-/// When a frame was logged: seconds and microseconds, exactly as the text
-/// `(1700000000.000500)` gives them (SPEC §5; SPEC §6.1 `ts`). The clock is
-/// the logger's: absolute for `candump -l`, relative for `-t d`/`-t z`.
-///
-/// ```
-/// use motionwire::candump::Timestamp;
-///
-/// let ts = Timestamp::new(1_700_000_000, 500).unwrap();
-/// assert_eq!(ts.as_secs_f64(), 1_700_000_000.000_5);
-/// assert!(Timestamp::new(0, 1_000_000).is_none());
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Timestamp {
-    secs: u64,
-    micros: u32,
-}
-
-impl Timestamp {
-    /// Return the timestamp `secs` + `micros` µs, or `None` when `micros` is
-    /// not below 1 000 000.
-    #[inline]
-    pub const fn new(secs: u64, micros: u32) -> Option<Self> {
-        if micros < 1_000_000 {
-            Some(Timestamp { secs, micros })
-        } else {
-            None
-        }
-    }
-
-    /// Return the timestamp `secs` + `micros` µs, or an
-    /// [`Error::OutOfRange`] naming `micros` when it is not below 1 000 000.
-    #[inline]
-    pub const fn try_new(secs: u64, micros: u32) -> Result<Self> {
-        match Self::new(secs, micros) {
-            Some(ts) => Ok(ts),
-            None => Err(Error::OutOfRange {
-                what: "timestamp microseconds",
-                found: micros,
-                min: 0,
-                max: 999_999,
-            }),
-        }
-    }
-
-    /// Return the whole seconds.
-    #[inline]
-    pub const fn secs(self) -> u64 {
-        self.secs
-    }
-
-    /// Return the microseconds within the second, 0..=999 999.
-    #[inline]
-    pub const fn micros(self) -> u32 {
-        self.micros
-    }
-
-    /// Return the timestamp in microseconds.
-    #[inline]
-    pub const fn as_micros(self) -> u128 {
-        self.secs as u128 * 1_000_000 + self.micros as u128
-    }
-
-    /// Return the timestamp in seconds as a float (SPEC §6.1 `ts`); exact
-    /// to the microsecond for any date of this era.
-    #[inline]
-    pub fn as_secs_f64(self) -> f64 {
-        self.secs as f64 + f64::from(self.micros) / 1e6
-    }
-}
-
-impl fmt::Display for Timestamp {
-    /// Write the timestamp as candump does, `1700000000.000500` (ten digits
-    /// of seconds at least, six of microseconds).
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:010}.{:06}", self.secs, self.micros)
-    }
-}
 
 /// The payload kind of a frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -332,11 +110,6 @@ enum Kind {
     /// A CAN FD frame, 0..=64 bytes.
     Fd(FdFlags),
 }
-
-/// The most data bytes of a classic CAN frame (ISO 11898-1).
-pub const CLASSIC_MAX_LEN: usize = 8;
-/// The most data bytes of a CAN FD frame (ISO 11898-1).
-pub const FD_MAX_LEN: usize = 64;
 
 /// One CAN frame read from a candump text line (SPEC §5), borrowing the
 /// interface name from the line.
@@ -470,7 +243,7 @@ impl<'a> CandumpFrame<'a> {
     /// Return whether the identifier is extended (29-bit).
     #[inline]
     pub const fn is_extended(&self) -> bool {
-        self.id.extended
+        self.id.is_extended()
     }
 
     /// Return whether this is a remote request (RTR).
@@ -550,7 +323,7 @@ impl<'a> CandumpFrame<'a> {
             }
             Kind::Fd(flags) => {
                 w.write_char('#')?;
-                w.write_char(char::from(HEX_UPPER[usize::from(flags.0 & 0xF)]))?;
+                w.write_char(char::from(HEX_UPPER[usize::from(flags.bits() & 0xF)]))?;
             }
             Kind::Data => {}
         }
@@ -586,7 +359,7 @@ impl<'a> CandumpFrame<'a> {
         if let Some(direction) = self.direction {
             let flags = self.fd_flags();
             w.write_str("  ")?;
-            w.write_str(direction.screen())?;
+            w.write_str(direction.name())?;
             w.write_str(if flags.contains(FdFlags::BRS) {
                 " B"
             } else {
@@ -615,10 +388,26 @@ impl<'a> CandumpFrame<'a> {
     }
 
     fn write_id<W: fmt::Write + ?Sized>(&self, w: &mut W) -> fmt::Result {
-        if self.id.extended {
-            write!(w, "{:08X}", self.id.raw)
-        } else {
-            write!(w, "{:03X}", self.id.raw)
+        write!(w, "{}", self.id)
+    }
+}
+
+impl<'a> From<CandumpFrame<'a>> for crate::can::LogFrame<'a> {
+    /// The crate's log record of the frame (SPEC §5): the frame, its time,
+    /// interface and direction.
+    fn from(frame: CandumpFrame<'a>) -> Self {
+        let frame_type = match frame.kind {
+            Kind::Data => crate::can::FrameType::Data,
+            Kind::Remote => crate::can::FrameType::Remote { dlc: frame.len },
+            Kind::Fd(flags) => crate::can::FrameType::Fd(flags),
+        };
+        let len = if frame.is_rtr() { 0 } else { frame.len };
+        let can = crate::can::CanFrame::from_checked_parts(frame.id, frame_type, frame.data, len);
+        crate::can::LogFrame {
+            frame: can,
+            timestamp: frame.timestamp,
+            iface: Some(crate::can::Iface::Name(frame.iface_str())),
+            direction: frame.direction,
         }
     }
 }
@@ -1220,7 +1009,7 @@ fn parse_canonical_log(buf: &[u8]) -> Option<(CandumpFrame<'_>, usize)> {
                 return None;
             }
             let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
-            (Kind::Fd(FdFlags(flags)), len, end)
+            (Kind::Fd(FdFlags::new(flags)?), len, end)
         }
         _ => {
             // Classic data: at most 16 hex digits, so one word holds them
@@ -1260,7 +1049,7 @@ fn parse_canonical_log(buf: &[u8]) -> Option<(CandumpFrame<'_>, usize)> {
         Some(_) => return None,
     }
     let frame = CandumpFrame {
-        timestamp: Some(Timestamp { secs, micros }),
+        timestamp: Some(Timestamp::new(secs, micros).unwrap_or_default()),
         iface,
         id,
         kind,
@@ -1439,7 +1228,7 @@ fn parse_timestamp(line: &[u8], open: usize) -> Result<(Timestamp, usize)> {
     }
     let fraction = swar::decimal8((d << (8 * (8 - frac_digits))) as u64) as u32;
     let micros = fraction * POW10[6 - frac_digits];
-    Ok((Timestamp { secs, micros }, close + 1))
+    Ok((Timestamp::new(secs, micros).unwrap_or_default(), close + 1))
 }
 
 const POW10: [u32; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
@@ -1495,7 +1284,7 @@ fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestamp, usize)> 
         return Err(bad_timestamp(line, at));
     }
     let micros = micros * POW10[6 - frac_digits];
-    Ok((Timestamp { secs, micros }, at + 1))
+    Ok((Timestamp::new(secs, micros).unwrap_or_default(), at + 1))
 }
 
 /// Scan the interface name from `start`; return the index of the white
@@ -1665,7 +1454,7 @@ fn parse_log_frame(line: &[u8], start: usize, frame: &mut CandumpFrame<'_>) -> R
         }
         Some(b'#') => {
             let flags = match line.get(start + 1).and_then(|b| hex_value(*b)) {
-                Some(v) => FdFlags(v),
+                Some(v) => FdFlags::new(v).unwrap_or_default(),
                 None => {
                     return Err(error(
                         start + 1,

@@ -105,8 +105,7 @@
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
-#[cfg(feature = "embedded-can")]
-mod can;
+pub mod can;
 pub mod candump;
 pub mod canopen;
 mod error;

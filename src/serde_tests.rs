@@ -8,11 +8,12 @@ use proptest::prelude::*;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use crate::can::{CanFrame, CanId, ErrorFrame, FdFlags, FrameData, Timestamp};
 use crate::canopen::{
-    CanData, CanOpenMessage, CanPayload, CobFunction, DeviceSet, Dlc, Emcy, EmcyTransition,
-    ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat,
-    HeartbeatEvent, KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult,
-    SdoAbortCode, SlotUpdate,
+    CanOpenMessage, CobFunction, DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode,
+    ErrorHistoryEntry, ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent,
+    KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
+    SlotUpdate,
 };
 use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
 use crate::profiles::baumer::{
@@ -507,8 +508,21 @@ fn akd_manufacturer_refuses_an_undefined_feedback() {
 
 #[test]
 fn can_frames_are_their_fields() {
-    check_json(CanData::new(&[0x40, 0x00, 0x10]).unwrap(), "[64,0,16]");
-    check_json(CanPayload::remote(1).unwrap(), r#"{"Remote":1}"#);
+    check_json(FrameData::new(&[0x40, 0x00, 0x10]).unwrap(), "[64,0,16]");
+    let id = |raw| CanId::standard(raw).unwrap();
+    check_json(
+        CanFrame::new_remote(id(0x705), 1).unwrap(),
+        r#"{"id":{"raw":1797,"extended":false},"frame_type":{"Remote":{"dlc":1}},"data":[]}"#,
+    );
+    check_json(
+        CanFrame::new_fd(id(0x123), FdFlags::BRS, &[1]).unwrap(),
+        r#"{"id":{"raw":291,"extended":false},"frame_type":{"Fd":1},"data":[1]}"#,
+    );
+    check_json(
+        ErrorFrame::from_frame(&CanFrame::new_error(0x40, &[0; 2]).unwrap()).unwrap(),
+        r#"{"classes":"BUS_OFF","data":[0,0]}"#,
+    );
+    check_json(Timestamp::new(3, 4).unwrap(), r#"{"secs":3,"nanos":4000}"#);
     check_json(
         NmtNodeControl::new(NmtCommand::ResetCommunication, None),
         r#"{"command":"ResetCommunication","node":null}"#,
@@ -518,19 +532,28 @@ fn can_frames_are_their_fields() {
         r#"{"GuardRequest":{"node":5}}"#,
     );
     check_json(
-        CanOpenMessage::decode(0x285, CanPayload::data(&[1, 2]).unwrap()).unwrap(),
+        CanOpenMessage::decode(&CanFrame::new(id(0x285), &[1, 2]).unwrap()).unwrap(),
         r#"{"Pdo":{"node":5,"number":2,"direction":"Transmit","data":[1,2]}}"#,
     );
     check_json(CobFunction::classify(0x705), r#"{"ErrorControl":5}"#);
 }
 
 #[test]
-fn can_data_and_dlc_refuse_more_than_8() {
-    assert!(refusal::<CanData>("[1,2,3,4,5,6,7,8,9]").contains("invalid length 9"));
-    assert!(refusal::<CanData>("[256]").contains("invalid value"));
+fn can_frames_refuse_what_their_constructors_refuse() {
+    assert!(refusal::<FrameData>(&format!("{:?}", [0u8; 65])).contains("invalid length 65"));
+    assert!(refusal::<FrameData>("[256]").contains("invalid value"));
+    assert!(refusal::<CanId>(r#"{"raw":2048,"extended":false}"#).contains("invalid value"));
     assert_eq!(
-        refusal::<Dlc>("9"),
-        "CAN remote frame DLC: 9 is outside 0..=8"
+        refusal::<CanFrame>(
+            r#"{"id":{"raw":1,"extended":false},"frame_type":"Data","data":[1,2,3,4,5,6,7,8,9]}"#
+        ),
+        "CAN frame data length: 9 is outside 0..=8"
+    );
+    assert_eq!(
+        refusal::<CanFrame>(
+            r#"{"id":{"raw":1,"extended":false},"frame_type":{"Remote":{"dlc":9}},"data":[]}"#
+        ),
+        "CAN remote request length: 9 is outside 0..=8"
     );
     assert!(
         refusal::<NmtNodeControl>(r#"{"command":"StartRemoteNode","node":0}"#)
@@ -540,14 +563,20 @@ fn can_data_and_dlc_refuse_more_than_8() {
 
 proptest! {
     #[test]
+    fn frames_round_trip(frame in can::any_can_frame(), ts in can::timestamp()) {
+        same(frame)?;
+        same(ts)?;
+    }
+}
+
+proptest! {
+    #[test]
     fn can_values_round_trip(
         message in can::canopen_message(),
-        payload in can::can_payload(),
         control in can::nmt_node_control(),
         id in 0u16..=0x7FF,
     ) {
         same(message)?;
-        same(payload)?;
         same(control)?;
         same(CobFunction::classify(id))?;
     }

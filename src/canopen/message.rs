@@ -1,336 +1,350 @@
-//! A whole CAN frame read as CANopen: its identifier classified by the
-//! pre-defined connection set and its data decoded by the crate's codecs
-//! (CiA 301 §7.3.5 Table 72; SPEC §6.1, "Identifiers").
+//! A CAN frame read as CANopen: its identifier classified by the
+//! pre-defined connection set and its data decoded by the crate's codecs,
+//! once (CiA 301 §7.3.5 Table 72; SPEC §6.1, "Identifiers").
 //!
-//! [`CanOpenMessage::decode`] takes what any CAN driver or log gives — an
-//! 11-bit identifier and a [`CanPayload`] (data bytes, or the DLC of a
-//! remote frame) — and returns the message: an [`Emcy`], a [`Heartbeat`],
-//! an [`NmtNodeControl`], … or [`CanOpenMessage::Other`] for an identifier
-//! without a function. [`CanOpenMessage::cob_id`] and
-//! [`CanOpenMessage::payload`] give the frame back. With the `embedded-can`
-//! feature, `CanOpenMessage::from_frame` and `to_frame` do the same with any
-//! `embedded_can::Frame`.
+//! [`CanOpenMessage::decode`] takes the crate's one frame type,
+//! [`CanFrame`] (owned or borrowed), and returns the message: an [`Emcy`],
+//! a heartbeat, an [`NmtNodeControl`], … or [`CanOpenMessage::Other`] for a
+//! frame without a CANopen function. [`CanOpenMessage::kind`] names it as
+//! SPEC §6.1's `kind` does; [`CanOpenMessage::encode`] gives the frame back.
+//! With the `embedded-can` feature, `CanOpenMessage::from_frame` and
+//! `to_frame` do the same with any `embedded_can::Frame`.
 //!
 //! ```
-//! use motionwire::canopen::{CanOpenMessage, CanPayload, ErrorCode, NmtState, NodeId};
+//! use motionwire::can::{CanFrame, CanId};
+//! use motionwire::canopen::{CanOpenMessage, ErrorCode, MessageKind, NmtState, NodeId};
 //!
+//! let id = |raw| CanId::standard(raw).unwrap();
 //! let node = NodeId::new(1).unwrap();
 //!
 //! // 081#3081110100000000: an EMCY of node 1.
-//! let data = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
-//! let message = CanOpenMessage::decode(0x081, CanPayload::data(&data)?)?;
+//! let frame = CanFrame::new(id(0x081), &[0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0])?;
+//! let message = CanOpenMessage::decode(&frame)?;
 //! let CanOpenMessage::Emcy { node: from, emcy } = message else { unreachable!() };
 //! assert_eq!((from, emcy.code), (node, ErrorCode::new(0x8130)));
-//! assert_eq!(message.name(), "emcy");
+//! assert_eq!(message.kind(), MessageKind::Emcy);
+//! assert_eq!(message.kind().name(), "emcy");
 //!
 //! // 701#05 is a heartbeat, 701#R a node-guarding request.
-//! let heartbeat = CanOpenMessage::decode(0x701, CanPayload::data(&[0x05])?)?;
-//! assert!(matches!(heartbeat, CanOpenMessage::Heartbeat { heartbeat, .. }
-//!     if heartbeat.state() == NmtState::Operational));
-//! let request = CanOpenMessage::decode(0x701, CanPayload::remote(1)?)?;
+//! let heartbeat = CanOpenMessage::decode(&CanFrame::new(id(0x701), &[0x05])?)?;
+//! assert!(matches!(heartbeat, CanOpenMessage::Heartbeat { byte, .. }
+//!     if byte.state() == Some(NmtState::Operational)));
+//! let request = CanOpenMessage::decode(&CanFrame::new_remote(id(0x701), 1)?)?;
 //! assert_eq!(request, CanOpenMessage::GuardRequest { node });
 //!
 //! // The frame back.
-//! assert_eq!(message.cob_id(), Some(0x081));
-//! assert_eq!(message.payload(), CanPayload::data(&data)?);
+//! assert_eq!(message.encode(), Some(frame));
 //!
-//! // A frame too short for its kind is an error that says so.
-//! assert_eq!(
-//!     CanOpenMessage::decode(0x081, CanPayload::data(&data[..5])?).unwrap_err().to_string(),
-//!     "EMCY frame: buffer of 5 bytes where 8 are needed"
-//! );
+//! // A frame too short for its kind is an error that still says the kind
+//! // and the node, and what could be read.
+//! let short = CanFrame::new(id(0x081), &[0x30, 0x81, 0x11])?;
+//! let err = CanOpenMessage::decode(&short).unwrap_err();
+//! assert_eq!((err.kind, err.node), (MessageKind::Emcy, Some(node)));
+//! assert_eq!(err.to_string(), "EMCY frame: buffer of 3 bytes where 8 are needed");
+//! assert_eq!(err.partial_emcy.and_then(|p| p.code), Some(ErrorCode::new(0x8130)));
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
 use core::fmt;
 
 use super::{
-    cob_id, CobFunction, Emcy, Heartbeat, NmtNodeControl, NodeId, PdoDirection, EMCY_LEN,
-    HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
+    cob_id, CobFunction, Emcy, ErrorCode, ErrorRegister, GuardAnswer, Heartbeat, NmtNodeControl,
+    NmtState, NodeId, PdoDirection, EMCY_LEN, HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
 };
-use crate::error::{Error, Result};
+use crate::can::{CanFrame, CanId, ErrorFrame, FrameData};
+use crate::error::Error;
 
-/// The most data bytes a classic CAN frame carries, 8 (ISO 11898-1).
-pub const CAN_MAX_DATA_LEN: usize = 8;
-
-/// The largest 11-bit (standard) CAN identifier, 0x7FF (ISO 11898-1).
-pub const MAX_STANDARD_ID: u16 = 0x7FF;
-
-/// The largest 29-bit (extended) CAN identifier, 0x1FFF_FFFF (ISO 11898-1).
-pub const MAX_EXTENDED_ID: u32 = 0x1FFF_FFFF;
-
-/// The data field of a classic CAN frame, 0 to 8 bytes, owned
-/// (ISO 11898-1).
+/// What a frame is on a CANopen bus: the `kind` of SPEC §6.1.
 ///
 /// ```
-/// use motionwire::canopen::CanData;
+/// use motionwire::canopen::MessageKind;
 ///
-/// let data = CanData::new(&[0x40, 0x00, 0x10])?;
-/// assert_eq!(data.as_slice(), [0x40, 0x00, 0x10]);
-/// assert_eq!(data.len(), 3);
-/// assert!(CanData::new(&[0; 9]).is_err());
-/// # Ok::<(), motionwire::Error>(())
+/// let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
+/// assert_eq!(names, [
+///     "emcy", "heartbeat", "guard_request", "nmt_command", "sync", "time",
+///     "pdo", "sdo", "error_frame", "other",
+/// ]);
+/// assert_eq!(MessageKind::GuardRequest.to_string(), "guard_request");
 /// ```
-///
-/// With the `serde` feature it serializes as the sequence of its bytes;
-/// deserializing refuses more than 8.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct CanData {
-    /// The bytes; those from `len` on are always 0, so that the derived
-    /// comparisons compare the data only.
-    bytes: [u8; CAN_MAX_DATA_LEN],
-    /// 0..=8.
-    len: u8,
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum MessageKind {
+    /// 0x081–0x0FF: an EMCY (CiA 301 §7.2.7).
+    Emcy,
+    /// 0x701–0x77F, data frame: heartbeat, boot-up or node-guarding answer
+    /// (CiA 301 §7.2.8.3.2).
+    Heartbeat,
+    /// 0x701–0x77F, remote request: node-guarding request
+    /// (CiA 301 §7.2.8.3.2.1).
+    GuardRequest,
+    /// 0x000: NMT node control (CiA 301 §7.2.8.3.1).
+    NmtCommand,
+    /// 0x080: SYNC (CiA 301 §7.2.5).
+    Sync,
+    /// 0x100: TIME (CiA 301 §7.2.6).
+    Time,
+    /// 0x181–0x57F: the default PDOs (CiA 301 §7.2.2).
+    Pdo,
+    /// 0x581–0x5FF and 0x601–0x67F: SDO (CiA 301 §7.2.4).
+    Sdo,
+    /// An error frame (SPEC §5.1).
+    ErrorFrame,
+    /// Everything else, and every extended frame.
+    Other,
 }
 
-impl CanData {
-    /// No data.
-    pub const EMPTY: CanData = CanData {
-        bytes: [0; CAN_MAX_DATA_LEN],
-        len: 0,
-    };
+impl MessageKind {
+    /// Every kind, in the order the summary lists them.
+    pub const ALL: [MessageKind; 10] = [
+        MessageKind::Emcy,
+        MessageKind::Heartbeat,
+        MessageKind::GuardRequest,
+        MessageKind::NmtCommand,
+        MessageKind::Sync,
+        MessageKind::Time,
+        MessageKind::Pdo,
+        MessageKind::Sdo,
+        MessageKind::ErrorFrame,
+        MessageKind::Other,
+    ];
 
-    /// Return a copy of `data`, or an [`Error::OutOfRange`] when it is longer
-    /// than 8 bytes.
-    pub fn new(data: &[u8]) -> Result<Self> {
-        let mut bytes = [0; CAN_MAX_DATA_LEN];
-        match bytes.get_mut(..data.len()) {
-            Some(head) => head.copy_from_slice(data),
-            None => return Err(Self::too_long(data.len())),
+    /// Return the name SPEC §6.1's `kind` writes.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            MessageKind::Emcy => "emcy",
+            MessageKind::Heartbeat => "heartbeat",
+            MessageKind::GuardRequest => "guard_request",
+            MessageKind::NmtCommand => "nmt_command",
+            MessageKind::Sync => "sync",
+            MessageKind::Time => "time",
+            MessageKind::Pdo => "pdo",
+            MessageKind::Sdo => "sdo",
+            MessageKind::ErrorFrame => "error_frame",
+            MessageKind::Other => "other",
         }
-        Ok(CanData {
-            bytes,
-            // At most 8: `get_mut` succeeded.
-            len: data.len() as u8,
-        })
     }
 
-    fn too_long(len: usize) -> Error {
-        Error::OutOfRange {
-            what: "CAN data length",
-            found: u32::try_from(len).unwrap_or(u32::MAX),
-            min: 0,
-            max: CAN_MAX_DATA_LEN as u32,
+    /// Return the position of the kind in [`MessageKind::ALL`].
+    #[must_use]
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Return the kind named `name` as SPEC §6.1 writes it.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<MessageKind> {
+        MessageKind::ALL
+            .into_iter()
+            .find(|kind| kind.name() == name)
+    }
+
+    /// Classify a frame by its identifier and type alone, and return the
+    /// node its identifier belongs to where the kind has one (SPEC §6.1's
+    /// identifier table). [`CanOpenMessage::decode`] gives the same kind and
+    /// node, with the data decoded.
+    #[must_use]
+    pub fn classify<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> (MessageKind, Option<NodeId>) {
+        if frame.is_error() {
+            return (MessageKind::ErrorFrame, None);
+        }
+        let Some(cob_id) = frame.id().standard_raw() else {
+            return (MessageKind::Other, None);
+        };
+        match CobFunction::classify(cob_id) {
+            CobFunction::NmtCommand => (MessageKind::NmtCommand, None),
+            CobFunction::Sync => (MessageKind::Sync, None),
+            CobFunction::Time => (MessageKind::Time, None),
+            CobFunction::Emcy(node) => (MessageKind::Emcy, Some(node)),
+            CobFunction::Pdo { node, .. } => (MessageKind::Pdo, Some(node)),
+            CobFunction::SdoTx(node) | CobFunction::SdoRx(node) => (MessageKind::Sdo, Some(node)),
+            CobFunction::ErrorControl(node) if frame.is_rtr() => {
+                (MessageKind::GuardRequest, Some(node))
+            }
+            CobFunction::ErrorControl(node) => (MessageKind::Heartbeat, Some(node)),
+            CobFunction::Other => (MessageKind::Other, None),
         }
     }
-
-    /// Return the data bytes.
-    #[inline]
-    pub fn as_slice(&self) -> &[u8] {
-        let (data, _) = self
-            .bytes
-            .split_at(usize::from(self.len).min(CAN_MAX_DATA_LEN));
-        data
-    }
-
-    /// Return the number of data bytes, 0..=8.
-    #[inline]
-    pub const fn len(&self) -> usize {
-        self.len as usize
-    }
-
-    /// Return whether there are no data bytes.
-    #[inline]
-    pub const fn is_empty(&self) -> bool {
-        self.len == 0
-    }
 }
 
-impl AsRef<[u8]> for CanData {
-    fn as_ref(&self) -> &[u8] {
-        self.as_slice()
-    }
-}
-
-impl TryFrom<&[u8]> for CanData {
-    type Error = Error;
-
-    fn try_from(data: &[u8]) -> Result<Self> {
-        Self::new(data)
-    }
-}
-
-impl fmt::Display for CanData {
-    /// Format the data as lowercase hex without separators, as SPEC §6.1's
-    /// `data` writes it.
+impl fmt::Display for MessageKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.as_slice()
-            .iter()
-            .try_for_each(|byte| write!(f, "{byte:02x}"))
+        f.write_str(self.name())
     }
 }
 
-#[cfg(feature = "serde")]
-impl serde::Serialize for CanData {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_seq(self.as_slice())
-    }
-}
-
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for CanData {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct Bytes;
-
-        impl<'de> serde::de::Visitor<'de> for Bytes {
-            type Value = CanData;
-
-            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str("a sequence of at most 8 bytes")
-            }
-
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(
-                self,
-                mut seq: A,
-            ) -> Result<CanData, A::Error> {
-                let mut data = CanData::EMPTY;
-                while let Some(byte) = seq.next_element::<u8>()? {
-                    let len = data.len();
-                    match data.bytes.get_mut(len) {
-                        Some(slot) => *slot = byte,
-                        None => {
-                            return Err(serde::de::Error::invalid_length(
-                                CAN_MAX_DATA_LEN + 1,
-                                &self,
-                            ))
-                        }
-                    }
-                    data.len += 1;
-                }
-                Ok(data)
-            }
-        }
-
-        deserializer.deserialize_seq(Bytes)
-    }
-}
-
-/// The data length code of a remote frame, 0..=8: the length of the data
-/// frame it requests (ISO 11898-1; a remote frame carries no data).
+/// The one byte of an error-control frame as received: a heartbeat, a
+/// boot-up message or a node-guarding answer, which share the identifier
+/// (CiA 301 §7.2.8.3.2; SPEC §2.7 and the `state`, `state_raw` and `toggle`
+/// keys of SPEC §6.1).
 ///
-/// With the `serde` feature it serializes as its number; deserializing
-/// refuses any number above 8.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(try_from = "u8", into = "u8")
-)]
-pub struct Dlc(u8);
+/// Every byte is kept: bits 0–6 that code no NMT state are read as
+/// `None` (SPEC §6.1's `invalid`), bit 7 is the node-guarding toggle (a
+/// heartbeat producer leaves it 0).
+///
+/// ```
+/// use motionwire::canopen::{NmtState, NmtStateByte};
+///
+/// let byte = NmtStateByte::new(0x85);
+/// assert_eq!((byte.state(), byte.state_raw(), byte.toggle()), (Some(NmtState::Operational), 5, true));
+/// assert_eq!(NmtStateByte::new(0x12).state_name(), "invalid");
+/// assert_eq!(byte.to_string(), "operational (toggle 1)");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct NmtStateByte(u8);
 
-impl Dlc {
-    /// Return the DLC `raw`, or `None` above 8.
+impl NmtStateByte {
+    /// Bit 7: the toggle of a node-guarding answer.
+    const TOGGLE: u8 = 0x80;
+
+    /// Return the byte as received.
     #[inline]
-    pub const fn new(raw: u8) -> Option<Self> {
-        if raw as usize <= CAN_MAX_DATA_LEN {
-            Some(Dlc(raw))
-        } else {
-            None
-        }
+    #[must_use]
+    pub const fn new(byte: u8) -> Self {
+        NmtStateByte(byte)
     }
 
-    /// Return the DLC `raw`, or an [`Error::OutOfRange`] above 8.
+    /// Return the whole byte.
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
-        match Self::new(raw) {
-            Some(dlc) => Ok(dlc),
-            None => Err(Error::OutOfRange {
-                what: "CAN remote frame DLC",
-                found: raw as u32,
-                min: 0,
-                max: CAN_MAX_DATA_LEN as u32,
-            }),
-        }
-    }
-
-    /// Return the DLC as a number in 0..=8.
-    #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self.0
     }
-}
 
-impl TryFrom<u8> for Dlc {
-    type Error = Error;
+    /// Return bits 0–6, the NMT state as a number (SPEC §6.1 `state_raw`).
+    #[inline]
+    #[must_use]
+    pub const fn state_raw(self) -> u8 {
+        self.0 & !Self::TOGGLE
+    }
 
-    fn try_from(raw: u8) -> Result<Self> {
-        Self::try_new(raw)
+    /// Return bit 7: the toggle of a node-guarding answer, reserved (0) in a
+    /// heartbeat (SPEC §6.1 `toggle`).
+    #[inline]
+    #[must_use]
+    pub const fn toggle(self) -> bool {
+        self.0 & Self::TOGGLE != 0
+    }
+
+    /// Return the NMT state bits 0–6 code, `None` for an undefined value.
+    #[inline]
+    #[must_use]
+    pub fn state(self) -> Option<NmtState> {
+        NmtState::from_byte(self.state_raw()).ok()
+    }
+
+    /// Return the state's name as SPEC §6.1's `state` writes it: `boot_up`,
+    /// `stopped`, `operational`, `pre_operational`, or `invalid`.
+    #[must_use]
+    pub fn state_name(self) -> &'static str {
+        self.state().map_or("invalid", NmtState::name)
+    }
+
+    /// Return the byte read as a heartbeat, `None` for an undefined state.
+    #[must_use]
+    pub fn heartbeat(self) -> Option<Heartbeat> {
+        Heartbeat::parse(&[self.0]).ok()
+    }
+
+    /// Return the byte read as a node-guarding answer (bit 7 the toggle),
+    /// `None` for an undefined state (CiA 301 §7.2.8.3.2.1).
+    #[must_use]
+    pub fn guard_answer(self) -> Option<GuardAnswer> {
+        Some(GuardAnswer::new(self.toggle(), self.state()?))
     }
 }
 
-impl From<Dlc> for u8 {
-    fn from(dlc: Dlc) -> u8 {
-        dlc.0
+impl fmt::Display for NmtStateByte {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.state() {
+            Some(state) => f.write_str(state.name())?,
+            None => write!(f, "invalid state {:#04x}", self.state_raw())?,
+        }
+        if self.toggle() {
+            f.write_str(" (toggle 1)")?;
+        }
+        Ok(())
     }
 }
 
-/// What a classic CAN frame carries besides its identifier: data bytes, or
-/// for a remote (RTR) frame the length of the data it requests
-/// (ISO 11898-1).
+/// What a truncated EMCY still says (SPEC §6.1: an EMCY shorter than 8
+/// bytes still gets `code` when 2 bytes are there and `register` when 3
+/// are, as Wireshark does).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum CanPayload {
-    /// A data frame's bytes.
-    Data(CanData),
-    /// A remote frame: no data, a data length code.
-    Remote(Dlc),
+pub struct PartialEmcy {
+    /// The error code, when the frame has bytes 0–1.
+    pub code: Option<ErrorCode>,
+    /// The error register, when the frame has byte 2.
+    pub register: Option<ErrorRegister>,
 }
 
-impl CanPayload {
-    /// Return a data frame's payload, or an [`Error::OutOfRange`] when
-    /// `data` is longer than 8 bytes.
-    #[inline]
-    pub fn data(data: &[u8]) -> Result<Self> {
-        CanData::new(data).map(CanPayload::Data)
-    }
-
-    /// Return a remote frame's payload, or an [`Error::OutOfRange`] when
-    /// `dlc` is above 8. A DLC comes from a driver as a `usize`; any value
-    /// above 8 is refused the same way.
-    #[inline]
-    pub fn remote(dlc: usize) -> Result<Self> {
-        let raw = u8::try_from(dlc).unwrap_or(u8::MAX);
-        Dlc::try_new(raw).map(CanPayload::Remote)
-    }
-
-    /// Return whether this is a remote frame's payload.
-    #[inline]
-    pub const fn is_remote(&self) -> bool {
-        matches!(self, CanPayload::Remote(_))
-    }
-
-    /// Return the data bytes; empty for a remote frame.
-    #[inline]
-    pub fn bytes(&self) -> &[u8] {
-        match self {
-            CanPayload::Data(data) => data.as_slice(),
-            CanPayload::Remote(_) => &[],
+impl PartialEmcy {
+    /// Read what `data` (shorter than an EMCY) holds.
+    #[must_use]
+    pub fn read(data: &[u8]) -> Self {
+        PartialEmcy {
+            code: match data {
+                [lo, hi, ..] => Some(ErrorCode::new(u16::from_le_bytes([*lo, *hi]))),
+                _ => None,
+            },
+            register: data.get(2).map(|r| ErrorRegister::from_bits_retain(*r)),
         }
     }
+}
 
-    /// Return the data length code: the number of data bytes, or a remote
-    /// frame's DLC.
-    #[inline]
-    pub const fn dlc(&self) -> usize {
-        match self {
-            CanPayload::Data(data) => data.len(),
-            CanPayload::Remote(dlc) => dlc.get() as usize,
-        }
+/// A frame whose identifier names a CANopen kind but whose data that
+/// kind's codec refuses: the kind and node are still known, and the error
+/// says what was expected and found (SPEC §6.1 `error`).
+///
+/// It converts into the crate's [`Error`] (the codec's error), so `?` works
+/// in functions returning [`motionwire::Result`](crate::Result).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct DecodeError {
+    /// The kind the identifier gives.
+    pub kind: MessageKind,
+    /// The node the identifier gives, for the kinds that have one.
+    pub node: Option<NodeId>,
+    /// The codec's error.
+    pub error: Error,
+    /// For a truncated EMCY, what its bytes still say.
+    pub partial_emcy: Option<PartialEmcy>,
+}
+
+impl fmt::Display for DecodeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.error, f)
+    }
+}
+
+impl core::error::Error for DecodeError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+impl From<DecodeError> for Error {
+    fn from(e: DecodeError) -> Self {
+        e.error
     }
 }
 
 /// The DLC of a node-guarding request: the length of the answer it asks
 /// for, 1 byte (CiA 301 §7.2.8.3.2.1). Decoding accepts any DLC.
-const GUARD_REQUEST_DLC: Dlc = Dlc(HEARTBEAT_LEN as u8);
+const GUARD_REQUEST_DLC: u8 = HEARTBEAT_LEN as u8;
 
 /// A CAN frame read as CANopen, by the function its identifier has in the
 /// pre-defined connection set (CiA 301 §7.3.5 Table 72; SPEC §6.1).
 ///
-/// Data that a kind's codec refuses (an EMCY shorter than 8 bytes, an
-/// undefined NMT state, …) makes [`CanOpenMessage::decode`] return that
-/// codec's error instead. Remote frames mean something only on the
-/// error-control identifiers (a node-guarding request); any other remote
-/// frame is [`CanOpenMessage::Other`].
+/// Data that a kind's codec refuses (an EMCY shorter than 8 bytes, an NMT
+/// command specifier CiA 301 does not define, …) makes
+/// [`CanOpenMessage::decode`] return a [`DecodeError`] instead. Remote
+/// frames mean something only on the error-control identifiers (a
+/// node-guarding request); any other remote frame is
+/// [`CanOpenMessage::Other`].
 ///
 /// With the `serde` feature the message has serde's derived format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -354,7 +368,7 @@ pub enum CanOpenMessage {
     /// 0x100: TIME stamp (CiA 301 §7.2.6), not decoded further.
     Time {
         /// The data bytes.
-        data: CanData,
+        data: FrameData,
     },
     /// 0x181..=0x57F: one of the four default TPDOs or RPDOs of a node
     /// (CiA 301 §7.2.2); the data's meaning comes from the PDO mapping.
@@ -366,7 +380,7 @@ pub enum CanOpenMessage {
         /// Transmit (TPDO) or receive (RPDO), seen from the node.
         direction: PdoDirection,
         /// The data bytes.
-        data: CanData,
+        data: FrameData,
     },
     /// 0x581..=0x5FF: an SDO response, server (the node) → client
     /// (CiA 301 §7.2.4).
@@ -374,7 +388,7 @@ pub enum CanOpenMessage {
         /// The SDO server's node.
         node: NodeId,
         /// The data bytes.
-        data: CanData,
+        data: FrameData,
     },
     /// 0x601..=0x67F: an SDO request, client → server (the node)
     /// (CiA 301 §7.2.4).
@@ -382,18 +396,16 @@ pub enum CanOpenMessage {
         /// The SDO server's node.
         node: NodeId,
         /// The data bytes.
-        data: CanData,
+        data: FrameData,
     },
     /// 0x701..=0x77F, data frame: a heartbeat, a boot-up message or a
     /// node-guarding answer — one byte on the same identifier, told apart
-    /// only by context (CiA 301 §7.2.8.3.2; SPEC §2.7). Bit 7 is kept as
-    /// [`Heartbeat::reserved_bit`]; [`CanOpenMessage::guard_answer`] reads
-    /// it as a toggle.
+    /// only by context (CiA 301 §7.2.8.3.2; SPEC §2.7).
     Heartbeat {
         /// The node that sent it.
         node: NodeId,
-        /// The decoded byte.
-        heartbeat: Heartbeat,
+        /// The byte as received, undefined states kept.
+        byte: NmtStateByte,
     },
     /// 0x701..=0x77F, remote frame: the NMT master's node-guarding request
     /// (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
@@ -401,75 +413,90 @@ pub enum CanOpenMessage {
         /// The guarded node.
         node: NodeId,
     },
-    /// A standard frame that the pre-defined connection set gives no meaning:
-    /// an identifier without a function (e.g. 0x7E5, or node-ID 0 in a
-    /// node range), or a remote frame on an identifier other than error
-    /// control (such as a request for an RTR-triggered TPDO; classify
-    /// `cob_id` with [`CobFunction::classify`] to tell).
-    Other {
-        /// The 11-bit identifier.
-        cob_id: u16,
-        /// What the frame carries.
-        payload: CanPayload,
-    },
-    /// A frame with a 29-bit identifier: not CANopen, whose pre-defined
-    /// connection set uses 11-bit identifiers (CiA 301 §7.3.5; SPEC §6.1).
-    Extended {
-        /// The 29-bit identifier, at most [`MAX_EXTENDED_ID`].
-        id: u32,
-        /// What the frame carries.
-        payload: CanPayload,
-    },
+    /// An error frame (SPEC §5.1): not a CANopen message, but a fact about
+    /// the bus that a CANopen log carries.
+    ErrorFrame(ErrorFrame),
+    /// A frame that is not decoded further: an identifier without a
+    /// function (e.g. 0x7E5, or node-ID 0 in a node range), a frame with a
+    /// 29-bit identifier, which CANopen's pre-defined connection set does
+    /// not use (CiA 301 §7.3.5; SPEC §6.1), or a remote request on an
+    /// identifier other than error control and EMCY (such as a request for
+    /// an RTR-triggered TPDO, CiA 301 §7.2.2.2). Its
+    /// [`kind`](CanOpenMessage::kind) and [`node`](CanOpenMessage::node) are
+    /// still what the identifier says: a TPDO request is kind `pdo`.
+    Other(CanFrame),
 }
 
 impl CanOpenMessage {
-    /// Decode a standard frame with identifier `cob_id`: an identifier above
-    /// 0x7FF is an [`Error::OutOfRange`]; data that the kind's codec refuses
-    /// is that codec's error ([`Error::Length`] for a short frame,
-    /// [`Error::InvalidValue`] for an undefined code, …). Bytes past what a
-    /// kind reads are not checked (as for every frame of the crate), except
-    /// for SYNC, whose data is empty or one counter byte.
-    pub fn decode(cob_id: u16, payload: CanPayload) -> Result<Self> {
-        if cob_id > MAX_STANDARD_ID {
-            return Err(Error::OutOfRange {
-                what: "11-bit CAN identifier",
-                found: u32::from(cob_id),
-                min: 0,
-                max: u32::from(MAX_STANDARD_ID),
-            });
-        }
-        let function = CobFunction::classify(cob_id);
-        let data = match payload {
-            CanPayload::Data(data) => data,
-            CanPayload::Remote(_) => {
-                return Ok(match function {
-                    CobFunction::ErrorControl(node) => CanOpenMessage::GuardRequest { node },
-                    _ => CanOpenMessage::Other { cob_id, payload },
-                })
-            }
+    /// Decode a frame (owned or borrowed). Data that the kind's codec
+    /// refuses is a [`DecodeError`] with that codec's error
+    /// ([`Error::Length`] for a short frame, [`Error::InvalidValue`] for an
+    /// undefined code, …), the kind and the node. Bytes past what a kind
+    /// reads are not checked (as for every frame of the crate), except for
+    /// SYNC, whose data is empty or one counter byte.
+    pub fn decode<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> Result<Self, DecodeError> {
+        let (kind, node) = MessageKind::classify(frame);
+        let fail = |error: Error| DecodeError {
+            kind,
+            node,
+            error,
+            partial_emcy: None,
         };
+        let data = frame.data();
+        let owned = || FrameData::new(data).map_err(fail);
+        let function = match frame.id().standard_raw() {
+            Some(id) if !frame.is_error() => CobFunction::classify(id),
+            _ => CobFunction::Other,
+        };
+        if frame.is_error() {
+            return ErrorFrame::from_frame(frame)
+                .map(CanOpenMessage::ErrorFrame)
+                .map_err(fail);
+        }
+        if frame.is_rtr() {
+            return match function {
+                CobFunction::ErrorControl(node) => Ok(CanOpenMessage::GuardRequest { node }),
+                // An EMCY has 8 bytes; a request carries none.
+                CobFunction::Emcy(_) => Err(DecodeError {
+                    partial_emcy: Some(PartialEmcy::read(&[])),
+                    ..fail(Error::Length {
+                        what: "EMCY frame",
+                        expected: EMCY_LEN,
+                        found: 0,
+                    })
+                }),
+                // A request for an RTR-triggered TPDO (CiA 301 §7.2.2.2) and
+                // requests without a CANopen meaning: kept as they are.
+                _ => Ok(CanOpenMessage::Other(frame.to_owned_frame())),
+            };
+        }
         Ok(match function {
             CobFunction::NmtCommand => {
-                CanOpenMessage::NmtNodeControl(NmtNodeControl::parse(data.as_slice())?)
+                CanOpenMessage::NmtNodeControl(NmtNodeControl::parse(data).map_err(fail)?)
             }
             CobFunction::Sync => CanOpenMessage::Sync {
-                counter: match *data.as_slice() {
+                counter: match *data {
                     [] => None,
                     [counter] => Some(counter),
                     _ => {
-                        return Err(Error::InvalidValue {
+                        return Err(fail(Error::InvalidValue {
                             what: "SYNC data length",
                             found: data.len() as u32,
                             expected: "0, or 1 with the SYNC counter",
-                        })
+                        }))
                     }
                 },
             },
-            CobFunction::Emcy(node) => CanOpenMessage::Emcy {
-                node,
-                emcy: Emcy::parse(data.as_slice())?,
+            CobFunction::Emcy(node) => match Emcy::parse(data) {
+                Ok(emcy) => CanOpenMessage::Emcy { node, emcy },
+                Err(error) => {
+                    return Err(DecodeError {
+                        partial_emcy: Some(PartialEmcy::read(data)),
+                        ..fail(error)
+                    })
+                }
             },
-            CobFunction::Time => CanOpenMessage::Time { data },
+            CobFunction::Time => CanOpenMessage::Time { data: owned()? },
             CobFunction::Pdo {
                 node,
                 number,
@@ -478,26 +505,77 @@ impl CanOpenMessage {
                 node,
                 number,
                 direction,
-                data,
+                data: owned()?,
             },
-            CobFunction::SdoTx(node) => CanOpenMessage::SdoResponse { node, data },
-            CobFunction::SdoRx(node) => CanOpenMessage::SdoRequest { node, data },
-            CobFunction::ErrorControl(node) => CanOpenMessage::Heartbeat {
+            CobFunction::SdoTx(node) => CanOpenMessage::SdoResponse {
                 node,
-                heartbeat: Heartbeat::parse(data.as_slice())?,
+                data: owned()?,
             },
-            CobFunction::Other => CanOpenMessage::Other {
-                cob_id,
-                payload: CanPayload::Data(data),
+            CobFunction::SdoRx(node) => CanOpenMessage::SdoRequest {
+                node,
+                data: owned()?,
             },
+            CobFunction::ErrorControl(node) => match data.first() {
+                Some(&byte) => CanOpenMessage::Heartbeat {
+                    node,
+                    byte: NmtStateByte::new(byte),
+                },
+                None => {
+                    return Err(fail(Error::Length {
+                        what: "heartbeat message",
+                        expected: HEARTBEAT_LEN,
+                        found: 0,
+                    }))
+                }
+            },
+            CobFunction::Other => CanOpenMessage::Other(frame.to_owned_frame()),
         })
     }
 
+    /// Return the kind, as SPEC §6.1's `kind` names it.
+    #[must_use]
+    pub fn kind(&self) -> MessageKind {
+        match self {
+            CanOpenMessage::NmtNodeControl(_) => MessageKind::NmtCommand,
+            CanOpenMessage::Sync { .. } => MessageKind::Sync,
+            CanOpenMessage::Emcy { .. } => MessageKind::Emcy,
+            CanOpenMessage::Time { .. } => MessageKind::Time,
+            CanOpenMessage::Pdo { .. } => MessageKind::Pdo,
+            CanOpenMessage::SdoResponse { .. } | CanOpenMessage::SdoRequest { .. } => {
+                MessageKind::Sdo
+            }
+            CanOpenMessage::Heartbeat { .. } => MessageKind::Heartbeat,
+            CanOpenMessage::GuardRequest { .. } => MessageKind::GuardRequest,
+            CanOpenMessage::ErrorFrame(_) => MessageKind::ErrorFrame,
+            CanOpenMessage::Other(frame) => MessageKind::classify(frame).0,
+        }
+    }
+
+    /// Return the node the identifier belongs to, for the kinds that SPEC
+    /// §6.1 gives a `node`: EMCY, heartbeat, guard request, PDO and SDO.
+    /// (An NMT command's addressed node is in its data, not here.)
+    #[must_use]
+    pub fn node(&self) -> Option<NodeId> {
+        match *self {
+            CanOpenMessage::Emcy { node, .. }
+            | CanOpenMessage::Pdo { node, .. }
+            | CanOpenMessage::SdoResponse { node, .. }
+            | CanOpenMessage::SdoRequest { node, .. }
+            | CanOpenMessage::Heartbeat { node, .. }
+            | CanOpenMessage::GuardRequest { node } => Some(node),
+            CanOpenMessage::NmtNodeControl(_)
+            | CanOpenMessage::Sync { .. }
+            | CanOpenMessage::Time { .. }
+            | CanOpenMessage::ErrorFrame(_) => None,
+            CanOpenMessage::Other(frame) => MessageKind::classify(&frame).1,
+        }
+    }
+
     /// Return the 11-bit identifier the message is sent on, or `None` for
-    /// an [`Extended`](CanOpenMessage::Extended) frame and for fields that
-    /// make no identifier (a PDO number outside 1..=4, an `Other` identifier
-    /// above 0x7FF).
-    pub const fn cob_id(&self) -> Option<u16> {
+    /// an error frame, a frame with a 29-bit identifier, and fields that
+    /// make no identifier (a PDO number outside 1..=4).
+    #[must_use]
+    pub fn cob_id(&self) -> Option<u16> {
         match *self {
             CanOpenMessage::NmtNodeControl(_) => Some(cob_id::NMT),
             CanOpenMessage::Sync { .. } => Some(cob_id::SYNC),
@@ -509,7 +587,7 @@ impl CanOpenMessage {
                 direction,
                 ..
             } => {
-                if number < 1 || number > 4 {
+                if !(1..=4).contains(&number) {
                     return None;
                 }
                 // TPDO n: 0x080 + n·0x100; RPDO n: 0x100 + n·0x100.
@@ -517,107 +595,72 @@ impl CanOpenMessage {
                     PdoDirection::Transmit => 0x080,
                     PdoDirection::Receive => 0x100,
                 };
-                Some(base + (number as u16) * 0x100 + node.get() as u16)
+                Some(base + u16::from(number) * 0x100 + u16::from(node.get()))
             }
             CanOpenMessage::SdoResponse { node, .. } => {
-                Some(cob_id::SDO_TX_BASE + node.get() as u16)
+                Some(cob_id::SDO_TX_BASE + u16::from(node.get()))
             }
             CanOpenMessage::SdoRequest { node, .. } => {
-                Some(cob_id::SDO_RX_BASE + node.get() as u16)
+                Some(cob_id::SDO_RX_BASE + u16::from(node.get()))
             }
             CanOpenMessage::Heartbeat { node, .. } | CanOpenMessage::GuardRequest { node } => {
                 Some(node.error_control_cob_id())
             }
-            CanOpenMessage::Other { cob_id, .. } => {
-                if cob_id <= MAX_STANDARD_ID {
-                    Some(cob_id)
-                } else {
-                    None
-                }
-            }
-            CanOpenMessage::Extended { .. } => None,
+            CanOpenMessage::ErrorFrame(_) => None,
+            CanOpenMessage::Other(frame) if frame.is_error() => None,
+            CanOpenMessage::Other(frame) => frame.id().standard_raw(),
         }
     }
 
-    /// Return what the frame of this message carries: the encoded data, or
-    /// for a node-guarding request a remote frame of DLC 1 (the length of
-    /// the answer).
-    pub fn payload(&self) -> CanPayload {
-        // Every encoded length below is at most 8, so `CanData::new` accepts
-        // it; the fallback is never taken.
-        let data = |bytes: &[u8]| CanPayload::Data(CanData::new(bytes).unwrap_or_default());
-        match self {
+    /// Return the frame of this message: its identifier and encoded data,
+    /// a remote frame of DLC 1 for a node-guarding request, the frame
+    /// itself for [`Other`](CanOpenMessage::Other). `None` where the fields
+    /// make no identifier (see [`cob_id`](Self::cob_id)) and for an error
+    /// frame, whose details are read, not written.
+    #[must_use]
+    pub fn encode(&self) -> Option<CanFrame> {
+        if let CanOpenMessage::Other(frame) = self {
+            return Some(*frame);
+        }
+        let id = CanId::standard(u32::from(self.cob_id()?))?;
+        let frame = match self {
             CanOpenMessage::NmtNodeControl(control) => {
                 let bytes: [u8; NMT_NODE_CONTROL_LEN] = control.to_bytes();
-                data(&bytes)
+                CanFrame::new(id, &bytes)
             }
-            CanOpenMessage::Sync { counter: None } => CanPayload::Data(CanData::EMPTY),
+            CanOpenMessage::Sync { counter: None } => CanFrame::new(id, &[]),
             CanOpenMessage::Sync {
                 counter: Some(counter),
-            } => data(&[*counter]),
+            } => CanFrame::new(id, &[*counter]),
             CanOpenMessage::Emcy { emcy, .. } => {
                 let bytes: [u8; EMCY_LEN] = emcy.to_bytes();
-                data(&bytes)
+                CanFrame::new(id, &bytes)
             }
-            CanOpenMessage::Heartbeat { heartbeat, .. } => data(&heartbeat.to_bytes()),
-            CanOpenMessage::GuardRequest { .. } => CanPayload::Remote(GUARD_REQUEST_DLC),
+            CanOpenMessage::Heartbeat { byte, .. } => CanFrame::new(id, &[byte.get()]),
+            CanOpenMessage::GuardRequest { .. } => CanFrame::new_remote(id, GUARD_REQUEST_DLC),
             CanOpenMessage::Time { data }
             | CanOpenMessage::Pdo { data, .. }
             | CanOpenMessage::SdoResponse { data, .. }
-            | CanOpenMessage::SdoRequest { data, .. } => CanPayload::Data(*data),
-            CanOpenMessage::Other { payload, .. } | CanOpenMessage::Extended { payload, .. } => {
-                *payload
+            | CanOpenMessage::SdoRequest { data, .. } => {
+                // Data longer than 8 bytes came from a CAN FD frame.
+                if data.len() > crate::can::CLASSIC_MAX_LEN {
+                    CanFrame::new_fd(id, crate::can::FdFlags::EMPTY, data.as_slice())
+                } else {
+                    CanFrame::new(id, data.as_slice())
+                }
             }
-        }
-    }
-
-    /// Return the node the identifier belongs to, for the kinds that SPEC
-    /// §6.1 gives a `node`: EMCY, heartbeat, guard request, PDO and SDO.
-    /// (An NMT command's addressed node is in its data, not here.)
-    pub const fn node(&self) -> Option<NodeId> {
-        match *self {
-            CanOpenMessage::Emcy { node, .. }
-            | CanOpenMessage::Pdo { node, .. }
-            | CanOpenMessage::SdoResponse { node, .. }
-            | CanOpenMessage::SdoRequest { node, .. }
-            | CanOpenMessage::Heartbeat { node, .. }
-            | CanOpenMessage::GuardRequest { node } => Some(node),
-            CanOpenMessage::NmtNodeControl(_)
-            | CanOpenMessage::Sync { .. }
-            | CanOpenMessage::Time { .. }
-            | CanOpenMessage::Other { .. }
-            | CanOpenMessage::Extended { .. } => None,
-        }
-    }
-
-    /// Return the kind as the command-line decoder's `kind` writes it
-    /// (SPEC §6.1): `emcy`, `heartbeat`, `guard_request`, `nmt_command`,
-    /// `sync`, `pdo`, `sdo` or `other` (TIME, unassigned identifiers and
-    /// extended frames).
-    pub const fn name(&self) -> &'static str {
-        match self {
-            CanOpenMessage::NmtNodeControl(_) => "nmt_command",
-            CanOpenMessage::Sync { .. } => "sync",
-            CanOpenMessage::Emcy { .. } => "emcy",
-            CanOpenMessage::Pdo { .. } => "pdo",
-            CanOpenMessage::SdoResponse { .. } | CanOpenMessage::SdoRequest { .. } => "sdo",
-            CanOpenMessage::Heartbeat { .. } => "heartbeat",
-            CanOpenMessage::GuardRequest { .. } => "guard_request",
-            CanOpenMessage::Time { .. }
-            | CanOpenMessage::Other { .. }
-            | CanOpenMessage::Extended { .. } => "other",
-        }
+            CanOpenMessage::ErrorFrame(_) | CanOpenMessage::Other(_) => return None,
+        };
+        frame.ok()
     }
 
     /// Return a [`Heartbeat`](CanOpenMessage::Heartbeat) read as a
     /// node-guarding answer: bit 7 as the toggle (CiA 301 §7.2.8.3.2.1).
-    /// `None` for every other kind.
-    pub const fn guard_answer(&self) -> Option<super::GuardAnswer> {
+    /// `None` for every other kind and for an undefined state.
+    #[must_use]
+    pub fn guard_answer(&self) -> Option<GuardAnswer> {
         match self {
-            CanOpenMessage::Heartbeat { heartbeat, .. } => Some(super::GuardAnswer::new(
-                heartbeat.reserved_bit(),
-                heartbeat.state(),
-            )),
+            CanOpenMessage::Heartbeat { byte, .. } => byte.guard_answer(),
             _ => None,
         }
     }
@@ -626,64 +669,74 @@ impl CanOpenMessage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::canopen::{ErrorCode, ErrorRegister, GuardAnswer, NmtCommand, NmtState};
+    use crate::can::FdFlags;
+    use crate::canopen::{NmtCommand, NmtState};
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()
     }
 
-    fn data(bytes: &[u8]) -> CanPayload {
-        CanPayload::data(bytes).unwrap()
+    fn std_id(raw: u16) -> CanId {
+        CanId::standard(u32::from(raw)).unwrap()
     }
 
-    fn remote(dlc: usize) -> CanPayload {
-        CanPayload::remote(dlc).unwrap()
+    fn data(id: u16, bytes: &[u8]) -> CanFrame {
+        CanFrame::new(std_id(id), bytes).unwrap()
     }
 
-    fn bytes(raw: &[u8]) -> CanData {
-        CanData::new(raw).unwrap()
+    fn remote(id: u16, dlc: u8) -> CanFrame {
+        CanFrame::new_remote(std_id(id), dlc).unwrap()
+    }
+
+    fn bytes(raw: &[u8]) -> FrameData {
+        FrameData::new(raw).unwrap()
     }
 
     /// The AKD EMCY of seed 000 (SPEC §2.1): code 0x8130, register 0x11, axis 1.
     static EMCY_BYTES: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
 
-    /// SPEC §6.1's identifier table, one frame per row: (id, payload,
-    /// message, kind).
+    /// SPEC §6.1's identifier table, one frame per row: (frame, message,
+    /// kind, node).
     #[test]
     fn identifiers_of_spec_6_1() {
         use CanOpenMessage::*;
         use PdoDirection::{Receive, Transmit};
         let emcy = super::Emcy::from_bytes(&EMCY_BYTES);
-        let table: &[(u16, CanPayload, CanOpenMessage, &str)] = &[
+        let ext = CanFrame::new(CanId::extended(0x0000_0081).unwrap(), &EMCY_BYTES).unwrap();
+        let table: Vec<(CanFrame, CanOpenMessage, &str, Option<u8>)> = vec![
             (
-                0x000,
-                data(&[0x01, 0x00]),
+                data(0x000, &[0x01, 0x00]),
                 NmtNodeControl(super::NmtNodeControl::new(
                     NmtCommand::StartRemoteNode,
                     None,
                 )),
                 "nmt_command",
+                None,
             ),
-            (0x080, data(&[]), Sync { counter: None }, "sync"),
-            (0x080, data(&[7]), Sync { counter: Some(7) }, "sync"),
-            (0x081, data(&EMCY_BYTES), Emcy { node: n(1), emcy }, "emcy"),
+            (data(0x080, &[]), Sync { counter: None }, "sync", None),
+            (data(0x080, &[7]), Sync { counter: Some(7) }, "sync", None),
             (
-                0x0FF,
-                data(&EMCY_BYTES),
+                data(0x081, &EMCY_BYTES),
+                Emcy { node: n(1), emcy },
+                "emcy",
+                Some(1),
+            ),
+            (
+                data(0x0FF, &EMCY_BYTES),
                 Emcy { node: n(127), emcy },
                 "emcy",
+                Some(127),
             ),
             (
-                0x100,
-                data(&[1, 2, 3, 4, 5, 6]),
+                data(0x100, &[1, 2, 3, 4, 5, 6]),
                 Time {
                     data: bytes(&[1, 2, 3, 4, 5, 6]),
                 },
-                "other",
+                "time",
+                None,
             ),
             (
-                0x181,
-                data(&[0xAA]),
+                data(0x181, &[0xAA]),
                 Pdo {
                     node: n(1),
                     number: 1,
@@ -691,260 +744,160 @@ mod tests {
                     data: bytes(&[0xAA]),
                 },
                 "pdo",
+                Some(1),
             ),
             (
-                0x57F,
-                data(&[]),
+                data(0x57F, &[]),
                 Pdo {
                     node: n(127),
                     number: 4,
                     direction: Receive,
-                    data: CanData::EMPTY,
+                    data: bytes(&[]),
                 },
                 "pdo",
+                Some(127),
             ),
             (
-                0x585,
-                data(&[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00]),
+                data(0x581, &[0x60]),
                 SdoResponse {
-                    node: n(5),
-                    data: bytes(&[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00]),
+                    node: n(1),
+                    data: bytes(&[0x60]),
                 },
                 "sdo",
+                Some(1),
             ),
             (
-                0x605,
-                data(&[0x40, 0x00, 0x10, 0x00]),
+                data(0x67F, &[0x40]),
                 SdoRequest {
-                    node: n(5),
-                    data: bytes(&[0x40, 0x00, 0x10, 0x00]),
+                    node: n(127),
+                    data: bytes(&[0x40]),
                 },
                 "sdo",
+                Some(127),
             ),
+            (data(0x580, &[]), Other(data(0x580, &[])), "other", None),
+            (data(0x600, &[]), Other(data(0x600, &[])), "other", None),
             (
-                0x705,
-                data(&[0x7F]),
+                data(0x705, &[0x05]),
                 Heartbeat {
                     node: n(5),
-                    heartbeat: super::Heartbeat::new(NmtState::PreOperational),
+                    byte: NmtStateByte::new(0x05),
                 },
                 "heartbeat",
+                Some(5),
             ),
             (
-                0x705,
-                remote(1),
+                data(0x705, &[0x12]),
+                Heartbeat {
+                    node: n(5),
+                    byte: NmtStateByte::new(0x12),
+                },
+                "heartbeat",
+                Some(5),
+            ),
+            (
+                remote(0x705, 1),
                 GuardRequest { node: n(5) },
                 "guard_request",
+                Some(5),
             ),
             (
-                0x705,
-                remote(0),
+                remote(0x705, 0),
                 GuardRequest { node: n(5) },
                 "guard_request",
+                Some(5),
             ),
-            (
-                0x700,
-                data(&[0x05]),
-                Other {
-                    cob_id: 0x700,
-                    payload: data(&[0x05]),
-                },
-                "other",
-            ),
-            (
-                0x7E5,
-                data(&[0x04]),
-                Other {
-                    cob_id: 0x7E5,
-                    payload: data(&[0x04]),
-                },
-                "other",
-            ),
-            (
-                0x181,
-                remote(3),
-                Other {
-                    cob_id: 0x181,
-                    payload: remote(3),
-                },
-                "other",
-            ),
-            (
-                0x081,
-                remote(8),
-                Other {
-                    cob_id: 0x081,
-                    payload: remote(8),
-                },
-                "other",
-            ),
+            (data(0x700, &[0]), Other(data(0x700, &[0])), "other", None),
+            (data(0x7E5, &[]), Other(data(0x7E5, &[])), "other", None),
+            (remote(0x181, 8), Other(remote(0x181, 8)), "pdo", Some(1)),
+            (remote(0x605, 0), Other(remote(0x605, 0)), "sdo", Some(5)),
+            (ext, Other(ext), "other", None),
         ];
-        for &(id, payload, expected, kind) in table {
-            let message = CanOpenMessage::decode(id, payload).unwrap();
-            assert_eq!(message, expected, "{id:#05x}");
-            assert_eq!(message.name(), kind, "{id:#05x}");
+        for (frame, expected, kind, node) in table {
+            let message = CanOpenMessage::decode(&frame).unwrap();
+            assert_eq!(message, expected, "{frame}");
+            assert_eq!(message.kind().name(), kind, "{frame}");
+            assert_eq!(message.node().map(NodeId::get), node, "{frame}");
+            assert_eq!(
+                MessageKind::classify(&frame),
+                (message.kind(), message.node()),
+                "{frame}"
+            );
+            // The borrowed form decodes the same.
+            assert_eq!(CanOpenMessage::decode(&frame.as_frame_ref()), Ok(expected));
         }
     }
 
     #[test]
-    fn nodes_come_from_the_identifier() {
-        let cases: &[(u16, CanPayload, Option<NodeId>)] = &[
-            (0x000, data(&[0x81, 0x05]), None),
-            (0x080, data(&[]), None),
-            (0x085, data(&EMCY_BYTES), Some(n(5))),
-            (0x100, data(&[]), None),
-            (0x285, data(&[]), Some(n(5))),
-            (0x585, data(&[]), Some(n(5))),
-            (0x605, data(&[]), Some(n(5))),
-            (0x705, data(&[0x05]), Some(n(5))),
-            (0x705, remote(1), Some(n(5))),
-            (0x7E5, data(&[]), None),
-        ];
-        for &(id, payload, node) in cases {
-            assert_eq!(
-                CanOpenMessage::decode(id, payload).unwrap().node(),
-                node,
-                "{id:#05x}"
-            );
-        }
+    fn error_frames() {
+        let frame = CanFrame::new_error(0x040, &[0; 8]).unwrap();
+        let message = CanOpenMessage::decode(&frame).unwrap();
+        assert_eq!(message.kind(), MessageKind::ErrorFrame);
+        let CanOpenMessage::ErrorFrame(error) = message else {
+            panic!("{message:?}")
+        };
+        assert!(error.is_bus_off());
+        assert_eq!(
+            (message.node(), message.cob_id(), message.encode()),
+            (None, None, None)
+        );
+    }
+
+    #[test]
+    fn fd_frames_keep_all_their_data() {
+        let frame = CanFrame::new_fd(std_id(0x181), FdFlags::BRS, &[7; 12]).unwrap();
+        let message = CanOpenMessage::decode(&frame).unwrap();
+        assert!(matches!(message, CanOpenMessage::Pdo { data, .. } if data.as_slice() == [7; 12]));
+        let back = message.encode().unwrap();
+        assert_eq!((back.is_fd(), back.data()), (true, &[7; 12][..]));
     }
 
     #[test]
     fn encoding_gives_the_frame_back() {
-        let emcy = Emcy::new(
-            ErrorCode::new(0x8130),
-            ErrorRegister::GENERIC | ErrorRegister::COMMUNICATION,
-            [1, 0, 0, 0, 0],
-        );
-        let cases: &[(CanOpenMessage, Option<u16>, CanPayload)] = &[
-            (
-                CanOpenMessage::Emcy { node: n(1), emcy },
-                Some(0x081),
-                data(&EMCY_BYTES),
-            ),
-            (
-                CanOpenMessage::Heartbeat {
-                    node: n(127),
-                    heartbeat: Heartbeat::boot_up(),
-                },
-                Some(0x77F),
-                data(&[0x00]),
-            ),
-            (
-                CanOpenMessage::GuardRequest { node: n(3) },
-                Some(0x703),
-                remote(1),
-            ),
-            (
-                CanOpenMessage::NmtNodeControl(NmtNodeControl::new(
-                    NmtCommand::ResetNode,
-                    Some(n(9)),
-                )),
-                Some(0x000),
-                data(&[0x81, 0x09]),
-            ),
-            (
-                CanOpenMessage::Sync { counter: None },
-                Some(0x080),
-                data(&[]),
-            ),
-            (
-                CanOpenMessage::Sync { counter: Some(240) },
-                Some(0x080),
-                data(&[240]),
-            ),
-            (
-                CanOpenMessage::Pdo {
-                    node: n(2),
-                    number: 3,
-                    direction: PdoDirection::Transmit,
-                    data: bytes(&[9]),
-                },
-                Some(0x382),
-                data(&[9]),
-            ),
-            (
-                CanOpenMessage::Pdo {
-                    node: n(2),
-                    number: 3,
-                    direction: PdoDirection::Receive,
-                    data: bytes(&[9]),
-                },
-                Some(0x402),
-                data(&[9]),
-            ),
-            (
-                CanOpenMessage::SdoResponse {
-                    node: n(1),
-                    data: bytes(&[0x60]),
-                },
-                Some(0x581),
-                data(&[0x60]),
-            ),
-            (
-                CanOpenMessage::SdoRequest {
-                    node: n(1),
-                    data: bytes(&[0x40]),
-                },
-                Some(0x601),
-                data(&[0x40]),
-            ),
-            (
-                CanOpenMessage::Time {
-                    data: CanData::EMPTY,
-                },
-                Some(0x100),
-                data(&[]),
-            ),
-            (
-                CanOpenMessage::Other {
-                    cob_id: 0x7E5,
-                    payload: remote(2),
-                },
-                Some(0x7E5),
-                remote(2),
-            ),
-            (
-                CanOpenMessage::Extended {
-                    id: 0x18FF_0001,
-                    payload: data(&[1]),
-                },
-                None,
-                data(&[1]),
-            ),
-            // Fields that make no identifier.
-            (
-                CanOpenMessage::Pdo {
-                    node: n(2),
-                    number: 5,
-                    direction: PdoDirection::Transmit,
-                    data: CanData::EMPTY,
-                },
-                None,
-                data(&[]),
-            ),
-            (
-                CanOpenMessage::Other {
-                    cob_id: 0x800,
-                    payload: data(&[]),
-                },
-                None,
-                data(&[]),
-            ),
+        let frames = [
+            data(0x081, &EMCY_BYTES),
+            data(0x77F, &[0x00]),
+            data(0x705, &[0x85]),
+            data(0x705, &[0x12]),
+            remote(0x703, 1),
+            data(0x000, &[0x81, 0x09]),
+            data(0x080, &[]),
+            data(0x080, &[240]),
+            data(0x382, &[9]),
+            data(0x402, &[9]),
+            data(0x581, &[0x60]),
+            data(0x601, &[0x40]),
+            data(0x100, &[]),
+            remote(0x7E5, 2),
+            CanFrame::new(CanId::extended(0x18FF_0001).unwrap(), &[1]).unwrap(),
         ];
-        for &(message, cob_id, payload) in cases {
-            assert_eq!(message.cob_id(), cob_id, "{message:?}");
-            assert_eq!(message.payload(), payload, "{message:?}");
+        for frame in frames {
+            let message = CanOpenMessage::decode(&frame).unwrap();
+            assert_eq!(message.encode(), Some(frame), "{frame}");
+            assert_eq!(message.cob_id(), frame.id().standard_raw(), "{frame}");
         }
+        // A guard request is written with DLC 1, whatever DLC was read.
+        let request = CanOpenMessage::GuardRequest { node: n(3) };
+        assert_eq!(request.encode(), Some(remote(0x703, 1)));
+        // Fields that make no identifier.
+        let pdo = CanOpenMessage::Pdo {
+            node: n(2),
+            number: 5,
+            direction: PdoDirection::Transmit,
+            data: FrameData::EMPTY,
+        };
+        assert_eq!((pdo.cob_id(), pdo.encode()), (None, None));
     }
 
     #[test]
     fn a_heartbeat_read_as_a_guard_answer() {
-        let message = CanOpenMessage::decode(0x705, data(&[0x85])).unwrap();
+        let message = CanOpenMessage::decode(&data(0x705, &[0x85])).unwrap();
         assert_eq!(
             message.guard_answer(),
             Some(GuardAnswer::new(true, NmtState::Operational))
         );
+        let invalid = CanOpenMessage::decode(&data(0x705, &[0x92])).unwrap();
+        assert_eq!(invalid.guard_answer(), None);
         assert_eq!(
             CanOpenMessage::GuardRequest { node: n(5) }.guard_answer(),
             None
@@ -952,11 +905,30 @@ mod tests {
     }
 
     #[test]
+    fn state_bytes() {
+        for byte in 0..=u8::MAX {
+            let b = NmtStateByte::new(byte);
+            assert_eq!(b.state_raw(), byte & 0x7F);
+            assert_eq!(b.toggle(), byte >= 0x80);
+            let expected = match byte & 0x7F {
+                0x00 => "boot_up",
+                0x04 => "stopped",
+                0x05 => "operational",
+                0x7F => "pre_operational",
+                _ => "invalid",
+            };
+            assert_eq!(b.state_name(), expected, "{byte:#x}");
+            assert_eq!(b.heartbeat().is_some(), expected != "invalid");
+        }
+    }
+
+    #[test]
     fn data_a_kind_refuses_is_that_kinds_error() {
-        let cases: &[(u16, CanPayload, Error)] = &[
+        let cases: Vec<(CanFrame, MessageKind, Option<u8>, Error)> = vec![
             (
-                0x081,
-                data(&EMCY_BYTES[..7]),
+                data(0x081, &EMCY_BYTES[..7]),
+                MessageKind::Emcy,
+                Some(1),
                 Error::Length {
                     what: "EMCY frame",
                     expected: 8,
@@ -964,8 +936,9 @@ mod tests {
                 },
             ),
             (
-                0x705,
-                data(&[]),
+                data(0x705, &[]),
+                MessageKind::Heartbeat,
+                Some(5),
                 Error::Length {
                     what: "heartbeat message",
                     expected: 1,
@@ -973,17 +946,9 @@ mod tests {
                 },
             ),
             (
-                0x705,
-                data(&[0x12]),
-                Error::InvalidValue {
-                    what: "NMT state",
-                    found: 0x12,
-                    expected: "0x00, 0x04, 0x05, 0x7f",
-                },
-            ),
-            (
-                0x000,
-                data(&[0x01]),
+                data(0x000, &[0x01]),
+                MessageKind::NmtCommand,
+                None,
                 Error::Length {
                     what: "NMT node-control message",
                     expected: 2,
@@ -991,8 +956,9 @@ mod tests {
                 },
             ),
             (
-                0x000,
-                data(&[0x03, 0x00]),
+                data(0x000, &[0x03, 0x00]),
+                MessageKind::NmtCommand,
+                None,
                 Error::InvalidValue {
                     what: "NMT command specifier",
                     found: 3,
@@ -1000,135 +966,80 @@ mod tests {
                 },
             ),
             (
-                0x080,
-                data(&[1, 2]),
+                data(0x080, &[1, 2]),
+                MessageKind::Sync,
+                None,
                 Error::InvalidValue {
                     what: "SYNC data length",
                     found: 2,
                     expected: "0, or 1 with the SYNC counter",
                 },
             ),
-            (
-                0x800,
-                data(&[]),
-                Error::OutOfRange {
-                    what: "11-bit CAN identifier",
-                    found: 0x800,
-                    min: 0,
-                    max: 0x7FF,
-                },
-            ),
         ];
-        for &(id, payload, expected) in cases {
+        for (frame, kind, node, error) in cases {
+            let e = CanOpenMessage::decode(&frame).unwrap_err();
             assert_eq!(
-                CanOpenMessage::decode(id, payload),
-                Err(expected),
-                "{id:#05x}"
+                (e.kind, e.node.map(NodeId::get), e.error),
+                (kind, node, error),
+                "{frame}"
             );
+            assert_eq!(Error::from(e), error);
         }
     }
 
+    /// SPEC §6.1: a short EMCY keeps `code` from 2 bytes and `register`
+    /// from 3.
     #[test]
-    fn every_short_emcy_is_an_exact_error() {
+    fn every_short_emcy_is_an_exact_error_with_what_it_still_says() {
         for len in 0..EMCY_LEN {
+            let e = CanOpenMessage::decode(&data(0x083, &EMCY_BYTES[..len])).unwrap_err();
             assert_eq!(
-                CanOpenMessage::decode(0x081, data(&EMCY_BYTES[..len])),
-                Err(Error::Length {
+                e.error,
+                Error::Length {
                     what: "EMCY frame",
                     expected: 8,
                     found: len
-                })
+                }
+            );
+            let partial = e.partial_emcy.unwrap();
+            assert_eq!(partial.code, (len >= 2).then(|| ErrorCode::new(0x8130)));
+            assert_eq!(
+                partial.register,
+                (len >= 3).then(|| ErrorRegister::from_bits_retain(0x11))
             );
         }
-    }
-
-    #[test]
-    fn can_data_holds_0_to_8_bytes() {
-        let all = [1, 2, 3, 4, 5, 6, 7, 8, 9];
-        for len in 0..=8 {
-            let data = CanData::new(&all[..len]).unwrap();
-            assert_eq!(data.as_slice(), &all[..len]);
-            assert_eq!(data.len(), len);
-            assert_eq!(data.is_empty(), len == 0);
-            assert_eq!(CanData::try_from(&all[..len]), Ok(data));
-        }
-        assert_eq!(
-            CanData::new(&all),
-            Err(Error::OutOfRange {
-                what: "CAN data length",
-                found: 9,
-                min: 0,
-                max: 8
-            })
-        );
-        assert_eq!(bytes(&[0x0A, 0xFF]).to_string(), "0aff");
-        assert_eq!(CanData::EMPTY.to_string(), "");
-    }
-
-    #[test]
-    fn dlc_holds_0_to_8() {
-        for raw in 0..=255u8 {
-            assert_eq!(Dlc::new(raw).is_some(), raw <= 8, "{raw}");
-        }
-        assert_eq!(
-            CanPayload::remote(9),
-            Err(Error::OutOfRange {
-                what: "CAN remote frame DLC",
-                found: 9,
-                min: 0,
-                max: 8
-            })
-        );
-        assert_eq!(
-            CanPayload::remote(usize::MAX),
-            Err(Error::OutOfRange {
-                what: "CAN remote frame DLC",
-                found: 255,
-                min: 0,
-                max: 8
-            })
-        );
-        assert_eq!(remote(5).dlc(), 5);
-        assert!(remote(5).is_remote());
-        assert_eq!(remote(5).bytes(), [0u8; 0]);
-        assert_eq!(data(&[1, 2]).dlc(), 2);
     }
 }
 
 #[cfg(test)]
 mod proptests {
+    use super::*;
+    use crate::test_gens::can::{any_can_frame, canopen_message};
     use proptest::prelude::*;
 
-    use super::*;
-    use crate::test_gens::can::{can_payload, canopen_message};
-
     proptest! {
-        /// Every standard frame decodes or is refused; none panics, and what
-        /// decodes encodes to the same identifier and, up to the bytes a
-        /// kind reads, the same payload.
+        /// Every frame decodes without panicking, to the kind and node its
+        /// identifier gives; what decodes, encodes to a frame that decodes
+        /// to the same message.
         #[test]
-        fn any_standard_frame_never_panics(cob_id in 0u16..=0x7FF, payload in can_payload()) {
-            if let Ok(message) = CanOpenMessage::decode(cob_id, payload) {
-                prop_assert_eq!(message.cob_id(), Some(cob_id));
-                let again = message.payload();
-                prop_assert_eq!(again.is_remote(), payload.is_remote());
-                prop_assert!(payload.bytes().starts_with(again.bytes()) || again.is_remote());
+        fn decode_never_panics_and_encodes_back(frame in any_can_frame()) {
+            match CanOpenMessage::decode(&frame) {
+                Ok(message) => {
+                    prop_assert_eq!(MessageKind::classify(&frame), (message.kind(), message.node()));
+                    match message.encode() {
+                        Some(again) => prop_assert_eq!(CanOpenMessage::decode(&again), Ok(message)),
+                        None => prop_assert!(frame.is_error()),
+                    }
+                }
+                Err(e) => prop_assert_eq!(MessageKind::classify(&frame), (e.kind, e.node)),
             }
         }
 
+        /// Every message encodes to a frame that decodes to it.
         #[test]
         fn message_frame_message(message in canopen_message()) {
-            let cob_id = message.cob_id().expect("generated messages have an identifier");
-            prop_assert_eq!(CanOpenMessage::decode(cob_id, message.payload()), Ok(message));
-        }
-
-        #[test]
-        fn identifiers_above_0x7ff_are_refused(cob_id in 0x800u16.., payload in can_payload()) {
-            let refused = matches!(
-                CanOpenMessage::decode(cob_id, payload),
-                Err(Error::OutOfRange { what: "11-bit CAN identifier", .. })
-            );
-            prop_assert!(refused);
+            let frame = message.encode().expect("generated messages have a frame");
+            prop_assert_eq!(CanOpenMessage::decode(&frame), Ok(message));
         }
     }
 }

@@ -35,9 +35,7 @@ pub use heartbeat::{
     ConsumerEntry, HeartbeatConsumer, HeartbeatEvent, HeartbeatEvents, HeartbeatProducer,
     MonitorState,
 };
-pub use message::{
-    CanData, CanOpenMessage, CanPayload, Dlc, CAN_MAX_DATA_LEN, MAX_EXTENDED_ID, MAX_STANDARD_ID,
-};
+pub use message::{CanOpenMessage, DecodeError, MessageKind, NmtStateByte, PartialEmcy};
 pub use nmt::{
     GuardAnswer, GuardAnswerFrame, Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN,
     HEARTBEAT_LEN,

@@ -1,0 +1,148 @@
+//! A frame as a log records it: the frame with its time, interface and
+//! direction (SPEC §5, §5.7).
+
+use core::fmt;
+
+use super::{CanFrame, Direction, Timestamp};
+
+/// Where a log says a frame was seen: an interface name (candump,
+/// pcapng's interface description) or a channel number (Vector ASC and
+/// BLF, PEAK TRC's bus column) (SPEC §5.7 `iface`).
+///
+/// `Display` writes the name, or the channel number as decimal text
+/// (`"1"`), as SPEC §6.1's `iface` does.
+///
+/// ```
+/// use motionwire::can::Iface;
+///
+/// assert_eq!(Iface::Name("can0").to_string(), "can0");
+/// assert_eq!(Iface::Channel(2).to_string(), "2");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Iface<'a> {
+    /// An interface name, e.g. `can0`, borrowed from the log.
+    Name(&'a str),
+    /// A channel number, e.g. `1` in a Vector ASC line.
+    Channel(u16),
+}
+
+impl fmt::Display for Iface<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Iface::Name(name) => f.write_str(name),
+            Iface::Channel(channel) => write!(f, "{channel}"),
+        }
+    }
+}
+
+/// One frame as a log records it: what every log reader yields (SPEC §5).
+///
+/// The fields are public, as in smoltcp's `Repr`s: a reader fills what its
+/// format records and leaves the rest `None` — nothing is made up
+/// (SPEC §5.7: `ts` and `iface` are null where the file has none).
+///
+/// ```
+/// use motionwire::can::{CanFrame, CanId, Direction, Iface, LogFrame, Timestamp};
+///
+/// let frame = CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05])?;
+/// let logged = LogFrame::new(frame)
+///     .with_timestamp(Timestamp::new(1_700_000_000, 500).unwrap())
+///     .with_iface(Iface::Name("can0"))
+///     .with_direction(Direction::Rx);
+/// assert_eq!(logged.frame.data(), [0x05]);
+/// assert_eq!(logged.to_string(), "(1700000000.000500) can0 705#05 R");
+/// # Ok::<(), motionwire::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct LogFrame<'a> {
+    /// The frame.
+    pub frame: CanFrame,
+    /// When it was recorded, where the log says.
+    pub timestamp: Option<Timestamp>,
+    /// Where it was seen, where the log says.
+    pub iface: Option<Iface<'a>>,
+    /// Whether the logging host received or sent it, where the log says.
+    pub direction: Option<Direction>,
+}
+
+impl<'a> LogFrame<'a> {
+    /// Return `frame` with no time, interface or direction.
+    #[inline]
+    #[must_use]
+    pub const fn new(frame: CanFrame) -> Self {
+        LogFrame {
+            frame,
+            timestamp: None,
+            iface: None,
+            direction: None,
+        }
+    }
+
+    /// Return the record with the timestamp `ts`.
+    #[inline]
+    #[must_use]
+    pub const fn with_timestamp(mut self, ts: Timestamp) -> Self {
+        self.timestamp = Some(ts);
+        self
+    }
+
+    /// Return the record with the interface `iface`.
+    #[inline]
+    #[must_use]
+    pub const fn with_iface(mut self, iface: Iface<'a>) -> Self {
+        self.iface = Some(iface);
+        self
+    }
+
+    /// Return the record with the direction `direction`.
+    #[inline]
+    #[must_use]
+    pub const fn with_direction(mut self, direction: Direction) -> Self {
+        self.direction = Some(direction);
+        self
+    }
+}
+
+impl fmt::Display for LogFrame<'_> {
+    /// Write the record in candump's log notation (SPEC §5.1): the
+    /// timestamp in parentheses, the interface, the frame and the direction
+    /// letter, each where the record has it.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(ts) = self.timestamp {
+            write!(f, "({ts}) ")?;
+        }
+        if let Some(iface) = self.iface {
+            write!(f, "{iface} ")?;
+        }
+        write!(f, "{}", self.frame)?;
+        if let Some(direction) = self.direction {
+            write!(f, " {}", direction.letter())?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::can::CanId;
+
+    #[test]
+    fn display_writes_only_what_is_there() {
+        let frame = CanFrame::new(CanId::standard(0x081).unwrap(), &[1, 2]).unwrap();
+        assert_eq!(LogFrame::new(frame).to_string(), "081#0102");
+        assert_eq!(
+            LogFrame::new(frame)
+                .with_iface(Iface::Channel(1))
+                .to_string(),
+            "1 081#0102"
+        );
+        assert_eq!(
+            LogFrame::new(frame)
+                .with_direction(Direction::Tx)
+                .with_timestamp(Timestamp::new(3, 4).unwrap())
+                .to_string(),
+            "(0000000003.000004) 081#0102 T"
+        );
+    }
+}

@@ -1,0 +1,46 @@
+//! CAN: the one frame vocabulary every part of the crate speaks
+//! (ISO 11898-1; Linux `linux/can.h` and `linux/can/error.h`; SPEC §5).
+//!
+//! - [`CanId`]: a standard (11-bit) or extended (29-bit) identifier.
+//! - [`CanFrame`]: one frame — identifier, [`FrameType`] (data, remote
+//!   request, CAN FD with its [`FdFlags`], error frame) and up to 64 data
+//!   bytes — owned and `Copy`, or borrowed as [`CanFrameRef`].
+//! - [`ErrorFrame`]: the classes and details of an error frame (SPEC §5.1).
+//! - [`LogFrame`]: a frame as a log records it, with its [`Timestamp`],
+//!   [`Iface`] and [`Direction`]: what every log reader yields.
+//!
+//! Every reader yields these types; [`crate::canopen`] decodes a
+//! [`CanFrame`] into its messages; with the `embedded-can` feature a
+//! [`CanFrame`] is an `embedded_can::Frame`. A new log source plugs in
+//! without touching the protocols above it (STYLE.md, "one link-layer
+//! vocabulary").
+//!
+//! ```
+//! use motionwire::can::{CanFrame, CanId};
+//! use motionwire::canopen::CanOpenMessage;
+//!
+//! let frame = CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05])?;
+//! let message = CanOpenMessage::decode(&frame)?;
+//! assert_eq!(message.kind().name(), "heartbeat");
+//! # Ok::<(), motionwire::Error>(())
+//! ```
+
+#[cfg(feature = "embedded-can")]
+mod embedded;
+mod error_frame;
+mod flags;
+mod frame;
+mod id;
+mod log;
+#[cfg(feature = "serde")]
+mod serde_impls;
+mod timestamp;
+
+pub use error_frame::{ControllerStatus, ErrorClasses, ErrorFrame};
+pub use flags::{Direction, FdFlags};
+pub use frame::{
+    CanFrame, CanFrameRef, FrameData, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN, FD_MAX_LEN,
+};
+pub use id::CanId;
+pub use log::{Iface, LogFrame};
+pub use timestamp::Timestamp;

@@ -1,0 +1,228 @@
+//! When a log recorded a frame (SPEC §5.7, SPEC §6.1 `ts`).
+
+use core::fmt;
+use core::time::Duration;
+
+use crate::error::{Error, Result};
+
+/// When a log recorded a frame: a point on the logger's clock, to the
+/// nanosecond (SPEC §5.7; SPEC §6.1 `ts`).
+///
+/// The clock is the log's: Unix time (UTC) where the file records it
+/// (`candump -l`, `-t a`, pcap, BLF, TRC with `$STARTTIME`), else time since
+/// the start of the recording (`candump -t d`/`-t z`, ASC relative). Only
+/// differences between the times of one log are promised exact: take them
+/// with [`Timestamp::duration_since`], which gives a
+/// [`Duration`](core::time::Duration) as every period of the crate is.
+///
+/// `Display` writes it as candump does, `1700000000.000500`: at least ten
+/// digits of seconds and six of the fraction.
+///
+/// ```
+/// use core::time::Duration;
+/// use motionwire::can::Timestamp;
+///
+/// let ts = Timestamp::new(1_700_000_000, 500).unwrap();
+/// assert_eq!(ts.as_secs_f64(), 1_700_000_000.000_5);
+/// assert_eq!(ts.to_string(), "1700000000.000500");
+/// assert!(Timestamp::new(0, 1_000_000).is_none());
+///
+/// let later = Timestamp::from_nanos(1_700_000_000, 2_500_000).unwrap();
+/// assert_eq!(later.duration_since(ts), Some(Duration::from_millis(2)));
+/// assert_eq!(ts.duration_since(later), None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Timestamp {
+    secs: u64,
+    nanos: u32,
+}
+
+impl Timestamp {
+    /// The clock's zero: the start of the recording, or the Unix epoch.
+    pub const ZERO: Timestamp = Timestamp { secs: 0, nanos: 0 };
+
+    /// Return the timestamp `secs` + `micros` µs, or `None` when `micros` is
+    /// not below 1 000 000.
+    #[inline]
+    #[must_use]
+    pub const fn new(secs: u64, micros: u32) -> Option<Self> {
+        if micros < 1_000_000 {
+            Some(Timestamp {
+                secs,
+                nanos: micros * 1_000,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// Return the timestamp `secs` + `nanos` ns, or `None` when `nanos` is
+    /// not below 1 000 000 000.
+    #[inline]
+    #[must_use]
+    pub const fn from_nanos(secs: u64, nanos: u32) -> Option<Self> {
+        if nanos < 1_000_000_000 {
+            Some(Timestamp { secs, nanos })
+        } else {
+            None
+        }
+    }
+
+    /// Return the timestamp `secs` + `micros` µs, or an
+    /// [`Error::OutOfRange`] naming `micros` when it is not below 1 000 000.
+    #[inline]
+    pub const fn try_new(secs: u64, micros: u32) -> Result<Self> {
+        match Self::new(secs, micros) {
+            Some(ts) => Ok(ts),
+            None => Err(Error::OutOfRange {
+                what: "timestamp microseconds",
+                found: micros,
+                min: 0,
+                max: 999_999,
+            }),
+        }
+    }
+
+    /// Return the timestamp that lies `since_zero` after the clock's zero.
+    #[inline]
+    #[must_use]
+    pub const fn from_duration(since_zero: Duration) -> Self {
+        Timestamp {
+            secs: since_zero.as_secs(),
+            nanos: since_zero.subsec_nanos(),
+        }
+    }
+
+    /// Return the time since the clock's zero.
+    #[inline]
+    #[must_use]
+    pub const fn as_duration(self) -> Duration {
+        Duration::new(self.secs, self.nanos)
+    }
+
+    /// Return the whole seconds.
+    #[inline]
+    #[must_use]
+    pub const fn secs(self) -> u64 {
+        self.secs
+    }
+
+    /// Return the microseconds within the second, 0..=999 999 (truncated).
+    #[inline]
+    #[must_use]
+    pub const fn micros(self) -> u32 {
+        self.nanos / 1_000
+    }
+
+    /// Return the nanoseconds within the second, 0..=999 999 999.
+    #[inline]
+    #[must_use]
+    pub const fn subsec_nanos(self) -> u32 {
+        self.nanos
+    }
+
+    /// Return the timestamp in whole microseconds.
+    #[inline]
+    #[must_use]
+    pub const fn as_micros(self) -> u128 {
+        self.secs as u128 * 1_000_000 + (self.nanos / 1_000) as u128
+    }
+
+    /// Return the timestamp in seconds as a float (SPEC §6.1 `ts`); exact
+    /// to the microsecond for any date of this era.
+    #[inline]
+    #[must_use]
+    pub fn as_secs_f64(self) -> f64 {
+        self.secs as f64 + f64::from(self.nanos) / 1e9
+    }
+
+    /// Return how long after `earlier` this timestamp lies, or `None` when it
+    /// lies before it.
+    #[inline]
+    #[must_use]
+    pub fn duration_since(self, earlier: Timestamp) -> Option<Duration> {
+        self.as_duration().checked_sub(earlier.as_duration())
+    }
+
+    /// Return the timestamp `period` later, or `None` when it would not fit.
+    #[inline]
+    #[must_use]
+    pub fn checked_add(self, period: Duration) -> Option<Timestamp> {
+        self.as_duration()
+            .checked_add(period)
+            .map(Timestamp::from_duration)
+    }
+}
+
+impl From<Duration> for Timestamp {
+    fn from(since_zero: Duration) -> Self {
+        Timestamp::from_duration(since_zero)
+    }
+}
+
+impl From<Timestamp> for Duration {
+    fn from(ts: Timestamp) -> Self {
+        ts.as_duration()
+    }
+}
+
+impl fmt::Display for Timestamp {
+    /// Write the timestamp as candump does, `1700000000.000500` (ten digits
+    /// of seconds at least, six of microseconds).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:010}.{:06}", self.secs, self.micros())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn micro_and_nano_limits() {
+        assert_eq!(
+            Timestamp::new(0, 999_999).map(Timestamp::micros),
+            Some(999_999)
+        );
+        assert_eq!(Timestamp::new(0, 1_000_000), None);
+        assert_eq!(
+            Timestamp::from_nanos(0, 999_999_999).map(Timestamp::subsec_nanos),
+            Some(999_999_999)
+        );
+        assert_eq!(Timestamp::from_nanos(0, 1_000_000_000), None);
+        assert_eq!(
+            Timestamp::try_new(5, 1_000_000).unwrap_err().to_string(),
+            "timestamp microseconds: 1000000 is outside 0..=999999"
+        );
+    }
+
+    #[test]
+    fn duration_round_trip_and_differences() {
+        let ts = Timestamp::from_nanos(12, 345_678_901).unwrap();
+        assert_eq!(Timestamp::from(Duration::from(ts)), ts);
+        assert_eq!(ts.micros(), 345_678);
+        assert_eq!(ts.as_micros(), 12_345_678);
+        let later = ts.checked_add(Duration::from_micros(1_700_000)).unwrap();
+        assert_eq!(
+            later.duration_since(ts),
+            Some(Duration::from_micros(1_700_000))
+        );
+        assert_eq!(ts.duration_since(later), None);
+        let end = Timestamp::from_nanos(u64::MAX, 999_999_999).unwrap();
+        assert_eq!(end.checked_add(Duration::from_nanos(1)), None);
+    }
+
+    #[test]
+    fn display_as_candump() {
+        assert_eq!(
+            Timestamp::new(1_700_000_000, 500).unwrap().to_string(),
+            "1700000000.000500"
+        );
+        assert_eq!(
+            Timestamp::new(12, 5).unwrap().to_string(),
+            "0000000012.000005"
+        );
+        assert_eq!(Timestamp::ZERO.to_string(), "0000000000.000000");
+    }
+}
