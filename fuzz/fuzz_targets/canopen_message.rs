@@ -1,143 +1,160 @@
-//! A whole CAN frame read as CANopen (CiA 301 §7.3.5 Table 72; SPEC §6.1):
-//! `CanOpenMessage::decode` and the NMT node-control codec.
+//! The crate's CAN frame and a frame read as CANopen (ISO 11898-1; CiA 301
+//! §7.3.5 Table 72; SPEC §5.1, §6.1): the `CanFrame` constructors,
+//! `ErrorFrame`, `MessageKind::classify` and `CanOpenMessage::decode`.
 //!
-//! Input: identifier u16 LE, a flags byte (bit 0: remote frame), then the
-//! data bytes (a data frame) or the DLC in the next byte (a remote frame).
+//! Input: identifier u32 LE, a type byte (low 2 bits: 0 data, 1 remote,
+//! 2 CAN FD, 3 error frame; bit 2: extended identifier; bits 4–7: the FD
+//! flags), for a remote frame its DLC byte, then the data bytes.
 //! Invariants:
-//! - more than 8 data bytes, or a DLC above 8, is refused by `CanPayload`
-//!   with an `Error::OutOfRange`; an identifier above 0x7FF is exactly the
-//!   `OutOfRange` of an 11-bit identifier;
-//! - only the kinds with a codec refuse data (NMT 0x000, SYNC 0x080, EMCY
-//!   0x081–0x0FF, heartbeat 0x701–0x77F), never a remote frame;
-//! - a decoded message gives back its identifier, its kind name and node as
-//!   SPEC §6.1's identifier table says, a payload whose bytes begin the
-//!   input's (equal for kinds that keep the data whole), and decoding that
-//!   identifier and payload again gives the same message;
-//! - the NMT node-control codec on the data: valid → re-encodes to the
-//!   first two bytes.
+//! - a constructor refuses exactly what ISO 11898-1 / Linux refuse (an
+//!   identifier too wide, more than 8 data bytes — 64 for CAN FD —, a remote
+//!   DLC above 8, an error frame on a standard identifier), with an error,
+//!   never a panic; an accepted frame keeps its identifier, type and data;
+//!   the borrowed form agrees with the owned one;
+//! - `CanOpenMessage::decode` never panics; its kind and node are the ones
+//!   SPEC §6.1's identifier table gives (also on a `DecodeError`); only the
+//!   kinds with a codec refuse data; what decodes encodes to a frame that
+//!   decodes to the same message;
+//! - an error frame's details appear only when their class is set.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::canopen::{CanOpenMessage, CanPayload, NmtNodeControl, NodeId};
-use motionwire::Error;
+use motionwire::can::{CanFrame, CanFrameRef, CanId, ErrorClasses, ErrorFrame, FdFlags, FrameType};
+use motionwire::canopen::{CanOpenMessage, MessageKind, NmtNodeControl, NodeId};
 use motionwire_fuzz::Reader;
 
 fuzz_target!(|input: &[u8]| {
     let mut reader = Reader::new(input);
-    let (Some(id), Some(flags)) = (reader.u16(), reader.u8()) else {
+    let (Some(raw), Some(ty)) = (reader.u32(), reader.u8()) else {
         return;
     };
-    let remote = flags & 1 != 0;
-    let data = &input[3..];
+    let extended = ty & 0b100 != 0;
+    let flags = FdFlags::new(ty >> 4).expect("a nibble");
+    let (frame_type, data) = match ty & 0b11 {
+        0 => (FrameType::Data, &input[5..]),
+        1 => {
+            let Some(dlc) = reader.u8() else { return };
+            (FrameType::Remote { dlc }, &input[6..])
+        }
+        2 => (FrameType::Fd(flags), &input[5..]),
+        _ => (FrameType::Error, &input[5..]),
+    };
     check_nmt(data);
-
-    let payload = if remote {
-        let dlc = usize::from(data.first().copied().unwrap_or(0));
-        match CanPayload::remote(dlc) {
-            Ok(payload) => payload,
-            Err(error) => {
-                assert!(dlc > 8);
-                assert!(
-                    matches!(error, Error::OutOfRange { max: 8, .. }),
-                    "{error:?}"
-                );
-                return;
-            }
-        }
+    let id = if extended {
+        CanId::extended(raw)
     } else {
-        match CanPayload::data(data) {
-            Ok(payload) => payload,
-            Err(error) => {
-                assert!(data.len() > 8);
-                assert!(
-                    matches!(error, Error::OutOfRange { max: 8, .. }),
-                    "{error:?}"
-                );
-                return;
+        CanId::standard(raw)
+    };
+    let Some(id) = id else {
+        assert!(raw > if extended { 0x1FFF_FFFF } else { 0x7FF });
+        return;
+    };
+
+    let valid = match frame_type {
+        FrameType::Data => data.len() <= 8,
+        FrameType::Remote { dlc } => dlc <= 8 && data.is_empty(),
+        FrameType::Fd(_) => data.len() <= 64,
+        FrameType::Error => extended && data.len() <= 8,
+    };
+    let owned = CanFrame::with_type(id, frame_type, data);
+    let borrowed = CanFrameRef::new_ref(id, frame_type, data);
+    assert_eq!(owned.is_ok(), valid, "{frame_type:?} {} bytes", data.len());
+    assert_eq!(borrowed.is_ok(), valid);
+    let (Ok(frame), Ok(view)) = (owned, borrowed) else {
+        let _ = owned.map(|_| ()).unwrap_err().to_string();
+        return;
+    };
+    assert_eq!(frame, view);
+    assert_eq!((frame.id(), frame.frame_type(), frame.data()), (id, frame_type, data));
+    assert_eq!(view.to_owned_frame(), frame);
+    let _ = frame.to_string();
+
+    check_error_frame(&frame);
+    check_message(&frame, raw);
+    // The borrowed form decodes the same.
+    assert_eq!(
+        CanOpenMessage::decode(&view).map_err(|e| (e.kind, e.node, e.error)),
+        CanOpenMessage::decode(&frame).map_err(|e| (e.kind, e.node, e.error))
+    );
+});
+
+fn check_error_frame(frame: &CanFrame) {
+    let Ok(error) = ErrorFrame::from_frame(frame) else {
+        assert!(!frame.is_error());
+        return;
+    };
+    assert!(frame.is_error());
+    assert_eq!(error.classes.bits(), frame.id().raw());
+    assert_eq!(error.data(), frame.data());
+    if !error.classes.contains(ErrorClasses::CONTROLLER) {
+        assert!(error.controller().is_empty());
+    }
+    if !error.classes.contains(ErrorClasses::COUNTERS) {
+        assert_eq!((error.tx_errors(), error.rx_errors()), (None, None));
+    }
+    let _ = error.to_string();
+}
+
+fn check_message(frame: &CanFrame, raw: u32) {
+    let (kind, node) = MessageKind::classify(frame);
+    let standard = !frame.is_extended();
+    let node_bits = (raw & 0x7F) as u8;
+    let expected = if frame.is_error() {
+        MessageKind::ErrorFrame
+    } else if !standard {
+        MessageKind::Other
+    } else {
+        match raw {
+            0x000 => MessageKind::NmtCommand,
+            0x080 => MessageKind::Sync,
+            0x081..=0x0FF => MessageKind::Emcy,
+            0x100 => MessageKind::Time,
+            0x181..=0x57F if node_bits != 0 => MessageKind::Pdo,
+            0x581..=0x5FF | 0x601..=0x67F if node_bits != 0 => MessageKind::Sdo,
+            0x701..=0x77F if frame.is_rtr() => MessageKind::GuardRequest,
+            0x701..=0x77F => MessageKind::Heartbeat,
+            _ => MessageKind::Other,
+        }
+    };
+    assert_eq!(kind, expected, "{frame}");
+    let has_node = matches!(
+        kind,
+        MessageKind::Emcy
+            | MessageKind::Pdo
+            | MessageKind::Sdo
+            | MessageKind::Heartbeat
+            | MessageKind::GuardRequest
+    );
+    assert_eq!(node.map(NodeId::get), has_node.then_some(node_bits));
+
+    match CanOpenMessage::decode(frame) {
+        Ok(message) => {
+            assert_eq!((message.kind(), message.node()), (kind, node));
+            match message.encode() {
+                Some(again) => {
+                    let decoded = CanOpenMessage::decode(&again);
+                    assert_eq!(decoded, Ok(message), "{frame} → {again}");
+                }
+                None => assert!(frame.is_error()),
             }
         }
-    };
-    assert_eq!(payload.is_remote(), remote);
-    if !remote {
-        assert_eq!(payload.bytes(), data);
-        assert_eq!(payload.dlc(), data.len());
-    }
-
-    let result = CanOpenMessage::decode(id, payload);
-    if id > 0x7FF {
-        assert_eq!(
-            result,
-            Err(Error::OutOfRange {
-                what: "11-bit CAN identifier",
-                found: u32::from(id),
-                min: 0,
-                max: 0x7FF,
-            })
-        );
-        return;
-    }
-    let node_bits = (id & 0x7F) as u8;
-    let message = match result {
-        Ok(message) => message,
-        Err(error) => {
-            assert!(!remote, "a remote frame refused: {error:?}");
+        Err(e) => {
+            assert_eq!((e.kind, e.node), (kind, node));
             assert!(
-                id == 0x000
-                    || id == 0x080
-                    || (0x081..=0x0FF).contains(&id)
-                    || (0x701..=0x77F).contains(&id),
-                "{id:#05x} refused: {error:?}"
+                matches!(
+                    kind,
+                    MessageKind::NmtCommand
+                        | MessageKind::Sync
+                        | MessageKind::Emcy
+                        | MessageKind::Heartbeat
+                ),
+                "{frame} refused: {e}"
             );
-            let _ = error.to_string();
-            return;
+            assert_eq!(e.partial_emcy.is_some(), kind == MessageKind::Emcy);
+            let _ = e.to_string();
         }
-    };
-
-    // The identifier and kind, as SPEC §6.1's table gives them.
-    assert_eq!(message.cob_id(), Some(id));
-    let expected_kind = match id {
-        0x000 => "nmt_command",
-        0x080 => "sync",
-        0x081..=0x0FF => "emcy",
-        0x181..=0x57F if node_bits != 0 => "pdo",
-        0x581..=0x67F if node_bits != 0 => "sdo",
-        0x701..=0x77F if remote => "guard_request",
-        0x701..=0x77F => "heartbeat",
-        _ => "other",
-    };
-    let expected_kind = match (expected_kind, remote) {
-        ("guard_request", true) => "guard_request",
-        (_, true) => "other",
-        (kind, false) => kind,
-    };
-    assert_eq!(message.name(), expected_kind, "{id:#05x} remote={remote}");
-    match message.node() {
-        Some(node) => assert_eq!(node.get(), node_bits),
-        None => assert!(!matches!(
-            expected_kind,
-            "emcy" | "pdo" | "sdo" | "heartbeat" | "guard_request"
-        )),
     }
-    assert_eq!(
-        message.guard_answer().is_some(),
-        expected_kind == "heartbeat"
-    );
-
-    // The payload comes back: whole, or the prefix a codec reads.
-    let back = message.payload();
-    match message {
-        CanOpenMessage::GuardRequest { .. } => assert_eq!(back, CanPayload::remote(1).unwrap()),
-        CanOpenMessage::Heartbeat { .. } | CanOpenMessage::NmtNodeControl(_) => {
-            assert!(data.starts_with(back.bytes()), "{back:?} from {data:?}");
-        }
-        _ => assert_eq!(back, payload),
-    }
-    // Decoding what it gives back gives the same message.
-    assert_eq!(CanOpenMessage::decode(id, back), Ok(message));
-    if let CanOpenMessage::Emcy { node, .. } = message {
-        assert_eq!(NodeId::new(node_bits), Some(node));
-    }
-});
+}
 
 fn check_nmt(data: &[u8]) {
     if let Ok(control) = NmtNodeControl::parse(data) {
