@@ -12,9 +12,16 @@
 //!
 //! ## Layout
 //!
+//! - [`can`]: the one CAN frame vocabulary every other part speaks —
+//!   identifiers, [`can::CanFrame`] (data, remote, CAN FD, error frames;
+//!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
+//!   with the time and interface a log records (ISO 11898-1, SPEC §5).
 //! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
-//!   parsed without allocation and written back (SPEC §5).
-//! - [`canopen`]: node-IDs and COB-IDs, the EMCY frame, error register and
+//!   parsed without allocation into [`can::LogFrame`]s and written back
+//!   (SPEC §5.1, §5.2).
+//! - [`canopen`]: a [`can::CanFrame`] read as CANopen
+//!   ([`canopen::CanOpenMessage::decode`], SPEC §6.1); node-IDs and COB-IDs,
+//!   the EMCY frame, error register and
 //!   error codes with their descriptions, the EMCY producer state machine
 //!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
 //!   NMT states, heartbeat, node guarding and life guarding (CiA 301
@@ -27,7 +34,9 @@
 //!
 //! ## Optional features
 //!
-//! - `std`: implements conveniences that need the standard library.
+//! - `std`: links the standard library. The library needs nothing from it
+//!   today ([`Error`] implements `core::error::Error` either way); it is the
+//!   feature the std-only readers and the `cli` feature build on.
 //! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
 //!   the zero-copy views, not the state machines).
 //!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],
@@ -46,13 +55,17 @@
 //!   - Floats are numbers. A text format without NaN and infinity (JSON)
 //!     cannot carry those: `serde_json` writes `null` and refuses it back.
 //!     For a bit-exact copy use a binary format or the frames' `to_bytes`.
-//! - `embedded-can`: read any `embedded_can::Frame` as a
-//!   [`canopen::CanOpenMessage`] (`CanOpenMessage::from_frame`) and write
-//!   one back (`to_frame` on the message, and on [`canopen::Emcy`],
-//!   [`canopen::Heartbeat`], [`canopen::GuardAnswer`] and
-//!   [`canopen::NmtNodeControl`]). Without the feature,
-//!   [`canopen::CanOpenMessage::decode`] does the same from an identifier
-//!   and a payload.
+//! - `embedded-can`: [`can::CanFrame`] implements `embedded_can::Frame`
+//!   and converts from and to any driver's frame type
+//!   (`CanFrame::from_embedded`, `to_embedded`); read any
+//!   `embedded_can::Frame` as a [`canopen::CanOpenMessage`]
+//!   (`CanOpenMessage::from_frame`) and write one back (`to_frame` on the
+//!   message, and on [`canopen::Emcy`], [`canopen::Heartbeat`],
+//!   [`canopen::GuardAnswer`] and [`canopen::NmtNodeControl`]). Without the
+//!   feature, [`canopen::CanOpenMessage::decode`] does the same from the
+//!   crate's [`can::CanFrame`].
+//! - `defmt`: `defmt::Format` on the frame vocabulary and the value types,
+//!   for firmware that logs with defmt.
 //!
 //! ## Example
 //!

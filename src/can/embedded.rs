@@ -78,7 +78,7 @@ impl CanFrame {
     /// one, a data frame of up to 8 bytes is a classic frame; a frame type
     /// that reports more than 8 data bytes (a driver that also carries
     /// CAN FD) is read as a CAN FD frame without flags. A DLC above 8 on a
-    /// remote frame is an [`Error::OutOfRange`]; nothing panics.
+    /// remote frame is an [`Error::OutOfRange`](crate::Error::OutOfRange); nothing panics.
     pub fn from_embedded<F: Frame>(frame: &F) -> Result<Self> {
         let id = CanId::from(frame.id());
         if frame.is_remote_frame() {
