@@ -605,3 +605,59 @@ mod tests {
         assert_eq!(format!("{view:?}"), format!("{owned:?}"));
     }
 }
+
+#[cfg(test)]
+mod proptests {
+    use super::*;
+    use crate::test_gens::can::{any_can_frame, any_frame_type, can_id};
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The constructors accept exactly what ISO 11898-1 and Linux allow,
+        /// and the owned and borrowed forms agree on everything they accept.
+        #[test]
+        fn constructors_check_exactly_the_invariants(
+            id in can_id(),
+            frame_type in any_frame_type(),
+            data in proptest::collection::vec(any::<u8>(), 0..=80),
+        ) {
+            let valid = match frame_type {
+                FrameType::Data => data.len() <= 8,
+                FrameType::Remote { dlc } => dlc <= 8 && data.is_empty(),
+                FrameType::Fd(_) => data.len() <= 64,
+                FrameType::Error => id.is_extended() && data.len() <= 8,
+            };
+            let owned = CanFrame::with_type(id, frame_type, &data);
+            let borrowed = CanFrameRef::new_ref(id, frame_type, &data);
+            prop_assert_eq!(owned.is_ok(), valid);
+            prop_assert_eq!(borrowed.is_ok(), valid);
+            if let (Ok(owned), Ok(borrowed)) = (owned, borrowed) {
+                prop_assert_eq!(owned, borrowed);
+                prop_assert_eq!(borrowed.to_owned_frame(), owned);
+                prop_assert_eq!((owned.id(), owned.frame_type(), owned.data()), (id, frame_type, &data[..]));
+            }
+        }
+
+        /// Every frame's candump notation names its identifier, type and data.
+        #[test]
+        fn display_is_candump_notation(frame in any_can_frame()) {
+            let text = frame.to_string();
+            let (id, rest) = text.split_once('#').expect("a separator");
+            let raw = u32::from_str_radix(id, 16).expect("hex identifier");
+            prop_assert_eq!(raw & !CAN_ERR_FLAG, frame.id().raw());
+            prop_assert_eq!(raw & CAN_ERR_FLAG != 0, frame.is_error());
+            prop_assert_eq!(id.len(), if frame.is_extended() { 8 } else { 3 });
+            let hex = match frame.frame_type() {
+                FrameType::Remote { .. } => { prop_assert!(rest.starts_with('R')); "" }
+                FrameType::Fd(flags) => {
+                    prop_assert_eq!(u8::from_str_radix(&rest[1..2], 16).unwrap(), flags.bits());
+                    &rest[2..]
+                }
+                _ => rest,
+            };
+            let bytes: Vec<u8> = (0..hex.len()).step_by(2)
+                .map(|i| u8::from_str_radix(&hex[i..i + 2], 16).unwrap()).collect();
+            prop_assert_eq!(&bytes[..], frame.data());
+        }
+    }
+}

@@ -226,3 +226,27 @@ mod tests {
         assert_eq!(Timestamp::ZERO.to_string(), "0000000000.000000");
     }
 }
+
+#[cfg(test)]
+mod proptests {
+    use super::*;
+    use crate::test_gens::can::timestamp;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// A timestamp is its duration since zero; differences are exact.
+        #[test]
+        fn duration_round_trip_and_order(a in timestamp(), b in timestamp()) {
+            prop_assert_eq!(Timestamp::from_duration(a.as_duration()), a);
+            prop_assert_eq!(a.duration_since(b).is_some(), a >= b);
+            if let Some(d) = a.duration_since(b) {
+                prop_assert_eq!(b.checked_add(d), Some(a));
+            }
+            let text = a.to_string();
+            let (secs, micros) = text.split_once('.').expect("a point");
+            prop_assert_eq!(secs.parse::<u64>().unwrap(), a.secs());
+            prop_assert_eq!(micros.len(), 6);
+            prop_assert_eq!(micros.parse::<u32>().unwrap(), a.micros());
+        }
+    }
+}
