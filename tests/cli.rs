@@ -100,7 +100,8 @@ fn every_format_and_kind_as_json() {
         (8, 0x080, "sync", false, false, false, ""),
         (9, 0x581, "sdo", false, false, false, "4300100000000000"),
         (10, 0x77F, "heartbeat", false, false, false, "ff"),
-        (11, 0x100, "other", false, false, false, ""),
+        // SPEC §6.1: identifier 0x100 is `time`.
+        (11, 0x100, "time", false, false, false, ""),
         (12, 0x283, "pdo", false, false, false, "00"),
     ];
     for (got, want) in common.iter().zip(&expected) {
@@ -169,7 +170,10 @@ fn frames_that_cannot_be_decoded_as_their_kind_carry_an_error() {
         recs[0]["error"],
         "EMCY frame: buffer of 2 bytes where 8 are needed"
     );
-    assert!(recs[0].get("code").is_none());
+    // SPEC §6.1: a short EMCY still gets `code` from its 2 bytes, no
+    // `register` without a third.
+    assert_eq!(recs[0]["code"], 0x8110);
+    assert!(recs[0].get("register").is_none());
     assert_eq!(recs[1]["kind"], "heartbeat");
     assert!(recs[1]["error"]
         .as_str()
@@ -275,7 +279,7 @@ fn summary_keys_on_a_crafted_log() {
     assert_eq!(
         n5["frames"],
         json!({"emcy": 4, "heartbeat": 5, "guard_request": 0, "nmt_command": 0,
-               "sync": 0, "pdo": 0, "sdo": 0, "other": 0})
+               "sync": 0, "time": 0, "pdo": 0, "sdo": 0, "error_frame": 0, "other": 0})
     );
     assert_eq!(n5["emcy"], 4);
     assert_eq!(n5["resets"], 1);

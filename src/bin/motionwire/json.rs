@@ -57,6 +57,13 @@ impl<'w, W: Write> Object<'w, W> {
         string(out, value)
     }
 
+    /// Write a key with a string value given by its `Display`, escaped,
+    /// without allocating.
+    pub fn display(&mut self, key: &str, value: &impl std::fmt::Display) -> io::Result<()> {
+        let out = self.key(key)?;
+        display_string(out, value)
+    }
+
     /// Write a key with a `null` value.
     pub fn null(&mut self, key: &str) -> io::Result<()> {
         self.key(key)?.write_all(b"null")
@@ -117,6 +124,12 @@ pub fn float<W: Write>(out: &mut W, value: f64) -> io::Result<()> {
 /// Write a JSON string with RFC 8259 escaping.
 pub fn string<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
     out.write_all(b"\"")?;
+    escaped(out, value)?;
+    out.write_all(b"\"")
+}
+
+/// Write the inside of a JSON string with RFC 8259 escaping.
+fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
     let bytes = value.as_bytes();
     let mut start = 0;
     for (i, &b) in bytes.iter().enumerate() {
@@ -138,8 +151,38 @@ pub fn string<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
         out.write_all(escape)?;
         start = i + 1;
     }
-    out.write_all(&bytes[start..])?;
-    out.write_all(b"\"")
+    out.write_all(&bytes[start..])
+}
+
+/// Write a timestamp as seconds with six decimals, `1700000000.000500`
+/// (SPEC §6.1 `ts`: exact to the microsecond, no float rounding).
+pub fn timestamp<W: Write>(out: &mut W, ts: motionwire::can::Timestamp) -> io::Result<()> {
+    write!(out, "{}.{:06}", ts.secs(), ts.micros())
+}
+
+/// Write a value's `Display` as a JSON string with RFC 8259 escaping,
+/// piece by piece as `Display` hands them over.
+pub fn display_string<W: Write>(out: &mut W, value: &impl std::fmt::Display) -> io::Result<()> {
+    struct Escaper<'w, W: Write> {
+        out: &'w mut W,
+        error: Option<io::Error>,
+    }
+    impl<W: Write> std::fmt::Write for Escaper<'_, W> {
+        fn write_str(&mut self, s: &str) -> std::fmt::Result {
+            escaped(self.out, s).map_err(|e| {
+                self.error = Some(e);
+                std::fmt::Error
+            })
+        }
+    }
+    out.write_all(b"\"")?;
+    let mut escaper = Escaper { out, error: None };
+    if std::fmt::write(&mut escaper, format_args!("{value}")).is_err() {
+        return Err(escaper
+            .error
+            .unwrap_or_else(|| io::Error::other("a Display implementation failed")));
+    }
+    escaper.out.write_all(b"\"")
 }
 
 /// Write bytes as lowercase hex digits, no separators, as a JSON string.

@@ -6,8 +6,9 @@ use std::process::ExitCode;
 
 use motionwire::servo::{ActualPosition, Command, Feedback, ServoFault, COMMAND_LEN, FEEDBACK_LEN};
 
+use crate::args::ServoArgs;
+use crate::failure::Failure;
 use crate::json::{self, Object};
-use crate::{Failure, ServoArgs};
 
 /// Which frame the hex holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,14 +5,14 @@
 
 use std::io::{self, Write};
 
-use motionwire::candump::Timestamp;
+use motionwire::can::Timestamp;
 use motionwire::canopen::{
-    EmcyStorage, GuardAnswer, GuardingEvent, HeartbeatConsumer, HeartbeatEvent, NodeGuardingMaster,
-    NodeId, SlotUpdate,
+    CanOpenMessage, EmcyStorage, GuardingEvent, HeartbeatConsumer, HeartbeatEvent, MessageKind,
+    NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
 
-use crate::decode::{Kind, Payload, Record, StateByte};
-use crate::json::Object;
+use crate::json::{self, Object};
+use crate::record::Record;
 
 /// Where an EMCY was seen: its line, timestamp and code.
 #[derive(Debug, Clone, Copy)]
@@ -35,13 +35,13 @@ struct Gap {
 #[derive(Debug)]
 struct NodeSummary {
     node: NodeId,
-    frames: [u64; Kind::ALL.len()],
+    frames: [u64; MessageKind::ALL.len()],
     emcy: u64,
     resets: u64,
     first_error: Option<Seen>,
     active_error: Option<Seen>,
     heartbeats: u64,
-    last_state: Option<StateByte>,
+    last_state: Option<NmtStateByte>,
     boot_ups: Vec<u64>,
     /// The line of the last heartbeat (not guarding answer) seen.
     last_heartbeat_line: u64,
@@ -61,7 +61,7 @@ impl NodeSummary {
     fn new(node: NodeId) -> Self {
         NodeSummary {
             node,
-            frames: [0; Kind::ALL.len()],
+            frames: [0; MessageKind::ALL.len()],
             emcy: 0,
             resets: 0,
             first_error: None,
@@ -112,19 +112,20 @@ impl Summary {
 
     /// Take one decoded frame into account.
     pub fn add(&mut self, record: &Record<'_, '_>) {
-        let Some(node) = record.node else { return };
-        let now = record.frame.timestamp().map(micros);
+        let Some(node) = record.node() else { return };
+        let now = record.log.timestamp.map(micros);
         if now.is_some() {
             self.last_micros = now;
         }
         let summary = self.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
-        summary.frames[record.kind.index()] += 1;
-        match (record.kind, record.payload) {
-            (Kind::Emcy, Payload::Emcy(emcy)) => {
+        summary.frames[record.kind().index()] += 1;
+        let Ok(message) = &record.decoded else { return };
+        match *message {
+            CanOpenMessage::Emcy { emcy, .. } => {
                 summary.emcy += 1;
                 let seen = Seen {
                     line: record.line,
-                    ts: record.frame.timestamp(),
+                    ts: record.log.timestamp,
                     code: emcy.code.get(),
                 };
                 if emcy.is_reset() {
@@ -138,16 +139,15 @@ impl Summary {
                     SlotUpdate::FollowUp { .. } => {}
                 }
             }
-            (Kind::GuardRequest, _) => {
+            CanOpenMessage::GuardRequest { .. } => {
                 summary.guard_request_pending = true;
                 // A missing answer is not part of the summary's contract.
                 let _ = summary.guarding.on_request(now.unwrap_or(0));
             }
-            (Kind::Heartbeat, Payload::State(state)) if summary.guard_request_pending => {
+            CanOpenMessage::Heartbeat { byte, .. } if summary.guard_request_pending => {
                 summary.guard_request_pending = false;
                 summary.answers += 1;
-                if let Some(nmt) = state.state {
-                    let answer = GuardAnswer::new(state.toggle, nmt);
+                if let Some(answer) = byte.guard_answer() {
                     let events = summary.guarding.on_answer(now.unwrap_or(0), answer);
                     if events
                         .into_iter()
@@ -157,15 +157,15 @@ impl Summary {
                     }
                 }
             }
-            (Kind::Heartbeat, Payload::State(state)) => {
+            CanOpenMessage::Heartbeat { byte, .. } => {
                 summary.heartbeats += 1;
-                summary.last_state = Some(state);
-                if state.raw == 0 {
+                summary.last_state = Some(byte);
+                if byte.state_raw() == 0 {
                     summary.boot_ups.push(record.line);
                     summary.guarding.on_boot_up();
                 }
                 if let (Some(consumer), Some(now), Some(nmt)) =
-                    (self.consumer.as_mut(), now, state.state)
+                    (self.consumer.as_mut(), now, byte.state())
                 {
                     for event in consumer.on_heartbeat(now, node, nmt) {
                         match event {
@@ -243,7 +243,7 @@ fn seen_json<W: Write>(obj: &mut Object<'_, W>, key: &str, seen: Option<Seen>) -
     let mut inner = Object::begin(out)?;
     inner.uint("line", seen.line)?;
     match seen.ts {
-        Some(ts) => write!(inner.key("ts")?, "{}.{:06}", ts.secs(), ts.micros())?,
+        Some(ts) => json::timestamp(inner.key("ts")?, ts)?,
         None => inner.null("ts")?,
     }
     inner.uint("code", u64::from(seen.code))?;
@@ -260,7 +260,7 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
     obj.uint("node", u64::from(s.node.get()))?;
     {
         let mut frames = Object::begin(obj.key("frames")?)?;
-        for kind in Kind::ALL {
+        for kind in MessageKind::ALL {
             frames.uint(kind.name(), s.frames[kind.index()])?;
         }
         frames.end()?;
@@ -305,7 +305,7 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
 
 fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io::Result<()> {
     write!(out, "node {:>3}  frames", s.node.get())?;
-    for kind in Kind::ALL {
+    for kind in MessageKind::ALL {
         let n = s.frames[kind.index()];
         if n > 0 {
             write!(out, " {}={n}", kind.name())?;

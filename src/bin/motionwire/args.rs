@@ -1,0 +1,125 @@
+//! The command line: `motionwire decode …` and `motionwire servo …`
+//! (SPEC §6), parsed by clap.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use motionwire::canopen::{MessageKind, NodeId};
+
+/// Decode the diagnostic and cyclic-control messages of industrial motion
+/// devices: CANopen candump logs and EtherCAT servo ↔ NC frames.
+#[derive(Debug, Parser)]
+#[command(name = "motionwire", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    /// What to do.
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Decode candump text logs (can-utils, python-can) into one record per
+    /// CAN frame (SPEC §6.1).
+    Decode(DecodeArgs),
+    /// Decode one EtherCAT servo ↔ NC frame given as hex (SPEC §6.2).
+    #[command(subcommand)]
+    Servo(ServoCommand),
+}
+
+/// The arguments of `motionwire decode`.
+#[derive(Debug, Args)]
+pub struct DecodeArgs {
+    /// Write one JSON object per line instead of aligned text.
+    #[arg(long)]
+    pub json: bool,
+    /// How to read the manufacturer-specific bytes of EMCY frames:
+    /// `generic`, `akd` or `baumer` for every node, or per node as
+    /// `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`); a bare profile sets
+    /// the default for the nodes not named.
+    #[arg(
+        long,
+        value_name = "PROFILE|NODE=PROFILE",
+        value_delimiter = ',',
+        value_parser = parse_profile_choice,
+    )]
+    pub profile: Vec<ProfileChoice>,
+    /// After the input, write one record per node seen instead of one per
+    /// frame: frame counts, EMCYs with the root cause, heartbeats, guarding.
+    #[arg(long)]
+    pub summary: bool,
+    /// With --summary: report heartbeat gaps longer than this many
+    /// milliseconds as timeouts.
+    #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u16).range(1..))]
+    pub heartbeat_ms: Option<u16>,
+    /// Keep only frames of these kinds (comma-separated) in the per-frame
+    /// output; the summary always counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
+    pub only: Vec<MessageKind>,
+    /// candump files to read; none, or `-`, reads standard input.
+    #[arg(value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+}
+
+/// How the manufacturer-specific EMCY bytes are read (SPEC §6.1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Profile {
+    /// CiA 301 only: the manufacturer field as raw hex.
+    Generic,
+    /// Kollmorgen AKD: axis and feedback ids (SPEC §2.4).
+    Akd,
+    /// Baumer EAM580: alarms, warnings and diagnostic sources (SPEC §4).
+    Baumer,
+}
+
+/// One `--profile` item: for every node, or for one node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProfileChoice {
+    /// The profile of every node not named otherwise.
+    Default(Profile),
+    /// The profile of one node.
+    Node(NodeId, Profile),
+}
+
+fn parse_profile_choice(text: &str) -> Result<ProfileChoice, String> {
+    let profile = |name: &str| Profile::from_str(name, false);
+    match text.split_once('=') {
+        None => profile(text).map(ProfileChoice::Default),
+        Some((node, name)) => {
+            let raw: u8 = node
+                .parse()
+                .map_err(|_| format!("{node:?} is not a node-ID (1..=127)"))?;
+            let node = NodeId::try_new(raw).map_err(|e| e.to_string())?;
+            Ok(ProfileChoice::Node(node, profile(name)?))
+        }
+    }
+}
+
+/// The frames `motionwire servo` decodes.
+#[derive(Debug, Subcommand)]
+pub enum ServoCommand {
+    /// Decode a 10-byte NC → servo command frame (20 hex digits).
+    Command(ServoArgs),
+    /// Decode a 40-byte servo → NC feedback frame (80 hex digits).
+    Feedback(ServoArgs),
+}
+
+/// The arguments of `motionwire servo command|feedback`.
+#[derive(Debug, Args)]
+pub struct ServoArgs {
+    /// Write one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// The frame as hex digits; spaces are allowed (quote them, or pass the
+    /// groups as several arguments).
+    #[arg(value_name = "HEX", required = true, num_args = 1..)]
+    pub hex: Vec<String>,
+}
+
+/// Read a kind name of SPEC §6.1 (`emcy`, `heartbeat`, …).
+fn parse_kind(text: &str) -> Result<MessageKind, String> {
+    MessageKind::from_name(text).ok_or_else(|| {
+        let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
+        format!("{text:?} is not a kind; one of {}", names.join(", "))
+    })
+}

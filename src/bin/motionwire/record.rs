@@ -1,0 +1,262 @@
+//! One decoded frame, rendered as a JSON object or an aligned text line
+//! (SPEC §6.1). The library decodes; this file only writes what it says.
+
+use std::io::{self, Write};
+
+use motionwire::can::{Iface, LogFrame};
+use motionwire::canopen::{CanOpenMessage, DecodeError, Emcy, MessageKind, NodeId};
+use motionwire::profiles::akd::AkdManufacturerField;
+use motionwire::profiles::baumer::BaumerEmcy;
+
+use crate::args::Profile;
+use crate::json::{self, Object};
+
+/// One frame of the input with what the library made of it.
+pub struct Record<'r, 'a> {
+    /// 1-based line number in its input.
+    pub line: u64,
+    /// The frame as the log recorded it.
+    pub log: &'r LogFrame<'a>,
+    /// The frame read as CANopen, or why its data could not be.
+    pub decoded: Result<CanOpenMessage, DecodeError>,
+}
+
+impl<'r, 'a> Record<'r, 'a> {
+    /// Decode a logged frame.
+    pub fn new(line: u64, log: &'r LogFrame<'a>) -> Self {
+        Record {
+            line,
+            log,
+            decoded: CanOpenMessage::decode(&log.frame),
+        }
+    }
+
+    /// Return the frame's kind (SPEC §6.1).
+    pub fn kind(&self) -> MessageKind {
+        match &self.decoded {
+            Ok(message) => message.kind(),
+            Err(e) => e.kind,
+        }
+    }
+
+    /// Return the node the identifier names, for the kinds that have one.
+    pub fn node(&self) -> Option<NodeId> {
+        match &self.decoded {
+            Ok(message) => message.node(),
+            Err(e) => e.node,
+        }
+    }
+
+    /// Write the record as one JSON object and a newline (SPEC §6.1).
+    pub fn write_json<W: Write>(&self, out: &mut W, profile: Profile) -> io::Result<()> {
+        let log = self.log;
+        let frame = &log.frame;
+        let mut obj = Object::begin(out)?;
+        obj.uint("line", self.line)?;
+        match log.timestamp {
+            Some(ts) => json::timestamp(obj.key("ts")?, ts)?,
+            None => obj.null("ts")?,
+        }
+        match log.iface {
+            Some(Iface::Name(name)) => obj.str("iface", name)?,
+            Some(iface @ Iface::Channel(_)) => obj.str("iface", &iface.to_string())?,
+            None => obj.null("iface")?,
+        }
+        obj.uint("id", u64::from(frame.id().raw()))?;
+        obj.bool("extended", frame.is_extended())?;
+        obj.bool("rtr", frame.is_rtr())?;
+        obj.bool("fd", frame.is_fd())?;
+        json::hex_string(obj.key("data")?, frame.data())?;
+        obj.str("kind", self.kind().name())?;
+        if let Some(node) = self.node() {
+            obj.uint("node", u64::from(node.get()))?;
+        }
+        match &self.decoded {
+            Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
+            Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
+                obj.str("state", byte.state_name())?;
+                obj.uint("state_raw", u64::from(byte.state_raw()))?;
+                obj.bool("toggle", byte.toggle())?;
+            }
+            Ok(CanOpenMessage::ErrorFrame(error)) => {
+                obj.strs("error_classes", error.classes.names())?;
+                obj.strs("controller", error.controller().names())?;
+                match error.tx_errors() {
+                    Some(n) => obj.uint("tx_errors", u64::from(n))?,
+                    None => obj.null("tx_errors")?,
+                }
+                match error.rx_errors() {
+                    Some(n) => obj.uint("rx_errors", u64::from(n))?,
+                    None => obj.null("rx_errors")?,
+                }
+            }
+            Ok(_) => {}
+            Err(e) => {
+                if let Some(partial) = e.partial_emcy {
+                    if let Some(code) = partial.code {
+                        obj.uint("code", u64::from(code.get()))?;
+                    }
+                    if let Some(register) = partial.register {
+                        obj.uint("register", u64::from(register.bits()))?;
+                    }
+                }
+                obj.display("error", &e.error)?;
+            }
+        }
+        obj.end()?;
+        out_newline(out)
+    }
+
+    /// Write the record as one aligned line of text.
+    pub fn write_text<W: Write>(&self, out: &mut W, profile: Profile) -> io::Result<()> {
+        let log = self.log;
+        let frame = &log.frame;
+        write!(out, "{:>7}  ", self.line)?;
+        match log.timestamp {
+            Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
+            None => write!(out, "{:>17}  ", "-")?,
+        }
+        let iface = log.iface.map(|i| i.to_string());
+        let iface = iface.as_deref().unwrap_or("-");
+        if frame.is_extended() {
+            write!(out, "{iface:<6} {:08X}  ", frame.id().raw())?;
+        } else {
+            write!(out, "{iface:<6}      {:03X}  ", frame.id().raw())?;
+        }
+        write!(out, "{:<13}  ", self.kind().name())?;
+        match self.node() {
+            Some(node) => write!(out, "node {:>3}  ", node.get())?,
+            None => write!(out, "{:10}", "")?,
+        }
+        match &self.decoded {
+            Err(e) => {
+                write_data(out, log)?;
+                write!(out, "  error: {}", e.error)?;
+            }
+            Ok(CanOpenMessage::GuardRequest { .. }) => out.write_all(b"remote request")?,
+            Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
+                out.write_all(byte.state_name().as_bytes())?;
+                if byte.state().is_none() {
+                    write!(out, " (0x{:02X})", byte.state_raw())?;
+                }
+                if byte.toggle() {
+                    out.write_all(b", toggle 1")?;
+                }
+            }
+            Ok(CanOpenMessage::ErrorFrame(error)) => {
+                write_data(out, log)?;
+                write!(out, "  {error}")?;
+            }
+            Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_text(out, emcy, profile)?,
+            Ok(_) => write_data(out, log)?,
+        }
+        out_newline(out)
+    }
+}
+
+/// The EMCY keys of SPEC §6.1, with the profile's keys.
+fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
+    obj.uint("code", u64::from(emcy.code.get()))?;
+    obj.str("class", emcy.code.class().name())?;
+    obj.str("description", emcy.code.description())?;
+    obj.uint("register", u64::from(emcy.register.bits()))?;
+    obj.strs("register_flags", emcy.register.names())?;
+    json::hex_string(obj.key("manufacturer")?, &emcy.manufacturer)?;
+    match profile {
+        Profile::Generic => {}
+        Profile::Akd => {
+            let field = AkdManufacturerField::new_unchecked(&emcy.manufacturer[..]);
+            obj.uint("axis", u64::from(field.axis_id().get()))?;
+            match field.feedback_id() {
+                Ok(fb) => match fb.number() {
+                    Some(n) => obj.uint("feedback", u64::from(n))?,
+                    None => obj.null("feedback")?,
+                },
+                Err(e) => {
+                    obj.null("feedback")?;
+                    obj.display("error", &e)?;
+                }
+            }
+        }
+        Profile::Baumer => {
+            let baumer = BaumerEmcy::from_emcy(emcy);
+            obj.uint("alarms", u64::from(baumer.manufacturer.alarms.bits()))?;
+            obj.uint("warnings", u64::from(baumer.manufacturer.warnings.bits()))?;
+            obj.strs("sources", baumer.sources().map(|s| s.name()))?;
+        }
+    }
+    Ok(())
+}
+
+/// An EMCY in words: code, class, description, register flags and the
+/// profile's reading of the manufacturer bytes.
+fn emcy_text<W: Write>(out: &mut W, emcy: &Emcy, profile: Profile) -> io::Result<()> {
+    write!(
+        out,
+        "{} {}: {}  register 0x{:02X}",
+        emcy.code,
+        emcy.code.class(),
+        emcy.code.description(),
+        emcy.register.bits(),
+    )?;
+    let mut names = emcy.register.names().peekable();
+    if names.peek().is_some() {
+        out.write_all(b" [")?;
+        for (i, name) in names.enumerate() {
+            if i > 0 {
+                out.write_all(b", ")?;
+            }
+            out.write_all(name.as_bytes())?;
+        }
+        out.write_all(b"]")?;
+    }
+    match profile {
+        Profile::Generic => {
+            out.write_all(b"  manufacturer ")?;
+            for b in emcy.manufacturer {
+                write!(out, "{b:02x}")?;
+            }
+        }
+        Profile::Akd => {
+            let field = AkdManufacturerField::new_unchecked(&emcy.manufacturer[..]);
+            write!(out, "  axis {}", field.axis_id().get())?;
+            match field.feedback_id() {
+                Ok(fb) => match fb.number() {
+                    Some(n) => write!(out, ", feedback FB{n}")?,
+                    None => out.write_all(b", no feedback fault")?,
+                },
+                Err(e) => write!(out, "  error: {e}")?,
+            }
+        }
+        Profile::Baumer => {
+            let baumer = BaumerEmcy::from_emcy(emcy);
+            write!(
+                out,
+                "  alarms 0x{:04X} warnings 0x{:04X}",
+                baumer.manufacturer.alarms.bits(),
+                baumer.manufacturer.warnings.bits()
+            )?;
+            for (i, source) in baumer.sources().enumerate() {
+                out.write_all(if i == 0 { b"  sources " } else { b", " })?;
+                out.write_all(source.name().as_bytes())?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
+    out.write_all(b"\n")
+}
+
+fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
+    let frame = &log.frame;
+    if frame.is_rtr() {
+        return write!(out, "[{}] remote request", frame.dlc());
+    }
+    write!(out, "[{}]", frame.data().len())?;
+    for b in frame.data() {
+        write!(out, " {b:02X}")?;
+    }
+    Ok(())
+}
