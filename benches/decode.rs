@@ -29,9 +29,9 @@
 //! `motionwire::candump::lines`, `candump/byte_by_byte` is a plain
 //! byte-at-a-time parser of the same lines (written here as the baseline),
 //! and `candump/decode` does the library-level work of `motionwire decode`
-//! without the output: parse, classify the identifier with
-//! `CobFunction::classify`, decode EMCY and heartbeat payloads, look up
-//! each EMCY code's class and description.
+//! without the output: parse, decode each frame once with
+//! `CanOpenMessage::decode` (identifier classified, EMCY and heartbeat
+//! payloads decoded), look up each EMCY code's class and description.
 
 use std::hint::black_box;
 use std::io::Cursor;
@@ -39,10 +39,9 @@ use std::io::Cursor;
 use byteorder::{LittleEndian, ReadBytesExt};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deku::prelude::*;
-use motionwire::candump::{self, CandumpFrame};
-use motionwire::canopen::{
-    CobFunction, Emcy, EmcyFrame, ErrorCode, HeartbeatFrame, NmtState, EMCY_LEN,
-};
+use motionwire::can::{Iface, LogFrame};
+use motionwire::candump;
+use motionwire::canopen::{CanOpenMessage, Emcy, EmcyFrame, ErrorCode, NmtState, EMCY_LEN};
 use motionwire::servo::{
     Command, CommandFrame, Feedback, FeedbackFrame, COMMAND_LEN, FEEDBACK_LEN,
 };
@@ -799,7 +798,7 @@ fn hex(bytes: &[u8]) -> String {
 }
 
 /// The frame the baseline parser produces: the same fields as
-/// `CandumpFrame`.
+/// the `LogFrame` the crate yields.
 struct PlainFrame<'a> {
     secs: u64,
     micros: u32,
@@ -980,19 +979,20 @@ fn fold(sum: u64, secs: u64, micros: u32, iface: &[u8], id: u32, flags: u64, dat
 fn checksum_motionwire(log: &[u8]) -> u64 {
     let mut sum = 0;
     for (_, result) in candump::lines(log) {
-        if let Ok(Some(f)) = result {
-            let ts = f.timestamp().unwrap_or_else(|| unreachable!());
+        if let Ok(Some(logged)) = result {
+            let f = &logged.frame;
+            let ts = logged.timestamp.unwrap_or_else(|| unreachable!());
             let flags = u64::from(f.is_extended())
                 | u64::from(f.is_rtr()) << 1
                 | u64::from(f.is_fd()) << 2
                 | u64::from(f.fd_flags().bits()) << 3
-                | u64::from(f.direction().map_or(0, |d| d.letter() as u8)) << 8
+                | u64::from(logged.direction.map_or(0, |d| d.letter() as u8)) << 8
                 | u64::from(f.dlc()) << 16;
             sum = fold(
                 sum,
                 ts.secs(),
                 ts.micros(),
-                f.iface(),
+                iface(&logged),
                 f.id().raw(),
                 flags,
                 f.data(),
@@ -1000,6 +1000,14 @@ fn checksum_motionwire(log: &[u8]) -> u64 {
         }
     }
     sum
+}
+
+/// The interface name of a candump record, as bytes.
+fn iface<'a>(logged: &LogFrame<'a>) -> &'a [u8] {
+    match logged.iface {
+        Some(Iface::Name(name)) => name.as_bytes(),
+        _ => &[],
+    }
 }
 
 fn checksum_byte_by_byte(log: &[u8]) -> u64 {
@@ -1037,12 +1045,13 @@ fn fd_dlc(len: usize) -> u64 {
 fn candump_parse(log: &[u8]) -> u64 {
     let mut sum = 0u64;
     candump::lines(log).for_each(|(_, result)| {
-        if let Ok(Some(f)) = result {
-            let ts = f
-                .timestamp()
+        if let Ok(Some(logged)) = result {
+            let f = &logged.frame;
+            let ts = logged
+                .timestamp
                 .map_or(0, |t| t.secs() ^ u64::from(t.micros()));
             sum = sum.wrapping_add(
-                ts ^ u64::from(f.id().raw()) ^ u64::from(f.dlc()) ^ f.iface().len() as u64,
+                ts ^ u64::from(f.id().raw()) ^ u64::from(f.dlc()) ^ iface(&logged).len() as u64,
             );
             black_box(f.data());
         }
@@ -1064,51 +1073,47 @@ fn candump_byte_by_byte(log: &[u8]) -> u64 {
     sum
 }
 
-/// One frame as `motionwire decode` reads it before writing it: the
-/// identifier classified (CiA 301's pre-defined connection set), EMCY and
-/// heartbeat payloads decoded, an EMCY code's class and description looked
-/// up; folded into a checksum with the timestamp and identifier. The kinds
-/// are counted into `kinds`.
+/// One frame as `motionwire decode` reads it before writing it: decoded
+/// once with `CanOpenMessage::decode` (the identifier classified by CiA
+/// 301's pre-defined connection set, EMCY and heartbeat payloads decoded),
+/// an EMCY code's class and description looked up; folded into a checksum
+/// with the timestamp and identifier. The kinds are counted into `kinds`.
 #[inline(always)]
-fn decode_frame(frame: &CandumpFrame<'_>, kinds: &mut LogKinds) -> u64 {
-    let ts = frame
-        .timestamp()
+fn decode_frame(logged: &LogFrame<'_>, kinds: &mut LogKinds) -> u64 {
+    let frame = &logged.frame;
+    let ts = logged
+        .timestamp
         .map_or(0, |t| t.secs() ^ u64::from(t.micros()));
     let common = ts ^ u64::from(frame.id().raw());
-    if frame.is_extended() {
-        return common;
-    }
-    // A standard identifier is at most 0x7FF, so it fits a u16.
-    let id = u16::try_from(frame.id().raw()).unwrap_or(u16::MAX);
-    let function = CobFunction::classify(id);
-    let node = function.node().map_or(0, |n| u64::from(n.get()));
-    let payload = match function {
-        CobFunction::Emcy(_) => match Emcy::parse(frame.data()) {
-            Ok(emcy) => {
-                kinds.emcy += 1;
-                let description = emcy.code.describe();
-                fold_emcy(0, emcy.code.get(), emcy.register.bits(), emcy.manufacturer)
-                    .wrapping_add(description.text.len() as u64)
-                    .wrapping_add(emcy.code.class() as u64)
-            }
-            Err(_) => 1,
-        },
-        CobFunction::ErrorControl(_) if frame.is_rtr() => {
-            kinds.guard_request += 1;
-            2
+    let payload = match CanOpenMessage::decode(frame) {
+        Ok(CanOpenMessage::Emcy { node, emcy }) => {
+            kinds.emcy += 1;
+            let description = emcy.code.describe();
+            fold_emcy(0, emcy.code.get(), emcy.register.bits(), emcy.manufacturer)
+                .wrapping_add(description.text.len() as u64)
+                .wrapping_add(emcy.code.class() as u64)
+                .wrapping_add(u64::from(node.get()) << 32)
         }
-        CobFunction::ErrorControl(_) => match HeartbeatFrame::new_checked(frame.data()) {
-            Ok(view) => {
-                kinds.heartbeat += 1;
-                let raw = view.state_raw() & 0x7F;
-                let state = NmtState::from_byte(raw).map_or(0xFF, NmtState::to_byte);
-                u64::from(raw) << 8 | u64::from(view.reserved_bit()) << 16 | u64::from(state)
-            }
-            Err(_) => 3,
-        },
-        _ => 4,
+        Ok(CanOpenMessage::GuardRequest { node }) => {
+            kinds.guard_request += 1;
+            2 + (u64::from(node.get()) << 32)
+        }
+        Ok(CanOpenMessage::Heartbeat { node, byte }) => {
+            kinds.heartbeat += 1;
+            let state = byte.state().map_or(0xFF, NmtState::to_byte);
+            u64::from(byte.state_raw()) << 8
+                | u64::from(byte.toggle()) << 16
+                | u64::from(state)
+                | u64::from(node.get()) << 32
+        }
+        Ok(message) if frame.is_extended() => {
+            let _ = message;
+            return common;
+        }
+        Ok(message) => 4 + message.node().map_or(0, |n| u64::from(n.get()) << 32),
+        Err(e) => 1 + e.node.map_or(0, |n| u64::from(n.get()) << 32),
     };
-    common.wrapping_add(node << 32).wrapping_add(payload)
+    common.wrapping_add(payload)
 }
 
 /// Parse, classify and decode every line of `log` (the library-level work

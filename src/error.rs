@@ -55,15 +55,248 @@ pub enum Error {
         /// The form the text must have, in words.
         expected: &'static str,
     },
-    /// A candump text line does not follow the formats of SPEC §5; the
-    /// reason says what was expected at `column` and what was found there.
-    #[error("candump line, column {column}: {reason}")]
-    Candump {
+    /// A line of a text log does not follow its format (SPEC §5); the
+    /// reason says what was expected at `column` and what was found there,
+    /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
+    /// found 0x800`.
+    #[error("{format} line, column {column}: {reason}")]
+    Syntax {
+        /// The log format the line was read as.
+        format: LogFormat,
         /// The 1-based byte column in the line where the problem starts.
         column: usize,
         /// What was expected there and what was found.
-        reason: crate::candump::CandumpErrorKind,
+        reason: SyntaxError,
     },
+}
+
+/// A log format of SPEC §5, as an error names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum LogFormat {
+    /// candump text, log and screen formats (SPEC §5.1, §5.2).
+    Candump,
+}
+
+impl LogFormat {
+    /// Return the format's name as messages write it, e.g. `candump`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            LogFormat::Candump => "candump",
+        }
+    }
+}
+
+impl core::fmt::Display for LogFormat {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// What a malformed line held where something else was expected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Found {
+    /// This byte.
+    Byte(u8),
+    /// The line ended.
+    EndOfLine,
+}
+
+impl core::fmt::Display for Found {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Found::Byte(b' ') => f.write_str("a space"),
+            Found::Byte(b'\t') => f.write_str("a tab"),
+            Found::Byte(b) if b.is_ascii_graphic() => write!(f, "'{}'", char::from(b)),
+            Found::Byte(b) => write!(f, "byte {b:#04x}"),
+            Found::EndOfLine => f.write_str("the end of the line"),
+        }
+    }
+}
+
+/// Why a line of a text log is malformed (SPEC §5, §5.7): carried by
+/// [`Error::Syntax`] with the format and the column where the problem
+/// starts. Each reason's message says what was expected and what was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SyntaxError {
+    /// `(` opened a timestamp that is not `(seconds.fraction)` with 1 to 20
+    /// digits of seconds (fitting a `u64`) and 1 to 6 of fraction.
+    BadTimestamp {
+        /// What stood where a digit, `.` or `)` was expected.
+        found: Found,
+    },
+    /// Two fields are not separated by white space.
+    MissingWhiteSpace {
+        /// What stood where white space was expected.
+        found: Found,
+    },
+    /// The line has a frame but no interface name before it.
+    MissingInterface,
+    /// The interface name holds a byte that is not printable ASCII.
+    BadInterface {
+        /// The byte.
+        found: Found,
+    },
+    /// No CAN identifier followed by `#` (log format) or white space
+    /// (screen format) where one was expected.
+    BadIdentifier {
+        /// What stood there.
+        found: Found,
+    },
+    /// The identifier has neither 3 nor 8 hex digits.
+    IdentifierDigits {
+        /// The number of hex digits it has.
+        digits: usize,
+    },
+    /// The identifier is above the largest of its kind (0x7FF for 3
+    /// digits, 0x1FFFFFFF for 8).
+    IdentifierOutOfRange {
+        /// The identifier as read.
+        id: u32,
+        /// The largest allowed.
+        max: u32,
+    },
+    /// `R` (remote request) is followed by something other than one length
+    /// digit 0 to 8.
+    BadRemoteLength {
+        /// What stood there.
+        found: Found,
+    },
+    /// `##` (CAN FD) is not followed by a flags hex digit.
+    BadFdFlags {
+        /// What stood there.
+        found: Found,
+    },
+    /// A data byte holds something other than a hex digit.
+    BadHexDigit {
+        /// What stood there.
+        found: Found,
+    },
+    /// The log-format data has an odd number of hex digits.
+    OddHexDigits {
+        /// The number of hex digits.
+        digits: usize,
+    },
+    /// The log-format data is longer than its frame allows (8 bytes,
+    /// 64 for CAN FD).
+    DataTooLong {
+        /// The number of hex digits.
+        digits: usize,
+        /// The most data bytes the frame allows.
+        max_bytes: usize,
+    },
+    /// The screen format's length is not `[0]`…`[8]` or, for CAN FD,
+    /// `[00]`…`[64]`.
+    BadLength {
+        /// What stood there.
+        found: Found,
+    },
+    /// The screen format's data bytes are not as many as its length says.
+    LengthMismatch {
+        /// The length in brackets.
+        declared: usize,
+        /// The number of data bytes on the line.
+        found: usize,
+    },
+    /// The screen format's `RX`/`TX` column is not followed by `- -`,
+    /// `B -`, `- E` or `B E` (bit rate switch, error state; only `- -` for a
+    /// classic frame), or the column precedes a log-format frame.
+    BadFdIndicators {
+        /// What stood there.
+        found: Found,
+    },
+    /// An error frame (`CAN_ERR_FLAG` in its identifier, SPEC §5.1) written
+    /// as a remote request or a CAN FD frame: Linux error frames are classic
+    /// data frames.
+    BadErrorFrame {
+        /// What stood where the data was expected.
+        found: Found,
+    },
+    /// Something follows the frame where the line should end (or, in the
+    /// log format, where a direction `R`/`T` may stand).
+    TrailingGarbage {
+        /// What stood there.
+        found: Found,
+    },
+}
+
+impl core::fmt::Display for SyntaxError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            SyntaxError::BadTimestamp { found } => write!(
+                f,
+                "expected a timestamp (seconds.fraction) with 1 to 20 digits before the point \
+                 and 1 to 6 after, found {found}"
+            ),
+            SyntaxError::MissingWhiteSpace { found } => {
+                write!(f, "expected white space between fields, found {found}")
+            }
+            SyntaxError::MissingInterface => f.write_str(
+                "expected an interface name before the frame, found the frame at the start",
+            ),
+            SyntaxError::BadInterface { found } => write!(
+                f,
+                "expected an interface name of printable ASCII followed by white space, \
+                 found {found}"
+            ),
+            SyntaxError::BadIdentifier { found } => write!(
+                f,
+                "expected a CAN identifier of 3 or 8 hex digits followed by '#' or white space, \
+                 found {found}"
+            ),
+            SyntaxError::IdentifierDigits { digits } => write!(
+                f,
+                "expected a CAN identifier of 3 or 8 hex digits, found {digits} digit{}",
+                if digits == 1 { "" } else { "s" }
+            ),
+            SyntaxError::IdentifierOutOfRange { id, max } => {
+                write!(f, "expected an identifier at most {max:#X}, found {id:#X}")
+            }
+            SyntaxError::BadRemoteLength { found } => write!(
+                f,
+                "expected at most one length digit 0 to 8 after 'R', found {found}"
+            ),
+            SyntaxError::BadFdFlags { found } => {
+                write!(f, "expected a CAN FD flags hex digit after '##', found {found}")
+            }
+            SyntaxError::BadHexDigit { found } => {
+                write!(f, "expected a hex digit, found {found}")
+            }
+            SyntaxError::OddHexDigits { digits } => write!(
+                f,
+                "expected an even number of hex digits in the data, found {digits}"
+            ),
+            SyntaxError::DataTooLong { digits, max_bytes } => write!(
+                f,
+                "expected at most {max_bytes} data bytes ({} hex digits), found {digits} hex digits",
+                2 * max_bytes
+            ),
+            SyntaxError::BadLength { found } => write!(
+                f,
+                "expected a data length [0] to [8], or [00] to [64] for CAN FD, found {found}"
+            ),
+            SyntaxError::LengthMismatch { declared, found } => write!(
+                f,
+                "expected {declared} data bytes as the length says, found {found}"
+            ),
+            SyntaxError::BadFdIndicators { found } => write!(
+                f,
+                "expected '- -', 'B -', '- E' or 'B E' after RX/TX ('- -' for a classic frame) \
+                 before a screen-format frame, found {found}"
+            ),
+            SyntaxError::BadErrorFrame { found } => write!(
+                f,
+                "expected the data of an error frame (classic hex data), found {found}"
+            ),
+            SyntaxError::TrailingGarbage { found } => write!(
+                f,
+                "expected the end of the line (or a direction R/T in the log format), \
+                 found {found}"
+            ),
+        }
+    }
 }
 
 /// The crate's result type.

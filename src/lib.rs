@@ -125,7 +125,7 @@ mod error;
 pub mod profiles;
 pub mod servo;
 
-pub use error::{Error, Result};
+pub use error::{Error, Found, LogFormat, Result, SyntaxError};
 
 #[cfg(all(test, feature = "serde"))]
 mod serde_tests;

@@ -628,3 +628,50 @@ fn profiles_per_node() {
         assert_eq!(out.status.code(), Some(2), "{bad}");
     }
 }
+
+/// SPEC §5.1 and §6.1: error frames (candump -e, python-can) are frames of
+/// kind `error_frame` with their classes, controller status and counters;
+/// candump's explanation lines after a screen error frame are not malformed.
+#[test]
+fn error_frames_are_frames_with_their_keys() {
+    let log = "\
+(1700000000.000100) can0 20000004#0020000000000000
+(1700000000.000200) can0 20000248#0000081900008005
+(1700000000.000300) vcan0 20000080#
+  can0  20000040   [8]  00 00 00 00 00 00 00 00   ERRORFRAME
+\tbus-off
+";
+    let out = run(&["decode", "--json"], log);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let recs = records(&out);
+    assert_eq!(recs.len(), 4);
+    for rec in &recs {
+        assert_eq!(rec["kind"], "error_frame");
+        assert_eq!(rec["extended"], true);
+        assert!(rec.get("node").is_none());
+    }
+    assert_eq!(recs[0]["id"], 0x004);
+    assert_eq!(recs[0]["error_classes"], json!(["controller"]));
+    assert_eq!(recs[0]["controller"], json!(["tx_passive"]));
+    assert_eq!(recs[0]["tx_errors"], Value::Null);
+    assert_eq!(
+        recs[1]["error_classes"],
+        json!(["protocol", "bus_off", "counters"])
+    );
+    assert_eq!(recs[1]["controller"], json!([]));
+    assert_eq!(
+        (recs[1]["tx_errors"].clone(), recs[1]["rx_errors"].clone()),
+        (json!(0x80), json!(5))
+    );
+    assert_eq!(recs[2]["error_classes"], json!(["bus_error"]));
+    assert_eq!(recs[2]["data"], "");
+    assert_eq!(recs[3]["error_classes"], json!(["bus_off"]));
+    assert_eq!(recs[3]["line"], 4);
+
+    let text = run(&["decode"], log);
+    assert!(stdout(&text).contains("error frame: controller (tx_passive)"));
+}

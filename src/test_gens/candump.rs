@@ -2,7 +2,10 @@
 
 use proptest::prelude::*;
 
-use crate::candump::{CanId, CandumpFrame, Direction, FdFlags, Timestamp};
+use core::fmt;
+
+use crate::can::{CanFrame, Iface, LogFrame};
+use crate::candump::{self, CanId, Direction, FdFlags, Timestamp};
 
 /// Any timestamp.
 pub(crate) fn timestamp() -> impl Strategy<Value = Timestamp> {
@@ -48,6 +51,8 @@ pub(crate) enum Payload {
     Remote(u8),
     /// A CAN FD frame, flags and 0..=64 bytes.
     Fd(FdFlags, Vec<u8>),
+    /// An error frame: its classes (29 bits) and 0..=8 bytes.
+    Error(u32, Vec<u8>),
 }
 
 /// An owned description of a frame; [`FrameSpec::frame`] borrows the
@@ -63,11 +68,12 @@ pub(crate) struct FrameSpec {
 
 impl FrameSpec {
     /// The frame this describes.
-    pub(crate) fn frame(&self) -> CandumpFrame<'_> {
+    pub(crate) fn frame(&self) -> LogFrame<'_> {
         let mut frame = match &self.payload {
-            Payload::Data(data) => CandumpFrame::new_data(&self.iface, self.id, data),
-            Payload::Remote(dlc) => CandumpFrame::new_remote(&self.iface, self.id, *dlc),
-            Payload::Fd(flags, data) => CandumpFrame::new_fd(&self.iface, self.id, *flags, data),
+            Payload::Data(data) => Build::new_data(&self.iface, self.id, data),
+            Payload::Remote(dlc) => Build::new_remote(&self.iface, self.id, *dlc),
+            Payload::Fd(flags, data) => Build::new_fd(&self.iface, self.id, *flags, data),
+            Payload::Error(classes, data) => Build::new_error(&self.iface, *classes, data),
         }
         .expect("the strategy makes valid frames");
         if let Some(ts) = self.timestamp {
@@ -86,6 +92,8 @@ fn payload(fd_flags: BoxedStrategy<FdFlags>) -> impl Strategy<Value = Payload> {
         1 => (0u8..=8).prop_map(Payload::Remote),
         2 => (fd_flags, proptest::collection::vec(any::<u8>(), 0..=64))
             .prop_map(|(flags, data)| Payload::Fd(flags, data)),
+        1 => (0..=CanId::EXTENDED_MAX, proptest::collection::vec(any::<u8>(), 0..=8))
+            .prop_map(|(classes, data)| Payload::Error(classes, data)),
     ]
 }
 
@@ -164,4 +172,120 @@ pub(crate) fn mutated_line() -> impl Strategy<Value = Vec<u8>> {
             }
             line
         })
+}
+
+/// Builds candump-shaped records (an interface name, no time or direction)
+/// for the tests, with the crate's frame constructors.
+pub(crate) struct Build;
+
+impl Build {
+    /// A classic data frame on `iface`.
+    pub(crate) fn new_data<'a>(
+        iface: &'a str,
+        id: CanId,
+        data: &[u8],
+    ) -> crate::Result<LogFrame<'a>> {
+        Ok(LogFrame::new(CanFrame::new(id, data)?).with_iface(Iface::Name(iface)))
+    }
+
+    /// A remote request on `iface`.
+    pub(crate) fn new_remote(iface: &str, id: CanId, dlc: u8) -> crate::Result<LogFrame<'_>> {
+        Ok(LogFrame::new(CanFrame::new_remote(id, dlc)?).with_iface(Iface::Name(iface)))
+    }
+
+    /// A CAN FD frame on `iface`.
+    pub(crate) fn new_fd<'a>(
+        iface: &'a str,
+        id: CanId,
+        flags: FdFlags,
+        data: &[u8],
+    ) -> crate::Result<LogFrame<'a>> {
+        Ok(LogFrame::new(CanFrame::new_fd(id, flags, data)?).with_iface(Iface::Name(iface)))
+    }
+
+    /// An error frame on `iface`.
+    pub(crate) fn new_error<'a>(
+        iface: &'a str,
+        classes: u32,
+        data: &[u8],
+    ) -> crate::Result<LogFrame<'a>> {
+        Ok(LogFrame::new(CanFrame::new_error(classes, data)?).with_iface(Iface::Name(iface)))
+    }
+}
+
+/// The fields of a candump record as the tests read them.
+pub(crate) trait FrameExt<'a> {
+    /// The interface name (candump records always have one).
+    fn iface_str(&self) -> &'a str;
+    /// The interface name as bytes.
+    fn iface(&self) -> &'a [u8] {
+        self.iface_str().as_bytes()
+    }
+    /// The timestamp.
+    fn timestamp(&self) -> Option<Timestamp>;
+    /// The direction.
+    fn direction(&self) -> Option<Direction>;
+    /// The frame.
+    fn can(&self) -> &CanFrame;
+    /// The identifier.
+    fn id(&self) -> CanId {
+        self.can().id()
+    }
+    /// The data.
+    fn data(&self) -> &[u8] {
+        self.can().data()
+    }
+    /// Whether it is a remote request.
+    fn is_rtr(&self) -> bool {
+        self.can().is_rtr()
+    }
+    /// Whether the identifier is extended.
+    fn is_extended(&self) -> bool {
+        self.can().is_extended()
+    }
+    /// Whether it is a CAN FD frame.
+    fn is_fd(&self) -> bool {
+        self.can().is_fd()
+    }
+    /// The CAN FD flags.
+    fn fd_flags(&self) -> FdFlags {
+        self.can().fd_flags()
+    }
+    /// The DLC.
+    fn dlc(&self) -> u8 {
+        self.can().dlc()
+    }
+    /// Write it in the log format.
+    fn write_log<W: fmt::Write>(&self, w: &mut W) -> fmt::Result;
+    /// Write it in the screen format.
+    fn write_screen<W: fmt::Write>(&self, w: &mut W) -> fmt::Result;
+}
+
+impl<'a> FrameExt<'a> for LogFrame<'a> {
+    fn iface_str(&self) -> &'a str {
+        match self.iface {
+            Some(Iface::Name(name)) => name,
+            _ => panic!("a candump record without an interface name: {self:?}"),
+        }
+    }
+
+    fn timestamp(&self) -> Option<Timestamp> {
+        self.timestamp
+    }
+
+    fn direction(&self) -> Option<Direction> {
+        self.direction
+    }
+
+    fn can(&self) -> &CanFrame {
+        &self.frame
+    }
+
+    fn write_log<W: fmt::Write>(&self, w: &mut W) -> fmt::Result {
+        candump::write_log(self, w)
+    }
+
+    fn write_screen<W: fmt::Write>(&self, w: &mut W) -> fmt::Result {
+        candump::write_screen(self, w)
+    }
 }

@@ -145,6 +145,9 @@ fn for_each_line(
     let mut buf = vec![0u8; BLOCK];
     let mut filled = 0;
     let mut base: u64 = 0;
+    // Carries what the last line of a block means for the next block's
+    // first (an error frame's explanation lines, candump -e).
+    let mut state = candump::LineState::default();
     loop {
         if filled == buf.len() {
             // A line longer than the block: make room for the rest of it.
@@ -167,11 +170,12 @@ fn for_each_line(
             }
         };
         let mut lines = 0;
-        for (number, parsed) in candump::lines(&buf[..complete]) {
+        let mut iter = candump::lines_from(&buf[..complete], state);
+        for (number, parsed) in iter.by_ref() {
             lines = number;
-            let parsed = parsed.map(|frame| frame.map(LogFrame::from));
             handle(base + number as u64, parsed).map_err(LineError::Write)?;
         }
+        state = iter.state();
         base += lines as u64;
         if at_end {
             return Ok(());

@@ -1,0 +1,181 @@
+//! The fast path: the `candump -l` line shape in one pass, with SWAR.
+
+use super::*;
+
+/// The line shape `candump -l` writes, read in one pass from the start of
+/// `buf`: `(` 10 digits `.` 6 digits `) ` interface (1 to 15 bytes) space,
+/// identifier `#`, `R[len]`, `#<flags><data>` or `<data>`, an optional
+/// direction (` R`, ` T`), then `\n`, `\r\n` or the end of `buf`. Return the frame and the
+/// number of bytes read (line end included), or `None` for any other shape
+/// (which [`parse_general`] then reads, or reports). On every line it
+/// accepts it returns what [`parse_general`] returns.
+#[inline(always)]
+pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
+    // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `: the 16 digits in two
+    // words, seconds 1–8, then seconds 9–10 and microseconds 1–6.
+    let head = buf.first_chunk::<20>()?;
+    if head[0] != b'(' || head[11] != b'.' || head[18] != b')' || head[19] != b' ' {
+        return None;
+    }
+    let word = |at: usize| head.get(at..).and_then(|s| s.first_chunk::<8>()).copied();
+    let high = u64::from_le_bytes(word(1)?) ^ ZERO_CHARS64;
+    let low = (u64::from(u16::from_le_bytes([head[9], head[10]]))
+        | u64::from_le_bytes(word(12)?) << 16)
+        ^ ZERO_CHARS64;
+    if non_digits64(high) | non_digits64(low) != 0 {
+        return None;
+    }
+    let all = decimal8(high) * 100_000_000 + decimal8(low);
+    let (secs, micros) = (all / 1_000_000, (all % 1_000_000) as u32);
+
+    // Interface: printable ASCII up to a space, not starting with `(`/`#`.
+    let iface_start = 20;
+    let word = u64::from_le_bytes(*buf.get(iface_start..)?.first_chunk::<8>()?);
+    let stop = non_graphic(u128::from(word)) as u64;
+    let iface_len = if stop != 0 {
+        (stop.trailing_zeros() / 8) as usize
+    } else {
+        lanes_before(non_graphic(load16(buf, iface_start)))
+    };
+    let id_start = iface_start + iface_len + 1;
+    if iface_len == 0
+        || iface_len == 16
+        || buf.get(id_start - 1) != Some(&b' ')
+        || matches!(buf.get(iface_start), Some(b'(' | b'#'))
+    {
+        return None;
+    }
+    let iface = buf.get(iface_start..id_start - 1)?;
+
+    // Identifier: 3 hex digits and `#`, else 8 and `#`.
+    let ids = buf.get(id_start..)?;
+    let (id, body) = match ids.first_chunk::<4>()? {
+        &[a, b, c, b'#'] => {
+            let (a, b, c) = (
+                HEX_TABLE[usize::from(a)],
+                HEX_TABLE[usize::from(b)],
+                HEX_TABLE[usize::from(c)],
+            );
+            if (a | b | c) & 0xF0 != 0 {
+                return None;
+            }
+            let raw = u32::from(a) << 8 | u32::from(b) << 4 | u32::from(c);
+            (CanId::standard(raw)?, id_start + 4)
+        }
+        _ => {
+            let chunk = ids.first_chunk::<9>()?;
+            if chunk[8] != b'#' {
+                return None;
+            }
+            let w = u128::from(u64::from_le_bytes(*chunk.first_chunk::<8>()?)) | ZERO_CHARS << 64;
+            let (values, bad) = hex_lanes(w);
+            if bad != 0 {
+                return None;
+            }
+            let raw = (pack_hex(values) as u32).swap_bytes();
+            (CanId::extended(raw)?, id_start + 9)
+        }
+    };
+
+    let mut data = [0; FD_MAX_LEN];
+    let (kind, len, end) = match buf.get(body) {
+        Some(b'R' | b'r') => match buf.get(body + 1) {
+            Some(&d @ b'0'..=b'8') => (Kind::Remote, d - b'0', body + 2),
+            _ => (Kind::Remote, 0, body + 1),
+        },
+        Some(b'#') => {
+            let flags = HEX_TABLE[usize::from(*buf.get(body + 1)?)];
+            if flags & 0xF0 != 0 {
+                return None;
+            }
+            let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
+            (Kind::Fd(FdFlags::new(flags)?), len, end)
+        }
+        _ => {
+            // Classic data: at most 16 hex digits, so one word holds them
+            // and the byte after them.
+            let (values, bad) = hex_lanes(load16(buf, body));
+            let digits = lanes_before(bad);
+            if digits % 2 != 0 {
+                return None;
+            }
+            let packed = pack_hex(values) & KEEP_BYTES[(digits / 2) & 15];
+            if let Some(first) = data.first_chunk_mut::<8>() {
+                *first = packed.to_le_bytes();
+            }
+            (Kind::Data, (digits / 2) as u8, body + digits)
+        }
+    };
+
+    // Optional direction, then the line end.
+    let mut direction = None;
+    let mut used = end;
+    if let Some(&[b' ', d @ (b'R' | b'T')]) = buf.get(end..).and_then(|r| r.first_chunk::<2>()) {
+        direction = Some(if d == b'R' {
+            Direction::Rx
+        } else {
+            Direction::Tx
+        });
+        used += 2;
+    }
+    match buf.get(used) {
+        None => {}
+        Some(b'\n') => used += 1,
+        Some(b'\r') => match buf.get(used + 1) {
+            None => used += 1,
+            Some(b'\n') => used += 2,
+            Some(_) => return None,
+        },
+        Some(_) => return None,
+    }
+    let frame = Parsed {
+        timestamp: Some(Timestamp::new(secs, micros).unwrap_or_default()),
+        iface,
+        id,
+        kind,
+        direction,
+        len,
+        data,
+    };
+    Some((frame, used))
+}
+
+/// A mask of the low `n` bytes of a `u64`, for `n` in 0..=8.
+pub(super) const KEEP_BYTES: [u64; 16] = {
+    let mut table = [u64::MAX; 16];
+    let mut n = 0;
+    while n < 8 {
+        table[n] = (1u64 << (8 * n)) - 1;
+        n += 1;
+    }
+    table
+};
+
+/// Decode the hex digits of CAN FD data from `start` up to the first other
+/// byte, 16 at a time, into `data`; return the number of bytes and the index
+/// after the digits, or `None` for an odd count (which [`parse_general`]
+/// reports). Stops after 64 bytes.
+#[inline(never)]
+pub(super) fn decode_fd_data(
+    buf: &[u8],
+    start: usize,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Option<(u8, usize)> {
+    let mut end = start;
+    let mut len = 0;
+    for dst in data.chunks_exact_mut(8) {
+        let (values, bad) = hex_lanes(load16(buf, end));
+        let digits = lanes_before(bad);
+        if digits % 2 != 0 {
+            return None;
+        }
+        let packed = pack_hex(values) & KEEP_BYTES[(digits / 2) & 15];
+        dst.copy_from_slice(&packed.to_le_bytes());
+        end += digits;
+        len += digits / 2;
+        if digits < 16 {
+            break;
+        }
+    }
+    Some((len as u8, end))
+}

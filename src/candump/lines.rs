@@ -1,0 +1,182 @@
+//! A whole buffer, line by line.
+
+use super::*;
+
+/// Return an iterator over the lines of `buf` that parses each one
+/// (SPEC §5, §6.1): it yields the 1-based line number and what
+/// [`parse_line`] makes of the line, so that a malformed line is reported
+/// with its number and the next line is read on. Lines end at `\n` (a `\r`
+/// before it is ignored); a last line without `\n` is read too.
+///
+/// ```
+/// use motionwire::candump;
+///
+/// let log = b"(1.000000) can0 701#05\r\n\n(1.000100) can0 0X1#00\n  can0  705   [1]  remote request\n";
+/// let mut lines = candump::lines(log);
+/// let (n, first) = lines.next().unwrap();
+/// assert_eq!((n, first?.unwrap().frame.data()), (1, &[0x05][..]));
+/// assert_eq!(lines.next().unwrap().0, 2); // blank: Ok(None)
+/// let (n, bad) = lines.next().unwrap();
+/// assert_eq!(n, 3);
+/// assert!(bad.is_err());
+/// assert!(lines.next().unwrap().1?.unwrap().frame.is_rtr());
+/// assert!(lines.next().is_none());
+/// # Ok::<(), motionwire::Error>(())
+/// ```
+///
+/// After an error frame, the tab-indented lines that `candump -e` prints to
+/// explain it (can-utils `candump.c`: `"\n\t"` before each) belong to the
+/// frame: they are `Ok(None)`, not malformed (SPEC §5.2). A tab-indented
+/// line anywhere else is parsed as any other line.
+///
+/// ```
+/// use motionwire::candump;
+///
+/// let log = b"  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME\n\
+///             \tcontroller-problem{rx-error-warning}\n\
+///             \terror-counter-tx-rx{{0}{0}}\n";
+/// let frames: Vec<_> = candump::lines(log).map(|(_, r)| r.unwrap()).collect();
+/// assert!(frames[0].unwrap().frame.is_error());
+/// assert_eq!((frames[1], frames[2]), (None, None));
+/// ```
+#[inline]
+pub fn lines(buf: &[u8]) -> CandumpLines<'_> {
+    lines_from(buf, LineState::default())
+}
+
+/// Return an iterator over the lines of `buf` as [`lines`] does, going on
+/// from where the lines of an earlier buffer of the same log left off
+/// ([`CandumpLines::state`]): for a log read in blocks.
+#[inline]
+pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
+    CandumpLines {
+        rest: buf,
+        line_number: 0,
+        state,
+    }
+}
+
+/// What the lines read so far mean for the next one: whether it may be an
+/// explanation line of an error frame (`candump -e`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LineState {
+    after_error_frame: bool,
+}
+
+/// The iterator of [`lines`].
+#[derive(Debug, Clone)]
+pub struct CandumpLines<'a> {
+    rest: &'a [u8],
+    line_number: usize,
+    state: LineState,
+}
+
+impl<'a> Iterator for CandumpLines<'a> {
+    type Item = (usize, Result<Option<LogFrame<'a>>>);
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        self.line_number += 1;
+        if let Some((frame, used)) = parse_canonical_log(self.rest) {
+            self.rest = self.rest.get(used..).unwrap_or_default();
+            self.state.after_error_frame = false;
+            return Some((self.line_number, Ok(Some(frame.into_log_frame()))));
+        }
+        Some(self.next_general())
+    }
+
+    /// Read every line, handing each to `f` straight from the parser (what
+    /// `for_each`, `count`, `sum` and most adapters use).
+    #[inline]
+    fn fold<B, F>(mut self, init: B, mut f: F) -> B
+    where
+        F: FnMut(B, Self::Item) -> B,
+    {
+        let mut acc = init;
+        while !self.rest.is_empty() {
+            self.line_number += 1;
+            acc = match parse_canonical_log(self.rest) {
+                Some((frame, used)) => {
+                    self.rest = self.rest.get(used..).unwrap_or_default();
+                    self.state.after_error_frame = false;
+                    f(acc, (self.line_number, Ok(Some(frame.into_log_frame()))))
+                }
+                None => {
+                    let item = self.next_general();
+                    f(acc, item)
+                }
+            };
+        }
+        acc
+    }
+}
+
+impl<'a> CandumpLines<'a> {
+    /// Return what the lines read so far mean for the next one, to go on
+    /// with [`lines_from`] in the next buffer.
+    #[inline]
+    pub fn state(&self) -> LineState {
+        self.state
+    }
+
+    /// Return the part of the buffer not read yet.
+    #[inline]
+    pub fn remainder(&self) -> &'a [u8] {
+        self.rest
+    }
+
+    /// Read the next line when it is not in the canonical log shape.
+    #[inline(never)]
+    fn next_general(&mut self) -> (usize, Result<Option<LogFrame<'a>>>) {
+        let (line, rest) = match find_newline(self.rest) {
+            Some(i) => (
+                self.rest.get(..i).unwrap_or_default(),
+                self.rest.get(i + 1..).unwrap_or_default(),
+            ),
+            None => (self.rest, &[][..]),
+        };
+        self.rest = rest;
+        if self.state.after_error_frame && line.first() == Some(&b'\t') {
+            return (self.line_number, Ok(None));
+        }
+        let parsed = parse_general(line);
+        self.state.after_error_frame = matches!(
+            parsed,
+            Ok(Some(Parsed {
+                kind: Kind::Error,
+                ..
+            }))
+        );
+        (
+            self.line_number,
+            parsed.map(|frame| frame.map(Parsed::into_log_frame)),
+        )
+    }
+}
+
+impl FusedIterator for CandumpLines<'_> {}
+
+/// The index of the first `\n` in `buf`, 16 bytes at a time.
+#[inline(always)]
+pub(super) fn find_newline(buf: &[u8]) -> Option<usize> {
+    let mut chunks = buf.chunks_exact(16);
+    let mut at = 0;
+    for chunk in &mut chunks {
+        let w = chunk
+            .first_chunk::<16>()
+            .map_or(0, |c| u128::from_le_bytes(*c));
+        let hits = first_eq(w, b'\n');
+        if hits != 0 {
+            return Some(at + lanes_before(hits));
+        }
+        at += 16;
+    }
+    chunks
+        .remainder()
+        .iter()
+        .position(|&b| b == b'\n')
+        .map(|i| at + i)
+}

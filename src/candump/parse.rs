@@ -1,0 +1,236 @@
+//! The general parser: any line shape, byte by byte where the shape varies.
+
+use super::*;
+use crate::can::CAN_ERR_FLAG;
+
+#[inline(always)]
+pub(super) const fn is_space(b: u8) -> bool {
+    b == b' ' || b == b'\t'
+}
+
+/// The index of the first byte at or after `at` that is not a space or tab.
+#[inline(always)]
+pub(super) fn skip_space(line: &[u8], mut at: usize) -> usize {
+    while let Some(&b) = line.get(at) {
+        if !is_space(b) {
+            break;
+        }
+        at += 1;
+    }
+    at
+}
+
+/// Skip one or more spaces or tabs at `at`.
+#[inline(always)]
+pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
+    match line.get(at) {
+        Some(&b) if is_space(b) => Ok(skip_space(line, at + 1)),
+        _ => Err(error(
+            at,
+            SyntaxError::MissingWhiteSpace {
+                found: found(line, at),
+            },
+        )),
+    }
+}
+
+/// Strip trailing line ends, spaces and tabs.
+#[inline(always)]
+pub(super) fn trim_end(mut line: &[u8]) -> &[u8] {
+    while let [rest @ .., last] = line {
+        if is_space(*last) || *last == b'\r' || *last == b'\n' {
+            line = rest;
+        } else {
+            break;
+        }
+    }
+    line
+}
+
+/// Parse one line of any shape, byte by byte where the shape varies.
+#[inline(never)]
+pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
+    let line = trim_end(line);
+    let mut at = 0;
+    match line.first() {
+        None => return Ok(None),
+        Some(&b) if is_space(b) => at = skip_space(line, 0),
+        Some(_) => {}
+    }
+    let timestamp = match line.get(at) {
+        Some(b'(') => {
+            let (ts, end) = parse_timestamp(line, at)?;
+            at = need_space(line, end)?;
+            Some(ts)
+        }
+        Some(b'#') => return Ok(None),
+        _ => None,
+    };
+
+    let iface_start = at;
+    let iface_end = scan_iface(line, at)?;
+    let iface = line.get(iface_start..iface_end).unwrap_or_default();
+    at = skip_space(line, iface_end);
+
+    let mut indicators = None;
+    if let Some([d @ (b'R' | b'T'), b'X', s]) = line.get(at..).and_then(|r| r.first_chunk::<3>()) {
+        if is_space(*s) {
+            let direction = if *d == b'R' {
+                Direction::Rx
+            } else {
+                Direction::Tx
+            };
+            let (flags, next) = parse_indicators(line, at + 3)?;
+            indicators = Some((direction, flags, at));
+            at = next;
+        }
+    }
+
+    let (id, kind, delimiter) = parse_id(line, at)?;
+    let mut frame = Parsed {
+        timestamp,
+        iface,
+        id,
+        kind,
+        direction: None,
+        len: 0,
+        data: [0; FD_MAX_LEN],
+    };
+    if line.get(delimiter) == Some(&b'#') {
+        if let Some((_, _, column)) = indicators {
+            return Err(error(
+                column,
+                SyntaxError::BadFdIndicators {
+                    found: found(line, column),
+                },
+            ));
+        }
+        parse_log_frame(line, delimiter + 1, &mut frame)?;
+    } else {
+        parse_screen_frame(line, delimiter, &mut frame)?;
+        if let Some((direction, flags, column)) = indicators {
+            frame.direction = Some(direction);
+            match frame.kind {
+                Kind::Fd(_) => frame.kind = Kind::Fd(flags),
+                _ if flags != FdFlags::EMPTY => {
+                    // Point at the first flag letter a classic frame cannot have.
+                    let mut at = skip_space(line, column + 3);
+                    if line.get(at) == Some(&b'-') {
+                        at = skip_space(line, at + 1);
+                    }
+                    return Err(error(
+                        at,
+                        SyntaxError::BadFdIndicators {
+                            found: found(line, at),
+                        },
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    Ok(Some(frame))
+}
+
+/// Scan the interface name from `start`; return the index of the white
+/// space after it.
+#[inline(always)]
+pub(super) fn scan_iface(line: &[u8], start: usize) -> Result<usize> {
+    let mut at = start;
+    loop {
+        let stop = non_graphic(load16(line, at));
+        if stop != 0 {
+            at += lanes_before(stop);
+            break;
+        }
+        at += 16;
+    }
+    match line.get(at) {
+        _ if matches!(line.get(start), Some(b'(' | b'#')) => Err(error(
+            start,
+            SyntaxError::BadInterface {
+                found: found(line, start),
+            },
+        )),
+        Some(&b) if is_space(b) && at > start => Ok(at),
+        None if at > start => Err(missing_frame(line, start, at)),
+        _ => Err(error(
+            at,
+            SyntaxError::BadInterface {
+                found: found(line, at),
+            },
+        )),
+    }
+}
+
+/// The error for a line that ends after its interface name: a frame where
+/// the interface should be, or nothing after the interface.
+#[cold]
+#[inline(never)]
+pub(super) fn missing_frame(line: &[u8], start: usize, end: usize) -> Error {
+    if line.get(start..end).unwrap_or_default().contains(&b'#') {
+        error(start, SyntaxError::MissingInterface)
+    } else {
+        error(
+            end,
+            SyntaxError::BadIdentifier {
+                found: Found::EndOfLine,
+            },
+        )
+    }
+}
+
+/// Parse a 3- or 8-digit identifier at `start`; return it and the index of
+/// the `#` or white space after it.
+#[inline(always)]
+pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, Kind, usize)> {
+    let (values, bad) = hex_lanes(load16(line, start));
+    let digits = lanes_before(bad);
+    let end = start + digits;
+    let delimited = matches!(line.get(end), Some(&(b'#' | b' ' | b'\t')));
+    if digits == 3 && delimited {
+        let v = values as u32;
+        let raw = (v & 0xF) << 8 | (v >> 8 & 0xF) << 4 | (v >> 16 & 0xF);
+        match CanId::standard(raw) {
+            Some(id) => Ok((id, Kind::Data, end)),
+            None => Err(out_of_range(start, raw, CanId::STANDARD_MAX)),
+        }
+    } else if digits == 8 && delimited {
+        let raw = (pack_hex(values) as u32).swap_bytes();
+        // `CAN_ERR_FLAG` (bit 29) marks an error frame whose other bits are
+        // its classes (candump -e, python-can; SPEC §5.1). Bits 30 and 31
+        // (Linux's RTR and EFF flags) never appear in candump text.
+        match CanId::extended(raw & !CAN_ERR_FLAG) {
+            Some(id) if raw & CAN_ERR_FLAG == 0 => Ok((id, Kind::Data, end)),
+            Some(id) => Ok((id, Kind::Error, end)),
+            None => Err(out_of_range(start, raw, CAN_ERR_FLAG | CanId::EXTENDED_MAX)),
+        }
+    } else {
+        Err(bad_id(line, start))
+    }
+}
+
+#[cold]
+pub(super) fn out_of_range(start: usize, id: u32, max: u32) -> Error {
+    error(start, SyntaxError::IdentifierOutOfRange { id, max })
+}
+
+#[cold]
+#[inline(never)]
+pub(super) fn bad_id(line: &[u8], start: usize) -> Error {
+    let rest = line.get(start..).unwrap_or_default();
+    let digits = rest.iter().take_while(|b| hex_value(**b).is_some()).count();
+    let end = start + digits;
+    match line.get(end) {
+        Some(b'#' | b' ' | b'\t') if digits > 0 => {
+            error(start, SyntaxError::IdentifierDigits { digits })
+        }
+        None if digits > 8 => error(start, SyntaxError::IdentifierDigits { digits }),
+        _ => error(
+            end,
+            SyntaxError::BadIdentifier {
+                found: found(line, end),
+            },
+        ),
+    }
+}

@@ -1,0 +1,91 @@
+//! The one timestamp parser, `(seconds.fraction)` (SPEC §5.1, §5.2).
+
+use super::*;
+
+/// Read `(seconds.fraction)` starting at the `(` at `open`; return the
+/// timestamp and the index after `)`.
+#[inline(always)]
+pub(super) fn parse_timestamp(line: &[u8], open: usize) -> Result<(Timestamp, usize)> {
+    let start = open + 1;
+    let d = load16(line, start) ^ ZERO_CHARS;
+    let digits = lanes_before(non_digits(d));
+    let secs = if (1..16).contains(&digits) {
+        // Right-align the digits: the lanes shifted in are leading zeros.
+        decimal16(d << (8 * (16 - digits)))
+    } else {
+        return parse_timestamp_slow(line, open);
+    };
+    let point = start + digits;
+    if line.get(point) != Some(&b'.') {
+        return Err(bad_timestamp(line, point));
+    }
+    let frac_start = point + 1;
+    let d = load16(line, frac_start) ^ ZERO_CHARS;
+    let frac_digits = lanes_before(non_digits(d));
+    if !(1..=6).contains(&frac_digits) {
+        return Err(bad_timestamp(line, frac_start + frac_digits.min(6)));
+    }
+    let close = frac_start + frac_digits;
+    if line.get(close) != Some(&b')') {
+        return Err(bad_timestamp(line, close));
+    }
+    let fraction = decimal8((d << (8 * (8 - frac_digits))) as u64) as u32;
+    let micros = fraction * POW10[6 - frac_digits];
+    Ok((Timestamp::new(secs, micros).unwrap_or_default(), close + 1))
+}
+
+pub(super) const POW10: [u32; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
+
+#[cold]
+pub(super) fn bad_timestamp(line: &[u8], at: usize) -> Error {
+    error(
+        at,
+        SyntaxError::BadTimestamp {
+            found: found(line, at),
+        },
+    )
+}
+
+/// The timestamp byte by byte: for no digits, and for 16 or more digits of
+/// seconds (up to `u64::MAX`).
+#[cold]
+#[inline(never)]
+pub(super) fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestamp, usize)> {
+    let mut at = open + 1;
+    let mut secs: u64 = 0;
+    while let Some(&b) = line.get(at) {
+        if !b.is_ascii_digit() {
+            break;
+        }
+        secs = match secs
+            .checked_mul(10)
+            .and_then(|s| s.checked_add(u64::from(b - b'0')))
+        {
+            Some(s) => s,
+            None => return Err(bad_timestamp(line, at)),
+        };
+        at += 1;
+    }
+    if at == open + 1 || line.get(at) != Some(&b'.') {
+        return Err(bad_timestamp(line, at));
+    }
+    at += 1;
+    let frac_start = at;
+    let mut micros: u32 = 0;
+    while let Some(&b) = line.get(at) {
+        if !b.is_ascii_digit() {
+            break;
+        }
+        if at - frac_start == 6 {
+            return Err(bad_timestamp(line, at));
+        }
+        micros = micros * 10 + u32::from(b - b'0');
+        at += 1;
+    }
+    let frac_digits = at - frac_start;
+    if frac_digits == 0 || line.get(at) != Some(&b')') {
+        return Err(bad_timestamp(line, at));
+    }
+    let micros = micros * POW10[6 - frac_digits];
+    Ok((Timestamp::new(secs, micros).unwrap_or_default(), at + 1))
+}
