@@ -122,3 +122,89 @@ pub(super) fn load16_short(line: &[u8], at: usize) -> u128 {
     }
     u128::from_le_bytes(buf)
 }
+
+/// Each trick against a byte-at-a-time model of what it promises, over
+/// arbitrary words and over words of the characters that matter.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn lanes(w: u128) -> [u8; 16] {
+        w.to_le_bytes()
+    }
+
+    fn high_bits(flags: impl Fn(u8) -> bool, w: u128) -> u128 {
+        u128::from_le_bytes(lanes(w).map(|b| if flags(b) { 0x80 } else { 0 }))
+    }
+
+    fn hex_value(b: u8) -> Option<u8> {
+        char::from(b).to_digit(16).map(|v| v as u8)
+    }
+
+    /// Words made of the bytes a candump line holds, and any byte.
+    fn word() -> impl Strategy<Value = u128> {
+        let byte = prop_oneof![
+            3 => proptest::sample::select(b"0123456789abcdefABCDEFgGxX#()[] .\t\r\nR".to_vec()),
+            1 => any::<u8>(),
+        ];
+        proptest::array::uniform16(byte).prop_map(u128::from_le_bytes)
+    }
+
+    proptest! {
+        #[test]
+        fn hex_lanes_is_hex_digit_by_digit(w in word()) {
+            let (values, bad) = hex_lanes(w);
+            prop_assert_eq!(bad, high_bits(|b| hex_value(b).is_none(), w));
+            for (i, b) in lanes(w).into_iter().enumerate() {
+                if let Some(v) = hex_value(b) {
+                    prop_assert_eq!(lanes(values)[i], v, "lane {}", i);
+                }
+            }
+        }
+
+        #[test]
+        fn non_digits_is_decimal_digit_by_digit(w in word()) {
+            let d = w ^ ZERO_CHARS;
+            prop_assert_eq!(non_digits(d), high_bits(|b| !b.is_ascii_digit(), w));
+            let d64 = d as u64;
+            prop_assert_eq!(u128::from(non_digits64(d64)), high_bits(|b| !b.is_ascii_digit(), w) & u128::from(u64::MAX));
+        }
+
+        #[test]
+        fn non_graphic_is_printable_by_byte(w in word()) {
+            prop_assert_eq!(non_graphic(w), high_bits(|b| !b.is_ascii_graphic(), w));
+        }
+
+        #[test]
+        fn first_eq_finds_the_first_lane(w in word(), b in any::<u8>()) {
+            let first = lanes(w).iter().position(|&x| x == b).unwrap_or(16);
+            prop_assert_eq!(lanes_before(first_eq(w, b)), first);
+        }
+
+        #[test]
+        fn pack_hex_packs_pairs_of_nibbles(nibbles in proptest::array::uniform16(0u8..16)) {
+            let values = u128::from_le_bytes(nibbles);
+            let expected: Vec<u8> = nibbles.chunks(2).map(|p| p[0] << 4 | p[1]).collect();
+            prop_assert_eq!(pack_hex(values).to_le_bytes().to_vec(), expected);
+        }
+
+        #[test]
+        fn decimal_is_the_number_of_the_digits(digits in proptest::array::uniform16(0u8..10)) {
+            let number = digits.iter().fold(0u64, |n, &d| n * 10 + u64::from(d));
+            prop_assert_eq!(decimal16(u128::from_le_bytes(digits)), number);
+            let eight: [u8; 8] = digits[..8].try_into().unwrap();
+            let number8 = eight.iter().fold(0u64, |n, &d| n * 10 + u64::from(d));
+            prop_assert_eq!(decimal8(u64::from_le_bytes(eight)), number8);
+        }
+
+        #[test]
+        fn load16_reads_zeros_past_the_end(bytes in proptest::collection::vec(any::<u8>(), 0..40), at in 0usize..48) {
+            let mut expected = [0u8; 16];
+            for (i, e) in expected.iter_mut().enumerate() {
+                *e = bytes.get(at + i).copied().unwrap_or(0);
+            }
+            prop_assert_eq!(load16(&bytes, at), u128::from_le_bytes(expected));
+        }
+    }
+}
