@@ -15,8 +15,8 @@ const AXIS_1_FB2: [u8; 5] = [0x21, 0, 0, 0, 0];
 
 fn main() {
     let node = NodeId::new(5).expect("5 is a node-ID");
-    let mut producer: EmcyProducer = EmcyProducer::new();
-    let mut history: ErrorHistory = ErrorHistory::new();
+    let mut producer = EmcyProducer::new();
+    let mut history = ErrorHistory::new();
 
     let over_temperature = ErrorCode::new(0x4210);
     let can_overrun = ErrorCode::new(0x8110);

@@ -121,8 +121,8 @@ impl ProducerModel {
 impl<const N: usize, const H: usize> Checked<N, H> {
     fn new() -> Self {
         Checked {
-            producer: EmcyProducer::new(),
-            history: ErrorHistory::new(),
+            producer: EmcyProducer::with_capacity(),
+            history: ErrorHistory::with_capacity(),
             model: ProducerModel::default(),
             history_model: Vec::new(),
         }

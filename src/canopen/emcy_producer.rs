@@ -342,7 +342,24 @@ pub struct EmcyProducer<const N: usize = DEFAULT_ACTIVE_ERRORS> {
 
 impl<const N: usize> Default for EmcyProducer<N> {
     fn default() -> Self {
-        Self::new()
+        Self::with_capacity()
+    }
+}
+
+impl EmcyProducer {
+    /// Return the machine after transition 0 (error-free, nothing active),
+    /// tracking [`DEFAULT_ACTIVE_ERRORS`] (8) active errors at once: written
+    /// without naming a capacity, as `HashMap::new` is.
+    ///
+    /// ```
+    /// use motionwire::canopen::EmcyProducer;
+    ///
+    /// let producer = EmcyProducer::new();
+    /// assert_eq!(producer.active_errors().count(), 0);
+    /// ```
+    #[must_use]
+    pub const fn new() -> Self {
+        Self::with_capacity()
     }
 }
 
@@ -350,8 +367,11 @@ impl<const N: usize> EmcyProducer<N> {
     /// The number of active errors this machine tracks.
     pub const CAPACITY: usize = N;
 
-    /// Return the machine after transition 0: error-free, nothing active.
-    pub const fn new() -> Self {
+    /// Return the machine after transition 0 (error-free, nothing active),
+    /// tracking `N` active errors at once, e.g.
+    /// `EmcyProducer::<16>::with_capacity()`.
+    #[must_use]
+    pub const fn with_capacity() -> Self {
         EmcyProducer {
             active: [ActiveError::VACANT; N],
             len: 0,
@@ -422,7 +442,7 @@ impl<const N: usize> EmcyProducer<N> {
     pub fn apply(&mut self, event: EmcyEvent) -> EmcyOutcome {
         match event {
             EmcyEvent::Initialised => {
-                *self = Self::new();
+                *self = Self::with_capacity();
                 EmcyOutcome::taken(EmcyTransition::Initialised, None)
             }
             EmcyEvent::ErrorOccurred {
@@ -435,7 +455,7 @@ impl<const N: usize> EmcyProducer<N> {
                 if self.is_error_free() {
                     EmcyOutcome::refused(IgnoredEvent::AlreadyErrorFree)
                 } else {
-                    *self = Self::new();
+                    *self = Self::with_capacity();
                     EmcyOutcome::taken(
                         EmcyTransition::AllErrorsReset,
                         Some(Emcy::reset(ErrorRegister::empty())),
@@ -556,7 +576,7 @@ mod tests {
     /// Apply `events` to a fresh machine, asserting that each took a
     /// transition, and return the machine.
     fn after<const N: usize>(events: &[EmcyEvent]) -> EmcyProducer<N> {
-        let mut producer = EmcyProducer::<N>::new();
+        let mut producer = EmcyProducer::<N>::with_capacity();
         for &event in events {
             let out = producer.apply(event);
             assert!(out.transition.is_some(), "{event:?} took no transition");
@@ -590,7 +610,8 @@ mod tests {
 
     #[test]
     fn transition_1_first_error_sends_code_register_and_manufacturer_bytes() {
-        let (next, out) = EmcyProducer::<8>::new().step(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
+        let (next, out) =
+            EmcyProducer::<8>::with_capacity().step(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
         assert_eq!(out.transition, Some(EmcyTransition::FirstError));
         assert_eq!(out.transition.map(EmcyTransition::number), Some(1));
         // 0x4210 LE, register generic | temperature, axis 1.
@@ -603,8 +624,8 @@ mod tests {
     #[test]
     fn transition_1_seed_000_life_guard_error_on_axis_1() {
         // The AKD frame of seed 000 as used by emcy.rs: 0x8130, register 0x11.
-        let (_, out) =
-            EmcyProducer::<8>::new().step(EmcyEvent::error(ErrorCode::LIFE_GUARD, AXIS_1));
+        let (_, out) = EmcyProducer::<8>::with_capacity()
+            .step(EmcyEvent::error(ErrorCode::LIFE_GUARD, AXIS_1));
         assert_eq!(sent(&out), [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00]);
     }
 
@@ -697,7 +718,8 @@ mod tests {
 
     #[test]
     fn resetting_an_inactive_error_sends_nothing() {
-        let (next, out) = EmcyProducer::<8>::new().step(EmcyEvent::reset(OVER_TEMPERATURE));
+        let (next, out) =
+            EmcyProducer::<8>::with_capacity().step(EmcyEvent::reset(OVER_TEMPERATURE));
         assert_eq!((out.emcy, out.transition), (None, None));
         assert_eq!(out.ignored, Some(IgnoredEvent::NotActive));
         assert_eq!(next, EmcyProducer::new());
@@ -713,7 +735,7 @@ mod tests {
 
     #[test]
     fn reset_all_from_error_free_sends_nothing() {
-        let (next, out) = EmcyProducer::<8>::new().step(EmcyEvent::AllErrorsReset);
+        let (next, out) = EmcyProducer::<8>::with_capacity().step(EmcyEvent::AllErrorsReset);
         assert_eq!((out.emcy, out.transition), (None, None));
         assert_eq!(out.ignored, Some(IgnoredEvent::AlreadyErrorFree));
         assert!(next.is_error_free());
@@ -723,7 +745,7 @@ mod tests {
     fn a_reset_code_as_an_error_is_refused_in_both_conditions() {
         for raw in [0x0000, 0x0001, 0x00FF] {
             let event = EmcyEvent::error(ErrorCode::new(raw), AXIS_1);
-            let (next, out) = EmcyProducer::<8>::new().step(event);
+            let (next, out) = EmcyProducer::<8>::with_capacity().step(event);
             assert_eq!(out.emcy, None, "{raw:#06x}");
             assert_eq!(out.ignored, Some(IgnoredEvent::ResetCodeIsNotAnError));
             assert!(next.is_error_free());
@@ -760,7 +782,7 @@ mod tests {
                     [0; 5],
                 ),
             };
-            let (next, out) = EmcyProducer::<8>::new().step(event);
+            let (next, out) = EmcyProducer::<8>::with_capacity().step(event);
             let [lo, hi] = raw.to_le_bytes();
             assert_eq!(sent(&out), [lo, hi, register, 0, 0, 0, 0, 0], "{raw:#06x}");
             assert_eq!(next.error_register().bits(), register);
@@ -867,7 +889,7 @@ mod tests {
         let out = producer.apply(EmcyEvent::AllErrorsReset);
         assert_eq!(out.transition, Some(EmcyTransition::AllErrorsReset));
         assert_eq!(sent(&out), [0x00; 8]);
-        assert_eq!(producer, EmcyProducer::new());
+        assert_eq!(producer, EmcyProducer::with_capacity());
     }
 
     #[test]
@@ -884,7 +906,7 @@ mod tests {
 
     #[test]
     fn a_machine_without_slots_still_sends_every_emcy() {
-        let mut producer = EmcyProducer::<0>::new();
+        let mut producer = EmcyProducer::<0>::with_capacity();
         let out = producer.apply(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
         assert_eq!(out.transition, Some(EmcyTransition::FirstError));
         assert_eq!(out.overflow, Some(OVER_TEMPERATURE));
@@ -988,7 +1010,7 @@ mod proptests {
     }
 
     fn check_sequence<const N: usize>(events: &[EmcyEvent]) -> Result<(), TestCaseError> {
-        let mut producer = EmcyProducer::<N>::new();
+        let mut producer = EmcyProducer::<N>::with_capacity();
         let mut model = Model::default();
         for &event in events {
             let was_free = producer.is_error_free();

@@ -108,7 +108,7 @@ impl From<ErrorHistoryEntry> for u32 {
 ///   compile when the history is created:
 ///
 /// ```compile_fail
-/// let history = motionwire::canopen::ErrorHistory::<255>::new();
+/// let history = motionwire::canopen::ErrorHistory::<255>::with_capacity();
 /// ```
 ///
 /// ```
@@ -116,8 +116,8 @@ impl From<ErrorHistoryEntry> for u32 {
 ///     EmcyEvent, EmcyProducer, ErrorCode, ErrorHistory, SdoAbortCode,
 /// };
 ///
-/// let mut producer: EmcyProducer = EmcyProducer::new();
-/// let mut history: ErrorHistory = ErrorHistory::new();
+/// let mut producer = EmcyProducer::new();
+/// let mut history = ErrorHistory::new();
 ///
 /// for event in [
 ///     EmcyEvent::error(ErrorCode::new(0x4210), [0x01, 0, 0, 0, 0]),
@@ -147,7 +147,24 @@ pub struct ErrorHistory<const N: usize = DEFAULT_ERROR_HISTORY_LEN> {
 
 impl<const N: usize> Default for ErrorHistory<N> {
     fn default() -> Self {
-        Self::new()
+        Self::with_capacity()
+    }
+}
+
+impl ErrorHistory {
+    /// Return an empty history of [`DEFAULT_ERROR_HISTORY_LEN`] (10)
+    /// entries — the Kollmorgen AKD's object 1003h holds 10 — written
+    /// without naming a capacity, as `HashMap::new` is.
+    ///
+    /// ```
+    /// use motionwire::canopen::ErrorHistory;
+    ///
+    /// let history = ErrorHistory::new();
+    /// assert_eq!(history.len(), 0);
+    /// ```
+    #[must_use]
+    pub const fn new() -> Self {
+        Self::with_capacity()
     }
 }
 
@@ -161,8 +178,10 @@ impl<const N: usize> ErrorHistory<N> {
 
     const EMPTY: ErrorHistoryEntry = ErrorHistoryEntry::new(ErrorCode::NO_ERROR, 0);
 
-    /// Return an empty history.
-    pub const fn new() -> Self {
+    /// Return an empty history of `N` entries (1..=254, checked when the
+    /// program is built), e.g. `ErrorHistory::<5>::with_capacity()`.
+    #[must_use]
+    pub const fn with_capacity() -> Self {
         let () = Self::VALID_CAPACITY;
         ErrorHistory {
             entries: [Self::EMPTY; N],
@@ -235,7 +254,7 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Remove every entry (what writing 0 to sub-index 0 does).
     pub fn clear(&mut self) {
-        *self = Self::new();
+        *self = Self::with_capacity();
     }
 
     /// Answer an SDO read (upload) of sub-index `sub_index`: sub-index 0 the
@@ -307,7 +326,7 @@ mod tests {
 
     /// A history holding `codes`, pushed oldest first.
     fn history_of<const N: usize>(codes: &[u16]) -> ErrorHistory<N> {
-        let mut history = ErrorHistory::<N>::new();
+        let mut history = ErrorHistory::<N>::with_capacity();
         for &code in codes {
             assert!(history.push(entry(code, 0)));
         }
@@ -336,7 +355,7 @@ mod tests {
 
     #[test]
     fn reads_of_an_empty_history() {
-        let history: ErrorHistory = ErrorHistory::new();
+        let history = ErrorHistory::new();
         assert_eq!(history.read(0), Ok(0));
         for sub_index in 1..=10 {
             assert_eq!(
@@ -392,7 +411,7 @@ mod tests {
     #[test]
     fn a_new_error_shifts_older_ones_down_and_the_oldest_falls_off_n_10() {
         let codes: Vec<u16> = (1..=12).map(|n| 0x1000 + n).collect();
-        let mut history: ErrorHistory = ErrorHistory::new();
+        let mut history = ErrorHistory::new();
         for (pushed, &code) in codes.iter().enumerate() {
             history.push(entry(code, 0));
             assert_eq!(history.read(0), Ok((pushed as u32 + 1).min(10)));
@@ -418,7 +437,7 @@ mod tests {
             (0x8110, [Some(0x8110), Some(0x4210), Some(0x3210)]),
             (0x2310, [Some(0x2310), Some(0x8110), Some(0x4210)]),
         ];
-        let mut history = ErrorHistory::<3>::new();
+        let mut history = ErrorHistory::<3>::with_capacity();
         for (code, expected) in steps {
             history.push(entry(code, 0));
             for (sub_index, want) in (1..=3).zip(expected) {
@@ -461,7 +480,7 @@ mod tests {
 
     #[test]
     fn record_takes_additional_info_from_manufacturer_bytes_0_and_1() {
-        let mut history: ErrorHistory = ErrorHistory::new();
+        let mut history = ErrorHistory::new();
         // AKD: axis 1, feedback 2 in byte 3 of the frame (SPEC §2.4).
         let emcy = Emcy::new(
             ErrorCode::new(0x7305),
@@ -475,8 +494,8 @@ mod tests {
 
     #[test]
     fn record_outcome_records_only_error_emcys() {
-        let mut producer: EmcyProducer = EmcyProducer::new();
-        let mut history: ErrorHistory = ErrorHistory::new();
+        let mut producer = EmcyProducer::new();
+        let mut history = ErrorHistory::new();
         // (event, recorded?)
         let table = [
             (EmcyEvent::Initialised, false),
@@ -549,7 +568,7 @@ mod proptests {
 
     /// Record `emcys` in a history of `N` and check it against a plain list.
     fn check_records<const N: usize>(emcys: &[Emcy]) -> Result<(), TestCaseError> {
-        let mut history = ErrorHistory::<N>::new();
+        let mut history = ErrorHistory::<N>::with_capacity();
         let mut model: Vec<u32> = Vec::new(); // newest first
         for (i, emcy) in emcys.iter().enumerate() {
             let recorded = history.record(emcy);
@@ -593,7 +612,7 @@ mod proptests {
             emcys in proptest::collection::vec(produced_emcy(), 0..15),
             accesses in proptest::collection::vec((any::<u8>(), any::<u32>(), any::<bool>()), 0..20),
         ) {
-            let mut history = ErrorHistory::<10>::new();
+            let mut history = ErrorHistory::<10>::with_capacity();
             for emcy in &emcys {
                 history.record(emcy);
             }
@@ -619,8 +638,8 @@ mod proptests {
         /// error EMCY sent.
         #[test]
         fn fed_by_the_state_machine(events in emcy_events(48)) {
-            let mut producer = EmcyProducer::<4>::new();
-            let mut history = ErrorHistory::<5>::new();
+            let mut producer = EmcyProducer::<4>::with_capacity();
+            let mut history = ErrorHistory::<5>::with_capacity();
             let mut last_error = None;
             for event in events {
                 let outcome = producer.apply(event);
