@@ -5,7 +5,7 @@
 //! Run with `cargo run --example akd_emcy`.
 
 use motionwire::canopen::{Emcy, NodeId};
-use motionwire::profiles::akd::{AkdEmcy, AkdManufacturerField};
+use motionwire::profiles::akd::AkdEmcy;
 
 /// The frames, in the order the drive sends them, with what the seed says
 /// about each.
@@ -64,29 +64,19 @@ fn main() -> Result<(), motionwire::Error> {
             flags.join(", ")
         );
 
-        match AkdEmcy::from_emcy(&emcy) {
-            Ok(akd) => {
-                let m = akd.manufacturer;
-                println!("  AKD       {}, feedback {}", m.axis, m.feedback);
-                let state = if !akd.is_reset() {
-                    "error occurred"
-                } else if akd.register.is_empty() {
-                    "error reset: error-free"
-                } else {
-                    "error reset: errors remain"
-                };
-                println!("  state     {state}\n");
-            }
-            Err(error) => {
-                // The raw nibble and the axis stay readable through the view.
-                let field = AkdManufacturerField::new_checked(&emcy.manufacturer[..])?;
-                println!(
-                    "  AKD       {}, feedback nibble {} ({error})\n",
-                    field.axis_id(),
-                    field.feedback_nibble()
-                );
-            }
-        }
+        // Decoding keeps everything: an undefined feedback nibble shows as
+        // "unknown feedback id N" next to the axis.
+        let akd = AkdEmcy::from_emcy(&emcy);
+        let m = akd.manufacturer;
+        println!("  AKD       {}, feedback {}", m.axis, m.feedback);
+        let state = if !akd.is_reset() {
+            "error occurred"
+        } else if akd.register.is_empty() {
+            "error reset: error-free"
+        } else {
+            "error reset: errors remain"
+        };
+        println!("  state     {state}\n");
     }
     Ok(())
 }

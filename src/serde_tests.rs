@@ -237,6 +237,8 @@ fn enums_are_their_variant_names() {
     check_json(RegulatorMode::PreciseSpeed, r#""PreciseSpeed""#);
     check_json(EncoderKind::Incremental, r#""Incremental""#);
     check_json(FeedbackId::Fb2, r#""Fb2""#);
+    check_json(FeedbackId::from_nibble(7), r#"{"Unknown":7}"#);
+    assert!(refusal::<FeedbackId>(r#"{"Unknown":3}"#).contains("is outside 6..=15"));
     check_json(Appearance::Startup, r#""Startup""#);
     check_json(Variant::NonRedundant, r#""NonRedundant""#);
     check_json(
@@ -272,7 +274,7 @@ fn structs_are_their_fields() {
         r#"{"code":33072,"register":"GENERIC | COMMUNICATION","manufacturer":[1,0,0,0,0]}"#,
     );
     check_json(
-        AkdEmcy::from_emcy(&emcy).unwrap(),
+        AkdEmcy::from_emcy(&emcy),
         r#"{"code":33072,"register":"GENERIC | COMMUNICATION","manufacturer":{"axis":1,"feedback":"None","reserved":[0,0,0,0]}}"#,
     );
     check_json(

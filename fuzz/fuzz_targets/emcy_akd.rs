@@ -2,11 +2,11 @@
 //!
 //! Arbitrary bytes → `AkdEmcy::parse`. Invariants:
 //! - fewer than 8 bytes is exactly the EMCY `Error::Length`;
-//! - with 8 or more, the feedback nibble (byte 3, bits 4–7) decides: 0..=5
-//!   decodes, the fields are byte 3's nibbles and the reserved bytes 4–7 as
-//!   sent, and re-encoding gives the 8 bytes back; 6..=15 is exactly
-//!   `Error::InvalidValue { what: "AKD feedback id", found: nibble, .. }`,
-//!   and the zero-copy view still reads every field;
+//! - with 8 or more, every input decodes and nothing is lost: the fields
+//!   are byte 3's nibbles (a feedback nibble of 6..=15 kept as
+//!   `FeedbackId::Unknown`, the strict `feedback_id()` of the view naming it
+//!   as `Error::InvalidValue`) and the reserved bytes 4–7 as sent, and
+//!   re-encoding gives the 8 bytes back;
 //! - the 5-byte manufacturer field on its own (`AkdManufacturer::parse`)
 //!   obeys the same rules with its own length error;
 //! - `AxisId` / `FeedbackId` constructors accept exactly their ranges and
@@ -40,45 +40,27 @@ fuzz_target!(|data: &[u8]| {
     }
     let bytes: [u8; EMCY_LEN] = data[..EMCY_LEN].try_into().unwrap();
     let nibble = bytes[3] >> 4;
-    assert_eq!(AkdEmcy::from_bytes(&bytes), result);
-    assert_eq!(
-        AkdEmcy::parse_frame(&EmcyFrame::new_unchecked(&bytes)),
-        result
-    );
     let emcy = Emcy::from_bytes(&bytes);
-    assert_eq!(AkdEmcy::from_emcy(&emcy), result);
-    assert_eq!(AkdEmcy::try_from(emcy), result);
-
-    match result {
-        Ok(akd) => {
-            assert!(nibble <= 5);
-            assert_eq!(akd.code, emcy.code);
-            assert_eq!(akd.register, emcy.register);
-            assert_eq!(akd.manufacturer.axis.get(), bytes[3] & 0x0F);
-            assert_eq!(akd.manufacturer.feedback.get(), nibble);
-            assert_eq!(akd.manufacturer.reserved, bytes[4..8]);
-            assert_eq!(akd.is_reset(), emcy.is_reset());
-            // Re-encoding gives the input back.
-            assert_eq!(akd.to_bytes(), bytes);
-            assert_eq!(akd.to_emcy(), emcy);
-            assert_eq!(Emcy::from(akd), emcy);
-            let mut image = [0x3Cu8; EMCY_LEN];
-            akd.emit(&mut EmcyFrame::new_unchecked(&mut image[..]));
-            assert_eq!(image, bytes);
-        }
-        Err(error) => {
-            assert!(nibble >= 6, "nibble {nibble} refused: {error}");
-            assert_eq!(
-                error,
-                Error::InvalidValue {
-                    what: "AKD feedback id",
-                    found: u32::from(nibble),
-                    expected: FEEDBACK_EXPECTED,
-                }
-            );
-            let _ = error.to_string();
-        }
-    }
+    let akd = result.expect("8 bytes always decode");
+    assert_eq!(AkdEmcy::from_bytes(&bytes), akd);
+    assert_eq!(AkdEmcy::parse_frame(&EmcyFrame::new_unchecked(&bytes)), akd);
+    assert_eq!(AkdEmcy::from_emcy(&emcy), akd);
+    assert_eq!(AkdEmcy::from(emcy), akd);
+    assert_eq!(akd.code, emcy.code);
+    assert_eq!(akd.register, emcy.register);
+    assert_eq!(akd.manufacturer.axis.get(), bytes[3] & 0x0F);
+    assert_eq!(akd.manufacturer.feedback.get(), nibble);
+    assert_eq!(akd.manufacturer.feedback.is_defined(), nibble <= 5);
+    assert_eq!(akd.manufacturer.reserved, bytes[4..8]);
+    assert_eq!(akd.is_reset(), emcy.is_reset());
+    // Re-encoding gives the input back.
+    assert_eq!(akd.to_bytes(), bytes);
+    assert_eq!(akd.to_emcy(), emcy);
+    assert_eq!(Emcy::from(akd), emcy);
+    let mut image = [0x3Cu8; EMCY_LEN];
+    akd.emit(&mut EmcyFrame::new_unchecked(&mut image[..]));
+    assert_eq!(image, bytes);
+    let _ = akd.manufacturer.feedback.to_string();
 });
 
 /// The 5-byte field from the front of the input.
@@ -102,24 +84,29 @@ fn check_field(data: &[u8]) {
     assert_eq!(view.reserved(), data[1..5]);
     assert_eq!(view.feedback_id(), FeedbackId::try_new(nibble));
     let bytes: [u8; AKD_MANUFACTURER_LEN] = data[..AKD_MANUFACTURER_LEN].try_into().unwrap();
-    assert_eq!(AkdManufacturer::from_bytes(&bytes), result);
-    assert_eq!(AkdManufacturer::parse_field(&view), result);
-    match result {
-        Ok(field) => {
-            assert_eq!(field.to_bytes(), bytes);
-            let mut image = [0xFFu8; AKD_MANUFACTURER_LEN];
-            field.emit(&mut AkdManufacturerField::new_unchecked(&mut image[..]));
-            assert_eq!(image, bytes);
+    let field = result.expect("5 bytes always decode");
+    assert_eq!(AkdManufacturer::from_bytes(&bytes), field);
+    assert_eq!(AkdManufacturer::parse_field(&view), field);
+    assert_eq!(view.feedback(), field.feedback);
+    assert_eq!(field.feedback.get(), nibble);
+    match view.feedback_id() {
+        Ok(strict) => assert_eq!(strict, field.feedback),
+        Err(error) => {
+            assert!(!field.feedback.is_defined());
+            assert_eq!(
+                error,
+                Error::InvalidValue {
+                    what: "AKD feedback id",
+                    found: u32::from(nibble),
+                    expected: FEEDBACK_EXPECTED,
+                }
+            );
         }
-        Err(error) => assert_eq!(
-            error,
-            Error::InvalidValue {
-                what: "AKD feedback id",
-                found: u32::from(nibble),
-                expected: FEEDBACK_EXPECTED,
-            }
-        ),
     }
+    assert_eq!(field.to_bytes(), bytes);
+    let mut image = [0xFFu8; AKD_MANUFACTURER_LEN];
+    field.emit(&mut AkdManufacturerField::new_unchecked(&mut image[..]));
+    assert_eq!(image, bytes);
 }
 
 /// The sub-byte newtypes on any byte.

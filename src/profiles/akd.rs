@@ -33,12 +33,16 @@
 //!
 //! // Decoding an EMCY gives the fields back.
 //! let emcy = Emcy::parse(&[0x06, 0x73, 0x01, 0x21, 0, 0, 0, 0])?;
-//! let akd = AkdEmcy::from_emcy(&emcy)?;
+//! let akd = AkdEmcy::from_emcy(&emcy);
 //! assert_eq!(akd, fault);
 //! assert_eq!(akd.manufacturer.feedback.number(), Some(2));
 //!
-//! // A feedback nibble of 6..=15 is an error, not a panic.
-//! assert!(AkdEmcy::from_bytes(&[0x06, 0x73, 0x01, 0x71, 0, 0, 0, 0]).is_err());
+//! // A feedback nibble of 6..=15 is kept as unknown; the code, register
+//! // and axis are not lost.
+//! let odd = AkdEmcy::from_bytes(&[0x06, 0x73, 0x01, 0x71, 0, 0, 0, 0]);
+//! assert_eq!((odd.code, odd.manufacturer.axis), (fault.code, axis));
+//! assert_eq!(odd.manufacturer.feedback.get(), 7);
+//! assert!(!odd.manufacturer.feedback.is_defined());
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
@@ -169,8 +173,11 @@ impl fmt::Display for AxisId {
 
 /// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3
 /// (seed 000; SPEC §2.4): 0 = none (not a feedback fault), 1..=5 =
-/// FB1..FB5. The values 6..=15 are not defined; decoding them is an
-/// [`Error::InvalidValue`] that names the nibble.
+/// FB1..FB5. The values 6..=15 are not defined: building one with
+/// [`FeedbackId::try_new`] is an [`Error::InvalidValue`] that names the
+/// nibble, while decoding a received EMCY keeps it as
+/// [`FeedbackId::Unknown`] ([`FeedbackId::from_nibble`]), so that nothing
+/// else the EMCY says is lost.
 ///
 /// ```
 /// use motionwire::profiles::akd::FeedbackId;
@@ -179,6 +186,10 @@ impl fmt::Display for AxisId {
 /// assert_eq!(FeedbackId::Fb2.number(), Some(2));
 /// assert_eq!(FeedbackId::None.number(), None);
 /// assert!(FeedbackId::try_new(6).is_err());
+/// let unknown = FeedbackId::from_nibble(6);
+/// assert!(matches!(unknown, FeedbackId::Unknown(_)));
+/// assert_eq!((unknown.get(), unknown.number()), (6, None));
+/// assert_eq!(unknown.to_string(), "unknown feedback id 6");
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -197,6 +208,48 @@ pub enum FeedbackId {
     Fb4,
     /// 5: feedback 5.
     Fb5,
+    /// 6..=15: a value seed 000 does not define, as received.
+    Unknown(UndefinedFeedbackId),
+}
+
+/// A feedback nibble seed 000 does not define, 6..=15, kept as received
+/// ([`FeedbackId::Unknown`]; SPEC §2.4). Only the crate makes one, so it
+/// never holds a defined value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(try_from = "u8", into = "u8"))]
+pub struct UndefinedFeedbackId(u8);
+
+impl UndefinedFeedbackId {
+    /// Return the nibble, 6..=15.
+    #[inline]
+    #[must_use]
+    pub const fn get(self) -> u8 {
+        self.0
+    }
+}
+
+impl TryFrom<u8> for UndefinedFeedbackId {
+    type Error = Error;
+
+    /// Accept 6..=15 only.
+    fn try_from(raw: u8) -> Result<Self> {
+        match FeedbackId::from_nibble(raw) {
+            FeedbackId::Unknown(undefined) if raw <= 0x0F => Ok(undefined),
+            _ => Err(Error::OutOfRange {
+                what: FEEDBACK_WHAT,
+                found: u32::from(raw),
+                min: 6,
+                max: 0x0F,
+            }),
+        }
+    }
+}
+
+impl From<UndefinedFeedbackId> for u8 {
+    fn from(undefined: UndefinedFeedbackId) -> u8 {
+        undefined.0
+    }
 }
 
 impl FeedbackId {
@@ -246,8 +299,21 @@ impl FeedbackId {
         }
     }
 
-    /// Return the nibble, 0..=5.
+    /// Return the feedback id of a received nibble (the low 4 bits of
+    /// `nibble`): 0..=5 as defined, 6..=15 as [`FeedbackId::Unknown`].
     #[inline]
+    #[must_use]
+    pub const fn from_nibble(nibble: u8) -> Self {
+        let nibble = nibble & 0x0F;
+        match Self::new(nibble) {
+            Some(feedback) => feedback,
+            None => FeedbackId::Unknown(UndefinedFeedbackId(nibble)),
+        }
+    }
+
+    /// Return the nibble, 0..=15.
+    #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         match self {
             FeedbackId::None => 0,
@@ -256,15 +322,25 @@ impl FeedbackId {
             FeedbackId::Fb3 => 3,
             FeedbackId::Fb4 => 4,
             FeedbackId::Fb5 => 5,
+            FeedbackId::Unknown(undefined) => undefined.0,
         }
     }
 
-    /// Return the feedback's number, 1..=5, or `None` when the EMCY is not
-    /// a feedback fault (SPEC §6.1, `feedback`: integer or null).
+    /// Return whether the nibble is one seed 000 defines (0..=5).
     #[inline]
+    #[must_use]
+    pub const fn is_defined(self) -> bool {
+        !matches!(self, FeedbackId::Unknown(_))
+    }
+
+    /// Return the feedback's number, 1..=5, or `None` when the EMCY is not
+    /// a feedback fault or names an undefined feedback (SPEC §6.1,
+    /// `feedback`: integer or null).
+    #[inline]
+    #[must_use]
     pub const fn number(self) -> Option<u8> {
         match self {
-            FeedbackId::None => None,
+            FeedbackId::None | FeedbackId::Unknown(_) => None,
             other => Some(other.get()),
         }
     }
@@ -285,11 +361,14 @@ impl From<FeedbackId> for u8 {
 }
 
 impl fmt::Display for FeedbackId {
-    /// Format the feedback as `FB2`, or `none`.
+    /// Format the feedback as `FB2`, `none`, or `unknown feedback id 6`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.number() {
-            Some(n) => write!(f, "FB{n}"),
-            None => f.write_str("none"),
+        match (self.number(), self) {
+            (Some(n), _) => write!(f, "FB{n}"),
+            (None, FeedbackId::Unknown(undefined)) => {
+                write!(f, "unknown feedback id {}", undefined.0)
+            }
+            (None, _) => f.write_str("none"),
         }
     }
 }
@@ -355,6 +434,13 @@ impl<T: AsRef<[u8]>> AkdManufacturerField<T> {
         FeedbackId::try_new(self.feedback_nibble())
     }
 
+    /// Return the feedback id field as received: an undefined nibble
+    /// 6..=15 as [`FeedbackId::Unknown`].
+    #[inline]
+    pub fn feedback(&self) -> FeedbackId {
+        FeedbackId::from_nibble(self.feedback_nibble())
+    }
+
     /// Return the reserved field (EMCY bytes 4–7), as sent.
     #[inline]
     pub fn reserved(&self) -> [u8; 4] {
@@ -409,10 +495,10 @@ impl AkdManufacturer {
         }
     }
 
-    /// Decode the 5 bytes of the field; a feedback nibble of 6..=15 is an
-    /// [`Error::InvalidValue`].
+    /// Decode the 5 bytes of the field; a feedback nibble of 6..=15 is
+    /// kept as [`FeedbackId::Unknown`].
     #[inline]
-    pub fn from_bytes(bytes: &[u8; AKD_MANUFACTURER_LEN]) -> Result<Self> {
+    pub fn from_bytes(bytes: &[u8; AKD_MANUFACTURER_LEN]) -> Self {
         Self::parse_field(&AkdManufacturerField::new_unchecked(bytes))
     }
 
@@ -425,20 +511,21 @@ impl AkdManufacturer {
     }
 
     /// Decode the field from a slice: fewer than 5 bytes is an
-    /// [`Error::Length`], a feedback nibble of 6..=15 an [`Error::InvalidValue`].
+    /// [`Error::Length`]; a feedback nibble of 6..=15 is kept as
+    /// [`FeedbackId::Unknown`].
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
-        Self::parse_field(&AkdManufacturerField::new_checked(data)?)
+        Ok(Self::parse_field(&AkdManufacturerField::new_checked(data)?))
     }
 
     /// Read the owned value out of a view.
     #[inline]
-    pub fn parse_field<T: AsRef<[u8]>>(field: &AkdManufacturerField<T>) -> Result<Self> {
-        Ok(AkdManufacturer {
+    pub fn parse_field<T: AsRef<[u8]>>(field: &AkdManufacturerField<T>) -> Self {
+        AkdManufacturer {
             axis: field.axis_id(),
-            feedback: field.feedback_id()?,
+            feedback: field.feedback(),
             reserved: field.reserved(),
-        })
+        }
     }
 
     /// Write every field into a view.
@@ -496,15 +583,16 @@ impl AkdEmcy {
         self.code.is_reset()
     }
 
-    /// Decode an EMCY's manufacturer field the AKD way; a feedback nibble of
-    /// 6..=15 is an [`Error::InvalidValue`].
+    /// Decode an EMCY's manufacturer field the AKD way. Nothing is lost: a
+    /// feedback nibble of 6..=15 is kept as [`FeedbackId::Unknown`] with the
+    /// code, register and axis.
     #[inline]
-    pub fn from_emcy(emcy: &Emcy) -> Result<Self> {
-        Ok(AkdEmcy {
+    pub fn from_emcy(emcy: &Emcy) -> Self {
+        AkdEmcy {
             code: emcy.code,
             register: emcy.register,
-            manufacturer: AkdManufacturer::from_bytes(&emcy.manufacturer)?,
-        })
+            manufacturer: AkdManufacturer::from_bytes(&emcy.manufacturer),
+        }
     }
 
     /// Encode into a generic EMCY.
@@ -515,7 +603,7 @@ impl AkdEmcy {
 
     /// Decode the 8 bytes of an AKD EMCY.
     #[inline]
-    pub fn from_bytes(bytes: &[u8; EMCY_LEN]) -> Result<Self> {
+    pub fn from_bytes(bytes: &[u8; EMCY_LEN]) -> Self {
         Self::from_emcy(&Emcy::from_bytes(bytes))
     }
 
@@ -526,15 +614,16 @@ impl AkdEmcy {
     }
 
     /// Decode an AKD EMCY from a CAN frame's data: fewer than 8 bytes is an
-    /// [`Error::Length`], a feedback nibble of 6..=15 an [`Error::InvalidValue`].
+    /// [`Error::Length`]; a feedback nibble of 6..=15 is kept as
+    /// [`FeedbackId::Unknown`].
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
-        Self::from_emcy(&Emcy::parse(data)?)
+        Ok(Self::from_emcy(&Emcy::parse(data)?))
     }
 
     /// Read the owned value out of an EMCY view.
     #[inline]
-    pub fn parse_frame<T: AsRef<[u8]>>(frame: &EmcyFrame<T>) -> Result<Self> {
+    pub fn parse_frame<T: AsRef<[u8]>>(frame: &EmcyFrame<T>) -> Self {
         Self::from_emcy(&Emcy::parse_frame(frame))
     }
 
@@ -545,10 +634,8 @@ impl AkdEmcy {
     }
 }
 
-impl TryFrom<Emcy> for AkdEmcy {
-    type Error = Error;
-
-    fn try_from(emcy: Emcy) -> Result<Self> {
+impl From<Emcy> for AkdEmcy {
+    fn from(emcy: Emcy) -> Self {
         Self::from_emcy(&emcy)
     }
 }
@@ -619,7 +706,7 @@ mod tests {
             FeedbackId::Fb2,
         );
         assert_eq!(fault.to_bytes(), FAULT_BYTES);
-        assert_eq!(AkdEmcy::from_bytes(&FAULT_BYTES), Ok(fault));
+        assert_eq!(AkdEmcy::from_bytes(&FAULT_BYTES), fault);
         assert_eq!(AkdEmcy::parse(&FAULT_BYTES), Ok(fault));
         assert!(!fault.is_reset());
         let emcy = Emcy::from_bytes(&FAULT_BYTES);
@@ -638,7 +725,7 @@ mod tests {
         assert_eq!(reset.code, ErrorCode::NO_ERROR);
         assert!(reset.is_reset());
         assert_eq!(reset.to_bytes(), RESET_BYTES);
-        assert_eq!(AkdEmcy::from_bytes(&RESET_BYTES), Ok(reset));
+        assert_eq!(AkdEmcy::from_bytes(&RESET_BYTES), reset);
     }
 
     #[test]
@@ -646,23 +733,23 @@ mod tests {
         // Seed 000, transition 4: register 0x00, axis 1, no feedback fault.
         let reset = AkdEmcy::reset(ErrorRegister::empty(), axis(1), FeedbackId::None);
         assert_eq!(reset.to_bytes(), [0, 0, 0, 0x01, 0, 0, 0, 0]);
-        assert_eq!(AkdEmcy::from_bytes(&reset.to_bytes()), Ok(reset));
+        assert_eq!(AkdEmcy::from_bytes(&reset.to_bytes()), reset);
     }
 
     #[test]
     fn emit_and_parse_frame() {
-        let fault = AkdEmcy::from_bytes(&FAULT_BYTES).unwrap();
+        let fault = AkdEmcy::from_bytes(&FAULT_BYTES);
         let mut data = [0xFFu8; 8];
         fault.emit(&mut EmcyFrame::new_unchecked(&mut data[..]));
         assert_eq!(data, FAULT_BYTES);
         let frame = EmcyFrame::new_checked(&data[..]).unwrap();
-        assert_eq!(AkdEmcy::parse_frame(&frame), Ok(fault));
+        assert_eq!(AkdEmcy::parse_frame(&frame), fault);
     }
 
     #[test]
     fn reserved_bytes_survive_a_round_trip() {
         let bytes = [0x06, 0x73, 0x01, 0x21, 0xDE, 0xAD, 0xBE, 0xEF];
-        let akd = AkdEmcy::from_bytes(&bytes).unwrap();
+        let akd = AkdEmcy::from_bytes(&bytes);
         assert_eq!(akd.manufacturer.reserved, [0xDE, 0xAD, 0xBE, 0xEF]);
         assert_eq!(akd.to_bytes(), bytes);
     }
@@ -702,15 +789,27 @@ mod tests {
             assert_eq!(FeedbackId::new(nibble), expected, "{nibble}");
             assert_eq!(field.feedback_id(), expected.ok_or(invalid), "{nibble}");
             assert_eq!(FeedbackId::try_new(nibble), expected.ok_or(invalid));
+            // Decoding keeps every nibble: the defined ones as themselves,
+            // 6..=15 as unknown, with the axis.
+            let decoded = AkdManufacturer::from_bytes(&bytes);
+            assert_eq!(decoded.axis, axis(7));
+            assert_eq!(decoded.feedback.get(), nibble);
+            assert_eq!(field.feedback(), decoded.feedback);
             match expected {
                 Some(feedback) => {
                     assert_eq!(feedback.get(), nibble);
+                    assert_eq!(decoded.feedback, feedback);
+                }
+                None => {
+                    assert!(
+                        matches!(decoded.feedback, FeedbackId::Unknown(u) if u.get() == nibble)
+                    );
+                    assert_eq!(decoded.feedback.number(), None);
                     assert_eq!(
-                        AkdManufacturer::from_bytes(&bytes).map(|m| m.feedback),
-                        Ok(feedback)
+                        UndefinedFeedbackId::try_from(nibble).map(u8::from),
+                        Ok(nibble)
                     );
                 }
-                None => assert_eq!(AkdManufacturer::from_bytes(&bytes), Err(invalid)),
             }
         }
     }
@@ -810,31 +909,23 @@ mod proptests {
             let field = AkdManufacturerField::new_checked(&bytes[3..]).unwrap();
             prop_assert_eq!(field.feedback_nibble(), nibble);
             prop_assert_eq!(field.axis_id().get(), bytes[3] & 0x0F);
-            match AkdEmcy::from_bytes(&bytes) {
-                Ok(akd) => {
-                    prop_assert!(nibble <= 5);
-                    prop_assert_eq!(akd.to_bytes(), bytes);
-                }
-                Err(e) => {
-                    prop_assert!(nibble >= 6);
-                    prop_assert_eq!(e, Error::InvalidValue {
-                        what: "AKD feedback id",
-                        found: u32::from(nibble),
-                        expected: "0 (none), 1..=5 (FB1..FB5)",
-                    });
-                }
-            }
+            // Every EMCY decodes and encodes back to its bytes: an
+            // undefined feedback nibble is kept, never dropped.
+            let akd = AkdEmcy::from_bytes(&bytes);
+            prop_assert_eq!(akd.to_bytes(), bytes);
+            prop_assert_eq!(akd.manufacturer.feedback.is_defined(), nibble <= 5);
+            prop_assert_eq!(akd.manufacturer.feedback.get(), nibble);
         }
 
         #[test]
         fn owned_bytes_owned(value in akd_emcy()) {
-            prop_assert_eq!(AkdEmcy::from_bytes(&value.to_bytes()), Ok(value));
-            prop_assert_eq!(AkdEmcy::try_from(value.to_emcy()), Ok(value));
+            prop_assert_eq!(AkdEmcy::from_bytes(&value.to_bytes()), value);
+            prop_assert_eq!(AkdEmcy::from(value.to_emcy()), value);
         }
 
         #[test]
         fn manufacturer_owned_bytes_owned(value in akd_manufacturer()) {
-            prop_assert_eq!(AkdManufacturer::from_bytes(&value.to_bytes()), Ok(value));
+            prop_assert_eq!(AkdManufacturer::from_bytes(&value.to_bytes()), value);
         }
 
         #[test]

@@ -12,7 +12,10 @@ pub(crate) fn axis_id() -> impl Strategy<Value = AxisId> {
 
 /// Any valid feedback id: none or FB1..FB5.
 pub(crate) fn feedback_id() -> impl Strategy<Value = FeedbackId> {
-    prop::sample::select(FeedbackId::ALL.to_vec())
+    prop_oneof![
+        3 => prop::sample::select(FeedbackId::ALL.to_vec()),
+        1 => (6u8..=15).prop_map(FeedbackId::from_nibble),
+    ]
 }
 
 /// Any valid AKD manufacturer field, reserved bytes arbitrary.
