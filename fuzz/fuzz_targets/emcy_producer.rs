@@ -233,7 +233,7 @@ impl<const N: usize, const H: usize> Checked<N, H> {
                     (Some(EmcyTransition::AllErrorsReset), None, None)
                 }
             }
-            EmcyEvent::ErrorReset { code } => {
+            EmcyEvent::ErrorReset { code, .. } => {
                 let Some(at) = model.tracked.iter().position(|&(c, _)| c == code.get()) else {
                     return (None, Some(IgnoredEvent::NotActive), None);
                 };

@@ -132,6 +132,11 @@ pub enum EmcyEvent {
     ErrorReset {
         /// The code of the error that went away.
         code: ErrorCode,
+        /// The manufacturer-specific field of the reset EMCY: `None` sends a
+        /// zero field, as SPEC §2.5 says a generic device does; a device
+        /// profile that names the error's source in reset EMCYs too (the
+        /// AKD keeps its axis id in byte 3, SPEC §2.4) passes it here.
+        manufacturer: Option<[u8; 5]>,
     },
     /// Every error is gone (e.g. after a fault reset).
     AllErrorsReset,
@@ -162,9 +167,37 @@ impl EmcyEvent {
         }
     }
 
-    /// Return an [`EmcyEvent::ErrorReset`] for `code`.
+    /// Return an [`EmcyEvent::ErrorReset`] for `code` whose reset EMCY has
+    /// a zero manufacturer field (SPEC §2.5).
+    #[must_use]
     pub const fn reset(code: ErrorCode) -> Self {
-        EmcyEvent::ErrorReset { code }
+        EmcyEvent::ErrorReset {
+            code,
+            manufacturer: None,
+        }
+    }
+
+    /// Return an [`EmcyEvent::ErrorReset`] for `code` whose reset EMCY
+    /// carries `manufacturer`, e.g. the AKD's axis and feedback ids
+    /// (SPEC §2.4).
+    ///
+    /// ```
+    /// use motionwire::canopen::{EmcyEvent, EmcyProducer, ErrorCode};
+    /// use motionwire::profiles::akd::{AkdManufacturer, AxisId, FeedbackId};
+    ///
+    /// let axis_2 = AkdManufacturer::new(AxisId::try_new(2)?, FeedbackId::None).to_bytes();
+    /// let mut producer = EmcyProducer::new();
+    /// let _ = producer.apply(EmcyEvent::error(ErrorCode::new(0x4310), axis_2));
+    /// let out = producer.apply(EmcyEvent::reset_with(ErrorCode::new(0x4310), axis_2));
+    /// assert_eq!(out.emcy.unwrap().to_bytes(), [0x00, 0x00, 0x00, 0x02, 0, 0, 0, 0]);
+    /// # Ok::<(), motionwire::Error>(())
+    /// ```
+    #[must_use]
+    pub const fn reset_with(code: ErrorCode, manufacturer: [u8; 5]) -> Self {
+        EmcyEvent::ErrorReset {
+            code,
+            manufacturer: Some(manufacturer),
+        }
     }
 }
 
@@ -297,9 +330,9 @@ impl ActiveError {
 ///   (a re-initialised device starts over, e.g. after an NMT reset): the machine
 ///   starts again error-free, without sending anything (seed 000: "No error
 ///   signal is generated in this condition").
-/// - The manufacturer area of a reset EMCY is zero (SPEC §2.5). The AKD keeps
-///   its axis id in byte 3 of reset EMCYs (seed 000, SPEC §2.4); a device
-///   that wants that sets it on the [`Emcy`] before sending.
+/// - The manufacturer area of a reset EMCY is zero (SPEC §2.5), unless the
+///   device passes one with [`EmcyEvent::reset_with`]: the AKD keeps its
+///   axis id in byte 3 of reset EMCYs (seed 000, SPEC §2.4).
 ///
 /// ```
 /// use motionwire::canopen::{
@@ -450,7 +483,9 @@ impl<const N: usize> EmcyProducer<N> {
                 register,
                 manufacturer,
             } => self.error_occurred(code, register, manufacturer),
-            EmcyEvent::ErrorReset { code } => self.error_reset(code),
+            EmcyEvent::ErrorReset { code, manufacturer } => {
+                self.error_reset(code, manufacturer.unwrap_or([0; 5]))
+            }
             EmcyEvent::AllErrorsReset => {
                 if self.is_error_free() {
                     EmcyOutcome::refused(IgnoredEvent::AlreadyErrorFree)
@@ -505,21 +540,19 @@ impl<const N: usize> EmcyProducer<N> {
         }
     }
 
-    fn error_reset(&mut self, code: ErrorCode) -> EmcyOutcome {
+    fn error_reset(&mut self, code: ErrorCode, manufacturer: [u8; 5]) -> EmcyOutcome {
         if !self.remove(code) {
             return EmcyOutcome::refused(IgnoredEvent::NotActive);
         }
-        if self.is_error_free() {
-            EmcyOutcome::taken(
-                EmcyTransition::AllErrorsReset,
-                Some(Emcy::reset(ErrorRegister::empty())),
-            )
+        let (transition, register) = if self.is_error_free() {
+            (EmcyTransition::AllErrorsReset, ErrorRegister::empty())
         } else {
-            EmcyOutcome::taken(
-                EmcyTransition::ErrorReset,
-                Some(Emcy::reset(self.error_register())),
-            )
-        }
+            (EmcyTransition::ErrorReset, self.error_register())
+        };
+        EmcyOutcome::taken(
+            transition,
+            Some(Emcy::new(ErrorCode::NO_ERROR, register, manufacturer)),
+        )
     }
 
     /// The tracked errors, `active[..len]`.
@@ -1000,7 +1033,7 @@ mod proptests {
                     let [m0, m1, m2, m3, m4] = manufacturer;
                     Some([lo, hi, self.register(), m0, m1, m2, m3, m4])
                 }
-                EmcyEvent::ErrorReset { code } => {
+                EmcyEvent::ErrorReset { code, .. } => {
                     let at = self.active.iter().position(|&(c, _)| c == code.get())?;
                     self.active.remove(at);
                     Some([0, 0, self.register(), 0, 0, 0, 0, 0])
