@@ -94,9 +94,9 @@ fn main() {
 
 fn print_step<const N: usize>(what: &str, outcome: &EmcyOutcome, producer: &EmcyProducer<N>) {
     let transition = outcome
-        .transition
+        .transition()
         .map_or_else(|| "-".to_string(), |t| t.number().to_string());
-    let (data, register) = match outcome.emcy {
+    let (data, register) = match outcome.emcy() {
         Some(emcy) => {
             let bytes: Vec<String> = emcy.to_bytes().iter().map(|b| format!("{b:02X}")).collect();
             (bytes.join(" "), format!("{:#04X}", emcy.register.bits()))
@@ -104,7 +104,7 @@ fn print_step<const N: usize>(what: &str, outcome: &EmcyOutcome, producer: &Emcy
         None => ("(nothing sent)".to_string(), "-".to_string()),
     };
     let flags: Vec<&str> = producer.error_register().names().collect();
-    let note = match (outcome.ignored, outcome.overflow) {
+    let note = match (outcome.ignored(), outcome.overflow()) {
         (Some(reason), _) => format!("  [{reason:?}]"),
         (None, Some(code)) => format!("  [overflow: {code} not tracked]"),
         (None, None) => String::new(),

@@ -149,15 +149,15 @@ impl<const N: usize, const H: usize> Checked<N, H> {
 
         let was_error_free = self.model.error_free();
         let expected = self.model_step(event);
-        assert_eq!(outcome.transition, expected.0, "{event:?}: {outcome:?}");
-        assert_eq!(outcome.ignored, expected.1, "{event:?}: {outcome:?}");
-        assert_eq!(outcome.overflow, expected.2, "{event:?}: {outcome:?}");
+        assert_eq!(outcome.transition(), expected.0, "{event:?}: {outcome:?}");
+        assert_eq!(outcome.ignored(), expected.1, "{event:?}: {outcome:?}");
+        assert_eq!(outcome.overflow(), expected.2, "{event:?}: {outcome:?}");
 
         // Exactly one of transition / ignored; an EMCY exactly for 1–4.
-        assert_ne!(outcome.transition.is_some(), outcome.ignored.is_some());
-        let sends = matches!(outcome.transition.map(EmcyTransition::number), Some(1..=4));
-        assert_eq!(outcome.emcy.is_some(), sends, "{outcome:?}");
-        if outcome.ignored.is_some() {
+        assert_ne!(outcome.transition().is_some(), outcome.ignored().is_some());
+        let sends = matches!(outcome.transition().map(EmcyTransition::number), Some(1..=4));
+        assert_eq!(outcome.emcy().is_some(), sends, "{outcome:?}");
+        if outcome.ignored().is_some() {
             assert_eq!(self.producer, before, "an ignored event changed the state");
         }
 
@@ -168,7 +168,7 @@ impl<const N: usize, const H: usize> Checked<N, H> {
             producer.condition() == ErrorCondition::ErrorFree,
             producer.active_count() == 0 && !producer.has_untracked_errors()
         );
-        if let Some(transition) = outcome.transition {
+        if let Some(transition) = outcome.transition() {
             assert_eq!(transition.target(), producer.condition());
             assert_eq!(
                 EmcyTransition::from_number(transition.number()),
@@ -187,16 +187,16 @@ impl<const N: usize, const H: usize> Checked<N, H> {
             assert!(producer.is_active(ErrorCode::new(code)));
         }
 
-        if let Some(emcy) = outcome.emcy {
-            check_emcy(event, &emcy, outcome.transition, producer.error_register());
+        if let Some(emcy) = outcome.emcy() {
+            check_emcy(event, &emcy, outcome.transition(), producer.error_register());
             if !was_error_free {
-                assert_ne!(outcome.transition, Some(EmcyTransition::FirstError));
+                assert_ne!(outcome.transition(), Some(EmcyTransition::FirstError));
             }
         }
 
         // The history records error EMCYs only.
         let recorded = self.history.record_outcome(&outcome);
-        match outcome.emcy {
+        match outcome.emcy() {
             Some(emcy) if !emcy.code.is_reset() => {
                 assert!(recorded);
                 let [a, b, ..] = emcy.manufacturer;

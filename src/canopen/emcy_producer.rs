@@ -189,7 +189,7 @@ impl EmcyEvent {
     /// let mut producer = EmcyProducer::new();
     /// let _ = producer.apply(EmcyEvent::error(ErrorCode::new(0x4310), axis_2));
     /// let out = producer.apply(EmcyEvent::reset_with(ErrorCode::new(0x4310), axis_2));
-    /// assert_eq!(out.emcy.unwrap().to_bytes(), [0x00, 0x00, 0x00, 0x02, 0, 0, 0, 0]);
+    /// assert_eq!(out.emcy().unwrap().to_bytes(), [0x00, 0x00, 0x00, 0x02, 0, 0, 0, 0]);
     /// # Ok::<(), motionwire::Error>(())
     /// ```
     #[must_use]
@@ -218,43 +218,88 @@ pub enum IgnoredEvent {
 }
 
 /// What one step of the EMCY state machine produced (SPEC §2.5: `(state,
-/// event) → (state, Option<EMCY>, transition number)`).
+/// event) → (state, Option<EMCY>, transition number)`), as one of the
+/// things that can happen — never a combination that cannot.
 ///
-/// Exactly one of [`transition`](Self::transition) and
-/// [`ignored`](Self::ignored) is `Some`; [`emcy`](Self::emcy) is `Some`
-/// exactly for transitions 1–4.
+/// ```
+/// use motionwire::canopen::{EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCode, IgnoredEvent};
+///
+/// let mut producer = EmcyProducer::new();
+/// let code = ErrorCode::new(0x4310);
+/// let out = producer.apply(EmcyEvent::error(code, [0; 5]));
+/// assert!(matches!(out, EmcyOutcome::Sent { transition: EmcyTransition::FirstError, .. }));
+/// assert_eq!(out.emcy().map(|e| e.code), Some(code));
+/// let again = producer.apply(EmcyEvent::error(code, [0; 5]));
+/// assert_eq!(again, EmcyOutcome::Ignored(IgnoredEvent::AlreadyActive));
+/// assert_eq!((again.emcy(), again.transition()), (None, None));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[must_use]
-pub struct EmcyOutcome {
-    /// The EMCY to send, if any.
-    pub emcy: Option<Emcy>,
-    /// The transition taken, if any.
-    pub transition: Option<EmcyTransition>,
-    /// The code of an error whose EMCY was sent but which could not be
-    /// tracked because all `N` slots held other active errors (SPEC §2.5:
-    /// "the overflow is reported, never silently dropped").
-    pub overflow: Option<ErrorCode>,
-    /// Why the event caused no transition, if it caused none.
-    pub ignored: Option<IgnoredEvent>,
+pub enum EmcyOutcome {
+    /// Transition 0: the machine starts over error-free; nothing is sent.
+    Initialised,
+    /// Transition 1–4 was taken; send `emcy`.
+    Sent {
+        /// The transition taken.
+        transition: EmcyTransition,
+        /// The EMCY to send.
+        emcy: Emcy,
+    },
+    /// Transition 1 or 2 was taken and `emcy` must be sent, but the error
+    /// cannot be tracked: all `N` slots hold other active errors (SPEC
+    /// §2.5: "the overflow is reported, never silently dropped"). Its code
+    /// is `emcy.code`.
+    SentUntracked {
+        /// The transition taken.
+        transition: EmcyTransition,
+        /// The EMCY to send.
+        emcy: Emcy,
+    },
+    /// The event caused no transition and sends nothing.
+    Ignored(IgnoredEvent),
 }
 
 impl EmcyOutcome {
-    const fn taken(transition: EmcyTransition, emcy: Option<Emcy>) -> Self {
-        EmcyOutcome {
-            emcy,
-            transition: Some(transition),
-            overflow: None,
-            ignored: None,
+    /// Return the EMCY to send, if any.
+    #[must_use]
+    pub const fn emcy(&self) -> Option<Emcy> {
+        match *self {
+            EmcyOutcome::Sent { emcy, .. } | EmcyOutcome::SentUntracked { emcy, .. } => Some(emcy),
+            EmcyOutcome::Initialised | EmcyOutcome::Ignored(_) => None,
         }
     }
 
-    const fn refused(reason: IgnoredEvent) -> Self {
-        EmcyOutcome {
-            emcy: None,
-            transition: None,
-            overflow: None,
-            ignored: Some(reason),
+    /// Return the transition taken, if any.
+    #[must_use]
+    pub const fn transition(&self) -> Option<EmcyTransition> {
+        match *self {
+            EmcyOutcome::Initialised => Some(EmcyTransition::Initialised),
+            EmcyOutcome::Sent { transition, .. }
+            | EmcyOutcome::SentUntracked { transition, .. } => Some(transition),
+            EmcyOutcome::Ignored(_) => None,
         }
+    }
+
+    /// Return the code of an error that could not be tracked, if any.
+    #[must_use]
+    pub const fn overflow(&self) -> Option<ErrorCode> {
+        match *self {
+            EmcyOutcome::SentUntracked { emcy, .. } => Some(emcy.code),
+            _ => None,
+        }
+    }
+
+    /// Return why the event caused no transition, if it caused none.
+    #[must_use]
+    pub const fn ignored(&self) -> Option<IgnoredEvent> {
+        match *self {
+            EmcyOutcome::Ignored(reason) => Some(reason),
+            _ => None,
+        }
+    }
+
+    const fn sent(transition: EmcyTransition, emcy: Emcy) -> Self {
+        EmcyOutcome::Sent { transition, emcy }
     }
 }
 
@@ -343,21 +388,21 @@ impl ActiveError {
 ///
 /// // Transition 1: device temperature (0x4210) on axis 1.
 /// let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x4210), [1, 0, 0, 0, 0]));
-/// assert_eq!(out.transition, Some(EmcyTransition::FirstError));
-/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x42, 0x09, 1, 0, 0, 0, 0]);
+/// assert_eq!(out.transition(), Some(EmcyTransition::FirstError));
+/// assert_eq!(out.emcy().unwrap().to_bytes(), [0x10, 0x42, 0x09, 1, 0, 0, 0, 0]);
 ///
 /// // Transition 3: a CAN overrun (0x8110) adds the communication bit.
 /// let out = producer.apply(EmcyEvent::error(ErrorCode::new(0x8110), [0; 5]));
-/// assert_eq!(out.transition.map(EmcyTransition::number), Some(3));
-/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x10, 0x81, 0x19, 0, 0, 0, 0, 0]);
+/// assert_eq!(out.transition().map(EmcyTransition::number), Some(3));
+/// assert_eq!(out.emcy().unwrap().to_bytes(), [0x10, 0x81, 0x19, 0, 0, 0, 0, 0]);
 ///
 /// // Transition 2: the temperature error goes, the overrun remains.
 /// let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x4210)));
-/// assert_eq!(out.emcy.unwrap().to_bytes(), [0x00, 0x00, 0x11, 0, 0, 0, 0, 0]);
+/// assert_eq!(out.emcy().unwrap().to_bytes(), [0x00, 0x00, 0x11, 0, 0, 0, 0, 0]);
 ///
 /// // Transition 4: the last error goes.
 /// let out = producer.apply(EmcyEvent::reset(ErrorCode::new(0x8110)));
-/// assert_eq!(out.emcy.unwrap().to_bytes(), [0; 8]);
+/// assert_eq!(out.emcy().unwrap().to_bytes(), [0; 8]);
 /// assert_eq!(producer.condition(), ErrorCondition::ErrorFree);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -476,7 +521,7 @@ impl<const N: usize> EmcyProducer<N> {
         match event {
             EmcyEvent::Initialised => {
                 *self = Self::with_capacity();
-                EmcyOutcome::taken(EmcyTransition::Initialised, None)
+                EmcyOutcome::Initialised
             }
             EmcyEvent::ErrorOccurred {
                 code,
@@ -488,12 +533,12 @@ impl<const N: usize> EmcyProducer<N> {
             }
             EmcyEvent::AllErrorsReset => {
                 if self.is_error_free() {
-                    EmcyOutcome::refused(IgnoredEvent::AlreadyErrorFree)
+                    EmcyOutcome::Ignored(IgnoredEvent::AlreadyErrorFree)
                 } else {
                     *self = Self::with_capacity();
-                    EmcyOutcome::taken(
+                    EmcyOutcome::sent(
                         EmcyTransition::AllErrorsReset,
-                        Some(Emcy::reset(ErrorRegister::empty())),
+                        Emcy::reset(ErrorRegister::empty()),
                     )
                 }
             }
@@ -507,10 +552,10 @@ impl<const N: usize> EmcyProducer<N> {
         manufacturer: [u8; 5],
     ) -> EmcyOutcome {
         if code.is_reset() {
-            return EmcyOutcome::refused(IgnoredEvent::ResetCodeIsNotAnError);
+            return EmcyOutcome::Ignored(IgnoredEvent::ResetCodeIsNotAnError);
         }
         if self.is_active(code) {
-            return EmcyOutcome::refused(IgnoredEvent::AlreadyActive);
+            return EmcyOutcome::Ignored(IgnoredEvent::AlreadyActive);
         }
         let transition = if self.is_error_free() {
             EmcyTransition::FirstError
@@ -524,34 +569,33 @@ impl<const N: usize> EmcyProducer<N> {
             code,
             register: contribution,
         };
-        let overflow = if self.insert(error) {
-            None
+        if self.insert(error) {
+            EmcyOutcome::sent(
+                transition,
+                Emcy::new(code, self.error_register(), manufacturer),
+            )
         } else {
             let bits = self.untracked.unwrap_or(ErrorRegister::empty());
             self.untracked = Some(bits | contribution);
-            Some(code)
-        };
-        EmcyOutcome {
-            overflow,
-            ..EmcyOutcome::taken(
+            EmcyOutcome::SentUntracked {
                 transition,
-                Some(Emcy::new(code, self.error_register(), manufacturer)),
-            )
+                emcy: Emcy::new(code, self.error_register(), manufacturer),
+            }
         }
     }
 
     fn error_reset(&mut self, code: ErrorCode, manufacturer: [u8; 5]) -> EmcyOutcome {
         if !self.remove(code) {
-            return EmcyOutcome::refused(IgnoredEvent::NotActive);
+            return EmcyOutcome::Ignored(IgnoredEvent::NotActive);
         }
         let (transition, register) = if self.is_error_free() {
             (EmcyTransition::AllErrorsReset, ErrorRegister::empty())
         } else {
             (EmcyTransition::ErrorReset, self.error_register())
         };
-        EmcyOutcome::taken(
+        EmcyOutcome::sent(
             transition,
-            Some(Emcy::new(ErrorCode::NO_ERROR, register, manufacturer)),
+            Emcy::new(ErrorCode::NO_ERROR, register, manufacturer),
         )
     }
 
@@ -612,22 +656,22 @@ mod tests {
         let mut producer = EmcyProducer::<N>::with_capacity();
         for &event in events {
             let out = producer.apply(event);
-            assert!(out.transition.is_some(), "{event:?} took no transition");
+            assert!(out.transition().is_some(), "{event:?} took no transition");
         }
         producer
     }
 
     fn sent(out: &EmcyOutcome) -> [u8; 8] {
-        out.emcy.expect("an EMCY is sent").to_bytes()
+        out.emcy().expect("an EMCY is sent").to_bytes()
     }
 
     #[test]
     fn transition_0_initialisation_is_error_free_and_sends_nothing() {
         let fresh: EmcyProducer = EmcyProducer::new();
         let (next, out) = fresh.step(EmcyEvent::Initialised);
-        assert_eq!(out.transition, Some(EmcyTransition::Initialised));
-        assert_eq!(out.transition.map(EmcyTransition::number), Some(0));
-        assert_eq!(out.emcy, None);
+        assert_eq!(out.transition(), Some(EmcyTransition::Initialised));
+        assert_eq!(out.transition().map(EmcyTransition::number), Some(0));
+        assert_eq!(out.emcy(), None);
         assert_eq!(next.condition(), ErrorCondition::ErrorFree);
         assert_eq!(next.error_register().bits(), 0x00);
         assert_eq!(next, EmcyProducer::default());
@@ -636,8 +680,8 @@ mod tests {
         // without an EMCY.
         let busy: EmcyProducer = after(&[EmcyEvent::error(OVER_TEMPERATURE, AXIS_1)]);
         let (next, out) = busy.step(EmcyEvent::Initialised);
-        assert_eq!(out.transition, Some(EmcyTransition::Initialised));
-        assert_eq!(out.emcy, None);
+        assert_eq!(out.transition(), Some(EmcyTransition::Initialised));
+        assert_eq!(out.emcy(), None);
         assert_eq!(next, EmcyProducer::new());
     }
 
@@ -645,11 +689,11 @@ mod tests {
     fn transition_1_first_error_sends_code_register_and_manufacturer_bytes() {
         let (next, out) =
             EmcyProducer::<8>::with_capacity().step(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
-        assert_eq!(out.transition, Some(EmcyTransition::FirstError));
-        assert_eq!(out.transition.map(EmcyTransition::number), Some(1));
+        assert_eq!(out.transition(), Some(EmcyTransition::FirstError));
+        assert_eq!(out.transition().map(EmcyTransition::number), Some(1));
         // 0x4210 LE, register generic | temperature, axis 1.
         assert_eq!(sent(&out), [0x10, 0x42, 0x09, 0x01, 0x00, 0x00, 0x00, 0x00]);
-        assert_eq!(out.overflow, None);
+        assert_eq!(out.overflow(), None);
         assert_eq!(next.condition(), ErrorCondition::ErrorOccurred);
         assert_eq!(next.error_register().bits(), 0x09);
     }
@@ -669,8 +713,8 @@ mod tests {
             EmcyEvent::error(CAN_OVERRUN, [0x01, 0, 0, 0, 0x7F]),
         ]);
         let (next, out) = producer.step(EmcyEvent::reset(OVER_TEMPERATURE));
-        assert_eq!(out.transition, Some(EmcyTransition::ErrorReset));
-        assert_eq!(out.transition.map(EmcyTransition::number), Some(2));
+        assert_eq!(out.transition(), Some(EmcyTransition::ErrorReset));
+        assert_eq!(out.transition().map(EmcyTransition::number), Some(2));
         // Code 0x0000, register generic | communication, manufacturer zero.
         assert_eq!(sent(&out), [0x00, 0x00, 0x11, 0x00, 0x00, 0x00, 0x00, 0x00]);
         assert_eq!(next.condition(), ErrorCondition::ErrorOccurred);
@@ -682,8 +726,8 @@ mod tests {
     fn transition_3_further_error_sends_its_code_and_the_accumulated_register() {
         let producer: EmcyProducer = after(&[EmcyEvent::error(OVER_TEMPERATURE, AXIS_1)]);
         let (next, out) = producer.step(EmcyEvent::error(INTERNAL_VOLTAGE, [0x01, 0, 0, 0, 0x42]));
-        assert_eq!(out.transition, Some(EmcyTransition::FurtherError));
-        assert_eq!(out.transition.map(EmcyTransition::number), Some(3));
+        assert_eq!(out.transition(), Some(EmcyTransition::FurtherError));
+        assert_eq!(out.transition().map(EmcyTransition::number), Some(3));
         // 0x3210 LE, register generic | voltage | temperature, its own bytes.
         assert_eq!(sent(&out), [0x10, 0x32, 0x0D, 0x01, 0x00, 0x00, 0x00, 0x42]);
         assert_eq!(next.active_count(), 2);
@@ -693,8 +737,8 @@ mod tests {
     fn transition_4_last_error_reset_sends_all_zero() {
         let producer: EmcyProducer = after(&[EmcyEvent::error(INTERNAL_VOLTAGE, AXIS_1)]);
         let (next, out) = producer.step(EmcyEvent::reset(INTERNAL_VOLTAGE));
-        assert_eq!(out.transition, Some(EmcyTransition::AllErrorsReset));
-        assert_eq!(out.transition.map(EmcyTransition::number), Some(4));
+        assert_eq!(out.transition(), Some(EmcyTransition::AllErrorsReset));
+        assert_eq!(out.transition().map(EmcyTransition::number), Some(4));
         assert_eq!(sent(&out), [0x00; 8]);
         assert_eq!(next, EmcyProducer::new());
     }
@@ -707,7 +751,7 @@ mod tests {
             EmcyEvent::error(INTERNAL_VOLTAGE, AXIS_1),
         ]);
         let (next, out) = producer.step(EmcyEvent::AllErrorsReset);
-        assert_eq!(out.transition, Some(EmcyTransition::AllErrorsReset));
+        assert_eq!(out.transition(), Some(EmcyTransition::AllErrorsReset));
         assert_eq!(sent(&out), [0x00; 8]);
         assert_eq!(next.condition(), ErrorCondition::ErrorFree);
         assert_eq!(next, EmcyProducer::new());
@@ -742,9 +786,9 @@ mod tests {
         let again =
             EmcyEvent::error_with_register(OVER_TEMPERATURE, ErrorRegister::MANUFACTURER, [9; 5]);
         let (next, out) = producer.step(again);
-        assert_eq!(out.emcy, None);
-        assert_eq!(out.transition, None);
-        assert_eq!(out.ignored, Some(IgnoredEvent::AlreadyActive));
+        assert_eq!(out.emcy(), None);
+        assert_eq!(out.transition(), None);
+        assert_eq!(out.ignored(), Some(IgnoredEvent::AlreadyActive));
         assert_eq!(next, producer);
         assert_eq!(next.error_register().bits(), 0x09);
     }
@@ -753,14 +797,14 @@ mod tests {
     fn resetting_an_inactive_error_sends_nothing() {
         let (next, out) =
             EmcyProducer::<8>::with_capacity().step(EmcyEvent::reset(OVER_TEMPERATURE));
-        assert_eq!((out.emcy, out.transition), (None, None));
-        assert_eq!(out.ignored, Some(IgnoredEvent::NotActive));
+        assert_eq!((out.emcy(), out.transition()), (None, None));
+        assert_eq!(out.ignored(), Some(IgnoredEvent::NotActive));
         assert_eq!(next, EmcyProducer::new());
 
         let producer: EmcyProducer = after(&[EmcyEvent::error(OVER_TEMPERATURE, AXIS_1)]);
         let (next, out) = producer.step(EmcyEvent::reset(CAN_OVERRUN));
         assert_eq!(
-            (out.emcy, out.ignored),
+            (out.emcy(), out.ignored()),
             (None, Some(IgnoredEvent::NotActive))
         );
         assert_eq!(next, producer);
@@ -769,8 +813,8 @@ mod tests {
     #[test]
     fn reset_all_from_error_free_sends_nothing() {
         let (next, out) = EmcyProducer::<8>::with_capacity().step(EmcyEvent::AllErrorsReset);
-        assert_eq!((out.emcy, out.transition), (None, None));
-        assert_eq!(out.ignored, Some(IgnoredEvent::AlreadyErrorFree));
+        assert_eq!((out.emcy(), out.transition()), (None, None));
+        assert_eq!(out.ignored(), Some(IgnoredEvent::AlreadyErrorFree));
         assert!(next.is_error_free());
     }
 
@@ -779,14 +823,14 @@ mod tests {
         for raw in [0x0000, 0x0001, 0x00FF] {
             let event = EmcyEvent::error(ErrorCode::new(raw), AXIS_1);
             let (next, out) = EmcyProducer::<8>::with_capacity().step(event);
-            assert_eq!(out.emcy, None, "{raw:#06x}");
-            assert_eq!(out.ignored, Some(IgnoredEvent::ResetCodeIsNotAnError));
+            assert_eq!(out.emcy(), None, "{raw:#06x}");
+            assert_eq!(out.ignored(), Some(IgnoredEvent::ResetCodeIsNotAnError));
             assert!(next.is_error_free());
 
             let busy: EmcyProducer = after(&[EmcyEvent::error(CAN_OVERRUN, AXIS_1)]);
             let (next, out) = busy.step(event);
-            assert_eq!(out.emcy, None);
-            assert_eq!(out.ignored, Some(IgnoredEvent::ResetCodeIsNotAnError));
+            assert_eq!(out.emcy(), None);
+            assert_eq!(out.ignored(), Some(IgnoredEvent::ResetCodeIsNotAnError));
             assert_eq!(next, busy, "a reset code must not clear active errors");
         }
     }
@@ -881,8 +925,8 @@ mod tests {
             EmcyEvent::error(CAN_OVERRUN, [0; 5]),
         ]);
         let (next, out) = producer.step(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
-        assert_eq!(out.transition, Some(EmcyTransition::FurtherError));
-        assert_eq!(out.overflow, Some(OVER_TEMPERATURE));
+        assert_eq!(out.transition(), Some(EmcyTransition::FurtherError));
+        assert_eq!(out.overflow(), Some(OVER_TEMPERATURE));
         // Register: generic | communication | temperature (the untracked one).
         assert_eq!(sent(&out), [0x10, 0x42, 0x19, 0x01, 0, 0, 0, 0]);
         assert_eq!(next.active_count(), 2);
@@ -901,26 +945,26 @@ mod tests {
         // The untracked error's reset is unknown to the machine: nothing.
         let out = producer.apply(EmcyEvent::reset(OVER_TEMPERATURE));
         assert_eq!(
-            (out.emcy, out.ignored),
+            (out.emcy(), out.ignored()),
             (None, Some(IgnoredEvent::NotActive))
         );
         // Resetting the tracked errors keeps the untracked temperature bit.
         let out = producer.apply(EmcyEvent::reset(CAN_OVERRUN));
-        assert_eq!(out.transition, Some(EmcyTransition::ErrorReset));
+        assert_eq!(out.transition(), Some(EmcyTransition::ErrorReset));
         assert_eq!(sent(&out), [0x00, 0x00, 0x09, 0, 0, 0, 0, 0]);
         let out = producer.apply(EmcyEvent::reset(HARDWARE));
-        assert_eq!(out.transition, Some(EmcyTransition::ErrorReset));
+        assert_eq!(out.transition(), Some(EmcyTransition::ErrorReset));
         assert_eq!(sent(&out), [0x00, 0x00, 0x09, 0, 0, 0, 0, 0]);
         assert_eq!(producer.condition(), ErrorCondition::ErrorOccurred);
         assert_eq!(producer.active_count(), 0);
         // A freed slot tracks the next error normally; transition 3.
         let out = producer.apply(EmcyEvent::error(INTERNAL_VOLTAGE, [0; 5]));
-        assert_eq!(out.transition, Some(EmcyTransition::FurtherError));
-        assert_eq!(out.overflow, None);
+        assert_eq!(out.transition(), Some(EmcyTransition::FurtherError));
+        assert_eq!(out.overflow(), None);
         assert_eq!(sent(&out), [0x10, 0x32, 0x0D, 0, 0, 0, 0, 0]);
         // Only "reset all" returns to error-free.
         let out = producer.apply(EmcyEvent::AllErrorsReset);
-        assert_eq!(out.transition, Some(EmcyTransition::AllErrorsReset));
+        assert_eq!(out.transition(), Some(EmcyTransition::AllErrorsReset));
         assert_eq!(sent(&out), [0x00; 8]);
         assert_eq!(producer, EmcyProducer::with_capacity());
     }
@@ -941,11 +985,11 @@ mod tests {
     fn a_machine_without_slots_still_sends_every_emcy() {
         let mut producer = EmcyProducer::<0>::with_capacity();
         let out = producer.apply(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1));
-        assert_eq!(out.transition, Some(EmcyTransition::FirstError));
-        assert_eq!(out.overflow, Some(OVER_TEMPERATURE));
+        assert_eq!(out.transition(), Some(EmcyTransition::FirstError));
+        assert_eq!(out.overflow(), Some(OVER_TEMPERATURE));
         assert_eq!(sent(&out), [0x10, 0x42, 0x09, 0x01, 0, 0, 0, 0]);
         let out = producer.apply(EmcyEvent::error(CAN_OVERRUN, [0; 5]));
-        assert_eq!(out.transition, Some(EmcyTransition::FurtherError));
+        assert_eq!(out.transition(), Some(EmcyTransition::FurtherError));
         assert_eq!(sent(&out), [0x10, 0x81, 0x19, 0, 0, 0, 0, 0]);
         let out = producer.apply(EmcyEvent::AllErrorsReset);
         assert_eq!(sent(&out), [0x00; 8]);
@@ -1049,14 +1093,14 @@ mod proptests {
             let was_free = producer.is_error_free();
             let (next, out) = producer.step(event);
             let expected = model.apply(event, N);
-            prop_assert_eq!(out.emcy.map(|e| e.to_bytes()), expected, "{:?}", event);
+            prop_assert_eq!(out.emcy().map(|e| e.to_bytes()), expected, "{:?}", event);
 
             // The state is error-free exactly when no error is active.
             prop_assert_eq!(next.is_error_free(), model.error_free());
             prop_assert_eq!(next.error_register().bits(), model.register());
             prop_assert!(next.active_count() <= N);
             prop_assert_eq!(next.active_errors().count(), next.active_count());
-            if let Some(emcy) = out.emcy {
+            if let Some(emcy) = out.emcy() {
                 // Bit 0 of every sent register is set exactly when errors
                 // are active after the step.
                 prop_assert_eq!(
@@ -1071,10 +1115,10 @@ mod proptests {
                 }
             }
             // Exactly one of transition / ignored; an EMCY exactly for 1–4.
-            prop_assert!(out.transition.is_some() != out.ignored.is_some());
-            let number = out.transition.map(EmcyTransition::number);
-            prop_assert_eq!(out.emcy.is_some(), matches!(number, Some(1..=4)));
-            if let Some(transition) = out.transition {
+            prop_assert!(out.transition().is_some() != out.ignored().is_some());
+            let number = out.transition().map(EmcyTransition::number);
+            prop_assert_eq!(out.emcy().is_some(), matches!(number, Some(1..=4)));
+            if let Some(transition) = out.transition() {
                 prop_assert_eq!(transition.target(), next.condition());
                 match transition {
                     EmcyTransition::FirstError => prop_assert!(was_free),
@@ -1088,9 +1132,9 @@ mod proptests {
             } else {
                 prop_assert_eq!(next, producer, "an ignored event changes nothing");
             }
-            if out.overflow.is_some() {
+            if out.overflow().is_some() {
                 prop_assert!(next.has_untracked_errors());
-                prop_assert!(out.emcy.is_some());
+                prop_assert!(out.emcy().is_some());
             }
             producer = next;
         }

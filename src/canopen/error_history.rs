@@ -246,7 +246,7 @@ impl<const N: usize> ErrorHistory<N> {
     /// Record the EMCY of a state-machine step, if it sent an error EMCY
     /// (transitions 1 and 3); return whether one was recorded.
     pub fn record_outcome(&mut self, outcome: &EmcyOutcome) -> bool {
-        match &outcome.emcy {
+        match &outcome.emcy() {
             Some(emcy) => self.record(emcy),
             None => false,
         }
@@ -644,7 +644,7 @@ mod proptests {
             for event in events {
                 let outcome = producer.apply(event);
                 history.record_outcome(&outcome);
-                if let Some(emcy) = outcome.emcy.filter(|e| !e.is_reset()) {
+                if let Some(emcy) = outcome.emcy().filter(|e| !e.is_reset()) {
                     last_error = Some(u32::from(emcy.code.get()));
                 }
                 prop_assert_eq!(history.read(1).ok().map(|v| v & 0xFFFF), last_error);
