@@ -127,6 +127,8 @@ pub mod servo;
 
 pub use error::{Error, Found, LogFormat, Result, SyntaxError};
 
+#[cfg(test)]
+mod display_tests;
 #[cfg(all(test, feature = "serde"))]
 mod serde_tests;
 /// The README's examples, compiled and run as doc tests.

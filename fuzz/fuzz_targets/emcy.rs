@@ -140,7 +140,7 @@ fn check_register(register: ErrorRegister) {
     let names: Vec<&str> = register.names().collect();
     let expected: Vec<&str> = (0..8)
         .filter(|bit| register.bits() & (1 << bit) != 0)
-        .map(|bit| ErrorRegister::BIT_NAMES[bit])
+        .map(|bit| ErrorRegister::NAMES[bit].1)
         .collect();
     assert_eq!(names, expected);
     assert_eq!(ErrorRegister::from_bits_retain(register.bits()), register);

@@ -102,7 +102,7 @@ fn check_control_word(control: ServoControlWord) {
 
     // The flag names are the set single-bit flags, in bit order.
     let names: Vec<&str> = control.flag_names().collect();
-    let expected: Vec<&str> = ServoControlWord::FLAG_NAMES
+    let expected: Vec<&str> = ServoControlWord::NAMES
         .iter()
         .filter(|(flag, _)| control.contains(*flag))
         .map(|(_, name)| *name)

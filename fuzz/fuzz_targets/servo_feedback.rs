@@ -143,7 +143,7 @@ fn check_status_word(status: ServoStatusWord) {
         .with_encoder(status.encoder());
     assert_eq!(rebuilt, status);
     let names: Vec<&str> = status.flag_names().collect();
-    let expected: Vec<&str> = ServoStatusWord::FLAG_NAMES
+    let expected: Vec<&str> = ServoStatusWord::NAMES
         .iter()
         .filter(|(flag, _)| status.contains(*flag))
         .map(|(_, name)| *name)

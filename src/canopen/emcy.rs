@@ -306,3 +306,31 @@ mod proptests {
         }
     }
 }
+
+impl core::fmt::Display for Emcy {
+    /// The EMCY in words (SPEC §2.1, §2.3): code, description, register
+    /// and manufacturer bytes.
+    ///
+    /// ```
+    /// use motionwire::canopen::Emcy;
+    ///
+    /// let emcy = Emcy::from_bytes(&[0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0]);
+    /// assert_eq!(
+    ///     emcy.to_string(),
+    ///     "EMCY 0x8130 Life guard error or heartbeat error, register 0x11 [generic|communication], manufacturer 0100000000"
+    /// );
+    /// ```
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "EMCY {} {}, register {}, manufacturer ",
+            self.code,
+            self.code.description(),
+            self.register
+        )?;
+        for byte in self.manufacturer {
+            write!(f, "{byte:02x}")?;
+        }
+        Ok(())
+    }
+}

@@ -47,27 +47,47 @@ bitflags! {
 }
 
 impl ErrorRegister {
-    /// The names of the eight bits in bit order, as the JSON output of the
-    /// command-line decoder writes them (SPEC §6.1, `register_flags`).
-    pub const BIT_NAMES: [&'static str; 8] = [
-        "generic",
-        "current",
-        "voltage",
-        "temperature",
-        "communication",
-        "device_profile",
-        "reserved",
-        "manufacturer",
+    /// The eight bits in bit order with the names the JSON output of the
+    /// command-line decoder writes (SPEC §6.1, `register_flags`): the one
+    /// table that the names, `Display` and the tests read.
+    pub const NAMES: [(ErrorRegister, &'static str); 8] = [
+        (ErrorRegister::GENERIC, "generic"),
+        (ErrorRegister::CURRENT, "current"),
+        (ErrorRegister::VOLTAGE, "voltage"),
+        (ErrorRegister::TEMPERATURE, "temperature"),
+        (ErrorRegister::COMMUNICATION, "communication"),
+        (ErrorRegister::DEVICE_PROFILE, "device_profile"),
+        (ErrorRegister::RESERVED, "reserved"),
+        (ErrorRegister::MANUFACTURER, "manufacturer"),
     ];
 
     /// Return the names of the set bits in bit order (SPEC §6.1).
     pub fn names(self) -> impl Iterator<Item = &'static str> + Clone {
-        let bits = self.bits();
-        Self::BIT_NAMES
+        Self::NAMES
             .into_iter()
-            .enumerate()
-            .filter(move |&(bit, _)| bits & (1 << bit) != 0)
+            .filter(move |(flag, _)| self.contains(*flag))
             .map(|(_, name)| name)
+    }
+}
+
+impl core::fmt::Display for ErrorRegister {
+    /// `0x11 [generic|communication]`, `0x00 []`.
+    ///
+    /// ```
+    /// use motionwire::canopen::ErrorRegister;
+    ///
+    /// let register = ErrorRegister::from_bits_retain(0x11);
+    /// assert_eq!(register.to_string(), "0x11 [generic|communication]");
+    /// ```
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{:#04x} [", self.bits())?;
+        for (i, name) in self.names().enumerate() {
+            if i > 0 {
+                f.write_str("|")?;
+            }
+            f.write_str(name)?;
+        }
+        f.write_str("]")
     }
 }
 
@@ -103,8 +123,21 @@ mod tests {
     fn names_in_bit_order() {
         assert_eq!(
             ErrorRegister::all().names().collect::<Vec<_>>(),
-            ErrorRegister::BIT_NAMES
+            [
+                "generic",
+                "current",
+                "voltage",
+                "temperature",
+                "communication",
+                "device_profile",
+                "reserved",
+                "manufacturer"
+            ]
         );
+        for (bit, (flag, _)) in ErrorRegister::NAMES.into_iter().enumerate() {
+            assert_eq!(flag.bits(), 1 << bit);
+        }
+        assert_eq!(ErrorRegister::empty().to_string(), "0x00 []");
         assert_eq!(ErrorRegister::empty().names().count(), 0);
         assert_eq!(
             ErrorRegister::from_bits_retain(0x89)

@@ -666,6 +666,69 @@ impl CanOpenMessage {
     }
 }
 
+impl fmt::Display for CanOpenMessage {
+    /// The message in words: `node 1 EMCY 0x8130 …`, `node 5 heartbeat
+    /// operational`, `SYNC 7`, `node 3 TPDO1 [2] 01 02`, the candump
+    /// notation for anything else.
+    ///
+    /// ```
+    /// use motionwire::can::{CanFrame, CanId};
+    /// use motionwire::canopen::CanOpenMessage;
+    ///
+    /// let frame = CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05])?;
+    /// assert_eq!(CanOpenMessage::decode(&frame)?.to_string(), "node 5 heartbeat operational");
+    /// let frame = CanFrame::new(CanId::standard(0x183).unwrap(), &[1, 2])?;
+    /// assert_eq!(CanOpenMessage::decode(&frame)?.to_string(), "node 3 TPDO1 [2] 01 02");
+    /// # Ok::<(), motionwire::Error>(())
+    /// ```
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fn bytes(f: &mut fmt::Formatter<'_>, data: &[u8]) -> fmt::Result {
+            write!(f, "[{}]", data.len())?;
+            for b in data {
+                write!(f, " {b:02X}")?;
+            }
+            Ok(())
+        }
+        match self {
+            CanOpenMessage::NmtNodeControl(control) => write!(f, "{control}"),
+            CanOpenMessage::Sync { counter: None } => f.write_str("SYNC"),
+            CanOpenMessage::Sync {
+                counter: Some(counter),
+            } => write!(f, "SYNC {counter}"),
+            CanOpenMessage::Emcy { node, emcy } => write!(f, "node {node} {emcy}"),
+            CanOpenMessage::Time { data } => {
+                f.write_str("TIME ")?;
+                bytes(f, data.as_slice())
+            }
+            CanOpenMessage::Pdo {
+                node,
+                number,
+                direction,
+                data,
+            } => {
+                let t = match direction {
+                    PdoDirection::Transmit => 'T',
+                    PdoDirection::Receive => 'R',
+                };
+                write!(f, "node {node} {t}PDO{number} ")?;
+                bytes(f, data.as_slice())
+            }
+            CanOpenMessage::SdoResponse { node, data } => {
+                write!(f, "node {node} SDO response ")?;
+                bytes(f, data.as_slice())
+            }
+            CanOpenMessage::SdoRequest { node, data } => {
+                write!(f, "node {node} SDO request ")?;
+                bytes(f, data.as_slice())
+            }
+            CanOpenMessage::Heartbeat { node, byte } => write!(f, "node {node} heartbeat {byte}"),
+            CanOpenMessage::GuardRequest { node } => write!(f, "node {node} guard request"),
+            CanOpenMessage::ErrorFrame(error) => write!(f, "{error}"),
+            CanOpenMessage::Other(frame) => write!(f, "{frame}"),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -724,3 +724,26 @@ mod proptests {
         }
     }
 }
+
+impl fmt::Display for Heartbeat {
+    /// `heartbeat operational`, `boot-up`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.is_boot_up() {
+            f.write_str("boot-up")
+        } else {
+            write!(f, "heartbeat {}", self.state.name())
+        }
+    }
+}
+
+impl fmt::Display for GuardAnswer {
+    /// `guard answer operational, toggle 1`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "guard answer {}, toggle {}",
+            self.state.name(),
+            u8::from(self.toggle)
+        )
+    }
+}

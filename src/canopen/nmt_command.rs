@@ -454,3 +454,14 @@ mod proptests {
         }
     }
 }
+
+impl fmt::Display for NmtNodeControl {
+    /// `NMT reset_node to node 9`, `NMT start to all nodes`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "NMT {}", self.command)?;
+        match self.node {
+            Some(node) => write!(f, " to node {node}"),
+            None => f.write_str(" to all nodes"),
+        }
+    }
+}

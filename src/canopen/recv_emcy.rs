@@ -1521,3 +1521,17 @@ mod proptests {
         }
     }
 }
+
+impl fmt::Display for RecvEmcyResult {
+    /// `device 5: EMCY 0x8130 …`, `device 5: reset (EMCY 0x0000 …)`,
+    /// `all clear`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RecvEmcyResult::Error { device, emcy } => write!(f, "device {device}: {emcy}"),
+            RecvEmcyResult::ResetError { device, reset } => {
+                write!(f, "device {device}: reset ({reset})")
+            }
+            RecvEmcyResult::AllClear => f.write_str("all clear"),
+        }
+    }
+}

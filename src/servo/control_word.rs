@@ -109,7 +109,7 @@ impl ServoControlWord {
     pub const NORMAL: ServoControlWord = ServoControlWord::EMGON.union(ServoControlWord::BRAKE);
 
     /// The names of the single-bit flags as SPEC §6.2 writes them, in bit order.
-    pub const FLAG_NAMES: [(ServoControlWord, &'static str); 8] = [
+    pub const NAMES: [(ServoControlWord, &'static str); 8] = [
         (ServoControlWord::EMGON, "EMGON"),
         (ServoControlWord::POSLOCK, "POSLOCK"),
         (ServoControlWord::SINT_LOCK, "SIntLock"),
@@ -126,7 +126,7 @@ impl ServoControlWord {
     /// The names are the wire bits, not their meaning: `"EMGON"` appears
     /// when bit 2 is 1, i.e. when the emergency state is *off*.
     pub fn flag_names(self) -> impl Iterator<Item = &'static str> + Clone {
-        Self::FLAG_NAMES
+        Self::NAMES
             .into_iter()
             .filter(move |&(flag, _)| self.contains(flag))
             .map(|(_, name)| name)
@@ -788,12 +788,27 @@ mod proptests {
         #[test]
         fn flag_names_match_the_bits(word in control_word()) {
             let names: Vec<_> = word.flag_names().collect();
-            let expected: Vec<_> = ServoControlWord::FLAG_NAMES
+            let expected: Vec<_> = ServoControlWord::NAMES
                 .iter()
                 .filter(|(flag, _)| word.bits() & flag.bits() != 0)
                 .map(|&(_, name)| name)
                 .collect();
             prop_assert_eq!(names, expected);
         }
+    }
+}
+
+impl fmt::Display for ServoControlWord {
+    /// The word in hex with the names of its set single-bit flags, as
+    /// SPEC §6.2 names them: `0x00000021 [EMGON|Brake]`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:#010x} [", self.bits())?;
+        for (i, name) in self.flag_names().enumerate() {
+            if i > 0 {
+                f.write_str("|")?;
+            }
+            f.write_str(name)?;
+        }
+        f.write_str("]")
     }
 }

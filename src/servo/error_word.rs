@@ -712,3 +712,28 @@ mod proptests {
         }
     }
 }
+
+impl fmt::Display for ServoErrorWord {
+    /// The word in hex with its faults and their E-codes (SPEC §1.5):
+    /// `0x00000101 [ServoErrors, FollowerErr E09]`.
+    ///
+    /// ```
+    /// use motionwire::servo::{ECode, ServoErrorWord};
+    ///
+    /// let word = ServoErrorWord::from_e_code(ECode::E09).summarized();
+    /// assert_eq!(word.to_string(), format!("{:#010x} [ServoErrors, FollowerErr E09]", word.bits()));
+    /// ```
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:#010x} [", self.bits())?;
+        for (i, fault) in self.faults().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(fault.name())?;
+            if let Some(code) = fault.e_code() {
+                write!(f, " {code}")?;
+            }
+        }
+        f.write_str("]")
+    }
+}

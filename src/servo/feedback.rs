@@ -618,3 +618,27 @@ mod proptests {
         }
     }
 }
+
+impl core::fmt::Display for ActualPosition {
+    /// `absolute 123456`, `incremental 123456 (zero pulse at 4096)`.
+    ///
+    /// ```
+    /// use motionwire::servo::ActualPosition;
+    ///
+    /// let p = ActualPosition::Incremental { position: 10, zero_pulse_position: -4 };
+    /// assert_eq!(p.to_string(), "incremental 10 (zero pulse at -4)");
+    /// assert_eq!(ActualPosition::Absolute(7).to_string(), "absolute 7");
+    /// ```
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ActualPosition::Absolute(position) => write!(f, "absolute {position}"),
+            ActualPosition::Incremental {
+                position,
+                zero_pulse_position,
+            } => write!(
+                f,
+                "incremental {position} (zero pulse at {zero_pulse_position})"
+            ),
+        }
+    }
+}

@@ -82,7 +82,7 @@ const PRMTBL_MASK: u32 = 0b11 << PRMTBL_SHIFT;
 
 impl ServoStatusWord {
     /// The names of the single-bit flags as SPEC §6.2 writes them, in bit order.
-    pub const FLAG_NAMES: [(ServoStatusWord, &'static str); 11] = [
+    pub const NAMES: [(ServoStatusWord, &'static str); 11] = [
         (ServoStatusWord::SERVO_EN, "ServoEn"),
         (ServoStatusWord::SERVO_RDY, "ServoRDY"),
         (ServoStatusWord::ABS_INCR, "AbsIncr"),
@@ -99,7 +99,7 @@ impl ServoStatusWord {
     /// Return the names of the set single-bit flags in bit order, as the
     /// command-line decoder's `status_flags` writes them (SPEC §6.2).
     pub fn flag_names(self) -> impl Iterator<Item = &'static str> + Clone {
-        Self::FLAG_NAMES
+        Self::NAMES
             .into_iter()
             .filter(move |&(flag, _)| self.contains(flag))
             .map(|(_, name)| name)
@@ -315,5 +315,20 @@ mod proptests {
         fn bits_round_trip(bits in any::<u32>()) {
             prop_assert_eq!(ServoStatusWord::from_bits_retain(bits).bits(), bits);
         }
+    }
+}
+
+impl fmt::Display for ServoStatusWord {
+    /// The word in hex with the names of its set single-bit flags, as
+    /// SPEC §6.2 names them: `0x00000021 [EMGON|Brake]`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:#010x} [", self.bits())?;
+        for (i, name) in self.flag_names().enumerate() {
+            if i > 0 {
+                f.write_str("|")?;
+            }
+            f.write_str(name)?;
+        }
+        f.write_str("]")
     }
 }

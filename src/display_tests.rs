@@ -1,0 +1,98 @@
+//! `Display` of every type a user prints (issue: "Display on every type a
+//! user prints"), each against the text written out.
+
+use crate::can::{CanFrame, CanId};
+use crate::canopen::{
+    CanOpenMessage, Emcy, ErrorCode, ErrorRegister, GuardAnswer, Heartbeat, NmtCommand,
+    NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
+};
+use crate::servo::{ServoControlWord, ServoStatusWord};
+
+fn n(raw: u8) -> NodeId {
+    NodeId::new(raw).unwrap()
+}
+
+#[test]
+fn canopen_values() {
+    assert_eq!(ErrorCode::new(0x8130).to_string(), "0x8130");
+    assert_eq!(
+        ErrorRegister::from_bits_retain(0x81).to_string(),
+        "0x81 [generic|manufacturer]"
+    );
+    assert_eq!(NmtState::Operational.to_string(), "operational");
+    assert_eq!(
+        Heartbeat::new(NmtState::Stopped).to_string(),
+        "heartbeat stopped"
+    );
+    assert_eq!(Heartbeat::boot_up().to_string(), "boot-up");
+    assert_eq!(
+        GuardAnswer::new(true, NmtState::PreOperational).to_string(),
+        "guard answer pre_operational, toggle 1"
+    );
+    let reset = NmtNodeControl::new(NmtCommand::ResetNode, Some(n(9)));
+    assert_eq!(
+        reset.to_string(),
+        format!("NMT {} to node 9", NmtCommand::ResetNode)
+    );
+    let all = NmtNodeControl::new(NmtCommand::StartRemoteNode, None);
+    assert!(all.to_string().ends_with(" to all nodes"));
+    assert_eq!(
+        SdoAbortCode::new(0x0602_0000).to_string(),
+        format!(
+            "0x06020000: {}",
+            SdoAbortCode::new(0x0602_0000).description()
+        )
+    );
+}
+
+#[test]
+fn recv_emcy_results() {
+    let emcy = Emcy::from_bytes(&[0x30, 0x81, 0x11, 0, 0, 0, 0, 0]);
+    assert_eq!(
+        RecvEmcyResult::Error { device: n(5), emcy }.to_string(),
+        format!("device 5: {emcy}")
+    );
+    let reset = Emcy::reset(ErrorRegister::empty());
+    assert_eq!(
+        RecvEmcyResult::ResetError {
+            device: n(5),
+            reset
+        }
+        .to_string(),
+        format!("device 5: reset ({reset})")
+    );
+    assert_eq!(RecvEmcyResult::AllClear.to_string(), "all clear");
+}
+
+#[test]
+fn messages() {
+    let id = |raw| CanId::standard(raw).unwrap();
+    let cases = [
+        (CanFrame::new(id(0x080), &[7]).unwrap(), "SYNC 7"),
+        (CanFrame::new(id(0x080), &[]).unwrap(), "SYNC"),
+        (
+            CanFrame::new_remote(id(0x703), 1).unwrap(),
+            "node 3 guard request",
+        ),
+        (
+            CanFrame::new(id(0x603), &[0x40, 0x00, 0x10, 0]).unwrap(),
+            "node 3 SDO request [4] 40 00 10 00",
+        ),
+        (CanFrame::new(id(0x7E5), &[1]).unwrap(), "7E5#01"),
+        (
+            CanFrame::new(id(0x705), &[0x92]).unwrap(),
+            "node 5 heartbeat invalid state 0x12 (toggle 1)",
+        ),
+    ];
+    for (frame, text) in cases {
+        assert_eq!(CanOpenMessage::decode(&frame).unwrap().to_string(), text);
+    }
+}
+
+#[test]
+fn servo_words() {
+    let control = ServoControlWord::from_bits_retain(0);
+    assert_eq!(control.to_string(), "0x00000000 []");
+    let status = ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY;
+    assert_eq!(status.to_string(), "0x00000003 [ServoEn|ServoRDY]");
+}
