@@ -710,7 +710,7 @@ mod tests {
         assert_eq!(AkdEmcy::parse(&FAULT_BYTES), Ok(fault));
         assert!(!fault.is_reset());
         let emcy = Emcy::from_bytes(&FAULT_BYTES);
-        assert_eq!(AkdEmcy::try_from(emcy), Ok(fault));
+        assert_eq!(AkdEmcy::from(emcy), fault);
         assert_eq!(Emcy::from(fault), emcy);
         assert_eq!(fault.code.description(), "Incremental sensor 2 fault");
     }
