@@ -3,6 +3,7 @@
 //! refusing values their constructors refuse, and reserved bits surviving.
 
 use core::fmt::Debug;
+use core::time::Duration;
 
 use proptest::prelude::*;
 use serde::de::DeserializeOwned;
@@ -292,18 +293,18 @@ fn structs_are_their_fields() {
     check_json(
         HeartbeatEvent::Timeout {
             node: n(5),
-            last_heartbeat: 1_000,
-            deadline: 1_500,
+            last_heartbeat: Duration::from_millis(1_000),
+            deadline: Duration::from_micros(1_500_000),
         },
-        r#"{"Timeout":{"node":5,"last_heartbeat":1000,"deadline":1500}}"#,
+        r#"{"Timeout":{"node":5,"last_heartbeat":{"secs":1,"nanos":0},"deadline":{"secs":1,"nanos":500000000}}}"#,
     );
     check_json(
         GuardingEvent::MissingAnswer {
             node: n(9),
-            request_at: 10,
-            due_by: 20,
+            request_at: Duration::from_micros(10),
+            due_by: Duration::from_micros(20),
         },
-        r#"{"MissingAnswer":{"node":9,"request_at":10,"due_by":20}}"#,
+        r#"{"MissingAnswer":{"node":9,"request_at":{"secs":0,"nanos":10000},"due_by":{"secs":0,"nanos":20000}}}"#,
     );
     check_json(
         Command::new(-1500, ServoControlWord::NORMAL, 0),

@@ -5,16 +5,19 @@
 //! # Time
 //!
 //! Every state machine of the error-control modules is pure: the caller
-//! passes the current time with every event and every poll, as [`Micros`], a
-//! `u64` count of **microseconds** on any monotonic clock the caller chooses
-//! (a microcontroller's tick counter, a PLC's cycle clock, or the timestamps
-//! of a candump log converted to microseconds). Nothing reads a clock or
-//! sleeps; all arithmetic on times saturates, so a clock that wraps or runs
-//! backwards gives wrong answers but never a panic. The object dictionary
-//! values (1016h, 1017h, 100Ch) are milliseconds, as CiA 301 defines them;
-//! [`millis_to_micros`] converts.
+//! passes the current time with every event and every poll as a
+//! [`Duration`](core::time::Duration) since an epoch of the caller's choice
+//! on any monotonic clock (a microcontroller's tick counter, a PLC's cycle
+//! clock, or a log's timestamps: [`Timestamp::as_duration`](crate::can::Timestamp::as_duration)).
+//! Periods are durations too, so no unit is ever guessed. Nothing reads a
+//! clock or sleeps; all arithmetic on times saturates, so a clock that
+//! wraps or runs backwards gives wrong answers but never a panic. The object
+//! dictionary values (1016h, 1017h, 100Ch) are milliseconds, as CiA 301
+//! defines them: the fields and constructors that take them say so in their
+//! names (`guard_time_ms`, `from_millis`).
 //!
 //! ```
+//! use core::time::Duration;
 //! use motionwire::canopen::{ErrorControlConfig, ErrorControlMethod};
 //!
 //! // Only one method is used: a non-zero 1017h wins (SPEC §2.7).
@@ -28,22 +31,17 @@
 //!
 //! let config = ErrorControlConfig { producer_heartbeat_time_ms: 0, ..config };
 //! assert_eq!(config.method(), ErrorControlMethod::Guarding);
-//! assert_eq!(config.node_life_time(), Some(150_000)); // µs
+//! assert_eq!(config.node_life_time(), Some(Duration::from_millis(150)));
 //! ```
 
 use core::fmt;
+use core::time::Duration;
 
-/// A point in time or a duration in **microseconds**, passed by the caller
-/// to every error-control state machine (SPEC §2.7: "the caller passes the
-/// current time (a monotonic instant as a number)").
-pub type Micros = u64;
-
-/// Convert a time in milliseconds, the unit of objects 1016h, 1017h and
-/// 100Ch (CiA 301 object dictionary), into [`Micros`].
+/// A time in milliseconds, the unit of objects 1016h, 1017h and 100Ch
+/// (CiA 301 object dictionary), as a [`Duration`].
 #[inline]
-pub const fn millis_to_micros(ms: u32) -> Micros {
-    // u32::MAX × 1000 < u64::MAX: cannot overflow.
-    ms as u64 * 1000
+pub(crate) const fn millis(ms: u32) -> Duration {
+    Duration::from_millis(ms as u64)
 }
 
 /// Which error-control method a node's configuration puts in force
@@ -117,14 +115,13 @@ impl ErrorControlConfig {
         ErrorControlMethod::select(self.producer_heartbeat_time_ms, self.guard_time_ms)
     }
 
-    /// Return the node life time, guard time × life time factor, in
-    /// [`Micros`]; `None` when either is 0 (seed 004 §11.1.1: "If one of
+    /// Return the node life time, guard time × life time factor; `None` when either is 0 (seed 004 §11.1.1: "If one of
     /// the two parameters is 0 … no lifeguarding") or when heartbeat is
     /// configured (heartbeat wins, SPEC §2.7).
     #[inline]
-    pub const fn node_life_time(&self) -> Option<Micros> {
+    pub const fn node_life_time(&self) -> Option<Duration> {
         match self.method() {
-            ErrorControlMethod::Guarding if self.life_time_factor != 0 => Some(millis_to_micros(
+            ErrorControlMethod::Guarding if self.life_time_factor != 0 => Some(millis(
                 // 65 535 × 255 < u32::MAX: cannot overflow.
                 self.guard_time_ms as u32 * self.life_time_factor as u32,
             )),
@@ -214,7 +211,7 @@ mod tests {
     fn method_truth_table() {
         use ErrorControlMethod as M;
         // (1017h ms, 100Ch ms, 100Dh) → method, node life time in µs
-        let table: [(u16, u16, u8, M, Option<Micros>); 8] = [
+        let table: [(u16, u16, u8, M, Option<u64>); 8] = [
             (0, 0, 0, M::None, None),
             (0, 0, 3, M::None, None),
             (0, 100, 0, M::Guarding, None),
@@ -232,7 +229,11 @@ mod tests {
             };
             assert_eq!(config.method(), method, "{config:?}");
             assert_eq!(ErrorControlMethod::select(heartbeat, guard), method);
-            assert_eq!(config.node_life_time(), life, "{config:?}");
+            assert_eq!(
+                config.node_life_time(),
+                life.map(Duration::from_micros),
+                "{config:?}"
+            );
         }
         assert_eq!(ErrorControlConfig::default().method(), M::None);
     }
@@ -245,10 +246,10 @@ mod tests {
     }
 
     #[test]
-    fn millis() {
-        assert_eq!(millis_to_micros(0), 0);
-        assert_eq!(millis_to_micros(1), 1000);
-        assert_eq!(millis_to_micros(u32::MAX), u64::from(u32::MAX) * 1000);
+    fn millis_are_durations() {
+        assert_eq!(millis(0), Duration::ZERO);
+        assert_eq!(millis(1), Duration::from_micros(1000));
+        assert_eq!(millis(u32::MAX), Duration::from_millis(u64::from(u32::MAX)));
     }
 
     #[test]

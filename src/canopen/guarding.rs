@@ -9,33 +9,37 @@
 //!   time factor; no guard request within it → EMCY 0x8130 and
 //!   pre-operational.
 //!
-//! Time is [`Micros`], microseconds on the caller's monotonic clock, passed
-//! with every call; objects 100Ch and 100Dh are milliseconds and a factor.
+//! Time is a [`Duration`] since the caller's epoch on its monotonic clock,
+//! passed with every call; objects 100Ch and 100Dh are milliseconds and a
+//! factor, and the constructors that take them say so (`from_millis`).
 //!
 //! ```
+//! use core::time::Duration;
 //! use motionwire::canopen::{GuardAnswer, GuardingEvent, NmtState, NodeGuardingMaster, NodeId};
 //!
+//! let ms = Duration::from_millis;
 //! let node = NodeId::new(5).unwrap();
-//! let mut master = NodeGuardingMaster::new(node, 100); // 100Ch = 100 ms
+//! let mut master = NodeGuardingMaster::from_millis(node, 100); // 100Ch = 100 ms
 //!
-//! assert!(master.request_due(0));
-//! assert_eq!(master.on_request(0), None); // the RTR frame is sent at 0 µs
+//! assert!(master.request_due(Duration::ZERO));
+//! assert_eq!(master.on_request(Duration::ZERO), None); // the RTR frame is sent at 0
 //! // The first answer after start carries toggle 0.
 //! let answer = GuardAnswer::parse(&[0x05])?;
-//! assert!(master.on_answer(2_000, answer).is_empty());
+//! assert!(master.on_answer(ms(2), answer).is_empty());
 //! assert_eq!(master.expected_toggle(), Some(true));
-//! assert_eq!(master.next_request_at(), Some(100_000));
+//! assert_eq!(master.next_request_at(), Some(ms(100)));
 //!
 //! // The second answer repeats toggle 0: a guarding error.
-//! assert_eq!(master.on_request(100_000), None);
-//! let events: Vec<_> = master.on_answer(101_000, answer).collect();
+//! assert_eq!(master.on_request(ms(100)), None);
+//! let events: Vec<_> = master.on_answer(ms(101), answer).collect();
 //! assert!(matches!(events[..], [GuardingEvent::WrongToggle { expected: true, found: false, .. }]));
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
 use core::fmt;
+use core::time::Duration;
 
-use super::error_control::{millis_to_micros, ErrorControlConfig, Events, Micros};
+use super::error_control::{millis, ErrorControlConfig, Events};
 use super::{Emcy, ErrorCode, ErrorRegister, GuardAnswer, NmtState, NodeId};
 
 /// The set of NMT states a guarding master accepts in an answer
@@ -101,7 +105,7 @@ impl Default for AcceptedStates {
 
 /// A guarding error the master sees (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
 ///
-/// Every time is in µs on the caller's clock.
+/// Every time is on the caller's clock (a `Duration` since its epoch).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GuardingEvent {
@@ -110,10 +114,10 @@ pub enum GuardingEvent {
     WrongToggle {
         /// The guarded node.
         node: NodeId,
-        /// When the answer came, in µs.
-        at: Micros,
-        /// The request it answers, in µs, if one was outstanding.
-        request_at: Option<Micros>,
+        /// When the answer came.
+        at: Duration,
+        /// The request it answers, if one was outstanding.
+        request_at: Option<Duration>,
         /// The toggle expected.
         expected: bool,
         /// The toggle received.
@@ -123,10 +127,10 @@ pub enum GuardingEvent {
     UnexpectedState {
         /// The guarded node.
         node: NodeId,
-        /// When the answer came, in µs.
-        at: Micros,
-        /// The request it answers, in µs, if one was outstanding.
-        request_at: Option<Micros>,
+        /// When the answer came.
+        at: Duration,
+        /// The request it answers, if one was outstanding.
+        request_at: Option<Duration>,
         /// The state reported.
         state: NmtState,
     },
@@ -134,11 +138,11 @@ pub enum GuardingEvent {
     MissingAnswer {
         /// The guarded node.
         node: NodeId,
-        /// When the unanswered request was sent, in µs.
-        request_at: Micros,
-        /// When the answer was due, in µs: the request + guard time, or the
+        /// When the unanswered request was sent.
+        request_at: Duration,
+        /// When the answer was due: the request + guard time, or the
         /// next request when that came first (or the guard time is unknown).
-        due_by: Micros,
+        due_by: Duration,
     },
 }
 
@@ -153,10 +157,10 @@ impl GuardingEvent {
         }
     }
 
-    /// Return when the event happened, in µs: the answer's arrival, or the
+    /// Return when the event happened: the answer's arrival, or the
     /// instant a missing answer was due.
     #[inline]
-    pub const fn at(&self) -> Micros {
+    pub const fn at(&self) -> Duration {
         match *self {
             GuardingEvent::WrongToggle { at, .. } | GuardingEvent::UnexpectedState { at, .. } => at,
             GuardingEvent::MissingAnswer { due_by, .. } => due_by,
@@ -187,18 +191,25 @@ impl fmt::Display for GuardingEvent {
                 ..
             } => write!(
                 f,
-                "node {node}: toggle {} where {} was expected at {at} µs",
+                "node {node}: toggle {} where {} was expected at {} µs",
                 u8::from(found),
-                u8::from(expected)
+                u8::from(expected),
+                at.as_micros()
             ),
             GuardingEvent::UnexpectedState { at, state, .. } => {
-                write!(f, "node {node}: unexpected state {state} at {at} µs")
+                write!(
+                    f,
+                    "node {node}: unexpected state {state} at {} µs",
+                    at.as_micros()
+                )
             }
             GuardingEvent::MissingAnswer {
                 request_at, due_by, ..
             } => write!(
                 f,
-                "node {node}: missing answer to the request at {request_at} µs (due by {due_by} µs)"
+                "node {node}: missing answer to the request at {} µs (due by {} µs)",
+                request_at.as_micros(),
+                due_by.as_micros()
             ),
         }
     }
@@ -211,7 +222,7 @@ pub type GuardingEvents = Events<GuardingEvent, 3>;
 /// The node-guarding master's view of one node (CiA 301 §7.2.8.3.2.1;
 /// SPEC §2.7; seed 004 §11.1.1).
 ///
-/// | input at `now` (µs) | effect | event |
+/// | input at `now` | effect | event |
 /// |---|---|---|
 /// | [`on_request`](Self::on_request) | the request is outstanding; the next is due one guard time later | [`MissingAnswer`](GuardingEvent::MissingAnswer) when the previous one is still unanswered |
 /// | [`poll`](Self::poll), `now` > request + guard time | the request is given up | `MissingAnswer`, once |
@@ -233,24 +244,25 @@ pub type GuardingEvents = Events<GuardingEvent, 3>;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct NodeGuardingMaster {
     node: NodeId,
-    guard_time: Micros,
+    guard_time: Duration,
     accepted: AcceptedStates,
     /// `None`: not known yet (observer before its first answer).
     expected_toggle: Option<bool>,
-    last_request: Option<Micros>,
+    last_request: Option<Duration>,
     /// The request still waiting for its answer.
-    outstanding: Option<Micros>,
+    outstanding: Option<Duration>,
 }
 
 impl NodeGuardingMaster {
-    /// Return the master guarding `node` every `guard_time_ms` (object 100Ch,
-    /// milliseconds; 0 = no schedule), expecting toggle 0 in the first answer
-    /// (the node has just started) and accepting [`AcceptedStates::GUARDED`].
+    /// Return the master guarding `node` every `guard_time` (zero = no
+    /// schedule), expecting toggle 0 in the first answer (the node has just
+    /// started) and accepting [`AcceptedStates::GUARDED`].
     #[inline]
-    pub const fn new(node: NodeId, guard_time_ms: u16) -> Self {
+    #[must_use]
+    pub const fn new(node: NodeId, guard_time: Duration) -> Self {
         NodeGuardingMaster {
             node,
-            guard_time: millis_to_micros(guard_time_ms as u32),
+            guard_time,
             accepted: AcceptedStates::GUARDED,
             expected_toggle: Some(false),
             last_request: None,
@@ -258,13 +270,23 @@ impl NodeGuardingMaster {
         }
     }
 
+    /// Return the master guarding `node` with the guard time of object
+    /// 100Ch, `guard_time_ms` milliseconds (0 = no schedule); otherwise as
+    /// [`NodeGuardingMaster::new`].
+    #[inline]
+    #[must_use]
+    pub const fn from_millis(node: NodeId, guard_time_ms: u16) -> Self {
+        Self::new(node, millis(guard_time_ms as u32))
+    }
+
     /// Return a passive observer of `node`'s guarding in a log: like
     /// [`NodeGuardingMaster::new`], but the expected toggle is not known
     /// until the first answer, which sets the baseline (for a log that does
     /// not show the node's boot-up).
     #[inline]
-    pub const fn observer(node: NodeId, guard_time_ms: u16) -> Self {
-        let mut master = Self::new(node, guard_time_ms);
+    #[must_use]
+    pub const fn observer(node: NodeId, guard_time: Duration) -> Self {
+        let mut master = Self::new(node, guard_time);
         master.expected_toggle = None;
         master
     }
@@ -289,9 +311,9 @@ impl NodeGuardingMaster {
         self.node
     }
 
-    /// Return the guard time in µs; 0 when there is no schedule.
+    /// Return the guard time; 0 when there is no schedule.
     #[inline]
-    pub const fn guard_time(&self) -> Micros {
+    pub const fn guard_time(&self) -> Duration {
         self.guard_time
     }
 
@@ -302,29 +324,29 @@ impl NodeGuardingMaster {
         self.expected_toggle
     }
 
-    /// Return when (µs) the outstanding request was sent, if it has not been
+    /// Return when the outstanding request was sent, if it has not been
     /// answered or given up.
     #[inline]
-    pub const fn outstanding_request(&self) -> Option<Micros> {
+    pub const fn outstanding_request(&self) -> Option<Duration> {
         self.outstanding
     }
 
-    /// Return when (µs) the next guard request is due: one guard time after
+    /// Return when the next guard request is due: one guard time after
     /// the last, 0 (at once) before the first; `None` with guard time 0.
     #[inline]
-    pub const fn next_request_at(&self) -> Option<Micros> {
-        if self.guard_time == 0 {
+    pub const fn next_request_at(&self) -> Option<Duration> {
+        if self.guard_time.is_zero() {
             return None;
         }
         match self.last_request {
             Some(last) => Some(last.saturating_add(self.guard_time)),
-            None => Some(0),
+            None => Some(Duration::ZERO),
         }
     }
 
-    /// Return whether a guard request is due at `now` (µs).
+    /// Return whether a guard request is due at `now`.
     #[inline]
-    pub fn request_due(&self, now: Micros) -> bool {
+    pub fn request_due(&self, now: Duration) -> bool {
         self.next_request_at().is_some_and(|due| now >= due)
     }
 
@@ -335,13 +357,13 @@ impl NodeGuardingMaster {
         self.expected_toggle = Some(false);
     }
 
-    /// A guard request was sent (or seen in a log) at `now` (µs). Returns a
+    /// A guard request was sent (or seen in a log) at `now`. Returns a
     /// [`GuardingEvent::MissingAnswer`] when the previous request is still
     /// unanswered.
     #[must_use = "the event is reported only once"]
-    pub fn on_request(&mut self, now: Micros) -> Option<GuardingEvent> {
+    pub fn on_request(&mut self, now: Duration) -> Option<GuardingEvent> {
         let missing = self.outstanding.map(|request_at| {
-            let due_by = if self.guard_time == 0 {
+            let due_by = if self.guard_time.is_zero() {
                 now
             } else {
                 now.min(request_at.saturating_add(self.guard_time))
@@ -357,12 +379,12 @@ impl NodeGuardingMaster {
         missing
     }
 
-    /// At `now` (µs), give up the outstanding request when its guard time
+    /// At `now`, give up the outstanding request when its guard time
     /// has passed, returning the [`GuardingEvent::MissingAnswer`] once.
     #[must_use = "the event is reported only once"]
-    pub fn poll(&mut self, now: Micros) -> Option<GuardingEvent> {
+    pub fn poll(&mut self, now: Duration) -> Option<GuardingEvent> {
         let request_at = self.outstanding?;
-        if self.guard_time == 0 {
+        if self.guard_time.is_zero() {
             return None;
         }
         let due_by = request_at.saturating_add(self.guard_time);
@@ -378,10 +400,10 @@ impl NodeGuardingMaster {
         }
     }
 
-    /// An answer came at `now` (µs): check its toggle and state. An answer
+    /// An answer came at `now`: check its toggle and state. An answer
     /// after the guard time of its request first reports the missing answer
     /// (when no poll did), then is checked like any other.
-    pub fn on_answer(&mut self, now: Micros, answer: GuardAnswer) -> GuardingEvents {
+    pub fn on_answer(&mut self, now: Duration, answer: GuardAnswer) -> GuardingEvents {
         let mut events = GuardingEvents::new();
         events.push_some(self.poll(now));
         let request_at = self.outstanding.take();
@@ -414,11 +436,11 @@ impl NodeGuardingMaster {
 /// emergency telegram and returns to the 'pre-operational' state").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct LifeGuardExpiry {
-    /// The last guard request before the silence, in µs.
-    pub last_request: Micros,
+    /// The last guard request before the silence.
+    pub last_request: Duration,
     /// `last_request` + node life time: the instant the life time expired,
-    /// in µs.
-    pub deadline: Micros,
+    ///.
+    pub deadline: Duration,
     /// The EMCY to send: [`LifeGuard::EMCY`].
     pub emcy: Emcy,
     /// The NMT state to switch to: pre-operational.
@@ -429,10 +451,10 @@ pub struct LifeGuardExpiry {
 enum LifeTimer {
     /// No guard request yet: life guarding has not started.
     Idle,
-    /// Running since the guard request at the given time (µs).
-    Running(Micros),
-    /// Expired after the guard request at the given time (µs); reported.
-    Expired(Micros),
+    /// Running since the guard request at the given time.
+    Running(Duration),
+    /// Expired after the guard request at the given time; reported.
+    Expired(Duration),
 }
 
 /// Life guarding on the node: the node monitors its guarding master
@@ -447,24 +469,26 @@ enum LifeTimer {
 /// again.
 ///
 /// ```
+/// use core::time::Duration;
 /// use motionwire::canopen::{ErrorControlConfig, LifeGuard, NmtState};
 ///
+/// let us = Duration::from_micros;
 /// let mut life = LifeGuard::new(ErrorControlConfig {
 ///     producer_heartbeat_time_ms: 0,
 ///     guard_time_ms: 100,
 ///     life_time_factor: 3,
 /// });
-/// assert_eq!(life.on_request(0), None); // starts the 300 ms timer (times in µs)
-/// assert_eq!(life.poll(300_000), None);
-/// let expiry = life.poll(300_001).unwrap();
+/// assert_eq!(life.on_request(Duration::ZERO), None); // starts the 300 ms timer
+/// assert_eq!(life.poll(us(300_000)), None);
+/// let expiry = life.poll(us(300_001)).unwrap();
 /// assert_eq!(expiry.emcy.to_bytes(), [0x30, 0x81, 0x11, 0, 0, 0, 0, 0]);
 /// assert_eq!(expiry.new_state, NmtState::PreOperational);
-/// assert_eq!(life.poll(900_000), None); // once per expiry
+/// assert_eq!(life.poll(us(900_000)), None); // once per expiry
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct LifeGuard {
-    /// The node life time in µs; `None` = disabled.
-    life_time: Option<Micros>,
+    /// The node life time; `None` = disabled.
+    life_time: Option<Duration>,
     timer: LifeTimer,
 }
 
@@ -505,16 +529,16 @@ impl LifeGuard {
         self.timer = LifeTimer::Idle;
     }
 
-    /// Return the node life time in µs, `None` when life guarding is
+    /// Return the node life time, `None` when life guarding is
     /// disabled.
     #[inline]
-    pub const fn node_life_time(&self) -> Option<Micros> {
+    pub const fn node_life_time(&self) -> Option<Duration> {
         self.life_time
     }
 
-    /// Return when (µs) the life time runs out, if the timer is running.
+    /// Return when the life time runs out, if the timer is running.
     #[inline]
-    pub const fn deadline(&self) -> Option<Micros> {
+    pub const fn deadline(&self) -> Option<Duration> {
         match (self.life_time, self.timer) {
             (Some(life_time), LifeTimer::Running(last)) => Some(last.saturating_add(life_time)),
             _ => None,
@@ -528,10 +552,10 @@ impl LifeGuard {
         matches!(self.timer, LifeTimer::Expired(_))
     }
 
-    /// A guard request came at `now` (µs): restart the timer. Returns the
+    /// A guard request came at `now`: restart the timer. Returns the
     /// expiry that happened before it when no poll reported it.
     #[must_use = "the event is reported only once"]
-    pub fn on_request(&mut self, now: Micros) -> Option<LifeGuardExpiry> {
+    pub fn on_request(&mut self, now: Duration) -> Option<LifeGuardExpiry> {
         let expiry = self.poll(now);
         if self.life_time.is_some() {
             self.timer = LifeTimer::Running(now);
@@ -539,9 +563,9 @@ impl LifeGuard {
         expiry
     }
 
-    /// At `now` (µs), report the expiry of the life time, once.
+    /// At `now`, report the expiry of the life time, once.
     #[must_use = "the event is reported only once"]
-    pub fn poll(&mut self, now: Micros) -> Option<LifeGuardExpiry> {
+    pub fn poll(&mut self, now: Duration) -> Option<LifeGuardExpiry> {
         let deadline = self.deadline()?;
         let LifeTimer::Running(last_request) = self.timer else {
             return None;
@@ -565,7 +589,14 @@ mod tests {
     use super::*;
     use NmtState::{BootUp, Operational, PreOperational, Stopped};
 
-    const MS: Micros = 1000;
+    /// A time in microseconds.
+    fn us(n: u64) -> Duration {
+        Duration::from_micros(n)
+    }
+
+    const MS: Duration = Duration::from_millis(1);
+    /// One microsecond.
+    const US: Duration = Duration::from_micros(1);
 
     fn node() -> NodeId {
         NodeId::new(5).unwrap()
@@ -584,7 +615,7 @@ mod tests {
         Poll,
     }
 
-    fn run(master: &mut NodeGuardingMaster, rows: &[(Micros, Step, &[GuardingEvent])]) {
+    fn run(master: &mut NodeGuardingMaster, rows: &[(Duration, Step, &[GuardingEvent])]) {
         for (row, &(now, step, expected)) in rows.iter().enumerate() {
             let got: Vec<GuardingEvent> = match step {
                 Step::Request => master.on_request(now).into_iter().collect(),
@@ -597,18 +628,18 @@ mod tests {
                 }
                 Step::Poll => master.poll(now).into_iter().collect(),
             };
-            assert_eq!(got, expected, "row {row}: {step:?} at {now} µs");
+            assert_eq!(got, expected, "row {row}: {step:?} at {now:?}");
         }
     }
 
     #[test]
     fn toggle_alternates_from_zero() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         assert_eq!(master.expected_toggle(), Some(false));
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (MS, Step::Answer(false, PreOperational), &[]),
                 (100 * MS, Step::Request, &[]),
                 (101 * MS, Step::Answer(true, PreOperational), &[]),
@@ -624,26 +655,29 @@ mod tests {
 
     #[test]
     fn request_schedule() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
-        assert_eq!(master.next_request_at(), Some(0));
-        assert!(master.request_due(0));
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
+        assert_eq!(master.next_request_at(), Some(us(0)));
+        assert!(master.request_due(us(0)));
         assert_eq!(master.on_request(10 * MS), None);
         assert_eq!(master.next_request_at(), Some(110 * MS));
-        assert!(!master.request_due(110 * MS - 1));
+        assert!(!master.request_due(110 * MS - 1 * US));
         assert!(master.request_due(110 * MS));
         assert_eq!(master.outstanding_request(), Some(10 * MS));
         assert_eq!(master.guard_time(), 100 * MS);
-        assert_eq!(NodeGuardingMaster::new(node(), 0).next_request_at(), None);
-        assert!(!NodeGuardingMaster::new(node(), 0).request_due(u64::MAX));
+        assert_eq!(
+            NodeGuardingMaster::from_millis(node(), 0).next_request_at(),
+            None
+        );
+        assert!(!NodeGuardingMaster::from_millis(node(), 0).request_due(Duration::MAX));
     }
 
     #[test]
     fn wrong_toggle() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (MS, Step::Answer(false, Operational), &[]),
                 (100 * MS, Step::Request, &[]),
                 (
@@ -666,18 +700,18 @@ mod tests {
 
     #[test]
     fn first_answer_after_start_must_be_toggle_zero() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (
                     MS,
                     Step::Answer(true, PreOperational),
                     &[GuardingEvent::WrongToggle {
                         node: node(),
                         at: MS,
-                        request_at: Some(0),
+                        request_at: Some(us(0)),
                         expected: false,
                         found: true,
                     }],
@@ -688,12 +722,12 @@ mod tests {
 
     #[test]
     fn unexpected_state() {
-        let mut master = NodeGuardingMaster::new(node(), 100)
+        let mut master = NodeGuardingMaster::from_millis(node(), 100)
             .with_accepted_states(AcceptedStates::only(Operational));
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (MS, Step::Answer(false, Operational), &[]),
                 (100 * MS, Step::Request, &[]),
                 (
@@ -721,11 +755,11 @@ mod tests {
 
     #[test]
     fn wrong_toggle_and_unexpected_state_together() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (
                     MS,
                     Step::Answer(true, BootUp),
@@ -733,14 +767,14 @@ mod tests {
                         GuardingEvent::WrongToggle {
                             node: node(),
                             at: MS,
-                            request_at: Some(0),
+                            request_at: Some(us(0)),
                             expected: false,
                             found: true,
                         },
                         GuardingEvent::UnexpectedState {
                             node: node(),
                             at: MS,
-                            request_at: Some(0),
+                            request_at: Some(us(0)),
                             state: BootUp,
                         },
                     ],
@@ -751,18 +785,18 @@ mod tests {
 
     #[test]
     fn missing_answer() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         let missing = GuardingEvent::MissingAnswer {
             node: node(),
-            request_at: 0,
+            request_at: Duration::ZERO,
             due_by: 100 * MS,
         };
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (100 * MS, Step::Poll, &[]),
-                (100 * MS + 1, Step::Poll, &[missing]),
+                (100 * MS + 1 * US, Step::Poll, &[missing]),
                 (150 * MS, Step::Poll, &[]),
                 // The expectation is kept: the next answer carries toggle 0.
                 (200 * MS, Step::Request, &[]),
@@ -773,17 +807,17 @@ mod tests {
 
     #[test]
     fn missing_answer_found_by_the_next_request() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (
                     100 * MS,
                     Step::Request,
                     &[GuardingEvent::MissingAnswer {
                         node: node(),
-                        request_at: 0,
+                        request_at: Duration::ZERO,
                         due_by: 100 * MS,
                     }],
                 ),
@@ -802,17 +836,17 @@ mod tests {
 
     #[test]
     fn late_answer_without_poll_reports_the_missing_answer_first() {
-        let mut master = NodeGuardingMaster::new(node(), 100);
+        let mut master = NodeGuardingMaster::from_millis(node(), 100);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (
                     150 * MS,
                     Step::Answer(false, Operational),
                     &[GuardingEvent::MissingAnswer {
                         node: node(),
-                        request_at: 0,
+                        request_at: Duration::ZERO,
                         due_by: 100 * MS,
                     }],
                 ),
@@ -824,7 +858,7 @@ mod tests {
 
     #[test]
     fn observer_baseline_from_first_answer() {
-        let mut master = NodeGuardingMaster::observer(node(), 0);
+        let mut master = NodeGuardingMaster::observer(node(), Duration::ZERO);
         assert_eq!(master.expected_toggle(), None);
         run(
             &mut master,
@@ -865,11 +899,11 @@ mod tests {
 
     #[test]
     fn boot_up_resets_the_toggle_to_zero() {
-        let mut master = NodeGuardingMaster::observer(node(), 100);
+        let mut master = NodeGuardingMaster::observer(node(), 100 * MS);
         run(
             &mut master,
             &[
-                (0, Step::Request, &[]),
+                (us(0), Step::Request, &[]),
                 (MS, Step::Answer(false, Operational), &[]),
                 (100 * MS, Step::Request, &[]),
                 (101 * MS, Step::Answer(true, Operational), &[]),
@@ -886,11 +920,11 @@ mod tests {
     fn event_accessors() {
         let missing = GuardingEvent::MissingAnswer {
             node: node(),
-            request_at: 0,
-            due_by: 100_000,
+            request_at: Duration::ZERO,
+            due_by: us(100_000),
         };
         assert_eq!(missing.node(), node());
-        assert_eq!(missing.at(), 100_000);
+        assert_eq!(missing.at(), us(100_000));
         assert_eq!(missing.name(), "missing_answer");
         assert_eq!(
             missing.to_string(),
@@ -898,7 +932,7 @@ mod tests {
         );
         let toggle = GuardingEvent::WrongToggle {
             node: node(),
-            at: 7,
+            at: us(7),
             request_at: None,
             expected: true,
             found: false,
@@ -910,11 +944,11 @@ mod tests {
         );
         let state = GuardingEvent::UnexpectedState {
             node: node(),
-            at: 9,
+            at: us(9),
             request_at: None,
             state: Stopped,
         };
-        assert_eq!(state.at(), 9);
+        assert_eq!(state.at(), us(9));
         assert_eq!(state.name(), "unexpected_state");
         assert_eq!(
             state.to_string(),
@@ -937,8 +971,8 @@ mod tests {
         Poll,
     }
 
-    /// A row: (time µs, step, expected expiry as (last request, deadline)).
-    type LifeRow = (Micros, Life, Option<(Micros, Micros)>);
+    /// A row: (time, step, expected expiry as (last request, deadline)).
+    type LifeRow = (Duration, Life, Option<(Duration, Duration)>);
 
     fn run_life(life: &mut LifeGuard, rows: &[LifeRow]) {
         for (row, &(now, step, expected)) in rows.iter().enumerate() {
@@ -952,7 +986,7 @@ mod tests {
                 emcy: LifeGuard::EMCY,
                 new_state: PreOperational,
             });
-            assert_eq!(got, expected, "row {row}: {step:?} at {now} µs");
+            assert_eq!(got, expected, "row {row}: {step:?} at {now:?}");
         }
     }
 
@@ -963,9 +997,9 @@ mod tests {
         run_life(
             &mut life,
             &[
-                (0, Life::Request, None),
+                (us(0), Life::Request, None),
                 (300 * MS, Life::Poll, None),
-                (300 * MS + 1, Life::Poll, Some((0, 300 * MS))),
+                (300 * MS + 1 * US, Life::Poll, Some((us(0), 300 * MS))),
                 (400 * MS, Life::Poll, None),
                 (10_000 * MS, Life::Poll, None),
             ],
@@ -989,7 +1023,7 @@ mod tests {
         run_life(
             &mut life,
             &[
-                (0, Life::Poll, None),
+                (us(0), Life::Poll, None),
                 (10_000 * MS, Life::Poll, None),
                 (10_000 * MS, Life::Request, None),
                 (10_300 * MS, Life::Poll, None),
@@ -1004,7 +1038,7 @@ mod tests {
         run_life(
             &mut life,
             &[
-                (0, Life::Request, None),
+                (us(0), Life::Request, None),
                 (250 * MS, Life::Request, None),
                 (500 * MS, Life::Poll, None),
                 (550 * MS, Life::Request, None),
@@ -1021,8 +1055,8 @@ mod tests {
         run_life(
             &mut life,
             &[
-                (0, Life::Request, None),
-                (30 * MS, Life::Poll, Some((0, 20 * MS))),
+                (us(0), Life::Request, None),
+                (30 * MS, Life::Poll, Some((us(0), 20 * MS))),
                 (40 * MS, Life::Poll, None),
                 (50 * MS, Life::Request, None),
                 (60 * MS, Life::Poll, None),
@@ -1041,7 +1075,7 @@ mod tests {
             run_life(
                 &mut life,
                 &[
-                    (0, Life::Request, None),
+                    (us(0), Life::Request, None),
                     (10_000 * MS, Life::Poll, None),
                     (20_000 * MS, Life::Request, None),
                 ],
@@ -1061,7 +1095,10 @@ mod tests {
         assert_eq!(life.node_life_time(), None);
         run_life(
             &mut life,
-            &[(0, Life::Request, None), (10_000 * MS, Life::Poll, None)],
+            &[
+                (us(0), Life::Request, None),
+                (10_000 * MS, Life::Poll, None),
+            ],
         );
         // Switching the heartbeat off brings life guarding back.
         life.reconfigure(ErrorControlConfig {
@@ -1086,6 +1123,11 @@ mod proptests {
     use proptest::prelude::*;
 
     use super::*;
+
+    /// A time in microseconds.
+    fn us(n: u64) -> Duration {
+        Duration::from_micros(n)
+    }
     use crate::test_gens::error_control::{
         any_times, guarding_step, guarding_steps, life_step, life_steps, GuardingStep, LifeStep,
     };
@@ -1101,11 +1143,11 @@ mod proptests {
         ) {
             let node = NodeId::MIN;
             let mut master = if observer {
-                NodeGuardingMaster::observer(node, guard_ms)
+                NodeGuardingMaster::observer(node, millis(u32::from(guard_ms)))
             } else {
-                NodeGuardingMaster::new(node, guard_ms)
+                NodeGuardingMaster::from_millis(node, guard_ms)
             };
-            let guard_time = millis_to_micros(u32::from(guard_ms));
+            let guard_time = millis(u32::from(guard_ms));
             // Requests are numbered; each is reported missing at most once.
             let mut request_number = 0usize;
             let mut reported_missing: Option<usize> = None;
@@ -1128,7 +1170,7 @@ mod proptests {
                             prop_assert_eq!(Some(request_at), before.outstanding_request());
                             prop_assert!(reported_missing != Some(request_number));
                             prop_assert!(due_by <= now);
-                            if guard_time != 0 {
+                            if guard_time != us(0) {
                                 prop_assert!(due_by <= request_at + guard_time);
                             }
                             reported_missing = Some(request_number);
@@ -1166,13 +1208,13 @@ mod proptests {
             guard_ms in 1u16..200,
             delays in proptest::collection::vec(0u64..1000, 1..40),
         ) {
-            let mut master = NodeGuardingMaster::new(NodeId::MIN, guard_ms);
+            let mut master = NodeGuardingMaster::from_millis(NodeId::MIN, guard_ms);
             let mut toggle = false;
-            let mut now = 0;
+            let mut now = Duration::ZERO;
             for delay in delays {
                 prop_assert!(master.request_due(now));
                 prop_assert_eq!(master.on_request(now), None);
-                let answered = now + delay.min(millis_to_micros(u32::from(guard_ms)));
+                let answered = now + us(delay).min(millis(u32::from(guard_ms)));
                 prop_assert_eq!(master.poll(answered), None);
                 let events: Vec<_> = master
                     .on_answer(answered, GuardAnswer::new(toggle, NmtState::Operational))
@@ -1200,7 +1242,7 @@ mod proptests {
             let mut life = LifeGuard::new(config);
             let enabled = heartbeat_ms == 0 && guard_ms != 0 && factor != 0;
             prop_assert_eq!(life.node_life_time().is_some(), enabled);
-            let mut last_request: Option<Micros> = None;
+            let mut last_request: Option<Duration> = None;
             let mut expiries_since_request = 0;
             for (now, step) in steps {
                 let expiry = match step {
@@ -1227,7 +1269,7 @@ mod proptests {
             }
         }
 
-        /// Times that jump backwards or sit at `u64::MAX` never panic; the
+        /// Times that jump backwards or sit at `Duration::MAX` never panic; the
         /// outputs stay well-formed.
         #[test]
         fn any_times_never_panic(
@@ -1236,7 +1278,7 @@ mod proptests {
             steps in any_times(guarding_step()),
             life_steps in any_times(life_step()),
         ) {
-            let mut master = NodeGuardingMaster::new(NodeId::MAX, guard_ms);
+            let mut master = NodeGuardingMaster::from_millis(NodeId::MAX, guard_ms);
             for (now, step) in steps {
                 let events: Vec<GuardingEvent> = match step {
                     GuardingStep::Request => master.on_request(now).into_iter().collect(),

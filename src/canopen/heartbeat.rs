@@ -2,44 +2,48 @@
 //! (object 1017h) and the consumer's monitor (object 1016h)
 //! (CiA 301 §7.2.8.3.2.2; SPEC §2.7; seed 004 §11.1.2).
 //!
-//! Time is [`Micros`], microseconds on the caller's monotonic clock, passed
-//! with every call; the object dictionary values are milliseconds. Nothing
+//! Time is a [`Duration`] since the caller's epoch on its monotonic clock,
+//! passed with every call; the object dictionary values are milliseconds
+//! and the constructors that take them say so (`from_millis`). Nothing
 //! reads a clock, sleeps or allocates, so the same code runs on a
 //! microcontroller (poll from a timer tick), in a PLC runtime (poll every
 //! cycle) and in a log analyser (feed the log's frames with their
 //! timestamps, and poll at each timestamp before delivering its frame).
 //!
 //! ```
+//! use core::time::Duration;
 //! use motionwire::canopen::{
 //!     ConsumerEntry, HeartbeatConsumer, HeartbeatEvent, NmtState, NodeId,
 //! };
 //!
+//! let ms = Duration::from_millis;
 //! let node = NodeId::new(5).unwrap();
-//! let mut consumer = HeartbeatConsumer::<4>::new();
-//! consumer.set_entry(ConsumerEntry::new(node, 150))?; // 150 ms
+//! let mut consumer = HeartbeatConsumer::<4>::with_capacity();
+//! consumer.set_entry(ConsumerEntry::from_millis(node, 150))?; // 1016h: 150 ms
 //!
-//! // Times are microseconds. Monitoring starts at the first heartbeat.
-//! assert!(consumer.on_heartbeat(1_000_000, node, NmtState::Operational).is_empty());
-//! assert_eq!(consumer.poll(1_150_000).next(), None); // exactly at the deadline: in time
-//! let timeout = consumer.poll(1_150_001).next();
+//! // Monitoring starts at the first heartbeat.
+//! assert!(consumer.on_heartbeat(ms(1_000), node, NmtState::Operational).is_empty());
+//! assert_eq!(consumer.poll(ms(1_150)).next(), None); // exactly at the deadline: in time
+//! let timeout = consumer.poll(ms(1_150) + Duration::from_micros(1)).next();
 //! assert_eq!(
 //!     timeout,
 //!     Some(HeartbeatEvent::Timeout {
 //!         node,
-//!         last_heartbeat: 1_000_000,
-//!         deadline: 1_150_000,
+//!         last_heartbeat: ms(1_000),
+//!         deadline: ms(1_150),
 //!     })
 //! );
-//! assert_eq!(consumer.poll(9_000_000).next(), None); // reported once
+//! assert_eq!(consumer.poll(ms(9_000)).next(), None); // reported once
 //!
-//! let recovered: Vec<_> = consumer.on_heartbeat(1_400_000, node, NmtState::Operational).collect();
-//! assert_eq!(recovered[0].gap(), Some(400_000)); // the gap after the heartbeat at 1.0 s
+//! let recovered: Vec<_> = consumer.on_heartbeat(ms(1_400), node, NmtState::Operational).collect();
+//! assert_eq!(recovered[0].gap(), Some(ms(400))); // the gap after the heartbeat at 1.0 s
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
 use core::fmt;
+use core::time::Duration;
 
-use super::error_control::{millis_to_micros, Events, Micros};
+use super::error_control::{millis, Events};
 use super::{Heartbeat, NmtState, NodeId};
 use crate::error::{Error, Result};
 
@@ -51,77 +55,88 @@ use crate::error::{Error, Result};
 /// producer time of 0 disables the heartbeat.
 ///
 /// ```
+/// use core::time::Duration;
 /// use motionwire::canopen::{HeartbeatProducer, NmtState};
 ///
-/// let mut producer = HeartbeatProducer::new(100); // 1017h = 100 ms
-/// // The first poll sends at once, then every 100 ms (times in µs).
-/// assert!(producer.poll(5_000, NmtState::PreOperational).is_some());
-/// assert!(producer.poll(104_999, NmtState::PreOperational).is_none());
-/// let heartbeat = producer.poll(105_000, NmtState::Operational).unwrap();
+/// let us = Duration::from_micros;
+/// let mut producer = HeartbeatProducer::from_millis(100); // 1017h = 100 ms
+/// // The first poll sends at once, then every 100 ms.
+/// assert!(producer.poll(us(5_000), NmtState::PreOperational).is_some());
+/// assert!(producer.poll(us(104_999), NmtState::PreOperational).is_none());
+/// let heartbeat = producer.poll(us(105_000), NmtState::Operational).unwrap();
 /// assert_eq!(heartbeat.to_bytes(), [0x05]);
-/// assert_eq!(producer.next_due(), Some(205_000));
+/// assert_eq!(producer.next_due(), Some(us(205_000)));
 ///
-/// assert!(HeartbeatProducer::new(0).poll(5_000, NmtState::Operational).is_none());
+/// assert!(HeartbeatProducer::new(Duration::ZERO).poll(us(5_000), NmtState::Operational).is_none());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct HeartbeatProducer {
-    /// The producer time in µs; 0 = off.
-    period: Micros,
-    /// When the next heartbeat is due, in µs; `None` before the first,
+    /// The producer time; 0 = off.
+    period: Duration,
+    /// When the next heartbeat is due; `None` before the first,
     /// which is due at once.
-    next_due: Option<Micros>,
+    next_due: Option<Duration>,
 }
 
 impl HeartbeatProducer {
-    /// Return a producer with the producer heartbeat time `producer_time_ms`
-    /// (object 1017h, milliseconds; 0 = off). Its first poll sends at once.
+    /// Return a producer sending a heartbeat every `period` (zero = off).
+    /// Its first poll sends at once.
     #[inline]
-    pub const fn new(producer_time_ms: u16) -> Self {
+    #[must_use]
+    pub const fn new(period: Duration) -> Self {
         HeartbeatProducer {
-            period: millis_to_micros(producer_time_ms as u32),
+            period,
             next_due: None,
         }
     }
 
-    /// Return the producer time in [`Micros`]; 0 when the heartbeat is off.
+    /// Return a producer with the producer heartbeat time of object 1017h,
+    /// `producer_time_ms` milliseconds (0 = off).
     #[inline]
-    pub const fn producer_time(&self) -> Micros {
+    #[must_use]
+    pub const fn from_millis(producer_time_ms: u16) -> Self {
+        Self::new(millis(producer_time_ms as u32))
+    }
+
+    /// Return the producer time in [`Duration`]; 0 when the heartbeat is off.
+    #[inline]
+    pub const fn producer_time(&self) -> Duration {
         self.period
     }
 
     /// Return whether the heartbeat is on (1017h ≠ 0).
     #[inline]
     pub const fn is_enabled(&self) -> bool {
-        self.period != 0
+        !self.period.is_zero()
     }
 
     /// Write object 1017h (milliseconds; 0 = off): the next poll sends at
     /// once, then the new period applies.
     #[inline]
     pub fn set_producer_time(&mut self, producer_time_ms: u16) {
-        *self = Self::new(producer_time_ms);
+        *self = Self::from_millis(producer_time_ms);
     }
 
-    /// Schedule the next heartbeat one producer time after `now` (µs): call
+    /// Schedule the next heartbeat one producer time after `now`: call
     /// it after sending the boot-up message, which stands in for the first
     /// heartbeat.
     #[inline]
-    pub fn restart(&mut self, now: Micros) {
+    pub fn restart(&mut self, now: Duration) {
         self.next_due = Some(now.saturating_add(self.period));
     }
 
-    /// Return when (µs) the next heartbeat is due, `None` when the heartbeat
+    /// Return when the next heartbeat is due, `None` when the heartbeat
     /// is off; before the first heartbeat this is 0 (due at once).
     #[inline]
-    pub const fn next_due(&self) -> Option<Micros> {
-        match (self.period, self.next_due) {
-            (0, _) => None,
-            (_, Some(due)) => Some(due),
-            (_, None) => Some(0),
+    pub const fn next_due(&self) -> Option<Duration> {
+        match (self.period.is_zero(), self.next_due) {
+            (true, _) => None,
+            (false, Some(due)) => Some(due),
+            (false, None) => Some(Duration::ZERO),
         }
     }
 
-    /// At `now` (µs) in NMT state `state`, return the heartbeat to send, if
+    /// At `now` in NMT state `state`, return the heartbeat to send, if
     /// one is due. The first heartbeat is due at the first poll and sets the
     /// cadence.
     ///
@@ -130,8 +145,8 @@ impl HeartbeatProducer {
     /// comes more than a period late it sends one heartbeat, not a burst, and
     /// the next is due one period after `now`.
     #[must_use = "a heartbeat that is due is returned only once"]
-    pub fn poll(&mut self, now: Micros, state: NmtState) -> Option<Heartbeat> {
-        if self.period == 0 {
+    pub fn poll(&mut self, now: Duration, state: NmtState) -> Option<Heartbeat> {
+        if self.period.is_zero() {
             return None;
         }
         let next = match self.next_due {
@@ -162,9 +177,10 @@ pub struct ConsumerEntry {
 
 impl ConsumerEntry {
     /// Return the entry monitoring `node` with consumer time `time_ms`
-    /// (milliseconds).
+    /// milliseconds, as object 1016h holds it.
     #[inline]
-    pub const fn new(node: NodeId, time_ms: u16) -> Self {
+    #[must_use]
+    pub const fn from_millis(node: NodeId, time_ms: u16) -> Self {
         ConsumerEntry { node, time_ms }
     }
 
@@ -176,7 +192,7 @@ impl ConsumerEntry {
     /// use motionwire::canopen::{ConsumerEntry, NodeId};
     ///
     /// let entry = ConsumerEntry::from_od_value(0x0031_03E8).unwrap();
-    /// assert_eq!(entry, ConsumerEntry::new(NodeId::new(0x31).unwrap(), 1000));
+    /// assert_eq!(entry, ConsumerEntry::from_millis(NodeId::new(0x31).unwrap(), 1000));
     /// assert_eq!(entry.to_od_value(), 0x0031_03E8);
     /// assert_eq!(ConsumerEntry::from_od_value(0x0031_0000), None);
     /// ```
@@ -195,10 +211,10 @@ impl ConsumerEntry {
         (self.node.get() as u32) << 16 | self.time_ms as u32
     }
 
-    /// Return the consumer time in [`Micros`].
+    /// Return the consumer time in [`Duration`].
     #[inline]
-    pub const fn consumer_time(self) -> Micros {
-        millis_to_micros(self.time_ms as u32)
+    pub const fn consumer_time(self) -> Duration {
+        millis(self.time_ms as u32)
     }
 }
 
@@ -209,25 +225,25 @@ pub enum MonitorState {
     /// state is unknown and it is not monitored ("monitoring starts after
     /// the reception of the first heartbeat").
     Waiting,
-    /// Monitored: the last heartbeat came at `last_heartbeat` (µs) in
+    /// Monitored: the last heartbeat came at `last_heartbeat` in
     /// `state`; the next is due within the consumer time.
     Active {
-        /// When the last heartbeat came, in µs.
-        last_heartbeat: Micros,
+        /// When the last heartbeat came.
+        last_heartbeat: Duration,
         /// The NMT state it reported.
         state: NmtState,
     },
-    /// The consumer time passed after the heartbeat at `last_heartbeat` (µs)
+    /// The consumer time passed after the heartbeat at `last_heartbeat`
     /// and a [`HeartbeatEvent::Timeout`] was reported.
     TimedOut {
-        /// When the last heartbeat before the timeout came, in µs.
-        last_heartbeat: Micros,
+        /// When the last heartbeat before the timeout came.
+        last_heartbeat: Duration,
     },
 }
 
 /// What the heartbeat consumer reports (CiA 301 §7.2.8.3.2.2; SPEC §2.7).
 ///
-/// Every time is in µs on the caller's clock. For a log analyser: a
+/// Every time is on the caller's clock (a `Duration` since its epoch). For a log analyser: a
 /// `Timeout` says "no heartbeat in the gap after the heartbeat at
 /// `last_heartbeat`", and its `deadline` is `last_heartbeat` + consumer time
 /// whenever the poll happened; a `Recovered` or `RemoteReset` closes that
@@ -240,20 +256,20 @@ pub enum HeartbeatEvent {
     Timeout {
         /// The monitored node.
         node: NodeId,
-        /// When its last heartbeat came, in µs.
-        last_heartbeat: Micros,
+        /// When its last heartbeat came.
+        last_heartbeat: Duration,
         /// `last_heartbeat` + consumer time: the instant the timeout
-        /// occurred, in µs.
-        deadline: Micros,
+        /// occurred.
+        deadline: Duration,
     },
     /// A heartbeat came after a timeout: the node is monitored again.
     Recovered {
         /// The monitored node.
         node: NodeId,
-        /// The last heartbeat before the timeout, in µs.
-        last_heartbeat: Micros,
-        /// When the heartbeat that ended the gap came, in µs.
-        at: Micros,
+        /// The last heartbeat before the timeout.
+        last_heartbeat: Duration,
+        /// When the heartbeat that ended the gap came.
+        at: Duration,
         /// The NMT state that heartbeat reported.
         state: NmtState,
     },
@@ -263,10 +279,10 @@ pub enum HeartbeatEvent {
     RemoteReset {
         /// The monitored node.
         node: NodeId,
-        /// The node's last heartbeat before the boot-up, in µs.
-        last_heartbeat: Micros,
-        /// When the boot-up message came, in µs.
-        at: Micros,
+        /// The node's last heartbeat before the boot-up.
+        last_heartbeat: Duration,
+        /// When the boot-up message came.
+        at: Duration,
     },
     /// A heartbeat came from a node that the consumer would monitor (see
     /// [`HeartbeatConsumer::monitor_unconfigured`]) but every entry is in
@@ -275,8 +291,8 @@ pub enum HeartbeatEvent {
     CapacityExceeded {
         /// The node that is not monitored.
         node: NodeId,
-        /// When its heartbeat came, in µs.
-        at: Micros,
+        /// When its heartbeat came.
+        at: Duration,
     },
 }
 
@@ -292,10 +308,10 @@ impl HeartbeatEvent {
         }
     }
 
-    /// Return when the event happened, in µs: the deadline of a timeout, the
+    /// Return when the event happened: the deadline of a timeout, the
     /// arrival of the message otherwise.
     #[inline]
-    pub const fn at(&self) -> Micros {
+    pub const fn at(&self) -> Duration {
         match *self {
             HeartbeatEvent::Timeout { deadline, .. } => deadline,
             HeartbeatEvent::Recovered { at, .. }
@@ -304,10 +320,10 @@ impl HeartbeatEvent {
         }
     }
 
-    /// Return the node's last heartbeat before the event, in µs, when there
+    /// Return the node's last heartbeat before the event, when there
     /// was one.
     #[inline]
-    pub const fn last_heartbeat(&self) -> Option<Micros> {
+    pub const fn last_heartbeat(&self) -> Option<Duration> {
         match *self {
             HeartbeatEvent::Timeout { last_heartbeat, .. }
             | HeartbeatEvent::Recovered { last_heartbeat, .. }
@@ -316,11 +332,11 @@ impl HeartbeatEvent {
         }
     }
 
-    /// Return the gap, in µs, between the last heartbeat and the event's
+    /// Return the gap, between the last heartbeat and the event's
     /// [`at`](HeartbeatEvent::at): the consumer time for a timeout, the whole
     /// silence for a recovery or remote reset.
     #[inline]
-    pub const fn gap(&self) -> Option<Micros> {
+    pub const fn gap(&self) -> Option<Duration> {
         match self.last_heartbeat() {
             Some(last) => Some(self.at().saturating_sub(last)),
             None => None,
@@ -344,23 +360,28 @@ impl fmt::Display for HeartbeatEvent {
     /// Format the event as e.g. `node 5: timeout after the heartbeat at 1000000 µs`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let node = self.node();
+        let us = |t: Duration| t.as_micros();
         match *self {
             HeartbeatEvent::Timeout { last_heartbeat, .. } => write!(
                 f,
-                "node {node}: timeout after the heartbeat at {last_heartbeat} µs"
+                "node {node}: timeout after the heartbeat at {} µs",
+                us(last_heartbeat)
             ),
             HeartbeatEvent::Recovered {
                 last_heartbeat, at, ..
             } => write!(
                 f,
-                "node {node}: recovered at {at} µs after the heartbeat at {last_heartbeat} µs"
+                "node {node}: recovered at {} µs after the heartbeat at {} µs",
+                us(at),
+                us(last_heartbeat)
             ),
             HeartbeatEvent::RemoteReset { at, .. } => {
-                write!(f, "node {node}: remote reset (boot-up) at {at} µs")
+                write!(f, "node {node}: remote reset (boot-up) at {} µs", us(at))
             }
             HeartbeatEvent::CapacityExceeded { at, .. } => write!(
                 f,
-                "node {node}: not monitored, every consumer entry in use ({at} µs)"
+                "node {node}: not monitored, every consumer entry in use ({} µs)",
+                us(at)
             ),
         }
     }
@@ -373,7 +394,7 @@ pub type HeartbeatEvents = Events<HeartbeatEvent, 2>;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 struct Monitored {
     node: NodeId,
-    consumer_time: Micros,
+    consumer_time: Duration,
     /// Set by [`HeartbeatConsumer::set_entry`]; `false` for a node taken up by
     /// [`HeartbeatConsumer::monitor_unconfigured`].
     configured: bool,
@@ -383,7 +404,7 @@ struct Monitored {
 impl Monitored {
     /// Mark the node timed out when `now` is past its deadline, returning
     /// the timeout event once.
-    fn expire(&mut self, now: Micros) -> Option<HeartbeatEvent> {
+    fn expire(&mut self, now: Duration) -> Option<HeartbeatEvent> {
         match self.state {
             MonitorState::Active { last_heartbeat, .. } => {
                 let deadline = last_heartbeat.saturating_add(self.consumer_time);
@@ -403,7 +424,7 @@ impl Monitored {
     }
 
     /// Take a heartbeat (or boot-up) that came at `now`.
-    fn receive(&mut self, now: Micros, state: NmtState) -> Option<HeartbeatEvent> {
+    fn receive(&mut self, now: Duration, state: NmtState) -> Option<HeartbeatEvent> {
         let node = self.node;
         let (next, event) = match (self.state, state) {
             (MonitorState::Waiting, NmtState::BootUp) => (MonitorState::Waiting, None),
@@ -443,7 +464,7 @@ impl Monitored {
         event
     }
 
-    fn deadline(&self) -> Option<Micros> {
+    fn deadline(&self) -> Option<Duration> {
         match self.state {
             MonitorState::Active { last_heartbeat, .. } => {
                 Some(last_heartbeat.saturating_add(self.consumer_time))
@@ -458,7 +479,7 @@ impl Monitored {
 ///
 /// Behaviour, per node:
 ///
-/// | monitor state | input at `now` (µs) | next state | event |
+/// | monitor state | input at `now` | next state | event |
 /// |---|---|---|---|
 /// | waiting | heartbeat, state ≠ boot-up | active | — |
 /// | waiting | boot-up | waiting | — |
@@ -478,27 +499,51 @@ impl Monitored {
 /// heartbeat, not from the boot-up message: a node that has just been reset
 /// may need its producer time configured first (as CANopenNode does).
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct HeartbeatConsumer<const N: usize> {
+pub struct HeartbeatConsumer<const N: usize = DEFAULT_CONSUMER_ENTRIES> {
     entries: [Option<Monitored>; N],
-    /// The consumer time for nodes without an entry, in µs; 0 = ignore them.
-    unconfigured_time: Micros,
+    /// The consumer time for nodes without an entry; 0 = ignore them.
+    unconfigured_time: Duration,
     /// Bit n-1 set: `CapacityExceeded` already reported for node n.
     capacity_reported: u128,
 }
 
 impl<const N: usize> Default for HeartbeatConsumer<N> {
     fn default() -> Self {
-        Self::new()
+        Self::with_capacity()
+    }
+}
+
+/// The number of nodes a [`HeartbeatConsumer::new`] can monitor: every
+/// node-ID, 127 (object 1016h has up to 127 entries, CiA 301).
+pub const DEFAULT_CONSUMER_ENTRIES: usize = 127;
+
+impl HeartbeatConsumer<DEFAULT_CONSUMER_ENTRIES> {
+    /// Return a consumer with no entries that can monitor every node
+    /// ([`DEFAULT_CONSUMER_ENTRIES`]), written without naming a capacity, as
+    /// `HashMap::new` is.
+    ///
+    /// ```
+    /// use motionwire::canopen::HeartbeatConsumer;
+    ///
+    /// let consumer = HeartbeatConsumer::new();
+    /// assert_eq!(consumer.capacity(), 127);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn new() -> Self {
+        Self::with_capacity()
     }
 }
 
 impl<const N: usize> HeartbeatConsumer<N> {
-    /// Return a consumer with no entries (every 1016h sub-index 0).
+    /// Return a consumer with no entries (every 1016h sub-index 0) that can
+    /// monitor `N` nodes, e.g. `HeartbeatConsumer::<4>::with_capacity()`.
     #[inline]
-    pub const fn new() -> Self {
+    #[must_use]
+    pub const fn with_capacity() -> Self {
         HeartbeatConsumer {
             entries: [None; N],
-            unconfigured_time: 0,
+            unconfigured_time: Duration::ZERO,
             capacity_reported: 0,
         }
     }
@@ -573,8 +618,8 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// This is for a log analyser or a diagnostic tool that does not know
     /// the network's 1016h configuration.
     #[inline]
-    pub fn monitor_unconfigured(&mut self, time_ms: u16) {
-        self.unconfigured_time = millis_to_micros(u32::from(time_ms));
+    pub fn monitor_unconfigured(&mut self, time: Duration) {
+        self.unconfigured_time = time;
     }
 
     /// Return where the consumer stands with `node`, `None` when it has no
@@ -583,15 +628,15 @@ impl<const N: usize> HeartbeatConsumer<N> {
         self.find(node).map(|m| m.state)
     }
 
-    /// Return the consumer time of `node` in µs, `None` when it has no entry.
-    pub fn consumer_time(&self, node: NodeId) -> Option<Micros> {
+    /// Return the consumer time of `node` `None` when it has no entry.
+    pub fn consumer_time(&self, node: NodeId) -> Option<Duration> {
         self.find(node).map(|m| m.consumer_time)
     }
 
-    /// Return the earliest deadline (µs) among the active nodes: the next
+    /// Return the earliest deadline among the active nodes: the next
     /// time a [`HeartbeatConsumer::poll`] can report something. `None` when
     /// no node is active.
-    pub fn next_deadline(&self) -> Option<Micros> {
+    pub fn next_deadline(&self) -> Option<Duration> {
         self.entries
             .iter()
             .flatten()
@@ -600,9 +645,14 @@ impl<const N: usize> HeartbeatConsumer<N> {
     }
 
     /// Take a heartbeat or boot-up message from `node` in `state` that came
-    /// at `now` (µs), and return what it means (see the table on
+    /// at `now`, and return what it means (see the table on
     /// [`HeartbeatConsumer`]).
-    pub fn on_heartbeat(&mut self, now: Micros, node: NodeId, state: NmtState) -> HeartbeatEvents {
+    pub fn on_heartbeat(
+        &mut self,
+        now: Duration,
+        node: NodeId,
+        state: NmtState,
+    ) -> HeartbeatEvents {
         let mut events = HeartbeatEvents::new();
         let index = match self.position(node) {
             Some(i) => i,
@@ -621,12 +671,12 @@ impl<const N: usize> HeartbeatConsumer<N> {
         events
     }
 
-    /// At `now` (µs), time out every active node whose deadline has passed
+    /// At `now`, time out every active node whose deadline has passed
     /// and return one [`HeartbeatEvent::Timeout`] for each, in entry order.
     ///
     /// The iterator marks a node as it yields its timeout; timeouts it has
     /// not yielded when dropped are returned by the next poll.
-    pub fn poll(&mut self, now: Micros) -> impl Iterator<Item = HeartbeatEvent> + '_ {
+    pub fn poll(&mut self, now: Duration) -> impl Iterator<Item = HeartbeatEvent> + '_ {
         self.entries
             .iter_mut()
             .filter_map(move |slot| slot.as_mut().and_then(|m| m.expire(now)))
@@ -646,10 +696,10 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// `Err` with the event to report (if any) when it gets none.
     fn take_up(
         &mut self,
-        now: Micros,
+        now: Duration,
         node: NodeId,
     ) -> core::result::Result<usize, Option<HeartbeatEvent>> {
-        if self.unconfigured_time == 0 {
+        if self.unconfigured_time.is_zero() {
             return Err(None);
         }
         match self.entries.iter().position(Option::is_none) {
@@ -685,7 +735,14 @@ mod tests {
         NodeId::new(raw).unwrap()
     }
 
-    const MS: Micros = 1000;
+    /// A time in microseconds.
+    fn us(n: u64) -> Duration {
+        Duration::from_micros(n)
+    }
+
+    const MS: Duration = Duration::from_millis(1);
+    /// One microsecond.
+    const US: Duration = Duration::from_micros(1);
 
     use NmtState::{BootUp, Operational, PreOperational, Stopped};
 
@@ -698,24 +755,26 @@ mod tests {
         Poll,
     }
 
-    /// Run `(time µs, step, expected events)` rows against `consumer`.
+    /// Run `(time, step, expected events)` rows against `consumer`.
     fn run<const N: usize>(
         consumer: &mut HeartbeatConsumer<N>,
-        rows: &[(Micros, Step, &[HeartbeatEvent])],
+        rows: &[(Duration, Step, &[HeartbeatEvent])],
     ) {
         for (row, &(now, step, expected)) in rows.iter().enumerate() {
             let got: Vec<HeartbeatEvent> = match step {
                 Step::Rx(node, state) => consumer.on_heartbeat(now, node, state).collect(),
                 Step::Poll => consumer.poll(now).collect(),
             };
-            assert_eq!(got, expected, "row {row}: {step:?} at {now} µs");
+            assert_eq!(got, expected, "row {row}: {step:?} at {now:?}");
         }
     }
 
     fn consumer_of(entries: &[(u8, u16)]) -> HeartbeatConsumer<4> {
-        let mut consumer = HeartbeatConsumer::new();
+        let mut consumer = HeartbeatConsumer::with_capacity();
         for &(node, ms) in entries {
-            consumer.set_entry(ConsumerEntry::new(n(node), ms)).unwrap();
+            consumer
+                .set_entry(ConsumerEntry::from_millis(n(node), ms))
+                .unwrap();
         }
         consumer
     }
@@ -728,7 +787,7 @@ mod tests {
             &mut consumer,
             &[
                 // Nothing heard yet: no timeout however long we wait.
-                (0, Step::Poll, &[]),
+                (us(0), Step::Poll, &[]),
                 (10_000 * MS, Step::Poll, &[]),
                 (10_000 * MS, Step::Rx(n(5), PreOperational), &[]),
                 (10_050 * MS, Step::Poll, &[]),
@@ -758,8 +817,8 @@ mod tests {
             &[
                 (1_000 * MS, Step::Rx(n(5), Operational), &[]),
                 (1_100 * MS, Step::Poll, &[]),
-                (1_100 * MS + 1, Step::Poll, &[timeout]),
-                (1_100 * MS + 2, Step::Poll, &[]),
+                (1_100 * MS + 1 * US, Step::Poll, &[timeout]),
+                (1_100 * MS + 2 * US, Step::Poll, &[]),
                 (5_000 * MS, Step::Poll, &[]),
             ],
         );
@@ -780,7 +839,7 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), Operational), &[]),
+                (us(0), Step::Rx(n(5), Operational), &[]),
                 (90 * MS, Step::Poll, &[]),
                 (100 * MS, Step::Rx(n(5), Operational), &[]),
                 (190 * MS, Step::Poll, &[]),
@@ -796,13 +855,13 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), Operational), &[]),
+                (us(0), Step::Rx(n(5), Operational), &[]),
                 (
                     150 * MS,
                     Step::Poll,
                     &[HeartbeatEvent::Timeout {
                         node: n(5),
-                        last_heartbeat: 0,
+                        last_heartbeat: Duration::ZERO,
                         deadline: 100 * MS,
                     }],
                 ),
@@ -811,7 +870,7 @@ mod tests {
                     Step::Rx(n(5), Operational),
                     &[HeartbeatEvent::Recovered {
                         node: n(5),
-                        last_heartbeat: 0,
+                        last_heartbeat: Duration::ZERO,
                         at: 400 * MS,
                         state: Operational,
                     }],
@@ -837,19 +896,19 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), Operational), &[]),
+                (us(0), Step::Rx(n(5), Operational), &[]),
                 (
                     250 * MS,
                     Step::Rx(n(5), Operational),
                     &[
                         HeartbeatEvent::Timeout {
                             node: n(5),
-                            last_heartbeat: 0,
+                            last_heartbeat: Duration::ZERO,
                             deadline: 100 * MS,
                         },
                         HeartbeatEvent::Recovered {
                             node: n(5),
-                            last_heartbeat: 0,
+                            last_heartbeat: Duration::ZERO,
                             at: 250 * MS,
                             state: Operational,
                         },
@@ -866,13 +925,13 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), Operational), &[]),
+                (us(0), Step::Rx(n(5), Operational), &[]),
                 (
                     50 * MS,
                     Step::Rx(n(5), BootUp),
                     &[HeartbeatEvent::RemoteReset {
                         node: n(5),
-                        last_heartbeat: 0,
+                        last_heartbeat: Duration::ZERO,
                         at: 50 * MS,
                     }],
                 ),
@@ -910,7 +969,7 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), BootUp), &[]),
+                (us(0), Step::Rx(n(5), BootUp), &[]),
                 (500 * MS, Step::Poll, &[]),
             ],
         );
@@ -922,7 +981,7 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(6), Operational), &[]),
+                (us(0), Step::Rx(n(6), Operational), &[]),
                 (1_000 * MS, Step::Poll, &[]),
                 (1_000 * MS, Step::Rx(n(6), BootUp), &[]),
             ],
@@ -936,14 +995,14 @@ mod tests {
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(5), Operational), &[]),
-                (0, Step::Rx(n(6), Operational), &[]),
+                (us(0), Step::Rx(n(5), Operational), &[]),
+                (us(0), Step::Rx(n(6), Operational), &[]),
                 (
                     200 * MS,
                     Step::Poll,
                     &[HeartbeatEvent::Timeout {
                         node: n(5),
-                        last_heartbeat: 0,
+                        last_heartbeat: Duration::ZERO,
                         deadline: 100 * MS,
                     }],
                 ),
@@ -963,13 +1022,13 @@ mod tests {
 
     #[test]
     fn monitor_unconfigured_takes_up_nodes_and_reports_overflow_once() {
-        let mut consumer = HeartbeatConsumer::<2>::new();
-        consumer.monitor_unconfigured(100);
+        let mut consumer = HeartbeatConsumer::<2>::with_capacity();
+        consumer.monitor_unconfigured(100 * MS);
         run(
             &mut consumer,
             &[
-                (0, Step::Rx(n(1), Operational), &[]),
-                (0, Step::Rx(n(2), Operational), &[]),
+                (us(0), Step::Rx(n(1), Operational), &[]),
+                (us(0), Step::Rx(n(2), Operational), &[]),
                 (
                     10 * MS,
                     Step::Rx(n(3), Operational),
@@ -985,12 +1044,12 @@ mod tests {
                     &[
                         HeartbeatEvent::Timeout {
                             node: n(1),
-                            last_heartbeat: 0,
+                            last_heartbeat: Duration::ZERO,
                             deadline: 100 * MS,
                         },
                         HeartbeatEvent::Timeout {
                             node: n(2),
-                            last_heartbeat: 0,
+                            last_heartbeat: Duration::ZERO,
                             deadline: 100 * MS,
                         },
                     ],
@@ -999,12 +1058,16 @@ mod tests {
         );
         assert_eq!(consumer.consumer_time(n(1)), Some(100 * MS));
         // A configured entry displaces a node that was only taken up.
-        consumer.set_entry(ConsumerEntry::new(n(9), 50)).unwrap();
+        consumer
+            .set_entry(ConsumerEntry::from_millis(n(9), 50))
+            .unwrap();
         assert_eq!(consumer.consumer_time(n(9)), Some(50 * MS));
         assert_eq!(consumer.monitor_state(n(1)), None);
-        consumer.set_entry(ConsumerEntry::new(n(10), 50)).unwrap();
+        consumer
+            .set_entry(ConsumerEntry::from_millis(n(10), 50))
+            .unwrap();
         assert_eq!(
-            consumer.set_entry(ConsumerEntry::new(n(11), 50)),
+            consumer.set_entry(ConsumerEntry::from_millis(n(11), 50)),
             Err(Error::OutOfRange {
                 what: "heartbeat consumer entries",
                 found: 3,
@@ -1017,13 +1080,17 @@ mod tests {
     #[test]
     fn entries_replace_and_remove() {
         let mut consumer = consumer_of(&[(5, 100)]);
-        assert!(consumer.on_heartbeat(0, n(5), Operational).is_empty());
+        assert!(consumer.on_heartbeat(us(0), n(5), Operational).is_empty());
         // Rewriting the entry restarts monitoring at the next heartbeat.
-        consumer.set_entry(ConsumerEntry::new(n(5), 200)).unwrap();
+        consumer
+            .set_entry(ConsumerEntry::from_millis(n(5), 200))
+            .unwrap();
         assert_eq!(consumer.monitor_state(n(5)), Some(MonitorState::Waiting));
         assert_eq!(consumer.consumer_time(n(5)), Some(200 * MS));
         // Time 0: the entry is not used.
-        consumer.set_entry(ConsumerEntry::new(n(5), 0)).unwrap();
+        consumer
+            .set_entry(ConsumerEntry::from_millis(n(5), 0))
+            .unwrap();
         assert_eq!(consumer.monitor_state(n(5)), None);
         assert!(!consumer.remove(n(5)));
         assert_eq!(consumer.capacity(), 4);
@@ -1041,11 +1108,11 @@ mod tests {
             (0x0080_0064, None),           // node-ID 128
         ];
         for (raw, expected) in table {
-            let expected = expected.map(|(node, ms)| ConsumerEntry::new(n(node), ms));
+            let expected = expected.map(|(node, ms)| ConsumerEntry::from_millis(n(node), ms));
             assert_eq!(ConsumerEntry::from_od_value(raw), expected, "{raw:#010x}");
             if let Some(entry) = expected {
                 assert_eq!(entry.to_od_value(), raw & 0x00FF_FFFF);
-                assert_eq!(entry.consumer_time(), u64::from(entry.time_ms) * MS);
+                assert_eq!(entry.consumer_time(), u32::from(entry.time_ms) * MS);
             }
         }
     }
@@ -1054,44 +1121,47 @@ mod tests {
     fn event_accessors() {
         let recovered = HeartbeatEvent::Recovered {
             node: n(5),
-            last_heartbeat: 1_000,
-            at: 401_000,
+            last_heartbeat: us(1_000),
+            at: us(401_000),
             state: Operational,
         };
         assert_eq!(recovered.node(), n(5));
-        assert_eq!(recovered.at(), 401_000);
-        assert_eq!(recovered.last_heartbeat(), Some(1_000));
-        assert_eq!(recovered.gap(), Some(400_000));
+        assert_eq!(recovered.at(), us(401_000));
+        assert_eq!(recovered.last_heartbeat(), Some(us(1_000)));
+        assert_eq!(recovered.gap(), Some(us(400_000)));
         assert_eq!(recovered.name(), "recovered");
         assert_eq!(
             recovered.to_string(),
             "node 5: recovered at 401000 µs after the heartbeat at 1000 µs"
         );
-        let overflow = HeartbeatEvent::CapacityExceeded { node: n(7), at: 3 };
+        let overflow = HeartbeatEvent::CapacityExceeded {
+            node: n(7),
+            at: us(3),
+        };
         assert_eq!(overflow.gap(), None);
         assert_eq!(overflow.name(), "capacity_exceeded");
     }
 
-    /// Producer rows: (time µs, state, expected bytes sent).
+    /// Producer rows: (time, state, expected bytes sent).
     fn run_producer(
         producer: &mut HeartbeatProducer,
-        rows: &[(Micros, NmtState, Option<[u8; 1]>)],
+        rows: &[(Duration, NmtState, Option<[u8; 1]>)],
     ) {
         for (row, &(now, state, expected)) in rows.iter().enumerate() {
             let sent = producer.poll(now, state).map(|h| h.to_bytes());
-            assert_eq!(sent, expected, "row {row} at {now} µs");
+            assert_eq!(sent, expected, "row {row} at {now:?}");
         }
     }
 
     #[test]
     fn producer_period() {
-        let mut producer = HeartbeatProducer::new(100);
+        let mut producer = HeartbeatProducer::from_millis(100);
         run_producer(
             &mut producer,
             &[
-                (0, PreOperational, Some([0x7F])),
+                (us(0), PreOperational, Some([0x7F])),
                 (50 * MS, PreOperational, None),
-                (100 * MS - 1, PreOperational, None),
+                (100 * MS - 1 * US, PreOperational, None),
                 (100 * MS, Operational, Some([0x05])),
                 (100 * MS, Operational, None),
                 // A little late: the cadence is kept.
@@ -1109,15 +1179,15 @@ mod tests {
 
     #[test]
     fn producer_zero_is_off() {
-        let mut producer = HeartbeatProducer::new(0);
+        let mut producer = HeartbeatProducer::from_millis(0);
         assert!(!producer.is_enabled());
         assert_eq!(producer.next_due(), None);
         run_producer(
             &mut producer,
             &[
-                (0, Operational, None),
+                (us(0), Operational, None),
                 (1_000 * MS, Operational, None),
-                (u64::MAX, Operational, None),
+                (Duration::MAX, Operational, None),
             ],
         );
         // Writing 1017h switches it on: the next poll sends at once.
@@ -1135,7 +1205,7 @@ mod tests {
 
     #[test]
     fn producer_restart_after_boot_up() {
-        let mut producer = HeartbeatProducer::new(100);
+        let mut producer = HeartbeatProducer::from_millis(100);
         // The node sends its boot-up at 5 ms; the first heartbeat follows a
         // period later.
         producer.restart(5 * MS);
@@ -1150,9 +1220,9 @@ mod tests {
 
     #[test]
     fn producer_never_sets_bit7() {
-        let mut producer = HeartbeatProducer::new(1);
+        let mut producer = HeartbeatProducer::from_millis(1);
         for (i, state) in NmtState::ALL.into_iter().enumerate() {
-            let heartbeat = producer.poll(i as u64 * MS, state).unwrap();
+            let heartbeat = producer.poll(i as u32 * MS, state).unwrap();
             assert!(!heartbeat.reserved_bit());
             assert_eq!(heartbeat.to_bytes(), [state.to_byte()]);
         }
@@ -1164,6 +1234,11 @@ mod proptests {
     use proptest::prelude::*;
 
     use super::*;
+
+    /// A time in microseconds.
+    fn us(n: u64) -> Duration {
+        Duration::from_micros(n)
+    }
     use crate::test_gens::error_control::{
         any_times, consumer_step, consumer_steps, nmt_state, ConsumerStep,
     };
@@ -1178,13 +1253,13 @@ mod proptests {
             unconfigured_ms in prop_oneof![Just(0u16), 1u16..400],
             steps in consumer_steps(),
         ) {
-            let mut consumer = HeartbeatConsumer::<3>::new();
-            consumer.set_entry(ConsumerEntry::new(NodeId::MIN, time_ms)).unwrap();
-            consumer.monitor_unconfigured(unconfigured_ms);
+            let mut consumer = HeartbeatConsumer::<3>::with_capacity();
+            consumer.set_entry(ConsumerEntry::from_millis(NodeId::MIN, time_ms)).unwrap();
+            consumer.monitor_unconfigured(millis(u32::from(unconfigured_ms)));
             // Per node: timed out since its last message, and its last
             // heartbeat (non-boot-up) time while monitored.
             let mut timed_out = [false; 128];
-            let mut last: [Option<Micros>; 128] = [None; 128];
+            let mut last: [Option<Duration>; 128] = [None; 128];
             for (now, step) in steps {
                 let (events, rx): (Vec<HeartbeatEvent>, _) = match step {
                     ConsumerStep::Rx(node, state) => {
@@ -1238,13 +1313,13 @@ mod proptests {
             producer_ms in 0u16..50,
             polls in proptest::collection::vec((0u64..120_000, nmt_state()), 0..64),
         ) {
-            let mut producer = HeartbeatProducer::new(producer_ms);
-            let period = millis_to_micros(u32::from(producer_ms));
-            let mut now = 0u64;
-            let mut first_sent: Option<Micros> = None;
-            let mut sent = 0u64;
+            let mut producer = HeartbeatProducer::from_millis(producer_ms);
+            let period = millis(u32::from(producer_ms));
+            let mut now = Duration::ZERO;
+            let mut first_sent: Option<Duration> = None;
+            let mut sent = 0u32;
             for (dt, state) in polls {
-                now += dt;
+                now += us(dt);
                 match producer.poll(now, state) {
                     Some(heartbeat) => {
                         prop_assert!(producer_ms != 0);
@@ -1262,7 +1337,7 @@ mod proptests {
             }
         }
 
-        /// Times that jump backwards or sit at `u64::MAX` never panic; the
+        /// Times that jump backwards or sit at `Duration::MAX` never panic; the
         /// outputs stay well-formed.
         #[test]
         fn any_times_never_panic(
@@ -1270,9 +1345,9 @@ mod proptests {
             steps in any_times(consumer_step()),
             producer_polls in any_times(nmt_state()),
         ) {
-            let mut consumer = HeartbeatConsumer::<2>::new();
-            consumer.set_entry(ConsumerEntry::new(NodeId::MIN, time_ms)).unwrap();
-            consumer.monitor_unconfigured(time_ms);
+            let mut consumer = HeartbeatConsumer::<2>::with_capacity();
+            consumer.set_entry(ConsumerEntry::from_millis(NodeId::MIN, time_ms)).unwrap();
+            consumer.monitor_unconfigured(millis(u32::from(time_ms)));
             for (now, step) in steps {
                 let events: Vec<HeartbeatEvent> = match step {
                     ConsumerStep::Rx(node, state) => consumer.on_heartbeat(now, node, state).collect(),
@@ -1285,7 +1360,7 @@ mod proptests {
                     prop_assert!(event.gap().map_or(true, |gap| gap <= event.at()));
                 }
             }
-            let mut producer = HeartbeatProducer::new(time_ms);
+            let mut producer = HeartbeatProducer::from_millis(time_ms);
             for (now, state) in producer_polls {
                 if let Some(heartbeat) = producer.poll(now, state) {
                     prop_assert!(!heartbeat.reserved_bit());

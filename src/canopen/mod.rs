@@ -25,7 +25,7 @@ pub use emcy_producer::{
     IgnoredEvent, DEFAULT_ACTIVE_ERRORS,
 };
 pub use error_code::{Description, DescriptionSource, ErrorClass, ErrorCode, Specificity};
-pub use error_control::{millis_to_micros, ErrorControlConfig, ErrorControlMethod, Events, Micros};
+pub use error_control::{ErrorControlConfig, ErrorControlMethod, Events};
 pub use error_history::{ErrorHistory, ErrorHistoryEntry, DEFAULT_ERROR_HISTORY_LEN};
 pub use error_register::ErrorRegister;
 pub use guarding::{
@@ -33,7 +33,7 @@ pub use guarding::{
 };
 pub use heartbeat::{
     ConsumerEntry, HeartbeatConsumer, HeartbeatEvent, HeartbeatEvents, HeartbeatProducer,
-    MonitorState,
+    MonitorState, DEFAULT_CONSUMER_ENTRIES,
 };
 pub use message::{CanOpenMessage, DecodeError, MessageKind, NmtStateByte, PartialEmcy};
 pub use nmt::{

@@ -4,7 +4,9 @@
 
 use proptest::prelude::*;
 
-use crate::canopen::{GuardAnswer, Heartbeat, Micros, NmtState, NodeId};
+use core::time::Duration;
+
+use crate::canopen::{GuardAnswer, Heartbeat, NmtState, NodeId};
 
 /// Any NMT state.
 pub(crate) fn nmt_state() -> impl Strategy<Value = NmtState> {
@@ -27,11 +29,12 @@ pub(crate) fn guard_answer() -> impl Strategy<Value = GuardAnswer> {
 
 /// Steps at arbitrary times (µs): jumping backwards, repeating, up to
 /// `u64::MAX`; for "never panics" properties of the saturating arithmetic.
-pub(crate) fn any_times<S: Strategy>(step: S) -> impl Strategy<Value = Vec<(Micros, S::Value)>> {
+pub(crate) fn any_times<S: Strategy>(step: S) -> impl Strategy<Value = Vec<(Duration, S::Value)>> {
     let time = prop_oneof![
-        any::<u64>(),
-        (u64::MAX - 1_000_000)..=u64::MAX,
-        0u64..1_000_000,
+        any::<u64>().prop_map(Duration::from_micros),
+        ((u64::MAX - 1_000_000)..=u64::MAX).prop_map(Duration::from_micros),
+        (0u64..1_000_000).prop_map(Duration::from_micros),
+        Just(Duration::MAX),
     ];
     proptest::collection::vec((time, step), 0..40)
 }
@@ -40,8 +43,8 @@ pub(crate) fn any_times<S: Strategy>(step: S) -> impl Strategy<Value = Vec<(Micr
 /// starting anywhere in the first hour.
 fn timed<S: Strategy>(
     step: S,
-    max_increment: Micros,
-) -> impl Strategy<Value = Vec<(Micros, S::Value)>> {
+    max_increment: u64,
+) -> impl Strategy<Value = Vec<(Duration, S::Value)>> {
     (
         0..3_600_000_000u64,
         proptest::collection::vec((0..=max_increment, step), 0..80),
@@ -52,7 +55,7 @@ fn timed<S: Strategy>(
                 .into_iter()
                 .map(|(increment, step)| {
                     now += increment;
-                    (now, step)
+                    (Duration::from_micros(now), step)
                 })
                 .collect()
         })
@@ -69,7 +72,7 @@ pub(crate) enum ConsumerStep {
 
 /// Timed consumer inputs over nodes 1..=5 (more than a 3-entry consumer
 /// holds), with gaps from 0 to 0.5 s.
-pub(crate) fn consumer_steps() -> impl Strategy<Value = Vec<(Micros, ConsumerStep)>> {
+pub(crate) fn consumer_steps() -> impl Strategy<Value = Vec<(Duration, ConsumerStep)>> {
     timed(consumer_step(), 500_000)
 }
 
@@ -96,7 +99,7 @@ pub(crate) enum GuardingStep {
 }
 
 /// Timed guarding inputs with gaps from 0 to 0.3 s.
-pub(crate) fn guarding_steps() -> impl Strategy<Value = Vec<(Micros, GuardingStep)>> {
+pub(crate) fn guarding_steps() -> impl Strategy<Value = Vec<(Duration, GuardingStep)>> {
     timed(guarding_step(), 300_000)
 }
 
@@ -120,7 +123,7 @@ pub(crate) enum LifeStep {
 }
 
 /// Timed life-guarding inputs with gaps from 0 to 0.6 s.
-pub(crate) fn life_steps() -> impl Strategy<Value = Vec<(Micros, LifeStep)>> {
+pub(crate) fn life_steps() -> impl Strategy<Value = Vec<(Duration, LifeStep)>> {
     timed(life_step(), 600_000)
 }
 

@@ -1,6 +1,8 @@
 //! Strategies for the owned value types that the serde round trips need and
 //! that no other area's file provides (events, outcomes, code tables).
 
+use core::time::Duration;
+
 use proptest::prelude::*;
 
 use super::canopen::{emcy, error_code, node_id};
@@ -41,24 +43,27 @@ pub(crate) fn emcy_transition() -> impl Strategy<Value = EmcyTransition> {
 /// Any heartbeat-consumer event.
 pub(crate) fn heartbeat_event() -> impl Strategy<Value = HeartbeatEvent> {
     (node_id(), any::<u64>(), any::<u64>(), nmt_state(), 0u8..4).prop_map(
-        |(node, t0, t1, state, which)| match which {
-            0 => HeartbeatEvent::Timeout {
-                node,
-                last_heartbeat: t0,
-                deadline: t1,
-            },
-            1 => HeartbeatEvent::Recovered {
-                node,
-                last_heartbeat: t0,
-                at: t1,
-                state,
-            },
-            2 => HeartbeatEvent::RemoteReset {
-                node,
-                last_heartbeat: t0,
-                at: t1,
-            },
-            _ => HeartbeatEvent::CapacityExceeded { node, at: t1 },
+        |(node, t0, t1, state, which)| {
+            let (t0, t1) = (Duration::from_micros(t0), Duration::from_micros(t1));
+            match which {
+                0 => HeartbeatEvent::Timeout {
+                    node,
+                    last_heartbeat: t0,
+                    deadline: t1,
+                },
+                1 => HeartbeatEvent::Recovered {
+                    node,
+                    last_heartbeat: t0,
+                    at: t1,
+                    state,
+                },
+                2 => HeartbeatEvent::RemoteReset {
+                    node,
+                    last_heartbeat: t0,
+                    at: t1,
+                },
+                _ => HeartbeatEvent::CapacityExceeded { node, at: t1 },
+            }
         },
     )
 }
@@ -73,8 +78,10 @@ pub(crate) fn guarding_event() -> impl Strategy<Value = GuardingEvent> {
         nmt_state(),
         0u8..3,
     )
-        .prop_map(
-            |(node, at, request_at, (expected, found), state, which)| match which {
+        .prop_map(|(node, at, request_at, (expected, found), state, which)| {
+            let at = Duration::from_micros(at);
+            let request_at = request_at.map(Duration::from_micros);
+            match which {
                 0 => GuardingEvent::WrongToggle {
                     node,
                     at,
@@ -93,8 +100,8 @@ pub(crate) fn guarding_event() -> impl Strategy<Value = GuardingEvent> {
                     request_at: at,
                     due_by: request_at.unwrap_or(at),
                 },
-            },
-        )
+            }
+        })
 }
 
 /// Any result of a `RECV_EMCY` call.

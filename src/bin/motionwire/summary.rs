@@ -4,6 +4,7 @@
 //! observer for toggle errors (SPEC §2.7).
 
 use std::io::{self, Write};
+use std::time::Duration;
 
 use motionwire::can::Timestamp;
 use motionwire::canopen::{
@@ -27,8 +28,8 @@ struct Seen {
 struct Gap {
     /// The line of the heartbeat before the gap.
     after_line: u64,
-    /// The gap in µs.
-    micros: u64,
+    /// The gap.
+    gap: Duration,
 }
 
 /// What the summary knows about one node.
@@ -47,7 +48,7 @@ struct NodeSummary {
     last_heartbeat_line: u64,
     /// A timeout reported by the consumer and not yet closed by a
     /// heartbeat: the line and time (µs) of the heartbeat before it.
-    open_gap: Option<(u64, u64)>,
+    open_gap: Option<(u64, Duration)>,
     timeouts: Vec<Gap>,
     /// A guard request (RTR) was seen and not yet answered: the next data
     /// frame on 0x700 + node is its answer.
@@ -74,7 +75,7 @@ impl NodeSummary {
             timeouts: Vec::new(),
             guard_request_pending: false,
             // A log rarely shows the guard time (100Ch): observe toggles only.
-            guarding: NodeGuardingMaster::observer(node, 0),
+            guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
             answers: 0,
             toggle_errors: Vec::new(),
         }
@@ -85,12 +86,8 @@ impl NodeSummary {
 pub struct Summary {
     nodes: Vec<Option<NodeSummary>>,
     storage: EmcyStorage,
-    consumer: Option<HeartbeatConsumer<127>>,
-    last_micros: Option<u64>,
-}
-
-fn micros(ts: Timestamp) -> u64 {
-    u64::try_from(ts.as_micros()).unwrap_or(u64::MAX)
+    consumer: Option<HeartbeatConsumer>,
+    last_time: Option<Duration>,
 }
 
 impl Summary {
@@ -99,23 +96,23 @@ impl Summary {
     pub fn new(heartbeat_ms: Option<u16>) -> Self {
         let consumer = heartbeat_ms.map(|ms| {
             let mut consumer = HeartbeatConsumer::new();
-            consumer.monitor_unconfigured(ms);
+            consumer.monitor_unconfigured(Duration::from_millis(u64::from(ms)));
             consumer
         });
         Summary {
             nodes: (0..127).map(|_| None).collect(),
             storage: EmcyStorage::new(),
             consumer,
-            last_micros: None,
+            last_time: None,
         }
     }
 
     /// Take one decoded frame into account.
     pub fn add(&mut self, record: &Record<'_, '_>) {
         let Some(node) = record.node() else { return };
-        let now = record.log.timestamp.map(micros);
+        let now = record.log.timestamp.map(Timestamp::as_duration);
         if now.is_some() {
-            self.last_micros = now;
+            self.last_time = now;
         }
         let summary = self.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
         summary.frames[record.kind().index()] += 1;
@@ -142,13 +139,15 @@ impl Summary {
             CanOpenMessage::GuardRequest { .. } => {
                 summary.guard_request_pending = true;
                 // A missing answer is not part of the summary's contract.
-                let _ = summary.guarding.on_request(now.unwrap_or(0));
+                let _ = summary.guarding.on_request(now.unwrap_or(Duration::ZERO));
             }
             CanOpenMessage::Heartbeat { byte, .. } if summary.guard_request_pending => {
                 summary.guard_request_pending = false;
                 summary.answers += 1;
                 if let Some(answer) = byte.guard_answer() {
-                    let events = summary.guarding.on_answer(now.unwrap_or(0), answer);
+                    let events = summary
+                        .guarding
+                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
                     if events
                         .into_iter()
                         .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
@@ -178,7 +177,7 @@ impl Summary {
                                 if let Some((after_line, last)) = summary.open_gap.take() {
                                     summary.timeouts.push(Gap {
                                         after_line,
-                                        micros: at.saturating_sub(last),
+                                        gap: at.saturating_sub(last),
                                     });
                                 }
                             }
@@ -195,7 +194,7 @@ impl Summary {
     /// Close the input: heartbeats still missing at the last timestamp are
     /// timeouts up to that timestamp.
     fn finish(&mut self) {
-        let (Some(consumer), Some(end)) = (self.consumer.as_mut(), self.last_micros) else {
+        let (Some(consumer), Some(end)) = (self.consumer.as_mut(), self.last_time) else {
             return;
         };
         for event in consumer.poll(end) {
@@ -214,7 +213,7 @@ impl Summary {
             if let Some((after_line, last)) = summary.open_gap.take() {
                 summary.timeouts.push(Gap {
                     after_line,
-                    micros: end.saturating_sub(last),
+                    gap: end.saturating_sub(last),
                 });
             }
         }
@@ -252,7 +251,7 @@ fn seen_json<W: Write>(obj: &mut Object<'_, W>, key: &str, seen: Option<Seen>) -
 
 fn gap_ms(gap: &Gap) -> f64 {
     // Exact for every gap below 2^53 µs (285 years).
-    gap.micros as f64 / 1000.0
+    gap.gap.as_micros() as f64 / 1000.0
 }
 
 fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io::Result<()> {
