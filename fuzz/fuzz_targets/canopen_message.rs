@@ -65,7 +65,10 @@ fuzz_target!(|input: &[u8]| {
         return;
     };
     assert_eq!(frame, view);
-    assert_eq!((frame.id(), frame.frame_type(), frame.data()), (id, frame_type, data));
+    assert_eq!(
+        (frame.id(), frame.frame_type(), frame.data()),
+        (id, frame_type, data)
+    );
     assert_eq!(view.to_owned_frame(), frame);
     let _ = frame.to_string();
 

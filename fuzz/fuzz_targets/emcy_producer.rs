@@ -155,7 +155,10 @@ impl<const N: usize, const H: usize> Checked<N, H> {
 
         // Exactly one of transition / ignored; an EMCY exactly for 1–4.
         assert_ne!(outcome.transition().is_some(), outcome.ignored().is_some());
-        let sends = matches!(outcome.transition().map(EmcyTransition::number), Some(1..=4));
+        let sends = matches!(
+            outcome.transition().map(EmcyTransition::number),
+            Some(1..=4)
+        );
         assert_eq!(outcome.emcy().is_some(), sends, "{outcome:?}");
         if outcome.ignored().is_some() {
             assert_eq!(self.producer, before, "an ignored event changed the state");
@@ -188,7 +191,12 @@ impl<const N: usize, const H: usize> Checked<N, H> {
         }
 
         if let Some(emcy) = outcome.emcy() {
-            check_emcy(event, &emcy, outcome.transition(), producer.error_register());
+            check_emcy(
+                event,
+                &emcy,
+                outcome.transition(),
+                producer.error_register(),
+            );
             if !was_error_free {
                 assert_ne!(outcome.transition(), Some(EmcyTransition::FirstError));
             }

@@ -51,6 +51,8 @@
 //!   disabled.
 #![no_main]
 
+use std::time::Duration;
+
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
     AcceptedStates, ConsumerEntry, ErrorControlConfig, GuardAnswer, GuardingEvent,
@@ -86,7 +88,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let mut world = World {
-        now: 0,
+        now: Duration::ZERO,
         consumer: Consumer::new(),
         producer: Producer::new(producer_ms),
         master: Master::new(guard_ms, flags & 1 != 0),
@@ -108,7 +110,7 @@ fn config(input: &mut Reader) -> Option<ErrorControlConfig> {
 }
 
 struct World {
-    now: u64,
+    now: Duration,
     consumer: Consumer,
     producer: Producer,
     master: Master,
@@ -122,16 +124,16 @@ impl World {
             0 => {
                 let d = input.u16()?;
                 let delta = if d & 0x8000 != 0 {
-                    u64::from(d & 0x7FFF) * 1000
+                    Duration::from_millis(u64::from(d & 0x7FFF))
                 } else {
-                    u64::from(d)
+                    Duration::from_micros(u64::from(d))
                 };
                 self.now = now.saturating_add(delta);
             }
             1 => {
                 self.now = match input.u8()? {
-                    0xFF => u64::MAX - 1_000_000,
-                    back => now.saturating_sub(u64::from(back) * 1000),
+                    0xFF => Duration::from_micros(u64::MAX - 1_000_000),
+                    back => now.saturating_sub(Duration::from_millis(u64::from(back))),
                 };
             }
             2 => {
@@ -153,7 +155,9 @@ impl World {
             }
             6 => {
                 let time_ms = input.u16()?;
-                self.consumer.consumer.monitor_unconfigured(time_ms);
+                self.consumer
+                    .consumer
+                    .monitor_unconfigured(Duration::from_millis(u64::from(time_ms)));
                 self.consumer.unconfigured_ms = time_ms;
             }
             7 => {
@@ -222,7 +226,7 @@ struct Consumer {
 impl Consumer {
     fn new() -> Self {
         Consumer {
-            consumer: HeartbeatConsumer::new(),
+            consumer: HeartbeatConsumer::with_capacity(),
             configured: [false; 128],
             unconfigured_ms: 0,
             timed_out: [false; 128],
@@ -241,7 +245,7 @@ impl Consumer {
     }
 
     /// Record a Timeout: never two without a heartbeat in between.
-    fn timeout(&mut self, event: HeartbeatEvent, now: u64) {
+    fn timeout(&mut self, event: HeartbeatEvent, now: Duration) {
         let HeartbeatEvent::Timeout {
             node,
             last_heartbeat,
@@ -263,12 +267,12 @@ impl Consumer {
         assert_eq!(deadline, last_heartbeat.saturating_add(time));
         assert!(
             now > deadline,
-            "Timeout at {now} before its deadline {deadline}"
+            "Timeout at {now:?} before its deadline {deadline:?}"
         );
         assert_eq!(event.gap(), Some(deadline - last_heartbeat));
     }
 
-    fn heartbeat(&mut self, now: u64, node: NodeId, state: NmtState) {
+    fn heartbeat(&mut self, now: Duration, node: NodeId, state: NmtState) {
         let i = node.index();
         let before = self.consumer.monitor_state(node);
         let time = self.consumer.consumer_time(node);
@@ -295,7 +299,7 @@ impl Consumer {
                 assert_eq!(after, Some(heard), "an unconfigured node was not taken up");
                 assert_eq!(
                     self.consumer.consumer_time(node),
-                    Some(u64::from(self.unconfigured_ms) * 1000)
+                    Some(Duration::from_millis(u64::from(self.unconfigured_ms)))
                 );
                 vec![]
             }
@@ -357,7 +361,10 @@ impl Consumer {
                 }
             }
         };
-        assert_eq!(events, expected, "{node} {state} at {now} from {before:?}");
+        assert_eq!(
+            events, expected,
+            "{node} {state} at {now:?} from {before:?}"
+        );
 
         for event in &events {
             assert_eq!(event.node(), node);
@@ -375,7 +382,7 @@ impl Consumer {
         }
     }
 
-    fn poll(&mut self, now: u64, limit: usize) {
+    fn poll(&mut self, now: Duration, limit: usize) {
         let due: Vec<NodeId> = Self::nodes()
             .filter(|&n| match self.consumer.monitor_state(n) {
                 Some(MonitorState::Active { last_heartbeat, .. }) => {
@@ -401,7 +408,7 @@ impl Consumer {
             if let Some(deadline) = self.consumer.next_deadline() {
                 assert!(
                     deadline >= now,
-                    "deadline {deadline} passed at {now} after a poll"
+                    "deadline {deadline:?} passed at {now:?} after a poll"
                 );
             }
             assert_eq!(self.consumer.poll(now).count(), 0);
@@ -411,7 +418,9 @@ impl Consumer {
     fn set_entry(&mut self, node: NodeId, time_ms: u16) {
         let i = node.index();
         let configured = self.configured.iter().filter(|&&c| c).count();
-        let result = self.consumer.set_entry(ConsumerEntry::new(node, time_ms));
+        let result = self
+            .consumer
+            .set_entry(ConsumerEntry::from_millis(node, time_ms));
         if time_ms == 0 {
             assert_eq!(result, Ok(()));
             assert_eq!(self.consumer.monitor_state(node), None);
@@ -435,7 +444,7 @@ impl Consumer {
             );
             assert_eq!(
                 self.consumer.consumer_time(node),
-                Some(u64::from(time_ms) * 1000)
+                Some(Duration::from_millis(u64::from(time_ms)))
             );
             self.configured[i] = true;
         }
@@ -470,35 +479,44 @@ struct Producer {
 
 impl Producer {
     fn new(time_ms: u16) -> Self {
-        let producer = HeartbeatProducer::new(time_ms);
+        let producer = HeartbeatProducer::from_millis(time_ms);
         assert_eq!(producer.is_enabled(), time_ms != 0);
-        assert_eq!(producer.next_due(), (time_ms != 0).then_some(0));
+        assert_eq!(
+            producer.next_due(),
+            (time_ms != 0).then_some(Duration::ZERO)
+        );
         Producer { producer }
     }
 
     fn set(&mut self, time_ms: u16) {
         self.producer.set_producer_time(time_ms);
-        assert_eq!(self.producer.producer_time(), u64::from(time_ms) * 1000);
-        assert_eq!(self.producer.next_due(), (time_ms != 0).then_some(0));
+        assert_eq!(
+            self.producer.producer_time(),
+            Duration::from_millis(u64::from(time_ms))
+        );
+        assert_eq!(
+            self.producer.next_due(),
+            (time_ms != 0).then_some(Duration::ZERO)
+        );
     }
 
-    fn restart(&mut self, now: u64) {
+    fn restart(&mut self, now: Duration) {
         self.producer.restart(now);
         let period = self.producer.producer_time();
         assert_eq!(
             self.producer.next_due(),
-            (period != 0).then(|| now.saturating_add(period))
+            (!period.is_zero()).then(|| now.saturating_add(period))
         );
     }
 
-    fn poll(&mut self, now: u64, state: NmtState) {
+    fn poll(&mut self, now: Duration, state: NmtState) {
         let due = self.producer.next_due();
         let period = self.producer.producer_time();
         let sent = self.producer.poll(now, state);
         assert_eq!(
             sent.is_some(),
             due.is_some_and(|due| now >= due),
-            "due {due:?} at {now}"
+            "due {due:?} at {now:?}"
         );
         match sent {
             Some(heartbeat) => {
@@ -507,7 +525,10 @@ impl Producer {
                 assert_eq!(heartbeat.to_bytes(), [state.to_byte()]);
                 let next = self.producer.next_due().expect("enabled");
                 // Due again after now, within one producer time: no burst.
-                assert!(next > now || next == u64::MAX, "next {next} at {now}");
+                assert!(
+                    next > now || next == Duration::MAX,
+                    "next {next:?} at {now:?}"
+                );
                 assert!(next - now <= period);
             }
             None => assert_eq!(self.producer.next_due(), due),
@@ -520,29 +541,32 @@ impl Producer {
 
 struct Master {
     master: NodeGuardingMaster,
-    guard_time: u64,
+    guard_time: Duration,
     accepted: AcceptedStates,
     /// The model's expected toggle; `None` for an observer before its first
     /// answer.
     expected: Option<bool>,
     /// The toggle the node sends next.
     node_toggle: bool,
-    outstanding: Option<u64>,
-    last_request: Option<u64>,
+    outstanding: Option<Duration>,
+    last_request: Option<Duration>,
 }
 
 impl Master {
     fn new(guard_ms: u16, observer: bool) -> Self {
         let master = if observer {
-            NodeGuardingMaster::observer(GUARDED, guard_ms)
+            NodeGuardingMaster::observer(GUARDED, Duration::from_millis(u64::from(guard_ms)))
         } else {
-            NodeGuardingMaster::new(GUARDED, guard_ms)
+            NodeGuardingMaster::from_millis(GUARDED, guard_ms)
         };
         assert_eq!(master.node(), GUARDED);
-        assert_eq!(master.guard_time(), u64::from(guard_ms) * 1000);
+        assert_eq!(
+            master.guard_time(),
+            Duration::from_millis(u64::from(guard_ms))
+        );
         Master {
             master,
-            guard_time: u64::from(guard_ms) * 1000,
+            guard_time: Duration::from_millis(u64::from(guard_ms)),
             accepted: AcceptedStates::GUARDED,
             expected: (!observer).then_some(false),
             node_toggle: false,
@@ -551,7 +575,7 @@ impl Master {
         }
     }
 
-    fn check(&self, now: u64) {
+    fn check(&self, now: Duration) {
         let master = &self.master;
         assert_eq!(master.expected_toggle(), self.expected);
         if let Some(expected) = self.expected {
@@ -559,18 +583,18 @@ impl Master {
             assert_eq!(expected, self.node_toggle);
         }
         assert_eq!(master.outstanding_request(), self.outstanding);
-        let next = (self.guard_time != 0).then(|| {
+        let next = (!self.guard_time.is_zero()).then(|| {
             self.last_request
-                .map_or(0, |last| last.saturating_add(self.guard_time))
+                .map_or(Duration::ZERO, |last| last.saturating_add(self.guard_time))
         });
         assert_eq!(master.next_request_at(), next);
         assert_eq!(master.request_due(now), next.is_some_and(|due| now >= due));
     }
 
     /// The event `poll(now)` must give, updating the model.
-    fn expected_poll(&mut self, now: u64) -> Option<GuardingEvent> {
+    fn expected_poll(&mut self, now: Duration) -> Option<GuardingEvent> {
         let request_at = self.outstanding?;
-        if self.guard_time == 0 {
+        if self.guard_time.is_zero() {
             return None;
         }
         let due_by = request_at.saturating_add(self.guard_time);
@@ -584,7 +608,7 @@ impl Master {
         })
     }
 
-    fn request(&mut self, now: u64) {
+    fn request(&mut self, now: Duration) {
         let event = self.master.on_request(now);
         // An unanswered request is reported missing at most once: here, if
         // no poll or answer gave it up.
@@ -593,7 +617,7 @@ impl Master {
             .map(|request_at| GuardingEvent::MissingAnswer {
                 node: GUARDED,
                 request_at,
-                due_by: if self.guard_time == 0 {
+                due_by: if self.guard_time.is_zero() {
                     now
                 } else {
                     now.min(request_at.saturating_add(self.guard_time))
@@ -605,7 +629,7 @@ impl Master {
         self.check(now);
     }
 
-    fn poll(&mut self, now: u64) {
+    fn poll(&mut self, now: Duration) {
         let event = self.master.poll(now);
         assert_eq!(event, self.expected_poll(now));
         if let Some(event) = event {
@@ -615,7 +639,7 @@ impl Master {
         self.check(now);
     }
 
-    fn answer(&mut self, now: u64, answer: GuardAnswer, honest: bool) {
+    fn answer(&mut self, now: Duration, answer: GuardAnswer, honest: bool) {
         let events: Vec<GuardingEvent> = self.master.on_answer(now, answer).collect();
         assert!(events.len() <= 3);
         let mut expected: Vec<GuardingEvent> = self.expected_poll(now).into_iter().collect();
@@ -639,7 +663,7 @@ impl Master {
                 state: answer.state,
             });
         }
-        assert_eq!(events, expected, "answer {answer:?} at {now}");
+        assert_eq!(events, expected, "answer {answer:?} at {now:?}");
         if honest && self.expected.is_some() {
             assert!(
                 !events
@@ -676,13 +700,13 @@ impl Master {
 #[derive(Clone, Copy, PartialEq, Debug)]
 enum Timer {
     Idle,
-    Running(u64),
-    Expired(u64),
+    Running(Duration),
+    Expired(Duration),
 }
 
 struct Life {
     life: LifeGuard,
-    life_time: Option<u64>,
+    life_time: Option<Duration>,
     timer: Timer,
 }
 
@@ -692,7 +716,11 @@ impl Life {
         let life_time = (config.producer_heartbeat_time_ms == 0
             && config.guard_time_ms != 0
             && config.life_time_factor != 0)
-            .then(|| u64::from(config.guard_time_ms) * u64::from(config.life_time_factor) * 1000);
+            .then(|| {
+                Duration::from_millis(
+                    u64::from(config.guard_time_ms) * u64::from(config.life_time_factor),
+                )
+            });
         assert_eq!(life.node_life_time(), life_time);
         Life {
             life,
@@ -730,7 +758,7 @@ impl Life {
     }
 
     /// The expiry `poll(now)` must give, updating the model.
-    fn expected_poll(&mut self, now: u64) -> Option<LifeGuardExpiry> {
+    fn expected_poll(&mut self, now: Duration) -> Option<LifeGuardExpiry> {
         let (Some(life_time), Timer::Running(last_request)) = (self.life_time, self.timer) else {
             return None;
         };
@@ -746,7 +774,7 @@ impl Life {
         })
     }
 
-    fn check_expiry(&self, expiry: Option<LifeGuardExpiry>, now: u64) {
+    fn check_expiry(&self, expiry: Option<LifeGuardExpiry>, now: Duration) {
         if let Some(expiry) = expiry {
             // At most one EMCY per expiry: the timer was running, so a guard
             // request came since the last one.
@@ -760,7 +788,7 @@ impl Life {
         }
     }
 
-    fn request(&mut self, now: u64) {
+    fn request(&mut self, now: Duration) {
         let expiry = self.life.on_request(now);
         let expected = self.expected_poll(now);
         assert_eq!(expiry, expected);
@@ -771,7 +799,7 @@ impl Life {
         self.check();
     }
 
-    fn poll(&mut self, now: u64) {
+    fn poll(&mut self, now: Duration) {
         let was_expired = self.life.is_expired();
         let expiry = self.life.poll(now);
         assert_eq!(expiry, self.expected_poll(now));

@@ -21,8 +21,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
-    millis_to_micros, ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer,
-    GuardAnswerFrame, Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
+    ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer, GuardAnswerFrame,
+    Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
 };
 use motionwire::Error;
 
@@ -142,7 +142,10 @@ fn check_object_values(data: &[u8]) {
             assert_eq!(entry.node.get(), node_byte);
             assert_eq!(entry.time_ms, time_ms);
             assert_eq!(entry.to_od_value(), raw & 0x00FF_FFFF);
-            assert_eq!(entry.consumer_time(), u64::from(time_ms) * 1000);
+            assert_eq!(
+                entry.consumer_time(),
+                std::time::Duration::from_millis(u64::from(time_ms))
+            );
         }
         None => assert!(time_ms == 0 || !(1..=127).contains(&node_byte)),
     }
@@ -162,9 +165,12 @@ fn check_object_values(data: &[u8]) {
         ErrorControlMethod::None
     };
     assert_eq!(method, expected);
-    let life_time = (method == ErrorControlMethod::Guarding && config.life_time_factor != 0)
-        .then(|| u64::from(config.guard_time_ms) * u64::from(config.life_time_factor) * 1000);
+    let life_time =
+        (method == ErrorControlMethod::Guarding && config.life_time_factor != 0).then(|| {
+            std::time::Duration::from_millis(
+                u64::from(config.guard_time_ms) * u64::from(config.life_time_factor),
+            )
+        });
     assert_eq!(config.node_life_time(), life_time);
-    assert_eq!(millis_to_micros(raw), u64::from(raw) * 1000);
     let _ = method.to_string();
 }
