@@ -141,11 +141,11 @@ impl SimulatedDrive {
             }
         }
 
-        let status = ServoStatusWord::empty()
-            .with_flag(ServoStatusWord::SERVO_EN, self.enabled)
+        let status = ServoStatusWord::empty().with_flag(ServoStatusWord::SERVO_EN, self.enabled);
+        let status = status
             .with_flag(
                 ServoStatusWord::SERVO_RDY,
-                servo_ready(self.ready_mode, self.enabled, self.errors),
+                servo_ready(self.ready_mode, status, self.errors),
             )
             .with_flag(ServoStatusWord::Z_PULSE_ACK, self.z_pulse_ack)
             .with_flag(ServoStatusWord::ERR_CLEAR_ACK, self.err_clear_ack)

@@ -149,10 +149,9 @@ fn enable_through_frames() {
                 .control_word();
             enabled = enable_handshake(previous, received.servo_enable(), enabled);
             previous = received.servo_enable();
-            let ready = servo_ready(mode, enabled, ServoErrorWord::empty());
-            let status = ServoStatusWord::empty()
-                .with_flag(ServoStatusWord::SERVO_EN, enabled)
-                .with_flag(ServoStatusWord::SERVO_RDY, ready);
+            let status = ServoStatusWord::empty().with_flag(ServoStatusWord::SERVO_EN, enabled);
+            let ready = servo_ready(mode, status, ServoErrorWord::empty());
+            let status = status.with_flag(ServoStatusWord::SERVO_RDY, ready);
             let feedback = Feedback {
                 position: 0,
                 status,

@@ -73,7 +73,7 @@ fuzz_target!(|data: &[u8]| {
         let drive_enabled = status.contains(ServoStatusWord::SERVO_EN);
         let errors = ServoErrorWord::from_bits_retain(status.bits());
         assert_eq!(
-            servo_ready(mode, drive_enabled, errors),
+            servo_ready(mode, status, errors),
             !errors.contains(ServoErrorWord::SERVO_ERRORS)
                 && (mode == ServoReadyMode::ErrorFree || drive_enabled)
         );

@@ -77,21 +77,31 @@ impl ServoReadyMode {
     }
 }
 
-/// Return SSW.ServoRDY for Servo_Ready_Mode `mode`, SSW.ServoEn `enabled`
-/// and the error word: `!x && (m == 0 || e)`, where x is the summary bit
-/// SEW.ServoErrors (bit 0) — the only error bit the seed's table reads
-/// (SPEC §1.6; seed 002, ServoRDY truth table).
+/// Return SSW.ServoRDY for Servo_Ready_Mode `mode`, the drive's status
+/// word (its SSW.ServoEn bit is e) and error word (its summary bit
+/// SEW.ServoErrors, bit 0, is x — the only error bit the seed's table
+/// reads): `!x && (m == 0 || e)` (SPEC §1.6; seed 002, ServoRDY truth
+/// table). The other bits of both words do not matter.
 ///
 /// ```
-/// use motionwire::servo::{servo_ready, ServoErrorWord, ServoReadyMode};
+/// use motionwire::servo::{servo_ready, ServoErrorWord, ServoReadyMode, ServoStatusWord};
 ///
+/// let disabled = ServoStatusWord::empty();
+/// let enabled = ServoStatusWord::SERVO_EN;
 /// let no_errors = ServoErrorWord::empty();
-/// assert!(servo_ready(ServoReadyMode::ErrorFree, false, no_errors));
-/// assert!(!servo_ready(ServoReadyMode::EnabledAndErrorFree, false, no_errors));
-/// assert!(!servo_ready(ServoReadyMode::ErrorFree, true, ServoErrorWord::SERVO_ERRORS));
+/// assert!(servo_ready(ServoReadyMode::ErrorFree, disabled, no_errors));
+/// assert!(!servo_ready(ServoReadyMode::EnabledAndErrorFree, disabled, no_errors));
+/// assert!(servo_ready(ServoReadyMode::EnabledAndErrorFree, enabled, no_errors));
+/// assert!(!servo_ready(ServoReadyMode::ErrorFree, enabled, ServoErrorWord::SERVO_ERRORS));
 /// ```
-pub const fn servo_ready(mode: ServoReadyMode, enabled: bool, errors: ServoErrorWord) -> bool {
+#[must_use]
+pub const fn servo_ready(
+    mode: ServoReadyMode,
+    status: ServoStatusWord,
+    errors: ServoErrorWord,
+) -> bool {
     let error = errors.contains(ServoErrorWord::SERVO_ERRORS);
+    let enabled = status.contains(ServoStatusWord::SERVO_EN);
     !error && (matches!(mode, ServoReadyMode::ErrorFree) || enabled)
 }
 
@@ -411,7 +421,12 @@ mod tests {
             } else {
                 ServoErrorWord::empty()
             };
-            assert_eq!(servo_ready(mode, e, errors), rdy, "m={m} e={e} x={x}");
+            let status = ServoStatusWord::empty().with_flag(ServoStatusWord::SERVO_EN, e);
+            assert_eq!(servo_ready(mode, status, errors), rdy, "m={m} e={e} x={x}");
+            // Every other status bit is ignored.
+            let noisy = ServoStatusWord::from_bits_retain(!ServoStatusWord::SERVO_EN.bits())
+                .with_flag(ServoStatusWord::SERVO_EN, e);
+            assert_eq!(servo_ready(mode, noisy, errors), rdy, "m={m} e={e} x={x}");
         }
     }
 
@@ -420,10 +435,14 @@ mod tests {
     #[test]
     fn servo_ready_reads_the_summary_bit() {
         let causes_only = ServoErrorWord::from_bits_retain(0xFFFF_FFFE);
-        assert!(servo_ready(ServoReadyMode::ErrorFree, false, causes_only));
+        assert!(servo_ready(
+            ServoReadyMode::ErrorFree,
+            ServoStatusWord::empty(),
+            causes_only
+        ));
         assert!(!servo_ready(
             ServoReadyMode::ErrorFree,
-            true,
+            ServoStatusWord::SERVO_EN,
             ServoErrorWord::SERVO_ERRORS
         ));
     }
