@@ -201,42 +201,193 @@ pub enum ServoFault {
     CurrDiffErr = 24,
 }
 
+/// One row of SPEC §1.5's error-word table: a fault with its name, E-code
+/// and meaning. [`ServoFault::TABLE`] holds every row; the names, E-codes,
+/// descriptions, `Display`, the JSON of `motionwire servo` and the tests all
+/// read it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FaultInfo {
+    /// The fault (its discriminant is the bit number).
+    pub fault: ServoFault,
+    /// The name exactly as SPEC §1.5's name column spells it (and the
+    /// command-line decoder's `faults` writes it, SPEC §6.2).
+    pub name: &'static str,
+    /// The E-code the drive shows, `None` for the bits SPEC §1.5 gives none.
+    pub e_code: Option<ECode>,
+    /// The meaning in words (SPEC §1.5's meaning column).
+    pub description: &'static str,
+}
+
 impl ServoFault {
-    /// Every fault in bit order (bit 4 is reserved and has none).
-    pub const ALL: [ServoFault; 24] = [
-        ServoFault::ServoErrors,
-        ServoFault::EncoderErr,
-        ServoFault::I2tEndat,
-        ServoFault::ECatConfigError,
-        ServoFault::BvErr,
-        ServoFault::CurrErr,
-        ServoFault::CurrOffsetErr,
-        ServoFault::HallErr,
-        ServoFault::HallSeqErr,
-        ServoFault::SrtErr,
-        ServoFault::Can1RtErr,
-        ServoFault::Can2RtErr,
-        ServoFault::Can1HErr,
-        ServoFault::Can2HErr,
-        ServoFault::ECatRtErr,
-        ServoFault::PdpintErr,
-        ServoFault::PtblChksErr,
-        ServoFault::PrgChksErr,
-        ServoFault::FollowerErr,
-        ServoFault::OverLoadErr,
-        ServoFault::SFlashErr,
-        ServoFault::ECatWatchDog,
-        ServoFault::OverSpeed,
-        ServoFault::CurrDiffErr,
+    /// SPEC §1.5's error-word table in bit order (bit 4 is reserved and has
+    /// no row): the one place the bit → name → E-code → meaning facts are
+    /// written.
+    pub const TABLE: [FaultInfo; 24] = [
+        FaultInfo {
+            fault: ServoFault::ServoErrors,
+            name: "ServoErrors",
+            e_code: None,
+            description: "summary: some drive error is present",
+        },
+        FaultInfo {
+            fault: ServoFault::EncoderErr,
+            name: "EncoderErr",
+            e_code: Some(ECode::E01),
+            description: "encoder error (EnDat, SinCos or TTL)",
+        },
+        FaultInfo {
+            fault: ServoFault::I2tEndat,
+            name: "I2t_Endat",
+            e_code: Some(ECode::E19),
+            description: "EnDat encoder temperature above Max_Temperature (usually 95 °C)",
+        },
+        FaultInfo {
+            fault: ServoFault::ECatConfigError,
+            name: "ECatConfigError",
+            e_code: Some(ECode::E14),
+            description: "wrong EtherCAT initialisation data from the master",
+        },
+        FaultInfo {
+            fault: ServoFault::BvErr,
+            name: "BVErr",
+            e_code: Some(ECode::E05),
+            description: "bus voltage above U_max",
+        },
+        FaultInfo {
+            fault: ServoFault::CurrErr,
+            name: "CurrErr",
+            e_code: Some(ECode::E06),
+            description: "motor current above I_max",
+        },
+        FaultInfo {
+            fault: ServoFault::CurrOffsetErr,
+            name: "CurrOffsetErr",
+            e_code: Some(ECode::E07),
+            description: "current measurement offset error",
+        },
+        FaultInfo {
+            fault: ServoFault::HallErr,
+            name: "HallErr",
+            e_code: Some(ECode::E08),
+            description: "commutation (Hall) signal level error",
+        },
+        FaultInfo {
+            fault: ServoFault::HallSeqErr,
+            name: "HallSeqErr",
+            e_code: None,
+            description: "commutation signal sequence is not Gray code",
+        },
+        FaultInfo {
+            fault: ServoFault::SrtErr,
+            name: "SRTErr",
+            e_code: None,
+            description: "servo program watchdog timeout (drive is broken)",
+        },
+        FaultInfo {
+            fault: ServoFault::Can1RtErr,
+            name: "CAN1RTErr",
+            e_code: None,
+            description: "CAN channel 1 communication timeout",
+        },
+        FaultInfo {
+            fault: ServoFault::Can2RtErr,
+            name: "CAN2RTErr",
+            e_code: None,
+            description: "CAN channel 2 communication timeout",
+        },
+        FaultInfo {
+            fault: ServoFault::Can1HErr,
+            name: "CAN1HErr",
+            e_code: None,
+            description: "CAN channel 1 hardware error",
+        },
+        FaultInfo {
+            fault: ServoFault::Can2HErr,
+            name: "CAN2HErr",
+            e_code: None,
+            description: "CAN channel 2 hardware error",
+        },
+        FaultInfo {
+            fault: ServoFault::ECatRtErr,
+            name: "ECatRTErr",
+            e_code: Some(ECode::E15),
+            description: "EtherCAT timeout (no data for 3 cycles)",
+        },
+        FaultInfo {
+            fault: ServoFault::PdpintErr,
+            name: "PDPINTErr",
+            e_code: Some(ECode::E16),
+            description: "power stage (IGBT) driver circuit error",
+        },
+        FaultInfo {
+            fault: ServoFault::PtblChksErr,
+            name: "PTBLCHKSErr",
+            e_code: Some(ECode::E30),
+            description: "active parameter table checksum error",
+        },
+        FaultInfo {
+            fault: ServoFault::PrgChksErr,
+            name: "PRGCHKSErr",
+            e_code: None,
+            description: "program memory checksum error",
+        },
+        FaultInfo {
+            fault: ServoFault::FollowerErr,
+            name: "FollowerErr",
+            e_code: Some(ECode::E09),
+            description: "speed following error",
+        },
+        FaultInfo {
+            fault: ServoFault::OverLoadErr,
+            name: "OverLoadErr",
+            e_code: Some(ECode::E20),
+            description: "motor overload (current above nominal for too long)",
+        },
+        FaultInfo {
+            fault: ServoFault::SFlashErr,
+            name: "SFlashErr",
+            e_code: Some(ECode::E32),
+            description: "serial flash (parameter store) access error",
+        },
+        FaultInfo {
+            fault: ServoFault::ECatWatchDog,
+            name: "ECatWatchDog",
+            e_code: Some(ECode::E31),
+            description: "EtherCAT slave watchdog expired",
+        },
+        FaultInfo {
+            fault: ServoFault::OverSpeed,
+            name: "OverSpeed",
+            e_code: Some(ECode::E11),
+            description: "motor speed above the limit",
+        },
+        FaultInfo {
+            fault: ServoFault::CurrDiffErr,
+            name: "CurrDiffErr",
+            e_code: Some(ECode::E12),
+            description: "phase A/B current symmetry error",
+        },
     ];
+
+    /// Every fault in bit order (bit 4 is reserved and has none).
+    pub const ALL: [ServoFault; 24] = {
+        let mut all = [ServoFault::ServoErrors; 24];
+        let mut i = 0;
+        while i < Self::TABLE.len() {
+            all[i] = Self::TABLE[i].fault;
+            i += 1;
+        }
+        all
+    };
 
     /// Return the fault of SEW bit `bit`, or `None` for a reserved bit
     /// (4, 25–31) or a number above 31.
+    #[must_use]
     pub const fn from_bit(bit: u8) -> Option<Self> {
         let mut i = 0;
-        while i < Self::ALL.len() {
-            if Self::ALL[i] as u8 == bit {
-                return Some(Self::ALL[i]);
+        while i < Self::TABLE.len() {
+            if Self::TABLE[i].fault as u8 == bit {
+                return Some(Self::TABLE[i].fault);
             }
             i += 1;
         }
@@ -244,107 +395,43 @@ impl ServoFault {
     }
 
     /// Return the fault's bit number in the error word, 0..=24.
+    #[must_use]
     pub const fn bit(self) -> u8 {
         self as u8
     }
 
     /// Return the fault's bit in the error word.
+    #[must_use]
     pub const fn flag(self) -> ServoErrorWord {
         ServoErrorWord::from_bits_retain(1 << self.bit())
     }
 
+    /// Return the fault's row of [`ServoFault::TABLE`].
+    #[must_use]
+    pub const fn info(self) -> &'static FaultInfo {
+        // Rows are in bit order without the reserved bit 4.
+        let bit = self.bit() as usize;
+        &Self::TABLE[if bit < 4 { bit } else { bit - 1 }]
+    }
+
     /// Return the fault's name exactly as SPEC §1.5's name column spells it
     /// (and the command-line decoder's `faults` writes it, SPEC §6.2).
+    #[must_use]
     pub const fn name(self) -> &'static str {
-        match self {
-            ServoFault::ServoErrors => "ServoErrors",
-            ServoFault::EncoderErr => "EncoderErr",
-            ServoFault::I2tEndat => "I2t_Endat",
-            ServoFault::ECatConfigError => "ECatConfigError",
-            ServoFault::BvErr => "BVErr",
-            ServoFault::CurrErr => "CurrErr",
-            ServoFault::CurrOffsetErr => "CurrOffsetErr",
-            ServoFault::HallErr => "HallErr",
-            ServoFault::HallSeqErr => "HallSeqErr",
-            ServoFault::SrtErr => "SRTErr",
-            ServoFault::Can1RtErr => "CAN1RTErr",
-            ServoFault::Can2RtErr => "CAN2RTErr",
-            ServoFault::Can1HErr => "CAN1HErr",
-            ServoFault::Can2HErr => "CAN2HErr",
-            ServoFault::ECatRtErr => "ECatRTErr",
-            ServoFault::PdpintErr => "PDPINTErr",
-            ServoFault::PtblChksErr => "PTBLCHKSErr",
-            ServoFault::PrgChksErr => "PRGCHKSErr",
-            ServoFault::FollowerErr => "FollowerErr",
-            ServoFault::OverLoadErr => "OverLoadErr",
-            ServoFault::SFlashErr => "SFlashErr",
-            ServoFault::ECatWatchDog => "ECatWatchDog",
-            ServoFault::OverSpeed => "OverSpeed",
-            ServoFault::CurrDiffErr => "CurrDiffErr",
-        }
+        self.info().name
     }
 
     /// Return the E-code the drive shows for this fault, or `None` for the
     /// bits SPEC §1.5 gives none (0, 9–14, 18).
+    #[must_use]
     pub const fn e_code(self) -> Option<ECode> {
-        match self {
-            ServoFault::EncoderErr => Some(ECode::E01),
-            ServoFault::I2tEndat => Some(ECode::E19),
-            ServoFault::ECatConfigError => Some(ECode::E14),
-            ServoFault::BvErr => Some(ECode::E05),
-            ServoFault::CurrErr => Some(ECode::E06),
-            ServoFault::CurrOffsetErr => Some(ECode::E07),
-            ServoFault::HallErr => Some(ECode::E08),
-            ServoFault::ECatRtErr => Some(ECode::E15),
-            ServoFault::PdpintErr => Some(ECode::E16),
-            ServoFault::PtblChksErr => Some(ECode::E30),
-            ServoFault::FollowerErr => Some(ECode::E09),
-            ServoFault::OverLoadErr => Some(ECode::E20),
-            ServoFault::SFlashErr => Some(ECode::E32),
-            ServoFault::ECatWatchDog => Some(ECode::E31),
-            ServoFault::OverSpeed => Some(ECode::E11),
-            ServoFault::CurrDiffErr => Some(ECode::E12),
-            ServoFault::ServoErrors
-            | ServoFault::HallSeqErr
-            | ServoFault::SrtErr
-            | ServoFault::Can1RtErr
-            | ServoFault::Can2RtErr
-            | ServoFault::Can1HErr
-            | ServoFault::Can2HErr
-            | ServoFault::PrgChksErr => None,
-        }
+        self.info().e_code
     }
 
     /// Return the fault's meaning in words (SPEC §1.5's meaning column).
+    #[must_use]
     pub const fn description(self) -> &'static str {
-        match self {
-            ServoFault::ServoErrors => "summary: some drive error is present",
-            ServoFault::EncoderErr => "encoder error (EnDat, SinCos or TTL)",
-            ServoFault::I2tEndat => {
-                "EnDat encoder temperature above Max_Temperature (usually 95 °C)"
-            }
-            ServoFault::ECatConfigError => "wrong EtherCAT initialisation data from the master",
-            ServoFault::BvErr => "bus voltage above U_max",
-            ServoFault::CurrErr => "motor current above I_max",
-            ServoFault::CurrOffsetErr => "current measurement offset error",
-            ServoFault::HallErr => "commutation (Hall) signal level error",
-            ServoFault::HallSeqErr => "commutation signal sequence is not Gray code",
-            ServoFault::SrtErr => "servo program watchdog timeout (drive is broken)",
-            ServoFault::Can1RtErr => "CAN channel 1 communication timeout",
-            ServoFault::Can2RtErr => "CAN channel 2 communication timeout",
-            ServoFault::Can1HErr => "CAN channel 1 hardware error",
-            ServoFault::Can2HErr => "CAN channel 2 hardware error",
-            ServoFault::ECatRtErr => "EtherCAT timeout (no data for 3 cycles)",
-            ServoFault::PdpintErr => "power stage (IGBT) driver circuit error",
-            ServoFault::PtblChksErr => "active parameter table checksum error",
-            ServoFault::PrgChksErr => "program memory checksum error",
-            ServoFault::FollowerErr => "speed following error",
-            ServoFault::OverLoadErr => "motor overload (current above nominal for too long)",
-            ServoFault::SFlashErr => "serial flash (parameter store) access error",
-            ServoFault::ECatWatchDog => "EtherCAT slave watchdog expired",
-            ServoFault::OverSpeed => "motor speed above the limit",
-            ServoFault::CurrDiffErr => "phase A/B current symmetry error",
-        }
+        self.info().description
     }
 }
 
@@ -455,26 +542,22 @@ impl ECode {
         self as u8
     }
 
-    /// Return the error-word fault this code is shown for.
+    /// Return the error-word fault this code is shown for (from
+    /// [`ServoFault::TABLE`]).
+    #[must_use]
     pub const fn fault(self) -> ServoFault {
-        match self {
-            ECode::E01 => ServoFault::EncoderErr,
-            ECode::E05 => ServoFault::BvErr,
-            ECode::E06 => ServoFault::CurrErr,
-            ECode::E07 => ServoFault::CurrOffsetErr,
-            ECode::E08 => ServoFault::HallErr,
-            ECode::E09 => ServoFault::FollowerErr,
-            ECode::E11 => ServoFault::OverSpeed,
-            ECode::E12 => ServoFault::CurrDiffErr,
-            ECode::E14 => ServoFault::ECatConfigError,
-            ECode::E15 => ServoFault::ECatRtErr,
-            ECode::E16 => ServoFault::PdpintErr,
-            ECode::E19 => ServoFault::I2tEndat,
-            ECode::E20 => ServoFault::OverLoadErr,
-            ECode::E30 => ServoFault::PtblChksErr,
-            ECode::E31 => ServoFault::ECatWatchDog,
-            ECode::E32 => ServoFault::SFlashErr,
+        let mut i = 0;
+        while i < ServoFault::TABLE.len() {
+            if let Some(code) = ServoFault::TABLE[i].e_code {
+                if code as u8 == self as u8 {
+                    return ServoFault::TABLE[i].fault;
+                }
+            }
+            i += 1;
         }
+        // Every E-code has a row (checked by `every_e_code_has_one_fault`);
+        // the summary fault is never reached.
+        ServoFault::ServoErrors
     }
 
     /// Return the bit number of this code's fault in the error word.
@@ -533,6 +616,33 @@ impl FromStr for ECode {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table is in bit order, each row's fault is its own bit in the
+    /// word, and every E-code belongs to exactly one row.
+    #[test]
+    fn every_e_code_has_one_fault() {
+        let bits: Vec<u8> = ServoFault::TABLE
+            .iter()
+            .map(|row| row.fault.bit())
+            .collect();
+        let mut sorted = bits.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(bits, sorted);
+        assert!(!bits.contains(&4));
+        for row in ServoFault::TABLE {
+            assert_eq!(row.fault.info(), &row);
+            assert_eq!(ServoFault::from_bit(row.fault.bit()), Some(row.fault));
+        }
+        for code in ECode::ALL {
+            let rows: Vec<_> = ServoFault::TABLE
+                .iter()
+                .filter(|row| row.e_code == Some(code))
+                .collect();
+            assert_eq!(rows.len(), 1, "{code}");
+            assert_eq!(code.fault(), rows[0].fault);
+        }
+    }
     use ECode as E;
     use ServoErrorWord as W;
     use ServoFault as F;

@@ -37,7 +37,7 @@ pub use behaviour::{
 };
 pub use command::{Command, CommandFrame, COMMAND_LEN};
 pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
-pub use error_word::{ECode, ServoErrorWord, ServoFault};
+pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
 pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageKind};
 pub use status_word::{EncoderKind, ServoStatusWord};
