@@ -5,6 +5,9 @@
 //! *found*, so that a message such as
 //! `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
 //! to a person without further context (STYLE.md, "errors carry context").
+//! The *what* is a typed [`What`], so a program can match on it; the error
+//! depends on no parser's types (a text log's syntax errors are the
+//! format-neutral [`SyntaxError`]).
 
 /// What went wrong while decoding or constructing a value.
 ///
@@ -15,8 +18,8 @@ pub enum Error {
     /// A buffer is shorter than the frame or field that must be read from it.
     #[error("{what}: buffer of {found} bytes where {expected} are needed")]
     Length {
-        /// The frame or field that was being read, e.g. `"EMCY frame"`.
-        what: &'static str,
+        /// The frame or field that was being read, e.g. [`What::EmcyFrame`].
+        what: What,
         /// The number of bytes the frame needs.
         expected: usize,
         /// The number of bytes that were given.
@@ -25,8 +28,8 @@ pub enum Error {
     /// A number lies outside the range its field allows.
     #[error("{what}: {found} is outside {min}..={max}")]
     OutOfRange {
-        /// The field, e.g. `"node-ID"`.
-        what: &'static str,
+        /// The field, e.g. [`What::NodeId`].
+        what: What,
         /// The value that was given.
         found: u32,
         /// The smallest valid value.
@@ -38,8 +41,8 @@ pub enum Error {
     /// protocol defines (e.g. an NMT state byte of `0x12`).
     #[error("{what}: {found:#x} is not one of {expected}")]
     InvalidValue {
-        /// The field, e.g. `"NMT state"`.
-        what: &'static str,
+        /// The field, e.g. [`What::NmtState`].
+        what: What,
         /// The value that was given.
         found: u32,
         /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
@@ -50,8 +53,8 @@ pub enum Error {
     /// kept without a heap, so the message says what form was expected.
     #[error("{what}: text is not of the form {expected}")]
     Malformed {
-        /// The value that was being read from text, e.g. `"servo E-code"`.
-        what: &'static str,
+        /// The value that was being read from text, e.g. [`What::ServoECode`].
+        what: What,
         /// The form the text must have, in words.
         expected: &'static str,
     },
@@ -299,12 +302,120 @@ impl core::fmt::Display for SyntaxError {
     }
 }
 
+/// What was being decoded or built when an [`Error`] occurred: the
+/// frame, field or value, in words when displayed (`EMCY frame`,
+/// `node-ID`, …). A typed value, so that a program can match on it;
+/// `#[non_exhaustive]`: new decoders add variants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum What {
+    /// The AKD axis id.
+    AkdAxisId,
+    /// The AKD feedback id.
+    AkdFeedbackId,
+    /// The AKD manufacturer field.
+    AkdManufacturerField,
+    /// The CAN error frame classes.
+    CanErrorFrameClasses,
+    /// The CAN error frame identifier.
+    CanErrorFrameIdentifier,
+    /// The CAN frame data length.
+    CanFrameDataLength,
+    /// The CAN frame type.
+    CanFrameType,
+    /// The CAN remote request data length.
+    CanRemoteRequestDataLength,
+    /// The CAN remote request length.
+    CanRemoteRequestLength,
+    /// The EMCY frame.
+    EmcyFrame,
+    /// The error injection code.
+    ErrorInjectionCode,
+    /// The heartbeat consumer entries.
+    HeartbeatConsumerEntries,
+    /// The heartbeat message.
+    HeartbeatMessage,
+    /// The NMT command specifier.
+    NmtCommandSpecifier,
+    /// The NMT node-control message.
+    NmtNodeControlMessage,
+    /// The NMT node-control node-ID.
+    NmtNodeControlNodeId,
+    /// The NMT state.
+    NmtState,
+    /// The node-guarding answer.
+    NodeGuardingAnswer,
+    /// The node-ID.
+    NodeId,
+    /// The parameter table.
+    ParameterTable,
+    /// The regulator mode (SCW.ModeSel).
+    RegulatorMode,
+    /// The servo command frame.
+    ServoCommandFrame,
+    /// The servo E-code.
+    ServoECode,
+    /// The servo enable (SCW.SE).
+    ServoEnable,
+    /// The servo feedback frame.
+    ServoFeedbackFrame,
+    /// Servo_Ready_Mode.
+    ServoReadyMode,
+    /// The SYNC data length.
+    SyncDataLength,
+    /// The timestamp microseconds.
+    TimestampMicroseconds,
+}
+
+impl What {
+    /// Return the words the error message uses, e.g. `EMCY frame`.
+    #[must_use]
+    pub const fn text(self) -> &'static str {
+        match self {
+            What::AkdAxisId => "AKD axis id",
+            What::AkdFeedbackId => "AKD feedback id",
+            What::AkdManufacturerField => "AKD manufacturer field",
+            What::CanErrorFrameClasses => "CAN error frame classes",
+            What::CanErrorFrameIdentifier => "CAN error frame identifier",
+            What::CanFrameDataLength => "CAN frame data length",
+            What::CanFrameType => "CAN frame type",
+            What::CanRemoteRequestDataLength => "CAN remote request data length",
+            What::CanRemoteRequestLength => "CAN remote request length",
+            What::EmcyFrame => "EMCY frame",
+            What::ErrorInjectionCode => "error injection code",
+            What::HeartbeatConsumerEntries => "heartbeat consumer entries",
+            What::HeartbeatMessage => "heartbeat message",
+            What::NmtCommandSpecifier => "NMT command specifier",
+            What::NmtNodeControlMessage => "NMT node-control message",
+            What::NmtNodeControlNodeId => "NMT node-control node-ID",
+            What::NmtState => "NMT state",
+            What::NodeGuardingAnswer => "node-guarding answer",
+            What::NodeId => "node-ID",
+            What::ParameterTable => "parameter table",
+            What::RegulatorMode => "regulator mode (SCW.ModeSel)",
+            What::ServoCommandFrame => "servo command frame",
+            What::ServoECode => "servo E-code",
+            What::ServoEnable => "servo enable (SCW.SE)",
+            What::ServoFeedbackFrame => "servo feedback frame",
+            What::ServoReadyMode => "Servo_Ready_Mode",
+            What::SyncDataLength => "SYNC data length",
+            What::TimestampMicroseconds => "timestamp microseconds",
+        }
+    }
+}
+
+impl core::fmt::Display for What {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.text())
+    }
+}
+
 /// The crate's result type.
 pub type Result<T, E = Error> = core::result::Result<T, E>;
 
 /// Check that `buf` holds at least `expected` bytes for `what`.
 #[inline]
-pub(crate) const fn check_len(what: &'static str, buf: &[u8], expected: usize) -> Result<()> {
+pub(crate) const fn check_len(what: What, buf: &[u8], expected: usize) -> Result<()> {
     if buf.len() < expected {
         Err(Error::Length {
             what,
@@ -322,20 +433,20 @@ mod tests {
 
     #[test]
     fn messages_say_expected_and_found() {
-        let e = check_len("servo command frame", &[0; 7], 10).unwrap_err();
+        let e = check_len(What::ServoCommandFrame, &[0; 7], 10).unwrap_err();
         assert_eq!(
             e.to_string(),
             "servo command frame: buffer of 7 bytes where 10 are needed"
         );
         let e = Error::OutOfRange {
-            what: "node-ID",
+            what: What::NodeId,
             found: 128,
             min: 1,
             max: 127,
         };
         assert_eq!(e.to_string(), "node-ID: 128 is outside 1..=127");
         let e = Error::InvalidValue {
-            what: "NMT state",
+            what: What::NmtState,
             found: 0x12,
             expected: "0x00, 0x04, 0x05, 0x7f",
         };
@@ -344,13 +455,13 @@ mod tests {
             "NMT state: 0x12 is not one of 0x00, 0x04, 0x05, 0x7f"
         );
         let e = Error::Malformed {
-            what: "servo E-code",
+            what: What::ServoECode,
             expected: "E followed by one or two decimal digits, e.g. E05",
         };
         assert_eq!(
             e.to_string(),
             "servo E-code: text is not of the form E followed by one or two decimal digits, e.g. E05"
         );
-        assert!(check_len("x", &[0; 10], 10).is_ok());
+        assert!(check_len(What::EmcyFrame, &[0; 10], 10).is_ok());
     }
 }

@@ -125,7 +125,7 @@ mod error;
 pub mod profiles;
 pub mod servo;
 
-pub use error::{Error, Found, LogFormat, Result, SyntaxError};
+pub use error::{Error, Found, LogFormat, Result, SyntaxError, What};
 
 #[cfg(test)]
 mod display_tests;

@@ -9,6 +9,7 @@ use motionwire::servo::{
     ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
 use motionwire::Error;
+use motionwire::What;
 
 /// A feedback frame with the given status and error words, an incremental
 /// position and a zero-pulse position.
@@ -180,7 +181,7 @@ fn every_short_buffer_is_an_exact_error() {
             Err(e) => assert_eq!(
                 e,
                 Error::Length {
-                    what: "servo command frame",
+                    what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: len
                 }
@@ -197,7 +198,7 @@ fn every_short_buffer_is_an_exact_error() {
             Err(e) => assert_eq!(
                 e,
                 Error::Length {
-                    what: "servo feedback frame",
+                    what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: len
                 }

@@ -16,6 +16,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::canopen::{
     CobFunction, Emcy, EmcyFrame, ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister,
     KernelError, NodeId, SdoAbortCode, Specificity, EMCY_LEN,
@@ -31,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(
                 error,
                 Error::Length {
-                    what: "EMCY frame",
+                    what: What::EmcyFrame,
                     expected: EMCY_LEN,
                     found: data.len(),
                 }
@@ -181,7 +182,7 @@ fn check_numbers(data: &[u8]) {
         None => assert_eq!(
             NodeId::try_new(byte),
             Err(Error::OutOfRange {
-                what: "node-ID",
+                what: What::NodeId,
                 found: u32::from(byte),
                 min: 1,
                 max: 127,

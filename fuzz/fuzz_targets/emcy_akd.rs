@@ -14,6 +14,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::canopen::{Emcy, EmcyFrame, EMCY_LEN};
 use motionwire::profiles::akd::{
     AkdEmcy, AkdManufacturer, AkdManufacturerField, AxisId, FeedbackId, AKD_MANUFACTURER_LEN,
@@ -31,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(
             result,
             Err(Error::Length {
-                what: "EMCY frame",
+                what: What::EmcyFrame,
                 expected: EMCY_LEN,
                 found: data.len(),
             })
@@ -70,7 +71,7 @@ fn check_field(data: &[u8]) {
         assert_eq!(
             result,
             Err(Error::Length {
-                what: "AKD manufacturer field",
+                what: What::AkdManufacturerField,
                 expected: AKD_MANUFACTURER_LEN,
                 found: data.len(),
             })
@@ -96,7 +97,7 @@ fn check_field(data: &[u8]) {
             assert_eq!(
                 error,
                 Error::InvalidValue {
-                    what: "AKD feedback id",
+                    what: What::AkdFeedbackId,
                     found: u32::from(nibble),
                     expected: FEEDBACK_EXPECTED,
                 }
@@ -123,7 +124,7 @@ fn check_ids(data: &[u8]) {
         Err(error) => assert_eq!(
             error,
             Error::OutOfRange {
-                what: "AKD axis id",
+                what: What::AkdAxisId,
                 found: u32::from(raw),
                 min: 0,
                 max: 15,
@@ -140,7 +141,7 @@ fn check_ids(data: &[u8]) {
         Err(error) if raw <= 15 => assert_eq!(
             error,
             Error::InvalidValue {
-                what: "AKD feedback id",
+                what: What::AkdFeedbackId,
                 found: u32::from(raw),
                 expected: FEEDBACK_EXPECTED,
             }
@@ -148,7 +149,7 @@ fn check_ids(data: &[u8]) {
         Err(error) => assert_eq!(
             error,
             Error::OutOfRange {
-                what: "AKD feedback id",
+                what: What::AkdFeedbackId,
                 found: u32::from(raw),
                 min: 0,
                 max: 15,

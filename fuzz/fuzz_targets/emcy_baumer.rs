@@ -16,6 +16,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::canopen::{Emcy, ErrorCode, EMCY_LEN};
 use motionwire::profiles::baumer::{
     is_reserved_code, matching_sources, source_by_name, source_for_injection, sources_for_code,
@@ -37,7 +38,7 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(
                 error,
                 Error::Length {
-                    what: "EMCY frame",
+                    what: What::EmcyFrame,
                     expected: EMCY_LEN,
                     found: data.len(),
                 }

@@ -52,6 +52,7 @@
 #![no_main]
 
 use std::time::Duration;
+use motionwire::What;
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
@@ -429,7 +430,7 @@ impl Consumer {
             assert_eq!(
                 result,
                 Err(Error::OutOfRange {
-                    what: "heartbeat consumer entries",
+                    what: What::HeartbeatConsumerEntries,
                     found: ENTRIES as u32 + 1,
                     min: 0,
                     max: ENTRIES as u32,

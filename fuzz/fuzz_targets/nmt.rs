@@ -6,7 +6,7 @@
 //! 100Dh read from the same bytes. Invariants:
 //! - an empty slice is exactly the `Error::Length` of each message; any
 //!   other first byte decodes iff its bits 0–6 are 0x00, 0x04, 0x05 or 0x7F,
-//!   else exactly `Error::InvalidValue { what: "NMT state", found: bits 0–6 }`;
+//!   else exactly `Error::InvalidValue { what: What::NmtState, found: bits 0–6 }`;
 //! - the zero-copy views read every field whatever the state bits, and agree
 //!   with the owned values; a decoded message re-encodes to the first byte
 //!   (bit 7 kept: reserved bit of a heartbeat, toggle of an answer);
@@ -20,6 +20,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::canopen::{
     ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer, GuardAnswerFrame,
     Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
@@ -35,7 +36,7 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(
             heartbeat,
             Err(Error::Length {
-                what: "heartbeat message",
+                what: What::HeartbeatMessage,
                 expected: HEARTBEAT_LEN,
                 found: 0,
             })
@@ -43,7 +44,7 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(
             answer,
             Err(Error::Length {
-                what: "node-guarding answer",
+                what: What::NodeGuardingAnswer,
                 expected: GUARD_ANSWER_LEN,
                 found: 0,
             })
@@ -59,7 +60,7 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(
             error,
             Error::InvalidValue {
-                what: "NMT state",
+                what: What::NmtState,
                 found: u32::from(state_bits),
                 expected: "0x00, 0x04, 0x05, 0x7f",
             }

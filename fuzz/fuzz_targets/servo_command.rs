@@ -11,6 +11,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::servo::{
     Command, CommandFrame, ParameterTable, RegulatorMode, ServoControlWord, ServoEnable,
     COMMAND_LEN,
@@ -24,7 +25,7 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(
                 error,
                 Error::Length {
-                    what: "servo command frame",
+                    what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: data.len(),
                 }

@@ -17,6 +17,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::What;
 use motionwire::servo::{
     ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageKind, ServoErrorWord,
     ServoFault, ServoStatusWord, FEEDBACK_LEN,
@@ -32,7 +33,7 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(
                 error,
                 Error::Length {
-                    what: "servo feedback frame",
+                    what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: data.len(),
                 }

@@ -20,6 +20,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use super::{CanFrame, FrameType};
@@ -163,7 +164,7 @@ impl ErrorFrame {
     pub fn from_frame<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> Result<Self> {
         if frame.frame_type() != FrameType::Error {
             return Err(Error::InvalidValue {
-                what: "CAN frame type",
+                what: What::CanFrameType,
                 found: frame.id().raw(),
                 expected: "an error frame (CAN_ERR_FLAG)",
             });
@@ -387,7 +388,7 @@ mod tests {
         assert!(matches!(
             ErrorFrame::from_frame(&frame),
             Err(Error::InvalidValue {
-                what: "CAN frame type",
+                what: What::CanFrameType,
                 ..
             })
         ));

@@ -2,6 +2,7 @@
 //! CANopen decoders take and what `embedded-can` converts to and from
 //! (ISO 11898-1; Linux `linux/can.h`; SPEC §5).
 
+use crate::error::What;
 use core::fmt;
 use core::hash::{Hash, Hasher};
 
@@ -73,7 +74,7 @@ impl FrameData {
         let mut bytes = [0; FD_MAX_LEN];
         match bytes.get_mut(..data.len()) {
             Some(head) => head.copy_from_slice(data),
-            None => return Err(too_long("CAN frame data length", data.len(), FD_MAX_LEN)),
+            None => return Err(too_long(What::CanFrameDataLength, data.len(), FD_MAX_LEN)),
         }
         Ok(FrameData {
             bytes,
@@ -137,7 +138,7 @@ impl fmt::Debug for FrameData {
     }
 }
 
-fn too_long(what: &'static str, len: usize, max: usize) -> Error {
+fn too_long(what: What, len: usize, max: usize) -> Error {
     Error::OutOfRange {
         what,
         found: u32::try_from(len).unwrap_or(u32::MAX),
@@ -211,19 +212,19 @@ pub type CanFrameRef<'a> = CanFrame<&'a [u8]>;
 fn check(id: CanId, frame_type: FrameType, len: usize) -> Result<()> {
     match frame_type {
         FrameType::Remote { dlc } if usize::from(dlc) > CLASSIC_MAX_LEN => Err(too_long(
-            "CAN remote request length",
+            What::CanRemoteRequestLength,
             usize::from(dlc),
             CLASSIC_MAX_LEN,
         )),
         FrameType::Error if !id.is_extended() => Err(Error::InvalidValue {
-            what: "CAN error frame identifier",
+            what: What::CanErrorFrameIdentifier,
             found: id.raw(),
             expected: "an extended (29-bit) identifier holding the error classes",
         }),
         _ if len > frame_type.max_len() => Err(too_long(
             match frame_type {
-                FrameType::Remote { .. } => "CAN remote request data length",
-                _ => "CAN frame data length",
+                FrameType::Remote { .. } => What::CanRemoteRequestDataLength,
+                _ => What::CanFrameDataLength,
             },
             len,
             frame_type.max_len(),
@@ -258,7 +259,7 @@ impl CanFrame {
     /// Above `0x1FFFFFFF`, or more than 8 bytes, is an error.
     pub fn new_error(classes: u32, data: &[u8]) -> Result<Self> {
         let id = CanId::extended(classes).ok_or(Error::OutOfRange {
-            what: "CAN error frame classes",
+            what: What::CanErrorFrameClasses,
             found: classes,
             min: 0,
             max: CanId::EXTENDED_MAX,
@@ -497,7 +498,7 @@ mod tests {
         assert_eq!(
             CanFrame::new(std_id(1), &[0; 9]),
             Err(Error::OutOfRange {
-                what: "CAN frame data length",
+                what: What::CanFrameDataLength,
                 found: 9,
                 min: 0,
                 max: 8
@@ -515,7 +516,7 @@ mod tests {
         assert_eq!(
             CanFrame::new_remote(std_id(0x705), 9),
             Err(Error::OutOfRange {
-                what: "CAN remote request length",
+                what: What::CanRemoteRequestLength,
                 found: 9,
                 min: 0,
                 max: 8
@@ -524,7 +525,7 @@ mod tests {
         assert_eq!(
             CanFrameRef::new_ref(std_id(0x705), FrameType::Remote { dlc: 1 }, &[1]),
             Err(Error::OutOfRange {
-                what: "CAN remote request data length",
+                what: What::CanRemoteRequestDataLength,
                 found: 1,
                 min: 0,
                 max: 0

@@ -1,5 +1,6 @@
 //! When a log recorded a frame (SPEC §5.7, SPEC §6.1 `ts`).
 
+use crate::error::What;
 use core::fmt;
 use core::time::Duration;
 
@@ -76,7 +77,7 @@ impl Timestamp {
         match Self::new(secs, micros) {
             Some(ts) => Ok(ts),
             None => Err(Error::OutOfRange {
-                what: "timestamp microseconds",
+                what: What::TimestampMicroseconds,
                 found: micros,
                 min: 0,
                 max: 999_999,

@@ -1,5 +1,6 @@
 use super::*;
 use crate::can::LogFrame;
+use crate::error::What;
 use crate::test_gens::candump::{Build, FrameExt};
 
 /// The SPEC §5 log example: the AKD EMCY of seed 000 as candump -l logs it.
@@ -1310,7 +1311,7 @@ fn constructors_check_their_values() {
     assert_eq!(
         Build::new_data("can0", std_id(1), &[0; 9]),
         Err(Error::OutOfRange {
-            what: "CAN frame data length",
+            what: What::CanFrameDataLength,
             found: 9,
             min: 0,
             max: 8
@@ -1319,7 +1320,7 @@ fn constructors_check_their_values() {
     assert_eq!(
         Build::new_fd("can0", std_id(1), FdFlags::EMPTY, &[0; 65]),
         Err(Error::OutOfRange {
-            what: "CAN frame data length",
+            what: What::CanFrameDataLength,
             found: 65,
             min: 0,
             max: 64
@@ -1328,7 +1329,7 @@ fn constructors_check_their_values() {
     assert_eq!(
         Build::new_remote("can0", std_id(1), 9),
         Err(Error::OutOfRange {
-            what: "CAN remote request length",
+            what: What::CanRemoteRequestLength,
             found: 9,
             min: 0,
             max: 8
@@ -1369,7 +1370,7 @@ fn values() {
     assert_eq!(
         Timestamp::try_new(5, 1_000_000),
         Err(Error::OutOfRange {
-            what: "timestamp microseconds",
+            what: What::TimestampMicroseconds,
             found: 1_000_000,
             min: 0,
             max: 999_999

@@ -26,6 +26,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::{ErrorCode, ErrorRegister};
@@ -45,7 +46,7 @@ mod field {
 /// The length of an EMCY frame's data, 8 bytes (CiA 301 §7.2.7.3.1).
 pub const EMCY_LEN: usize = field::MANUFACTURER.end;
 
-const WHAT: &str = "EMCY frame";
+const WHAT: What = What::EmcyFrame;
 
 /// A zero-copy view over an EMCY frame's data (SPEC §2.1).
 ///
@@ -262,7 +263,7 @@ mod tests {
     fn every_short_length_is_an_exact_error() {
         for len in 0..EMCY_LEN {
             let expected = Error::Length {
-                what: "EMCY frame",
+                what: What::EmcyFrame,
                 expected: 8,
                 found: len,
             };
@@ -301,7 +302,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
             match Emcy::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
-                Err(e) => prop_assert_eq!(e, Error::Length { what: "EMCY frame", expected: 8, found: data.len() }),
+                Err(e) => prop_assert_eq!(e, Error::Length { what: What::EmcyFrame, expected: 8, found: data.len() }),
             }
         }
     }

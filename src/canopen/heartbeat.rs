@@ -40,6 +40,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 use core::time::Duration;
 
@@ -591,7 +592,7 @@ impl<const N: usize> HeartbeatConsumer<N> {
                 Ok(())
             }
             None => Err(Error::OutOfRange {
-                what: "heartbeat consumer entries",
+                what: What::HeartbeatConsumerEntries,
                 found: u32::try_from(N).unwrap_or(u32::MAX).saturating_add(1),
                 min: 0,
                 max: u32::try_from(N).unwrap_or(u32::MAX),
@@ -1069,7 +1070,7 @@ mod tests {
         assert_eq!(
             consumer.set_entry(ConsumerEntry::from_millis(n(11), 50)),
             Err(Error::OutOfRange {
-                what: "heartbeat consumer entries",
+                what: What::HeartbeatConsumerEntries,
                 found: 3,
                 min: 0,
                 max: 2,

@@ -45,6 +45,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use super::{
@@ -460,7 +461,7 @@ impl CanOpenMessage {
                 CobFunction::Emcy(_) => Err(DecodeError {
                     partial_emcy: Some(PartialEmcy::read(&[])),
                     ..fail(Error::Length {
-                        what: "EMCY frame",
+                        what: What::EmcyFrame,
                         expected: EMCY_LEN,
                         found: 0,
                     })
@@ -480,7 +481,7 @@ impl CanOpenMessage {
                     [counter] => Some(counter),
                     _ => {
                         return Err(fail(Error::InvalidValue {
-                            what: "SYNC data length",
+                            what: What::SyncDataLength,
                             found: data.len() as u32,
                             expected: "0, or 1 with the SYNC counter",
                         }))
@@ -522,7 +523,7 @@ impl CanOpenMessage {
                 },
                 None => {
                     return Err(fail(Error::Length {
-                        what: "heartbeat message",
+                        what: What::HeartbeatMessage,
                         expected: HEARTBEAT_LEN,
                         found: 0,
                     }))
@@ -993,7 +994,7 @@ mod tests {
                 MessageKind::Emcy,
                 Some(1),
                 Error::Length {
-                    what: "EMCY frame",
+                    what: What::EmcyFrame,
                     expected: 8,
                     found: 7,
                 },
@@ -1003,7 +1004,7 @@ mod tests {
                 MessageKind::Heartbeat,
                 Some(5),
                 Error::Length {
-                    what: "heartbeat message",
+                    what: What::HeartbeatMessage,
                     expected: 1,
                     found: 0,
                 },
@@ -1013,7 +1014,7 @@ mod tests {
                 MessageKind::NmtCommand,
                 None,
                 Error::Length {
-                    what: "NMT node-control message",
+                    what: What::NmtNodeControlMessage,
                     expected: 2,
                     found: 1,
                 },
@@ -1023,7 +1024,7 @@ mod tests {
                 MessageKind::NmtCommand,
                 None,
                 Error::InvalidValue {
-                    what: "NMT command specifier",
+                    what: What::NmtCommandSpecifier,
                     found: 3,
                     expected: "0x01, 0x02, 0x80, 0x81, 0x82",
                 },
@@ -1033,7 +1034,7 @@ mod tests {
                 MessageKind::Sync,
                 None,
                 Error::InvalidValue {
-                    what: "SYNC data length",
+                    what: What::SyncDataLength,
                     found: 2,
                     expected: "0, or 1 with the SYNC counter",
                 },
@@ -1059,7 +1060,7 @@ mod tests {
             assert_eq!(
                 e.error,
                 Error::Length {
-                    what: "EMCY frame",
+                    what: What::EmcyFrame,
                     expected: 8,
                     found: len
                 }

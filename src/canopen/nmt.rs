@@ -37,6 +37,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use crate::error::{check_len, Error, Result};
@@ -58,8 +59,8 @@ pub const HEARTBEAT_LEN: usize = field::STATE + 1;
 /// The length of a node-guarding answer's data, 1 byte (CiA 301 §7.2.8.3.2.1).
 pub const GUARD_ANSWER_LEN: usize = field::STATE + 1;
 
-const HEARTBEAT_WHAT: &str = "heartbeat message";
-const GUARD_ANSWER_WHAT: &str = "node-guarding answer";
+const HEARTBEAT_WHAT: What = What::HeartbeatMessage;
+const GUARD_ANSWER_WHAT: What = What::NodeGuardingAnswer;
 
 /// The state of a CANopen node's NMT state machine as it appears on the wire
 /// in heartbeat, boot-up and node-guarding messages (CiA 301 §7.2.8.3.2,
@@ -111,7 +112,7 @@ impl NmtState {
             0x05 => Ok(NmtState::Operational),
             0x7F => Ok(NmtState::PreOperational),
             found => Err(Error::InvalidValue {
-                what: "NMT state",
+                what: What::NmtState,
                 found: found as u32,
                 expected: "0x00, 0x04, 0x05, 0x7f",
             }),
@@ -517,7 +518,7 @@ mod tests {
             assert_eq!(
                 NmtState::from_byte(byte),
                 Err(Error::InvalidValue {
-                    what: "NMT state",
+                    what: What::NmtState,
                     found: u32::from(byte),
                     expected: "0x00, 0x04, 0x05, 0x7f",
                 })
@@ -574,7 +575,7 @@ mod tests {
     #[test]
     fn heartbeat_invalid_state_reports_bits_0_to_6() {
         let expected = Error::InvalidValue {
-            what: "NMT state",
+            what: What::NmtState,
             found: 0x12,
             expected: "0x00, 0x04, 0x05, 0x7f",
         };
@@ -639,14 +640,14 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         let heartbeat = Error::Length {
-            what: "heartbeat message",
+            what: What::HeartbeatMessage,
             expected: 1,
             found: 0,
         };
         assert_eq!(Heartbeat::parse(&[]), Err(heartbeat));
         assert_eq!(HeartbeatFrame::new_checked(&[][..]), Err(heartbeat));
         let answer = Error::Length {
-            what: "node-guarding answer",
+            what: What::NodeGuardingAnswer,
             expected: 1,
             found: 0,
         };
@@ -667,7 +668,7 @@ mod proptests {
         fn nmt_state_any_byte_never_panics(byte in any::<u8>()) {
             match NmtState::from_byte(byte) {
                 Ok(state) => prop_assert_eq!(state.to_byte(), byte),
-                Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: "NMT state", .. }), "{}", e),
+                Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: What::NmtState, .. }), "{}", e),
             }
         }
 
@@ -718,7 +719,7 @@ mod proptests {
                         prop_assert_eq!((expected, found), (1, 0));
                         prop_assert!(data.is_empty());
                     }
-                    Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: "NMT state", .. }), "{}", e),
+                    Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: What::NmtState, .. }), "{}", e),
                 }
             }
         }

@@ -28,6 +28,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use super::NodeId;
@@ -44,7 +45,7 @@ mod field {
 /// (CiA 301 §7.2.8.3.1).
 pub const NMT_NODE_CONTROL_LEN: usize = field::NODE + 1;
 
-const WHAT: &str = "NMT node-control message";
+const WHAT: What = What::NmtNodeControlMessage;
 
 /// The node-ID byte that addresses every node (CiA 301 §7.2.8.3.1).
 const ALL_NODES: u8 = 0;
@@ -99,7 +100,7 @@ impl NmtCommand {
             0x81 => Ok(NmtCommand::ResetNode),
             0x82 => Ok(NmtCommand::ResetCommunication),
             found => Err(Error::InvalidValue {
-                what: "NMT command specifier",
+                what: What::NmtCommandSpecifier,
                 found: found as u32,
                 expected: "0x01, 0x02, 0x80, 0x81, 0x82",
             }),
@@ -214,7 +215,7 @@ impl<T: AsRef<[u8]>> NmtNodeControlFrame<T> {
             raw => match NodeId::new(raw) {
                 Some(node) => Ok(Some(node)),
                 None => Err(Error::OutOfRange {
-                    what: "NMT node-control node-ID",
+                    what: What::NmtNodeControlNodeId,
                     found: u32::from(raw),
                     min: 0,
                     max: 127,
@@ -344,7 +345,7 @@ mod tests {
             assert_eq!(
                 NmtCommand::from_byte(byte),
                 Err(Error::InvalidValue {
-                    what: "NMT command specifier",
+                    what: What::NmtCommandSpecifier,
                     found: u32::from(byte),
                     expected: "0x01, 0x02, 0x80, 0x81, 0x82",
                 })
@@ -395,7 +396,7 @@ mod tests {
             assert_eq!(
                 NmtNodeControl::parse(&[0x01, raw]),
                 Err(Error::OutOfRange {
-                    what: "NMT node-control node-ID",
+                    what: What::NmtNodeControlNodeId,
                     found: u32::from(raw),
                     min: 0,
                     max: 127,
@@ -408,7 +409,7 @@ mod tests {
     fn every_short_length_is_an_exact_error() {
         for len in 0..NMT_NODE_CONTROL_LEN {
             let expected = Error::Length {
-                what: "NMT node-control message",
+                what: What::NmtNodeControlMessage,
                 expected: 2,
                 found: len,
             };

@@ -4,6 +4,7 @@
 //! [`CobFunction::classify`] maps an 11-bit identifier to the function the
 //! pre-defined connection set gives it, with the node it belongs to.
 
+use crate::error::What;
 use core::fmt;
 
 use crate::error::{Error, Result};
@@ -53,7 +54,7 @@ impl NodeId {
         match Self::new(raw) {
             Some(id) => Ok(id),
             None => Err(Error::OutOfRange {
-                what: "node-ID",
+                what: What::NodeId,
                 found: raw as u32,
                 min: 1,
                 max: 127,
@@ -252,7 +253,7 @@ mod tests {
                 Err(e) => assert_eq!(
                     e,
                     Error::OutOfRange {
-                        what: "node-ID",
+                        what: What::NodeId,
                         found: raw as u32,
                         min: 1,
                         max: 127

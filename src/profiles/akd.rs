@@ -46,6 +46,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use crate::canopen::{Emcy, EmcyFrame, ErrorCode, ErrorRegister, EMCY_LEN};
@@ -69,9 +70,9 @@ mod field {
 /// seed 000; SPEC §2.4).
 pub const AKD_MANUFACTURER_LEN: usize = field::RESERVED.end;
 
-const WHAT: &str = "AKD manufacturer field";
-const AXIS_WHAT: &str = "AKD axis id";
-const FEEDBACK_WHAT: &str = "AKD feedback id";
+const WHAT: What = What::AkdManufacturerField;
+const AXIS_WHAT: What = What::AkdAxisId;
+const FEEDBACK_WHAT: What = What::AkdFeedbackId;
 
 /// The axis an AKD EMCY reports, bits 0–3 of EMCY byte 3: 1 = axis 1,
 /// 0 = not given (seed 000; SPEC §2.4).
@@ -782,7 +783,7 @@ mod tests {
             assert_eq!(field.feedback_nibble(), nibble);
             assert_eq!(field.axis_id(), axis(7));
             let invalid = Error::InvalidValue {
-                what: "AKD feedback id",
+                what: What::AkdFeedbackId,
                 found: u32::from(nibble),
                 expected: "0 (none), 1..=5 (FB1..FB5)",
             };
@@ -833,7 +834,7 @@ mod tests {
         assert_eq!(
             FeedbackId::try_new(16),
             Err(Error::OutOfRange {
-                what: "AKD feedback id",
+                what: What::AkdFeedbackId,
                 found: 16,
                 min: 0,
                 max: 15
@@ -855,7 +856,7 @@ mod tests {
             assert_eq!(
                 AxisId::try_new(raw),
                 Err(Error::OutOfRange {
-                    what: "AKD axis id",
+                    what: What::AkdAxisId,
                     found: u32::from(raw),
                     min: 0,
                     max: 15
@@ -871,7 +872,7 @@ mod tests {
     fn every_short_length_is_an_exact_error() {
         for len in 0..AKD_MANUFACTURER_LEN {
             let expected = Error::Length {
-                what: "AKD manufacturer field",
+                what: What::AkdManufacturerField,
                 expected: 5,
                 found: len,
             };
@@ -886,7 +887,7 @@ mod tests {
         }
         for len in 0..EMCY_LEN {
             let expected = Error::Length {
-                what: "EMCY frame",
+                what: What::EmcyFrame,
                 expected: 8,
                 found: len,
             };

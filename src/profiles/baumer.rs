@@ -37,6 +37,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use bitflags::bitflags;
@@ -488,7 +489,7 @@ impl InjectionCode {
             Ok(InjectionCode(raw))
         } else {
             Err(Error::InvalidValue {
-                what: "error injection code",
+                what: What::ErrorInjectionCode,
                 found: raw,
                 expected: "0x00000000 or a high word of 0x0001, 0x0004 or 0x0008",
             })
@@ -1725,7 +1726,7 @@ mod tests {
                 Err(()) => assert_eq!(
                     code,
                     Err(Error::InvalidValue {
-                        what: "error injection code",
+                        what: What::ErrorInjectionCode,
                         found: raw,
                         expected: "0x00000000 or a high word of 0x0001, 0x0004 or 0x0008",
                     }),
@@ -1822,7 +1823,7 @@ mod tests {
             assert_eq!(
                 BaumerEmcy::parse(&FRAME_BYTES[..len]),
                 Err(Error::Length {
-                    what: "EMCY frame",
+                    what: What::EmcyFrame,
                     expected: 8,
                     found: len,
                 })
@@ -1876,7 +1877,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
             match BaumerEmcy::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
-                Err(e) => prop_assert_eq!(e, Error::Length { what: "EMCY frame", expected: 8, found: data.len() }),
+                Err(e) => prop_assert_eq!(e, Error::Length { what: What::EmcyFrame, expected: 8, found: data.len() }),
             }
         }
 

@@ -29,6 +29,7 @@
 //! ]);
 //! ```
 
+use crate::error::What;
 use core::fmt;
 use core::marker::PhantomData;
 
@@ -63,7 +64,7 @@ impl ServoReadyMode {
         match Self::new(raw) {
             Some(mode) => Ok(mode),
             None => Err(Error::OutOfRange {
-                what: "Servo_Ready_Mode",
+                what: What::ServoReadyMode,
                 found: raw as u32,
                 min: 0,
                 max: 1,
@@ -458,7 +459,7 @@ mod tests {
             assert_eq!(
                 ServoReadyMode::try_new(raw),
                 Err(Error::OutOfRange {
-                    what: "Servo_Ready_Mode",
+                    what: What::ServoReadyMode,
                     found: u32::from(raw),
                     min: 0,
                     max: 1

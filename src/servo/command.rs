@@ -28,6 +28,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::ServoControlWord;
@@ -50,7 +51,7 @@ mod field {
 /// The length of a command frame, 10 bytes (SPEC §1.1).
 pub const COMMAND_LEN: usize = field::EXTRA_DATA_CODE.end;
 
-const WHAT: &str = "servo command frame";
+const WHAT: What = What::ServoCommandFrame;
 
 /// A zero-copy view over a command frame, NC → servo (SPEC §1.1).
 ///
@@ -325,7 +326,7 @@ mod tests {
     fn every_short_length_is_an_exact_error() {
         for len in 0..COMMAND_LEN {
             let expected = Error::Length {
-                what: "servo command frame",
+                what: What::ServoCommandFrame,
                 expected: 10,
                 found: len,
             };
@@ -388,7 +389,7 @@ mod proptests {
             match Command::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..COMMAND_LEN]),
                 Err(e) => prop_assert_eq!(e, crate::Error::Length {
-                    what: "servo command frame",
+                    what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: data.len(),
                 }),

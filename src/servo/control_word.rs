@@ -29,6 +29,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 
 use bitflags::bitflags;
@@ -267,7 +268,7 @@ impl ServoEnable {
         match Self::new(raw) {
             Some(se) => Ok(se),
             None => Err(Error::OutOfRange {
-                what: "servo enable (SCW.SE)",
+                what: What::ServoEnable,
                 found: raw as u32,
                 min: 0,
                 max: 3,
@@ -360,7 +361,7 @@ impl RegulatorMode {
         match Self::new(raw) {
             Some(mode) => Ok(mode),
             None => Err(Error::OutOfRange {
-                what: "regulator mode (SCW.ModeSel)",
+                what: What::RegulatorMode,
                 found: raw as u32,
                 min: 0,
                 max: 3,
@@ -452,7 +453,7 @@ impl ParameterTable {
         match Self::new(number) {
             Some(table) => Ok(table),
             None => Err(Error::OutOfRange {
-                what: "parameter table",
+                what: What::ParameterTable,
                 found: number as u32,
                 min: 1,
                 max: 8,
@@ -593,7 +594,7 @@ mod tests {
                 Err(e) => assert_eq!(
                     e,
                     Error::OutOfRange {
-                        what: "servo enable (SCW.SE)",
+                        what: What::ServoEnable,
                         found: u32::from(raw),
                         min: 0,
                         max: 3
@@ -684,7 +685,7 @@ mod tests {
                 Err(e) => assert_eq!(
                     e,
                     Error::OutOfRange {
-                        what: "parameter table",
+                        what: What::ParameterTable,
                         found: u32::from(raw),
                         min: 1,
                         max: 8
@@ -720,7 +721,7 @@ mod tests {
         assert_eq!(
             RegulatorMode::try_new(4),
             Err(Error::OutOfRange {
-                what: "regulator mode (SCW.ModeSel)",
+                what: What::RegulatorMode,
                 found: 4,
                 min: 0,
                 max: 3

@@ -22,6 +22,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use core::fmt;
 use core::str::FromStr;
 
@@ -530,7 +531,7 @@ impl ECode {
         match Self::from_number(number) {
             Some(code) => Ok(code),
             None => Err(Error::InvalidValue {
-                what: "servo E-code",
+                what: What::ServoECode,
                 found: number as u32,
                 expected: E_CODES_IN_WORDS,
             }),
@@ -594,7 +595,7 @@ impl FromStr for ECode {
     /// does not define is an [`Error::InvalidValue`].
     fn from_str(text: &str) -> Result<Self> {
         let malformed = Error::Malformed {
-            what: "servo E-code",
+            what: What::ServoECode,
             expected: "E followed by one or two decimal digits, e.g. E05",
         };
         let digits = match text.as_bytes() {
@@ -729,7 +730,7 @@ mod tests {
                 assert_eq!(
                     ECode::try_from(number),
                     Err(Error::InvalidValue {
-                        what: "servo E-code",
+                        what: What::ServoECode,
                         found: u32::from(number),
                         expected: E_CODES_IN_WORDS
                     })
@@ -739,7 +740,7 @@ mod tests {
         assert_eq!("E5".parse::<ECode>(), Ok(ECode::E05));
         assert_eq!(ECode::E32.to_string(), "E32");
         let malformed = Err(Error::Malformed {
-            what: "servo E-code",
+            what: What::ServoECode,
             expected: "E followed by one or two decimal digits, e.g. E05",
         });
         for text in [
@@ -750,7 +751,7 @@ mod tests {
         assert_eq!(
             "E02".parse::<ECode>(),
             Err(Error::InvalidValue {
-                what: "servo E-code",
+                what: What::ServoECode,
                 found: 2,
                 expected: E_CODES_IN_WORDS
             })

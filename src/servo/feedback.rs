@@ -33,6 +33,7 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
+use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::{EncoderKind, Message, ServoErrorWord, ServoStatusWord};
@@ -62,7 +63,7 @@ mod field {
 /// The length of a feedback frame, 40 bytes (SPEC §1.2).
 pub const FEEDBACK_LEN: usize = field::EXTRA_DATA.end;
 
-const WHAT: &str = "servo feedback frame";
+const WHAT: What = What::ServoFeedbackFrame;
 
 /// The actual position, read according to the status word's Abs/Incr bit
 /// (SPEC §1.2, "ActPos interpretation"; seed 002, "ActualPosition").
@@ -525,7 +526,7 @@ mod tests {
     fn every_short_length_is_an_exact_error() {
         for len in 0..FEEDBACK_LEN {
             let expected = Error::Length {
-                what: "servo feedback frame",
+                what: What::ServoFeedbackFrame,
                 expected: 40,
                 found: len,
             };
@@ -610,7 +611,7 @@ mod proptests {
             match Feedback::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..FEEDBACK_LEN]),
                 Err(e) => prop_assert_eq!(e, crate::Error::Length {
-                    what: "servo feedback frame",
+                    what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: data.len(),
                 }),
