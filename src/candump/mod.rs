@@ -2,7 +2,7 @@
 //!
 //! [`parse_line`] reads one line in either of the two formats that
 //! can-utils' `candump` writes and returns the crate's
-//! [`LogFrame`](crate::can::LogFrame) — the [`CanFrame`](crate::can::CanFrame)
+//! [`LogFrame`] — the [`CanFrame`](crate::can::CanFrame)
 //! with its timestamp, interface (borrowed from the line) and direction.
 //! [`lines`] walks a whole buffer. [`write_log`] and [`write_screen`] write
 //! a frame back; everything they write parses back to the same frame.

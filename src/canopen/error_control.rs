@@ -6,7 +6,7 @@
 //!
 //! Every state machine of the error-control modules is pure: the caller
 //! passes the current time with every event and every poll as a
-//! [`Duration`](core::time::Duration) since an epoch of the caller's choice
+//! [`Duration`] since an epoch of the caller's choice
 //! on any monotonic clock (a microcontroller's tick counter, a PLC's cycle
 //! clock, or a log's timestamps: [`Timestamp::as_duration`](crate::can::Timestamp::as_duration)).
 //! Periods are durations too, so no unit is ever guessed. Nothing reads a
