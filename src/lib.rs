@@ -117,6 +117,10 @@
 #![deny(trivial_numeric_casts)]
 #![deny(unused_qualifications)]
 #![deny(rustdoc::broken_intra_doc_links)]
+#![deny(missing_copy_implementations)]
+#![deny(missing_debug_implementations)]
+#![deny(trivial_casts)]
+#![deny(unreachable_pub)]
 
 pub mod can;
 pub mod candump;

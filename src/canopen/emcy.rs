@@ -36,11 +36,11 @@ mod field {
     use core::ops::Range;
 
     /// Bytes 0–1: emergency error code, u16.
-    pub const CODE: Range<usize> = 0..2;
+    pub(super) const CODE: Range<usize> = 0..2;
     /// Byte 2: error register, object 1001h.
-    pub const REGISTER: usize = 2;
+    pub(super) const REGISTER: usize = 2;
     /// Bytes 3–7: manufacturer-specific error field.
-    pub const MANUFACTURER: Range<usize> = 3..8;
+    pub(super) const MANUFACTURER: Range<usize> = 3..8;
 }
 
 /// The length of an EMCY frame's data, 8 bytes (CiA 301 §7.2.7.3.1).

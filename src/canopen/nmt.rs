@@ -45,11 +45,11 @@ use crate::error::{check_len, Error, Result};
 mod field {
     /// Byte 0: bit 7 (reserved in a heartbeat, toggle in a guarding answer)
     /// and bits 0–6 (NMT state).
-    pub const STATE: usize = 0;
+    pub(super) const STATE: usize = 0;
     /// Bits 0–6 of byte 0: the NMT state.
-    pub const STATE_MASK: u8 = 0x7F;
+    pub(super) const STATE_MASK: u8 = 0x7F;
     /// Bit 7 of byte 0.
-    pub const BIT7: u8 = 0x80;
+    pub(super) const BIT7: u8 = 0x80;
 }
 
 /// The length of a heartbeat (and boot-up) message's data, 1 byte

@@ -36,9 +36,9 @@ use crate::error::{check_len, Error, Result};
 
 mod field {
     /// Byte 0: command specifier.
-    pub const COMMAND: usize = 0;
+    pub(super) const COMMAND: usize = 0;
     /// Byte 1: node-ID, 0 for all nodes.
-    pub const NODE: usize = 1;
+    pub(super) const NODE: usize = 1;
 }
 
 /// The length of an NMT node-control message's data, 2 bytes

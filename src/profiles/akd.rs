@@ -56,14 +56,14 @@ mod field {
     use core::ops::Range;
 
     /// Field byte 0 (EMCY byte 3): axis id in bits 0–3, feedback id in bits 4–7.
-    pub const AXIS_FEEDBACK: usize = 0;
+    pub(super) const AXIS_FEEDBACK: usize = 0;
     /// Field bytes 1–4 (EMCY bytes 4–7): reserved.
-    pub const RESERVED: Range<usize> = 1..5;
+    pub(super) const RESERVED: Range<usize> = 1..5;
 
     /// The bits of the axis id in [`AXIS_FEEDBACK`].
-    pub const AXIS_MASK: u8 = 0x0F;
+    pub(super) const AXIS_MASK: u8 = 0x0F;
     /// The position of the feedback id in [`AXIS_FEEDBACK`].
-    pub const FEEDBACK_SHIFT: u32 = 4;
+    pub(super) const FEEDBACK_SHIFT: u32 = 4;
 }
 
 /// The length of the AKD's manufacturer field, 5 bytes (EMCY bytes 3–7;

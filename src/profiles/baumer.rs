@@ -172,11 +172,11 @@ mod field {
     // byte 3 (SPEC §2.1, §4).
 
     /// EMCY bytes 3–4: alarms, object 6503h, u16.
-    pub const ALARMS: Range<usize> = 0..2;
+    pub(super) const ALARMS: Range<usize> = 0..2;
     /// EMCY bytes 5–6: warnings, object 6505h, u16.
-    pub const WARNINGS: Range<usize> = 2..4;
+    pub(super) const WARNINGS: Range<usize> = 2..4;
     /// EMCY byte 7: not used.
-    pub const UNUSED: usize = 4;
+    pub(super) const UNUSED: usize = 4;
 }
 
 /// The length of the encoder's manufacturer field, 5 bytes (EMCY bytes 3–7;

@@ -38,14 +38,14 @@ mod field {
     use core::ops::Range;
 
     /// Bytes 0–3: SSP, speed set point (SSPW0 low word, SSPW1 high word), i32.
-    pub const SPEED_SETPOINT: Range<usize> = 0..4;
+    pub(super) const SPEED_SETPOINT: Range<usize> = 0..4;
     /// Bytes 0–1: SSPW0, the low word alone, for a 16-bit ("word type")
     /// reference.
-    pub const SPEED_SETPOINT_WORD: Range<usize> = 0..2;
+    pub(super) const SPEED_SETPOINT_WORD: Range<usize> = 0..2;
     /// Bytes 4–7: SCW, servo control word (SCW0, SCW1), u32.
-    pub const CONTROL: Range<usize> = 4..8;
+    pub(super) const CONTROL: Range<usize> = 4..8;
     /// Bytes 8–9: extra data code word, i16.
-    pub const EXTRA_DATA_CODE: Range<usize> = 8..10;
+    pub(super) const EXTRA_DATA_CODE: Range<usize> = 8..10;
 }
 
 /// The length of a command frame, 10 bytes (SPEC §1.1).

@@ -94,13 +94,13 @@ bitflags! {
 
 mod bits {
     /// Bits 0–1: SE, servo enable request.
-    pub const SE_SHIFT: u32 = 0;
+    pub(super) const SE_SHIFT: u32 = 0;
     /// Bits 4–5: PRMTBL, parameter-table select, low two bits.
-    pub const PRMTBL_SHIFT: u32 = 4;
+    pub(super) const PRMTBL_SHIFT: u32 = 4;
     /// Bits 6–7: ModeSel, regulator mode.
-    pub const MODE_SHIFT: u32 = 6;
+    pub(super) const MODE_SHIFT: u32 = 6;
     /// Mask of a 2-bit field once shifted down.
-    pub const TWO_BITS: u32 = 0b11;
+    pub(super) const TWO_BITS: u32 = 0b11;
 }
 
 impl ServoControlWord {

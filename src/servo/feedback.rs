@@ -43,21 +43,21 @@ mod field {
     use core::ops::Range;
 
     /// Bytes 0–7: ActPos, actual position (POSW0..POSW3), i64.
-    pub const POSITION: Range<usize> = 0..8;
+    pub(super) const POSITION: Range<usize> = 0..8;
     /// Bytes 0–3: POSW0..1, the incremental encoder's position, i32.
-    pub const INCREMENTAL_POSITION: Range<usize> = 0..4;
+    pub(super) const INCREMENTAL_POSITION: Range<usize> = 0..4;
     /// Bytes 4–7: POSW2..3, the position latched at the last zero pulse, i32.
-    pub const ZERO_PULSE_POSITION: Range<usize> = 4..8;
+    pub(super) const ZERO_PULSE_POSITION: Range<usize> = 4..8;
     /// Bytes 8–11: SSW, servo status word, u32.
-    pub const STATUS: Range<usize> = 8..12;
+    pub(super) const STATUS: Range<usize> = 8..12;
     /// Bytes 12–15: SEW, servo error word, u32.
-    pub const ERRORS: Range<usize> = 12..16;
+    pub(super) const ERRORS: Range<usize> = 12..16;
     /// Bytes 16–19: message code, i32.
-    pub const MESSAGE_CODE: Range<usize> = 16..20;
+    pub(super) const MESSAGE_CODE: Range<usize> = 16..20;
     /// Bytes 20–23: message data, f32.
-    pub const MESSAGE_DATA: Range<usize> = 20..24;
+    pub(super) const MESSAGE_DATA: Range<usize> = 20..24;
     /// Bytes 24–39: extra data 1–4, four f32.
-    pub const EXTRA_DATA: Range<usize> = 24..40;
+    pub(super) const EXTRA_DATA: Range<usize> = 24..40;
 }
 
 /// The length of a feedback frame, 40 bytes (SPEC §1.2).
