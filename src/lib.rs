@@ -121,6 +121,9 @@
 #![deny(missing_debug_implementations)]
 #![deny(trivial_casts)]
 #![deny(unreachable_pub)]
+// Every pure function, transition and builder says its result must be used.
+#![deny(clippy::must_use_candidate)]
+#![deny(clippy::return_self_not_must_use)]
 
 pub mod can;
 pub mod candump;

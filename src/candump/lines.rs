@@ -40,6 +40,7 @@ use super::*;
 /// assert_eq!((frames[1], frames[2]), (None, None));
 /// ```
 #[inline]
+#[must_use]
 pub fn lines(buf: &[u8]) -> CandumpLines<'_> {
     lines_from(buf, LineState::default())
 }
@@ -48,6 +49,7 @@ pub fn lines(buf: &[u8]) -> CandumpLines<'_> {
 /// from where the lines of an earlier buffer of the same log left off
 /// ([`CandumpLines::state`]): for a log read in blocks.
 #[inline]
+#[must_use]
 pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
     CandumpLines {
         rest: buf,
@@ -118,12 +120,14 @@ impl<'a> CandumpLines<'a> {
     /// Return what the lines read so far mean for the next one, to go on
     /// with [`lines_from`] in the next buffer.
     #[inline]
+    #[must_use]
     pub fn state(&self) -> LineState {
         self.state
     }
 
     /// Return the part of the buffer not read yet.
     #[inline]
+    #[must_use]
     pub fn remainder(&self) -> &'a [u8] {
         self.rest
     }

@@ -141,6 +141,7 @@ pub struct Emcy {
 impl Emcy {
     /// Return an EMCY with the given fields.
     #[inline]
+    #[must_use]
     pub const fn new(code: ErrorCode, register: ErrorRegister, manufacturer: [u8; 5]) -> Self {
         Emcy {
             code,
@@ -153,6 +154,7 @@ impl Emcy {
     /// 0x0000, the remaining `register`, and a zero manufacturer area
     /// (SPEC §2.5, transitions 2 and 4).
     #[inline]
+    #[must_use]
     pub const fn reset(register: ErrorRegister) -> Self {
         Emcy::new(ErrorCode::NO_ERROR, register, [0; 5])
     }
@@ -160,18 +162,21 @@ impl Emcy {
     /// Return whether this EMCY reports "error reset or no error" (any
     /// 0x00xx code, SPEC §2.3).
     #[inline]
+    #[must_use]
     pub const fn is_reset(&self) -> bool {
         self.code.is_reset()
     }
 
     /// Decode the 8 bytes of an EMCY.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; EMCY_LEN]) -> Self {
         Self::parse_frame(&EmcyFrame::new_unchecked(bytes))
     }
 
     /// Encode the EMCY into its 8 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; EMCY_LEN] {
         let mut bytes = [0; EMCY_LEN];
         self.emit(&mut EmcyFrame::new_unchecked(&mut bytes));

@@ -36,6 +36,7 @@ pub enum ErrorCondition {
 
 impl ErrorCondition {
     /// Return the condition's name as SPEC §2.5 writes it, e.g. `"error-free"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             ErrorCondition::ErrorFree => "error-free",
@@ -70,11 +71,13 @@ pub enum EmcyTransition {
 
 impl EmcyTransition {
     /// Return the transition's number, 0–4, as in SPEC §2.5's table.
+    #[must_use]
     pub const fn number(self) -> u8 {
         self as u8
     }
 
     /// Return the transition numbered `number`, or `None` outside 0–4.
+    #[must_use]
     pub const fn from_number(number: u8) -> Option<Self> {
         match number {
             0 => Some(EmcyTransition::Initialised),
@@ -88,6 +91,7 @@ impl EmcyTransition {
 
     /// Return the condition the machine is in after this transition
     /// (SPEC §2.5, column "from → to").
+    #[must_use]
     pub const fn target(self) -> ErrorCondition {
         match self {
             EmcyTransition::Initialised | EmcyTransition::AllErrorsReset => {
@@ -145,6 +149,7 @@ pub enum EmcyEvent {
 impl EmcyEvent {
     /// Return an [`EmcyEvent::ErrorOccurred`] whose register bits are derived
     /// from the code.
+    #[must_use]
     pub const fn error(code: ErrorCode, manufacturer: [u8; 5]) -> Self {
         EmcyEvent::ErrorOccurred {
             code,
@@ -155,6 +160,7 @@ impl EmcyEvent {
 
     /// Return an [`EmcyEvent::ErrorOccurred`] with register bits supplied by
     /// the caller.
+    #[must_use]
     pub const fn error_with_register(
         code: ErrorCode,
         register: ErrorRegister,
@@ -319,12 +325,14 @@ impl ActiveError {
     };
 
     /// Return the error's emergency error code.
+    #[must_use]
     pub const fn code(self) -> ErrorCode {
         self.code
     }
 
     /// Return the error-register bits this error contributes (without bit 0,
     /// which the machine sets whenever any error is active).
+    #[must_use]
     pub const fn register(self) -> ErrorRegister {
         self.register
     }
@@ -458,6 +466,7 @@ impl<const N: usize> EmcyProducer<N> {
     }
 
     /// Return the error condition, error-free or error-occurred.
+    #[must_use]
     pub const fn condition(&self) -> ErrorCondition {
         if self.is_error_free() {
             ErrorCondition::ErrorFree
@@ -468,6 +477,7 @@ impl<const N: usize> EmcyProducer<N> {
 
     /// Return whether no error is active (and none may be, after an
     /// overflow).
+    #[must_use]
     pub const fn is_error_free(&self) -> bool {
         self.len == 0 && self.untracked.is_none()
     }
@@ -475,6 +485,7 @@ impl<const N: usize> EmcyProducer<N> {
     /// Return the error register, object 1001h, that the device presents
     /// now: 0x00 when error-free, else bit 0 and every active error's
     /// contribution (SPEC §2.2, §2.5).
+    #[must_use]
     pub fn error_register(&self) -> ErrorRegister {
         if self.is_error_free() {
             return ErrorRegister::empty();
@@ -486,6 +497,7 @@ impl<const N: usize> EmcyProducer<N> {
     }
 
     /// Return the tracked active errors in ascending code order.
+    #[must_use]
     pub fn active_errors(
         &self,
     ) -> impl DoubleEndedIterator<Item = ActiveError> + ExactSizeIterator + '_ {
@@ -493,17 +505,20 @@ impl<const N: usize> EmcyProducer<N> {
     }
 
     /// Return the number of tracked active errors.
+    #[must_use]
     pub const fn active_count(&self) -> usize {
         self.len
     }
 
     /// Return whether the error `code` is tracked as active.
+    #[must_use]
     pub fn is_active(&self, code: ErrorCode) -> bool {
         self.position(code).is_some()
     }
 
     /// Return whether an error may be active that could not be tracked for
     /// lack of a slot (see [`EmcyProducer`]'s overflow rule).
+    #[must_use]
     pub const fn has_untracked_errors(&self) -> bool {
         self.untracked.is_some()
     }

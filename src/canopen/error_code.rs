@@ -40,12 +40,14 @@ impl ErrorCode {
 
     /// Return the error code `raw`.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u16) -> Self {
         ErrorCode(raw)
     }
 
     /// Return the code as a number.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u16 {
         self.0
     }
@@ -53,12 +55,14 @@ impl ErrorCode {
     /// Return whether this is an "error reset or no error" code: any 0x00xx
     /// when decoding (SPEC §2.3, **Decision**).
     #[inline]
+    #[must_use]
     pub const fn is_reset(self) -> bool {
         self.0 >> 8 == 0
     }
 
     /// Return the class of the code, from the ranges of CiA 301 Table 26
     /// (SPEC §2.3).
+    #[must_use]
     pub const fn class(self) -> ErrorClass {
         match self.0 {
             0x0000..=0x00FF => ErrorClass::Reset,
@@ -81,6 +85,7 @@ impl ErrorCode {
     /// current, 3xxx voltage, 4xxx temperature, 81xx/82xx communication
     /// (SPEC §2.5). Bit 0 (generic) is not included: the EMCY state machine
     /// sets it whenever any error is active.
+    #[must_use]
     pub const fn register_class_bits(self) -> ErrorRegister {
         match self.0 >> 8 {
             0x20..=0x2F => ErrorRegister::CURRENT,
@@ -147,6 +152,7 @@ pub enum ErrorClass {
 impl ErrorClass {
     /// Return the class's name as the JSON output writes it (SPEC §2.3),
     /// e.g. `"device_hardware"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             ErrorClass::Reset => "reset",
@@ -166,6 +172,7 @@ impl ErrorClass {
     }
 
     /// Return the class's description in words (CiA 301 Table 26).
+    #[must_use]
     pub const fn description(self) -> &'static str {
         match self {
             ErrorClass::Reset => "Error reset or no error",

@@ -68,6 +68,7 @@ impl ErrorControlMethod {
     /// node with a guard time but factor 0 is still guarded by its master,
     /// it only does not monitor the master (seed 004 §11.1.1).
     #[inline]
+    #[must_use]
     pub const fn select(producer_heartbeat_time_ms: u16, guard_time_ms: u16) -> Self {
         if producer_heartbeat_time_ms != 0 {
             ErrorControlMethod::Heartbeat
@@ -80,6 +81,7 @@ impl ErrorControlMethod {
 
     /// Return the method's name: `heartbeat`, `guarding` or `none`.
     #[inline]
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             ErrorControlMethod::Heartbeat => "heartbeat",
@@ -111,6 +113,7 @@ pub struct ErrorControlConfig {
 impl ErrorControlConfig {
     /// Return the method in force ([`ErrorControlMethod::select`]).
     #[inline]
+    #[must_use]
     pub const fn method(&self) -> ErrorControlMethod {
         ErrorControlMethod::select(self.producer_heartbeat_time_ms, self.guard_time_ms)
     }
@@ -119,6 +122,7 @@ impl ErrorControlConfig {
     /// the two parameters is 0 … no lifeguarding") or when heartbeat is
     /// configured (heartbeat wins, SPEC §2.7).
     #[inline]
+    #[must_use]
     pub const fn node_life_time(&self) -> Option<Duration> {
         match self.method() {
             ErrorControlMethod::Guarding if self.life_time_factor != 0 => Some(millis(

@@ -43,6 +43,7 @@ pub struct ErrorHistoryEntry {
 
 impl ErrorHistoryEntry {
     /// Return an entry with the given fields.
+    #[must_use]
     pub const fn new(code: ErrorCode, additional_info: u16) -> Self {
         ErrorHistoryEntry {
             code,
@@ -53,11 +54,13 @@ impl ErrorHistoryEntry {
     /// Return the entry an EMCY makes: its code, and its manufacturer bytes
     /// 0–1 (frame bytes 3–4), little-endian, as the additional information
     /// (**Decision**, see [`ErrorHistory`]).
+    #[must_use]
     pub fn from_emcy(emcy: &Emcy) -> Self {
         ErrorHistoryEntry::new(emcy.code, LittleEndian::read_u16(&emcy.manufacturer[..2]))
     }
 
     /// Decode the entry's `u32` value.
+    #[must_use]
     pub const fn from_u32(value: u32) -> Self {
         ErrorHistoryEntry {
             code: ErrorCode::new(value as u16),
@@ -66,6 +69,7 @@ impl ErrorHistoryEntry {
     }
 
     /// Encode the entry as the `u32` value an SDO read returns.
+    #[must_use]
     pub const fn to_u32(self) -> u32 {
         (self.additional_info as u32) << 16 | self.code.get() as u32
     }
@@ -190,28 +194,33 @@ impl<const N: usize> ErrorHistory<N> {
     }
 
     /// Return the number of entries, the value of sub-index 0.
+    #[must_use]
     pub const fn len(&self) -> usize {
         self.count as usize
     }
 
     /// Return whether the history holds no entry.
+    #[must_use]
     pub const fn is_empty(&self) -> bool {
         self.count == 0
     }
 
     /// Return the newest entry, sub-index 1.
+    #[must_use]
     pub fn newest(&self) -> Option<ErrorHistoryEntry> {
         self.stored().first().copied()
     }
 
     /// Return the entry at `sub_index` (1 = newest), or `None` when it holds
     /// no entry.
+    #[must_use]
     pub fn entry(&self, sub_index: u8) -> Option<ErrorHistoryEntry> {
         let position = usize::from(sub_index).checked_sub(1)?;
         self.stored().get(position).copied()
     }
 
     /// Return the entries, newest first.
+    #[must_use]
     pub fn iter(
         &self,
     ) -> impl DoubleEndedIterator<Item = ErrorHistoryEntry> + ExactSizeIterator + '_ {

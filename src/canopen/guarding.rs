@@ -79,18 +79,21 @@ impl AcceptedStates {
 
     /// Return the set holding only `state`: the state the master commanded.
     #[inline]
+    #[must_use]
     pub const fn only(state: NmtState) -> Self {
         AcceptedStates(Self::bit(state))
     }
 
     /// Return this set with `state` added.
     #[inline]
+    #[must_use]
     pub const fn with(self, state: NmtState) -> Self {
         AcceptedStates(self.0 | Self::bit(state))
     }
 
     /// Return whether `state` is accepted.
     #[inline]
+    #[must_use]
     pub const fn contains(self, state: NmtState) -> bool {
         self.0 & Self::bit(state) != 0
     }
@@ -149,6 +152,7 @@ pub enum GuardingEvent {
 impl GuardingEvent {
     /// Return the node the event is about.
     #[inline]
+    #[must_use]
     pub const fn node(&self) -> NodeId {
         match *self {
             GuardingEvent::WrongToggle { node, .. }
@@ -160,6 +164,7 @@ impl GuardingEvent {
     /// Return when the event happened: the answer's arrival, or the
     /// instant a missing answer was due.
     #[inline]
+    #[must_use]
     pub const fn at(&self) -> Duration {
         match *self {
             GuardingEvent::WrongToggle { at, .. } | GuardingEvent::UnexpectedState { at, .. } => at,
@@ -170,6 +175,7 @@ impl GuardingEvent {
     /// Return the event's name: `wrong_toggle`, `unexpected_state` or
     /// `missing_answer`.
     #[inline]
+    #[must_use]
     pub const fn name(&self) -> &'static str {
         match self {
             GuardingEvent::WrongToggle { .. } => "wrong_toggle",
@@ -293,6 +299,7 @@ impl NodeGuardingMaster {
 
     /// Return this master accepting `accepted` states in answers.
     #[inline]
+    #[must_use]
     pub const fn with_accepted_states(mut self, accepted: AcceptedStates) -> Self {
         self.accepted = accepted;
         self
@@ -307,12 +314,14 @@ impl NodeGuardingMaster {
 
     /// Return the guarded node.
     #[inline]
+    #[must_use]
     pub const fn node(&self) -> NodeId {
         self.node
     }
 
     /// Return the guard time; 0 when there is no schedule.
     #[inline]
+    #[must_use]
     pub const fn guard_time(&self) -> Duration {
         self.guard_time
     }
@@ -320,6 +329,7 @@ impl NodeGuardingMaster {
     /// Return the toggle the next answer must carry, `None` while an
     /// observer has no baseline.
     #[inline]
+    #[must_use]
     pub const fn expected_toggle(&self) -> Option<bool> {
         self.expected_toggle
     }
@@ -327,6 +337,7 @@ impl NodeGuardingMaster {
     /// Return when the outstanding request was sent, if it has not been
     /// answered or given up.
     #[inline]
+    #[must_use]
     pub const fn outstanding_request(&self) -> Option<Duration> {
         self.outstanding
     }
@@ -334,6 +345,7 @@ impl NodeGuardingMaster {
     /// Return when the next guard request is due: one guard time after
     /// the last, 0 (at once) before the first; `None` with guard time 0.
     #[inline]
+    #[must_use]
     pub const fn next_request_at(&self) -> Option<Duration> {
         if self.guard_time.is_zero() {
             return None;
@@ -346,6 +358,7 @@ impl NodeGuardingMaster {
 
     /// Return whether a guard request is due at `now`.
     #[inline]
+    #[must_use]
     pub fn request_due(&self, now: Duration) -> bool {
         self.next_request_at().is_some_and(|due| now >= due)
     }
@@ -508,6 +521,7 @@ impl LifeGuard {
     /// Return life guarding for a node configured with `config`; inert when
     /// its node life time is `None`.
     #[inline]
+    #[must_use]
     pub const fn new(config: ErrorControlConfig) -> Self {
         LifeGuard {
             life_time: config.node_life_time(),
@@ -532,12 +546,14 @@ impl LifeGuard {
     /// Return the node life time, `None` when life guarding is
     /// disabled.
     #[inline]
+    #[must_use]
     pub const fn node_life_time(&self) -> Option<Duration> {
         self.life_time
     }
 
     /// Return when the life time runs out, if the timer is running.
     #[inline]
+    #[must_use]
     pub const fn deadline(&self) -> Option<Duration> {
         match (self.life_time, self.timer) {
             (Some(life_time), LifeTimer::Running(last)) => Some(last.saturating_add(life_time)),
@@ -548,6 +564,7 @@ impl LifeGuard {
     /// Return whether the life time has expired and no guard request has
     /// come since.
     #[inline]
+    #[must_use]
     pub const fn is_expired(&self) -> bool {
         matches!(self.timer, LifeTimer::Expired(_))
     }

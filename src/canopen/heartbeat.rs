@@ -101,12 +101,14 @@ impl HeartbeatProducer {
 
     /// Return the producer time in [`Duration`]; 0 when the heartbeat is off.
     #[inline]
+    #[must_use]
     pub const fn producer_time(&self) -> Duration {
         self.period
     }
 
     /// Return whether the heartbeat is on (1017h ≠ 0).
     #[inline]
+    #[must_use]
     pub const fn is_enabled(&self) -> bool {
         !self.period.is_zero()
     }
@@ -129,6 +131,7 @@ impl HeartbeatProducer {
     /// Return when the next heartbeat is due, `None` when the heartbeat
     /// is off; before the first heartbeat this is 0 (due at once).
     #[inline]
+    #[must_use]
     pub const fn next_due(&self) -> Option<Duration> {
         match (self.period.is_zero(), self.next_due) {
             (true, _) => None,
@@ -198,6 +201,7 @@ impl ConsumerEntry {
     /// assert_eq!(ConsumerEntry::from_od_value(0x0031_0000), None);
     /// ```
     #[inline]
+    #[must_use]
     pub const fn from_od_value(raw: u32) -> Option<Self> {
         let time_ms = (raw & 0xFFFF) as u16;
         match NodeId::new(((raw >> 16) & 0xFF) as u8) {
@@ -208,12 +212,14 @@ impl ConsumerEntry {
 
     /// Encode the entry as a 1016h sub-index value (reserved bits 0).
     #[inline]
+    #[must_use]
     pub const fn to_od_value(self) -> u32 {
         (self.node.get() as u32) << 16 | self.time_ms as u32
     }
 
     /// Return the consumer time in [`Duration`].
     #[inline]
+    #[must_use]
     pub const fn consumer_time(self) -> Duration {
         millis(self.time_ms as u32)
     }
@@ -300,6 +306,7 @@ pub enum HeartbeatEvent {
 impl HeartbeatEvent {
     /// Return the node the event is about.
     #[inline]
+    #[must_use]
     pub const fn node(&self) -> NodeId {
         match *self {
             HeartbeatEvent::Timeout { node, .. }
@@ -312,6 +319,7 @@ impl HeartbeatEvent {
     /// Return when the event happened: the deadline of a timeout, the
     /// arrival of the message otherwise.
     #[inline]
+    #[must_use]
     pub const fn at(&self) -> Duration {
         match *self {
             HeartbeatEvent::Timeout { deadline, .. } => deadline,
@@ -324,6 +332,7 @@ impl HeartbeatEvent {
     /// Return the node's last heartbeat before the event, when there
     /// was one.
     #[inline]
+    #[must_use]
     pub const fn last_heartbeat(&self) -> Option<Duration> {
         match *self {
             HeartbeatEvent::Timeout { last_heartbeat, .. }
@@ -337,6 +346,7 @@ impl HeartbeatEvent {
     /// [`at`](HeartbeatEvent::at): the consumer time for a timeout, the whole
     /// silence for a recovery or remote reset.
     #[inline]
+    #[must_use]
     pub const fn gap(&self) -> Option<Duration> {
         match self.last_heartbeat() {
             Some(last) => Some(self.at().saturating_sub(last)),
@@ -347,6 +357,7 @@ impl HeartbeatEvent {
     /// Return the event's name: `timeout`, `recovered`, `remote_reset` or
     /// `capacity_exceeded`.
     #[inline]
+    #[must_use]
     pub const fn name(&self) -> &'static str {
         match self {
             HeartbeatEvent::Timeout { .. } => "timeout",
@@ -551,6 +562,7 @@ impl<const N: usize> HeartbeatConsumer<N> {
 
     /// Return the number of nodes the consumer can monitor, `N`.
     #[inline]
+    #[must_use]
     pub const fn capacity(&self) -> usize {
         N
     }
@@ -625,11 +637,13 @@ impl<const N: usize> HeartbeatConsumer<N> {
 
     /// Return where the consumer stands with `node`, `None` when it has no
     /// entry.
+    #[must_use]
     pub fn monitor_state(&self, node: NodeId) -> Option<MonitorState> {
         self.find(node).map(|m| m.state)
     }
 
     /// Return the consumer time of `node` `None` when it has no entry.
+    #[must_use]
     pub fn consumer_time(&self, node: NodeId) -> Option<Duration> {
         self.find(node).map(|m| m.consumer_time)
     }

@@ -121,6 +121,7 @@ impl NmtState {
 
     /// Return the state's code on the wire (0x00, 0x04, 0x05 or 0x7F).
     #[inline]
+    #[must_use]
     pub const fn to_byte(self) -> u8 {
         self as u8
     }
@@ -129,6 +130,7 @@ impl NmtState {
     /// (SPEC §6.1, key `state`): `boot_up`, `stopped`, `operational` or
     /// `pre_operational`.
     #[inline]
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             NmtState::BootUp => "boot_up",
@@ -264,6 +266,7 @@ pub struct Heartbeat {
 impl Heartbeat {
     /// Return the heartbeat a producer sends in `state`; bit 7 is 0.
     #[inline]
+    #[must_use]
     pub const fn new(state: NmtState) -> Self {
         Heartbeat {
             state,
@@ -274,18 +277,21 @@ impl Heartbeat {
     /// Return the boot-up message (state 0x00), sent once when a node enters
     /// pre-operational after initialisation (CiA 301 §7.2.8.3.3).
     #[inline]
+    #[must_use]
     pub const fn boot_up() -> Self {
         Self::new(NmtState::BootUp)
     }
 
     /// Return the NMT state the message reports.
     #[inline]
+    #[must_use]
     pub const fn state(&self) -> NmtState {
         self.state
     }
 
     /// Return whether this is a boot-up message (state 0x00).
     #[inline]
+    #[must_use]
     pub const fn is_boot_up(&self) -> bool {
         matches!(self.state, NmtState::BootUp)
     }
@@ -293,6 +299,7 @@ impl Heartbeat {
     /// Return whether the reserved bit 7 was set in the received byte; always
     /// `false` for a heartbeat built with [`Heartbeat::new`].
     #[inline]
+    #[must_use]
     pub const fn reserved_bit(&self) -> bool {
         self.reserved_bit
     }
@@ -306,6 +313,7 @@ impl Heartbeat {
 
     /// Encode the heartbeat into its byte.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; HEARTBEAT_LEN] {
         let mut bytes = [0; HEARTBEAT_LEN];
         self.emit(&mut HeartbeatFrame::new_unchecked(&mut bytes));
@@ -431,6 +439,7 @@ pub struct GuardAnswer {
 impl GuardAnswer {
     /// Return the answer with the given toggle bit and state.
     #[inline]
+    #[must_use]
     pub const fn new(toggle: bool, state: NmtState) -> Self {
         GuardAnswer { toggle, state }
     }
@@ -444,6 +453,7 @@ impl GuardAnswer {
 
     /// Encode the answer into its byte.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; GUARD_ANSWER_LEN] {
         let mut bytes = [0; GUARD_ANSWER_LEN];
         self.emit(&mut GuardAnswerFrame::new_unchecked(&mut bytes));

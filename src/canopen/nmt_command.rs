@@ -109,6 +109,7 @@ impl NmtCommand {
 
     /// Return the command's code on the wire.
     #[inline]
+    #[must_use]
     pub const fn to_byte(self) -> u8 {
         self as u8
     }
@@ -116,6 +117,7 @@ impl NmtCommand {
     /// Return the command's name in lower-case words, e.g.
     /// `"enter_pre_operational"`.
     #[inline]
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             NmtCommand::StartRemoteNode => "start_remote_node",
@@ -253,6 +255,7 @@ impl NmtNodeControl {
     /// Return the message that sends `command` to `node`, or to all nodes
     /// when `node` is `None`.
     #[inline]
+    #[must_use]
     pub const fn new(command: NmtCommand, node: Option<NodeId>) -> Self {
         NmtNodeControl { command, node }
     }
@@ -266,6 +269,7 @@ impl NmtNodeControl {
 
     /// Encode the message into its 2 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; NMT_NODE_CONTROL_LEN] {
         let mut bytes = [0; NMT_NODE_CONTROL_LEN];
         self.emit(&mut NmtNodeControlFrame::new_unchecked(&mut bytes));

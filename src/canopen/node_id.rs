@@ -39,6 +39,7 @@ impl NodeId {
 
     /// Return the node-ID `raw`, or `None` when it is outside 1..=127.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         if raw >= 1 && raw <= 127 {
             Some(NodeId(raw))
@@ -64,12 +65,14 @@ impl NodeId {
 
     /// Return the node-ID as a number in 1..=127.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self.0
     }
 
     /// Return the index of this node in a 127-entry table (node 1 → 0).
     #[inline]
+    #[must_use]
     pub const fn index(self) -> usize {
         self.0 as usize - 1
     }
@@ -82,6 +85,7 @@ impl NodeId {
     /// Return the COB-ID of this node's EMCY message, 0x080 + node-ID
     /// (CiA 301 §7.2.7.3.1; SPEC §2.1).
     #[inline]
+    #[must_use]
     pub const fn emcy_cob_id(self) -> u16 {
         cob_id::EMCY_BASE + self.0 as u16
     }
@@ -89,6 +93,7 @@ impl NodeId {
     /// Return the COB-ID of this node's error-control messages (heartbeat,
     /// boot-up and node guarding), 0x700 + node-ID (CiA 301 §7.2.8.3; SPEC §2.7).
     #[inline]
+    #[must_use]
     pub const fn error_control_cob_id(self) -> u16 {
         cob_id::ERROR_CONTROL_BASE + self.0 as u16
     }
@@ -186,6 +191,7 @@ impl CobFunction {
     /// assert_eq!(CobFunction::classify(0x705), CobFunction::ErrorControl(NodeId::new(5).unwrap()));
     /// assert_eq!(CobFunction::classify(0x700), CobFunction::Other);
     /// ```
+    #[must_use]
     pub const fn classify(id: u16) -> CobFunction {
         if id > 0x7FF {
             return CobFunction::Other;
@@ -220,6 +226,7 @@ impl CobFunction {
     }
 
     /// Return the node an identifier belongs to, if its function is node-addressed.
+    #[must_use]
     pub const fn node(self) -> Option<NodeId> {
         match self {
             CobFunction::Emcy(n)

@@ -122,6 +122,7 @@ pub enum KernelError {
 
 impl KernelError {
     /// Return the kernel error with the numeric value `code`.
+    #[must_use]
     pub const fn from_code(code: u16) -> Self {
         match code {
             0x0000 => KernelError::NoError,
@@ -136,6 +137,7 @@ impl KernelError {
     }
 
     /// Return the numeric value of the `ERROR` output.
+    #[must_use]
     pub const fn code(self) -> u16 {
         match self {
             KernelError::NoError => 0x0000,
@@ -151,6 +153,7 @@ impl KernelError {
 
     /// Return whether this value reports an error (anything but
     /// `CANOPEN_KERNEL_NO_ERROR`).
+    #[must_use]
     pub const fn is_error(self) -> bool {
         self.code() != 0x0000
     }
@@ -158,6 +161,7 @@ impl KernelError {
     /// Return the identifier CiA 405 (or CODESYS, for the
     /// manufacturer-specific value) gives the value, e.g.
     /// `"CANOPEN_KERNEL_TIMEOUT"`; `"unlisted"` for [`KernelError::Unlisted`].
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             KernelError::NoError => "CANOPEN_KERNEL_NO_ERROR",
@@ -173,6 +177,7 @@ impl KernelError {
 
     /// Return the meaning of the value in words; for an unlisted value, the
     /// range CiA 405 puts it in.
+    #[must_use]
     pub const fn description(self) -> &'static str {
         match self {
             KernelError::NoError => "no error",
@@ -248,6 +253,7 @@ impl DeviceSet {
 
     /// Return the empty set.
     #[inline]
+    #[must_use]
     pub const fn new() -> Self {
         DeviceSet::EMPTY
     }
@@ -261,6 +267,7 @@ impl DeviceSet {
 
     /// Return whether `node` is in the set.
     #[inline]
+    #[must_use]
     pub const fn contains(self, node: NodeId) -> bool {
         self.0 & Self::bit(node) != 0
     }
@@ -283,36 +290,42 @@ impl DeviceSet {
 
     /// Return the set with `node` added.
     #[inline]
+    #[must_use]
     pub const fn with(self, node: NodeId) -> Self {
         DeviceSet(self.0 | Self::bit(node))
     }
 
     /// Return the set with `node` taken out.
     #[inline]
+    #[must_use]
     pub const fn without(self, node: NodeId) -> Self {
         DeviceSet(self.0 & !Self::bit(node))
     }
 
     /// Return the number of devices in the set.
     #[inline]
+    #[must_use]
     pub const fn len(self) -> usize {
         self.0.count_ones() as usize
     }
 
     /// Return whether the set holds no device.
     #[inline]
+    #[must_use]
     pub const fn is_empty(self) -> bool {
         self.0 == 0
     }
 
     /// Return the devices that are in `self` or in `other`.
     #[inline]
+    #[must_use]
     pub const fn union(self, other: DeviceSet) -> Self {
         DeviceSet(self.0 | other.0)
     }
 
     /// Return the devices that are in both `self` and `other`.
     #[inline]
+    #[must_use]
     pub const fn intersection(self, other: DeviceSet) -> Self {
         DeviceSet(self.0 & other.0)
     }
@@ -320,6 +333,7 @@ impl DeviceSet {
     /// Return the first device of the set at or after `start`, wrapping past
     /// 127 to 1: the order in which `RECV_EMCY` continues its scan (SPEC §3).
     /// `None` when the set is empty.
+    #[must_use]
     pub fn first_from(self, start: NodeId) -> Option<NodeId> {
         let at_or_after = self.0 & (u128::MAX << start.index());
         let bits = if at_or_after != 0 {
@@ -335,6 +349,7 @@ impl DeviceSet {
     }
 
     /// Return the devices of the set in ascending order.
+    #[must_use]
     pub fn iter(self) -> impl DoubleEndedIterator<Item = NodeId> + Clone {
         NodeId::all().filter(move |&node| self.contains(node))
     }
@@ -473,12 +488,14 @@ impl Default for EmcyStorage {
 impl EmcyStorage {
     /// Return a storage with no device configured and every slot at "no
     /// error".
+    #[must_use]
     pub const fn new() -> Self {
         Self::with_devices(DeviceSet::EMPTY)
     }
 
     /// Return a storage with `devices` configured and every slot at "no
     /// error".
+    #[must_use]
     pub const fn with_devices(devices: DeviceSet) -> Self {
         EmcyStorage {
             slots: [NO_ERROR; DEVICES],
@@ -503,18 +520,21 @@ impl EmcyStorage {
 
     /// Return whether `node` is a configured device.
     #[inline]
+    #[must_use]
     pub const fn is_configured(&self, node: NodeId) -> bool {
         self.configured.contains(node)
     }
 
     /// Return the configured devices.
     #[inline]
+    #[must_use]
     pub const fn devices(&self) -> DeviceSet {
         self.configured
     }
 
     /// Return every device, configured or not, whose slot holds an error.
     #[inline]
+    #[must_use]
     pub const fn devices_in_error(&self) -> DeviceSet {
         self.in_error
     }
@@ -545,6 +565,7 @@ impl EmcyStorage {
     /// manufacturer bytes the device sent), or the all-zero "no error" when
     /// it has sent nothing.
     #[inline]
+    #[must_use]
     pub const fn slot(&self, node: NodeId) -> Emcy {
         self.slots[node.index()]
     }
@@ -552,6 +573,7 @@ impl EmcyStorage {
     /// Return the error pending for `node`, configured or not: the first
     /// error it sent since its last reset; `None` when it holds "no error".
     #[inline]
+    #[must_use]
     pub fn root_cause(&self, node: NodeId) -> Option<Emcy> {
         let slot = self.slot(node);
         (!slot.is_reset()).then_some(slot)
@@ -571,6 +593,7 @@ impl EmcyStorage {
 
     /// `RECV_EMCY_DEV` for `node` with the raw CiA 405 outputs `CONFIRM`,
     /// `ERROR` and `ERRORINFO`.
+    #[must_use]
     pub fn recv_emcy_dev_outputs(&self, node: NodeId) -> RecvEmcyDevOutputs {
         match self.recv_emcy_dev(node) {
             Ok(_) => RecvEmcyDevOutputs {
@@ -615,12 +638,14 @@ pub struct RecvEmcyDevOutputs {
 impl RecvEmcyDevOutputs {
     /// Return `CONFIRM`: true when the call completed without error.
     #[inline]
+    #[must_use]
     pub const fn confirm(&self) -> bool {
         self.confirm
     }
 
     /// Return `ERROR`: [`KernelError::NoError`] when the call completed.
     #[inline]
+    #[must_use]
     pub const fn error(&self) -> KernelError {
         self.error
     }
@@ -630,6 +655,7 @@ impl RecvEmcyDevOutputs {
     /// register and manufacturer bytes kept; all zero after an error of the
     /// call).
     #[inline]
+    #[must_use]
     pub const fn errorinfo(&self) -> Emcy {
         self.errorinfo
     }
@@ -637,6 +663,7 @@ impl RecvEmcyDevOutputs {
     /// Return whether an emergency is pending for the device: `ERRORINFO`'s
     /// code ≠ 0.
     #[inline]
+    #[must_use]
     pub const fn emergency_received(&self) -> bool {
         self.errorinfo.code.get() != 0
     }
@@ -675,6 +702,7 @@ impl RecvEmcyResult {
     /// Return the `DEVICE` output as a node: `None` for
     /// [`RecvEmcyResult::AllClear`].
     #[inline]
+    #[must_use]
     pub const fn device(&self) -> Option<NodeId> {
         match self {
             RecvEmcyResult::Error { device, .. } | RecvEmcyResult::ResetError { device, .. } => {
@@ -687,6 +715,7 @@ impl RecvEmcyResult {
     /// Return whether an emergency was received: `DEVICE` ≠ 0 and
     /// `ERRORINFO`'s code ≠ 0, i.e. [`RecvEmcyResult::Error`].
     #[inline]
+    #[must_use]
     pub const fn emergency_received(&self) -> bool {
         matches!(self, RecvEmcyResult::Error { .. })
     }
@@ -715,12 +744,14 @@ pub struct RecvEmcyOutputs {
 impl RecvEmcyOutputs {
     /// Return `CONFIRM`: true when the call completed without error.
     #[inline]
+    #[must_use]
     pub const fn confirm(&self) -> bool {
         self.confirm
     }
 
     /// Return `ERROR`: [`KernelError::NoError`] when the call completed.
     #[inline]
+    #[must_use]
     pub const fn error(&self) -> KernelError {
         self.error
     }
@@ -728,6 +759,7 @@ impl RecvEmcyOutputs {
     /// Return `DEVICE`: the node-ID of the device delivered, 1..=127, or 0
     /// for "all devices are error-free" (and after an error of the call).
     #[inline]
+    #[must_use]
     pub const fn device(&self) -> u8 {
         self.device
     }
@@ -737,6 +769,7 @@ impl RecvEmcyOutputs {
     /// bytes as the device sent them); all zero for "all clear" and after an
     /// error of the call.
     #[inline]
+    #[must_use]
     pub const fn errorinfo(&self) -> Emcy {
         self.errorinfo
     }
@@ -744,6 +777,7 @@ impl RecvEmcyOutputs {
     /// Return whether an emergency was received: `DEVICE` ≠ 0 and
     /// `ERRORINFO`'s code ≠ 0 (CiA 405 `RECV_EMCY`; SPEC §3).
     #[inline]
+    #[must_use]
     pub const fn emergency_received(&self) -> bool {
         self.device != 0 && self.errorinfo.code.get() != 0
     }
@@ -810,6 +844,7 @@ impl Default for RecvEmcy {
 impl RecvEmcy {
     /// Return a block whose first scan starts at device 1, with nothing
     /// delivered yet.
+    #[must_use]
     pub const fn new() -> Self {
         RecvEmcy {
             next: NodeId::MIN,

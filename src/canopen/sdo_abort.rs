@@ -105,23 +105,27 @@ impl SdoAbortCode {
 
     /// Return the abort code `raw`.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u32) -> Self {
         SdoAbortCode(raw)
     }
 
     /// Return the abort code as a number.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u32 {
         self.0
     }
 
     /// Return whether CiA 301 Table 22 names this code.
+    #[must_use]
     pub const fn is_known(self) -> bool {
         self.known_description().is_some()
     }
 
     /// Return the code's description from CiA 301 Table 22, or
     /// `"Unknown SDO abort code"`.
+    #[must_use]
     pub const fn description(self) -> &'static str {
         match self.known_description() {
             Some(text) => text,

@@ -105,6 +105,7 @@ impl AxisId {
 
     /// Return the axis id `raw`, or `None` when it does not fit in 4 bits.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         if raw <= field::AXIS_MASK {
             Some(AxisId(raw))
@@ -136,12 +137,14 @@ impl AxisId {
 
     /// Return the axis id as a number in 0..=15.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self.0
     }
 
     /// Return whether the EMCY names an axis (the id is not 0).
     #[inline]
+    #[must_use]
     pub const fn is_given(self) -> bool {
         self.0 != 0
     }
@@ -267,6 +270,7 @@ impl FeedbackId {
     /// Return the feedback id whose nibble is `raw`, or `None` when `raw`
     /// is not 0..=5.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         match raw {
             0 => Some(FeedbackId::None),
@@ -488,6 +492,7 @@ pub struct AkdManufacturer {
 impl AkdManufacturer {
     /// Return the field for `axis` and `feedback`, reserved bytes zero.
     #[inline]
+    #[must_use]
     pub const fn new(axis: AxisId, feedback: FeedbackId) -> Self {
         AkdManufacturer {
             axis,
@@ -499,12 +504,14 @@ impl AkdManufacturer {
     /// Decode the 5 bytes of the field; a feedback nibble of 6..=15 is
     /// kept as [`FeedbackId::Unknown`].
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; AKD_MANUFACTURER_LEN]) -> Self {
         Self::parse_field(&AkdManufacturerField::new_unchecked(bytes))
     }
 
     /// Encode the field into its 5 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; AKD_MANUFACTURER_LEN] {
         let mut bytes = [0; AKD_MANUFACTURER_LEN];
         self.emit(&mut AkdManufacturerField::new_unchecked(&mut bytes));
@@ -556,6 +563,7 @@ impl AkdEmcy {
     /// of all active errors, and the `axis` and `feedback` it occurred in
     /// (seed 000, transitions 1 and 3). Reserved bytes are zero.
     #[inline]
+    #[must_use]
     pub const fn fault(
         code: ErrorCode,
         register: ErrorRegister,
@@ -573,6 +581,7 @@ impl AkdEmcy {
     /// 0x0000, the `remaining` register (empty once the last error is
     /// reset), and still the `axis` and `feedback` id in byte 3 (SPEC §2.4).
     #[inline]
+    #[must_use]
     pub const fn reset(remaining: ErrorRegister, axis: AxisId, feedback: FeedbackId) -> Self {
         Self::fault(ErrorCode::NO_ERROR, remaining, axis, feedback)
     }
@@ -580,6 +589,7 @@ impl AkdEmcy {
     /// Return whether this EMCY reports "error reset or no error" (any
     /// 0x00xx code, SPEC §2.3).
     #[inline]
+    #[must_use]
     pub const fn is_reset(&self) -> bool {
         self.code.is_reset()
     }
@@ -588,6 +598,7 @@ impl AkdEmcy {
     /// feedback nibble of 6..=15 is kept as [`FeedbackId::Unknown`] with the
     /// code, register and axis.
     #[inline]
+    #[must_use]
     pub fn from_emcy(emcy: &Emcy) -> Self {
         AkdEmcy {
             code: emcy.code,
@@ -598,18 +609,21 @@ impl AkdEmcy {
 
     /// Encode into a generic EMCY.
     #[inline]
+    #[must_use]
     pub fn to_emcy(&self) -> Emcy {
         Emcy::new(self.code, self.register, self.manufacturer.to_bytes())
     }
 
     /// Decode the 8 bytes of an AKD EMCY.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; EMCY_LEN]) -> Self {
         Self::from_emcy(&Emcy::from_bytes(bytes))
     }
 
     /// Encode the EMCY into its 8 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; EMCY_LEN] {
         self.to_emcy().to_bytes()
     }

@@ -161,6 +161,7 @@ pub const INJECTION_OBJECT_INDEX: u16 = 0x2116;
 /// assert!(is_reserved_code(ErrorCode::new(0xFF0A)));
 /// assert!(!is_reserved_code(ErrorCode::new(0xFF17))); // multiturn power-on reset
 /// ```
+#[must_use]
 pub const fn is_reserved_code(code: ErrorCode) -> bool {
     matches!(code.get(), 0xFF0A..=0xFF16 | 0xFF18..=0xFFFF)
 }
@@ -210,6 +211,7 @@ impl BaumerManufacturer {
     /// Return the field with the given alarms and warnings and a zero unused
     /// byte.
     #[inline]
+    #[must_use]
     pub const fn new(alarms: Alarms, warnings: Warnings) -> Self {
         BaumerManufacturer {
             alarms,
@@ -221,6 +223,7 @@ impl BaumerManufacturer {
     /// Decode the 5 bytes of the manufacturer field (EMCY bytes 3–7);
     /// unnamed alarm and warning bits are retained.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; MANUFACTURER_LEN]) -> Self {
         BaumerManufacturer {
             alarms: Alarms::from_bits_retain(LittleEndian::read_u16(&bytes[field::ALARMS])),
@@ -231,6 +234,7 @@ impl BaumerManufacturer {
 
     /// Encode the field into its 5 bytes (EMCY bytes 3–7).
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; MANUFACTURER_LEN] {
         let mut bytes = [0; MANUFACTURER_LEN];
         LittleEndian::write_u16(&mut bytes[field::ALARMS], self.alarms.bits());
@@ -258,6 +262,7 @@ pub struct BaumerEmcy {
 impl BaumerEmcy {
     /// Return an EMCY with the given fields.
     #[inline]
+    #[must_use]
     pub const fn new(
         code: ErrorCode,
         register: ErrorRegister,
@@ -272,6 +277,7 @@ impl BaumerEmcy {
 
     /// Decode the manufacturer field of an EMCY.
     #[inline]
+    #[must_use]
     pub fn from_emcy(emcy: &Emcy) -> Self {
         BaumerEmcy {
             code: emcy.code,
@@ -282,18 +288,21 @@ impl BaumerEmcy {
 
     /// Encode the manufacturer field back into a plain EMCY.
     #[inline]
+    #[must_use]
     pub fn to_emcy(&self) -> Emcy {
         Emcy::new(self.code, self.register, self.manufacturer.to_bytes())
     }
 
     /// Decode the 8 bytes of an EMCY.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; EMCY_LEN]) -> Self {
         Self::from_emcy(&Emcy::from_bytes(bytes))
     }
 
     /// Encode the EMCY into its 8 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; EMCY_LEN] {
         self.to_emcy().to_bytes()
     }
@@ -337,6 +346,7 @@ pub enum Appearance {
 
 impl Appearance {
     /// Return the appearance's name, `"startup"` or `"runtime"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             Appearance::Startup => "startup",
@@ -360,6 +370,7 @@ pub enum Variant {
 impl Variant {
     /// Return the variant's name, `"both"`, `"redundant"` or
     /// `"non_redundant"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             Variant::Both => "both",
@@ -391,6 +402,7 @@ impl ResetBehaviour {
     /// [`ResetBehaviour::NoReset`], on the non-redundant one
     /// [`ResetBehaviour::AtReboot`]; with [`Variant::Both`] it stays as it is
     /// (SPEC §4, "(1)").
+    #[must_use]
     pub const fn on(self, variant: Variant) -> ResetBehaviour {
         match (self, variant) {
             (ResetBehaviour::AtRebootExceptRedundant, Variant::Redundant) => {
@@ -418,6 +430,7 @@ pub enum InjectionKind {
 
 impl InjectionKind {
     /// Return the high word of codes of this kind.
+    #[must_use]
     pub const fn high_word(self) -> u16 {
         match self {
             InjectionKind::StartupAlarm => 0x0001,
@@ -427,6 +440,7 @@ impl InjectionKind {
     }
 
     /// Return the kind whose high word is `high`, if any.
+    #[must_use]
     pub const fn from_high_word(high: u16) -> Option<Self> {
         match high {
             0x0001 => Some(InjectionKind::StartupAlarm),
@@ -437,6 +451,7 @@ impl InjectionKind {
     }
 
     /// Return when a source simulated with this kind appears.
+    #[must_use]
     pub const fn appearance(self) -> Appearance {
         match self {
             InjectionKind::StartupAlarm | InjectionKind::StartupWarning => Appearance::Startup,
@@ -478,6 +493,7 @@ impl InjectionCode {
 
     /// Return the code of kind `kind` with low word `number`.
     #[inline]
+    #[must_use]
     pub const fn new(kind: InjectionKind, number: u16) -> Self {
         InjectionCode(((kind.high_word() as u32) << 16) | number as u32)
     }
@@ -498,6 +514,7 @@ impl InjectionCode {
 
     /// Return the code as a number.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u32 {
         self.0
     }
@@ -505,12 +522,14 @@ impl InjectionCode {
     /// Return the kind told by the high word; `None` for
     /// [`InjectionCode::NO_ERROR`].
     #[inline]
+    #[must_use]
     pub const fn kind(self) -> Option<InjectionKind> {
         InjectionKind::from_high_word((self.0 >> 16) as u16)
     }
 
     /// Return the low word, the number of the simulated source.
     #[inline]
+    #[must_use]
     pub const fn number(self) -> u16 {
         (self.0 & 0xFFFF) as u16
     }
@@ -557,6 +576,7 @@ impl Signalling {
 
     /// Return the signalling with the given bits.
     #[inline]
+    #[must_use]
     pub const fn new(register: ErrorRegister, alarms: Alarms, warnings: Warnings) -> Self {
         Signalling {
             register,
@@ -567,6 +587,7 @@ impl Signalling {
 
     /// Return whether any alarm (6503h) or warning (6505h) bit is signalled.
     #[inline]
+    #[must_use]
     pub const fn has_alarm_or_warning_bits(&self) -> bool {
         !self.alarms.is_empty() || !self.warnings.is_empty()
     }
@@ -596,6 +617,7 @@ impl DiagnosticSource {
     /// `"non_volatile_data_manager_startup"`: the string the command-line
     /// decoder writes in `sources` (SPEC §6.1).
     #[inline]
+    #[must_use]
     pub const fn name(&self) -> &'static str {
         self.name
     }
@@ -603,6 +625,7 @@ impl DiagnosticSource {
     /// Return the diagnostic source as the manual names it, e.g.
     /// `"Non-volatile data manager"`.
     #[inline]
+    #[must_use]
     pub const fn source(&self) -> &'static str {
         self.source
     }
@@ -610,6 +633,7 @@ impl DiagnosticSource {
     /// Return what the source reports, e.g. `"Problem with the non-volatile
     /// memory"`.
     #[inline]
+    #[must_use]
     pub const fn description(&self) -> &'static str {
         self.description
     }
@@ -617,18 +641,21 @@ impl DiagnosticSource {
     /// Return the EMCY error code; `None` when no EMCY is sent (CAN
     /// controller bus off).
     #[inline]
+    #[must_use]
     pub const fn code(&self) -> Option<ErrorCode> {
         self.code
     }
 
     /// Return when the source is signalled.
     #[inline]
+    #[must_use]
     pub const fn appearance(&self) -> Appearance {
         self.appearance
     }
 
     /// Return where the source becomes visible.
     #[inline]
+    #[must_use]
     pub const fn signalling(&self) -> Signalling {
         self.signalling
     }
@@ -636,6 +663,7 @@ impl DiagnosticSource {
     /// Return when the signalling is reset; `None` where the table gives
     /// none ("error reset or no error").
     #[inline]
+    #[must_use]
     pub const fn reset(&self) -> Option<ResetBehaviour> {
         self.reset
     }
@@ -643,12 +671,14 @@ impl DiagnosticSource {
     /// Return the error injection code that simulates the source; `None`
     /// for the CAN controller and error-control sources, which have none.
     #[inline]
+    #[must_use]
     pub const fn injection(&self) -> Option<InjectionCode> {
         self.injection
     }
 
     /// Return the encoder design the row applies to.
     #[inline]
+    #[must_use]
     pub const fn variant(&self) -> Variant {
         self.variant
     }
@@ -656,6 +686,7 @@ impl DiagnosticSource {
     /// Return whether the row signals alarm or warning bits and all of them
     /// are set in `field`.
     #[inline]
+    #[must_use]
     pub fn is_signalled_in(&self, field: &BaumerManufacturer) -> bool {
         self.signalling.has_alarm_or_warning_bits()
             && field.alarms.contains(self.signalling.alarms)
@@ -665,6 +696,7 @@ impl DiagnosticSource {
     /// Return the EMCY the encoder sends when this is its only active
     /// source: the row's code, its error register bits and its alarm and
     /// warning bits (SPEC §4); `None` when no EMCY is sent (bus off).
+    #[must_use]
     pub const fn emcy(&self) -> Option<BaumerEmcy> {
         match self.code {
             Some(code) => Some(BaumerEmcy::new(
@@ -704,6 +736,7 @@ pub fn sources_for_code(
 
 /// Return the row simulated by injection code `code`; at most one row has
 /// each code (SPEC §4).
+#[must_use]
 pub fn source_for_injection(code: InjectionCode) -> Option<&'static DiagnosticSource> {
     DIAGNOSTIC_SOURCES
         .iter()
@@ -711,6 +744,7 @@ pub fn source_for_injection(code: InjectionCode) -> Option<&'static DiagnosticSo
 }
 
 /// Return the row named `name` (see [`DiagnosticSource::name`]).
+#[must_use]
 pub fn source_by_name(name: &str) -> Option<&'static DiagnosticSource> {
     DIAGNOSTIC_SOURCES.iter().find(|source| source.name == name)
 }

@@ -50,6 +50,7 @@ pub enum ServoReadyMode {
 
 impl ServoReadyMode {
     /// Return the mode whose parameter value is `raw`, or `None` above 1.
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         match raw {
             0 => Some(ServoReadyMode::ErrorFree),
@@ -73,6 +74,7 @@ impl ServoReadyMode {
     }
 
     /// Return the parameter value, 0 or 1.
+    #[must_use]
     pub const fn get(self) -> u8 {
         self as u8
     }
@@ -125,6 +127,7 @@ pub const fn servo_ready(
 /// assert!(!enable_handshake(ServoEnable::DISABLED, ServoEnable::ENABLE, false));
 /// assert!(!enable_handshake(ServoEnable::ENABLE, ServoEnable::BOTH, true));
 /// ```
+#[must_use]
 pub const fn enable_handshake(
     previous: ServoEnable,
     current: ServoEnable,
@@ -163,6 +166,7 @@ pub enum HandshakePhase {
 
 impl HandshakePhase {
     /// Return the phase's name in snake case, e.g. `"unsolicited_ack"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             HandshakePhase::Idle => "idle",
@@ -176,6 +180,7 @@ impl HandshakePhase {
 
     /// Return whether the NC must write the request bit as 1 in this phase
     /// (only in [`HandshakePhase::Requested`]).
+    #[must_use]
     pub const fn request_bit(self) -> bool {
         matches!(self, HandshakePhase::Requested)
     }
@@ -280,6 +285,7 @@ impl<B: HandshakeBits> Default for Handshake<B> {
 
 impl<B: HandshakeBits> Handshake<B> {
     /// Return a handshake in [`HandshakePhase::Idle`].
+    #[must_use]
     pub const fn new() -> Self {
         Self::enter(HandshakePhase::Idle, false)
     }
@@ -294,12 +300,14 @@ impl<B: HandshakeBits> Handshake<B> {
     }
 
     /// Return the current phase.
+    #[must_use]
     pub const fn phase(self) -> HandshakePhase {
         self.phase
     }
 
     /// Return whether a [`start`](Self::start) is held back until an
     /// unsolicited ack drops.
+    #[must_use]
     pub const fn start_held_back(self) -> bool {
         self.start_held_back
     }
@@ -307,16 +315,19 @@ impl<B: HandshakeBits> Handshake<B> {
     /// Return how many [`step`](Self::step)s the handshake has spent in its
     /// current phase (saturating). A caller that wants a timeout compares it
     /// with a number of cycles of its own choosing.
+    #[must_use]
     pub const fn cycles_in_phase(self) -> u32 {
         self.cycles_in_phase
     }
 
     /// Return whether the NC must write the request bit as 1 next.
+    #[must_use]
     pub const fn request_bit(self) -> bool {
         self.phase.request_bit()
     }
 
     /// Return `command` with the request bit set as this state requires.
+    #[must_use]
     pub const fn apply(self, command: ServoControlWord) -> ServoControlWord {
         command.with_flag(B::REQUEST, self.request_bit())
     }
@@ -325,6 +336,7 @@ impl<B: HandshakeBits> Handshake<B> {
     /// unsolicited ack, hold the start back until the ack drops; while a
     /// handshake is already running (Requested, Acknowledged, Releasing),
     /// change nothing.
+    #[must_use]
     pub const fn start(self) -> Self {
         match self.phase {
             HandshakePhase::Idle | HandshakePhase::Done => {
@@ -342,6 +354,7 @@ impl<B: HandshakeBits> Handshake<B> {
 
     /// Abandon the handshake and go to Idle; the request bit is written 0.
     /// An ack that arrives later is reported as [`HandshakePhase::UnsolicitedAck`].
+    #[must_use]
     pub const fn cancel(self) -> Self {
         Self::enter(HandshakePhase::Idle, false)
     }
@@ -350,6 +363,7 @@ impl<B: HandshakeBits> Handshake<B> {
     /// in the previous cycle, `status` the newest status word. Return the
     /// new state and the control word to write: `last_command` with the
     /// request bit as the new state requires.
+    #[must_use]
     pub const fn step(
         self,
         last_command: ServoControlWord,

@@ -163,6 +163,7 @@ pub struct Command {
 impl Command {
     /// Return a command with the given fields.
     #[inline]
+    #[must_use]
     pub const fn new(speed_setpoint: i32, control: ServoControlWord, extra_data_code: i16) -> Self {
         Command {
             speed_setpoint,
@@ -176,6 +177,7 @@ impl Command {
     /// ([`speed_setpoint`](Self::speed_setpoint) and
     /// [`speed_setpoint_word`](Self::speed_setpoint_word)) give the same number.
     #[inline]
+    #[must_use]
     pub const fn with_word_setpoint(
         speed_setpoint: i16,
         control: ServoControlWord,
@@ -187,6 +189,7 @@ impl Command {
     /// Return the speed set point read as a 16-bit reference: the low word
     /// SSPW0 (SPEC §1.1).
     #[inline]
+    #[must_use]
     pub const fn speed_setpoint_word(&self) -> i16 {
         // Keeping only the low 16 bits is the meaning of the word reading.
         self.speed_setpoint as i16
@@ -194,12 +197,14 @@ impl Command {
 
     /// Decode the 10 bytes of a command frame.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; COMMAND_LEN]) -> Self {
         Self::parse_frame(&CommandFrame::new_unchecked(bytes))
     }
 
     /// Encode the command into its 10 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; COMMAND_LEN] {
         let mut bytes = [0; COMMAND_LEN];
         self.emit(&mut CommandFrame::new_unchecked(&mut bytes));

@@ -145,40 +145,47 @@ impl ServoControlWord {
     }
 
     /// Return the SE field (bits 0–1), the servo enable request.
+    #[must_use]
     pub const fn servo_enable(self) -> ServoEnable {
         ServoEnable(self.field(bits::SE_SHIFT))
     }
 
     /// Return a copy with the SE field (bits 0–1) set to `se`.
+    #[must_use]
     pub const fn with_servo_enable(self, se: ServoEnable) -> Self {
         self.with_field(bits::SE_SHIFT, se.0 as u32)
     }
 
     /// Return whether the emergency state is requested: EMGON (bit 2) is
     /// **0** on the wire (SPEC §1.3, active low).
+    #[must_use]
     pub const fn emergency_active(self) -> bool {
         !self.contains(ServoControlWord::EMGON)
     }
 
     /// Return a copy that requests (`true`: EMGON bit 2 written as 0) or
     /// releases (`false`: bit 2 written as 1) the emergency state.
+    #[must_use]
     pub const fn with_emergency(self, active: bool) -> Self {
         self.with_flag(ServoControlWord::EMGON, !active)
     }
 
     /// Return whether "internal" braking is requested: Brake (bit 10) is
     /// **0** on the wire (SPEC §1.3, active low; documented as not used yet).
+    #[must_use]
     pub const fn internal_brake_active(self) -> bool {
         !self.contains(ServoControlWord::BRAKE)
     }
 
     /// Return a copy that requests (`true`: Brake bit 10 written as 0) or
     /// releases (`false`: bit 10 written as 1) internal braking.
+    #[must_use]
     pub const fn with_internal_brake(self, active: bool) -> Self {
         self.with_flag(ServoControlWord::BRAKE, !active)
     }
 
     /// Return a copy with the single-bit `flag` set or cleared.
+    #[must_use]
     pub const fn with_flag(self, flag: ServoControlWord, set: bool) -> Self {
         if set {
             self.union(flag)
@@ -190,6 +197,7 @@ impl ServoControlWord {
     /// Return the selected parameter table, ExtPRMTBL·4 + PRMTBL + 1, from
     /// PRMTBL (bits 4–5) and ExtPRMTBL (bit 12) (SPEC §1.3 Decision: PRMTBL
     /// is bits 4–5).
+    #[must_use]
     pub const fn parameter_table(self) -> ParameterTable {
         ParameterTable::from_select(
             self.contains(ServoControlWord::EXT_PRMTBL),
@@ -199,17 +207,20 @@ impl ServoControlWord {
 
     /// Return a copy that selects parameter table `table` (PRMTBL bits 4–5
     /// and ExtPRMTBL bit 12).
+    #[must_use]
     pub const fn with_parameter_table(self, table: ParameterTable) -> Self {
         self.with_field(bits::PRMTBL_SHIFT, table.prmtbl() as u32)
             .with_flag(ServoControlWord::EXT_PRMTBL, table.ext_prmtbl())
     }
 
     /// Return the ModeSel field (bits 6–7), the regulator mode.
+    #[must_use]
     pub const fn regulator_mode(self) -> RegulatorMode {
         RegulatorMode::from_bits(self.field(bits::MODE_SHIFT))
     }
 
     /// Return a copy with the ModeSel field (bits 6–7) set to `mode`.
+    #[must_use]
     pub const fn with_regulator_mode(self, mode: RegulatorMode) -> Self {
         self.with_field(bits::MODE_SHIFT, mode as u32)
     }
@@ -254,6 +265,7 @@ impl ServoEnable {
 
     /// Return the SE value `raw`, or `None` when it is above 3.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         if raw <= 0b11 {
             Some(ServoEnable(raw))
@@ -278,6 +290,7 @@ impl ServoEnable {
 
     /// Return the SE value as a number in 0..=3.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self.0
     }
@@ -346,6 +359,7 @@ impl RegulatorMode {
 
     /// Return the mode whose ModeSel value is `raw`, or `None` above 3.
     #[inline]
+    #[must_use]
     pub const fn new(raw: u8) -> Option<Self> {
         if raw <= 0b11 {
             Some(Self::from_bits(raw))
@@ -371,12 +385,14 @@ impl RegulatorMode {
 
     /// Return the ModeSel value, 0..=3.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self as u8
     }
 
     /// Return the mode's name as the command-line decoder's
     /// `regulator_mode` writes it (SPEC §6.2), e.g. `"precise_speed"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             RegulatorMode::Speed => "speed",
@@ -438,6 +454,7 @@ impl ParameterTable {
 
     /// Return table `number`, or `None` when it is outside 1..=8.
     #[inline]
+    #[must_use]
     pub const fn new(number: u8) -> Option<Self> {
         if number >= 1 && number <= 8 {
             Some(ParameterTable(number))
@@ -464,24 +481,28 @@ impl ParameterTable {
     /// Return the table selected by the wire bits: ExtPRMTBL `ext_prmtbl`
     /// and the 2-bit PRMTBL field `prmtbl` (its upper bits are ignored).
     #[inline]
+    #[must_use]
     pub const fn from_select(ext_prmtbl: bool, prmtbl: u8) -> Self {
         ParameterTable((ext_prmtbl as u8) * 4 + (prmtbl & 0b11) + 1)
     }
 
     /// Return the table number, 1..=8.
     #[inline]
+    #[must_use]
     pub const fn get(self) -> u8 {
         self.0
     }
 
     /// Return the ExtPRMTBL bit that selects this table (tables 5–8).
     #[inline]
+    #[must_use]
     pub const fn ext_prmtbl(self) -> bool {
         self.0 > 4
     }
 
     /// Return the 2-bit PRMTBL field that selects this table, 0..=3.
     #[inline]
+    #[must_use]
     pub const fn prmtbl(self) -> u8 {
         (self.0 - 1) & 0b11
     }

@@ -112,6 +112,7 @@ const CAUSE_BITS: u32 = DEFINED_BITS & !1;
 impl ServoErrorWord {
     /// Return the word with only the bit of E-code `code` set (the summary
     /// bit 0 is not set; see [`ServoErrorWord::summarized`]).
+    #[must_use]
     pub const fn from_e_code(code: ECode) -> Self {
         code.fault().flag()
     }
@@ -127,6 +128,7 @@ impl ServoErrorWord {
 
     /// Return whether any cause bit (a defined bit other than the summary
     /// bit 0) is set.
+    #[must_use]
     pub const fn has_cause(self) -> bool {
         self.bits() & CAUSE_BITS != 0
     }
@@ -134,6 +136,7 @@ impl ServoErrorWord {
     /// Return a copy whose summary bit 0 (ServoErrors) is set exactly when a
     /// cause bit is set — the word a drive produces (seed 002, "ServoErrors.
     /// Summarized errors"). Reserved bits are kept and do not count.
+    #[must_use]
     pub const fn summarized(self) -> Self {
         if self.has_cause() {
             self.union(ServoErrorWord::SERVO_ERRORS)
@@ -514,6 +517,7 @@ impl ECode {
 
     /// Return the E-code numbered `number` (5 → E05), or `None` when SPEC
     /// §1.5 defines no such code.
+    #[must_use]
     pub const fn from_number(number: u8) -> Option<Self> {
         let mut i = 0;
         while i < Self::ALL.len() {
@@ -539,6 +543,7 @@ impl ECode {
     }
 
     /// Return the code's number (E05 → 5).
+    #[must_use]
     pub const fn number(self) -> u8 {
         self as u8
     }
@@ -562,11 +567,13 @@ impl ECode {
     }
 
     /// Return the bit number of this code's fault in the error word.
+    #[must_use]
     pub const fn bit(self) -> u8 {
         self.fault().bit()
     }
 
     /// Return the meaning of this code's fault in words.
+    #[must_use]
     pub const fn description(self) -> &'static str {
         self.fault().description()
     }

@@ -85,6 +85,7 @@ pub enum ActualPosition {
 
 impl ActualPosition {
     /// Return the position that the raw ActPos `raw` means for `encoder`.
+    #[must_use]
     pub const fn from_raw(raw: i64, encoder: EncoderKind) -> Self {
         match encoder {
             EncoderKind::Absolute => ActualPosition::Absolute(raw),
@@ -97,6 +98,7 @@ impl ActualPosition {
     }
 
     /// Return the raw 64-bit ActPos that carries this position.
+    #[must_use]
     pub const fn raw(self) -> i64 {
         match self {
             ActualPosition::Absolute(raw) => raw,
@@ -108,6 +110,7 @@ impl ActualPosition {
     }
 
     /// Return the kind of encoder this position comes from.
+    #[must_use]
     pub const fn encoder(self) -> EncoderKind {
         match self {
             ActualPosition::Absolute(_) => EncoderKind::Absolute,
@@ -316,6 +319,7 @@ pub struct Feedback {
 impl Feedback {
     /// Return the actual position read as the status word's Abs/Incr bit says.
     #[inline]
+    #[must_use]
     pub const fn actual_position(&self) -> ActualPosition {
         ActualPosition::from_raw(self.position, self.status.encoder())
     }
@@ -329,12 +333,14 @@ impl Feedback {
 
     /// Decode the 40 bytes of a feedback frame.
     #[inline]
+    #[must_use]
     pub fn from_bytes(bytes: &[u8; FEEDBACK_LEN]) -> Self {
         Self::parse_frame(&FeedbackFrame::new_unchecked(bytes))
     }
 
     /// Encode the feedback into its 40 bytes.
     #[inline]
+    #[must_use]
     pub fn to_bytes(&self) -> [u8; FEEDBACK_LEN] {
         let mut bytes = [0; FEEDBACK_LEN];
         self.emit(&mut FeedbackFrame::new_unchecked(&mut bytes));

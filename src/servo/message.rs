@@ -41,6 +41,7 @@ impl Message {
     /// Return a message of kind `kind` holding `value` (in the kind's
     /// [`unit`](MessageKind::unit)).
     #[inline]
+    #[must_use]
     pub const fn new(kind: MessageKind, value: f32) -> Self {
         Message {
             code: kind.code(),
@@ -50,12 +51,14 @@ impl Message {
 
     /// Return a message with the raw code and data as they are on the wire.
     #[inline]
+    #[must_use]
     pub const fn from_raw(code: i32, data: f32) -> Self {
         Message { code, data }
     }
 
     /// Return what the message data holds, from the message code.
     #[inline]
+    #[must_use]
     pub const fn kind(self) -> MessageKind {
         MessageKind::from_code(self.code)
     }
@@ -87,6 +90,7 @@ pub enum MessageKind {
 
 impl MessageKind {
     /// Return the kind of message code `code`.
+    #[must_use]
     pub const fn from_code(code: i32) -> Self {
         match code {
             0 => MessageKind::MotorSpeed,
@@ -103,6 +107,7 @@ impl MessageKind {
 
     /// Return the message code of this kind; `from_code(kind.code())` gives
     /// back every kind that `from_code` makes.
+    #[must_use]
     pub const fn code(self) -> i32 {
         match self {
             MessageKind::MotorSpeed => 0,
@@ -118,6 +123,7 @@ impl MessageKind {
 
     /// Return the kind's name as the command-line decoder's `message` writes
     /// it (SPEC §6.2), e.g. `"relative_current"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             MessageKind::MotorSpeed => "motor_speed",
@@ -133,6 +139,7 @@ impl MessageKind {
 
     /// Return the unit of the message data (SPEC §1.2), or `None` for a
     /// reserved or unknown code.
+    #[must_use]
     pub const fn unit(self) -> Option<&'static str> {
         match self {
             MessageKind::MotorSpeed => Some("rpm"),

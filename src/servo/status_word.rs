@@ -107,6 +107,7 @@ impl ServoStatusWord {
 
     /// Return the active parameter table, ExtPRMTBL·4 + PRMTBL + 1, from
     /// PRMTBL (bits 8–9) and ExtPRMTBL (bit 12) (SPEC §1.4).
+    #[must_use]
     pub const fn parameter_table(self) -> ParameterTable {
         ParameterTable::from_select(
             self.contains(ServoStatusWord::EXT_PRMTBL),
@@ -116,6 +117,7 @@ impl ServoStatusWord {
 
     /// Return a copy reporting `table` as active (PRMTBL bits 8–9 and
     /// ExtPRMTBL bit 12); every other bit is kept.
+    #[must_use]
     pub const fn with_parameter_table(self, table: ParameterTable) -> Self {
         let bits = (self.bits() & !PRMTBL_MASK) | ((table.prmtbl() as u32) << PRMTBL_SHIFT);
         ServoStatusWord::from_bits_retain(bits)
@@ -124,6 +126,7 @@ impl ServoStatusWord {
 
     /// Return the kind of encoder the Abs/Incr bit (bit 2) reports; it
     /// decides how the feedback's ActPos is read (SPEC §1.2).
+    #[must_use]
     pub const fn encoder(self) -> EncoderKind {
         if self.contains(ServoStatusWord::ABS_INCR) {
             EncoderKind::Incremental
@@ -133,6 +136,7 @@ impl ServoStatusWord {
     }
 
     /// Return a copy whose Abs/Incr bit (bit 2) reports `encoder`.
+    #[must_use]
     pub const fn with_encoder(self, encoder: EncoderKind) -> Self {
         self.with_flag(
             ServoStatusWord::ABS_INCR,
@@ -141,6 +145,7 @@ impl ServoStatusWord {
     }
 
     /// Return a copy with the single-bit `flag` set or cleared.
+    #[must_use]
     pub const fn with_flag(self, flag: ServoStatusWord, set: bool) -> Self {
         if set {
             self.union(flag)
@@ -164,6 +169,7 @@ pub enum EncoderKind {
 impl EncoderKind {
     /// Return the name the command-line decoder's `encoder` writes
     /// (SPEC §6.2): `"absolute"` or `"incremental"`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             EncoderKind::Absolute => "absolute",

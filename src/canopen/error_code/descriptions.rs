@@ -39,6 +39,7 @@ pub enum DescriptionSource {
 
 impl DescriptionSource {
     /// Return the document and table the entry comes from, in words.
+    #[must_use]
     pub const fn document(self) -> &'static str {
         match self {
             DescriptionSource::Cia301 => "CiA 301 Table 26 (emergency error codes)",
@@ -76,6 +77,7 @@ pub enum Specificity {
 impl Specificity {
     /// Return the specificity in words: `exact`, `sub-class`, `class` or
     /// `unknown`.
+    #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             Specificity::Exact => "exact",
@@ -437,12 +439,14 @@ impl ErrorCode {
     /// assert_eq!(ErrorCode::new(0xA000).description(), "Unknown error code");
     /// ```
     #[inline]
+    #[must_use]
     pub fn description(self) -> &'static str {
         self.describe().text
     }
 
     /// Return the most specific description known for this code, with how
     /// specific it is and the document it comes from (SPEC §2.3).
+    #[must_use]
     pub fn describe(self) -> Description {
         let class = self.class();
         if class == ErrorClass::Unknown {
