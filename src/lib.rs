@@ -128,6 +128,8 @@
 pub mod can;
 pub mod candump;
 pub mod canopen;
+#[cfg(feature = "defmt")]
+mod defmt_impls;
 mod error;
 pub mod profiles;
 pub mod servo;

@@ -128,6 +128,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> EmcyFrame<T> {
 
 /// An emergency message, owned (CiA 301 §7.2.7.3; SPEC §2.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Emcy {
     /// Emergency error code (bytes 0–1).

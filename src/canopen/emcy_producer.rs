@@ -27,6 +27,7 @@ pub const DEFAULT_ACTIVE_ERRORS: usize = 8;
 /// The two error conditions of the EMCY state machine (seed 000: "The error
 /// conditions error-free and error occurred are distinguished"; SPEC §2.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorCondition {
     /// No error is active; the error register reads 0x00.
     ErrorFree,
@@ -55,6 +56,7 @@ impl fmt::Display for ErrorCondition {
 /// A transition of the EMCY state machine, numbered as in SPEC §2.5's table
 /// and seed 000 ("Transition 0" … "Transition 4").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EmcyTransition {
     /// 0: (init) → error-free; initialisation, no EMCY.
@@ -114,6 +116,7 @@ impl fmt::Display for EmcyTransition {
 /// What happens to the device, as the EMCY state machine sees it (SPEC §2.5,
 /// column "trigger").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum EmcyEvent {
     /// The device was initialised (or re-initialised) and detects no error:
     /// transition 0 from any state.
@@ -210,6 +213,7 @@ impl EmcyEvent {
 /// Why an event caused no transition and sent nothing (SPEC §2.5, "Rules
 /// beyond the table").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IgnoredEvent {
     /// The error that occurred is already active.
     AlreadyActive,
@@ -240,6 +244,7 @@ pub enum IgnoredEvent {
 /// assert_eq!((again.emcy(), again.transition()), (None, None));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[must_use]
 pub enum EmcyOutcome {
     /// Transition 0: the machine starts over error-free; nothing is sent.
@@ -312,6 +317,7 @@ impl EmcyOutcome {
 /// One active error: its code and the error-register bits it contributes
 /// (SPEC §2.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ActiveError {
     code: ErrorCode,
     register: ErrorRegister,

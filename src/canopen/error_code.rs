@@ -24,6 +24,7 @@ pub use descriptions::{Description, DescriptionSource, Specificity};
 /// assert_eq!(ErrorCode::new(0xA000).class(), ErrorClass::Unknown);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -118,6 +119,7 @@ impl fmt::Display for ErrorCode {
 
 /// The class of an emergency error code (CiA 301 Table 26; SPEC §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ErrorClass {
     /// 0x00xx: error reset or no error.

@@ -48,6 +48,7 @@ pub(crate) const fn millis(ms: u32) -> Duration {
 /// (CiA 301 §7.2.8.1; SPEC §2.7; seed 004 §11.1: "Only one of the two
 /// monitoring methods can be used").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorControlMethod {
     /// The producer heartbeat time 1017h is non-zero: the node sends
     /// heartbeats; node guarding and life guarding are not used.
@@ -101,6 +102,7 @@ impl fmt::Display for ErrorControlMethod {
 /// A node's error-control objects (CiA 301, objects 1017h, 100Ch and 100Dh;
 /// SPEC §2.7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ErrorControlConfig {
     /// Producer heartbeat time, object 1017h, in ms; 0 disables heartbeat.
     pub producer_heartbeat_time_ms: u16,

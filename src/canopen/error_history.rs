@@ -33,6 +33,7 @@ pub const DEFAULT_ERROR_HISTORY_LEN: usize = 10;
 /// assert_eq!(entry.to_u32(), 0x0001_4210);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ErrorHistoryEntry {
     /// The emergency error code (bits 0–15).

@@ -56,6 +56,7 @@ use super::{Emcy, ErrorCode, ErrorRegister, GuardAnswer, NmtState, NodeId};
 /// assert!(!AcceptedStates::GUARDED.contains(NmtState::BootUp));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AcceptedStates(u8);
 
 impl AcceptedStates {
@@ -110,6 +111,7 @@ impl Default for AcceptedStates {
 ///
 /// Every time is on the caller's clock (a `Duration` since its epoch).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GuardingEvent {
     /// The answer's toggle bit is not the one expected (the node missed a
@@ -248,6 +250,7 @@ pub type GuardingEvents = Events<GuardingEvent, 3>;
 /// still checked, and a request that follows an unanswered one still reports
 /// the missing answer (useful when observing a log whose 100Ch is unknown).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct NodeGuardingMaster {
     node: NodeId,
     guard_time: Duration,
@@ -448,6 +451,7 @@ impl NodeGuardingMaster {
 /// (CiA 301 §7.2.8.3.2.1; SPEC §2.7; seed 004 §11.1.1: "It transmits an
 /// emergency telegram and returns to the 'pre-operational' state").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LifeGuardExpiry {
     /// The last guard request before the silence.
     pub last_request: Duration,
@@ -461,6 +465,7 @@ pub struct LifeGuardExpiry {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 enum LifeTimer {
     /// No guard request yet: life guarding has not started.
     Idle,
@@ -499,6 +504,7 @@ enum LifeTimer {
 /// assert_eq!(life.poll(us(900_000)), None); // once per expiry
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LifeGuard {
     /// The node life time; `None` = disabled.
     life_time: Option<Duration>,

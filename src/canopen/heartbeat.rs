@@ -71,6 +71,7 @@ use crate::error::{Error, Result};
 /// assert!(HeartbeatProducer::new(Duration::ZERO).poll(us(5_000), NmtState::Operational).is_none());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct HeartbeatProducer {
     /// The producer time; 0 = off.
     period: Duration,
@@ -171,6 +172,7 @@ impl HeartbeatProducer {
 /// and the time within which its heartbeat must come (CiA 301, object 1016h;
 /// SPEC §2.7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ConsumerEntry {
     /// The monitored node (bits 16–23 of the entry).
     pub node: NodeId,
@@ -227,6 +229,7 @@ impl ConsumerEntry {
 
 /// Where the consumer stands with one node (CiA 301 §7.2.8.3.2.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum MonitorState {
     /// No heartbeat seen yet (or a boot-up since the last one): the node's
     /// state is unknown and it is not monitored ("monitoring starts after
@@ -256,6 +259,7 @@ pub enum MonitorState {
 /// whenever the poll happened; a `Recovered` or `RemoteReset` closes that
 /// gap at `at`, so the gap is `at − last_heartbeat` ([`HeartbeatEvent::gap`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum HeartbeatEvent {
     /// Heartbeat event: no heartbeat within the consumer time after the one

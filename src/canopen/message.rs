@@ -276,6 +276,7 @@ impl fmt::Display for NmtStateByte {
 /// bytes still gets `code` when 2 bytes are there and `register` when 3
 /// are, as Wireshark does).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PartialEmcy {
     /// The error code, when the frame has bytes 0–1.
     pub code: Option<ErrorCode>,
@@ -304,6 +305,7 @@ impl PartialEmcy {
 /// It converts into the crate's [`Error`] (the codec's error), so `?` works
 /// in functions returning [`motionwire::Result`](crate::Result).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DecodeError {
     /// The kind the identifier gives.
     pub kind: MessageKind,
@@ -349,6 +351,7 @@ const GUARD_REQUEST_DLC: u8 = HEARTBEAT_LEN as u8;
 ///
 /// With the `serde` feature the message has serde's derived format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CanOpenMessage {
     /// 0x000: NMT node control (CiA 301 §7.2.8.3.1).

@@ -75,6 +75,7 @@ const GUARD_ANSWER_WHAT: What = What::NodeGuardingAnswer;
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum NmtState {
@@ -257,6 +258,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> HeartbeatFrame<T> {
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Heartbeat {
     state: NmtState,
@@ -427,6 +429,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> GuardAnswerFrame<T> {
 /// A node-guarding answer, owned: the node's reply to the master's remote
 /// frame (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GuardAnswer {
     /// Toggle bit (bit 7): 0 in the first answer after initialisation or a

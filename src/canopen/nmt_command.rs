@@ -63,6 +63,7 @@ const ALL_NODES: u8 = 0;
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum NmtCommand {
@@ -243,6 +244,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> NmtNodeControlFrame<T> {
 
 /// An NMT node-control message, owned (CiA 301 §7.2.8.3.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NmtNodeControl {
     /// The command (byte 0).

@@ -24,6 +24,7 @@ use crate::error::{Error, Result};
 /// With the `serde` feature a node-ID serializes as its number;
 /// deserializing refuses any number outside 1..=127.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -139,6 +140,7 @@ pub mod cob_id {
 
 /// Which way a PDO goes, seen from the device that owns it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PdoDirection {
     /// TPDO: the device transmits (0x180, 0x280, 0x380, 0x480 + node-ID).
@@ -150,6 +152,7 @@ pub enum PdoDirection {
 /// The function an 11-bit CAN identifier has in the CANopen pre-defined
 /// connection set (CiA 301 Table 72).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CobFunction {
     /// 0x000: NMT node control.

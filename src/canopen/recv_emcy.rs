@@ -91,6 +91,7 @@ const NO_ERROR: Emcy = Emcy::reset(ErrorRegister::empty());
 /// assert!(!KernelError::NoError.is_error());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum KernelError {
     /// 0x0000 `CANOPEN_KERNEL_NO_ERROR`: the call completed without error.
@@ -243,6 +244,7 @@ impl fmt::Display for KernelError {
 /// With the `serde` feature a set serializes as the list of its node-IDs
 /// in ascending order (`[3, 64, 127]` in JSON); deserializing checks each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DeviceSet(u128);
 
 impl DeviceSet {
@@ -415,6 +417,7 @@ impl<'de> serde::Deserialize<'de> for DeviceSet {
 /// What [`EmcyStorage::receive`] did with a received EMCY (CiA 405,
 /// recommendation for `RECV_EMCY_DEV`; SPEC §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SlotUpdate {
     /// The slot held "no error": the error is stored and is now the device's
@@ -469,6 +472,7 @@ pub enum SlotUpdate {
 /// assert_eq!(storage.recv_emcy_dev(node), Ok(Some(error)));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EmcyStorage {
     /// The slot of each device, indexed by [`NodeId::index`].
     slots: [Emcy; DEVICES],
@@ -629,6 +633,7 @@ fn as_errorinfo(emcy: Emcy) -> Emcy {
 /// The raw outputs of one `RECV_EMCY_DEV` call (CiA 405; CODESYS
 /// `RECV_EMCY_DEV`), from [`EmcyStorage::recv_emcy_dev_outputs`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RecvEmcyDevOutputs {
     confirm: bool,
     error: KernelError,
@@ -674,6 +679,7 @@ impl RecvEmcyDevOutputs {
 
 /// What one `RECV_EMCY` call delivers (CiA 405 `RECV_EMCY`; SPEC §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum RecvEmcyResult {
     /// `device` holds an error: `DEVICE` = device, `ERRORINFO` = the error.
@@ -734,6 +740,7 @@ impl RecvEmcyResult {
 /// assert_eq!(raw.device(), 0);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RecvEmcyOutputs {
     confirm: bool,
     error: KernelError,
@@ -827,6 +834,7 @@ impl From<Result<RecvEmcyResult, KernelError>> for RecvEmcyOutputs {
 /// instances over the one kernel: two `RecvEmcy` over the same storage each
 /// deliver every reset once.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RecvEmcy {
     /// Where the next call starts its scan.
     next: NodeId,

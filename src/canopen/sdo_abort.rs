@@ -22,6 +22,7 @@ use core::fmt;
 /// assert!(!SdoAbortCode::new(0x1234_5678).is_known());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),

@@ -90,6 +90,7 @@ const FEEDBACK_WHAT: What = What::AkdFeedbackId;
 /// With the `serde` feature an axis id serializes as its number;
 /// deserializing refuses any number above 15.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -197,6 +198,7 @@ impl fmt::Display for AxisId {
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FeedbackId {
     /// 0: no feedback fault.
@@ -220,6 +222,7 @@ pub enum FeedbackId {
 /// ([`FeedbackId::Unknown`]; SPEC §2.4). Only the crate makes one, so it
 /// never holds a defined value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(try_from = "u8", into = "u8"))]
 pub struct UndefinedFeedbackId(u8);
@@ -479,6 +482,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> AkdManufacturerField<T> {
 
 /// The AKD's manufacturer field, owned and typed (EMCY bytes 3–7; SPEC §2.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AkdManufacturer {
     /// The axis the EMCY reports (byte 3, bits 0–3).
@@ -548,6 +552,7 @@ impl AkdManufacturer {
 /// An EMCY from a Kollmorgen AKD: the generic code and register with a typed
 /// manufacturer field (seed 000; SPEC §2.1, §2.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct AkdEmcy {
     /// Emergency error code (bytes 0–1).

@@ -196,6 +196,7 @@ pub const MANUFACTURER_LEN: usize = field::UNUSED + 1;
 /// assert_eq!(field.to_bytes(), [0x00, 0x00, 0x00, 0x20, 0x00]);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BaumerManufacturer {
     /// Alarms, object 6503h (EMCY bytes 3–4, little-endian).
@@ -248,6 +249,7 @@ impl BaumerManufacturer {
 ///
 /// Every 8-byte EMCY decodes, and encoding gives the same bytes back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BaumerEmcy {
     /// Emergency error code (bytes 0–1).
@@ -336,6 +338,7 @@ impl From<BaumerEmcy> for Emcy {
 
 /// When a diagnostic source is signalled (SPEC §4, column "appearance").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Appearance {
     /// At startup.
@@ -357,6 +360,7 @@ impl Appearance {
 
 /// Which encoder design a diagnostic source exists on (SPEC §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Variant {
     /// Both the redundant and the non-redundant encoder.
@@ -383,6 +387,7 @@ impl Variant {
 /// When the signalling of a diagnostic source is reset (SPEC §4, column
 /// "reset").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ResetBehaviour {
     /// Reset at runtime, once the cause is gone.
@@ -418,6 +423,7 @@ impl ResetBehaviour {
 
 /// What an error injection code simulates, told by its high word (SPEC §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum InjectionKind {
     /// High word 0x0001: an alarm at startup.
@@ -480,6 +486,7 @@ impl InjectionKind {
 /// With the `serde` feature a code serializes as its number;
 /// deserializing refuses what [`InjectionCode::try_new`] refuses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -560,6 +567,7 @@ impl fmt::Display for InjectionCode {
 /// Where a diagnostic source becomes visible: error register 1001h bits,
 /// alarms 6503h bits and warnings 6505h bits (SPEC §4, column "signalling").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Signalling {
     /// Bits of the error register, object 1001h.
     pub register: ErrorRegister,
@@ -600,6 +608,7 @@ impl Signalling {
 /// appears both at startup and at runtime, or on both encoder designs with
 /// different signalling, has one row each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DiagnosticSource {
     name: &'static str,
     source: &'static str,

@@ -39,6 +39,7 @@ use crate::error::{Error, Result};
 /// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY
 /// depends on ServoEn (SPEC §1.6; seed 002, "Servo ReaDY").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum ServoReadyMode {
     /// Servo_Ready_Mode = 0: the drive is ready whenever it has no error.
@@ -142,6 +143,7 @@ pub const fn enable_handshake(
 
 /// The phase of an NC-side handshake (SPEC §1.6, error clear and zero pulse).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum HandshakePhase {
     /// Nothing requested; the NC writes the request bit 0.
     Idle,
@@ -210,6 +212,7 @@ pub trait HandshakeBits: sealed::Sealed + Copy {
 /// The error-clear handshake's bits: SCW.ErrorClear (bit 9) and
 /// SSW.ErrClearAck (bit 4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorClear {}
 
 impl sealed::Sealed for ErrorClear {}
@@ -221,6 +224,7 @@ impl HandshakeBits for ErrorClear {
 /// The zero-pulse handshake's bits: SCW.ZPulseRequest (bit 11) and
 /// SSW.ZPulseAck (bit 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ZeroPulse {}
 
 impl sealed::Sealed for ZeroPulse {}

@@ -149,6 +149,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> CommandFrame<T> {
 
 /// A command frame, owned (SPEC §1.1; seed 002).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Command {
     /// SSP, the speed set point (bytes 0–3). For a 16-bit reference only

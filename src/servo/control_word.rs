@@ -243,6 +243,7 @@ impl ServoControlWord {
 /// With the `serde` feature an SE value serializes as its number;
 /// deserializing refuses any number above 3.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -325,6 +326,7 @@ impl fmt::Display for ServoEnable {
 /// The regulator mode selected by ModeSel, control-word bits 6–7
 /// (SPEC §1.3; seed 002, "Mode Select", documented as not used yet).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum RegulatorMode {
@@ -439,6 +441,7 @@ impl fmt::Display for RegulatorMode {
 /// With the `serde` feature a table serializes as its number;
 /// deserializing refuses any number outside 1..=8.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),

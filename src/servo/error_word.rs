@@ -152,6 +152,7 @@ impl ServoErrorWord {
 /// The variant names spell SPEC's names in Rust's case; [`ServoFault::name`]
 /// returns SPEC's spelling exactly (e.g. `I2tEndat` → `"I2t_Endat"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum ServoFault {
@@ -210,6 +211,7 @@ pub enum ServoFault {
 /// descriptions, `Display`, the JSON of `motionwire servo` and the tests all
 /// read it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FaultInfo {
     /// The fault (its discriminant is the bit number).
     pub fault: ServoFault,
@@ -453,6 +455,7 @@ impl fmt::Display for ServoFault {
 /// [`ServoFault`]. Parse one from its number ([`ECode::from_number`]) or from
 /// its text (`"E05".parse()`); [`Display`](fmt::Display) prints `E05`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum ECode {

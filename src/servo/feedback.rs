@@ -68,6 +68,7 @@ const WHAT: What = What::ServoFeedbackFrame;
 /// The actual position, read according to the status word's Abs/Incr bit
 /// (SPEC §1.2, "ActPos interpretation"; seed 002, "ActualPosition").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ActualPosition {
     /// Absolute (EnDat) encoder: the whole 64-bit ActPos is the position.
@@ -301,6 +302,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> FeedbackFrame<T> {
 /// test that two values carry the same bits compare
 /// [`to_bytes`](Self::to_bytes).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Feedback {
     /// ActPos, the raw actual position (bytes 0–7); read it with

@@ -29,6 +29,7 @@ use core::fmt;
 /// value, so a message holding NaN is not equal to itself; compare
 /// `data.to_bits()` (or the frame's bytes) to test for identity.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Message {
     /// Message code (feedback bytes 16–19), i32.
@@ -67,6 +68,7 @@ impl Message {
 /// What the message data holds, from the message code (SPEC §1.2's table;
 /// seed 002, "Message Code").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum MessageKind {
     /// Code 0: motor speed, rpm.

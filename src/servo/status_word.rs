@@ -157,6 +157,7 @@ impl ServoStatusWord {
 
 /// The kind of position encoder, from SSW bit 2 Abs/Incr (SPEC §1.2, §1.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum EncoderKind {
     /// Abs/Incr = 0: absolute (EnDat) encoder; ActPos is a 64-bit position.

@@ -27,6 +27,7 @@ use super::{ErrorClass, ErrorCode};
 
 /// The document a description comes from (SPEC §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum DescriptionSource {
     /// CiA 301, the CANopen application layer: Table 26, "Emergency error
     /// codes" (its exact codes, its `xxxx`-ranges and its classes).
@@ -62,6 +63,7 @@ impl fmt::Display for DescriptionSource {
 
 /// How specific the description found for a code is (SPEC §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Specificity {
     /// A table names this very code (e.g. 0x8130, 0x7121).
     Exact,
@@ -115,6 +117,7 @@ impl fmt::Display for Specificity {
 /// assert_eq!(d.source, None);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Description {
     /// The description in words.
     pub text: &'static str,
