@@ -1,10 +1,13 @@
 //! A small streaming JSON writer for the decoder's records.
 //!
 //! Records are written straight into the buffered output, key by key, so that
-//! decoding a line allocates nothing (SPEC §6.1). String escaping follows
-//! RFC 8259; numbers are written with `itoa`-style integer formatting from
-//! `core::fmt` and floats through `serde_json`, which prints the shortest
-//! representation that reads back to the same value.
+//! decoding a line allocates nothing (SPEC §6.1). Keys and the library's
+//! constant texts (kind, class and flag names, descriptions) are written as
+//! they are — a test checks that none of them needs escaping — and only
+//! texts that come from the input (interface names, error messages) are
+//! escaped as RFC 8259 says. Integers are written with `itoa`, floats
+//! through `serde_json`, which prints the shortest representation that
+//! reads back to the same value.
 
 use std::io::{self, Write};
 
@@ -21,87 +24,119 @@ impl<'w, W: Write> Object<'w, W> {
         Ok(Object { out, first: true })
     }
 
-    /// Write the key and return the writer for its value.
-    pub fn key(&mut self, key: &str) -> io::Result<&mut W> {
-        if self.first {
-            self.first = false;
-        } else {
-            self.out.write_all(b",")?;
+    /// Write the key and return the writer for its value. Keys are the
+    /// contract's names (SPEC §6): ASCII letters, digits and `_`, which
+    /// need no escaping.
+    pub fn key(&mut self, key: &'static str) -> io::Result<&mut W> {
+        debug_assert!(key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
+        // `,"key":` in one write.
+        let mut buf = [0u8; 64];
+        let start = usize::from(self.first);
+        self.first = false;
+        buf[0] = b',';
+        buf[1] = b'"';
+        let end = 2 + key.len();
+        match buf.get_mut(2..end) {
+            Some(slot) => slot.copy_from_slice(key.as_bytes()),
+            None => {
+                // Longer than any key of the contract: write it in pieces.
+                self.out.write_all(&buf[start..2])?;
+                self.out.write_all(key.as_bytes())?;
+                self.out.write_all(b"\":")?;
+                return Ok(self.out);
+            }
         }
-        string(self.out, key)?;
-        self.out.write_all(b":")?;
+        buf[end] = b'"';
+        buf[end + 1] = b':';
+        self.out.write_all(&buf[start..end + 2])?;
         Ok(self.out)
     }
 
     /// Write a key with an unsigned integer value.
-    pub fn uint(&mut self, key: &str, value: u64) -> io::Result<()> {
+    pub fn uint(&mut self, key: &'static str, value: u64) -> io::Result<()> {
         let out = self.key(key)?;
-        write!(out, "{value}")
+        out.write_all(itoa::Buffer::new().format(value).as_bytes())
     }
 
     /// Write a key with a signed integer value.
-    pub fn int(&mut self, key: &str, value: i64) -> io::Result<()> {
+    pub fn int(&mut self, key: &'static str, value: i64) -> io::Result<()> {
         let out = self.key(key)?;
-        write!(out, "{value}")
+        out.write_all(itoa::Buffer::new().format(value).as_bytes())
     }
 
     /// Write a key with a boolean value.
-    pub fn bool(&mut self, key: &str, value: bool) -> io::Result<()> {
+    pub fn bool(&mut self, key: &'static str, value: bool) -> io::Result<()> {
         let out = self.key(key)?;
         out.write_all(if value { b"true" } else { b"false" })
     }
 
-    /// Write a key with a string value.
-    pub fn str(&mut self, key: &str, value: &str) -> io::Result<()> {
+    /// Write a key with a string value from the input, escaped.
+    pub fn str(&mut self, key: &'static str, value: &str) -> io::Result<()> {
         let out = self.key(key)?;
         string(out, value)
     }
 
+    /// Write a key with one of the library's constant texts (a name or a
+    /// description), which need no escaping (`constant_texts_need_no_escaping`).
+    pub fn name(&mut self, key: &'static str, value: &'static str) -> io::Result<()> {
+        debug_assert!(!needs_escaping(value), "{value:?}");
+        let out = self.key(key)?;
+        out.write_all(b"\"")?;
+        out.write_all(value.as_bytes())?;
+        out.write_all(b"\"")
+    }
+
     /// Write a key with a string value given by its `Display`, escaped,
     /// without allocating.
-    pub fn display(&mut self, key: &str, value: &impl std::fmt::Display) -> io::Result<()> {
+    pub fn display(&mut self, key: &'static str, value: &impl std::fmt::Display) -> io::Result<()> {
         let out = self.key(key)?;
         display_string(out, value)
     }
 
     /// Write a key with a `null` value.
-    pub fn null(&mut self, key: &str) -> io::Result<()> {
+    pub fn null(&mut self, key: &'static str) -> io::Result<()> {
         self.key(key)?.write_all(b"null")
     }
 
     /// Write a key with a float value; NaN and infinities become `null`
     /// (SPEC §6.2).
-    pub fn float(&mut self, key: &str, value: f64) -> io::Result<()> {
+    pub fn float(&mut self, key: &'static str, value: f64) -> io::Result<()> {
         let out = self.key(key)?;
         float(out, value)
     }
 
-    /// Write a key with an array of strings.
-    pub fn strs<'s>(
+    /// Write a key with an array of the library's constant names, which
+    /// need no escaping.
+    pub fn names(
         &mut self,
-        key: &str,
-        values: impl IntoIterator<Item = &'s str>,
+        key: &'static str,
+        values: impl IntoIterator<Item = &'static str>,
     ) -> io::Result<()> {
         let out = self.key(key)?;
         out.write_all(b"[")?;
         for (i, value) in values.into_iter().enumerate() {
-            if i > 0 {
-                out.write_all(b",")?;
-            }
-            string(out, value)?;
+            debug_assert!(!needs_escaping(value), "{value:?}");
+            out.write_all(if i > 0 { b",\"" } else { b"\"" })?;
+            out.write_all(value.as_bytes())?;
+            out.write_all(b"\"")?;
         }
         out.write_all(b"]")
     }
 
     /// Write a key with an array of unsigned integers.
-    pub fn uints(&mut self, key: &str, values: impl IntoIterator<Item = u64>) -> io::Result<()> {
+    pub fn uints(
+        &mut self,
+        key: &'static str,
+        values: impl IntoIterator<Item = u64>,
+    ) -> io::Result<()> {
         let out = self.key(key)?;
         out.write_all(b"[")?;
+        let mut digits = itoa::Buffer::new();
         for (i, value) in values.into_iter().enumerate() {
             if i > 0 {
                 out.write_all(b",")?;
             }
-            write!(out, "{value}")?;
+            out.write_all(digits.format(value).as_bytes())?;
         }
         out.write_all(b"]")
     }
@@ -157,7 +192,23 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
 /// Write a timestamp as seconds with six decimals, `1700000000.000500`
 /// (SPEC §6.1 `ts`: exact to the microsecond, no float rounding).
 pub fn timestamp<W: Write>(out: &mut W, ts: motionwire::can::Timestamp) -> io::Result<()> {
-    write!(out, "{}.{:06}", ts.secs(), ts.micros())
+    let mut buf = [0u8; 20 + 1 + 6];
+    let mut digits = itoa::Buffer::new();
+    let text = digits.format(ts.secs()).as_bytes();
+    let secs = text.len();
+    buf[..secs].copy_from_slice(text);
+    buf[secs] = b'.';
+    let mut micros = ts.micros();
+    for at in (secs + 1..secs + 7).rev() {
+        buf[at] = b'0' + (micros % 10) as u8;
+        micros /= 10;
+    }
+    out.write_all(&buf[..secs + 7])
+}
+
+/// Whether a text needs escaping in a JSON string (RFC 8259).
+pub fn needs_escaping(text: &str) -> bool {
+    text.bytes().any(|b| b == b'"' || b == b'\\' || b < 0x20)
 }
 
 /// Write a value's `Display` as a JSON string with RFC 8259 escaping,
@@ -204,6 +255,65 @@ pub fn hex_string<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
 mod tests {
     use super::*;
 
+    /// Every constant text the program writes with `name`/`names` needs no
+    /// escaping: kind, class, state and flag names, every EMCY description,
+    /// the Baumer source names and the servo names.
+    #[test]
+    fn constant_texts_need_no_escaping() {
+        use motionwire::can::{ControllerStatus, ErrorClasses};
+        use motionwire::canopen::{ErrorCode, ErrorRegister, MessageKind, NmtStateByte};
+        use motionwire::profiles::baumer::DIAGNOSTIC_SOURCES;
+        use motionwire::servo::{
+            EncoderKind, RegulatorMode, ServoControlWord, ServoFault, ServoStatusWord,
+        };
+
+        let mut texts: Vec<&'static str> = Vec::new();
+        texts.extend(MessageKind::ALL.iter().map(|k| k.name()));
+        for code in 0..=u16::MAX {
+            let code = ErrorCode::new(code);
+            texts.push(code.description());
+            texts.push(code.class().name());
+        }
+        texts.extend(ErrorRegister::NAMES.iter().map(|(_, n)| *n));
+        texts.extend(ErrorClasses::NAMES.iter().map(|(_, n)| *n));
+        texts.extend(ControllerStatus::NAMES.iter().map(|(_, n)| *n));
+        texts.extend((0..=u8::MAX).map(|b| NmtStateByte::new(b).state_name()));
+        texts.extend(DIAGNOSTIC_SOURCES.iter().map(|s| s.name()));
+        texts.extend(ServoControlWord::NAMES.iter().map(|(_, n)| *n));
+        texts.extend(ServoStatusWord::NAMES.iter().map(|(_, n)| *n));
+        texts.extend(ServoFault::TABLE.iter().map(|row| row.name));
+        texts.extend(RegulatorMode::ALL.iter().map(|m| m.name()));
+        texts.extend([
+            EncoderKind::Absolute.name(),
+            EncoderKind::Incremental.name(),
+        ]);
+        for code in -1..=8 {
+            texts.push(motionwire::servo::MessageKind::from_code(code).name());
+        }
+        for text in texts {
+            assert!(!needs_escaping(text), "{text:?}");
+        }
+    }
+
+    #[test]
+    fn timestamps_keep_six_decimals() {
+        use motionwire::can::Timestamp;
+        let render = |ts| {
+            let mut out = Vec::new();
+            timestamp(&mut out, ts).unwrap();
+            String::from_utf8(out).unwrap()
+        };
+        assert_eq!(
+            render(Timestamp::new(1_700_000_000, 500).unwrap()),
+            "1700000000.000500"
+        );
+        assert_eq!(render(Timestamp::new(0, 0).unwrap()), "0.000000");
+        assert_eq!(
+            render(Timestamp::new(u64::MAX, 999_999).unwrap()),
+            "18446744073709551615.999999"
+        );
+    }
+
     fn render(f: impl FnOnce(&mut Vec<u8>) -> io::Result<()>) -> String {
         let mut out = Vec::new();
         f(&mut out).unwrap();
@@ -225,7 +335,7 @@ mod tests {
             obj.uint("a", 1)?;
             obj.float("nan", f64::NAN)?;
             obj.float("x", 1.5)?;
-            obj.strs("l", ["p", "q"])?;
+            obj.names("l", ["p", "q"])?;
             obj.uints("n", [3, 4])?;
             hex_string(obj.key("h")?, &[0xAB, 0x01])?;
             obj.end()

@@ -67,20 +67,20 @@ impl<'r, 'a> Record<'r, 'a> {
         obj.bool("rtr", frame.is_rtr())?;
         obj.bool("fd", frame.is_fd())?;
         json::hex_string(obj.key("data")?, frame.data())?;
-        obj.str("kind", self.kind().name())?;
+        obj.name("kind", self.kind().name())?;
         if let Some(node) = self.node() {
             obj.uint("node", u64::from(node.get()))?;
         }
         match &self.decoded {
             Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
             Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
-                obj.str("state", byte.state_name())?;
+                obj.name("state", byte.state_name())?;
                 obj.uint("state_raw", u64::from(byte.state_raw()))?;
                 obj.bool("toggle", byte.toggle())?;
             }
             Ok(CanOpenMessage::ErrorFrame(error)) => {
-                obj.strs("error_classes", error.classes.names())?;
-                obj.strs("controller", error.controller().names())?;
+                obj.names("error_classes", error.classes.names())?;
+                obj.names("controller", error.controller().names())?;
                 match error.tx_errors() {
                     Some(n) => obj.uint("tx_errors", u64::from(n))?,
                     None => obj.null("tx_errors")?,
@@ -157,10 +157,10 @@ impl<'r, 'a> Record<'r, 'a> {
 /// The EMCY keys of SPEC §6.1, with the profile's keys.
 fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
     obj.uint("code", u64::from(emcy.code.get()))?;
-    obj.str("class", emcy.code.class().name())?;
-    obj.str("description", emcy.code.description())?;
+    obj.name("class", emcy.code.class().name())?;
+    obj.name("description", emcy.code.description())?;
     obj.uint("register", u64::from(emcy.register.bits()))?;
-    obj.strs("register_flags", emcy.register.names())?;
+    obj.names("register_flags", emcy.register.names())?;
     json::hex_string(obj.key("manufacturer")?, &emcy.manufacturer)?;
     match profile {
         Profile::Generic => {}
@@ -182,7 +182,7 @@ fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -
             let baumer = BaumerEmcy::from_emcy(emcy);
             obj.uint("alarms", u64::from(baumer.manufacturer.alarms.bits()))?;
             obj.uint("warnings", u64::from(baumer.manufacturer.warnings.bits()))?;
-            obj.strs("sources", baumer.sources().map(|s| s.name()))?;
+            obj.names("sources", baumer.sources().map(|s| s.name()))?;
         }
     }
     Ok(())

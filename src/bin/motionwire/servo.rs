@@ -103,9 +103,9 @@ pub fn command_json<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
     obj.int("speed_setpoint", i64::from(c.speed_setpoint))?;
     obj.int("speed_setpoint_word", i64::from(c.speed_setpoint_word()))?;
     obj.uint("control", u64::from(c.control.bits()))?;
-    obj.strs("control_flags", c.control.flag_names())?;
+    obj.names("control_flags", c.control.flag_names())?;
     obj.uint("servo_enable", u64::from(c.control.servo_enable().get()))?;
-    obj.str("regulator_mode", c.control.regulator_mode().name())?;
+    obj.name("regulator_mode", c.control.regulator_mode().name())?;
     obj.uint(
         "parameter_table",
         u64::from(c.control.parameter_table().get()),
@@ -119,7 +119,7 @@ pub fn command_json<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
 pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
     let mut obj = Object::begin(out)?;
     obj.int("position", f.position)?;
-    obj.str("encoder", f.status.encoder().name())?;
+    obj.name("encoder", f.status.encoder().name())?;
     match f.actual_position() {
         ActualPosition::Absolute(_) => {
             obj.null("incremental_position")?;
@@ -134,7 +134,7 @@ pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
         }
     }
     obj.uint("status", u64::from(f.status.bits()))?;
-    obj.strs("status_flags", f.status.flag_names())?;
+    obj.names("status_flags", f.status.flag_names())?;
     obj.uint(
         "parameter_table",
         u64::from(f.status.parameter_table().get()),
@@ -152,7 +152,7 @@ pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
         out.write_all(b"]")?;
     }
     obj.int("message_code", i64::from(f.message.code))?;
-    obj.str("message", f.message.kind().name())?;
+    obj.name("message", f.message.kind().name())?;
     obj.float("message_value", f64::from(f.message.data))?;
     {
         let out = obj.key("extra")?;
@@ -172,7 +172,7 @@ pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
 fn fault_json<W: Write>(out: &mut W, fault: ServoFault) -> io::Result<()> {
     let mut obj = Object::begin(out)?;
     obj.uint("bit", u64::from(fault.bit()))?;
-    obj.str("name", fault.name())?;
+    obj.name("name", fault.name())?;
     match fault.e_code() {
         Some(code) => obj.str("e_code", &code.to_string())?,
         None => obj.null("e_code")?,

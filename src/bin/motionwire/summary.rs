@@ -234,7 +234,11 @@ impl Summary {
     }
 }
 
-fn seen_json<W: Write>(obj: &mut Object<'_, W>, key: &str, seen: Option<Seen>) -> io::Result<()> {
+fn seen_json<W: Write>(
+    obj: &mut Object<'_, W>,
+    key: &'static str,
+    seen: Option<Seen>,
+) -> io::Result<()> {
     let Some(seen) = seen else {
         return obj.null(key);
     };
@@ -272,7 +276,7 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
         let mut hb = Object::begin(obj.key("heartbeat")?)?;
         hb.uint("count", s.heartbeats)?;
         match s.last_state {
-            Some(state) => hb.str("last_state", state.state_name())?,
+            Some(state) => hb.name("last_state", state.state_name())?,
             None => hb.null("last_state")?,
         }
         hb.uints("boot_ups", s.boot_ups.iter().copied())?;
