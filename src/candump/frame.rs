@@ -41,6 +41,25 @@ impl<'a> Parsed<'a> {
     /// Return the crate's record of the frame (SPEC §5).
     #[inline(always)]
     pub(super) fn into_log_frame(self) -> LogFrame<'a> {
+        // ASCII by construction; the fallback is never taken.
+        let iface = core::str::from_utf8(self.iface).unwrap_or_default();
+        self.into_log_frame_named(iface)
+    }
+
+    /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier line
+    /// named the interface `last`: the same name is not checked again (a
+    /// log's lines almost always name one interface), and `last` becomes
+    /// this line's.
+    #[inline(always)]
+    pub(super) fn into_log_frame_after(self, last: &mut &'a str) -> LogFrame<'a> {
+        if self.iface != last.as_bytes() {
+            *last = core::str::from_utf8(self.iface).unwrap_or_default();
+        }
+        self.into_log_frame_named(last)
+    }
+
+    #[inline(always)]
+    fn into_log_frame_named(self, iface: &'a str) -> LogFrame<'a> {
         let (frame_type, len) = match self.kind {
             Kind::Data => (FrameType::Data, self.len),
             Kind::Remote => (FrameType::Remote { dlc: self.len }, 0),
@@ -50,10 +69,7 @@ impl<'a> Parsed<'a> {
         LogFrame {
             frame: CanFrame::from_checked_parts(self.id, frame_type, self.data, len),
             timestamp: self.timestamp,
-            // ASCII by construction; the fallback is never taken.
-            iface: Some(Iface::Name(
-                core::str::from_utf8(self.iface).unwrap_or_default(),
-            )),
+            iface: Some(Iface::Name(iface)),
             direction: self.direction,
         }
     }

@@ -55,6 +55,7 @@ pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
         rest: buf,
         line_number: 0,
         state,
+        last_iface: "",
     }
 }
 
@@ -71,6 +72,8 @@ pub struct CandumpLines<'a> {
     rest: &'a [u8],
     line_number: usize,
     state: LineState,
+    /// The interface name of the last frame, from the buffer.
+    last_iface: &'a str,
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
@@ -85,7 +88,8 @@ impl<'a> Iterator for CandumpLines<'a> {
         if let Some((frame, used)) = parse_canonical_log(self.rest) {
             self.rest = self.rest.get(used..).unwrap_or_default();
             self.state.after_error_frame = false;
-            return Some((self.line_number, Ok(Some(frame.into_log_frame()))));
+            let frame = frame.into_log_frame_after(&mut self.last_iface);
+            return Some((self.line_number, Ok(Some(frame))));
         }
         Some(self.next_general())
     }
@@ -104,7 +108,8 @@ impl<'a> Iterator for CandumpLines<'a> {
                 Some((frame, used)) => {
                     self.rest = self.rest.get(used..).unwrap_or_default();
                     self.state.after_error_frame = false;
-                    f(acc, (self.line_number, Ok(Some(frame.into_log_frame()))))
+                    let frame = frame.into_log_frame_after(&mut self.last_iface);
+                    f(acc, (self.line_number, Ok(Some(frame))))
                 }
                 None => {
                     let item = self.next_general();
@@ -154,9 +159,10 @@ impl<'a> CandumpLines<'a> {
                 ..
             }))
         );
+        let last = &mut self.last_iface;
         (
             self.line_number,
-            parsed.map(|frame| frame.map(Parsed::into_log_frame)),
+            parsed.map(|frame| frame.map(|f| f.into_log_frame_after(last))),
         )
     }
 }

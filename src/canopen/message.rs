@@ -148,13 +148,25 @@ impl MessageKind {
     /// node, with the data decoded.
     #[must_use]
     pub fn classify<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> (MessageKind, Option<NodeId>) {
+        let (kind, node, _) = Self::classify_with_function(frame);
+        (kind, node)
+    }
+
+    /// [`MessageKind::classify`], with the function of the identifier in
+    /// the pre-defined connection set ([`CobFunction::Other`] for error and
+    /// extended frames).
+    #[inline]
+    fn classify_with_function<D: AsRef<[u8]>>(
+        frame: &CanFrame<D>,
+    ) -> (MessageKind, Option<NodeId>, CobFunction) {
         if frame.is_error() {
-            return (MessageKind::ErrorFrame, None);
+            return (MessageKind::ErrorFrame, None, CobFunction::Other);
         }
         let Some(cob_id) = frame.id().standard_raw() else {
-            return (MessageKind::Other, None);
+            return (MessageKind::Other, None, CobFunction::Other);
         };
-        match CobFunction::classify(cob_id) {
+        let function = CobFunction::classify(cob_id);
+        let (kind, node) = match function {
             CobFunction::NmtCommand => (MessageKind::NmtCommand, None),
             CobFunction::Sync => (MessageKind::Sync, None),
             CobFunction::Time => (MessageKind::Time, None),
@@ -166,7 +178,8 @@ impl MessageKind {
             }
             CobFunction::ErrorControl(node) => (MessageKind::Heartbeat, Some(node)),
             CobFunction::Other => (MessageKind::Other, None),
-        }
+        };
+        (kind, node, function)
     }
 }
 
@@ -439,7 +452,7 @@ impl CanOpenMessage {
     /// reads are not checked (as for every frame of the crate), except for
     /// SYNC, whose data is empty or one counter byte.
     pub fn decode<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> Result<Self, DecodeError> {
-        let (kind, node) = MessageKind::classify(frame);
+        let (kind, node, function) = MessageKind::classify_with_function(frame);
         let fail = |error: Error| DecodeError {
             kind,
             node,
@@ -448,10 +461,6 @@ impl CanOpenMessage {
         };
         let data = frame.data();
         let owned = || FrameData::new(data).map_err(fail);
-        let function = match frame.id().standard_raw() {
-            Some(id) if !frame.is_error() => CobFunction::classify(id),
-            _ => CobFunction::Other,
-        };
         if frame.is_error() {
             return ErrorFrame::from_frame(frame)
                 .map(CanOpenMessage::ErrorFrame)

@@ -82,21 +82,21 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         for_each_line(input.reader, |line, parsed| {
             match parsed {
                 Ok(None) => {}
-                Ok(Some(frame)) => {
-                    let record = Record::new(line, &frame);
-                    match summary.as_mut() {
-                        Some(summary) => summary.add(&record),
-                        None if keep[record.kind().index()] => {
-                            let profile = profiles.of(record.node());
-                            if args.json {
-                                record.write_json(&mut out, profile)?;
-                            } else {
-                                record.write_text(&mut out, profile)?;
-                            }
+                Ok(Some(frame)) => match summary.as_mut() {
+                    Some(summary) => summary.add(line, &frame),
+                    None => {
+                        let record = Record::new(line, &frame);
+                        if !keep[record.kind().index()] {
+                            return Ok(());
                         }
-                        None => {}
+                        let profile = profiles.of(record.node());
+                        if args.json {
+                            record.write_json(&mut out, profile)?;
+                        } else {
+                            record.write_text(&mut out, profile)?;
+                        }
                     }
-                }
+                },
                 Err(e) => {
                     skipped += 1;
                     writeln!(err, "{name}:{line}: {e}")?;

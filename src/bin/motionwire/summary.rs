@@ -13,6 +13,8 @@ use motionwire::canopen::{
 };
 
 use crate::json::{self, Object};
+use motionwire::can::LogFrame;
+
 use crate::record::Record;
 
 /// Where an EMCY was seen: its line, timestamp and code.
@@ -108,14 +110,26 @@ impl Summary {
     }
 
     /// Take one decoded frame into account.
-    pub fn add(&mut self, record: &Record<'_, '_>) {
-        let Some(node) = record.node() else { return };
-        let now = record.log.timestamp.map(Timestamp::as_duration);
+    ///
+    /// Only the frames whose contents the summary reads (EMCY, heartbeat,
+    /// guard request) are decoded; the others are counted by the kind the
+    /// library gives their identifier.
+    pub fn add(&mut self, line: u64, log: &LogFrame<'_>) {
+        let (kind, node) = MessageKind::classify(&log.frame);
+        let Some(node) = node else { return };
+        let now = log.timestamp.map(Timestamp::as_duration);
         if now.is_some() {
             self.last_time = now;
         }
         let summary = self.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
-        summary.frames[record.kind().index()] += 1;
+        summary.frames[kind.index()] += 1;
+        if !matches!(
+            kind,
+            MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
+        ) {
+            return;
+        }
+        let record = Record::new(line, log);
         let Ok(message) = &record.decoded else { return };
         match *message {
             CanOpenMessage::Emcy { emcy, .. } => {
