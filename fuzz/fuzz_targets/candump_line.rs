@@ -19,9 +19,10 @@
 //!   fast path and the general parser agree;
 //! - `parse_line_str` agrees with `parse_line`;
 //! - `lines(input)` yields one item per line, numbered 1, 2, …, each equal
-//!   to `parse_line` of that line — except a tab-indented line after an
-//!   error frame (or after such a line), which is `Ok(None)` (candump -e's
-//!   explanation) — whether read with `next` or `fold`.
+//!   to `parse_line` of that line — except a line after an error frame (or
+//!   after such a line) that is no frame, has a tab in its indentation and
+//!   starts with one of can-utils' error class names, which is `Ok(None)`
+//!   (candump -e's explanation) — whether read with `next` or `fold`.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -178,10 +179,10 @@ fn check_lines(data: &[u8]) {
     let expected: Vec<_> = split_lines(data)
         .enumerate()
         .map(|(i, line)| {
-            if after_error_frame && line.first() == Some(&b'\t') {
+            let parsed = candump::parse_line(line);
+            if parsed.is_err() && after_error_frame && is_explanation(line) {
                 return (i + 1, Ok(None));
             }
-            let parsed = candump::parse_line(line);
             after_error_frame = matches!(&parsed, Ok(Some(f)) if f.frame.is_error());
             (i + 1, parsed)
         })
@@ -217,4 +218,32 @@ fn split_lines(data: &[u8]) -> impl Iterator<Item = &[u8]> {
         rest = next;
         Some(line)
     })
+}
+
+/// The model of candump -e's explanation lines: a tab in the indentation,
+/// then one of can-utils' error class names up to `{`, white space, `\r` or
+/// the end of the line.
+fn is_explanation(line: &[u8]) -> bool {
+    const WORDS: [&str; 10] = [
+        "tx-timeout",
+        "lost-arbitration",
+        "controller-problem",
+        "protocol-violation",
+        "transceiver-status",
+        "no-acknowledgement-on-tx",
+        "bus-off",
+        "bus-error",
+        "restarted-after-bus-off",
+        "error-counter-tx-rx",
+    ];
+    let start = line
+        .iter()
+        .position(|&b| b != b' ' && b != b'\t')
+        .unwrap_or(line.len());
+    let (indent, text) = line.split_at(start);
+    let end = text
+        .iter()
+        .position(|&b| matches!(b, b'{' | b' ' | b'\t' | b'\r'))
+        .unwrap_or(text.len());
+    indent.contains(&b'\t') && WORDS.iter().any(|w| w.as_bytes() == &text[..end])
 }

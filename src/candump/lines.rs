@@ -24,10 +24,13 @@ use super::*;
 /// # Ok::<(), motionwire::Error>(())
 /// ```
 ///
-/// After an error frame, the tab-indented lines that `candump -e` prints to
-/// explain it (can-utils `candump.c`: `"\n\t"` before each) belong to the
-/// frame: they are `Ok(None)`, not malformed (SPEC §5.2). A tab-indented
-/// line anywhere else is parsed as any other line.
+/// After an error frame, the lines that `candump -e` prints to explain it
+/// belong to the frame: they are `Ok(None)`, not malformed (SPEC §5.2). Such
+/// a line is one that is no frame, is indented with a tab (can-utils
+/// `candump.c` writes `"\n\t"` before each) and starts with one of
+/// can-utils' error class names (`lib.c`, `error_classes`: `bus-off`,
+/// `controller-problem{rx-error-warning}`, …). Anything else is read as any
+/// other line, so no frame and no malformed line is ever hidden.
 ///
 /// ```
 /// use motionwire::candump;
@@ -148,10 +151,10 @@ impl<'a> CandumpLines<'a> {
             None => (self.rest, &[][..]),
         };
         self.rest = rest;
-        if self.state.after_error_frame && line.first() == Some(&b'\t') {
+        let parsed = parse_general(line);
+        if parsed.is_err() && self.state.after_error_frame && is_explanation(line) {
             return (self.line_number, Ok(None));
         }
-        let parsed = parse_general(line);
         self.state.after_error_frame = matches!(
             parsed,
             Ok(Some(Parsed {
@@ -189,4 +192,34 @@ pub(super) fn find_newline(buf: &[u8]) -> Option<usize> {
         .iter()
         .position(|&b| b == b'\n')
         .map(|i| at + i)
+}
+
+/// can-utils' names of the error classes, with which every explanation line
+/// of `candump -e` starts (`lib.c`, `error_classes`, in class-bit order).
+const EXPLANATION_WORDS: [&[u8]; 10] = [
+    b"tx-timeout",
+    b"lost-arbitration",
+    b"controller-problem",
+    b"protocol-violation",
+    b"transceiver-status",
+    b"no-acknowledgement-on-tx",
+    b"bus-off",
+    b"bus-error",
+    b"restarted-after-bus-off",
+    b"error-counter-tx-rx",
+];
+
+/// Whether `line` looks like an explanation line of `candump -e`: a tab in
+/// its indentation, then an error class name up to `{`, white space or the
+/// end of the line.
+#[cold]
+fn is_explanation(line: &[u8]) -> bool {
+    let start = skip_space(line, 0);
+    let (indent, text) = line.split_at(start.min(line.len()));
+    let word_end = text
+        .iter()
+        .position(|&b| b == b'{' || is_space(b) || b == b'\r')
+        .unwrap_or(text.len());
+    let word = text.get(..word_end).unwrap_or_default();
+    indent.contains(&b'\t') && EXPLANATION_WORDS.contains(&word)
 }

@@ -1537,13 +1537,23 @@ fn error_frame_explanation_lines_belong_to_the_frame() {
 \tcontroller-problem{rx-error-warning}
 \terror-counter-tx-rx{{0}{0}}
  (1700000000.000600)  can0  081   [8]  10 81 11 00 00 00 00 00
-\tnot an explanation: no error frame before it
+\tbus-off
 ";
     let items: Vec<_> = lines(log.as_bytes()).collect();
     assert!(items[0].1.as_ref().unwrap().unwrap().can().is_error());
     assert_eq!((&items[1].1, &items[2].1), (&Ok(None), &Ok(None)));
     assert!(items[3].1.as_ref().unwrap().is_some());
+    // No error frame before it: an explanation word alone is malformed.
     assert!(items[4].1.is_err());
+    // After an error frame, a tab-indented line that is a frame stays a
+    // frame, and one that is neither a frame nor an explanation stays an
+    // error: nothing is hidden.
+    let mixed = "can0 20000040#0000000000000000\n\tcan1 123#01\n\tbus-offline\n\tbus-off\n";
+    let items: Vec<_> = lines(mixed.as_bytes()).map(|(_, r)| r).collect();
+    assert!(items[0].as_ref().unwrap().unwrap().can().is_error());
+    assert_eq!(items[1].as_ref().unwrap().unwrap().id().raw(), 0x123);
+    assert!(items[2].is_err());
+    assert!(items[3].is_err(), "an explanation after a data frame");
     // Read in two blocks, the state carries over.
     let (first, second) = log.split_at(log.find("\tcontroller").unwrap());
     let mut block = lines(first.as_bytes());
