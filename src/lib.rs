@@ -131,6 +131,7 @@ pub mod canopen;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
 mod error;
+mod names;
 pub mod profiles;
 pub mod servo;
 

@@ -263,22 +263,13 @@ impl fmt::Display for ErrorFrame {
     /// `error frame: controller|counters (rx_passive) tx 130 rx 0`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("error frame: ")?;
-        let mut sep = "";
-        for name in self.classes.names() {
-            write!(f, "{sep}{name}")?;
-            sep = "|";
-        }
-        if sep.is_empty() {
+        if !crate::names::write_joined(f, self.classes.names(), "|")? {
             f.write_str("no class")?;
         }
         let controller = self.controller();
         if !controller.is_empty() {
             f.write_str(" (")?;
-            let mut sep = "";
-            for name in controller.names() {
-                write!(f, "{sep}{name}")?;
-                sep = "|";
-            }
+            crate::names::write_joined(f, controller.names(), "|")?;
             f.write_str(")")?;
         }
         if let (Some(tx), Some(rx)) = (self.tx_errors(), self.rx_errors()) {

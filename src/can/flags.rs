@@ -86,17 +86,19 @@ impl fmt::Display for FdFlags {
         if self.is_empty() {
             return f.write_str("-");
         }
-        let mut rest = self.0;
-        let mut sep = "";
-        for (flag, name) in FdFlags::NAMES {
-            if self.contains(flag) {
-                write!(f, "{sep}{name}")?;
-                sep = "|";
-                rest &= !flag.0;
-            }
-        }
+        let names = FdFlags::NAMES
+            .into_iter()
+            .filter(|(flag, _)| self.contains(*flag))
+            .map(|(_, name)| name);
+        let any = crate::names::write_joined(f, names, "|")?;
+        let rest = FdFlags::NAMES
+            .into_iter()
+            .fold(self.0, |rest, (flag, _)| rest & !flag.0);
         if rest != 0 {
-            write!(f, "{sep}{rest:#x}")?;
+            if any {
+                f.write_str("|")?;
+            }
+            write!(f, "{rest:#x}")?;
         }
         Ok(())
     }

@@ -80,14 +80,7 @@ impl core::fmt::Display for ErrorRegister {
     /// assert_eq!(register.to_string(), "0x11 [generic|communication]");
     /// ```
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "{:#04x} [", self.bits())?;
-        for (i, name) in self.names().enumerate() {
-            if i > 0 {
-                f.write_str("|")?;
-            }
-            f.write_str(name)?;
-        }
-        f.write_str("]")
+        crate::names::write_word(f, format_args!("{:#04x}", self.bits()), self.names())
     }
 }
 

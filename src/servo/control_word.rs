@@ -827,13 +827,6 @@ impl fmt::Display for ServoControlWord {
     /// The word in hex with the names of its set single-bit flags, as
     /// SPEC §6.2 names them: `0x00000021 [EMGON|Brake]`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:#010x} [", self.bits())?;
-        for (i, name) in self.flag_names().enumerate() {
-            if i > 0 {
-                f.write_str("|")?;
-            }
-            f.write_str(name)?;
-        }
-        f.write_str("]")
+        crate::names::write_word(f, format_args!("{:#010x}", self.bits()), self.flag_names())
     }
 }
