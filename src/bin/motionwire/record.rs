@@ -59,7 +59,7 @@ impl<'r, 'a> Record<'r, 'a> {
         }
         match log.iface {
             Some(Iface::Name(name)) => obj.str("iface", name)?,
-            Some(iface @ Iface::Channel(_)) => obj.str("iface", &iface.to_string())?,
+            Some(iface @ Iface::Channel(_)) => obj.display("iface", &iface)?,
             None => obj.null("iface")?,
         }
         obj.uint("id", u64::from(frame.id().raw()))?;
@@ -116,12 +116,15 @@ impl<'r, 'a> Record<'r, 'a> {
             Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
             None => write!(out, "{:>17}  ", "-")?,
         }
-        let iface = log.iface.map(|i| i.to_string());
-        let iface = iface.as_deref().unwrap_or("-");
+        match log.iface {
+            Some(Iface::Name(name)) => write!(out, "{name:<6} ")?,
+            Some(Iface::Channel(channel)) => write!(out, "{channel:<6} ")?,
+            None => write!(out, "{:<6} ", "-")?,
+        }
         if frame.is_extended() {
-            write!(out, "{iface:<6} {:08X}  ", frame.id().raw())?;
+            write!(out, "{:08X}  ", frame.id().raw())?;
         } else {
-            write!(out, "{iface:<6}      {:03X}  ", frame.id().raw())?;
+            write!(out, "     {:03X}  ", frame.id().raw())?;
         }
         write!(out, "{:<13}  ", self.kind().name())?;
         match self.node() {
