@@ -200,6 +200,9 @@ mod tests {
 
     #[test]
     fn duration_round_trip_and_differences() {
+        let candump = Timestamp::new(1_700_000_000, 500).unwrap();
+        assert_eq!(candump.as_micros(), 1_700_000_000_000_500);
+        assert_eq!(candump.as_secs_f64(), 1_700_000_000.000_5);
         let ts = Timestamp::from_nanos(12, 345_678_901).unwrap();
         assert_eq!(Timestamp::from(Duration::from(ts)), ts);
         assert_eq!(ts.micros(), 345_678);

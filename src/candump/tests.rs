@@ -1337,47 +1337,6 @@ fn constructors_check_their_values() {
     );
 }
 
-#[test]
-fn values() {
-    assert_eq!(CanId::standard(0x7FF).map(CanId::raw), Some(0x7FF));
-    assert_eq!(CanId::standard(0x800), None);
-    assert_eq!(
-        CanId::extended(0x1FFF_FFFF).map(CanId::raw),
-        Some(0x1FFF_FFFF)
-    );
-    assert_eq!(CanId::extended(0x2000_0000), None);
-    assert_ne!(CanId::standard(0x123), CanId::extended(0x123));
-    assert_eq!(FdFlags::new(0xF).map(FdFlags::bits), Some(0xF));
-    assert_eq!(FdFlags::new(0x10), None);
-    assert!(FdFlags::new(0x7).unwrap().contains(FdFlags::FDF));
-    assert!(!FdFlags::BRS.contains(FdFlags::ESI));
-    assert_eq!(Direction::Rx.letter(), 'R');
-    assert_eq!(Direction::Tx.letter(), 'T');
-
-    let t = ts(1_700_000_000, 500);
-    assert_eq!(
-        (t.secs(), t.micros(), t.as_micros()),
-        (1_700_000_000, 500, 1_700_000_000_000_500)
-    );
-    assert_eq!(t.as_secs_f64(), 1_700_000_000.000_5);
-    assert_eq!(t.to_string(), "1700000000.000500");
-    assert_eq!(ts(1, 2).to_string(), "0000000001.000002");
-    assert_eq!(
-        Timestamp::new(0, 999_999).map(Timestamp::micros),
-        Some(999_999)
-    );
-    assert_eq!(Timestamp::new(0, 1_000_000), None);
-    assert_eq!(
-        Timestamp::try_new(5, 1_000_000),
-        Err(Error::OutOfRange {
-            what: What::TimestampMicroseconds,
-            found: 1_000_000,
-            min: 0,
-            max: 999_999
-        })
-    );
-}
-
 // ------------------------------------------------------------- lines
 
 const LOG: &str = "(1700000000.000500) can0 081#1081110000000000\r\n\
