@@ -11,22 +11,8 @@ use super::*;
 /// accepts it returns what [`parse_general`] returns.
 #[inline(always)]
 pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
-    // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `: the 16 digits in two
-    // words, seconds 1–8, then seconds 9–10 and microseconds 1–6.
-    let head = buf.first_chunk::<20>()?;
-    if head[0] != b'(' || head[11] != b'.' || head[18] != b')' || head[19] != b' ' {
-        return None;
-    }
-    let word = |at: usize| head.get(at..).and_then(|s| s.first_chunk::<8>()).copied();
-    let high = u64::from_le_bytes(word(1)?) ^ ZERO_CHARS64;
-    let low = (u64::from(u16::from_le_bytes([head[9], head[10]]))
-        | u64::from_le_bytes(word(12)?) << 16)
-        ^ ZERO_CHARS64;
-    if non_digits64(high) | non_digits64(low) != 0 {
-        return None;
-    }
-    let all = decimal8(high) * 100_000_000 + decimal8(low);
-    let (secs, micros) = (all / 1_000_000, (all % 1_000_000) as u32);
+    // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `.
+    let timestamp = parse_canonical_timestamp(buf.first_chunk::<20>()?)?;
 
     // Interface: printable ASCII up to a space, not starting with `(`/`#`.
     let iface_start = 20;
@@ -129,7 +115,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         Some(_) => return None,
     }
     let frame = Parsed {
-        timestamp: Some(Timestamp::new(secs, micros).unwrap_or_default()),
+        timestamp: Some(timestamp),
         iface,
         id,
         kind,

@@ -1,6 +1,31 @@
-//! The one timestamp parser, `(seconds.fraction)` (SPEC §5.1, §5.2).
+//! The one timestamp parser, `(seconds.fraction)` (SPEC §5.1, §5.2): the
+//! fixed `candump -l` template for the fast path, the general form with
+//! SWAR, and the byte-by-byte form for the rest; the tests check that the
+//! three agree.
 
 use super::*;
+
+/// Read the template `candump -l` writes, `(SSSSSSSSSS.UUUUUU) ` (ten digits
+/// of seconds, six of microseconds, a space), from the first 20 bytes of a
+/// line: the 16 digits in two words (seconds 1–8, then seconds 9–10 and
+/// microseconds 1–6). `None` for any other shape, which
+/// [`parse_timestamp`] then reads or reports.
+#[inline(always)]
+pub(super) fn parse_canonical_timestamp(head: &[u8; 20]) -> Option<Timestamp> {
+    if head[0] != b'(' || head[11] != b'.' || head[18] != b')' || head[19] != b' ' {
+        return None;
+    }
+    let word = |at: usize| head.get(at..).and_then(|s| s.first_chunk::<8>()).copied();
+    let high = u64::from_le_bytes(word(1)?) ^ ZERO_CHARS64;
+    let low = (u64::from(u16::from_le_bytes([head[9], head[10]]))
+        | u64::from_le_bytes(word(12)?) << 16)
+        ^ ZERO_CHARS64;
+    if non_digits64(high) | non_digits64(low) != 0 {
+        return None;
+    }
+    let all = decimal8(high) * 100_000_000 + decimal8(low);
+    Timestamp::new(all / 1_000_000, (all % 1_000_000) as u32)
+}
 
 /// Read `(seconds.fraction)` starting at the `(` at `open`; return the
 /// timestamp and the index after `)`.
@@ -88,4 +113,31 @@ pub(super) fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestam
     }
     let micros = micros * POW10[6 - frac_digits];
     Ok((Timestamp::new(secs, micros).unwrap_or_default(), at + 1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The fixed template, the general SWAR form and the byte-by-byte
+        /// form read the same timestamp.
+        #[test]
+        fn the_three_forms_agree(secs in 0u64..10_000_000_000, micros in 0u32..1_000_000) {
+            let text = format!("({secs:010}.{micros:06}) ");
+            let head: &[u8; 20] = text.as_bytes().first_chunk().unwrap();
+            let expected = Timestamp::new(secs, micros).unwrap();
+            prop_assert_eq!(parse_canonical_timestamp(head), Some(expected));
+            prop_assert_eq!(parse_timestamp(text.as_bytes(), 0), Ok((expected, 19)));
+            prop_assert_eq!(parse_timestamp_slow(text.as_bytes(), 0), Ok((expected, 19)));
+        }
+
+        #[test]
+        fn other_shapes_are_not_the_template(bytes in proptest::array::uniform20(any::<u8>())) {
+            if let Some(ts) = parse_canonical_timestamp(&bytes) {
+                prop_assert_eq!(parse_timestamp(&bytes, 0).map(|(t, _)| t), Ok(ts));
+            }
+        }
+    }
 }
