@@ -675,3 +675,32 @@ fn error_frames_are_frames_with_their_keys() {
     let text = run(&["decode"], log);
     assert!(stdout(&text).contains("error frame: controller (tx_passive)"));
 }
+
+/// SPEC §5.7, §6.3: a log without timestamps cannot be checked for
+/// heartbeat timeouts: `timeouts` is null, the text says so, and standard
+/// error says it once — never "no timeouts".
+#[test]
+fn without_timestamps_timeouts_are_not_checked() {
+    let log = "can0 705#05\ncan0 705#05\ncan0 706#05\n";
+    let out = run(
+        &["decode", "--summary", "--json", "--heartbeat-ms", "100"],
+        log,
+    );
+    assert!(out.status.success());
+    let recs = records(&out);
+    assert_eq!(recs.len(), 2);
+    for rec in &recs {
+        assert_eq!(rec["heartbeat"]["timeouts"], Value::Null);
+    }
+    assert_eq!(stderr(&out).matches("timeouts were not checked").count(), 1);
+    let text = run(&["decode", "--summary", "--heartbeat-ms", "100"], log);
+    assert!(stdout(&text).contains("timeouts not checked (no timestamps)"));
+    assert!(!stdout(&text).contains("no timeouts"));
+    // With timestamps they are checked.
+    let timed = run(
+        &["decode", "--summary", "--json", "--heartbeat-ms", "100"],
+        "(1.0) can0 705#05\n(1.05) can0 705#05\n",
+    );
+    assert_eq!(records(&timed)[0]["heartbeat"]["timeouts"], json!([]));
+    assert!(stderr(&timed).is_empty());
+}

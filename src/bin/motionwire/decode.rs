@@ -110,6 +110,13 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         })?;
     }
     if let Some(summary) = summary {
+        if summary.timeouts_not_checked() {
+            writeln!(
+                err,
+                "motionwire: the log has frames without timestamps: heartbeat timeouts were not \
+                 checked (--heartbeat-ms)"
+            )?;
+        }
         summary.write(&mut out, args.json)?;
     }
     out.flush()?;

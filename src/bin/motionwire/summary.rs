@@ -90,6 +90,20 @@ pub struct Summary {
     storage: EmcyStorage,
     consumer: Option<HeartbeatConsumer>,
     last_time: Option<Duration>,
+    /// Frames of nodes that had no timestamp: with any, heartbeat timeouts
+    /// cannot be checked (SPEC §5.7, §6.3).
+    untimed: u64,
+}
+
+/// Whether heartbeat timeouts are reported (SPEC §6.3, §5.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Timeouts {
+    /// `--heartbeat-ms` was not given: no `timeouts` key.
+    NotAsked,
+    /// Asked, but frames without timestamps make it impossible: `null`.
+    NotChecked,
+    /// Asked and checked: the list.
+    Checked,
 }
 
 impl Summary {
@@ -106,6 +120,7 @@ impl Summary {
             storage: EmcyStorage::new(),
             consumer,
             last_time: None,
+            untimed: 0,
         }
     }
 
@@ -118,8 +133,9 @@ impl Summary {
         let (kind, node) = MessageKind::classify(&log.frame);
         let Some(node) = node else { return };
         let now = log.timestamp.map(Timestamp::as_duration);
-        if now.is_some() {
-            self.last_time = now;
+        match now {
+            Some(_) => self.last_time = now,
+            None => self.untimed += 1,
         }
         let summary = self.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
         summary.frames[kind.index()] += 1;
@@ -233,10 +249,25 @@ impl Summary {
         }
     }
 
+    /// Return whether heartbeat timeouts were asked for but could not be
+    /// checked because frames had no timestamps (SPEC §5.7: said once on
+    /// standard error).
+    pub fn timeouts_not_checked(&self) -> bool {
+        self.timeouts() == Timeouts::NotChecked
+    }
+
+    fn timeouts(&self) -> Timeouts {
+        match (self.consumer.is_some(), self.untimed) {
+            (false, _) => Timeouts::NotAsked,
+            (true, 0) => Timeouts::Checked,
+            (true, _) => Timeouts::NotChecked,
+        }
+    }
+
     /// Write one record per node seen, in node order.
     pub fn write<W: Write>(mut self, out: &mut W, as_json: bool) -> io::Result<()> {
         self.finish();
-        let with_timeouts = self.consumer.is_some();
+        let with_timeouts = self.timeouts();
         for summary in self.nodes.iter().flatten() {
             if as_json {
                 write_json(out, summary, with_timeouts)?;
@@ -272,7 +303,7 @@ fn gap_ms(gap: &Gap) -> f64 {
     gap.gap.as_micros() as f64 / 1000.0
 }
 
-fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io::Result<()> {
+fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -> io::Result<()> {
     let mut obj = Object::begin(out)?;
     obj.uint("node", u64::from(s.node.get()))?;
     {
@@ -294,7 +325,10 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
             None => hb.null("last_state")?,
         }
         hb.uints("boot_ups", s.boot_ups.iter().copied())?;
-        if with_timeouts {
+        if with_timeouts == Timeouts::NotChecked {
+            hb.null("timeouts")?;
+        }
+        if with_timeouts == Timeouts::Checked {
             let out = hb.key("timeouts")?;
             out.write_all(b"[")?;
             for (i, gap) in s.timeouts.iter().enumerate() {
@@ -320,7 +354,7 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
     out.write_all(b"\n")
 }
 
-fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io::Result<()> {
+fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -> io::Result<()> {
     write!(out, "node {:>3}  frames", s.node.get())?;
     for kind in MessageKind::ALL {
         let n = s.frames[kind.index()];
@@ -342,7 +376,10 @@ fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: bool) -> io
     if !s.boot_ups.is_empty() {
         write!(out, ", boot-ups at lines {}", Lines(&s.boot_ups))?;
     }
-    if with_timeouts {
+    if with_timeouts == Timeouts::NotChecked {
+        out.write_all(b", timeouts not checked (no timestamps)")?;
+    }
+    if with_timeouts == Timeouts::Checked {
         if s.timeouts.is_empty() {
             out.write_all(b", no timeouts")?;
         }
