@@ -704,3 +704,47 @@ fn without_timestamps_timeouts_are_not_checked() {
     assert_eq!(records(&timed)[0]["heartbeat"]["timeouts"], json!([]));
     assert!(stderr(&timed).is_empty());
 }
+
+/// SPEC §6.4, live use: `candump -L can0 | motionwire decode --json -`
+/// prints each record as soon as its line arrives, while the input is still
+/// open.
+#[test]
+fn a_pipe_is_decoded_live() {
+    use std::io::{BufRead, BufReader};
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    let mut child = bin()
+        .args(["decode", "--json", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("the motionwire binary runs");
+    let mut stdin = child.stdin.take().unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let (tx, rx) = mpsc::channel();
+    let reader = std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines() {
+            if tx.send(line.unwrap()).is_err() {
+                break;
+            }
+        }
+    });
+    for (i, frame) in ["(1.0) can0 705#05", "(1.1) can0 085#1081110000000000"]
+        .into_iter()
+        .enumerate()
+    {
+        stdin.write_all(format!("{frame}\n").as_bytes()).unwrap();
+        stdin.flush().unwrap();
+        // The record comes while stdin is still open.
+        let record = rx
+            .recv_timeout(Duration::from_secs(20))
+            .unwrap_or_else(|_| panic!("no record for line {} while the pipe is open", i + 1));
+        let value: Value = serde_json::from_str(&record).unwrap();
+        assert_eq!(value["line"], i + 1);
+    }
+    drop(stdin);
+    assert!(child.wait().unwrap().success());
+    reader.join().unwrap();
+}

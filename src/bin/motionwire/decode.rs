@@ -79,7 +79,16 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     for input in inputs {
         let name = input.name.clone();
         let path = input.path.clone();
-        for_each_line(input.reader, |line, parsed| {
+        for_each_line(input.reader, |event| {
+            let (line, parsed) = match event {
+                // Live use: what was decoded so far is written out now
+                // (SPEC §6.4); a file read in full blocks never gets here.
+                Event::Drained => {
+                    out.flush()?;
+                    return err.flush();
+                }
+                Event::Line(line, parsed) => (line, parsed),
+            };
             match parsed {
                 Ok(None) => {}
                 Ok(Some(frame)) => match summary.as_mut() {
@@ -130,6 +139,15 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// What [`for_each_line`] hands to its handler.
+enum Event<'a> {
+    /// A line, with its 1-based number, as the candump parser reads it.
+    Line(u64, motionwire::Result<Option<LogFrame<'a>>>),
+    /// The input has nothing more buffered: the next read would wait (a
+    /// pipe from a live `candump`), so the output should be flushed now.
+    Drained,
+}
+
 /// Why reading the lines of one input stopped.
 enum LineError {
     /// The input could not be read.
@@ -146,7 +164,7 @@ enum LineError {
 /// single line is longer than a block.
 fn for_each_line(
     mut reader: Box<dyn Read>,
-    mut handle: impl FnMut(u64, motionwire::Result<Option<LogFrame<'_>>>) -> io::Result<()>,
+    mut handle: impl FnMut(Event<'_>) -> io::Result<()>,
 ) -> Result<(), LineError> {
     const BLOCK: usize = 1 << 18;
     let mut buf = vec![0u8; BLOCK];
@@ -160,11 +178,15 @@ fn for_each_line(
             // A line longer than the block: make room for the rest of it.
             buf.resize(buf.len() * 2, 0);
         }
+        let room = buf.len() - filled;
         let n = match reader.read(&mut buf[filled..]) {
             Ok(n) => n,
             Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
             Err(e) => return Err(LineError::Read(e)),
         };
+        // A read that did not fill the room took everything the input had
+        // buffered (a pipe from candump): after these lines, say so.
+        let drained = n < room;
         let at_end = n == 0;
         filled += n;
         // Parse up to the last complete line (all of it at the end).
@@ -180,10 +202,13 @@ fn for_each_line(
         let mut iter = candump::lines_from(&buf[..complete], state);
         for (number, parsed) in iter.by_ref() {
             lines = number;
-            handle(base + number as u64, parsed).map_err(LineError::Write)?;
+            handle(Event::Line(base + number as u64, parsed)).map_err(LineError::Write)?;
         }
         state = iter.state();
         base += lines as u64;
+        if drained && !at_end {
+            handle(Event::Drained).map_err(LineError::Write)?;
+        }
         if at_end {
             return Ok(());
         }
