@@ -7,7 +7,6 @@ use std::io::{self, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use motionwire::can::LogFrame;
 use motionwire::candump;
 use motionwire::canopen::MessageKind;
 
@@ -79,44 +78,49 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     for input in inputs {
         let name = input.name.clone();
         let path = input.path.clone();
-        for_each_line(input.reader, |event| {
-            let (line, parsed) = match event {
-                // Live use: what was decoded so far is written out now
-                // (SPEC §6.4); a file read in full blocks never gets here.
-                Event::Drained => {
-                    out.flush()?;
-                    return err.flush();
-                }
-                Event::Line(line, parsed) => (line, parsed),
-            };
-            match parsed {
-                Ok(None) => {}
-                Ok(Some(frame)) => match summary.as_mut() {
-                    Some(summary) => summary.add(line, &frame),
-                    None => {
-                        let record = Record::new(line, &frame);
-                        if !keep[record.kind().index()] {
-                            return Ok(());
+        let mut blocks = Blocks::new(input.reader);
+        loop {
+            let block = blocks
+                .next_block()
+                .map_err(|e| read_failure(&name, path.as_deref(), e))?;
+            let Some(block) = block else { break };
+            let drained = block.drained;
+            let mut lines = candump::lines_from(block.text, block.state);
+            let mut last = 0;
+            for (number, parsed) in lines.by_ref() {
+                last = number;
+                let line = block.base + number as u64;
+                match parsed {
+                    Ok(None) => {}
+                    Ok(Some(frame)) => match summary.as_mut() {
+                        Some(summary) => summary.add(line, &frame),
+                        None => {
+                            let record = Record::new(line, &frame);
+                            if keep[record.kind().index()] {
+                                let profile = profiles.of(record.node());
+                                if args.json {
+                                    record.write_json(&mut out, profile)?;
+                                } else {
+                                    record.write_text(&mut out, profile)?;
+                                }
+                            }
                         }
-                        let profile = profiles.of(record.node());
-                        if args.json {
-                            record.write_json(&mut out, profile)?;
-                        } else {
-                            record.write_text(&mut out, profile)?;
-                        }
+                    },
+                    Err(e) => {
+                        skipped += 1;
+                        writeln!(err, "{name}:{line}: {e}")?;
                     }
-                },
-                Err(e) => {
-                    skipped += 1;
-                    writeln!(err, "{name}:{line}: {e}")?;
                 }
             }
-            Ok(())
-        })
-        .map_err(|e| match e {
-            LineError::Read(e) => read_failure(&input.name, path.as_deref(), e),
-            LineError::Write(e) => Failure::Io(e),
-        })?;
+            let state = lines.state();
+            blocks.done(last, state);
+            if drained {
+                // Live use: what was decoded so far is written out now
+                // (SPEC §6.4); a file read in full blocks never gets here.
+                out.flush()?;
+                err.flush()?;
+            }
+        }
     }
     if let Some(summary) = summary {
         if summary.timeouts_not_checked() {
@@ -139,81 +143,101 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// What [`for_each_line`] hands to its handler.
-enum Event<'a> {
-    /// A line, with its 1-based number, as the candump parser reads it.
-    Line(u64, motionwire::Result<Option<LogFrame<'a>>>),
-    /// The input has nothing more buffered: the next read would wait (a
-    /// pipe from a live `candump`), so the output should be flushed now.
-    Drained,
+/// An input read in large blocks of whole lines, parsed in place (no copy
+/// per line). A line that runs past a block is carried to the front and
+/// completed by the next read. Memory stays at one block, whatever the
+/// input's size, unless a single line is longer than a block.
+struct Blocks {
+    reader: Box<dyn Read>,
+    buf: Vec<u8>,
+    /// Bytes of `buf` read.
+    filled: usize,
+    /// Bytes at the front of `buf` handed out in the last block.
+    handed: usize,
+    /// Lines before the next block.
+    base: u64,
+    /// What the last block's last line means for the next block's first
+    /// (an error frame's explanation lines, candump -e).
+    state: candump::LineState,
+    at_end: bool,
 }
 
-/// Why reading the lines of one input stopped.
-enum LineError {
-    /// The input could not be read.
-    Read(io::Error),
-    /// The handler could not write its output.
-    Write(io::Error),
+/// Whole lines of an input, with what the lines before them leave.
+struct Block<'b> {
+    /// The lines, each ending in `\n` but maybe the input's last.
+    text: &'b [u8],
+    /// How many lines came before.
+    base: u64,
+    /// What the lines before mean for the first.
+    state: candump::LineState,
+    /// Whether the input has nothing more buffered after these lines (the
+    /// next read would wait, as on a live pipe).
+    drained: bool,
 }
 
-/// Read `reader` in large blocks and hand every line, with its 1-based
-/// number, to `handle` as the crate's candump parser reads it. Whole lines
-/// are parsed straight out of the block (no copy per line); a line that
-/// runs past the block is carried to the front and completed by the next
-/// read. Memory stays at one block, whatever the input's size, unless a
-/// single line is longer than a block.
-fn for_each_line(
-    mut reader: Box<dyn Read>,
-    mut handle: impl FnMut(Event<'_>) -> io::Result<()>,
-) -> Result<(), LineError> {
+impl Blocks {
     const BLOCK: usize = 1 << 18;
-    let mut buf = vec![0u8; BLOCK];
-    let mut filled = 0;
-    let mut base: u64 = 0;
-    // Carries what the last line of a block means for the next block's
-    // first (an error frame's explanation lines, candump -e).
-    let mut state = candump::LineState::default();
-    loop {
-        if filled == buf.len() {
-            // A line longer than the block: make room for the rest of it.
-            buf.resize(buf.len() * 2, 0);
+
+    fn new(reader: Box<dyn Read>) -> Self {
+        Blocks {
+            reader,
+            buf: vec![0; Self::BLOCK],
+            filled: 0,
+            handed: 0,
+            base: 0,
+            state: candump::LineState::default(),
+            at_end: false,
         }
-        let room = buf.len() - filled;
-        let n = match reader.read(&mut buf[filled..]) {
-            Ok(n) => n,
-            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-            Err(e) => return Err(LineError::Read(e)),
-        };
-        // A read that did not fill the room took everything the input had
-        // buffered (a pipe from candump): after these lines, say so.
-        let drained = n < room;
-        let at_end = n == 0;
-        filled += n;
-        // Parse up to the last complete line (all of it at the end).
-        let complete = if at_end {
-            filled
-        } else {
-            match buf[..filled].iter().rposition(|&b| b == b'\n') {
-                Some(i) => i + 1,
-                None => continue,
+    }
+
+    /// Read until there is at least one whole line (or the end), and return
+    /// the whole lines; `None` after the end.
+    fn next_block(&mut self) -> io::Result<Option<Block<'_>>> {
+        // Drop what the last block handed out.
+        self.buf.copy_within(self.handed..self.filled, 0);
+        self.filled -= self.handed;
+        self.handed = 0;
+        if self.at_end {
+            return Ok(None);
+        }
+        loop {
+            if self.filled == self.buf.len() {
+                // A line longer than the block: make room for the rest of it.
+                self.buf.resize(self.buf.len() * 2, 0);
             }
-        };
-        let mut lines = 0;
-        let mut iter = candump::lines_from(&buf[..complete], state);
-        for (number, parsed) in iter.by_ref() {
-            lines = number;
-            handle(Event::Line(base + number as u64, parsed)).map_err(LineError::Write)?;
+            let room = self.buf.len() - self.filled;
+            let n = match self.reader.read(&mut self.buf[self.filled..]) {
+                Ok(n) => n,
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            };
+            self.filled += n;
+            self.at_end = n == 0;
+            // Up to the last complete line (all of it at the end).
+            let complete = if self.at_end {
+                self.filled
+            } else {
+                match self.buf[..self.filled].iter().rposition(|&b| b == b'\n') {
+                    Some(i) => i + 1,
+                    None => continue,
+                }
+            };
+            self.handed = complete;
+            return Ok(Some(Block {
+                text: &self.buf[..complete],
+                base: self.base,
+                state: self.state,
+                // A read that did not fill the room took everything the
+                // input had buffered.
+                drained: n < room && !self.at_end,
+            }));
         }
-        state = iter.state();
-        base += lines as u64;
-        if drained && !at_end {
-            handle(Event::Drained).map_err(LineError::Write)?;
-        }
-        if at_end {
-            return Ok(());
-        }
-        buf.copy_within(complete..filled, 0);
-        filled -= complete;
+    }
+
+    /// Record that the last block held `lines` lines and left `state`.
+    fn done(&mut self, lines: usize, state: candump::LineState) {
+        self.base += lines as u64;
+        self.state = state;
     }
 }
 
