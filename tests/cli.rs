@@ -748,3 +748,31 @@ fn a_pipe_is_decoded_live() {
     assert!(child.wait().unwrap().success());
     reader.join().unwrap();
 }
+
+/// A log written by python-can's `CanutilsLogWriter` (tests/python_can.rs
+/// checks it frame by frame against python-can's reader) decodes without a
+/// malformed line, its error frame as `error_frame`.
+#[test]
+fn a_python_can_log_decodes() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/python_can.log");
+    let out = bin().args(["decode", "--json", path]).output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let kinds: Vec<String> = records(&out)
+        .iter()
+        .map(|r| r["kind"].as_str().unwrap().to_owned())
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "emcy",
+            "heartbeat",
+            "guard_request",
+            "other",
+            "pdo",
+            "pdo",
+            "error_frame",
+            "other",
+            "sdo"
+        ]
+    );
+}
