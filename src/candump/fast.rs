@@ -66,8 +66,8 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
     let mut data = [0; FD_MAX_LEN];
     let (kind, len, end) = match buf.get(body) {
         Some(b'R' | b'r') => match buf.get(body + 1) {
-            Some(&d @ b'0'..=b'8') => (Kind::Remote, d - b'0', body + 2),
-            _ => (Kind::Remote, 0, body + 1),
+            Some(&d @ b'0'..=b'8') => (FrameType::Remote { dlc: d - b'0' }, 0, body + 2),
+            _ => (FrameType::Remote { dlc: 0 }, 0, body + 1),
         },
         Some(b'#') => {
             let flags = HEX_TABLE[usize::from(*buf.get(body + 1)?)];
@@ -75,7 +75,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
                 return None;
             }
             let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
-            (Kind::Fd(FdFlags::new(flags)?), len, end)
+            (FrameType::Fd(FdFlags::new(flags)?), len, end)
         }
         _ => {
             // Classic data: at most 16 hex digits, so one word holds them
@@ -89,7 +89,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
             if let Some(first) = data.first_chunk_mut::<8>() {
                 *first = packed.to_le_bytes();
             }
-            (Kind::Data, (digits / 2) as u8, body + digits)
+            (FrameType::Data, (digits / 2) as u8, body + digits)
         }
     };
 

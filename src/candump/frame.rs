@@ -5,20 +5,6 @@
 use super::*;
 use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
 
-/// The payload kind of a frame being parsed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) enum Kind {
-    /// A classic data frame, 0..=8 bytes.
-    Data,
-    /// A classic remote request; `len` is the requested length, 0..=8.
-    Remote,
-    /// A CAN FD frame, 0..=64 bytes.
-    Fd(FdFlags),
-    /// An error frame (`CAN_ERR_FLAG` in an 8-digit identifier, SPEC §5.1):
-    /// the identifier holds the error classes, 0..=8 data bytes.
-    Error,
-}
-
 /// The frame a line is parsed into, field by field; every parser keeps the
 /// invariants of [`CanFrame`] (lengths, an extended identifier for an error
 /// frame), so the conversion checks nothing.
@@ -29,9 +15,10 @@ pub(super) struct Parsed<'a> {
     /// fast path's `non_graphic` check).
     pub(super) iface: &'a [u8],
     pub(super) id: CanId,
-    pub(super) kind: Kind,
+    /// The frame's kind, a remote request with its requested length.
+    pub(super) kind: FrameType,
     pub(super) direction: Option<Direction>,
-    /// Data length, or the requested length of a remote request.
+    /// Data length (0 for a remote request).
     pub(super) len: u8,
     /// `data[..len]` is the payload; the rest is zero.
     pub(super) data: [u8; FD_MAX_LEN],
@@ -60,14 +47,8 @@ impl<'a> Parsed<'a> {
 
     #[inline(always)]
     fn into_log_frame_named(self, iface: &'a str) -> LogFrame<'a> {
-        let (frame_type, len) = match self.kind {
-            Kind::Data => (FrameType::Data, self.len),
-            Kind::Remote => (FrameType::Remote { dlc: self.len }, 0),
-            Kind::Fd(flags) => (FrameType::Fd(flags), self.len),
-            Kind::Error => (FrameType::Error, self.len),
-        };
         LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, frame_type, self.data, len),
+            frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
             timestamp: self.timestamp,
             iface: Some(Iface::Name(iface)),
             direction: self.direction,

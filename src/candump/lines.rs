@@ -158,7 +158,7 @@ impl<'a> CandumpLines<'a> {
         self.state.after_error_frame = matches!(
             parsed,
             Ok(Some(Parsed {
-                kind: Kind::Error,
+                kind: FrameType::Error,
                 ..
             }))
         );

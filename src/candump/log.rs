@@ -22,15 +22,14 @@ pub(super) fn parse_log_frame(line: &[u8], start: usize, frame: &mut Parsed<'_>)
     }
     match line.get(start) {
         // An error frame is classic data (Linux `CAN_ERR_DLC`, SPEC §5.1).
-        Some(&b @ (b'R' | b'r' | b'#')) if frame.kind == Kind::Error => Err(error(
+        Some(&b @ (b'R' | b'r' | b'#')) if frame.kind == FrameType::Error => Err(error(
             start,
             SyntaxError::BadErrorFrame {
                 found: Found::Byte(b),
             },
         )),
         Some(b'R' | b'r') => {
-            frame.kind = Kind::Remote;
-            frame.len = match line.get(start + 1..end).unwrap_or_default() {
+            let dlc = match line.get(start + 1..end).unwrap_or_default() {
                 [] => 0,
                 [d @ b'0'..=b'8'] => d - b'0',
                 [b'0'..=b'8', ..] => return Err(trailing(line, skip_space(line, start + 2))),
@@ -44,6 +43,7 @@ pub(super) fn parse_log_frame(line: &[u8], start: usize, frame: &mut Parsed<'_>)
                     ))
                 }
             };
+            frame.kind = FrameType::Remote { dlc };
             Ok(())
         }
         Some(b'#') => {
@@ -58,7 +58,7 @@ pub(super) fn parse_log_frame(line: &[u8], start: usize, frame: &mut Parsed<'_>)
                     ))
                 }
             };
-            frame.kind = Kind::Fd(flags);
+            frame.kind = FrameType::Fd(flags);
             frame.len = parse_log_data(line, start + 2, end, FD_MAX_LEN, &mut frame.data)?;
             Ok(())
         }

@@ -110,8 +110,8 @@
 use core::fmt;
 use core::iter::FusedIterator;
 
-use crate::can::LogFrame;
 pub use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::can::{FrameType, LogFrame};
 use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
 
 mod error;

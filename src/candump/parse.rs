@@ -111,7 +111,7 @@ pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
         if let Some((direction, flags, column)) = indicators {
             frame.direction = Some(direction);
             match frame.kind {
-                Kind::Fd(_) => frame.kind = Kind::Fd(flags),
+                FrameType::Fd(_) => frame.kind = FrameType::Fd(flags),
                 _ if flags != FdFlags::EMPTY => {
                     // Point at the first flag letter a classic frame cannot have.
                     let mut at = skip_space(line, column + 3);
@@ -183,7 +183,7 @@ pub(super) fn missing_frame(line: &[u8], start: usize, end: usize) -> Error {
 /// Parse a 3- or 8-digit identifier at `start`; return it and the index of
 /// the `#` or white space after it.
 #[inline(always)]
-pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, Kind, usize)> {
+pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, FrameType, usize)> {
     let (values, bad) = hex_lanes(load16(line, start));
     let digits = lanes_before(bad);
     let end = start + digits;
@@ -192,7 +192,7 @@ pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, Kind, usize)
         let v = values as u32;
         let raw = (v & 0xF) << 8 | (v >> 8 & 0xF) << 4 | (v >> 16 & 0xF);
         match CanId::standard(raw) {
-            Some(id) => Ok((id, Kind::Data, end)),
+            Some(id) => Ok((id, FrameType::Data, end)),
             None => Err(out_of_range(start, raw, CanId::STANDARD_MAX)),
         }
     } else if digits == 8 && delimited {
@@ -201,8 +201,8 @@ pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, Kind, usize)
         // its classes (candump -e, python-can; SPEC §5.1). Bits 30 and 31
         // (Linux's RTR and EFF flags) never appear in candump text.
         match CanId::extended(raw & !CAN_ERR_FLAG) {
-            Some(id) if raw & CAN_ERR_FLAG == 0 => Ok((id, Kind::Data, end)),
-            Some(id) => Ok((id, Kind::Error, end)),
+            Some(id) if raw & CAN_ERR_FLAG == 0 => Ok((id, FrameType::Data, end)),
+            Some(id) => Ok((id, FrameType::Error, end)),
             None => Err(out_of_range(start, raw, CAN_ERR_FLAG | CanId::EXTENDED_MAX)),
         }
     } else {

@@ -63,7 +63,7 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
         return Err(bad_length(close));
     }
     let fd = close == open + 3;
-    if fd && frame.kind == Kind::Error {
+    if fd && frame.kind == FrameType::Error {
         return Err(error(
             open,
             SyntaxError::BadErrorFrame {
@@ -76,7 +76,7 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
         return Err(bad_length(open + 1));
     }
     if fd {
-        frame.kind = Kind::Fd(FdFlags::EMPTY);
+        frame.kind = FrameType::Fd(FdFlags::EMPTY);
     }
 
     let mut at = close + 1;
@@ -89,9 +89,11 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
     }
     at = need_space(line, at)?;
     const REMOTE: &[u8] = b"remote request";
-    if !fd && frame.kind != Kind::Error && line.get(at..at + REMOTE.len()) == Some(REMOTE) {
-        frame.kind = Kind::Remote;
-        frame.len = declared as u8;
+    if !fd && frame.kind != FrameType::Error && line.get(at..at + REMOTE.len()) == Some(REMOTE) {
+        // At most 8 (checked above for a classic length).
+        frame.kind = FrameType::Remote {
+            dlc: declared as u8,
+        };
         let end = at + REMOTE.len();
         return if end == line.len() {
             Ok(())
@@ -103,7 +105,7 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
     let mut count = 0;
     loop {
         // candump -e ends an error frame's line with `ERRORFRAME`.
-        if frame.kind == Kind::Error && line.get(at..) == Some(ERRORFRAME) {
+        if frame.kind == FrameType::Error && line.get(at..) == Some(ERRORFRAME) {
             break;
         }
         let byte = match (
