@@ -71,6 +71,20 @@ pub enum Error {
         /// What was expected there and what was found.
         reason: SyntaxError,
     },
+    /// A binary log (pcap, pcapng, BLF; SPEC §5.5, §5.6) is damaged at
+    /// `offset` (bytes from the start of the file, or of the decompressed
+    /// container for BLF objects): the records before it were read, the rest
+    /// of the file cannot be, e.g. `pcap file, byte 4120: record of 16 bytes
+    /// cut off after 9`.
+    #[error("{format} file, byte {offset}: {reason}")]
+    Binary {
+        /// The log format the file was read as.
+        format: LogFormat,
+        /// Where the damaged structure starts, in bytes.
+        offset: u64,
+        /// What is wrong there.
+        reason: BinaryError,
+    },
 }
 
 /// A log format of SPEC §5, as an error names it.
@@ -79,14 +93,40 @@ pub enum Error {
 pub enum LogFormat {
     /// candump text, log and screen formats (SPEC §5.1, §5.2).
     Candump,
+    /// Vector ASC text (SPEC §5.3).
+    Asc,
+    /// PEAK TRC text, versions 1.0 to 2.1 (SPEC §5.4).
+    Trc,
+    /// pcap with link type 227, SocketCAN (SPEC §5.5).
+    Pcap,
+    /// pcapng with SocketCAN interfaces (SPEC §5.5).
+    Pcapng,
+    /// Vector BLF (SPEC §5.6).
+    Blf,
 }
 
 impl LogFormat {
-    /// Return the format's name as messages write it, e.g. `candump`.
+    /// Every format, in the order of SPEC §5.
+    pub const ALL: [LogFormat; 6] = [
+        LogFormat::Candump,
+        LogFormat::Asc,
+        LogFormat::Trc,
+        LogFormat::Pcap,
+        LogFormat::Pcapng,
+        LogFormat::Blf,
+    ];
+
+    /// Return the format's name as messages and `--format` write it, e.g.
+    /// `candump`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             LogFormat::Candump => "candump",
+            LogFormat::Asc => "asc",
+            LogFormat::Trc => "trc",
+            LogFormat::Pcap => "pcap",
+            LogFormat::Pcapng => "pcapng",
+            LogFormat::Blf => "blf",
         }
     }
 }
@@ -114,6 +154,83 @@ impl core::fmt::Display for Found {
             Found::Byte(b) if b.is_ascii_graphic() => write!(f, "'{}'", char::from(b)),
             Found::Byte(b) => write!(f, "byte {b:#04x}"),
             Found::EndOfLine => f.write_str("the end of the line"),
+        }
+    }
+}
+
+/// Why a binary log cannot be read further (SPEC §5.5, §5.6, §5.7):
+/// carried by [`Error::Binary`] with the format and the byte offset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum BinaryError {
+    /// The file does not start with the format's magic number.
+    BadMagic {
+        /// The first four bytes, read little-endian.
+        found: u32,
+    },
+    /// A version of the file format this reader does not know.
+    UnsupportedVersion {
+        /// The major version.
+        major: u16,
+        /// The minor version.
+        minor: u16,
+    },
+    /// The file ends inside a header, block or record.
+    Truncated {
+        /// The bytes the structure needs.
+        needed: u64,
+        /// The bytes that were there.
+        found: u64,
+    },
+    /// A length field is inconsistent with the structure that holds it
+    /// (shorter than its own header, not a multiple of 4 where the format
+    /// requires it, or different from its trailing copy).
+    BadLength {
+        /// The length as read.
+        length: u64,
+    },
+    /// A length field claims more than a reader will hold in memory; the
+    /// file is damaged or hostile.
+    TooLarge {
+        /// The length as read.
+        length: u64,
+        /// The most the reader accepts.
+        limit: u64,
+    },
+    /// A compressed container does not inflate (damaged deflate stream, or
+    /// more or fewer bytes than its header says).
+    Decompression,
+    /// A compression method other than those the format defines.
+    UnsupportedCompression {
+        /// The method as read.
+        method: u32,
+    },
+}
+
+impl core::fmt::Display for BinaryError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            BinaryError::BadMagic { found } => {
+                write!(f, "expected the format's magic number, found {found:#010x}")
+            }
+            BinaryError::UnsupportedVersion { major, minor } => {
+                write!(f, "version {major}.{minor} of the format is not supported")
+            }
+            BinaryError::Truncated { needed, found } => write!(
+                f,
+                "the file ends inside a structure of {needed} bytes, after {found}"
+            ),
+            BinaryError::BadLength { length } => {
+                write!(f, "length field {length} does not fit its structure")
+            }
+            BinaryError::TooLarge { length, limit } => write!(
+                f,
+                "length field {length} is above the {limit} bytes a reader accepts"
+            ),
+            BinaryError::Decompression => f.write_str("compressed data does not inflate"),
+            BinaryError::UnsupportedCompression { method } => {
+                write!(f, "compression method {method} is not supported")
+            }
         }
     }
 }

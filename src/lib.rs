@@ -131,11 +131,12 @@ pub mod canopen;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
 mod error;
+pub mod logs;
 mod names;
 pub mod profiles;
 pub mod servo;
 
-pub use error::{Error, Found, LogFormat, Result, SyntaxError, What};
+pub use error::{BinaryError, Error, Found, LogFormat, Result, SyntaxError, What};
 
 #[cfg(test)]
 mod display_tests;

@@ -122,6 +122,85 @@ impl fmt::Display for LogFrame<'_> {
     }
 }
 
+/// One entry of a log that a reader hands on: a frame, or a bus event that
+/// is not a frame (SPEC §5.4: PEAK TRC status rows; SPEC §6.3 counts them
+/// as `status_events`). Lines and records that are neither (headers,
+/// comments) are not entries; nothing else is dropped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LogEvent<'a> {
+    /// A CAN frame (data, remote, CAN FD or error frame).
+    Frame(LogFrame<'a>),
+    /// A bus status event.
+    Status(BusStatus<'a>),
+}
+
+impl<'a> LogEvent<'a> {
+    /// Return the frame, if the entry is one.
+    #[inline]
+    #[must_use]
+    pub const fn frame(&self) -> Option<&LogFrame<'a>> {
+        match self {
+            LogEvent::Frame(frame) => Some(frame),
+            LogEvent::Status(_) => None,
+        }
+    }
+
+    /// Return the entry's time, when the log records one.
+    #[inline]
+    #[must_use]
+    pub const fn timestamp(&self) -> Option<Timestamp> {
+        match self {
+            LogEvent::Frame(frame) => frame.timestamp,
+            LogEvent::Status(status) => status.timestamp,
+        }
+    }
+
+    /// Return the entry's interface or channel, when the log records one.
+    #[inline]
+    #[must_use]
+    pub const fn iface(&self) -> Option<Iface<'a>> {
+        match self {
+            LogEvent::Frame(frame) => frame.iface,
+            LogEvent::Status(status) => status.iface,
+        }
+    }
+}
+
+impl<'a> From<LogFrame<'a>> for LogEvent<'a> {
+    #[inline]
+    fn from(frame: LogFrame<'a>) -> Self {
+        LogEvent::Frame(frame)
+    }
+}
+
+/// A bus event that is not a frame: a status row of a PEAK TRC file
+/// (`ST`, or a status word such as `Warng` or `BUSHEAVY`; SPEC §5.4).
+/// The summary's bus record counts them (SPEC §6.3 `status_events`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BusStatus<'a> {
+    /// When the event was recorded.
+    pub timestamp: Option<Timestamp>,
+    /// The interface or channel it was recorded on.
+    pub iface: Option<Iface<'a>>,
+}
+
+impl fmt::Display for LogEvent<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LogEvent::Frame(frame) => frame.fmt(f),
+            LogEvent::Status(status) => {
+                if let Some(ts) = status.timestamp {
+                    write!(f, "({ts}) ")?;
+                }
+                if let Some(iface) = status.iface {
+                    write!(f, "{iface} ")?;
+                }
+                f.write_str("bus status event")
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -42,5 +42,5 @@ pub use frame::{
     CanFrame, CanFrameRef, FrameData, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
 pub use id::CanId;
-pub use log::{Iface, LogFrame};
+pub use log::{BusStatus, Iface, LogEvent, LogFrame};
 pub use timestamp::Timestamp;
