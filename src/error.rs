@@ -242,7 +242,8 @@ impl core::fmt::Display for BinaryError {
 #[non_exhaustive]
 pub enum SyntaxError {
     /// `(` opened a timestamp that is not `(seconds.fraction)` with 1 to 20
-    /// digits of seconds (fitting a `u64`) and 1 to 6 of fraction.
+    /// digits of seconds (fitting a `u64`) and 1 to 9 of fraction, or
+    /// `candump -t A`'s date and time.
     BadTimestamp {
         /// What stood where a digit, `.` or `)` was expected.
         found: Found,
@@ -340,6 +341,21 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
+    /// `candump -a`'s ASCII column does not show the data before it (each
+    /// byte as itself when printable ASCII, else `.`, between `'` quotes).
+    BadAscii {
+        /// The character the data calls for.
+        expected: u8,
+        /// What stood there.
+        found: Found,
+    },
+    /// A screen form that cannot be read back faithfully (SPEC §5.2):
+    /// `candump -S` (data bytes swapped, marked with a backquote) or
+    /// `candump -i` (data bytes in binary).
+    UnsupportedOutput {
+        /// The candump option that made the line: `b'S'` or `b'i'`.
+        option: u8,
+    },
 }
 
 impl core::fmt::Display for SyntaxError {
@@ -348,7 +364,7 @@ impl core::fmt::Display for SyntaxError {
             SyntaxError::BadTimestamp { found } => write!(
                 f,
                 "expected a timestamp (seconds.fraction) with 1 to 20 digits before the point \
-                 and 1 to 6 after, found {found}"
+                 and 1 to 9 after, or a date (YYYY-MM-DD hh:mm:ss.fraction), found {found}"
             ),
             SyntaxError::MissingWhiteSpace { found } => {
                 write!(f, "expected white space between fields, found {found}")
@@ -414,6 +430,21 @@ impl core::fmt::Display for SyntaxError {
                 f,
                 "expected the end of the line (or a direction R/T in the log format), \
                  found {found}"
+            ),
+            SyntaxError::BadAscii { expected, found } => write!(
+                f,
+                "expected the ASCII column to show the data, {}, found {found}",
+                Found::Byte(expected)
+            ),
+            SyntaxError::UnsupportedOutput { option } => write!(
+                f,
+                "expected candump output that can be read back, found candump -{} output ({})",
+                char::from(option),
+                if option == b'S' {
+                    "data bytes swapped"
+                } else {
+                    "data bytes in binary"
+                }
             ),
         }
     }

@@ -170,9 +170,16 @@ impl From<Timestamp> for Duration {
 
 impl fmt::Display for Timestamp {
     /// Write the timestamp as candump does, `1700000000.000500` (ten digits
-    /// of seconds at least, six of microseconds).
+    /// of seconds at least, six of microseconds), or with nine digits of
+    /// nanoseconds as `candump -N` does when the time is not a whole number
+    /// of microseconds (`1700000000.000500001`), so that nothing is lost.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:010}.{:06}", self.secs, self.micros())
+        let nanos = self.subsec_nanos();
+        if nanos % 1000 == 0 {
+            write!(f, "{:010}.{:06}", self.secs, nanos / 1000)
+        } else {
+            write!(f, "{:010}.{:09}", self.secs, nanos)
+        }
     }
 }
 
@@ -247,10 +254,13 @@ mod proptests {
                 prop_assert_eq!(b.checked_add(d), Some(a));
             }
             let text = a.to_string();
-            let (secs, micros) = text.split_once('.').expect("a point");
+            let (secs, fraction) = text.split_once('.').expect("a point");
             prop_assert_eq!(secs.parse::<u64>().unwrap(), a.secs());
-            prop_assert_eq!(micros.len(), 6);
-            prop_assert_eq!(micros.parse::<u32>().unwrap(), a.micros());
+            // Six digits for whole microseconds, nine otherwise (candump -N).
+            let digits = if a.subsec_nanos() % 1000 == 0 { 6 } else { 9 };
+            prop_assert_eq!(fraction.len(), digits);
+            let scale = if digits == 6 { 1000 } else { 1 };
+            prop_assert_eq!(fraction.parse::<u32>().unwrap() * scale, a.subsec_nanos());
         }
     }
 }

@@ -116,6 +116,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
     }
     let frame = Parsed {
         timestamp: Some(timestamp),
+        relative: false,
         iface,
         id,
         kind,

@@ -11,6 +11,9 @@ use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Parsed<'a> {
     pub(super) timestamp: Option<Timestamp>,
+    /// The timestamp is relative (`candump -t d` or `-t z`: fewer than ten
+    /// digits of seconds), not Unix time.
+    pub(super) relative: bool,
     /// The interface name: printable ASCII without spaces (`scan_iface`, the
     /// fast path's `non_graphic` check).
     pub(super) iface: &'a [u8],

@@ -63,10 +63,107 @@ pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
 }
 
 /// What the lines read so far mean for the next one: whether it may be an
-/// explanation line of an error frame (`candump -e`).
+/// explanation line of an error frame (`candump -e`), how relative
+/// timestamps are read and, for `candump -t d`, the time they add up to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct LineState {
     after_error_frame: bool,
+    relative: RelativeTimestamps,
+    /// `-t d`: the sum of the deltas read so far.
+    elapsed: Timestamp,
+}
+
+impl LineState {
+    /// The state at the start of a log whose relative timestamps (`candump
+    /// -t d` or `-t z`, SPEC §5.2) are read as `relative` says; see
+    /// [`detect_relative_timestamps`].
+    #[inline]
+    #[must_use]
+    pub const fn new(relative: RelativeTimestamps) -> Self {
+        LineState {
+            after_error_frame: false,
+            relative,
+            elapsed: Timestamp::ZERO,
+        }
+    }
+
+    /// How relative timestamps are read.
+    #[inline]
+    #[must_use]
+    pub const fn relative_timestamps(&self) -> RelativeTimestamps {
+        self.relative
+    }
+
+    /// A frame's timestamp as the record's `ts`: relative ones are seconds
+    /// since the first frame (`-t d`'s deltas accumulated).
+    #[inline]
+    fn resolve(&mut self, ts: Option<Timestamp>, relative: bool) -> Option<Timestamp> {
+        match (ts, relative, self.relative) {
+            (Some(delta), true, RelativeTimestamps::Delta) => {
+                self.elapsed = self
+                    .elapsed
+                    .checked_add(delta.as_duration())
+                    .unwrap_or(self.elapsed);
+                Some(self.elapsed)
+            }
+            _ => ts,
+        }
+    }
+}
+
+/// What a relative timestamp `(000.000123)` counts (SPEC §5.2): `candump
+/// -t z` prints the time since the first frame, `-t d` the time since the
+/// previous one, in the same shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum RelativeTimestamps {
+    /// Time since the first frame (`-t z`), taken as written.
+    #[default]
+    Zero,
+    /// Time since the previous frame (`-t d`), accumulated.
+    Delta,
+}
+
+/// Decide from the first (up to) 64 timestamped frames of `buf` whether its
+/// relative timestamps are `-t z` or `-t d` (SPEC §5.2 decision): times
+/// since the first frame never decrease, deltas of real traffic do. A
+/// decrease means [`RelativeTimestamps::Delta`]; 64 frames without one, or
+/// the whole log when `complete`, mean [`RelativeTimestamps::Zero`] (also
+/// when the timestamps are absolute, where the choice changes nothing).
+/// `None` when `buf` is not `complete` and holds fewer than 64 timestamped
+/// frames without a decrease: read more first.
+///
+/// ```
+/// use motionwire::candump::{detect_relative_timestamps, RelativeTimestamps};
+///
+/// let deltas = b"(000.000000) can0 081#00\n(000.001000) can0 081#00\n(000.000500) can0 081#00\n";
+/// assert_eq!(detect_relative_timestamps(deltas, true), Some(RelativeTimestamps::Delta));
+/// let zero = b"(000.000000) can0 081#00\n(000.001000) can0 081#00\n";
+/// assert_eq!(detect_relative_timestamps(zero, true), Some(RelativeTimestamps::Zero));
+/// assert_eq!(detect_relative_timestamps(zero, false), None);
+/// ```
+#[must_use]
+pub fn detect_relative_timestamps(buf: &[u8], complete: bool) -> Option<RelativeTimestamps> {
+    const FRAMES: usize = 64;
+    let mut seen = 0;
+    let mut last: Option<Timestamp> = None;
+    for line in buf.split(|&b| b == b'\n') {
+        let Ok(Some(frame)) = parse_general(line) else {
+            continue;
+        };
+        let Some(ts) = frame.timestamp else { continue };
+        if !frame.relative {
+            return Some(RelativeTimestamps::Zero);
+        }
+        if last.is_some_and(|last| ts < last) {
+            return Some(RelativeTimestamps::Delta);
+        }
+        last = Some(ts);
+        seen += 1;
+        if seen == FRAMES {
+            return Some(RelativeTimestamps::Zero);
+        }
+    }
+    complete.then_some(RelativeTimestamps::Zero)
 }
 
 /// The iterator of [`lines`].
@@ -163,9 +260,17 @@ impl<'a> CandumpLines<'a> {
             }))
         );
         let last = &mut self.last_iface;
+        let state = &mut self.state;
         (
             self.line_number,
-            parsed.map(|frame| frame.map(|f| f.into_log_frame_after(last))),
+            parsed.map(|frame| {
+                frame.map(|mut f| {
+                    if f.relative {
+                        f.timestamp = state.resolve(f.timestamp, true);
+                    }
+                    f.into_log_frame_after(last)
+                })
+            }),
         )
     }
 }

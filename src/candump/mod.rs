@@ -28,6 +28,8 @@
 //! | screen with `-ta` and `-x` | ` (1700000000.000500)  can0  RX B -  123  [02]  AA BB` |
 //! | error frame, `candump -e -l`, python-can | `(1700000000.000500) can0 20000004#0004000000000000` |
 //! | screen error frame, `candump -e` | `  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME` |
+//! | screen with `-t A -a -8` | ` (2026-11-22 10:11:12.009100)  can0  385   {F}  48 69 20 43 61 6E 21 27   'Hi Can!''` |
+//! | screen with `-t d` (or `-t z`), `-N` | ` (000.000499123)  can1  705   [1]  remote request` |
 //!
 //! The formats are those written by can-utils' `lib.c`
 //! (`snprintf_canframe`, `snprintf_long_canframe`) and `candump.c`.
@@ -44,10 +46,15 @@
 //!   right-aligns interface names to the longest one it listens on and
 //!   indents standard identifiers once it has seen an extended one.
 //! - The timestamp is optional in both formats (candump writes it with `-l`
-//!   and, for the screen, with `-t a|d|z`). It is `(seconds.fraction)` with 1
-//!   to 20 digits of seconds (anything that fits a `u64`) and 1 to 6 digits
-//!   of fraction, read exactly as integers; `.5` is 500 000 µs. The
-//!   `-t A` date form is not accepted.
+//!   and, for the screen, with `-t a|A|d|z`). It is `(seconds.fraction)`
+//!   with 1 to 20 digits of seconds (anything that fits a `u64`) and 1 to 9
+//!   digits of fraction (`-N` writes nanoseconds), read exactly as integers;
+//!   `.5` is 500 ms. `-t A`'s `(2026-11-22 10:11:12.123456)` is read as UTC
+//!   (SPEC §5.2: the log does not say its time zone). Fewer than ten digits
+//!   of seconds mark `-t d`/`-t z` times, relative to the first frame:
+//!   [`lines_from`] adds `-t d`'s deltas up when its [`LineState`] says so,
+//!   and [`detect_relative_timestamps`] tells the two apart from the first
+//!   64 frames (zero-based times never decrease, deltas of real traffic do).
 //! - An identifier has exactly 3 hex digits (standard, at most `0x7FF`) or 8
 //!   (extended, at most `0x1FFFFFFF`), in either case. Eight digits always
 //!   mean an extended frame, even for a small value, as in can-utils. An
@@ -60,9 +67,14 @@
 //! - Data: classic frames 0 to 8 bytes, CAN FD frames 0 to 64 bytes (any
 //!   length, as can-utils' own parser accepts). `R`/`r` marks a remote
 //!   request, optionally followed by its length digit `0`–`8`.
+//! - The screen's views: `-a`'s ASCII column (`'Hi Can!.'`) is read and
+//!   must show the data before it; `-8`'s raw DLC in braces (`{F}`: 9 to 15
+//!   carry 8 bytes) is read; `-c`'s ANSI colour sequences are ignored.
+//!   `-S` (bytes swapped, joined by a backquote) and `-i` (bytes in binary)
+//!   cannot be read back faithfully: such lines are
+//!   [`SyntaxError::UnsupportedOutput`] errors, never misread.
 //! - Not accepted (an error with its column): `.` separators between data
-//!   bytes, the `_len8_dlc` suffix, CAN XL frames, and the screen's ASCII
-//!   (`-a`), binary (`-b`) and raw-DLC (`{B}`) views.
+//!   bytes, the `_len8_dlc` suffix and CAN XL frames.
 //! - The screen format shows CAN FD flags only as the BRS/ESI letters of the
 //!   `-x` column (`RX B E`), which needs a direction. A screen line without
 //!   that column gives an FD frame with empty flags, and [`write_screen`]
@@ -130,7 +142,9 @@ use fast::*;
 use frame::*;
 pub use frame::{write_log, write_screen};
 use hex::*;
-pub use lines::{lines, lines_from, CandumpLines, LineState};
+pub use lines::{
+    detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
+};
 use log::*;
 use parse::*;
 use screen::*;

@@ -50,6 +50,95 @@ pub(super) fn trim_end(mut line: &[u8]) -> &[u8] {
 /// Parse one line of any shape, byte by byte where the shape varies.
 #[inline(never)]
 pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
+    if line.contains(&ESC) {
+        return parse_coloured(line);
+    }
+    parse_plain(line)
+}
+
+const ESC: u8 = 0x1B;
+
+/// The longest coloured line that is read (a CAN FD line of 64 bytes with a
+/// date and `-x` is about 260 bytes).
+const COLOURED_MAX: usize = 512;
+
+/// `candump -c`: the line without its ANSI colour sequences (CSI: `ESC [`,
+/// parameter bytes 0x30–0x3F, intermediate bytes 0x20–0x2F, a final byte
+/// 0x40–0x7E), parsed as any line; the interface name (which candump never
+/// colours inside) is taken from the line itself and error columns count in
+/// the line as it was.
+#[cold]
+#[inline(never)]
+fn parse_coloured(line: &[u8]) -> Result<Option<Parsed<'_>>> {
+    let mut plain = [0u8; COLOURED_MAX];
+    let mut origin = [0u16; COLOURED_MAX + 1];
+    let mut len = 0;
+    let mut at = 0;
+    while let Some(&b) = line.get(at) {
+        if b == ESC && line.get(at + 1) == Some(&b'[') {
+            let params = line
+                .get(at + 2..)
+                .unwrap_or_default()
+                .iter()
+                .take_while(|b| (0x20..0x40).contains(*b))
+                .count();
+            if matches!(line.get(at + 2 + params), Some(0x40..=0x7E)) {
+                at += 3 + params;
+                continue;
+            }
+        }
+        match (plain.get_mut(len), origin.get_mut(len)) {
+            (Some(p), Some(o)) => {
+                *p = b;
+                *o = at as u16;
+            }
+            // Too long to be candump's: read as it is.
+            _ => return parse_plain(line),
+        }
+        len += 1;
+        at += 1;
+    }
+    if let Some(o) = origin.get_mut(len) {
+        *o = at as u16;
+    }
+    let stripped = plain.get(..len).unwrap_or_default();
+    let to_line = |column: usize| {
+        origin
+            .get(column.saturating_sub(1))
+            .map_or(column, |&o| usize::from(o) + 1)
+    };
+    match parse_plain(stripped) {
+        Ok(Some(frame)) => {
+            let start = (frame.iface.as_ptr() as usize).wrapping_sub(stripped.as_ptr() as usize);
+            let from = origin.get(start).map_or(0, |&o| usize::from(o));
+            let iface = line.get(from..from + frame.iface.len()).unwrap_or_default();
+            if iface != frame.iface {
+                // A colour sequence inside the name: not candump's.
+                return Err(error(
+                    from,
+                    SyntaxError::BadInterface {
+                        found: Found::Byte(ESC),
+                    },
+                ));
+            }
+            Ok(Some(Parsed { iface, ..frame }))
+        }
+        Ok(None) => Ok(None),
+        Err(Error::Syntax {
+            format,
+            column,
+            reason,
+        }) => Err(Error::Syntax {
+            format,
+            column: to_line(column),
+            reason,
+        }),
+        Err(other) => Err(other),
+    }
+}
+
+#[inline(always)]
+fn parse_plain(line: &[u8]) -> Result<Option<Parsed<'_>>> {
     let line = trim_end(line);
     let mut at = 0;
     match line.first() {
@@ -57,9 +146,11 @@ pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
         Some(&b) if is_space(b) => at = skip_space(line, 0),
         Some(_) => {}
     }
+    let mut relative = false;
     let timestamp = match line.get(at) {
         Some(b'(') => {
             let (ts, end) = parse_timestamp(line, at)?;
+            relative = is_relative(line, at);
             at = need_space(line, end)?;
             Some(ts)
         }
@@ -89,6 +180,7 @@ pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
     let (id, kind, delimiter) = parse_id(line, at)?;
     let mut frame = Parsed {
         timestamp,
+        relative,
         iface,
         id,
         kind,
@@ -134,6 +226,20 @@ pub(super) fn parse_general(line: &[u8]) -> Result<Option<Parsed<'_>>> {
 
 /// Scan the interface name from `start`; return the index of the white
 /// space after it.
+/// A timestamp with fewer than ten digits of seconds is `candump -t d` or
+/// `-t z`'s `(%03llu.%06llu)`, relative to an earlier frame; `-t a` and the
+/// log format write at least ten (`%010llu`), `-t A` a date.
+#[inline]
+fn is_relative(line: &[u8], open: usize) -> bool {
+    let digits = line
+        .get(open + 1..)
+        .unwrap_or_default()
+        .iter()
+        .take_while(|b| b.is_ascii_digit())
+        .count();
+    digits < 10 && line.get(open + 1 + digits) == Some(&b'.')
+}
+
 #[inline(always)]
 pub(super) fn scan_iface(line: &[u8], start: usize) -> Result<usize> {
     let mut at = start;

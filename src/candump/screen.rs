@@ -47,19 +47,33 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
             },
         )
     };
-    if line.get(open) != Some(&b'[') {
-        return Err(bad_length(open));
-    }
     let digit = |i: usize| match line.get(i) {
         Some(b @ b'0'..=b'9') => Some(usize::from(b - b'0')),
         _ => None,
     };
-    let (declared, close) = match (digit(open + 1), digit(open + 2)) {
-        (Some(len), None) => (len, open + 2),
-        (Some(tens), Some(ones)) => (tens * 10 + ones, open + 3),
-        (None, _) => return Err(bad_length(open + 1)),
+    let (declared, close) = match line.get(open) {
+        // `candump -8`: a classic frame's raw DLC as one upper-case hex
+        // digit; 9 to F carry 8 bytes (ISO 11898-1).
+        Some(b'{') => match line.get(open + 1) {
+            Some(&b @ (b'0'..=b'9' | b'A'..=b'F')) => (
+                hex_value(b).map_or(0, usize::from).min(CLASSIC_MAX_LEN),
+                open + 2,
+            ),
+            _ => return Err(bad_length(open + 1)),
+        },
+        Some(b'[') => match (digit(open + 1), digit(open + 2)) {
+            (Some(len), None) => (len, open + 2),
+            (Some(tens), Some(ones)) => (tens * 10 + ones, open + 3),
+            (None, _) => return Err(bad_length(open + 1)),
+        },
+        _ => return Err(bad_length(open)),
     };
-    if line.get(close) != Some(&b']') {
+    let closing = if line.get(open) == Some(&b'{') {
+        b'}'
+    } else {
+        b']'
+    };
+    if line.get(close) != Some(&closing) {
         return Err(bad_length(close));
     }
     let fd = close == open + 3;
@@ -108,13 +122,22 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
         if frame.kind == FrameType::Error && line.get(at..) == Some(ERRORFRAME) {
             break;
         }
+        if line.get(at) == Some(&b'\'') && frame.kind != FrameType::Error {
+            // `candump -a`: the data as ASCII between single quotes.
+            if count != declared {
+                return Err(mismatch(open, declared, count));
+            }
+            frame.len = declared as u8;
+            return parse_ascii(line, at, frame);
+        }
         let byte = match (
             line.get(at).and_then(|b| hex_value(*b)),
             line.get(at + 1).and_then(|b| hex_value(*b)),
+            line.get(at + 2),
         ) {
-            (Some(hi), Some(lo)) => hi << 4 | lo,
-            (None, _) => return Err(bad_hex(line, at)),
-            (Some(_), None) => return Err(bad_hex(line, at + 1)),
+            (Some(hi), Some(lo), None) => hi << 4 | lo,
+            (Some(hi), Some(lo), Some(&b)) if is_space(b) => hi << 4 | lo,
+            _ => return Err(unsupported_or_bad_hex(line, at)),
         };
         if let Some(d) = frame.data.get_mut(count) {
             *d = byte;
@@ -132,6 +155,75 @@ pub(super) fn parse_screen_frame(line: &[u8], at: usize, frame: &mut Parsed<'_>)
     }
     frame.len = declared as u8;
     Ok(())
+}
+
+/// `candump -a`'s column after the data: `'` then one character per data
+/// byte (the byte when it is printable ASCII, 0x20 to 0x7E, else `.`) then
+/// `'` and the end of the line. The column must show the data read before
+/// it: a line whose two forms disagree is not silently believed.
+fn parse_ascii(line: &[u8], open: usize, frame: &Parsed<'_>) -> Result<()> {
+    let len = usize::from(frame.len);
+    let data = frame.data.get(..len).unwrap_or_default();
+    for (i, &byte) in data.iter().enumerate() {
+        let expected = if (0x20..0x7F).contains(&byte) {
+            byte
+        } else {
+            b'.'
+        };
+        let at = open + 1 + i;
+        if line.get(at) != Some(&expected) {
+            return Err(error(
+                at,
+                SyntaxError::BadAscii {
+                    expected,
+                    found: found(line, at),
+                },
+            ));
+        }
+    }
+    let close = open + 1 + len;
+    if line.get(close) != Some(&b'\'') {
+        return Err(error(
+            close,
+            SyntaxError::BadAscii {
+                expected: b'\'',
+                found: found(line, close),
+            },
+        ));
+    }
+    if close + 1 != line.len() {
+        return Err(trailing(line, close + 1));
+    }
+    Ok(())
+}
+
+/// A data field that is not two hex digits: candump's `-S` (bytes swapped,
+/// joined by a backquote) and `-i` (bytes in binary) forms cannot be read
+/// back faithfully and say so (SPEC §5.2); anything else is a bad digit.
+#[cold]
+fn unsupported_or_bad_hex(line: &[u8], at: usize) -> Error {
+    let rest = line.get(at..).unwrap_or_default();
+    let token_len = rest.iter().position(|&b| is_space(b)).unwrap_or(rest.len());
+    let token = rest.get(..token_len).unwrap_or_default();
+    if token.contains(&b'`') {
+        return error(at, SyntaxError::UnsupportedOutput { option: b'S' });
+    }
+    if token.len() == 8 && token.iter().all(|b| matches!(b, b'0' | b'1')) {
+        return error(at, SyntaxError::UnsupportedOutput { option: b'i' });
+    }
+    match (
+        line.get(at).and_then(|b| hex_value(*b)),
+        line.get(at + 1).and_then(|b| hex_value(*b)),
+    ) {
+        (None, _) => bad_hex(line, at),
+        (Some(_), None) => bad_hex(line, at + 1),
+        (Some(_), Some(_)) => error(
+            at + 2,
+            SyntaxError::MissingWhiteSpace {
+                found: found(line, at + 2),
+            },
+        ),
+    }
 }
 
 #[cold]

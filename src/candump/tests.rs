@@ -810,9 +810,9 @@ fn every_error_with_its_column() {
             K::BadTimestamp { found: Byte(b')') },
         ),
         (
-            "(1700000000.0005001) can0 123#00",
-            19,
-            K::BadTimestamp { found: Byte(b'1') },
+            "(1700000000.0005001234) can0 123#00",
+            22,
+            K::BadTimestamp { found: Byte(b'4') },
         ),
         ("(.5) can0 123#00", 2, K::BadTimestamp { found: Byte(b'.') }),
         ("(1.) can0 123#00", 4, K::BadTimestamp { found: Byte(b')') }),
@@ -824,9 +824,9 @@ fn every_error_with_its_column() {
             K::BadTimestamp { found: Byte(b'6') },
         ),
         (
-            "(1234567890123456789.1234567) can0 123#",
-            28,
-            K::BadTimestamp { found: Byte(b'7') },
+            "(1234567890123456789.1234567891) can0 123#",
+            31,
+            K::BadTimestamp { found: Byte(b'1') },
         ),
         (
             "(1.5)can0 123#00",
@@ -962,7 +962,62 @@ fn every_error_with_its_column() {
         ("can0 123 [x] 00", 11, K::BadLength { found: Byte(b'x') }),
         ("can0 123 [8 00", 12, K::BadLength { found: Byte(b' ') }),
         ("can0 123 [123] 00", 13, K::BadLength { found: Byte(b'3') }),
-        ("can0 123 {B} 00", 10, K::BadLength { found: Byte(b'{') }),
+        ("can0 123 (8) 00", 10, K::BadLength { found: Byte(b'(') }),
+        // candump -8: a raw DLC of 11 carries 8 bytes.
+        (
+            "can0 123 {B} 00",
+            10,
+            K::LengthMismatch {
+                declared: 8,
+                found: 1,
+            },
+        ),
+        ("can0 123 {b} 00", 11, K::BadLength { found: Byte(b'b') }),
+        ("can0 123 {8] 00", 12, K::BadLength { found: Byte(b']') }),
+        (
+            "can0 123 [2] 41 42 'AC'",
+            22,
+            K::BadAscii {
+                expected: b'B',
+                found: Byte(b'C'),
+            },
+        ),
+        (
+            "can0 123 [2] 41 42 'AB",
+            23,
+            K::BadAscii {
+                expected: b'\'',
+                found: EndOfLine,
+            },
+        ),
+        (
+            "can0 123 [2] 41 42 'AB' x",
+            24,
+            K::TrailingGarbage { found: Byte(b' ') },
+        ),
+        (
+            "can0 123 [2] 41 'A'",
+            10,
+            K::LengthMismatch {
+                declared: 2,
+                found: 1,
+            },
+        ),
+        (
+            "can0 123 [2] 42`41",
+            14,
+            K::UnsupportedOutput { option: b'S' },
+        ),
+        (
+            "can0 123 [1] 01000001",
+            14,
+            K::UnsupportedOutput { option: b'i' },
+        ),
+        (
+            "\x1b[1;31mcan0 123 [1] 4X\x1b[0m",
+            22,
+            K::BadHexDigit { found: Byte(b'X') },
+        ),
         ("can0 123 ", 9, K::BadIdentifier { found: EndOfLine }),
         (
             "can0 123 [2] 00",
@@ -1080,7 +1135,7 @@ fn error_messages_say_expected_and_found() {
         (
             "(17x0.000500) can0 123#00",
             "candump line, column 4: expected a timestamp (seconds.fraction) with 1 to 20 \
-             digits before the point and 1 to 6 after, found 'x'",
+             digits before the point and 1 to 9 after, or a date (YYYY-MM-DD hh:mm:ss.fraction), found 'x'",
         ),
         (
             "(1.5)can0 123#00",

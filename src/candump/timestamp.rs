@@ -42,13 +42,15 @@ pub(super) fn parse_timestamp(line: &[u8], open: usize) -> Result<(Timestamp, us
     };
     let point = start + digits;
     if line.get(point) != Some(&b'.') {
-        return Err(bad_timestamp(line, point));
+        return parse_timestamp_slow(line, open);
     }
     let frac_start = point + 1;
     let d = load16(line, frac_start) ^ ZERO_CHARS;
     let frac_digits = lanes_before(non_digits(d));
     if !(1..=6).contains(&frac_digits) {
-        return Err(bad_timestamp(line, frac_start + frac_digits.min(6)));
+        // Nanoseconds (`candump -N`), or an error: the byte-by-byte reader
+        // says which.
+        return parse_timestamp_slow(line, open);
     }
     let close = frac_start + frac_digits;
     if line.get(close) != Some(&b')') {
@@ -73,52 +75,222 @@ pub(super) fn bad_timestamp(line: &[u8], at: usize) -> Error {
 
 /// The timestamp byte by byte: for no digits, and for 16 or more digits of
 /// seconds (up to `u64::MAX`).
+/// The byte-by-byte reader of every timestamp form: `(seconds.fraction)`
+/// with 1 to 9 digits of fraction (`candump -N` writes nanoseconds), and
+/// `candump -t A`'s local date and time `(2026-11-22 10:11:12.123456)`,
+/// read as UTC (SPEC §5.2 decision).
 #[cold]
 #[inline(never)]
 pub(super) fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestamp, usize)> {
-    let mut at = open + 1;
-    let mut secs: u64 = 0;
-    while let Some(&b) = line.get(at) {
-        if !b.is_ascii_digit() {
-            break;
-        }
-        secs = match secs
-            .checked_mul(10)
-            .and_then(|s| s.checked_add(u64::from(b - b'0')))
-        {
-            Some(s) => s,
-            None => return Err(bad_timestamp(line, at)),
-        };
-        at += 1;
-    }
-    if at == open + 1 || line.get(at) != Some(&b'.') {
+    let start = open + 1;
+    let (secs, at) = decimal(line, start, u64::MAX)?;
+    let (secs, at) = match line.get(at) {
+        Some(b'-') if at - start == 4 => parse_date_time(line, start, secs)?,
+        _ => (secs, at),
+    };
+    if at == start || line.get(at) != Some(&b'.') {
         return Err(bad_timestamp(line, at));
     }
-    at += 1;
-    let frac_start = at;
-    let mut micros: u32 = 0;
+    let frac_start = at + 1;
+    let mut at = frac_start;
+    let mut nanos: u32 = 0;
     while let Some(&b) = line.get(at) {
         if !b.is_ascii_digit() {
             break;
         }
-        if at - frac_start == 6 {
+        if at - frac_start == 9 {
             return Err(bad_timestamp(line, at));
         }
-        micros = micros * 10 + u32::from(b - b'0');
+        nanos = nanos * 10 + u32::from(b - b'0');
         at += 1;
     }
     let frac_digits = at - frac_start;
     if frac_digits == 0 || line.get(at) != Some(&b')') {
         return Err(bad_timestamp(line, at));
     }
-    let micros = micros * POW10[6 - frac_digits];
-    Ok((Timestamp::new(secs, micros).unwrap_or_default(), at + 1))
+    let nanos = nanos * POW10_NANOS[9 - frac_digits];
+    Ok((
+        Timestamp::from_nanos(secs, nanos).unwrap_or_default(),
+        at + 1,
+    ))
+}
+
+const POW10_NANOS: [u32; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
+
+/// Read decimal digits from `at` up to a value of `max`; return the value
+/// and where the digits end.
+fn decimal(line: &[u8], mut at: usize, max: u64) -> Result<(u64, usize)> {
+    let mut value: u64 = 0;
+    while let Some(&b) = line.get(at) {
+        if !b.is_ascii_digit() {
+            break;
+        }
+        value = match value
+            .checked_mul(10)
+            .and_then(|v| v.checked_add(u64::from(b - b'0')))
+        {
+            Some(v) if v <= max => v,
+            _ => return Err(bad_timestamp(line, at)),
+        };
+        at += 1;
+    }
+    Ok((value, at))
+}
+
+/// Read exactly `width` digits at `at`, at most `max`, followed by `sep`.
+fn field(line: &[u8], at: usize, width: usize, max: u64, sep: u8) -> Result<(u64, usize)> {
+    let (value, end) = decimal(line, at, max)?;
+    if end != at + width {
+        return Err(bad_timestamp(line, end.min(at + width)));
+    }
+    if line.get(end) != Some(&sep) {
+        return Err(bad_timestamp(line, end));
+    }
+    Ok((value, end + 1))
+}
+
+/// `YYYY-MM-DD HH:MM:SS` after the year at `start`: seconds since the Unix
+/// epoch, UTC, and where the seconds end (at the `.`).
+fn parse_date_time(line: &[u8], start: usize, year: u64) -> Result<(u64, usize)> {
+    if year < 1970 {
+        return Err(bad_timestamp(line, start));
+    }
+    let (month, at) = field(line, start + 5, 2, 12, b'-')?;
+    let (day, at) = field(line, at, 2, 31, b' ')?;
+    if month == 0 || day == 0 || day > days_in_month(year, month) {
+        return Err(bad_timestamp(line, start + 5));
+    }
+    let (hour, at) = field(line, at, 2, 23, b':')?;
+    let (minute, at) = field(line, at, 2, 59, b':')?;
+    // 60: a leap second as `strftime` may print it.
+    let (second, end) = decimal(line, at, 60)?;
+    if end != at + 2 {
+        return Err(bad_timestamp(line, end.min(at + 2)));
+    }
+    let days = days_since_epoch(year, month, day);
+    Ok((days * 86_400 + hour * 3_600 + minute * 60 + second, end))
+}
+
+const fn is_leap(year: u64) -> bool {
+    year % 4 == 0 && (year % 100 != 0 || year % 400 == 0)
+}
+
+const fn days_in_month(year: u64, month: u64) -> u64 {
+    match month {
+        2 if is_leap(year) => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
+/// Days from 1970-01-01 to the date (proleptic Gregorian calendar; the
+/// year is at least 1970 and below 10 000, the month 1..=12).
+const fn days_since_epoch(year: u64, month: u64, day: u64) -> u64 {
+    // Count years from March on, so that the leap day ends a year.
+    let (y, m) = if month <= 2 {
+        (year - 1, month + 9)
+    } else {
+        (year, month - 3)
+    };
+    let year_days = y * 365 + y / 4 - y / 100 + y / 400;
+    let day_of_year = (153 * m + 2) / 5 + day - 1;
+    // 719_468: days from 0000-03-01 to 1970-01-01.
+    year_days + day_of_year - 719_468
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn nanoseconds_as_candump_n_writes_them() {
+        assert_eq!(
+            parse_timestamp(b"(1700000000.000500001) ", 0),
+            Ok((Timestamp::from_nanos(1_700_000_000, 500_001).unwrap(), 22))
+        );
+        assert_eq!(
+            parse_timestamp(b"(001.1234567)", 0),
+            Ok((Timestamp::from_nanos(1, 123_456_700).unwrap(), 13))
+        );
+        assert!(parse_timestamp(b"(1.1234567890)", 0).is_err());
+    }
+
+    #[test]
+    fn dates_as_candump_t_capital_a_writes_them() {
+        // date -u -d '2026-11-22 10:11:12' +%s
+        assert_eq!(
+            parse_timestamp(b"(2026-11-22 10:11:12.123456) can0", 0),
+            Ok((Timestamp::new(1_795_342_272, 123_456).unwrap(), 28))
+        );
+        assert_eq!(
+            parse_timestamp(b"(1970-01-01 00:00:00.000000)", 0),
+            Ok((Timestamp::new(0, 0).unwrap(), 28))
+        );
+        // A leap day, and nanoseconds (-t A -N).
+        assert_eq!(
+            parse_timestamp(b"(2024-02-29 23:59:59.000000001)", 0),
+            Ok((Timestamp::from_nanos(1_709_251_199, 1).unwrap(), 31))
+        );
+        for bad in [
+            &b"(2023-02-29 00:00:00.0)"[..],
+            b"(2026-13-01 00:00:00.0)",
+            b"(2026-00-01 00:00:00.0)",
+            b"(2026-11-22 24:00:00.0)",
+            b"(2026-11-22 10:60:00.0)",
+            b"(1969-12-31 23:59:59.0)",
+            b"(2026-11-2 10:11:12.0)",
+            b"(2026-11-22T10:11:12.0)",
+            b"(2026-11-22 10:11:12)",
+        ] {
+            assert!(
+                parse_timestamp(bad, 0).is_err(),
+                "{}",
+                String::from_utf8_lossy(bad)
+            );
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn dates_agree_with_the_calendar(secs in 0u64..253_402_300_800, micros in 0u32..1_000_000) {
+            // The civil date of `secs`, by counting days forward (the model).
+            let mut days = secs / 86_400;
+            let mut year = 1970;
+            loop {
+                let len = if is_leap(year) { 366 } else { 365 };
+                if days < len { break; }
+                days -= len;
+                year += 1;
+            }
+            let mut month = 1;
+            while days >= days_in_month(year, month) {
+                days -= days_in_month(year, month);
+                month += 1;
+            }
+            let rest = secs % 86_400;
+            let text = format!(
+                "({year:04}-{month:02}-{:02} {:02}:{:02}:{:02}.{micros:06})",
+                days + 1, rest / 3600, rest / 60 % 60, rest % 60
+            );
+            prop_assert_eq!(
+                parse_timestamp(text.as_bytes(), 0),
+                Ok((Timestamp::new(secs, micros).unwrap(), text.len()))
+            );
+        }
+    }
 
     proptest! {
         /// The fixed template, the general SWAR form and the byte-by-byte
