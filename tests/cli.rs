@@ -45,6 +45,20 @@ fn records(out: &Output) -> Vec<Value> {
         .collect()
 }
 
+/// The summary's node records (SPEC §6.3), without the bus records that
+/// follow them.
+fn node_records(out: &Output) -> Vec<Value> {
+    let all = records(out);
+    let nodes: Vec<Value> = all
+        .iter()
+        .filter(|r| r["type"] == "node")
+        .cloned()
+        .collect();
+    // Node records come first, then one bus record per interface.
+    assert!(all[nodes.len()..].iter().all(|r| r["type"] == "bus"));
+    nodes
+}
+
 /// Write `text` to a fresh file in the target directory and return its path.
 fn temp_file(name: &str, text: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
@@ -264,7 +278,7 @@ fn summary_keys_on_a_crafted_log() {
         "",
     );
     assert!(out.status.success(), "{}", stderr(&out));
-    let recs = records(&out);
+    let recs = node_records(&out);
     let nodes: Vec<_> = recs.iter().map(|r| r["node"].as_u64().unwrap()).collect();
     assert_eq!(nodes, [1, 5, 10]);
 
@@ -287,12 +301,16 @@ fn summary_keys_on_a_crafted_log() {
     // 0x2310 until the reset on line 7; 0x8110 on line 8 is the new slot.
     assert_eq!(
         n5["first_error"],
-        json!({"line": 3, "ts": 100.2, "code": 0x4210})
+        json!({"line": 3, "ts": 100.2, "code": 0x4210,
+               "description": "Excess device temperature"})
     );
     assert_eq!(
         n5["active_error"],
-        json!({"line": 8, "ts": 101.2, "code": 0x8110})
+        json!({"line": 8, "ts": 101.2, "code": 0x8110,
+               "description": "CAN overrun (objects lost)"})
     );
+    assert_eq!(n5["type"], "node");
+    assert_eq!(n5["iface"], "can0");
     assert_eq!(n5["heartbeat"]["count"], 5);
     assert_eq!(n5["heartbeat"]["last_state"], "operational");
     assert_eq!(n5["heartbeat"]["boot_ups"], json!([1]));
@@ -531,7 +549,7 @@ fn sample_log_summary_matches_its_ground_truth() {
         "",
     );
     assert!(out.status.success(), "{}", stderr(&out));
-    let recs = records(&out);
+    let recs = node_records(&out);
     for rec in &recs {
         let node = rec["node"].as_u64().unwrap().to_string();
         let Some(t) = truth["nodes"].get(&node) else {
@@ -687,7 +705,7 @@ fn without_timestamps_timeouts_are_not_checked() {
         log,
     );
     assert!(out.status.success());
-    let recs = records(&out);
+    let recs = node_records(&out);
     assert_eq!(recs.len(), 2);
     for rec in &recs {
         assert_eq!(rec["heartbeat"]["timeouts"], Value::Null);
@@ -775,4 +793,224 @@ fn a_python_can_log_decodes() {
             "sdo"
         ]
     );
+}
+
+// ------------------------------------------------- issue 11: inputs, shapes
+
+/// SPEC §5.7: a file that is none of the formats is one clear error and
+/// exit status 2, not one error per line.
+#[test]
+fn an_unrecognised_file_is_one_error() {
+    let text = "Hello, world!\nThis is not a CAN log.\nNor is this.\n";
+    let out = run(&["decode", "--json"], text);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = stderr(&out);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("unrecognised log format"), "{err}");
+    // Blank and comment lines only: nothing to read, nothing wrong.
+    let empty = run(&["decode", "--json"], "\n# nothing yet\n\n");
+    assert_eq!(empty.status.code(), Some(0));
+    assert!(empty.stdout.is_empty());
+}
+
+/// SPEC §6.4: a gzip-compressed log is read as the log inside it, detected
+/// by content whatever the file is called.
+#[test]
+fn gzip_input_is_detected_by_content() {
+    use flate2::write::GzEncoder;
+    let log = "(1700000000.000500) can0 081#1081110000000000\n\
+               (1700000000.001000) can0 705#05\n";
+    let mut gz = GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(log.as_bytes()).unwrap();
+    let bytes = gz.finish().unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("compressed.log");
+    std::fs::write(&path, &bytes).unwrap();
+    let zipped = run(&["decode", "--json", path.to_str().unwrap()], "");
+    assert!(zipped.status.success(), "{}", stderr(&zipped));
+    let plain = run(&["decode", "--json"], log);
+    assert_eq!(stdout(&zipped), stdout(&plain));
+    assert_eq!(records(&zipped).len(), 2);
+}
+
+/// SPEC §6.4: `--csv` writes the header row and one RFC 4180 row per frame.
+#[test]
+fn csv_rows_under_the_header() {
+    let log = "(1700000000.000500) can0 081#1081110000000000\n\
+               (1700000000.001000) can0 705#05\n\
+               \"can,1\" 18FF1234#0102\n";
+    let out = run(&["decode", "--csv"], log);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let rows: Vec<&str> = text.split("\r\n").collect();
+    assert_eq!(
+        rows,
+        [
+            "line,ts,iface,id,extended,rtr,fd,data,kind,node,code,description",
+            "1,1700000000.000500,can0,129,false,false,false,1081110000000000,emcy,1,33040,\
+             CAN overrun (objects lost)",
+            "2,1700000000.001000,can0,1797,false,false,false,05,heartbeat,5,,",
+            // An interface name with a comma and quotes: quoted, quotes doubled.
+            "3,,\"\"\"can,1\"\"\",419369524,true,false,false,0102,other,,,",
+            "",
+        ]
+    );
+    // --csv and --json exclude each other.
+    assert_eq!(
+        run(&["decode", "--csv", "--json"], log).status.code(),
+        Some(2)
+    );
+}
+
+/// SPEC §6.4: `--node` keeps frames that carry one of the node-IDs,
+/// `--id` identifiers and ranges; the summary still counts everything.
+#[test]
+fn node_and_id_filters() {
+    let log = "can0 000#0105\ncan0 085#1081110000000000\ncan0 705#05\ncan0 706#05\n\
+               can0 185#0102\n";
+    let lines = |args: &[&str]| -> Vec<u64> {
+        let mut all = vec!["decode", "--json"];
+        all.extend_from_slice(args);
+        let out = run(&all, log);
+        assert!(out.status.success(), "{}", stderr(&out));
+        records(&out)
+            .iter()
+            .map(|r| r["line"].as_u64().unwrap())
+            .collect()
+    };
+    // The NMT command's target (5) is not a node-ID it carries.
+    assert_eq!(lines(&["--node", "5"]), [2, 3, 5]);
+    assert_eq!(lines(&["--node", "5,6"]), [2, 3, 4, 5]);
+    assert_eq!(lines(&["--id", "0x705"]), [3]);
+    assert_eq!(lines(&["--id", "0x081-0x0FF,1798"]), [2, 4]);
+    assert_eq!(lines(&["--id", "0x700-0x7FF", "--node", "6"]), [4]);
+    assert_eq!(
+        run(&["decode", "--id", "0x800-0x7FF"], log).status.code(),
+        Some(2)
+    );
+    assert_eq!(
+        run(&["decode", "--node", "128"], log).status.code(),
+        Some(2)
+    );
+    let summary = run(&["decode", "--summary", "--json", "--node", "6"], log);
+    let nodes: Vec<u64> = node_records(&summary)
+        .iter()
+        .map(|r| r["node"].as_u64().unwrap())
+        .collect();
+    assert_eq!(nodes, [5, 6]);
+}
+
+/// SPEC §5.7, §6.3: node 5 on can0 and node 5 on can1 are two devices;
+/// one bus record per interface with its error frames, bus-off and
+/// error-passive lines.
+#[test]
+fn summary_nodes_per_interface_and_bus_records() {
+    let log = "(100.000000) can0 705#05\n\
+               (100.100000) can1 705#7F\n\
+               (100.200000) can0 085#1081110000000000\n\
+               (100.300000) can1 20000040#0000000000000000\n\
+               (100.400000) can1 20000004#0020000000000000\n\
+               (100.500000) can1 705#05\n";
+    let out = run(&["decode", "--summary", "--json"], log);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let keys: Vec<(String, String, u64)> = recs
+        .iter()
+        .map(|r| {
+            (
+                r["type"].as_str().unwrap().to_owned(),
+                r["iface"].as_str().unwrap().to_owned(),
+                r["node"].as_u64().unwrap_or(0),
+            )
+        })
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            ("node".to_owned(), "can0".to_owned(), 5),
+            ("node".to_owned(), "can1".to_owned(), 5),
+            ("bus".to_owned(), "can0".to_owned(), 0),
+            ("bus".to_owned(), "can1".to_owned(), 0),
+        ]
+    );
+    assert_eq!(recs[0]["emcy"], 1);
+    assert_eq!(recs[0]["last_register"], 0x11);
+    assert_eq!(recs[1]["emcy"], 0);
+    assert_eq!(recs[1]["last_register"], Value::Null);
+    assert_eq!(recs[1]["heartbeat"]["count"], 2);
+    assert_eq!(
+        recs[2],
+        json!({"type": "bus", "iface": "can0", "frames": 2, "error_frames": 0,
+               "bus_off": [], "error_passive": [], "status_events": 0,
+               "first_ts": 100.0, "last_ts": 100.2, "nodes": [5]})
+    );
+    assert_eq!(
+        recs[3],
+        json!({"type": "bus", "iface": "can1", "frames": 4, "error_frames": 2,
+               "bus_off": [4], "error_passive": [5], "status_events": 0,
+               "first_ts": 100.1, "last_ts": 100.5, "nodes": [5]})
+    );
+    let text = stdout(&run(&["decode", "--summary"], log));
+    assert!(text.contains("can1 node   5"), "{text}");
+    assert!(
+        text.contains("bus can1  frames 4, error frames 2, bus-off at lines 4"),
+        "{text}"
+    );
+}
+
+/// Memory stays bounded: a line longer than 1 MiB is one error, and the
+/// lines after it are read.
+#[test]
+fn an_overlong_line_is_reported_and_skipped() {
+    let mut log = String::from("(1700000000.000500) can0 081#00\n");
+    log.push_str(&"x".repeat(3 << 20));
+    log.push_str("\n(1700000000.000600) can0 705#05\n");
+    let out = run(&["decode", "--json"], &log);
+    assert_eq!(out.status.code(), Some(1));
+    let lines: Vec<u64> = records(&out)
+        .iter()
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [1, 3]);
+    assert!(
+        stderr(&out).contains("<stdin>:2: line longer than 1 MiB"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// SPEC §5.2: `candump -t d` screen output: the deltas add up, detected or
+/// forced with --timestamps.
+#[test]
+fn delta_timestamps_add_up() {
+    let log = " (000.000000)  can0  705   [1]  05\n\
+               (000.250000)  can0  705   [1]  05\n\
+               (000.100000)  can0  705   [1]  05\n";
+    let ts = |args: &[&str]| -> Vec<f64> {
+        let mut all = vec!["decode", "--json"];
+        all.extend_from_slice(args);
+        records(&run(&all, log))
+            .iter()
+            .map(|r| r["ts"].as_f64().unwrap())
+            .collect()
+    };
+    assert_eq!(ts(&[]), [0.0, 0.25, 0.35]);
+    assert_eq!(ts(&["--timestamps", "zero"]), [0.0, 0.25, 0.1]);
+    assert_eq!(ts(&["--timestamps", "delta"]), [0.0, 0.25, 0.35]);
+}
+
+/// SPEC §5.7: `--format` overrides detection.
+#[test]
+fn format_overrides_detection() {
+    let out = run(
+        &["decode", "--format", "candump", "--json"],
+        "can0 705#05\n",
+    );
+    assert!(out.status.success());
+    assert_eq!(records(&out).len(), 1);
+    let bad = run(&["decode", "--format", "nope"], "");
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("candump, asc, trc, pcap, pcapng, blf"));
 }

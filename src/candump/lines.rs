@@ -128,7 +128,9 @@ pub enum RelativeTimestamps {
 /// since the first frame never decrease, deltas of real traffic do. A
 /// decrease means [`RelativeTimestamps::Delta`]; 64 frames without one, or
 /// the whole log when `complete`, mean [`RelativeTimestamps::Zero`] (also
-/// when the timestamps are absolute, where the choice changes nothing).
+/// when the timestamps are absolute, where the choice changes nothing, and
+/// when the first relative time is not 0: both candump modes start at 0, so
+/// such a log is read as written).
 /// `None` when `buf` is not `complete` and holds fewer than 64 timestamped
 /// frames without a decrease: read more first.
 ///
@@ -152,6 +154,12 @@ pub fn detect_relative_timestamps(buf: &[u8], complete: bool) -> Option<Relative
         };
         let Some(ts) = frame.timestamp else { continue };
         if !frame.relative {
+            return Some(RelativeTimestamps::Zero);
+        }
+        if last.is_none() && ts != Timestamp::ZERO {
+            // Both -t d and -t z print 0 for the first frame: a log whose
+            // first time is not 0 did not start there, and its times are
+            // read as written.
             return Some(RelativeTimestamps::Zero);
         }
         if last.is_some_and(|last| ts < last) {

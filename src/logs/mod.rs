@@ -7,6 +7,10 @@
 //! formats (pcap, pcapng, BLF) read from a [`std::io::Read`] through
 //! [`ReadLog`] and need the standard library.
 
+mod detect;
+
+pub use detect::{detect, Detected, DETECT_LEN};
+
 #[cfg(feature = "std")]
 use crate::can::LogEvent;
 #[cfg(feature = "std")]

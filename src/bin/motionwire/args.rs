@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use motionwire::canopen::{MessageKind, NodeId};
+use motionwire::LogFormat;
 
 /// Decode the diagnostic and cyclic-control messages of industrial motion
 /// devices: CANopen candump logs and EtherCAT servo ↔ NC frames.
@@ -19,8 +20,9 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Decode candump text logs (can-utils, python-can) into one record per
-    /// CAN frame (SPEC §6.1).
+    /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng;
+    /// detected from the content, gzip too) into one record per CAN frame
+    /// (SPEC §5, §6.1).
     Decode(DecodeArgs),
     /// Decode one EtherCAT servo ↔ NC frame given as hex (SPEC §6.2).
     #[command(subcommand)]
@@ -31,8 +33,19 @@ pub enum Command {
 #[derive(Debug, Args)]
 pub struct DecodeArgs {
     /// Write one JSON object per line instead of aligned text.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "csv")]
     pub json: bool,
+    /// Write one CSV row per frame, under a header row (SPEC §6.4).
+    #[arg(long, conflicts_with = "summary")]
+    pub csv: bool,
+    /// Read the input as this format instead of detecting it (SPEC §5.7).
+    #[arg(long, value_name = "FORMAT", value_parser = parse_format)]
+    pub format: Option<LogFormat>,
+    /// What candump's relative timestamps `(000.000123)` count: `delta`
+    /// (`candump -t d`) or `zero` (`-t z`); detected from the first 64
+    /// frames when not given (SPEC §5.2).
+    #[arg(long, value_name = "delta|zero")]
+    pub timestamps: Option<TimestampBase>,
     /// How to read the manufacturer-specific bytes of EMCY frames:
     /// `generic`, `akd` or `baumer` for every node, or per node as
     /// `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`); a bare profile sets
@@ -56,7 +69,16 @@ pub struct DecodeArgs {
     /// output; the summary always counts every frame.
     #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
     pub only: Vec<MessageKind>,
-    /// candump files to read; none, or `-`, reads standard input.
+    /// Keep only frames that carry one of these node-IDs (comma-separated;
+    /// an NMT command's target is not one); the summary counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "NODE[,NODE]", value_parser = parse_node)]
+    pub node: Vec<NodeId>,
+    /// Keep only frames with these CAN identifiers: values or ranges
+    /// `FROM-TO`, comma-separated, decimal or `0x` hex (e.g.
+    /// `--id 0x081-0x0FF,0x705`); the summary counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "ID[-ID][,…]", value_parser = parse_id_range)]
+    pub id: Vec<IdRange>,
+    /// Log files to read; none, or `-`, reads standard input.
     #[arg(value_name = "FILE")]
     pub files: Vec<PathBuf>,
 }
@@ -117,6 +139,77 @@ pub struct ServoArgs {
 }
 
 /// Read a kind name of SPEC §6.1 (`emcy`, `heartbeat`, …).
+/// What `(000.000123)` timestamps count (SPEC §5.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TimestampBase {
+    /// `candump -t d`: the time since the previous frame.
+    Delta,
+    /// `candump -t z`: the time since the first frame.
+    Zero,
+}
+
+/// An inclusive range of CAN identifiers (`--id`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct IdRange {
+    pub from: u32,
+    pub to: u32,
+}
+
+impl IdRange {
+    pub fn contains(&self, id: u32) -> bool {
+        (self.from..=self.to).contains(&id)
+    }
+}
+
+fn parse_number(text: &str) -> Result<u32, String> {
+    let text = text.trim();
+    let parsed = match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u32::from_str_radix(hex, 16),
+        None => text.parse(),
+    };
+    match parsed {
+        Ok(id) if id <= 0x1FFF_FFFF => Ok(id),
+        Ok(id) => Err(format!(
+            "{id:#X} is above the largest CAN identifier 0x1FFFFFFF"
+        )),
+        Err(_) => Err(format!(
+            "{text:?} is not a CAN identifier (decimal, or hex with 0x)"
+        )),
+    }
+}
+
+fn parse_id_range(text: &str) -> Result<IdRange, String> {
+    let (from, to) = match text.split_once('-') {
+        Some((from, to)) => (parse_number(from)?, parse_number(to)?),
+        None => {
+            let id = parse_number(text)?;
+            (id, id)
+        }
+    };
+    if from > to {
+        return Err(format!("{text:?}: the range ends before it starts"));
+    }
+    Ok(IdRange { from, to })
+}
+
+fn parse_node(text: &str) -> Result<NodeId, String> {
+    let raw: u8 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a node-ID (1..=127)"))?;
+    NodeId::try_new(raw).map_err(|e| e.to_string())
+}
+
+fn parse_format(text: &str) -> Result<LogFormat, String> {
+    LogFormat::ALL
+        .into_iter()
+        .find(|f| f.name() == text)
+        .ok_or_else(|| {
+            let names: Vec<_> = LogFormat::ALL.iter().map(|f| f.name()).collect();
+            format!("{text:?} is not a log format; one of {}", names.join(", "))
+        })
+}
+
 fn parse_kind(text: &str) -> Result<MessageKind, String> {
     MessageKind::from_name(text).ok_or_else(|| {
         let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();

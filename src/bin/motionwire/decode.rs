@@ -1,22 +1,26 @@
 //! `motionwire decode`: a log → one record per CAN frame (SPEC §6.1), or
-//! the per-node summary (SPEC §6.3). The streaming loop: read, parse with
-//! the library, hand each frame to the record writer or the summary.
+//! the summary (SPEC §6.3). The streaming loop: open, detect the format
+//! (SPEC §5.7), read with the library's reader, hand each frame to the
+//! [`Sink`], which filters and renders.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Read, Write};
+use std::io::{self, BufWriter, Cursor, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use motionwire::candump;
+use motionwire::can::{LogEvent, LogFrame};
+use motionwire::candump::{self, LineState, RelativeTimestamps};
 use motionwire::canopen::MessageKind;
+use motionwire::logs::{detect, Detected, DETECT_LEN};
+use motionwire::LogFormat;
 
-use crate::args::DecodeArgs;
+use crate::args::{DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
 use crate::profile::Profiles;
-use crate::record::Record;
+use crate::record::{Record, CSV_HEADER};
 use crate::summary::Summary;
 
-/// One input: a file or standard input.
+/// An input as given on the command line.
 struct Input {
     name: String,
     path: Option<PathBuf>,
@@ -54,7 +58,184 @@ fn stdin_input() -> Input {
     }
 }
 
-/// Run `motionwire decode`.
+/// The formats `detect` knows, in words, for the unrecognised-format error.
+const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
+                        pcap or pcapng (gzip-compressed or not)";
+
+/// Read the first bytes of an input, decide its format (SPEC §5.7: from
+/// the content; `--format` overrides; gzip is inflated and looked into),
+/// and return it with a reader that starts again at the first byte.
+fn open_log(
+    input: Input,
+    forced: Option<LogFormat>,
+) -> Result<(LogFormat, Box<dyn Read>), Failure> {
+    let Input { name, path, reader } = input;
+    let mut reader = reader;
+    let mut gzip = false;
+    loop {
+        let mut head = Vec::with_capacity(4096);
+        let detected = loop {
+            let complete = fill(&mut reader, &mut head, DETECT_LEN)
+                .map_err(|e| read_failure(&name, path.as_deref(), e))?;
+            match detect(&head, complete) {
+                Detected::NeedMore if !complete => continue,
+                // Inflating once is enough: a gzip inside a gzip is no log.
+                Detected::Gzip if gzip => break Detected::Unrecognised,
+                other => break other,
+            }
+        };
+        let again: Box<dyn Read> = Box::new(Cursor::new(head).chain(reader));
+        match (detected, forced) {
+            (Detected::Gzip, _) => {
+                gzip = true;
+                reader = Box::new(flate2::read::MultiGzDecoder::new(again));
+            }
+            (_, Some(format)) => return Ok((format, again)),
+            (Detected::Format(format), None) => return Ok((format, again)),
+            // Nothing but blank or comment lines: nothing to read.
+            (Detected::Empty, None) => return Ok((LogFormat::Candump, again)),
+            (Detected::NeedMore | Detected::Unrecognised, None) => {
+                return Err(Failure::Unrecognised {
+                    name,
+                    expected: EXPECTED,
+                })
+            }
+        }
+    }
+}
+
+/// Read into `head` until it holds `want` bytes or the input ends; return
+/// whether it ended. Stops early when a read returns less than asked, so
+/// that a live pipe is decided on its first lines.
+fn fill(reader: &mut dyn Read, head: &mut Vec<u8>, want: usize) -> io::Result<bool> {
+    let start = head.len();
+    head.resize(want, 0);
+    loop {
+        match reader.read(&mut head[start..]) {
+            Ok(n) => {
+                head.truncate(start + n);
+                return Ok(n == 0);
+            }
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) => {
+                head.truncate(start);
+                return Err(e);
+            }
+        }
+    }
+}
+
+/// How records are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Output {
+    Text,
+    Json,
+    Csv,
+}
+
+/// Where frames go: filtered and rendered, or added to the summary (which
+/// sees every frame, SPEC §6.4).
+struct Sink<'a> {
+    out: BufWriter<StdoutLock<'static>>,
+    err: BufWriter<StderrLock<'static>>,
+    summary: Option<Summary>,
+    output: Output,
+    profiles: Profiles,
+    kinds: [bool; MessageKind::ALL.len()],
+    nodes: Option<[bool; 128]>,
+    ids: &'a [IdRange],
+    skipped: u64,
+}
+
+impl<'a> Sink<'a> {
+    fn new(args: &'a DecodeArgs) -> Self {
+        let mut kinds = [args.only.is_empty(); MessageKind::ALL.len()];
+        for kind in &args.only {
+            kinds[kind.index()] = true;
+        }
+        let nodes = (!args.node.is_empty()).then(|| {
+            let mut nodes = [false; 128];
+            for node in &args.node {
+                nodes[usize::from(node.get())] = true;
+            }
+            nodes
+        });
+        Sink {
+            out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
+            err: BufWriter::new(io::stderr().lock()),
+            summary: args.summary.then(|| Summary::new(args.heartbeat_ms)),
+            output: if args.csv {
+                Output::Csv
+            } else if args.json {
+                Output::Json
+            } else {
+                Output::Text
+            },
+            profiles: Profiles::new(&args.profile),
+            kinds,
+            nodes,
+            ids: &args.id,
+            skipped: 0,
+        }
+    }
+
+    #[inline]
+    fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
+        if let Some(summary) = self.summary.as_mut() {
+            summary.add(line, frame);
+            return Ok(());
+        }
+        if !self.ids.is_empty() {
+            let id = frame.frame.id().raw();
+            if !self.ids.iter().any(|range| range.contains(id)) {
+                return Ok(());
+            }
+        }
+        let record = Record::new(line, frame);
+        if !self.kinds[record.kind().index()] {
+            return Ok(());
+        }
+        if let Some(nodes) = &self.nodes {
+            match record.node() {
+                Some(node) if nodes[usize::from(node.get())] => {}
+                _ => return Ok(()),
+            }
+        }
+        let profile = self.profiles.of(record.node());
+        match self.output {
+            Output::Json => record.write_json(&mut self.out, profile),
+            Output::Text => record.write_text(&mut self.out, profile),
+            Output::Csv => record.write_csv(&mut self.out),
+        }
+    }
+
+    #[inline]
+    fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
+        match event {
+            LogEvent::Frame(frame) => self.frame(line, frame),
+            LogEvent::Status(_) => {
+                if let Some(summary) = self.summary.as_mut() {
+                    summary.add_event(event);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// A line or record that could not be read: said on standard error
+    /// with its position, counted (SPEC §5.7).
+    #[cold]
+    fn malformed(&mut self, name: &str, line: u64, why: &dyn std::fmt::Display) -> io::Result<()> {
+        self.skipped += 1;
+        writeln!(self.err, "{name}:{line}: {why}")
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.flush()?;
+        self.err.flush()
+    }
+}
+
 pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     if args.heartbeat_ms.is_some() && !args.summary {
         return Err(Failure::Usage(
@@ -62,66 +243,35 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         ));
     }
     let inputs = open_inputs(&args.files)?;
-    let profiles = Profiles::new(&args.profile);
-    let mut keep = [args.only.is_empty(); MessageKind::ALL.len()];
-    for kind in &args.only {
-        keep[kind.index()] = true;
+    let mut sink = Sink::new(args);
+    if sink.output == Output::Csv {
+        write!(sink.out, "{CSV_HEADER}\r\n")?;
     }
-
-    let stdout = io::stdout();
-    let mut out = BufWriter::with_capacity(1 << 16, stdout.lock());
-    let stderr = io::stderr();
-    let mut err = BufWriter::new(stderr.lock());
-    let mut summary = args.summary.then(|| Summary::new(args.heartbeat_ms));
-    let mut skipped: u64 = 0;
-
     for input in inputs {
         let name = input.name.clone();
         let path = input.path.clone();
-        let mut blocks = Blocks::new(input.reader);
-        loop {
-            let block = blocks
-                .next_block()
-                .map_err(|e| read_failure(&name, path.as_deref(), e))?;
-            let Some(block) = block else { break };
-            let drained = block.drained;
-            let mut lines = candump::lines_from(block.text, block.state);
-            let mut last = 0;
-            for (number, parsed) in lines.by_ref() {
-                last = number;
-                let line = block.base + number as u64;
-                match parsed {
-                    Ok(None) => {}
-                    Ok(Some(frame)) => match summary.as_mut() {
-                        Some(summary) => summary.add(line, &frame),
-                        None => {
-                            let record = Record::new(line, &frame);
-                            if keep[record.kind().index()] {
-                                let profile = profiles.of(record.node());
-                                if args.json {
-                                    record.write_json(&mut out, profile)?;
-                                } else {
-                                    record.write_text(&mut out, profile)?;
-                                }
-                            }
-                        }
-                    },
-                    Err(e) => {
-                        skipped += 1;
-                        writeln!(err, "{name}:{line}: {e}")?;
-                    }
-                }
+        let (format, reader) = open_log(input, args.format)?;
+        match format {
+            LogFormat::Candump => {
+                read_candump(&mut sink, reader, &name, path.as_deref(), args.timestamps)?;
             }
-            let state = lines.state();
-            blocks.done(last, state);
-            if drained {
-                // Live use: what was decoded so far is written out now
-                // (SPEC §6.4); a file read in full blocks never gets here.
-                out.flush()?;
-                err.flush()?;
+            other => {
+                return Err(Failure::Unreadable {
+                    name,
+                    format: other,
+                    why: "its reader is not built yet",
+                })
             }
         }
     }
+
+    let Sink {
+        mut out,
+        mut err,
+        summary,
+        skipped,
+        ..
+    } = sink;
     if let Some(summary) = summary {
         if summary.timeouts_not_checked() {
             writeln!(
@@ -143,36 +293,106 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// An input read in large blocks of whole lines, parsed in place (no copy
-/// per line). A line that runs past a block is carried to the front and
-/// completed by the next read. Memory stays at one block, whatever the
-/// input's size, unless a single line is longer than a block.
+/// Read a candump log (SPEC §5.1, §5.2) block by block.
+fn read_candump(
+    sink: &mut Sink<'_>,
+    reader: Box<dyn Read>,
+    name: &str,
+    path: Option<&Path>,
+    base: Option<TimestampBase>,
+) -> Result<(), Failure> {
+    let mut blocks = Blocks::new(reader);
+    let mut state = base.map(|base| {
+        LineState::new(match base {
+            TimestampBase::Delta => RelativeTimestamps::Delta,
+            TimestampBase::Zero => RelativeTimestamps::Zero,
+        })
+    });
+    let mut line_base: u64 = 0;
+    loop {
+        let block = blocks
+            .next_block()
+            .map_err(|e| read_failure(name, path, e))?;
+        let Some(block) = block else { break };
+        if block.overlong {
+            line_base += 1;
+            sink.malformed(name, line_base, &OverlongLine)?;
+        }
+        let line_state = match state {
+            Some(state) => state,
+            // Relative timestamps: -t d or -t z? Up to 64 frames decide
+            // (SPEC §5.2); a live stream waits for them.
+            None => match candump::detect_relative_timestamps(block.text, block.at_end) {
+                Some(relative) => *state.insert(LineState::new(relative)),
+                None => {
+                    blocks.hold();
+                    continue;
+                }
+            },
+        };
+        let drained = block.drained;
+        let mut lines = candump::lines_from(block.text, line_state);
+        let mut last = 0;
+        for (number, parsed) in lines.by_ref() {
+            last = number;
+            let line = line_base + number as u64;
+            match parsed {
+                Ok(None) => {}
+                Ok(Some(frame)) => sink.event(line, &LogEvent::Frame(frame))?,
+                Err(e) => sink.malformed(name, line, &e)?,
+            }
+        }
+        state = Some(lines.state());
+        line_base += last as u64;
+        if drained {
+            // Live use: what was decoded so far is written out now
+            // (SPEC §6.4); a file read in full blocks never gets here.
+            sink.flush()?;
+        }
+    }
+    Ok(())
+}
+
+/// The longest line a text reader holds (1 MiB); a longer one is reported
+/// and skipped, so memory stays bounded whatever the input (issue 11).
+const MAX_LINE: usize = 1 << 20;
+
+/// The error for a line longer than [`MAX_LINE`].
+struct OverlongLine;
+
+impl std::fmt::Display for OverlongLine {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "line longer than {} MiB: not a log line, skipped",
+            MAX_LINE >> 20
+        )
+    }
+}
+
+/// Whole lines of an input, a block at a time (256 KiB, more for a long
+/// line, at most [`MAX_LINE`] for one line).
 struct Blocks {
     reader: Box<dyn Read>,
     buf: Vec<u8>,
-    /// Bytes of `buf` read.
     filled: usize,
-    /// Bytes at the front of `buf` handed out in the last block.
     handed: usize,
-    /// Lines before the next block.
-    base: u64,
-    /// What the last block's last line means for the next block's first
-    /// (an error frame's explanation lines, candump -e).
-    state: candump::LineState,
     at_end: bool,
+    /// Dropping the rest of an overlong line.
+    skipping: bool,
 }
 
-/// Whole lines of an input, with what the lines before them leave.
 struct Block<'b> {
-    /// The lines, each ending in `\n` but maybe the input's last.
+    /// Whole lines (the last one may lack its line end at the end of the
+    /// input).
     text: &'b [u8],
-    /// How many lines came before.
-    base: u64,
-    /// What the lines before mean for the first.
-    state: candump::LineState,
-    /// Whether the input has nothing more buffered after these lines (the
-    /// next read would wait, as on a live pipe).
+    /// The read that filled the block took everything the input had
+    /// buffered: flush the output (live use).
     drained: bool,
+    /// The block holds the end of the input.
+    at_end: bool,
+    /// An overlong line was skipped right before the block's text.
+    overlong: bool,
 }
 
 impl Blocks {
@@ -184,26 +404,38 @@ impl Blocks {
             buf: vec![0; Self::BLOCK],
             filled: 0,
             handed: 0,
-            base: 0,
-            state: candump::LineState::default(),
             at_end: false,
+            skipping: false,
         }
     }
 
-    /// Read until there is at least one whole line (or the end), and return
-    /// the whole lines; `None` after the end.
+    /// Hand out the last block's text again, with more after it, at the
+    /// next call (the caller needs more lines to decide something).
+    fn hold(&mut self) {
+        self.handed = 0;
+    }
+
     fn next_block(&mut self) -> io::Result<Option<Block<'_>>> {
         // Drop what the last block handed out.
         self.buf.copy_within(self.handed..self.filled, 0);
         self.filled -= self.handed;
         self.handed = 0;
-        if self.at_end {
+        if self.at_end && self.filled == 0 {
             return Ok(None);
         }
-        loop {
+        let mut overlong = false;
+        let mut drained = false;
+        while !self.at_end {
             if self.filled == self.buf.len() {
-                // A line longer than the block: make room for the rest of it.
-                self.buf.resize(self.buf.len() * 2, 0);
+                if self.buf.len() >= MAX_LINE {
+                    // One line fills the largest buffer: drop it up to its
+                    // end.
+                    self.skipping = true;
+                    self.filled = 0;
+                } else {
+                    let len = (self.buf.len() * 2).min(MAX_LINE);
+                    self.buf.resize(len, 0);
+                }
             }
             let room = self.buf.len() - self.filled;
             let n = match self.reader.read(&mut self.buf[self.filled..]) {
@@ -211,33 +443,55 @@ impl Blocks {
                 Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
                 Err(e) => return Err(e),
             };
+            let start = self.filled;
             self.filled += n;
             self.at_end = n == 0;
-            // Up to the last complete line (all of it at the end).
-            let complete = if self.at_end {
-                self.filled
-            } else {
-                match self.buf[..self.filled].iter().rposition(|&b| b == b'\n') {
-                    Some(i) => i + 1,
-                    None => continue,
+            drained = n < room && !self.at_end;
+            if self.skipping {
+                match self.buf[start..self.filled]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                {
+                    Some(i) => {
+                        self.buf.copy_within(start + i + 1..self.filled, 0);
+                        self.filled -= start + i + 1;
+                        self.skipping = false;
+                        overlong = true;
+                    }
+                    None => {
+                        self.filled = 0;
+                        if self.at_end {
+                            self.skipping = false;
+                            overlong = true;
+                        }
+                        continue;
+                    }
                 }
-            };
-            self.handed = complete;
-            return Ok(Some(Block {
-                text: &self.buf[..complete],
-                base: self.base,
-                state: self.state,
-                // A read that did not fill the room took everything the
-                // input had buffered.
-                drained: n < room && !self.at_end,
-            }));
+            }
+            if self.buf[start..self.filled].contains(&b'\n') || self.at_end {
+                break;
+            }
+            if overlong && self.filled == 0 {
+                // Report the skipped line before waiting for more.
+                break;
+            }
         }
-    }
-
-    /// Record that the last block held `lines` lines and left `state`.
-    fn done(&mut self, lines: usize, state: candump::LineState) {
-        self.base += lines as u64;
-        self.state = state;
+        // Up to the last complete line (all of it at the end).
+        let complete = if self.at_end {
+            self.filled
+        } else {
+            self.buf[..self.filled]
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |i| i + 1)
+        };
+        self.handed = complete;
+        Ok(Some(Block {
+            text: &self.buf[..complete],
+            drained,
+            at_end: self.at_end,
+            overlong,
+        }))
     }
 }
 

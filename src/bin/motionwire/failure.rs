@@ -17,6 +17,25 @@ pub enum Failure {
         /// Why it cannot be read.
         source: io::Error,
     },
+    /// An input that is none of the log formats of SPEC §5 (§5.7: one
+    /// clear error, not one per line).
+    #[error("{name}: unrecognised log format: expected {expected}")]
+    Unrecognised {
+        /// The input's name.
+        name: String,
+        /// What was expected, in words.
+        expected: &'static str,
+    },
+    /// An input of a format this build cannot read.
+    #[error("{name}: {format} logs cannot be read by this build: {why}")]
+    Unreadable {
+        /// The input's name.
+        name: String,
+        /// The format.
+        format: motionwire::LogFormat,
+        /// Why.
+        why: &'static str,
+    },
     /// Writing the output failed.
     #[error("writing the output: {0}")]
     Io(#[from] io::Error),

@@ -189,21 +189,29 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
     out.write_all(&bytes[start..])
 }
 
-/// Write a timestamp as seconds with six decimals, `1700000000.000500`
-/// (SPEC §6.1 `ts`: exact to the microsecond, no float rounding).
+/// Write a timestamp as seconds with six decimals, `1700000000.000500`, or
+/// nine when it is not a whole number of microseconds (SPEC §6.1 `ts`,
+/// §5.7: exact to the format's resolution, no float rounding).
 pub fn timestamp<W: Write>(out: &mut W, ts: motionwire::can::Timestamp) -> io::Result<()> {
-    let mut buf = [0u8; 20 + 1 + 6];
+    let mut buf = [0u8; 20 + 1 + 9];
     let mut digits = itoa::Buffer::new();
     let text = digits.format(ts.secs()).as_bytes();
     let secs = text.len();
     buf[..secs].copy_from_slice(text);
     buf[secs] = b'.';
-    let mut micros = ts.micros();
-    for at in (secs + 1..secs + 7).rev() {
-        buf[at] = b'0' + (micros % 10) as u8;
-        micros /= 10;
+    // Microseconds, or nanoseconds when the time has them (candump -N,
+    // pcap/pcapng with nanosecond resolution, BLF).
+    let nanos = ts.subsec_nanos();
+    let (mut fraction, width) = if nanos % 1000 == 0 {
+        (nanos / 1000, 6)
+    } else {
+        (nanos, 9)
+    };
+    for at in (secs + 1..secs + 1 + width).rev() {
+        buf[at] = b'0' + (fraction % 10) as u8;
+        fraction /= 10;
     }
-    out.write_all(&buf[..secs + 7])
+    out.write_all(&buf[..secs + 1 + width])
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259).
@@ -249,6 +257,19 @@ pub fn hex_string<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
     }
     buf[n] = b'"';
     out.write_all(&buf[..=n])
+}
+
+/// Write bytes as lowercase hex digits without separators (at most 64).
+pub fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
+    let mut buf = [0u8; 2 * 64];
+    let mut n = 0;
+    for &b in bytes.iter().take(64) {
+        buf[n] = DIGITS[usize::from(b >> 4)];
+        buf[n + 1] = DIGITS[usize::from(b & 0xF)];
+        n += 2;
+    }
+    out.write_all(&buf[..n])
 }
 
 #[cfg(test)]

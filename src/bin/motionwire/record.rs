@@ -157,6 +157,73 @@ impl<'r, 'a> Record<'r, 'a> {
     }
 }
 
+/// The header row of `--csv` (SPEC §6.4).
+pub const CSV_HEADER: &str = "line,ts,iface,id,extended,rtr,fd,data,kind,node,code,description";
+
+impl Record<'_, '_> {
+    /// Write the frame as one CSV row under [`CSV_HEADER`] (SPEC §6.4):
+    /// values as in the JSON, integers in decimal, `true`/`false`, data as
+    /// hex, empty for null; a field with a comma, quote or line break is
+    /// quoted as RFC 4180 says. Rows end with CRLF, as RFC 4180 says.
+    pub fn write_csv<W: Write>(&self, out: &mut W) -> io::Result<()> {
+        let log = self.log;
+        let frame = &log.frame;
+        let mut digits = itoa::Buffer::new();
+        out.write_all(digits.format(self.line).as_bytes())?;
+        out.write_all(b",")?;
+        if let Some(ts) = log.timestamp {
+            json::timestamp(out, ts)?;
+        }
+        out.write_all(b",")?;
+        match log.iface {
+            Some(Iface::Name(name)) => csv_field(out, name)?,
+            Some(Iface::Channel(channel)) => write!(out, "{channel}")?,
+            None => {}
+        }
+        out.write_all(b",")?;
+        out.write_all(digits.format(frame.id().raw()).as_bytes())?;
+        for flag in [frame.is_extended(), frame.is_rtr(), frame.is_fd()] {
+            out.write_all(if flag { b",true" } else { b",false" })?;
+        }
+        out.write_all(b",")?;
+        json::hex_digits(out, frame.data())?;
+        out.write_all(b",")?;
+        out.write_all(self.kind().name().as_bytes())?;
+        out.write_all(b",")?;
+        if let Some(node) = self.node() {
+            out.write_all(digits.format(node.get()).as_bytes())?;
+        }
+        out.write_all(b",")?;
+        let emcy = match &self.decoded {
+            Ok(CanOpenMessage::Emcy { emcy, .. }) => Some((emcy.code, true)),
+            Err(e) => e
+                .partial_emcy
+                .and_then(|p| p.code)
+                .map(|code| (code, false)),
+            Ok(_) => None,
+        };
+        if let Some((code, _)) = emcy {
+            out.write_all(digits.format(code.get()).as_bytes())?;
+        }
+        out.write_all(b",")?;
+        if let Some((code, _)) = emcy {
+            csv_field(out, code.description())?;
+        }
+        out.write_all(b"\r\n")
+    }
+}
+
+/// One CSV field, quoted when RFC 4180 requires it (a comma, a double
+/// quote, CR or LF), with its quotes doubled.
+fn csv_field<W: Write>(out: &mut W, text: &str) -> io::Result<()> {
+    if !text.contains([',', '"', '\r', '\n']) {
+        return out.write_all(text.as_bytes());
+    }
+    out.write_all(b"\"")?;
+    out.write_all(text.replace('"', "\"\"").as_bytes())?;
+    out.write_all(b"\"")
+}
+
 /// The EMCY keys of SPEC §6.1, with the profile's keys.
 fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
     obj.uint("code", u64::from(emcy.code.get()))?;

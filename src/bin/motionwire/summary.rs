@@ -6,7 +6,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use motionwire::can::Timestamp;
+use motionwire::can::{ErrorFrame, Iface, LogEvent, Timestamp};
 use motionwire::canopen::{
     CanOpenMessage, EmcyStorage, GuardingEvent, HeartbeatConsumer, HeartbeatEvent, MessageKind,
     NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
@@ -14,6 +14,7 @@ use motionwire::canopen::{
 
 use crate::json::{self, Object};
 use motionwire::can::LogFrame;
+use motionwire::canopen::ErrorCode;
 
 use crate::record::Record;
 
@@ -43,6 +44,7 @@ struct NodeSummary {
     resets: u64,
     first_error: Option<Seen>,
     active_error: Option<Seen>,
+    last_register: Option<u8>,
     heartbeats: u64,
     last_state: Option<NmtStateByte>,
     boot_ups: Vec<u64>,
@@ -69,6 +71,7 @@ impl NodeSummary {
             resets: 0,
             first_error: None,
             active_error: None,
+            last_register: None,
             heartbeats: 0,
             last_state: None,
             boot_ups: Vec::new(),
@@ -86,13 +89,105 @@ impl NodeSummary {
 
 /// The per-node summary of a whole input.
 pub struct Summary {
+    /// One per interface, in the order first seen.
+    buses: Vec<Bus>,
+    /// The bus of the last frame (a log's frames mostly share one).
+    last_bus: usize,
+    heartbeat_ms: Option<u16>,
+    last_time: Option<Duration>,
+    untimed: u64,
+}
+
+/// An interface as the summary keeps it (owned: records outlive the input
+/// buffer). Ordered for the output: no interface, channels, names.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+enum BusName {
+    None,
+    Channel(u16),
+    Name(String),
+}
+
+impl BusName {
+    fn of(iface: Option<Iface<'_>>) -> Self {
+        match iface {
+            None => BusName::None,
+            Some(Iface::Channel(n)) => BusName::Channel(n),
+            Some(Iface::Name(name)) => BusName::Name(name.to_owned()),
+        }
+    }
+
+    fn is(&self, iface: Option<Iface<'_>>) -> bool {
+        match (self, iface) {
+            (BusName::None, None) => true,
+            (BusName::Channel(a), Some(Iface::Channel(b))) => *a == b,
+            (BusName::Name(a), Some(Iface::Name(b))) => a == b,
+            _ => false,
+        }
+    }
+
+    fn json<W: Write>(&self, obj: &mut Object<'_, W>) -> io::Result<()> {
+        match self {
+            BusName::None => obj.null("iface"),
+            BusName::Channel(n) => obj.str("iface", &n.to_string()),
+            BusName::Name(name) => obj.str("iface", name),
+        }
+    }
+
+    fn text(&self) -> String {
+        match self {
+            BusName::None => "-".to_owned(),
+            BusName::Channel(n) => n.to_string(),
+            BusName::Name(name) => name.clone(),
+        }
+    }
+}
+
+/// Everything seen on one interface: its nodes (SPEC §5.7: a node's
+/// identity is (interface, node)) with their own EMCY storage and heartbeat
+/// consumer, and the bus record of SPEC §6.3.
+#[derive(Debug)]
+struct Bus {
+    name: BusName,
     nodes: Vec<Option<NodeSummary>>,
     storage: EmcyStorage,
     consumer: Option<HeartbeatConsumer>,
-    last_time: Option<Duration>,
-    /// Frames of nodes that had no timestamp: with any, heartbeat timeouts
-    /// cannot be checked (SPEC §5.7, §6.3).
-    untimed: u64,
+    frames: u64,
+    error_frames: u64,
+    bus_off: Vec<u64>,
+    error_passive: Vec<u64>,
+    status_events: u64,
+    first_ts: Option<Timestamp>,
+    last_ts: Option<Timestamp>,
+}
+
+impl Bus {
+    fn new(name: BusName, heartbeat_ms: Option<u16>) -> Self {
+        let consumer = heartbeat_ms.map(|ms| {
+            let mut consumer = HeartbeatConsumer::new();
+            consumer.monitor_unconfigured(Duration::from_millis(u64::from(ms)));
+            consumer
+        });
+        Bus {
+            name,
+            nodes: (0..127).map(|_| None).collect(),
+            storage: EmcyStorage::new(),
+            consumer,
+            frames: 0,
+            error_frames: 0,
+            bus_off: Vec::new(),
+            error_passive: Vec::new(),
+            status_events: 0,
+            first_ts: None,
+            last_ts: None,
+        }
+    }
+
+    fn saw(&mut self, ts: Option<Timestamp>) {
+        if let Some(ts) = ts {
+            self.first_ts = Some(self.first_ts.map_or(ts, |first| first.min(ts)));
+            self.last_ts = Some(self.last_ts.map_or(ts, |last| last.max(ts)));
+        }
+    }
 }
 
 /// Whether heartbeat timeouts are reported (SPEC §6.3, §5.7).
@@ -110,34 +205,67 @@ impl Summary {
     /// Start a summary; with `heartbeat_ms`, every node's heartbeats are
     /// monitored with that consumer time (object 1016h, ms).
     pub fn new(heartbeat_ms: Option<u16>) -> Self {
-        let consumer = heartbeat_ms.map(|ms| {
-            let mut consumer = HeartbeatConsumer::new();
-            consumer.monitor_unconfigured(Duration::from_millis(u64::from(ms)));
-            consumer
-        });
         Summary {
-            nodes: (0..127).map(|_| None).collect(),
-            storage: EmcyStorage::new(),
-            consumer,
+            buses: Vec::new(),
+            last_bus: 0,
+            heartbeat_ms,
             last_time: None,
             untimed: 0,
         }
     }
 
-    /// Take one decoded frame into account.
-    ///
-    /// Only the frames whose contents the summary reads (EMCY, heartbeat,
-    /// guard request) are decoded; the others are counted by the kind the
-    /// library gives their identifier.
+    /// The bus of an interface, made on first sight.
+    fn bus(&mut self, iface: Option<Iface<'_>>) -> &mut Bus {
+        let at = match self.buses.get(self.last_bus) {
+            Some(bus) if bus.name.is(iface) => self.last_bus,
+            _ => match self.buses.iter().position(|bus| bus.name.is(iface)) {
+                Some(at) => at,
+                None => {
+                    self.buses
+                        .push(Bus::new(BusName::of(iface), self.heartbeat_ms));
+                    self.buses.len() - 1
+                }
+            },
+        };
+        self.last_bus = at;
+        &mut self.buses[at]
+    }
+
+    /// Count a log entry that is not a frame (a TRC status row; SPEC §6.3
+    /// `status_events`).
+    pub fn add_event(&mut self, event: &LogEvent<'_>) {
+        if let LogEvent::Status(status) = event {
+            let bus = self.bus(status.iface);
+            bus.status_events += 1;
+            bus.saw(status.timestamp);
+        }
+    }
+
+    /// Add one frame, read on `line` of the input.
     pub fn add(&mut self, line: u64, log: &LogFrame<'_>) {
         let (kind, node) = MessageKind::classify(&log.frame);
-        let Some(node) = node else { return };
         let now = log.timestamp.map(Timestamp::as_duration);
         match now {
             Some(_) => self.last_time = now,
             None => self.untimed += 1,
         }
-        let summary = self.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
+        let bus = self.bus(log.iface);
+        bus.frames += 1;
+        bus.saw(log.timestamp);
+        if kind == MessageKind::ErrorFrame {
+            bus.error_frames += 1;
+            if let Ok(error) = ErrorFrame::from_frame(&log.frame) {
+                if error.is_bus_off() {
+                    bus.bus_off.push(line);
+                }
+                if error.is_error_passive() {
+                    bus.error_passive.push(line);
+                }
+            }
+            return;
+        }
+        let Some(node) = node else { return };
+        let summary = bus.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
         summary.frames[kind.index()] += 1;
         if !matches!(
             kind,
@@ -150,6 +278,7 @@ impl Summary {
         match *message {
             CanOpenMessage::Emcy { emcy, .. } => {
                 summary.emcy += 1;
+                summary.last_register = Some(emcy.register.bits());
                 let seen = Seen {
                     line: record.line,
                     ts: record.log.timestamp,
@@ -160,7 +289,7 @@ impl Summary {
                 } else if summary.first_error.is_none() {
                     summary.first_error = Some(seen);
                 }
-                match self.storage.receive(node, emcy) {
+                match bus.storage.receive(node, emcy) {
                     SlotUpdate::RootCause => summary.active_error = Some(seen),
                     SlotUpdate::Reset { .. } => summary.active_error = None,
                     SlotUpdate::FollowUp { .. } => {}
@@ -194,7 +323,7 @@ impl Summary {
                     summary.guarding.on_boot_up();
                 }
                 if let (Some(consumer), Some(now), Some(nmt)) =
-                    (self.consumer.as_mut(), now, byte.state())
+                    (bus.consumer.as_mut(), now, byte.state())
                 {
                     for event in consumer.on_heartbeat(now, node, nmt) {
                         match event {
@@ -224,27 +353,30 @@ impl Summary {
     /// Close the input: heartbeats still missing at the last timestamp are
     /// timeouts up to that timestamp.
     fn finish(&mut self) {
-        let (Some(consumer), Some(end)) = (self.consumer.as_mut(), self.last_time) else {
-            return;
-        };
-        for event in consumer.poll(end) {
-            if let HeartbeatEvent::Timeout {
-                node,
-                last_heartbeat,
-                ..
-            } = event
-            {
-                if let Some(summary) = self.nodes[node.index()].as_mut() {
-                    summary.open_gap = Some((summary.last_heartbeat_line, last_heartbeat));
+        let Some(end) = self.last_time else { return };
+        for bus in &mut self.buses {
+            let Some(consumer) = bus.consumer.as_mut() else {
+                continue;
+            };
+            for event in consumer.poll(end) {
+                if let HeartbeatEvent::Timeout {
+                    node,
+                    last_heartbeat,
+                    ..
+                } = event
+                {
+                    if let Some(summary) = bus.nodes[node.index()].as_mut() {
+                        summary.open_gap = Some((summary.last_heartbeat_line, last_heartbeat));
+                    }
                 }
             }
-        }
-        for summary in self.nodes.iter_mut().flatten() {
-            if let Some((after_line, last)) = summary.open_gap.take() {
-                summary.timeouts.push(Gap {
-                    after_line,
-                    gap: end.saturating_sub(last),
-                });
+            for summary in bus.nodes.iter_mut().flatten() {
+                if let Some((after_line, last)) = summary.open_gap.take() {
+                    summary.timeouts.push(Gap {
+                        after_line,
+                        gap: end.saturating_sub(last),
+                    });
+                }
             }
         }
     }
@@ -257,26 +389,95 @@ impl Summary {
     }
 
     fn timeouts(&self) -> Timeouts {
-        match (self.consumer.is_some(), self.untimed) {
+        match (self.heartbeat_ms.is_some(), self.untimed) {
             (false, _) => Timeouts::NotAsked,
             (true, 0) => Timeouts::Checked,
             (true, _) => Timeouts::NotChecked,
         }
     }
 
-    /// Write one record per node seen, in node order.
+    /// Write one record per (interface, node) seen, by interface then node,
+    /// then one record per interface (SPEC §6.3).
     pub fn write<W: Write>(mut self, out: &mut W, as_json: bool) -> io::Result<()> {
         self.finish();
         let with_timeouts = self.timeouts();
-        for summary in self.nodes.iter().flatten() {
+        self.buses.sort_by(|a, b| a.name.cmp(&b.name));
+        for bus in &self.buses {
+            for summary in bus.nodes.iter().flatten() {
+                if as_json {
+                    write_json(out, &bus.name, summary, with_timeouts)?;
+                } else {
+                    write_text(out, &bus.name, summary, with_timeouts)?;
+                }
+            }
+        }
+        for bus in &self.buses {
             if as_json {
-                write_json(out, summary, with_timeouts)?;
+                write_bus_json(out, bus)?;
             } else {
-                write_text(out, summary, with_timeouts)?;
+                write_bus_text(out, bus)?;
             }
         }
         Ok(())
     }
+}
+
+fn nodes_of(bus: &Bus) -> impl Iterator<Item = u64> + '_ {
+    bus.nodes
+        .iter()
+        .flatten()
+        .map(|summary| u64::from(summary.node.get()))
+}
+
+fn write_bus_json<W: Write>(out: &mut W, bus: &Bus) -> io::Result<()> {
+    let mut obj = Object::begin(out)?;
+    obj.name("type", "bus")?;
+    bus.name.json(&mut obj)?;
+    obj.uint("frames", bus.frames)?;
+    obj.uint("error_frames", bus.error_frames)?;
+    obj.uints("bus_off", bus.bus_off.iter().copied())?;
+    obj.uints("error_passive", bus.error_passive.iter().copied())?;
+    obj.uint("status_events", bus.status_events)?;
+    for (key, ts) in [("first_ts", bus.first_ts), ("last_ts", bus.last_ts)] {
+        match ts {
+            Some(ts) => json::timestamp(obj.key(key)?, ts)?,
+            None => obj.null(key)?,
+        }
+    }
+    obj.uints("nodes", nodes_of(bus))?;
+    obj.end()?;
+    out.write_all(b"\n")
+}
+
+fn write_bus_text<W: Write>(out: &mut W, bus: &Bus) -> io::Result<()> {
+    write!(
+        out,
+        "bus {}  frames {}, error frames {}",
+        bus.name.text(),
+        bus.frames,
+        bus.error_frames
+    )?;
+    if !bus.bus_off.is_empty() {
+        write!(out, ", bus-off at lines {}", Lines(&bus.bus_off))?;
+    }
+    if !bus.error_passive.is_empty() {
+        write!(
+            out,
+            ", error-passive at lines {}",
+            Lines(&bus.error_passive)
+        )?;
+    }
+    if bus.status_events > 0 {
+        write!(out, ", status events {}", bus.status_events)?;
+    }
+    if let (Some(first), Some(last)) = (bus.first_ts, bus.last_ts) {
+        write!(out, ", from {first} to {last}")?;
+    }
+    let nodes: Vec<u64> = nodes_of(bus).collect();
+    if !nodes.is_empty() {
+        write!(out, ", nodes {}", Lines(&nodes))?;
+    }
+    writeln!(out)
 }
 
 fn seen_json<W: Write>(
@@ -295,6 +496,7 @@ fn seen_json<W: Write>(
         None => inner.null("ts")?,
     }
     inner.uint("code", u64::from(seen.code))?;
+    inner.str("description", ErrorCode::new(seen.code).description())?;
     inner.end()
 }
 
@@ -303,8 +505,15 @@ fn gap_ms(gap: &Gap) -> f64 {
     gap.gap.as_micros() as f64 / 1000.0
 }
 
-fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -> io::Result<()> {
+fn write_json<W: Write>(
+    out: &mut W,
+    bus: &BusName,
+    s: &NodeSummary,
+    with_timeouts: Timeouts,
+) -> io::Result<()> {
     let mut obj = Object::begin(out)?;
+    obj.name("type", "node")?;
+    bus.json(&mut obj)?;
     obj.uint("node", u64::from(s.node.get()))?;
     {
         let mut frames = Object::begin(obj.key("frames")?)?;
@@ -317,6 +526,10 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -
     seen_json(&mut obj, "first_error", s.first_error)?;
     seen_json(&mut obj, "active_error", s.active_error)?;
     obj.uint("resets", s.resets)?;
+    match s.last_register {
+        Some(register) => obj.uint("last_register", u64::from(register))?,
+        None => obj.null("last_register")?,
+    }
     {
         let mut hb = Object::begin(obj.key("heartbeat")?)?;
         hb.uint("count", s.heartbeats)?;
@@ -354,8 +567,13 @@ fn write_json<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -
     out.write_all(b"\n")
 }
 
-fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -> io::Result<()> {
-    write!(out, "node {:>3}  frames", s.node.get())?;
+fn write_text<W: Write>(
+    out: &mut W,
+    bus: &BusName,
+    s: &NodeSummary,
+    with_timeouts: Timeouts,
+) -> io::Result<()> {
+    write!(out, "{} node {:>3}  frames", bus.text(), s.node.get())?;
     for kind in MessageKind::ALL {
         let n = s.frames[kind.index()];
         if n > 0 {
@@ -366,6 +584,16 @@ fn write_text<W: Write>(out: &mut W, s: &NodeSummary, with_timeouts: Timeouts) -
     write!(out, "          emcy {} (resets {})", s.emcy, s.resets)?;
     write_seen(out, "first error", s.first_error)?;
     write_seen(out, "active error", s.active_error)?;
+    if let Some(register) = s.last_register.filter(|&r| r != 0) {
+        if s.active_error.is_none() {
+            // A reset EMCY with a non-zero register: other errors are still
+            // active (SPEC §6.3).
+            write!(
+                out,
+                ", error register {register:#04x} still set by the last EMCY"
+            )?;
+        }
+    }
     writeln!(out)?;
     write!(
         out,

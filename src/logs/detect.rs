@@ -1,0 +1,259 @@
+//! Which format a log is in, from its first bytes (SPEC §5.7): binary
+//! magic numbers, and for text the shape of the first lines that are not
+//! blank — never the file name.
+
+use crate::candump;
+use crate::LogFormat;
+
+/// The most text [`detect`] looks at: enough for the longest headers
+/// (PEAK TRC 2.x writes about a dozen comment lines, Vector ASC four).
+pub const DETECT_LEN: usize = 64 * 1024;
+
+/// What the first bytes of a log are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Detected {
+    /// A log of this format.
+    Format(LogFormat),
+    /// A gzip stream (RFC 1952 magic `1f 8b`): inflate it and detect again
+    /// (SPEC §6.4).
+    Gzip,
+    /// Not enough bytes to decide: read more (or, at the end of the input,
+    /// the input is too short to be a log of any format).
+    NeedMore,
+    /// The whole input holds nothing but blank and `#` comment lines (or
+    /// nothing at all): there is nothing to read, whatever its format.
+    Empty,
+    /// None of the formats of SPEC §5.
+    Unrecognised,
+}
+
+/// Decide the format of a log from its first bytes (up to
+/// [`DETECT_LEN`] are looked at; `complete` says that `head` is the whole
+/// input, so that a short text can still be decided).
+///
+/// - pcap: magic `a1b2c3d4` or `a1b23c4d` (nanoseconds), in either byte
+///   order; pcapng: the section header block type `0a0d0d0a`; BLF: `LOGG`;
+///   gzip: `1f 8b`.
+/// - Text, line by line, blank lines skipped: a line starting with `;` is a
+///   PEAK TRC header, and `N)` followed by a time a TRC row; `date `,
+///   `base `, `Begin Triggerblock`, `internal events logged`, `// version`
+///   or `no internal events logged` start a Vector ASC file, and a decimal
+///   time followed by a channel number or `CANFD` is an ASC event line; a
+///   line that [`candump::parse_line`] reads as a frame is candump (log or
+///   screen). `#` comment lines decide nothing. The first line that decides
+///   decides; a line that is none of these makes the input unrecognised.
+///
+/// ```
+/// use motionwire::logs::{detect, Detected};
+/// use motionwire::LogFormat;
+///
+/// let candump = b"(1700000000.000500) can0 081#1081110000000000\n";
+/// assert_eq!(detect(candump, true), Detected::Format(LogFormat::Candump));
+/// let asc = b"date Mon Nov 23 07:35:00.000 am 2026\nbase hex  timestamps absolute\n";
+/// assert_eq!(detect(asc, true), Detected::Format(LogFormat::Asc));
+/// let trc = b";$FILEVERSION=2.1\n;$STARTTIME=45000.5\n";
+/// assert_eq!(detect(trc, true), Detected::Format(LogFormat::Trc));
+/// assert_eq!(detect(&[0xd4, 0xc3, 0xb2, 0xa1, 2, 0, 4, 0], false), Detected::Format(LogFormat::Pcap));
+/// assert_eq!(detect(b"Hello, world!\n", true), Detected::Unrecognised);
+/// ```
+#[must_use]
+pub fn detect(head: &[u8], complete: bool) -> Detected {
+    if head.starts_with(&[0x1f, 0x8b]) {
+        return Detected::Gzip;
+    }
+    match head.first_chunk::<4>() {
+        Some(
+            [0xa1, 0xb2, 0xc3, 0xd4]
+            | [0xd4, 0xc3, 0xb2, 0xa1]
+            | [0xa1, 0xb2, 0x3c, 0x4d]
+            | [0x4d, 0x3c, 0xb2, 0xa1],
+        ) => return Detected::Format(LogFormat::Pcap),
+        Some([0x0a, 0x0d, 0x0d, 0x0a]) => return Detected::Format(LogFormat::Pcapng),
+        Some(b"LOGG") => return Detected::Format(LogFormat::Blf),
+        Some(_) => {}
+        None if complete || head.len() >= 4 => {}
+        None => return Detected::NeedMore,
+    }
+    let head = head.get(..DETECT_LEN).unwrap_or(head);
+    let mut rest = head;
+    while !rest.is_empty() {
+        let (line, next, whole) = match rest.iter().position(|&b| b == b'\n') {
+            Some(i) => (
+                rest.get(..i).unwrap_or_default(),
+                rest.get(i + 1..).unwrap_or_default(),
+                true,
+            ),
+            None => (rest, &[][..], complete || head.len() == DETECT_LEN),
+        };
+        rest = next;
+        if !whole {
+            // The last line may be cut off: decide on it only when it is
+            // all there is.
+            return Detected::NeedMore;
+        }
+        match line_shape(line) {
+            Some(format) => return Detected::Format(format),
+            None if is_blank_or_comment(line) => {}
+            None => return Detected::Unrecognised,
+        }
+    }
+    if complete {
+        Detected::Empty
+    } else if head.len() == DETECT_LEN {
+        Detected::Unrecognised
+    } else {
+        Detected::NeedMore
+    }
+}
+
+fn trim_start(line: &[u8]) -> &[u8] {
+    let start = line
+        .iter()
+        .position(|&b| b != b' ' && b != b'\t')
+        .unwrap_or(line.len());
+    line.get(start..).unwrap_or_default()
+}
+
+fn is_blank_or_comment(line: &[u8]) -> bool {
+    match trim_start(line) {
+        [] | [b'\r', ..] | [b'#', ..] => true,
+        // A UTF-8 byte order mark before anything else.
+        [0xEF, 0xBB, 0xBF, rest @ ..] => is_blank_or_comment(rest),
+        _ => false,
+    }
+}
+
+/// The format a single line belongs to, if it tells.
+fn line_shape(line: &[u8]) -> Option<LogFormat> {
+    let text = trim_start(line);
+    let text = text.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(text);
+    const ASC_HEADERS: [&[u8]; 7] = [
+        b"date ",
+        b"base ",
+        b"Begin Triggerblock",
+        b"internal events logged",
+        b"no internal events logged",
+        b"// version",
+        b"Start of measurement",
+    ];
+    if text.first() == Some(&b';') {
+        return Some(LogFormat::Trc);
+    }
+    if ASC_HEADERS.iter().any(|h| text.starts_with(h)) {
+        return Some(LogFormat::Asc);
+    }
+    let digits = text.iter().take_while(|b| b.is_ascii_digit()).count();
+    if digits > 0 {
+        let after = text.get(digits..).unwrap_or_default();
+        // TRC row: `   1)      1059.9 …` (1.x: `1)  1059 …`).
+        if let [b')', b' ' | b'\t', ..] = after {
+            return Some(LogFormat::Trc);
+        }
+        // ASC event: `   0.012345 1  123 …`, `   0.0123 CANFD   1 …`.
+        if let [b'.', frac @ ..] = after {
+            let frac_digits = frac.iter().take_while(|b| b.is_ascii_digit()).count();
+            let field = trim_start(frac.get(frac_digits..).unwrap_or_default());
+            let separated = frac
+                .get(frac_digits)
+                .is_some_and(|&b| b == b' ' || b == b'\t');
+            if frac_digits > 0
+                && separated
+                && (field.first().is_some_and(u8::is_ascii_digit) || field.starts_with(b"CANFD"))
+            {
+                return Some(LogFormat::Asc);
+            }
+        }
+    }
+    match candump::parse_line(line) {
+        Ok(Some(_)) => Some(LogFormat::Candump),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binary_magics() {
+        for (head, format) in [
+            (&[0xa1, 0xb2, 0xc3, 0xd4][..], LogFormat::Pcap),
+            (&[0xd4, 0xc3, 0xb2, 0xa1], LogFormat::Pcap),
+            (&[0xa1, 0xb2, 0x3c, 0x4d], LogFormat::Pcap),
+            (&[0x4d, 0x3c, 0xb2, 0xa1], LogFormat::Pcap),
+            (&[0x0a, 0x0d, 0x0d, 0x0a], LogFormat::Pcapng),
+            (b"LOGG", LogFormat::Blf),
+        ] {
+            assert_eq!(detect(head, false), Detected::Format(format));
+        }
+        assert_eq!(detect(&[0x1f, 0x8b, 8, 0], false), Detected::Gzip);
+        assert_eq!(detect(&[0x1f, 0x8b], false), Detected::Gzip);
+        assert_eq!(detect(&[0xa1], false), Detected::NeedMore);
+    }
+
+    #[test]
+    fn text_shapes() {
+        let rows: &[(&str, Detected)] = &[
+            (
+                "(1700000000.000500) can0 081#1081110000000000\n",
+                Detected::Format(LogFormat::Candump),
+            ),
+            (
+                "\n# comment\n  can0  081   [8]  10 81 11 00 00 00 00 00\n",
+                Detected::Format(LogFormat::Candump),
+            ),
+            (
+                " (2026-11-22 10:11:12.000000)  can0  081   [1]  10\n",
+                Detected::Format(LogFormat::Candump),
+            ),
+            (
+                "date Sam Sep 30 15:06:13.191 2017\nbase hex  timestamps absolute\n",
+                Detected::Format(LogFormat::Asc),
+            ),
+            (
+                "   0.012345 1  123             Rx   d 8 11 22 33 44 55 66 77 88\n",
+                Detected::Format(LogFormat::Asc),
+            ),
+            (
+                "   0.012345 CANFD   1 Rx 123  1 0 8 8 11 22 33 44 55 66 77 88\n",
+                Detected::Format(LogFormat::Asc),
+            ),
+            (
+                ";$FILEVERSION=1.1\n;$STARTTIME=43008.920986006946\n",
+                Detected::Format(LogFormat::Trc),
+            ),
+            (
+                "     1)      1059.900 DT 0300 Rx 7 00 00 00 00 04 00 00\n",
+                Detected::Format(LogFormat::Trc),
+            ),
+            ("Hello, world!\n", Detected::Unrecognised),
+            ("# only a comment\n\n", Detected::Empty),
+            ("", Detected::Empty),
+            ("{\"line\": 1}\n", Detected::Unrecognised),
+        ];
+        for (text, want) in rows {
+            assert_eq!(detect(text.as_bytes(), true), *want, "{text:?}");
+        }
+    }
+
+    #[test]
+    fn a_cut_off_line_waits_for_more() {
+        assert_eq!(
+            detect(b"(1700000000.000500) can0 08", false),
+            Detected::NeedMore
+        );
+        assert_eq!(detect(b"# comment\n", false), Detected::NeedMore);
+        assert_eq!(
+            detect(b"(1700000000.000500) can0 081#10\n(17", false),
+            Detected::Format(LogFormat::Candump)
+        );
+    }
+
+    #[test]
+    fn any_bytes_decide_without_panicking() {
+        use proptest::prelude::*;
+        proptest!(|(bytes in proptest::collection::vec(any::<u8>(), 0..300), complete in any::<bool>())| {
+            let _ = detect(&bytes, complete);
+        });
+    }
+}
