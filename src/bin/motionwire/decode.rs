@@ -8,7 +8,7 @@ use std::io::{self, BufWriter, Cursor, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use motionwire::can::{LogEvent, LogFrame};
+use motionwire::can::LogFrame;
 use motionwire::candump::{self, LineState, RelativeTimestamps};
 use motionwire::canopen::MessageKind;
 use motionwire::logs::{detect, Detected, DETECT_LEN};
@@ -209,19 +209,6 @@ impl<'a> Sink<'a> {
         }
     }
 
-    #[inline]
-    fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
-        match event {
-            LogEvent::Frame(frame) => self.frame(line, frame),
-            LogEvent::Status(_) => {
-                if let Some(summary) = self.summary.as_mut() {
-                    summary.add_event(event);
-                }
-                Ok(())
-            }
-        }
-    }
-
     /// A line or record that could not be read: said on standard error
     /// with its position, counted (SPEC §5.7).
     #[cold]
@@ -331,6 +318,9 @@ fn read_candump(
             },
         };
         let drained = block.drained;
+        if let Some(summary) = sink.summary.as_mut() {
+            summary.new_block();
+        }
         let mut lines = candump::lines_from(block.text, line_state);
         let mut last = 0;
         for (number, parsed) in lines.by_ref() {
@@ -338,7 +328,7 @@ fn read_candump(
             let line = line_base + number as u64;
             match parsed {
                 Ok(None) => {}
-                Ok(Some(frame)) => sink.event(line, &LogEvent::Frame(frame))?,
+                Ok(Some(frame)) => sink.frame(line, &frame)?,
                 Err(e) => sink.malformed(name, line, &e)?,
             }
         }

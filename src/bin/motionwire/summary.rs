@@ -6,7 +6,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use motionwire::can::{ErrorFrame, Iface, LogEvent, Timestamp};
+use motionwire::can::{ErrorFrame, Iface, Timestamp};
 use motionwire::canopen::{
     CanOpenMessage, EmcyStorage, GuardingEvent, HeartbeatConsumer, HeartbeatEvent, MessageKind,
     NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
@@ -93,6 +93,11 @@ pub struct Summary {
     buses: Vec<Bus>,
     /// The bus of the last frame (a log's frames mostly share one).
     last_bus: usize,
+    /// Where the last frame's interface name lay in the input buffer
+    /// (address, length): the same name slice means the same bus without
+    /// comparing (candump's lines of one block share one name slice). Valid
+    /// until [`Summary::new_block`].
+    last_name: (usize, usize),
     heartbeat_ms: Option<u16>,
     last_time: Option<Duration>,
     untimed: u64,
@@ -116,11 +121,12 @@ impl BusName {
         }
     }
 
+    #[inline]
     fn is(&self, iface: Option<Iface<'_>>) -> bool {
         match (self, iface) {
             (BusName::None, None) => true,
             (BusName::Channel(a), Some(Iface::Channel(b))) => *a == b,
-            (BusName::Name(a), Some(Iface::Name(b))) => a == b,
+            (BusName::Name(a), Some(Iface::Name(b))) => same_name(a.as_bytes(), b.as_bytes()),
             _ => false,
         }
     }
@@ -140,6 +146,13 @@ impl BusName {
             BusName::Name(name) => name.clone(),
         }
     }
+}
+
+/// Whether two interface names are equal, compared in line: names are a
+/// few bytes, and a call to `memcmp` per frame costs more than the compare.
+#[inline(always)]
+fn same_name(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
 }
 
 /// Everything seen on one interface: its nodes (SPEC §5.7: a node's
@@ -182,10 +195,22 @@ impl Bus {
         }
     }
 
+    /// Widen the bus's time span to `ts` (inputs are mostly in time order:
+    /// one comparison per frame).
+    #[inline]
     fn saw(&mut self, ts: Option<Timestamp>) {
-        if let Some(ts) = ts {
-            self.first_ts = Some(self.first_ts.map_or(ts, |first| first.min(ts)));
-            self.last_ts = Some(self.last_ts.map_or(ts, |last| last.max(ts)));
+        let Some(ts) = ts else { return };
+        match self.last_ts {
+            Some(last) if ts >= last => self.last_ts = Some(ts),
+            Some(_) => {
+                if self.first_ts.map_or(true, |first| ts < first) {
+                    self.first_ts = Some(ts);
+                }
+            }
+            None => {
+                self.first_ts = Some(ts);
+                self.last_ts = Some(ts);
+            }
         }
     }
 }
@@ -208,14 +233,29 @@ impl Summary {
         Summary {
             buses: Vec::new(),
             last_bus: 0,
+            last_name: (0, 0),
             heartbeat_ms,
             last_time: None,
             untimed: 0,
         }
     }
 
+    /// The input buffer changes: interface names are no longer where they
+    /// were.
+    pub fn new_block(&mut self) {
+        self.last_name = (0, 0);
+    }
+
     /// The bus of an interface, made on first sight.
+    #[inline]
     fn bus(&mut self, iface: Option<Iface<'_>>) -> &mut Bus {
+        if let Some(Iface::Name(name)) = iface {
+            let key = (name.as_ptr() as usize, name.len());
+            if key == self.last_name {
+                return &mut self.buses[self.last_bus];
+            }
+            self.last_name = key;
+        }
         let at = match self.buses.get(self.last_bus) {
             Some(bus) if bus.name.is(iface) => self.last_bus,
             _ => match self.buses.iter().position(|bus| bus.name.is(iface)) {
@@ -229,16 +269,6 @@ impl Summary {
         };
         self.last_bus = at;
         &mut self.buses[at]
-    }
-
-    /// Count a log entry that is not a frame (a TRC status row; SPEC §6.3
-    /// `status_events`).
-    pub fn add_event(&mut self, event: &LogEvent<'_>) {
-        if let LogEvent::Status(status) = event {
-            let bus = self.bus(status.iface);
-            bus.status_events += 1;
-            bus.saw(status.timestamp);
-        }
     }
 
     /// Add one frame, read on `line` of the input.
