@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Python peer for `motionwire decode --summary`: what a user would write instead.
 
-Reads a candump log file (`candump -l` format, SPEC 5) with python-can's
-`can.CanutilsLogReader`, classifies every frame by its CAN identifier as
+Reads a log file with python-can's reader for its format (`can.LogReader`
+picks it by the file's suffix: `.log` candump, `.asc` Vector ASC, `.blf`
+Vector BLF, `.trc` PEAK TRC; SPEC 5), classifies every frame by its CAN identifier as
 SPEC 6.1 does, feeds every EMCY to python-canopen's `canopen.emcy.EmcyConsumer`
 (one per node, as `canopen.RemoteNode` does) and describes the codes with
 `canopen.emcy.EmcyError.get_desc()`. Prints one JSON summary: per node the
@@ -13,7 +14,7 @@ a reset clears all), boot-ups and the described codes.
 This is the benchmark's peer (bench/run.sh), not part of motionwire. Needs
 `pip install python-can canopen`.
 
-Usage: python3 bench/peer_python.py FILE.log [FILE.log ...]
+Usage: python3 bench/peer_python.py FILE.log|.asc|.blf|.trc [FILE ...]
 """
 
 from __future__ import annotations
@@ -51,7 +52,7 @@ def summarize(path: str) -> dict:
     nodes: dict[int, dict] = {}
     consumers: dict[int, EmcyConsumer] = {}
     line = 0
-    with can.CanutilsLogReader(path) as reader:
+    with can.LogReader(path) as reader:
         for msg in reader:
             line += 1
             kind = kind_of(msg.arbitration_id, msg.is_extended_id, msg.is_remote_frame)

@@ -23,6 +23,10 @@
 #   tshark-only  hyperfine: tshark alone (no motionwire needed)
 #   peers        setup gen verify-tshark python-only tshark-only
 #   ratios       print peer/motionwire ratios from bench/results/*.json
+#   gen-formats  write $BENCH_DIR/1m.asc and 1m.blf from 1m.log with python-can
+#   summary-asc  hyperfine: decode --summary on the ASC file vs python-can's ASCReader peer
+#   summary-blf  hyperfine: decode --summary on the BLF file vs python-can's BLFReader peer
+#   summary-pcap hyperfine: decode --summary on the pcap vs tshark -T fields
 #
 # Environment: BENCH_DIR (default /tmp/motionwire-bench), BENCH_FRAMES
 # (default 1000000), BENCH_RUNS (default 3), MOTIONWIRE (default
@@ -43,6 +47,8 @@ TSHARK_FIELDS=(-T fields -E separator=, -e frame.number -e frame.time_epoch -e c
 RESULTS=bench/results
 LOG=$BENCH_DIR/1m.log
 PCAP=$BENCH_DIR/1m.pcap
+ASC=$BENCH_DIR/1m.asc
+BLF=$BENCH_DIR/1m.blf
 # Wireshark's SocketCAN dissector hands the payload to the dissector chosen in
 # its "can.subdissector" Decode-As table; without this it guesses (heuristics,
 # e.g. AUTOSAR NM) or shows raw CAN data.
@@ -83,6 +89,29 @@ gen() {
     end=$(date +%s.%N)
     python3 -c "import sys; s=float(sys.argv[2])-float(sys.argv[1]); print(f'{int(sys.argv[3])} frames (log + pcap) in {s:.2f} s, {int(sys.argv[3])/s:,.0f} frames/s')" "$start" "$end" "$FRAMES"
     ls -l "$LOG" "$PCAP"
+}
+
+gen_formats() {
+    gen
+    step "the same frames as Vector ASC and BLF, written by python-can: $ASC, $BLF"
+    if [[ -s $ASC && -s $BLF && $ASC -nt $LOG && $BLF -nt $LOG ]]; then
+        echo "up to date"
+        return
+    fi
+    python3 bench/convert_python_can.py "$LOG" "$ASC" "$BLF"
+    ls -l "$ASC" "$BLF"
+}
+
+# One hyperfine run: decode --summary of FILE against PEER (a command).
+summary_of() {
+    local name=$1 file=$2 peer_name=$3 peer=$4
+    need_motionwire
+    step "hyperfine: decode --summary on $file vs $peer_name ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --warmup 1 --runs "$RUNS" \
+        --export-markdown "$RESULTS/$name.md" --export-json "$RESULTS/$name.json" \
+        -n "motionwire decode --summary" "$MOTIONWIRE decode --summary $file >/dev/null" \
+        -n "$peer_name" "$peer >/dev/null 2>&1"
 }
 
 verify_tshark() {
@@ -171,7 +200,8 @@ ratios() {
     python3 - "$RESULTS" <<'EOF'
 import json, os, sys
 results = sys.argv[1]
-goals = {"summary": 150.0, "json": 30.0, "json-fields": 30.0}
+goals = {"summary": 150.0, "json": 30.0, "json-fields": 30.0,
+         "summary-asc": 50.0, "summary-blf": 20.0, "summary-pcap": 100.0}
 failed = False
 for name, goal in goals.items():
     path = os.path.join(results, f"{name}.json")
@@ -212,6 +242,10 @@ run_step() {
         python-only) gen; python_only ;;
         tshark-only) gen; tshark_only ;;
         ratios) ratios ;;
+        gen-formats) gen_formats ;;
+        summary-asc) gen_formats; summary_of summary-asc "$ASC" "python-can ASCReader + canopen peer" "python3 bench/peer_python.py $ASC" ;;
+        summary-blf) gen_formats; summary_of summary-blf "$BLF" "python-can BLFReader + canopen peer" "python3 bench/peer_python.py $BLF" ;;
+        summary-pcap) gen; summary_of summary-pcap "$PCAP" "tshark -T fields (CANopen)" "tshark -r $PCAP ${TSHARK_CANOPEN[*]} ${TSHARK_FIELDS[*]}" ;;
         *) echo "unknown step: $1 (see the header of $0)" >&2; exit 2 ;;
     esac
 }

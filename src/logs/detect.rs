@@ -17,8 +17,7 @@ pub enum Detected {
     /// A gzip stream (RFC 1952 magic `1f 8b`): inflate it and detect again
     /// (SPEC §6.4).
     Gzip,
-    /// Not enough bytes to decide: read more (or, at the end of the input,
-    /// the input is too short to be a log of any format).
+    /// Not enough bytes to decide: read more.
     NeedMore,
     /// The whole input holds nothing but blank and `#` comment lines (or
     /// nothing at all): there is nothing to read, whatever its format.
@@ -40,8 +39,12 @@ pub enum Detected {
 ///   or `no internal events logged` start a Vector ASC file, and a decimal
 ///   time followed by a channel number or `CANFD` is an ASC event line; a
 ///   line that [`candump::parse_line`] reads as a frame is candump (log or
-///   screen). `#` comment lines decide nothing. The first line that decides
-///   decides; a line that is none of these makes the input unrecognised.
+///   screen). The first line that decides decides; other lines (`#`
+///   comments, a damaged line) decide nothing, so a log with a bad first
+///   line is still read (and the line reported). No deciding line in the
+///   first [`DETECT_LEN`] bytes (or the whole input) makes it
+///   [`Detected::Unrecognised`]; nothing but blank and comment lines,
+///   [`Detected::Empty`].
 ///
 /// ```
 /// use motionwire::logs::{detect, Detected};
@@ -76,6 +79,7 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
     }
     let head = head.get(..DETECT_LEN).unwrap_or(head);
     let mut rest = head;
+    let mut undecided = false;
     while !rest.is_empty() {
         let (line, next, whole) = match rest.iter().position(|&b| b == b'\n') {
             Some(i) => (
@@ -94,13 +98,16 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
         match line_shape(line) {
             Some(format) => return Detected::Format(format),
             None if is_blank_or_comment(line) => {}
-            None => return Detected::Unrecognised,
+            // A damaged first line does not hide the log after it.
+            None => undecided = true,
         }
     }
-    if complete {
-        Detected::Empty
-    } else if head.len() == DETECT_LEN {
-        Detected::Unrecognised
+    if complete || head.len() == DETECT_LEN {
+        if undecided {
+            Detected::Unrecognised
+        } else {
+            Detected::Empty
+        }
     } else {
         Detected::NeedMore
     }
