@@ -1014,3 +1014,32 @@ fn format_overrides_detection() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(stderr(&bad).contains("candump, asc, trc, pcap, pcapng, blf"));
 }
+
+/// A gzip stream that inflates to far more than it is (64 MiB from a few
+/// KiB, one line without an end) is read in bounded blocks: one overlong
+/// line reported, the frame after it read.
+#[test]
+fn a_gzip_bomb_is_one_overlong_line() {
+    use flate2::write::GzEncoder;
+    let mut gz = GzEncoder::new(Vec::new(), flate2::Compression::best());
+    gz.write_all(b"(1700000000.000500) can0 081#00\n").unwrap();
+    let chunk = vec![b'A'; 1 << 20];
+    for _ in 0..64 {
+        gz.write_all(&chunk).unwrap();
+    }
+    gz.write_all(b"\n(1700000000.000600) can0 705#05\n").unwrap();
+    let bytes = gz.finish().unwrap();
+    assert!(bytes.len() < 1 << 20);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bomb.gz");
+    std::fs::write(&path, &bytes).unwrap();
+    let out = run(&["decode", "--json", path.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let lines: Vec<u64> = records(&out)
+        .iter()
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [1, 3]);
+    assert_eq!(stderr(&out).matches("line longer than 1 MiB").count(), 1);
+}
