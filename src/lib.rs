@@ -132,6 +132,8 @@ pub mod canopen;
 mod defmt_impls;
 mod error;
 pub mod logs;
+#[cfg(feature = "pcap")]
+pub mod pcap;
 mod names;
 pub mod profiles;
 pub mod servo;

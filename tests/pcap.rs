@@ -1,0 +1,1 @@
+//! pcap fixtures (filled below).
