@@ -48,7 +48,8 @@ impl<R: Read> Input<R> {
                 self.buf.copy_within(self.start..self.end, 0);
                 self.end -= self.start;
                 self.start = 0;
-                if self.buf.len() < need {
+                // Grow only once the bytes read fill the buffer.
+                if self.buf.len() < need && self.end == self.buf.len() {
                     let doubled = self.buf.len().saturating_mul(2).max(CHUNK);
                     self.buf.resize(doubled.min(need.max(CHUNK)), 0);
                 }

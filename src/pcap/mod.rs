@@ -412,7 +412,7 @@ impl<R: Read> PcapReader<R> {
             let big_endian = match order {
                 magic::BYTE_ORDER => false,
                 o if o == magic::BYTE_ORDER.swap_bytes() => true,
-                found => return Err(self.fail(8, BinaryError::BadMagic { found })),
+                found => return Err(self.fail(0, BinaryError::BadMagic { found })),
             };
             self.layout = Layout::Pcapng { big_endian };
         }
@@ -476,7 +476,7 @@ impl<R: Read> PcapReader<R> {
         let major = u16_at(body, 4, big_endian);
         let minor = u16_at(body, 6, big_endian);
         if major != 1 {
-            return Err(self.fail(12, BinaryError::UnsupportedVersion { major, minor }));
+            return Err(self.fail(0, BinaryError::UnsupportedVersion { major, minor }));
         }
         self.interfaces.clear();
         self.interface_bytes = 0;
