@@ -258,10 +258,9 @@ impl core::fmt::Display for BinaryError {
             BinaryError::UnsupportedCompression { method } => {
                 write!(f, "compression method {method} is not supported")
             }
-            BinaryError::UnknownInterface { id, count } => write!(
-                f,
-                "expected an interface id below {count}, found {id}"
-            ),
+            BinaryError::UnknownInterface { id, count } => {
+                write!(f, "expected an interface id below {count}, found {id}")
+            }
             BinaryError::SocketCanTooShort { needed, found } => write!(
                 f,
                 "expected a SocketCAN packet of at least {needed} bytes, found {found}"

@@ -132,9 +132,9 @@ pub mod canopen;
 mod defmt_impls;
 mod error;
 pub mod logs;
+mod names;
 #[cfg(feature = "pcap")]
 pub mod pcap;
-mod names;
 pub mod profiles;
 pub mod servo;
 

@@ -60,12 +60,19 @@ fn read(bytes: &[u8]) -> Read {
             Err(e) => panic!("{e}"),
         }
     }
-    assert!(reader.next_record().is_none(), "None after the end or an error");
+    assert!(
+        reader.next_record().is_none(),
+        "None after the end or an error"
+    );
     (frames, error, reader.other_records())
 }
 
 fn fixture(name: &str) -> Vec<u8> {
-    std::fs::read(format!("{}/tests/fixtures/pcap/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    std::fs::read(format!(
+        "{}/tests/fixtures/pcap/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
 }
 
 fn field<'a>(packet: &'a Value, name: &str) -> Option<&'a str> {
@@ -93,7 +100,11 @@ fn check_against_tshark(name: &str, format: LogFormat) {
     for ((number, logged), want) in frames.iter().zip(can) {
         let at = format!("{name} packet {number}");
         let frame = &logged.frame;
-        assert_eq!(number.to_string(), field(want, "frame.number").unwrap(), "{at}");
+        assert_eq!(
+            number.to_string(),
+            field(want, "frame.number").unwrap(),
+            "{at}"
+        );
         let ts = logged.timestamp.expect("pcap records times");
         assert_eq!(
             format!("{}.{:09}", ts.secs(), ts.subsec_nanos()),
@@ -107,13 +118,21 @@ fn check_against_tshark(name: &str, format: LogFormat) {
             Some("can0") if name == "multi.pcapng" && *number >= 8 => Some("can9"),
             Some(n) => Some(n),
         };
-        assert_eq!(logged.iface.map(|i| i.to_string()).as_deref(), iface, "{at}");
+        assert_eq!(
+            logged.iface.map(|i| i.to_string()).as_deref(),
+            iface,
+            "{at}"
+        );
         assert_eq!(logged.direction, None, "{at}");
         assert_eq!(frame.is_error(), flag(want, "can.flags.err"), "{at}");
         let len: usize = field(want, "can.len").unwrap().parse().unwrap();
         if frame.is_error() {
             // tshark shows the classes and data as error fields.
-            assert_eq!(frame.id().raw() & 0x4 != 0, flag(want, "can.err.ctrl"), "{at}");
+            assert_eq!(
+                frame.id().raw() & 0x4 != 0,
+                flag(want, "can.err.ctrl"),
+                "{at}"
+            );
             assert_eq!(
                 frame.data().get(1).is_some_and(|b| b & 0x04 != 0),
                 flag(want, "can.err.ctrl.rx_warning"),
@@ -122,14 +141,28 @@ fn check_against_tshark(name: &str, format: LogFormat) {
             assert_eq!(frame.data().len(), len, "{at}");
             continue;
         }
-        assert_eq!(frame.id().raw().to_string(), field(want, "can.id").unwrap(), "{at}");
+        assert_eq!(
+            frame.id().raw().to_string(),
+            field(want, "can.id").unwrap(),
+            "{at}"
+        );
         assert_eq!(frame.is_extended(), flag(want, "can.flags.xtd"), "{at}");
         assert_eq!(frame.is_rtr(), flag(want, "can.flags.rtr"), "{at}");
-        assert_eq!(frame.is_fd(), field(want, "canfd.flags.brs").is_some(), "{at}");
+        assert_eq!(
+            frame.is_fd(),
+            field(want, "canfd.flags.brs").is_some(),
+            "{at}"
+        );
         if frame.is_fd() {
             let flags = frame.fd_flags();
-            assert_eq!(flags.contains(motionwire::can::FdFlags::BRS), flag(want, "canfd.flags.brs"));
-            assert_eq!(flags.contains(motionwire::can::FdFlags::ESI), flag(want, "canfd.flags.esi"));
+            assert_eq!(
+                flags.contains(motionwire::can::FdFlags::BRS),
+                flag(want, "canfd.flags.brs")
+            );
+            assert_eq!(
+                flags.contains(motionwire::can::FdFlags::ESI),
+                flag(want, "canfd.flags.esi")
+            );
         }
         if frame.is_rtr() {
             assert_eq!(usize::from(frame.dlc()), len, "{at}");
@@ -138,7 +171,11 @@ fn check_against_tshark(name: &str, format: LogFormat) {
         }
         assert_eq!(frame.data().len(), len, "{at}");
         let hex: String = frame.data().iter().map(|b| format!("{b:02x}")).collect();
-        assert_eq!(Some(hex.as_str()).filter(|h| !h.is_empty()), field(want, "data.data"), "{at}");
+        assert_eq!(
+            Some(hex.as_str()).filter(|h| !h.is_empty()),
+            field(want, "data.data"),
+            "{at}"
+        );
     }
 }
 
@@ -296,14 +333,21 @@ fn pcapng_damaged_blocks() {
         length: 0xFFFF_FFFC,
         limit: MAX_RECORD_LEN as u64,
     };
-    assert_eq!(read(&b).1, binary(LogFormat::Pcapng, third as u64, too_large));
+    assert_eq!(
+        read(&b).1,
+        binary(LogFormat::Pcapng, third as u64, too_large)
+    );
 
     // Not a multiple of 4.
     let mut b = bytes.clone();
     set_len(&mut b, third, 47);
     assert_eq!(
         read(&b).1,
-        binary(LogFormat::Pcapng, third as u64, BinaryError::BadLength { length: 47 })
+        binary(
+            LogFormat::Pcapng,
+            third as u64,
+            BinaryError::BadLength { length: 47 }
+        )
     );
 
     // A trailing length that differs from the leading one.
@@ -315,7 +359,13 @@ fn pcapng_damaged_blocks() {
     let length = u32::from_le_bytes(bytes[third + 4..third + 8].try_into().unwrap());
     assert_eq!(
         error,
-        binary(LogFormat::Pcapng, third as u64, BinaryError::BadLength { length: length.into() })
+        binary(
+            LogFormat::Pcapng,
+            third as u64,
+            BinaryError::BadLength {
+                length: length.into()
+            }
+        )
     );
 
     // Cut in the middle of the block.

@@ -41,7 +41,17 @@ impl<R: Read> Input<R> {
 
     /// Read until at least `need` bytes lie after the position or the input
     /// ends; return how many lie there (fewer than `need` only at the end).
+    #[inline]
     pub(super) fn fill(&mut self, need: usize) -> std::io::Result<usize> {
+        let available = self.end - self.start;
+        if available >= need {
+            return Ok(available);
+        }
+        self.read_more(need)
+    }
+
+    /// [`Input::fill`] when the bytes read are not enough.
+    fn read_more(&mut self, need: usize) -> std::io::Result<usize> {
         while self.end - self.start < need && !self.eof {
             if self.buf.len() - self.start < need {
                 // Move the unread bytes to the front, then grow if needed.

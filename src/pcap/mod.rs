@@ -79,9 +79,9 @@
 //! ```
 
 mod input;
-mod socketcan;
 #[cfg(test)]
 mod proptests;
+mod socketcan;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -159,7 +159,18 @@ impl Resolution {
     }
 
     /// Return `ticks` as seconds and nanoseconds (truncated).
+    #[inline]
     fn split(self, ticks: u64) -> (u64, u32) {
+        // The resolutions writers use, with constant divisors.
+        match self {
+            Resolution::Decimal(6) => (ticks / 1_000_000, (ticks % 1_000_000) as u32 * 1_000),
+            Resolution::Decimal(9) => (ticks / 1_000_000_000, (ticks % 1_000_000_000) as u32),
+            _ => self.split_any(ticks),
+        }
+    }
+
+    /// [`Resolution::split`] for any resolution.
+    fn split_any(self, ticks: u64) -> (u64, u32) {
         const NANOS: u128 = 1_000_000_000;
         let (secs, nanos) = match self {
             Resolution::Decimal(n) => match 10u64.checked_pow(u32::from(n)) {
@@ -203,12 +214,16 @@ enum Layout {
     Pcapng { big_endian: bool },
 }
 
-/// A packet read from the file, its payload decoded.
+/// A packet found at the position, not yet consumed: its data lies at
+/// `data` in the bytes after the position, the record ends at `len`.
 #[derive(Debug)]
 struct Packet {
     interface: usize,
     timestamp: Option<Timestamp>,
-    payload: Option<Payload>,
+    /// The interface's link type; `None` for a record that is no packet.
+    link_type: Option<u16>,
+    data: core::ops::Range<usize>,
+    len: usize,
 }
 
 /// What one pcapng block was.
@@ -373,18 +388,12 @@ impl<R: Read> PcapReader<R> {
         let timestamp = Timestamp::from_duration(
             Duration::from_secs(secs.into()).saturating_add(Duration::from_nanos(nanos)),
         );
-        let link_type = interface.map(|i| i.link_type);
-        let data = self
-            .input
-            .bytes()
-            .get(PCAP_RECORD_LEN..total)
-            .unwrap_or_default();
-        let payload = self.decode(link_type, data, PCAP_RECORD_LEN)?;
-        self.input.consume(total);
         Ok(Some(Packet {
             interface: 0,
             timestamp: Some(timestamp),
-            payload,
+            link_type: interface.map(|i| i.link_type),
+            data: PCAP_RECORD_LEN..total,
+            len: total,
         }))
     }
 
@@ -449,15 +458,26 @@ impl<R: Read> PcapReader<R> {
                 self.read_interface(&body)?;
                 Block::Other
             }
+            // Packets are consumed once decoded.
             block::ENHANCED_PACKET | block::PACKET => {
-                Block::Packet(self.read_packet_block(block_type, body, big_endian)?)
+                return Ok(Block::Packet(
+                    self.read_packet_block(block_type, body, big_endian, total)?,
+                ));
             }
-            block::SIMPLE_PACKET => Block::Packet(self.read_simple_packet(body, big_endian)?),
-            block::SYSTEMD_JOURNAL => Block::Packet(Packet {
-                interface: 0,
-                timestamp: None,
-                payload: None,
-            }),
+            block::SIMPLE_PACKET => {
+                return Ok(Block::Packet(
+                    self.read_simple_packet(body, big_endian, total)?,
+                ));
+            }
+            block::SYSTEMD_JOURNAL => {
+                return Ok(Block::Packet(Packet {
+                    interface: 0,
+                    timestamp: None,
+                    link_type: None,
+                    data: 0..0,
+                    len: total,
+                }));
+            }
             _ => Block::Other,
         };
         self.input.consume(total);
@@ -548,6 +568,7 @@ impl<R: Read> PcapReader<R> {
         block_type: u32,
         body: &[u8],
         big_endian: bool,
+        len: usize,
     ) -> Result<Packet, ReadError> {
         const FIXED: usize = 20;
         if body.len() < FIXED {
@@ -558,34 +579,40 @@ impl<R: Read> PcapReader<R> {
         } else {
             u32_at(body, 0, big_endian)
         };
-        let ticks = (u64::from(u32_at(body, 4, big_endian)) << 32)
-            | u64::from(u32_at(body, 8, big_endian));
+        let ticks =
+            (u64::from(u32_at(body, 4, big_endian)) << 32) | u64::from(u32_at(body, 8, big_endian));
         let captured = u32_at(body, 12, big_endian);
-        let Some(data) = body.get(FIXED..FIXED.saturating_add(captured as usize)) else {
+        let end = FIXED.saturating_add(captured as usize);
+        if end > body.len() {
             return Err(self.fail(0, bad_length(captured as usize)));
-        };
+        }
         let interface = self.interface(id)?;
-        let (secs, nanos) = interface.resolution.split(ticks);
-        let secs = i128::from(secs) + i128::from(interface.offset_secs);
-        let timestamp = u64::try_from(secs)
-            .map(|secs| Timestamp::from_duration(Duration::new(secs, 0)))
-            .map_err(|_| self.fail(0, BinaryError::TimestampOutOfRange))?;
-        let timestamp = timestamp
-            .checked_add(Duration::from_nanos(nanos.into()))
+        let (mut secs, nanos) = interface.resolution.split(ticks);
+        if interface.offset_secs != 0 {
+            let shifted = i128::from(secs) + i128::from(interface.offset_secs);
+            secs = u64::try_from(shifted)
+                .map_err(|_| self.fail(0, BinaryError::TimestampOutOfRange))?;
+        }
+        let timestamp = Timestamp::from_nanos(secs, nanos)
             .ok_or_else(|| self.fail(0, BinaryError::TimestampOutOfRange))?;
-        let link_type = Some(interface.link_type);
-        let payload = self.decode(link_type, data, 8 + FIXED)?;
         Ok(Packet {
             interface: id as usize,
             timestamp: Some(timestamp),
-            payload,
+            link_type: Some(interface.link_type),
+            data: 8 + FIXED..8 + end,
+            len,
         })
     }
 
     /// A simple packet block's body: original length, data; interface 0,
     /// no time. The data captured is the original length cut to the
     /// interface's snaplen.
-    fn read_simple_packet(&self, body: &[u8], big_endian: bool) -> Result<Packet, ReadError> {
+    fn read_simple_packet(
+        &self,
+        body: &[u8],
+        big_endian: bool,
+        len: usize,
+    ) -> Result<Packet, ReadError> {
         let Some(head) = body.first_chunk::<4>() else {
             return Err(self.fail(0, bad_length(body.len() + BLOCK_OVERHEAD)));
         };
@@ -595,15 +622,16 @@ impl<R: Read> PcapReader<R> {
         if interface.snaplen != 0 {
             captured = captured.min(interface.snaplen as usize);
         }
-        let link_type = Some(interface.link_type);
-        let Some(data) = body.get(4..4usize.saturating_add(captured)) else {
+        let end = 4usize.saturating_add(captured);
+        if end > body.len() {
             return Err(self.fail(0, bad_length(original)));
-        };
-        let payload = self.decode(link_type, data, 12)?;
+        }
         Ok(Packet {
             interface: 0,
             timestamp: None,
-            payload,
+            link_type: Some(interface.link_type),
+            data: 8 + 4..8 + end,
+            len,
         })
     }
 
@@ -618,22 +646,6 @@ impl<R: Read> PcapReader<R> {
                 },
             )
         })
-    }
-
-    /// Decode a packet's data at `at` bytes from the position: a SocketCAN
-    /// payload, or `None` for another link type.
-    fn decode(
-        &self,
-        link_type: Option<u16>,
-        data: &[u8],
-        at: usize,
-    ) -> Result<Option<Payload>, ReadError> {
-        if link_type != Some(LINKTYPE_CAN_SOCKETCAN) {
-            return Ok(None);
-        }
-        socketcan::decode(data)
-            .map(Some)
-            .map_err(|reason| self.fail(at, reason))
     }
 
     /// The reader's format.
@@ -687,13 +699,29 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
             };
             self.number = self.number.saturating_add(1);
-            let frame = match packet.payload {
-                Some(Payload::Frame(frame)) => frame,
-                Some(Payload::CanXl) | None => {
+            let payload = if packet.link_type == Some(LINKTYPE_CAN_SOCKETCAN) {
+                let data = self
+                    .input
+                    .bytes()
+                    .get(packet.data.clone())
+                    .unwrap_or_default();
+                socketcan::decode(data)
+            } else {
+                Ok(Payload::CanXl)
+            };
+            let frame = match payload {
+                Ok(Payload::Frame(frame)) => frame,
+                Ok(Payload::CanXl) => {
+                    self.input.consume(packet.len);
                     self.other = self.other.saturating_add(1);
                     continue;
                 }
+                Err(reason) => {
+                    self.done = true;
+                    return Some(Err(self.fail(packet.data.start, reason)));
+                }
             };
+            self.input.consume(packet.len);
             let iface = self
                 .interfaces
                 .get(packet.interface)

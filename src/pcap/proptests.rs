@@ -29,7 +29,11 @@ impl Read for Chunked<'_> {
 
 /// What a reader yields: (number, frame, timestamp, iface name), the error
 /// and the other records.
-type Outcome = (Vec<(u64, CanFrame, Option<Timestamp>, Option<String>)>, Option<String>, u64);
+type Outcome = (
+    Vec<(u64, CanFrame, Option<Timestamp>, Option<String>)>,
+    Option<String>,
+    u64,
+);
 
 fn outcome<R: Read>(input: R) -> Outcome {
     let mut reader = match PcapReader::new(input) {
@@ -46,7 +50,12 @@ fn outcome<R: Read>(input: R) -> Outcome {
                 last = record.number;
                 let f = *record.event.frame().expect("pcap yields frames");
                 assert_eq!(f.direction, None);
-                frames.push((record.number, f.frame, f.timestamp, f.iface.map(|i| i.to_string())));
+                frames.push((
+                    record.number,
+                    f.frame,
+                    f.timestamp,
+                    f.iface.map(|i| i.to_string()),
+                ));
             }
             Err(e) => {
                 assert!(error.is_none(), "one error at most");
@@ -62,7 +71,10 @@ fn outcome<R: Read>(input: R) -> Outcome {
     }
     assert!(reader.next_record().is_none());
     if error.is_none() {
-        assert_eq!(frames.len() as u64 + reader.other_records(), last.max(frames.len() as u64 + reader.other_records()));
+        assert_eq!(
+            frames.len() as u64 + reader.other_records(),
+            last.max(frames.len() as u64 + reader.other_records())
+        );
     }
     (frames, error, reader.other_records())
 }

@@ -66,6 +66,7 @@ pub(super) enum Payload {
 }
 
 /// Decode one packet; the error says what is wrong with it.
+#[inline]
 pub(super) fn decode(packet: &[u8]) -> Result<Payload, BinaryError> {
     let Some(header) = packet.first_chunk::<HEADER_LEN>() else {
         return Err(too_short(HEADER_LEN, packet.len()));
@@ -78,39 +79,45 @@ pub(super) fn decode(packet: &[u8]) -> Result<Payload, BinaryError> {
     let marked_fd = flags & FDF != 0 && flags & !FD_KNOWN == 0 && res0 == 0 && res1 == 0;
     let fd = marked_fd || packet.len() == CANFD_MTU;
     let max = if fd { FD_MAX_LEN } else { CLASSIC_MAX_LEN };
-    let wanted = usize::from(len);
-    let rtr = !fd && word & RTR_FLAG != 0 && word & ERR_FLAG == 0;
-    if wanted > max && !rtr {
+    if usize::from(len) > max {
         return Err(BinaryError::CanDataTooLong {
             len,
             max: max as u8,
         });
     }
-    let data = if rtr {
-        &[][..]
-    } else {
-        packet
-            .get(HEADER_LEN..HEADER_LEN + wanted)
-            .ok_or_else(|| too_short(HEADER_LEN + wanted, packet.len()))?
-    };
     let id = if word & EFF_FLAG != 0 {
-        CanId::extended(word & EFF_MASK)
+        CanId::new_unchecked(word & EFF_MASK, true)
     } else {
-        CanId::standard(word & SFF_MASK)
+        CanId::new_unchecked(word & SFF_MASK, false)
     };
-    let (id, frame_type) = match (id, fd) {
-        (_, false) if word & ERR_FLAG != 0 => (CanId::extended(word & EFF_MASK), FrameType::Error),
-        (id, true) => (id, FrameType::Fd(FdFlags::new(flags & 0x0F).unwrap_or_default())),
-        (id, false) if rtr => (id, FrameType::Remote { dlc: len }),
-        (id, false) => (id, FrameType::Data),
-    };
-    let id = id.ok_or(BinaryError::CanDataTooLong { len, max: max as u8 })?;
-    CanFrame::with_type(id, frame_type, data)
-        .map(Payload::Frame)
-        .map_err(|_| BinaryError::CanDataTooLong {
+    let (id, frame_type, data_len) = if fd {
+        let flags = FdFlags::new(flags & 0x0F).unwrap_or_default();
+        (id, FrameType::Fd(flags), len)
+    } else if word & ERR_FLAG != 0 {
+        (
+            CanId::new_unchecked(word & EFF_MASK, true),
+            FrameType::Error,
             len,
-            max: if rtr { CLASSIC_MAX_LEN as u8 } else { max as u8 },
-        })
+        )
+    } else if word & RTR_FLAG != 0 {
+        (id, FrameType::Remote { dlc: len }, 0)
+    } else {
+        (id, FrameType::Data, len)
+    };
+    let end = HEADER_LEN + usize::from(data_len);
+    let Some(data) = packet.get(HEADER_LEN..end) else {
+        return Err(too_short(end, packet.len()));
+    };
+    let mut bytes = [0; FD_MAX_LEN];
+    if let Some(head) = bytes.get_mut(..data.len()) {
+        head.copy_from_slice(data);
+    }
+    // Checked above: the identifier is masked to its kind, an error frame's
+    // is extended, the length is at most the kind's (a remote request's
+    // DLC at most 8, with no data).
+    Ok(Payload::Frame(CanFrame::from_checked_parts(
+        id, frame_type, bytes, data_len,
+    )))
 }
 
 fn too_short(needed: usize, found: usize) -> BinaryError {
@@ -142,13 +149,22 @@ mod tests {
     #[test]
     fn classic_extended_remote_error() {
         let f = frame(&packet(0x081, 3, 0, &[1, 2, 3], CAN_MTU));
-        assert_eq!(f, CanFrame::new(CanId::standard(0x81).unwrap(), &[1, 2, 3]).unwrap());
+        assert_eq!(
+            f,
+            CanFrame::new(CanId::standard(0x81).unwrap(), &[1, 2, 3]).unwrap()
+        );
         let f = frame(&packet(EFF_FLAG | 0x1234_5678, 1, 0, &[9], CAN_MTU));
         assert_eq!(f.id(), CanId::extended(0x1234_5678).unwrap());
         let f = frame(&packet(RTR_FLAG | 0x705, 1, 0, &[], CAN_MTU));
         assert_eq!(f.frame_type(), FrameType::Remote { dlc: 1 });
         assert!(f.data().is_empty());
-        let f = frame(&packet(ERR_FLAG | 0x4, 8, 0, &[0, 4, 0, 0, 0, 0, 0, 0], CAN_MTU));
+        let f = frame(&packet(
+            ERR_FLAG | 0x4,
+            8,
+            0,
+            &[0, 4, 0, 0, 0, 0, 0, 0],
+            CAN_MTU,
+        ));
         assert!(f.is_error());
         assert_eq!(f.id().raw(), 0x4);
         assert_eq!(f.data(), [0, 4, 0, 0, 0, 0, 0, 0]);

@@ -123,7 +123,9 @@ fn big_endian_sections_simple_packets_and_can_xl() {
 fn unknown_interface_and_negative_time() {
     let p = writer::socketcan(&frame_705());
     let mut w = Pcapng::default();
-    w.section(false).interface(&can0(None, None)).packet(0, 1, &p);
+    w.section(false)
+        .interface(&can0(None, None))
+        .packet(0, 1, &p);
     let good = w.bytes.len() as u64;
     w.packet(1, 1, &p);
     let (frames, error, _) = read_all(&w.bytes);
@@ -227,10 +229,18 @@ fn damaged_packet_and_option() {
 #[test]
 fn fd_frames_of_every_flag() {
     for bits in 0..=0xF {
-        let frame =
-            CanFrame::new_fd(CanId::extended(0x1234).unwrap(), FdFlags::new(bits).unwrap(), &[1; 20])
-                .unwrap();
-        let f = writer::pcap(&[(Timestamp::ZERO, writer::socketcan(&frame))], 227, true, true);
+        let frame = CanFrame::new_fd(
+            CanId::extended(0x1234).unwrap(),
+            FdFlags::new(bits).unwrap(),
+            &[1; 20],
+        )
+        .unwrap();
+        let f = writer::pcap(
+            &[(Timestamp::ZERO, writer::socketcan(&frame))],
+            227,
+            true,
+            true,
+        );
         let (frames, error, _) = read_all(&f);
         assert_eq!(error, None);
         assert_eq!(frames[0].1.frame, frame);

@@ -57,7 +57,11 @@ pub(super) fn pcap(packets: &[(Timestamp, Vec<u8>)], link: u32, be: bool, nanos:
     f.extend(u32b(262_144, be));
     f.extend(u32b(link, be));
     for (ts, data) in packets {
-        let frac = if nanos { ts.subsec_nanos() } else { ts.micros() };
+        let frac = if nanos {
+            ts.subsec_nanos()
+        } else {
+            ts.micros()
+        };
         f.extend(u32b(ts.secs() as u32, be));
         f.extend(u32b(frac, be));
         f.extend(u32b(data.len() as u32, be));
@@ -122,7 +126,11 @@ impl Pcapng {
             self.option(&mut body, 9, &[r]);
         }
         if let Some(o) = i.tsoffset {
-            let v = if self.be { o.to_be_bytes() } else { o.to_le_bytes() };
+            let v = if self.be {
+                o.to_be_bytes()
+            } else {
+                o.to_le_bytes()
+            };
             self.option(&mut body, 14, &v);
         }
         if body.len() > 8 {
