@@ -707,11 +707,11 @@ impl<R: Read> ReadLog for PcapReader<R> {
                     .unwrap_or_default();
                 socketcan::decode(data)
             } else {
-                Ok(Payload::CanXl)
+                Ok(Payload::NotCan)
             };
             let frame = match payload {
                 Ok(Payload::Frame(frame)) => frame,
-                Ok(Payload::CanXl) => {
+                Ok(Payload::NotCan) => {
                     self.input.consume(packet.len);
                     self.other = self.other.saturating_add(1);
                     continue;

@@ -19,9 +19,8 @@
 //! left junk there). A capture from a libpcap that predates the FDF flag
 //! holds CAN FD frames without it, but always as the whole 72-byte
 //! `struct canfd_frame` (`CANFD_MTU`), where a classic frame is 16 bytes
-//! (`CAN_MTU`): such a packet is CAN FD too. This is the one place where
-//! the reader and tshark 4.0 may differ (tshark shows a 72-byte packet
-//! without FDF as classic CAN).
+//! (`CAN_MTU`): such a packet is CAN FD too (tshark 4.0 shows a 72-byte
+//! packet without FDF as classic CAN).
 //!
 //! **CAN XL** (`CANXL_XLF` in byte 4, which a classic or FD length, at most
 //! 64, never sets) cannot be held by [`CanFrame`]: the packet is counted
@@ -61,8 +60,9 @@ const XLF: u8 = 0x80;
 pub(super) enum Payload {
     /// A classic, remote, CAN FD or error frame.
     Frame(CanFrame),
-    /// A CAN XL frame, which the crate's frame cannot hold.
-    CanXl,
+    /// A packet the crate's frame cannot hold: a CAN XL frame (and, in the
+    /// reader, a packet of another link type). Counted, not an error.
+    NotCan,
 }
 
 /// Decode one packet; the error says what is wrong with it.
@@ -73,7 +73,7 @@ pub(super) fn decode(packet: &[u8]) -> Result<Payload, BinaryError> {
     };
     let [i0, i1, i2, i3, len, flags, res0, res1] = *header;
     if len & XLF != 0 {
-        return Ok(Payload::CanXl);
+        return Ok(Payload::NotCan);
     }
     let word = u32::from_be_bytes([i0, i1, i2, i3]);
     let marked_fd = flags & FDF != 0 && flags & !FD_KNOWN == 0 && res0 == 0 && res1 == 0;
@@ -190,7 +190,7 @@ mod tests {
     fn can_xl_is_not_misread() {
         // prio, flags (XLF|SEC), sdt, len (little-endian), af, data
         let p = [0, 0, 0x01, 0x23, 0x81, 0x03, 4, 0, 0, 0, 0, 0, 1, 2, 3, 4];
-        assert_eq!(decode(&p), Ok(Payload::CanXl));
+        assert_eq!(decode(&p), Ok(Payload::NotCan));
     }
 
     #[test]

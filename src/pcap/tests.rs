@@ -246,3 +246,43 @@ fn fd_frames_of_every_flag() {
         assert_eq!(frames[0].1.frame, frame);
     }
 }
+
+#[test]
+fn messages_of_the_new_reasons() {
+    let e = Error::Binary {
+        format: LogFormat::Pcapng,
+        offset: 28,
+        reason: BinaryError::UnknownInterface { id: 1, count: 1 },
+    };
+    assert_eq!(
+        e.to_string(),
+        "pcapng file, byte 28: expected an interface id below 1, found 1"
+    );
+    let reasons = [
+        (
+            BinaryError::SocketCanTooShort {
+                needed: 16,
+                found: 10,
+            },
+            "expected a SocketCAN packet of at least 16 bytes, found 10",
+        ),
+        (
+            BinaryError::CanDataTooLong { len: 9, max: 8 },
+            "expected a CAN data length of at most 8, found 9",
+        ),
+        (
+            BinaryError::TimestampOutOfRange,
+            "expected a time between the Unix epoch and 2^64 s after it, found one outside",
+        ),
+    ];
+    for (reason, text) in reasons {
+        assert_eq!(reason.to_string(), text);
+    }
+}
+
+#[test]
+fn a_packet_of_another_link_type_is_counted_not_decoded() {
+    let f = writer::pcap(&[(Timestamp::ZERO, vec![0xFF; 3])], 1, false, false);
+    let (frames, error, other) = read_all(&f);
+    assert_eq!((frames.len(), error, other), (0, None, 1));
+}
