@@ -531,7 +531,9 @@ impl<R: Read> PcapReader<R> {
             match code {
                 0 => break,
                 2 => {
-                    let name = value.strip_suffix(&[0]).unwrap_or(value);
+                    // Some writers end the name with NULs.
+                    let end = value.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+                    let name = value.get(..end).unwrap_or_default();
                     interface.name = Some(String::from_utf8_lossy(name).into());
                 }
                 9 => {

@@ -101,7 +101,7 @@ fn big_endian_sections_simple_packets_and_can_xl() {
             tsoffset: None,
         })
         .interface(&Interface {
-            name: Some("vcan9\0".into()),
+            name: Some("vcan9\0\0".into()),
             ..can0(None, None)
         })
         .packet(0, 1, &[0; 14])
