@@ -205,6 +205,33 @@ pub enum BinaryError {
         /// The method as read.
         method: u32,
     },
+    /// A pcapng packet names an interface that its section has not
+    /// described (SPEC §5.5).
+    UnknownInterface {
+        /// The interface id the packet names.
+        id: u32,
+        /// The number of interfaces the section has described.
+        count: u32,
+    },
+    /// A SocketCAN packet (link type 227) is shorter than its 8-byte header
+    /// and the data length it declares (SPEC §5.5).
+    SocketCanTooShort {
+        /// The bytes the header and the declared data need.
+        needed: u64,
+        /// The bytes the packet holds.
+        found: u64,
+    },
+    /// A SocketCAN packet declares more data than its frame kind carries:
+    /// 8 bytes for a classic or error frame, 64 for CAN FD (SPEC §5.5).
+    CanDataTooLong {
+        /// The data length as read.
+        len: u8,
+        /// The most the frame kind carries.
+        max: u8,
+    },
+    /// A packet's time, with its interface's offset, lies before the Unix
+    /// epoch or beyond what a timestamp holds (SPEC §5.7).
+    TimestampOutOfRange,
 }
 
 impl core::fmt::Display for BinaryError {
@@ -231,6 +258,20 @@ impl core::fmt::Display for BinaryError {
             BinaryError::UnsupportedCompression { method } => {
                 write!(f, "compression method {method} is not supported")
             }
+            BinaryError::UnknownInterface { id, count } => {
+                write!(f, "expected an interface id below {count}, found {id}")
+            }
+            BinaryError::SocketCanTooShort { needed, found } => write!(
+                f,
+                "expected a SocketCAN packet of at least {needed} bytes, found {found}"
+            ),
+            BinaryError::CanDataTooLong { len, max } => write!(
+                f,
+                "expected a CAN data length of at most {max}, found {len}"
+            ),
+            BinaryError::TimestampOutOfRange => f.write_str(
+                "expected a time between the Unix epoch and 2^64 s after it, found one outside",
+            ),
         }
     }
 }

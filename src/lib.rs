@@ -133,6 +133,8 @@ mod defmt_impls;
 mod error;
 pub mod logs;
 mod names;
+#[cfg(feature = "pcap")]
+pub mod pcap;
 pub mod profiles;
 pub mod servo;
 
