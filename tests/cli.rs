@@ -1027,7 +1027,8 @@ fn a_gzip_bomb_is_one_overlong_line() {
     for _ in 0..64 {
         gz.write_all(&chunk).unwrap();
     }
-    gz.write_all(b"\n(1700000000.000600) can0 705#05\n").unwrap();
+    gz.write_all(b"\n(1700000000.000600) can0 705#05\n")
+        .unwrap();
     let bytes = gz.finish().unwrap();
     assert!(bytes.len() < 1 << 20);
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
@@ -1042,4 +1043,81 @@ fn a_gzip_bomb_is_one_overlong_line() {
         .collect();
     assert_eq!(lines, [1, 3]);
     assert_eq!(stderr(&out).matches("line longer than 1 MiB").count(), 1);
+}
+
+/// SPEC §5.5, §5.7: a pcap or pcapng capture is detected and read like any
+/// log: `line` is tshark's `frame.number`, `iface` the pcapng interface
+/// name (null in pcap), and records without a CAN frame are said once.
+#[test]
+fn pcap_and_pcapng_captures() {
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/pcap/");
+    for file in [
+        "can.pcap",
+        "can_be.pcap",
+        "can_ns.pcap",
+        "can.pcapng",
+        "multi.pcapng",
+    ] {
+        let path = format!("{fixtures}{file}");
+        let truth: Value =
+            serde_json::from_slice(&std::fs::read(format!("{path}.json")).unwrap()).unwrap();
+        let out = run(&["decode", "--json", &path], "");
+        assert!(out.status.success(), "{file}: {}", stderr(&out));
+        let recs = records(&out);
+        let can: Vec<&Value> = truth["packets"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| {
+                p["frame.protocols"]
+                    .as_str()
+                    .is_some_and(|p| p == "can" || p.starts_with("can:") || p.starts_with("canfd"))
+            })
+            .collect();
+        assert_eq!(recs.len(), can.len(), "{file}");
+        for (rec, packet) in recs.iter().zip(&can) {
+            assert_eq!(
+                rec["line"].to_string(),
+                packet["frame.number"].as_str().unwrap(),
+                "{file}"
+            );
+            // tshark shows an error frame's classes, not an identifier.
+            if let Some(id) = packet["can.id"].as_str() {
+                assert_eq!(rec["id"].to_string(), id, "{file}");
+            } else {
+                assert_eq!(rec["kind"], "error_frame", "{file}");
+            }
+            if file.ends_with(".pcap") {
+                assert_eq!(rec["iface"], Value::Null, "{file}");
+            }
+        }
+        let skipped = truth["packets"].as_array().unwrap().len() - can.len();
+        let err = stderr(&out);
+        if skipped > 0 {
+            assert_eq!(
+                err.matches("without a CAN frame skipped").count(),
+                1,
+                "{err}"
+            );
+        } else {
+            assert!(err.is_empty(), "{file}: {err}");
+        }
+    }
+    // A capture cut in the middle of a record: the frames before it, one
+    // error with the byte offset, exit status 1.
+    let whole = std::fs::read(format!("{fixtures}can.pcap")).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cut = dir.join("cut.pcap");
+    std::fs::write(&cut, &whole[..whole.len() - 5]).unwrap();
+    let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(!records(&out).is_empty());
+    let err = stderr(&out);
+    assert!(err.contains("pcap file, byte "), "{err}");
+    // A damaged header: nothing can be read, exit status 2.
+    let header = dir.join("header.pcap");
+    std::fs::write(&header, &whole[..10]).unwrap();
+    let out = run(&["decode", header.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }

@@ -8,10 +8,10 @@ use std::io::{self, BufWriter, Cursor, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use motionwire::can::LogFrame;
+use motionwire::can::{LogEvent, LogFrame};
 use motionwire::candump::{self, LineState, RelativeTimestamps};
 use motionwire::canopen::MessageKind;
-use motionwire::logs::{detect, Detected, DETECT_LEN};
+use motionwire::logs::{detect, Detected, ReadError, ReadLog, DETECT_LEN};
 use motionwire::LogFormat;
 
 use crate::args::{DecodeArgs, IdRange, TimestampBase};
@@ -212,6 +212,19 @@ impl<'a> Sink<'a> {
         }
     }
 
+    #[inline]
+    fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
+        match event {
+            LogEvent::Frame(frame) => self.frame(line, frame),
+            LogEvent::Status(_) => {
+                if let Some(summary) = self.summary.as_mut() {
+                    summary.add_event(event);
+                }
+                Ok(())
+            }
+        }
+    }
+
     /// A line or record that could not be read: said on standard error
     /// with its position, counted (SPEC §5.7).
     #[cold]
@@ -269,6 +282,11 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                     args.timestamps,
                 )?;
                 sink.clear_progress()?;
+            }
+            LogFormat::Pcap | LogFormat::Pcapng => {
+                let mut log = motionwire::pcap::PcapReader::new(reader)
+                    .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
+                read_binary(&mut sink, &mut log, &name, path.as_deref())?;
             }
             other => {
                 return Err(Failure::Unreadable {
@@ -372,6 +390,56 @@ fn read_candump(
         }
     }
     Ok(())
+}
+
+/// Read a binary log (pcap, pcapng, BLF) record by record; `line` is the
+/// record's number (SPEC §5.7).
+fn read_binary(
+    sink: &mut Sink<'_>,
+    log: &mut dyn ReadLog,
+    name: &str,
+    path: Option<&Path>,
+) -> Result<(), Failure> {
+    while let Some(record) = log.next_record() {
+        match record {
+            Ok(record) => {
+                // Names borrowed from the reader may move between records.
+                if let Some(summary) = sink.summary.as_mut() {
+                    summary.new_block();
+                }
+                sink.event(record.number, &record.event)?;
+            }
+            Err(ReadError::Io(e)) => return Err(read_failure(name, path, e)),
+            // The file is damaged here; what came before was read, and the
+            // reader ends.
+            Err(ReadError::Log(e)) => {
+                sink.skipped += 1;
+                writeln!(sink.err, "{name}: {e}")?;
+            }
+        }
+    }
+    let others = log.other_records();
+    if others > 0 {
+        // SPEC §5.5, §5.6: counted and said once, not per record.
+        let s = if others == 1 { "" } else { "s" };
+        writeln!(
+            sink.err,
+            "{name}: {others} {} record{s} without a CAN frame skipped",
+            log.format()
+        )?;
+    }
+    Ok(())
+}
+
+/// A binary log whose header cannot be read: the input's failure.
+fn binary_failure(name: &str, path: Option<&Path>, e: ReadError) -> Failure {
+    match e {
+        ReadError::Io(e) => read_failure(name, path, e),
+        ReadError::Log(e) => Failure::Damaged {
+            name: name.to_owned(),
+            error: e,
+        },
+    }
 }
 
 /// Progress of a long run on standard error, only when it is a terminal

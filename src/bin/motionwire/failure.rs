@@ -26,6 +26,14 @@ pub enum Failure {
         /// What was expected, in words.
         expected: &'static str,
     },
+    /// A binary log whose header is damaged: nothing in it can be read.
+    #[error("{name}: {error}")]
+    Damaged {
+        /// The input's name.
+        name: String,
+        /// What is wrong, and where.
+        error: motionwire::Error,
+    },
     /// An input of a format this build cannot read.
     #[error("{name}: {format} logs cannot be read by this build: {why}")]
     Unreadable {

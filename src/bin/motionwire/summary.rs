@@ -6,7 +6,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use motionwire::can::{ErrorFrame, Iface, Timestamp};
+use motionwire::can::{ErrorFrame, Iface, LogEvent, Timestamp};
 use motionwire::canopen::{
     CanOpenMessage, EmcyStorage, GuardingEvent, HeartbeatConsumer, HeartbeatEvent, MessageKind,
     NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
@@ -269,6 +269,16 @@ impl Summary {
         };
         self.last_bus = at;
         &mut self.buses[at]
+    }
+
+    /// Count a log entry that is not a frame (a TRC status row; SPEC §6.3
+    /// `status_events`).
+    pub fn add_event(&mut self, event: &LogEvent<'_>) {
+        if let LogEvent::Status(status) = event {
+            let bus = self.bus(status.iface);
+            bus.status_events += 1;
+            bus.saw(status.timestamp);
+        }
     }
 
     /// Add one frame, read on `line` of the input.
