@@ -135,6 +135,7 @@ pub mod logs;
 mod names;
 pub mod profiles;
 pub mod servo;
+pub mod trc;
 
 pub use error::{BinaryError, Error, Found, LogFormat, Result, SyntaxError, What};
 
