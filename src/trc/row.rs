@@ -170,10 +170,9 @@ fn data(tokens: &mut Tokens<'_>, buf: &mut [u8]) -> Result<usize> {
             let bad = field
                 .iter()
                 .position(|b| !b.is_ascii_hexdigit())
-                .unwrap_or(2);
-            return Err(bad_field(start, field, bad, |found| {
-                SyntaxError::TrcDataByte { found }
-            }));
+                .unwrap_or(field.len().min(2));
+            let found = tokens.found_at(start + bad);
+            return Err(syntax(start + bad + 1, SyntaxError::TrcDataByte { found }));
         };
         let Some(slot) = buf.get_mut(n) else {
             return Err(syntax(

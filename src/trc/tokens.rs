@@ -44,6 +44,11 @@ impl<'l> Tokens<'l> {
         Some((start, field.get(..len).unwrap_or_default()))
     }
 
+    /// Return what stands at the 0-based index `at` of the line.
+    pub(super) fn found_at(&self, at: usize) -> Found {
+        self.line.get(at).map_or(Found::EndOfLine, |&b| Found::Byte(b))
+    }
+
     /// Return the next field without taking it.
     pub(super) fn peek(&self) -> Option<(usize, &'l [u8])> {
         self.clone().next_token()
