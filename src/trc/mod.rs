@@ -259,9 +259,7 @@ impl TrcParser {
         let ctx = Context {
             version: self.version,
             start: self.start.unwrap_or(Timestamp::ZERO),
-            layout: self
-                .layout
-                .unwrap_or_else(|| self.version.default_layout()),
+            layout: self.layout.unwrap_or_else(|| self.version.default_layout()),
         };
         parse_row(trimmed, &ctx).map(Some)
     }

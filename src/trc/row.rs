@@ -87,7 +87,11 @@ fn number(tokens: &mut Tokens<'_>, v1: bool) -> Result<()> {
 /// The time offset in ms, up to 6 fraction digits, added to the start.
 fn offset(tokens: &mut Tokens<'_>, ctx: &Context) -> Result<Timestamp> {
     let (start, field) = tokens.expect(|found| SyntaxError::TrcTimeOffset { found })?;
-    let bad = |i: usize| bad_field(start, field, i, |found| SyntaxError::TrcTimeOffset { found });
+    let bad = |i: usize| {
+        bad_field(start, field, i, |found| SyntaxError::TrcTimeOffset {
+            found,
+        })
+    };
     let (millis, nanos) = decimal_fraction(field, 15, 6, true).map_err(bad)?;
     let nanos = u64::try_from(nanos).map_err(|_| bad(0))?;
     let since_start = Duration::from_millis(millis) + Duration::from_nanos(nanos);
@@ -153,8 +157,9 @@ fn length(tokens: &mut Tokens<'_>, kind: Kind, dlc: bool) -> Result<u8> {
     let (start, field) = tokens.expect(|found| SyntaxError::TrcLength { found })?;
     let fd = matches!(kind, Kind::Frame(FrameType::Fd(_)));
     let value = match (dlc, fd) {
-        (true, true) => decimal(field, 15)
-            .and_then(|d| FD_LENGTHS.get(usize::try_from(d).ok()?).copied()),
+        (true, true) => {
+            decimal(field, 15).and_then(|d| FD_LENGTHS.get(usize::try_from(d).ok()?).copied())
+        }
         (false, true) => decimal(field, FD_MAX_LEN as u64).map(|l| l as u8),
         (_, false) => decimal(field, CLASSIC_MAX_LEN as u64).map(|l| l as u8),
     };
@@ -211,7 +216,13 @@ fn frame(id: CanId, kind: FrameType, bytes: &[u8; FD_MAX_LEN], len: u8) -> Resul
 /// decisions): `kind` is PEAK's error type (1 bit, 2 form, 4 stuff, 8
 /// other), `rx` whether it happened while receiving, `position` the bit
 /// stream processor's position (SJA1000 ECC segment).
-pub(super) fn error_frame(kind: u8, rx: bool, position: u8, rx_errors: u8, tx_errors: u8) -> CanFrame {
+pub(super) fn error_frame(
+    kind: u8,
+    rx: bool,
+    position: u8,
+    rx_errors: u8,
+    tx_errors: u8,
+) -> CanFrame {
     let prot_type = (kind & PROT_TYPES) | if rx { 0 } else { PROT_TX };
     let mut data = [0u8; FD_MAX_LEN];
     data[2] = prot_type;
@@ -282,8 +293,8 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
             (Column::Data, _) => count = data(&mut tokens, &mut bytes)?,
             (Column::Dlc | Column::Length, None) => {
                 let (start, field) = tokens.expect(|found| SyntaxError::TrcRowType { found })?;
-                return Err(bad_field(start, field, 0, |found| SyntaxError::TrcRowType {
-                    found,
+                return Err(bad_field(start, field, 0, |found| {
+                    SyntaxError::TrcRowType { found }
                 }));
             }
         }
@@ -420,8 +431,8 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
             b"Warng" => kind = Kind::Status,
             b"Error" => kind = Kind::Error,
             _ => {
-                return Err(bad_field(start, field, 0, |found| SyntaxError::TrcRowType {
-                    found,
+                return Err(bad_field(start, field, 0, |found| {
+                    SyntaxError::TrcRowType { found }
                 }))
             }
         }
@@ -435,9 +446,13 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     let id_at = tokens.peek().map_or(0, |(start, _)| start);
     let (error_type, id) = if kind == Kind::Error {
         let (start, field) = tokens.expect(|found| SyntaxError::TrcIdentifier { found })?;
-        let raw = hex(field).and_then(|v| u8::try_from(v).ok()).ok_or_else(|| {
-            bad_field(start, field, 0, |found| SyntaxError::TrcIdentifier { found })
-        })?;
+        let raw = hex(field)
+            .and_then(|v| u8::try_from(v).ok())
+            .ok_or_else(|| {
+                bad_field(start, field, 0, |found| SyntaxError::TrcIdentifier {
+                    found,
+                })
+            })?;
         (raw, CanId::new_unchecked(0, false))
     } else {
         (0, identifier(&mut tokens)?)
@@ -490,7 +505,13 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
                 },
             ));
         }
-        error_frame(error_type, direction_byte != 0, position, rx_errors, tx_errors)
+        error_frame(
+            error_type,
+            direction_byte != 0,
+            position,
+            rx_errors,
+            tx_errors,
+        )
     } else {
         frame(id, FrameType::Data, &bytes, len).map_err(|_| bad_len(id_at))?
     };

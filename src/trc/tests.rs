@@ -38,7 +38,14 @@ fn std_id(raw: u32) -> CanId {
 #[test]
 fn blank_and_comment_lines_hold_nothing() {
     let mut p = TrcParser::new();
-    for line in ["", "\r\n", "   \t ", ";", ";   Start time: 18.12.2021", "  ;$OTHER=1"] {
+    for line in [
+        "",
+        "\r\n",
+        "   \t ",
+        ";",
+        ";   Start time: 18.12.2021",
+        "  ;$OTHER=1",
+    ] {
         assert_eq!(p.parse_line(line.as_bytes()), Ok(None), "{line:?}");
     }
     assert_eq!(p, TrcParser::new());
@@ -89,11 +96,7 @@ fn start_time_is_read_exactly_to_the_microsecond() {
     ];
     for (text, secs, micros) in cases {
         let p = parser(&[&format!(";$STARTTIME={text}")]);
-        assert_eq!(
-            p.start_time(),
-            Timestamp::new(secs, micros),
-            "{text}"
-        );
+        assert_eq!(p.start_time(), Timestamp::new(secs, micros), "{text}");
     }
     let mut p = TrcParser::new();
     assert_eq!(
@@ -143,8 +146,14 @@ fn columns_must_be_distinct_known_and_complete() {
 #[test]
 fn version_1_0_rows() {
     let mut p = TrcParser::new();
-    let data = frame(&mut p, "     1)      1841  0001  8  00 01 02 03 04 05 06 07");
-    assert_eq!(data.frame, CanFrame::new(std_id(1), &[0, 1, 2, 3, 4, 5, 6, 7]).unwrap());
+    let data = frame(
+        &mut p,
+        "     1)      1841  0001  8  00 01 02 03 04 05 06 07",
+    );
+    assert_eq!(
+        data.frame,
+        CanFrame::new(std_id(1), &[0, 1, 2, 3, 4, 5, 6, 7]).unwrap()
+    );
     assert_eq!(data.timestamp, Timestamp::new(1, 841_000));
     assert_eq!((data.iface, data.direction), (None, None));
 
@@ -251,14 +260,23 @@ fn version_2_fd_types_and_lengths() {
 #[test]
 fn version_2_0_uses_byte_lengths() {
     let mut p = parser(&[";$FILEVERSION=2.0", ";$COLUMNS=N,O,T,I,d,l,D"]);
-    let f = frame(&mut p, "  1  5.000 FD 0500 Rx 16 00 01 02 03 04 05 06 07 08 09 0A 0B 0C 0D 0E 0F");
+    let f = frame(
+        &mut p,
+        "  1  5.000 FD 0500 Rx 16 00 01 02 03 04 05 06 07 08 09 0A 0B 0C 0D 0E 0F",
+    );
     assert_eq!((f.frame.data().len(), f.frame.dlc()), (16, 10));
     assert_eq!(f.iface, None);
     let e = frame(&mut p, "  2  6.000 ER      Tx    01 01 1C 7F 80");
     assert_eq!(e.frame.data(), [0, 0, 0x01, 0x1C, 0, 0, 0x80, 0x7F]);
     assert_eq!(e.direction, Some(Direction::Tx));
-    for line in ["  3  7.000 ST      Rx    00 00 00 08", "  4  8.000 EC      Rx    02 02"] {
-        assert!(matches!(p.parse_line(line.as_bytes()), Ok(Some(LogEvent::Status(_)))));
+    for line in [
+        "  3  7.000 ST      Rx    00 00 00 08",
+        "  4  8.000 EC      Rx    02 02",
+    ] {
+        assert!(matches!(
+            p.parse_line(line.as_bytes()),
+            Ok(Some(LogEvent::Status(_)))
+        ));
     }
     assert_eq!(
         error(&mut p, "  5  9.000 ER      Rx    04 00 02 00"),
@@ -300,7 +318,10 @@ fn malformed_rows_say_where_and_why() {
         (
             "  1  1.000 DT 1  0800 Rx -  0",
             18,
-            SyntaxError::IdentifierOutOfRange { id: 0x800, max: 0x7FF },
+            SyntaxError::IdentifierOutOfRange {
+                id: 0x800,
+                max: 0x7FF,
+            },
         ),
         (
             "  1  1.000 DT 1  07G5 Rx -  0",
@@ -369,7 +390,9 @@ fn malformed_rows_say_where_and_why() {
             }
         )
     );
-    let message = error(&mut p, "  1  1.000 DT 1  0705 Rx -  1  ZZ").1.to_string();
+    let message = error(&mut p, "  1  1.000 DT 1  0705 Rx -  1  ZZ")
+        .1
+        .to_string();
     assert_eq!(message, "expected a data byte of two hex digits, found 'Z'");
 }
 
@@ -384,8 +407,10 @@ fn written_rows_read_back() {
             .with_timestamp(start)
             .with_iface(Iface::Channel(2))
             .with_direction(Direction::Tx),
-        LogFrame::new(CanFrame::new_error(ERROR_FRAME_CLASSES.bits(), &[0, 0, 0x84, 2, 0, 0, 9, 7]).unwrap())
-            .with_timestamp(Timestamp::from_nanos(1_700_000_001, 123_456_789).unwrap()),
+        LogFrame::new(
+            CanFrame::new_error(ERROR_FRAME_CLASSES.bits(), &[0, 0, 0x84, 2, 0, 0, 9, 7]).unwrap(),
+        )
+        .with_timestamp(Timestamp::from_nanos(1_700_000_001, 123_456_789).unwrap()),
     ];
     for (n, f) in frames.iter().enumerate() {
         write_line(&mut text, n as u64, start, f).unwrap();

@@ -46,7 +46,9 @@ impl<'l> Tokens<'l> {
 
     /// Return what stands at the 0-based index `at` of the line.
     pub(super) fn found_at(&self, at: usize) -> Found {
-        self.line.get(at).map_or(Found::EndOfLine, |&b| Found::Byte(b))
+        self.line
+            .get(at)
+            .map_or(Found::EndOfLine, |&b| Found::Byte(b))
     }
 
     /// Return the next field without taking it.
