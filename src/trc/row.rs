@@ -372,10 +372,10 @@ fn error_row_v2(
             }
             // A length is written without a leading zero; the first data
             // byte (the error type) always has one.
-            Column::Dlc | Column::Length if field.len() == 1 || field.first() != Some(&b'0') => {
-                if next.is_some() {
-                    declared = Some(length(tokens, Kind::Error, false)?);
-                }
+            Column::Dlc | Column::Length
+                if next.is_some() && (field.len() == 1 || field.first() != Some(&b'0')) =>
+            {
+                declared = Some(length(tokens, Kind::Error, false)?);
             }
             Column::Data => count = data(tokens, &mut bytes)?,
             _ => {}

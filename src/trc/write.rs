@@ -135,7 +135,7 @@ pub fn write_line(
     match can.frame_type() {
         FrameType::Error => out.write_str("       -")?,
         _ if can.is_extended() => write!(out, "{:08X}", can.id().raw())?,
-        _ => write!(out, "{:>8}", format_args!("{:04X}", can.id().raw()))?,
+        _ => write!(out, "    {:04X}", can.id().raw())?,
     }
     write!(out, " {direction:>2} -  {dlc:<4}")?;
     match can.frame_type() {
