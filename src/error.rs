@@ -397,6 +397,80 @@ pub enum SyntaxError {
         /// The candump option that made the line: `b'S'` or `b'i'`.
         option: u8,
     },
+    /// A PEAK TRC `;$FILEVERSION=` names no version of SPEC §5.4.
+    TrcFileVersion {
+        /// What stood where the version was expected.
+        found: Found,
+    },
+    /// A PEAK TRC `;$STARTTIME=` is not days since 1899-12-30 as a decimal
+    /// number (SPEC §5.4), or lies before 1970.
+    TrcStartTime {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC `;$COLUMNS=` is not a comma-separated list of distinct
+    /// column letters with the time offset, type, identifier and length.
+    TrcColumns {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row has no message number (decimal digits, `)` after
+    /// them in versions 1.x) where one was expected.
+    TrcMessageNumber {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's time offset is not milliseconds as a decimal number
+    /// with at most 6 digits after the point.
+    TrcTimeOffset {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's type is none the file version defines.
+    TrcRowType {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's bus is not a decimal number 0..=65535 or `-`.
+    TrcBus {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's direction is not `Rx`, `Tx` or `-`.
+    TrcDirection {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's identifier is not 1 to 8 hex digits.
+    TrcIdentifier {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's data length code or length is not one its frame
+    /// type allows (0 to 8; a DLC 0 to 15 or a length 0 to 64 for CAN FD).
+    TrcLength {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC row's data holds something other than bytes of two hex
+    /// digits.
+    TrcDataByte {
+        /// What stood there.
+        found: Found,
+    },
+    /// A PEAK TRC error frame row does not hold the bytes PEAK's error
+    /// frames have (1.x: 4, 2.x: 5).
+    TrcErrorFrame {
+        /// The number of bytes the format's error frame has.
+        expected: usize,
+        /// The number of bytes the row has.
+        found: usize,
+    },
+    /// Something follows the last column of a PEAK TRC row.
+    TrcTrailing {
+        /// What stood there.
+        found: Found,
+    },
 }
 
 impl core::fmt::Display for SyntaxError {
@@ -487,6 +561,61 @@ impl core::fmt::Display for SyntaxError {
                     "data bytes in binary"
                 }
             ),
+            SyntaxError::TrcFileVersion { found } => write!(
+                f,
+                "expected a TRC file version 1.0, 1.1, 1.2, 1.3, 2.0 or 2.1, found {found}"
+            ),
+            SyntaxError::TrcStartTime { found } => write!(
+                f,
+                "expected a start time in days since 1899-12-30 (digits, optionally a point \
+                 and more digits), not before 1970, found {found}"
+            ),
+            SyntaxError::TrcColumns { found } => write!(
+                f,
+                "expected distinct TRC column letters N, O, T, B, I, d, R, L, l, D separated by \
+                 commas, with O, T, I and L or l, D last, found {found}"
+            ),
+            SyntaxError::TrcMessageNumber { found } => write!(
+                f,
+                "expected a message number (decimal digits, ')' after them in TRC 1.x), \
+                 found {found}"
+            ),
+            SyntaxError::TrcTimeOffset { found } => write!(
+                f,
+                "expected a time offset in milliseconds with at most 6 digits after the point, \
+                 found {found}"
+            ),
+            SyntaxError::TrcRowType { found } => write!(
+                f,
+                "expected a TRC row type (DT, FD, FB, FE, BI, RR, ER, ST, EC, EV; Rx, Tx, \
+                 Warng, Error in 1.x), found {found}"
+            ),
+            SyntaxError::TrcBus { found } => {
+                write!(f, "expected a bus number 0 to 65535 or '-', found {found}")
+            }
+            SyntaxError::TrcDirection { found } => {
+                write!(f, "expected a direction Rx, Tx or '-', found {found}")
+            }
+            SyntaxError::TrcIdentifier { found } => write!(
+                f,
+                "expected a CAN identifier of 1 to 8 hex digits (more than 4: extended), \
+                 found {found}"
+            ),
+            SyntaxError::TrcLength { found } => write!(
+                f,
+                "expected a data length code 0 to 8 (0 to 15 for CAN FD) or a length 0 to 8 \
+                 (0 to 64 for CAN FD), found {found}"
+            ),
+            SyntaxError::TrcDataByte { found } => {
+                write!(f, "expected a data byte of two hex digits, found {found}")
+            }
+            SyntaxError::TrcErrorFrame { expected, found } => write!(
+                f,
+                "expected the {expected} data bytes of a PEAK error frame, found {found}"
+            ),
+            SyntaxError::TrcTrailing { found } => {
+                write!(f, "expected the end of the row after its data, found {found}")
+            }
         }
     }
 }

@@ -137,6 +137,7 @@ mod names;
 pub mod pcap;
 pub mod profiles;
 pub mod servo;
+pub mod trc;
 
 pub use error::{BinaryError, Error, Found, LogFormat, Result, SyntaxError, What};
 
