@@ -1121,3 +1121,56 @@ fn pcap_and_pcapng_captures() {
     let out = run(&["decode", header.to_str().unwrap()], "");
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }
+
+/// SPEC §5.4, §5.7, §6.3: a PEAK TRC file is detected and read: `line` is
+/// the file's line, `iface` the bus number, status rows are the bus
+/// record's `status_events`, not frames and not malformed.
+#[test]
+fn trc_files() {
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/trc/");
+    let path = format!("{fixtures}python_can_v2_1.trc");
+    let truth: Value =
+        serde_json::from_slice(&std::fs::read(format!("{fixtures}python_can_v2_1.json")).unwrap())
+            .unwrap();
+    let out = run(&["decode", "--json", &path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let frames = truth["frames"].as_array().unwrap();
+    assert_eq!(recs.len(), frames.len());
+    let text = std::fs::read_to_string(&path).unwrap();
+    for (rec, want) in recs.iter().zip(frames) {
+        assert_eq!(rec["id"], want["arbitration_id"]);
+        let ts: f64 = want["timestamp"].as_str().unwrap().parse().unwrap();
+        assert_eq!(rec["ts"].as_f64().unwrap(), ts);
+        assert_eq!(rec["iface"].as_str().unwrap(), want["channel"].to_string());
+        // `line` points at the row of the frame in the file.
+        let row = text
+            .lines()
+            .nth(rec["line"].as_u64().unwrap() as usize - 1)
+            .unwrap();
+        assert!(row.trim_start().starts_with(char::is_numeric), "{row}");
+    }
+    let summary = run(
+        &[
+            "decode",
+            "--summary",
+            "--json",
+            &format!("{fixtures}handmade_v2_1.trc"),
+        ],
+        "",
+    );
+    assert!(summary.status.success(), "{}", stderr(&summary));
+    let buses: Vec<Value> = records(&summary)
+        .into_iter()
+        .filter(|r| r["type"] == "bus")
+        .collect();
+    let status: u64 = buses
+        .iter()
+        .map(|b| b["status_events"].as_u64().unwrap())
+        .sum();
+    let errors: u64 = buses
+        .iter()
+        .map(|b| b["error_frames"].as_u64().unwrap())
+        .sum();
+    assert!(status > 0 && errors > 0, "{buses:?}");
+}

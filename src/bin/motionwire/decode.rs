@@ -283,6 +283,18 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 )?;
                 sink.clear_progress()?;
             }
+            LogFormat::Trc => {
+                let mut parser = motionwire::trc::TrcParser::new();
+                read_text(
+                    &mut sink,
+                    &mut progress,
+                    reader,
+                    &name,
+                    path.as_deref(),
+                    &mut parser,
+                )?;
+                sink.clear_progress()?;
+            }
             LogFormat::Pcap | LogFormat::Pcapng => {
                 let mut log = motionwire::pcap::PcapReader::new(reader)
                     .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
@@ -386,6 +398,65 @@ fn read_candump(
         if drained {
             // Live use: what was decoded so far is written out now
             // (SPEC §6.4); a file read in full blocks never gets here.
+            sink.flush()?;
+        }
+    }
+    Ok(())
+}
+
+/// A text log read line by line by a stateful parser (PEAK TRC, Vector
+/// ASC): the state its header sets is carried from line to line.
+trait LineReader {
+    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>>;
+}
+
+impl LineReader for motionwire::trc::TrcParser {
+    #[inline]
+    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
+        self.parse_line(line)
+    }
+}
+
+/// Read a text log (TRC, ASC) block by block, line by line.
+fn read_text(
+    sink: &mut Sink<'_>,
+    progress: &mut Progress,
+    reader: Box<dyn Read>,
+    name: &str,
+    path: Option<&Path>,
+    parser: &mut dyn LineReader,
+) -> Result<(), Failure> {
+    let mut blocks = Blocks::new(reader);
+    let mut line: u64 = 0;
+    while let Some(block) = blocks
+        .next_block()
+        .map_err(|e| read_failure(name, path, e))?
+    {
+        if block.overlong {
+            line += 1;
+            sink.malformed(name, line, &OverlongLine)?;
+        }
+        let drained = block.drained;
+        let block_len = block.text.len() as u64;
+        if let Some(summary) = sink.summary.as_mut() {
+            summary.new_block();
+        }
+        let mut rest = block.text;
+        while !rest.is_empty() {
+            let (text, next) = match rest.iter().position(|&b| b == b'\n') {
+                Some(i) => (&rest[..i], &rest[i + 1..]),
+                None => (rest, &[][..]),
+            };
+            rest = next;
+            line += 1;
+            match parser.read_line(text) {
+                Ok(None) => {}
+                Ok(Some(event)) => sink.event(line, &event)?,
+                Err(e) => sink.malformed(name, line, &e)?,
+            }
+        }
+        progress.advance(sink, block_len, line)?;
+        if drained {
             sink.flush()?;
         }
     }
