@@ -471,6 +471,66 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
+    /// A Vector ASC line that is no header, comment or event line the format defines (SPEC §5.3).
+    AscLine {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC `base` line that is not `base hex|dec [timestamps absolute|relative]`.
+    AscBase {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC event time that is not `seconds.fraction` with 1 to 9 fraction digits.
+    AscTime {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC channel that is not a number 1 to 65535 (or `CANFD`).
+    AscChannel {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC identifier that is not a number in the file's base (with `x` after an extended one) in range, nor `ErrorFrame`.
+    AscIdentifier {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC direction that is not `Rx`, `Tx` (or `TxRq`).
+    AscDirection {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC frame type that is not `d` (data) or `r` (remote request).
+    AscFrameType {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC DLC that is not one hex digit.
+    AscDlc {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC data byte that is not a byte in the file's base, or a missing one.
+    AscDataByte {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC `CANFD` data length that is no CAN FD length (or does not match the DLC of a CAN FD frame, or exceeds 8 for classic content).
+    AscDataLength {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC `CANFD` BRS or ESI column that is not `0` or `1`.
+    AscFdColumn {
+        /// What stood there.
+        found: Found,
+    },
+    /// A Vector ASC `CANFD` line without its message duration, bit count and hex flags after the data.
+    AscFlags {
+        /// What stood there.
+        found: Found,
+    },
 }
 
 impl core::fmt::Display for SyntaxError {
@@ -615,6 +675,42 @@ impl core::fmt::Display for SyntaxError {
             ),
             SyntaxError::TrcTrailing { found } => {
                 write!(f, "expected the end of the row after its data, found {found}")
+            }
+            SyntaxError::AscLine { found } => {
+                write!(f, "expected an ASC header, comment or event line, found {found}")
+            }
+            SyntaxError::AscBase { found } => {
+                write!(f, "expected 'base hex' or 'base dec', optionally followed by 'timestamps absolute' or 'timestamps relative', found {found}")
+            }
+            SyntaxError::AscTime { found } => {
+                write!(f, "expected an event time seconds.fraction with 1 to 9 digits of fraction, found {found}")
+            }
+            SyntaxError::AscChannel { found } => {
+                write!(f, "expected a channel number 1 to 65535, or CANFD, found {found}")
+            }
+            SyntaxError::AscIdentifier { found } => {
+                write!(f, "expected a CAN identifier in the file's base (x after an extended one) or ErrorFrame, found {found}")
+            }
+            SyntaxError::AscDirection { found } => {
+                write!(f, "expected the direction Rx or Tx, found {found}")
+            }
+            SyntaxError::AscFrameType { found } => {
+                write!(f, "expected d (data) or r (remote request), found {found}")
+            }
+            SyntaxError::AscDlc { found } => {
+                write!(f, "expected a DLC of one hex digit, found {found}")
+            }
+            SyntaxError::AscDataByte { found } => {
+                write!(f, "expected a data byte in the file's base, found {found}")
+            }
+            SyntaxError::AscDataLength { found } => {
+                write!(f, "expected a CAN FD data length (0 to 8, 12, 16, 20, 24, 32, 48, 64) that fits the DLC, found {found}")
+            }
+            SyntaxError::AscFdColumn { found } => {
+                write!(f, "expected a BRS or ESI column 0 or 1, found {found}")
+            }
+            SyntaxError::AscFlags { found } => {
+                write!(f, "expected the message duration, bit count and hex flags after the data, found {found}")
             }
         }
     }

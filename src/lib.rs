@@ -125,6 +125,7 @@
 #![deny(clippy::must_use_candidate)]
 #![deny(clippy::return_self_not_must_use)]
 
+pub mod asc;
 pub mod can;
 pub mod candump;
 pub mod canopen;

@@ -1174,3 +1174,38 @@ fn trc_files() {
         .sum();
     assert!(status > 0 && errors > 0, "{buses:?}");
 }
+
+/// SPEC §5.3, §5.7: a Vector ASC file is detected and read: `line` is the
+/// file's line, `iface` the channel as written, `ts` seconds since the
+/// start (relative times added up).
+#[test]
+fn asc_files() {
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/asc/");
+    let path = format!("{fixtures}handmade_dec_relative.asc");
+    let out = run(&["decode", "--json", &path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let got: Vec<(u64, String, u64, f64)> = recs
+        .iter()
+        .map(|r| {
+            (
+                r["line"].as_u64().unwrap(),
+                r["iface"].as_str().unwrap().to_owned(),
+                r["id"].as_u64().unwrap(),
+                r["ts"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(got.len(), 7);
+    assert_eq!(got[0], (9, "1".to_owned(), 129, 0.001));
+    assert_eq!(got[1], (10, "2".to_owned(), 1797, 0.0015));
+    assert_eq!(recs[5]["kind"], "error_frame");
+    assert_eq!(recs[6]["ts"].as_f64().unwrap(), 0.016125);
+    let summary = run(&["decode", "--summary", "--json", &path], "");
+    let status: u64 = records(&summary)
+        .iter()
+        .filter(|r| r["type"] == "bus")
+        .map(|r| r["status_events"].as_u64().unwrap())
+        .sum();
+    assert_eq!(status, 1);
+}

@@ -283,6 +283,18 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 )?;
                 sink.clear_progress()?;
             }
+            LogFormat::Asc => {
+                let mut parser = motionwire::asc::AscParser::new();
+                read_text(
+                    &mut sink,
+                    &mut progress,
+                    reader,
+                    &name,
+                    path.as_deref(),
+                    &mut parser,
+                )?;
+                sink.clear_progress()?;
+            }
             LogFormat::Trc => {
                 let mut parser = motionwire::trc::TrcParser::new();
                 read_text(
@@ -411,6 +423,13 @@ trait LineReader {
 }
 
 impl LineReader for motionwire::trc::TrcParser {
+    #[inline]
+    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
+        self.parse_line(line)
+    }
+}
+
+impl LineReader for motionwire::asc::AscParser {
     #[inline]
     fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
         self.parse_line(line)
