@@ -232,6 +232,12 @@ pub enum BinaryError {
     /// A packet's time, with its interface's offset, lies before the Unix
     /// epoch or beyond what a timestamp holds (SPEC §5.7).
     TimestampOutOfRange,
+    /// A frame's identifier is out of range for its kind (above 0x7FF for
+    /// a standard frame); the record is skipped, the file read on.
+    BadIdentifier {
+        /// The identifier as stored.
+        raw: u32,
+    },
 }
 
 impl core::fmt::Display for BinaryError {
@@ -271,6 +277,10 @@ impl core::fmt::Display for BinaryError {
             ),
             BinaryError::TimestampOutOfRange => f.write_str(
                 "expected a time between the Unix epoch and 2^64 s after it, found one outside",
+            ),
+            BinaryError::BadIdentifier { raw } => write!(
+                f,
+                "expected a standard identifier at most 0x7FF, found {raw:#x}"
             ),
         }
     }

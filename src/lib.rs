@@ -126,6 +126,8 @@
 #![deny(clippy::return_self_not_must_use)]
 
 pub mod asc;
+#[cfg(feature = "blf")]
+pub mod blf;
 pub mod can;
 pub mod candump;
 pub mod canopen;

@@ -1209,3 +1209,37 @@ fn asc_files() {
         .sum();
     assert_eq!(status, 1);
 }
+
+/// SPEC §5.6, §5.7: a Vector BLF file is detected and read: `line` is the
+/// object's number, `iface` the channel, `ts` start time + offset; a file
+/// cut inside a container gives the frames before it and one error.
+#[test]
+fn blf_files() {
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/blf/");
+    let path = format!("{fixtures}python_can.blf");
+    let truth: Value =
+        serde_json::from_slice(&std::fs::read(format!("{fixtures}python_can.json")).unwrap())
+            .unwrap();
+    let out = run(&["decode", "--json", &path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let want = truth["frames"].as_array().unwrap();
+    assert_eq!(recs.len(), want.len());
+    for (i, (rec, want)) in recs.iter().zip(want).enumerate() {
+        assert_eq!(rec["line"], i as u64 + 1);
+        assert_eq!(rec["iface"].as_str().unwrap(), want["channel"].to_string());
+        if want["error"] == false {
+            assert_eq!(rec["id"], want["id"]);
+        }
+        let ts: f64 = want["timestamp"].as_str().unwrap().parse().unwrap();
+        assert!((rec["ts"].as_f64().unwrap() - ts).abs() < 1e-6);
+    }
+    let whole = std::fs::read(&path).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cut = dir.join("cut.blf");
+    std::fs::write(&cut, &whole[..whole.len() - 40]).unwrap();
+    let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
+}

@@ -34,10 +34,13 @@ pub struct Record<'a> {
     pub event: LogEvent<'a>,
 }
 
-/// Why a binary log reader stopped: the input could not be read, or the
-/// file is damaged at a known place ([`Error::Binary`]). The records before
-/// the error were handed on; a reader that returned an error returns `None`
-/// afterwards.
+/// Why a binary log reader could not hand on a record: the input could not
+/// be read, or the file is damaged at a known place ([`Error::Binary`]).
+/// The records before the error were handed on. After damage to the file's
+/// structure (a cut-off or inconsistent block) the reader returns `None`;
+/// after an error in one record's content whose size is known (e.g. an
+/// identifier out of range) it may go on with the next record, as a text
+/// reader goes on after a malformed line (SPEC §5.7).
 #[cfg(feature = "std")]
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
@@ -60,8 +63,8 @@ pub trait ReadLog {
     /// The format the reader reads.
     fn format(&self) -> LogFormat;
 
-    /// Return the next record, `None` at the end of the file or after an
-    /// error.
+    /// Return the next record, `None` at the end of the file or after
+    /// damage to its structure (see [`ReadError`]).
     fn next_record(&mut self) -> Option<Result<Record<'_>, ReadError>>;
 
     /// The number of records read so far that hold no CAN frame or bus

@@ -307,6 +307,11 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 )?;
                 sink.clear_progress()?;
             }
+            LogFormat::Blf => {
+                let mut log = motionwire::blf::BlfReader::new(reader)
+                    .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
+                read_binary(&mut sink, &mut log, &name, path.as_deref())?;
+            }
             LogFormat::Pcap | LogFormat::Pcapng => {
                 let mut log = motionwire::pcap::PcapReader::new(reader)
                     .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
