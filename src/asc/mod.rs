@@ -453,8 +453,9 @@ impl AscParser {
     /// A data byte in the file's base.
     fn parse_byte(&self, text: &[u8]) -> Option<u8> {
         if self.hex {
-            match text {
-                [_] | [_, _] => hex(text).and_then(|v| u8::try_from(v).ok()),
+            match *text {
+                [lo] => hex_value(lo),
+                [hi, lo] => Some(hex_value(hi)? << 4 | hex_value(lo)?),
                 _ => None,
             }
         } else {
@@ -648,17 +649,23 @@ impl<'l> Tokens<'l> {
         Tokens { line, pos: 0 }
     }
 
+    #[inline]
     fn next_token(&mut self) -> Option<(usize, &'l [u8])> {
-        let rest = self.line.get(self.pos..).unwrap_or_default();
-        let skip = rest.iter().position(|&b| !is_space(b))?;
-        let start = self.pos + skip;
-        let field = self.line.get(start..).unwrap_or_default();
-        let len = field
-            .iter()
-            .position(|&b| is_space(b))
-            .unwrap_or(field.len());
-        self.pos = start + len;
-        Some((start, field.get(..len).unwrap_or_default()))
+        let line = self.line;
+        let mut start = self.pos;
+        while line.get(start).is_some_and(|&b| is_space(b)) {
+            start += 1;
+        }
+        if start >= line.len() {
+            self.pos = start;
+            return None;
+        }
+        let mut end = start + 1;
+        while line.get(end).is_some_and(|&b| !is_space(b)) {
+            end += 1;
+        }
+        self.pos = end;
+        Some((start, line.get(start..end).unwrap_or_default()))
     }
 
     fn expect(&mut self, reason: fn(Found) -> SyntaxError) -> Result<(usize, &'l [u8])> {
@@ -709,10 +716,22 @@ fn hex(field: &[u8]) -> Option<u32> {
     if field.is_empty() || field.len() > 8 {
         return None;
     }
-    field.iter().try_fold(0u32, |acc, &b| {
-        let digit = char::from(b).to_digit(16)?;
-        Some(acc << 4 | digit)
-    })
+    let mut value = 0u32;
+    for &b in field {
+        value = value << 4 | u32::from(hex_value(b)?);
+    }
+    Some(value)
+}
+
+/// The value of one hex digit.
+#[inline]
+const fn hex_value(b: u8) -> Option<u8> {
+    match b {
+        b'0'..=b'9' => Some(b - b'0'),
+        b'a'..=b'f' => Some(b - b'a' + 10),
+        b'A'..=b'F' => Some(b - b'A' + 10),
+        _ => None,
+    }
 }
 
 fn hex_digit(field: &[u8]) -> Option<u8> {

@@ -287,7 +287,7 @@ impl FusedIterator for CandumpLines<'_> {}
 
 /// The index of the first `\n` in `buf`, 16 bytes at a time.
 #[inline(always)]
-pub(super) fn find_newline(buf: &[u8]) -> Option<usize> {
+pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
     let mut chunks = buf.chunks_exact(16);
     let mut at = 0;
     for chunk in &mut chunks {

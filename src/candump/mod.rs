@@ -142,6 +142,7 @@ use fast::*;
 use frame::*;
 pub use frame::{write_log, write_screen};
 use hex::*;
+pub(crate) use lines::find_newline;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };

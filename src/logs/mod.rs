@@ -11,6 +11,47 @@ mod detect;
 
 pub use detect::{detect, Detected, DETECT_LEN};
 
+/// The lines of a text buffer, split at `\n` (16 bytes at a time), each
+/// without its `\n`; a last line without one counts too, nothing after a
+/// final `\n` does. What the line readers of the text formats are fed.
+///
+/// ```
+/// let lines: Vec<&[u8]> = motionwire::logs::split_lines(b"a\r\nbc\n\nd").collect();
+/// assert_eq!(lines, [&b"a\r"[..], b"bc", b"", b"d"]);
+/// ```
+#[must_use]
+pub fn split_lines(buf: &[u8]) -> SplitLines<'_> {
+    SplitLines { rest: buf }
+}
+
+/// The iterator of [`split_lines`].
+#[derive(Debug, Clone)]
+pub struct SplitLines<'a> {
+    rest: &'a [u8],
+}
+
+impl<'a> Iterator for SplitLines<'a> {
+    type Item = &'a [u8];
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a [u8]> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        let (line, rest) = match crate::candump::find_newline(self.rest) {
+            Some(i) => (
+                self.rest.get(..i).unwrap_or_default(),
+                self.rest.get(i + 1..).unwrap_or_default(),
+            ),
+            None => (self.rest, &[][..]),
+        };
+        self.rest = rest;
+        Some(line)
+    }
+}
+
+impl core::iter::FusedIterator for SplitLines<'_> {}
+
 #[cfg(feature = "std")]
 use crate::can::LogEvent;
 #[cfg(feature = "std")]

@@ -465,13 +465,7 @@ fn read_text(
         if let Some(summary) = sink.summary.as_mut() {
             summary.new_block();
         }
-        let mut rest = block.text;
-        while !rest.is_empty() {
-            let (text, next) = match rest.iter().position(|&b| b == b'\n') {
-                Some(i) => (&rest[..i], &rest[i + 1..]),
-                None => (rest, &[][..]),
-            };
-            rest = next;
+        for text in motionwire::logs::split_lines(block.text) {
             line += 1;
             match parser.read_line(text) {
                 Ok(None) => {}
