@@ -45,7 +45,7 @@
 //!   event`, bus `Statistic:` lines and `TxRq` (transmit request) lines,
 //!   which announce a frame the log shows again when it is on the bus.
 //!   Chip status lines (`CAN 1 Status:…`) are [`LogEvent::Status`]. Every
-//!   other line is an [`Error::Syntax`](crate::Error::Syntax) with its
+//!   other line is an [`Error::Syntax`] with its
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
 //! ```
