@@ -42,9 +42,10 @@
 //!   it (python-can gives identifier 0 and no data).
 //! - Not frames, and not reported: blank lines, `//` comments, the header
 //!   lines above, `End TriggerBlock`, `Start of measurement`, `Log trigger
-//!   event`, bus `Statistic:` lines and `TxRq` (transmit request) lines,
-//!   which announce a frame the log shows again when it is on the bus.
-//!   Chip status lines (`CAN 1 Status:…`) are [`LogEvent::Status`]. Every
+//!   event`, bus `Statistic:`, `J1939TP` and system-variable (`SV:`) lines
+//!   and `TxRq` (transmit request) lines, which announce a frame the log
+//!   shows again when it is on the bus. Chip status lines (`CAN 1
+//!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every
 //!   other line is an [`Error::Syntax`] with its
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
@@ -231,6 +232,10 @@ impl AscParser {
         if second == b"CANFD" {
             return self.parse_fd(line, timestamp, tokens);
         }
+        if second == b"SV:" {
+            // A system variable's value: no frame.
+            return Ok(None);
+        }
         if second == b"CANXL" {
             return Err(tokens.error_at(at, |found| SyntaxError::AscLine { found }));
         }
@@ -263,8 +268,15 @@ impl AscParser {
                     .with_iface(iface),
             )));
         }
-        if starts_with_ignore_case(id, b"statistic:") {
+        if starts_with_ignore_case(id, b"statistic:") || id == b"J1939TP" {
+            // Bus statistics, a J1939 transport-protocol summary: no frame.
             return Ok(None);
+        }
+        if id == b"OverloadFrame" {
+            return Ok(Some(LogEvent::Status(BusStatus {
+                timestamp: Some(timestamp),
+                iface: Some(iface),
+            })));
         }
         let id = self
             .parse_id(id)

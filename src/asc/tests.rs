@@ -35,6 +35,8 @@ fn header_and_comment_lines_hold_nothing() {
         "   1.000000 Log trigger event",
         "   1.000000 1  Statistic: D 0 R 0 XD 0 XR 0 E 0 O 0 B 0.00%",
         "   1.000000 1  705             TxRq d 1 05",
+        "   1.000000 SV: 1 0 1 ::Namespace::Var = 1",
+        "   1.000000 1  J1939TP FEF1p 6 0 0 - Rx d 23 01 02",
         "End TriggerBlock",
         "\r",
     ] {
@@ -82,6 +84,10 @@ fn frames_of_every_shape() {
     // Nanoseconds.
     let f = frame(&mut parser, "   0.000000001 1  1 Rx d 0");
     assert_eq!(f.timestamp, Timestamp::from_nanos(0, 1));
+    assert!(matches!(
+        parse(&mut parser, "   0.9 1  OverloadFrame"),
+        Ok(Some(LogEvent::Status(_)))
+    ));
     match parse(&mut parser, "   0.8 CAN 2 Status:chip status error passive") {
         Ok(Some(LogEvent::Status(status))) => {
             assert_eq!(status.iface, Some(Iface::Channel(2)));
