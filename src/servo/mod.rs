@@ -13,6 +13,10 @@
 //! 0b01 → 0b10), and the NC side of the two request/ack handshakes,
 //! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
 //!
+//! [`Drive`] is the other side: a deterministic model of a servo drive
+//! following SPEC §1.6 from the drive's side, to test NC code against
+//! without hardware (SPEC §9.2).
+//!
 //! Layout, one file per word or frame:
 //! - `control_word`: [`ServoControlWord`], [`ServoEnable`],
 //!   [`RegulatorMode`], [`ParameterTable`] (SPEC §1.3);
@@ -21,11 +25,15 @@
 //! - `command`: [`CommandFrame`], [`Command`] (SPEC §1.1);
 //! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
 //! - `message`: [`Message`], [`MessageKind`] (SPEC §1.2);
-//! - `behaviour`: the pure behaviours (SPEC §1.6).
+//! - `behaviour`: the pure behaviours (SPEC §1.6);
+//! - `drive`: [`Drive`], the drive model, and its [`DriveConfig`] (SPEC §9.2);
+//! - `ethercrab` (feature `ethercrab`): the frames as ethercrab-wire process
+//!   data (SPEC §9.1).
 
 mod behaviour;
 mod command;
 mod control_word;
+mod drive;
 mod error_word;
 mod feedback;
 mod message;
@@ -37,6 +45,10 @@ pub use behaviour::{
 };
 pub use command::{Command, CommandFrame, COMMAND_LEN};
 pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
+pub use drive::{
+    Drive, DriveConfig, ErrorClearState, MessageRotation, SetpointWidth, SpeedScale,
+    ZeroPulseState, TEMP_WARNING_CELSIUS,
+};
 pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
 pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageKind};
