@@ -753,3 +753,540 @@ impl fmt::Display for ZeroPulseState {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::servo::ParameterTable;
+
+    const SE_OFF: ServoEnable = ServoEnable::DISABLED;
+    const SE_ARM: ServoEnable = ServoEnable::ARM;
+    const SE_ON: ServoEnable = ServoEnable::ENABLE;
+
+    fn scw(se: ServoEnable) -> ServoControlWord {
+        ServoControlWord::NORMAL.with_servo_enable(se)
+    }
+
+    fn command(ssp: i32, control: ServoControlWord) -> Command {
+        Command::new(ssp, control, 0)
+    }
+
+    /// Arm and enable: two cycles, SE 0b01 then 0b10.
+    fn enable(drive: &mut Drive) -> Feedback {
+        let _ = drive.cycle(&command(0, scw(SE_ARM)));
+        drive.cycle(&command(0, scw(SE_ON)))
+    }
+
+    #[test]
+    fn a_new_drive_is_disabled_at_zero_without_errors() {
+        let mut drive = Drive::new(DriveConfig::default());
+        assert!(!drive.is_enabled());
+        assert_eq!(drive.position(), 0);
+        assert_eq!(drive.errors(), ServoErrorWord::empty());
+        // 0b10 without 0b01 before does not enable: the drive starts as if
+        // SE had been 0b00.
+        let fb = drive.cycle(&command(100, scw(SE_ON)));
+        assert!(!fb.status.contains(ServoStatusWord::SERVO_EN));
+        assert_eq!(fb.position, 0);
+        assert_eq!(drive.cycles(), 1);
+    }
+
+    /// SPEC §1.6, the seed's eight rows, produced by the model:
+    /// (Servo_Ready_Mode, ServoEn, ServoErrors) → ServoRDY.
+    #[test]
+    fn servo_ready_truth_table_from_the_model() {
+        const ROWS: [(u8, bool, bool, bool); 8] = [
+            (0, false, false, true),
+            (0, false, true, false),
+            (0, true, false, true),
+            (0, true, true, false),
+            (1, false, false, false),
+            (1, false, true, false),
+            (1, true, false, true),
+            (1, true, true, false),
+        ];
+        for (mode, enabled, error, ready) in ROWS {
+            let mut drive = Drive::new(DriveConfig {
+                ready_mode: ServoReadyMode::new(mode).unwrap(),
+                // Keep running with an error, to reach the rows e=1, x=1.
+                disable_on_fault: false,
+                ..DriveConfig::default()
+            });
+            if error {
+                drive.inject(ServoFault::HallErr);
+            }
+            let fb = if enabled {
+                enable(&mut drive)
+            } else {
+                drive.cycle(&command(0, scw(SE_OFF)))
+            };
+            assert_eq!(fb.status.contains(ServoStatusWord::SERVO_EN), enabled);
+            assert_eq!(fb.errors.contains(ServoErrorWord::SERVO_ERRORS), error);
+            assert_eq!(
+                fb.status.contains(ServoStatusWord::SERVO_RDY),
+                ready,
+                "mode {mode}, ServoEn {enabled}, ServoErrors {error}"
+            );
+        }
+    }
+
+    #[test]
+    fn enable_only_on_the_edge_and_while_se_stays() {
+        let mut drive = Drive::new(DriveConfig::default());
+        let steps = [
+            (SE_OFF, false),
+            (SE_ON, false),
+            (SE_ARM, false),
+            (SE_ON, true),
+            (SE_ON, true),
+            (ServoEnable::BOTH, false),
+            (SE_ON, false),
+            (SE_ARM, false),
+            (SE_ON, true),
+            (SE_OFF, false),
+        ];
+        for (i, (se, enabled)) in steps.into_iter().enumerate() {
+            let fb = drive.cycle(&command(0, scw(se)));
+            assert_eq!(
+                fb.status.contains(ServoStatusWord::SERVO_EN),
+                enabled,
+                "cycle {i}"
+            );
+            assert_eq!(fb.status.contains(ServoStatusWord::PULSE_ENABLED), enabled);
+        }
+    }
+
+    #[test]
+    fn a_fault_disables_until_cleared_and_enabled_again() {
+        let mut drive = Drive::new(DriveConfig {
+            error_clear_delay: 0,
+            ..DriveConfig::default()
+        });
+        assert!(enable(&mut drive)
+            .status
+            .contains(ServoStatusWord::SERVO_EN));
+        drive.inject(ServoFault::FollowerErr);
+        let fb = drive.cycle(&command(0, scw(SE_ON)));
+        assert!(!fb.status.contains(ServoStatusWord::SERVO_EN));
+        assert_eq!(fb.errors.bits(), (1 << 19) | 1);
+        assert_eq!(fb.errors.faults().filter_map(ServoFault::e_code).count(), 1);
+        // An edge while the error is present is lost.
+        let _ = drive.cycle(&command(0, scw(SE_ARM)));
+        assert!(!drive
+            .cycle(&command(0, scw(SE_ON)))
+            .status
+            .contains(ServoStatusWord::SERVO_EN));
+        // Clear: acked in the same cycle (delay 0); SE 0b10 held does not
+        // enable again.
+        let fb = drive.cycle(&command(0, scw(SE_ON) | ServoControlWord::ERROR_CLEAR));
+        assert!(fb.status.contains(ServoStatusWord::ERR_CLEAR_ACK));
+        assert_eq!(fb.errors, ServoErrorWord::empty());
+        assert!(!fb.status.contains(ServoStatusWord::SERVO_EN));
+        let fb = drive.cycle(&command(0, scw(SE_ON)));
+        assert!(!fb.status.contains(ServoStatusWord::ERR_CLEAR_ACK));
+        assert!(enable(&mut drive)
+            .status
+            .contains(ServoStatusWord::SERVO_EN));
+    }
+
+    #[test]
+    fn error_clear_waits_the_delay_and_acks_until_the_request_falls() {
+        let mut drive = Drive::new(DriveConfig {
+            error_clear_delay: 2,
+            ..DriveConfig::default()
+        });
+        drive.inject(ServoFault::BvErr);
+        let clear = scw(SE_OFF) | ServoControlWord::ERROR_CLEAR;
+        let acks: Vec<(bool, u32)> = [clear, clear, clear, clear, scw(SE_OFF), scw(SE_OFF)]
+            .iter()
+            .map(|&c| {
+                let fb = drive.cycle(&command(0, c));
+                (
+                    fb.status.contains(ServoStatusWord::ERR_CLEAR_ACK),
+                    fb.errors.bits(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            acks,
+            [
+                (false, 0x21), // clearing (2)
+                (false, 0x21), // clearing (1)
+                (true, 0),     // cleared, acked
+                (true, 0),     // ack held while ErrorClear is 1
+                (false, 0),    // ErrorClear fell: ack dropped
+                (false, 0),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_fault_during_a_held_request_stays_until_the_next_request() {
+        let mut drive = Drive::new(DriveConfig {
+            error_clear_delay: 0,
+            ..DriveConfig::default()
+        });
+        let clear = scw(SE_OFF) | ServoControlWord::ERROR_CLEAR;
+        assert!(drive
+            .cycle(&command(0, clear))
+            .status
+            .contains(ServoStatusWord::ERR_CLEAR_ACK));
+        drive.inject(ServoFault::CurrErr);
+        let fb = drive.cycle(&command(0, clear));
+        assert!(fb.status.contains(ServoStatusWord::ERR_CLEAR_ACK));
+        assert_eq!(fb.errors.bits(), 0x41);
+        let _ = drive.cycle(&command(0, scw(SE_OFF)));
+        assert_eq!(
+            drive.cycle(&command(0, clear)).errors,
+            ServoErrorWord::empty()
+        );
+    }
+
+    #[test]
+    fn a_request_dropped_before_the_delay_clears_nothing() {
+        let mut drive = Drive::new(DriveConfig::default());
+        drive.inject(ServoFault::OverSpeed);
+        let clear = scw(SE_OFF) | ServoControlWord::ERROR_CLEAR;
+        let _ = drive.cycle(&command(0, clear));
+        assert_eq!(drive.error_clear_state(), ErrorClearState::Clearing(2));
+        let fb = drive.cycle(&command(0, scw(SE_OFF)));
+        assert_eq!(drive.error_clear_state(), ErrorClearState::Idle);
+        assert!(fb.errors.contains(ServoErrorWord::OVER_SPEED));
+    }
+
+    #[test]
+    fn a_lone_summary_bit_is_an_error() {
+        let mut drive = Drive::new(DriveConfig::default());
+        drive.inject(ServoFault::ServoErrors);
+        let fb = drive.cycle(&command(0, scw(SE_OFF)));
+        assert_eq!(fb.errors, ServoErrorWord::SERVO_ERRORS);
+        assert!(!fb.status.contains(ServoStatusWord::SERVO_RDY));
+    }
+
+    #[test]
+    fn a_lost_encoder_freezes_the_position_and_comes_back_after_a_clear() {
+        let mut drive = Drive::new(DriveConfig {
+            error_clear_delay: 0,
+            disable_on_fault: false,
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        let _ = drive.cycle(&command(10, scw(SE_ON)));
+        assert_eq!(drive.position(), 10);
+        drive.lose_encoder();
+        let fb = drive.cycle(&command(10, scw(SE_ON)));
+        assert_eq!(drive.position(), 10);
+        assert_eq!(fb.errors.bits(), 0b11);
+        assert!(drive.encoder_lost());
+        let fb = drive.cycle(&command(10, scw(SE_ON) | ServoControlWord::ERROR_CLEAR));
+        assert!(fb.status.contains(ServoStatusWord::ERR_CLEAR_ACK));
+        assert_eq!(fb.errors.bits(), 0b11, "the cause persists");
+        drive.restore_encoder();
+        let fb = drive.cycle(&command(10, scw(SE_ON)));
+        assert_eq!(fb.errors.bits(), 0b11, "latched until cleared");
+        assert_eq!(drive.position(), 20);
+        let fb = drive.cycle(&command(10, scw(SE_ON) | ServoControlWord::ERROR_CLEAR));
+        assert_eq!(fb.errors, ServoErrorWord::empty());
+    }
+
+    #[test]
+    fn temperature_warning_and_endat_over_temperature() {
+        for (encoder, e19) in [
+            (EncoderKind::Absolute, true),
+            (EncoderKind::Incremental, false),
+        ] {
+            let mut drive = Drive::new(DriveConfig {
+                encoder,
+                messages: MessageRotation::only(MessageKind::MotorTemperature).unwrap(),
+                ..DriveConfig::default()
+            });
+            drive.set_motor_temperature(80.0);
+            let fb = drive.cycle(&command(0, scw(SE_OFF)));
+            assert!(!fb.status.contains(ServoStatusWord::TEMP_WARNING));
+            assert_eq!(
+                fb.message,
+                Message::new(MessageKind::MotorTemperature, 80.0)
+            );
+            drive.set_motor_temperature(85.5);
+            let fb = drive.cycle(&command(0, scw(SE_OFF)));
+            assert!(fb.status.contains(ServoStatusWord::TEMP_WARNING));
+            assert!(fb.errors.is_empty());
+            drive.set_motor_temperature(96.0);
+            let fb = drive.cycle(&command(0, scw(SE_OFF)));
+            assert_eq!(
+                fb.errors.contains(ServoErrorWord::I2T_ENDAT),
+                e19,
+                "{encoder}"
+            );
+            assert_eq!(fb.errors.contains(ServoErrorWord::SERVO_ERRORS), e19);
+        }
+    }
+
+    #[test]
+    fn act_pos_integrates_the_set_point_while_enabled() {
+        let mut drive = Drive::new(DriveConfig {
+            encoder: EncoderKind::Absolute,
+            ..DriveConfig::default()
+        });
+        let _ = drive.cycle(&command(500, scw(SE_OFF)));
+        assert_eq!(drive.position(), 0, "disabled: no motion");
+        let _ = enable(&mut drive);
+        for _ in 0..10 {
+            let _ = drive.cycle(&command(-250, scw(SE_ON)));
+        }
+        assert_eq!(drive.position(), -2_500);
+        let fb = drive.cycle(&command(0, scw(SE_ON)));
+        assert_eq!(fb.actual_position(), ActualPosition::Absolute(-2_500));
+        assert!(fb
+            .status
+            .contains(ServoStatusWord::N_ZERO | ServoStatusWord::N_EQ_NS));
+    }
+
+    #[test]
+    fn the_speed_scale_carries_fractions() {
+        let mut drive = Drive::new(DriveConfig {
+            speed_scale: SpeedScale::new(1, 3).unwrap(),
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        let positions: Vec<i64> = (0..6)
+            .map(|_| {
+                let _ = drive.cycle(&command(1, scw(SE_ON)));
+                drive.position()
+            })
+            .collect();
+        assert_eq!(positions, [0, 0, 1, 1, 1, 2]);
+        for _ in 0..6 {
+            let _ = drive.cycle(&command(-1, scw(SE_ON)));
+        }
+        assert_eq!(drive.position(), 0);
+        assert_eq!(SpeedScale::new(7, 0), None);
+        let extreme = SpeedScale::new(u32::MAX, 1).unwrap();
+        let mut drive = Drive::new(DriveConfig {
+            speed_scale: extreme,
+            encoder: EncoderKind::Absolute,
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        for _ in 0..4 {
+            let _ = drive.cycle(&command(i32::MIN, scw(SE_ON)));
+        }
+        // Wraps like a counter, never panics.
+        let step = i64::from(i32::MIN) * i64::from(u32::MAX);
+        assert_eq!(drive.position(), step.wrapping_mul(4));
+    }
+
+    #[test]
+    fn word_setpoint_emergency_feed_and_poslock() {
+        let mut drive = Drive::new(DriveConfig {
+            setpoint_width: SetpointWidth::Word,
+            emergency_feed: -3,
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        // 0x0001_0005: the word reading is 5.
+        let fb = drive.cycle(&command(0x0001_0005, scw(SE_ON)));
+        assert_eq!(drive.position(), 5);
+        assert!(fb.status.contains(ServoStatusWord::N_EQ_NS));
+        let fb = drive.cycle(&command(5, scw(SE_ON).with_emergency(true)));
+        assert_eq!(drive.position(), 2);
+        assert_eq!(drive.applied_speed(), -3);
+        assert!(!fb.status.contains(ServoStatusWord::N_EQ_NS));
+        let fb = drive.cycle(&command(5, scw(SE_ON) | ServoControlWord::POSLOCK));
+        assert_eq!(drive.position(), 2);
+        assert!(fb.status.contains(ServoStatusWord::N_ZERO));
+    }
+
+    #[test]
+    fn zero_pulse_found_once_passed_and_dropped_with_the_request() {
+        let mut drive = Drive::new(DriveConfig {
+            zero_pulse_position: 25,
+            zero_pulse_pitch: None,
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        let search = scw(SE_ON) | ServoControlWord::Z_PULSE_REQUEST;
+        let mut trace = Vec::new();
+        for c in [search, search, search, search, scw(SE_ON), scw(SE_ON)] {
+            let fb = drive.cycle(&command(10, c));
+            let ActualPosition::Incremental {
+                position,
+                zero_pulse_position,
+            } = fb.actual_position()
+            else {
+                panic!("incremental layout expected");
+            };
+            trace.push((
+                position,
+                fb.status.contains(ServoStatusWord::Z_PULSE_ACK),
+                zero_pulse_position,
+            ));
+        }
+        assert_eq!(
+            trace,
+            [
+                (10, false, 0),
+                (20, false, 0),
+                (30, true, 25), // passed 25
+                (40, true, 25),
+                (50, false, 25), // request fell: ack dropped, position kept
+                (60, false, 25),
+            ]
+        );
+    }
+
+    #[test]
+    fn later_zero_pulses_update_the_latch_in_both_directions() {
+        let mut drive = Drive::new(DriveConfig {
+            zero_pulse_position: 5,
+            zero_pulse_pitch: NonZeroU32::new(100),
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        // Passing a pulse before any request latches nothing.
+        let _ = drive.cycle(&command(10, scw(SE_ON)));
+        assert_eq!(drive.zero_pulse_latch(), 0);
+        let search = scw(SE_ON) | ServoControlWord::Z_PULSE_REQUEST;
+        for _ in 0..10 {
+            let _ = drive.cycle(&command(10, search));
+        }
+        assert_eq!(drive.position(), 110);
+        assert_eq!(drive.zero_pulse_state(), ZeroPulseState::Found);
+        assert_eq!(drive.zero_pulse_latch(), 105);
+        let _ = drive.cycle(&command(0, scw(SE_ON)));
+        // Backward across 105 and 5, then to -95 (reached: passed).
+        let mut latches = Vec::new();
+        for _ in 0..4 {
+            let fb = drive.cycle(&command(-50, scw(SE_ON)));
+            latches.push((drive.position(), fb.actual_position()));
+        }
+        let incr = |position, zero_pulse_position| ActualPosition::Incremental {
+            position,
+            zero_pulse_position,
+        };
+        assert_eq!(
+            latches,
+            [
+                (60, incr(60, 105)),
+                (10, incr(10, 105)),
+                (-40, incr(-40, 5)),
+                (-90, incr(-90, 5))
+            ]
+        );
+        let _ = drive.cycle(&command(-5, scw(SE_ON)));
+        assert_eq!(drive.zero_pulse_latch(), -95);
+    }
+
+    #[test]
+    fn an_absolute_encoder_never_answers_a_zero_pulse_request() {
+        let mut drive = Drive::new(DriveConfig {
+            encoder: EncoderKind::Absolute,
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        for _ in 0..100 {
+            let fb = drive.cycle(&command(
+                1_000,
+                scw(SE_ON) | ServoControlWord::Z_PULSE_REQUEST,
+            ));
+            assert!(!fb.status.contains(ServoStatusWord::Z_PULSE_ACK));
+            assert!(!fb.status.contains(ServoStatusWord::ABS_INCR));
+            assert_eq!(
+                fb.actual_position(),
+                ActualPosition::Absolute(drive.position())
+            );
+        }
+        assert_eq!(drive.position(), 100_000);
+    }
+
+    #[test]
+    fn the_message_channel_rotates() {
+        let mut drive = Drive::new(DriveConfig::default());
+        drive.set_measurement(MessageKind::BusVoltage, 600.0);
+        drive.set_measurement(MessageKind::MotorCurrent, 1.5);
+        // Speed is the applied speed, not settable; unknown codes ignored.
+        drive.set_measurement(MessageKind::MotorSpeed, 9.0);
+        drive.set_measurement(MessageKind::Unknown(42), 9.0);
+        let _ = drive.cycle(&command(0, scw(SE_ARM)));
+        let mut seen = Vec::new();
+        for _ in 0..6 {
+            let fb = drive.cycle(&command(7, scw(SE_ON)));
+            seen.push((fb.message.code, fb.message.data));
+        }
+        assert_eq!(
+            seen,
+            [
+                (1, 1.5),
+                (2, 0.0),
+                (3, 600.0),
+                (4, 40.0),
+                (0, 7.0),
+                (1, 1.5)
+            ]
+        );
+        assert_eq!(MessageRotation::new(0), None);
+        assert_eq!(MessageRotation::new(1 << 10), None);
+        assert_eq!(
+            MessageRotation::from_kinds(&[MessageKind::Unknown(10)]),
+            None
+        );
+        assert_eq!(MessageRotation::from_kinds(&[]), None);
+        let all = MessageRotation::ALL_CODES;
+        assert_eq!(all.codes().collect::<Vec<_>>(), (0..=9).collect::<Vec<_>>());
+        assert_eq!(all.next_after(9), 0);
+        assert_eq!(all.next_after(-7), 0);
+        assert_eq!(all.next_after(i32::MAX), 0);
+        let odd =
+            MessageRotation::from_kinds(&[MessageKind::Reserved(9), MessageKind::MotorCurrent])
+                .unwrap();
+        assert_eq!(
+            (
+                odd.first(),
+                odd.next_after(1),
+                odd.next_after(5),
+                odd.bits()
+            ),
+            (1, 9, 9, 0x202)
+        );
+    }
+
+    #[test]
+    fn the_parameter_table_is_echoed() {
+        let mut drive = Drive::new(DriveConfig::default());
+        for table in ParameterTable::all() {
+            let fb = drive.cycle(&command(0, scw(SE_OFF).with_parameter_table(table)));
+            assert_eq!(fb.status.parameter_table(), table);
+        }
+    }
+
+    #[test]
+    fn the_model_is_deterministic() {
+        let run = || {
+            let mut drive = Drive::new(DriveConfig::default());
+            let mut out = Vec::new();
+            for i in 0..200i32 {
+                if i == 77 {
+                    drive.inject(ServoFault::ECatRtErr);
+                }
+                let se = ServoEnable::new((i % 7 % 4) as u8).unwrap();
+                let control = scw(se).with_flag(ServoControlWord::ERROR_CLEAR, i % 11 > 6);
+                out.push(drive.cycle(&command(i * 3 - 100, control)).to_bytes());
+            }
+            (out, drive)
+        };
+        assert_eq!(run(), run());
+    }
+
+    #[test]
+    fn states_display() {
+        assert_eq!(ErrorClearState::Clearing(3).to_string(), "clearing (3)");
+        assert_eq!(ErrorClearState::Idle.to_string(), "idle");
+        assert_eq!(ErrorClearState::Acknowledged.to_string(), "acknowledged");
+        assert_eq!(ZeroPulseState::Searching.to_string(), "searching");
+        assert_eq!(ZeroPulseState::Found.to_string(), "found");
+        assert_eq!(ZeroPulseState::Idle.to_string(), "idle");
+        let scale = SpeedScale::default();
+        assert_eq!((scale.counts(), scale.per_setpoint()), (1, 1));
+        assert_eq!(SetpointWidth::Word.read(&command(-1, scw(SE_OFF))), -1);
+    }
+}
