@@ -1,63 +1,5 @@
-//! A model of the servo drive's side of the interface, to test NC code
-//! against without hardware (SPEC §9.2, following every drive-side rule of
-//! SPEC §1.6; seed 002).
-//!
-//! [`Drive::cycle`] is one EtherCAT cycle: it takes the NC's [`Command`] and
-//! returns the drive's [`Feedback`]. It is deterministic and pure in the
-//! sense of the crate (STYLE §5): no clock, no I/O, no heap; time is the
-//! number of cycles. Faults, a lost encoder and the motor temperature are
-//! set between cycles with [`Drive::inject`], [`Drive::lose_encoder`] and
-//! [`Drive::set_motor_temperature`].
-//!
-//! ```
-//! use motionwire::servo::{
-//!     Command, Drive, DriveConfig, ServoControlWord, ServoEnable, ServoStatusWord,
-//! };
-//!
-//! let mut drive = Drive::new(DriveConfig::default());
-//! let scw = |se| ServoControlWord::NORMAL.with_servo_enable(se);
-//! // The enable edge SE 0b01 → 0b10 (SPEC §1.6).
-//! let armed = drive.cycle(&Command::new(0, scw(ServoEnable::ARM), 0));
-//! assert!(!armed.status.contains(ServoStatusWord::SERVO_EN));
-//! let on = drive.cycle(&Command::new(100, scw(ServoEnable::ENABLE), 0));
-//! assert!(on.status.contains(ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY));
-//! // ActPos integrates the speed set point: 100 counts per cycle by default.
-//! assert_eq!(on.actual_position().raw(), 100);
-//! let next = drive.cycle(&Command::new(100, scw(ServoEnable::ENABLE), 0));
-//! assert_eq!(drive.position(), 200);
-//! assert_eq!(next.actual_position().raw(), 200);
-//! ```
-//!
-//! # Decisions where SPEC §1 is silent
-//!
-//! Each is repeated where it applies.
-//!
-//! - A drive error disables the drive and keeps it disabled until the errors
-//!   are cleared and the NC makes the SE edge 0b01 → 0b10 again
-//!   ([`DriveConfig::disable_on_fault`], on by default; off, the drive keeps
-//!   running with errors, which shows the ServoRDY rows with ServoEn = 1 and
-//!   ServoErrors = 1).
-//! - Error clear: a request seen while no clear is under way starts one;
-//!   after [`DriveConfig::error_clear_delay`] further cycles with the
-//!   request held, the drive clears every latched error and raises
-//!   ErrClearAck, which stays while ErrorClear stays 1. Faults injected
-//!   while the request is held stay until the next request. A cause that
-//!   persists (a lost encoder, an EnDat encoder above its maximum
-//!   temperature) sets its bit again in the same cycle.
-//! - Zero pulse: only an incremental encoder has one; with an absolute
-//!   encoder the drive never answers ZPulseRequest. The axis passes a pulse
-//!   at p when it reaches p from the other side in a cycle
-//!   (`old < p <= new` moving forward, `new <= p < old` backward). Before
-//!   the first pulse found after a request POSW2..3 is 0; afterwards every
-//!   pulse passed updates it.
-//! - Speed: while enabled the applied speed is the set point (read as 16 or
-//!   32 bits, [`SetpointWidth`]); EMGON = 0 applies
-//!   [`DriveConfig::emergency_feed`] instead; POSLOCK = 1 holds the axis
-//!   (speed 0). ModeSel, SIntLock, Brake and PRGDWN do not change the model.
-//! - Status: PulseEnabled follows ServoEn (the model has no separate
-//!   PulseEnable input); N=0 is "applied speed 0"; N=Ns is "applied speed
-//!   equals the set point"; the active parameter table echoes the one the
-//!   command selects.
+//! The drive model (SPEC §9.2): [`Drive`], its [`DriveConfig`] and the
+//! types they use. The rules and decisions are documented on [`Drive`].
 
 use core::fmt;
 use core::num::NonZeroU32;
@@ -347,8 +289,66 @@ pub enum ZeroPulseState {
     Found,
 }
 
-/// The model of one servo drive (SPEC §9.2): its parameters and its state
-/// between two cycles. See the [module](self) for the rules it follows.
+/// A model of the servo drive's side of the interface, to test NC code
+/// against without hardware (SPEC §9.2, following every drive-side rule of
+/// SPEC §1.6; seed 002).
+///
+/// [`Drive::cycle`] is one EtherCAT cycle: it takes the NC's [`Command`] and
+/// returns the drive's [`Feedback`]. It is deterministic and pure: no
+/// clock, no I/O, no heap; time is the number of cycles. Faults, a lost encoder and the motor temperature are
+/// set between cycles with [`Drive::inject`], [`Drive::lose_encoder`] and
+/// [`Drive::set_motor_temperature`].
+///
+/// ```
+/// use motionwire::servo::{
+///     Command, Drive, DriveConfig, ServoControlWord, ServoEnable, ServoStatusWord,
+/// };
+///
+/// let mut drive = Drive::new(DriveConfig::default());
+/// let scw = |se| ServoControlWord::NORMAL.with_servo_enable(se);
+/// // The enable edge SE 0b01 → 0b10 (SPEC §1.6).
+/// let armed = drive.cycle(&Command::new(0, scw(ServoEnable::ARM), 0));
+/// assert!(!armed.status.contains(ServoStatusWord::SERVO_EN));
+/// let on = drive.cycle(&Command::new(100, scw(ServoEnable::ENABLE), 0));
+/// assert!(on.status.contains(ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY));
+/// // ActPos integrates the speed set point: 100 counts per cycle by default.
+/// assert_eq!(on.actual_position().raw(), 100);
+/// let next = drive.cycle(&Command::new(100, scw(ServoEnable::ENABLE), 0));
+/// assert_eq!(drive.position(), 200);
+/// assert_eq!(next.actual_position().raw(), 200);
+/// ```
+///
+/// # Decisions where SPEC §1 is silent
+///
+/// - A drive error disables the drive and keeps it disabled until the errors
+///   are cleared and the NC makes the SE edge 0b01 → 0b10 again
+///   ([`DriveConfig::disable_on_fault`], on by default; off, the drive keeps
+///   running with errors, which shows the ServoRDY rows with ServoEn = 1 and
+///   ServoErrors = 1).
+/// - Error clear: a request seen while no clear is under way starts one;
+///   after [`DriveConfig::error_clear_delay`] further cycles with the
+///   request held, the drive clears every latched error and raises
+///   ErrClearAck, which stays while ErrorClear stays 1. Faults injected
+///   while the request is held stay until the next request. A cause that
+///   persists (a lost encoder, an EnDat encoder above its maximum
+///   temperature) sets its bit again in the same cycle.
+/// - Zero pulse: only an incremental encoder has one; with an absolute
+///   encoder the drive never answers ZPulseRequest. The axis passes a pulse
+///   at p when it reaches p from the other side in a cycle
+///   (`old < p <= new` moving forward, `new <= p < old` backward). Before
+///   the first pulse found after a request POSW2..3 is 0; afterwards every
+///   pulse passed updates it.
+/// - Speed: while enabled the applied speed is the set point (read as 16 or
+///   32 bits, [`SetpointWidth`]); EMGON = 0 applies
+///   [`DriveConfig::emergency_feed`] instead; POSLOCK = 1 holds the axis
+///   (speed 0). ModeSel, SIntLock, Brake and PRGDWN do not change the model.
+/// - Status: PulseEnabled follows ServoEn (the model has no separate
+///   PulseEnable input); N=0 is "applied speed 0"; N=Ns is "applied speed
+///   equals the set point"; the active parameter table echoes the one the
+///   command selects.
+///
+/// The value holds the drive's parameters and its state between two
+/// cycles; it is `Copy` and allocates nothing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Drive {

@@ -17,6 +17,14 @@
 //! following SPEC §1.6 from the drive's side, to test NC code against
 //! without hardware (SPEC §9.2).
 //!
+//! With the `ethercrab` feature, [`Command`] and [`Feedback`] implement the
+//! process-data traits of the ethercrab EtherCAT master's `ethercrab-wire`
+//! crate (`EtherCrabWireRead`, `EtherCrabWireWrite`, `EtherCrabWireSized`
+//! with `PACKED_LEN` 10 and 40, `EtherCrabWireWriteSized`), byte for byte
+//! the frames' own [`Command::to_bytes`] / [`Command::parse`]; a short slice
+//! is a `WireError`, never a panic (SPEC §9.1). ethercrab-wire 0.3 is
+//! `no_std` and needs Rust 1.79, below this crate's MSRV 1.81.
+//!
 //! Layout, one file per word or frame:
 //! - `control_word`: [`ServoControlWord`], [`ServoEnable`],
 //!   [`RegulatorMode`], [`ParameterTable`] (SPEC §1.3);
@@ -35,6 +43,8 @@ mod command;
 mod control_word;
 mod drive;
 mod error_word;
+#[cfg(feature = "ethercrab")]
+mod ethercrab;
 mod feedback;
 mod message;
 mod status_word;
