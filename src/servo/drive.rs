@@ -687,29 +687,25 @@ impl Drive {
     /// Return the position of the zero pulse the axis passed last when it
     /// moved from `old` to `new`, if it passed one.
     fn pulse_passed(&self, old: i64, new: i64) -> Option<i64> {
-        let zero = i128::from(self.config.zero_pulse_position);
-        let (old, new) = (i128::from(old), i128::from(new));
+        if old == new {
+            return None;
+        }
+        let zero = i64::from(self.config.zero_pulse_position);
         let pulse = match self.config.zero_pulse_pitch {
             None => zero,
-            Some(pitch) => {
-                let pitch = i128::from(pitch.get());
-                // Forward, the highest pulse at or below `new`; backward,
-                // the lowest at or above it.
-                let k = if new >= old {
-                    (new - zero).div_euclid(pitch)
-                } else {
-                    -((zero - new).div_euclid(pitch))
-                };
-                zero + k * pitch
-            }
+            // i64 arithmetic; i128 only near the ends of the i64 range.
+            Some(pitch) => nearest_pulse(zero, i64::from(pitch.get()), old, new).or_else(|| {
+                nearest_pulse(
+                    i128::from(zero),
+                    i128::from(pitch.get()),
+                    i128::from(old),
+                    i128::from(new),
+                )
+                .and_then(|pulse| i64::try_from(pulse).ok())
+            })?,
         };
         let passed = (old < pulse && pulse <= new) || (new <= pulse && pulse < old);
-        // A passed pulse lies between two i64 positions.
-        if passed {
-            i64::try_from(pulse).ok()
-        } else {
-            None
-        }
+        passed.then_some(pulse)
     }
 
     /// Return the message data of `code` (0.0 for a code outside 0..=9).
@@ -721,6 +717,45 @@ impl Drive {
             .unwrap_or(0.0)
     }
 }
+
+/// Return the zero pulse (`zero` + k·`pitch`) the axis reaches last moving
+/// from `old` to `new`, if any is on the way: forward the highest at or
+/// below `new`, backward the lowest at or above it; `None` on overflow.
+fn nearest_pulse<T>(zero: T, pitch: T, old: T, new: T) -> Option<T>
+where
+    T: Copy + PartialOrd + Euclid,
+{
+    let k = if new >= old {
+        new.checked_sub(zero)?.div_euclid(pitch)
+    } else {
+        zero.checked_sub(new)?.div_euclid(pitch).checked_neg()?
+    };
+    zero.checked_add(k.checked_mul(pitch)?)
+}
+
+/// The checked integer operations [`nearest_pulse`] needs, for i64 and i128.
+trait Euclid: Sized {
+    fn checked_sub(self, rhs: Self) -> Option<Self>;
+    fn checked_add(self, rhs: Self) -> Option<Self>;
+    fn checked_mul(self, rhs: Self) -> Option<Self>;
+    fn checked_neg(self) -> Option<Self>;
+    /// `pitch` is positive: never divides by zero; the quotient of a
+    /// non-negative dividend cannot overflow.
+    fn div_euclid(self, rhs: Self) -> Self;
+}
+
+macro_rules! euclid {
+    ($($t:ty),*) => {$(
+        impl Euclid for $t {
+            fn checked_sub(self, rhs: Self) -> Option<Self> { <$t>::checked_sub(self, rhs) }
+            fn checked_add(self, rhs: Self) -> Option<Self> { <$t>::checked_add(self, rhs) }
+            fn checked_mul(self, rhs: Self) -> Option<Self> { <$t>::checked_mul(self, rhs) }
+            fn checked_neg(self) -> Option<Self> { <$t>::checked_neg(self) }
+            fn div_euclid(self, rhs: Self) -> Self { <$t>::div_euclid(self, rhs) }
+        }
+    )*};
+}
+euclid!(i64, i128);
 
 /// Return `errors` with the summary bit set when any other bit is
 /// (SPEC §1.5); a lone summary bit (an injected ServoErrors) stays.
@@ -1175,6 +1210,39 @@ mod tests {
         );
         let _ = drive.cycle(&command(-5, scw(SE_ON)));
         assert_eq!(drive.zero_pulse_latch(), -95);
+    }
+
+    /// Near the ends of the i64 range the pulse is found with i128
+    /// arithmetic, and nothing overflows.
+    #[test]
+    fn zero_pulses_at_the_ends_of_the_range() {
+        let mut drive = Drive::new(DriveConfig {
+            zero_pulse_position: -1_000,
+            zero_pulse_pitch: NonZeroU32::new(1_000),
+            speed_scale: SpeedScale::new(u32::MAX, 1).unwrap(),
+            ..DriveConfig::default()
+        });
+        let _ = enable(&mut drive);
+        let search = scw(SE_ON) | ServoControlWord::Z_PULSE_REQUEST;
+        let fb = drive.cycle(&command(i32::MAX, search));
+        let new = i128::from(i32::MAX) * i128::from(u32::MAX);
+        assert_eq!(i128::from(drive.position()), new);
+        let expected = -1_000 + (new + 1_000).div_euclid(1_000) * 1_000;
+        assert_eq!(i128::from(drive.zero_pulse_latch()), expected);
+        assert!(fb.status.contains(ServoStatusWord::Z_PULSE_ACK));
+        // And back down past i64::MIN's side, wrapping: no panic.
+        for _ in 0..3 {
+            let _ = drive.cycle(&command(i32::MIN, search));
+        }
+        assert_eq!(
+            nearest_pulse(0i64, 10, i64::MIN, i64::MAX),
+            Some(i64::MAX - 7)
+        );
+        assert_eq!(nearest_pulse(-5i64, 10, 0, i64::MAX), None);
+        assert_eq!(
+            nearest_pulse(-5i128, 10, 0, i128::from(i64::MAX)),
+            Some(i128::from(i64::MAX) - 2)
+        );
     }
 
     #[test]
