@@ -27,7 +27,7 @@ pub enum SetpointWidth {
 }
 
 impl SetpointWidth {
-    /// Return the set point of `command` read at this width.
+    /// Return the set point of `command` read at this width (SPEC §1.1).
     #[must_use]
     pub const fn read(self, command: &Command) -> i32 {
         match self {
@@ -70,14 +70,14 @@ impl SpeedScale {
     }
 
     /// Return the counts per cycle for a set point of
-    /// [`per_setpoint`](Self::per_setpoint).
+    /// [`per_setpoint`](Self::per_setpoint) (SPEC §9.2).
     #[must_use]
     pub const fn counts(self) -> u32 {
         self.counts
     }
 
     /// Return the set point that moves the axis [`counts`](Self::counts)
-    /// counts per cycle (never 0).
+    /// counts per cycle (never 0; SPEC §9.2).
     #[must_use]
     pub const fn per_setpoint(self) -> u32 {
         self.per_setpoint.get()
@@ -157,24 +157,24 @@ impl MessageRotation {
         Self::from_kinds(&[kind])
     }
 
-    /// Return the set of codes as bits (bit n = code n).
+    /// Return the set of message codes as bits (bit n = code n; SPEC §1.2).
     #[must_use]
     pub const fn bits(self) -> u16 {
         self.codes
     }
 
-    /// Return whether `code` is in the rotation.
+    /// Return whether message code `code` is in the rotation (SPEC §1.2).
     #[must_use]
     pub const fn contains(self, code: i32) -> bool {
         code >= 0 && code <= 9 && self.codes & (1 << code) != 0
     }
 
-    /// Return the codes in the order they are sent.
+    /// Return the message codes in the order they are sent (SPEC §1.2).
     pub fn codes(self) -> impl Iterator<Item = i32> + Clone {
         (0..=9).filter(move |&code| self.contains(code))
     }
 
-    /// Return the first code of the rotation.
+    /// Return the first message code of the rotation (SPEC §1.2).
     #[must_use]
     pub const fn first(self) -> i32 {
         // `codes` is never 0 and has no bit above 9.
@@ -182,7 +182,7 @@ impl MessageRotation {
     }
 
     /// Return the code sent after `code`: the next higher code of the
-    /// rotation, wrapping to the first. Any `code` is accepted.
+    /// rotation, wrapping to the first. Any `code` is accepted (SPEC §1.2).
     #[must_use]
     pub const fn next_after(self, code: i32) -> i32 {
         if code < 0 || code >= 9 {
@@ -404,26 +404,27 @@ impl Drive {
         }
     }
 
-    /// Return the drive's parameters.
+    /// Return the drive's parameters (SPEC §9.2).
     #[must_use]
     pub const fn config(&self) -> &DriveConfig {
         &self.config
     }
 
-    /// Return the number of cycles run.
+    /// Return the number of cycles run: the model's only clock (SPEC §9.2).
     #[must_use]
     pub const fn cycles(&self) -> u64 {
         self.cycles
     }
 
-    /// Return whether the drive is enabled (SSW.ServoEn of the last cycle).
+    /// Return whether the drive is enabled: SSW.ServoEn of the last cycle
+    /// (SPEC §1.4, §1.6).
     #[must_use]
     pub const fn is_enabled(&self) -> bool {
         self.enabled
     }
 
-    /// Return the axis position in counts (for an incremental encoder the
-    /// frame carries its low 32 bits).
+    /// Return the axis position in counts: ActPos (SPEC §1.2; for an
+    /// incremental encoder the frame carries its low 32 bits).
     #[must_use]
     pub const fn position(&self) -> i64 {
         self.position
@@ -436,32 +437,35 @@ impl Drive {
         with_summary(self.latched.union(self.persistent_causes()))
     }
 
-    /// Return the drive side of the error-clear handshake.
+    /// Return the drive side of the error-clear handshake (SPEC §1.6).
     #[must_use]
     pub const fn error_clear_state(&self) -> ErrorClearState {
         self.clear
     }
 
-    /// Return the drive side of the zero-pulse handshake.
+    /// Return the drive side of the zero-pulse handshake (SPEC §1.6).
     #[must_use]
     pub const fn zero_pulse_state(&self) -> ZeroPulseState {
         self.zero
     }
 
-    /// Return the position latched at the last zero pulse passed (0 before
+    /// Return the position latched at the last zero pulse passed, which an
+    /// incremental encoder's frame carries in POSW2..3 (SPEC §1.2; 0 before
     /// the first one found after a request).
     #[must_use]
     pub const fn zero_pulse_latch(&self) -> i64 {
         self.zero_latch
     }
 
-    /// Return whether the encoder is lost ([`Drive::lose_encoder`]).
+    /// Return whether the encoder is lost ([`Drive::lose_encoder`]; SPEC
+    /// §1.5, EncoderErr).
     #[must_use]
     pub const fn encoder_lost(&self) -> bool {
         self.encoder_lost
     }
 
-    /// Return the speed applied in the last cycle, set-point units.
+    /// Return the speed applied in the last cycle, in set-point units (SPEC
+    /// §1.1, §1.3; the set point, the emergency feed or 0).
     #[must_use]
     pub const fn applied_speed(&self) -> i32 {
         self.applied_speed
