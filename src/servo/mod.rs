@@ -13,6 +13,18 @@
 //! 0b01 → 0b10), and the NC side of the two request/ack handshakes,
 //! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
 //!
+//! [`Drive`] is the other side: a deterministic model of a servo drive
+//! following SPEC §1.6 from the drive's side, to test NC code against
+//! without hardware (SPEC §9.2).
+//!
+//! With the `ethercrab` feature, [`Command`] and [`Feedback`] implement the
+//! process-data traits of the ethercrab EtherCAT master's `ethercrab-wire`
+//! crate (`EtherCrabWireRead`, `EtherCrabWireWrite`, `EtherCrabWireSized`
+//! with `PACKED_LEN` 10 and 40, `EtherCrabWireWriteSized`), byte for byte
+//! the frames' own [`Command::to_bytes`] / [`Command::parse`]; a short slice
+//! is a `WireError`, never a panic (SPEC §9.1). ethercrab-wire 0.3 is
+//! `no_std` and needs Rust 1.79, below this crate's MSRV 1.81.
+//!
 //! Layout, one file per word or frame:
 //! - `control_word`: [`ServoControlWord`], [`ServoEnable`],
 //!   [`RegulatorMode`], [`ParameterTable`] (SPEC §1.3);
@@ -21,12 +33,18 @@
 //! - `command`: [`CommandFrame`], [`Command`] (SPEC §1.1);
 //! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
 //! - `message`: [`Message`], [`MessageKind`] (SPEC §1.2);
-//! - `behaviour`: the pure behaviours (SPEC §1.6).
+//! - `behaviour`: the pure behaviours (SPEC §1.6);
+//! - `drive`: [`Drive`], the drive model, and its [`DriveConfig`] (SPEC §9.2);
+//! - `ethercrab` (feature `ethercrab`): the frames as ethercrab-wire process
+//!   data (SPEC §9.1).
 
 mod behaviour;
 mod command;
 mod control_word;
+mod drive;
 mod error_word;
+#[cfg(feature = "ethercrab")]
+mod ethercrab;
 mod feedback;
 mod message;
 mod status_word;
@@ -37,6 +55,10 @@ pub use behaviour::{
 };
 pub use command::{Command, CommandFrame, COMMAND_LEN};
 pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
+pub use drive::{
+    Drive, DriveConfig, ErrorClearState, MessageRotation, SetpointWidth, SpeedScale,
+    ZeroPulseState, TEMP_WARNING_CELSIUS,
+};
 pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
 pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageKind};
