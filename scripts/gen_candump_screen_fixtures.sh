@@ -25,3 +25,9 @@ cc -O1 -std=gnu11 -I"$src/include" -I"$src" -o "$tmp/driver" \
 for mode in plain ta_x_e tA_a_8 td tz_N c3_ta c1_tA_N_a S i; do
     TZ=UTC "$tmp/driver" "$mode" "$out/$mode.txt" "$out/$mode.json"
 done
+# can-utils' log2long (the installed one: Debian's can-utils) turns a
+# candump log into the screen form with the ASCII column; the test reads
+# both and compares them frame by frame.
+if command -v log2long >/dev/null; then
+    log2long < "$out/log2long_in.log" > "$out/log2long.txt"
+fi

@@ -144,3 +144,35 @@ fn swapped_and_binary_data_are_reported_as_unsupported() {
         assert!(read > 0, "{mode}");
     }
 }
+
+/// can-utils' `log2long` writes a candump log (`log2long_in.log`) in the
+/// screen form with the ASCII column and the timestamp
+/// (`log2long.txt`); both read as the same frames, except the CAN FD flags
+/// the screen form does not show without `-x` (SPEC §5.2).
+#[test]
+fn log2long_output_reads_as_its_input() {
+    let dir = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/candump_screen/"
+    );
+    let input = std::fs::read(format!("{dir}log2long_in.log")).unwrap();
+    let screen = std::fs::read(format!("{dir}log2long.txt")).unwrap();
+    let frames = |text: &[u8]| -> Vec<LogFrame<'static>> {
+        let text: &'static [u8] = Box::leak(text.to_vec().into_boxed_slice());
+        candump::lines(text)
+            .filter_map(|(line, parsed)| parsed.unwrap_or_else(|e| panic!("line {line}: {e}")))
+            .collect()
+    };
+    let logged = frames(&input);
+    let shown = frames(&screen);
+    assert_eq!(logged.len(), shown.len());
+    for (log, screen) in logged.iter().zip(&shown) {
+        let mut expected = *log;
+        if log.frame.is_fd() {
+            expected.frame =
+                motionwire::can::CanFrame::new_fd(log.frame.id(), FdFlags::EMPTY, log.frame.data())
+                    .unwrap();
+        }
+        assert_eq!(*screen, expected);
+    }
+}
