@@ -260,13 +260,7 @@ impl AscParser {
         let iface = Iface::Channel(channel);
         let (at, id) = tokens.expect(|found| SyntaxError::AscIdentifier { found })?;
         if starts_with_ignore_case(id, b"errorframe") {
-            let frame = CanFrame::new_error(ErrorClasses::BUS_ERROR.bits(), &[0; CLASSIC_MAX_LEN])
-                .map_err(|_| tokens.error_at(at, |found| SyntaxError::AscIdentifier { found }))?;
-            return Ok(Some(LogEvent::Frame(
-                LogFrame::new(frame)
-                    .with_timestamp(timestamp)
-                    .with_iface(iface),
-            )));
+            return Ok(Some(LogEvent::Frame(error_frame(timestamp, iface))));
         }
         if starts_with_ignore_case(id, b"statistic:") || id == b"J1939TP" {
             // Bus statistics, a J1939 transport-protocol summary: no frame.
@@ -348,14 +342,8 @@ impl AscParser {
         };
         let (at, id) = tokens.expect(|found| SyntaxError::AscIdentifier { found })?;
         if starts_with_ignore_case(id, b"errorframe") {
-            let frame = CanFrame::new_error(ErrorClasses::BUS_ERROR.bits(), &[0; CLASSIC_MAX_LEN])
-                .map_err(|_| tokens.error_at(at, |found| SyntaxError::AscIdentifier { found }))?;
-            return Ok(Some(LogEvent::Frame(
-                LogFrame::new(frame)
-                    .with_timestamp(timestamp)
-                    .with_iface(Iface::Channel(channel))
-                    .with_direction(direction),
-            )));
+            let frame = error_frame(timestamp, Iface::Channel(channel)).with_direction(direction);
+            return Ok(Some(LogEvent::Frame(frame)));
         }
         let id = self
             .parse_id(id)
@@ -476,6 +464,20 @@ impl AscParser {
     }
 }
 
+/// An `ErrorFrame` line's frame: all the line says is that an error
+/// happened, so class `bus_error` with 8 zero bytes, as can-utils'
+/// `asc2log` writes it.
+fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static> {
+    // The class bits are an extended identifier and 8 bytes an error
+    // frame's data: the parts are valid as they are.
+    let id = CanId::new_unchecked(ErrorClasses::BUS_ERROR.bits(), true);
+    let frame =
+        CanFrame::from_checked_parts(id, FrameType::Error, [0; FD_MAX_LEN], CLASSIC_MAX_LEN as u8);
+    LogFrame::new(frame)
+        .with_timestamp(timestamp)
+        .with_iface(iface)
+}
+
 /// Walk a whole buffer line by line: `(line number, what the line holds)`,
 /// numbered from 1 (SPEC §5.7 `line`).
 #[must_use]
@@ -507,17 +509,7 @@ impl<'a> Iterator for AscLines<'a> {
     type Item = (usize, Result<Option<LogEvent<'a>>>);
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.rest.is_empty() {
-            return None;
-        }
-        let (line, rest) = match self.rest.iter().position(|&b| b == b'\n') {
-            Some(i) => (
-                self.rest.get(..i).unwrap_or_default(),
-                self.rest.get(i + 1..).unwrap_or_default(),
-            ),
-            None => (self.rest, &[][..]),
-        };
-        self.rest = rest;
+        let line = crate::logs::take_line(&mut self.rest)?;
         self.line += 1;
         Some((self.line, self.parser.parse_line(line)))
     }

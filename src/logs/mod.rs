@@ -35,19 +35,26 @@ impl<'a> Iterator for SplitLines<'a> {
 
     #[inline]
     fn next(&mut self) -> Option<&'a [u8]> {
-        if self.rest.is_empty() {
-            return None;
-        }
-        let (line, rest) = match crate::candump::find_newline(self.rest) {
-            Some(i) => (
-                self.rest.get(..i).unwrap_or_default(),
-                self.rest.get(i + 1..).unwrap_or_default(),
-            ),
-            None => (self.rest, &[][..]),
-        };
-        self.rest = rest;
-        Some(line)
+        take_line(&mut self.rest)
     }
+}
+
+/// Take the first line off `rest` (without its `\n`; `None` when `rest`
+/// is empty): the one line splitter of the text readers.
+#[inline]
+pub(crate) fn take_line<'a>(rest: &mut &'a [u8]) -> Option<&'a [u8]> {
+    if rest.is_empty() {
+        return None;
+    }
+    let (line, after) = match crate::candump::find_newline(rest) {
+        Some(i) => (
+            rest.get(..i).unwrap_or_default(),
+            rest.get(i + 1..).unwrap_or_default(),
+        ),
+        None => (*rest, &[][..]),
+    };
+    *rest = after;
+    Some(line)
 }
 
 impl core::iter::FusedIterator for SplitLines<'_> {}

@@ -65,17 +65,7 @@ impl<'a> Iterator for TrcLines<'a> {
     type Item = (usize, Result<Option<LogEvent<'a>>>);
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.rest.is_empty() {
-            return None;
-        }
-        let (line, rest) = match self.rest.iter().position(|&b| b == b'\n') {
-            Some(i) => (
-                self.rest.get(..i).unwrap_or_default(),
-                self.rest.get(i + 1..).unwrap_or_default(),
-            ),
-            None => (self.rest, &[][..]),
-        };
-        self.rest = rest;
+        let line = crate::logs::take_line(&mut self.rest)?;
         self.line_number += 1;
         Some((self.line_number, self.parser.parse_line(line)))
     }
