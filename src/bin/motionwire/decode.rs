@@ -145,6 +145,8 @@ struct Sink<'a> {
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
     skipped: u64,
+    /// Damaged records of binary logs reported.
+    damaged: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
 }
@@ -178,6 +180,7 @@ impl<'a> Sink<'a> {
             nodes,
             ids: &args.id,
             skipped: 0,
+            damaged: 0,
             progress_shown: false,
         }
     }
@@ -332,6 +335,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         mut err,
         summary,
         skipped,
+        damaged,
         ..
     } = sink;
     if let Some(summary) = summary {
@@ -345,9 +349,26 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         summary.write(&mut out, args.json)?;
     }
     out.flush()?;
-    if skipped > 0 {
-        let s = if skipped == 1 { "" } else { "s" };
-        writeln!(err, "motionwire: {skipped} malformed line{s} skipped")?;
+    if skipped > 0 || damaged > 0 {
+        let plural = |n: u64| if n == 1 { "" } else { "s" };
+        match (skipped, damaged) {
+            (lines, 0) => writeln!(
+                err,
+                "motionwire: {lines} malformed line{} skipped",
+                plural(lines)
+            )?,
+            (0, records) => writeln!(
+                err,
+                "motionwire: {records} damaged record{} reported",
+                plural(records)
+            )?,
+            (lines, records) => writeln!(
+                err,
+                "motionwire: {lines} malformed line{} skipped, {records} damaged record{} reported",
+                plural(lines),
+                plural(records)
+            )?,
+        }
         err.flush()?;
         return Ok(ExitCode::from(1));
     }
@@ -502,7 +523,8 @@ fn read_binary(
             // The file is damaged here; what came before was read, and the
             // reader ends.
             Err(ReadError::Log(e)) => {
-                sink.skipped += 1;
+                sink.damaged += 1;
+                sink.clear_progress()?;
                 writeln!(sink.err, "{name}: {e}")?;
             }
         }

@@ -511,7 +511,7 @@ fn write_bus_text<W: Write>(out: &mut W, bus: &Bus) -> io::Result<()> {
         write!(out, ", status events {}", bus.status_events)?;
     }
     if let (Some(first), Some(last)) = (bus.first_ts, bus.last_ts) {
-        write!(out, ", from {first} to {last}")?;
+        write!(out, ", from {} to {}", Seconds(first), Seconds(last))?;
     }
     let nodes: Vec<u64> = nodes_of(bus).collect();
     if !nodes.is_empty() {
@@ -683,6 +683,16 @@ fn write_seen<W: Write>(out: &mut W, what: &str, seen: Option<Seen>) -> io::Resu
                 seen.line
             )
         }
+    }
+}
+
+/// A time as seconds with six decimals and no padding (`0.052000`,
+/// `1700000000.000520`): relative times read as they are.
+struct Seconds(Timestamp);
+
+impl std::fmt::Display for Seconds {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}.{:06}", self.0.secs(), self.0.micros())
     }
 }
 
