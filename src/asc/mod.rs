@@ -73,17 +73,15 @@ use core::iter::FusedIterator;
 
 use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
-    LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN,
+    LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
+use crate::candump::hex_value;
 use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
 
 #[cfg(test)]
 mod proptests;
 #[cfg(test)]
 mod tests;
-
-/// CAN FD data lengths by DLC (ISO 11898-1).
-const FD_LENGTHS: [u8; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 
 /// The `CANFD` flags field's bits that matter here (Vector's
 /// documentation, as can-utils' `asc2log` names them).
@@ -725,17 +723,6 @@ fn hex(field: &[u8]) -> Option<u32> {
         value = value << 4 | u32::from(hex_value(b)?);
     }
     Some(value)
-}
-
-/// The value of one hex digit.
-#[inline]
-const fn hex_value(b: u8) -> Option<u8> {
-    match b {
-        b'0'..=b'9' => Some(b - b'0'),
-        b'a'..=b'f' => Some(b - b'a' + 10),
-        b'A'..=b'F' => Some(b - b'A' + 10),
-        _ => None,
-    }
 }
 
 fn hex_digit(field: &[u8]) -> Option<u8> {

@@ -69,6 +69,7 @@ use crate::can::{
     CanFrame, CanId, Direction, ErrorClasses, FdFlags, Iface, LogEvent, LogFrame, Timestamp,
     CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
+use crate::candump::{days_in_month, days_since_epoch};
 use crate::error::{BinaryError, Error, LogFormat};
 use crate::logs::{ReadError, ReadLog, Record, MAX_RECORD_LEN};
 
@@ -674,16 +675,10 @@ fn system_time(head: &[u8], at: usize) -> Timestamp {
     let field = |i: usize| u64::from(u16_at(head, at + 2 * i));
     let (year, month, day) = (field(0), field(1), field(3));
     let (hour, minute, second, millis) = (field(4), field(5), field(6), field(7));
-    let days_in = |y: u64, m: u64| match m {
-        2 if y % 4 == 0 && (y % 100 != 0 || y % 400 == 0) => 29,
-        2 => 28,
-        4 | 6 | 9 | 11 => 30,
-        _ => 31,
-    };
     if !(1970..10_000).contains(&year)
         || !(1..=12).contains(&month)
         || day == 0
-        || day > days_in(year, month)
+        || day > days_in_month(year, month)
         || hour > 23
         || minute > 59
         || second > 59
@@ -691,12 +686,7 @@ fn system_time(head: &[u8], at: usize) -> Timestamp {
     {
         return Timestamp::ZERO;
     }
-    let (y, m) = if month <= 2 {
-        (year - 1, month + 9)
-    } else {
-        (year, month - 3)
-    };
-    let days = y * 365 + y / 4 - y / 100 + y / 400 + (153 * m + 2) / 5 + day - 1 - 719_468;
+    let days = days_since_epoch(year, month, day);
     let secs = days * 86_400 + hour * 3_600 + minute * 60 + second;
     Timestamp::new(secs, (millis * 1000) as u32).unwrap_or(Timestamp::ZERO)
 }

@@ -13,6 +13,10 @@ use crate::error::{Error, Result};
 pub const CLASSIC_MAX_LEN: usize = 8;
 /// The most data bytes of a CAN FD frame, 64 (ISO 11898-1).
 pub const FD_MAX_LEN: usize = 64;
+/// The data length of each CAN FD data length code 0..=15 (ISO 11898-1:
+/// 9 → 12 bytes, …, 15 → 64): the one table the log readers check CAN FD
+/// lengths and DLC columns against.
+pub const FD_LENGTHS: [u8; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 
 /// What kind of frame a [`CanFrame`] is (ISO 11898-1; Linux `linux/can.h`
 /// for error frames; SPEC §5.1).
@@ -531,6 +535,20 @@ mod tests {
                 max: 0
             })
         );
+    }
+
+    #[test]
+    fn fd_length_table_and_dlc_agree() {
+        for (dlc, &len) in FD_LENGTHS.iter().enumerate() {
+            let data = [0u8; FD_MAX_LEN];
+            let frame = CanFrame::new_fd(
+                CanId::standard(1).unwrap(),
+                FdFlags::EMPTY,
+                &data[..usize::from(len)],
+            )
+            .unwrap();
+            assert_eq!(usize::from(frame.dlc()), dlc);
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@ use super::*;
 
 /// The hex value of one character, or `None`.
 #[inline]
-pub(super) const fn hex_value(b: u8) -> Option<u8> {
+pub(crate) const fn hex_value(b: u8) -> Option<u8> {
     match b {
         b'0'..=b'9' => Some(b - b'0'),
         b'A'..=b'F' => Some(b - b'A' + 10),

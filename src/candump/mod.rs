@@ -141,6 +141,7 @@ use error::*;
 use fast::*;
 use frame::*;
 pub use frame::{write_log, write_screen};
+pub(crate) use hex::hex_value;
 use hex::*;
 pub(crate) use lines::find_newline;
 pub use lines::{
@@ -151,6 +152,8 @@ use parse::*;
 use screen::*;
 use swar::*;
 use timestamp::*;
+#[cfg(feature = "blf")]
+pub(crate) use timestamp::{days_in_month, days_since_epoch};
 
 /// Parse one candump line in either format of SPEC §5 (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the

@@ -186,7 +186,7 @@ const fn is_leap(year: u64) -> bool {
     year % 4 == 0 && (year % 100 != 0 || year % 400 == 0)
 }
 
-const fn days_in_month(year: u64, month: u64) -> u64 {
+pub(crate) const fn days_in_month(year: u64, month: u64) -> u64 {
     match month {
         2 if is_leap(year) => 29,
         2 => 28,
@@ -197,7 +197,7 @@ const fn days_in_month(year: u64, month: u64) -> u64 {
 
 /// Days from 1970-01-01 to the date (proleptic Gregorian calendar; the
 /// year is at least 1970 and below 10 000, the month 1..=12).
-const fn days_since_epoch(year: u64, month: u64, day: u64) -> u64 {
+pub(crate) const fn days_since_epoch(year: u64, month: u64, day: u64) -> u64 {
     // Count years from March on, so that the leap day ends a year.
     let (y, m) = if month <= 2 {
         (year - 1, month + 9)

@@ -21,7 +21,7 @@ pub(super) struct Context {
 }
 
 /// The CAN FD lengths by DLC (ISO 11898-1).
-pub(super) const FD_LENGTHS: [u8; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
+pub(super) use crate::can::FD_LENGTHS;
 
 /// The identifier column of 1.x rows that marks an error warning (a bus
 /// status row in version 1.0, which has no type column).
