@@ -775,6 +775,12 @@ pub enum What {
     ParameterTable,
     /// The regulator mode (SCW.ModeSel).
     RegulatorMode,
+    /// The SDO block sub-command.
+    SdoBlockSubcommand,
+    /// The SDO command specifier.
+    SdoCommandSpecifier,
+    /// The SDO frame.
+    SdoFrame,
     /// The servo command frame.
     ServoCommandFrame,
     /// The servo E-code.
@@ -787,6 +793,8 @@ pub enum What {
     ServoReadyMode,
     /// The SYNC data length.
     SyncDataLength,
+    /// The TIME frame (TIME_OF_DAY).
+    TimeOfDay,
     /// The timestamp microseconds.
     TimestampMicroseconds,
 }
@@ -817,12 +825,16 @@ impl What {
             What::NodeId => "node-ID",
             What::ParameterTable => "parameter table",
             What::RegulatorMode => "regulator mode (SCW.ModeSel)",
+            What::SdoBlockSubcommand => "SDO block sub-command",
+            What::SdoCommandSpecifier => "SDO command specifier",
+            What::SdoFrame => "SDO frame",
             What::ServoCommandFrame => "servo command frame",
             What::ServoECode => "servo E-code",
             What::ServoEnable => "servo enable (SCW.SE)",
             What::ServoFeedbackFrame => "servo feedback frame",
             What::ServoReadyMode => "Servo_Ready_Mode",
             What::SyncDataLength => "SYNC data length",
+            What::TimeOfDay => "TIME frame (TIME_OF_DAY)",
             What::TimestampMicroseconds => "timestamp microseconds",
         }
     }

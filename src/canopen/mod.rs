@@ -17,7 +17,9 @@ pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
 pub mod recv_emcy;
+pub mod sdo;
 pub mod sdo_abort;
+pub mod time_of_day;
 
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
 pub use emcy_producer::{
@@ -47,3 +49,4 @@ pub use recv_emcy::{
     RecvEmcyResult, SlotUpdate,
 };
 pub use sdo_abort::SdoAbortCode;
+pub use time_of_day::{TimeOfDay, TIME_OF_DAY_LEN};

@@ -11,4 +11,5 @@ pub(crate) mod error_control;
 #[cfg(feature = "serde")]
 pub(crate) mod owned;
 pub(crate) mod recv_emcy;
+pub(crate) mod sdo;
 pub(crate) mod servo;

@@ -1,0 +1,27 @@
+//! SDO: service data objects, how a client reads and writes a device's
+//! object dictionary (CiA 301 §7.2.4; SPEC §7).
+//!
+//! - [`frame`]: the request and response frames, every field of CiA 301
+//!   (SPEC §7.1);
+//! - [`tracker`]: the pure transfer tracker of one channel (SPEC §7.2);
+//! - [`server`]: answering requests for the objects the crate owns, the
+//!   error register 1001h and the pre-defined error field 1003h
+//!   (SPEC §7.5).
+
+pub mod frame;
+pub mod server;
+pub mod tracker;
+
+pub use frame::{
+    BlockCrc, BlockSubcommand, SdoBlockSegment, SdoDirection, SdoFields, SdoFrame, SdoInitiateData,
+    SdoMultiplexer, SdoRequest, SdoResponse, SdoSegmentData, SdoService, BLKSIZE_MAX, SDO_LEN,
+    SEGMENT_MAX,
+};
+pub use server::serve_error_objects;
+pub use tracker::{
+    BrokenReason, SdoEvent, SdoMessage, SdoOutcome, SdoParty, SdoTracker, SdoTransfer,
+    TransferDirection, TransferMode,
+};
+
+#[cfg(test)]
+mod tests;

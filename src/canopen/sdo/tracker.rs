@@ -1,0 +1,1118 @@
+//! The SDO transfer tracker: one pure state machine per SDO channel
+//! (SPEC §7.2; CiA 301 §7.2.4.3).
+//!
+//! Fed every frame of one channel (one interface, one server node) in
+//! order, in both directions, with its time, [`SdoTracker::feed`] says what
+//! the frame is — block segments included, which only the transfer's state
+//! tells apart — hands out the bytes of the transferred data the frame
+//! carries, measures request → response latencies and reports each
+//! transfer's end exactly once: completed, aborted, broken or timed out.
+//! It keeps no data (no heap): the caller keeps the chunks it wants.
+//!
+//! ```
+//! use motionwire::can::Timestamp;
+//! use motionwire::canopen::sdo::{SdoDirection::*, SdoOutcome, SdoTracker, TransferDirection};
+//!
+//! let mut tracker = SdoTracker::new();
+//! let at = |ms: u32| Timestamp::new(0, ms * 1000);
+//! let mut name = Vec::new();
+//!
+//! // An upload of 1008h.00, "AKD-P00306" in two segments.
+//! for (line, (direction, bytes, ms)) in [
+//!     (Request, [0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0], 0),
+//!     (Response, [0x41, 0x08, 0x10, 0x00, 10, 0, 0, 0], 1),
+//!     (Request, [0x60, 0, 0, 0, 0, 0, 0, 0], 2),
+//!     (Response, [0x00, b'A', b'K', b'D', b'-', b'P', b'0', b'0'], 3),
+//!     (Request, [0x70, 0, 0, 0, 0, 0, 0, 0], 4),
+//!     (Response, [0x19, b'3', b'0', b'6', 0, 0, 0, 0], 5),
+//! ].into_iter().enumerate() {
+//!     let event = tracker.feed(direction, &bytes, at(ms), line as u64 + 1);
+//!     name.extend_from_slice(event.chunk);
+//!     if let Some(transfer) = event.ended {
+//!         assert_eq!(transfer.direction, TransferDirection::Upload);
+//!         assert_eq!(transfer.multiplexer.index, 0x1008);
+//!         assert_eq!(transfer.outcome, SdoOutcome::Completed);
+//!         assert_eq!((transfer.bytes, transfer.frames, transfer.start_position), (10, 6, 1));
+//!         assert_eq!(transfer.duration.unwrap().as_micros(), 5000);
+//!     }
+//! }
+//! assert_eq!(name, b"AKD-P00306");
+//! assert!(tracker.finish().is_none());
+//! ```
+
+use core::fmt;
+use core::time::Duration;
+
+use super::frame::{
+    BlockCrc, SdoBlockSegment, SdoDirection, SdoInitiateData, SdoMultiplexer, SdoRequest,
+    SdoResponse, SdoService, BLKSIZE_MAX, SEGMENT_MAX,
+};
+use crate::can::Timestamp;
+use crate::canopen::SdoAbortCode;
+use crate::error::Error;
+
+/// Which way a transfer moves the data (CiA 301 §7.2.4.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum TransferDirection {
+    /// Server → client: the client reads an object.
+    Upload,
+    /// Client → server: the client writes an object.
+    Download,
+}
+
+impl TransferDirection {
+    /// Return the name SPEC §7.3 writes: `upload` or `download`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            TransferDirection::Upload => "upload",
+            TransferDirection::Download => "download",
+        }
+    }
+}
+
+impl fmt::Display for TransferDirection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How a transfer moves its data (CiA 301 §7.2.4.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum TransferMode {
+    /// Up to 4 bytes in the initiate frames.
+    Expedited,
+    /// Segments of up to 7 bytes, each confirmed.
+    Segmented,
+    /// Blocks of up to 127 segments, each block confirmed.
+    Block,
+}
+
+impl TransferMode {
+    /// Return the mode's name: `expedited`, `segmented`, `block`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            TransferMode::Expedited => "expedited",
+            TransferMode::Segmented => "segmented",
+            TransferMode::Block => "block",
+        }
+    }
+}
+
+/// Which side of the channel sent a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum SdoParty {
+    /// The client (the master, a tool), sending requests.
+    Client,
+    /// The server (the device), sending responses.
+    Server,
+}
+
+impl SdoParty {
+    /// Return the name SPEC §7.4's `by` writes: `client` or `server`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            SdoParty::Client => "client",
+            SdoParty::Server => "server",
+        }
+    }
+}
+
+/// Why a transfer is broken (SPEC §7.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum BrokenReason {
+    /// A segment or its confirmation did not alternate the toggle bit.
+    WrongToggle,
+    /// A response that answers no request of the transfer.
+    UnexpectedResponse,
+    /// A request that does not continue the transfer.
+    UnexpectedRequest,
+    /// The data transferred is not the size the transfer indicated.
+    SizeMismatch,
+    /// A new initiate request cut the transfer off while it waited for the
+    /// client.
+    CutOff,
+    /// The input ended while the transfer waited for the client.
+    InputEnded,
+    /// Both sides said they support a CRC, and the CRC of the block end
+    /// frame is not the CRC of the data.
+    CrcMismatch,
+    /// A sub-block confirmation acknowledges segments that were never
+    /// sent.
+    BadSequence,
+    /// A block size outside 1..=127.
+    InvalidBlockSize,
+}
+
+impl BrokenReason {
+    /// Return the reason's name, as SPEC §7.3's `reason` writes it.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            BrokenReason::WrongToggle => "wrong_toggle",
+            BrokenReason::UnexpectedResponse => "unexpected_response",
+            BrokenReason::UnexpectedRequest => "unexpected_request",
+            BrokenReason::SizeMismatch => "size_mismatch",
+            BrokenReason::CutOff => "cut_off",
+            BrokenReason::InputEnded => "input_ended",
+            BrokenReason::CrcMismatch => "crc_mismatch",
+            BrokenReason::BadSequence => "bad_sequence",
+            BrokenReason::InvalidBlockSize => "invalid_block_size",
+        }
+    }
+
+    /// Return the reason in words.
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            BrokenReason::WrongToggle => "toggle bit not alternated",
+            BrokenReason::UnexpectedResponse => "a response that answers no request",
+            BrokenReason::UnexpectedRequest => "a request that does not continue the transfer",
+            BrokenReason::SizeMismatch => "data size differs from the size indicated",
+            BrokenReason::CutOff => "cut off by a new request",
+            BrokenReason::InputEnded => "the input ended mid-transfer",
+            BrokenReason::CrcMismatch => "block CRC differs from the data's CRC",
+            BrokenReason::BadSequence => "sub-block confirmation of segments never sent",
+            BrokenReason::InvalidBlockSize => "block size outside 1..=127",
+        }
+    }
+}
+
+impl fmt::Display for BrokenReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.description())
+    }
+}
+
+/// How a transfer ended (SPEC §7.2, §7.3 `outcome`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SdoOutcome {
+    /// Every byte moved and was confirmed.
+    Completed,
+    /// One side sent an abort.
+    Aborted {
+        /// The side that aborted.
+        by: SdoParty,
+        /// The abort code.
+        code: SdoAbortCode,
+    },
+    /// The frames broke the protocol.
+    Broken(BrokenReason),
+    /// A frame that expects an answer got none before the client's next
+    /// request or the end of the input.
+    TimedOut,
+}
+
+impl SdoOutcome {
+    /// Return the name SPEC §7.3's `outcome` writes: `ok`, `abort`,
+    /// `broken`, `timeout`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            SdoOutcome::Completed => "ok",
+            SdoOutcome::Aborted { .. } => "abort",
+            SdoOutcome::Broken(_) => "broken",
+            SdoOutcome::TimedOut => "timeout",
+        }
+    }
+}
+
+/// A transfer that ended, with what the tracker measured (SPEC §7.2,
+/// §7.3 `transfer`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SdoTransfer {
+    /// Upload or download.
+    pub direction: TransferDirection,
+    /// The object, from the initiate frame.
+    pub multiplexer: SdoMultiplexer,
+    /// Expedited, segmented or block, as far as the transfer got (a block
+    /// upload that the server answers with a normal upload is expedited or
+    /// segmented).
+    pub mode: TransferMode,
+    /// The size the transfer indicated, if it did.
+    pub indicated_size: Option<u32>,
+    /// The data bytes handed out as chunks.
+    pub bytes: u32,
+    /// Every frame of the transfer, both directions, from the initiate to
+    /// the frame that ended it.
+    pub frames: u32,
+    /// The outcome.
+    pub outcome: SdoOutcome,
+    /// The position the caller gave with the first frame.
+    pub start_position: u64,
+    /// The time of the first frame.
+    pub started_at: Option<Timestamp>,
+    /// From the first frame to the transfer's last frame, when both have a
+    /// time.
+    pub duration: Option<Duration>,
+}
+
+/// A frame read by its service, as the tracker saw it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SdoMessage {
+    /// A request (client → server).
+    Request(SdoRequest),
+    /// A response (server → client).
+    Response(SdoResponse),
+    /// A segment inside a block, from whichever side sends the data.
+    BlockSegment(SdoBlockSegment),
+}
+
+impl SdoMessage {
+    /// Return the service SPEC §7.3 names.
+    #[must_use]
+    pub fn service(&self) -> SdoService {
+        match self {
+            SdoMessage::Request(r) => r.service(),
+            SdoMessage::Response(r) => r.service(),
+            SdoMessage::BlockSegment(_) => SdoService::BlockSegment,
+        }
+    }
+
+    /// Return the fields SPEC §7.3 writes for the frame.
+    #[must_use]
+    pub fn fields(&self) -> super::SdoFields<'_> {
+        match self {
+            SdoMessage::Request(r) => r.fields(),
+            SdoMessage::Response(r) => r.fields(),
+            SdoMessage::BlockSegment(s) => s.fields(),
+        }
+    }
+}
+
+/// What the tracker made of one frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SdoEvent<'a> {
+    /// The frame read in the transfer's context, or why it could not be
+    /// read (a short frame, an undefined command specifier): such a frame
+    /// is counted in the open transfer and changes nothing else.
+    pub message: Result<SdoMessage, Error>,
+    /// The data bytes this frame delivers to the transfer (the expedited
+    /// data, a segment's data, a block segment's data; the last block
+    /// segment's bytes are held back until the end frame says how many of
+    /// them are data, and come out with it).
+    pub chunk: &'a [u8],
+    /// The time from the client frame that expected this answer to this
+    /// frame, when this is a server frame answering one and both have a
+    /// time (SPEC §7.2).
+    pub latency: Option<Duration>,
+    /// A transfer that ends at this frame: one this frame completes,
+    /// aborts or breaks, or the open one that this new request cut off or
+    /// timed out.
+    pub ended: Option<SdoTransfer>,
+    /// Whether this frame starts a transfer (which, for a response that
+    /// answers no request, also ends at once).
+    pub started: bool,
+}
+
+/// Where an open transfer stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Initiate download sent; the server's answer is due.
+    DownloadInitiated,
+    /// The client's next download segment (with this toggle) is due.
+    DownloadSegment { toggle: bool },
+    /// A download segment sent; the server's confirmation is due.
+    DownloadSegmentSent { toggle: bool, last: bool },
+    /// Initiate upload sent, or a block upload initiate (with the client's
+    /// `blksize`), which the server may answer as a normal upload.
+    UploadInitiated { block: Option<u8> },
+    /// The client's next upload segment request is due.
+    UploadRequestDue { toggle: bool },
+    /// An upload segment asked for; the server's segment is due.
+    UploadSegmentDue { toggle: bool },
+    /// Block download initiate sent; the server's answer is due.
+    BlockDownloadInitiated,
+    /// The client's segments of a sub-block.
+    BlockDownloadSub(SubBlock),
+    /// A sub-block sent; the server's confirmation is due.
+    BlockDownloadAckDue(SubBlock),
+    /// Every segment confirmed; the client's end frame is due.
+    BlockDownloadEndDue,
+    /// The client's end frame sent; the server's confirmation is due.
+    BlockDownloadEndSent,
+    /// The client's start is due.
+    BlockUploadStartDue { blksize: u8 },
+    /// The server's segments of a sub-block.
+    BlockUploadSub(SubBlock),
+    /// A sub-block received; the client's confirmation is due.
+    BlockUploadAckDue(SubBlock),
+    /// Every segment confirmed; the server's end frame is due.
+    BlockUploadEndDue,
+    /// The server's end frame received; the client's confirmation is due.
+    BlockUploadEndSent,
+}
+
+/// One sub-block of a block transfer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct SubBlock {
+    /// Segments in this block.
+    blksize: u8,
+    /// The last sequence number received in order (0: none yet).
+    received: u8,
+    /// Segments at the start of this block that repeat data already handed
+    /// out (after a confirmation with a lower `ackseq`).
+    repeat: u8,
+    /// The segment with `c` = 1 was received in order.
+    last_received: bool,
+}
+
+impl SubBlock {
+    const fn new(blksize: u8, repeat: u8) -> Self {
+        SubBlock {
+            blksize,
+            received: 0,
+            repeat,
+            last_received: false,
+        }
+    }
+}
+
+impl Phase {
+    /// Whether the server must answer before the client may speak.
+    const fn server_due(self) -> bool {
+        matches!(
+            self,
+            Phase::DownloadInitiated
+                | Phase::DownloadSegmentSent { .. }
+                | Phase::UploadInitiated { .. }
+                | Phase::UploadSegmentDue { .. }
+                | Phase::BlockDownloadInitiated
+                | Phase::BlockDownloadAckDue(_)
+                | Phase::BlockDownloadEndSent
+                | Phase::BlockUploadSub(_)
+                | Phase::BlockUploadEndDue
+        )
+    }
+}
+
+/// The transfer open on a channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Open {
+    direction: TransferDirection,
+    multiplexer: SdoMultiplexer,
+    mode: TransferMode,
+    size: Option<u32>,
+    bytes: u32,
+    frames: u32,
+    start_position: u64,
+    started_at: Option<Timestamp>,
+    last_at: Option<Timestamp>,
+    phase: Phase,
+    /// The time of the client frame whose answer is a latency (SPEC §7.2).
+    asked_at: Option<Option<Timestamp>>,
+    /// Both sides support a block CRC.
+    crc_checked: bool,
+    crc: BlockCrc,
+    /// The segment with `c` = 1 of a block transfer, until the end frame
+    /// says how many of its bytes are data.
+    held: [u8; SEGMENT_MAX],
+    /// A fault seen in a frame that the peer still had to answer: the
+    /// transfer is broken for it when it would otherwise complete (an
+    /// abort in answer is reported as the abort).
+    fault: Option<BrokenReason>,
+}
+
+impl Open {
+    fn end(&self, outcome: SdoOutcome) -> SdoTransfer {
+        SdoTransfer {
+            direction: self.direction,
+            multiplexer: self.multiplexer,
+            mode: self.mode,
+            indicated_size: self.size,
+            bytes: self.bytes,
+            frames: self.frames,
+            outcome,
+            start_position: self.start_position,
+            started_at: self.started_at,
+            duration: match (self.started_at, self.last_at) {
+                (Some(start), Some(last)) => last.duration_since(start),
+                _ => None,
+            },
+        }
+    }
+
+    /// Whether the data moved so far contradicts the indicated size.
+    fn too_much(&self) -> bool {
+        self.size.is_some_and(|size| self.bytes > size)
+    }
+
+    fn size_ok(&self) -> bool {
+        self.size.map_or(true, |size| self.bytes == size)
+    }
+
+    /// Check a block end frame: the size, and the CRC when both sides
+    /// support it.
+    fn check_end(&mut self, crc: u16) {
+        if !self.size_ok() {
+            self.fault = Some(BrokenReason::SizeMismatch);
+        } else if self.crc_checked && crc != self.crc.value() {
+            self.fault = Some(BrokenReason::CrcMismatch);
+        }
+    }
+}
+
+/// One SDO channel's transfer tracker (SPEC §7.2): pure, no heap, no
+/// clock. Feed it every frame of one (interface, node) channel in order
+/// with [`feed`](Self::feed), and [`finish`](Self::finish) at the end of the
+/// input.
+///
+/// **Decisions** (SPEC §7.2, where CiA 301 describes endpoints and a log
+/// shows both):
+/// - An abort ends the open transfer whatever multiplexer it carries; an
+///   abort with no open transfer ends nothing.
+/// - A client frame while the server's answer is due means the answer
+///   never came: the open transfer timed out. An initiate request while
+///   the client's own next frame is due cuts the transfer off (broken).
+///   Either way the new initiate starts the next transfer.
+/// - A response on an idle channel answers no request: it is a transfer of
+///   its own that starts and ends broken at that frame. A request on an
+///   idle channel that is not an initiate belongs to no transfer.
+/// - A frame that cannot be read (fewer than 8 bytes, command specifier 7)
+///   is counted in the open transfer and changes nothing else: the peer
+///   either ignores it or aborts, and the abort ends the transfer.
+/// - In a block, segments out of sequence are discarded, as CiA 301 tells
+///   the receiver to do; the confirmation's `ackseq` decides what was
+///   received, and segments repeated after a lower `ackseq` are not handed
+///   out twice.
+/// - The block CRC is checked only when both sides said they support it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SdoTracker {
+    open: Option<Open>,
+    /// Bytes of the held segment to hand out with the current event.
+    release: [u8; SEGMENT_MAX],
+}
+
+impl SdoTracker {
+    /// Return a tracker with no open transfer.
+    #[must_use]
+    pub const fn new() -> Self {
+        SdoTracker {
+            open: None,
+            release: [0; SEGMENT_MAX],
+        }
+    }
+
+    /// Return whether a transfer is open.
+    #[must_use]
+    pub const fn is_open(&self) -> bool {
+        self.open.is_some()
+    }
+
+    /// Return whether the next frame the server sends is read as a block
+    /// segment.
+    #[must_use]
+    pub fn expects_block_segment(&self, direction: SdoDirection) -> bool {
+        match self.open.map(|o| o.phase) {
+            Some(Phase::BlockDownloadSub(_)) => direction == SdoDirection::Request,
+            Some(Phase::BlockUploadSub(_)) => direction == SdoDirection::Response,
+            _ => false,
+        }
+    }
+
+    /// Feed one frame of the channel: its direction, its data, its time
+    /// (if the log has one) and a position the caller uses to find the
+    /// frame again (a line number), which comes back as a transfer's
+    /// `start_position`.
+    pub fn feed<'a>(
+        &'a mut self,
+        direction: SdoDirection,
+        data: &'a [u8],
+        time: Option<Timestamp>,
+        position: u64,
+    ) -> SdoEvent<'a> {
+        let mut step = Step {
+            chunk: Chunk::None,
+            latency: None,
+            ended: None,
+            started: false,
+        };
+        let message = self.step(direction, data, time, position, &mut step);
+        let chunk: &'a [u8] = match step.chunk {
+            Chunk::None => &[],
+            Chunk::Input(range) => data.get(range).unwrap_or(&[]),
+            Chunk::Held(len) => &self.release[..usize::from(len).min(SEGMENT_MAX)],
+        };
+        SdoEvent {
+            message,
+            chunk,
+            latency: step.latency,
+            ended: step.ended,
+            started: step.started,
+        }
+    }
+
+    /// End the input: the open transfer, if any, timed out (when the server
+    /// owed an answer) or broke off (when the client owed the next frame).
+    pub fn finish(&mut self) -> Option<SdoTransfer> {
+        let open = self.open.take()?;
+        Some(open.end(if open.phase.server_due() {
+            SdoOutcome::TimedOut
+        } else {
+            SdoOutcome::Broken(BrokenReason::InputEnded)
+        }))
+    }
+
+    fn step(
+        &mut self,
+        direction: SdoDirection,
+        data: &[u8],
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut Step,
+    ) -> Result<SdoMessage, Error> {
+        if self.expects_block_segment(direction) && data.first() != Some(&ABORT_BYTE) {
+            let segment = SdoBlockSegment::parse(data);
+            if let Some(open) = self.open.as_mut() {
+                open.frames += 1;
+                open.last_at = time.or(open.last_at);
+            }
+            let segment = segment?;
+            self.block_segment(&segment, time, step);
+            return Ok(SdoMessage::BlockSegment(segment));
+        }
+        let message = match direction {
+            SdoDirection::Request => SdoRequest::parse(data).map(SdoMessage::Request),
+            SdoDirection::Response => SdoResponse::parse(data).map(SdoMessage::Response),
+        };
+        let Ok(message) = message else {
+            if let Some(open) = self.open.as_mut() {
+                open.frames += 1;
+                open.last_at = time.or(open.last_at);
+            }
+            return message;
+        };
+        match message {
+            SdoMessage::Request(request) => self.request(&request, time, position, step),
+            SdoMessage::Response(response) => self.response(&response, time, position, step),
+            SdoMessage::BlockSegment(_) => {}
+        }
+        Ok(message)
+    }
+
+    /// Start a transfer at an initiate request, or return `None` for a
+    /// request that starts none.
+    fn start(request: &SdoRequest, time: Option<Timestamp>, position: u64) -> Option<Open> {
+        let (direction, multiplexer, mode, size, phase, crc) = match *request {
+            SdoRequest::InitiateDownload { multiplexer, data } => (
+                TransferDirection::Download,
+                multiplexer,
+                if data.is_expedited() {
+                    TransferMode::Expedited
+                } else {
+                    TransferMode::Segmented
+                },
+                data.size(),
+                Phase::DownloadInitiated,
+                false,
+            ),
+            SdoRequest::InitiateUpload { multiplexer } => (
+                TransferDirection::Upload,
+                multiplexer,
+                TransferMode::Segmented,
+                None,
+                Phase::UploadInitiated { block: None },
+                false,
+            ),
+            SdoRequest::BlockUploadInitiate {
+                multiplexer,
+                crc_supported,
+                blksize,
+                ..
+            } => (
+                TransferDirection::Upload,
+                multiplexer,
+                TransferMode::Block,
+                None,
+                Phase::UploadInitiated {
+                    block: Some(blksize),
+                },
+                crc_supported,
+            ),
+            SdoRequest::BlockDownloadInitiate {
+                multiplexer,
+                crc_supported,
+                size,
+            } => (
+                TransferDirection::Download,
+                multiplexer,
+                TransferMode::Block,
+                size,
+                Phase::BlockDownloadInitiated,
+                crc_supported,
+            ),
+            _ => return None,
+        };
+        Some(Open {
+            direction,
+            multiplexer,
+            mode,
+            size,
+            bytes: 0,
+            frames: 1,
+            start_position: position,
+            started_at: time,
+            last_at: time,
+            phase,
+            asked_at: Some(time),
+            crc_checked: crc,
+            crc: BlockCrc::new(),
+            held: [0; SEGMENT_MAX],
+            fault: None,
+        })
+    }
+
+    fn request(
+        &mut self,
+        request: &SdoRequest,
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut Step,
+    ) {
+        let Some(mut open) = self.open else {
+            self.begin(request, time, position, step);
+            return;
+        };
+        if let SdoRequest::Abort { code, .. } = *request {
+            open.frames += 1;
+            open.last_at = time.or(open.last_at);
+            self.close(
+                open,
+                SdoOutcome::Aborted {
+                    by: SdoParty::Client,
+                    code,
+                },
+                step,
+            );
+            return;
+        }
+        if Self::start(request, time, position).is_some() {
+            // A new initiate: the open transfer never got its answer, or was
+            // left by the client.
+            let outcome = if open.phase.server_due() {
+                SdoOutcome::TimedOut
+            } else {
+                SdoOutcome::Broken(BrokenReason::CutOff)
+            };
+            step.ended = Some(open.end(outcome));
+            self.open = None;
+            self.begin(request, time, position, step);
+            return;
+        }
+        if open.phase.server_due() {
+            // The client speaks again: the answer never came.
+            step.ended = Some(open.end(SdoOutcome::TimedOut));
+            self.open = None;
+            return;
+        }
+        open.frames += 1;
+        open.last_at = time.or(open.last_at);
+        let next = match (open.phase, *request) {
+            (
+                Phase::DownloadSegment { toggle },
+                SdoRequest::DownloadSegment {
+                    toggle: t,
+                    data,
+                    last,
+                },
+            ) => {
+                if t != toggle {
+                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                }
+                open.bytes += data.as_slice().len() as u32;
+                step.chunk = Chunk::Input(1..1 + data.as_slice().len());
+                if open.too_much() || (last && !open.size_ok()) {
+                    open.fault = Some(BrokenReason::SizeMismatch);
+                }
+                open.asked_at = Some(time);
+                Phase::DownloadSegmentSent { toggle, last }
+            }
+            (Phase::UploadRequestDue { toggle }, SdoRequest::UploadSegment { toggle: t }) => {
+                if t != toggle {
+                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                }
+                open.asked_at = Some(time);
+                Phase::UploadSegmentDue { toggle }
+            }
+            (Phase::BlockDownloadEndDue, SdoRequest::BlockDownloadEnd { unused, crc }) => {
+                let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
+                self.release = open.held;
+                open.bytes += len as u32;
+                open.crc.update(&open.held[..len]);
+                step.chunk = Chunk::Held(len as u8);
+                open.check_end(crc);
+                open.asked_at = Some(time);
+                Phase::BlockDownloadEndSent
+            }
+            (Phase::BlockUploadStartDue { blksize }, SdoRequest::BlockUploadStart) => {
+                Phase::BlockUploadSub(SubBlock::new(blksize, 0))
+            }
+            (Phase::BlockUploadAckDue(sub), SdoRequest::BlockUploadAck { ackseq, blksize }) => {
+                match Self::acknowledge(sub, ackseq, blksize) {
+                    Ok(Some(next)) => Phase::BlockUploadSub(next),
+                    Ok(None) => Phase::BlockUploadEndDue,
+                    Err(reason) => return self.close(open, SdoOutcome::Broken(reason), step),
+                }
+            }
+            (Phase::BlockUploadEndSent, SdoRequest::BlockUploadEnd) => {
+                return self.close(open, SdoOutcome::Completed, step);
+            }
+            _ => {
+                return self.close(
+                    open,
+                    SdoOutcome::Broken(BrokenReason::UnexpectedRequest),
+                    step,
+                )
+            }
+        };
+        open.phase = next;
+        self.open = Some(open);
+    }
+
+    /// Open a transfer at an initiate request on an idle channel.
+    fn begin(
+        &mut self,
+        request: &SdoRequest,
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut Step,
+    ) {
+        let Some(mut new) = Self::start(request, time, position) else {
+            return;
+        };
+        step.started = true;
+        match *request {
+            SdoRequest::BlockUploadInitiate { blksize, .. }
+                if !(1..=BLKSIZE_MAX).contains(&blksize) =>
+            {
+                new.fault = Some(BrokenReason::InvalidBlockSize);
+            }
+            SdoRequest::InitiateDownload { data, .. } if data.is_expedited() => {
+                let len = data.data().len();
+                new.bytes = len as u32;
+                step.chunk = Chunk::Input(4..4 + len);
+            }
+            _ => {}
+        }
+        self.open = Some(new);
+    }
+
+    fn response(
+        &mut self,
+        response: &SdoResponse,
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut Step,
+    ) {
+        let Some(mut open) = self.open else {
+            if let SdoResponse::Abort { .. } = response {
+                return;
+            }
+            // A response that answers no request: a transfer of its own.
+            let (direction, multiplexer) = stray(response);
+            step.started = true;
+            let stray = Open {
+                direction,
+                multiplexer,
+                mode: match response {
+                    SdoResponse::UploadSegment { .. } | SdoResponse::DownloadSegment { .. } => {
+                        TransferMode::Segmented
+                    }
+                    SdoResponse::InitiateUpload { data, .. } if data.is_expedited() => {
+                        TransferMode::Expedited
+                    }
+                    SdoResponse::InitiateUpload { .. } | SdoResponse::InitiateDownload { .. } => {
+                        TransferMode::Segmented
+                    }
+                    _ => TransferMode::Block,
+                },
+                size: None,
+                bytes: 0,
+                frames: 1,
+                start_position: position,
+                started_at: time,
+                last_at: time,
+                phase: Phase::DownloadInitiated,
+                asked_at: None,
+                crc_checked: false,
+                crc: BlockCrc::new(),
+                held: [0; SEGMENT_MAX],
+                fault: None,
+            };
+            step.ended = Some(stray.end(SdoOutcome::Broken(BrokenReason::UnexpectedResponse)));
+            return;
+        };
+        open.frames += 1;
+        open.last_at = time.or(open.last_at);
+        if let Some(asked) = open.asked_at.take() {
+            if open.phase.server_due() {
+                step.latency = match (asked, time) {
+                    (Some(asked), Some(now)) => now.duration_since(asked),
+                    _ => None,
+                };
+            }
+        }
+        if let SdoResponse::Abort { code, .. } = *response {
+            return self.close(
+                open,
+                SdoOutcome::Aborted {
+                    by: SdoParty::Server,
+                    code,
+                },
+                step,
+            );
+        }
+        let next = match (open.phase, *response) {
+            (Phase::DownloadInitiated, SdoResponse::InitiateDownload { .. }) => {
+                if open.mode == TransferMode::Expedited {
+                    return self.close(open, SdoOutcome::Completed, step);
+                }
+                Phase::DownloadSegment { toggle: false }
+            }
+            (
+                Phase::DownloadSegmentSent { toggle, last },
+                SdoResponse::DownloadSegment { toggle: t },
+            ) => {
+                if t != toggle {
+                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                }
+                if last {
+                    return self.close(open, SdoOutcome::Completed, step);
+                }
+                Phase::DownloadSegment { toggle: !toggle }
+            }
+            (Phase::UploadInitiated { .. }, SdoResponse::InitiateUpload { data, .. }) => {
+                open.size = data.size();
+                match data {
+                    SdoInitiateData::Expedited { .. } => {
+                        open.mode = TransferMode::Expedited;
+                        let len = data.data().len();
+                        open.bytes = len as u32;
+                        step.chunk = Chunk::Input(4..4 + len);
+                        return self.close(open, SdoOutcome::Completed, step);
+                    }
+                    SdoInitiateData::Segmented { .. } => {
+                        open.mode = TransferMode::Segmented;
+                        Phase::UploadRequestDue { toggle: false }
+                    }
+                }
+            }
+            (
+                Phase::UploadInitiated {
+                    block: Some(blksize),
+                },
+                SdoResponse::BlockUploadInitiate {
+                    crc_supported,
+                    size,
+                    ..
+                },
+            ) => {
+                open.size = size;
+                open.crc_checked &= crc_supported;
+                Phase::BlockUploadStartDue { blksize }
+            }
+            (
+                Phase::UploadSegmentDue { toggle },
+                SdoResponse::UploadSegment {
+                    toggle: t,
+                    data,
+                    last,
+                },
+            ) => {
+                if t != toggle {
+                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                }
+                open.bytes += data.as_slice().len() as u32;
+                step.chunk = Chunk::Input(1..1 + data.as_slice().len());
+                if open.too_much() || (last && !open.size_ok()) {
+                    open.fault = Some(BrokenReason::SizeMismatch);
+                }
+                if last {
+                    return self.close(open, SdoOutcome::Completed, step);
+                }
+                Phase::UploadRequestDue { toggle: !toggle }
+            }
+            (
+                Phase::BlockDownloadInitiated,
+                SdoResponse::BlockDownloadInitiate {
+                    crc_supported,
+                    blksize,
+                    ..
+                },
+            ) => {
+                open.crc_checked &= crc_supported;
+                if !(1..=BLKSIZE_MAX).contains(&blksize) {
+                    return self.close(
+                        open,
+                        SdoOutcome::Broken(BrokenReason::InvalidBlockSize),
+                        step,
+                    );
+                }
+                Phase::BlockDownloadSub(SubBlock::new(blksize, 0))
+            }
+            (
+                Phase::BlockDownloadAckDue(sub),
+                SdoResponse::BlockDownloadAck { ackseq, blksize },
+            ) => match Self::acknowledge(sub, ackseq, blksize) {
+                Ok(Some(next)) => Phase::BlockDownloadSub(next),
+                Ok(None) => Phase::BlockDownloadEndDue,
+                Err(reason) => return self.close(open, SdoOutcome::Broken(reason), step),
+            },
+            (Phase::BlockDownloadEndSent, SdoResponse::BlockDownloadEnd) => {
+                return self.close(open, SdoOutcome::Completed, step);
+            }
+            (Phase::BlockUploadEndDue, SdoResponse::BlockUploadEnd { unused, crc }) => {
+                let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
+                self.release = open.held;
+                open.bytes += len as u32;
+                open.crc.update(&open.held[..len]);
+                step.chunk = Chunk::Held(len as u8);
+                open.check_end(crc);
+                Phase::BlockUploadEndSent
+            }
+            _ => {
+                return self.close(
+                    open,
+                    SdoOutcome::Broken(BrokenReason::UnexpectedResponse),
+                    step,
+                )
+            }
+        };
+        open.phase = next;
+        self.open = Some(open);
+    }
+
+    /// A segment inside a sub-block, from whichever side sends the data.
+    fn block_segment(
+        &mut self,
+        segment: &SdoBlockSegment,
+        time: Option<Timestamp>,
+        step: &mut Step,
+    ) {
+        let Some(mut open) = self.open else { return };
+        let (Phase::BlockDownloadSub(mut sub) | Phase::BlockUploadSub(mut sub)) = open.phase else {
+            return;
+        };
+        if segment.seqno == sub.received + 1 && !sub.last_received {
+            sub.received = segment.seqno;
+            if segment.last {
+                // Held until the end frame says how many bytes are data.
+                open.held = segment.data;
+                sub.last_received = true;
+            } else if sub.repeat > 0 {
+                // Handed out before a confirmation with a lower `ackseq`:
+                // the same bytes again.
+                sub.repeat -= 1;
+            } else {
+                open.bytes += SEGMENT_MAX as u32;
+                open.crc.update(&segment.data);
+                step.chunk = Chunk::Input(1..1 + SEGMENT_MAX);
+                if open.too_much() {
+                    open.fault = Some(BrokenReason::SizeMismatch);
+                }
+            }
+        }
+        let block_done = segment.last || segment.seqno >= sub.blksize;
+        open.phase = match (open.phase, block_done) {
+            (Phase::BlockDownloadSub(_), true) => {
+                open.asked_at = Some(time);
+                Phase::BlockDownloadAckDue(sub)
+            }
+            (Phase::BlockDownloadSub(_), false) => Phase::BlockDownloadSub(sub),
+            (_, true) => Phase::BlockUploadAckDue(sub),
+            (_, false) => Phase::BlockUploadSub(sub),
+        };
+        self.open = Some(open);
+    }
+
+    /// A sub-block confirmation: the next sub-block, `None` when every
+    /// segment is confirmed, or why the confirmation is broken.
+    fn acknowledge(
+        sub: SubBlock,
+        ackseq: u8,
+        blksize: u8,
+    ) -> Result<Option<SubBlock>, BrokenReason> {
+        if ackseq > sub.received {
+            return Err(BrokenReason::BadSequence);
+        }
+        // Segments received after `ackseq` come again in the next block.
+        let repeat = sub.received - ackseq;
+        if sub.last_received && repeat == 0 {
+            return Ok(None);
+        }
+        if !(1..=BLKSIZE_MAX).contains(&blksize) {
+            return Err(BrokenReason::InvalidBlockSize);
+        }
+        // The held last segment was not confirmed: it comes again; the
+        // repeated segments before it were handed out already.
+        let repeat = if sub.last_received {
+            repeat - 1
+        } else {
+            repeat
+        };
+        Ok(Some(SubBlock::new(blksize, repeat)))
+    }
+
+    fn close(&mut self, open: Open, outcome: SdoOutcome, step: &mut Step) {
+        let outcome = match (outcome, open.fault) {
+            (SdoOutcome::Completed, Some(fault)) => SdoOutcome::Broken(fault),
+            _ => outcome,
+        };
+        step.ended = Some(open.end(outcome));
+        self.open = None;
+    }
+}
+
+const ABORT_BYTE: u8 = 4 << 5;
+
+/// The direction and multiplexer a response that answers no request
+/// implies.
+fn stray(response: &SdoResponse) -> (TransferDirection, SdoMultiplexer) {
+    match *response {
+        SdoResponse::InitiateUpload { multiplexer, .. }
+        | SdoResponse::BlockUploadInitiate { multiplexer, .. } => {
+            (TransferDirection::Upload, multiplexer)
+        }
+        SdoResponse::InitiateDownload { multiplexer }
+        | SdoResponse::BlockDownloadInitiate { multiplexer, .. }
+        | SdoResponse::Abort { multiplexer, .. } => (TransferDirection::Download, multiplexer),
+        SdoResponse::UploadSegment { .. } | SdoResponse::BlockUploadEnd { .. } => {
+            (TransferDirection::Upload, SdoMultiplexer::default())
+        }
+        SdoResponse::DownloadSegment { .. }
+        | SdoResponse::BlockDownloadAck { .. }
+        | SdoResponse::BlockDownloadEnd => (TransferDirection::Download, SdoMultiplexer::default()),
+    }
+}
+
+/// Where an event's chunk lies.
+enum Chunk {
+    None,
+    Input(core::ops::Range<usize>),
+    Held(u8),
+}
+
+struct Step {
+    chunk: Chunk,
+    latency: Option<Duration>,
+    ended: Option<SdoTransfer>,
+    started: bool,
+}
