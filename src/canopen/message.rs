@@ -50,7 +50,7 @@ use core::fmt;
 
 use super::{
     cob_id, CobFunction, Emcy, ErrorCode, ErrorRegister, GuardAnswer, Heartbeat, NmtNodeControl,
-    NmtState, NodeId, PdoDirection, EMCY_LEN, HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
+    NmtState, NodeId, PdoDirection, TimeOfDay, EMCY_LEN, HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
 };
 use crate::can::{CanFrame, CanId, ErrorFrame, FrameData};
 use crate::error::Error;
@@ -382,11 +382,9 @@ pub enum CanOpenMessage {
         /// The decoded EMCY.
         emcy: Emcy,
     },
-    /// 0x100: TIME stamp (CiA 301 §7.2.6), not decoded further.
-    Time {
-        /// The data bytes.
-        data: FrameData,
-    },
+    /// 0x100: TIME (CiA 301 §7.2.6): the producer's TIME_OF_DAY
+    /// (SPEC §6.1 `time_of_day`).
+    Time(TimeOfDay),
     /// 0x181..=0x57F: one of the four default TPDOs or RPDOs of a node
     /// (CiA 301 §7.2.2); the data's meaning comes from the PDO mapping.
     Pdo {
@@ -509,7 +507,7 @@ impl CanOpenMessage {
                     })
                 }
             },
-            CobFunction::Time => CanOpenMessage::Time { data: owned()? },
+            CobFunction::Time => CanOpenMessage::Time(TimeOfDay::parse(data).map_err(fail)?),
             CobFunction::Pdo {
                 node,
                 number,
@@ -552,7 +550,7 @@ impl CanOpenMessage {
             CanOpenMessage::NmtNodeControl(_) => MessageKind::NmtCommand,
             CanOpenMessage::Sync { .. } => MessageKind::Sync,
             CanOpenMessage::Emcy { .. } => MessageKind::Emcy,
-            CanOpenMessage::Time { .. } => MessageKind::Time,
+            CanOpenMessage::Time(_) => MessageKind::Time,
             CanOpenMessage::Pdo { .. } => MessageKind::Pdo,
             CanOpenMessage::SdoResponse { .. } | CanOpenMessage::SdoRequest { .. } => {
                 MessageKind::Sdo
@@ -578,7 +576,7 @@ impl CanOpenMessage {
             | CanOpenMessage::GuardRequest { node } => Some(node),
             CanOpenMessage::NmtNodeControl(_)
             | CanOpenMessage::Sync { .. }
-            | CanOpenMessage::Time { .. }
+            | CanOpenMessage::Time(_)
             | CanOpenMessage::ErrorFrame(_) => None,
             CanOpenMessage::Other(frame) => MessageKind::classify(&frame).1,
         }
@@ -593,7 +591,7 @@ impl CanOpenMessage {
             CanOpenMessage::NmtNodeControl(_) => Some(cob_id::NMT),
             CanOpenMessage::Sync { .. } => Some(cob_id::SYNC),
             CanOpenMessage::Emcy { node, .. } => Some(node.emcy_cob_id()),
-            CanOpenMessage::Time { .. } => Some(cob_id::TIME),
+            CanOpenMessage::Time(_) => Some(cob_id::TIME),
             CanOpenMessage::Pdo {
                 node,
                 number,
@@ -651,8 +649,8 @@ impl CanOpenMessage {
             }
             CanOpenMessage::Heartbeat { byte, .. } => CanFrame::new(id, &[byte.get()]),
             CanOpenMessage::GuardRequest { .. } => CanFrame::new_remote(id, GUARD_REQUEST_DLC),
-            CanOpenMessage::Time { data }
-            | CanOpenMessage::Pdo { data, .. }
+            CanOpenMessage::Time(time) => CanFrame::new(id, &time.to_bytes()),
+            CanOpenMessage::Pdo { data, .. }
             | CanOpenMessage::SdoResponse { data, .. }
             | CanOpenMessage::SdoRequest { data, .. } => {
                 // Data longer than 8 bytes came from a CAN FD frame.
@@ -709,10 +707,7 @@ impl fmt::Display for CanOpenMessage {
                 counter: Some(counter),
             } => write!(f, "SYNC {counter}"),
             CanOpenMessage::Emcy { node, emcy } => write!(f, "node {node} {emcy}"),
-            CanOpenMessage::Time { data } => {
-                f.write_str("TIME ")?;
-                bytes(f, data.as_slice())
-            }
+            CanOpenMessage::Time(time) => write!(f, "TIME {time}"),
             CanOpenMessage::Pdo {
                 node,
                 number,
@@ -805,9 +800,7 @@ mod tests {
             ),
             (
                 data(0x100, &[1, 2, 3, 4, 5, 6]),
-                Time {
-                    data: bytes(&[1, 2, 3, 4, 5, 6]),
-                },
+                Time(TimeOfDay::parse(&[1, 2, 3, 4, 5, 6]).unwrap()),
                 "time",
                 None,
             ),
@@ -943,7 +936,7 @@ mod tests {
             data(0x402, &[9]),
             data(0x581, &[0x60]),
             data(0x601, &[0x40]),
-            data(0x100, &[]),
+            data(0x100, &[0x00, 0x2E, 0x93, 0x02, 0x33, 0x3D]),
             remote(0x7E5, 2),
             CanFrame::new(CanId::extended(0x18FF_0001).unwrap(), &[1]).unwrap(),
         ];

@@ -130,6 +130,28 @@ impl NmtCommand {
     }
 }
 
+impl NmtCommand {
+    /// Return the short name SPEC §6.1's `command` key writes: `start`,
+    /// `stop`, `enter_pre_operational`, `reset_node`,
+    /// `reset_communication`.
+    ///
+    /// ```
+    /// use motionwire::canopen::NmtCommand;
+    ///
+    /// assert_eq!(NmtCommand::StartRemoteNode.command_name(), "start");
+    /// assert_eq!(NmtCommand::ResetNode.command_name(), "reset_node");
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn command_name(self) -> &'static str {
+        match self {
+            NmtCommand::StartRemoteNode => "start",
+            NmtCommand::StopRemoteNode => "stop",
+            other => other.name(),
+        }
+    }
+}
+
 impl TryFrom<u8> for NmtCommand {
     type Error = Error;
 

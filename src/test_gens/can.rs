@@ -101,7 +101,9 @@ pub(crate) fn canopen_message() -> impl Strategy<Value = CanOpenMessage> {
         nmt_node_control().prop_map(CanOpenMessage::NmtNodeControl),
         any::<Option<u8>>().prop_map(|counter| CanOpenMessage::Sync { counter }),
         (node_id(), emcy()).prop_map(|(node, emcy)| CanOpenMessage::Emcy { node, emcy }),
-        classic_data().prop_map(|data| CanOpenMessage::Time { data }),
+        (0u32..=0x0FFF_FFFF, any::<u16>()).prop_map(|(ms, days)| CanOpenMessage::Time(
+            crate::canopen::TimeOfDay::new(ms, days).expect("28 bits")
+        )),
         (node_id(), 1u8..=4, pdo_direction(), classic_data()).prop_map(
             |(node, number, direction, data)| CanOpenMessage::Pdo {
                 node,

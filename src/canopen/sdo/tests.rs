@@ -557,15 +557,24 @@ fn an_abort_or_a_segment_on_an_idle_channel_starts_nothing() {
 }
 
 #[test]
-fn an_unreadable_frame_is_counted_and_changes_nothing() {
+fn an_unreadable_frame_breaks_the_open_transfer() {
     let mut tracker = SdoTracker::new();
     assert!(tracker.feed(Rq, &up(0x1000, 0), None, 1).started);
     let short = tracker.feed(Rs, &[0x43, 0x00, 0x10], None, 2);
-    assert!(short.message.is_err() && short.ended.is_none());
-    let event = tracker.feed(Rs, &[0x4F, 0x00, 0x10, 0x00, 1, 0, 0, 0], None, 3);
-    let t = event.ended.unwrap();
-    assert_eq!((t.outcome, t.frames), (SdoOutcome::Completed, 3));
-    assert_eq!(event.latency, None, "no times, no latency");
+    assert!(short.message.is_err());
+    let t = short.ended.unwrap();
+    assert_eq!(
+        (t.outcome, t.frames),
+        (SdoOutcome::Broken(BrokenReason::MalformedFrame), 2)
+    );
+    // On an idle channel it belongs to no transfer.
+    let stray = tracker.feed(Rs, &[0xE0, 0, 0, 0, 0, 0, 0, 0], None, 3);
+    assert!(stray.message.is_err() && stray.ended.is_none() && !stray.started);
+    // Without times, no latency.
+    tracker.feed(Rq, &up(0x1000, 0), None, 4);
+    let event = tracker.feed(Rs, &[0x4F, 0x00, 0x10, 0x00, 1, 0, 0, 0], None, 5);
+    assert_eq!(event.ended.map(|t| t.outcome), Some(SdoOutcome::Completed));
+    assert_eq!(event.latency, None);
 }
 
 /// A block download of 17 bytes in one block (3 segments), both sides with

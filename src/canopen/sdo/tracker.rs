@@ -156,6 +156,9 @@ pub enum BrokenReason {
     BadSequence,
     /// A block size outside 1..=127.
     InvalidBlockSize,
+    /// A frame of the transfer that cannot be read: fewer than 8 bytes, or
+    /// a command specifier CiA 301 does not define.
+    MalformedFrame,
 }
 
 impl BrokenReason {
@@ -172,6 +175,7 @@ impl BrokenReason {
             BrokenReason::CrcMismatch => "crc_mismatch",
             BrokenReason::BadSequence => "bad_sequence",
             BrokenReason::InvalidBlockSize => "invalid_block_size",
+            BrokenReason::MalformedFrame => "malformed_frame",
         }
     }
 
@@ -188,6 +192,7 @@ impl BrokenReason {
             BrokenReason::CrcMismatch => "block CRC differs from the data's CRC",
             BrokenReason::BadSequence => "sub-block confirmation of segments never sent",
             BrokenReason::InvalidBlockSize => "block size outside 1..=127",
+            BrokenReason::MalformedFrame => "a frame that cannot be read",
         }
     }
 }
@@ -303,7 +308,7 @@ impl SdoMessage {
 pub struct SdoEvent<'a> {
     /// The frame read in the transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier): such a frame
-    /// is counted in the open transfer and changes nothing else.
+    /// breaks the open transfer, and belongs to none on an idle channel.
     pub message: Result<SdoMessage, Error>,
     /// The data bytes this frame delivers to the transfer (the expedited
     /// data, a segment's data, a block segment's data; the last block
@@ -487,8 +492,8 @@ impl Open {
 ///   its own that starts and ends broken at that frame. A request on an
 ///   idle channel that is not an initiate belongs to no transfer.
 /// - A frame that cannot be read (fewer than 8 bytes, command specifier 7)
-///   is counted in the open transfer and changes nothing else: the peer
-///   either ignores it or aborts, and the abort ends the transfer.
+///   breaks the open transfer ([`BrokenReason::MalformedFrame`]): the data
+///   it should carry is not there. On an idle channel it starts nothing.
 /// - In a block, segments out of sequence are discarded, as CiA 301 tells
 ///   the receiver to do; the confirmation's `ackseq` decides what was
 ///   received, and segments repeated after a lower `ackseq` are not handed
@@ -580,12 +585,17 @@ impl SdoTracker {
         step: &mut Step,
     ) -> Result<SdoMessage, Error> {
         if self.expects_block_segment(direction) && data.first() != Some(&ABORT_BYTE) {
-            let segment = SdoBlockSegment::parse(data);
+            let segment = match SdoBlockSegment::parse(data) {
+                Ok(segment) => segment,
+                Err(e) => {
+                    self.malformed(time, step);
+                    return Err(e);
+                }
+            };
             if let Some(open) = self.open.as_mut() {
                 open.frames += 1;
                 open.last_at = time.or(open.last_at);
             }
-            let segment = segment?;
             self.block_segment(&segment, time, step);
             return Ok(SdoMessage::BlockSegment(segment));
         }
@@ -594,10 +604,7 @@ impl SdoTracker {
             SdoDirection::Response => SdoResponse::parse(data).map(SdoMessage::Response),
         };
         let Ok(message) = message else {
-            if let Some(open) = self.open.as_mut() {
-                open.frames += 1;
-                open.last_at = time.or(open.last_at);
-            }
+            self.malformed(time, step);
             return message;
         };
         match message {
@@ -606,6 +613,15 @@ impl SdoTracker {
             SdoMessage::BlockSegment(_) => {}
         }
         Ok(message)
+    }
+
+    /// A frame that cannot be read breaks the open transfer.
+    fn malformed(&mut self, time: Option<Timestamp>, step: &mut Step) {
+        if let Some(mut open) = self.open {
+            open.frames += 1;
+            open.last_at = time.or(open.last_at);
+            self.close(open, SdoOutcome::Broken(BrokenReason::MalformedFrame), step);
+        }
     }
 
     /// Start a transfer at an initiate request, or return `None` for a
