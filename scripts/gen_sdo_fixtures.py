@@ -113,7 +113,7 @@ def server_od():
 # ---------------------------------------------------------------------------
 # Node 6's server: python-canopen's SdoServer plus block services (CiA 301)
 
-ABORT_CODE = sdo_client_mod.ABORT_INVALID_COMMAND_SPECIFIER
+ABORT_CODE = sdo_client_mod.ABORT_INVALID_COMMAND_SPECIFIER  # 0504 0001
 
 
 class ScriptedSdoServer(SdoServer):
@@ -345,8 +345,6 @@ def main():
         except SdoCommunicationError as exc:
             outcome, error = "abort", repr(exc)
         last = settle(recorder)
-        if data is not None and direction == "download":
-            data = data  # what the client wrote
         transfers.append({
             "node": client.id, "iface": IFACE, "direction": direction,
             "index": index, "subindex": sub, "block": block,
@@ -359,14 +357,14 @@ def main():
     def upload(client, index, sub, note=""):
         return run(client, "upload", index, sub, lambda: client.sdo.upload(index, sub), note=note)
 
-    def download(client, index, sub, data, note="", size=len):
+    def download(client, index, sub, data, note="", indicate_size=True):
         def act():
-            if size is len:
+            if indicate_size:
                 client.sdo.download(index, sub, data)
-            else:  # size not indicated: open() without a size
+            else:  # open() without a size: s = 0
                 with client.sdo.open(index, sub, "wb") as f:
                     f.write(data)
-            return data
+            return data  # what the client wrote
         return run(client, "download", index, sub, act, note=note)
 
     def block_upload(client, index, sub, crc=True, note=""):
@@ -402,7 +400,7 @@ def main():
     download(c5, 0x2101, 0, b"segmented download 27", "segmented download, 21 bytes (last segment full)")
     download(c5, 0x2100, 0, bytes(reversed(DOMAIN_140)), "segmented download, 140-byte DOMAIN")
     upload(c5, 0x2100, 0, "segmented upload, 140-byte DOMAIN (reads back the download)")
-    download(c5, 0x2102, 0, b"0123456789", size=None,
+    download(c5, 0x2102, 0, b"0123456789", indicate_size=False,
              note="segmented download, size not indicated: python-canopen ends it with an empty last segment")
     download(c5, 0x2101, 0, b"twenty bytes of data", "segmented download, 20 bytes")
     upload(c5, 0x6000, 0, "abort by the server: object does not exist")
