@@ -276,6 +276,35 @@ impl Cia402State {
         })
     }
 
+    /// Return the command a controlword gives in this state after
+    /// `previous` ([`Cia402Command::from_controlword`]) and the transition it
+    /// causes ([`Cia402State::next`]): SPEC §8.3's "next state from state +
+    /// controlword" in one call. The state afterwards is the transition's
+    /// [`Cia402Transition::to`], or `self` when there is none.
+    ///
+    /// ```
+    /// use motionwire::canopen::{Cia402Command, Cia402State, Cia402Transition};
+    ///
+    /// let state = Cia402State::ReadyToSwitchOn;
+    /// let (command, transition) = state.on_controlword(0x000F, Some(0x0006));
+    /// assert_eq!(command, Some(Cia402Command::EnableOperation));
+    /// assert_eq!(transition, Some(Cia402Transition::T3T4));
+    ///
+    /// // Bit 7 held at 1: no command, no transition.
+    /// assert_eq!(Cia402State::Fault.on_controlword(0x0080, Some(0x0080)), (None, None));
+    /// ```
+    #[must_use]
+    pub const fn on_controlword(
+        self,
+        controlword: u16,
+        previous: Option<u16>,
+    ) -> (Option<Cia402Command>, Option<Cia402Transition>) {
+        match Cia402Command::from_controlword(controlword, previous, Some(self)) {
+            Some(command) => (Some(command), self.next(command)),
+            None => (None, None),
+        }
+    }
+
     /// Return the transition an event inside the drive causes in this state
     /// (CiA 402's automatic and fault transitions, which no controlword
     /// commands; SPEC §8.3: "usable by drive firmware too"), or `None` when
@@ -288,6 +317,25 @@ impl Cia402State {
     /// | quick stop active | quick stop complete | 12 → switch on disabled |
     /// | any state but fault reaction active and fault | fault | 13 → fault reaction active |
     /// | fault reaction active | fault reaction complete | 14 → fault |
+    ///
+    /// Drive firmware runs the whole machine with this and
+    /// [`Cia402State::on_controlword`], and reports the state in its
+    /// statusword with [`Statusword::with_state`]:
+    ///
+    /// ```
+    /// use motionwire::canopen::{Cia402DriveEvent, Cia402State, Cia402Transition, Statusword};
+    ///
+    /// let mut state = Cia402Transition::T0.to();
+    /// let mut report = Statusword::REMOTE;
+    /// for event in [Cia402DriveEvent::InitializationComplete, Cia402DriveEvent::Fault] {
+    ///     if let Some(t) = state.on_drive_event(event) {
+    ///         state = t.to();
+    ///     }
+    ///     report = report.with_state(state);
+    /// }
+    /// assert_eq!(state, Cia402State::FaultReactionActive);
+    /// assert_eq!(report.bits(), 0x020F);
+    /// ```
     #[must_use]
     pub const fn on_drive_event(self, event: Cia402DriveEvent) -> Option<Cia402Transition> {
         use Cia402DriveEvent as E;
@@ -1560,6 +1608,19 @@ mod tests {
         let command = C::from_controlword(0x000F, Some(0x0006), Some(S::ReadyToSwitchOn));
         assert_eq!(command, Some(C::EnableOperation));
         assert_eq!(S::ReadyToSwitchOn.next(C::EnableOperation), Some(T::T3T4));
+    }
+
+    #[test]
+    fn on_controlword_is_from_controlword_then_next() {
+        for state in S::ALL {
+            for word in 0..=0x01FFu16 {
+                for previous in [None, Some(0x0000), Some(0x0080)] {
+                    let command = C::from_controlword(word, previous, Some(state));
+                    let transition = command.and_then(|c| state.next(c));
+                    assert_eq!(state.on_controlword(word, previous), (command, transition));
+                }
+            }
+        }
     }
 
     #[test]
