@@ -5,7 +5,7 @@
 use defmt::{write, Format, Formatter};
 
 use crate::can::{CanFrame, ControllerStatus, ErrorClasses, ErrorFrame, FrameData};
-use crate::canopen::ErrorRegister;
+use crate::canopen::{Controlword, ErrorRegister, Statusword};
 use crate::error::Error;
 use crate::profiles::baumer::{Alarms, Warnings};
 use crate::servo::{ServoControlWord, ServoErrorWord, ServoStatusWord};
@@ -24,6 +24,8 @@ macro_rules! flag_word {
 
 flag_word! {
     ErrorRegister => "ErrorRegister({=u8:#04x})",
+    Statusword => "Statusword({=u16:#06x})",
+    Controlword => "Controlword({=u16:#06x})",
     ErrorClasses => "ErrorClasses({=u32:#x})",
     ControllerStatus => "ControllerStatus({=u8:#04x})",
     Alarms => "Alarms({=u16:#06x})",

@@ -11,10 +11,11 @@ use serde::Serialize;
 
 use crate::can::{CanFrame, CanId, ErrorFrame, FdFlags, FrameData, Timestamp};
 use crate::canopen::{
-    CanOpenMessage, CobFunction, DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode,
-    ErrorHistoryEntry, ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent,
-    KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
-    SlotUpdate,
+    CanOpenMessage, Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, CobFunction,
+    Controlword, DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode, ErrorHistoryEntry,
+    ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent, KernelError,
+    ModeOfOperation, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
+    SlotUpdate, Statusword,
 };
 use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
 use crate::profiles::baumer::{
@@ -222,6 +223,31 @@ fn every_error_register_alarms_and_warnings_value_round_trips() {
     for bits in 0..=u16::MAX {
         assert_eq!(round_trip(&Alarms::from_bits_retain(bits)).bits(), bits);
         assert_eq!(round_trip(&Warnings::from_bits_retain(bits)).bits(), bits);
+    }
+}
+
+#[test]
+fn cia402_words_states_commands_and_modes() {
+    check_json(
+        Statusword::from_bits_retain(0x0237),
+        r#""READY_TO_SWITCH_ON | SWITCHED_ON | OPERATION_ENABLED | VOLTAGE_ENABLED | QUICK_STOP | REMOTE""#,
+    );
+    check_json(Controlword::from_bits_retain(0x0080), r#""FAULT_RESET""#);
+    for bits in 0..=u16::MAX {
+        assert_eq!(round_trip(&Statusword::from_bits_retain(bits)).bits(), bits);
+        assert_eq!(
+            round_trip(&Controlword::from_bits_retain(bits)).bits(),
+            bits
+        );
+    }
+    check_json(Cia402State::QuickStopActive, r#""QuickStopActive""#);
+    check_json(Cia402Command::FaultReset, r#""FaultReset""#);
+    check_json(Cia402Transition::T3T4, r#""T3T4""#);
+    check_json(Cia402DriveEvent::Fault, r#""Fault""#);
+    // A mode is its INTEGER8, whatever the value.
+    check_json(ModeOfOperation::CYCLIC_SYNCHRONOUS_POSITION, "8");
+    for value in i8::MIN..=i8::MAX {
+        assert_eq!(round_trip(&ModeOfOperation::from_i8(value)).to_i8(), value);
     }
 }
 

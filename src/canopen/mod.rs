@@ -1,9 +1,11 @@
 //! CANopen: identifiers, the EMCY frame and its codes, error control and the
-//! monitors built on them (CiA 301, CiA 402, CiA 405; SPEC §2–§3).
+//! monitors built on them, the CiA 402 drive state machine (CiA 301,
+//! CiA 402, CiA 405; SPEC §2–§3, §8.3).
 //!
 //! Each submodule holds one frame, register or state machine and documents
 //! its decisions; the types are re-exported here.
 
+pub mod cia402;
 pub mod emcy;
 pub mod emcy_producer;
 pub mod error_code;
@@ -21,6 +23,10 @@ pub mod sdo;
 pub mod sdo_abort;
 pub mod time_of_day;
 
+pub use cia402::{
+    Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, Controlword, ModeOfOperation,
+    Statusword,
+};
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
 pub use emcy_producer::{
     ActiveError, EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCondition,

@@ -6,6 +6,7 @@ pub(crate) mod baumer;
 pub(crate) mod can;
 pub(crate) mod candump;
 pub(crate) mod canopen;
+pub(crate) mod cia402;
 pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
 #[cfg(feature = "serde")]
