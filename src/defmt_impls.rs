@@ -5,7 +5,7 @@
 use defmt::{write, Format, Formatter};
 
 use crate::can::{CanFrame, ControllerStatus, ErrorClasses, ErrorFrame, FrameData};
-use crate::canopen::{Controlword, ErrorRegister, Statusword};
+use crate::canopen::{Controlword, ErrorRegister, PdoMapping, Statusword};
 use crate::error::Error;
 use crate::profiles::baumer::{Alarms, Warnings};
 use crate::servo::{ServoControlWord, ServoErrorWord, ServoStatusWord};
@@ -69,5 +69,12 @@ impl Format for Error {
     /// The same message as `Display`.
     fn format(&self, f: Formatter<'_>) {
         write!(f, "{}", defmt::Display2Format(self));
+    }
+}
+
+impl Format for PdoMapping {
+    /// The entries in mapping order.
+    fn format(&self, f: Formatter<'_>) {
+        write!(f, "PdoMapping {{ entries: {} }}", self.entries());
     }
 }

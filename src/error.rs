@@ -85,6 +85,93 @@ pub enum Error {
         /// What is wrong there.
         reason: BinaryError,
     },
+    /// A PDO mapping entry cannot be read from, or written into, a payload
+    /// (SPEC §8.2), e.g. `PDO entry 6064sub0 (32 bits) at bit 24: expected
+    /// a payload of at least 7 bytes, found 4`.
+    #[error("PDO entry {entry} at bit {offset}: {reason}")]
+    PdoEntry {
+        /// The mapping entry.
+        entry: crate::canopen::MappingEntry,
+        /// Its first bit in the payload.
+        offset: u16,
+        /// What is wrong with it.
+        reason: PdoEntryError,
+    },
+}
+
+/// Why a PDO mapping entry cannot be read or written (SPEC §8.2): carried
+/// by [`Error::PdoEntry`] with the entry and its bit offset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum PdoEntryError {
+    /// The payload ends before the entry does.
+    Truncated {
+        /// The bytes the mapping needs up to the end of the entry.
+        needed: usize,
+        /// The bytes the payload has.
+        found: usize,
+    },
+    /// The entry's length is one its data type cannot be read from
+    /// (REAL32 needs 32 bits, REAL64 64, the integers and BOOLEAN 1 to 64).
+    BadLength {
+        /// The entry's data type.
+        data_type: crate::canopen::DataType,
+        /// The entry's length in bits.
+        bits: u8,
+    },
+    /// Packing: the value is of another kind than the entry reads as.
+    WrongKind {
+        /// The kind the entry reads as.
+        expected: crate::canopen::ValueKind,
+        /// The kind of the value given.
+        found: crate::canopen::ValueKind,
+    },
+    /// Packing: the number does not fit in the entry's bits.
+    ValueTooWide {
+        /// The entry's length in bits.
+        bits: u8,
+    },
+    /// Packing: the octets are not as long as the entry.
+    OctetsLength {
+        /// The entry's length in bits.
+        expected: u8,
+        /// The octets' length in bits.
+        found: u8,
+    },
+    /// Packing: the values ended before this entry.
+    MissingValue,
+}
+
+impl core::fmt::Display for PdoEntryError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            PdoEntryError::Truncated { needed, found } => write!(
+                f,
+                "expected a payload of at least {needed} bytes, found {found}"
+            ),
+            PdoEntryError::BadLength { data_type, bits } => {
+                let expected = match data_type {
+                    crate::canopen::DataType::Real32 => "32 bits",
+                    crate::canopen::DataType::Real64 => "64 bits",
+                    _ => "1 to 64 bits",
+                };
+                write!(f, "expected {expected} for {data_type}, found {bits}")
+            }
+            PdoEntryError::WrongKind { expected, found } => {
+                write!(f, "expected a {expected} value, found a {found} value")
+            }
+            PdoEntryError::ValueTooWide { bits } => {
+                write!(
+                    f,
+                    "expected a value that fits in {bits} bits, found a wider one"
+                )
+            }
+            PdoEntryError::OctetsLength { expected, found } => {
+                write!(f, "expected {expected} bits of octets, found {found}")
+            }
+            PdoEntryError::MissingValue => f.write_str("expected a value, found none left"),
+        }
+    }
 }
 
 /// A log format of SPEC §5, as an error names it.
@@ -751,6 +838,8 @@ pub enum What {
     CanRemoteRequestDataLength,
     /// The CAN remote request length.
     CanRemoteRequestLength,
+    /// A CiA 301 data type index.
+    DataType,
     /// The EMCY frame.
     EmcyFrame,
     /// The error injection code.
@@ -773,6 +862,16 @@ pub enum What {
     NodeId,
     /// The parameter table.
     ParameterTable,
+    /// The number of entries of a PDO mapping.
+    PdoMappingEntries,
+    /// The length of a PDO mapping entry.
+    PdoMappingEntryLength,
+    /// The total length of a PDO mapping.
+    PdoMappingBits,
+    /// A PDO payload.
+    PdoPayload,
+    /// The values packed into a PDO.
+    PdoValues,
     /// The regulator mode (SCW.ModeSel).
     RegulatorMode,
     /// The SDO block sub-command.
@@ -813,6 +912,7 @@ impl What {
             What::CanFrameType => "CAN frame type",
             What::CanRemoteRequestDataLength => "CAN remote request data length",
             What::CanRemoteRequestLength => "CAN remote request length",
+            What::DataType => "data type",
             What::EmcyFrame => "EMCY frame",
             What::ErrorInjectionCode => "error injection code",
             What::HeartbeatConsumerEntries => "heartbeat consumer entries",
@@ -824,6 +924,11 @@ impl What {
             What::NodeGuardingAnswer => "node-guarding answer",
             What::NodeId => "node-ID",
             What::ParameterTable => "parameter table",
+            What::PdoMappingEntries => "PDO mapping entries",
+            What::PdoMappingEntryLength => "PDO mapping entry length",
+            What::PdoMappingBits => "PDO mapping length in bits",
+            What::PdoPayload => "PDO payload",
+            What::PdoValues => "PDO values",
             What::RegulatorMode => "regulator mode (SCW.ModeSel)",
             What::SdoBlockSubcommand => "SDO block sub-command",
             What::SdoCommandSpecifier => "SDO command specifier",

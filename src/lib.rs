@@ -144,7 +144,7 @@ pub mod profiles;
 pub mod servo;
 pub mod trc;
 
-pub use error::{BinaryError, Error, Found, LogFormat, Result, SyntaxError, What};
+pub use error::{BinaryError, Error, Found, LogFormat, PdoEntryError, Result, SyntaxError, What};
 
 #[cfg(test)]
 mod display_tests;

@@ -11,6 +11,7 @@ pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
 #[cfg(feature = "serde")]
 pub(crate) mod owned;
+pub(crate) mod pdo;
 pub(crate) mod recv_emcy;
 pub(crate) mod sdo;
 pub(crate) mod servo;
