@@ -25,7 +25,9 @@
 //!   error codes with their descriptions, the EMCY producer state machine
 //!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
 //!   NMT states, heartbeat, node guarding and life guarding (CiA 301
-//!   §7.2.8, SPEC §2.7); the CiA 405 `RECV_EMCY` consumer (SPEC §3).
+//!   §7.2.8, SPEC §2.7); the CiA 405 `RECV_EMCY` consumer (SPEC §3); the
+//!   names of object-dictionary entries, [`canopen::object_name`] (CiA 301,
+//!   CiA 402, CiA 406, SPEC §7.3).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
 //!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
 //! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,

@@ -13,8 +13,8 @@ use crate::can::{CanFrame, CanId, ErrorFrame, FdFlags, FrameData, Timestamp};
 use crate::canopen::{
     CanOpenMessage, CobFunction, DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode,
     ErrorHistoryEntry, ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent,
-    KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
-    SlotUpdate,
+    KernelError, NmtCommand, NmtNodeControl, NmtState, NodeId, ObjectSet, RecvEmcyResult,
+    SdoAbortCode, SlotUpdate,
 };
 use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
 use crate::profiles::baumer::{
@@ -231,6 +231,7 @@ fn every_error_register_alarms_and_warnings_value_round_trips() {
 #[test]
 fn enums_are_their_variant_names() {
     check_json(NmtState::PreOperational, r#""PreOperational""#);
+    check_json(ObjectSet::Encoder, r#""Encoder""#);
     check_json(ErrorClass::DeviceHardware, r#""DeviceHardware""#);
     check_json(EmcyTransition::FurtherError, r#""FurtherError""#);
     check_json(ECode::E05, r#""E05""#);

@@ -1,5 +1,6 @@
 //! CANopen: identifiers, the EMCY frame and its codes, error control and the
-//! monitors built on them (CiA 301, CiA 402, CiA 405; SPEC §2–§3).
+//! monitors built on them, the names of object-dictionary entries (CiA 301,
+//! CiA 402, CiA 405, CiA 406; SPEC §2–§3, §7.3).
 //!
 //! Each submodule holds one frame, register or state machine and documents
 //! its decisions; the types are re-exported here.
@@ -16,6 +17,7 @@ pub mod message;
 pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
+pub mod objects;
 pub mod recv_emcy;
 pub mod sdo_abort;
 
@@ -42,6 +44,7 @@ pub use nmt::{
 };
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
+pub use objects::{find_object, object_instance, object_name, ObjectName, ObjectSet, OBJECT_NAMES};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,
     RecvEmcyResult, SlotUpdate,
