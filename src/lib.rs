@@ -27,7 +27,10 @@
 //!   NMT states, heartbeat, node guarding and life guarding (CiA 301
 //!   §7.2.8, SPEC §2.7); the CiA 405 `RECV_EMCY` consumer (SPEC §3); the
 //!   CiA 402 drive state machine, statusword, controlword and modes of
-//!   operation (SPEC §8.3).
+//!   operation (SPEC §8.3); SDO frames, the transfer tracker and the
+//!   1001h/1003h server (SPEC §7); PDO mappings and signals (SPEC §8.1,
+//!   §8.2); the names of object-dictionary entries,
+//!   [`canopen::object_name`] (CiA 301, CiA 402, CiA 406, SPEC §7.3).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
 //!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
 //! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,

@@ -14,8 +14,8 @@ use crate::canopen::{
     CanOpenMessage, Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, CobFunction,
     Controlword, DeviceSet, Emcy, EmcyTransition, ErrorClass, ErrorCode, ErrorHistoryEntry,
     ErrorRegister, GuardAnswer, GuardingEvent, Heartbeat, HeartbeatEvent, KernelError,
-    ModeOfOperation, NmtCommand, NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
-    SlotUpdate, Statusword,
+    ModeOfOperation, NmtCommand, NmtNodeControl, NmtState, NodeId, ObjectSet, RecvEmcyResult,
+    SdoAbortCode, SlotUpdate, Statusword,
 };
 use crate::profiles::akd::{AkdEmcy, AkdManufacturer, AxisId, FeedbackId};
 use crate::profiles::baumer::{
@@ -257,6 +257,7 @@ fn cia402_words_states_commands_and_modes() {
 #[test]
 fn enums_are_their_variant_names() {
     check_json(NmtState::PreOperational, r#""PreOperational""#);
+    check_json(ObjectSet::Encoder, r#""Encoder""#);
     check_json(ErrorClass::DeviceHardware, r#""DeviceHardware""#);
     check_json(EmcyTransition::FurtherError, r#""FurtherError""#);
     check_json(ECode::E05, r#""E05""#);

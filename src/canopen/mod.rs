@@ -1,6 +1,7 @@
 //! CANopen: identifiers, the EMCY frame and its codes, error control and the
-//! monitors built on them, the CiA 402 drive state machine (CiA 301,
-//! CiA 402, CiA 405; SPEC §2–§3, §8.3).
+//! monitors built on them, the CiA 402 drive state machine, PDO mappings and
+//! the names of object-dictionary entries (CiA 301, CiA 402, CiA 405,
+//! CiA 406; SPEC §2–§3, §7.3, §8).
 //!
 //! Each submodule holds one frame, register or state machine and documents
 //! its decisions; the types are re-exported here.
@@ -19,6 +20,7 @@ pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
 pub mod pdo;
+pub mod objects;
 pub mod recv_emcy;
 pub mod sdo;
 pub mod sdo_abort;
@@ -56,6 +58,7 @@ pub use pdo::{
     PdoMapping, Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,
     CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
 };
+pub use objects::{find_object, object_instance, object_name, ObjectName, ObjectSet, OBJECT_NAMES};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,
     RecvEmcyResult, SlotUpdate,

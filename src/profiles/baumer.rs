@@ -82,7 +82,8 @@ bitflags! {
 }
 
 impl Alarms {
-    /// The object index of the alarms, 6503h (CiA 406; SPEC §4).
+    /// The object index of the alarms, 6503h (CiA 406; SPEC §4); its name is
+    /// the encoder row of [`crate::canopen::OBJECT_NAMES`].
     pub const OBJECT_INDEX: u16 = 0x6503;
 }
 
@@ -133,7 +134,8 @@ bitflags! {
 }
 
 impl Warnings {
-    /// The object index of the warnings, 6505h (CiA 406; SPEC §4).
+    /// The object index of the warnings, 6505h (CiA 406; SPEC §4); its name
+    /// is the encoder row of [`crate::canopen::OBJECT_NAMES`].
     pub const OBJECT_INDEX: u16 = 0x6505;
 }
 
@@ -148,7 +150,7 @@ pub const ERROR_REGISTER_BITS: ErrorRegister = ErrorRegister::GENERIC
 pub const ERROR_HISTORY_LEN: usize = 8;
 
 /// The object an error injection code is written to, 2116h, to simulate a
-/// diagnostic source (SPEC §4).
+/// diagnostic source (SPEC §4); named in [`crate::canopen::OBJECT_NAMES`].
 pub const INJECTION_OBJECT_INDEX: u16 = 0x2116;
 
 /// Return whether `code` is one of the encoder's manufacturer-reserved error
