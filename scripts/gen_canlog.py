@@ -39,6 +39,9 @@ default output are listed in samples/machine.truth.json, key "events"):
 
     0.00  NMT reset all; boot-ups of nodes 5 (0.12), 10 (0.18), 3 (0.45)
     0.60  SDO: node 10 guard time 200 ms, life time factor 3; guarding from 0.70
+    0.65  SDO: node 3 configured: 1000h, 1008h (segmented), 1017h, then the
+          PDO mappings of TPDO1 and RPDO1; the first mapping write is
+          refused (abort 0x06040043: TPDO1 still valid)
     1.00  NMT start all; PDOs flow, the drive enables (CiA 402)
     1.5   node 5 EMCY 0xFF00 battery warning (6505h bit 4)
     2.0   node 3 EMCY 0x7305 feedback FB1; 2.3 reset (drive error-free)
@@ -357,6 +360,35 @@ class Bus:
         resp = struct.pack("<BHB4x", 0x60, index, sub)
         self.emit(t + self.jitter(900, 2_200), 0x580 + node, resp)
 
+    def sdo_write_refused(self, t: int, node: int, index: int, sub: int, value: int, size: int,
+                          abort: int, why: str) -> None:
+        """Expedited SDO download that the server aborts."""
+        cs = {1: 0x2F, 2: 0x2B, 4: 0x23}[size]
+        self.emit(t, 0x600 + node, struct.pack("<BHBI", cs, index, sub, value),
+                  tag=("sdo", f"write {index:04X}h sub {sub} of node {node} ({why})"))
+        resp = struct.pack("<BHBI", 0x80, index, sub, abort)
+        self.emit(t + self.jitter(900, 2_200), 0x580 + node, resp, tag=("sdo_abort", f"abort 0x{abort:08X}"))
+
+    def sdo_read_segmented(self, t: int, node: int, index: int, sub: int, data: bytes) -> int:
+        """Segmented SDO upload (CiA 301 7.2.4.3.5-7): initiate with the size,
+        then one upload segment request and answer per 7 bytes, toggle 0, 1, ...;
+        returns the time of the last frame."""
+        self.emit(t, 0x600 + node, struct.pack("<BHB4x", 0x40, index, sub),
+                  tag=("sdo", f"read {index:04X}h sub {sub} of node {node} (segmented)"))
+        t += self.jitter(900, 2_200)
+        self.emit(t, 0x580 + node, struct.pack("<BHBI", 0x41, index, sub, len(data)))
+        toggle = 0
+        for off in range(0, len(data), 7):
+            chunk = data[off:off + 7]
+            last = off + 7 >= len(data)
+            t += self.jitter(300, 900)
+            self.emit(t, 0x600 + node, bytes((0x60 | toggle << 4,)) + bytes(7))
+            t += self.jitter(600, 1_500)
+            cmd = toggle << 4 | (7 - len(chunk)) << 1 | int(last)
+            self.emit(t, 0x580 + node, bytes((cmd,)) + chunk + bytes(7 - len(chunk)))
+            toggle ^= 1
+        return t
+
     def nmt_command(self, t: int, command: int, node: int, text: str) -> None:
         self.emit(t, 0x000, bytes((command, node)), tag=("nmt", text))
         targets = [node] if node else [AKD, ENC, INCL]
@@ -509,6 +541,31 @@ class Bus:
         self.master_restart_pending = False
         self.nmt_command(t, NMT_START, INCL, "master restarts node 10 (unexpected guarding state)")
 
+    def configure_drive(self, t: int) -> None:
+        """The master's boot-time configuration of the AKD by SDO: identity,
+        heartbeat, and the PDO mappings of TPDO1 (statusword, position actual
+        value) and RPDO1 (controlword, target velocity), CiA 301 7.5.2.35-38.
+        Its first attempt to change TPDO1's mapping while the PDO is valid is
+        refused (abort 0x06040043, CiA 301 7.5.2.36: a mapping changes only
+        while its PDO is not valid); it then disables the PDO first."""
+        step = lambda: self.jitter(3_000, 4_000)  # noqa: E731
+        self.sdo_read(t, AKD, 0x1000, 0, 0x0002_0192, 4)
+        t += step()
+        t = self.sdo_read_segmented(t, AKD, 0x1008, 0, b"AKD-P00306") + step()
+        self.sdo_write(t, AKD, 0x1017, 0, HEARTBEAT_US // 1_000, 2)
+        t += step()
+        self.sdo_write_refused(t, AKD, 0x1A00, 0, 0, 1, 0x0604_0043, "TPDO1 still valid")
+        t += step()
+        writes = [
+            (0x1800, 1, 0x8000_0183, 4), (0x1A00, 0, 0, 1), (0x1A00, 1, 0x6041_0010, 4),
+            (0x1A00, 2, 0x6064_0020, 4), (0x1A00, 0, 2, 1), (0x1800, 2, 1, 1), (0x1800, 1, 0x0000_0183, 4),
+            (0x1400, 1, 0x8000_0203, 4), (0x1600, 0, 0, 1), (0x1600, 1, 0x6040_0010, 4),
+            (0x1600, 2, 0x60FF_0020, 4), (0x1600, 0, 2, 1), (0x1400, 2, 1, 1), (0x1400, 1, 0x0000_0203, 4),
+        ]
+        for index, sub, value, size in writes:
+            self.sdo_write(t, AKD, index, sub, value, size)
+            t += step()
+
     def schedule_episode(self, base: int, first: bool) -> None:
         """Queue the scripted events of one episode starting at `base`."""
         at = lambda rel, fn: self.at(base + rel, fn)  # noqa: E731
@@ -526,6 +583,7 @@ class Bus:
                 self.guard_next = t + 100_000
 
             at(600_000 + j(0, 500), configure)
+            at(650_000 + j(0, 500), self.configure_drive)
             at(800_000 + j(0, 500),
                lambda t: self.sdo_read(t, AKD, 0x1003, 0, len(self.akd_emcy.history), 1))
             at(1_000_000 + j(3_000, 4_000), lambda t: self.nmt_command(t, NMT_START, 0, "start all nodes"))
@@ -787,6 +845,7 @@ RULES = {
     "slot_at_end": "SPEC 3 RECV_EMCY_DEV: an error EMCY is stored only while the slot holds no error; a reset always overwrites; null = no EMCY ever received",
     "boot_up_lines": "data frames on 0x700+node whose byte is 0x00",
     "heartbeat_gaps": f"consecutive data frames on 0x700+node (heartbeats, boot-ups, guarding answers) more than {GAP_MS} ms apart; gap_ms = difference of the log timestamps",
+    "sdo": "requests = data frames on 0x600+node; transfers = requests whose command specifier (byte 0 bits 7-5) is 1 or 2 (initiate download, initiate upload; the log has no block transfers); aborts = SDO frames whose byte 0 is 0x80, with the multiplexer of bytes 1-3 and the code of bytes 4-7",
     "guarding": "an answer is the first data frame on 0x700+node after a guard request (RTR) and before the next one; the expected toggle is 0 after a boot-up and flips after each accepted answer; an answer whose toggle differs is wrong and not accepted (the expected toggle stays); a request with no answer before the next request is unanswered",
 }
 
@@ -813,6 +872,7 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
                 "_last_hb": None,
                 "guarding": None,
                 "_g": None,
+                "sdo": {"requests": 0, "transfers": 0, "aborts": []},
             }
         return e
 
@@ -839,6 +899,16 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
                 slot = em["slot_at_end"]
                 if slot is None or slot["state"] == "no_error":
                     em["slot_at_end"] = {"state": "error", **rec}
+        elif kind == "sdo":
+            sdo = e["sdo"]
+            if cid >= 0x600:
+                sdo["requests"] += 1
+                if data[0] >> 5 in (1, 2):
+                    sdo["transfers"] += 1
+            if data[0] == 0x80:
+                sdo["aborts"].append({"line": line, "index": int.from_bytes(data[1:3], "little"),
+                                      "subindex": data[3], "code": int.from_bytes(data[4:8], "little"),
+                                      "by": "client" if cid >= 0x600 else "server"})
         elif kind == "guard_request":
             g = e["_g"]
             if g is None:
@@ -922,6 +992,7 @@ def cross_check(truth: dict, frames: list[tuple]) -> list[dict]:
             assert g["wrong_toggle_lines"] == injected.get(("guard_wrong_toggle", node), []), "wrong toggles"
             assert g["unanswered_request_lines"] == injected.get(("guard_unanswered", node), []), "unanswered"
         assert n["emcy"]["count"] == len(injected.get(("emcy", node), [])), f"EMCYs of node {node}"
+        assert [a["line"] for a in n["sdo"]["aborts"]] == injected.get(("sdo_abort", node), []), "SDO aborts"
     return events
 
 

@@ -575,6 +575,21 @@ fn sample_log_summary_matches_its_ground_truth() {
             rec["heartbeat"]["boot_ups"], t["boot_up_lines"],
             "node {node}"
         );
+        let sdo = &t["sdo"];
+        assert_eq!(rec["sdo"]["requests"], sdo["requests"], "node {node}");
+        assert_eq!(rec["sdo"]["transfers"], sdo["transfers"], "node {node}");
+        let aborts: Vec<Value> = rec["sdo"]["aborts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| {
+                json!({"line": a["line"], "index": a["index"], "subindex": a["subindex"],
+                            "code": a["code"], "by": a["by"]})
+            })
+            .collect();
+        assert_eq!(&Value::from(aborts), &sdo["aborts"], "node {node}");
+        assert_eq!(rec["sdo"]["broken"], json!([]), "node {node}");
+        assert_eq!(rec["sdo"]["timeouts"], json!([]), "node {node}");
         if !t["guarding"].is_null() {
             assert_eq!(
                 rec["guarding"]["toggle_errors"], t["guarding"]["wrong_toggle_lines"],
@@ -1242,4 +1257,75 @@ fn blf_files() {
     let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
+}
+
+/// SPEC §6.1's keys for NMT commands, SYNC and TIME.
+#[test]
+fn nmt_sync_and_time_keys() {
+    let log = "\
+(1.0) can0 000#0105
+(1.0) can0 000#8100
+(1.0) can0 000#0305
+(1.0) can0 080#
+(1.0) can0 080#07
+(1.0) can0 100#002E9302333D
+(1.0) can0 100#002E93F2333D
+(1.0) can0 100#0102
+";
+    let out = run(&["decode", "--json"], log);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let pick = |r: &Value, keys: &[&str]| -> Value {
+        keys.iter()
+            .map(|k| {
+                (
+                    k.to_string(),
+                    r.get(*k).cloned().unwrap_or(Value::String("-".into())),
+                )
+            })
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let nmt = ["kind", "command", "target", "error"];
+    assert_eq!(
+        pick(&recs[0], &nmt),
+        json!({"kind": "nmt_command", "command": "start", "target": 5, "error": "-"})
+    );
+    assert_eq!(
+        pick(&recs[1], &nmt),
+        json!({"kind": "nmt_command", "command": "reset_node", "target": 0, "error": "-"})
+    );
+    // An undefined command is `unknown`, with the decoder's reason.
+    assert_eq!(recs[2]["command"], "unknown");
+    assert_eq!(recs[2]["target"], 5);
+    assert!(recs[2]["error"]
+        .as_str()
+        .unwrap()
+        .contains("NMT command specifier"));
+    // `--node` matches frames that carry a node-ID: an NMT target is not one.
+    assert!(recs[0].get("node").is_none());
+    assert_eq!(recs[3]["counter"], Value::Null);
+    assert_eq!(recs[4]["counter"], 7);
+    // 12:00 on day 15667 (2026-11-23); the top 4 bits of byte 3 are reserved.
+    assert_eq!(
+        recs[5]["time_of_day"],
+        json!({"ms": 43_200_000, "days": 15_667})
+    );
+    assert_eq!(
+        recs[6]["time_of_day"],
+        json!({"ms": 43_200_000, "days": 15_667})
+    );
+    assert!(recs[7].get("time_of_day").is_none());
+    assert!(recs[7]["error"].as_str().unwrap().contains("TIME"));
+
+    let text = stdout(&run(&["decode"], log));
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].ends_with("start node 5"), "{}", lines[0]);
+    assert!(lines[1].ends_with("reset_node all nodes"), "{}", lines[1]);
+    assert!(lines[4].ends_with("counter 7"), "{}", lines[4]);
+    assert!(
+        lines[5].ends_with("day 15667 (since 1984-01-01), 12:00:00.000"),
+        "{}",
+        lines[5]
+    );
 }

@@ -19,8 +19,8 @@ pub mod message;
 pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
-pub mod pdo;
 pub mod objects;
+pub mod pdo;
 pub mod recv_emcy;
 pub mod sdo;
 pub mod sdo_abort;
@@ -53,12 +53,12 @@ pub use nmt::{
 };
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
+pub use objects::{find_object, object_instance, object_name, ObjectName, ObjectSet, OBJECT_NAMES};
 pub use pdo::{
     ByLength, DataType, EventTimer, InhibitTime, MappingEntry, Octets, PdoCobId, PdoCommunication,
     PdoMapping, Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,
     CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
 };
-pub use objects::{find_object, object_instance, object_name, ObjectName, ObjectSet, OBJECT_NAMES};
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,
     RecvEmcyResult, SlotUpdate,

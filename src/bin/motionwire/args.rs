@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use motionwire::canopen::{MessageKind, NodeId};
+use motionwire::canopen::{MessageKind, NodeId, ObjectSet};
 use motionwire::LogFormat;
 
 /// Decode the diagnostic and cyclic-control messages of industrial motion
@@ -92,6 +92,19 @@ pub enum Profile {
     Akd,
     /// Baumer EAM580: alarms, warnings and diagnostic sources (SPEC §4).
     Baumer,
+}
+
+impl Profile {
+    /// The device profile's objects that name SDO objects for a node read
+    /// with this profile (SPEC §7.3 `object`): CiA 402 for the AKD, the
+    /// encoder objects for the Baumer EAM580.
+    pub fn object_set(self) -> Option<ObjectSet> {
+        match self {
+            Profile::Generic => None,
+            Profile::Akd => Some(ObjectSet::Drive),
+            Profile::Baumer => Some(ObjectSet::Encoder),
+        }
+    }
 }
 
 /// One `--profile` item: for every node, or for one node.

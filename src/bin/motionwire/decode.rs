@@ -18,6 +18,7 @@ use crate::args::{DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
 use crate::profile::Profiles;
 use crate::record::{Record, CSV_HEADER};
+use crate::sdo::{sdo_frame, Channels};
 use crate::summary::Summary;
 
 /// An input as given on the command line.
@@ -149,6 +150,8 @@ struct Sink<'a> {
     damaged: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
+    /// The SDO channels of the stream (SPEC §7.2).
+    sdo: Channels,
 }
 
 impl<'a> Sink<'a> {
@@ -182,6 +185,7 @@ impl<'a> Sink<'a> {
             skipped: 0,
             damaged: 0,
             progress_shown: false,
+            sdo: Channels::default(),
         }
     }
 
@@ -191,13 +195,22 @@ impl<'a> Sink<'a> {
             summary.add(line, frame);
             return Ok(());
         }
+        let record = Record::new(line, frame);
+        // Every SDO frame goes through its channel's tracker, shown or not.
+        let view = match &record.decoded {
+            Ok(message) => sdo_frame(message).map(|(node, direction, data)| {
+                self.sdo
+                    .channel(frame.iface, node)
+                    .feed(direction, data, frame.timestamp, line)
+            }),
+            Err(_) => None,
+        };
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
                 return Ok(());
             }
         }
-        let record = Record::new(line, frame);
         if !self.kinds[record.kind().index()] {
             return Ok(());
         }
@@ -209,8 +222,8 @@ impl<'a> Sink<'a> {
         }
         let profile = self.profiles.of(record.node());
         match self.output {
-            Output::Json => record.write_json(&mut self.out, profile),
-            Output::Text => record.write_text(&mut self.out, profile),
+            Output::Json => record.write_json(&mut self.out, profile, view.as_ref()),
+            Output::Text => record.write_text(&mut self.out, profile, view.as_ref()),
             Output::Csv => record.write_csv(&mut self.out),
         }
     }
@@ -336,6 +349,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         summary,
         skipped,
         damaged,
+        profiles,
         ..
     } = sink;
     if let Some(summary) = summary {
@@ -346,7 +360,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                  checked (--heartbeat-ms)"
             )?;
         }
-        summary.write(&mut out, args.json)?;
+        summary.write(&mut out, args.json, &profiles)?;
     }
     out.flush()?;
     if skipped > 0 || damaged > 0 {

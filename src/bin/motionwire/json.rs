@@ -246,30 +246,40 @@ pub fn display_string<W: Write>(out: &mut W, value: &impl std::fmt::Display) -> 
 
 /// Write bytes as lowercase hex digits, no separators, as a JSON string.
 pub fn hex_string<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
-    const DIGITS: &[u8; 16] = b"0123456789abcdef";
-    let mut buf = [0u8; 2 + 2 * 64];
-    buf[0] = b'"';
-    let mut n = 1;
-    for &b in bytes.iter().take(64) {
-        buf[n] = DIGITS[usize::from(b >> 4)];
-        buf[n + 1] = DIGITS[usize::from(b & 0xF)];
-        n += 2;
+    if bytes.len() <= 64 {
+        // A frame's data: the quotes and digits in one write.
+        let mut buf = [0u8; 2 + 2 * 64];
+        buf[0] = b'"';
+        let n = 1 + hex_into(&mut buf[1..], bytes);
+        buf[n] = b'"';
+        return out.write_all(&buf[..=n]);
     }
-    buf[n] = b'"';
-    out.write_all(&buf[..=n])
+    out.write_all(b"\"")?;
+    hex_digits(out, bytes)?;
+    out.write_all(b"\"")
 }
 
-/// Write bytes as lowercase hex digits without separators (at most 64).
+/// Write bytes as lowercase hex digits without separators.
 pub fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
-    const DIGITS: &[u8; 16] = b"0123456789abcdef";
     let mut buf = [0u8; 2 * 64];
+    for chunk in bytes.chunks(64) {
+        let n = hex_into(&mut buf, chunk);
+        out.write_all(&buf[..n])?;
+    }
+    Ok(())
+}
+
+/// Write the hex digits of `bytes` (at most `buf.len() / 2` of them) into
+/// `buf`; return how many digits.
+fn hex_into(buf: &mut [u8], bytes: &[u8]) -> usize {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
     let mut n = 0;
-    for &b in bytes.iter().take(64) {
-        buf[n] = DIGITS[usize::from(b >> 4)];
-        buf[n + 1] = DIGITS[usize::from(b & 0xF)];
+    for (&b, pair) in bytes.iter().zip(buf.chunks_exact_mut(2)) {
+        pair[0] = DIGITS[usize::from(b >> 4)];
+        pair[1] = DIGITS[usize::from(b & 0xF)];
         n += 2;
     }
-    out.write_all(&buf[..n])
+    n
 }
 
 #[cfg(test)]

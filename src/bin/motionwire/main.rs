@@ -18,6 +18,7 @@ mod failure;
 mod json;
 mod profile;
 mod record;
+mod sdo;
 mod servo;
 mod summary;
 

@@ -10,6 +10,7 @@ use motionwire::profiles::baumer::BaumerEmcy;
 
 use crate::args::Profile;
 use crate::json::{self, Object};
+use crate::sdo::{self, SdoView};
 
 /// One frame of the input with what the library made of it.
 pub struct Record<'r, 'a> {
@@ -47,8 +48,14 @@ impl<'r, 'a> Record<'r, 'a> {
         }
     }
 
-    /// Write the record as one JSON object and a newline (SPEC §6.1).
-    pub fn write_json<W: Write>(&self, out: &mut W, profile: Profile) -> io::Result<()> {
+    /// Write the record as one JSON object and a newline (SPEC §6.1), with
+    /// the `sdo` and `transfer` keys of an SDO frame's view (SPEC §7.3).
+    pub fn write_json<W: Write>(
+        &self,
+        out: &mut W,
+        profile: Profile,
+        sdo: Option<&SdoView<'_>>,
+    ) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
         let mut obj = Object::begin(out)?;
@@ -78,6 +85,34 @@ impl<'r, 'a> Record<'r, 'a> {
                 obj.uint("state_raw", u64::from(byte.state_raw()))?;
                 obj.bool("toggle", byte.toggle())?;
             }
+            Ok(CanOpenMessage::NmtNodeControl(control)) => {
+                obj.name("command", control.command.command_name())?;
+                obj.uint("target", u64::from(control.node.map_or(0, NodeId::get)))?;
+            }
+            Ok(CanOpenMessage::Sync { counter }) => match counter {
+                Some(counter) => obj.uint("counter", u64::from(*counter))?,
+                None => obj.null("counter")?,
+            },
+            Ok(CanOpenMessage::Time(time)) => {
+                let out = obj.key("time_of_day")?;
+                let mut t = Object::begin(out)?;
+                t.uint("ms", u64::from(time.ms()))?;
+                t.uint("days", u64::from(time.days()))?;
+                t.end()?;
+            }
+            Ok(
+                CanOpenMessage::SdoRequest { data, .. } | CanOpenMessage::SdoResponse { data, .. },
+            ) => {
+                if let Some(view) = sdo {
+                    sdo::write_sdo_json(&mut obj, view, data.as_slice(), profile)?;
+                    if let Some((transfer, bytes)) = &view.ended {
+                        sdo::write_transfer_json(&mut obj, transfer, bytes, profile)?;
+                    }
+                    if let Err(e) = &view.message {
+                        obj.display("error", e)?;
+                    }
+                }
+            }
             Ok(CanOpenMessage::ErrorFrame(error)) => {
                 obj.names("error_classes", error.classes.names())?;
                 obj.names("controller", error.controller().names())?;
@@ -92,6 +127,19 @@ impl<'r, 'a> Record<'r, 'a> {
             }
             Ok(_) => {}
             Err(e) => {
+                if e.kind == MessageKind::NmtCommand {
+                    // An undefined command (or a target above 127): said as
+                    // `unknown`, with the bytes that are there.
+                    let data = frame.data();
+                    if let Some(&command) = data.first() {
+                        let name = motionwire::canopen::NmtCommand::from_byte(command)
+                            .map_or("unknown", |c| c.command_name());
+                        obj.name("command", name)?;
+                    }
+                    if let Some(&target) = data.get(1) {
+                        obj.uint("target", u64::from(target))?;
+                    }
+                }
                 if let Some(partial) = e.partial_emcy {
                     if let Some(code) = partial.code {
                         obj.uint("code", u64::from(code.get()))?;
@@ -107,8 +155,14 @@ impl<'r, 'a> Record<'r, 'a> {
         out_newline(out)
     }
 
-    /// Write the record as one aligned line of text.
-    pub fn write_text<W: Write>(&self, out: &mut W, profile: Profile) -> io::Result<()> {
+    /// Write the record as one aligned line of text; an SDO frame in words
+    /// from its view (SPEC §7.3).
+    pub fn write_text<W: Write>(
+        &self,
+        out: &mut W,
+        profile: Profile,
+        sdo: Option<&SdoView<'_>>,
+    ) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
         write!(out, "{:>7}  ", self.line)?;
@@ -151,6 +205,23 @@ impl<'r, 'a> Record<'r, 'a> {
                 write!(out, "  {error}")?;
             }
             Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_text(out, emcy, profile)?,
+            Ok(CanOpenMessage::NmtNodeControl(control)) => {
+                out.write_all(control.command.command_name().as_bytes())?;
+                match control.node {
+                    Some(node) => write!(out, " node {node}")?,
+                    None => out.write_all(b" all nodes")?,
+                }
+            }
+            Ok(CanOpenMessage::Sync { counter }) => match counter {
+                Some(counter) => write!(out, "counter {counter}")?,
+                None => out.write_all(b"no counter")?,
+            },
+            Ok(CanOpenMessage::Time(time)) => write!(out, "{time}")?,
+            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => match sdo
+            {
+                Some(view) => sdo::write_sdo_text(out, view, profile)?,
+                None => write_data(out, log)?,
+            },
             Ok(_) => write_data(out, log)?,
         }
         out_newline(out)

@@ -16,7 +16,11 @@ use crate::json::{self, Object};
 use motionwire::can::LogFrame;
 use motionwire::canopen::ErrorCode;
 
+use crate::args::Profile;
+use crate::profile::Profiles;
 use crate::record::Record;
+use crate::sdo::SdoStats;
+use motionwire::canopen::sdo::SdoDirection;
 
 /// Where an EMCY was seen: its line, timestamp and code.
 #[derive(Debug, Clone, Copy)]
@@ -60,6 +64,8 @@ struct NodeSummary {
     guarding: NodeGuardingMaster,
     answers: u64,
     toggle_errors: Vec<u64>,
+    /// The node's SDO channel (SPEC §7.4).
+    sdo: SdoStats,
 }
 
 impl NodeSummary {
@@ -83,6 +89,7 @@ impl NodeSummary {
             guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
             answers: 0,
             toggle_errors: Vec::new(),
+            sdo: SdoStats::default(),
         }
     }
 }
@@ -106,14 +113,14 @@ pub struct Summary {
 /// An interface as the summary keeps it (owned: records outlive the input
 /// buffer). Ordered for the output: no interface, channels, names.
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
-enum BusName {
+pub enum BusName {
     None,
     Channel(u16),
     Name(String),
 }
 
 impl BusName {
-    fn of(iface: Option<Iface<'_>>) -> Self {
+    pub fn of(iface: Option<Iface<'_>>) -> Self {
         match iface {
             None => BusName::None,
             Some(Iface::Channel(n)) => BusName::Channel(n),
@@ -122,7 +129,7 @@ impl BusName {
     }
 
     #[inline]
-    fn is(&self, iface: Option<Iface<'_>>) -> bool {
+    pub fn is(&self, iface: Option<Iface<'_>>) -> bool {
         match (self, iface) {
             (BusName::None, None) => true,
             (BusName::Channel(a), Some(Iface::Channel(b))) => *a == b,
@@ -307,6 +314,18 @@ impl Summary {
         let Some(node) = node else { return };
         let summary = bus.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
         summary.frames[kind.index()] += 1;
+        if kind == MessageKind::Sdo && !log.frame.is_rtr() {
+            // 0x581..=0x5FF: server → client; 0x601..=0x67F: client → server.
+            let direction = if log.frame.id().raw() < 0x600 {
+                SdoDirection::Response
+            } else {
+                SdoDirection::Request
+            };
+            summary
+                .sdo
+                .add(direction, log.frame.data(), log.timestamp, line);
+            return;
+        }
         if !matches!(
             kind,
             MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
@@ -393,6 +412,11 @@ impl Summary {
     /// Close the input: heartbeats still missing at the last timestamp are
     /// timeouts up to that timestamp.
     fn finish(&mut self) {
+        for bus in &mut self.buses {
+            for summary in bus.nodes.iter_mut().flatten() {
+                summary.sdo.finish();
+            }
+        }
         let Some(end) = self.last_time else { return };
         for bus in &mut self.buses {
             let Some(consumer) = bus.consumer.as_mut() else {
@@ -438,16 +462,22 @@ impl Summary {
 
     /// Write one record per (interface, node) seen, by interface then node,
     /// then one record per interface (SPEC §6.3).
-    pub fn write<W: Write>(mut self, out: &mut W, as_json: bool) -> io::Result<()> {
+    pub fn write<W: Write>(
+        mut self,
+        out: &mut W,
+        as_json: bool,
+        profiles: &Profiles,
+    ) -> io::Result<()> {
         self.finish();
         let with_timeouts = self.timeouts();
         self.buses.sort_by(|a, b| a.name.cmp(&b.name));
         for bus in &self.buses {
             for summary in bus.nodes.iter().flatten() {
+                let profile = profiles.of(Some(summary.node));
                 if as_json {
-                    write_json(out, &bus.name, summary, with_timeouts)?;
+                    write_json(out, &bus.name, summary, with_timeouts, profile)?;
                 } else {
-                    write_text(out, &bus.name, summary, with_timeouts)?;
+                    write_text(out, &bus.name, summary, with_timeouts, profile)?;
                 }
             }
         }
@@ -550,6 +580,7 @@ fn write_json<W: Write>(
     bus: &BusName,
     s: &NodeSummary,
     with_timeouts: Timeouts,
+    profile: Profile,
 ) -> io::Result<()> {
     let mut obj = Object::begin(out)?;
     obj.name("type", "node")?;
@@ -603,6 +634,7 @@ fn write_json<W: Write>(
         g.uints("toggle_errors", s.toggle_errors.iter().copied())?;
         g.end()?;
     }
+    s.sdo.write_json(obj.key("sdo")?, profile)?;
     obj.end()?;
     out.write_all(b"\n")
 }
@@ -612,6 +644,7 @@ fn write_text<W: Write>(
     bus: &BusName,
     s: &NodeSummary,
     with_timeouts: Timeouts,
+    profile: Profile,
 ) -> io::Result<()> {
     write!(out, "{} node {:>3}  frames", bus.text(), s.node.get())?;
     for kind in MessageKind::ALL {
@@ -668,7 +701,7 @@ fn write_text<W: Write>(
         }
         writeln!(out)?;
     }
-    Ok(())
+    s.sdo.write_text(out, profile)
 }
 
 fn write_seen<W: Write>(out: &mut W, what: &str, seen: Option<Seen>) -> io::Result<()> {
@@ -696,7 +729,7 @@ impl std::fmt::Display for Seconds {
     }
 }
 
-struct Lines<'a>(&'a [u64]);
+pub struct Lines<'a>(pub &'a [u64]);
 
 impl std::fmt::Display for Lines<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
