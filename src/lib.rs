@@ -69,6 +69,9 @@
 //!   [`canopen::GuardAnswer`] and [`canopen::NmtNodeControl`]). Without the
 //!   feature, [`canopen::CanOpenMessage::decode`] does the same from the
 //!   crate's [`can::CanFrame`].
+//! - `eds`: `motionwire::eds`, the CiA 306 EDS/DCF reader: object names, data types
+//!   and values, and each PDO's communication parameters and mapping with
+//!   its signals' names and types (SPEC §8.1, §8.2). Needs `std`.
 //! - `defmt`: `defmt::Format` on the frame vocabulary and the value types,
 //!   for firmware that logs with defmt.
 //!
@@ -138,6 +141,8 @@ pub mod candump;
 pub mod canopen;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
+#[cfg(feature = "eds")]
+pub mod eds;
 mod error;
 pub mod logs;
 mod names;
