@@ -53,7 +53,10 @@ pub use nmt::{
 };
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
-pub use objects::{find_object, object_instance, object_name, ObjectName, ObjectSet, OBJECT_NAMES};
+pub use objects::{
+    find_object, object_data_type, object_instance, object_name, ObjectName, ObjectSet, ObjectType,
+    OBJECT_NAMES, OBJECT_TYPES,
+};
 pub use pdo::{
     ByLength, DataType, EventTimer, InhibitTime, MappingEntry, Octets, PdoCobId, PdoCommunication,
     PdoMapping, Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,

@@ -852,3 +852,182 @@ mod tests {
         }
     }
 }
+
+/// One row of [`OBJECT_TYPES`]: the data type of sub-indices `subs` of
+/// object `index` in `set`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ObjectType {
+    /// The object area.
+    pub set: ObjectSet,
+    /// The object index.
+    pub index: u16,
+    /// The first sub-index the type applies to.
+    pub first_sub: u8,
+    /// The last sub-index the type applies to.
+    pub last_sub: u8,
+    /// The CiA 301 data type of those entries.
+    pub data_type: crate::canopen::DataType,
+}
+
+macro_rules! types {
+    ($($set:ident $index:literal $first:literal..=$last:literal => $ty:ident;)*) => {
+        &[$(ObjectType {
+            set: ObjectSet::$set,
+            index: $index,
+            first_sub: $first,
+            last_sub: $last,
+            data_type: crate::canopen::DataType::$ty,
+        },)*]
+    };
+}
+
+/// The data types of the objects a PDO commonly maps, for decoding a PDO
+/// without an EDS (SPEC §8.2: "types from the EDS, else from the profile"):
+/// the CiA 402 drive objects of process data (CiA 402-2's object
+/// descriptions) and the CiA 406 encoder objects (CiA 406's object
+/// descriptions), plus the communication objects a PDO may carry. Sorted by
+/// (set, index); records list their sub-entries.
+pub const OBJECT_TYPES: &[ObjectType] = types! {
+    Communication 0x1001 0..=0 => Unsigned8;
+    Communication 0x1002 0..=0 => Unsigned32;
+    Drive 0x603F 0..=0 => Unsigned16;
+    Drive 0x6040 0..=0 => Unsigned16;
+    Drive 0x6041 0..=0 => Unsigned16;
+    Drive 0x6042 0..=0 => Integer16;
+    Drive 0x6043 0..=0 => Integer16;
+    Drive 0x6044 0..=0 => Integer16;
+    Drive 0x605A 0..=0 => Integer16;
+    Drive 0x605B 0..=0 => Integer16;
+    Drive 0x605C 0..=0 => Integer16;
+    Drive 0x605D 0..=0 => Integer16;
+    Drive 0x605E 0..=0 => Integer16;
+    Drive 0x6060 0..=0 => Integer8;
+    Drive 0x6061 0..=0 => Integer8;
+    Drive 0x6062 0..=0 => Integer32;
+    Drive 0x6063 0..=0 => Integer32;
+    Drive 0x6064 0..=0 => Integer32;
+    Drive 0x6065 0..=0 => Unsigned32;
+    Drive 0x6066 0..=0 => Unsigned16;
+    Drive 0x6067 0..=0 => Unsigned32;
+    Drive 0x6068 0..=0 => Unsigned16;
+    Drive 0x6069 0..=0 => Integer32;
+    Drive 0x606B 0..=0 => Integer32;
+    Drive 0x606C 0..=0 => Integer32;
+    Drive 0x606D 0..=0 => Unsigned16;
+    Drive 0x606E 0..=0 => Unsigned16;
+    Drive 0x606F 0..=0 => Unsigned16;
+    Drive 0x6070 0..=0 => Unsigned16;
+    Drive 0x6071 0..=0 => Integer16;
+    Drive 0x6072 0..=0 => Unsigned16;
+    Drive 0x6073 0..=0 => Unsigned16;
+    Drive 0x6074 0..=0 => Integer16;
+    Drive 0x6075 0..=0 => Unsigned32;
+    Drive 0x6076 0..=0 => Unsigned32;
+    Drive 0x6077 0..=0 => Integer16;
+    Drive 0x6078 0..=0 => Integer16;
+    Drive 0x6079 0..=0 => Unsigned32;
+    Drive 0x607A 0..=0 => Integer32;
+    Drive 0x607C 0..=0 => Integer32;
+    Drive 0x607D 1..=2 => Integer32;
+    Drive 0x607E 0..=0 => Unsigned8;
+    Drive 0x607F 0..=0 => Unsigned32;
+    Drive 0x6080 0..=0 => Unsigned32;
+    Drive 0x6081 0..=0 => Unsigned32;
+    Drive 0x6082 0..=0 => Unsigned32;
+    Drive 0x6083 0..=0 => Unsigned32;
+    Drive 0x6084 0..=0 => Unsigned32;
+    Drive 0x6085 0..=0 => Unsigned32;
+    Drive 0x6086 0..=0 => Integer16;
+    Drive 0x6087 0..=0 => Unsigned32;
+    Drive 0x6088 0..=0 => Integer16;
+    Drive 0x6098 0..=0 => Integer8;
+    Drive 0x6099 1..=2 => Unsigned32;
+    Drive 0x609A 0..=0 => Unsigned32;
+    Drive 0x60B0 0..=0 => Integer32;
+    Drive 0x60B1 0..=0 => Integer32;
+    Drive 0x60B2 0..=0 => Integer16;
+    Drive 0x60B8 0..=0 => Unsigned16;
+    Drive 0x60B9 0..=0 => Unsigned16;
+    Drive 0x60BA 0..=0 => Integer32;
+    Drive 0x60BB 0..=0 => Integer32;
+    Drive 0x60BC 0..=0 => Integer32;
+    Drive 0x60BD 0..=0 => Integer32;
+    Drive 0x60F4 0..=0 => Integer32;
+    Drive 0x60FA 0..=0 => Integer32;
+    Drive 0x60FC 0..=0 => Integer32;
+    Drive 0x60FD 0..=0 => Unsigned32;
+    Drive 0x60FE 1..=2 => Unsigned32;
+    Drive 0x60FF 0..=0 => Integer32;
+    Drive 0x6502 0..=0 => Unsigned32;
+    Encoder 0x6000 0..=0 => Unsigned16;
+    Encoder 0x6003 0..=0 => Unsigned32;
+    Encoder 0x6004 0..=0 => Unsigned32;
+    Encoder 0x6030 1..=1 => Integer16;
+    Encoder 0x6500 0..=0 => Unsigned16;
+    Encoder 0x6501 0..=0 => Unsigned32;
+    Encoder 0x6502 0..=0 => Unsigned16;
+    Encoder 0x6503 0..=0 => Unsigned16;
+    Encoder 0x6504 0..=0 => Unsigned16;
+    Encoder 0x6505 0..=0 => Unsigned16;
+    Encoder 0x6506 0..=0 => Unsigned16;
+    Encoder 0x6508 0..=0 => Unsigned32;
+    Encoder 0x6509 0..=0 => Integer32;
+};
+
+/// Return the data type of entry `index`.`subindex` for a node read with
+/// `profile` (communication objects always; profile objects only with their
+/// set), from [`OBJECT_TYPES`]; `None` where the table has none.
+///
+/// ```
+/// use motionwire::canopen::{object_data_type, DataType, ObjectSet};
+///
+/// assert_eq!(object_data_type(0x6041, 0, Some(ObjectSet::Drive)), Some(DataType::Unsigned16));
+/// assert_eq!(object_data_type(0x6064, 0, Some(ObjectSet::Drive)), Some(DataType::Integer32));
+/// assert_eq!(object_data_type(0x6041, 0, None), None);
+/// assert_eq!(object_data_type(0x6004, 0, Some(ObjectSet::Encoder)), Some(DataType::Unsigned32));
+/// ```
+#[must_use]
+pub fn object_data_type(
+    index: u16,
+    subindex: u8,
+    profile: Option<ObjectSet>,
+) -> Option<crate::canopen::DataType> {
+    let find = |set: ObjectSet| {
+        let start = OBJECT_TYPES.partition_point(|t| (t.set, t.index) < (set, index));
+        OBJECT_TYPES[start..]
+            .iter()
+            .take_while(|t| t.set == set && t.index == index)
+            .find(|t| (t.first_sub..=t.last_sub).contains(&subindex))
+            .map(|t| t.data_type)
+    };
+    find(ObjectSet::Communication).or_else(|| profile.and_then(find))
+}
+
+#[cfg(test)]
+mod type_tests {
+    use super::*;
+
+    #[test]
+    fn types_are_sorted_and_name_known_objects() {
+        for pair in OBJECT_TYPES.windows(2) {
+            assert!(
+                (pair[0].set, pair[0].index) < (pair[1].set, pair[1].index),
+                "{pair:?}"
+            );
+        }
+        for row in OBJECT_TYPES {
+            assert!(
+                object_name(row.index, Some(row.set)).is_some(),
+                "{:04X}h has a type but no name",
+                row.index
+            );
+            for sub in row.first_sub..=row.last_sub {
+                assert_eq!(
+                    object_data_type(row.index, sub, Some(row.set)),
+                    Some(row.data_type)
+                );
+            }
+        }
+        assert_eq!(object_data_type(0x607D, 0, Some(ObjectSet::Drive)), None);
+    }
+}

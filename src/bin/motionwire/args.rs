@@ -57,6 +57,12 @@ pub struct DecodeArgs {
         value_parser = parse_profile_choice,
     )]
     pub profile: Vec<ProfileChoice>,
+    /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
+    /// for several nodes): its PDO mappings, object names and data types
+    /// decode that node's PDOs until the log's own SDO configuration
+    /// changes them (SPEC §8.1).
+    #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
+    pub eds: Vec<(NodeId, PathBuf)>,
     /// After the input, write one record per node seen instead of one per
     /// frame: frame counts, EMCYs with the root cause, heartbeats, guarding.
     #[arg(long)]
@@ -128,6 +134,17 @@ fn parse_profile_choice(text: &str) -> Result<ProfileChoice, String> {
             Ok(ProfileChoice::Node(node, profile(name)?))
         }
     }
+}
+
+fn parse_eds_choice(text: &str) -> Result<(NodeId, PathBuf), String> {
+    let (node, path) = text
+        .split_once('=')
+        .ok_or_else(|| format!("{text:?} is not NODE=FILE"))?;
+    let raw: u8 = node
+        .parse()
+        .map_err(|_| format!("{node:?} is not a node-ID (1..=127)"))?;
+    let node = NodeId::try_new(raw).map_err(|e| e.to_string())?;
+    Ok((node, PathBuf::from(path)))
 }
 
 /// The frames `motionwire servo` decodes.

@@ -10,15 +10,18 @@ use std::process::ExitCode;
 
 use motionwire::can::{LogEvent, LogFrame};
 use motionwire::candump::{self, LineState, RelativeTimestamps};
-use motionwire::canopen::MessageKind;
+use motionwire::canopen::{CanOpenMessage, MessageKind};
 use motionwire::logs::{detect, Detected, ReadError, ReadLog, DETECT_LEN};
 use motionwire::LogFormat;
 
 use crate::args::{DecodeArgs, IdRange, TimestampBase};
+use crate::context::{Context, PdoView};
+use crate::eds::NodeDescription;
 use crate::failure::Failure;
 use crate::profile::Profiles;
+use crate::record::Extra;
 use crate::record::{Record, CSV_HEADER};
-use crate::sdo::{sdo_frame, Channels};
+use crate::sdo::{sdo_direction, sdo_frame};
 use crate::summary::Summary;
 
 /// An input as given on the command line.
@@ -150,12 +153,22 @@ struct Sink<'a> {
     damaged: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
-    /// The SDO channels of the stream (SPEC §7.2).
-    sdo: Channels,
+    /// What the log teaches as it is read: SDO channels, PDO mappings,
+    /// drive states (SPEC §7, §8).
+    context: Context,
 }
 
 impl<'a> Sink<'a> {
-    fn new(args: &'a DecodeArgs) -> Self {
+    fn new(args: &'a DecodeArgs) -> Result<Self, Failure> {
+        let mut descriptions = Vec::new();
+        for (node, path) in &args.eds {
+            let description = NodeDescription::read(*node, path).map_err(|why| {
+                Failure::Usage(format!("--eds {}={}: {why}", node, path.display()))
+            })?;
+            descriptions.push((*node, description));
+        }
+        let profiles = Profiles::new(&args.profile);
+        let context = Context::new(profiles.clone(), descriptions);
         let mut kinds = [args.only.is_empty(); MessageKind::ALL.len()];
         for kind in &args.only {
             kinds[kind.index()] = true;
@@ -167,7 +180,7 @@ impl<'a> Sink<'a> {
             }
             nodes
         });
-        Sink {
+        Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
             err: BufWriter::new(io::stderr().lock()),
             summary: args.summary.then(|| Summary::new(args.heartbeat_ms)),
@@ -178,32 +191,72 @@ impl<'a> Sink<'a> {
             } else {
                 Output::Text
             },
-            profiles: Profiles::new(&args.profile),
+            profiles,
             kinds,
             nodes,
             ids: &args.id,
             skipped: 0,
             damaged: 0,
             progress_shown: false,
-            sdo: Channels::default(),
-        }
+            context,
+        })
     }
 
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
         if let Some(summary) = self.summary.as_mut() {
-            summary.add(line, frame);
+            let (kind, node) = summary.add(line, frame);
+            match (kind, node) {
+                (MessageKind::Sdo, Some(node)) if !frame.frame.is_rtr() => {
+                    let direction = sdo_direction(frame.frame.id().raw());
+                    let view = self.context.sdo(
+                        frame.iface,
+                        node,
+                        direction,
+                        frame.frame.data(),
+                        frame.timestamp,
+                        line,
+                    );
+                    summary.add_sdo(line, frame, node, &view);
+                }
+                (MessageKind::Pdo, Some(_)) if !frame.frame.is_rtr() => {
+                    let id = frame.frame.id().raw() as u16;
+                    if let Some(PdoView {
+                        map,
+                        cia402: Some(cia402),
+                    }) = self.context.pdo(frame.iface, id, frame.frame.data())
+                    {
+                        summary.add_cia402(line, frame, map.node, cia402);
+                    }
+                }
+                _ => {}
+            }
             return Ok(());
         }
         let record = Record::new(line, frame);
-        // Every SDO frame goes through its channel's tracker, shown or not.
-        let view = match &record.decoded {
-            Ok(message) => sdo_frame(message).map(|(node, direction, data)| {
-                self.sdo
-                    .channel(frame.iface, node)
-                    .feed(direction, data, frame.timestamp, line)
-            }),
-            Err(_) => None,
+        // Every SDO and PDO frame teaches the context, shown or not.
+        let extra = match &record.decoded {
+            Ok(message) => match sdo_frame(message) {
+                Some((node, direction, data)) => Extra::Sdo(self.context.sdo(
+                    frame.iface,
+                    node,
+                    direction,
+                    data,
+                    frame.timestamp,
+                    line,
+                )),
+                None => match message {
+                    CanOpenMessage::Pdo { data, .. } => {
+                        let id = frame.frame.id().raw() as u16;
+                        match self.context.pdo(frame.iface, id, data.as_slice()) {
+                            Some(view) => Extra::Pdo(view),
+                            None => Extra::None,
+                        }
+                    }
+                    _ => Extra::None,
+                },
+            },
+            Err(_) => Extra::None,
         };
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
@@ -222,8 +275,8 @@ impl<'a> Sink<'a> {
         }
         let profile = self.profiles.of(record.node());
         match self.output {
-            Output::Json => record.write_json(&mut self.out, profile, view.as_ref()),
-            Output::Text => record.write_text(&mut self.out, profile, view.as_ref()),
+            Output::Json => record.write_json(&mut self.out, profile, &extra),
+            Output::Text => record.write_text(&mut self.out, profile, &extra),
             Output::Csv => record.write_csv(&mut self.out),
         }
     }
@@ -273,7 +326,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         ));
     }
     let inputs = open_inputs(&args.files)?;
-    let mut sink = Sink::new(args);
+    let mut sink = Sink::new(args)?;
     if sink.output == Output::Csv {
         write!(sink.out, "{CSV_HEADER}\r\n")?;
     }
@@ -350,9 +403,14 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         skipped,
         damaged,
         profiles,
+        mut context,
         ..
     } = sink;
-    if let Some(summary) = summary {
+    if let Some(mut summary) = summary {
+        for (bus, node, transfer) in context.finish() {
+            summary.sdo_left_open(&bus, node, &transfer);
+        }
+        summary.drives(|bus, node| context.is_drive(bus, node));
         if summary.timeouts_not_checked() {
             writeln!(
                 err,

@@ -52,6 +52,17 @@ impl<'w, W: Write> Object<'w, W> {
         Ok(self.out)
     }
 
+    /// Write a key that comes from the input (a PDO signal's name from an
+    /// EDS), escaped, and return the writer for its value.
+    pub fn key_str(&mut self, key: &str) -> io::Result<&mut W> {
+        if !std::mem::take(&mut self.first) {
+            self.out.write_all(b",")?;
+        }
+        string(self.out, key)?;
+        self.out.write_all(b":")?;
+        Ok(self.out)
+    }
+
     /// Write a key with an unsigned integer value.
     pub fn uint(&mut self, key: &'static str, value: u64) -> io::Result<()> {
         let out = self.key(key)?;
@@ -242,6 +253,21 @@ pub fn display_string<W: Write>(out: &mut W, value: &impl std::fmt::Display) -> 
             .unwrap_or_else(|| io::Error::other("a Display implementation failed")));
     }
     escaper.out.write_all(b"\"")
+}
+
+/// Write a PDO signal's value (SPEC §8.2): integers and booleans as JSON
+/// numbers and booleans, reals as numbers (null when not finite), octets
+/// as a hex string.
+pub fn pdo_value<W: Write>(out: &mut W, value: &motionwire::canopen::Value) -> io::Result<()> {
+    use motionwire::canopen::Value;
+    match value {
+        Value::Bool(b) => out.write_all(if *b { b"true" } else { b"false" }),
+        Value::Signed(v) => out.write_all(itoa::Buffer::new().format(*v).as_bytes()),
+        Value::Unsigned(v) => out.write_all(itoa::Buffer::new().format(*v).as_bytes()),
+        Value::Real32(v) => float(out, f64::from(*v)),
+        Value::Real64(v) => float(out, *v),
+        Value::Octets(o) => hex_string(out, o.as_bytes()),
+    }
 }
 
 /// Write bytes as lowercase hex digits, no separators, as a JSON string.

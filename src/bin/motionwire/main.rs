@@ -13,7 +13,9 @@
 //! ```
 
 mod args;
+mod context;
 mod decode;
+mod eds;
 mod failure;
 mod json;
 mod profile;

@@ -9,8 +9,19 @@ use motionwire::profiles::akd::AkdManufacturerField;
 use motionwire::profiles::baumer::BaumerEmcy;
 
 use crate::args::Profile;
+use crate::context::{Cia402View, PdoView};
 use crate::json::{self, Object};
 use crate::sdo::{self, SdoView};
+
+/// What the decoder's context adds to a frame (SPEC §7.3, §8.2).
+pub enum Extra<'c> {
+    /// Nothing.
+    None,
+    /// An SDO frame as its channel's tracker read it.
+    Sdo(SdoView<'c>),
+    /// A PDO with its mapping.
+    Pdo(PdoView<'c>),
+}
 
 /// One frame of the input with what the library made of it.
 pub struct Record<'r, 'a> {
@@ -54,10 +65,14 @@ impl<'r, 'a> Record<'r, 'a> {
         &self,
         out: &mut W,
         profile: Profile,
-        sdo: Option<&SdoView<'_>>,
+        extra: &Extra<'_>,
     ) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
+        let sdo = match extra {
+            Extra::Sdo(view) => Some(view),
+            _ => None,
+        };
         let mut obj = Object::begin(out)?;
         obj.uint("line", self.line)?;
         match log.timestamp {
@@ -108,9 +123,17 @@ impl<'r, 'a> Record<'r, 'a> {
                     if let Some((transfer, bytes)) = &view.ended {
                         sdo::write_transfer_json(&mut obj, transfer, bytes, profile)?;
                     }
+                    if let Some(cia402) = &view.cia402 {
+                        cia402_json(&mut obj, cia402)?;
+                    }
                     if let Err(e) = &view.message {
                         obj.display("error", e)?;
                     }
+                }
+            }
+            Ok(CanOpenMessage::Pdo { data, .. }) => {
+                if let Extra::Pdo(view) = extra {
+                    pdo_json(&mut obj, view, data.as_slice())?;
                 }
             }
             Ok(CanOpenMessage::ErrorFrame(error)) => {
@@ -161,7 +184,7 @@ impl<'r, 'a> Record<'r, 'a> {
         &self,
         out: &mut W,
         profile: Profile,
-        sdo: Option<&SdoView<'_>>,
+        extra: &Extra<'_>,
     ) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
@@ -217,10 +240,20 @@ impl<'r, 'a> Record<'r, 'a> {
                 None => out.write_all(b"no counter")?,
             },
             Ok(CanOpenMessage::Time(time)) => write!(out, "{time}")?,
-            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => match sdo
-            {
-                Some(view) => sdo::write_sdo_text(out, view, profile)?,
-                None => write_data(out, log)?,
+            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => {
+                match extra {
+                    Extra::Sdo(view) => {
+                        sdo::write_sdo_text(out, view, profile)?;
+                        if let Some(cia402) = &view.cia402 {
+                            cia402_text(out, cia402)?;
+                        }
+                    }
+                    _ => write_data(out, log)?,
+                }
+            }
+            Ok(CanOpenMessage::Pdo { data, .. }) => match extra {
+                Extra::Pdo(view) => pdo_text(out, view, data.as_slice())?,
+                _ => write_data(out, log)?,
             },
             Ok(_) => write_data(out, log)?,
         }
@@ -398,6 +431,108 @@ fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
     write!(out, "[{}]", frame.data().len())?;
     for b in frame.data() {
         write!(out, " {b:02X}")?;
+    }
+    Ok(())
+}
+
+/// SPEC §8.2's `signals`: name → value in mapping order, and `error` when
+/// the PDO is shorter than its mapping (its signals are those that fit);
+/// §8.3's `cia402` for a drive.
+fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>, data: &[u8]) -> io::Result<()> {
+    let map = view.map;
+    let mut error = None;
+    {
+        let out = obj.key("signals")?;
+        let mut signals = Object::begin(out)?;
+        let mut names = map.mapping.entries().iter().zip(&map.names);
+        for signal in map.mapping.unpack_with(data, |e| map.data_type(e)) {
+            match signal {
+                Ok(signal) => {
+                    let name = names
+                        .by_ref()
+                        .find(|(e, _)| **e == signal.entry)
+                        .map_or("", |(_, n)| n.as_ref());
+                    let out = signals.key_str(name)?;
+                    json::pdo_value(out, &signal.value)?;
+                }
+                Err(e) => error = Some(e),
+            }
+        }
+        signals.end()?;
+    }
+    if let Some(cia402) = &view.cia402 {
+        cia402_json(obj, cia402)?;
+    }
+    if let Some(e) = error {
+        obj.display("error", &e)?;
+    }
+    Ok(())
+}
+
+/// SPEC §8.3's `cia402`: `state`, `command`, `mode` where the frame tells
+/// them.
+fn cia402_json<W: Write>(obj: &mut Object<'_, W>, view: &Cia402View) -> io::Result<()> {
+    let out = obj.key("cia402")?;
+    let mut o = Object::begin(out)?;
+    if let Some(state) = view.state {
+        o.name("state", state.name())?;
+    }
+    if let Some(command) = view.command {
+        o.name("command", command.name())?;
+    }
+    if let Some(mode) = view.mode {
+        o.display("mode", &mode)?;
+    }
+    o.end()
+}
+
+fn cia402_text<W: Write>(out: &mut W, view: &Cia402View) -> io::Result<()> {
+    out.write_all(b"  [")?;
+    let mut first = true;
+    let mut part = |out: &mut W, text: &dyn std::fmt::Display| {
+        let r = if first {
+            write!(out, "{text}")
+        } else {
+            write!(out, ", {text}")
+        };
+        first = false;
+        r
+    };
+    if let Some(state) = view.state {
+        part(out, &state)?;
+    }
+    if let Some(command) = view.command {
+        part(out, &command)?;
+    }
+    if let Some(mode) = view.mode {
+        part(out, &mode)?;
+    }
+    out.write_all(b"]")
+}
+
+/// A PDO in words: `TPDO1 Statusword=567 Position actual value=100000`.
+fn pdo_text<W: Write>(out: &mut W, view: &PdoView<'_>, data: &[u8]) -> io::Result<()> {
+    let map = view.map;
+    let t = match map.direction {
+        motionwire::canopen::PdoDirection::Transmit => 'T',
+        motionwire::canopen::PdoDirection::Receive => 'R',
+    };
+    write!(out, "{t}PDO{}", map.number)?;
+    let mut names = map.mapping.entries().iter().zip(&map.names);
+    for signal in map.mapping.unpack_with(data, |e| map.data_type(e)) {
+        match signal {
+            Ok(signal) => {
+                let name = names
+                    .by_ref()
+                    .find(|(e, _)| **e == signal.entry)
+                    .map_or("", |(_, n)| n.as_ref());
+                write!(out, " {name}={}", signal.value)?;
+            }
+            Err(e) => write!(out, "  error: {e}")?,
+        }
+    }
+    if let Some(cia402) = &view.cia402 {
+        cia402_text(out, cia402)?;
     }
     Ok(())
 }

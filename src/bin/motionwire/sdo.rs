@@ -6,7 +6,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use motionwire::can::{Iface, Timestamp};
+use motionwire::can::Timestamp;
 use motionwire::canopen::sdo::{
     SdoDirection, SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse,
     SdoTracker, SdoTransfer,
@@ -14,8 +14,8 @@ use motionwire::canopen::sdo::{
 use motionwire::canopen::{CanOpenMessage, NodeId, SdoAbortCode};
 
 use crate::args::Profile;
+use crate::context::Cia402View;
 use crate::json::{self, Object};
-use crate::summary::BusName;
 
 /// The data bytes SPEC §7.3's `transfer.data` holds at most.
 pub const DATA_MAX: usize = 4096;
@@ -28,9 +28,24 @@ pub struct SdoView<'c> {
     pub message: Result<SdoMessage, motionwire::Error>,
     /// The request → response latency this frame closes.
     pub latency: Option<Duration>,
+    /// The frame starts a transfer.
+    pub started: bool,
     /// The transfer this frame ends, with its data (the first
-    /// [`DATA_MAX`] bytes) and whether more was moved.
+    /// [`DATA_MAX`] bytes).
     pub ended: Option<(SdoTransfer, &'c [u8])>,
+    /// The CiA 402 reading of a completed expedited transfer of the
+    /// controlword, statusword or mode (SPEC §8.3).
+    pub cia402: Option<Cia402View>,
+}
+
+/// What the tracker said of the channel's last frame.
+#[derive(Debug)]
+struct Last {
+    direction: SdoDirection,
+    message: Result<SdoMessage, motionwire::Error>,
+    latency: Option<Duration>,
+    started: bool,
+    ended: Option<SdoTransfer>,
 }
 
 /// One channel: its tracker and the data of its open transfer.
@@ -39,6 +54,7 @@ pub struct Channel {
     tracker: SdoTracker,
     data: Vec<u8>,
     finished: Vec<u8>,
+    last: Option<Last>,
 }
 
 impl Channel {
@@ -57,7 +73,7 @@ impl Channel {
         if event.started && event.ended.is_none() {
             self.data.clear();
         }
-        if let Some(transfer) = event.ended {
+        if event.ended.is_some() {
             if !chunk_to_new {
                 push(&mut self.data, event.chunk);
             }
@@ -66,20 +82,35 @@ impl Channel {
             if chunk_to_new {
                 push(&mut self.data, event.chunk);
             }
-            return SdoView {
-                direction,
-                message: event.message,
-                latency: event.latency,
-                ended: Some((transfer, &self.finished)),
-            };
+        } else {
+            push(&mut self.data, event.chunk);
         }
-        push(&mut self.data, event.chunk);
-        SdoView {
+        self.last = Some(Last {
             direction,
             message: event.message,
             latency: event.latency,
-            ended: None,
+            started: event.started,
+            ended: event.ended,
+        });
+        self.view()
+    }
+
+    /// The view of the last frame fed.
+    pub fn view(&self) -> SdoView<'_> {
+        let last = self.last.as_ref().expect("a frame was fed");
+        SdoView {
+            direction: last.direction,
+            message: last.message,
+            latency: last.latency,
+            started: last.started,
+            ended: last.ended.map(|t| (t, &self.finished[..])),
+            cia402: None,
         }
+    }
+
+    /// End the input: the transfer left open, if any.
+    pub fn finish(&mut self) -> Option<SdoTransfer> {
+        self.tracker.finish()
     }
 }
 
@@ -88,29 +119,13 @@ fn push(data: &mut Vec<u8>, chunk: &[u8]) {
     data.extend_from_slice(&chunk[..chunk.len().min(room)]);
 }
 
-/// The SDO channels of the stream: by interface, then node.
-#[derive(Debug, Default)]
-pub struct Channels {
-    buses: Vec<(BusName, Vec<Option<Channel>>)>,
-    last: usize,
-}
-
-impl Channels {
-    /// The channel of `node` on `iface`, made on first sight.
-    pub fn channel(&mut self, iface: Option<Iface<'_>>, node: NodeId) -> &mut Channel {
-        let at = match self.buses.get(self.last) {
-            Some((name, _)) if name.is(iface) => self.last,
-            _ => match self.buses.iter().position(|(name, _)| name.is(iface)) {
-                Some(at) => at,
-                None => {
-                    self.buses
-                        .push((BusName::of(iface), (0..128).map(|_| None).collect()));
-                    self.buses.len() - 1
-                }
-            },
-        };
-        self.last = at;
-        self.buses[at].1[usize::from(node.get())].get_or_insert_with(Channel::default)
+/// The direction of an SDO frame on `id` (SPEC §6.1): 0x581–0x5FF server
+/// → client, 0x601–0x67F client → server.
+pub fn sdo_direction(id: u32) -> SdoDirection {
+    if id < 0x600 {
+        SdoDirection::Response
+    } else {
+        SdoDirection::Request
     }
 }
 
@@ -139,7 +154,6 @@ pub struct Abort {
 /// A node's SDO record for the summary (SPEC §7.4).
 #[derive(Debug, Default)]
 pub struct SdoStats {
-    tracker: SdoTracker,
     requests: u64,
     transfers: u64,
     aborts: Vec<Abort>,
@@ -149,12 +163,11 @@ pub struct SdoStats {
 }
 
 impl SdoStats {
-    /// Add one frame of the node's channel.
-    pub fn add(&mut self, direction: SdoDirection, bytes: &[u8], ts: Option<Timestamp>, line: u64) {
-        if direction == SdoDirection::Request {
+    /// Add one frame of the node's channel, as its tracker read it.
+    pub fn add(&mut self, event: &SdoView<'_>, line: u64) {
+        if event.direction == SdoDirection::Request {
             self.requests += 1;
         }
-        let event = self.tracker.feed(direction, bytes, ts, line);
         if event.started {
             self.transfers += 1;
         }
@@ -174,7 +187,7 @@ impl SdoStats {
             // The multiplexer of the transfer an abort ends, when the abort
             // carries none (python-canopen's client aborts with 0000h.00).
             let multiplexer = match event.ended {
-                Some(t) if multiplexer == SdoMultiplexer::default() => t.multiplexer,
+                Some((t, _)) if multiplexer == SdoMultiplexer::default() => t.multiplexer,
                 _ => multiplexer,
             };
             self.aborts.push(Abort {
@@ -184,23 +197,18 @@ impl SdoStats {
                 by,
             });
         }
-        if let Some(transfer) = event.ended {
+        if let Some((transfer, _)) = event.ended {
             self.ended(&transfer);
         }
     }
 
-    fn ended(&mut self, transfer: &SdoTransfer) {
+    /// A transfer that ended (at a frame, or left open at the end of the
+    /// input).
+    pub fn ended(&mut self, transfer: &SdoTransfer) {
         match transfer.outcome {
             SdoOutcome::Broken(_) => self.broken.push(transfer.start_position),
             SdoOutcome::TimedOut => self.timeouts.push(transfer.start_position),
             SdoOutcome::Completed | SdoOutcome::Aborted { .. } => {}
-        }
-    }
-
-    /// Close the input: a transfer left open ends here.
-    pub fn finish(&mut self) {
-        if let Some(transfer) = self.tracker.finish() {
-            self.ended(&transfer);
         }
     }
 

@@ -17,10 +17,12 @@ use motionwire::can::LogFrame;
 use motionwire::canopen::ErrorCode;
 
 use crate::args::Profile;
+use crate::context::Cia402View;
 use crate::profile::Profiles;
 use crate::record::Record;
-use crate::sdo::SdoStats;
-use motionwire::canopen::sdo::SdoDirection;
+use crate::sdo::{SdoStats, SdoView};
+use motionwire::canopen::sdo::SdoTransfer;
+use motionwire::canopen::Cia402State;
 
 /// Where an EMCY was seen: its line, timestamp and code.
 #[derive(Debug, Clone, Copy)]
@@ -66,6 +68,12 @@ struct NodeSummary {
     toggle_errors: Vec<u64>,
     /// The node's SDO channel (SPEC §7.4).
     sdo: SdoStats,
+    /// The node is a CiA 402 drive (SPEC §8.3).
+    drive: bool,
+    /// The observed CiA 402 timeline (SPEC §8.3).
+    cia402: Cia402Timeline,
+    /// The node's error EMCYs, for the text's "after EMCY …".
+    errors: Vec<Seen>,
 }
 
 impl NodeSummary {
@@ -90,6 +98,9 @@ impl NodeSummary {
             answers: 0,
             toggle_errors: Vec::new(),
             sdo: SdoStats::default(),
+            drive: false,
+            cia402: Cia402Timeline::default(),
+            errors: Vec::new(),
         }
     }
 }
@@ -289,8 +300,21 @@ impl Summary {
     }
 
     /// Add one frame, read on `line` of the input.
-    pub fn add(&mut self, line: u64, log: &LogFrame<'_>) {
+    /// Add one frame, read on `line` of the input; return its kind and
+    /// node, which the caller's context may need.
+    pub fn add(&mut self, line: u64, log: &LogFrame<'_>) -> (MessageKind, Option<NodeId>) {
         let (kind, node) = MessageKind::classify(&log.frame);
+        self.add_classified(line, log, kind, node);
+        (kind, node)
+    }
+
+    fn add_classified(
+        &mut self,
+        line: u64,
+        log: &LogFrame<'_>,
+        kind: MessageKind,
+        node: Option<NodeId>,
+    ) {
         let now = log.timestamp.map(Timestamp::as_duration);
         match now {
             Some(_) => self.last_time = now,
@@ -314,18 +338,6 @@ impl Summary {
         let Some(node) = node else { return };
         let summary = bus.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node));
         summary.frames[kind.index()] += 1;
-        if kind == MessageKind::Sdo && !log.frame.is_rtr() {
-            // 0x581..=0x5FF: server → client; 0x601..=0x67F: client → server.
-            let direction = if log.frame.id().raw() < 0x600 {
-                SdoDirection::Response
-            } else {
-                SdoDirection::Request
-            };
-            summary
-                .sdo
-                .add(direction, log.frame.data(), log.timestamp, line);
-            return;
-        }
         if !matches!(
             kind,
             MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
@@ -343,6 +355,9 @@ impl Summary {
                     ts: record.log.timestamp,
                     code: emcy.code.get(),
                 };
+                if !emcy.is_reset() {
+                    summary.errors.push(seen);
+                }
                 if emcy.is_reset() {
                     summary.resets += 1;
                 } else if summary.first_error.is_none() {
@@ -409,14 +424,55 @@ impl Summary {
         }
     }
 
+    /// The node summary of `node` on the interface of `log` (made by
+    /// [`add`](Self::add) for that frame).
+    fn node_of(&mut self, log: &LogFrame<'_>, node: NodeId) -> &mut NodeSummary {
+        let bus = self.bus(log.iface);
+        bus.nodes[node.index()].get_or_insert_with(|| NodeSummary::new(node))
+    }
+
+    /// An SDO frame as its channel's tracker read it (SPEC §7.4), with the
+    /// CiA 402 state an expedited transfer of the statusword shows.
+    pub fn add_sdo(&mut self, line: u64, log: &LogFrame<'_>, node: NodeId, view: &SdoView<'_>) {
+        let summary = self.node_of(log, node);
+        summary.sdo.add(view, line);
+        if let Some(cia402) = view.cia402 {
+            summary.cia402.observe(line, log.timestamp, cia402);
+        }
+    }
+
+    /// A drive's PDO with its CiA 402 reading (SPEC §8.3).
+    pub fn add_cia402(&mut self, line: u64, log: &LogFrame<'_>, node: NodeId, view: Cia402View) {
+        let summary = self.node_of(log, node);
+        summary.cia402.observe(line, log.timestamp, view);
+    }
+
+    /// A transfer the input ended in the middle of (SPEC §7.2: summary
+    /// only).
+    pub fn sdo_left_open(&mut self, bus: &BusName, node: NodeId, transfer: &SdoTransfer) {
+        if let Some(summary) = self
+            .buses
+            .iter_mut()
+            .find(|b| &b.name == bus)
+            .and_then(|b| b.nodes[node.index()].as_mut())
+        {
+            summary.sdo.ended(transfer);
+        }
+    }
+
+    /// Mark the nodes that are drives: their records get `cia402`
+    /// (SPEC §8.3; null for the others).
+    pub fn drives(&mut self, is_drive: impl Fn(&BusName, NodeId) -> bool) {
+        for bus in &mut self.buses {
+            for summary in bus.nodes.iter_mut().flatten() {
+                summary.drive = is_drive(&bus.name, summary.node) || !summary.cia402.is_empty();
+            }
+        }
+    }
+
     /// Close the input: heartbeats still missing at the last timestamp are
     /// timeouts up to that timestamp.
     fn finish(&mut self) {
-        for bus in &mut self.buses {
-            for summary in bus.nodes.iter_mut().flatten() {
-                summary.sdo.finish();
-            }
-        }
         let Some(end) = self.last_time else { return };
         for bus in &mut self.buses {
             let Some(consumer) = bus.consumer.as_mut() else {
@@ -635,6 +691,11 @@ fn write_json<W: Write>(
         g.end()?;
     }
     s.sdo.write_json(obj.key("sdo")?, profile)?;
+    if s.drive {
+        s.cia402.write_json(obj.key("cia402")?)?;
+    } else {
+        obj.null("cia402")?;
+    }
     obj.end()?;
     out.write_all(b"\n")
 }
@@ -701,7 +762,11 @@ fn write_text<W: Write>(
         }
         writeln!(out)?;
     }
-    s.sdo.write_text(out, profile)
+    s.sdo.write_text(out, profile)?;
+    if s.drive {
+        s.cia402.write_text(out, &s.errors)?;
+    }
+    Ok(())
 }
 
 fn write_seen<W: Write>(out: &mut W, what: &str, seen: Option<Seen>) -> io::Result<()> {
@@ -738,6 +803,132 @@ impl std::fmt::Display for Lines<'_> {
                 f.write_str(", ")?;
             }
             write!(f, "{line}")?;
+        }
+        Ok(())
+    }
+}
+
+/// One change of a drive's observed state (SPEC §8.3).
+#[derive(Debug, Clone, Copy)]
+struct Transition {
+    line: u64,
+    ts: Option<Timestamp>,
+    from: Option<Cia402State>,
+    to: Cia402State,
+}
+
+/// A drive's observed CiA 402 timeline, from statuswords only (SPEC §8.3).
+#[derive(Debug, Default)]
+struct Cia402Timeline {
+    transitions: Vec<Transition>,
+    faults: Vec<u64>,
+}
+
+impl Cia402Timeline {
+    fn is_empty(&self) -> bool {
+        self.transitions.is_empty()
+    }
+
+    fn last_state(&self) -> Option<Cia402State> {
+        self.transitions.last().map(|t| t.to)
+    }
+
+    /// A frame's CiA 402 reading: a state that differs from the last one
+    /// is a transition; entering fault reaction active or fault from a
+    /// state that is neither is a fault.
+    fn observe(&mut self, line: u64, ts: Option<Timestamp>, view: Cia402View) {
+        let Some(to) = view.state else { return };
+        let from = self.last_state();
+        if from == Some(to) {
+            return;
+        }
+        if to.is_fault() && !from.is_some_and(Cia402State::is_fault) {
+            self.faults.push(line);
+        }
+        self.transitions.push(Transition { line, ts, from, to });
+    }
+
+    fn write_json<W: Write>(&self, out: &mut W) -> io::Result<()> {
+        let mut obj = Object::begin(out)?;
+        let list = obj.key("transitions")?;
+        list.write_all(b"[")?;
+        for (i, t) in self.transitions.iter().enumerate() {
+            if i > 0 {
+                list.write_all(b",")?;
+            }
+            let mut o = Object::begin(list)?;
+            o.uint("line", t.line)?;
+            match t.ts {
+                Some(ts) => json::timestamp(o.key("ts")?, ts)?,
+                None => o.null("ts")?,
+            }
+            match t.from {
+                Some(from) => o.name("from", from.name())?,
+                None => o.null("from")?,
+            }
+            o.name("to", t.to.name())?;
+            o.end()?;
+        }
+        list.write_all(b"]")?;
+        match self.last_state() {
+            Some(state) => obj.name("last_state", state.name())?,
+            None => obj.null("last_state")?,
+        }
+        obj.uints("faults", self.faults.iter().copied())?;
+        obj.end()
+    }
+
+    /// The timeline in sentences: the states in order, and each fault with
+    /// the EMCY before it.
+    fn write_text<W: Write>(&self, out: &mut W, errors: &[Seen]) -> io::Result<()> {
+        if self.transitions.is_empty() {
+            return writeln!(out, "          CiA 402: no statusword seen");
+        }
+        out.write_all(b"          CiA 402:")?;
+        for (i, t) in self.transitions.iter().enumerate() {
+            if i > 0 {
+                out.write_all(" →".as_bytes())?;
+            }
+            write!(out, " {} (line {})", t.to.name(), t.line)?;
+        }
+        writeln!(out)?;
+        for &line in &self.faults {
+            let t = self
+                .transitions
+                .iter()
+                .find(|t| t.line == line)
+                .expect("a fault is a transition");
+            write!(
+                out,
+                "          went {} → {} at line {}",
+                t.from.map_or("-", Cia402State::name),
+                t.to.name(),
+                line
+            )?;
+            // The node's last error EMCY at or before the fault.
+            let before = errors.partition_point(|e| e.line <= line);
+            if let Some(&emcy) = before.checked_sub(1).and_then(|i| errors.get(i)) {
+                let code = motionwire::canopen::ErrorCode::new(emcy.code);
+                match (t.ts, emcy.ts) {
+                    (Some(at), Some(then)) => {
+                        let gap = at.duration_since(then).unwrap_or_default();
+                        write!(
+                            out,
+                            ", {:.1} ms after EMCY {code} {} (line {})",
+                            gap.as_secs_f64() * 1000.0,
+                            code.description(),
+                            emcy.line
+                        )?;
+                    }
+                    _ => write!(
+                        out,
+                        ", after EMCY {code} {} (line {})",
+                        code.description(),
+                        emcy.line
+                    )?,
+                }
+            }
+            writeln!(out)?;
         }
         Ok(())
     }
