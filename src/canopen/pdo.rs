@@ -1294,6 +1294,133 @@ impl<T: TypeLookup> Iterator for Signals<'_, T> {
 
 impl<T: TypeLookup> core::iter::FusedIterator for Signals<'_, T> {}
 
+/// One planned entry of a [`PdoLayout`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Planned {
+    entry: MappingEntry,
+    offset: u16,
+    data_type: Option<DataType>,
+    /// The kind to read, or why the entry cannot be read (never for a
+    /// dummy, which is skipped).
+    kind: core::result::Result<ValueKind, PdoEntryError>,
+}
+
+/// A mapping with each entry's offset and value kind worked out once, for a
+/// decoder that reads many frames of one PDO (SPEC §8.2): its
+/// [`unpack`](Self::unpack) gives exactly what [`PdoMapping::unpack_with`]
+/// gives with the same types, without looking the types up per frame.
+///
+/// ```
+/// use motionwire::canopen::{DataType, MappingEntry, PdoLayout, PdoMapping, Value};
+///
+/// let mapping = PdoMapping::from_u32s(&[0x6041_0010, 0x6064_0020])?;
+/// let types = |e: MappingEntry| match e.index() {
+///     0x6041 => Some(DataType::Unsigned16),
+///     0x6064 => Some(DataType::Integer32),
+///     _ => None,
+/// };
+/// let layout = PdoLayout::new(&mapping, types);
+/// let payload = [0x37, 0x02, 0xFF, 0xFF, 0xFF, 0xFF];
+/// let values: Vec<Value> = layout.unpack(&payload).map(|s| s.unwrap().value).collect();
+/// assert_eq!(values, [Value::Unsigned(0x0237), Value::Signed(-1)]);
+/// assert!(layout.unpack(&payload).eq(mapping.unpack_with(&payload, types)));
+/// # Ok::<(), motionwire::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct PdoLayout {
+    planned: [Planned; MAX_MAPPING_ENTRIES],
+    len: usize,
+}
+
+impl PdoLayout {
+    /// Work out the layout of `mapping` with the data types `types` gives.
+    pub fn new<T: TypeLookup>(mapping: &PdoMapping, types: T) -> Self {
+        let empty = Planned {
+            entry: MappingEntry::from_u32(0),
+            offset: 0,
+            data_type: None,
+            kind: Ok(ValueKind::Unsigned),
+        };
+        let mut layout = PdoLayout {
+            planned: [empty; MAX_MAPPING_ENTRIES],
+            len: 0,
+        };
+        let mut offset: u16 = 0;
+        for (slot, &entry) in layout.planned.iter_mut().zip(mapping.entries()) {
+            let data_type = if entry.is_dummy() {
+                None
+            } else {
+                types.data_type(entry)
+            };
+            *slot = Planned {
+                entry,
+                offset,
+                data_type,
+                kind: ValueKind::for_entry(data_type, entry.bits),
+            };
+            offset += u16::from(entry.bits);
+            layout.len += 1;
+        }
+        layout
+    }
+
+    /// Read `payload`: the signals in mapping order, as
+    /// [`PdoMapping::unpack_with`] reads them.
+    #[must_use]
+    pub fn unpack<'a>(&'a self, payload: &'a [u8]) -> LayoutSignals<'a> {
+        LayoutSignals {
+            planned: &self.planned[..self.len],
+            payload,
+        }
+    }
+}
+
+/// The signals of one payload read with a [`PdoLayout`].
+#[derive(Debug, Clone)]
+pub struct LayoutSignals<'a> {
+    planned: &'a [Planned],
+    payload: &'a [u8],
+}
+
+impl Iterator for LayoutSignals<'_> {
+    type Item = Result<Signal>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            let (p, rest) = self.planned.split_first()?;
+            self.planned = rest;
+            let end = usize::from(p.offset) + usize::from(p.entry.bits);
+            let error = |reason| Error::PdoEntry {
+                entry: p.entry,
+                offset: p.offset,
+                reason,
+            };
+            if end > self.payload.len() * 8 {
+                self.planned = &[];
+                return Some(Err(error(PdoEntryError::Truncated {
+                    needed: end.div_ceil(8),
+                    found: self.payload.len(),
+                })));
+            }
+            if p.entry.is_dummy() {
+                continue;
+            }
+            return Some(match p.kind {
+                Ok(kind) => Ok(Signal {
+                    entry: p.entry,
+                    offset: p.offset,
+                    data_type: p.data_type,
+                    value: decode(self.payload, p.offset, p.entry.bits, kind),
+                }),
+                Err(reason) => Err(error(reason)),
+            });
+        }
+    }
+}
+
+impl core::iter::FusedIterator for LayoutSignals<'_> {}
+
 /// Return the mask of the low `bits` bits (1..=64).
 const fn mask(bits: u8) -> u64 {
     if bits >= 64 {
@@ -1309,6 +1436,27 @@ fn read_bits(payload: &[u8], offset: u16, bits: u8) -> u64 {
     let start = usize::from(offset / 8);
     let shift = u32::from(offset % 8);
     let len = (shift as usize + usize::from(bits)).div_ceil(8);
+    // Byte-aligned entries of whole bytes, most of a drive's process data:
+    // one little-endian load.
+    if shift == 0 {
+        match bits {
+            8 => return u64::from(payload[start]),
+            16 => return u64::from(u16::from_le_bytes([payload[start], payload[start + 1]])),
+            32 => {
+                let b = &payload[start..start + 4];
+                return u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+            }
+            _ => {}
+        }
+    }
+    if len <= 8 {
+        // An entry inside 8 bytes: a 64-bit window.
+        let mut window = 0u64;
+        for (i, &byte) in payload[start..start + len].iter().enumerate() {
+            window |= u64::from(byte) << (8 * i);
+        }
+        return (window >> shift) & mask(bits);
+    }
     let mut window = 0u128;
     for (i, &byte) in payload[start..start + len].iter().enumerate() {
         window |= u128::from(byte) << (8 * i);

@@ -12,7 +12,8 @@ use motionwire::can::{Iface, Timestamp};
 use motionwire::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
 use motionwire::canopen::{
     object_data_type, object_name, Cia402Command, Cia402State, DataType, MappingEntry,
-    ModeOfOperation, NodeId, PdoCobId, PdoDirection, PdoMapping,
+    ModeOfOperation, NodeId, PdoCobId, PdoDirection, PdoLayout, PdoMapping, Signal, TypeLookup,
+    Value,
 };
 
 use crate::args::Profile;
@@ -53,33 +54,41 @@ pub struct ActiveMap {
     pub direction: PdoDirection,
     /// The PDO number, 1..=512.
     pub number: u16,
-    /// The mapping.
-    pub mapping: PdoMapping,
-    /// The name of each entry, in mapping order.
+    /// The mapping with each entry's offset and kind worked out.
+    pub layout: PdoLayout,
+    /// The name of each entry that is not a dummy, in mapping order
+    /// (dummies carry no signal, SPEC §8.2).
     pub names: Vec<Cow<'static, str>>,
-    /// The data type of each entry, in mapping order (`None`: unsigned of
-    /// the entry's length).
-    pub types: Vec<Option<DataType>>,
+    /// Each name as a JSON key, escaped once, with the comma before it for
+    /// all but the first: `"Statusword":`, `,"Position actual value":`.
+    pub keys: Vec<Box<[u8]>>,
     /// The node is a CiA 402 drive, so the controlword and statusword are
     /// read (SPEC §8.3).
     pub drive: bool,
 }
 
-impl ActiveMap {
-    /// The data type of a mapping entry, by its place in the mapping.
-    pub fn data_type(&self, entry: MappingEntry) -> Option<DataType> {
-        self.mapping
-            .entries()
-            .iter()
-            .position(|e| *e == entry)
-            .and_then(|i| self.types[i])
+/// The types of a mapping's signals, looked up in order: the unpacker asks
+/// once per entry that is not a dummy, in mapping order.
+struct InOrder<'a> {
+    types: &'a [Option<DataType>],
+    next: std::cell::Cell<usize>,
+}
+
+impl TypeLookup for InOrder<'_> {
+    fn data_type(&self, _entry: MappingEntry) -> Option<DataType> {
+        let i = self.next.get();
+        self.next.set(i + 1);
+        self.types.get(i).copied().flatten()
     }
 }
 
-/// One PDO frame with the mapping it is read with.
+/// One PDO frame with the mapping it is read with and its signals.
 pub struct PdoView<'c> {
     /// The mapping in force for the frame's COB-ID.
     pub map: &'c ActiveMap,
+    /// The frame's signals in mapping order (the i-th is named
+    /// `map.names[i]`), or why the rest could not be read.
+    pub signals: &'c [Result<Signal, motionwire::Error>],
     /// The CiA 402 reading, for a drive's PDO that carries its words.
     pub cia402: Option<Cia402View>,
 }
@@ -146,8 +155,14 @@ impl BusState {
 pub struct Context {
     buses: Vec<BusState>,
     last: usize,
+    /// Where the last frame's interface name lay in the input buffer
+    /// (address, length): the same slice is the same bus without comparing
+    /// names. Valid until [`Context::new_block`].
+    last_name: (usize, usize),
     profiles: Profiles,
     descriptions: Vec<(NodeId, NodeDescription)>,
+    /// The signals of the last PDO (reused: no allocation per frame).
+    signals: Vec<Result<Signal, motionwire::Error>>,
 }
 
 impl Context {
@@ -156,12 +171,28 @@ impl Context {
         Context {
             buses: Vec::new(),
             last: 0,
+            last_name: (0, 0),
             profiles,
             descriptions,
+            signals: Vec::with_capacity(64),
         }
     }
 
+    /// The input buffer changes: interface names are no longer where they
+    /// were.
+    pub fn new_block(&mut self) {
+        self.last_name = (0, 0);
+    }
+
+    #[inline]
     fn bus(&mut self, iface: Option<Iface<'_>>) -> usize {
+        if let Some(Iface::Name(name)) = iface {
+            let key = (name.as_ptr() as usize, name.len());
+            if key == self.last_name {
+                return self.last;
+            }
+            self.last_name = key;
+        }
         let at = match self.buses.get(self.last) {
             Some(bus) if bus.name.is(iface) => self.last,
             _ => match self.buses.iter().position(|bus| bus.name.is(iface)) {
@@ -339,9 +370,10 @@ impl Context {
         let set = profile
             .object_set()
             .or(drive.then_some(motionwire::canopen::ObjectSet::Drive));
-        let names = mapping
+        let names: Vec<Cow<'static, str>> = mapping
             .entries()
             .iter()
+            .filter(|e| !e.is_dummy())
             .map(|e| {
                 if let Some(name) = description.and_then(|d| d.name(e.index(), e.sub_index())) {
                     return Cow::Owned(name.to_owned());
@@ -353,15 +385,28 @@ impl Context {
                 }
             })
             .collect();
-        let types = mapping
+        let keys = names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| json_key(name, i > 0))
+            .collect();
+        let types: Vec<Option<DataType>> = mapping
             .entries()
             .iter()
+            .filter(|e| !e.is_dummy())
             .map(|e| {
                 description
                     .and_then(|d| d.data_type(e.index(), e.sub_index()))
                     .or_else(|| object_data_type(e.index(), e.sub_index(), set))
             })
             .collect();
+        let layout = PdoLayout::new(
+            &mapping,
+            InOrder {
+                types: &types,
+                next: std::cell::Cell::new(0),
+            },
+        );
         let map = ActiveMap {
             node,
             direction: if transmit {
@@ -370,9 +415,9 @@ impl Context {
                 PdoDirection::Receive
             },
             number,
-            mapping,
+            layout,
             names,
-            types,
+            keys,
             drive,
         };
         let slot = &mut bus.by_cob[usize::from(cob_id)];
@@ -385,38 +430,43 @@ impl Context {
         params.active = Some(cob_id);
     }
 
-    /// The mapping in force for a PDO frame on `cob_id`, with its CiA 402
-    /// reading for a drive (SPEC §8.2, §8.3).
+    /// The mapping in force for a PDO frame on `cob_id`, its signals
+    /// (when `signals` is asked for, or the node is a drive), and its
+    /// CiA 402 reading for a drive (SPEC §8.2, §8.3).
     pub fn pdo(
         &mut self,
         iface: Option<Iface<'_>>,
         cob_id: u16,
         data: &[u8],
+        signals: bool,
     ) -> Option<PdoView<'_>> {
         let at = self.bus(iface);
-        let bus = &mut self.buses[at];
-        let slot = *bus.by_cob.get(usize::from(cob_id))?;
+        let BusState {
+            by_cob,
+            maps,
+            nodes,
+            ..
+        } = &mut self.buses[at];
+        let slot = *by_cob.get(usize::from(cob_id))?;
         if slot == 0 {
             return None;
         }
-        let map = &bus.maps[usize::from(slot) - 1];
+        let map = &maps[usize::from(slot) - 1];
         let node = map.node;
-        let drive = map.drive
-            || bus.nodes[usize::from(node.get())]
-                .as_ref()
-                .is_some_and(|n| n.drive);
+        let state = nodes[usize::from(node.get())].get_or_insert_with(NodeState::default);
+        let drive = map.drive || state.drive;
+        self.signals.clear();
+        if signals || drive {
+            self.signals.extend(map.layout.unpack(data));
+        }
         let mut cia402 = None;
         if drive {
             let mut view = Cia402View::default();
             let (mut sw, mut cw) = (None, None);
-            for signal in map
-                .mapping
-                .unpack_with(data, |e| map.data_type(e))
-                .flatten()
-            {
+            for signal in self.signals.iter().flatten() {
                 let raw = match signal.value {
-                    motionwire::canopen::Value::Unsigned(v) => v as i64,
-                    motionwire::canopen::Value::Signed(v) => v,
+                    Value::Unsigned(v) => v as i64,
+                    Value::Signed(v) => v,
                     _ => continue,
                 };
                 match (
@@ -427,12 +477,11 @@ impl Context {
                     (0x6041, 0, 16) => sw = Some(raw as u16),
                     (0x6040, 0, 16) => cw = Some(raw as u16),
                     (0x6060 | 0x6061, 0, 8) => {
-                        view.mode = Some(ModeOfOperation::from_i8(raw as i8))
+                        view.mode = Some(ModeOfOperation::from_i8(raw as i8));
                     }
                     _ => {}
                 }
             }
-            let state = bus.nodes[usize::from(node.get())].get_or_insert_with(NodeState::default);
             if let Some(sw) = sw {
                 view.state = state.observe_statusword(sw);
             }
@@ -442,7 +491,8 @@ impl Context {
             cia402 = (!view.is_empty()).then_some(view);
         }
         Some(PdoView {
-            map: &bus.maps[usize::from(slot) - 1],
+            map,
+            signals: &self.signals,
             cia402,
         })
     }
@@ -502,4 +552,16 @@ fn value_of(data: &[u8]) -> Option<u32> {
     let mut bytes = [0; 4];
     bytes[..data.len()].copy_from_slice(data);
     Some(u32::from_le_bytes(bytes))
+}
+
+/// A signal's name as a JSON object key, escaped once (`"Statusword":`),
+/// with the comma before it for every signal but the first.
+fn json_key(name: &str, comma: bool) -> Box<[u8]> {
+    let mut key = Vec::with_capacity(name.len() + 4);
+    if comma {
+        key.push(b',');
+    }
+    crate::json::string(&mut key, name).expect("writing to a Vec");
+    key.push(b':');
+    key.into_boxed_slice()
 }

@@ -224,7 +224,8 @@ impl<'a> Sink<'a> {
                     if let Some(PdoView {
                         map,
                         cia402: Some(cia402),
-                    }) = self.context.pdo(frame.iface, id, frame.frame.data())
+                        ..
+                    }) = self.context.pdo(frame.iface, id, frame.frame.data(), false)
                     {
                         summary.add_cia402(line, frame, map.node, cia402);
                     }
@@ -248,7 +249,7 @@ impl<'a> Sink<'a> {
                 None => match message {
                     CanOpenMessage::Pdo { data, .. } => {
                         let id = frame.frame.id().raw() as u16;
-                        match self.context.pdo(frame.iface, id, data.as_slice()) {
+                        match self.context.pdo(frame.iface, id, data.as_slice(), true) {
                             Some(view) => Extra::Pdo(view),
                             None => Extra::None,
                         }
@@ -491,6 +492,7 @@ fn read_candump(
         if let Some(summary) = sink.summary.as_mut() {
             summary.new_block();
         }
+        sink.context.new_block();
         let mut lines = candump::lines_from(block.text, line_state);
         let mut last = 0;
         for (number, parsed) in lines.by_ref() {
@@ -558,6 +560,7 @@ fn read_text(
         if let Some(summary) = sink.summary.as_mut() {
             summary.new_block();
         }
+        sink.context.new_block();
         for text in motionwire::logs::split_lines(block.text) {
             line += 1;
             match parser.read_line(text) {
@@ -589,6 +592,7 @@ fn read_binary(
                 if let Some(summary) = sink.summary.as_mut() {
                     summary.new_block();
                 }
+                sink.context.new_block();
                 sink.event(record.number, &record.event)?;
             }
             Err(ReadError::Io(e)) => return Err(read_failure(name, path, e)),

@@ -52,14 +52,13 @@ impl<'w, W: Write> Object<'w, W> {
         Ok(self.out)
     }
 
-    /// Write a key that comes from the input (a PDO signal's name from an
-    /// EDS), escaped, and return the writer for its value.
-    pub fn key_str(&mut self, key: &str) -> io::Result<&mut W> {
-        if !std::mem::take(&mut self.first) {
-            self.out.write_all(b",")?;
-        }
-        string(self.out, key)?;
-        self.out.write_all(b":")?;
+    /// Write bytes that hold a comma, a key of the contract and the start
+    /// of its value, all escaped already (`,"signals":{`), after at least
+    /// one key: one write where [`key`](Self::key) makes several.
+    #[inline]
+    pub fn raw_after_first(&mut self, bytes: &[u8]) -> io::Result<&mut W> {
+        debug_assert!(!self.first && bytes.first() == Some(&b','));
+        self.out.write_all(bytes)?;
         Ok(self.out)
     }
 

@@ -131,9 +131,9 @@ impl<'r, 'a> Record<'r, 'a> {
                     }
                 }
             }
-            Ok(CanOpenMessage::Pdo { data, .. }) => {
+            Ok(CanOpenMessage::Pdo { .. }) => {
                 if let Extra::Pdo(view) = extra {
-                    pdo_json(&mut obj, view, data.as_slice())?;
+                    pdo_json(&mut obj, view)?;
                 }
             }
             Ok(CanOpenMessage::ErrorFrame(error)) => {
@@ -251,8 +251,8 @@ impl<'r, 'a> Record<'r, 'a> {
                     _ => write_data(out, log)?,
                 }
             }
-            Ok(CanOpenMessage::Pdo { data, .. }) => match extra {
-                Extra::Pdo(view) => pdo_text(out, view, data.as_slice())?,
+            Ok(CanOpenMessage::Pdo { .. }) => match extra {
+                Extra::Pdo(view) => pdo_text(out, view)?,
                 _ => write_data(out, log)?,
             },
             Ok(_) => write_data(out, log)?,
@@ -438,28 +438,26 @@ fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
 /// SPEC §8.2's `signals`: name → value in mapping order, and `error` when
 /// the PDO is shorter than its mapping (its signals are those that fit);
 /// §8.3's `cia402` for a drive.
-fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>, data: &[u8]) -> io::Result<()> {
-    let map = view.map;
+fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>) -> io::Result<()> {
+    // `line` and the frame's keys come first, so this is never the first.
+    let out = obj.raw_after_first(b",\"signals\":{")?;
     let mut error = None;
-    {
-        let out = obj.key("signals")?;
-        let mut signals = Object::begin(out)?;
-        let mut names = map.mapping.entries().iter().zip(&map.names);
-        for signal in map.mapping.unpack_with(data, |e| map.data_type(e)) {
-            match signal {
-                Ok(signal) => {
-                    let name = names
-                        .by_ref()
-                        .find(|(e, _)| **e == signal.entry)
-                        .map_or("", |(_, n)| n.as_ref());
-                    let out = signals.key_str(name)?;
-                    json::pdo_value(out, &signal.value)?;
-                }
-                Err(e) => error = Some(e),
+    let mut first = true;
+    for (i, signal) in view.signals.iter().enumerate() {
+        match (signal, view.map.keys.get(i)) {
+            // The keys carry their leading comma from the second on (not
+            // wanted when the signals before could not be read).
+            (Ok(signal), Some(key)) => {
+                let key = if first && i > 0 { &key[1..] } else { &key[..] };
+                first = false;
+                out.write_all(key)?;
+                json::pdo_value(out, &signal.value)?;
             }
+            (Ok(_), None) => {}
+            (Err(e), _) => error = Some(*e),
         }
-        signals.end()?;
     }
+    out.write_all(b"}")?;
     if let Some(cia402) = &view.cia402 {
         cia402_json(obj, cia402)?;
     }
@@ -472,18 +470,27 @@ fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>, data: &[u8]) 
 /// SPEC §8.3's `cia402`: `state`, `command`, `mode` where the frame tells
 /// them.
 fn cia402_json<W: Write>(obj: &mut Object<'_, W>, view: &Cia402View) -> io::Result<()> {
-    let out = obj.key("cia402")?;
-    let mut o = Object::begin(out)?;
+    let out = obj.raw_after_first(b",\"cia402\":{")?;
+    let mut sep: &[u8] = b"";
     if let Some(state) = view.state {
-        o.name("state", state.name())?;
+        out.write_all(b"\"state\":\"")?;
+        out.write_all(state.name().as_bytes())?;
+        out.write_all(b"\"")?;
+        sep = b",";
     }
     if let Some(command) = view.command {
-        o.name("command", command.name())?;
+        out.write_all(sep)?;
+        out.write_all(b"\"command\":\"")?;
+        out.write_all(command.name().as_bytes())?;
+        out.write_all(b"\"")?;
+        sep = b",";
     }
     if let Some(mode) = view.mode {
-        o.display("mode", &mode)?;
+        out.write_all(sep)?;
+        out.write_all(b"\"mode\":")?;
+        json::display_string(out, &mode)?;
     }
-    o.end()
+    out.write_all(b"}")
 }
 
 fn cia402_text<W: Write>(out: &mut W, view: &Cia402View) -> io::Result<()> {
@@ -511,21 +518,17 @@ fn cia402_text<W: Write>(out: &mut W, view: &Cia402View) -> io::Result<()> {
 }
 
 /// A PDO in words: `TPDO1 Statusword=567 Position actual value=100000`.
-fn pdo_text<W: Write>(out: &mut W, view: &PdoView<'_>, data: &[u8]) -> io::Result<()> {
+fn pdo_text<W: Write>(out: &mut W, view: &PdoView<'_>) -> io::Result<()> {
     let map = view.map;
     let t = match map.direction {
         motionwire::canopen::PdoDirection::Transmit => 'T',
         motionwire::canopen::PdoDirection::Receive => 'R',
     };
     write!(out, "{t}PDO{}", map.number)?;
-    let mut names = map.mapping.entries().iter().zip(&map.names);
-    for signal in map.mapping.unpack_with(data, |e| map.data_type(e)) {
+    for (i, signal) in view.signals.iter().enumerate() {
         match signal {
             Ok(signal) => {
-                let name = names
-                    .by_ref()
-                    .find(|(e, _)| **e == signal.entry)
-                    .map_or("", |(_, n)| n.as_ref());
+                let name = map.names.get(i).map_or("", |n| n.as_ref());
                 write!(out, " {name}={}", signal.value)?;
             }
             Err(e) => write!(out, "  error: {e}")?,

@@ -74,3 +74,31 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// A layout reads exactly what the mapping reads with the same types,
+    /// on any mapping and any bytes (NaNs compared by bits).
+    #[test]
+    fn layout_reads_what_the_mapping_reads(
+        raw in proptest::collection::vec(any::<u32>(), 0..70),
+        seed in type_lookup_seed(),
+        payload in proptest::collection::vec(any::<u8>(), 0..70),
+    ) {
+        let mut mapping = PdoMapping::new();
+        for value in raw {
+            if mapping.push(MappingEntry::from_u32(value)).is_err() {
+                break;
+            }
+        }
+        let types = |entry: MappingEntry| data_type_for(seed, entry);
+        let layout = PdoLayout::new(&mapping, types);
+        let bits = |r: Result<Signal>| r.map(|s| match s.value {
+            Value::Real32(x) => (s.entry, s.offset, s.data_type, Value::Unsigned(u64::from(x.to_bits()))),
+            Value::Real64(x) => (s.entry, s.offset, s.data_type, Value::Unsigned(x.to_bits())),
+            v => (s.entry, s.offset, s.data_type, v),
+        });
+        let a: Vec<_> = layout.unpack(&payload).map(bits).collect();
+        let b: Vec<_> = mapping.unpack_with(&payload, types).map(bits).collect();
+        prop_assert_eq!(a, b);
+    }
+}
