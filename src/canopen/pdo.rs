@@ -1375,6 +1375,33 @@ impl PdoLayout {
     }
 }
 
+impl PdoLayout {
+    /// Read only the entry at `position` of the mapping (dummies counted):
+    /// `None` for a position past the mapping or a dummy, else what
+    /// [`unpack`](Self::unpack) gives for that entry — when the payload is
+    /// too short for it, its truncation error.
+    #[must_use]
+    pub fn read(&self, position: usize, payload: &[u8]) -> Option<Result<Signal>> {
+        let p = self.planned[..self.len].get(position)?;
+        if p.entry.is_dummy() {
+            return None;
+        }
+        LayoutSignals {
+            planned: core::slice::from_ref(p),
+            payload,
+        }
+        .next()
+    }
+
+    /// Return the position of the first entry that maps `index`.`sub_index`.
+    #[must_use]
+    pub fn position(&self, index: u16, sub_index: u8) -> Option<usize> {
+        self.planned[..self.len]
+            .iter()
+            .position(|p| p.entry.index() == index && p.entry.sub_index() == sub_index)
+    }
+}
+
 /// The signals of one payload read with a [`PdoLayout`].
 #[derive(Debug, Clone)]
 pub struct LayoutSignals<'a> {

@@ -65,6 +65,9 @@ pub struct ActiveMap {
     /// The node is a CiA 402 drive, so the controlword and statusword are
     /// read (SPEC §8.3).
     pub drive: bool,
+    /// Where the statusword (6041h, 16 bits) is mapped, if it is: the
+    /// summary reads only it.
+    statusword: Option<usize>,
 }
 
 /// The types of a mapping's signals, looked up in order: the unpacker asks
@@ -415,6 +418,9 @@ impl Context {
                 PdoDirection::Receive
             },
             number,
+            statusword: layout
+                .position(0x6041, 0)
+                .filter(|&i| layout_bits(&mapping, i) == 16),
             layout,
             names,
             keys,
@@ -456,9 +462,32 @@ impl Context {
         let state = nodes[usize::from(node.get())].get_or_insert_with(NodeState::default);
         let drive = map.drive || state.drive;
         self.signals.clear();
-        if signals || drive {
-            self.signals.extend(map.layout.unpack(data));
+        if !signals {
+            // The summary: only the statusword of a drive (SPEC §8.3's
+            // timeline is observed from statuswords).
+            let mut cia402 = None;
+            if drive {
+                let sw = map
+                    .statusword
+                    .and_then(|i| map.layout.read(i, data))
+                    .and_then(|s| match s.ok()?.value {
+                        Value::Unsigned(v) => Some(v as u16),
+                        _ => None,
+                    });
+                if let Some(sw) = sw {
+                    cia402 = Some(Cia402View {
+                        state: state.observe_statusword(sw),
+                        ..Cia402View::default()
+                    });
+                }
+            }
+            return Some(PdoView {
+                map,
+                signals: &self.signals,
+                cia402,
+            });
         }
+        self.signals.extend(map.layout.unpack(data));
         let mut cia402 = None;
         if drive {
             let mut view = Cia402View::default();
@@ -564,4 +593,9 @@ fn json_key(name: &str, comma: bool) -> Box<[u8]> {
     crate::json::string(&mut key, name).expect("writing to a Vec");
     key.push(b':');
     key.into_boxed_slice()
+}
+
+/// The bit length of the entry at `position` of a mapping.
+fn layout_bits(mapping: &PdoMapping, position: usize) -> u8 {
+    mapping.entries().get(position).map_or(0, |e| e.bits())
 }

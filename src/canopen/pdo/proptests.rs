@@ -99,6 +99,23 @@ proptest! {
         });
         let a: Vec<_> = layout.unpack(&payload).map(bits).collect();
         let b: Vec<_> = mapping.unpack_with(&payload, types).map(bits).collect();
-        prop_assert_eq!(a, b);
+        prop_assert_eq!(&a, &b);
+        // One entry alone reads as it does among the others (up to the
+        // first truncation, which ends the others).
+        let mut signals = a.iter();
+        for (position, entry) in mapping.entries().iter().enumerate() {
+            let Some(alone) = layout.read(position, &payload).map(bits) else {
+                prop_assert!(entry.is_dummy());
+                continue;
+            };
+            match signals.next() {
+                Some(Err(e)) => {
+                    prop_assert_eq!(alone, Err(*e));
+                    break;
+                }
+                Some(together) => prop_assert_eq!(&alone, together),
+                None => break,
+            }
+        }
     }
 }
