@@ -447,7 +447,7 @@ fn section_kind(name: &str) -> SectionKind {
         return SectionKind::Other;
     };
     let rest = &name[4..];
-    if rest.len() > 3 && rest[..3].eq_ignore_ascii_case("sub") {
+    if rest.len() > 3 && rest.as_bytes()[..3].eq_ignore_ascii_case(b"sub") {
         let digits = &rest[3..];
         if digits.bytes().all(|b| b.is_ascii_hexdigit()) {
             if let Ok(sub) = u8::from_str_radix(digits, 16) {
