@@ -44,9 +44,9 @@ pub use nmt::{
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
 pub use pdo::{
-    ByLength, DataType, EventTimer, InhibitTime, MappingEntry, Octets, PdoCobId, PdoCommunication,
-    PdoMapping, Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,
-    CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
+    ByLength, DataType, EventTimer, InhibitTime, MappingEntry, ObjectAddress, Octets, PdoCobId,
+    PdoCommunication, PdoMapping, Signal, Signals, TransmissionKind, TransmissionType, TypeLookup,
+    Value, ValueKind, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

@@ -724,6 +724,16 @@ impl MappingEntry {
         self.bits
     }
 
+    /// Return the object the entry maps, which displays as SPEC §8.2 names
+    /// an object no file or profile knows: `6041sub0`.
+    #[must_use]
+    pub const fn object(self) -> ObjectAddress {
+        ObjectAddress {
+            index: self.index,
+            sub_index: self.sub_index,
+        }
+    }
+
     /// Return whether the entry is a dummy: an index 0001h–0007h (a data
     /// type) that reserves its bits without mapping an object (CiA 301
     /// §7.4.7.1, "dummy mapping"; CiA 306's `[DummyUsage]` lists the same
@@ -748,16 +758,42 @@ impl From<MappingEntry> for u32 {
 
 impl fmt::Display for MappingEntry {
     /// Format the entry as `6041sub0 (16 bits)`: the object as SPEC §8.2
-    /// names an unknown one, and the length.
+    /// names an unknown one ([`ObjectAddress`]), and the length.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{:04X}sub{} ({} bit{})",
-            self.index,
-            self.sub_index,
+            "{} ({} bit{})",
+            self.object(),
             self.bits,
             if self.bits == 1 { "" } else { "s" }
         )
+    }
+}
+
+/// An object-dictionary entry: index and sub-index. Displays as SPEC §8.2
+/// names a signal that neither an EDS nor a profile names, and as CiA 306
+/// names the entry's section: the index in four hex digits, `sub`, the
+/// sub-index in hex (`6041sub0`, `1A00sub1A`).
+///
+/// ```
+/// use motionwire::canopen::{MappingEntry, ObjectAddress};
+///
+/// assert_eq!(MappingEntry::from_u32(0x6041_0010).object().to_string(), "6041sub0");
+/// assert_eq!(ObjectAddress { index: 0x1A00, sub_index: 0x1A }.to_string(), "1A00sub1A");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ObjectAddress {
+    /// The index.
+    pub index: u16,
+    /// The sub-index.
+    pub sub_index: u8,
+}
+
+impl fmt::Display for ObjectAddress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:04X}sub{:X}", self.index, self.sub_index)
     }
 }
 

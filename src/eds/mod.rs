@@ -104,8 +104,8 @@ pub use value::EdsValue;
 use value::ValueError;
 
 use crate::canopen::{
-    DataType, EventTimer, InhibitTime, MappingEntry, NodeId, PdoCobId, PdoCommunication,
-    PdoDirection, PdoMapping, Signals, TransmissionType, TypeLookup,
+    DataType, EventTimer, InhibitTime, MappingEntry, NodeId, ObjectAddress, PdoCobId,
+    PdoCommunication, PdoDirection, PdoMapping, Signals, TransmissionType, TypeLookup,
 };
 
 /// The object type of an object-dictionary entry (CiA 301 Table 42;
@@ -824,7 +824,11 @@ impl Eds {
             file: self.file.clone(),
             line: sub.map_or(object.line, |e| e.line),
             section: Some(match sub {
-                Some(e) => format!("{:04X}sub{:X}", e.index, e.sub_index),
+                Some(e) => ObjectAddress {
+                    index: e.index,
+                    sub_index: e.sub_index,
+                }
+                .to_string(),
                 None => format!("{:04X}", object.index),
             }),
             key: None,
