@@ -1343,6 +1343,17 @@ const fn mask(bits: u8) -> u64 {
 /// The caller has checked that they lie inside the payload.
 fn read_bits(payload: &[u8], offset: u16, bits: u8) -> u64 {
     let start = usize::from(offset / 8);
+    // Fast path: an 8-byte word that holds the field — from its first byte,
+    // or the payload's last 8 bytes when it starts less than 8 from the end.
+    if payload.len() >= 8 {
+        let word_start = start.min(payload.len() - 8);
+        let shift = u32::from(offset) - 8 * word_start as u32;
+        if shift + u32::from(bits) <= 64 {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(&payload[word_start..word_start + 8]);
+            return (u64::from_le_bytes(word) >> shift) & mask(bits);
+        }
+    }
     let shift = u32::from(offset % 8);
     let len = (shift as usize + usize::from(bits)).div_ceil(8);
     let mut window = 0u128;
