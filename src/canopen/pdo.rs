@@ -812,7 +812,9 @@ pub const CLASSIC_PDO_BITS: u16 = 64;
 /// most [`MAX_PDO_BITS`] bits in all, without a heap (objects 1600h–17FFh,
 /// 1A00h–1BFFh; CiA 301 §7.5.2.36, §7.5.2.38; SPEC §8.1).
 ///
-/// See the [module documentation](self) for unpacking and packing.
+/// See the [module documentation](self) for unpacking and packing. With the
+/// `serde` feature a mapping is the sequence of its entries; reading one
+/// back checks them as [`PdoMapping::push`] does.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct PdoMapping {
     entries: [MappingEntry; MAX_MAPPING_ENTRIES],
@@ -1041,7 +1043,9 @@ impl TypeLookup for ByLength {
 pub const MAX_OCTETS: usize = 32;
 
 /// The bits of a mapping entry that is no number: a string, a DOMAIN, or an
-/// untyped entry longer than 64 bits (at most 255 bits, held inline).
+/// untyped entry longer than 64 bits (at most 255 bits, held inline). With
+/// the `serde` feature: `{"bits": n, "bytes": [...]}`, checked as
+/// [`Octets::new`] checks when read back.
 ///
 /// ```
 /// use motionwire::canopen::Octets;
@@ -1107,6 +1111,7 @@ impl fmt::Display for Octets {
 /// The value of one signal of a PDO (SPEC §8.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Value {
     /// BOOLEAN, or an untyped 1-bit entry.
     Bool(bool),
@@ -1244,6 +1249,7 @@ impl fmt::Display for ValueKind {
 /// One signal read from a PDO payload (SPEC §8.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Signal {
     /// The mapping entry it was read for.
     pub entry: MappingEntry,
@@ -1458,3 +1464,6 @@ fn encode(
 mod proptests;
 #[cfg(test)]
 mod tests;
+
+#[cfg(feature = "serde")]
+mod serde_impls;
