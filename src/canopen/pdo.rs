@@ -1,5 +1,5 @@
 //! Process data objects: the communication and mapping parameters of a PDO
-//! and its payload read as signals (CiA 301 §7.2.2, §7.5.2.35–§7.5.2.38;
+//! and its payload read as signals (CiA 301 PDO protocol, §7.5.2.35–§7.5.2.38;
 //! SPEC §8.1, §8.2).
 //!
 //! A PDO's bytes mean nothing without its mapping. [`PdoMapping`] holds the
@@ -322,7 +322,7 @@ impl fmt::Display for DataType {
 }
 
 /// The COB-ID of a PDO, sub-index 1 of its communication parameter
-/// (CiA 301 Table 71; SPEC §8.1): bit 31 set = the PDO is not valid, bit 30
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "COB-ID used by PDO"; SPEC §8.1): bit 31 set = the PDO is not valid, bit 30
 /// set = no RTR is allowed on it, bit 29 set = a 29-bit identifier. Every
 /// bit of the 32 survives a round trip.
 ///
@@ -419,7 +419,7 @@ impl From<PdoCobId> for u32 {
 }
 
 /// What a [`TransmissionType`] says about when the PDO is sent
-/// (CiA 301 Table 72, transmission type; SPEC §8.1).
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "transmission type"; SPEC §8.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -464,7 +464,7 @@ impl fmt::Display for TransmissionKind {
 }
 
 /// The transmission type of a PDO, sub-index 2 of its communication
-/// parameter (CiA 301 Table 72; SPEC §8.1). Every byte is a transmission
+/// parameter (CiA 301 §7.5.2.35, §7.5.2.37; SPEC §8.1). Every byte is a transmission
 /// type; [`TransmissionType::kind`] says what it means.
 ///
 /// ```
@@ -655,7 +655,7 @@ impl PdoCommunication {
 }
 
 /// One entry of a PDO mapping parameter, the `u32` object value
-/// `index << 16 | sub-index << 8 | length in bits` (CiA 301 Figure 72;
+/// `index << 16 | sub-index << 8 | length in bits` (CiA 301 §7.5.2.36, §7.5.2.38;
 /// SPEC §8.1). Every `u32` is an entry; [`PdoMapping::push`] refuses the
 /// length 0.
 ///
@@ -735,9 +735,9 @@ impl MappingEntry {
     }
 
     /// Return whether the entry is a dummy: an index 0001h–0007h (a data
-    /// type) that reserves its bits without mapping an object (CiA 301
-    /// §7.4.7.1, "dummy mapping"; CiA 306's `[DummyUsage]` lists the same
-    /// seven). Unpacking skips it, packing writes zeros.
+    /// type) that reserves its bits without mapping an object (CiA 301,
+    /// PDO mapping, "dummy mapping"; CiA 306's `[DummyUsage]` lists the
+    /// same seven, `Dummy0001`…`Dummy0007`). Unpacking skips it, packing writes zeros.
     #[must_use]
     pub const fn is_dummy(self) -> bool {
         matches!(self.index, 0x0001..=0x0007)
@@ -805,7 +805,7 @@ pub const MAX_MAPPING_ENTRIES: usize = 64;
 /// classic CAN PDO carries at most 64 bits, [`CLASSIC_PDO_BITS`]).
 pub const MAX_PDO_BITS: u16 = 512;
 
-/// The most bits a classic CAN PDO carries, 8 bytes (CiA 301 §7.2.2).
+/// The most bits a classic CAN PDO carries, 8 bytes (CiA 301, PDO).
 pub const CLASSIC_PDO_BITS: u16 = 64;
 
 /// A PDO mapping parameter: up to [`MAX_MAPPING_ENTRIES`] entries of at

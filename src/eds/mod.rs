@@ -108,7 +108,7 @@ use crate::canopen::{
     PdoCommunication, PdoDirection, PdoMapping, Signals, TransmissionType, TypeLookup,
 };
 
-/// The object type of an object-dictionary entry (CiA 301 Table 42;
+/// The object type of an object-dictionary entry (CiA 301 object codes;
 /// CiA 306 `ObjectType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ObjectType {
@@ -931,7 +931,7 @@ impl Reader<'_> {
         })
     }
 
-    /// Expand an ARRAY written with `CompactSubObj=N` (CiA 306 §4.5.2.3):
+    /// Expand an ARRAY written with `CompactSubObj=N` (CiA 306, compact storage of sub-objects):
     /// sub-index 0 "Number of entries" (UNSIGNED8, N; python-canopen's
     /// name), sub-indices 1..=N named by `[xxxxName]` or else the object's
     /// name followed by the sub-index in decimal (lely's dcf-tools), valued
