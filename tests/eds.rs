@@ -32,6 +32,10 @@
 //!   and a REAL32 at bit 4 raises `TypeError` (`bitfields.eds`, TPDO 3).
 //!   Every signal the crate reads is also checked against a bit-by-bit
 //!   reader written in this file.
+//! - Octal: CiA 306 reads a leading `0` as octal; python-canopen 2.4.1
+//!   gives `DefaultValue=010` no value at all (Python's `int("010", 0)`
+//!   refuses it; checked by hand, no fixture uses it). The crate reads 8
+//!   (`src/eds/tests.rs`).
 //! - Data type 0x40 of `sample.eds` (a complex type): python-canopen turns
 //!   it into DOMAIN; the crate keeps the index (`Entry::data_type_index`)
 //!   and no basic type, and its value as text.

@@ -1,5 +1,5 @@
 //! Process data objects: the communication and mapping parameters of a PDO
-//! and its payload read as signals (CiA 301 §7.2.2, §7.5.2.35–§7.5.2.38;
+//! and its payload read as signals (CiA 301 PDO protocol, §7.5.2.35–§7.5.2.38;
 //! SPEC §8.1, §8.2).
 //!
 //! A PDO's bytes mean nothing without its mapping. [`PdoMapping`] holds the
@@ -322,7 +322,7 @@ impl fmt::Display for DataType {
 }
 
 /// The COB-ID of a PDO, sub-index 1 of its communication parameter
-/// (CiA 301 Table 71; SPEC §8.1): bit 31 set = the PDO is not valid, bit 30
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "COB-ID used by PDO"; SPEC §8.1): bit 31 set = the PDO is not valid, bit 30
 /// set = no RTR is allowed on it, bit 29 set = a 29-bit identifier. Every
 /// bit of the 32 survives a round trip.
 ///
@@ -419,7 +419,7 @@ impl From<PdoCobId> for u32 {
 }
 
 /// What a [`TransmissionType`] says about when the PDO is sent
-/// (CiA 301 Table 72, transmission type; SPEC §8.1).
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "transmission type"; SPEC §8.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -464,7 +464,7 @@ impl fmt::Display for TransmissionKind {
 }
 
 /// The transmission type of a PDO, sub-index 2 of its communication
-/// parameter (CiA 301 Table 72; SPEC §8.1). Every byte is a transmission
+/// parameter (CiA 301 §7.5.2.35, §7.5.2.37; SPEC §8.1). Every byte is a transmission
 /// type; [`TransmissionType::kind`] says what it means.
 ///
 /// ```
@@ -655,7 +655,7 @@ impl PdoCommunication {
 }
 
 /// One entry of a PDO mapping parameter, the `u32` object value
-/// `index << 16 | sub-index << 8 | length in bits` (CiA 301 Figure 72;
+/// `index << 16 | sub-index << 8 | length in bits` (CiA 301 §7.5.2.36, §7.5.2.38;
 /// SPEC §8.1). Every `u32` is an entry; [`PdoMapping::push`] refuses the
 /// length 0.
 ///
@@ -724,10 +724,20 @@ impl MappingEntry {
         self.bits
     }
 
+    /// Return the object the entry maps, which displays as SPEC §8.2 names
+    /// an object no file or profile knows: `6041sub0`.
+    #[must_use]
+    pub const fn object(self) -> ObjectAddress {
+        ObjectAddress {
+            index: self.index,
+            sub_index: self.sub_index,
+        }
+    }
+
     /// Return whether the entry is a dummy: an index 0001h–0007h (a data
-    /// type) that reserves its bits without mapping an object (CiA 301
-    /// §7.4.7.1, "dummy mapping"; CiA 306's `[DummyUsage]` lists the same
-    /// seven). Unpacking skips it, packing writes zeros.
+    /// type) that reserves its bits without mapping an object (CiA 301,
+    /// PDO mapping, "dummy mapping"; CiA 306's `[DummyUsage]` lists the
+    /// same seven, `Dummy0001`…`Dummy0007`). Unpacking skips it, packing writes zeros.
     #[must_use]
     pub const fn is_dummy(self) -> bool {
         matches!(self.index, 0x0001..=0x0007)
@@ -748,16 +758,42 @@ impl From<MappingEntry> for u32 {
 
 impl fmt::Display for MappingEntry {
     /// Format the entry as `6041sub0 (16 bits)`: the object as SPEC §8.2
-    /// names an unknown one, and the length.
+    /// names an unknown one ([`ObjectAddress`]), and the length.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{:04X}sub{} ({} bit{})",
-            self.index,
-            self.sub_index,
+            "{} ({} bit{})",
+            self.object(),
             self.bits,
             if self.bits == 1 { "" } else { "s" }
         )
+    }
+}
+
+/// An object-dictionary entry: index and sub-index. Displays as SPEC §8.2
+/// names a signal that neither an EDS nor a profile names, and as CiA 306
+/// names the entry's section: the index in four hex digits, `sub`, the
+/// sub-index in hex (`6041sub0`, `1A00sub1A`).
+///
+/// ```
+/// use motionwire::canopen::{MappingEntry, ObjectAddress};
+///
+/// assert_eq!(MappingEntry::from_u32(0x6041_0010).object().to_string(), "6041sub0");
+/// assert_eq!(ObjectAddress { index: 0x1A00, sub_index: 0x1A }.to_string(), "1A00sub1A");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ObjectAddress {
+    /// The index.
+    pub index: u16,
+    /// The sub-index.
+    pub sub_index: u8,
+}
+
+impl fmt::Display for ObjectAddress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:04X}sub{:X}", self.index, self.sub_index)
     }
 }
 
@@ -769,14 +805,16 @@ pub const MAX_MAPPING_ENTRIES: usize = 64;
 /// classic CAN PDO carries at most 64 bits, [`CLASSIC_PDO_BITS`]).
 pub const MAX_PDO_BITS: u16 = 512;
 
-/// The most bits a classic CAN PDO carries, 8 bytes (CiA 301 §7.2.2).
+/// The most bits a classic CAN PDO carries, 8 bytes (CiA 301, PDO).
 pub const CLASSIC_PDO_BITS: u16 = 64;
 
 /// A PDO mapping parameter: up to [`MAX_MAPPING_ENTRIES`] entries of at
 /// most [`MAX_PDO_BITS`] bits in all, without a heap (objects 1600h–17FFh,
 /// 1A00h–1BFFh; CiA 301 §7.5.2.36, §7.5.2.38; SPEC §8.1).
 ///
-/// See the [module documentation](self) for unpacking and packing.
+/// See the [module documentation](self) for unpacking and packing. With the
+/// `serde` feature a mapping is the sequence of its entries; reading one
+/// back checks them as [`PdoMapping::push`] does.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct PdoMapping {
     entries: [MappingEntry; MAX_MAPPING_ENTRIES],
@@ -1005,7 +1043,9 @@ impl TypeLookup for ByLength {
 pub const MAX_OCTETS: usize = 32;
 
 /// The bits of a mapping entry that is no number: a string, a DOMAIN, or an
-/// untyped entry longer than 64 bits (at most 255 bits, held inline).
+/// untyped entry longer than 64 bits (at most 255 bits, held inline). With
+/// the `serde` feature: `{"bits": n, "bytes": [...]}`, checked as
+/// [`Octets::new`] checks when read back.
 ///
 /// ```
 /// use motionwire::canopen::Octets;
@@ -1071,6 +1111,7 @@ impl fmt::Display for Octets {
 /// The value of one signal of a PDO (SPEC §8.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Value {
     /// BOOLEAN, or an untyped 1-bit entry.
     Bool(bool),
@@ -1208,6 +1249,7 @@ impl fmt::Display for ValueKind {
 /// One signal read from a PDO payload (SPEC §8.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Signal {
     /// The mapping entry it was read for.
     pub entry: MappingEntry,
@@ -1461,6 +1503,17 @@ const fn mask(bits: u8) -> u64 {
 /// The caller has checked that they lie inside the payload.
 fn read_bits(payload: &[u8], offset: u16, bits: u8) -> u64 {
     let start = usize::from(offset / 8);
+    // Fast path: an 8-byte word that holds the field — from its first byte,
+    // or the payload's last 8 bytes when it starts less than 8 from the end.
+    if payload.len() >= 8 {
+        let word_start = start.min(payload.len() - 8);
+        let shift = u32::from(offset) - 8 * word_start as u32;
+        if shift + u32::from(bits) <= 64 {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(&payload[word_start..word_start + 8]);
+            return (u64::from_le_bytes(word) >> shift) & mask(bits);
+        }
+    }
     let shift = u32::from(offset % 8);
     let len = (shift as usize + usize::from(bits)).div_ceil(8);
     // Byte-aligned entries of whole bytes, most of a drive's process data:
@@ -1586,3 +1639,6 @@ fn encode(
 mod proptests;
 #[cfg(test)]
 mod tests;
+
+#[cfg(feature = "serde")]
+mod serde_impls;

@@ -1,7 +1,7 @@
 //! The INI layer of CiA 306 files: sections, keys and values with the line
 //! each stands on, borrowed from the text.
 //!
-//! CiA 306 §4.2 writes an EDS or DCF as INI text: `[section]` headers,
+//! CiA 306 writes an EDS or DCF as INI text: `[section]` headers,
 //! `key=value` lines, comments from `;`. Section names and keys are
 //! compared without regard to ASCII case. A `;` that starts a line, or that
 //! follows white space, starts a comment (as python-canopen's
@@ -113,7 +113,7 @@ pub struct IniError {
     pub kind: IniErrorKind,
 }
 
-/// INI text read into sections, borrowing from the text (CiA 306 §4.2).
+/// INI text read into sections, borrowing from the text (CiA 306).
 ///
 /// ```
 /// use motionwire::eds::IniFile;

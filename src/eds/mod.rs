@@ -104,11 +104,11 @@ pub use value::EdsValue;
 use value::ValueError;
 
 use crate::canopen::{
-    DataType, EventTimer, InhibitTime, MappingEntry, NodeId, PdoCobId, PdoCommunication,
-    PdoDirection, PdoMapping, Signals, TransmissionType, TypeLookup,
+    DataType, EventTimer, InhibitTime, MappingEntry, NodeId, ObjectAddress, PdoCobId,
+    PdoCommunication, PdoDirection, PdoMapping, Signals, TransmissionType, TypeLookup,
 };
 
-/// The object type of an object-dictionary entry (CiA 301 Table 42;
+/// The object type of an object-dictionary entry (CiA 301 object codes;
 /// CiA 306 `ObjectType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ObjectType {
@@ -447,7 +447,7 @@ fn section_kind(name: &str) -> SectionKind {
         return SectionKind::Other;
     };
     let rest = &name[4..];
-    if rest.len() > 3 && rest[..3].eq_ignore_ascii_case("sub") {
+    if rest.len() > 3 && rest.as_bytes()[..3].eq_ignore_ascii_case(b"sub") {
         let digits = &rest[3..];
         if digits.bytes().all(|b| b.is_ascii_hexdigit()) {
             if let Ok(sub) = u8::from_str_radix(digits, 16) {
@@ -824,7 +824,11 @@ impl Eds {
             file: self.file.clone(),
             line: sub.map_or(object.line, |e| e.line),
             section: Some(match sub {
-                Some(e) => format!("{:04X}sub{:X}", e.index, e.sub_index),
+                Some(e) => ObjectAddress {
+                    index: e.index,
+                    sub_index: e.sub_index,
+                }
+                .to_string(),
                 None => format!("{:04X}", object.index),
             }),
             key: None,
@@ -927,7 +931,7 @@ impl Reader<'_> {
         })
     }
 
-    /// Expand an ARRAY written with `CompactSubObj=N` (CiA 306 §4.5.2.3):
+    /// Expand an ARRAY written with `CompactSubObj=N` (CiA 306, compact storage of sub-objects):
     /// sub-index 0 "Number of entries" (UNSIGNED8, N; python-canopen's
     /// name), sub-indices 1..=N named by `[xxxxName]` or else the object's
     /// name followed by the sub-index in decimal (lely's dcf-tools), valued

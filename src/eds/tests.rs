@@ -344,6 +344,23 @@ DefaultValue=0x60410000
 }
 
 #[test]
+fn section_names_that_are_not_ascii() {
+    // Found by the eds fuzz target: a multi-byte character right after the
+    // index, where "sub" would stand.
+    for name in [
+        "1000s\u{9e}",
+        "1000\u{e9}",
+        "10\u{e9}0",
+        "1000sub\u{e9}",
+        "1000Näme",
+    ] {
+        let text = format!("[1000]\nParameterName=a\n[{name}]\nParameterName=b\n");
+        let eds = Eds::parse(&text, "u.eds", None).unwrap();
+        assert_eq!(eds.objects().count(), 1, "{name}");
+    }
+}
+
+#[test]
 fn latin1_and_missing_files() {
     let bytes = b"[1000]\nParameterName=Ger\xe4tetyp\nDataType=7\n";
     let eds = Eds::from_bytes(bytes, "l.eds", None).unwrap();

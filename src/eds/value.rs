@@ -7,7 +7,7 @@ use std::fmt;
 use crate::canopen::{DataType, NodeId};
 
 /// A `DefaultValue` or `ParameterValue` read with its object's data type
-/// (CiA 306 §4.6.3; SPEC §8.1).
+/// (CiA 306; SPEC §8.1).
 #[derive(Debug, Clone, PartialEq)]
 pub enum EdsValue {
     /// BOOLEAN, UNSIGNEDn, TIME_OF_DAY, TIME_DIFFERENCE.
@@ -87,7 +87,7 @@ pub(crate) enum ValueError {
 /// Return the integer of `text`: terms joined by `+` or `-` (the first may
 /// carry a sign), each a number — `0x` hex, a leading `0` octal, else
 /// decimal — or `$NODEID` (any case), which is `node`. White space between
-/// terms is allowed. CiA 306 §4.6.3 writes `$NODEID+0x180`; files also
+/// terms is allowed. CiA 306 writes `$NODEID+0x180`; files also
 /// write `0x180+$NODEID`, `$NodeID + 0x180` and sums of several numbers.
 pub(crate) fn parse_integer(text: &str, node: Option<NodeId>) -> Result<i128, ValueError> {
     let bytes = text.as_bytes();
