@@ -78,8 +78,10 @@ fn learned_from_the_log_with_no_eds() {
         let want: serde_json::Map<String, Value> = oracle_signals(frame)
             .iter()
             .map(|s| {
+                // SPEC §8.2's `6041sub0`, the sub-index in hex as CiA 306's
+                // section names write it.
                 let name = format!(
-                    "{:04X}sub{}",
+                    "{:04X}sub{:X}",
                     s["index"].as_u64().unwrap(),
                     s["subindex"].as_u64().unwrap()
                 );

@@ -384,7 +384,7 @@ impl Context {
                 match object_name(e.index(), set) {
                     Some(name) if e.sub_index() == 0 => Cow::Borrowed(name),
                     Some(name) => Cow::Owned(format!("{name}.sub{}", e.sub_index())),
-                    None => Cow::Owned(format!("{:04X}sub{}", e.index(), e.sub_index())),
+                    None => Cow::Owned(e.object().to_string()),
                 }
             })
             .collect();
