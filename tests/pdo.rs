@@ -5,40 +5,11 @@
 //! (and, for entries that straddle bytes, cantools') reading of the same
 //! bytes; and the sample log's drive timeline against its own statuswords.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
+
+use common::{decode, path, records};
 
 use serde_json::{json, Value};
-
-fn decode(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_motionwire"))
-        .arg("decode")
-        .args(args)
-        .output()
-        .expect("the motionwire binary runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-fn records(out: &Output) -> Vec<Value> {
-    String::from_utf8(out.stdout.clone())
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
-        .collect()
-}
-
-fn path(rel: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join(rel)
-        .to_str()
-        .unwrap()
-        .to_owned()
-}
 
 fn oracle() -> Value {
     serde_json::from_str(

@@ -3,44 +3,18 @@
 //! (`tests/fixtures/sdo/`, made by `scripts/gen_sdo_fixtures.py`), whose
 //! transfers must come out as python-canopen made them.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
+
+use common::{decode, path, records};
 
 use serde_json::{json, Value};
 
-fn decode(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_motionwire"))
-        .arg("decode")
-        .args(args)
-        .output()
-        .expect("the motionwire binary runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-fn records(out: &Output) -> Vec<Value> {
-    String::from_utf8(out.stdout.clone())
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
-        .collect()
-}
-
 fn fixture(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/sdo")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_owned()
+    path(&format!("tests/fixtures/sdo/{name}"))
 }
 
 fn temp_log(name: &str, text: &str) -> String {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("sdo-tests");
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sdo-tests");
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();

@@ -58,8 +58,8 @@ pub use objects::{
     OBJECT_NAMES, OBJECT_TYPES,
 };
 pub use pdo::{
-    ByLength, DataType, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress, Octets,
-    PdoCobId, PdoCommunication, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
+    ByLength, DataType, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress,
+    Octets, PdoCobId, PdoCommunication, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
     TransmissionType, TypeLookup, Value, ValueKind, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
     MAX_OCTETS, MAX_PDO_BITS,
 };

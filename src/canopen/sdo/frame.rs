@@ -517,6 +517,77 @@ impl<T: AsRef<[u8]>> SdoFrame<T> {
     }
 }
 
+impl<T: AsRef<[u8]>> SdoFrame<T> {
+    /// Return `ackseq` and `blksize` of a sub-block confirmation (bytes 1
+    /// and 2; CiA 301 §7.2.4.3.12, §7.2.4.3.15).
+    #[inline]
+    pub fn block_ack(&self) -> (u8, u8) {
+        let buf = self.buffer.as_ref();
+        (buf[field::ACKSEQ], buf[field::ACK_BLKSIZE])
+    }
+
+    /// Return the CRC-support bit and the size (when `s`, bit 1, is set) of
+    /// a block initiate that carries a size: the client's block download
+    /// initiate or the server's block upload answer (CiA 301 §7.2.4.3.9,
+    /// §7.2.4.3.13).
+    #[inline]
+    pub fn sized_block_initiate(&self) -> (bool, Option<u32>) {
+        let command = self.command();
+        (
+            command & CRC_SUPPORTED != 0,
+            (command & 0b10 != 0).then(|| u32::from_le_bytes(self.data_field())),
+        )
+    }
+
+    /// Return `n` (bits 4–2: bytes of the last segment without data) and
+    /// the CRC (bytes 1–2) of a block end frame (CiA 301 §7.2.4.3.14,
+    /// §7.2.4.3.16).
+    #[inline]
+    pub fn block_end(&self) -> (u8, u16) {
+        (
+            (self.command() >> 2) & 0b111,
+            LittleEndian::read_u16(&self.buffer.as_ref()[field::CRC]),
+        )
+    }
+}
+
+impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
+    /// Write a sub-block confirmation: command (cs/ss 2 of block upload
+    /// request / block download response, specifier 5), `ackseq`,
+    /// `blksize`.
+    #[inline]
+    pub fn set_block_ack(&mut self, ackseq: u8, blksize: u8) {
+        self.set_command((5 << 5) | 2);
+        let buf = self.buffer.as_mut();
+        buf[field::ACKSEQ] = ackseq;
+        buf[field::ACK_BLKSIZE] = blksize;
+    }
+
+    /// Write a block initiate that carries a size (specifier 6: the
+    /// client's block download initiate, the server's block upload
+    /// answer).
+    #[inline]
+    pub fn set_sized_block_initiate(
+        &mut self,
+        multiplexer: SdoMultiplexer,
+        crc_supported: bool,
+        size: Option<u32>,
+    ) {
+        let s = if size.is_some() { 0b10 } else { 0 };
+        self.set_command((6 << 5) | crc_bit(crc_supported) | s);
+        self.set_multiplexer(multiplexer);
+        self.set_data_field(size.unwrap_or(0).to_le_bytes());
+    }
+
+    /// Write a block end frame with specifier 6 (the client's block
+    /// download end, the server's block upload end): `n` and the CRC.
+    #[inline]
+    pub fn set_block_end(&mut self, unused: u8, crc: u16) {
+        self.set_command((6 << 5) | ((unused & 0b111) << 2) | 1);
+        self.buffer.as_mut()[field::CRC].copy_from_slice(&crc.to_le_bytes());
+    }
+}
+
 impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
     /// Set the command byte (byte 0).
     #[inline]
@@ -750,15 +821,6 @@ fn invalid(what: What, found: u8, expected: &'static str) -> Error {
     }
 }
 
-fn crc_of(frame: &SdoFrame<&[u8]>) -> u16 {
-    LittleEndian::read_u16(&frame.buffer[field::CRC])
-}
-
-/// `n` of a block end frame: bits 4–2.
-const fn end_unused(command: u8) -> u8 {
-    (command >> 2) & 0b111
-}
-
 /// `n` of a segment: bits 3–1.
 const fn segment_unused(command: u8) -> u8 {
     (command >> 1) & 0b111
@@ -773,10 +835,6 @@ fn abort_of(frame: &SdoFrame<&[u8]>) -> (SdoMultiplexer, SdoAbortCode) {
         frame.multiplexer(),
         SdoAbortCode::new(u32::from_le_bytes(frame.data_field())),
     )
-}
-
-fn size_of(command: u8, frame: &SdoFrame<&[u8]>) -> Option<u32> {
-    (command & 0b10 != 0).then(|| u32::from_le_bytes(frame.data_field()))
 }
 
 impl SdoRequest {
@@ -817,22 +875,25 @@ impl SdoRequest {
                     pst: data[field::PST],
                 },
                 1 => SdoRequest::BlockUploadEnd,
-                2 => SdoRequest::BlockUploadAck {
-                    ackseq: data[field::ACKSEQ],
-                    blksize: data[field::ACK_BLKSIZE],
-                },
+                2 => {
+                    let (ackseq, blksize) = frame.block_ack();
+                    SdoRequest::BlockUploadAck { ackseq, blksize }
+                }
                 _ => SdoRequest::BlockUploadStart,
             },
             6 => match command & 0b1 {
-                0 => SdoRequest::BlockDownloadInitiate {
-                    multiplexer,
-                    crc_supported: command & CRC_SUPPORTED != 0,
-                    size: size_of(command, &frame),
-                },
-                _ => SdoRequest::BlockDownloadEnd {
-                    unused: end_unused(command),
-                    crc: crc_of(&frame),
-                },
+                0 => {
+                    let (crc_supported, size) = frame.sized_block_initiate();
+                    SdoRequest::BlockDownloadInitiate {
+                        multiplexer,
+                        crc_supported,
+                        size,
+                    }
+                }
+                _ => {
+                    let (unused, crc) = frame.block_end();
+                    SdoRequest::BlockDownloadEnd { unused, crc }
+                }
             },
             _ => {
                 return Err(invalid(
@@ -885,25 +946,15 @@ impl SdoRequest {
             }
             SdoRequest::BlockUploadEnd => frame.set_command((5 << 5) | 1),
             SdoRequest::BlockUploadAck { ackseq, blksize } => {
-                frame.set_command((5 << 5) | 2);
-                out[field::ACKSEQ] = ackseq;
-                out[field::ACK_BLKSIZE] = blksize;
+                frame.set_block_ack(ackseq, blksize);
             }
             SdoRequest::BlockUploadStart => frame.set_command((5 << 5) | 3),
             SdoRequest::BlockDownloadInitiate {
                 multiplexer,
                 crc_supported,
                 size,
-            } => {
-                let s = if size.is_some() { 0b10 } else { 0 };
-                frame.set_command((6 << 5) | crc_bit(crc_supported) | s);
-                frame.set_multiplexer(multiplexer);
-                frame.set_data_field(size.unwrap_or(0).to_le_bytes());
-            }
-            SdoRequest::BlockDownloadEnd { unused, crc } => {
-                frame.set_command((6 << 5) | ((unused & 0b111) << 2) | 1);
-                out[field::CRC].copy_from_slice(&crc.to_le_bytes());
-            }
+            } => frame.set_sized_block_initiate(multiplexer, crc_supported, size),
+            SdoRequest::BlockDownloadEnd { unused, crc } => frame.set_block_end(unused, crc),
         }
         out
     }
@@ -1008,10 +1059,10 @@ impl SdoResponse {
                     blksize: data[field::INITIATE_BLKSIZE],
                 },
                 1 => SdoResponse::BlockDownloadEnd,
-                2 => SdoResponse::BlockDownloadAck {
-                    ackseq: data[field::ACKSEQ],
-                    blksize: data[field::ACK_BLKSIZE],
-                },
+                2 => {
+                    let (ackseq, blksize) = frame.block_ack();
+                    SdoResponse::BlockDownloadAck { ackseq, blksize }
+                }
                 sub => {
                     return Err(invalid(
                         What::SdoBlockSubcommand,
@@ -1021,15 +1072,18 @@ impl SdoResponse {
                 }
             },
             6 => match command & 0b1 {
-                0 => SdoResponse::BlockUploadInitiate {
-                    multiplexer,
-                    crc_supported: command & CRC_SUPPORTED != 0,
-                    size: size_of(command, &frame),
-                },
-                _ => SdoResponse::BlockUploadEnd {
-                    unused: end_unused(command),
-                    crc: crc_of(&frame),
-                },
+                0 => {
+                    let (crc_supported, size) = frame.sized_block_initiate();
+                    SdoResponse::BlockUploadInitiate {
+                        multiplexer,
+                        crc_supported,
+                        size,
+                    }
+                }
+                _ => {
+                    let (unused, crc) = frame.block_end();
+                    SdoResponse::BlockUploadEnd { unused, crc }
+                }
             },
             _ => {
                 return Err(invalid(
@@ -1080,24 +1134,14 @@ impl SdoResponse {
             }
             SdoResponse::BlockDownloadEnd => frame.set_command((5 << 5) | 1),
             SdoResponse::BlockDownloadAck { ackseq, blksize } => {
-                frame.set_command((5 << 5) | 2);
-                out[field::ACKSEQ] = ackseq;
-                out[field::ACK_BLKSIZE] = blksize;
+                frame.set_block_ack(ackseq, blksize);
             }
             SdoResponse::BlockUploadInitiate {
                 multiplexer,
                 crc_supported,
                 size,
-            } => {
-                let s = if size.is_some() { 0b10 } else { 0 };
-                frame.set_command((6 << 5) | crc_bit(crc_supported) | s);
-                frame.set_multiplexer(multiplexer);
-                frame.set_data_field(size.unwrap_or(0).to_le_bytes());
-            }
-            SdoResponse::BlockUploadEnd { unused, crc } => {
-                frame.set_command((6 << 5) | ((unused & 0b111) << 2) | 1);
-                out[field::CRC].copy_from_slice(&crc.to_le_bytes());
-            }
+            } => frame.set_sized_block_initiate(multiplexer, crc_supported, size),
+            SdoResponse::BlockUploadEnd { unused, crc } => frame.set_block_end(unused, crc),
         }
         out
     }
