@@ -884,8 +884,17 @@ impl Cia402Timeline {
         if self.transitions.is_empty() {
             return writeln!(out, "          CiA 402: no statusword seen");
         }
-        out.write_all(b"          CiA 402:")?;
+        // Up to 12 states in full; a longer timeline shows its first 4 and
+        // last 8 (the JSON record has them all).
+        let n = self.transitions.len();
+        write!(out, "          CiA 402, {n} states in turn:")?;
         for (i, t) in self.transitions.iter().enumerate() {
+            if n > 12 && (4..n - 8).contains(&i) {
+                if i == 4 {
+                    write!(out, " → … {} more …", n - 12)?;
+                }
+                continue;
+            }
             if i > 0 {
                 out.write_all(" →".as_bytes())?;
             }
