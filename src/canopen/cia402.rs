@@ -104,6 +104,24 @@ const STATE_MASK_WITHOUT_QUICK_STOP: u16 = 0x004F;
 /// The statusword bits that code the state: bits 0–3, 5 and 6.
 const STATE_MASK_WITH_QUICK_STOP: u16 = 0x006F;
 
+/// The device profile number of CiA 402 drives, 0x0192 (402), in the low
+/// word of the device type 1000h (CiA 301 §7.5.2.1; SPEC §8.3).
+pub const DRIVE_DEVICE_PROFILE: u16 = 402;
+
+/// Return whether a device type (object 1000h) names a CiA 402 drive: its
+/// low word is [`DRIVE_DEVICE_PROFILE`] (SPEC §8.3).
+///
+/// ```
+/// use motionwire::canopen::cia402::is_drive_device_type;
+///
+/// assert!(is_drive_device_type(0x0002_0192));
+/// assert!(!is_drive_device_type(0x0000_0196)); // CiA 406, an encoder
+/// ```
+#[must_use]
+pub const fn is_drive_device_type(device_type: u32) -> bool {
+    device_type & 0xFFFF == DRIVE_DEVICE_PROFILE as u32
+}
+
 impl Cia402State {
     /// Every state, in the order of the enum (the state diagram's order from
     /// start to fault).

@@ -597,17 +597,7 @@ impl CanOpenMessage {
                 number,
                 direction,
                 ..
-            } => {
-                if !(1..=4).contains(&number) {
-                    return None;
-                }
-                // TPDO n: 0x080 + n·0x100; RPDO n: 0x100 + n·0x100.
-                let base = match direction {
-                    PdoDirection::Transmit => 0x080,
-                    PdoDirection::Receive => 0x100,
-                };
-                Some(base + u16::from(number) * 0x100 + u16::from(node.get()))
-            }
+            } => node.pdo_cob_id(direction, u16::from(number)),
             CanOpenMessage::SdoResponse { node, .. } => {
                 Some(cob_id::SDO_TX_BASE + u16::from(node.get()))
             }

@@ -98,6 +98,32 @@ impl NodeId {
     pub const fn error_control_cob_id(self) -> u16 {
         cob_id::ERROR_CONTROL_BASE + self.0 as u16
     }
+
+    /// Return the COB-ID the pre-defined connection set gives this node's
+    /// PDO `number` (1..=4): TPDO n at 0x080 + n·0x100 + node-ID, RPDO n at
+    /// 0x100 + n·0x100 + node-ID (CiA 301 §7.3.5 Table 72); `None` for any
+    /// other number, which the set leaves unassigned.
+    ///
+    /// ```
+    /// use motionwire::canopen::{NodeId, PdoDirection};
+    ///
+    /// let node = NodeId::new(3).unwrap();
+    /// assert_eq!(node.pdo_cob_id(PdoDirection::Transmit, 1), Some(0x183));
+    /// assert_eq!(node.pdo_cob_id(PdoDirection::Receive, 4), Some(0x503));
+    /// assert_eq!(node.pdo_cob_id(PdoDirection::Transmit, 5), None);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn pdo_cob_id(self, direction: PdoDirection, number: u16) -> Option<u16> {
+        if number < 1 || number > 4 {
+            return None;
+        }
+        let base = match direction {
+            PdoDirection::Transmit => 0x080,
+            PdoDirection::Receive => 0x100,
+        };
+        Some(base + number * 0x100 + self.0 as u16)
+    }
 }
 
 impl TryFrom<u8> for NodeId {

@@ -781,7 +781,8 @@ impl Eds {
     /// word of 1000h; SPEC §8.3).
     #[must_use]
     pub fn is_cia402(&self) -> bool {
-        self.device_type().is_some_and(|t| t & 0xFFFF == 0x0192)
+        self.device_type()
+            .is_some_and(crate::canopen::cia402::is_drive_device_type)
     }
 
     /// Return every PDO whose communication parameter object the file has

@@ -22,9 +22,6 @@ use crate::profile::Profiles;
 use crate::sdo::{Channel, SdoView};
 use crate::summary::BusName;
 
-/// Device type 1000h's low word of a CiA 402 drive (CiA 301 §7.5.2.1).
-const CIA402_DEVICE_TYPE: u32 = 402;
-
 /// The CiA 402 reading of one frame (SPEC §8.3 `cia402`): each part where
 /// the frame tells it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -311,7 +308,7 @@ impl Context {
         }
         let state = self.node(at, node);
         if m.index == 0x1000 && transfer.direction == TransferDirection::Upload {
-            if value & 0xFFFF == CIA402_DEVICE_TYPE {
+            if motionwire::canopen::cia402::is_drive_device_type(value) {
                 state.drive = true;
             }
             return None;
@@ -343,16 +340,17 @@ impl Context {
         let drive = state.drive;
         let params = state.pdos.get_mut(&key).expect("made");
         let (transmit, number) = key;
+        let direction = if transmit {
+            PdoDirection::Transmit
+        } else {
+            PdoDirection::Receive
+        };
         // The COB-ID: as configured, else the pre-defined connection set
         // for PDOs 1–4 (CiA 301 §7.3.5).
         let cob_id = match params.cob_id {
             Some(cob) if !cob.is_valid() || cob.is_extended() => None,
             Some(cob) => cob.can_id().and_then(|id| id.standard_raw()),
-            None if (1..=4).contains(&number) => {
-                let base = if transmit { 0x180 } else { 0x200 };
-                Some(base + (number - 1) * 0x100 + u16::from(node.get()))
-            }
-            None => None,
+            None => node.pdo_cob_id(direction, number),
         };
         let mapping = params.count.filter(|&n| n > 0).and_then(|n| {
             let raw: Option<Vec<u32>> = params.entries[..usize::from(n).min(64)]
@@ -412,11 +410,7 @@ impl Context {
         );
         let map = ActiveMap {
             node,
-            direction: if transmit {
-                PdoDirection::Transmit
-            } else {
-                PdoDirection::Receive
-            },
+            direction,
             number,
             statusword: layout
                 .position(0x6041, 0)

@@ -122,7 +122,7 @@ fn push(data: &mut Vec<u8>, chunk: &[u8]) {
 /// The direction of an SDO frame on `id` (SPEC §6.1): 0x581–0x5FF server
 /// → client, 0x601–0x67F client → server.
 pub fn sdo_direction(id: u32) -> SdoDirection {
-    if id < 0x600 {
+    if id < u32::from(motionwire::canopen::cob_id::SDO_RX_BASE) {
         SdoDirection::Response
     } else {
         SdoDirection::Request
