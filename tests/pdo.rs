@@ -206,3 +206,76 @@ fn sample_drive_timeline() {
     let encoder = recs.iter().find(|r| r["node"] == 5).unwrap();
     assert_eq!(encoder["cia402"], Value::Null);
 }
+
+/// A crafted drive (node 4, `--profile 4=akd`) whose TPDO1 mapping is
+/// written by SDO with no COB-ID: the pre-defined connection set puts it on
+/// 0x184 (SPEC §8.1 item 3); a refused write changes nothing; a PDO
+/// shorter than its mapping carries the signals that fit and `error`
+/// (SPEC §8.2); expedited SDO transfers of 6041h and 6040h get `cia402`
+/// and the statusword read by SDO joins the summary's timeline (SPEC §8.3).
+#[test]
+fn sdo_configured_mapping_short_pdos_and_sdo_statuswords() {
+    let log = "\
+(1.000) can0 604#2F001A0000000000
+(1.001) can0 584#60001A0000000000
+(1.002) can0 604#23001A0110004160
+(1.003) can0 584#60001A0100000000
+(1.004) can0 604#23001A0220006460
+(1.005) can0 584#60001A0200000000
+(1.006) can0 604#2F001A0002000000
+(1.007) can0 584#60001A0000000000
+(1.008) can0 604#2F001A0005000000
+(1.009) can0 584#80001A0030000906
+(1.010) can0 184#3702E8030000
+(1.020) can0 184#3702E8
+(1.030) can0 604#4041600000000000
+(1.031) can0 584#4B41600018020000
+(1.040) can0 604#2B40600080000000
+(1.041) can0 584#6040600000000000
+";
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("pdo-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("crafted.log");
+    std::fs::write(&file, log).unwrap();
+    let file = file.to_str().unwrap();
+
+    let recs = records(&decode(&["--json", "--profile", "4=akd", file]));
+    // Line 11: the whole mapping (the refused sub 0 = 5 of line 9 taught
+    // nothing), on the pre-defined COB-ID.
+    assert_eq!(
+        recs[10]["signals"],
+        json!({"Statusword": 0x0237, "Position actual value": 1000})
+    );
+    assert_eq!(recs[10]["cia402"], json!({"state": "operation_enabled"}));
+    // Line 12: 3 bytes of a 6-byte mapping.
+    assert_eq!(recs[11]["signals"], json!({"Statusword": 0x0237}));
+    let error = recs[11]["error"].as_str().unwrap();
+    assert!(error.contains('6') && error.contains('3'), "{error}");
+    // Lines 14 and 16: the statusword read and the controlword written by
+    // SDO.
+    assert_eq!(recs[13]["cia402"], json!({"state": "fault"}));
+    assert_eq!(recs[15]["cia402"], json!({"command": "fault_reset"}));
+
+    let summary = records(&decode(&[
+        "--summary",
+        "--json",
+        "--profile",
+        "4=akd",
+        file,
+    ]));
+    let drive = summary.iter().find(|r| r["node"] == 4).unwrap();
+    let to: Vec<(&Value, &Value)> = drive["cia402"]["transitions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| (&t["line"], &t["to"]))
+        .collect();
+    assert_eq!(
+        to,
+        [
+            (&json!(11), &json!("operation_enabled")),
+            (&json!(14), &json!("fault"))
+        ]
+    );
+    assert_eq!(drive["cia402"]["faults"], json!([14]));
+}
