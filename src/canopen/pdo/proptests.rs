@@ -103,9 +103,17 @@ proptest! {
         // One entry alone reads as it does among the others (up to the
         // first truncation, which ends the others).
         let mut signals = a.iter();
+        let mut offset = 0usize;
         for (position, entry) in mapping.entries().iter().enumerate() {
+            offset += usize::from(entry.bits());
             let Some(alone) = layout.read(position, &payload).map(bits) else {
                 prop_assert!(entry.is_dummy());
+                // A dummy takes no signal, but a payload too short for it
+                // ends the signals there.
+                if offset > payload.len() * 8 {
+                    prop_assert!(matches!(signals.next(), Some(Err(_))));
+                    break;
+                }
                 continue;
             };
             match signals.next() {
