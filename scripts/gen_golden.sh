@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The program's output on every fixture log and the sample, as a snapshot
+# that `tests/golden.rs` compares byte for byte: the decoder and the summary
+# moved from the program into the library (issue 19) and the program's
+# output must not change. Each line of tests/golden/cases.txt is one
+# command line (arguments after `motionwire`); its stdout, stderr and exit
+# status are kept gzip-compressed in tests/golden/NNN.gz.
+#
+# Made with the build of commit c5dd14a (before the move); run it again only
+# when the output is meant to change, and say so in the CHANGELOG.
+#   bash scripts/gen_golden.sh [path/to/motionwire]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-target/release/motionwire}
+[ -x "$bin" ] || cargo build --release --features cli
+out=tests/golden
+rm -f "$out"/*.gz
+logs=(
+  samples/machine.log
+  tests/fixtures/python_can.log
+  tests/fixtures/sdo/python_canopen.log
+  tests/fixtures/sdo/broken.log
+  tests/fixtures/sdo/python_canopen.pcap
+  tests/fixtures/sdo/broken.pcap
+  tests/fixtures/pdo/python_canopen.log
+  tests/fixtures/pcap/can.pcap
+  tests/fixtures/pcap/can.pcapng
+  tests/fixtures/pcap/can_be.pcap
+  tests/fixtures/pcap/can_ns.pcap
+  tests/fixtures/pcap/multi.pcapng
+  tests/fixtures/blf/python_can.blf
+  tests/fixtures/blf/python_can_many.blf
+  tests/fixtures/blf/python_can_stored.blf
+)
+for f in tests/fixtures/asc/*.asc tests/fixtures/asc/*.log tests/fixtures/trc/*.trc \
+         tests/fixtures/candump_screen/*.txt tests/fixtures/candump_screen/*.log; do
+  logs+=("$f")
+done
+{
+  for log in "${logs[@]}"; do
+    echo "decode $log"
+    echo "decode --json $log"
+    echo "decode --csv $log"
+    echo "decode --summary $log"
+    echo "decode --summary --json --heartbeat-ms 300 $log"
+  done
+  echo "decode --summary --heartbeat-ms 300 samples/machine.log"
+  echo "decode --json --profile 3=akd,5=baumer samples/machine.log"
+  echo "decode --profile 3=akd,5=baumer samples/machine.log"
+  echo "decode --summary --json --heartbeat-ms 300 --profile 3=akd,5=baumer samples/machine.log"
+  echo "decode --summary --heartbeat-ms 300 --profile akd samples/machine.log"
+  echo "decode --json --only sdo,pdo --node 3 samples/machine.log"
+  echo "decode --id 0x000-0x080,0x705 samples/machine.log"
+  echo "decode --json --eds 3=tests/fixtures/pdo/drive.eds tests/fixtures/pdo/python_canopen.log"
+  echo "decode --eds 3=tests/fixtures/pdo/drive.eds tests/fixtures/pdo/python_canopen.log"
+  echo "decode --summary --json --eds 3=tests/fixtures/pdo/drive.eds tests/fixtures/pdo/python_canopen.log"
+  echo "decode --summary --eds 3=tests/fixtures/pdo/drive.eds tests/fixtures/pdo/python_canopen.log"
+  echo "decode --json --profile akd tests/fixtures/pdo/python_canopen.log"
+  echo "decode --json samples/machine.log tests/fixtures/sdo/python_canopen.log"
+  echo "decode --summary --json samples/machine.log tests/fixtures/pcap/multi.pcapng"
+} > "$out/cases.txt"
+n=0
+while read -r line; do
+  n=$((n + 1))
+  # shellcheck disable=SC2086
+  { set +e; "$bin" $line >"$out/stdout" 2>"$out/stderr"; status=$?; set -e; }
+  {
+    echo "status $status"
+    echo "stderr $(wc -c <"$out/stderr")"
+    cat "$out/stderr"
+    cat "$out/stdout"
+  } | gzip -n -9 >"$out/$(printf '%03d' $n).gz"
+done < "$out/cases.txt"
+rm -f "$out/stdout" "$out/stderr"
+echo "$n cases in $out"
