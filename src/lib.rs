@@ -139,6 +139,8 @@ pub mod blf;
 pub mod can;
 pub mod candump;
 pub mod canopen;
+#[cfg(feature = "decoder")]
+pub mod decoder;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
 #[cfg(feature = "eds")]
@@ -150,6 +152,8 @@ mod names;
 pub mod pcap;
 pub mod profiles;
 pub mod servo;
+#[cfg(feature = "decoder")]
+pub mod summary;
 pub mod trc;
 
 pub use error::{BinaryError, Error, Found, LogFormat, PdoEntryError, Result, SyntaxError, What};

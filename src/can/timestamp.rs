@@ -168,6 +168,41 @@ impl From<Timestamp> for Duration {
     }
 }
 
+impl Timestamp {
+    /// Return the time as seconds without padding and with the
+    /// resolution it has: six decimals, or nine when it is not a whole
+    /// number of microseconds (`1700000000.000500`, `0.052000`,
+    /// `1700000000.000500001`) — SPEC §6.1's `ts` as a JSON number, exact
+    /// (SPEC §5.7: no float rounding).
+    ///
+    /// ```
+    /// use motionwire::can::Timestamp;
+    ///
+    /// assert_eq!(Timestamp::new(1_700_000_000, 500).unwrap().seconds().to_string(), "1700000000.000500");
+    /// assert_eq!(Timestamp::from_nanos(0, 52_000_001).unwrap().seconds().to_string(), "0.052000001");
+    /// ```
+    #[must_use]
+    pub const fn seconds(self) -> Seconds {
+        Seconds(self)
+    }
+}
+
+/// A [`Timestamp`] written as seconds with the resolution it has
+/// ([`Timestamp::seconds`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Seconds(Timestamp);
+
+impl fmt::Display for Seconds {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let nanos = self.0.subsec_nanos();
+        if nanos % 1000 == 0 {
+            write!(f, "{}.{:06}", self.0.secs, nanos / 1000)
+        } else {
+            write!(f, "{}.{:09}", self.0.secs, nanos)
+        }
+    }
+}
+
 impl fmt::Display for Timestamp {
     /// Write the timestamp as candump does, `1700000000.000500` (ten digits
     /// of seconds at least, six of microseconds), or with nine digits of

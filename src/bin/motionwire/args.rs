@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use motionwire::canopen::{MessageKind, NodeId, ObjectSet};
+use motionwire::canopen::{MessageKind, NodeId};
+use motionwire::profiles::{NodeProfiles, Profile};
 use motionwire::LogFormat;
 
 /// Decode the diagnostic and cyclic-control messages of industrial motion
@@ -89,30 +90,6 @@ pub struct DecodeArgs {
     pub files: Vec<PathBuf>,
 }
 
-/// How the manufacturer-specific EMCY bytes are read (SPEC §6.1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Profile {
-    /// CiA 301 only: the manufacturer field as raw hex.
-    Generic,
-    /// Kollmorgen AKD: axis and feedback ids (SPEC §2.4).
-    Akd,
-    /// Baumer EAM580: alarms, warnings and diagnostic sources (SPEC §4).
-    Baumer,
-}
-
-impl Profile {
-    /// The device profile's objects that name SDO objects for a node read
-    /// with this profile (SPEC §7.3 `object`): CiA 402 for the AKD, the
-    /// encoder objects for the Baumer EAM580.
-    pub fn object_set(self) -> Option<ObjectSet> {
-        match self {
-            Profile::Generic => None,
-            Profile::Akd => Some(ObjectSet::Drive),
-            Profile::Baumer => Some(ObjectSet::Encoder),
-        }
-    }
-}
-
 /// One `--profile` item: for every node, or for one node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ProfileChoice {
@@ -123,7 +100,12 @@ pub enum ProfileChoice {
 }
 
 fn parse_profile_choice(text: &str) -> Result<ProfileChoice, String> {
-    let profile = |name: &str| Profile::from_str(name, false);
+    let profile = |name: &str| {
+        Profile::from_name(name).ok_or_else(|| {
+            let names: Vec<_> = Profile::ALL.iter().map(|p| p.name()).collect();
+            format!("{name:?} is not a profile; one of {}", names.join(", "))
+        })
+    };
     match text.split_once('=') {
         None => profile(text).map(ProfileChoice::Default),
         Some((node, name)) => {
@@ -134,6 +116,27 @@ fn parse_profile_choice(text: &str) -> Result<ProfileChoice, String> {
             Ok(ProfileChoice::Node(node, profile(name)?))
         }
     }
+}
+
+/// Each node's profile from the `--profile` items: a bare profile is the
+/// default for the nodes not named (the last one wins), `NODE=PROFILE`
+/// names one node (later items win).
+pub fn node_profiles(choices: &[ProfileChoice]) -> NodeProfiles {
+    let default = choices
+        .iter()
+        .rev()
+        .find_map(|c| match c {
+            ProfileChoice::Default(p) => Some(*p),
+            ProfileChoice::Node(..) => None,
+        })
+        .unwrap_or_default();
+    let mut profiles = NodeProfiles::new(default);
+    for choice in choices {
+        if let ProfileChoice::Node(node, profile) = choice {
+            profiles.set(*node, *profile);
+        }
+    }
+    profiles
 }
 
 fn parse_eds_choice(text: &str) -> Result<(NodeId, PathBuf), String> {

@@ -7,22 +7,19 @@ use std::fs::File;
 use std::io::{self, BufWriter, Cursor, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Duration;
 
 use motionwire::can::{LogEvent, LogFrame};
 use motionwire::candump::{self, LineState, RelativeTimestamps};
-use motionwire::canopen::{CanOpenMessage, MessageKind};
+use motionwire::canopen::MessageKind;
+use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::logs::{detect, Detected, ReadError, ReadLog, DETECT_LEN};
+use motionwire::summary::Summarizer;
 use motionwire::LogFormat;
 
-use crate::args::{DecodeArgs, IdRange, TimestampBase};
-use crate::context::{Context, PdoView};
-use crate::eds::NodeDescription;
+use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
-use crate::profile::Profiles;
-use crate::record::Extra;
-use crate::record::{Record, CSV_HEADER};
-use crate::sdo::{sdo_direction, sdo_frame};
-use crate::summary::Summary;
+use crate::record::{PdoKeys, Record, CSV_HEADER};
 
 /// An input as given on the command line.
 struct Input {
@@ -137,14 +134,13 @@ enum Output {
     Csv,
 }
 
-/// Where frames go: filtered and rendered, or added to the summary (which
-/// sees every frame, SPEC §6.4).
+/// Where frames go: read by the library's decoder, then filtered and
+/// rendered, or added to the summary (which sees every frame, SPEC §6.4).
 struct Sink<'a> {
     out: BufWriter<StdoutLock<'static>>,
     err: BufWriter<StderrLock<'static>>,
-    summary: Option<Summary>,
+    summary: Option<Summarizer>,
     output: Output,
-    profiles: Profiles,
     kinds: [bool; MessageKind::ALL.len()],
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
@@ -153,22 +149,23 @@ struct Sink<'a> {
     damaged: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
-    /// What the log teaches as it is read: SDO channels, PDO mappings,
-    /// drive states (SPEC §7, §8).
-    context: Context,
+    /// The decoder session: what the log teaches as it is read (SDO
+    /// channels, PDO mappings, drive states; SPEC §7, §8).
+    decoder: Decoder,
+    /// The PDO signal names as JSON keys, per mapping.
+    keys: PdoKeys,
 }
 
 impl<'a> Sink<'a> {
     fn new(args: &'a DecodeArgs) -> Result<Self, Failure> {
-        let mut descriptions = Vec::new();
+        let mut config = DecoderConfig::new()
+            .profiles_from(node_profiles(&args.profile))
+            .signals(!args.summary);
         for (node, path) in &args.eds {
-            let description = NodeDescription::read(*node, path).map_err(|why| {
+            config = config.eds_file(*node, path).map_err(|why| {
                 Failure::Usage(format!("--eds {}={}: {why}", node, path.display()))
             })?;
-            descriptions.push((*node, description));
         }
-        let profiles = Profiles::new(&args.profile);
-        let context = Context::new(profiles.clone(), descriptions);
         let mut kinds = [args.only.is_empty(); MessageKind::ALL.len()];
         for kind in &args.only {
             kinds[kind.index()] = true;
@@ -180,10 +177,17 @@ impl<'a> Sink<'a> {
             }
             nodes
         });
+        let summary = args.summary.then(|| {
+            let summarizer = Summarizer::new();
+            match args.heartbeat_ms {
+                Some(ms) => summarizer.heartbeat_timeout(Duration::from_millis(u64::from(ms))),
+                None => summarizer,
+            }
+        });
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
             err: BufWriter::new(io::stderr().lock()),
-            summary: args.summary.then(|| Summary::new(args.heartbeat_ms)),
+            summary,
             output: if args.csv {
                 Output::Csv
             } else if args.json {
@@ -191,80 +195,36 @@ impl<'a> Sink<'a> {
             } else {
                 Output::Text
             },
-            profiles,
             kinds,
             nodes,
             ids: &args.id,
             skipped: 0,
             damaged: 0,
             progress_shown: false,
-            context,
+            decoder: Decoder::new(config),
+            keys: PdoKeys::default(),
         })
     }
 
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
+        // Every frame teaches the decoder, shown or not.
+        let decoded = self.decoder.decode(line, frame);
         if let Some(summary) = self.summary.as_mut() {
-            let (kind, node) = summary.add(line, frame);
-            match (kind, node) {
-                (MessageKind::Sdo, Some(node)) if !frame.frame.is_rtr() => {
-                    let direction = sdo_direction(frame.frame.id().raw());
-                    let view = self.context.sdo(
-                        frame.iface,
-                        node,
-                        direction,
-                        frame.frame.data(),
-                        frame.timestamp,
-                        line,
-                    );
-                    summary.add_sdo(line, frame, node, &view);
-                }
-                (MessageKind::Pdo, Some(_)) if !frame.frame.is_rtr() => {
-                    let id = frame.frame.id().raw() as u16;
-                    if let Some(PdoView {
-                        map,
-                        cia402: Some(cia402),
-                        ..
-                    }) = self.context.pdo(frame.iface, id, frame.frame.data(), false)
-                    {
-                        summary.add_cia402(line, frame, map.node, cia402);
-                    }
-                }
-                _ => {}
-            }
+            summary.add_frame(line, frame, &decoded);
             return Ok(());
         }
-        let record = Record::new(line, frame);
-        // Every SDO and PDO frame teaches the context, shown or not.
-        let extra = match &record.decoded {
-            Ok(message) => match sdo_frame(message) {
-                Some((node, direction, data)) => Extra::Sdo(self.context.sdo(
-                    frame.iface,
-                    node,
-                    direction,
-                    data,
-                    frame.timestamp,
-                    line,
-                )),
-                None => match message {
-                    CanOpenMessage::Pdo { data, .. } => {
-                        let id = frame.frame.id().raw() as u16;
-                        match self.context.pdo(frame.iface, id, data.as_slice(), true) {
-                            Some(view) => Extra::Pdo(view),
-                            None => Extra::None,
-                        }
-                    }
-                    _ => Extra::None,
-                },
-            },
-            Err(_) => Extra::None,
-        };
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
                 return Ok(());
             }
         }
+        let record = Record {
+            line,
+            log: frame,
+            decoded: &decoded,
+        };
         if !self.kinds[record.kind().index()] {
             return Ok(());
         }
@@ -274,10 +234,9 @@ impl<'a> Sink<'a> {
                 _ => return Ok(()),
             }
         }
-        let profile = self.profiles.of(record.node());
         match self.output {
-            Output::Json => record.write_json(&mut self.out, profile, &extra),
-            Output::Text => record.write_text(&mut self.out, profile, &extra),
+            Output::Json => record.write_json(&mut self.out, &mut self.keys),
+            Output::Text => record.write_text(&mut self.out),
             Output::Csv => record.write_csv(&mut self.out),
         }
     }
@@ -286,9 +245,9 @@ impl<'a> Sink<'a> {
     fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
         match event {
             LogEvent::Frame(frame) => self.frame(line, frame),
-            LogEvent::Status(_) => {
+            LogEvent::Status(status) => {
                 if let Some(summary) = self.summary.as_mut() {
-                    summary.add_event(event);
+                    summary.add_status(status);
                 }
                 Ok(())
             }
@@ -403,15 +362,11 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         summary,
         skipped,
         damaged,
-        profiles,
-        mut context,
+        mut decoder,
         ..
     } = sink;
-    if let Some(mut summary) = summary {
-        for (bus, node, transfer) in context.finish() {
-            summary.sdo_left_open(&bus, node, &transfer);
-        }
-        summary.drives(|bus, node| context.is_drive(bus, node));
+    if let Some(summarizer) = summary {
+        let summary = summarizer.finish(&mut decoder);
         if summary.timeouts_not_checked() {
             writeln!(
                 err,
@@ -419,7 +374,14 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                  checked (--heartbeat-ms)"
             )?;
         }
-        summary.write(&mut out, args.json, &profiles)?;
+        if args.json {
+            for record in summary.records() {
+                serde_json::to_writer(&mut out, &record).map_err(io::Error::from)?;
+                out.write_all(b"\n")?;
+            }
+        } else {
+            write!(out, "{summary}")?;
+        }
     }
     out.flush()?;
     if skipped > 0 || damaged > 0 {
@@ -489,10 +451,6 @@ fn read_candump(
         };
         let drained = block.drained;
         let block_len = block.text.len() as u64;
-        if let Some(summary) = sink.summary.as_mut() {
-            summary.new_block();
-        }
-        sink.context.new_block();
         let mut lines = candump::lines_from(block.text, line_state);
         let mut last = 0;
         for (number, parsed) in lines.by_ref() {
@@ -557,10 +515,6 @@ fn read_text(
         }
         let drained = block.drained;
         let block_len = block.text.len() as u64;
-        if let Some(summary) = sink.summary.as_mut() {
-            summary.new_block();
-        }
-        sink.context.new_block();
         for text in motionwire::logs::split_lines(block.text) {
             line += 1;
             match parser.read_line(text) {
@@ -589,10 +543,6 @@ fn read_binary(
         match record {
             Ok(record) => {
                 // Names borrowed from the reader may move between records.
-                if let Some(summary) = sink.summary.as_mut() {
-                    summary.new_block();
-                }
-                sink.context.new_block();
                 sink.event(record.number, &record.event)?;
             }
             Err(ReadError::Io(e)) => return Err(read_failure(name, path, e)),

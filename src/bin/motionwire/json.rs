@@ -133,24 +133,6 @@ impl<'w, W: Write> Object<'w, W> {
         out.write_all(b"]")
     }
 
-    /// Write a key with an array of unsigned integers.
-    pub fn uints(
-        &mut self,
-        key: &'static str,
-        values: impl IntoIterator<Item = u64>,
-    ) -> io::Result<()> {
-        let out = self.key(key)?;
-        out.write_all(b"[")?;
-        let mut digits = itoa::Buffer::new();
-        for (i, value) in values.into_iter().enumerate() {
-            if i > 0 {
-                out.write_all(b",")?;
-            }
-            out.write_all(digits.format(value).as_bytes())?;
-        }
-        out.write_all(b"]")
-    }
-
     /// Close the object (`}`).
     pub fn end(self) -> io::Result<()> {
         self.out.write_all(b"}")
@@ -392,13 +374,9 @@ mod tests {
             obj.float("nan", f64::NAN)?;
             obj.float("x", 1.5)?;
             obj.names("l", ["p", "q"])?;
-            obj.uints("n", [3, 4])?;
             hex_string(obj.key("h")?, &[0xAB, 0x01])?;
             obj.end()
         });
-        assert_eq!(
-            s,
-            r#"{"a":1,"nan":null,"x":1.5,"l":["p","q"],"n":[3,4],"h":"ab01"}"#
-        );
+        assert_eq!(s, r#"{"a":1,"nan":null,"x":1.5,"l":["p","q"],"h":"ab01"}"#);
     }
 }

@@ -13,16 +13,12 @@
 //! ```
 
 mod args;
-mod context;
 mod decode;
-mod eds;
 mod failure;
 mod json;
-mod profile;
 mod record;
 mod sdo;
 mod servo;
-mod summary;
 
 use std::io::{self, Write};
 use std::process::ExitCode;

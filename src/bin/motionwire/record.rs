@@ -4,75 +4,43 @@
 use std::io::{self, Write};
 
 use motionwire::can::{Iface, LogFrame};
-use motionwire::canopen::{CanOpenMessage, DecodeError, Emcy, MessageKind, NodeId};
+use motionwire::canopen::{CanOpenMessage, Emcy, MessageKind, NodeId};
+use motionwire::decoder::{Cia402Reading, Decoded, PdoReading};
 use motionwire::profiles::akd::AkdManufacturerField;
 use motionwire::profiles::baumer::BaumerEmcy;
+use motionwire::profiles::{Profile, ProfiledEmcy};
 
-use crate::args::Profile;
-use crate::context::{Cia402View, PdoView};
 use crate::json::{self, Object};
-use crate::sdo::{self, SdoView};
+use crate::sdo;
 
-/// What the decoder's context adds to a frame (SPEC §7.3, §8.2).
-pub enum Extra<'c> {
-    /// Nothing.
-    None,
-    /// An SDO frame as its channel's tracker read it.
-    Sdo(SdoView<'c>),
-    /// A PDO with its mapping.
-    Pdo(PdoView<'c>),
-}
-
-/// One frame of the input with what the library made of it.
-pub struct Record<'r, 'a> {
+/// One frame of the input with what the library's decoder made of it.
+pub struct Record<'r, 'a, 'd> {
     /// 1-based line number in its input.
     pub line: u64,
     /// The frame as the log recorded it.
     pub log: &'r LogFrame<'a>,
-    /// The frame read as CANopen, or why its data could not be.
-    pub decoded: Result<CanOpenMessage, DecodeError>,
+    /// The decoder's reading.
+    pub decoded: &'r Decoded<'d>,
 }
 
-impl<'r, 'a> Record<'r, 'a> {
-    /// Decode a logged frame.
-    pub fn new(line: u64, log: &'r LogFrame<'a>) -> Self {
-        Record {
-            line,
-            log,
-            decoded: CanOpenMessage::decode(&log.frame),
-        }
-    }
-
+impl Record<'_, '_, '_> {
     /// Return the frame's kind (SPEC §6.1).
     pub fn kind(&self) -> MessageKind {
-        match &self.decoded {
-            Ok(message) => message.kind(),
-            Err(e) => e.kind,
-        }
+        self.decoded.kind()
     }
 
     /// Return the node the identifier names, for the kinds that have one.
     pub fn node(&self) -> Option<NodeId> {
-        match &self.decoded {
-            Ok(message) => message.node(),
-            Err(e) => e.node,
-        }
+        self.decoded.node()
     }
 
     /// Write the record as one JSON object and a newline (SPEC §6.1), with
     /// the `sdo` and `transfer` keys of an SDO frame's view (SPEC §7.3).
-    pub fn write_json<W: Write>(
-        &self,
-        out: &mut W,
-        profile: Profile,
-        extra: &Extra<'_>,
-    ) -> io::Result<()> {
+    pub fn write_json<W: Write>(&self, out: &mut W, keys: &mut PdoKeys) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
-        let sdo = match extra {
-            Extra::Sdo(view) => Some(view),
-            _ => None,
-        };
+        let decoded = self.decoded;
+        let profile = decoded.profile;
         let mut obj = Object::begin(out)?;
         obj.uint("line", self.line)?;
         match log.timestamp {
@@ -93,7 +61,7 @@ impl<'r, 'a> Record<'r, 'a> {
         if let Some(node) = self.node() {
             obj.uint("node", u64::from(node.get()))?;
         }
-        match &self.decoded {
+        match &self.decoded.message {
             Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
             Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
                 obj.name("state", byte.state_name())?;
@@ -115,25 +83,23 @@ impl<'r, 'a> Record<'r, 'a> {
                 t.uint("days", u64::from(time.days()))?;
                 t.end()?;
             }
-            Ok(
-                CanOpenMessage::SdoRequest { data, .. } | CanOpenMessage::SdoResponse { data, .. },
-            ) => {
-                if let Some(view) = sdo {
-                    sdo::write_sdo_json(&mut obj, view, data.as_slice(), profile)?;
-                    if let Some((transfer, bytes)) = &view.ended {
-                        sdo::write_transfer_json(&mut obj, transfer, bytes, profile)?;
+            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => {
+                if let Some(step) = &decoded.sdo {
+                    sdo::write_sdo_json(&mut obj, step)?;
+                    if let Some(ended) = &step.ended {
+                        sdo::write_transfer_json(&mut obj, ended, step.objects)?;
                     }
-                    if let Some(cia402) = &view.cia402 {
+                    if let Some(cia402) = &decoded.cia402 {
                         cia402_json(&mut obj, cia402)?;
                     }
-                    if let Err(e) = &view.message {
+                    if let Err(e) = &step.message {
                         obj.display("error", e)?;
                     }
                 }
             }
             Ok(CanOpenMessage::Pdo { .. }) => {
-                if let Extra::Pdo(view) = extra {
-                    pdo_json(&mut obj, view)?;
+                if let Some(reading) = &decoded.pdo {
+                    pdo_json(&mut obj, reading, decoded.cia402.as_ref(), keys)?;
                 }
             }
             Ok(CanOpenMessage::ErrorFrame(error)) => {
@@ -180,13 +146,9 @@ impl<'r, 'a> Record<'r, 'a> {
 
     /// Write the record as one aligned line of text; an SDO frame in words
     /// from its view (SPEC §7.3).
-    pub fn write_text<W: Write>(
-        &self,
-        out: &mut W,
-        profile: Profile,
-        extra: &Extra<'_>,
-    ) -> io::Result<()> {
+    pub fn write_text<W: Write>(&self, out: &mut W) -> io::Result<()> {
         let log = self.log;
+        let decoded = self.decoded;
         let frame = &log.frame;
         write!(out, "{:>7}  ", self.line)?;
         match log.timestamp {
@@ -208,7 +170,7 @@ impl<'r, 'a> Record<'r, 'a> {
             Some(node) => write!(out, "node {:>3}  ", node.get())?,
             None => write!(out, "{:10}", "")?,
         }
-        match &self.decoded {
+        match &self.decoded.message {
             Err(e) => {
                 write_data(out, log)?;
                 write!(out, "  error: {}", e.error)?;
@@ -227,7 +189,9 @@ impl<'r, 'a> Record<'r, 'a> {
                 write_data(out, log)?;
                 write!(out, "  {error}")?;
             }
-            Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_text(out, emcy, profile)?,
+            Ok(CanOpenMessage::Emcy { emcy, .. }) => {
+                write!(out, "{}", ProfiledEmcy::new(emcy, decoded.profile))?;
+            }
             Ok(CanOpenMessage::NmtNodeControl(control)) => {
                 out.write_all(control.command.command_name().as_bytes())?;
                 match control.node {
@@ -241,19 +205,24 @@ impl<'r, 'a> Record<'r, 'a> {
             },
             Ok(CanOpenMessage::Time(time)) => write!(out, "{time}")?,
             Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => {
-                match extra {
-                    Extra::Sdo(view) => {
-                        sdo::write_sdo_text(out, view, profile)?;
-                        if let Some(cia402) = &view.cia402 {
-                            cia402_text(out, cia402)?;
+                match &decoded.sdo {
+                    Some(step) => {
+                        write!(out, "{step}")?;
+                        if let Some(cia402) = &decoded.cia402 {
+                            write!(out, "  [{cia402}]")?;
                         }
                     }
-                    _ => write_data(out, log)?,
+                    None => write_data(out, log)?,
                 }
             }
-            Ok(CanOpenMessage::Pdo { .. }) => match extra {
-                Extra::Pdo(view) => pdo_text(out, view)?,
-                _ => write_data(out, log)?,
+            Ok(CanOpenMessage::Pdo { .. }) => match &decoded.pdo {
+                Some(reading) => {
+                    write!(out, "{reading}")?;
+                    if let Some(cia402) = &decoded.cia402 {
+                        write!(out, "  [{cia402}]")?;
+                    }
+                }
+                None => write_data(out, log)?,
             },
             Ok(_) => write_data(out, log)?,
         }
@@ -264,7 +233,7 @@ impl<'r, 'a> Record<'r, 'a> {
 /// The header row of `--csv` (SPEC §6.4).
 pub const CSV_HEADER: &str = "line,ts,iface,id,extended,rtr,fd,data,kind,node,code,description";
 
-impl Record<'_, '_> {
+impl Record<'_, '_, '_> {
     /// Write the frame as one CSV row under [`CSV_HEADER`] (SPEC §6.4):
     /// values as in the JSON, integers in decimal, `true`/`false`, data as
     /// hex, empty for null; a field with a comma, quote or line break is
@@ -298,7 +267,7 @@ impl Record<'_, '_> {
             out.write_all(digits.format(node.get()).as_bytes())?;
         }
         out.write_all(b",")?;
-        let emcy = match &self.decoded {
+        let emcy = match &self.decoded.message {
             Ok(CanOpenMessage::Emcy { emcy, .. }) => Some((emcy.code, true)),
             Err(e) => e
                 .partial_emcy
@@ -362,63 +331,6 @@ fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -
     Ok(())
 }
 
-/// An EMCY in words: code, class, description, register flags and the
-/// profile's reading of the manufacturer bytes.
-fn emcy_text<W: Write>(out: &mut W, emcy: &Emcy, profile: Profile) -> io::Result<()> {
-    write!(
-        out,
-        "{} {}: {}  register 0x{:02X}",
-        emcy.code,
-        emcy.code.class(),
-        emcy.code.description(),
-        emcy.register.bits(),
-    )?;
-    let mut names = emcy.register.names().peekable();
-    if names.peek().is_some() {
-        out.write_all(b" [")?;
-        for (i, name) in names.enumerate() {
-            if i > 0 {
-                out.write_all(b", ")?;
-            }
-            out.write_all(name.as_bytes())?;
-        }
-        out.write_all(b"]")?;
-    }
-    match profile {
-        Profile::Generic => {
-            out.write_all(b"  manufacturer ")?;
-            for b in emcy.manufacturer {
-                write!(out, "{b:02x}")?;
-            }
-        }
-        Profile::Akd => {
-            let field = AkdManufacturerField::new_unchecked(&emcy.manufacturer[..]);
-            write!(out, "  axis {}", field.axis_id().get())?;
-            match field.feedback_id() {
-                Ok(fb) => match fb.number() {
-                    Some(n) => write!(out, ", feedback FB{n}")?,
-                    None => out.write_all(b", no feedback fault")?,
-                },
-                Err(e) => write!(out, "  error: {e}")?,
-            }
-        }
-        Profile::Baumer => {
-            let baumer = BaumerEmcy::from_emcy(emcy);
-            write!(
-                out,
-                "  alarms 0x{:04X} warnings 0x{:04X}",
-                baumer.manufacturer.alarms.bits(),
-                baumer.manufacturer.warnings.bits()
-            )?;
-            for (i, source) in baumer.sources().enumerate() {
-                out.write_all(if i == 0 { b"  sources " } else { b", " })?;
-                out.write_all(source.name().as_bytes())?;
-            }
-        }
-    }
-    Ok(())
-}
-
 fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
     out.write_all(b"\n")
 }
@@ -435,16 +347,60 @@ fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
     Ok(())
 }
 
+/// The signal names of each PDO mapping as JSON object keys, escaped once
+/// per mapping (`"Statusword":`, `,"Position actual value":` with the comma
+/// before every key but the first), by the mapping's id.
+#[derive(Default)]
+pub struct PdoKeys {
+    by_map: Vec<Option<Vec<Box<[u8]>>>>,
+}
+
+impl PdoKeys {
+    fn of(&mut self, reading: &PdoReading<'_>) -> &[Box<[u8]>] {
+        let id = reading.map.id() as usize;
+        if self.by_map.len() <= id {
+            self.by_map.resize_with(id + 1, || None);
+        }
+        self.by_map[id].get_or_insert_with(|| {
+            reading
+                .map
+                .names()
+                .iter()
+                .enumerate()
+                .map(|(i, name)| json_key(name, i > 0))
+                .collect()
+        })
+    }
+}
+
+/// A signal's name as a JSON object key, escaped once (`"Statusword":`),
+/// with the comma before it for every signal but the first.
+fn json_key(name: &str, comma: bool) -> Box<[u8]> {
+    let mut key = Vec::with_capacity(name.len() + 4);
+    if comma {
+        key.push(b',');
+    }
+    json::string(&mut key, name).expect("writing to a Vec");
+    key.push(b':');
+    key.into_boxed_slice()
+}
+
 /// SPEC §8.2's `signals`: name → value in mapping order, and `error` when
 /// the PDO is shorter than its mapping (its signals are those that fit);
 /// §8.3's `cia402` for a drive.
-fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>) -> io::Result<()> {
+fn pdo_json<W: Write>(
+    obj: &mut Object<'_, W>,
+    reading: &PdoReading<'_>,
+    cia402: Option<&Cia402Reading>,
+    keys: &mut PdoKeys,
+) -> io::Result<()> {
+    let keys = keys.of(reading);
     // `line` and the frame's keys come first, so this is never the first.
     let out = obj.raw_after_first(b",\"signals\":{")?;
     let mut error = None;
     let mut first = true;
-    for (i, signal) in view.signals.iter().enumerate() {
-        match (signal, view.map.keys.get(i)) {
+    for (i, signal) in reading.signals.iter().enumerate() {
+        match (signal, keys.get(i)) {
             // The keys carry their leading comma from the second on (not
             // wanted when the signals before could not be read).
             (Ok(signal), Some(key)) => {
@@ -458,7 +414,7 @@ fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>) -> io::Result
         }
     }
     out.write_all(b"}")?;
-    if let Some(cia402) = &view.cia402 {
+    if let Some(cia402) = cia402 {
         cia402_json(obj, cia402)?;
     }
     if let Some(e) = error {
@@ -469,73 +425,26 @@ fn pdo_json<W: Write>(obj: &mut Object<'_, W>, view: &PdoView<'_>) -> io::Result
 
 /// SPEC §8.3's `cia402`: `state`, `command`, `mode` where the frame tells
 /// them.
-fn cia402_json<W: Write>(obj: &mut Object<'_, W>, view: &Cia402View) -> io::Result<()> {
+fn cia402_json<W: Write>(obj: &mut Object<'_, W>, reading: &Cia402Reading) -> io::Result<()> {
     let out = obj.raw_after_first(b",\"cia402\":{")?;
     let mut sep: &[u8] = b"";
-    if let Some(state) = view.state {
+    if let Some(state) = reading.state {
         out.write_all(b"\"state\":\"")?;
         out.write_all(state.name().as_bytes())?;
         out.write_all(b"\"")?;
         sep = b",";
     }
-    if let Some(command) = view.command {
+    if let Some(command) = reading.command {
         out.write_all(sep)?;
         out.write_all(b"\"command\":\"")?;
         out.write_all(command.name().as_bytes())?;
         out.write_all(b"\"")?;
         sep = b",";
     }
-    if let Some(mode) = view.mode {
+    if let Some(mode) = reading.mode {
         out.write_all(sep)?;
         out.write_all(b"\"mode\":")?;
         json::display_string(out, &mode)?;
     }
     out.write_all(b"}")
-}
-
-fn cia402_text<W: Write>(out: &mut W, view: &Cia402View) -> io::Result<()> {
-    out.write_all(b"  [")?;
-    let mut first = true;
-    let mut part = |out: &mut W, text: &dyn std::fmt::Display| {
-        let r = if first {
-            write!(out, "{text}")
-        } else {
-            write!(out, ", {text}")
-        };
-        first = false;
-        r
-    };
-    if let Some(state) = view.state {
-        part(out, &state)?;
-    }
-    if let Some(command) = view.command {
-        part(out, &command)?;
-    }
-    if let Some(mode) = view.mode {
-        part(out, &mode)?;
-    }
-    out.write_all(b"]")
-}
-
-/// A PDO in words: `TPDO1 Statusword=567 Position actual value=100000`.
-fn pdo_text<W: Write>(out: &mut W, view: &PdoView<'_>) -> io::Result<()> {
-    let map = view.map;
-    let t = match map.direction {
-        motionwire::canopen::PdoDirection::Transmit => 'T',
-        motionwire::canopen::PdoDirection::Receive => 'R',
-    };
-    write!(out, "{t}PDO{}", map.number)?;
-    for (i, signal) in view.signals.iter().enumerate() {
-        match signal {
-            Ok(signal) => {
-                let name = map.names.get(i).map_or("", |n| n.as_ref());
-                write!(out, " {name}={}", signal.value)?;
-            }
-            Err(e) => write!(out, "  error: {e}")?,
-        }
-    }
-    if let Some(cia402) = &view.cia402 {
-        cia402_text(out, cia402)?;
-    }
-    Ok(())
 }

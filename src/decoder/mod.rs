@@ -1,0 +1,699 @@
+//! The decoder session: every frame of a log read as CANopen, in the
+//! context the log itself builds (SPEC §6.1, §7, §8).
+//!
+//! A [`Decoder`] keeps what ties frames together, per interface and node:
+//! the SDO channels and their transfers (SPEC §7.2), the PDO mappings —
+//! learned from the SDO configuration seen in the log, from a node's
+//! EDS/DCF, or the pre-defined connection set (SPEC §8.1) — and each
+//! drive's CiA 402 state (SPEC §8.3). [`Decoder::decode`] turns one logged
+//! frame into a [`Decoded`]: the [`CanOpenMessage`], the SDO step and the
+//! transfer it ends with its data, the PDO's signals and the CiA 402
+//! reading — typed values that borrow the session, with no allocation per
+//! frame. The [`summary`](crate::summary) builds the post-mortem from them.
+//!
+//! ```
+//! use motionwire::can::{CanFrame, CanId, LogFrame};
+//! use motionwire::canopen::NodeId;
+//! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::profiles::Profile;
+//!
+//! let drive = NodeId::new(3).unwrap();
+//! let mut decoder = Decoder::new(DecoderConfig::new().node_profile(drive, Profile::Akd));
+//! let frame = |id: u32, data: &[u8]| {
+//!     LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+//! };
+//!
+//! // An expedited SDO read of the statusword, request and response:
+//! let request = frame(0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]);
+//! let step = decoder.decode(1, &request).sdo.unwrap();
+//! assert_eq!(step.to_string(), "request initiate upload 6041h.00 Statusword");
+//! let response = frame(0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]);
+//! let decoded = decoder.decode(2, &response);
+//! assert_eq!(decoded.sdo.unwrap().to_string(), "read 6041h.00 = 0x0237 (expedited, 2 B)");
+//! assert_eq!(decoded.cia402.unwrap().to_string(), "operation_enabled");
+//!
+//! // TPDO1 of node 3 with the pre-defined COB-ID, mapped by SDO writes of
+//! // 1A00h seen earlier in the log, would now carry named signals.
+//! # Ok::<(), motionwire::Error>(())
+//! ```
+
+mod bus;
+mod cia402;
+mod pdo;
+mod sdo;
+
+use std::collections::HashMap;
+use std::path::Path;
+
+pub use bus::BusName;
+pub use cia402::Cia402Reading;
+pub use pdo::{PdoMap, PdoReading};
+pub use sdo::{EndedTransfer, SdoStep};
+
+use crate::can::{Iface, LogFrame};
+use crate::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
+use crate::canopen::{
+    CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
+    PdoDirection, Signal, Value,
+};
+use crate::eds::{Eds, EdsError};
+use crate::profiles::{NodeProfiles, Profile};
+use crate::Error;
+
+pub(crate) use bus::Buses;
+
+use cia402::DriveState;
+use pdo::{Names, PdoParams};
+use sdo::SdoChannel;
+
+/// The SDO data a transfer keeps by default: SPEC §7.3's `transfer.data`
+/// holds the first 4096 bytes.
+pub const SDO_DATA_CAP: usize = 4096;
+
+/// How a [`Decoder`] reads a log: each node's profile, the EDS/DCF files
+/// that describe nodes, how much SDO data a transfer keeps, and whether
+/// PDO signals are unpacked.
+///
+/// ```
+/// use motionwire::canopen::NodeId;
+/// use motionwire::decoder::DecoderConfig;
+/// use motionwire::profiles::Profile;
+///
+/// let config = DecoderConfig::new()
+///     .profile(Profile::Generic)
+///     .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+///     .node_profile(NodeId::new(5).unwrap(), Profile::Baumer)
+///     .sdo_data_cap(256);
+/// assert_eq!(config.profiles().of(NodeId::new(5)), Profile::Baumer);
+/// ```
+#[derive(Debug, Clone)]
+pub struct DecoderConfig {
+    profiles: NodeProfiles,
+    descriptions: Vec<Description>,
+    sdo_data_cap: usize,
+    signals: bool,
+}
+
+impl Default for DecoderConfig {
+    fn default() -> Self {
+        DecoderConfig::new()
+    }
+}
+
+impl DecoderConfig {
+    /// Every node generic, no EDS, [`SDO_DATA_CAP`] bytes of SDO data, PDO
+    /// signals unpacked.
+    #[must_use]
+    pub fn new() -> Self {
+        DecoderConfig {
+            profiles: NodeProfiles::default(),
+            descriptions: Vec::new(),
+            sdo_data_cap: SDO_DATA_CAP,
+            signals: true,
+        }
+    }
+
+    /// Return the configuration with `profile` for every node not named
+    /// with [`node_profile`](Self::node_profile) (SPEC §6.1 `--profile akd`).
+    #[must_use]
+    pub fn profile(mut self, profile: Profile) -> Self {
+        let mut profiles = NodeProfiles::new(profile);
+        for raw in 1..=127u8 {
+            let node = NodeId::new(raw).expect("1..=127");
+            if self.profiles.of(Some(node)) != self.profiles.default_profile() {
+                profiles.set(node, self.profiles.of(Some(node)));
+            }
+        }
+        self.profiles = profiles;
+        self
+    }
+
+    /// Return the configuration with `profile` for `node` (SPEC §6.1
+    /// `--profile 3=akd`).
+    #[must_use]
+    pub fn node_profile(mut self, node: NodeId, profile: Profile) -> Self {
+        self.profiles.set(node, profile);
+        self
+    }
+
+    /// Return the configuration with every node's profile from `profiles`.
+    #[must_use]
+    pub fn profiles_from(mut self, profiles: NodeProfiles) -> Self {
+        self.profiles = profiles;
+        self
+    }
+
+    /// Return each node's profile.
+    #[must_use]
+    pub fn profiles(&self) -> &NodeProfiles {
+        &self.profiles
+    }
+
+    /// Return the configuration with `eds` describing `node` (SPEC §8.1
+    /// item 2, `--eds NODE=FILE`): its PDOs decode that node's frames
+    /// until the log's own SDO configuration changes them, its names and
+    /// types name the signals, and a device type of 402 makes the node a
+    /// drive. Read the file for that node (`$NODEID` resolves to it).
+    ///
+    /// # Errors
+    ///
+    /// The file's PDO parameters cannot be read ([`EdsError`]).
+    pub fn eds(mut self, node: NodeId, eds: Eds) -> Result<Self, EdsError> {
+        let pdos = eds
+            .pdos()?
+            .into_iter()
+            .map(|pdo| DescribedPdo {
+                transmit: pdo.direction == PdoDirection::Transmit,
+                number: pdo.number,
+                cob_id: pdo.communication.cob_id,
+                entries: pdo.mapping.entries().iter().map(|e| e.to_u32()).collect(),
+            })
+            .collect();
+        self.descriptions.retain(|d| d.node != node);
+        self.descriptions.push(Description { node, eds, pdos });
+        Ok(self)
+    }
+
+    /// Return the configuration with the EDS or DCF file at `path`
+    /// describing `node` ([`eds`](Self::eds)).
+    ///
+    /// # Errors
+    ///
+    /// The file cannot be read, or is not a valid EDS/DCF ([`EdsError`]).
+    pub fn eds_file(self, node: NodeId, path: impl AsRef<Path>) -> Result<Self, EdsError> {
+        let eds = Eds::read_file(path.as_ref(), Some(node))?;
+        self.eds(node, eds)
+    }
+
+    /// Return the configuration keeping at most `cap` data bytes of each
+    /// SDO transfer ([`EndedTransfer::data`]; [`SDO_DATA_CAP`] by default).
+    #[must_use]
+    pub fn sdo_data_cap(mut self, cap: usize) -> Self {
+        self.sdo_data_cap = cap;
+        self
+    }
+
+    /// Return the configuration that unpacks every PDO's signals (`true`,
+    /// the default), or only reads a drive's statusword for its CiA 402
+    /// state (`false`: what the [summary](crate::summary) needs; the
+    /// [`PdoReading`]s then have no signals).
+    #[must_use]
+    pub fn signals(mut self, signals: bool) -> Self {
+        self.signals = signals;
+        self
+    }
+}
+
+/// One PDO as a node's EDS/DCF gives it.
+#[derive(Debug, Clone)]
+struct DescribedPdo {
+    transmit: bool,
+    number: u16,
+    cob_id: PdoCobId,
+    entries: Vec<u32>,
+}
+
+/// A node's EDS/DCF and the PDOs it configures.
+#[derive(Debug, Clone)]
+struct Description {
+    node: NodeId,
+    eds: Eds,
+    pdos: Vec<DescribedPdo>,
+}
+
+impl Names for Description {
+    fn name(&self, index: u16, sub: u8) -> Option<&str> {
+        self.eds.name(index, sub)
+    }
+
+    fn data_type(&self, index: u16, sub: u8) -> Option<DataType> {
+        self.eds.data_type(index, sub)
+    }
+}
+
+/// One frame as the decoder read it: the CANopen message and what the
+/// session adds to it (SPEC §6.1, §7.3, §8.2, §8.3). Borrows the decoder
+/// until the next frame.
+#[derive(Debug, Clone)]
+pub struct Decoded<'d> {
+    /// The frame read as CANopen, or why its data could not be (the kind
+    /// and node are in the error too).
+    pub message: Result<CanOpenMessage, DecodeError>,
+    /// The profile of the frame's node (the default profile for frames
+    /// without a node): how its EMCY's manufacturer bytes read.
+    pub profile: Profile,
+    /// An SDO frame as its channel's tracker read it, with the transfer it
+    /// ends (SPEC §7.3).
+    pub sdo: Option<SdoStep<'d>>,
+    /// A PDO read with the mapping in force for its COB-ID (SPEC §8.2);
+    /// `None` when no mapping is known.
+    pub pdo: Option<PdoReading<'d>>,
+    /// What the frame tells of a drive's CiA 402 state machine: a drive's
+    /// PDO that maps its statusword, controlword or mode, or a completed
+    /// expedited SDO transfer of one of them (SPEC §8.3).
+    pub cia402: Option<Cia402Reading>,
+}
+
+impl Decoded<'_> {
+    /// Return the frame's kind (SPEC §6.1 `kind`).
+    #[must_use]
+    pub fn kind(&self) -> MessageKind {
+        match &self.message {
+            Ok(message) => message.kind(),
+            Err(e) => e.kind,
+        }
+    }
+
+    /// Return the node the identifier names, for the kinds that have one
+    /// (SPEC §6.1 `node`).
+    #[must_use]
+    pub fn node(&self) -> Option<NodeId> {
+        match &self.message {
+            Ok(message) => message.node(),
+            Err(e) => e.node,
+        }
+    }
+}
+
+/// A transfer that the input ended in the middle of (SPEC §7.2: reported
+/// in the summary only).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OpenTransfer {
+    /// The bus.
+    pub bus: BusName,
+    /// The node whose SDO server the transfer reached.
+    pub node: NodeId,
+    /// The transfer, with outcome [`SdoOutcome::Broken`] or
+    /// [`SdoOutcome::TimedOut`].
+    pub transfer: SdoTransfer,
+}
+
+/// What the decoder knows of one node.
+#[derive(Debug, Default)]
+struct NodeState {
+    sdo: SdoChannel,
+    pdos: HashMap<(bool, u16), PdoParams>,
+    drive: bool,
+    cia402: DriveState,
+}
+
+/// What the decoder knows of one interface.
+#[derive(Debug)]
+struct BusState {
+    nodes: Vec<Option<NodeState>>,
+    /// COB-ID → index + 1 into `maps` (0: no mapping).
+    by_cob: Box<[u16; 2048]>,
+    maps: Vec<PdoMap>,
+}
+
+impl BusState {
+    fn new() -> Self {
+        BusState {
+            nodes: (0..128).map(|_| None).collect(),
+            by_cob: Box::new([0; 2048]),
+            maps: Vec::new(),
+        }
+    }
+
+    fn node(&mut self, node: NodeId, profiles: &NodeProfiles) -> &mut NodeState {
+        let drive = profiles.of(Some(node)).is_drive();
+        self.nodes[usize::from(node.get())].get_or_insert_with(|| NodeState {
+            drive,
+            ..NodeState::default()
+        })
+    }
+}
+
+/// The decoder session: reads each frame of a log in the context of the
+/// frames before it (see the [module](self) documentation).
+#[derive(Debug)]
+pub struct Decoder {
+    buses: Buses<BusState>,
+    config: DecoderConfig,
+    /// The signals of the last PDO (reused: no allocation per frame).
+    signals: Vec<Result<Signal, Error>>,
+    next_map: u32,
+}
+
+impl Decoder {
+    /// Start a session.
+    #[must_use]
+    pub fn new(config: DecoderConfig) -> Self {
+        Decoder {
+            buses: Buses::default(),
+            config,
+            signals: Vec::with_capacity(64),
+            next_map: 0,
+        }
+    }
+
+    /// Return the session's configuration.
+    #[must_use]
+    pub fn config(&self) -> &DecoderConfig {
+        &self.config
+    }
+
+    /// Read one frame, logged at `position` (the line or record number a
+    /// transfer's `start_line` names, SPEC §5.7), in the context of the
+    /// frames before it; the session learns from it (SDO transfers, PDO
+    /// mappings, drive states).
+    pub fn decode(&mut self, position: u64, frame: &LogFrame<'_>) -> Decoded<'_> {
+        let message = CanOpenMessage::decode(&frame.frame);
+        let node = match &message {
+            Ok(m) => m.node(),
+            Err(e) => e.node,
+        };
+        let profile = self.config.profiles.of(node);
+        let mut decoded = Decoded {
+            message,
+            profile,
+            sdo: None,
+            pdo: None,
+            cia402: None,
+        };
+        let sdo = match &decoded.message {
+            Ok(CanOpenMessage::SdoRequest { node, .. }) => Some((*node, SdoDirection::Request)),
+            Ok(CanOpenMessage::SdoResponse { node, .. }) => Some((*node, SdoDirection::Response)),
+            _ => None,
+        };
+        if let Some((node, direction)) = sdo {
+            let (step, cia402) = self.sdo(frame, node, direction, position, profile);
+            decoded.sdo = Some(step);
+            decoded.cia402 = cia402;
+        } else if let Ok(CanOpenMessage::Pdo { data, .. }) = &decoded.message {
+            let id = frame.frame.id().raw() as u16;
+            if let Some((reading, cia402)) = self.pdo(frame.iface, id, data.as_slice()) {
+                decoded.pdo = Some(reading);
+                decoded.cia402 = cia402;
+            }
+        }
+        decoded
+    }
+
+    /// The index of the bus of `iface`; a new bus starts with the nodes'
+    /// descriptions.
+    #[inline]
+    fn bus(&mut self, iface: Option<Iface<'_>>) -> usize {
+        let (at, made) = self.buses.find_or_insert(iface, |_| BusState::new());
+        if made {
+            self.describe(at);
+        }
+        at
+    }
+
+    /// A new bus: every node given an EDS/DCF starts with its PDOs, and
+    /// every node of a drive profile is a drive (SPEC §8.1, §8.3).
+    fn describe(&mut self, at: usize) {
+        for d in 0..self.config.descriptions.len() {
+            let description = &self.config.descriptions[d];
+            let node = description.node;
+            let is_drive = description.eds.is_cia402();
+            let state = self.buses.get_mut(at).node(node, &self.config.profiles);
+            state.drive |= is_drive;
+            for pdo in &description.pdos {
+                let params = state.pdos.entry((pdo.transmit, pdo.number)).or_default();
+                params.cob_id = Some(pdo.cob_id);
+                params.count = Some(pdo.entries.len() as u8);
+                for (slot, entry) in params.entries.iter_mut().zip(&pdo.entries) {
+                    *slot = Some(*entry);
+                }
+            }
+            let mut keys: Vec<_> = state.pdos.keys().copied().collect();
+            keys.sort_unstable();
+            for key in keys {
+                self.activate(at, node, key);
+            }
+        }
+    }
+
+    /// Feed one SDO frame to its channel (SPEC §7.2); a completed transfer
+    /// to or from a PDO parameter changes the mapping from here on
+    /// (SPEC §8.1), an upload of 1000h can make the node a drive, and an
+    /// expedited transfer of 6040h/6041h/6060h/6061h is read as CiA 402.
+    fn sdo(
+        &mut self,
+        frame: &LogFrame<'_>,
+        node: NodeId,
+        direction: SdoDirection,
+        position: u64,
+        profile: Profile,
+    ) -> (SdoStep<'_>, Option<Cia402Reading>) {
+        let at = self.bus(frame.iface);
+        let bytes = frame.frame.data();
+        let cap = self.config.sdo_data_cap;
+        let state = self.buses.get_mut(at).node(node, &self.config.profiles);
+        let fed = state
+            .sdo
+            .feed(direction, bytes, frame.timestamp, position, cap);
+        let learned = match fed.ended {
+            Some(transfer) if transfer.outcome == SdoOutcome::Completed => {
+                value_of(state.sdo.finished()).map(|value| (transfer, value))
+            }
+            _ => None,
+        };
+        let cia402 = learned.and_then(|(transfer, value)| self.learn(at, node, &transfer, value));
+        let (service, multiplexer) = sdo::service_and_multiplexer(direction, &fed.message, bytes);
+        let state = self.buses.get(at).nodes[usize::from(node.get())]
+            .as_ref()
+            .expect("made above");
+        let step = SdoStep {
+            node,
+            direction,
+            message: fed.message,
+            service,
+            multiplexer,
+            latency: fed.latency,
+            started: fed.started,
+            ended: fed.ended.map(|transfer| EndedTransfer {
+                transfer,
+                data: state.sdo.finished(),
+            }),
+            objects: profile.object_set(),
+        };
+        (step, cia402)
+    }
+
+    /// What a completed transfer teaches (SPEC §8.1, §8.3).
+    fn learn(
+        &mut self,
+        at: usize,
+        node: NodeId,
+        transfer: &SdoTransfer,
+        value: u32,
+    ) -> Option<Cia402Reading> {
+        let m = transfer.multiplexer;
+        let profiles = &self.config.profiles;
+        if let Some((key, communication)) = pdo::pdo_parameter(m.index) {
+            let params = self
+                .buses
+                .get_mut(at)
+                .node(node, profiles)
+                .pdos
+                .entry(key)
+                .or_default();
+            match (communication, m.subindex) {
+                (true, 1) => params.cob_id = Some(PdoCobId::from_u32(value)),
+                (true, _) => return None,
+                (false, 0) => params.count = Some(value as u8),
+                (false, sub @ 1..=64) => params.entries[usize::from(sub) - 1] = Some(value),
+                (false, _) => return None,
+            }
+            self.activate(at, node, key);
+            return None;
+        }
+        let state = self.buses.get_mut(at).node(node, profiles);
+        if m.index == 0x1000 && transfer.direction == TransferDirection::Upload {
+            if crate::canopen::cia402::is_drive_device_type(value) {
+                state.drive = true;
+            }
+            return None;
+        }
+        if !state.drive || m.subindex != 0 {
+            return None;
+        }
+        let mut reading = Cia402Reading::empty(node);
+        match m.index {
+            0x6041 => reading.state = state.cia402.observe_statusword(value as u16),
+            0x6040 => reading.command = state.cia402.observe_controlword(value as u16),
+            0x6060 | 0x6061 => reading.mode = Some(ModeOfOperation::from_i8(value as u8 as i8)),
+            _ => return None,
+        }
+        Some(reading)
+    }
+
+    /// Put a PDO's mapping in force on its COB-ID, or take it out of force,
+    /// after its parameters changed.
+    fn activate(&mut self, at: usize, node: NodeId, key: (bool, u16)) {
+        let profile = self.config.profiles.of(Some(node));
+        let description = self.config.descriptions.iter().find(|d| d.node == node);
+        let bus = self.buses.get_mut(at);
+        let state = bus.nodes[usize::from(node.get())]
+            .as_mut()
+            .expect("made by the caller");
+        let drive = state.drive;
+        let params = state.pdos.get_mut(&key).expect("made by the caller");
+        let (transmit, number) = key;
+        let direction = if transmit {
+            PdoDirection::Transmit
+        } else {
+            PdoDirection::Receive
+        };
+        if let Some(old) = params.active.take() {
+            bus.by_cob[usize::from(old)] = 0;
+        }
+        let Some((cob_id, mapping)) = pdo::in_force(params, node, direction, number) else {
+            return;
+        };
+        // A node whose device type says CiA 402 reads with the drive
+        // profile's names and types, whatever its profile (SPEC §8.2).
+        let set = profile
+            .object_set()
+            .or(drive.then_some(crate::canopen::ObjectSet::Drive));
+        let names: Option<&dyn Names> = match description {
+            Some(d) => Some(d),
+            None => None,
+        };
+        let id = self.next_map;
+        self.next_map = self.next_map.wrapping_add(1);
+        let map = pdo::build_map(id, node, direction, number, &mapping, names, set, drive);
+        let slot = &mut bus.by_cob[usize::from(cob_id)];
+        if *slot != 0 {
+            bus.maps[usize::from(*slot) - 1] = map;
+        } else {
+            bus.maps.push(map);
+            *slot = bus.maps.len() as u16;
+        }
+        params.active = Some(cob_id);
+    }
+
+    /// The mapping in force for a PDO frame on `cob_id`, its signals (when
+    /// the session unpacks them), and its CiA 402 reading for a drive
+    /// (SPEC §8.2, §8.3).
+    fn pdo(
+        &mut self,
+        iface: Option<Iface<'_>>,
+        cob_id: u16,
+        data: &[u8],
+    ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
+        let at = self.bus(iface);
+        let BusState {
+            by_cob,
+            maps,
+            nodes,
+        } = self.buses.get_mut(at);
+        let slot = *by_cob.get(usize::from(cob_id))?;
+        if slot == 0 {
+            return None;
+        }
+        let map = &maps[usize::from(slot) - 1];
+        let node = map.node();
+        let state = nodes[usize::from(node.get())].get_or_insert_with(NodeState::default);
+        let drive = map.is_drive() || state.drive;
+        self.signals.clear();
+        if !self.config.signals {
+            // Only the statusword of a drive (the summary's timeline is
+            // observed from statuswords, SPEC §8.3).
+            let mut cia402 = None;
+            if drive {
+                let sw = map
+                    .statusword()
+                    .and_then(|i| map.layout().read(i, data))
+                    .and_then(|s| match s.ok()?.value {
+                        Value::Unsigned(v) => Some(v as u16),
+                        _ => None,
+                    });
+                if let Some(sw) = sw {
+                    cia402 = Some(Cia402Reading {
+                        state: state.cia402.observe_statusword(sw),
+                        ..Cia402Reading::empty(node)
+                    });
+                }
+            }
+            let reading = PdoReading {
+                map,
+                signals: &self.signals,
+            };
+            return Some((reading, cia402));
+        }
+        self.signals.extend(map.layout().unpack(data));
+        let mut cia402 = None;
+        if drive {
+            let mut reading = Cia402Reading::empty(node);
+            let (mut sw, mut cw) = (None, None);
+            for signal in self.signals.iter().flatten() {
+                let raw = match signal.value {
+                    Value::Unsigned(v) => v as i64,
+                    Value::Signed(v) => v,
+                    _ => continue,
+                };
+                match (
+                    signal.entry.index(),
+                    signal.entry.sub_index(),
+                    signal.entry.bits(),
+                ) {
+                    (0x6041, 0, 16) => sw = Some(raw as u16),
+                    (0x6040, 0, 16) => cw = Some(raw as u16),
+                    (0x6060 | 0x6061, 0, 8) => {
+                        reading.mode = Some(ModeOfOperation::from_i8(raw as i8));
+                    }
+                    _ => {}
+                }
+            }
+            if let Some(sw) = sw {
+                reading.state = state.cia402.observe_statusword(sw);
+            }
+            if let Some(cw) = cw {
+                reading.command = state.cia402.observe_controlword(cw);
+            }
+            cia402 = (!reading.is_empty()).then_some(reading);
+        }
+        let reading = PdoReading {
+            map,
+            signals: &self.signals,
+        };
+        Some((reading, cia402))
+    }
+
+    /// Return whether `node` on `bus` is a CiA 402 drive: its profile, its
+    /// EDS's device type or an SDO upload of 1000h in the log says so
+    /// (SPEC §8.3).
+    #[must_use]
+    pub fn is_drive(&self, bus: &BusName, node: NodeId) -> bool {
+        self.buses
+            .find(bus)
+            .and_then(|b| b.nodes[usize::from(node.get())].as_ref())
+            .is_some_and(|n| n.drive)
+            || self.config.profiles.of(Some(node)).is_drive()
+    }
+
+    /// End of the input: take every transfer left open, which ends here
+    /// (SPEC §7.2: reported in the summary only). The session can go on
+    /// with a new input afterwards.
+    pub fn finish(&mut self) -> Vec<OpenTransfer> {
+        let mut open = Vec::new();
+        for (bus, state) in self.buses.iter_mut() {
+            for (i, node) in state.nodes.iter_mut().enumerate() {
+                let Some(node) = node else { continue };
+                if let Some(transfer) = node.sdo.finish() {
+                    open.push(OpenTransfer {
+                        bus: bus.clone(),
+                        node: NodeId::new(i as u8).expect("1..=127"),
+                        transfer,
+                    });
+                }
+            }
+        }
+        open
+    }
+}
+
+/// The value of a completed expedited transfer's data, little-endian, for
+/// the objects the decoder learns from (all of them 4 bytes or fewer).
+fn value_of(data: &[u8]) -> Option<u32> {
+    if data.is_empty() || data.len() > 4 {
+        return None;
+    }
+    let mut bytes = [0; 4];
+    bytes[..data.len()].copy_from_slice(data);
+    Some(u32::from_le_bytes(bytes))
+}

@@ -1,0 +1,279 @@
+//! PDO mappings as the decoder applies them: learned from the SDO
+//! configuration in the log, from a node's EDS/DCF, or the pre-defined
+//! connection set (SPEC §8.1), each with its signals' names and types
+//! (SPEC §8.2).
+
+use std::borrow::Cow;
+use std::cell::Cell;
+use std::fmt;
+
+use crate::canopen::{
+    object_data_type, object_name, DataType, MappingEntry, NodeId, PdoCobId, PdoDirection,
+    PdoLayout, PdoMapping, Signal, TypeLookup,
+};
+use crate::Error;
+
+/// A PDO's mapping as the decoder applies it to the frames on its COB-ID:
+/// the owner, the PDO, its layout and the name of each signal (SPEC §8.2).
+#[derive(Debug)]
+pub struct PdoMap {
+    id: u32,
+    node: NodeId,
+    direction: PdoDirection,
+    number: u16,
+    layout: PdoLayout,
+    names: Vec<Cow<'static, str>>,
+    drive: bool,
+    /// Where the statusword (6041h, 16 bits) is mapped, if it is.
+    statusword: Option<usize>,
+}
+
+impl PdoMap {
+    /// Return a number that no other mapping of the decoder's session has:
+    /// a renderer may keep what it works out once per mapping (e.g. the
+    /// signal names escaped for its output) under it.
+    #[must_use]
+    pub fn id(&self) -> u32 {
+        self.id
+    }
+
+    /// Return the node that owns the PDO (which may differ from the node
+    /// the COB-ID names, when the log moved the PDO).
+    #[must_use]
+    pub fn node(&self) -> NodeId {
+        self.node
+    }
+
+    /// Return whether the PDO is a TPDO or an RPDO, seen from its node.
+    #[must_use]
+    pub fn direction(&self) -> PdoDirection {
+        self.direction
+    }
+
+    /// Return the PDO number, 1..=512.
+    #[must_use]
+    pub fn number(&self) -> u16 {
+        self.number
+    }
+
+    /// Return the mapping with each entry's offset and kind worked out.
+    #[must_use]
+    pub fn layout(&self) -> &PdoLayout {
+        &self.layout
+    }
+
+    /// Return the name of each signal, in mapping order, dummies left out
+    /// (SPEC §8.2: the EDS's `ParameterName`, else the profile's name, else
+    /// `6041sub0`).
+    #[must_use]
+    pub fn names(&self) -> &[Cow<'static, str>] {
+        &self.names
+    }
+
+    /// Return whether the node is a CiA 402 drive, whose controlword and
+    /// statusword are read (SPEC §8.3).
+    #[must_use]
+    pub fn is_drive(&self) -> bool {
+        self.drive
+    }
+
+    /// Return where the statusword is mapped, if it is.
+    pub(crate) fn statusword(&self) -> Option<usize> {
+        self.statusword
+    }
+}
+
+/// A PDO frame read with the mapping in force for its COB-ID (SPEC §8.2
+/// `signals`).
+///
+/// `Display` writes the PDO and its signals as a person reads them:
+/// `TPDO1 Statusword=567 Position actual value=100000`, with `  error: …`
+/// where the payload ends before the mapping does.
+#[derive(Debug, Clone, Copy)]
+pub struct PdoReading<'d> {
+    /// The mapping in force.
+    pub map: &'d PdoMap,
+    /// The frame's signals in mapping order (the i-th is named
+    /// `map.names()[i]`), and why the rest could not be read (SPEC §8.2:
+    /// a PDO shorter than its mapping). Empty when the decoder does not
+    /// unpack signals ([`DecoderConfig::signals`](super::DecoderConfig::signals)).
+    pub signals: &'d [Result<Signal, Error>],
+}
+
+impl<'d> PdoReading<'d> {
+    /// Return the signals that could be read, each with its name.
+    pub fn named(&self) -> impl Iterator<Item = (&'d str, &'d Signal)> + '_ {
+        let names = self.map.names();
+        self.signals
+            .iter()
+            .enumerate()
+            .filter_map(move |(i, s)| Some((names.get(i)?.as_ref(), s.as_ref().ok()?)))
+    }
+
+    /// Return why the signals end before the mapping does, if they do.
+    #[must_use]
+    pub fn error(&self) -> Option<&'d Error> {
+        self.signals.iter().find_map(|s| s.as_ref().err())
+    }
+}
+
+impl fmt::Display for PdoReading<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let map = self.map;
+        let t = match map.direction {
+            PdoDirection::Transmit => 'T',
+            PdoDirection::Receive => 'R',
+        };
+        write!(f, "{t}PDO{}", map.number)?;
+        for (i, signal) in self.signals.iter().enumerate() {
+            match signal {
+                Ok(signal) => {
+                    let name = map.names.get(i).map_or("", |n| n.as_ref());
+                    write!(f, " {name}={}", signal.value)?;
+                }
+                Err(e) => write!(f, "  error: {e}")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One PDO's parameters as far as the decoder knows them (CiA 301
+/// §7.5.2.35–§7.5.2.38).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PdoParams {
+    /// Sub 1 of the communication parameter, when known.
+    pub(crate) cob_id: Option<PdoCobId>,
+    /// Sub 0 of the mapping parameter, when known.
+    pub(crate) count: Option<u8>,
+    /// Subs 1..=64 of the mapping parameter.
+    pub(crate) entries: [Option<u32>; 64],
+    /// The COB-ID this PDO is active on, if any.
+    pub(crate) active: Option<u16>,
+}
+
+impl Default for PdoParams {
+    fn default() -> Self {
+        PdoParams {
+            cob_id: None,
+            count: None,
+            entries: [None; 64],
+            active: None,
+        }
+    }
+}
+
+/// Which PDO parameter an object index holds, if it holds one: the PDO
+/// (`true` for a TPDO, its number) and whether it is the communication
+/// (else the mapping) parameter (CiA 301 §7.5.2.35–§7.5.2.38).
+pub(crate) fn pdo_parameter(index: u16) -> Option<((bool, u16), bool)> {
+    match index {
+        0x1400..=0x15FF => Some(((false, index - 0x1400 + 1), true)),
+        0x1600..=0x17FF => Some(((false, index - 0x1600 + 1), false)),
+        0x1800..=0x19FF => Some(((true, index - 0x1800 + 1), true)),
+        0x1A00..=0x1BFF => Some(((true, index - 0x1A00 + 1), false)),
+        _ => None,
+    }
+}
+
+/// Where names and data types come from for a node: its EDS/DCF first,
+/// then the profile's objects (SPEC §8.2).
+pub(crate) trait Names {
+    fn name(&self, index: u16, sub: u8) -> Option<&str>;
+    fn data_type(&self, index: u16, sub: u8) -> Option<DataType>;
+}
+
+/// The COB-ID a PDO is active on and its mapping, or `None` when it is
+/// not in force (CiA 301 §7.3.5, §7.5.2.35).
+pub(crate) fn in_force(
+    params: &PdoParams,
+    node: NodeId,
+    direction: PdoDirection,
+    number: u16,
+) -> Option<(u16, PdoMapping)> {
+    // The COB-ID: as configured, else the pre-defined connection set for
+    // PDOs 1–4 (CiA 301 §7.3.5).
+    let cob_id = match params.cob_id {
+        Some(cob) if !cob.is_valid() || cob.is_extended() => None,
+        Some(cob) => cob.can_id().and_then(|id| id.standard_raw()),
+        None => node.pdo_cob_id(direction, number),
+    };
+    let mapping = params.count.filter(|&n| n > 0).and_then(|n| {
+        let raw: Option<Vec<u32>> = params.entries[..usize::from(n).min(64)]
+            .iter()
+            .copied()
+            .collect();
+        PdoMapping::from_u32s(&raw?).ok()
+    });
+    Some((cob_id?, mapping?))
+}
+
+/// Build the map of a mapping in force: names and types from the node's
+/// description, else the object set's (SPEC §8.2).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn build_map(
+    id: u32,
+    node: NodeId,
+    direction: PdoDirection,
+    number: u16,
+    mapping: &PdoMapping,
+    description: Option<&dyn Names>,
+    set: Option<crate::canopen::ObjectSet>,
+    drive: bool,
+) -> PdoMap {
+    let signals = || mapping.entries().iter().filter(|e| !e.is_dummy());
+    let names: Vec<Cow<'static, str>> = signals()
+        .map(|e| {
+            if let Some(name) = description.and_then(|d| d.name(e.index(), e.sub_index())) {
+                return Cow::Owned(name.to_owned());
+            }
+            match object_name(e.index(), set) {
+                Some(name) if e.sub_index() == 0 => Cow::Borrowed(name),
+                Some(name) => Cow::Owned(format!("{name}.sub{}", e.sub_index())),
+                None => Cow::Owned(e.object().to_string()),
+            }
+        })
+        .collect();
+    let types: Vec<Option<DataType>> = signals()
+        .map(|e| {
+            description
+                .and_then(|d| d.data_type(e.index(), e.sub_index()))
+                .or_else(|| object_data_type(e.index(), e.sub_index(), set))
+        })
+        .collect();
+    let layout = PdoLayout::new(
+        mapping,
+        InOrder {
+            types: &types,
+            next: Cell::new(0),
+        },
+    );
+    let statusword = layout
+        .position(0x6041, 0)
+        .filter(|&i| mapping.entries().get(i).map_or(0, |e| e.bits()) == 16);
+    PdoMap {
+        id,
+        node,
+        direction,
+        number,
+        layout,
+        names,
+        drive,
+        statusword,
+    }
+}
+
+/// The types of a mapping's signals, looked up in order: the layout asks
+/// once per entry that is not a dummy, in mapping order.
+struct InOrder<'a> {
+    types: &'a [Option<DataType>],
+    next: Cell<usize>,
+}
+
+impl TypeLookup for InOrder<'_> {
+    fn data_type(&self, _entry: MappingEntry) -> Option<DataType> {
+        let i = self.next.get();
+        self.next.set(i + 1);
+        self.types.get(i).copied().flatten()
+    }
+}

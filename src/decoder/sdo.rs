@@ -1,0 +1,338 @@
+//! SDO channels as the decoder follows them: one [`SdoTracker`] per
+//! (interface, node), the data of the transfer in progress (up to the
+//! decoder's cap), and what each frame is in its transfer (SPEC §7.2, §7.3).
+
+use core::fmt;
+use core::time::Duration;
+
+use crate::can::Timestamp;
+use crate::canopen::sdo::{
+    SdoDirection, SdoFrame, SdoMessage, SdoMultiplexer, SdoOutcome, SdoService, SdoTracker,
+    SdoTransfer, TransferDirection, TransferMode,
+};
+use crate::canopen::{object_name, NodeId, ObjectSet};
+use crate::Error;
+
+/// One SDO frame as its channel's tracker read it (SPEC §7.3 `sdo`), and
+/// the transfer it ends with that transfer's data (`transfer`).
+///
+/// `Display` says it as a person reads it: the transfer it ends (`read
+/// 1008h.00 "AKD-P00306" (segmented, 10 B, 2.1 ms)`), an abort (`abort
+/// 6041h.00: Object does not exist in the object dictionary`), or the step
+/// it is (`request initiate upload 1008h.00 Manufacturer device name`).
+#[derive(Debug, Clone, Copy)]
+pub struct SdoStep<'d> {
+    /// The node whose SDO server the channel reaches (from the identifier).
+    pub node: NodeId,
+    /// Which way the frame went: a request (client → server) or a response.
+    pub direction: SdoDirection,
+    /// The frame read in its transfer's context, or why it could not be
+    /// read (a short frame, an undefined command specifier).
+    pub message: Result<SdoMessage, Error>,
+    /// The service: the message's, or what the first byte says when the
+    /// frame could not be read ([`SdoService::Unknown`] for no byte).
+    pub service: SdoService,
+    /// The index and sub-index the frame carries: the message's, or, when
+    /// it could not be read, bytes 1–3 if the service has them and they are
+    /// there.
+    pub multiplexer: Option<SdoMultiplexer>,
+    /// The request → response latency this frame closes (SPEC §7.2).
+    pub latency: Option<Duration>,
+    /// The frame starts a transfer.
+    pub started: bool,
+    /// The transfer this frame ends, with its data.
+    pub ended: Option<EndedTransfer<'d>>,
+    /// The objects that name this node's SDO objects (SPEC §7.3 `object`):
+    /// the communication objects and the node's profile's.
+    pub objects: Option<ObjectSet>,
+}
+
+impl SdoStep<'_> {
+    /// Return the name of the object the frame addresses, if it addresses
+    /// one and the name is known (SPEC §7.3 `object`).
+    #[must_use]
+    pub fn object(&self) -> Option<&'static str> {
+        self.multiplexer
+            .and_then(|m| object_name(m.index, self.objects))
+    }
+}
+
+/// A transfer that ended, with its data (SPEC §7.3 `transfer`).
+///
+/// `Display` writes the transfer as a person reads it: `read 1008h.00
+/// "AKD-P00306" (segmented, 10 B, 2.1 ms)`, `write 1A00h.00 = 0x00 …`,
+/// `abort 1A00h.00: … (write aborted by the server, 0.4 ms)`, `read 6041h.00
+/// timed out: no answer (line 12)`.
+#[derive(Debug, Clone, Copy)]
+pub struct EndedTransfer<'d> {
+    /// The transfer: object, direction, mode, size, frames, outcome, start
+    /// and duration.
+    pub transfer: SdoTransfer,
+    /// Its data bytes, the first ones up to the decoder's cap
+    /// ([`DecoderConfig::sdo_data_cap`](super::DecoderConfig::sdo_data_cap)).
+    pub data: &'d [u8],
+}
+
+impl EndedTransfer<'_> {
+    /// Return whether the transfer moved more bytes than [`data`](Self::data)
+    /// holds.
+    #[must_use]
+    pub fn truncated(&self) -> bool {
+        self.transfer.bytes as usize > self.data.len()
+    }
+}
+
+/// A channel: its tracker and the data of its open transfer.
+#[derive(Debug, Default)]
+pub(crate) struct SdoChannel {
+    tracker: SdoTracker,
+    data: Vec<u8>,
+    finished: Vec<u8>,
+}
+
+/// What the tracker said of one frame, without the data it borrows.
+pub(crate) struct Fed {
+    pub(crate) message: Result<SdoMessage, Error>,
+    pub(crate) latency: Option<Duration>,
+    pub(crate) started: bool,
+    pub(crate) ended: Option<SdoTransfer>,
+}
+
+impl SdoChannel {
+    /// Feed one frame (`position`, time); keep at most `cap` data bytes of
+    /// a transfer.
+    pub(crate) fn feed(
+        &mut self,
+        direction: SdoDirection,
+        bytes: &[u8],
+        ts: Option<Timestamp>,
+        position: u64,
+        cap: usize,
+    ) -> Fed {
+        let event = self.tracker.feed(direction, bytes, ts, position);
+        // The chunk belongs to the transfer that ends here unless this
+        // frame also starts a new one (a new initiate after a timeout).
+        let chunk_to_new =
+            event.started && event.ended.map_or(true, |t| t.start_position != position);
+        if event.started && event.ended.is_none() {
+            self.data.clear();
+        }
+        if event.ended.is_some() {
+            if !chunk_to_new {
+                push(&mut self.data, event.chunk, cap);
+            }
+            core::mem::swap(&mut self.data, &mut self.finished);
+            self.data.clear();
+            if chunk_to_new {
+                push(&mut self.data, event.chunk, cap);
+            }
+        } else {
+            push(&mut self.data, event.chunk, cap);
+        }
+        Fed {
+            message: event.message,
+            latency: event.latency,
+            started: event.started,
+            ended: event.ended,
+        }
+    }
+
+    /// The data of the transfer that ended last.
+    pub(crate) fn finished(&self) -> &[u8] {
+        &self.finished
+    }
+
+    /// End the input: the transfer left open, if any.
+    pub(crate) fn finish(&mut self) -> Option<SdoTransfer> {
+        self.tracker.finish()
+    }
+}
+
+fn push(data: &mut Vec<u8>, chunk: &[u8], cap: usize) {
+    let room = cap.saturating_sub(data.len());
+    data.extend_from_slice(&chunk[..chunk.len().min(room)]);
+}
+
+/// The service and multiplexer of a frame, from its message or, when it
+/// could not be read, as far as its bytes go (SPEC §7.1: a short frame is
+/// decoded as far as it goes).
+pub(crate) fn service_and_multiplexer(
+    direction: SdoDirection,
+    message: &Result<SdoMessage, Error>,
+    bytes: &[u8],
+) -> (SdoService, Option<SdoMultiplexer>) {
+    match message {
+        Ok(message) => (message.service(), message.fields().multiplexer),
+        Err(_) => {
+            let service = bytes
+                .first()
+                .map_or(SdoService::Unknown, |&b| SdoService::of(direction, b));
+            let multiplexer = (service.has_multiplexer() && bytes.len() >= 4)
+                .then(|| SdoFrame::new_unchecked(bytes).multiplexer());
+            (service, multiplexer)
+        }
+    }
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_nanos() as f64 / 1e6
+}
+
+impl fmt::Display for EndedTransfer<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let transfer = &self.transfer;
+        let verb = match transfer.direction {
+            TransferDirection::Upload => "read",
+            TransferDirection::Download => "write",
+        };
+        match transfer.outcome {
+            SdoOutcome::Completed => {
+                write!(f, "{verb} {} ", transfer.multiplexer)?;
+                let value = DataText {
+                    data: self.data,
+                    expedited: transfer.mode == TransferMode::Expedited,
+                    truncated: self.truncated(),
+                };
+                write!(f, "{value} ({}, {} B", transfer.mode.name(), transfer.bytes)?;
+            }
+            SdoOutcome::Aborted { code, by } => write!(
+                f,
+                "abort {}: {} ({verb} aborted by the {}",
+                transfer.multiplexer,
+                code.description(),
+                by.name()
+            )?,
+            SdoOutcome::Broken(reason) => write!(
+                f,
+                "{verb} {} broken: {reason} ({} B",
+                transfer.multiplexer, transfer.bytes
+            )?,
+            SdoOutcome::TimedOut => write!(
+                f,
+                "{verb} {} timed out: no answer (line {}",
+                transfer.multiplexer, transfer.start_position
+            )?,
+        }
+        if let Some(d) = transfer.duration {
+            write!(f, ", {:.1} ms", ms(d))?;
+        }
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for SdoStep<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(ended) = &self.ended {
+            return fmt::Display::fmt(ended, f);
+        }
+        let message = match &self.message {
+            Ok(m) => m,
+            Err(e) => return write!(f, "{} error: {e}", self.direction.name()),
+        };
+        let fields = message.fields();
+        if let Some(code) = fields.abort_code {
+            f.write_str("abort")?;
+            if let Some(m) = fields.multiplexer {
+                write!(f, " {m}")?;
+            }
+            return write!(f, ": {}", code.description());
+        }
+        write!(f, "{} ", self.direction.name())?;
+        for (i, word) in message.service().name().split('_').enumerate() {
+            if i > 0 {
+                f.write_str(" ")?;
+            }
+            f.write_str(word)?;
+        }
+        if let Some(sub) = fields.subcommand {
+            write!(f, " {}", sub.name())?;
+        }
+        if let Some(m) = fields.multiplexer {
+            write!(f, " {m}")?;
+            if let Some(name) = object_name(m.index, self.objects) {
+                write!(f, " {name}")?;
+            }
+        }
+        match (fields.expedited, fields.value) {
+            (Some(true), Some(value)) => {
+                let value = DataText {
+                    data: value,
+                    expedited: true,
+                    truncated: false,
+                };
+                write!(f, " {value}")?;
+            }
+            _ => {
+                if let Some(Some(size)) = fields.size {
+                    write!(f, ", size {size}")?;
+                }
+                if let Some(value) = fields.value {
+                    write!(f, ", {} B", value.len())?;
+                }
+            }
+        }
+        if let Some(t) = fields.toggle {
+            write!(f, ", toggle {}", u8::from(t))?;
+        }
+        if let Some(s) = fields.seqno {
+            write!(f, ", seqno {s}")?;
+        }
+        if let Some(b) = fields.blksize {
+            write!(f, ", blksize {b}")?;
+        }
+        if let Some(a) = fields.ackseq {
+            write!(f, ", ackseq {a}")?;
+        }
+        if fields.last == Some(true) {
+            f.write_str(", last")?;
+        }
+        if let Some(latency) = self.latency {
+            write!(f, " ({:.1} ms)", ms(latency))?;
+        }
+        Ok(())
+    }
+}
+
+/// Transfer data as a person reads it: expedited data as a little-endian
+/// number (`= 0x0064`); else printable text in quotes, up to 8 bytes as a
+/// number, longer data as hex bytes (the first 32, then `…`).
+struct DataText<'a> {
+    data: &'a [u8],
+    expedited: bool,
+    truncated: bool,
+}
+
+impl fmt::Display for DataText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let data = self.data;
+        let text = data.strip_suffix(&[0]).unwrap_or(data);
+        if !self.expedited && !text.is_empty() && text.iter().all(|b| (0x20..0x7F).contains(b)) {
+            f.write_str("\"")?;
+            for &b in text {
+                if b == b'"' || b == b'\\' {
+                    f.write_str("\\")?;
+                }
+                write!(f, "{}", char::from(b))?;
+            }
+            f.write_str("\"")
+        } else if !data.is_empty() && data.len() <= 8 {
+            f.write_str("= 0x")?;
+            for b in data.iter().rev() {
+                write!(f, "{b:02X}")?;
+            }
+            Ok(())
+        } else {
+            f.write_str("[")?;
+            for (i, b) in data.iter().take(32).enumerate() {
+                if i > 0 {
+                    f.write_str(" ")?;
+                }
+                write!(f, "{b:02X}")?;
+            }
+            if data.len() > 32 || self.truncated {
+                f.write_str(" …")?;
+            }
+            f.write_str("]")
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! A drive's observed CiA 402 timeline, from statuswords only (SPEC §8.3).
+
+use crate::can::Timestamp;
+use crate::canopen::Cia402State;
+use crate::decoder::Cia402Reading;
+
+use super::EmcySeen;
+
+/// One change of a drive's observed state (SPEC §8.3 `transitions`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cia402Transition {
+    /// The line of the frame that first showed the new state.
+    pub line: u64,
+    /// Its time, where the log has one.
+    pub ts: Option<Timestamp>,
+    /// The state before (`None` for the first state observed).
+    pub from: Option<Cia402State>,
+    /// The new state.
+    pub to: Cia402State,
+}
+
+/// A fault: the state entered `fault_reaction_active` or `fault` from a
+/// state that is neither (SPEC §8.3 `faults`), with the drive's last error
+/// EMCY before it — what the text summary names as its likely cause.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cia402Fault {
+    /// The transition into the fault.
+    pub transition: Cia402Transition,
+    /// The drive's last error EMCY at or before it, if any.
+    pub emcy_before: Option<EmcySeen>,
+}
+
+/// A drive's observed timeline (SPEC §8.3, the summary's `cia402`).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Cia402Timeline {
+    /// Every change of state, in order.
+    pub transitions: Vec<Cia402Transition>,
+    /// Every fault, in order.
+    pub faults: Vec<Cia402Fault>,
+}
+
+impl Cia402Timeline {
+    /// Return the last state observed.
+    #[must_use]
+    pub fn last_state(&self) -> Option<Cia402State> {
+        self.transitions.last().map(|t| t.to)
+    }
+}
+
+/// The timeline while the log is read.
+#[derive(Debug, Default)]
+pub(crate) struct TimelineBuilder {
+    timeline: Cia402Timeline,
+}
+
+impl TimelineBuilder {
+    pub(crate) fn is_empty(&self) -> bool {
+        self.timeline.transitions.is_empty()
+    }
+
+    /// A frame's CiA 402 reading: a state that differs from the last one
+    /// is a transition; entering fault reaction active or fault from a
+    /// state that is neither is a fault.
+    pub(crate) fn observe(
+        &mut self,
+        line: u64,
+        ts: Option<Timestamp>,
+        reading: Cia402Reading,
+        last_error: Option<EmcySeen>,
+    ) {
+        let Some(to) = reading.state else { return };
+        let timeline = &mut self.timeline;
+        let from = timeline.last_state();
+        if from == Some(to) {
+            return;
+        }
+        let transition = Cia402Transition { line, ts, from, to };
+        if to.is_fault() && !from.is_some_and(Cia402State::is_fault) {
+            timeline.faults.push(Cia402Fault {
+                transition,
+                emcy_before: last_error,
+            });
+        }
+        timeline.transitions.push(transition);
+    }
+
+    pub(crate) fn finish(self) -> Cia402Timeline {
+        self.timeline
+    }
+}

@@ -1,0 +1,249 @@
+//! `Serialize` for the summary: exactly the records of `motionwire decode
+//! --summary --json` (SPEC §6.3, §7.4, §8.3), key for key and in order.
+//!
+//! Times are written as JSON numbers with the log's resolution, six or
+//! nine decimals (`1700000000.000500`), never rounded through a float
+//! (SPEC §5.7): with `serde_json` they are raw numbers; other serializers
+//! see serde_json's raw-value token.
+
+use serde::ser::{Error as _, SerializeMap, SerializeSeq};
+use serde::{Serialize, Serializer};
+
+use crate::can::Timestamp;
+use crate::decoder::BusName;
+
+use super::text::ms;
+use super::{
+    BusSummary, Cia402Timeline, EmcySeen, FrameCounts, GuardingSummary, HeartbeatGap,
+    HeartbeatSummary, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryRecord, Timeouts,
+};
+
+/// A time as a JSON number with six or nine decimals.
+struct Ts(Timestamp);
+
+impl Serialize for Ts {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let text = self.0.seconds().to_string();
+        serde_json::value::RawValue::from_string(text)
+            .map_err(S::Error::custom)?
+            .serialize(serializer)
+    }
+}
+
+fn ts<S: Serializer>(
+    map: &mut S::SerializeMap,
+    key: &str,
+    ts: Option<Timestamp>,
+) -> Result<(), S::Error> {
+    map.serialize_entry(key, &ts.map(Ts))
+}
+
+/// SPEC §6.1's `iface`: the name, the channel as a string, or null.
+struct Iface<'a>(&'a BusName);
+
+impl Serialize for Iface<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            BusName::Unnamed => serializer.serialize_none(),
+            BusName::Channel(n) => serializer.collect_str(n),
+            BusName::Name(name) => serializer.serialize_str(name),
+        }
+    }
+}
+
+impl Serialize for Summary {
+    /// The records in output order, as a sequence.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut seq = serializer.serialize_seq(Some(self.nodes.len() + self.buses.len()))?;
+        for record in self.records() {
+            seq.serialize_element(&record)?;
+        }
+        seq.end()
+    }
+}
+
+impl Serialize for SummaryRecord<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            SummaryRecord::Node(node) => node.serialize(serializer),
+            SummaryRecord::Bus(bus) => bus.serialize(serializer),
+        }
+    }
+}
+
+impl Serialize for EmcySeen {
+    /// `{"line", "ts", "code", "description"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(4))?;
+        map.serialize_entry("line", &self.line)?;
+        ts::<S>(&mut map, "ts", self.ts)?;
+        map.serialize_entry("code", &self.code.get())?;
+        map.serialize_entry("description", self.code.description())?;
+        map.end()
+    }
+}
+
+impl Serialize for FrameCounts {
+    /// `{kind: count}` for every kind, in the order of SPEC §6.1.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (kind, n) in self.iter() {
+            map.serialize_entry(kind.name(), &n)?;
+        }
+        map.end()
+    }
+}
+
+impl Serialize for HeartbeatGap {
+    /// `{"after_line", "gap_ms"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(2))?;
+        map.serialize_entry("after_line", &self.after_line)?;
+        map.serialize_entry("gap_ms", &self.gap_ms())?;
+        map.end()
+    }
+}
+
+impl Serialize for HeartbeatSummary {
+    /// `{"count", "last_state", "boot_ups"}` and, when asked for,
+    /// `"timeouts"` (a list, or null when not checked).
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("count", &self.count)?;
+        map.serialize_entry("last_state", &self.last_state.map(|s| s.state_name()))?;
+        map.serialize_entry("boot_ups", &self.boot_ups)?;
+        match &self.timeouts {
+            Timeouts::NotAsked => {}
+            Timeouts::NotChecked => map.serialize_entry("timeouts", &None::<()>)?,
+            Timeouts::Checked(gaps) => map.serialize_entry("timeouts", gaps)?,
+        }
+        map.end()
+    }
+}
+
+impl Serialize for GuardingSummary {
+    /// `{"answers", "toggle_errors"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(2))?;
+        map.serialize_entry("answers", &self.answers)?;
+        map.serialize_entry("toggle_errors", &self.toggle_errors)?;
+        map.end()
+    }
+}
+
+impl Serialize for SdoAbort {
+    /// `{"line", "index", "subindex", "object", "code", "description",
+    /// "by"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(7))?;
+        map.serialize_entry("line", &self.line)?;
+        map.serialize_entry("index", &self.multiplexer.index)?;
+        map.serialize_entry("subindex", &self.multiplexer.subindex)?;
+        map.serialize_entry("object", &self.object)?;
+        map.serialize_entry("code", &self.code.get())?;
+        map.serialize_entry("description", self.code.description())?;
+        map.serialize_entry("by", self.by.name())?;
+        map.end()
+    }
+}
+
+impl Serialize for SdoSummary {
+    /// SPEC §7.4: `{"requests", "transfers", "aborts", "broken",
+    /// "timeouts", "latency_ms"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        struct Latency<'a>(&'a super::LatencyStats);
+        impl Serialize for Latency<'_> {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let mut map = serializer.serialize_map(Some(4))?;
+                map.serialize_entry("count", &self.0.count)?;
+                map.serialize_entry("median", &ms(self.0.median))?;
+                map.serialize_entry("p99", &ms(self.0.p99))?;
+                map.serialize_entry("max", &ms(self.0.max))?;
+                map.end()
+            }
+        }
+        let mut map = serializer.serialize_map(Some(6))?;
+        map.serialize_entry("requests", &self.requests)?;
+        map.serialize_entry("transfers", &self.transfers)?;
+        map.serialize_entry("aborts", &self.aborts)?;
+        map.serialize_entry("broken", &self.broken)?;
+        map.serialize_entry("timeouts", &self.timeouts)?;
+        map.serialize_entry("latency_ms", &self.latency.as_ref().map(Latency))?;
+        map.end()
+    }
+}
+
+impl Serialize for Cia402Timeline {
+    /// SPEC §8.3: `{"transitions": [{"line", "ts", "from", "to"}],
+    /// "last_state", "faults": [lines]}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        struct Transitions<'a>(&'a Cia402Timeline);
+        impl Serialize for Transitions<'_> {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let mut seq = serializer.serialize_seq(Some(self.0.transitions.len()))?;
+                for t in &self.0.transitions {
+                    seq.serialize_element(t)?;
+                }
+                seq.end()
+            }
+        }
+        let mut map = serializer.serialize_map(Some(3))?;
+        map.serialize_entry("transitions", &Transitions(self))?;
+        map.serialize_entry("last_state", &self.last_state().map(|s| s.name()))?;
+        let faults: Vec<u64> = self.faults.iter().map(|f| f.transition.line).collect();
+        map.serialize_entry("faults", &faults)?;
+        map.end()
+    }
+}
+
+impl Serialize for super::Cia402Transition {
+    /// `{"line", "ts", "from", "to"}`.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(4))?;
+        map.serialize_entry("line", &self.line)?;
+        ts::<S>(&mut map, "ts", self.ts)?;
+        map.serialize_entry("from", &self.from.map(|s| s.name()))?;
+        map.serialize_entry("to", self.to.name())?;
+        map.end()
+    }
+}
+
+impl Serialize for NodeSummary {
+    /// SPEC §6.3's node record.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(15))?;
+        map.serialize_entry("type", "node")?;
+        map.serialize_entry("iface", &Iface(&self.bus))?;
+        map.serialize_entry("node", &self.node.get())?;
+        map.serialize_entry("frames", &self.frames)?;
+        map.serialize_entry("emcy", &self.emcy)?;
+        map.serialize_entry("first_error", &self.first_error)?;
+        map.serialize_entry("active_error", &self.active_error)?;
+        map.serialize_entry("resets", &self.resets)?;
+        map.serialize_entry("last_register", &self.last_register.map(|r| r.bits()))?;
+        map.serialize_entry("heartbeat", &self.heartbeat)?;
+        map.serialize_entry("guarding", &self.guarding)?;
+        map.serialize_entry("sdo", &self.sdo)?;
+        map.serialize_entry("cia402", &self.cia402)?;
+        map.end()
+    }
+}
+
+impl Serialize for BusSummary {
+    /// SPEC §6.3's bus record.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(10))?;
+        map.serialize_entry("type", "bus")?;
+        map.serialize_entry("iface", &Iface(&self.bus))?;
+        map.serialize_entry("frames", &self.frames)?;
+        map.serialize_entry("error_frames", &self.error_frames)?;
+        map.serialize_entry("bus_off", &self.bus_off)?;
+        map.serialize_entry("error_passive", &self.error_passive)?;
+        map.serialize_entry("status_events", &self.status_events)?;
+        ts::<S>(&mut map, "first_ts", self.first_ts)?;
+        ts::<S>(&mut map, "last_ts", self.last_ts)?;
+        let nodes: Vec<u8> = self.nodes.iter().map(|n| n.get()).collect();
+        map.serialize_entry("nodes", &nodes)?;
+        map.end()
+    }
+}

@@ -1,0 +1,641 @@
+//! The post-mortem of a log: one record per device and per bus
+//! (SPEC §6.3), built with the crate's own state machines — the CiA 405
+//! EMCY storage for the root cause (SPEC §3), the heartbeat consumer for
+//! timeouts and the node-guarding observer for toggle errors (SPEC §2.7) —
+//! from what the [decoder](crate::decoder) makes of each frame: SDO
+//! statistics (SPEC §7.4) and each drive's CiA 402 timeline (SPEC §8.3).
+//!
+//! A [`Summarizer`] is fed every frame with its [`Decoded`] reading and
+//! every bus event, in log order; [`Summarizer::finish`] returns the typed
+//! [`Summary`]. `Display` writes the text summary; with `serde`,
+//! `Serialize` writes exactly the records of `motionwire decode --summary
+//! --json` (one JSON value per record, [`Summary::records`]).
+//!
+//! ```
+//! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::summary::Summarizer;
+//!
+//! let log = b"(1700000000.000000) can0 703#00\n\
+//!             (1700000000.100000) can0 083#1081110000000000\n\
+//!             (1700000000.200000) can0 703#05\n";
+//! let mut decoder = Decoder::new(DecoderConfig::new().signals(false));
+//! let mut summarizer = Summarizer::new();
+//! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
+//!     if let Ok(Some(frame)) = motionwire::candump::parse_line(text) {
+//!         let decoded = decoder.decode(line as u64 + 1, &frame);
+//!         summarizer.add_frame(line as u64 + 1, &frame, &decoded);
+//!     }
+//! }
+//! let summary = summarizer.finish(&mut decoder);
+//! let node = &summary.nodes[0];
+//! assert_eq!(node.node.get(), 3);
+//! assert_eq!(node.heartbeat.boot_ups, [1]);
+//! assert_eq!(node.active_error.unwrap().code.get(), 0x8110);
+//! assert!(summary.to_string().contains("active error: 0x8110 CAN overrun (objects lost) (line 2)"));
+//! ```
+
+mod cia402;
+mod json;
+mod sdo;
+mod text;
+
+use core::time::Duration;
+
+pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
+pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
+
+use crate::can::{BusStatus, LogEvent, LogFrame, Timestamp};
+use crate::canopen::{
+    CanOpenMessage, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer,
+    HeartbeatEvent, MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
+};
+use crate::decoder::{BusName, Buses, Decoded, Decoder};
+
+/// An EMCY the summary points at: where it was seen and its code
+/// (SPEC §6.3 `first_error`, `active_error`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EmcySeen {
+    /// The line (or record number) it was read on.
+    pub line: u64,
+    /// Its time, where the log has one.
+    pub ts: Option<Timestamp>,
+    /// Its error code.
+    pub code: ErrorCode,
+}
+
+/// A heartbeat gap longer than the consumer time (SPEC §6.3
+/// `heartbeat.timeouts`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HeartbeatGap {
+    /// The line of the heartbeat before the gap.
+    pub after_line: u64,
+    /// The gap: up to the next heartbeat, or to the last time of the input.
+    pub gap: Duration,
+}
+
+impl HeartbeatGap {
+    /// Return the gap in milliseconds, as SPEC §6.3's `gap_ms` (exact for
+    /// every gap below 2^53 µs).
+    #[must_use]
+    pub fn gap_ms(&self) -> f64 {
+        self.gap.as_micros() as f64 / 1000.0
+    }
+}
+
+/// Whether heartbeat timeouts were checked, and what was found (SPEC §6.3,
+/// §5.7).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Timeouts {
+    /// No consumer time was given: timeouts are not part of the summary
+    /// (no `timeouts` key).
+    NotAsked,
+    /// A consumer time was given, but frames without timestamps make a
+    /// check impossible (`null`, never "none found").
+    NotChecked,
+    /// Checked: every gap longer than the consumer time.
+    Checked(Vec<HeartbeatGap>),
+}
+
+/// A node's heartbeats (SPEC §6.3 `heartbeat`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct HeartbeatSummary {
+    /// Heartbeats seen (not node-guarding answers).
+    pub count: u64,
+    /// The state of the last one.
+    pub last_state: Option<NmtStateByte>,
+    /// The lines of its boot-up messages.
+    pub boot_ups: Vec<u64>,
+    /// Its heartbeat timeouts.
+    pub timeouts: Timeouts,
+}
+
+/// A node's node-guarding answers (SPEC §6.3 `guarding`).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct GuardingSummary {
+    /// Answers seen (the data frame after a guard request).
+    pub answers: u64,
+    /// The lines of the answers whose toggle bit is wrong (SPEC §2.7).
+    pub toggle_errors: Vec<u64>,
+}
+
+/// The frames of a node by kind (SPEC §6.3 `frames`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FrameCounts([u64; MessageKind::ALL.len()]);
+
+impl FrameCounts {
+    /// Return the count of frames of `kind`.
+    #[must_use]
+    pub fn get(&self, kind: MessageKind) -> u64 {
+        self.0[kind.index()]
+    }
+
+    /// Return every kind with its count, in the order of
+    /// [`MessageKind::ALL`].
+    pub fn iter(&self) -> impl Iterator<Item = (MessageKind, u64)> + '_ {
+        MessageKind::ALL.into_iter().map(|k| (k, self.0[k.index()]))
+    }
+}
+
+/// One device: an (interface, node) seen in the log (SPEC §6.3, node
+/// record).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodeSummary {
+    /// The bus.
+    pub bus: BusName,
+    /// The node-ID.
+    pub node: NodeId,
+    /// Its frames by kind.
+    pub frames: FrameCounts,
+    /// EMCYs seen, resets included.
+    pub emcy: u64,
+    /// Its first error EMCY.
+    pub first_error: Option<EmcySeen>,
+    /// The error in its RECV_EMCY_DEV slot at the end of the input: the
+    /// root cause under SPEC §3's rule, `None` after a reset.
+    pub active_error: Option<EmcySeen>,
+    /// Reset EMCYs (error code 0000h) seen.
+    pub resets: u64,
+    /// The error register of its last EMCY (a reset with a non-zero
+    /// register: other errors are still active).
+    pub last_register: Option<ErrorRegister>,
+    /// Its heartbeats.
+    pub heartbeat: HeartbeatSummary,
+    /// Its node-guarding answers.
+    pub guarding: GuardingSummary,
+    /// Its SDO channel (SPEC §7.4).
+    pub sdo: SdoSummary,
+    /// Its observed CiA 402 timeline, for a drive (SPEC §8.3); `None` for
+    /// a node that is not a drive.
+    pub cia402: Option<Cia402Timeline>,
+}
+
+/// One interface (SPEC §6.3, bus record).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BusSummary {
+    /// The bus.
+    pub bus: BusName,
+    /// Frames seen on it, error frames included.
+    pub frames: u64,
+    /// Error frames seen on it.
+    pub error_frames: u64,
+    /// The lines of error frames that say bus-off.
+    pub bus_off: Vec<u64>,
+    /// The lines of error frames that say error-passive.
+    pub error_passive: Vec<u64>,
+    /// Log entries that are not frames (a TRC status row).
+    pub status_events: u64,
+    /// The earliest time seen on it.
+    pub first_ts: Option<Timestamp>,
+    /// The latest time seen on it.
+    pub last_ts: Option<Timestamp>,
+    /// The node-IDs seen on it, in order.
+    pub nodes: Vec<NodeId>,
+}
+
+/// The post-mortem of a whole input (SPEC §6.3): the devices by bus then
+/// node-ID, then the buses in the same order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    /// One record per (interface, node) seen.
+    pub nodes: Vec<NodeSummary>,
+    /// One record per interface.
+    pub buses: Vec<BusSummary>,
+}
+
+/// One record of the summary, as `decode --summary` writes them: the
+/// nodes, then the buses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SummaryRecord<'s> {
+    /// A device.
+    Node(&'s NodeSummary),
+    /// A bus.
+    Bus(&'s BusSummary),
+}
+
+impl Summary {
+    /// Return the records in output order: every node, then every bus.
+    pub fn records(&self) -> impl Iterator<Item = SummaryRecord<'_>> + '_ {
+        self.nodes
+            .iter()
+            .map(SummaryRecord::Node)
+            .chain(self.buses.iter().map(SummaryRecord::Bus))
+    }
+
+    /// Return whether heartbeat timeouts were asked for but could not be
+    /// checked because frames had no timestamps (SPEC §5.7: a program says
+    /// so once).
+    #[must_use]
+    pub fn timeouts_not_checked(&self) -> bool {
+        self.nodes
+            .iter()
+            .any(|n| n.heartbeat.timeouts == Timeouts::NotChecked)
+    }
+
+    /// Return the node `node` on `bus`, if it was seen.
+    #[must_use]
+    pub fn node(&self, bus: &BusName, node: NodeId) -> Option<&NodeSummary> {
+        self.nodes.iter().find(|n| &n.bus == bus && n.node == node)
+    }
+}
+
+/// What the summarizer keeps of one node while the log is read.
+#[derive(Debug)]
+struct NodeState {
+    node: NodeId,
+    frames: FrameCounts,
+    emcy: u64,
+    resets: u64,
+    first_error: Option<EmcySeen>,
+    active_error: Option<EmcySeen>,
+    last_error: Option<EmcySeen>,
+    last_register: Option<ErrorRegister>,
+    heartbeats: u64,
+    last_state: Option<NmtStateByte>,
+    boot_ups: Vec<u64>,
+    /// The line of the last heartbeat (not guarding answer) seen.
+    last_heartbeat_line: u64,
+    /// A timeout reported by the consumer and not yet closed by a
+    /// heartbeat: the line and time of the heartbeat before it.
+    open_gap: Option<(u64, Duration)>,
+    timeouts: Vec<HeartbeatGap>,
+    /// A guard request (RTR) was seen and not yet answered: the next data
+    /// frame on 0x700 + node is its answer.
+    guard_request_pending: bool,
+    guarding: NodeGuardingMaster,
+    guarding_summary: GuardingSummary,
+    sdo: sdo::SdoStats,
+    cia402: cia402::TimelineBuilder,
+}
+
+impl NodeState {
+    fn new(node: NodeId) -> Self {
+        NodeState {
+            node,
+            frames: FrameCounts::default(),
+            emcy: 0,
+            resets: 0,
+            first_error: None,
+            active_error: None,
+            last_error: None,
+            last_register: None,
+            heartbeats: 0,
+            last_state: None,
+            boot_ups: Vec::new(),
+            last_heartbeat_line: 0,
+            open_gap: None,
+            timeouts: Vec::new(),
+            guard_request_pending: false,
+            // A log rarely shows the guard time (100Ch): observe toggles only.
+            guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
+            guarding_summary: GuardingSummary::default(),
+            sdo: sdo::SdoStats::default(),
+            cia402: cia402::TimelineBuilder::default(),
+        }
+    }
+}
+
+/// What the summarizer keeps of one interface.
+#[derive(Debug)]
+struct BusState {
+    nodes: Vec<Option<NodeState>>,
+    storage: EmcyStorage,
+    consumer: Option<HeartbeatConsumer>,
+    frames: u64,
+    error_frames: u64,
+    bus_off: Vec<u64>,
+    error_passive: Vec<u64>,
+    status_events: u64,
+    first_ts: Option<Timestamp>,
+    last_ts: Option<Timestamp>,
+}
+
+impl BusState {
+    fn new(heartbeat: Option<Duration>) -> Self {
+        let consumer = heartbeat.map(|time| {
+            let mut consumer = HeartbeatConsumer::new();
+            consumer.monitor_unconfigured(time);
+            consumer
+        });
+        BusState {
+            nodes: (0..127).map(|_| None).collect(),
+            storage: EmcyStorage::new(),
+            consumer,
+            frames: 0,
+            error_frames: 0,
+            bus_off: Vec::new(),
+            error_passive: Vec::new(),
+            status_events: 0,
+            first_ts: None,
+            last_ts: None,
+        }
+    }
+
+    /// Widen the bus's time span to `ts` (inputs are mostly in time order:
+    /// one comparison per frame).
+    #[inline]
+    fn saw(&mut self, ts: Option<Timestamp>) {
+        let Some(ts) = ts else { return };
+        match self.last_ts {
+            Some(last) if ts >= last => self.last_ts = Some(ts),
+            Some(_) => {
+                if self.first_ts.map_or(true, |first| ts < first) {
+                    self.first_ts = Some(ts);
+                }
+            }
+            None => {
+                self.first_ts = Some(ts);
+                self.last_ts = Some(ts);
+            }
+        }
+    }
+}
+
+/// Builds the [`Summary`] of a log, frame by frame (see the
+/// [module](self) documentation).
+#[derive(Debug)]
+pub struct Summarizer {
+    buses: Buses<BusState>,
+    heartbeat: Option<Duration>,
+    last_time: Option<Duration>,
+    untimed: u64,
+}
+
+impl Default for Summarizer {
+    fn default() -> Self {
+        Summarizer::new()
+    }
+}
+
+impl Summarizer {
+    /// Start a summary without heartbeat timeouts.
+    #[must_use]
+    pub fn new() -> Self {
+        Summarizer {
+            buses: Buses::default(),
+            heartbeat: None,
+            last_time: None,
+            untimed: 0,
+        }
+    }
+
+    /// Return the summarizer monitoring every node's heartbeats with the
+    /// consumer time `time` (object 1016h; `--heartbeat-ms`): each gap
+    /// longer than it is a timeout (SPEC §6.3).
+    #[must_use]
+    pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
+        self.heartbeat = Some(time);
+        self
+    }
+
+    #[inline]
+    fn bus(&mut self, iface: Option<crate::can::Iface<'_>>) -> &mut BusState {
+        let heartbeat = self.heartbeat;
+        let (at, _) = self
+            .buses
+            .find_or_insert(iface, |_| BusState::new(heartbeat));
+        self.buses.get_mut(at)
+    }
+
+    /// Add one log entry read at `position` (SPEC §5.7 `line`): a frame is
+    /// read by `decoder` first; a bus event is counted.
+    pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
+        match event {
+            LogEvent::Frame(frame) => {
+                let decoded = decoder.decode(position, frame);
+                self.add_frame(position, frame, &decoded);
+            }
+            LogEvent::Status(status) => self.add_status(status),
+        }
+    }
+
+    /// Count a log entry that is not a frame (a TRC status row; SPEC §6.3
+    /// `status_events`).
+    pub fn add_status(&mut self, status: &BusStatus<'_>) {
+        let bus = self.bus(status.iface);
+        bus.status_events += 1;
+        bus.saw(status.timestamp);
+    }
+
+    /// Add one frame, read at `position`, with what the decoder made of it.
+    pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
+        let now = log.timestamp.map(Timestamp::as_duration);
+        match now {
+            Some(_) => self.last_time = now,
+            None => self.untimed += 1,
+        }
+        let bus = self.bus(log.iface);
+        bus.frames += 1;
+        bus.saw(log.timestamp);
+        let kind = decoded.kind();
+        if kind == MessageKind::ErrorFrame {
+            bus.error_frames += 1;
+            if let Ok(CanOpenMessage::ErrorFrame(error)) = &decoded.message {
+                if error.is_bus_off() {
+                    bus.bus_off.push(position);
+                }
+                if error.is_error_passive() {
+                    bus.error_passive.push(position);
+                }
+            }
+            return;
+        }
+        let Some(node) = decoded.node() else { return };
+        let BusState {
+            nodes,
+            storage,
+            consumer,
+            ..
+        } = bus;
+        let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
+        state.frames.0[kind.index()] += 1;
+        if let Some(step) = &decoded.sdo {
+            state.sdo.add(step, position);
+        }
+        if let Some(reading) = decoded.cia402 {
+            // A PDO's drive is the node that owns it, which the log may
+            // have moved to another node's COB-ID.
+            let drive =
+                nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
+            let last_error = drive.last_error;
+            drive
+                .cia402
+                .observe(position, log.timestamp, reading, last_error);
+            return;
+        }
+        let Ok(message) = &decoded.message else {
+            return;
+        };
+        match *message {
+            CanOpenMessage::Emcy { emcy, .. } => {
+                state.emcy += 1;
+                state.last_register = Some(emcy.register);
+                let seen = EmcySeen {
+                    line: position,
+                    ts: log.timestamp,
+                    code: emcy.code,
+                };
+                if emcy.is_reset() {
+                    state.resets += 1;
+                } else {
+                    state.last_error = Some(seen);
+                    if state.first_error.is_none() {
+                        state.first_error = Some(seen);
+                    }
+                }
+                match storage.receive(node, emcy) {
+                    SlotUpdate::RootCause => state.active_error = Some(seen),
+                    SlotUpdate::Reset { .. } => state.active_error = None,
+                    SlotUpdate::FollowUp { .. } => {}
+                }
+            }
+            CanOpenMessage::GuardRequest { .. } => {
+                state.guard_request_pending = true;
+                // A missing answer is not part of the summary's contract.
+                let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
+            }
+            CanOpenMessage::Heartbeat { byte, .. } if state.guard_request_pending => {
+                state.guard_request_pending = false;
+                state.guarding_summary.answers += 1;
+                if let Some(answer) = byte.guard_answer() {
+                    let events = state
+                        .guarding
+                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
+                    if events
+                        .into_iter()
+                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+                    {
+                        state.guarding_summary.toggle_errors.push(position);
+                    }
+                }
+            }
+            CanOpenMessage::Heartbeat { byte, .. } => {
+                state.heartbeats += 1;
+                state.last_state = Some(byte);
+                if byte.state_raw() == 0 {
+                    state.boot_ups.push(position);
+                    state.guarding.on_boot_up();
+                }
+                if let (Some(consumer), Some(now), Some(nmt)) =
+                    (consumer.as_mut(), now, byte.state())
+                {
+                    for event in consumer.on_heartbeat(now, node, nmt) {
+                        match event {
+                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
+                            }
+                            HeartbeatEvent::Recovered { at, .. }
+                            | HeartbeatEvent::RemoteReset { at, .. } => {
+                                if let Some((after_line, last)) = state.open_gap.take() {
+                                    state.timeouts.push(HeartbeatGap {
+                                        after_line,
+                                        gap: at.saturating_sub(last),
+                                    });
+                                }
+                            }
+                            HeartbeatEvent::CapacityExceeded { .. } => {}
+                        }
+                    }
+                }
+                state.last_heartbeat_line = position;
+            }
+            _ => {}
+        }
+    }
+
+    /// Close the input: transfers left open end (SPEC §7.2), heartbeats
+    /// still missing at the last timestamp are timeouts up to it, and the
+    /// nodes that are drives get their CiA 402 timeline (SPEC §8.3).
+    #[must_use]
+    pub fn finish(mut self, decoder: &mut Decoder) -> Summary {
+        for open in decoder.finish() {
+            if let Some(state) = self
+                .buses
+                .iter_mut()
+                .find(|(name, _)| **name == open.bus)
+                .and_then(|(_, bus)| bus.nodes[open.node.index()].as_mut())
+            {
+                state.sdo.ended(&open.transfer);
+            }
+        }
+        if let Some(end) = self.last_time {
+            for (_, bus) in self.buses.iter_mut() {
+                let Some(consumer) = bus.consumer.as_mut() else {
+                    continue;
+                };
+                for event in consumer.poll(end) {
+                    if let HeartbeatEvent::Timeout {
+                        node,
+                        last_heartbeat,
+                        ..
+                    } = event
+                    {
+                        if let Some(state) = bus.nodes[node.index()].as_mut() {
+                            state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
+                        }
+                    }
+                }
+                for state in bus.nodes.iter_mut().flatten() {
+                    if let Some((after_line, last)) = state.open_gap.take() {
+                        state.timeouts.push(HeartbeatGap {
+                            after_line,
+                            gap: end.saturating_sub(last),
+                        });
+                    }
+                }
+            }
+        }
+        let checked = match (self.heartbeat.is_some(), self.untimed) {
+            (false, _) => None,
+            (true, 0) => Some(true),
+            (true, _) => Some(false),
+        };
+        let mut buses = self.buses.into_vec();
+        buses.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut summary = Summary {
+            nodes: Vec::new(),
+            buses: Vec::new(),
+        };
+        for (name, bus) in buses {
+            let mut nodes = Vec::new();
+            for state in bus.nodes.into_iter().flatten() {
+                nodes.push(state.node);
+                let drive = decoder.is_drive(&name, state.node) || !state.cia402.is_empty();
+                summary.nodes.push(NodeSummary {
+                    bus: name.clone(),
+                    node: state.node,
+                    frames: state.frames,
+                    emcy: state.emcy,
+                    first_error: state.first_error,
+                    active_error: state.active_error,
+                    resets: state.resets,
+                    last_register: state.last_register,
+                    heartbeat: HeartbeatSummary {
+                        count: state.heartbeats,
+                        last_state: state.last_state,
+                        boot_ups: state.boot_ups,
+                        timeouts: match checked {
+                            None => Timeouts::NotAsked,
+                            Some(false) => Timeouts::NotChecked,
+                            Some(true) => Timeouts::Checked(state.timeouts),
+                        },
+                    },
+                    guarding: state.guarding_summary,
+                    sdo: state.sdo.finish(),
+                    cia402: drive.then(|| state.cia402.finish()),
+                });
+            }
+            summary.buses.push(BusSummary {
+                bus: name,
+                frames: bus.frames,
+                error_frames: bus.error_frames,
+                bus_off: bus.bus_off,
+                error_passive: bus.error_passive,
+                status_events: bus.status_events,
+                first_ts: bus.first_ts,
+                last_ts: bus.last_ts,
+                nodes,
+            });
+        }
+        summary
+    }
+}

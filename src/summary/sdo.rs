@@ -1,0 +1,147 @@
+//! A node's SDO channel in the summary (SPEC §7.4): requests, transfers,
+//! aborts, broken and unanswered transfers, response latencies.
+
+use core::time::Duration;
+
+use crate::canopen::sdo::{
+    SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTransfer,
+};
+use crate::canopen::SdoAbortCode;
+use crate::decoder::SdoStep;
+
+/// One abort seen on a node's channel (SPEC §7.4 `aborts`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SdoAbort {
+    /// The line of the abort frame.
+    pub line: u64,
+    /// The object: the abort's multiplexer, or the aborted transfer's when
+    /// the abort carries none (python-canopen's client aborts with
+    /// 0000h.00).
+    pub multiplexer: SdoMultiplexer,
+    /// The object's name, where known (SPEC §7.3 `object`).
+    pub object: Option<&'static str>,
+    /// The abort code.
+    pub code: SdoAbortCode,
+    /// Who aborted.
+    pub by: SdoParty,
+}
+
+/// The request → response latencies of a channel (SPEC §7.4 `latency_ms`):
+/// nearest-rank percentiles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LatencyStats {
+    /// How many latencies.
+    pub count: usize,
+    /// The median.
+    pub median: Duration,
+    /// The 99th percentile.
+    pub p99: Duration,
+    /// The longest.
+    pub max: Duration,
+}
+
+/// A node's SDO record (SPEC §7.4).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct SdoSummary {
+    /// Client → server frames.
+    pub requests: u64,
+    /// Transfers that started, whatever their outcome.
+    pub transfers: u64,
+    /// Every abort, in order.
+    pub aborts: Vec<SdoAbort>,
+    /// The start lines of broken transfers.
+    pub broken: Vec<u64>,
+    /// The start lines of transfers no response answered.
+    pub timeouts: Vec<u64>,
+    /// The latencies, when there were any.
+    pub latency: Option<LatencyStats>,
+}
+
+impl SdoSummary {
+    /// Return whether the node had no SDO frame.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.requests == 0
+            && self.transfers == 0
+            && self.aborts.is_empty()
+            && self.broken.is_empty()
+    }
+}
+
+/// What the summarizer keeps of a channel while the log is read.
+#[derive(Debug, Default)]
+pub(crate) struct SdoStats {
+    summary: SdoSummary,
+    latencies: Vec<Duration>,
+}
+
+impl SdoStats {
+    /// Add one frame of the node's channel, as its tracker read it.
+    pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) {
+        let s = &mut self.summary;
+        if step.direction == crate::canopen::sdo::SdoDirection::Request {
+            s.requests += 1;
+        }
+        if step.started {
+            s.transfers += 1;
+        }
+        if let Some(latency) = step.latency {
+            self.latencies.push(latency);
+        }
+        let abort = match step.message {
+            Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
+                Some((multiplexer, code, SdoParty::Client))
+            }
+            Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
+                Some((multiplexer, code, SdoParty::Server))
+            }
+            _ => None,
+        };
+        if let Some((multiplexer, code, by)) = abort {
+            let multiplexer = match step.ended {
+                Some(ended) if multiplexer == SdoMultiplexer::default() => {
+                    ended.transfer.multiplexer
+                }
+                _ => multiplexer,
+            };
+            s.aborts.push(SdoAbort {
+                line,
+                multiplexer,
+                object: crate::canopen::object_name(multiplexer.index, step.objects),
+                code,
+                by,
+            });
+        }
+        if let Some(ended) = step.ended {
+            self.ended(&ended.transfer);
+        }
+    }
+
+    /// A transfer that ended (at a frame, or left open at the end of the
+    /// input).
+    pub(crate) fn ended(&mut self, transfer: &SdoTransfer) {
+        match transfer.outcome {
+            SdoOutcome::Broken(_) => self.summary.broken.push(transfer.start_position),
+            SdoOutcome::TimedOut => self.summary.timeouts.push(transfer.start_position),
+            SdoOutcome::Completed | SdoOutcome::Aborted { .. } => {}
+        }
+    }
+
+    pub(crate) fn finish(mut self) -> SdoSummary {
+        if !self.latencies.is_empty() {
+            let sorted = &mut self.latencies;
+            sorted.sort_unstable();
+            let n = sorted.len();
+            // Nearest rank: the smallest value with at least p of them at
+            // or below it.
+            let rank = |p: f64| sorted[((p * n as f64).ceil() as usize).clamp(1, n) - 1];
+            self.summary.latency = Some(LatencyStats {
+                count: n,
+                median: rank(0.5),
+                p99: rank(0.99),
+                max: sorted[n - 1],
+            });
+        }
+        self.summary
+    }
+}
