@@ -79,10 +79,19 @@ impl fmt::Display for BusName {
 }
 
 /// Whether two interface names are equal, compared in line: names are a
-/// few bytes, and a call to `memcmp` per frame costs more than the compare.
+/// few bytes (`can0`, `vcan1`), and a call to `memcmp` per frame costs more
+/// than the compare. Names of 4 to 8 bytes are compared as two
+/// overlapping 4-byte words.
 #[inline(always)]
 fn same_name(a: &[u8], b: &[u8]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
+    if a.len() != b.len() {
+        return false;
+    }
+    let word = |s: &[u8], at: usize| s.get(at..at + 4).map(|w| [w[0], w[1], w[2], w[3]]);
+    match a.len() {
+        n @ 4..=8 => word(a, 0) == word(b, 0) && word(a, n - 4) == word(b, n - 4),
+        _ => a == b,
+    }
 }
 
 /// The buses seen so far, each with what a component keeps of it, found
@@ -106,7 +115,7 @@ impl<T> Default for Buses<T> {
 impl<T> Buses<T> {
     /// Return the index of the bus of `iface`, made with `make` on first
     /// sight; the second value says whether it was made now.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn find_or_insert(
         &mut self,
         iface: Option<Iface<'_>>,
@@ -117,6 +126,15 @@ impl<T> Buses<T> {
                 return (self.last, false);
             }
         }
+        self.find_or_insert_slow(iface, make)
+    }
+
+    #[inline(never)]
+    fn find_or_insert_slow(
+        &mut self,
+        iface: Option<Iface<'_>>,
+        make: impl FnOnce(&BusName) -> T,
+    ) -> (usize, bool) {
         let (at, made) = match self.buses.iter().position(|(name, _)| name.is(iface)) {
             Some(at) => (at, false),
             None => {

@@ -50,10 +50,10 @@ pub use cia402::Cia402Reading;
 pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};
 
-use crate::can::{Iface, LogFrame};
+use crate::can::{CanFrame, Iface, LogFrame};
 use crate::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
 use crate::canopen::{
-    CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
+    cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
     PdoDirection, Signal, Value,
 };
 use crate::eds::{Eds, EdsError};
@@ -231,14 +231,18 @@ impl Names for Description {
     }
 }
 
-/// One frame as the decoder read it: the CANopen message and what the
-/// session adds to it (SPEC §6.1, §7.3, §8.2, §8.3). Borrows the decoder
-/// until the next frame.
-#[derive(Debug, Clone)]
+/// One frame as the decoder read it: its kind and node, the CANopen
+/// message, and what the session adds to it (SPEC §6.1, §7.3, §8.2,
+/// §8.3). Borrows the decoder and the frame until the next frame.
+#[derive(Debug, Clone, Copy)]
 pub struct Decoded<'d> {
-    /// The frame read as CANopen, or why its data could not be (the kind
-    /// and node are in the error too).
-    pub message: Result<CanOpenMessage, DecodeError>,
+    /// The frame.
+    pub frame: &'d CanFrame,
+    /// The frame's kind, from its identifier (SPEC §6.1 `kind`).
+    pub kind: MessageKind,
+    /// The node the identifier names, for the kinds that have one
+    /// (SPEC §6.1 `node`).
+    pub node: Option<NodeId>,
     /// The profile of the frame's node (the default profile for frames
     /// without a node): how its EMCY's manufacturer bytes read.
     pub profile: Profile,
@@ -255,23 +259,16 @@ pub struct Decoded<'d> {
 }
 
 impl Decoded<'_> {
-    /// Return the frame's kind (SPEC §6.1 `kind`).
-    #[must_use]
-    pub fn kind(&self) -> MessageKind {
-        match &self.message {
-            Ok(message) => message.kind(),
-            Err(e) => e.kind,
-        }
-    }
-
-    /// Return the node the identifier names, for the kinds that have one
-    /// (SPEC §6.1 `node`).
-    #[must_use]
-    pub fn node(&self) -> Option<NodeId> {
-        match &self.message {
-            Ok(message) => message.node(),
-            Err(e) => e.node,
-        }
+    /// Return the frame read as CANopen, or why its data could not be
+    /// ([`CanOpenMessage::decode`]; worked out on each call, so that a
+    /// caller that needs only the kind pays nothing for it).
+    ///
+    /// # Errors
+    ///
+    /// The frame's data is not what its kind needs ([`DecodeError`], which
+    /// still has the kind and node).
+    pub fn message(&self) -> Result<CanOpenMessage, DecodeError> {
+        CanOpenMessage::decode(self.frame)
     }
 }
 
@@ -357,35 +354,38 @@ impl Decoder {
     /// transfer's `start_line` names, SPEC §5.7), in the context of the
     /// frames before it; the session learns from it (SDO transfers, PDO
     /// mappings, drive states).
-    pub fn decode(&mut self, position: u64, frame: &LogFrame<'_>) -> Decoded<'_> {
-        let message = CanOpenMessage::decode(&frame.frame);
-        let node = match &message {
-            Ok(m) => m.node(),
-            Err(e) => e.node,
-        };
+    pub fn decode<'d>(&'d mut self, position: u64, frame: &'d LogFrame<'_>) -> Decoded<'d> {
+        let can = &frame.frame;
+        let (kind, node) = MessageKind::classify(can);
         let profile = self.config.profiles.of(node);
         let mut decoded = Decoded {
-            message,
+            frame: can,
+            kind,
+            node,
             profile,
             sdo: None,
             pdo: None,
             cia402: None,
         };
-        let sdo = match &decoded.message {
-            Ok(CanOpenMessage::SdoRequest { node, .. }) => Some((*node, SdoDirection::Request)),
-            Ok(CanOpenMessage::SdoResponse { node, .. }) => Some((*node, SdoDirection::Response)),
-            _ => None,
-        };
-        if let Some((node, direction)) = sdo {
-            let (step, cia402) = self.sdo(frame, node, direction, position, profile);
-            decoded.sdo = Some(step);
-            decoded.cia402 = cia402;
-        } else if let Ok(CanOpenMessage::Pdo { data, .. }) = &decoded.message {
-            let id = frame.frame.id().raw() as u16;
-            if let Some((reading, cia402)) = self.pdo(frame.iface, id, data.as_slice()) {
-                decoded.pdo = Some(reading);
+        match (kind, node) {
+            (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
+                let direction = if can.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
+                    SdoDirection::Response
+                } else {
+                    SdoDirection::Request
+                };
+                let (step, cia402) = self.sdo(frame, node, direction, position, profile);
+                decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
+            (MessageKind::Pdo, Some(_)) if !can.is_rtr() => {
+                let id = can.id().raw() as u16;
+                if let Some((reading, cia402)) = self.pdo(frame.iface, id, can.data()) {
+                    decoded.pdo = Some(reading);
+                    decoded.cia402 = cia402;
+                }
+            }
+            _ => {}
         }
         decoded
     }

@@ -44,7 +44,7 @@ use core::time::Duration;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
-use crate::can::{BusStatus, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{
     CanOpenMessage, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer,
     HeartbeatEvent, MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
@@ -426,10 +426,10 @@ impl Summarizer {
         let bus = self.bus(log.iface);
         bus.frames += 1;
         bus.saw(log.timestamp);
-        let kind = decoded.kind();
+        let kind = decoded.kind;
         if kind == MessageKind::ErrorFrame {
             bus.error_frames += 1;
-            if let Ok(CanOpenMessage::ErrorFrame(error)) = &decoded.message {
+            if let Ok(error) = ErrorFrame::from_frame(decoded.frame) {
                 if error.is_bus_off() {
                     bus.bus_off.push(position);
                 }
@@ -439,7 +439,7 @@ impl Summarizer {
             }
             return;
         }
-        let Some(node) = decoded.node() else { return };
+        let Some(node) = decoded.node else { return };
         let BusState {
             nodes,
             storage,
@@ -462,7 +462,13 @@ impl Summarizer {
                 .observe(position, log.timestamp, reading, last_error);
             return;
         }
-        let Ok(message) = &decoded.message else {
+        if !matches!(
+            kind,
+            MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
+        ) {
+            return;
+        }
+        let Ok(message) = &decoded.message() else {
             return;
         };
         match *message {

@@ -224,6 +224,7 @@ impl<'a> Sink<'a> {
             line,
             log: frame,
             decoded: &decoded,
+            message: decoded.message(),
         };
         if !self.kinds[record.kind().index()] {
             return Ok(());

@@ -4,7 +4,7 @@
 use std::io::{self, Write};
 
 use motionwire::can::{Iface, LogFrame};
-use motionwire::canopen::{CanOpenMessage, Emcy, MessageKind, NodeId};
+use motionwire::canopen::{CanOpenMessage, DecodeError, Emcy, MessageKind, NodeId};
 use motionwire::decoder::{Cia402Reading, Decoded, PdoReading};
 use motionwire::profiles::akd::AkdManufacturerField;
 use motionwire::profiles::baumer::BaumerEmcy;
@@ -21,17 +21,19 @@ pub struct Record<'r, 'a, 'd> {
     pub log: &'r LogFrame<'a>,
     /// The decoder's reading.
     pub decoded: &'r Decoded<'d>,
+    /// The frame read as CANopen.
+    pub message: Result<CanOpenMessage, DecodeError>,
 }
 
 impl Record<'_, '_, '_> {
     /// Return the frame's kind (SPEC §6.1).
     pub fn kind(&self) -> MessageKind {
-        self.decoded.kind()
+        self.decoded.kind
     }
 
     /// Return the node the identifier names, for the kinds that have one.
     pub fn node(&self) -> Option<NodeId> {
-        self.decoded.node()
+        self.decoded.node
     }
 
     /// Write the record as one JSON object and a newline (SPEC §6.1), with
@@ -61,7 +63,7 @@ impl Record<'_, '_, '_> {
         if let Some(node) = self.node() {
             obj.uint("node", u64::from(node.get()))?;
         }
-        match &self.decoded.message {
+        match &self.message {
             Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
             Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
                 obj.name("state", byte.state_name())?;
@@ -170,7 +172,7 @@ impl Record<'_, '_, '_> {
             Some(node) => write!(out, "node {:>3}  ", node.get())?,
             None => write!(out, "{:10}", "")?,
         }
-        match &self.decoded.message {
+        match &self.message {
             Err(e) => {
                 write_data(out, log)?;
                 write!(out, "  error: {}", e.error)?;
@@ -267,7 +269,7 @@ impl Record<'_, '_, '_> {
             out.write_all(digits.format(node.get()).as_bytes())?;
         }
         out.write_all(b",")?;
-        let emcy = match &self.decoded.message {
+        let emcy = match &self.message {
             Ok(CanOpenMessage::Emcy { emcy, .. }) => Some((emcy.code, true)),
             Err(e) => e
                 .partial_emcy
