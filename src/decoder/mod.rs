@@ -39,7 +39,9 @@
 
 mod bus;
 mod cia402;
+mod json;
 mod pdo;
+mod record;
 mod sdo;
 
 use std::collections::HashMap;
@@ -50,7 +52,7 @@ pub use cia402::Cia402Reading;
 pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};
 
-use crate::can::{CanFrame, Iface, LogFrame};
+use crate::can::{Iface, LogFrame};
 use crate::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
@@ -236,8 +238,11 @@ impl Names for Description {
 /// §8.3). Borrows the decoder and the frame until the next frame.
 #[derive(Debug, Clone, Copy)]
 pub struct Decoded<'d> {
-    /// The frame.
-    pub frame: &'d CanFrame,
+    /// Where the log has the frame: its line or record number (SPEC §5.7
+    /// `line`).
+    pub position: u64,
+    /// The frame as the log recorded it.
+    pub log: &'d LogFrame<'d>,
     /// The frame's kind, from its identifier (SPEC §6.1 `kind`).
     pub kind: MessageKind,
     /// The node the identifier names, for the kinds that have one
@@ -268,7 +273,7 @@ impl Decoded<'_> {
     /// The frame's data is not what its kind needs ([`DecodeError`], which
     /// still has the kind and node).
     pub fn message(&self) -> Result<CanOpenMessage, DecodeError> {
-        CanOpenMessage::decode(self.frame)
+        CanOpenMessage::decode(&self.log.frame)
     }
 }
 
@@ -354,12 +359,13 @@ impl Decoder {
     /// transfer's `start_line` names, SPEC §5.7), in the context of the
     /// frames before it; the session learns from it (SDO transfers, PDO
     /// mappings, drive states).
-    pub fn decode<'d>(&'d mut self, position: u64, frame: &'d LogFrame<'_>) -> Decoded<'d> {
+    pub fn decode<'d>(&'d mut self, position: u64, frame: &'d LogFrame<'d>) -> Decoded<'d> {
         let can = &frame.frame;
         let (kind, node) = MessageKind::classify(can);
         let profile = self.config.profiles.of(node);
         let mut decoded = Decoded {
-            frame: can,
+            position,
+            log: frame,
             kind,
             node,
             profile,

@@ -23,6 +23,10 @@ pub struct PdoMap {
     number: u16,
     layout: PdoLayout,
     names: Vec<Cow<'static, str>>,
+    /// Each name as a JSON object key, escaped once, with the comma before
+    /// it for all but the first: `"Statusword":`, `,"Position actual
+    /// value":` (the record's `signals`, SPEC §8.2).
+    pub(crate) keys: Vec<Box<[u8]>>,
     drive: bool,
     /// Where the statusword (6041h, 16 bits) is mapped, if it is.
     statusword: Option<usize>,
@@ -251,6 +255,11 @@ pub(crate) fn build_map(
     let statusword = layout
         .position(0x6041, 0)
         .filter(|&i| mapping.entries().get(i).map_or(0, |e| e.bits()) == 16);
+    let keys = names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| super::json::key(name, i > 0))
+        .collect();
     PdoMap {
         id,
         node,
@@ -258,6 +267,7 @@ pub(crate) fn build_map(
         number,
         layout,
         names,
+        keys,
         drive,
         statusword,
     }

@@ -429,7 +429,7 @@ impl Summarizer {
         let kind = decoded.kind;
         if kind == MessageKind::ErrorFrame {
             bus.error_frames += 1;
-            if let Ok(error) = ErrorFrame::from_frame(decoded.frame) {
+            if let Ok(error) = ErrorFrame::from_frame(&decoded.log.frame) {
                 if error.is_bus_off() {
                     bus.bus_off.push(position);
                 }

@@ -19,7 +19,7 @@ use motionwire::LogFormat;
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
-use crate::record::{PdoKeys, Record, CSV_HEADER};
+use crate::record::{Record, CSV_HEADER};
 
 /// An input as given on the command line.
 struct Input {
@@ -152,8 +152,6 @@ struct Sink<'a> {
     /// The decoder session: what the log teaches as it is read (SDO
     /// channels, PDO mappings, drive states; SPEC §7, §8).
     decoder: Decoder,
-    /// The PDO signal names as JSON keys, per mapping.
-    keys: PdoKeys,
 }
 
 impl<'a> Sink<'a> {
@@ -202,7 +200,6 @@ impl<'a> Sink<'a> {
             damaged: 0,
             progress_shown: false,
             decoder: Decoder::new(config),
-            keys: PdoKeys::default(),
         })
     }
 
@@ -236,7 +233,7 @@ impl<'a> Sink<'a> {
             }
         }
         match self.output {
-            Output::Json => record.write_json(&mut self.out, &mut self.keys),
+            Output::Json => decoded.write_json(&mut self.out),
             Output::Text => record.write_text(&mut self.out),
             Output::Csv => record.write_csv(&mut self.out),
         }

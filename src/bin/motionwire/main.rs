@@ -17,7 +17,6 @@ mod decode;
 mod failure;
 mod json;
 mod record;
-mod sdo;
 mod servo;
 
 use std::io::{self, Write};

@@ -1,0 +1,356 @@
+//! A decoded frame as SPEC §6.1's JSON record, with the keys SPEC §7.3
+//! and §8 add: written key by key into the output, without allocating.
+
+use std::io::{self, Write};
+
+use crate::can::Iface;
+use crate::canopen::sdo::{SdoMultiplexer, SdoOutcome};
+use crate::canopen::{object_name, CanOpenMessage, Emcy, MessageKind, NodeId, ObjectSet};
+use crate::profiles::akd::AkdManufacturerField;
+use crate::profiles::baumer::BaumerEmcy;
+use crate::profiles::Profile;
+
+use super::json::{self, Object};
+use super::{Cia402Reading, Decoded, EndedTransfer, PdoReading, SdoStep};
+
+impl Decoded<'_> {
+    /// Write the frame as one JSON object and a newline: SPEC §6.1's
+    /// record — `line`, `ts`, `iface`, `id`, the flags, `data`, `kind`,
+    /// `node` and the keys of its kind (EMCY with the node's profile,
+    /// heartbeat, NMT, SYNC, TIME, error frames, `error` where the data
+    /// cannot be read) — with `sdo` and `transfer` on SDO frames (SPEC
+    /// §7.3), `signals` on PDOs with a known mapping (SPEC §8.2) and
+    /// `cia402` on a drive's (SPEC §8.3). This is `motionwire decode
+    /// --json`'s line.
+    ///
+    /// # Errors
+    ///
+    /// Writing to `out` failed.
+    pub fn write_json<W: Write>(&self, out: &mut W) -> io::Result<()> {
+        let log = self.log;
+        let frame = &log.frame;
+        let decoded = self;
+        let profile = decoded.profile;
+        let message = self.message();
+        let mut obj = Object::begin(out)?;
+        obj.uint("line", self.position)?;
+        match log.timestamp {
+            Some(ts) => json::timestamp(obj.key("ts")?, ts)?,
+            None => obj.null("ts")?,
+        }
+        match log.iface {
+            Some(Iface::Name(name)) => obj.str("iface", name)?,
+            Some(iface @ Iface::Channel(_)) => obj.display("iface", &iface)?,
+            None => obj.null("iface")?,
+        }
+        obj.uint("id", u64::from(frame.id().raw()))?;
+        obj.bool("extended", frame.is_extended())?;
+        obj.bool("rtr", frame.is_rtr())?;
+        obj.bool("fd", frame.is_fd())?;
+        json::hex_string(obj.key("data")?, frame.data())?;
+        obj.name("kind", self.kind.name())?;
+        if let Some(node) = self.node {
+            obj.uint("node", u64::from(node.get()))?;
+        }
+        match &message {
+            Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
+            Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
+                obj.name("state", byte.state_name())?;
+                obj.uint("state_raw", u64::from(byte.state_raw()))?;
+                obj.bool("toggle", byte.toggle())?;
+            }
+            Ok(CanOpenMessage::NmtNodeControl(control)) => {
+                obj.name("command", control.command.command_name())?;
+                obj.uint("target", u64::from(control.node.map_or(0, NodeId::get)))?;
+            }
+            Ok(CanOpenMessage::Sync { counter }) => match counter {
+                Some(counter) => obj.uint("counter", u64::from(*counter))?,
+                None => obj.null("counter")?,
+            },
+            Ok(CanOpenMessage::Time(time)) => {
+                let out = obj.key("time_of_day")?;
+                let mut t = Object::begin(out)?;
+                t.uint("ms", u64::from(time.ms()))?;
+                t.uint("days", u64::from(time.days()))?;
+                t.end()?;
+            }
+            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => {
+                if let Some(step) = &decoded.sdo {
+                    write_sdo_json(&mut obj, step)?;
+                    if let Some(ended) = &step.ended {
+                        write_transfer_json(&mut obj, ended, step.objects)?;
+                    }
+                    if let Some(cia402) = &decoded.cia402 {
+                        cia402_json(&mut obj, cia402)?;
+                    }
+                    if let Err(e) = &step.message {
+                        obj.display("error", e)?;
+                    }
+                }
+            }
+            Ok(CanOpenMessage::Pdo { .. }) => {
+                if let Some(reading) = &decoded.pdo {
+                    pdo_json(&mut obj, reading, decoded.cia402.as_ref())?;
+                }
+            }
+            Ok(CanOpenMessage::ErrorFrame(error)) => {
+                obj.names("error_classes", error.classes.names())?;
+                obj.names("controller", error.controller().names())?;
+                match error.tx_errors() {
+                    Some(n) => obj.uint("tx_errors", u64::from(n))?,
+                    None => obj.null("tx_errors")?,
+                }
+                match error.rx_errors() {
+                    Some(n) => obj.uint("rx_errors", u64::from(n))?,
+                    None => obj.null("rx_errors")?,
+                }
+            }
+            Ok(_) => {}
+            Err(e) => {
+                if e.kind == MessageKind::NmtCommand {
+                    // An undefined command (or a target above 127): said as
+                    // `unknown`, with the bytes that are there.
+                    let data = frame.data();
+                    if let Some(&command) = data.first() {
+                        let name = crate::canopen::NmtCommand::from_byte(command)
+                            .map_or("unknown", |c| c.command_name());
+                        obj.name("command", name)?;
+                    }
+                    if let Some(&target) = data.get(1) {
+                        obj.uint("target", u64::from(target))?;
+                    }
+                }
+                if let Some(partial) = e.partial_emcy {
+                    if let Some(code) = partial.code {
+                        obj.uint("code", u64::from(code.get()))?;
+                    }
+                    if let Some(register) = partial.register {
+                        obj.uint("register", u64::from(register.bits()))?;
+                    }
+                }
+                obj.display("error", &e.error)?;
+            }
+        }
+        obj.end()?;
+        out_newline(out)
+    }
+
+    /// Return the frame's JSON record ([`write_json`](Self::write_json))
+    /// without its newline.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        let mut out = Vec::with_capacity(256);
+        self.write_json(&mut out).expect("writing to a Vec");
+        out.pop();
+        String::from_utf8(out).expect("the writer writes UTF-8")
+    }
+}
+
+/// The EMCY keys of SPEC §6.1, with the profile's keys.
+fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
+    obj.uint("code", u64::from(emcy.code.get()))?;
+    obj.name("class", emcy.code.class().name())?;
+    obj.name("description", emcy.code.description())?;
+    obj.uint("register", u64::from(emcy.register.bits()))?;
+    obj.names("register_flags", emcy.register.names())?;
+    json::hex_string(obj.key("manufacturer")?, &emcy.manufacturer)?;
+    match profile {
+        Profile::Generic => {}
+        Profile::Akd => {
+            let field = AkdManufacturerField::new_unchecked(&emcy.manufacturer[..]);
+            obj.uint("axis", u64::from(field.axis_id().get()))?;
+            match field.feedback_id() {
+                Ok(fb) => match fb.number() {
+                    Some(n) => obj.uint("feedback", u64::from(n))?,
+                    None => obj.null("feedback")?,
+                },
+                Err(e) => {
+                    obj.null("feedback")?;
+                    obj.display("error", &e)?;
+                }
+            }
+        }
+        Profile::Baumer => {
+            let baumer = BaumerEmcy::from_emcy(emcy);
+            obj.uint("alarms", u64::from(baumer.manufacturer.alarms.bits()))?;
+            obj.uint("warnings", u64::from(baumer.manufacturer.warnings.bits()))?;
+            obj.names("sources", baumer.sources().map(|s| s.name()))?;
+        }
+    }
+    Ok(())
+}
+
+fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
+    out.write_all(b"\n")
+}
+
+/// Write the `sdo` key's object for one frame (SPEC §7.3).
+fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::Result<()> {
+    let out = obj.key("sdo")?;
+    let mut o = Object::begin(out)?;
+    o.name("direction", step.direction.name())?;
+    o.name("service", step.service.name())?;
+    let message = match &step.message {
+        Ok(message) => message,
+        Err(_) => {
+            // A short frame: the multiplexer as far as it goes.
+            if let Some(m) = step.multiplexer {
+                write_multiplexer(&mut o, m, step.objects)?;
+            }
+            return o.end();
+        }
+    };
+    let f = message.fields();
+    if let Some(sub) = f.subcommand {
+        o.name("subcommand", sub.name())?;
+    }
+    if let Some(m) = f.multiplexer {
+        write_multiplexer(&mut o, m, step.objects)?;
+    }
+    if let Some(e) = f.expedited {
+        o.bool("expedited", e)?;
+    }
+    if let Some(size) = f.size {
+        match size {
+            Some(size) => o.uint("size", u64::from(size))?,
+            None => o.null("size")?,
+        }
+    }
+    if let Some(value) = f.value {
+        json::hex_string(o.key("value")?, value)?;
+    }
+    if let Some(t) = f.toggle {
+        o.uint("toggle", u64::from(t))?;
+    }
+    if let Some(last) = f.last {
+        o.bool("last", last)?;
+    }
+    if let Some(code) = f.abort_code {
+        o.uint("abort_code", u64::from(code.get()))?;
+        o.name("abort_description", code.description())?;
+    }
+    if let Some(crc) = f.crc_supported {
+        o.bool("crc_supported", crc)?;
+    }
+    if let Some(b) = f.blksize {
+        o.uint("blksize", u64::from(b))?;
+    }
+    if let Some(a) = f.ackseq {
+        o.uint("ackseq", u64::from(a))?;
+    }
+    if let Some(s) = f.seqno {
+        o.uint("seqno", u64::from(s))?;
+    }
+    if let Some(crc) = f.crc {
+        o.uint("crc", u64::from(crc))?;
+    }
+    o.end()
+}
+
+fn write_multiplexer<W: Write>(
+    o: &mut Object<'_, W>,
+    m: SdoMultiplexer,
+    objects: Option<ObjectSet>,
+) -> io::Result<()> {
+    o.uint("index", u64::from(m.index))?;
+    o.uint("subindex", u64::from(m.subindex))?;
+    match object_name(m.index, objects) {
+        Some(name) => o.name("object", name),
+        None => o.null("object"),
+    }
+}
+
+/// Write the `transfer` key (SPEC §7.3).
+fn write_transfer_json<W: Write>(
+    obj: &mut Object<'_, W>,
+    ended: &EndedTransfer<'_>,
+    objects: Option<ObjectSet>,
+) -> io::Result<()> {
+    let transfer = &ended.transfer;
+    let out = obj.key("transfer")?;
+    let mut o = Object::begin(out)?;
+    o.name("direction", transfer.direction.name())?;
+    write_multiplexer(&mut o, transfer.multiplexer, objects)?;
+    o.uint("size", u64::from(transfer.bytes))?;
+    json::hex_string(o.key("data")?, ended.data)?;
+    o.bool("truncated", ended.truncated())?;
+    o.uint("frames", u64::from(transfer.frames))?;
+    o.name("outcome", transfer.outcome.name())?;
+    match transfer.outcome {
+        SdoOutcome::Aborted { code, .. } => o.uint("abort_code", u64::from(code.get()))?,
+        _ => o.null("abort_code")?,
+    }
+    match transfer.outcome {
+        SdoOutcome::Broken(reason) => o.name("reason", reason.name())?,
+        _ => o.null("reason")?,
+    }
+    o.uint("start_line", transfer.start_position)?;
+    match transfer.duration {
+        Some(d) => o.float("duration_ms", d.as_nanos() as f64 / 1e6)?,
+        None => o.null("duration_ms")?,
+    }
+    o.end()
+}
+
+/// SPEC §8.2's `signals`: name → value in mapping order, and `error` when
+/// the PDO is shorter than its mapping (its signals are those that fit);
+/// §8.3's `cia402` for a drive.
+fn pdo_json<W: Write>(
+    obj: &mut Object<'_, W>,
+    reading: &PdoReading<'_>,
+    cia402: Option<&Cia402Reading>,
+) -> io::Result<()> {
+    let keys = &reading.map.keys;
+    // `line` and the frame's keys come first, so this is never the first.
+    let out = obj.raw_after_first(b",\"signals\":{")?;
+    let mut error = None;
+    let mut first = true;
+    for (i, signal) in reading.signals.iter().enumerate() {
+        match (signal, keys.get(i)) {
+            // The keys carry their leading comma from the second on (not
+            // wanted when the signals before could not be read).
+            (Ok(signal), Some(key)) => {
+                let key = if first && i > 0 { &key[1..] } else { &key[..] };
+                first = false;
+                out.write_all(key)?;
+                json::pdo_value(out, &signal.value)?;
+            }
+            (Ok(_), None) => {}
+            (Err(e), _) => error = Some(*e),
+        }
+    }
+    out.write_all(b"}")?;
+    if let Some(cia402) = cia402 {
+        cia402_json(obj, cia402)?;
+    }
+    if let Some(e) = error {
+        obj.display("error", &e)?;
+    }
+    Ok(())
+}
+
+/// SPEC §8.3's `cia402`: `state`, `command`, `mode` where the frame tells
+/// them.
+fn cia402_json<W: Write>(obj: &mut Object<'_, W>, reading: &Cia402Reading) -> io::Result<()> {
+    let out = obj.raw_after_first(b",\"cia402\":{")?;
+    let mut sep: &[u8] = b"";
+    if let Some(state) = reading.state {
+        out.write_all(b"\"state\":\"")?;
+        out.write_all(state.name().as_bytes())?;
+        out.write_all(b"\"")?;
+        sep = b",";
+    }
+    if let Some(command) = reading.command {
+        out.write_all(sep)?;
+        out.write_all(b"\"command\":\"")?;
+        out.write_all(command.name().as_bytes())?;
+        out.write_all(b"\"")?;
+        sep = b",";
+    }
+    if let Some(mode) = reading.mode {
+        out.write_all(sep)?;
+        out.write_all(b"\"mode\":")?;
+        json::display_string(out, &mode)?;
+    }
+    out.write_all(b"}")
+}
