@@ -294,10 +294,7 @@ impl EnableHandshake {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::servo::{
-        enable_handshake, Command, Drive, DriveConfig, ErrorClearHandshake, HandshakePhase,
-        ServoFault, ServoReadyMode,
-    };
+    use crate::servo::enable_handshake;
 
     use EnablePhase::*;
 
@@ -585,90 +582,6 @@ mod tests {
         }
         assert_eq!(EnableHandshake::default(), EnableHandshake::new());
         assert_eq!(EnableHandshake::new().phase(), Disabled);
-    }
-
-    /// The handshake against the crate's drive model for thousands of
-    /// cycles (SPEC §9.2): enable, a fault every few hundred cycles that
-    /// disables the drive, the error clear with [`ErrorClearHandshake`],
-    /// and the enable again, in both Servo_Ready_Modes and with several
-    /// error-clear delays. The NC also handles a refused edge (a fault in
-    /// the very cycle of the edge): it withdraws the enable and clears.
-    #[test]
-    fn against_the_drive_model_enable_fault_clear_enable_again() {
-        for ready_mode in [
-            ServoReadyMode::ErrorFree,
-            ServoReadyMode::EnabledAndErrorFree,
-        ] {
-            for error_clear_delay in [0, 1, 4] {
-                for first_fault in [1, 200, 201] {
-                    let mut drive = Drive::new(DriveConfig {
-                        ready_mode,
-                        error_clear_delay,
-                        ..DriveConfig::default()
-                    });
-                    let mut enable = EnableHandshake::new();
-                    let mut clear = ErrorClearHandshake::new();
-                    let mut scw = ServoControlWord::NORMAL;
-                    let mut feedback = drive.cycle(&Command::new(0, scw, 0));
-                    let (mut enables, mut drops, mut refused) = (0, 0, 0);
-                    let mut enabled_cycles = 0i64;
-                    for cycle in 0..5_000u32 {
-                        if cycle >= first_fault && (cycle - first_fault) % 400 == 0 {
-                            let i = (cycle - first_fault) / 400;
-                            drive.inject(ServoFault::ALL[i as usize % 24]);
-                        }
-                        // The NC: enable whenever the drive is error free,
-                        // clear first otherwise.
-                        match enable.phase() {
-                            Disabled | Dropped if feedback.errors.is_empty() => {
-                                enable = enable.start();
-                            }
-                            Disabled | Dropped => clear = clear.start(),
-                            Enabling if enable.cycles_in_phase() >= 3 => {
-                                refused += 1;
-                                enable = enable.cancel();
-                            }
-                            _ => {}
-                        }
-                        let before = enable.phase();
-                        (enable, scw) = enable.step(scw, feedback.status);
-                        (clear, scw) = clear.step(scw, feedback.status);
-                        let was_enabled = drive.is_enabled();
-                        feedback = drive.cycle(&Command::new(50, scw, 0));
-
-                        // The handshake follows the drive, and the drive
-                        // moves only while enabled.
-                        let en = feedback.status.contains(ServoStatusWord::SERVO_EN);
-                        assert_eq!(en, drive.is_enabled());
-                        if en {
-                            enabled_cycles += 1;
-                            assert!(matches!(enable.phase(), Enabling | Enabled));
-                        }
-                        let now = enable.phase();
-                        if now == Enabled && before != Enabled {
-                            enables += 1;
-                            assert!(was_enabled, "cycle {cycle}: Enabled on ServoEn");
-                        }
-                        if now == Dropped && before != Dropped {
-                            drops += 1;
-                            assert!(!was_enabled, "cycle {cycle}: Dropped on no ServoEn");
-                        }
-                        assert_ne!(clear.phase(), HandshakePhase::UnsolicitedAck);
-                    }
-                    let case = format!("{ready_mode:?}, delay {error_clear_delay}, {first_fault}");
-                    // Faults at `first_fault` + 400 k, 12 or 13 in 5 000
-                    // cycles: each one seen as a drop, or as a refused edge
-                    // when it comes in the cycle of the first edge (cycle
-                    // 1), then cleared, and the drive enabled again.
-                    let faults = (5_000 - 1 - first_fault) / 400 + 1;
-                    assert_eq!(refused, u32::from(first_fault == 1), "{case}");
-                    assert_eq!(drops + refused, faults, "{case}");
-                    assert_eq!(enables, 1 + faults - refused, "{case}");
-                    assert!(enable.is_enabled(), "{case}");
-                    assert_eq!(drive.position(), 50 * enabled_cycles, "{case}");
-                }
-            }
-        }
     }
 }
 
