@@ -57,7 +57,7 @@ pub use behaviour::{
     enable_handshake, servo_ready, ErrorClear, ErrorClearHandshake, Handshake, HandshakeBits,
     HandshakePhase, ServoReadyMode, ZeroPulse, ZeroPulseHandshake,
 };
-pub use command::{Command, CommandFrame, COMMAND_LEN};
+pub use command::{Command, CommandDetails, CommandFrame, COMMAND_LEN};
 pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
 pub use drive::{
     Drive, DriveConfig, ErrorClearState, MessageRotation, SetpointWidth, SpeedScale,
@@ -65,6 +65,6 @@ pub use drive::{
 };
 pub use enable::{EnableHandshake, EnablePhase};
 pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
-pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
+pub use feedback::{ActualPosition, Feedback, FeedbackDetails, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageKind};
 pub use status_word::{EncoderKind, ServoStatusWord};
