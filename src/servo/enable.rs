@@ -77,9 +77,10 @@ impl fmt::Display for EnablePhase {
 /// The NC side of the enable handshake: SE 0b01, then 0b10 in the next
 /// cycle — the edge on which the drive enables — then 0b10 held while
 /// ServoEn stays up (SPEC §1.6; seed 002, "Servo Enable"). A pure state
-/// machine stepped once per NC cycle, like [`ErrorClearHandshake`] and
-/// [`ZeroPulseHandshake`](super::ZeroPulseHandshake): no clock, no I/O,
-/// no heap.
+/// machine stepped once per NC cycle, like
+/// [`ErrorClearHandshake`](super::ErrorClearHandshake) and
+/// [`ZeroPulseHandshake`](super::ZeroPulseHandshake): no clock, no I/O, no
+/// heap.
 ///
 /// Each cycle, [`step`](Self::step) takes the control word the NC wrote in
 /// the previous cycle (so the machine knows which SE value is on the wire)
