@@ -2,17 +2,18 @@
 //! (SPEC §1.6, §9.2): enable, move, a fault, error clear, enable again, the
 //! zero-pulse search, a lost encoder and an over-temperature warning.
 //!
-//! The NC is written only against the crate's handshakes
-//! ([`enable_handshake`]'s rule, [`ErrorClearHandshake`],
-//! [`ZeroPulseHandshake`]) and exchanges real 10-byte command and 40-byte
-//! feedback frames with the [`Drive`]. It prints one line per change of a
-//! handshake phase or of the drive's state, with the cycle and position.
+//! The NC is written only against the crate's three handshakes
+//! ([`EnableHandshake`], [`ErrorClearHandshake`], [`ZeroPulseHandshake`]):
+//! it never writes an SE value or a request bit by hand. It exchanges real
+//! 10-byte command and 40-byte feedback frames with the [`Drive`] and prints
+//! one line per change of a goal, a handshake phase or the drive's state,
+//! with the cycle and position.
 //!
 //! Run with `cargo run --example nc_loop`.
 
 use motionwire::servo::{
-    ActualPosition, Command, Drive, DriveConfig, ErrorClearHandshake, Feedback, HandshakePhase,
-    ServoControlWord, ServoEnable, ServoFault, ServoStatusWord, ZeroPulseHandshake,
+    ActualPosition, Command, Drive, DriveConfig, EnableHandshake, EnablePhase, ErrorClearHandshake,
+    Feedback, HandshakePhase, ServoControlWord, ServoFault, ServoStatusWord, ZeroPulseHandshake,
 };
 
 /// The cycles the example runs.
@@ -25,8 +26,8 @@ const RETRY: u32 = 50;
 /// What the NC is doing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Goal {
-    /// SE 0b00 for a cycle, then 0b01, then 0b10 until enabled.
-    Enable(u8),
+    /// Enable the drive, then hold the axis still.
+    Enable,
     /// Run the axis at this set point.
     Move(i32),
     /// Clear the drive's errors, then enable again.
@@ -41,6 +42,7 @@ struct Nc {
     goal: Goal,
     scw: ServoControlWord,
     setpoint: i32,
+    enable: EnableHandshake,
     clear: ErrorClearHandshake,
     zero: ZeroPulseHandshake,
 }
@@ -49,8 +51,13 @@ impl Nc {
     /// One NC cycle: read the newest feedback, decide, return the command.
     fn cycle(&mut self, feedback: &Feedback) -> Command {
         let status = feedback.status;
+        (self.enable, self.scw) = self.enable.step(self.scw, status);
         (self.clear, self.scw) = self.clear.step(self.scw, status);
         (self.zero, self.scw) = self.zero.step(self.scw, status);
+        if self.enable.phase() == EnablePhase::Enabling && self.enable.cycles_in_phase() > TIMEOUT {
+            println!("NC: no ServoEn after {TIMEOUT} cycles, arming again");
+            self.enable = self.enable.cancel().start();
+        }
         if self.clear.phase() == HandshakePhase::Requested && self.clear.cycles_in_phase() > TIMEOUT
         {
             println!("NC: no ErrClearAck after {TIMEOUT} cycles, giving up");
@@ -60,57 +67,54 @@ impl Nc {
             println!("NC: no ZPulseAck after {TIMEOUT} cycles, giving up");
             self.zero = self.zero.cancel();
         }
-        // A drive error stops the axis and starts a clear.
+        // A drive error stops the axis and starts a clear. The drive model
+        // drops ServoEn itself (the handshake reports Dropped and writes SE
+        // 0b00); in any other phase the NC withdraws the enable.
         if !feedback.errors.is_empty() && self.goal != Goal::Clear && self.goal != Goal::Park {
             self.goal = Goal::Clear;
             self.clear = self.clear.start();
-            self.scw = self.clear.apply(self.scw);
+            if self.enable.phase() != EnablePhase::Dropped {
+                self.enable = self.enable.cancel();
+            }
         }
-        let se = match self.goal {
-            Goal::Enable(step) => {
-                self.goal = Goal::Enable(step.saturating_add(1));
-                self.setpoint = 0;
-                if status.contains(ServoStatusWord::SERVO_EN) {
+        self.setpoint = match self.goal {
+            Goal::Enable => {
+                self.enable = self.enable.start();
+                if self.enable.is_enabled() {
                     self.goal = Goal::Move(0);
                 }
-                match step {
-                    0 => ServoEnable::DISABLED,
-                    1 => ServoEnable::ARM,
-                    _ => ServoEnable::ENABLE,
-                }
+                0
             }
             Goal::Clear => {
-                self.setpoint = 0;
                 if self.clear.phase() == HandshakePhase::Done && feedback.errors.is_empty() {
-                    self.goal = Goal::Enable(0);
+                    self.goal = Goal::Enable;
+                    self.enable = self.enable.start();
                 } else if self.clear.phase() == HandshakePhase::Done
                     && self.clear.cycles_in_phase() >= RETRY
                 {
                     // A cause persists: try again a little later.
                     self.clear = self.clear.start();
-                    self.scw = self.clear.apply(self.scw);
                 }
-                ServoEnable::DISABLED
+                0
             }
-            Goal::Move(speed) => {
-                self.setpoint = speed;
-                ServoEnable::ENABLE
-            }
+            Goal::Move(speed) => speed,
             Goal::Home(speed) => {
-                self.setpoint = speed;
                 if self.zero.phase() == HandshakePhase::Idle
                     || self.zero.phase() == HandshakePhase::Done
                 {
                     self.goal = Goal::Move(0);
                 }
-                ServoEnable::ENABLE
+                speed
             }
             Goal::Park => {
-                self.setpoint = 0;
-                ServoEnable::DISABLED
+                self.enable = self.enable.cancel();
+                0
             }
         };
-        self.scw = self.scw.with_servo_enable(se);
+        // What the handshakes require after this cycle's starts and cancels.
+        self.scw = self
+            .zero
+            .apply(self.clear.apply(self.enable.apply(self.scw)));
         Command::new(self.setpoint, self.scw, 0)
     }
 }
@@ -119,6 +123,7 @@ impl Nc {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Phases {
     goal: Goal,
+    enable: EnablePhase,
     clear: HandshakePhase,
     zero: HandshakePhase,
     enabled: bool,
@@ -130,9 +135,10 @@ struct Phases {
 fn main() {
     let mut drive = Drive::new(DriveConfig::default());
     let mut nc = Nc {
-        goal: Goal::Enable(0),
+        goal: Goal::Enable,
         scw: ServoControlWord::NORMAL,
         setpoint: 0,
+        enable: EnableHandshake::new(),
         clear: ErrorClearHandshake::new(),
         zero: ZeroPulseHandshake::new(),
     };
@@ -142,8 +148,17 @@ fn main() {
     let mut homed_at = None;
 
     println!(
-        "{:>5}  {:<12} {:<15} {:<15} {:<3} {:<3} {:<4} {:>9} {:>9}  errors",
-        "cycle", "goal", "error clear", "zero pulse", "en", "rdy", "temp", "ActPos", "POSW2..3"
+        "{:>5}  {:<12} {:<10} {:<15} {:<15} {:<3} {:<3} {:<4} {:>9} {:>9}  errors",
+        "cycle",
+        "goal",
+        "enable",
+        "error clear",
+        "zero pulse",
+        "en",
+        "rdy",
+        "temp",
+        "ActPos",
+        "POSW2..3"
     );
     for cycle in 1..=CYCLES {
         // The script: what happens to the machine.
@@ -181,6 +196,7 @@ fn main() {
         }
         let now = Phases {
             goal: nc.goal,
+            enable: nc.enable.phase(),
             clear: nc.clear.phase(),
             zero: nc.zero.phase(),
             enabled: feedback.status.contains(ServoStatusWord::SERVO_EN),
@@ -188,15 +204,7 @@ fn main() {
             warning: feedback.status.contains(ServoStatusWord::TEMP_WARNING),
             errors: feedback.errors.bits(),
         };
-        // Goal::Enable counts its steps: print the goal's kind only.
-        let comparable = |p: Phases| Phases {
-            goal: match p.goal {
-                Goal::Enable(_) => Goal::Enable(0),
-                other => other,
-            },
-            ..p
-        };
-        if last.map(comparable) != Some(comparable(now)) || cycle % 500 == 0 {
+        if last != Some(now) || cycle % 500 == 0 {
             let faults: Vec<_> = feedback
                 .errors
                 .faults()
@@ -206,14 +214,15 @@ fn main() {
                 })
                 .collect();
             let goal = match now.goal {
-                Goal::Enable(_) => "enable".to_owned(),
+                Goal::Enable => "enable".to_owned(),
                 Goal::Move(v) => format!("move {v}"),
                 Goal::Home(v) => format!("home {v}"),
                 Goal::Clear => "clear".to_owned(),
                 Goal::Park => "park".to_owned(),
             };
             println!(
-                "{cycle:>5}  {goal:<12} {:<15} {:<15} {:<3} {:<3} {:<4} {position:>9} {zero:>9}  {}",
+                "{cycle:>5}  {goal:<12} {:<10} {:<15} {:<15} {:<3} {:<3} {:<4} {position:>9} {zero:>9}  {}",
+                now.enable.name(),
                 now.clear.name(),
                 now.zero.name(),
                 u8::from(now.enabled),

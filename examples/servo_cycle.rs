@@ -4,15 +4,17 @@
 //! The NC enables the drive (SE 0b01 → 0b10), runs the axis, searches the
 //! incremental encoder's zero pulse, and — after a following error is
 //! injected into the drive — clears it and enables again, using the crate's
-//! handshakes. Only events are printed, not every cycle.
+//! handshakes ([`EnableHandshake`], [`ErrorClearHandshake`],
+//! [`ZeroPulseHandshake`]) and never writing SE or a request bit by hand.
+//! Only events are printed, not every cycle.
 //!
 //! Run with `cargo run --example servo_cycle`.
 
 use motionwire::servo::{
-    enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, ErrorClearHandshake,
-    Feedback, HandshakePhase, Message, MessageKind, ParameterTable, ServoControlWord, ServoEnable,
-    ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN,
-    FEEDBACK_LEN,
+    enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, EnableHandshake,
+    EnablePhase, ErrorClearHandshake, Feedback, HandshakePhase, Message, MessageKind,
+    ParameterTable, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
+    ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
 
 /// Cycle time of the simulation, ms.
@@ -197,6 +199,7 @@ fn status_changes(before: ServoStatusWord, now: ServoStatusWord) -> String {
 
 fn main() -> Result<(), motionwire::Error> {
     let mut drive = SimulatedDrive::new();
+    let mut enable = EnableHandshake::new();
     let mut clear = ErrorClearHandshake::new();
     let mut zero = ZeroPulseHandshake::new();
 
@@ -255,18 +258,27 @@ fn main() -> Result<(), motionwire::Error> {
             reported_errors = ServoErrorWord::empty();
         }
 
-        // Enable: 0b01 for one cycle, then 0b10 (the edge), while error free.
+        // Enable while error free: step the handshake with the word written
+        // last cycle, then (re)start it; it writes 0b01, then 0b10 (the
+        // edge), and holds 0b10 while ServoEn stays. A drive error drops
+        // ServoEn (the handshake reports `dropped` and writes 0b00); in any
+        // other phase the NC withdraws the enable itself.
         let enabled = status.contains(ServoStatusWord::SERVO_EN);
-        let se = if has_error {
-            ServoEnable::DISABLED
-        } else if enabled || last.servo_enable() == ServoEnable::ARM {
-            ServoEnable::ENABLE
-        } else {
-            ServoEnable::ARM
-        };
-        if se != last.servo_enable() {
-            println!("[{cycle:3}] NC writes SE {se}");
+        let (mut next_enable, _) = enable.step(last, status);
+        if !has_error {
+            next_enable = next_enable.start();
+        } else if next_enable.phase() != EnablePhase::Dropped {
+            next_enable = next_enable.cancel();
         }
+        if next_enable.phase() != enable.phase() {
+            println!(
+                "[{cycle:3}] enable: {} → {} (SE {})",
+                enable.phase(),
+                next_enable.phase(),
+                next_enable.servo_enable()
+            );
+        }
+        enable = next_enable;
 
         // Home on the zero pulse once the axis runs at speed.
         if homed_at.is_none()
@@ -343,7 +355,7 @@ fn main() -> Result<(), motionwire::Error> {
 
         // Write this cycle's command and exchange it.
         let ssp = if enabled { SPEED_RPM } else { 0 };
-        let scw = zero.apply(clear.apply(last.with_servo_enable(se)));
+        let scw = zero.apply(clear.apply(enable.apply(last)));
         let next = Command::new(ssp, scw, 0);
         if next.control != command.control {
             println!(

@@ -6,7 +6,7 @@ use crate::canopen::{
     CanOpenMessage, Emcy, ErrorCode, ErrorRegister, GuardAnswer, Heartbeat, NmtCommand,
     NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
 };
-use crate::servo::{ServoControlWord, ServoStatusWord};
+use crate::servo::{Command, Feedback, ServoControlWord, ServoStatusWord};
 
 fn n(raw: u8) -> NodeId {
     NodeId::new(raw).unwrap()
@@ -95,4 +95,59 @@ fn servo_words() {
     assert_eq!(control.to_string(), "0x00000000 []");
     let status = ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY;
     assert_eq!(status.to_string(), "0x00000003 [ServoEn|ServoRDY]");
+}
+
+/// `motionwire servo command` and `servo feedback` print these lines (SPEC
+/// §6.2); the program's output is a contract, so the spacing is too: the
+/// flags line of a word without flags keeps its trailing space, a message
+/// without a unit keeps the empty unit between two spaces.
+#[test]
+fn servo_frame_details() {
+    let command =
+        Command::from_bytes(&[0x18, 0xFC, 0xFF, 0xFF, 0x01, 0x00, 0x00, 0x80, 0x34, 0x12]);
+    assert_eq!(
+        command.details().to_string(),
+        "speed set point   -1000 (word reading -1000)\n\
+         control word      0x80000001\n  \
+         servo enable    0b01\n  \
+         emergency       active (EMGON = 0)\n  \
+         internal brake  active (Brake = 0)\n  \
+         regulator mode  speed\n  \
+         parameter table 1\n  \
+         flags           PRGDWN\n\
+         extra data code   4660"
+    );
+    let bare = Command::from_bytes(&[0; 10]).details().to_string();
+    assert!(
+        bare.contains("\n  flags          \nextra data code   0"),
+        "{bare}"
+    );
+    assert_eq!(command.details().command(), command);
+
+    let bytes: [u8; 40] = [
+        0x40, 0xE2, 0x01, 0x00, 0x00, 0x10, 0x00, 0x00, // ActPos
+        0x0B, 0x00, 0x00, 0x00, // SSW: ServoEn ServoRDY ZPulseAck, absolute
+        0x06, 0x00, 0x00, 0x00, // SEW: EncoderErr, I2t_Endat (no summary bit)
+        0x2A, 0x00, 0x00, 0x00, // message code 42
+        0xCD, 0xCC, 0x4C, 0x3F, // 0.8
+        0x00, 0x00, 0xC0, 0x7F, // NaN
+        0x00, 0x00, 0x80, 0x7F, // inf
+        0x00, 0x00, 0x80, 0xFF, // -inf
+        0x00, 0x00, 0x00, 0x80, // -0
+    ];
+    let feedback = Feedback::from_bytes(&bytes);
+    assert_eq!(
+        feedback.details().to_string(),
+        "position          17592186167872 (absolute encoder)\n\
+         status word       0x0000000B: ServoEn ServoRDY ZPulseAck\n  \
+         parameter table 1\n\
+         error word        0x00000006\n  \
+         bit  1 E01 EncoderErr: encoder error (EnDat, SinCos or TTL)\n  \
+         bit  2 E19 I2t_Endat: EnDat encoder temperature above Max_Temperature (usually 95 °C)\n\
+         message           unknown = 0.8  (code 42)\n\
+         extra data        NaN inf -inf -0"
+    );
+    let empty = Feedback::from_bytes(&[0; 40]).details().to_string();
+    assert!(empty.contains("status word       0x00000000:\n"), "{empty}");
+    assert_eq!(feedback.details().feedback().to_bytes(), bytes);
 }

@@ -1,14 +1,16 @@
 //! The crate's NC-side handshakes against the crate's drive model
 //! (SPEC §1.6, §9.2), through real frame bytes: every `ServoReadyMode` and
-//! encoder kind, and a property test of random command sequences with
+//! encoder kind, `EnableHandshake` with faults and error clears for
+//! thousands of cycles, and a property test of random command sequences with
 //! injected faults that checks the drive-side rules on every cycle.
 
 use std::num::NonZeroU32;
 
 use motionwire::servo::{
-    servo_ready, ActualPosition, Command, Drive, DriveConfig, EncoderKind, ErrorClearHandshake,
-    Feedback, HandshakePhase, MessageRotation, ServoControlWord, ServoEnable, ServoErrorWord,
-    ServoFault, ServoReadyMode, ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
+    servo_ready, ActualPosition, Command, Drive, DriveConfig, EnableHandshake, EnablePhase,
+    EncoderKind, ErrorClearHandshake, Feedback, HandshakePhase, MessageRotation, ServoControlWord,
+    ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord, ZeroPulseHandshake,
+    COMMAND_LEN, FEEDBACK_LEN,
 };
 use proptest::prelude::*;
 
@@ -230,6 +232,95 @@ fn lost_encoder_needs_a_clear_after_it_is_back() {
     let _ = nc.clear_errors(&mut drive, ServoEnable::DISABLED);
     assert!(nc.last.unwrap().errors.is_empty());
     assert_eq!(nc.enable(&mut drive), 3);
+}
+
+/// `EnableHandshake` against the drive model for 5 000 cycles, through the
+/// frames' bytes, for every Servo_Ready_Mode, encoder kind and several
+/// error-clear delays: enable, a fault every 400 cycles (every SEW bit in
+/// turn) that makes the drive drop ServoEn, the error clear with
+/// `ErrorClearHandshake`, and the enable again. A fault in the very cycle
+/// of the first edge (cycle 1) is a refused edge: the NC times out,
+/// withdraws the enable and clears. The handshake and the drive agree on
+/// every cycle, and the axis moves only while enabled.
+#[test]
+fn enable_handshake_enable_fault_clear_enable_again_for_5000_cycles() {
+    use EnablePhase::*;
+    for mode in MODES {
+        for encoder in ENCODERS {
+            for error_clear_delay in [0, 1, 4] {
+                for first_fault in [1, 200, 201] {
+                    let case = format!(
+                        "{mode:?} {encoder} delay {error_clear_delay} first fault {first_fault}"
+                    );
+                    let mut drive = Drive::new(DriveConfig {
+                        ready_mode: mode,
+                        encoder,
+                        error_clear_delay,
+                        ..DriveConfig::default()
+                    });
+                    let mut enable = EnableHandshake::new();
+                    let mut clear = ErrorClearHandshake::new();
+                    let mut scw = ServoControlWord::NORMAL;
+                    let mut feedback = exchange(&mut drive, &Command::new(0, scw, 0));
+                    let (mut enables, mut drops, mut refused) = (0u32, 0u32, 0u32);
+                    let mut enabled_cycles = 0i64;
+                    for cycle in 0..5_000u32 {
+                        if cycle >= first_fault && (cycle - first_fault) % 400 == 0 {
+                            let i = (cycle - first_fault) / 400;
+                            drive.inject(ServoFault::ALL[i as usize % ServoFault::ALL.len()]);
+                        }
+                        // The NC: enable whenever the drive is error free,
+                        // clear first otherwise; give up on an edge the
+                        // drive does not answer.
+                        match enable.phase() {
+                            Disabled | Dropped if feedback.errors.is_empty() => {
+                                enable = enable.start();
+                            }
+                            Disabled | Dropped => clear = clear.start(),
+                            Enabling if enable.cycles_in_phase() >= 3 => {
+                                refused += 1;
+                                enable = enable.cancel();
+                            }
+                            _ => {}
+                        }
+                        let before = enable.phase();
+                        (enable, scw) = enable.step(scw, feedback.status);
+                        (clear, scw) = clear.step(scw, feedback.status);
+                        let was_enabled = drive.is_enabled();
+                        feedback = exchange(&mut drive, &Command::new(50, scw, 0));
+
+                        let en = feedback.status.contains(ServoStatusWord::SERVO_EN);
+                        assert_eq!(en, drive.is_enabled());
+                        if en {
+                            enabled_cycles += 1;
+                            assert!(matches!(enable.phase(), Enabling | Enabled), "{case}");
+                            assert!(feedback.errors.is_empty(), "{case}");
+                        }
+                        let now = enable.phase();
+                        if now == Enabled && before != Enabled {
+                            enables += 1;
+                            assert!(was_enabled, "{case}, cycle {cycle}: Enabled on ServoEn");
+                        }
+                        if now == Dropped && before != Dropped {
+                            drops += 1;
+                            assert!(!was_enabled, "{case}, cycle {cycle}: Dropped on no ServoEn");
+                        }
+                        assert_ne!(clear.phase(), HandshakePhase::UnsolicitedAck, "{case}");
+                    }
+                    // Faults at `first_fault` + 400 k: 12 or 13 in 5 000
+                    // cycles, each seen as a drop (or the refused first
+                    // edge), cleared, and the drive enabled again.
+                    let faults = (5_000 - 1 - first_fault) / 400 + 1;
+                    assert_eq!(refused, u32::from(first_fault == 1), "{case}");
+                    assert_eq!(drops + refused, faults, "{case}");
+                    assert_eq!(enables, 1 + faults - refused, "{case}");
+                    assert!(enable.is_enabled(), "{case}");
+                    assert!(feedback.errors.is_empty(), "{case}");
+                    assert_eq!(drive.position(), 50 * enabled_cycles, "{case}");
+                }
+            }
+        }
+    }
 }
 
 // ---------------------------------------------------------------- property

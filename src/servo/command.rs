@@ -30,6 +30,7 @@
 
 use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
+use core::fmt;
 
 use super::ServoControlWord;
 use crate::error::{check_len, Result};
@@ -235,6 +236,99 @@ impl Command {
         frame.set_speed_setpoint(self.speed_setpoint);
         frame.set_control_word(self.control);
         frame.set_extra_data_code(self.extra_data_code);
+    }
+
+    /// Return the command laid out for people, one field per line
+    /// ([`CommandDetails`]): the text `motionwire servo command` prints
+    /// (SPEC §6.2).
+    #[inline]
+    #[must_use]
+    pub const fn details(&self) -> CommandDetails {
+        CommandDetails(*self)
+    }
+}
+
+/// A [`Command`] laid out for people, one field per line, as `motionwire
+/// servo command HEX` prints it (SPEC §6.2): the two readings of the set
+/// point (SPEC §1.1), the control word in hex, then its fields — SE, the
+/// active-low EMGON and Brake read as states, the regulator mode, the
+/// parameter table and the names of the set flags (SPEC §1.3) — and the
+/// extra data code. Made by [`Command::details`]; its
+/// [`Display`](fmt::Display) writes the lines without a final newline.
+///
+/// A separate type because the lines are a view for a terminal, not the
+/// one way to print a command.
+///
+/// ```
+/// use motionwire::servo::{Command, ServoControlWord, ServoEnable};
+///
+/// let scw = ServoControlWord::NORMAL.with_servo_enable(ServoEnable::ENABLE);
+/// let text = Command::new(1000, scw, -1).details().to_string();
+/// assert_eq!(
+///     text.lines().collect::<Vec<_>>(),
+///     [
+///         "speed set point   1000 (word reading 1000)",
+///         "control word      0x00000406",
+///         "  servo enable    0b10",
+///         "  emergency       off (EMGON = 1)",
+///         "  internal brake  off (Brake = 1)",
+///         "  regulator mode  speed",
+///         "  parameter table 1",
+///         "  flags           EMGON Brake",
+///         "extra data code   -1",
+///     ]
+/// );
+/// assert!(!text.ends_with('\n'));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct CommandDetails(Command);
+
+impl CommandDetails {
+    /// Return the command these lines describe.
+    #[inline]
+    #[must_use]
+    pub const fn command(&self) -> Command {
+        self.0
+    }
+}
+
+impl fmt::Display for CommandDetails {
+    /// Write the command's lines (SPEC §6.2), without a final newline.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = &self.0;
+        let control = c.control;
+        writeln!(
+            f,
+            "speed set point   {} (word reading {})",
+            c.speed_setpoint,
+            c.speed_setpoint_word()
+        )?;
+        writeln!(f, "control word      0x{:08X}", control.bits())?;
+        writeln!(
+            f,
+            "  servo enable    0b{:02b}",
+            control.servo_enable().get()
+        )?;
+        let emergency = if control.emergency_active() {
+            "active (EMGON = 0)"
+        } else {
+            "off (EMGON = 1)"
+        };
+        writeln!(f, "  emergency       {emergency}")?;
+        let brake = if control.internal_brake_active() {
+            "active (Brake = 0)"
+        } else {
+            "off (Brake = 1)"
+        };
+        writeln!(f, "  internal brake  {brake}")?;
+        writeln!(f, "  regulator mode  {}", control.regulator_mode().name())?;
+        writeln!(f, "  parameter table {}", control.parameter_table().get())?;
+        f.write_str("  flags          ")?;
+        for name in control.flag_names() {
+            write!(f, " {name}")?;
+        }
+        f.write_str("\n")?;
+        write!(f, "extra data code   {}", c.extra_data_code)
     }
 }
 

@@ -35,6 +35,7 @@
 
 use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
+use core::fmt;
 
 use super::{EncoderKind, Message, ServoErrorWord, ServoStatusWord};
 use crate::error::{check_len, Result};
@@ -377,6 +378,124 @@ impl Feedback {
         frame.set_message(self.message);
         frame.set_extra_data(self.extra_data);
     }
+
+    /// Return the feedback laid out for people, one field per line
+    /// ([`FeedbackDetails`]): the text `motionwire servo feedback` prints
+    /// (SPEC §6.2).
+    #[inline]
+    #[must_use]
+    pub const fn details(&self) -> FeedbackDetails {
+        FeedbackDetails(*self)
+    }
+}
+
+/// A [`Feedback`] laid out for people, one field per line, as `motionwire
+/// servo feedback HEX` prints it (SPEC §6.2): the actual position in the
+/// encoder's layout (SPEC §1.2), the status word in hex with the names of
+/// its set flags and the active parameter table (SPEC §1.4), the error word
+/// in hex and one line per fault with its bit, E-code, name and meaning
+/// (SPEC §1.5), the message with its unit and code (SPEC §1.2), and the
+/// four extra floats. Made by [`Feedback::details`]; its
+/// [`Display`](fmt::Display) writes the lines without a final newline.
+///
+/// A separate type because the lines are a view for a terminal, not the
+/// one way to print a feedback frame.
+///
+/// ```
+/// use motionwire::servo::{
+///     ActualPosition, ECode, Feedback, Message, MessageKind, ServoErrorWord, ServoStatusWord,
+/// };
+///
+/// let mut feedback = Feedback {
+///     position: 0,
+///     status: ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY,
+///     errors: ServoErrorWord::from_e_code(ECode::E09).summarized(),
+///     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+///     extra_data: [0.0, 0.0, 1.0, -2.5],
+/// };
+/// feedback.set_actual_position(ActualPosition::Incremental {
+///     position: 123_456,
+///     zero_pulse_position: 4_096,
+/// });
+/// let text = feedback.details().to_string();
+/// assert_eq!(
+///     text.lines().collect::<Vec<_>>(),
+///     [
+///         "position          123456 (incremental encoder; zero pulse at 4096)",
+///         "status word       0x00000007: ServoEn ServoRDY AbsIncr",
+///         "  parameter table 1",
+///         "error word        0x00080001",
+///         "  bit  0     ServoErrors: summary: some drive error is present",
+///         "  bit 19 E09 FollowerErr: speed following error",
+///         "message           motor_speed = 1500 rpm (code 0)",
+///         "extra data        0 0 1 -2.5",
+///     ]
+/// );
+/// assert!(!text.ends_with('\n'));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeedbackDetails(Feedback);
+
+impl FeedbackDetails {
+    /// Return the feedback these lines describe.
+    #[inline]
+    #[must_use]
+    pub const fn feedback(&self) -> Feedback {
+        self.0
+    }
+}
+
+impl fmt::Display for FeedbackDetails {
+    /// Write the feedback's lines (SPEC §6.2), without a final newline.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let fb = &self.0;
+        match fb.actual_position() {
+            ActualPosition::Absolute(p) => writeln!(f, "position          {p} (absolute encoder)")?,
+            ActualPosition::Incremental {
+                position,
+                zero_pulse_position,
+            } => writeln!(
+                f,
+                "position          {position} (incremental encoder; zero pulse at {zero_pulse_position})"
+            )?,
+        }
+        write!(f, "status word       0x{:08X}:", fb.status.bits())?;
+        for name in fb.status.flag_names() {
+            write!(f, " {name}")?;
+        }
+        f.write_str("\n")?;
+        writeln!(f, "  parameter table {}", fb.status.parameter_table().get())?;
+        writeln!(f, "error word        0x{:08X}", fb.errors.bits())?;
+        for fault in fb.errors.faults() {
+            match fault.e_code() {
+                Some(code) => writeln!(
+                    f,
+                    "  bit {:>2} {code} {}: {}",
+                    fault.bit(),
+                    fault.name(),
+                    fault.description()
+                )?,
+                None => writeln!(
+                    f,
+                    "  bit {:>2}     {}: {}",
+                    fault.bit(),
+                    fault.name(),
+                    fault.description()
+                )?,
+            }
+        }
+        let kind = fb.message.kind();
+        writeln!(
+            f,
+            "message           {} = {} {} (code {})",
+            kind.name(),
+            fb.message.data,
+            kind.unit().unwrap_or(""),
+            fb.message.code
+        )?;
+        let [e1, e2, e3, e4] = fb.extra_data;
+        write!(f, "extra data        {e1} {e2} {e3} {e4}")
+    }
 }
 
 #[cfg(test)]
@@ -628,7 +747,7 @@ mod proptests {
     }
 }
 
-impl core::fmt::Display for ActualPosition {
+impl fmt::Display for ActualPosition {
     /// `absolute 123456`, `incremental 123456 (zero pulse at 4096)`.
     ///
     /// ```
@@ -638,7 +757,7 @@ impl core::fmt::Display for ActualPosition {
     /// assert_eq!(p.to_string(), "incremental 10 (zero pulse at -4)");
     /// assert_eq!(ActualPosition::Absolute(7).to_string(), "absolute 7");
     /// ```
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ActualPosition::Absolute(position) => write!(f, "absolute {position}"),
             ActualPosition::Incremental {

@@ -10,7 +10,8 @@
 //!
 //! The behaviours of SPEC §1.6 are pure functions and state machines:
 //! [`servo_ready`] (the ServoRDY truth table), [`enable_handshake`] (SE
-//! 0b01 → 0b10), and the NC side of the two request/ack handshakes,
+//! 0b01 → 0b10, the drive's rule), and the NC side of the three
+//! handshakes: [`EnableHandshake`] and the two request/ack handshakes,
 //! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
 //!
 //! [`Drive`] is the other side: a deterministic model of a servo drive
@@ -34,6 +35,8 @@
 //! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
 //! - `message`: [`Message`], [`MessageKind`] (SPEC §1.2);
 //! - `behaviour`: the pure behaviours (SPEC §1.6);
+//! - `enable`: [`EnableHandshake`], the NC side of the enable handshake
+//!   (SPEC §1.6);
 //! - `drive`: [`Drive`], the drive model, and its [`DriveConfig`] (SPEC §9.2);
 //! - `ethercrab` (feature `ethercrab`): the frames as ethercrab-wire process
 //!   data (SPEC §9.1).
@@ -42,6 +45,7 @@ mod behaviour;
 mod command;
 mod control_word;
 mod drive;
+mod enable;
 mod error_word;
 #[cfg(feature = "ethercrab")]
 mod ethercrab;
@@ -53,13 +57,14 @@ pub use behaviour::{
     enable_handshake, servo_ready, ErrorClear, ErrorClearHandshake, Handshake, HandshakeBits,
     HandshakePhase, ServoReadyMode, ZeroPulse, ZeroPulseHandshake,
 };
-pub use command::{Command, CommandFrame, COMMAND_LEN};
+pub use command::{Command, CommandDetails, CommandFrame, COMMAND_LEN};
 pub use control_word::{ParameterTable, RegulatorMode, ServoControlWord, ServoEnable};
 pub use drive::{
     Drive, DriveConfig, ErrorClearState, MessageRotation, SetpointWidth, SpeedScale,
     ZeroPulseState, TEMP_WARNING_CELSIUS,
 };
+pub use enable::{EnableHandshake, EnablePhase};
 pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
-pub use feedback::{ActualPosition, Feedback, FeedbackFrame, FEEDBACK_LEN};
+pub use feedback::{ActualPosition, Feedback, FeedbackDetails, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageKind};
 pub use status_word::{EncoderKind, ServoStatusWord};

@@ -1,5 +1,6 @@
 //! `motionwire servo command|feedback HEX`: one EtherCAT servo ↔ NC frame
-//! (SPEC §6.2).
+//! (SPEC §6.2). The text is the library's (`Command::details`,
+//! `Feedback::details`); this module reads the hex and writes the JSON.
 
 use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
@@ -81,7 +82,7 @@ pub fn run(frame: Frame, args: &ServoArgs) -> Result<ExitCode, Failure> {
             if args.json {
                 command_json(&mut out, &command)?;
             } else {
-                command_text(&mut out, &command)?;
+                writeln!(out, "{}", command.details())?;
             }
         }
         Frame::Feedback => {
@@ -89,7 +90,7 @@ pub fn run(frame: Frame, args: &ServoArgs) -> Result<ExitCode, Failure> {
             if args.json {
                 feedback_json(&mut out, &feedback)?;
             } else {
-                feedback_text(&mut out, &feedback)?;
+                writeln!(out, "{}", feedback.details())?;
             }
         }
     }
@@ -178,111 +179,6 @@ fn fault_json<W: Write>(out: &mut W, fault: ServoFault) -> io::Result<()> {
         None => obj.null("e_code")?,
     }
     obj.end()
-}
-
-fn command_text<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
-    writeln!(
-        out,
-        "speed set point   {} (word reading {})",
-        c.speed_setpoint,
-        c.speed_setpoint_word()
-    )?;
-    writeln!(out, "control word      0x{:08X}", c.control.bits())?;
-    writeln!(
-        out,
-        "  servo enable    0b{:02b}",
-        c.control.servo_enable().get()
-    )?;
-    writeln!(
-        out,
-        "  emergency       {}",
-        if c.control.emergency_active() {
-            "active (EMGON = 0)"
-        } else {
-            "off (EMGON = 1)"
-        }
-    )?;
-    writeln!(
-        out,
-        "  internal brake  {}",
-        if c.control.internal_brake_active() {
-            "active (Brake = 0)"
-        } else {
-            "off (Brake = 1)"
-        }
-    )?;
-    writeln!(
-        out,
-        "  regulator mode  {}",
-        c.control.regulator_mode().name()
-    )?;
-    writeln!(
-        out,
-        "  parameter table {}",
-        c.control.parameter_table().get()
-    )?;
-    write!(out, "  flags          ")?;
-    for name in c.control.flag_names() {
-        write!(out, " {name}")?;
-    }
-    writeln!(out)?;
-    writeln!(out, "extra data code   {}", c.extra_data_code)
-}
-
-fn feedback_text<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
-    match f.actual_position() {
-        ActualPosition::Absolute(p) => writeln!(out, "position          {p} (absolute encoder)")?,
-        ActualPosition::Incremental {
-            position,
-            zero_pulse_position,
-        } => writeln!(
-            out,
-            "position          {position} (incremental encoder; zero pulse at {zero_pulse_position})"
-        )?,
-    }
-    write!(out, "status word       0x{:08X}:", f.status.bits())?;
-    for name in f.status.flag_names() {
-        write!(out, " {name}")?;
-    }
-    writeln!(out)?;
-    writeln!(
-        out,
-        "  parameter table {}",
-        f.status.parameter_table().get()
-    )?;
-    writeln!(out, "error word        0x{:08X}", f.errors.bits())?;
-    for fault in f.errors.faults() {
-        match fault.e_code() {
-            Some(code) => writeln!(
-                out,
-                "  bit {:>2} {code} {}: {}",
-                fault.bit(),
-                fault.name(),
-                fault.description()
-            )?,
-            None => writeln!(
-                out,
-                "  bit {:>2}     {}: {}",
-                fault.bit(),
-                fault.name(),
-                fault.description()
-            )?,
-        }
-    }
-    let kind = f.message.kind();
-    writeln!(
-        out,
-        "message           {} = {} {} (code {})",
-        kind.name(),
-        f.message.data,
-        kind.unit().unwrap_or(""),
-        f.message.code
-    )?;
-    writeln!(
-        out,
-        "extra data        {} {} {} {}",
-        f.extra_data[0], f.extra_data[1], f.extra_data[2], f.extra_data[3]
-    )
 }
 
 #[cfg(test)]
