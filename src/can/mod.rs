@@ -44,4 +44,4 @@ pub use frame::{
 };
 pub use id::CanId;
 pub use log::{BusStatus, Iface, LogEvent, LogFrame};
-pub use timestamp::{Seconds, Timestamp};
+pub use timestamp::{Seconds, Timestamp, SECONDS_LEN};

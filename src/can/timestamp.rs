@@ -185,7 +185,47 @@ impl Timestamp {
     pub const fn seconds(self) -> Seconds {
         Seconds(self)
     }
+
+    /// Write [`seconds`](Self::seconds) into `buf` without the formatting
+    /// machinery, for writers of one record per frame, and return it.
+    ///
+    /// ```
+    /// use motionwire::can::{Timestamp, SECONDS_LEN};
+    ///
+    /// let mut buf = [0; SECONDS_LEN];
+    /// assert_eq!(Timestamp::new(1_700_000_000, 500).unwrap().format_seconds(&mut buf), "1700000000.000500");
+    /// ```
+    pub fn format_seconds(self, buf: &mut [u8; SECONDS_LEN]) -> &str {
+        // The seconds' digits, right-aligned in the first 20 bytes.
+        let mut secs = self.secs;
+        let mut start = 20;
+        loop {
+            start -= 1;
+            buf[start] = b'0' + (secs % 10) as u8;
+            secs /= 10;
+            if secs == 0 {
+                break;
+            }
+        }
+        buf[20] = b'.';
+        // Microseconds, or nanoseconds when the time has them.
+        let nanos = self.subsec_nanos();
+        let (mut fraction, width) = if nanos % 1000 == 0 {
+            (nanos / 1000, 6)
+        } else {
+            (nanos, 9)
+        };
+        for at in (21..21 + width).rev() {
+            buf[at] = b'0' + (fraction % 10) as u8;
+            fraction /= 10;
+        }
+        core::str::from_utf8(&buf[start..21 + width]).unwrap_or_default()
+    }
 }
+
+/// The longest text [`Timestamp::format_seconds`] writes: 20 digits of
+/// seconds, the point and 9 digits.
+pub const SECONDS_LEN: usize = 30;
 
 /// A [`Timestamp`] written as seconds with the resolution it has
 /// ([`Timestamp::seconds`]).
@@ -194,12 +234,8 @@ pub struct Seconds(Timestamp);
 
 impl fmt::Display for Seconds {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let nanos = self.0.subsec_nanos();
-        if nanos % 1000 == 0 {
-            write!(f, "{}.{:06}", self.0.secs, nanos / 1000)
-        } else {
-            write!(f, "{}.{:09}", self.0.secs, nanos)
-        }
+        let mut buf = [0; SECONDS_LEN];
+        f.write_str(self.0.format_seconds(&mut buf))
     }
 }
 

@@ -92,7 +92,11 @@ impl<'w, W: Write> Object<'w, W> {
 
     /// Write a key with a string value given by its `Display`, escaped,
     /// without allocating.
-    pub(crate) fn display(&mut self, key: &'static str, value: &impl std::fmt::Display) -> io::Result<()> {
+    pub(crate) fn display(
+        &mut self,
+        key: &'static str,
+        value: &impl std::fmt::Display,
+    ) -> io::Result<()> {
         let out = self.key(key)?;
         display_string(out, value)
     }
@@ -191,25 +195,8 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
 /// nine when it is not a whole number of microseconds (SPEC §6.1 `ts`,
 /// §5.7: exact to the format's resolution, no float rounding).
 pub(crate) fn timestamp<W: Write>(out: &mut W, ts: crate::can::Timestamp) -> io::Result<()> {
-    let mut buf = [0u8; 20 + 1 + 9];
-    let mut digits = itoa::Buffer::new();
-    let text = digits.format(ts.secs()).as_bytes();
-    let secs = text.len();
-    buf[..secs].copy_from_slice(text);
-    buf[secs] = b'.';
-    // Microseconds, or nanoseconds when the time has them (candump -N,
-    // pcap/pcapng with nanosecond resolution, BLF).
-    let nanos = ts.subsec_nanos();
-    let (mut fraction, width) = if nanos % 1000 == 0 {
-        (nanos / 1000, 6)
-    } else {
-        (nanos, 9)
-    };
-    for at in (secs + 1..secs + 1 + width).rev() {
-        buf[at] = b'0' + (fraction % 10) as u8;
-        fraction /= 10;
-    }
-    out.write_all(&buf[..secs + 1 + width])
+    let mut buf = [0; crate::can::SECONDS_LEN];
+    out.write_all(ts.format_seconds(&mut buf).as_bytes())
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259).
@@ -219,7 +206,10 @@ pub(crate) fn needs_escaping(text: &str) -> bool {
 
 /// Write a value's `Display` as a JSON string with RFC 8259 escaping,
 /// piece by piece as `Display` hands them over.
-pub(crate) fn display_string<W: Write>(out: &mut W, value: &impl std::fmt::Display) -> io::Result<()> {
+pub(crate) fn display_string<W: Write>(
+    out: &mut W,
+    value: &impl std::fmt::Display,
+) -> io::Result<()> {
     struct Escaper<'w, W: Write> {
         out: &'w mut W,
         error: Option<io::Error>,

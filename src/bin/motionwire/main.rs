@@ -15,7 +15,6 @@
 mod args;
 mod decode;
 mod failure;
-mod json;
 mod record;
 mod servo;
 

@@ -5,12 +5,10 @@
 
 use std::io::{self, Write};
 
-use motionwire::can::{Iface, LogFrame};
+use motionwire::can::{Iface, LogFrame, SECONDS_LEN};
 use motionwire::canopen::{CanOpenMessage, DecodeError, MessageKind, NodeId};
 use motionwire::decoder::Decoded;
 use motionwire::profiles::ProfiledEmcy;
-
-use crate::json;
 
 /// One frame of the input with what the library's decoder made of it.
 pub struct Record<'r, 'a, 'd> {
@@ -136,7 +134,8 @@ impl Record<'_, '_, '_> {
         out.write_all(digits.format(self.line).as_bytes())?;
         out.write_all(b",")?;
         if let Some(ts) = log.timestamp {
-            json::timestamp(out, ts)?;
+            let mut buf = [0; SECONDS_LEN];
+            out.write_all(ts.format_seconds(&mut buf).as_bytes())?;
         }
         out.write_all(b",")?;
         match log.iface {
@@ -150,7 +149,7 @@ impl Record<'_, '_, '_> {
             out.write_all(if flag { b",true" } else { b",false" })?;
         }
         out.write_all(b",")?;
-        json::hex_digits(out, frame.data())?;
+        hex_digits(out, frame.data())?;
         out.write_all(b",")?;
         out.write_all(self.kind().name().as_bytes())?;
         out.write_all(b",")?;
@@ -202,4 +201,16 @@ fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
         write!(out, " {b:02X}")?;
     }
     Ok(())
+}
+
+/// Bytes as lowercase hex digits, no separators (SPEC §6.1 `data`).
+fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
+    let mut buf = [0u8; 128];
+    let n = bytes.len().min(64);
+    for (i, &b) in bytes[..n].iter().enumerate() {
+        buf[2 * i] = DIGITS[usize::from(b >> 4)];
+        buf[2 * i + 1] = DIGITS[usize::from(b & 0xF)];
+    }
+    out.write_all(&buf[..2 * n])
 }

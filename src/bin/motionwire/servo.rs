@@ -9,7 +9,7 @@ use motionwire::servo::{ActualPosition, Command, Feedback, ServoFault, COMMAND_L
 
 use crate::args::ServoArgs;
 use crate::failure::Failure;
-use crate::json::{self, Object};
+use serde::Serialize;
 
 /// Which frame the hex holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,87 +98,97 @@ pub fn run(frame: Frame, args: &ServoArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The command frame as SPEC §6.2's JSON object.
+/// The command frame as SPEC §6.2's JSON object, keys in the contract's
+/// order.
+#[derive(Serialize)]
+struct CommandJson {
+    speed_setpoint: i32,
+    speed_setpoint_word: i16,
+    control: u32,
+    control_flags: Vec<&'static str>,
+    servo_enable: u8,
+    regulator_mode: &'static str,
+    parameter_table: u8,
+    extra_data_code: i16,
+}
+
+/// Write the command frame as SPEC §6.2's JSON object and a newline.
 pub fn command_json<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
-    let mut obj = Object::begin(out)?;
-    obj.int("speed_setpoint", i64::from(c.speed_setpoint))?;
-    obj.int("speed_setpoint_word", i64::from(c.speed_setpoint_word()))?;
-    obj.uint("control", u64::from(c.control.bits()))?;
-    obj.names("control_flags", c.control.flag_names())?;
-    obj.uint("servo_enable", u64::from(c.control.servo_enable().get()))?;
-    obj.name("regulator_mode", c.control.regulator_mode().name())?;
-    obj.uint(
-        "parameter_table",
-        u64::from(c.control.parameter_table().get()),
-    )?;
-    obj.int("extra_data_code", i64::from(c.extra_data_code))?;
-    obj.end()?;
+    let json = CommandJson {
+        speed_setpoint: c.speed_setpoint,
+        speed_setpoint_word: c.speed_setpoint_word(),
+        control: c.control.bits(),
+        control_flags: c.control.flag_names().collect(),
+        servo_enable: c.control.servo_enable().get(),
+        regulator_mode: c.control.regulator_mode().name(),
+        parameter_table: c.control.parameter_table().get(),
+        extra_data_code: c.extra_data_code,
+    };
+    serde_json::to_writer(&mut *out, &json)?;
     out.write_all(b"\n")
 }
 
-/// The feedback frame as SPEC §6.2's JSON object.
+/// One fault of the feedback's error word: `{"bit", "name", "e_code"}`.
+#[derive(Serialize)]
+struct FaultJson {
+    bit: u8,
+    name: &'static str,
+    e_code: Option<String>,
+}
+
+/// The feedback frame as SPEC §6.2's JSON object, keys in the contract's
+/// order; floats as their `f64` value, a non-finite one as null.
+#[derive(Serialize)]
+struct FeedbackJson {
+    position: i64,
+    encoder: &'static str,
+    incremental_position: Option<i32>,
+    zero_pulse_position: Option<i32>,
+    status: u32,
+    status_flags: Vec<&'static str>,
+    parameter_table: u8,
+    errors: u32,
+    faults: Vec<FaultJson>,
+    message_code: i32,
+    message: &'static str,
+    message_value: f64,
+    extra: [f64; 4],
+}
+
+/// Write the feedback frame as SPEC §6.2's JSON object and a newline.
 pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
-    let mut obj = Object::begin(out)?;
-    obj.int("position", f.position)?;
-    obj.name("encoder", f.status.encoder().name())?;
-    match f.actual_position() {
-        ActualPosition::Absolute(_) => {
-            obj.null("incremental_position")?;
-            obj.null("zero_pulse_position")?;
-        }
+    let (incremental_position, zero_pulse_position) = match f.actual_position() {
+        ActualPosition::Absolute(_) => (None, None),
         ActualPosition::Incremental {
             position,
             zero_pulse_position,
-        } => {
-            obj.int("incremental_position", i64::from(position))?;
-            obj.int("zero_pulse_position", i64::from(zero_pulse_position))?;
-        }
-    }
-    obj.uint("status", u64::from(f.status.bits()))?;
-    obj.names("status_flags", f.status.flag_names())?;
-    obj.uint(
-        "parameter_table",
-        u64::from(f.status.parameter_table().get()),
-    )?;
-    obj.uint("errors", u64::from(f.errors.bits()))?;
-    {
-        let out = obj.key("faults")?;
-        out.write_all(b"[")?;
-        for (i, fault) in f.errors.faults().enumerate() {
-            if i > 0 {
-                out.write_all(b",")?;
-            }
-            fault_json(out, fault)?;
-        }
-        out.write_all(b"]")?;
-    }
-    obj.int("message_code", i64::from(f.message.code))?;
-    obj.name("message", f.message.kind().name())?;
-    obj.float("message_value", f64::from(f.message.data))?;
-    {
-        let out = obj.key("extra")?;
-        out.write_all(b"[")?;
-        for (i, value) in f.extra_data.iter().enumerate() {
-            if i > 0 {
-                out.write_all(b",")?;
-            }
-            json::float(out, f64::from(*value))?;
-        }
-        out.write_all(b"]")?;
-    }
-    obj.end()?;
+        } => (Some(position), Some(zero_pulse_position)),
+    };
+    let json = FeedbackJson {
+        position: f.position,
+        encoder: f.status.encoder().name(),
+        incremental_position,
+        zero_pulse_position,
+        status: f.status.bits(),
+        status_flags: f.status.flag_names().collect(),
+        parameter_table: f.status.parameter_table().get(),
+        errors: f.errors.bits(),
+        faults: f
+            .errors
+            .faults()
+            .map(|fault: ServoFault| FaultJson {
+                bit: fault.bit(),
+                name: fault.name(),
+                e_code: fault.e_code().map(|code| code.to_string()),
+            })
+            .collect(),
+        message_code: f.message.code,
+        message: f.message.kind().name(),
+        message_value: f64::from(f.message.data),
+        extra: f.extra_data.map(f64::from),
+    };
+    serde_json::to_writer(&mut *out, &json)?;
     out.write_all(b"\n")
-}
-
-fn fault_json<W: Write>(out: &mut W, fault: ServoFault) -> io::Result<()> {
-    let mut obj = Object::begin(out)?;
-    obj.uint("bit", u64::from(fault.bit()))?;
-    obj.name("name", fault.name())?;
-    match fault.e_code() {
-        Some(code) => obj.str("e_code", &code.to_string())?,
-        None => obj.null("e_code")?,
-    }
-    obj.end()
 }
 
 #[cfg(test)]
