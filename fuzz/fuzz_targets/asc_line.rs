@@ -78,7 +78,10 @@ fn check_error(line: &[u8], error: &Error) {
             column,
             reason,
         } => {
-            assert!(*column >= 1 && *column <= line.len() + 1, "{column} {line:?}");
+            assert!(
+                *column >= 1 && *column <= line.len() + 1,
+                "{column} {line:?}"
+            );
             let _ = reason.to_string();
         }
         other => panic!("{other:?}"),

@@ -156,7 +156,10 @@ fn check_message(frame: &CanFrame, raw: u32) {
             );
             // TIME is refused only when TIME_OF_DAY's 6 bytes are not there.
             if kind == MessageKind::Time {
-                assert!(frame.data().len() < motionwire::canopen::TIME_OF_DAY_LEN, "{frame}");
+                assert!(
+                    frame.data().len() < motionwire::canopen::TIME_OF_DAY_LEN,
+                    "{frame}"
+                );
             }
             assert_eq!(e.partial_emcy.is_some(), kind == MessageKind::Emcy);
             let _ = e.to_string();

@@ -33,8 +33,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
-    Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, Controlword,
-    ModeOfOperation, Statusword,
+    Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, Controlword, ModeOfOperation,
+    Statusword,
 };
 use motionwire_fuzz::Reader;
 
@@ -50,11 +50,14 @@ const CODING: [(Cia402Command, &str, &[u8]); 6] = [
 ];
 
 fn matches(word: u16, pattern: &str) -> bool {
-    pattern.bytes().zip([7, 3, 2, 1, 0]).all(|(c, bit)| match c {
-        b'0' => word & (1 << bit) == 0,
-        b'1' => word & (1 << bit) != 0,
-        _ => true,
-    })
+    pattern
+        .bytes()
+        .zip([7, 3, 2, 1, 0])
+        .all(|(c, bit)| match c {
+            b'0' => word & (1 << bit) == 0,
+            b'1' => word & (1 << bit) != 0,
+            _ => true,
+        })
 }
 
 /// The transition numbers CiA 402 gives a command.
@@ -83,14 +86,20 @@ fn check_transition(
 ) -> Cia402State {
     let to = t.to();
     assert_ne!(to, from, "{t} from {from}");
-    assert!(t.numbers().iter().all(|n| allowed.contains(n)), "{t} not in {allowed:?}");
+    assert!(
+        t.numbers().iter().all(|n| allowed.contains(n)),
+        "{t} not in {allowed:?}"
+    );
     match t.numbers() {
         [n] => assert_eq!(Cia402Transition::from_number(*n), Some(t)),
         [3, 4] => assert_eq!(t, Cia402Transition::T3T4),
         other => panic!("numbers {other:?}"),
     }
     assert!(Cia402Transition::ALL.contains(&t));
-    assert_eq!(Cia402State::from_statusword(to.statusword().bits()), Some(to));
+    assert_eq!(
+        Cia402State::from_statusword(to.statusword().bits()),
+        Some(to)
+    );
     assert_eq!(statusword.with_state(to).state(), Some(to));
     to
 }
@@ -129,13 +138,22 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(found.len(), 1, "{word:#06x}: {found:?}");
                     Some(found[0])
                 };
-                assert_eq!(command, expected, "{word:#06x} after {previous:x?} in {state:?}");
+                assert_eq!(
+                    command, expected,
+                    "{word:#06x} after {previous:x?} in {state:?}"
+                );
                 let cw = Controlword::from_bits_retain(word);
-                assert_eq!(cw.command(previous.map(Controlword::from_bits_retain), state), command);
+                assert_eq!(
+                    cw.command(previous.map(Controlword::from_bits_retain), state),
+                    command
+                );
                 if let Some(command) = command {
                     let written = cw.with_command(command);
                     assert_eq!(written.bits() & !0x8F, word & !0x8F);
-                    assert_eq!(written.command(Some(Controlword::empty()), state), Some(command));
+                    assert_eq!(
+                        written.command(Some(Controlword::empty()), state),
+                        Some(command)
+                    );
                     let _ = (command.name(), command.to_string());
                     if let Some(from) = state {
                         if let Some(t) = from.next(command) {
@@ -202,7 +220,9 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(mode.is_reserved(), value == 5 || value > 10);
                 let named = (0..=10).contains(&value) && value != 5;
                 assert_eq!(
-                    ModeOfOperation::NAMED.iter().any(|&(m, n)| m == mode && n == mode.name()),
+                    ModeOfOperation::NAMED
+                        .iter()
+                        .any(|&(m, n)| m == mode && n == mode.name()),
                     named
                 );
                 let _ = mode.to_string();

@@ -55,7 +55,10 @@ fn check(eds: &Eds) {
         for entry in object.entries() {
             assert_eq!(entry.index, object.index);
             if object.object_type.is_compound() {
-                assert_eq!(entry.name, format!("{}.{}", object.name, entry.parameter_name));
+                assert_eq!(
+                    entry.name,
+                    format!("{}.{}", object.name, entry.parameter_name)
+                );
             } else {
                 assert_eq!(entry.name, entry.parameter_name);
             }
@@ -72,7 +75,12 @@ fn check(eds: &Eds) {
             for pdo in &pdos {
                 assert!(pdo.mapping.len() <= MAX_MAPPING_ENTRIES);
                 assert!(pdo.mapping.bit_len() <= MAX_PDO_BITS);
-                let real = pdo.mapping.entries().iter().filter(|e| !e.is_dummy()).count();
+                let real = pdo
+                    .mapping
+                    .entries()
+                    .iter()
+                    .filter(|e| !e.is_dummy())
+                    .count();
                 assert_eq!(pdo.signals.len(), real);
                 for payload in [&[0u8; 0][..], &[0xA5; 8], &[0xFF; 64]] {
                     let _ = pdo.unpack(payload).count();

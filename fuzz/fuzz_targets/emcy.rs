@@ -16,12 +16,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::What;
 use motionwire::canopen::{
     CobFunction, Emcy, EmcyFrame, ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister,
     KernelError, NodeId, SdoAbortCode, Specificity, EMCY_LEN,
 };
 use motionwire::Error;
+use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
     check_numbers(data);

@@ -16,13 +16,13 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::What;
 use motionwire::canopen::{Emcy, ErrorCode, EMCY_LEN};
 use motionwire::profiles::baumer::{
     is_reserved_code, matching_sources, source_by_name, source_for_injection, sources_for_code,
     BaumerEmcy, DiagnosticSource, InjectionCode, InjectionKind, DIAGNOSTIC_SOURCES,
 };
 use motionwire::Error;
+use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
     check_injection(data);

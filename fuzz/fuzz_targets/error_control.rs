@@ -51,8 +51,8 @@
 //!   disabled.
 #![no_main]
 
-use std::time::Duration;
 use motionwire::What;
+use std::time::Duration;
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{

@@ -31,7 +31,9 @@ fuzz_target!(|data: &[u8]| {
     }
     // A prefix that decides decides the same as the whole.
     for cut in [1, 4, 16, data.len() / 2] {
-        let Some(prefix) = data.get(..cut) else { continue };
+        let Some(prefix) = data.get(..cut) else {
+            continue;
+        };
         match detect(prefix, false) {
             Detected::NeedMore => {}
             early => assert_eq!(early, whole, "prefix {cut} of {data:?}"),

@@ -20,12 +20,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::What;
 use motionwire::canopen::{
     ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer, GuardAnswerFrame,
     Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
 };
 use motionwire::Error;
+use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
     check_object_values(data);

@@ -11,12 +11,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::What;
 use motionwire::servo::{
     Command, CommandFrame, ParameterTable, RegulatorMode, ServoControlWord, ServoEnable,
     COMMAND_LEN,
 };
 use motionwire::Error;
+use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
     let command = match Command::parse(data) {

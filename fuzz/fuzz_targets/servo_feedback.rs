@@ -17,12 +17,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::What;
 use motionwire::servo::{
     ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageKind, ServoErrorWord,
     ServoFault, ServoStatusWord, FEEDBACK_LEN,
 };
 use motionwire::Error;
+use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
     check_e_code_text(data);

@@ -30,7 +30,10 @@ fuzz_target!(|data: &[u8]| {
         let mut parser = TrcParser::new();
         let header = format!(";$FILEVERSION={version}");
         assert_eq!(parser.parse_line(header.as_bytes()), Ok(None));
-        assert_eq!(parser.parse_line(b";$STARTTIME=45244.925925925926"), Ok(None));
+        assert_eq!(
+            parser.parse_line(b";$STARTTIME=45244.925925925926"),
+            Ok(None)
+        );
         let result = parser.parse_line(line);
         match result {
             Ok(Some(LogEvent::Frame(frame))) => {

@@ -703,3 +703,6 @@ fn value_of(data: &[u8]) -> Option<u32> {
     bytes[..data.len()].copy_from_slice(data);
     Some(u32::from_le_bytes(bytes))
 }
+
+#[cfg(test)]
+mod tests;

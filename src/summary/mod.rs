@@ -645,3 +645,6 @@ impl Summarizer {
         summary
     }
 }
+
+#[cfg(test)]
+mod tests;

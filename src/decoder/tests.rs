@@ -1,0 +1,274 @@
+//! The decoder session: what each frame reads as in the context of the
+//! frames before it (SPEC §7.2, §7.3, §8.1–§8.3), and that no input makes
+//! it panic or lose a transfer.
+
+use proptest::prelude::*;
+
+use super::*;
+use crate::can::{CanFrame, CanId, Timestamp};
+use crate::summary::Summarizer;
+
+fn at(ms: u64, id: u32, data: &[u8]) -> LogFrame<'static> {
+    LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+        .with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(
+            ms,
+        )))
+        .with_iface(Iface::Name("can0"))
+}
+
+fn node(n: u8) -> NodeId {
+    NodeId::new(n).unwrap()
+}
+
+/// SDO writes of node 3's TPDO1 mapping: 6041h (16 bits) then 6064h (32
+/// bits), valid on the pre-defined COB-ID 0x183.
+const TPDO1_MAPPING: [[u8; 8]; 4] = [
+    [0x2F, 0x00, 0x1A, 0x00, 0x00, 0, 0, 0],
+    [0x23, 0x00, 0x1A, 0x01, 0x10, 0x00, 0x41, 0x60],
+    [0x23, 0x00, 0x1A, 0x02, 0x20, 0x00, 0x64, 0x60],
+    [0x2F, 0x00, 0x1A, 0x00, 0x02, 0, 0, 0],
+];
+
+/// Feed node 3's TPDO1 mapping, each write answered.
+fn map_tpdo1(decoder: &mut Decoder) {
+    for (i, request) in TPDO1_MAPPING.iter().enumerate() {
+        let line = 2 * i as u64 + 1;
+        decoder.decode(line, &at(line, 0x603, request));
+        let answer = [0x60, request[1], request[2], request[3], 0, 0, 0, 0];
+        let frame = at(line + 1, 0x583, &answer);
+        let decoded = decoder.decode(line + 1, &frame);
+        let ended = decoded.sdo.unwrap().ended.unwrap();
+        assert_eq!(ended.transfer.outcome, SdoOutcome::Completed);
+    }
+}
+
+#[test]
+fn a_mapping_written_by_sdo_names_the_pdo_signals() {
+    let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
+    let frame = at(20, 0x183, &[0x37, 0x02, 0xA0, 0x86, 0x01, 0x00]);
+    assert!(decoder.decode(9, &frame).pdo.is_none(), "no mapping yet");
+    map_tpdo1(&mut decoder);
+    let decoded = decoder.decode(9, &frame);
+    let pdo = decoded.pdo.unwrap();
+    assert_eq!(pdo.map.node(), node(3));
+    assert_eq!(pdo.map.number(), 1);
+    assert_eq!(
+        pdo.to_string(),
+        "TPDO1 Statusword=567 Position actual value=100000"
+    );
+    let named: Vec<_> = pdo.named().map(|(name, s)| (name, s.value)).collect();
+    assert_eq!(named.len(), 2);
+    assert_eq!(named[0].0, "Statusword");
+    assert!(pdo.error().is_none());
+    let cia402 = decoded.cia402.unwrap();
+    assert_eq!(
+        cia402.state,
+        Some(crate::canopen::Cia402State::OperationEnabled)
+    );
+    assert_eq!(cia402.to_string(), "operation_enabled");
+    let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
+    assert_eq!(
+        json["signals"],
+        serde_json::json!({"Statusword": 567, "Position actual value": 100000})
+    );
+    assert_eq!(
+        json["cia402"],
+        serde_json::json!({"state": "operation_enabled"})
+    );
+}
+
+#[test]
+fn a_short_pdo_has_the_signals_that_fit_and_an_error() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    map_tpdo1(&mut decoder);
+    let frame = at(20, 0x183, &[0x37, 0x02, 0xA0]);
+    let decoded = decoder.decode(9, &frame);
+    let pdo = decoded.pdo.unwrap();
+    assert_eq!(pdo.named().count(), 1);
+    assert_eq!(
+        pdo.error().unwrap().to_string(),
+        "PDO entry 6064sub0 (32 bits) at bit 16: expected a payload of at least 6 bytes, found 3"
+    );
+    // Not a drive: signals named by their entry, no CiA 402 reading.
+    assert_eq!(pdo.map.names()[0], "6041sub0");
+    assert!(decoded.cia402.is_none());
+}
+
+#[test]
+fn without_signals_only_a_drives_statusword_is_read() {
+    let config = DecoderConfig::new()
+        .node_profile(node(3), Profile::Akd)
+        .signals(false);
+    let mut decoder = Decoder::new(config);
+    map_tpdo1(&mut decoder);
+    let frame = at(20, 0x183, &[0x08, 0x00, 0, 0, 0, 0]);
+    let decoded = decoder.decode(9, &frame);
+    assert!(decoded.pdo.unwrap().signals.is_empty());
+    assert_eq!(
+        decoded.cia402.unwrap().state,
+        Some(crate::canopen::Cia402State::Fault)
+    );
+}
+
+#[test]
+fn sdo_steps_and_transfers_read_as_a_person_says_them() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let frame = at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]);
+    let request = decoder.decode(1, &frame);
+    let step = request.sdo.unwrap();
+    assert!(step.started);
+    assert_eq!(step.object(), Some("Manufacturer device name"));
+    assert_eq!(
+        step.to_string(),
+        "request initiate upload 1008h.00 Manufacturer device name"
+    );
+    // A segmented upload of "AKD" (3 bytes).
+    decoder.decode(2, &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]));
+    decoder.decode(3, &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]));
+    let frame = at(4, 0x585, &[0x09, b'A', b'K', b'D', 0, 0, 0, 0]);
+    let last = decoder.decode(4, &frame);
+    let ended = last.sdo.unwrap().ended.unwrap();
+    assert_eq!(ended.data, b"AKD");
+    assert!(!ended.truncated());
+    assert_eq!(ended.transfer.frames, 4);
+    assert_eq!(
+        ended.to_string(),
+        "read 1008h.00 \"AKD\" (segmented, 3 B, 4.0 ms)"
+    );
+    // An abort by the server.
+    decoder.decode(5, &at(10, 0x605, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]));
+    let frame = at(11, 0x585, &[0x80, 0x41, 0x60, 0x00, 0x00, 0x00, 0x02, 0x06]);
+    let abort = decoder.decode(6, &frame);
+    let text = abort.sdo.unwrap().to_string();
+    assert!(
+        text.starts_with("abort 6041h.00: Object does not exist"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("(read aborted by the server, 1.0 ms)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn the_sdo_data_cap_keeps_the_first_bytes() {
+    let mut decoder = Decoder::new(DecoderConfig::new().sdo_data_cap(2));
+    decoder.decode(1, &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]));
+    decoder.decode(2, &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]));
+    decoder.decode(3, &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]));
+    let frame = at(4, 0x585, &[0x09, b'A', b'K', b'D', 0, 0, 0, 0]);
+    let last = decoder.decode(4, &frame);
+    let ended = last.sdo.unwrap().ended.unwrap();
+    assert_eq!(ended.data, b"AK");
+    assert!(ended.truncated());
+}
+
+#[test]
+fn an_upload_of_the_device_type_makes_a_drive() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let bus = BusName::Name("can0".to_owned());
+    decoder.decode(1, &at(0, 0x607, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
+    assert!(!decoder.is_drive(&bus, node(7)));
+    decoder.decode(
+        2,
+        &at(1, 0x587, &[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00]),
+    );
+    assert!(decoder.is_drive(&bus, node(7)));
+    assert!(
+        !decoder.is_drive(&BusName::Channel(1), node(7)),
+        "another bus"
+    );
+    // Now an SDO read of its statusword is a CiA 402 reading.
+    decoder.decode(3, &at(2, 0x607, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]));
+    let frame = at(3, 0x587, &[0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0]);
+    let decoded = decoder.decode(4, &frame);
+    assert_eq!(decoded.cia402.unwrap().to_string(), "switch_on_disabled");
+}
+
+#[test]
+fn a_transfer_the_input_ends_in_is_handed_over_by_finish() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    decoder.decode(7, &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]));
+    let open = decoder.finish();
+    assert_eq!(open.len(), 1);
+    assert_eq!(open[0].node, node(5));
+    assert_eq!(open[0].bus, BusName::Name("can0".to_owned()));
+    assert_eq!(open[0].transfer.start_position, 7);
+    assert_eq!(open[0].transfer.outcome, SdoOutcome::TimedOut);
+    assert!(decoder.finish().is_empty(), "handed over once");
+}
+
+#[test]
+fn an_eds_names_the_pdos_it_configures_from_the_first_frame() {
+    // TPDO1 of the bit-packed EDS maps 6041h, then 2100h "Digital input 1"
+    // (1 bit, BOOLEAN), a name no profile knows.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/eds/bitfields.eds"
+    );
+    let config = DecoderConfig::new().eds_file(node(3), path).unwrap();
+    let mut decoder = Decoder::new(config);
+    // TPDO1 as the EDS maps it, before any SDO configuration in the log.
+    let frame = at(0, 0x183, &[0x37, 0x02, 0x01, 0, 0, 0, 0, 0]);
+    let decoded = decoder.decode(1, &frame);
+    let pdo = decoded.pdo.expect("the EDS's mapping");
+    assert_eq!(pdo.map.names()[..2], ["Statusword", "Digital input 1"]);
+    let (name, signal) = pdo.named().nth(1).unwrap();
+    assert_eq!((name, signal.value), ("Digital input 1", Value::Bool(true)));
+    // Its device type says CiA 402: a drive.
+    assert!(decoder.is_drive(&BusName::Name("can0".to_owned()), node(3)));
+}
+
+/// A frame on a CANopen identifier that the session does something with,
+/// or any frame at all.
+fn canopen_frame() -> impl Strategy<Value = CanFrame> {
+    let node = 1u32..=8;
+    let data = proptest::collection::vec(any::<u8>(), 0..=8);
+    prop_oneof![
+        3 => (prop_oneof![Just(0x580u32), Just(0x600)], node.clone(), data.clone())
+            .prop_map(|(base, n, d)| CanFrame::new(CanId::standard(base + n).unwrap(), &d).unwrap()),
+        2 => (prop_oneof![Just(0x180u32), Just(0x200), Just(0x280), Just(0x700), Just(0x080)], node, data)
+            .prop_map(|(base, n, d)| CanFrame::new(CanId::standard(base + n).unwrap(), &d).unwrap()),
+        1 => crate::test_gens::can::any_can_frame(),
+    ]
+}
+
+proptest! {
+    /// No stream of frames makes the session panic; every transfer that
+    /// starts ends once (at a frame or at `finish`); every record is one
+    /// JSON object; the summary counts every frame.
+    #[test]
+    fn any_stream_decodes_and_every_transfer_ends_once(
+        frames in proptest::collection::vec((canopen_frame(), any::<bool>(), 0u64..50), 0..120),
+    ) {
+        let config = DecoderConfig::new().node_profile(node(3), Profile::Akd).sdo_data_cap(16);
+        let mut decoder = Decoder::new(config.clone());
+        let mut lean = Decoder::new(config.signals(false));
+        let mut summarizer = Summarizer::new().heartbeat_timeout(core::time::Duration::from_millis(20));
+        let (mut started, mut ended, mut ms) = (0u64, 0u64, 0u64);
+        for (i, (frame, bus, step)) in frames.iter().enumerate() {
+            ms += step;
+            let line = i as u64 + 1;
+            let log = LogFrame::new(*frame)
+                .with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(ms)))
+                .with_iface(Iface::Channel(u16::from(*bus)));
+            let decoded = decoder.decode(line, &log);
+            let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
+            prop_assert_eq!(&json["line"], line);
+            if let Some(step) = &decoded.sdo {
+                started += u64::from(step.started);
+                if let Some(end) = step.ended {
+                    ended += 1;
+                    prop_assert!(end.data.len() <= 16);
+                }
+            }
+            let decoded = lean.decode(line, &log);
+            summarizer.add_frame(line, &log, &decoded);
+        }
+        prop_assert_eq!(started, ended + decoder.finish().len() as u64);
+        let summary = summarizer.finish(&mut lean);
+        prop_assert_eq!(summary.buses.iter().map(|b| b.frames).sum::<u64>(), frames.len() as u64);
+        let _ = summary.to_string();
+        serde_json::to_string(&summary).unwrap();
+    }
+}

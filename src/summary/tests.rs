@@ -1,0 +1,180 @@
+//! The post-mortem's rules (SPEC §6.3, §7.4, §8.3), each on a few frames.
+
+use core::time::Duration;
+
+use super::*;
+use crate::can::{CanFrame, CanId, Iface};
+use crate::canopen::Cia402State;
+use crate::decoder::DecoderConfig;
+use crate::profiles::Profile;
+
+/// Summarize `frames` (time in ms, identifier, data), line numbers from 1,
+/// all on `can0`; `untimed` frames have no time.
+fn summarize(frames: &[(Option<u64>, u32, &[u8])], summarizer: Summarizer) -> Summary {
+    let mut decoder = Decoder::new(
+        DecoderConfig::new()
+            .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+            .signals(false),
+    );
+    let mut summarizer = summarizer;
+    for (i, &(ms, id, data)) in frames.iter().enumerate() {
+        let mut log = LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+            .with_iface(Iface::Name("can0"));
+        if let Some(ms) = ms {
+            log = log.with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)));
+        }
+        summarizer.add(i as u64 + 1, &LogEvent::Frame(log), &mut decoder);
+    }
+    summarizer.finish(&mut decoder)
+}
+
+#[test]
+fn the_first_error_is_the_root_cause_until_a_reset() {
+    let summary = summarize(
+        &[
+            (Some(0), 0x083, &[0x10, 0x81, 0x11, 0, 0, 0, 0, 0]),
+            (Some(1), 0x083, &[0x30, 0x73, 0x05, 0, 0, 0, 0, 0]),
+            (Some(2), 0x084, &[0x00, 0x23, 0x03, 0, 0, 0, 0, 0]),
+            (Some(3), 0x084, &[0x00, 0x00, 0x01, 0, 0, 0, 0, 0]),
+        ],
+        Summarizer::new(),
+    );
+    let three = &summary.nodes[0];
+    assert_eq!((three.node.get(), three.emcy, three.resets), (3, 2, 0));
+    assert_eq!(three.first_error.unwrap().code.get(), 0x8110);
+    assert_eq!(
+        three.active_error.unwrap().line,
+        1,
+        "the follow-up is not the root cause"
+    );
+    let four = &summary.nodes[1];
+    assert_eq!((four.emcy, four.resets), (2, 1));
+    assert!(four.active_error.is_none());
+    assert_eq!(four.last_register.unwrap().bits(), 0x01);
+    let text = four.to_string();
+    assert!(
+        text.contains("error register 0x01 still set by the last EMCY"),
+        "{text}"
+    );
+}
+
+#[test]
+fn heartbeat_gaps_are_timeouts_only_when_every_frame_has_a_time() {
+    let frames: &[(Option<u64>, u32, &[u8])] = &[
+        (Some(0), 0x705, &[0x00]),
+        (Some(100), 0x705, &[0x05]),
+        (Some(400), 0x705, &[0x05]),
+        (Some(450), 0x705, &[0x05]),
+        (Some(700), 0x080, &[]),
+    ];
+    let summary = summarize(
+        frames,
+        Summarizer::new().heartbeat_timeout(Duration::from_millis(200)),
+    );
+    let hb = &summary.nodes[0].heartbeat;
+    assert_eq!(hb.boot_ups, [1]);
+    assert_eq!(
+        hb.timeouts,
+        Timeouts::Checked(vec![
+            HeartbeatGap {
+                after_line: 2,
+                gap: Duration::from_millis(300)
+            },
+            HeartbeatGap {
+                after_line: 4,
+                gap: Duration::from_millis(250)
+            },
+        ])
+    );
+    assert!(!summary.timeouts_not_checked());
+
+    let mut untimed = frames.to_vec();
+    untimed[2].0 = None;
+    let summary = summarize(
+        &untimed,
+        Summarizer::new().heartbeat_timeout(Duration::from_millis(200)),
+    );
+    assert_eq!(summary.nodes[0].heartbeat.timeouts, Timeouts::NotChecked);
+    assert!(summary.timeouts_not_checked());
+    let json = serde_json::to_value(&summary).unwrap();
+    assert_eq!(json[0]["heartbeat"]["timeouts"], serde_json::Value::Null);
+
+    let summary = summarize(frames, Summarizer::new());
+    assert_eq!(summary.nodes[0].heartbeat.timeouts, Timeouts::NotAsked);
+    let json = serde_json::to_value(&summary).unwrap();
+    assert!(json[0]["heartbeat"].get("timeouts").is_none());
+}
+
+#[test]
+fn a_drives_fault_names_the_emcy_before_it() {
+    let summary = summarize(
+        &[
+            // Node 3 (akd) reads its statusword by SDO: operation enabled.
+            (Some(0), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+            (Some(1), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+            (Some(10), 0x083, &[0x05, 0x73, 0x81, 0, 0, 0, 0, 0]),
+            (Some(20), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+            (Some(27), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0]),
+        ],
+        Summarizer::new(),
+    );
+    let drive = summary.nodes[0].cia402.as_ref().expect("an akd is a drive");
+    let states: Vec<_> = drive.transitions.iter().map(|t| (t.line, t.to)).collect();
+    assert_eq!(
+        states,
+        [(2, Cia402State::OperationEnabled), (5, Cia402State::Fault)]
+    );
+    assert_eq!(drive.faults.len(), 1);
+    assert_eq!(drive.faults[0].emcy_before.unwrap().line, 3);
+    let text = summary.nodes[0].to_string();
+    assert!(
+        text.contains("went operation_enabled → fault at line 5, 17.0 ms after EMCY 0x7305"),
+        "{text}"
+    );
+    let json = serde_json::to_value(&summary).unwrap();
+    assert_eq!(json[0]["cia402"]["faults"], serde_json::json!([5]));
+    assert_eq!(json[0]["cia402"]["last_state"], "fault");
+    assert_eq!(json[0]["sdo"]["latency_ms"]["count"], 2);
+}
+
+#[test]
+fn times_keep_their_digits_in_json() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let mut summarizer = Summarizer::new();
+    let log = LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[5]).unwrap())
+        .with_timestamp(Timestamp::new(1_700_000_000, 500).unwrap());
+    summarizer.add(1, &LogEvent::Frame(log), &mut decoder);
+    let log = log.with_timestamp(Timestamp::from_nanos(1_700_000_001, 1).unwrap());
+    summarizer.add(2, &LogEvent::Frame(log), &mut decoder);
+    let summary = summarizer.finish(&mut decoder);
+    let bus = serde_json::to_string(&SummaryRecord::Bus(&summary.buses[0])).unwrap();
+    assert_eq!(
+        bus,
+        r#"{"type":"bus","iface":null,"frames":2,"error_frames":0,"bus_off":[],"error_passive":[],"status_events":0,"first_ts":1700000000.000500,"last_ts":1700000001.000000001,"nodes":[5]}"#
+    );
+    assert_eq!(
+        summary.buses[0].to_string(),
+        "bus -  frames 2, error frames 0, from 1700000000.000500 to 1700000001.000000, nodes 5\n"
+    );
+}
+
+#[test]
+fn a_node_is_one_per_bus() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let mut summarizer = Summarizer::new();
+    for (line, iface) in [(1, "can1"), (2, "can0"), (3, "can1")] {
+        let log = LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[5]).unwrap())
+            .with_iface(Iface::Name(iface));
+        summarizer.add(line, &LogEvent::Frame(log), &mut decoder);
+    }
+    let summary = summarizer.finish(&mut decoder);
+    let buses: Vec<_> = summary
+        .nodes
+        .iter()
+        .map(|n| (n.bus.to_string(), n.heartbeat.count))
+        .collect();
+    assert_eq!(buses, [("can0".to_owned(), 1), ("can1".to_owned(), 2)]);
+    assert!(summary
+        .node(&BusName::Name("can1".to_owned()), NodeId::new(5).unwrap())
+        .is_some());
+}
