@@ -7,6 +7,8 @@
 //! its decisions; the types are re-exported here.
 
 pub mod cia402;
+#[cfg(feature = "embedded-can")]
+mod embedded;
 pub mod emcy;
 pub mod emcy_producer;
 pub mod error_code;
