@@ -17,9 +17,10 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
-    DataType, MappingEntry, PdoMapping, Value, ValueKind, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
+    DataType, MappingEntry, PdoEntryError, PdoEntryReason, PdoMapping, Value, ValueKind,
+    MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
-use motionwire::{Error, PdoEntryError};
+use motionwire::Error;
 use motionwire_fuzz::Reader;
 
 fn data_type_for(seed: u64, entry: MappingEntry) -> Option<DataType> {
@@ -65,12 +66,16 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(signal.data_type, types(signal.entry));
                 values.push(signal.value);
             }
-            Err(Error::PdoEntry { reason: PdoEntryError::Truncated { needed, found }, .. }) => {
+            Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. })) => {
                 assert!(needed > found && found == payload.len());
                 truncated = true;
                 all_read = false;
             }
-            Err(Error::PdoEntry { entry, reason: PdoEntryError::BadLength { data_type, bits }, .. }) => {
+            Err(Error::PdoEntry(PdoEntryError {
+                entry,
+                reason: PdoEntryReason::BadLength { data_type, bits },
+                ..
+            })) => {
                 assert_eq!(Some(data_type), types(entry));
                 assert_eq!(bits, entry.bits());
                 assert!(ValueKind::for_entry(Some(data_type), bits).is_err());
@@ -82,7 +87,7 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(truncated, payload.len() < mapping.byte_len());
     for item in mapping.unpack(payload) {
         if let Err(e) = item {
-            assert!(matches!(e, Error::PdoEntry { reason: PdoEntryError::Truncated { .. }, .. }));
+            assert!(matches!(e, Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. })));
             let _ = e.to_string();
         }
     }

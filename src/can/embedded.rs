@@ -13,7 +13,7 @@
 use embedded_can::{ExtendedId, Frame, Id, StandardId};
 
 use super::{CanFrame, CanId, FrameType, CLASSIC_MAX_LEN};
-use crate::error::Result;
+use crate::Result;
 
 impl From<CanId> for Id {
     fn from(id: CanId) -> Self {

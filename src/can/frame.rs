@@ -7,7 +7,7 @@ use core::fmt;
 use core::hash::{Hash, Hasher};
 
 use super::{CanId, FdFlags};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// The most data bytes of a classic CAN frame, 8 (ISO 11898-1).
 pub const CLASSIC_MAX_LEN: usize = 8;

@@ -61,9 +61,9 @@ pub use objects::{
 };
 pub use pdo::{
     ByLength, DataType, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress,
-    Octets, PdoCobId, PdoCommunication, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
-    TransmissionType, TypeLookup, Value, ValueKind, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
-    MAX_OCTETS, MAX_PDO_BITS,
+    Octets, PdoCobId, PdoCommunication, PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping,
+    Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,
+    CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

@@ -69,7 +69,99 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::CanId;
-use crate::error::{Error, PdoEntryError, Result, What};
+use crate::error::What;
+use crate::{Error, Result};
+
+/// A PDO mapping entry that cannot be read from, or written into, a payload
+/// (SPEC §8.2): the entry, its first bit and why. The crate's [`Error`]
+/// carries it as [`Error::PdoEntry`]; its message reads e.g. `PDO entry
+/// 6064sub0 (32 bits) at bit 24: expected a payload of at least 7 bytes,
+/// found 4`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[error("PDO entry {entry} at bit {offset}: {reason}")]
+pub struct PdoEntryError {
+    /// The mapping entry.
+    pub entry: MappingEntry,
+    /// Its first bit in the payload.
+    pub offset: u16,
+    /// What is wrong with it.
+    pub reason: PdoEntryReason,
+}
+
+/// Why a PDO mapping entry cannot be read or written (SPEC §8.2): the
+/// reason a [`PdoEntryError`] gives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum PdoEntryReason {
+    /// The payload ends before the entry does.
+    Truncated {
+        /// The bytes the mapping needs up to the end of the entry.
+        needed: usize,
+        /// The bytes the payload has.
+        found: usize,
+    },
+    /// The entry's length is one its data type cannot be read from
+    /// (REAL32 needs 32 bits, REAL64 64, the integers and BOOLEAN 1 to 64).
+    BadLength {
+        /// The entry's data type.
+        data_type: DataType,
+        /// The entry's length in bits.
+        bits: u8,
+    },
+    /// Packing: the value is of another kind than the entry reads as.
+    WrongKind {
+        /// The kind the entry reads as.
+        expected: ValueKind,
+        /// The kind of the value given.
+        found: ValueKind,
+    },
+    /// Packing: the number does not fit in the entry's bits.
+    ValueTooWide {
+        /// The entry's length in bits.
+        bits: u8,
+    },
+    /// Packing: the octets are not as long as the entry.
+    OctetsLength {
+        /// The entry's length in bits.
+        expected: u8,
+        /// The octets' length in bits.
+        found: u8,
+    },
+    /// Packing: the values ended before this entry.
+    MissingValue,
+}
+
+impl fmt::Display for PdoEntryReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            PdoEntryReason::Truncated { needed, found } => write!(
+                f,
+                "expected a payload of at least {needed} bytes, found {found}"
+            ),
+            PdoEntryReason::BadLength { data_type, bits } => {
+                let expected = match data_type {
+                    DataType::Real32 => "32 bits",
+                    DataType::Real64 => "64 bits",
+                    _ => "1 to 64 bits",
+                };
+                write!(f, "expected {expected} for {data_type}, found {bits}")
+            }
+            PdoEntryReason::WrongKind { expected, found } => {
+                write!(f, "expected a {expected} value, found a {found} value")
+            }
+            PdoEntryReason::ValueTooWide { bits } => {
+                write!(
+                    f,
+                    "expected a value that fits in {bits} bits, found a wider one"
+                )
+            }
+            PdoEntryReason::OctetsLength { expected, found } => {
+                write!(f, "expected {expected} bits of octets, found {found}")
+            }
+            PdoEntryReason::MissingValue => f.write_str("expected a value, found none left"),
+        }
+    }
+}
 
 /// A CiA 301 basic data type, named by its index in the object dictionary
 /// (CiA 301 Table 44, "Object dictionary data types"; SPEC §8.2).
@@ -987,14 +1079,16 @@ impl PdoMapping {
             if entry.is_dummy() {
                 continue;
             }
-            let error = |reason| Error::PdoEntry {
-                entry,
-                offset: at,
-                reason,
+            let error = |reason| {
+                Error::PdoEntry(PdoEntryError {
+                    entry,
+                    offset: at,
+                    reason,
+                })
             };
             let value = values
                 .next()
-                .ok_or_else(|| error(PdoEntryError::MissingValue))?;
+                .ok_or_else(|| error(PdoEntryReason::MissingValue))?;
             given += 1;
             let data_type = types.data_type(entry);
             let kind = ValueKind::for_entry(data_type, entry.bits).map_err(error)?;
@@ -1191,11 +1285,11 @@ impl ValueKind {
     ///
     /// **Decision:** the entry's length, not the type's width, says how many
     /// bits are read (the bits on the wire are the mapping's); a length the
-    /// type cannot be read from is a [`PdoEntryError::BadLength`].
+    /// type cannot be read from is a [`PdoEntryReason::BadLength`].
     pub const fn for_entry(
         data_type: Option<DataType>,
         bits: u8,
-    ) -> Result<ValueKind, PdoEntryError> {
+    ) -> Result<ValueKind, PdoEntryReason> {
         let Some(data_type) = data_type else {
             return Ok(match bits {
                 1 => ValueKind::Bool,
@@ -1222,7 +1316,7 @@ impl ValueKind {
         if fits {
             Ok(kind)
         } else {
-            Err(PdoEntryError::BadLength { data_type, bits })
+            Err(PdoEntryReason::BadLength { data_type, bits })
         }
     }
 
@@ -1268,7 +1362,7 @@ pub struct Signal {
 /// [`Error::PdoEntry`] when the entry's length does not suit its type (the
 /// next entries are still read). Where the payload ends before an entry
 /// (dummy or not) it yields one [`Error::PdoEntry`] with
-/// [`PdoEntryError::Truncated`] and ends. Bytes past the mapping are
+/// [`PdoEntryReason::Truncated`] and ends. Bytes past the mapping are
 /// ignored.
 #[derive(Debug, Clone)]
 pub struct Signals<'a, T> {
@@ -1299,14 +1393,16 @@ impl<T: TypeLookup> Iterator for Signals<'_, T> {
             let offset = self.offset;
             let end = usize::from(offset) + usize::from(entry.bits);
             self.offset += u16::from(entry.bits);
-            let error = |reason| Error::PdoEntry {
-                entry,
-                offset,
-                reason,
+            let error = |reason| {
+                Error::PdoEntry(PdoEntryError {
+                    entry,
+                    offset,
+                    reason,
+                })
             };
             if end > self.payload.len() * 8 {
                 self.entries = &[];
-                return Some(Err(error(PdoEntryError::Truncated {
+                return Some(Err(error(PdoEntryReason::Truncated {
                     needed: end.div_ceil(8),
                     found: self.payload.len(),
                 })));
@@ -1344,7 +1440,7 @@ struct Planned {
     data_type: Option<DataType>,
     /// The kind to read, or why the entry cannot be read (never for a
     /// dummy, which is skipped).
-    kind: core::result::Result<ValueKind, PdoEntryError>,
+    kind: core::result::Result<ValueKind, PdoEntryReason>,
 }
 
 /// A mapping with each entry's offset and value kind worked out once, for a
@@ -1460,14 +1556,16 @@ impl Iterator for LayoutSignals<'_> {
             let (p, rest) = self.planned.split_first()?;
             self.planned = rest;
             let end = usize::from(p.offset) + usize::from(p.entry.bits);
-            let error = |reason| Error::PdoEntry {
-                entry: p.entry,
-                offset: p.offset,
-                reason,
+            let error = |reason| {
+                Error::PdoEntry(PdoEntryError {
+                    entry: p.entry,
+                    offset: p.offset,
+                    reason,
+                })
             };
             if end > self.payload.len() * 8 {
                 self.planned = &[];
-                return Some(Err(error(PdoEntryError::Truncated {
+                return Some(Err(error(PdoEntryReason::Truncated {
                     needed: end.div_ceil(8),
                     found: self.payload.len(),
                 })));
@@ -1592,19 +1690,19 @@ fn encode(
     bits: u8,
     kind: ValueKind,
     value: Value,
-) -> core::result::Result<(), PdoEntryError> {
+) -> core::result::Result<(), PdoEntryReason> {
     let raw = match (kind, value) {
         (ValueKind::Bool, Value::Bool(b)) => u64::from(b),
         (ValueKind::Unsigned, Value::Unsigned(v)) => {
             if v & !mask(bits) != 0 {
-                return Err(PdoEntryError::ValueTooWide { bits });
+                return Err(PdoEntryReason::ValueTooWide { bits });
             }
             v
         }
         (ValueKind::Signed, Value::Signed(v)) => {
             let unused = 64 - u32::from(bits);
             if ((v << unused) >> unused) != v {
-                return Err(PdoEntryError::ValueTooWide { bits });
+                return Err(PdoEntryReason::ValueTooWide { bits });
             }
             v as u64 & mask(bits)
         }
@@ -1612,7 +1710,7 @@ fn encode(
         (ValueKind::Real64, Value::Real64(v)) => v.to_bits(),
         (ValueKind::Octets, Value::Octets(v)) => {
             if v.bits != bits {
-                return Err(PdoEntryError::OctetsLength {
+                return Err(PdoEntryReason::OctetsLength {
                     expected: bits,
                     found: v.bits,
                 });
@@ -1625,7 +1723,7 @@ fn encode(
             return Ok(());
         }
         (expected, value) => {
-            return Err(PdoEntryError::WrongKind {
+            return Err(PdoEntryReason::WrongKind {
                 expected,
                 found: value.kind(),
             })

@@ -32,7 +32,8 @@ use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::ServoControlWord;
-use crate::error::{check_len, Result};
+use crate::error::check_len;
+use crate::Result;
 
 mod field {
     use core::ops::Range;

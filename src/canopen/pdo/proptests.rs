@@ -53,12 +53,12 @@ proptest! {
                     prop_assert!(usize::from(signal.offset) + usize::from(signal.entry.bits()) <= payload.len() * 8);
                     prop_assert!(!signal.entry.is_dummy());
                 }
-                Err(Error::PdoEntry { reason: PdoEntryError::Truncated { needed, found }, .. }) => {
+                Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. })) => {
                     truncated += 1;
                     prop_assert!(needed > found);
                     prop_assert_eq!(found, payload.len());
                 }
-                Err(Error::PdoEntry { reason: PdoEntryError::BadLength { .. }, .. }) => {}
+                Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::BadLength { .. }, .. })) => {}
                 Err(other) => prop_assert!(false, "unexpected {:?}", other),
             }
         }
@@ -68,7 +68,7 @@ proptest! {
         // Untyped: every entry reads.
         for item in mapping.unpack(&payload) {
             if let Err(e) = item {
-                let truncated = matches!(e, Error::PdoEntry { reason: PdoEntryError::Truncated { .. }, .. });
+                let truncated = matches!(e, Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. }));
                 prop_assert!(truncated);
             }
         }

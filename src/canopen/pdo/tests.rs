@@ -259,14 +259,14 @@ fn lengths_a_type_cannot_be_read_from() {
     let items: Vec<_> = m.unpack_with(&payload, types).collect();
     assert_eq!(
         items[0],
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             entry: MappingEntry::from_u32(0x3000_0010),
             offset: 0,
-            reason: PdoEntryError::BadLength {
+            reason: PdoEntryReason::BadLength {
                 data_type: DataType::Real32,
                 bits: 16
             }
-        })
+        }))
     );
     assert_eq!(
         items[0].unwrap_err().to_string(),
@@ -274,11 +274,11 @@ fn lengths_a_type_cannot_be_read_from() {
     );
     assert!(matches!(
         items[1],
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             offset: 16,
-            reason: PdoEntryError::BadLength { bits: 72, .. },
+            reason: PdoEntryReason::BadLength { bits: 72, .. },
             ..
-        })
+        }))
     ));
     assert_eq!(items[2].map(|s| s.offset), Ok(88));
 }
@@ -300,14 +300,14 @@ fn dummy_entries_take_their_bits() {
     assert_eq!(items.len(), 2);
     assert_eq!(
         items[1],
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             entry: MappingEntry::from_u32(0x0001_0001),
             offset: 24,
-            reason: PdoEntryError::Truncated {
+            reason: PdoEntryReason::Truncated {
                 needed: 4,
                 found: 3
             }
-        })
+        }))
     );
 }
 
@@ -348,30 +348,30 @@ fn pack_errors() {
     let entry = MappingEntry::from_u32(0x2001_0008);
     assert_eq!(
         m.pack_with(types, [Value::Signed(1)], &mut buf),
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             entry,
             offset: 8,
-            reason: PdoEntryError::MissingValue
-        })
+            reason: PdoEntryReason::MissingValue
+        }))
     );
     assert_eq!(
         m.pack_with(types, [Value::Signed(1), Value::Signed(128)], &mut buf),
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             entry,
             offset: 8,
-            reason: PdoEntryError::ValueTooWide { bits: 8 }
-        })
+            reason: PdoEntryReason::ValueTooWide { bits: 8 }
+        }))
     );
     assert_eq!(
         m.pack_with(types, [Value::Signed(1), Value::Unsigned(1)], &mut buf),
-        Err(Error::PdoEntry {
+        Err(Error::PdoEntry(PdoEntryError {
             entry,
             offset: 8,
-            reason: PdoEntryError::WrongKind {
+            reason: PdoEntryReason::WrongKind {
                 expected: ValueKind::Signed,
                 found: ValueKind::Unsigned
             }
-        })
+        }))
     );
     assert_eq!(
         m.pack_with(
@@ -400,13 +400,13 @@ fn unpack_of_an_empty_mapping_or_payload() {
     let items: Vec<_> = m.unpack(&[]).collect();
     assert_eq!(
         items,
-        [Err(Error::PdoEntry {
+        [Err(Error::PdoEntry(PdoEntryError {
             entry: MappingEntry::from_u32(0x6041_0010),
             offset: 0,
-            reason: PdoEntryError::Truncated {
+            reason: PdoEntryReason::Truncated {
                 needed: 2,
                 found: 0
             }
-        })]
+        }))]
     );
 }

@@ -32,7 +32,8 @@ use byteorder::{ByteOrder, LittleEndian};
 use core::fmt;
 
 use crate::canopen::SdoAbortCode;
-use crate::error::{check_len, Error, Result, What};
+use crate::error::{check_len, What};
+use crate::{Error, Result};
 
 mod field {
     use core::ops::Range;

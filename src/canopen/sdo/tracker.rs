@@ -49,7 +49,7 @@ use super::frame::{
 };
 use crate::can::Timestamp;
 use crate::canopen::SdoAbortCode;
-use crate::error::Error;
+use crate::Error;
 
 /// Which way a transfer moves the data (CiA 301 §7.2.4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
