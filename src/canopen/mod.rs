@@ -7,6 +7,7 @@
 //! its decisions; the types are re-exported here.
 
 pub mod cia402;
+pub mod data_type;
 #[cfg(feature = "embedded-can")]
 mod embedded;
 pub mod emcy;
@@ -32,6 +33,7 @@ pub use cia402::{
     Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, Controlword, ModeOfOperation,
     Statusword,
 };
+pub use data_type::{DataType, Octets, Value, ValueKind, MAX_OCTETS};
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
 pub use emcy_producer::{
     ActiveError, EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCondition,
@@ -60,10 +62,10 @@ pub use objects::{
     OBJECT_NAMES, OBJECT_TYPES,
 };
 pub use pdo::{
-    ByLength, DataType, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress,
-    Octets, PdoCobId, PdoCommunication, PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping,
-    Signal, Signals, TransmissionKind, TransmissionType, TypeLookup, Value, ValueKind,
-    CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_OCTETS, MAX_PDO_BITS,
+    ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress, PdoCobId,
+    PdoCommunication, PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, Signal, Signals,
+    TransmissionKind, TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
+    MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,
