@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 
 use motionwire::can::{Iface, Timestamp};
-use motionwire::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
+use motionwire::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use motionwire::canopen::{
     object_data_type, object_name, Cia402Command, Cia402State, DataType, MappingEntry,
     ModeOfOperation, NodeId, PdoCobId, PdoDirection, PdoLayout, PdoMapping, Signal, TypeLookup,
@@ -250,7 +250,7 @@ impl Context {
         &mut self,
         iface: Option<Iface<'_>>,
         node: NodeId,
-        direction: SdoDirection,
+        direction: SdoParty,
         data: &[u8],
         ts: Option<Timestamp>,
         line: u64,

@@ -8,8 +8,8 @@ use std::time::Duration;
 
 use motionwire::can::Timestamp;
 use motionwire::canopen::sdo::{
-    SdoDirection, SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse,
-    SdoTracker, SdoTransfer,
+    SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTracker,
+    SdoTransfer,
 };
 use motionwire::canopen::{CanOpenMessage, NodeId, SdoAbortCode};
 
@@ -23,7 +23,7 @@ pub const DATA_MAX: usize = 4096;
 /// One SDO frame as the channel's tracker read it, for its record.
 pub struct SdoView<'c> {
     /// Which way the frame went.
-    pub direction: SdoDirection,
+    pub direction: SdoParty,
     /// The frame read in its transfer's context, or why not.
     pub message: Result<SdoMessage, motionwire::Error>,
     /// The request → response latency this frame closes.
@@ -41,7 +41,7 @@ pub struct SdoView<'c> {
 /// What the tracker said of the channel's last frame.
 #[derive(Debug)]
 struct Last {
-    direction: SdoDirection,
+    direction: SdoParty,
     message: Result<SdoMessage, motionwire::Error>,
     latency: Option<Duration>,
     started: bool,
@@ -61,7 +61,7 @@ impl Channel {
     /// Feed one frame (`line`, time) and return what it is.
     pub fn feed(
         &mut self,
-        direction: SdoDirection,
+        direction: SdoParty,
         bytes: &[u8],
         ts: Option<Timestamp>,
         line: u64,
@@ -121,22 +121,22 @@ fn push(data: &mut Vec<u8>, chunk: &[u8]) {
 
 /// The direction of an SDO frame on `id` (SPEC §6.1): 0x581–0x5FF server
 /// → client, 0x601–0x67F client → server.
-pub fn sdo_direction(id: u32) -> SdoDirection {
+pub fn sdo_direction(id: u32) -> SdoParty {
     if id < u32::from(motionwire::canopen::cob_id::SDO_RX_BASE) {
-        SdoDirection::Response
+        SdoParty::Server
     } else {
-        SdoDirection::Request
+        SdoParty::Client
     }
 }
 
 /// The direction and data of an SDO message, if it is one.
-pub fn sdo_frame(message: &CanOpenMessage) -> Option<(NodeId, SdoDirection, &[u8])> {
+pub fn sdo_frame(message: &CanOpenMessage) -> Option<(NodeId, SdoParty, &[u8])> {
     match message {
         CanOpenMessage::SdoRequest { node, data } => {
-            Some((*node, SdoDirection::Request, data.as_slice()))
+            Some((*node, SdoParty::Client, data.as_slice()))
         }
         CanOpenMessage::SdoResponse { node, data } => {
-            Some((*node, SdoDirection::Response, data.as_slice()))
+            Some((*node, SdoParty::Server, data.as_slice()))
         }
         _ => None,
     }
@@ -165,7 +165,7 @@ pub struct SdoStats {
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     pub fn add(&mut self, event: &SdoView<'_>, line: u64) {
-        if event.direction == SdoDirection::Request {
+        if event.direction == SdoParty::Client {
             self.requests += 1;
         }
         if event.started {
@@ -351,7 +351,7 @@ pub fn write_sdo_json<W: Write>(
 ) -> io::Result<()> {
     let out = obj.key("sdo")?;
     let mut o = Object::begin(out)?;
-    o.name("direction", view.direction.name())?;
+    o.name("direction", view.direction.direction_name())?;
     let message = match &view.message {
         Ok(message) => message,
         Err(_) => {
@@ -511,7 +511,7 @@ pub fn write_sdo_text<W: Write>(
     }
     let message = match &view.message {
         Ok(m) => m,
-        Err(e) => return write!(out, "{} error: {e}", view.direction.name()),
+        Err(e) => return write!(out, "{} error: {e}", view.direction.direction_name()),
     };
     let f = message.fields();
     if let Some(code) = f.abort_code {
@@ -524,7 +524,7 @@ pub fn write_sdo_text<W: Write>(
     write!(
         out,
         "{} {}",
-        view.direction.name(),
+        view.direction.direction_name(),
         message.service().name().replace('_', " ")
     )?;
     if let Some(sub) = f.subcommand {

@@ -12,7 +12,7 @@
 //! `data.rs` (what initiate and segment frames carry), `request.rs`,
 //! `response.rs`, and `block.rs` (block sub-commands, segments and the
 //! CRC); here, the byte offsets they all share (`mod field`), a frame's
-//! direction, service and multiplexer, and the command-byte helpers.
+//! sender, service and multiplexer, and the command-byte helpers.
 //!
 //! ```
 //! use motionwire::canopen::sdo::{SdoInitiateData, SdoMultiplexer, SdoRequest, SdoResponse};
@@ -90,33 +90,50 @@ pub const BLKSIZE_MAX: u8 = 127;
 
 const WHAT: What = What::SdoFrame;
 
-/// Which way an SDO frame travels (CiA 301 §7.2.4.1).
+/// The side of an SDO channel that sent a frame (CiA 301 §7.2.4.1, the
+/// SDO client/server model): the client sends requests, on COB-ID
+/// 0x600 + node; the server sends responses, on 0x580 + node. One value
+/// says both who sent a frame and which of the two it is.
+///
+/// ```
+/// use motionwire::canopen::sdo::SdoParty;
+///
+/// // SPEC §7.3's `direction` of a frame the client sends…
+/// assert_eq!(SdoParty::Client.direction_name(), "request");
+/// // …and SPEC §7.4's `by` of an abort the server sends.
+/// assert_eq!(SdoParty::Server.name(), "server");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum SdoDirection {
-    /// Client → server, on COB-ID 0x600 + node.
-    Request,
-    /// Server → client, on COB-ID 0x580 + node.
-    Response,
+pub enum SdoParty {
+    /// The client (the master, a tool): sends requests, client → server,
+    /// on COB-ID 0x600 + node.
+    Client,
+    /// The server (the device): sends responses, server → client, on
+    /// COB-ID 0x580 + node.
+    Server,
 }
 
-impl SdoDirection {
-    /// Return the name SPEC §7.3's `direction` writes: `request` or
-    /// `response`.
+impl SdoParty {
+    /// Return the name SPEC §7.4's `by` writes: `client` or `server`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
-            SdoDirection::Request => "request",
-            SdoDirection::Response => "response",
+            SdoParty::Client => "client",
+            SdoParty::Server => "server",
         }
     }
-}
 
-impl fmt::Display for SdoDirection {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+    /// Return the name SPEC §7.3's `direction` writes for a frame this
+    /// side sends: `request` (client) or `response` (server).
+    #[must_use]
+    pub const fn direction_name(self) -> &'static str {
+        match self {
+            SdoParty::Client => "request",
+            SdoParty::Server => "response",
+        }
     }
 }
 
@@ -165,20 +182,18 @@ impl SdoService {
     /// `command` (SPEC §7.1's table), without a transfer's context: a block
     /// segment is read as the request or response its bits also spell.
     #[must_use]
-    pub const fn of(direction: SdoDirection, command: u8) -> SdoService {
+    pub const fn of(sender: SdoParty, command: u8) -> SdoService {
         let specifier = command >> 5;
-        match (direction, specifier) {
+        match (sender, specifier) {
             (_, 4) => SdoService::Abort,
-            (SdoDirection::Request, 0) | (SdoDirection::Response, 1) => SdoService::DownloadSegment,
-            (SdoDirection::Request, 1) | (SdoDirection::Response, 3) => {
-                SdoService::InitiateDownload
-            }
-            (SdoDirection::Request, 2) | (SdoDirection::Response, 2) => SdoService::InitiateUpload,
-            (SdoDirection::Request, 3) | (SdoDirection::Response, 0) => SdoService::UploadSegment,
-            (SdoDirection::Request, 5) => SdoService::BlockUpload,
-            (SdoDirection::Response, 5) if command & 0b11 == 0b11 => SdoService::Unknown,
-            (SdoDirection::Response, 5) | (SdoDirection::Request, 6) => SdoService::BlockDownload,
-            (SdoDirection::Response, 6) => SdoService::BlockUpload,
+            (SdoParty::Client, 0) | (SdoParty::Server, 1) => SdoService::DownloadSegment,
+            (SdoParty::Client, 1) | (SdoParty::Server, 3) => SdoService::InitiateDownload,
+            (SdoParty::Client, 2) | (SdoParty::Server, 2) => SdoService::InitiateUpload,
+            (SdoParty::Client, 3) | (SdoParty::Server, 0) => SdoService::UploadSegment,
+            (SdoParty::Client, 5) => SdoService::BlockUpload,
+            (SdoParty::Server, 5) if command & 0b11 == 0b11 => SdoService::Unknown,
+            (SdoParty::Server, 5) | (SdoParty::Client, 6) => SdoService::BlockDownload,
+            (SdoParty::Server, 6) => SdoService::BlockUpload,
             _ => SdoService::Unknown,
         }
     }

@@ -4,7 +4,7 @@
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
-    BlockSubcommand, SdoDirection, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer,
+    BlockSubcommand, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer, SdoParty,
     SdoSegmentData, SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
 };
 use crate::canopen::SdoAbortCode;
@@ -215,7 +215,7 @@ impl SdoRequest {
     /// Return the service (SPEC §7.3).
     #[must_use]
     pub fn service(&self) -> SdoService {
-        SdoService::of(SdoDirection::Request, self.to_bytes()[0])
+        SdoService::of(SdoParty::Client, self.to_bytes()[0])
     }
 
     /// Return the fields SPEC §7.3 writes for this request.

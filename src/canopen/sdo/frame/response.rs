@@ -4,7 +4,7 @@
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
-    BlockSubcommand, SdoDirection, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer,
+    BlockSubcommand, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer, SdoParty,
     SdoSegmentData, SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
 };
 use crate::canopen::SdoAbortCode;
@@ -212,7 +212,7 @@ impl SdoResponse {
     /// Return the service (SPEC §7.3).
     #[must_use]
     pub fn service(&self) -> SdoService {
-        SdoService::of(SdoDirection::Response, self.to_bytes()[0])
+        SdoService::of(SdoParty::Server, self.to_bytes()[0])
     }
 
     /// Return the fields SPEC §7.3 writes for this response.
