@@ -22,6 +22,7 @@ pub mod message;
 pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
+pub mod object_address;
 pub mod objects;
 pub mod pdo;
 pub mod recv_emcy;
@@ -57,15 +58,15 @@ pub use nmt::{
 };
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
+pub use object_address::{ObjectAddress, SubNotation};
 pub use objects::{
     find_object, object_data_type, object_instance, object_name, ObjectName, ObjectSet, ObjectType,
     OBJECT_NAMES, OBJECT_TYPES,
 };
 pub use pdo::{
-    ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress, PdoCobId,
-    PdoCommunication, PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, Signal, Signals,
-    TransmissionKind, TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
-    MAX_PDO_BITS,
+    ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, PdoCobId, PdoCommunication,
+    PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
+    TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

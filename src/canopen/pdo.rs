@@ -88,8 +88,8 @@ pub use communication::{
 };
 pub use layout::{LayoutSignals, PdoLayout};
 pub use mapping::{
-    ByLength, MappingEntry, ObjectAddress, PdoMapping, Signal, Signals, TypeLookup,
-    CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
+    ByLength, MappingEntry, PdoMapping, Signal, Signals, TypeLookup, CLASSIC_PDO_BITS,
+    MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
 
 /// A PDO mapping entry that cannot be read from, or written into, a payload

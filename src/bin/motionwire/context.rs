@@ -296,7 +296,7 @@ impl Context {
         };
         if let Some((key, communication)) = key {
             let params = self.node(at, node).pdos.entry(key).or_default();
-            match (communication, m.subindex) {
+            match (communication, m.sub_index) {
                 (true, 1) => params.cob_id = Some(PdoCobId::from_u32(value)),
                 (true, _) => return None,
                 (false, 0) => params.count = Some(value as u8),
@@ -313,7 +313,7 @@ impl Context {
             }
             return None;
         }
-        if !state.drive || m.subindex != 0 {
+        if !state.drive || m.sub_index != 0 {
             return None;
         }
         let mut view = Cia402View::default();
@@ -382,7 +382,7 @@ impl Context {
                 match object_name(e.index(), set) {
                     Some(name) if e.sub_index() == 0 => Cow::Borrowed(name),
                     Some(name) => Cow::Owned(format!("{name}.sub{}", e.sub_index())),
-                    None => Cow::Owned(e.object().to_string()),
+                    None => Cow::Owned(e.object().sub_notation().to_string()),
                 }
             })
             .collect();

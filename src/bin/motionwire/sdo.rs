@@ -8,10 +8,9 @@ use std::time::Duration;
 
 use motionwire::can::Timestamp;
 use motionwire::canopen::sdo::{
-    SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTracker,
-    SdoTransfer,
+    SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTracker, SdoTransfer,
 };
-use motionwire::canopen::{CanOpenMessage, NodeId, SdoAbortCode};
+use motionwire::canopen::{CanOpenMessage, NodeId, ObjectAddress, SdoAbortCode};
 
 use crate::args::Profile;
 use crate::context::Cia402View;
@@ -146,7 +145,7 @@ pub fn sdo_frame(message: &CanOpenMessage) -> Option<(NodeId, SdoParty, &[u8])> 
 #[derive(Debug, Clone, Copy)]
 pub struct Abort {
     line: u64,
-    multiplexer: SdoMultiplexer,
+    multiplexer: ObjectAddress,
     code: SdoAbortCode,
     by: SdoParty,
 }
@@ -187,7 +186,7 @@ impl SdoStats {
             // The multiplexer of the transfer an abort ends, when the abort
             // carries none (python-canopen's client aborts with 0000h.00).
             let multiplexer = match event.ended {
-                Some((t, _)) if multiplexer == SdoMultiplexer::default() => t.multiplexer,
+                Some((t, _)) if multiplexer == ObjectAddress::default() => t.multiplexer,
                 _ => multiplexer,
             };
             self.aborts.push(Abort {
@@ -256,7 +255,7 @@ impl SdoStats {
             let mut a = Object::begin(out)?;
             a.uint("line", abort.line)?;
             a.uint("index", u64::from(abort.multiplexer.index))?;
-            a.uint("subindex", u64::from(abort.multiplexer.subindex))?;
+            a.uint("subindex", u64::from(abort.multiplexer.sub_index))?;
             match object_name(abort.multiplexer.index, profile) {
                 Some(name) => a.name("object", name)?,
                 None => a.null("object")?,
@@ -419,11 +418,11 @@ pub fn write_sdo_json<W: Write>(
 
 fn write_multiplexer<W: Write>(
     o: &mut Object<'_, W>,
-    m: SdoMultiplexer,
+    m: ObjectAddress,
     profile: Profile,
 ) -> io::Result<()> {
     o.uint("index", u64::from(m.index))?;
-    o.uint("subindex", u64::from(m.subindex))?;
+    o.uint("subindex", u64::from(m.sub_index))?;
     match object_name(m.index, profile) {
         Some(name) => o.name("object", name),
         None => o.null("object"),

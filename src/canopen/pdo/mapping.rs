@@ -7,6 +7,7 @@ use core::fmt;
 use super::bits::{decode, encode};
 use super::{PdoEntryError, PdoEntryReason};
 use crate::canopen::data_type::{DataType, Value, ValueKind};
+use crate::canopen::ObjectAddress;
 use crate::error::What;
 use crate::{Error, Result};
 
@@ -80,7 +81,8 @@ impl MappingEntry {
         self.bits
     }
 
-    /// Return the object the entry maps, which displays as SPEC §8.2 names
+    /// Return the object the entry maps; its
+    /// [`sub_notation`](ObjectAddress::sub_notation) is how SPEC §8.2 names
     /// an object no file or profile knows: `6041sub0`.
     #[must_use]
     pub const fn object(self) -> ObjectAddress {
@@ -114,42 +116,16 @@ impl From<MappingEntry> for u32 {
 
 impl fmt::Display for MappingEntry {
     /// Format the entry as `6041sub0 (16 bits)`: the object as SPEC §8.2
-    /// names an unknown one ([`ObjectAddress`]), and the length.
+    /// names an unknown one ([`ObjectAddress::sub_notation`]), and the
+    /// length.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
             "{} ({} bit{})",
-            self.object(),
+            self.object().sub_notation(),
             self.bits,
             if self.bits == 1 { "" } else { "s" }
         )
-    }
-}
-
-/// An object-dictionary entry: index and sub-index. Displays as SPEC §8.2
-/// names a signal that neither an EDS nor a profile names, and as CiA 306
-/// names the entry's section: the index in four hex digits, `sub`, the
-/// sub-index in hex (`6041sub0`, `1A00sub1A`).
-///
-/// ```
-/// use motionwire::canopen::{MappingEntry, ObjectAddress};
-///
-/// assert_eq!(MappingEntry::from_u32(0x6041_0010).object().to_string(), "6041sub0");
-/// assert_eq!(ObjectAddress { index: 0x1A00, sub_index: 0x1A }.to_string(), "1A00sub1A");
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct ObjectAddress {
-    /// The index.
-    pub index: u16,
-    /// The sub-index.
-    pub sub_index: u8,
-}
-
-impl fmt::Display for ObjectAddress {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:04X}sub{:X}", self.index, self.sub_index)
     }
 }
 

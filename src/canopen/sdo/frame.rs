@@ -12,20 +12,22 @@
 //! `data.rs` (what initiate and segment frames carry), `request.rs`,
 //! `response.rs`, and `block.rs` (block sub-commands, segments and the
 //! CRC); here, the byte offsets they all share (`mod field`), a frame's
-//! sender, service and multiplexer, and the command-byte helpers.
+//! sender and service, and the command-byte helpers. The multiplexer of
+//! a frame is an [`ObjectAddress`].
 //!
 //! ```
-//! use motionwire::canopen::sdo::{SdoInitiateData, SdoMultiplexer, SdoRequest, SdoResponse};
+//! use motionwire::canopen::sdo::{SdoInitiateData, SdoRequest, SdoResponse};
+//! use motionwire::canopen::ObjectAddress;
 //!
 //! // A client reads 1008h sub 0 (manufacturer device name)…
-//! let request = SdoRequest::InitiateUpload { multiplexer: SdoMultiplexer::new(0x1008, 0) };
+//! let request = SdoRequest::InitiateUpload { multiplexer: ObjectAddress::new(0x1008, 0) };
 //! assert_eq!(request.to_bytes(), [0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]);
 //! assert_eq!(SdoRequest::parse(&request.to_bytes())?, request);
 //!
 //! // …and the server answers "segmented, 10 bytes follow".
 //! let response = SdoResponse::parse(&[0x41, 0x08, 0x10, 0x00, 10, 0, 0, 0])?;
 //! assert_eq!(response, SdoResponse::InitiateUpload {
-//!     multiplexer: SdoMultiplexer::new(0x1008, 0),
+//!     multiplexer: ObjectAddress::new(0x1008, 0),
 //!     data: SdoInitiateData::Segmented { size: Some(10) },
 //! });
 //!
@@ -36,7 +38,7 @@
 
 use core::fmt;
 
-use crate::canopen::SdoAbortCode;
+use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::error::What;
 use crate::Error;
 
@@ -236,33 +238,6 @@ impl fmt::Display for SdoService {
     }
 }
 
-/// The object an SDO transfer reads or writes: index and sub-index, the
-/// "multiplexer" of CiA 301 §7.2.4.3 (bytes 1–3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct SdoMultiplexer {
-    /// The object index, e.g. `0x1003`.
-    pub index: u16,
-    /// The sub-index.
-    pub subindex: u8,
-}
-
-impl SdoMultiplexer {
-    /// Return the multiplexer of `index`, sub-index `subindex`.
-    #[must_use]
-    pub const fn new(index: u16, subindex: u8) -> Self {
-        SdoMultiplexer { index, subindex }
-    }
-}
-
-impl fmt::Display for SdoMultiplexer {
-    /// `1008h.00`: CiA's notation, index and sub-index in hex.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:04X}h.{:02X}", self.index, self.subindex)
-    }
-}
-
 fn invalid(what: What, found: u8, expected: &'static str) -> Error {
     Error::InvalidValue {
         what,
@@ -280,7 +255,7 @@ const TOGGLE: u8 = 0b1_0000;
 const LAST: u8 = 0b1;
 const CRC_SUPPORTED: u8 = 0b100;
 
-fn abort_of(frame: &SdoFrame<&[u8]>) -> (SdoMultiplexer, SdoAbortCode) {
+fn abort_of(frame: &SdoFrame<&[u8]>) -> (ObjectAddress, SdoAbortCode) {
     (
         frame.multiplexer(),
         SdoAbortCode::new(u32::from_le_bytes(frame.data_field())),

@@ -13,9 +13,8 @@ pub mod server;
 pub mod tracker;
 
 pub use frame::{
-    BlockCrc, BlockSubcommand, SdoBlockSegment, SdoFields, SdoFrame, SdoInitiateData,
-    SdoMultiplexer, SdoParty, SdoRequest, SdoResponse, SdoSegmentData, SdoService, BLKSIZE_MAX,
-    SDO_LEN, SEGMENT_MAX,
+    BlockCrc, BlockSubcommand, SdoBlockSegment, SdoFields, SdoFrame, SdoInitiateData, SdoParty,
+    SdoRequest, SdoResponse, SdoSegmentData, SdoService, BLKSIZE_MAX, SDO_LEN, SEGMENT_MAX,
 };
 pub use server::serve_error_objects;
 pub use tracker::{

@@ -4,13 +4,13 @@
 
 use super::*;
 use crate::can::Timestamp;
-use crate::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, SdoAbortCode};
+use crate::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, ObjectAddress, SdoAbortCode};
 use crate::test_gens::sdo as gens;
 use proptest::prelude::*;
 use SdoParty::{Client as Rq, Server as Rs};
 
-fn mux(index: u16, subindex: u8) -> SdoMultiplexer {
-    SdoMultiplexer::new(index, subindex)
+fn mux(index: u16, subindex: u8) -> ObjectAddress {
+    ObjectAddress::new(index, subindex)
 }
 
 // ---------------------------------------------------------------- frames

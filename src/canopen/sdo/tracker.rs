@@ -44,11 +44,11 @@ use core::fmt;
 use core::time::Duration;
 
 use super::frame::{
-    BlockCrc, SdoBlockSegment, SdoInitiateData, SdoMultiplexer, SdoParty, SdoRequest, SdoResponse,
-    SdoService, BLKSIZE_MAX, SEGMENT_MAX,
+    BlockCrc, SdoBlockSegment, SdoInitiateData, SdoParty, SdoRequest, SdoResponse, SdoService,
+    BLKSIZE_MAX, SEGMENT_MAX,
 };
 use crate::can::Timestamp;
-use crate::canopen::SdoAbortCode;
+use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::Error;
 
 /// Which way a transfer moves the data (CiA 301 §7.2.4.2).
@@ -224,7 +224,7 @@ pub struct SdoTransfer {
     /// Upload or download.
     pub direction: TransferDirection,
     /// The object, from the initiate frame.
-    pub multiplexer: SdoMultiplexer,
+    pub multiplexer: ObjectAddress,
     /// Expedited, segmented or block, as far as the transfer got (a block
     /// upload that the server answers with a normal upload is expedited or
     /// segmented).
@@ -390,7 +390,7 @@ impl Phase {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Open {
     direction: TransferDirection,
-    multiplexer: SdoMultiplexer,
+    multiplexer: ObjectAddress,
     mode: TransferMode,
     size: Option<u32>,
     bytes: u32,
@@ -1078,7 +1078,7 @@ const ABORT_BYTE: u8 = 4 << 5;
 
 /// The direction and multiplexer a response that answers no request
 /// implies.
-fn stray(response: &SdoResponse) -> (TransferDirection, SdoMultiplexer) {
+fn stray(response: &SdoResponse) -> (TransferDirection, ObjectAddress) {
     match *response {
         SdoResponse::InitiateUpload { multiplexer, .. }
         | SdoResponse::BlockUploadInitiate { multiplexer, .. } => {
@@ -1088,11 +1088,11 @@ fn stray(response: &SdoResponse) -> (TransferDirection, SdoMultiplexer) {
         | SdoResponse::BlockDownloadInitiate { multiplexer, .. }
         | SdoResponse::Abort { multiplexer, .. } => (TransferDirection::Download, multiplexer),
         SdoResponse::UploadSegment { .. } | SdoResponse::BlockUploadEnd { .. } => {
-            (TransferDirection::Upload, SdoMultiplexer::default())
+            (TransferDirection::Upload, ObjectAddress::default())
         }
         SdoResponse::DownloadSegment { .. }
         | SdoResponse::BlockDownloadAck { .. }
-        | SdoResponse::BlockDownloadEnd => (TransferDirection::Download, SdoMultiplexer::default()),
+        | SdoResponse::BlockDownloadEnd => (TransferDirection::Download, ObjectAddress::default()),
     }
 }
 

@@ -4,8 +4,8 @@
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
-    BlockSubcommand, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer, SdoParty,
-    SdoSegmentData, SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
+    BlockSubcommand, ObjectAddress, SdoFields, SdoFrame, SdoInitiateData, SdoParty, SdoSegmentData,
+    SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
 };
 use crate::canopen::SdoAbortCode;
 use crate::error::What;
@@ -19,7 +19,7 @@ pub enum SdoRequest {
     /// ccs 1: initiate a download (write) of an object.
     InitiateDownload {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// Expedited data or the segmented size.
         data: SdoInitiateData,
     },
@@ -35,7 +35,7 @@ pub enum SdoRequest {
     /// ccs 2: initiate an upload (read) of an object.
     InitiateUpload {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
     },
     /// ccs 3: ask for the next upload segment.
     UploadSegment {
@@ -45,14 +45,14 @@ pub enum SdoRequest {
     /// ccs 4: abort the transfer.
     Abort {
         /// The multiplexer the abort carries.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// Why.
         code: SdoAbortCode,
     },
     /// ccs 5, cs 0: initiate a block upload.
     BlockUploadInitiate {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// `cc`: the client can check a CRC.
         crc_supported: bool,
         /// The segments per block the client accepts.
@@ -75,7 +75,7 @@ pub enum SdoRequest {
     /// ccs 6, cs 0: initiate a block download.
     BlockDownloadInitiate {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// `cc`: the client can send a CRC.
         crc_supported: bool,
         /// The data size, when `s` = 1.

@@ -4,8 +4,8 @@
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
-    BlockSubcommand, SdoFields, SdoFrame, SdoInitiateData, SdoMultiplexer, SdoParty,
-    SdoSegmentData, SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
+    BlockSubcommand, ObjectAddress, SdoFields, SdoFrame, SdoInitiateData, SdoParty, SdoSegmentData,
+    SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
 };
 use crate::canopen::SdoAbortCode;
 use crate::error::What;
@@ -33,26 +33,26 @@ pub enum SdoResponse {
     /// scs 2: the answer to an initiate upload.
     InitiateUpload {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// Expedited data or the segmented size.
         data: SdoInitiateData,
     },
     /// scs 3: the answer to an initiate download.
     InitiateDownload {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
     },
     /// scs 4: abort the transfer.
     Abort {
         /// The multiplexer the abort carries.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// Why.
         code: SdoAbortCode,
     },
     /// scs 5, ss 0: the answer to a block download initiate.
     BlockDownloadInitiate {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// `sc`: the server can check a CRC.
         crc_supported: bool,
         /// The segments per block the server accepts.
@@ -70,7 +70,7 @@ pub enum SdoResponse {
     /// scs 6, ss 0: the answer to a block upload initiate.
     BlockUploadInitiate {
         /// The object.
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         /// `sc`: the server sends a CRC.
         crc_supported: bool,
         /// The data size, when `s` = 1.

@@ -4,7 +4,7 @@
 
 use byteorder::{ByteOrder, LittleEndian};
 
-use super::{crc_bit, field, BlockSubcommand, SdoMultiplexer, CRC_SUPPORTED, SDO_LEN, WHAT};
+use super::{crc_bit, field, BlockSubcommand, ObjectAddress, CRC_SUPPORTED, SDO_LEN, WHAT};
 use crate::canopen::SdoAbortCode;
 use crate::error::check_len;
 use crate::Result;
@@ -73,8 +73,8 @@ impl<T: AsRef<[u8]>> SdoFrame<T> {
 
     /// Return the multiplexer (bytes 1–3).
     #[inline]
-    pub fn multiplexer(&self) -> SdoMultiplexer {
-        SdoMultiplexer::new(self.index(), self.subindex())
+    pub fn multiplexer(&self) -> ObjectAddress {
+        ObjectAddress::new(self.index(), self.subindex())
     }
 
     /// Return bytes 4–7: expedited data, a size or an abort code.
@@ -144,7 +144,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
     #[inline]
     pub fn set_sized_block_initiate(
         &mut self,
-        multiplexer: SdoMultiplexer,
+        multiplexer: ObjectAddress,
         crc_supported: bool,
         size: Option<u32>,
     ) {
@@ -172,10 +172,10 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
 
     /// Set the multiplexer (bytes 1–3).
     #[inline]
-    pub fn set_multiplexer(&mut self, multiplexer: SdoMultiplexer) {
+    pub fn set_multiplexer(&mut self, multiplexer: ObjectAddress) {
         let buf = self.buffer.as_mut();
         LittleEndian::write_u16(&mut buf[field::INDEX], multiplexer.index);
-        buf[field::SUBINDEX] = multiplexer.subindex;
+        buf[field::SUBINDEX] = multiplexer.sub_index;
     }
 
     /// Set bytes 4–7.
@@ -192,7 +192,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SdoFields<'a> {
     /// Index and sub-index: initiates and aborts.
-    pub multiplexer: Option<SdoMultiplexer>,
+    pub multiplexer: Option<ObjectAddress>,
     /// `e`: initiate download requests and initiate upload responses.
     pub expedited: Option<bool>,
     /// The indicated size (`null` in the JSON when the frame could carry
