@@ -60,8 +60,8 @@ pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
 pub use object_address::{ObjectAddress, SubNotation};
 pub use objects::{
-    find_object, object_data_type, object_instance, object_name, ObjectName, ObjectSet, ObjectType,
-    OBJECT_NAMES, OBJECT_TYPES,
+    find_object, object_data_type, object_instance, object_name, ObjectDataType, ObjectName,
+    ObjectSet, OBJECT_DATA_TYPES, OBJECT_NAMES,
 };
 pub use pdo::{
     ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, PdoCobId, PdoCommunication,
