@@ -82,7 +82,7 @@
 //!
 //! ```
 //! use motionwire::servo::{
-//!     ActualPosition, ECode, Feedback, Message, MessageKind, ServoErrorWord, ServoFault,
+//!     ActualPosition, ECode, Feedback, Message, MessageCode, ServoErrorWord, ServoFault,
 //!     ServoStatusWord, FEEDBACK_LEN,
 //! };
 //!
@@ -90,7 +90,7 @@
 //!     position: 0,
 //!     status: ServoStatusWord::SERVO_EN | ServoStatusWord::PULSE_ENABLED,
 //!     errors: ServoErrorWord::from_e_code(ECode::E09).summarized(),
-//!     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+//!     message: Message::new(MessageCode::MotorSpeed, 1500.0),
 //!     extra_data: [0.0; 4],
 //! };
 //! feedback.set_actual_position(ActualPosition::Incremental {

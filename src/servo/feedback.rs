@@ -8,7 +8,7 @@
 //!
 //! ```
 //! use motionwire::servo::{
-//!     ActualPosition, Feedback, FeedbackFrame, Message, MessageKind, ServoErrorWord,
+//!     ActualPosition, Feedback, FeedbackFrame, Message, MessageCode, ServoErrorWord,
 //!     ServoStatusWord,
 //! };
 //!
@@ -16,7 +16,7 @@
 //!     position: 0,
 //!     status: ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY,
 //!     errors: ServoErrorWord::empty(),
-//!     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+//!     message: Message::new(MessageCode::MotorSpeed, 1500.0),
 //!     extra_data: [0.0; 4],
 //! };
 //! feedback.set_actual_position(ActualPosition::Incremental {
@@ -383,7 +383,7 @@ impl Feedback {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::servo::{ECode, MessageKind, ServoFault};
+    use crate::servo::{ECode, MessageCode, ServoFault};
     use crate::Error;
 
     /// An incremental axis, enabled and ready, table 3, that found its zero
@@ -437,7 +437,7 @@ mod tests {
         assert_eq!(ServoFault::BvErr.e_code(), Some(ECode::E05));
         assert_eq!(frame.message_code(), 3);
         assert_eq!(frame.message_data(), 560.0);
-        assert_eq!(frame.message().kind(), MessageKind::BusVoltage);
+        assert_eq!(frame.message().kind(), MessageCode::BusVoltage);
         let extra = frame.extra_data();
         assert_eq!(extra[0], 1.0);
         assert_eq!(extra[1], -2.5);
@@ -452,7 +452,7 @@ mod tests {
             errors: ServoErrorWord::SERVO_ERRORS
                 | ServoErrorWord::BV_ERR
                 | ServoErrorWord::from_bits_retain(1 << 30),
-            message: Message::new(MessageKind::BusVoltage, 560.0),
+            message: Message::new(MessageCode::BusVoltage, 560.0),
             extra_data: [1.0, -2.5, f32::from_bits(0x7FC0_0ABC), 0.0],
         }
     }
