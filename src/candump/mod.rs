@@ -122,7 +122,7 @@
 use core::fmt;
 use core::iter::FusedIterator;
 
-pub use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use crate::can::{FrameType, LogFrame};
 use crate::error::{Found, LogFormat, SyntaxError};
 use crate::{Error, Result};
