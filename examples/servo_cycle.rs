@@ -12,7 +12,7 @@
 
 use motionwire::servo::{
     enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, EnableHandshake,
-    EnablePhase, ErrorClearHandshake, Feedback, HandshakePhase, Message, MessageKind,
+    EnablePhase, ErrorClearHandshake, Feedback, HandshakePhase, Message, MessageCode,
     ParameterTable, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
     ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
@@ -162,11 +162,11 @@ impl SimulatedDrive {
         // One measurement per cycle, codes 0..=4 in turn (5, motor power,
         // is not available on this firmware).
         let message = match self.cycle % 5 {
-            0 => Message::new(MessageKind::MotorSpeed, self.speed_rpm),
-            1 => Message::new(MessageKind::MotorCurrent, self.speed_rpm.abs() / 200.0),
-            2 => Message::new(MessageKind::RelativeCurrent, self.speed_rpm.abs() / 30.0),
-            3 => Message::new(MessageKind::BusVoltage, 560.0),
-            _ => Message::new(MessageKind::MotorTemperature, 41.5),
+            0 => Message::new(MessageCode::MotorSpeed, self.speed_rpm),
+            1 => Message::new(MessageCode::MotorCurrent, self.speed_rpm.abs() / 200.0),
+            2 => Message::new(MessageCode::RelativeCurrent, self.speed_rpm.abs() / 30.0),
+            3 => Message::new(MessageCode::BusVoltage, 560.0),
+            _ => Message::new(MessageCode::MotorTemperature, 41.5),
         };
 
         let mut feedback = Feedback {

@@ -6,9 +6,9 @@ use defmt::{write, Format, Formatter};
 
 use crate::can::{CanFrame, ControllerStatus, ErrorClasses, ErrorFrame, FrameData};
 use crate::canopen::{Controlword, ErrorRegister, PdoMapping, Statusword};
-use crate::error::Error;
 use crate::profiles::baumer::{Alarms, Warnings};
 use crate::servo::{ServoControlWord, ServoErrorWord, ServoStatusWord};
+use crate::Error;
 
 macro_rules! flag_word {
     ($($ty:ty => $fmt:literal),* $(,)?) => {

@@ -82,7 +82,7 @@
 //!
 //! ```
 //! use motionwire::servo::{
-//!     ActualPosition, ECode, Feedback, Message, MessageKind, ServoErrorWord, ServoFault,
+//!     ActualPosition, ECode, Feedback, Message, MessageCode, ServoErrorWord, ServoFault,
 //!     ServoStatusWord, FEEDBACK_LEN,
 //! };
 //!
@@ -90,7 +90,7 @@
 //!     position: 0,
 //!     status: ServoStatusWord::SERVO_EN | ServoStatusWord::PULSE_ENABLED,
 //!     errors: ServoErrorWord::from_e_code(ECode::E09).summarized(),
-//!     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+//!     message: Message::new(MessageCode::MotorSpeed, 1500.0),
 //!     extra_data: [0.0; 4],
 //! };
 //! feedback.set_actual_position(ActualPosition::Incremental {
@@ -156,7 +156,108 @@ pub mod servo;
 pub mod summary;
 pub mod trc;
 
-pub use error::{BinaryError, Error, Found, LogFormat, PdoEntryError, Result, SyntaxError, What};
+pub use error::{BinaryError, Found, LogFormat, SyntaxError, What};
+
+/// What went wrong while decoding or constructing a value: the crate's one
+/// error type, which every fallible decoder and checked constructor
+/// returns.
+///
+/// Each variant says *what* was being decoded (a typed [`What`], so that a
+/// program can match on it), what was *expected* and what was *found*, so
+/// that a message such as
+/// `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
+/// to a person without further context (STYLE.md, "errors carry context").
+///
+/// It is the umbrella users match on. An error that belongs to one layer is
+/// that layer's own type, declared in the layer and carried by a variant
+/// here ([`Error::PdoEntry`] carries a [`canopen::PdoEntryError`]). The enum
+/// is declared at the crate root, above every layer, so that the layers
+/// point one way: no layer, and not the base module of what errors name,
+/// imports a protocol it does not build on (STYLE.md rule 15).
+///
+/// The enum is `#[non_exhaustive]`: later protocol layers add variants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A buffer is shorter than the frame or field that must be read from it.
+    #[error("{what}: buffer of {found} bytes where {expected} are needed")]
+    Length {
+        /// The frame or field that was being read, e.g. [`What::EmcyFrame`].
+        what: What,
+        /// The number of bytes the frame needs.
+        expected: usize,
+        /// The number of bytes that were given.
+        found: usize,
+    },
+    /// A number lies outside the range its field allows.
+    #[error("{what}: {found} is outside {min}..={max}")]
+    OutOfRange {
+        /// The field, e.g. [`What::NodeId`].
+        what: What,
+        /// The value that was given.
+        found: u32,
+        /// The smallest valid value.
+        min: u32,
+        /// The largest valid value.
+        max: u32,
+    },
+    /// A value is in range for its type but is not one of the values the
+    /// protocol defines (e.g. an NMT state byte of `0x12`).
+    #[error("{what}: {found:#x} is not one of {expected}")]
+    InvalidValue {
+        /// The field, e.g. [`What::NmtState`].
+        what: What,
+        /// The value that was given.
+        found: u32,
+        /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
+        expected: &'static str,
+    },
+    /// A text is not written in the form its value needs (e.g. `"E5x"` for a
+    /// servo E-code, which is `E` followed by decimal digits). Text cannot be
+    /// kept without a heap, so the message says what form was expected.
+    #[error("{what}: text is not of the form {expected}")]
+    Malformed {
+        /// The value that was being read from text, e.g. [`What::ServoECode`].
+        what: What,
+        /// The form the text must have, in words.
+        expected: &'static str,
+    },
+    /// A line of a text log does not follow its format (SPEC §5); the
+    /// reason says what was expected at `column` and what was found there,
+    /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
+    /// found 0x800`.
+    #[error("{format} line, column {column}: {reason}")]
+    Syntax {
+        /// The log format the line was read as.
+        format: LogFormat,
+        /// The 1-based byte column in the line where the problem starts.
+        column: usize,
+        /// What was expected there and what was found.
+        reason: SyntaxError,
+    },
+    /// A binary log (pcap, pcapng, BLF; SPEC §5.5, §5.6) is damaged at
+    /// `offset` (bytes from the start of the file, or of the decompressed
+    /// container for BLF objects): the records before it were read, the rest
+    /// of the file cannot be, e.g. `pcap file, byte 4120: record of 16 bytes
+    /// cut off after 9`.
+    #[error("{format} file, byte {offset}: {reason}")]
+    Binary {
+        /// The log format the file was read as.
+        format: LogFormat,
+        /// Where the damaged structure starts, in bytes.
+        offset: u64,
+        /// What is wrong there.
+        reason: BinaryError,
+    },
+    /// A PDO mapping entry cannot be read from, or written into, a payload
+    /// (SPEC §8.2), e.g. `PDO entry 6064sub0 (32 bits) at bit 24: expected
+    /// a payload of at least 7 bytes, found 4`.
+    #[error(transparent)]
+    PdoEntry(#[from] canopen::PdoEntryError),
+}
+
+/// The crate's result type.
+pub type Result<T, E = Error> = core::result::Result<T, E>;
 
 #[cfg(test)]
 mod display_tests;

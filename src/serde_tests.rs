@@ -23,7 +23,7 @@ use crate::profiles::baumer::{
     ResetBehaviour, Variant, Warnings,
 };
 use crate::servo::{
-    ActualPosition, Command, ECode, EncoderKind, Feedback, Message, MessageKind, ParameterTable,
+    ActualPosition, Command, ECode, EncoderKind, Feedback, Message, MessageCode, ParameterTable,
     RegulatorMode, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoStatusWord,
 };
 use crate::test_gens::{akd, baumer, can, canopen, error_control, owned, recv_emcy, servo};
@@ -276,8 +276,8 @@ fn enums_are_their_variant_names() {
     check_json(InjectionKind::Runtime, r#""Runtime""#);
     check_json(KernelError::NodeIdUnknown, r#""NodeIdUnknown""#);
     check_json(KernelError::Unlisted(0x0042), r#"{"Unlisted":66}"#);
-    check_json(MessageKind::Reserved(7), r#"{"Reserved":7}"#);
-    check_json(MessageKind::Unknown(-1), r#"{"Unknown":-1}"#);
+    check_json(MessageCode::Reserved(7), r#"{"Reserved":7}"#);
+    check_json(MessageCode::Unknown(-1), r#"{"Unknown":-1}"#);
     check_json(
         ActualPosition::Incremental {
             position: -5,
@@ -350,7 +350,7 @@ fn structs_are_their_fields() {
 
 #[test]
 fn floats_are_numbers_and_json_cannot_carry_nan() {
-    let message = Message::new(MessageKind::BusVoltage, 560.5);
+    let message = Message::new(MessageCode::BusVoltage, 560.5);
     assert_eq!(to_json(&message), r#"{"code":3,"data":560.5}"#);
     assert_eq!(round_trip(&message), message);
     // -0.0 keeps its sign.
@@ -436,7 +436,7 @@ proptest! {
         encoder in owned::encoder_kind(),
         fault in owned::servo_fault(),
         e_code in owned::e_code(),
-        kind in owned::message_kind(),
+        kind in owned::message_code(),
         position in servo::actual_position(),
         command in servo::command(),
     ) {
@@ -527,7 +527,7 @@ fn akd_manufacturer_refuses_an_undefined_feedback() {
         position: 1,
         status: ServoStatusWord::SERVO_EN,
         errors: ServoErrorWord::empty(),
-        message: Message::new(MessageKind::MotorSpeed, 1500.0),
+        message: Message::new(MessageCode::MotorSpeed, 1500.0),
         extra_data: [0.5, -0.0, 1e-40, f32::MAX],
     };
     assert_eq!(round_trip(&feedback).to_bytes(), feedback.to_bytes());

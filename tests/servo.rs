@@ -4,7 +4,7 @@
 
 use motionwire::servo::{
     enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, ECode,
-    ErrorClearHandshake, Feedback, FeedbackFrame, HandshakePhase, Message, MessageKind,
+    ErrorClearHandshake, Feedback, FeedbackFrame, HandshakePhase, Message, MessageCode,
     ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord,
     ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
@@ -157,7 +157,7 @@ fn enable_through_frames() {
                 position: 0,
                 status,
                 errors: ServoErrorWord::empty(),
-                message: Message::new(MessageKind::MotorSpeed, 0.0),
+                message: Message::new(MessageCode::MotorSpeed, 0.0),
                 extra_data: [0.0; 4],
             };
             let expected = if column == 1 { mode0 } else { mode1 };

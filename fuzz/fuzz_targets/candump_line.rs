@@ -26,8 +26,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use motionwire::candump::{self, FdFlags};
+use motionwire::can::{CanFrame, FdFlags, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use motionwire::candump;
 use motionwire::{Error, LogFormat};
 
 fuzz_target!(|data: &[u8]| {

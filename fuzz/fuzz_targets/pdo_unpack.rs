@@ -17,16 +17,15 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::canopen::{
-    DataType, MappingEntry, PdoMapping, Value, ValueKind, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
+    DataType, MappingEntry, PdoEntryError, PdoEntryReason, PdoMapping, Value, ValueKind,
+    MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
-use motionwire::{Error, PdoEntryError};
+use motionwire::Error;
 use motionwire_fuzz::Reader;
 
 fn data_type_for(seed: u64, entry: MappingEntry) -> Option<DataType> {
     let h = (seed ^ u64::from(entry.to_u32())).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40;
-    DataType::ALL
-        .get((h % (DataType::ALL.len() as u64 + 1)) as usize)
-        .copied()
+    DataType::ALL.get((h % (DataType::ALL.len() as u64 + 1)) as usize).copied()
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -67,19 +66,16 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(signal.data_type, types(signal.entry));
                 values.push(signal.value);
             }
-            Err(Error::PdoEntry {
-                reason: PdoEntryError::Truncated { needed, found },
-                ..
-            }) => {
+            Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. })) => {
                 assert!(needed > found && found == payload.len());
                 truncated = true;
                 all_read = false;
             }
-            Err(Error::PdoEntry {
+            Err(Error::PdoEntry(PdoEntryError {
                 entry,
-                reason: PdoEntryError::BadLength { data_type, bits },
+                reason: PdoEntryReason::BadLength { data_type, bits },
                 ..
-            }) => {
+            })) => {
                 assert_eq!(Some(data_type), types(entry));
                 assert_eq!(bits, entry.bits());
                 assert!(ValueKind::for_entry(Some(data_type), bits).is_err());
@@ -91,13 +87,7 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(truncated, payload.len() < mapping.byte_len());
     for item in mapping.unpack(payload) {
         if let Err(e) = item {
-            assert!(matches!(
-                e,
-                Error::PdoEntry {
-                    reason: PdoEntryError::Truncated { .. },
-                    ..
-                }
-            ));
+            assert!(matches!(e, Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. })));
             let _ = e.to_string();
         }
     }
@@ -114,15 +104,11 @@ fuzz_target!(|data: &[u8]| {
     let mut offset = 0usize;
     for &entry in mapping.entries() {
         let bits = usize::from(entry.bits());
-        let multi_bit_bool =
-            bits > 1 && ValueKind::for_entry(types(entry), entry.bits()) == Ok(ValueKind::Bool);
+        let multi_bit_bool = bits > 1
+            && ValueKind::for_entry(types(entry), entry.bits()) == Ok(ValueKind::Bool);
         for bit in offset..offset + bits {
             let got = buf[bit / 8] >> (bit % 8) & 1;
-            let want = if entry.is_dummy() {
-                0
-            } else {
-                payload[bit / 8] >> (bit % 8) & 1
-            };
+            let want = if entry.is_dummy() { 0 } else { payload[bit / 8] >> (bit % 8) & 1 };
             if !multi_bit_bool {
                 assert_eq!(got, want, "bit {bit} of {entry}");
             }

@@ -19,7 +19,7 @@
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::Timestamp;
 use motionwire::canopen::sdo::{
-    SdoBlockSegment, SdoDirection, SdoRequest, SdoResponse, SdoTracker,
+    SdoBlockSegment, SdoParty, SdoRequest, SdoResponse, SdoTracker,
 };
 
 fuzz_target!(|input: &[u8]| {
@@ -38,9 +38,9 @@ fuzz_target!(|input: &[u8]| {
         line += 1;
         ms += u32::from(header >> 5);
         let direction = if header & 1 == 1 {
-            SdoDirection::Request
+            SdoParty::Client
         } else {
-            SdoDirection::Response
+            SdoParty::Server
         };
 
         if let Ok(r) = SdoRequest::parse(data) {

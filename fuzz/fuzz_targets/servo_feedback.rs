@@ -18,7 +18,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::servo::{
-    ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageKind, ServoErrorWord,
+    ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageCode, ServoErrorWord,
     ServoFault, ServoStatusWord, FEEDBACK_LEN,
 };
 use motionwire::Error;
@@ -120,11 +120,11 @@ fn check_message(feedback: &Feedback) {
     let message = feedback.message;
     let kind = message.kind();
     assert_eq!(kind.code(), message.code);
-    assert_eq!(MessageKind::from_code(kind.code()), kind);
+    assert_eq!(MessageCode::from_code(kind.code()), kind);
     match message.code {
         0..=5 => assert!(kind.unit().is_some()),
-        6..=9 => assert_eq!(kind, MessageKind::Reserved(message.code as u8)),
-        _ => assert_eq!(kind, MessageKind::Unknown(message.code)),
+        6..=9 => assert_eq!(kind, MessageCode::Reserved(message.code as u8)),
+        _ => assert_eq!(kind, MessageCode::Unknown(message.code)),
     }
     assert!(!kind.name().is_empty());
     let _ = (message.to_string(), kind.to_string());

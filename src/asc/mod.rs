@@ -76,7 +76,8 @@ use crate::can::{
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
 use crate::candump::hex_value;
-use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
+use crate::error::{Found, LogFormat, SyntaxError};
+use crate::{Error, Result};
 
 #[cfg(test)]
 mod proptests;

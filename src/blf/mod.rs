@@ -70,8 +70,9 @@ use crate::can::{
     CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
 use crate::candump::{days_in_month, days_since_epoch};
-use crate::error::{BinaryError, Error, LogFormat};
+use crate::error::{BinaryError, LogFormat};
 use crate::logs::{ReadError, ReadLog, Record, MAX_RECORD_LEN};
+use crate::Error;
 
 #[cfg(test)]
 mod tests;

@@ -24,7 +24,7 @@ use crate::error::What;
 use core::fmt;
 
 use super::{CanFrame, FrameType};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 bitflags::bitflags! {
     /// The error classes of an error frame: bits 0–9 of its identifier

@@ -7,7 +7,7 @@ use core::fmt;
 use core::hash::{Hash, Hasher};
 
 use super::{CanId, FdFlags};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// The most data bytes of a classic CAN frame, 8 (ISO 11898-1).
 pub const CLASSIC_MAX_LEN: usize = 8;
@@ -156,8 +156,8 @@ fn too_long(what: What, len: usize, max: usize) -> Error {
 ///
 /// This is the crate's one frame type. Every log reader yields it (inside a
 /// [`LogFrame`](super::LogFrame) with the time and interface), the CANopen
-/// decoders take it ([`CanOpenMessage::decode`](crate::canopen::CanOpenMessage::decode)),
-/// and with the `embedded-can` feature it is an `embedded_can::Frame`.
+/// decoders take it (`canopen::CanOpenMessage::decode`), and with the
+/// `embedded-can` feature it is an `embedded_can::Frame`.
 ///
 /// It comes in two forms, as smoltcp's and etherparse's headers do: the
 /// owned `CanFrame` (the default, `CanFrame<FrameData>`: `Copy`, the data

@@ -9,19 +9,22 @@
 //! - [`LogFrame`]: a frame as a log records it, with its [`Timestamp`],
 //!   [`Iface`] and [`Direction`]: what every log reader yields.
 //!
-//! Every reader yields these types; [`crate::canopen`] decodes a
-//! [`CanFrame`] into its messages; with the `embedded-can` feature a
-//! [`CanFrame`] is an `embedded_can::Frame`. A new log source plugs in
-//! without touching the protocols above it (STYLE.md, "one link-layer
-//! vocabulary").
+//! Every reader yields these types and the protocol layers above (CANopen)
+//! decode them; this layer knows nothing of those protocols (STYLE.md
+//! rule 15). With the `embedded-can` feature a [`CanFrame`] is an
+//! `embedded_can::Frame`. A new log source plugs in without touching the
+//! protocols above it (STYLE.md, "one link-layer vocabulary").
 //!
 //! ```
 //! use motionwire::can::{CanFrame, CanId};
-//! use motionwire::canopen::CanOpenMessage;
 //!
+//! // 705#05: one data byte on a standard identifier.
 //! let frame = CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05])?;
-//! let message = CanOpenMessage::decode(&frame)?;
-//! assert_eq!(message.kind().name(), "heartbeat");
+//! assert_eq!((frame.id().raw(), frame.data(), frame.dlc()), (0x705, &[0x05][..], 1));
+//! assert!(!frame.is_extended() && !frame.is_rtr());
+//!
+//! // Nine bytes do not fit a classic frame: an error, not a panic.
+//! assert!(CanFrame::new(CanId::standard(0x705).unwrap(), &[0; 9]).is_err());
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 

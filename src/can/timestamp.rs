@@ -4,7 +4,7 @@ use crate::error::What;
 use core::fmt;
 use core::time::Duration;
 
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// When a log recorded a frame: a point on the logger's clock, to the
 /// nanosecond (SPEC §5.7; SPEC §6.1 `ts`).

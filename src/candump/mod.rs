@@ -122,9 +122,10 @@
 use core::fmt;
 use core::iter::FusedIterator;
 
-pub use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use crate::can::{FrameType, LogFrame};
-use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
+use crate::error::{Found, LogFormat, SyntaxError};
+use crate::{Error, Result};
 
 mod error;
 mod fast;

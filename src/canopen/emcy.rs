@@ -30,7 +30,8 @@ use crate::error::What;
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::{ErrorCode, ErrorRegister};
-use crate::error::{check_len, Error, Result};
+use crate::error::check_len;
+use crate::{Error, Result};
 
 mod field {
     use core::ops::Range;

@@ -46,7 +46,7 @@ use core::time::Duration;
 
 use super::error_control::{millis, Events};
 use super::{Heartbeat, NmtState, NodeId};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// The heartbeat producer's schedule, object 1017h (CiA 301 §7.2.8.3.2.2
 /// and object 1017h; SPEC §2.7).

@@ -53,7 +53,7 @@ use super::{
     NmtState, NodeId, PdoDirection, TimeOfDay, EMCY_LEN, HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
 };
 use crate::can::{CanFrame, CanId, ErrorFrame, FrameData};
-use crate::error::Error;
+use crate::Error;
 
 /// What a frame is on a CANopen bus: the `kind` of SPEC §6.1.
 ///

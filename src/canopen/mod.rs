@@ -7,6 +7,9 @@
 //! its decisions; the types are re-exported here.
 
 pub mod cia402;
+pub mod data_type;
+#[cfg(feature = "embedded-can")]
+mod embedded;
 pub mod emcy;
 pub mod emcy_producer;
 pub mod error_code;
@@ -19,6 +22,7 @@ pub mod message;
 pub mod nmt;
 pub mod nmt_command;
 pub mod node_id;
+pub mod object_address;
 pub mod objects;
 pub mod pdo;
 pub mod recv_emcy;
@@ -30,6 +34,7 @@ pub use cia402::{
     Cia402Command, Cia402DriveEvent, Cia402State, Cia402Transition, Controlword, ModeOfOperation,
     Statusword,
 };
+pub use data_type::{DataType, Octets, Value, ValueKind, MAX_OCTETS};
 pub use emcy::{Emcy, EmcyFrame, EMCY_LEN};
 pub use emcy_producer::{
     ActiveError, EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCondition,
@@ -53,15 +58,15 @@ pub use nmt::{
 };
 pub use nmt_command::{NmtCommand, NmtNodeControl, NmtNodeControlFrame, NMT_NODE_CONTROL_LEN};
 pub use node_id::{cob_id, CobFunction, NodeId, PdoDirection};
+pub use object_address::{ObjectAddress, SubNotation};
 pub use objects::{
-    find_object, object_data_type, object_instance, object_name, ObjectName, ObjectSet, ObjectType,
-    OBJECT_NAMES, OBJECT_TYPES,
+    find_object, object_data_type, object_instance, object_name, ObjectDataType, ObjectName,
+    ObjectSet, OBJECT_DATA_TYPES, OBJECT_NAMES,
 };
 pub use pdo::{
-    ByLength, DataType, EventTimer, InhibitTime, LayoutSignals, MappingEntry, ObjectAddress,
-    Octets, PdoCobId, PdoCommunication, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
-    TransmissionType, TypeLookup, Value, ValueKind, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
-    MAX_OCTETS, MAX_PDO_BITS,
+    ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, PdoCobId, PdoCommunication,
+    PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
+    TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

@@ -40,7 +40,8 @@
 use crate::error::What;
 use core::fmt;
 
-use crate::error::{check_len, Error, Result};
+use crate::error::check_len;
+use crate::{Error, Result};
 
 mod field {
     /// Byte 0: bit 7 (reserved in a heartbeat, toggle in a guarding answer)

@@ -32,7 +32,8 @@ use crate::error::What;
 use core::fmt;
 
 use super::NodeId;
-use crate::error::{check_len, Error, Result};
+use crate::error::check_len;
+use crate::{Error, Result};
 
 mod field {
     /// Byte 0: command specifier.

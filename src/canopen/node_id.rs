@@ -7,7 +7,7 @@
 use crate::error::What;
 use core::fmt;
 
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// A CANopen node-ID, always within 1..=127 (CiA 301 §7.3.5; SPEC §2.1).
 ///

@@ -853,10 +853,12 @@ mod tests {
     }
 }
 
-/// One row of [`OBJECT_TYPES`]: the data type of sub-indices `subs` of
-/// object `index` in `set`.
+/// One row of [`OBJECT_DATA_TYPES`]: the data type of sub-indices
+/// `first_sub..=last_sub` of object `index` in `set`. (An object's CiA 301
+/// object type — VAR, ARRAY, RECORD — is another thing, the EDS reader's
+/// `eds::ObjectType`.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ObjectType {
+pub struct ObjectDataType {
     /// The object area.
     pub set: ObjectSet,
     /// The object index.
@@ -871,7 +873,7 @@ pub struct ObjectType {
 
 macro_rules! types {
     ($($set:ident $index:literal $first:literal..=$last:literal => $ty:ident;)*) => {
-        &[$(ObjectType {
+        &[$(ObjectDataType {
             set: ObjectSet::$set,
             index: $index,
             first_sub: $first,
@@ -887,7 +889,7 @@ macro_rules! types {
 /// descriptions) and the CiA 406 encoder objects (CiA 406's object
 /// descriptions), plus the communication objects a PDO may carry. Sorted by
 /// (set, index); records list their sub-entries.
-pub const OBJECT_TYPES: &[ObjectType] = types! {
+pub const OBJECT_DATA_TYPES: &[ObjectDataType] = types! {
     Communication 0x1001 0..=0 => Unsigned8;
     Communication 0x1002 0..=0 => Unsigned32;
     Drive 0x603F 0..=0 => Unsigned16;
@@ -976,7 +978,7 @@ pub const OBJECT_TYPES: &[ObjectType] = types! {
 
 /// Return the data type of entry `index`.`subindex` for a node read with
 /// `profile` (communication objects always; profile objects only with their
-/// set), from [`OBJECT_TYPES`]; `None` where the table has none.
+/// set), from [`OBJECT_DATA_TYPES`]; `None` where the table has none.
 ///
 /// ```
 /// use motionwire::canopen::{object_data_type, DataType, ObjectSet};
@@ -993,8 +995,8 @@ pub fn object_data_type(
     profile: Option<ObjectSet>,
 ) -> Option<crate::canopen::DataType> {
     let find = |set: ObjectSet| {
-        let start = OBJECT_TYPES.partition_point(|t| (t.set, t.index) < (set, index));
-        OBJECT_TYPES[start..]
+        let start = OBJECT_DATA_TYPES.partition_point(|t| (t.set, t.index) < (set, index));
+        OBJECT_DATA_TYPES[start..]
             .iter()
             .take_while(|t| t.set == set && t.index == index)
             .find(|t| (t.first_sub..=t.last_sub).contains(&subindex))
@@ -1009,13 +1011,13 @@ mod type_tests {
 
     #[test]
     fn types_are_sorted_and_name_known_objects() {
-        for pair in OBJECT_TYPES.windows(2) {
+        for pair in OBJECT_DATA_TYPES.windows(2) {
             assert!(
                 (pair[0].set, pair[0].index) < (pair[1].set, pair[1].index),
                 "{pair:?}"
             );
         }
-        for row in OBJECT_TYPES {
+        for row in OBJECT_DATA_TYPES {
             assert!(
                 object_name(row.index, Some(row.set)).is_some(),
                 "{:04X}h has a type but no name",

@@ -20,7 +20,8 @@
 use byteorder::{ByteOrder, LittleEndian};
 use core::fmt;
 
-use crate::error::{check_len, Result, What};
+use crate::error::{check_len, What};
+use crate::Result;
 
 mod field {
     use core::ops::Range;

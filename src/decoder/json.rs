@@ -322,7 +322,7 @@ mod tests {
             EncoderKind::Incremental.name(),
         ]);
         for code in -1..=8 {
-            texts.push(crate::servo::MessageKind::from_code(code).name());
+            texts.push(crate::servo::MessageCode::from_code(code).name());
         }
         for text in texts {
             assert!(!needs_escaping(text), "{text:?}");

@@ -53,7 +53,7 @@ pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};
 
 use crate::can::{Iface, LogFrame};
-use crate::canopen::sdo::{SdoDirection, SdoOutcome, SdoTransfer, TransferDirection};
+use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
     PdoDirection, Signal, Value,
@@ -375,12 +375,12 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let direction = if can.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
-                    SdoDirection::Response
+                let sender = if can.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
+                    SdoParty::Server
                 } else {
-                    SdoDirection::Request
+                    SdoParty::Client
                 };
-                let (step, cia402) = self.sdo(frame, node, direction, position, profile);
+                let (step, cia402) = self.sdo(frame, node, sender, position, profile);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -440,7 +440,7 @@ impl Decoder {
         &mut self,
         frame: &LogFrame<'_>,
         node: NodeId,
-        direction: SdoDirection,
+        sender: SdoParty,
         position: u64,
         profile: Profile,
     ) -> (SdoStep<'_>, Option<Cia402Reading>) {
@@ -450,7 +450,7 @@ impl Decoder {
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
         let fed = state
             .sdo
-            .feed(direction, bytes, frame.timestamp, position, cap);
+            .feed(sender, bytes, frame.timestamp, position, cap);
         let learned = match fed.ended {
             Some(transfer) if transfer.outcome == SdoOutcome::Completed => {
                 value_of(state.sdo.finished()).map(|value| (transfer, value))
@@ -458,13 +458,13 @@ impl Decoder {
             _ => None,
         };
         let cia402 = learned.and_then(|(transfer, value)| self.learn(at, node, &transfer, value));
-        let (service, multiplexer) = sdo::service_and_multiplexer(direction, &fed.message, bytes);
+        let (service, multiplexer) = sdo::service_and_multiplexer(sender, &fed.message, bytes);
         let state = self.buses.get(at).nodes[usize::from(node.get())]
             .as_ref()
             .expect("made above");
         let step = SdoStep {
             node,
-            direction,
+            sender,
             message: fed.message,
             service,
             multiplexer,
@@ -497,7 +497,7 @@ impl Decoder {
                 .pdos
                 .entry(key)
                 .or_default();
-            match (communication, m.subindex) {
+            match (communication, m.sub_index) {
                 (true, 1) => params.cob_id = Some(PdoCobId::from_u32(value)),
                 (true, _) => return None,
                 (false, 0) => params.count = Some(value as u8),
@@ -514,7 +514,7 @@ impl Decoder {
             }
             return None;
         }
-        if !state.drive || m.subindex != 0 {
+        if !state.drive || m.sub_index != 0 {
             return None;
         }
         let mut reading = Cia402Reading::empty(node);

@@ -234,7 +234,7 @@ pub(crate) fn build_map(
             match object_name(e.index(), set) {
                 Some(name) if e.sub_index() == 0 => Cow::Borrowed(name),
                 Some(name) => Cow::Owned(format!("{name}.sub{}", e.sub_index())),
-                None => Cow::Owned(e.object().to_string()),
+                None => Cow::Owned(e.object().sub_notation().to_string()),
             }
         })
         .collect();

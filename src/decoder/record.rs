@@ -4,8 +4,10 @@
 use std::io::{self, Write};
 
 use crate::can::Iface;
-use crate::canopen::sdo::{SdoMultiplexer, SdoOutcome};
-use crate::canopen::{object_name, CanOpenMessage, Emcy, MessageKind, NodeId, ObjectSet};
+use crate::canopen::sdo::SdoOutcome;
+use crate::canopen::{
+    object_name, CanOpenMessage, Emcy, MessageKind, NodeId, ObjectAddress, ObjectSet,
+};
 use crate::profiles::akd::AkdManufacturerField;
 use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
@@ -188,7 +190,7 @@ fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
 fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::Result<()> {
     let out = obj.key("sdo")?;
     let mut o = Object::begin(out)?;
-    o.name("direction", step.direction.name())?;
+    o.name("direction", step.sender.direction_name())?;
     o.name("service", step.service.name())?;
     let message = match &step.message {
         Ok(message) => message,
@@ -249,11 +251,11 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
 
 fn write_multiplexer<W: Write>(
     o: &mut Object<'_, W>,
-    m: SdoMultiplexer,
+    m: ObjectAddress,
     objects: Option<ObjectSet>,
 ) -> io::Result<()> {
     o.uint("index", u64::from(m.index))?;
-    o.uint("subindex", u64::from(m.subindex))?;
+    o.uint("subindex", u64::from(m.sub_index))?;
     match object_name(m.index, objects) {
         Some(name) => o.name("object", name),
         None => o.null("object"),

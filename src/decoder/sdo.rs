@@ -7,10 +7,10 @@ use core::time::Duration;
 
 use crate::can::Timestamp;
 use crate::canopen::sdo::{
-    SdoDirection, SdoFrame, SdoMessage, SdoMultiplexer, SdoOutcome, SdoService, SdoTracker,
-    SdoTransfer, TransferDirection, TransferMode,
+    SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
+    TransferDirection, TransferMode,
 };
-use crate::canopen::{object_name, NodeId, ObjectSet};
+use crate::canopen::{object_name, NodeId, ObjectAddress, ObjectSet};
 use crate::Error;
 
 /// One SDO frame as its channel's tracker read it (SPEC §7.3 `sdo`), and
@@ -24,8 +24,9 @@ use crate::Error;
 pub struct SdoStep<'d> {
     /// The node whose SDO server the channel reaches (from the identifier).
     pub node: NodeId,
-    /// Which way the frame went: a request (client → server) or a response.
-    pub direction: SdoDirection,
+    /// Who sent the frame: the client (a request, SPEC §7.3 `"direction":
+    /// "request"`) or the server (a response).
+    pub sender: SdoParty,
     /// The frame read in its transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier).
     pub message: Result<SdoMessage, Error>,
@@ -35,7 +36,7 @@ pub struct SdoStep<'d> {
     /// The index and sub-index the frame carries: the message's, or, when
     /// it could not be read, bytes 1–3 if the service has them and they are
     /// there.
-    pub multiplexer: Option<SdoMultiplexer>,
+    pub multiplexer: Option<ObjectAddress>,
     /// The request → response latency this frame closes (SPEC §7.2).
     pub latency: Option<Duration>,
     /// The frame starts a transfer.
@@ -103,13 +104,13 @@ impl SdoChannel {
     /// a transfer.
     pub(crate) fn feed(
         &mut self,
-        direction: SdoDirection,
+        sender: SdoParty,
         bytes: &[u8],
         ts: Option<Timestamp>,
         position: u64,
         cap: usize,
     ) -> Fed {
-        let event = self.tracker.feed(direction, bytes, ts, position);
+        let event = self.tracker.feed(sender, bytes, ts, position);
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
         let chunk_to_new =
@@ -157,16 +158,16 @@ fn push(data: &mut Vec<u8>, chunk: &[u8], cap: usize) {
 /// could not be read, as far as its bytes go (SPEC §7.1: a short frame is
 /// decoded as far as it goes).
 pub(crate) fn service_and_multiplexer(
-    direction: SdoDirection,
+    sender: SdoParty,
     message: &Result<SdoMessage, Error>,
     bytes: &[u8],
-) -> (SdoService, Option<SdoMultiplexer>) {
+) -> (SdoService, Option<ObjectAddress>) {
     match message {
         Ok(message) => (message.service(), message.fields().multiplexer),
         Err(_) => {
             let service = bytes
                 .first()
-                .map_or(SdoService::Unknown, |&b| SdoService::of(direction, b));
+                .map_or(SdoService::Unknown, |&b| SdoService::of(sender, b));
             let multiplexer = (service.has_multiplexer() && bytes.len() >= 4)
                 .then(|| SdoFrame::new_unchecked(bytes).multiplexer());
             (service, multiplexer)
@@ -227,7 +228,7 @@ impl fmt::Display for SdoStep<'_> {
         }
         let message = match &self.message {
             Ok(m) => m,
-            Err(e) => return write!(f, "{} error: {e}", self.direction.name()),
+            Err(e) => return write!(f, "{} error: {e}", self.sender.direction_name()),
         };
         let fields = message.fields();
         if let Some(code) = fields.abort_code {
@@ -237,7 +238,7 @@ impl fmt::Display for SdoStep<'_> {
             }
             return write!(f, ": {}", code.description());
         }
-        write!(f, "{} ", self.direction.name())?;
+        write!(f, "{} ", self.sender.direction_name())?;
         for (i, word) in message.service().name().split('_').enumerate() {
             if i > 0 {
                 f.write_str(" ")?;

@@ -825,11 +825,9 @@ impl Eds {
             file: self.file.clone(),
             line: sub.map_or(object.line, |e| e.line),
             section: Some(match sub {
-                Some(e) => ObjectAddress {
-                    index: e.index,
-                    sub_index: e.sub_index,
-                }
-                .to_string(),
+                Some(e) => ObjectAddress::new(e.index, e.sub_index)
+                    .sub_notation()
+                    .to_string(),
                 None => format!("{:04X}", object.index),
             }),
             key: None,

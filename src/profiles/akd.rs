@@ -50,7 +50,8 @@ use crate::error::What;
 use core::fmt;
 
 use crate::canopen::{Emcy, EmcyFrame, ErrorCode, ErrorRegister, EMCY_LEN};
-use crate::error::{check_len, Error, Result};
+use crate::error::check_len;
+use crate::{Error, Result};
 
 mod field {
     use core::ops::Range;

@@ -44,7 +44,7 @@ use bitflags::bitflags;
 use byteorder::{ByteOrder, LittleEndian};
 
 use crate::canopen::{Emcy, ErrorCode, ErrorRegister, EMCY_LEN};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 bitflags! {
     /// The alarms object 6503h (u16), sent in bytes 3–4 of the encoder's

@@ -34,7 +34,7 @@ use core::fmt;
 use core::marker::PhantomData;
 
 use super::{ServoControlWord, ServoEnable, ServoErrorWord, ServoStatusWord};
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 /// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY
 /// depends on ServoEn (SPEC §1.6; seed 002, "Servo ReaDY").

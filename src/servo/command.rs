@@ -33,7 +33,8 @@ use byteorder::{ByteOrder, LittleEndian};
 use core::fmt;
 
 use super::ServoControlWord;
-use crate::error::{check_len, Result};
+use crate::error::check_len;
+use crate::Result;
 
 mod field {
     use core::ops::Range;

@@ -34,7 +34,7 @@ use core::fmt;
 
 use bitflags::bitflags;
 
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 bitflags! {
     /// SCW, the servo control word, NC → servo (SPEC §1.3; seed 002).

@@ -6,7 +6,7 @@ use core::num::NonZeroU32;
 
 use super::{
     enable_handshake, servo_ready, ActualPosition, Command, EncoderKind, Feedback, Message,
-    MessageKind, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
+    MessageCode, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
     ServoStatusWord,
 };
 
@@ -95,9 +95,9 @@ impl Default for SpeedScale {
 /// table; codes outside 0..=9 are never sent by the model).
 ///
 /// ```
-/// use motionwire::servo::{MessageKind, MessageRotation};
+/// use motionwire::servo::{MessageCode, MessageRotation};
 ///
-/// let rotation = MessageRotation::from_kinds(&[MessageKind::BusVoltage, MessageKind::MotorSpeed])
+/// let rotation = MessageRotation::from_kinds(&[MessageCode::BusVoltage, MessageCode::MotorSpeed])
 ///     .unwrap();
 /// assert_eq!(rotation.next_after(0), 3);
 /// assert_eq!(rotation.next_after(3), 0);
@@ -136,7 +136,7 @@ impl MessageRotation {
     /// Return the rotation through the codes of `kinds`, or `None` when it
     /// is empty or holds a kind outside the table (an unknown code).
     #[must_use]
-    pub const fn from_kinds(kinds: &[MessageKind]) -> Option<Self> {
+    pub const fn from_kinds(kinds: &[MessageCode]) -> Option<Self> {
         let mut codes = 0u16;
         let mut i = 0;
         while i < kinds.len() {
@@ -153,7 +153,7 @@ impl MessageRotation {
     /// Return the rotation sending only `kind`, or `None` for an unknown
     /// code.
     #[must_use]
-    pub const fn only(kind: MessageKind) -> Option<Self> {
+    pub const fn only(kind: MessageCode) -> Option<Self> {
         Self::from_kinds(&[kind])
     }
 
@@ -506,7 +506,7 @@ impl Drive {
     /// [`Drive::set_motor_temperature`]), power or a reserved code. The motor
     /// speed (code 0) is the applied speed and unknown codes are not sent:
     /// for those nothing changes.
-    pub fn set_measurement(&mut self, kind: MessageKind, value: f32) {
+    pub fn set_measurement(&mut self, kind: MessageCode, value: f32) {
         let code = kind.code();
         if (1..=9).contains(&code) {
             // 1..=9 indexes the 10 measurements.
@@ -1036,7 +1036,7 @@ mod tests {
         ] {
             let mut drive = Drive::new(DriveConfig {
                 encoder,
-                messages: MessageRotation::only(MessageKind::MotorTemperature).unwrap(),
+                messages: MessageRotation::only(MessageCode::MotorTemperature).unwrap(),
                 ..DriveConfig::default()
             });
             drive.set_motor_temperature(80.0);
@@ -1044,7 +1044,7 @@ mod tests {
             assert!(!fb.status.contains(ServoStatusWord::TEMP_WARNING));
             assert_eq!(
                 fb.message,
-                Message::new(MessageKind::MotorTemperature, 80.0)
+                Message::new(MessageCode::MotorTemperature, 80.0)
             );
             drive.set_motor_temperature(85.5);
             let fb = drive.cycle(&command(0, scw(SE_OFF)));
@@ -1274,11 +1274,11 @@ mod tests {
     #[test]
     fn the_message_channel_rotates() {
         let mut drive = Drive::new(DriveConfig::default());
-        drive.set_measurement(MessageKind::BusVoltage, 600.0);
-        drive.set_measurement(MessageKind::MotorCurrent, 1.5);
+        drive.set_measurement(MessageCode::BusVoltage, 600.0);
+        drive.set_measurement(MessageCode::MotorCurrent, 1.5);
         // Speed is the applied speed, not settable; unknown codes ignored.
-        drive.set_measurement(MessageKind::MotorSpeed, 9.0);
-        drive.set_measurement(MessageKind::Unknown(42), 9.0);
+        drive.set_measurement(MessageCode::MotorSpeed, 9.0);
+        drive.set_measurement(MessageCode::Unknown(42), 9.0);
         let _ = drive.cycle(&command(0, scw(SE_ARM)));
         let mut seen = Vec::new();
         for _ in 0..6 {
@@ -1299,7 +1299,7 @@ mod tests {
         assert_eq!(MessageRotation::new(0), None);
         assert_eq!(MessageRotation::new(1 << 10), None);
         assert_eq!(
-            MessageRotation::from_kinds(&[MessageKind::Unknown(10)]),
+            MessageRotation::from_kinds(&[MessageCode::Unknown(10)]),
             None
         );
         assert_eq!(MessageRotation::from_kinds(&[]), None);
@@ -1309,7 +1309,7 @@ mod tests {
         assert_eq!(all.next_after(-7), 0);
         assert_eq!(all.next_after(i32::MAX), 0);
         let odd =
-            MessageRotation::from_kinds(&[MessageKind::Reserved(9), MessageKind::MotorCurrent])
+            MessageRotation::from_kinds(&[MessageCode::Reserved(9), MessageCode::MotorCurrent])
                 .unwrap();
         assert_eq!(
             (

@@ -28,7 +28,7 @@ use core::str::FromStr;
 
 use bitflags::bitflags;
 
-use crate::error::{Error, Result};
+use crate::{Error, Result};
 
 bitflags! {
     /// SEW, the servo error word, servo → NC (SPEC §1.5; seed 002).

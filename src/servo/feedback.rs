@@ -8,7 +8,7 @@
 //!
 //! ```
 //! use motionwire::servo::{
-//!     ActualPosition, Feedback, FeedbackFrame, Message, MessageKind, ServoErrorWord,
+//!     ActualPosition, Feedback, FeedbackFrame, Message, MessageCode, ServoErrorWord,
 //!     ServoStatusWord,
 //! };
 //!
@@ -16,7 +16,7 @@
 //!     position: 0,
 //!     status: ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY,
 //!     errors: ServoErrorWord::empty(),
-//!     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+//!     message: Message::new(MessageCode::MotorSpeed, 1500.0),
 //!     extra_data: [0.0; 4],
 //! };
 //! feedback.set_actual_position(ActualPosition::Incremental {
@@ -38,7 +38,8 @@ use byteorder::{ByteOrder, LittleEndian};
 use core::fmt;
 
 use super::{EncoderKind, Message, ServoErrorWord, ServoStatusWord};
-use crate::error::{check_len, Result};
+use crate::error::check_len;
+use crate::Result;
 
 mod field {
     use core::ops::Range;
@@ -403,14 +404,14 @@ impl Feedback {
 ///
 /// ```
 /// use motionwire::servo::{
-///     ActualPosition, ECode, Feedback, Message, MessageKind, ServoErrorWord, ServoStatusWord,
+///     ActualPosition, ECode, Feedback, Message, MessageCode, ServoErrorWord, ServoStatusWord,
 /// };
 ///
 /// let mut feedback = Feedback {
 ///     position: 0,
 ///     status: ServoStatusWord::SERVO_EN | ServoStatusWord::SERVO_RDY,
 ///     errors: ServoErrorWord::from_e_code(ECode::E09).summarized(),
-///     message: Message::new(MessageKind::MotorSpeed, 1500.0),
+///     message: Message::new(MessageCode::MotorSpeed, 1500.0),
 ///     extra_data: [0.0, 0.0, 1.0, -2.5],
 /// };
 /// feedback.set_actual_position(ActualPosition::Incremental {
@@ -501,7 +502,7 @@ impl fmt::Display for FeedbackDetails {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::servo::{ECode, MessageKind, ServoFault};
+    use crate::servo::{ECode, MessageCode, ServoFault};
     use crate::Error;
 
     /// An incremental axis, enabled and ready, table 3, that found its zero
@@ -555,7 +556,7 @@ mod tests {
         assert_eq!(ServoFault::BvErr.e_code(), Some(ECode::E05));
         assert_eq!(frame.message_code(), 3);
         assert_eq!(frame.message_data(), 560.0);
-        assert_eq!(frame.message().kind(), MessageKind::BusVoltage);
+        assert_eq!(frame.message().kind(), MessageCode::BusVoltage);
         let extra = frame.extra_data();
         assert_eq!(extra[0], 1.0);
         assert_eq!(extra[1], -2.5);
@@ -570,7 +571,7 @@ mod tests {
             errors: ServoErrorWord::SERVO_ERRORS
                 | ServoErrorWord::BV_ERR
                 | ServoErrorWord::from_bits_retain(1 << 30),
-            message: Message::new(MessageKind::BusVoltage, 560.0),
+            message: Message::new(MessageCode::BusVoltage, 560.0),
             extra_data: [1.0, -2.5, f32::from_bits(0x7FC0_0ABC), 0.0],
         }
     }

@@ -5,18 +5,18 @@
 //! the f32 message data holds. [`Message`] keeps both exactly as received —
 //! codes the seed leaves reserved or does not define at all round-trip
 //! unchanged, and so do the bits of the float (NaN payloads included) — and
-//! [`MessageKind`] says what they mean.
+//! [`MessageCode`] says what they mean.
 //!
 //! ```
-//! use motionwire::servo::{Message, MessageKind};
+//! use motionwire::servo::{Message, MessageCode};
 //!
-//! let message = Message::new(MessageKind::BusVoltage, 560.5);
+//! let message = Message::new(MessageCode::BusVoltage, 560.5);
 //! assert_eq!(message.code, 3);
 //! assert_eq!(message.kind().name(), "bus_voltage");
 //! assert_eq!(message.kind().unit(), Some("V"));
 //!
 //! let unknown = Message::from_raw(42, f32::from_bits(0x7FC0_1234));
-//! assert_eq!(unknown.kind(), MessageKind::Unknown(42));
+//! assert_eq!(unknown.kind(), MessageCode::Unknown(42));
 //! assert_eq!(unknown.data.to_bits(), 0x7FC0_1234);
 //! ```
 
@@ -40,10 +40,10 @@ pub struct Message {
 
 impl Message {
     /// Return a message of kind `kind` holding `value` (in the kind's
-    /// [`unit`](MessageKind::unit)).
+    /// [`unit`](MessageCode::unit)).
     #[inline]
     #[must_use]
-    pub const fn new(kind: MessageKind, value: f32) -> Self {
+    pub const fn new(kind: MessageCode, value: f32) -> Self {
         Message {
             code: kind.code(),
             data: value,
@@ -60,17 +60,22 @@ impl Message {
     /// Return what the message data holds, from the message code.
     #[inline]
     #[must_use]
-    pub const fn kind(self) -> MessageKind {
-        MessageKind::from_code(self.code)
+    pub const fn kind(self) -> MessageCode {
+        MessageCode::from_code(self.code)
     }
 }
 
-/// What the message data holds, from the message code (SPEC §1.2's table;
-/// seed 002, "Message Code").
+/// The message code of the feedback frame, read: what the message data
+/// holds (SPEC §1.2's table; seed 002, "Message Code"). A code table: each
+/// code the seed defines is a variant, every other code is kept
+/// ([`MessageCode::Reserved`], [`MessageCode::Unknown`]).
+///
+/// Not to be confused with `canopen::MessageKind`, the kind of a CANopen
+/// frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum MessageKind {
+pub enum MessageCode {
     /// Code 0: motor speed, rpm.
     MotorSpeed,
     /// Code 1: motor current I, A.
@@ -84,26 +89,26 @@ pub enum MessageKind {
     /// Code 5: motor power, kW (not available on current firmware).
     MotorPower,
     /// Codes 6–9: reserved by the seed; holds the code (6..=9 when made by
-    /// [`MessageKind::from_code`]).
+    /// [`MessageCode::from_code`]).
     Reserved(u8),
     /// Any other code (negative or above 9): unknown; holds the code.
     Unknown(i32),
 }
 
-impl MessageKind {
+impl MessageCode {
     /// Return the kind of message code `code`.
     #[must_use]
     pub const fn from_code(code: i32) -> Self {
         match code {
-            0 => MessageKind::MotorSpeed,
-            1 => MessageKind::MotorCurrent,
-            2 => MessageKind::RelativeCurrent,
-            3 => MessageKind::BusVoltage,
-            4 => MessageKind::MotorTemperature,
-            5 => MessageKind::MotorPower,
+            0 => MessageCode::MotorSpeed,
+            1 => MessageCode::MotorCurrent,
+            2 => MessageCode::RelativeCurrent,
+            3 => MessageCode::BusVoltage,
+            4 => MessageCode::MotorTemperature,
+            5 => MessageCode::MotorPower,
             // 6..=9 fits in u8.
-            6..=9 => MessageKind::Reserved(code as u8),
-            other => MessageKind::Unknown(other),
+            6..=9 => MessageCode::Reserved(code as u8),
+            other => MessageCode::Unknown(other),
         }
     }
 
@@ -112,14 +117,14 @@ impl MessageKind {
     #[must_use]
     pub const fn code(self) -> i32 {
         match self {
-            MessageKind::MotorSpeed => 0,
-            MessageKind::MotorCurrent => 1,
-            MessageKind::RelativeCurrent => 2,
-            MessageKind::BusVoltage => 3,
-            MessageKind::MotorTemperature => 4,
-            MessageKind::MotorPower => 5,
-            MessageKind::Reserved(code) => code as i32,
-            MessageKind::Unknown(code) => code,
+            MessageCode::MotorSpeed => 0,
+            MessageCode::MotorCurrent => 1,
+            MessageCode::RelativeCurrent => 2,
+            MessageCode::BusVoltage => 3,
+            MessageCode::MotorTemperature => 4,
+            MessageCode::MotorPower => 5,
+            MessageCode::Reserved(code) => code as i32,
+            MessageCode::Unknown(code) => code,
         }
     }
 
@@ -128,14 +133,14 @@ impl MessageKind {
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
-            MessageKind::MotorSpeed => "motor_speed",
-            MessageKind::MotorCurrent => "motor_current",
-            MessageKind::RelativeCurrent => "relative_current",
-            MessageKind::BusVoltage => "bus_voltage",
-            MessageKind::MotorTemperature => "motor_temperature",
-            MessageKind::MotorPower => "motor_power",
-            MessageKind::Reserved(_) => "reserved",
-            MessageKind::Unknown(_) => "unknown",
+            MessageCode::MotorSpeed => "motor_speed",
+            MessageCode::MotorCurrent => "motor_current",
+            MessageCode::RelativeCurrent => "relative_current",
+            MessageCode::BusVoltage => "bus_voltage",
+            MessageCode::MotorTemperature => "motor_temperature",
+            MessageCode::MotorPower => "motor_power",
+            MessageCode::Reserved(_) => "reserved",
+            MessageCode::Unknown(_) => "unknown",
         }
     }
 
@@ -144,18 +149,18 @@ impl MessageKind {
     #[must_use]
     pub const fn unit(self) -> Option<&'static str> {
         match self {
-            MessageKind::MotorSpeed => Some("rpm"),
-            MessageKind::MotorCurrent => Some("A"),
-            MessageKind::RelativeCurrent => Some("%"),
-            MessageKind::BusVoltage => Some("V"),
-            MessageKind::MotorTemperature => Some("°C"),
-            MessageKind::MotorPower => Some("kW"),
-            MessageKind::Reserved(_) | MessageKind::Unknown(_) => None,
+            MessageCode::MotorSpeed => Some("rpm"),
+            MessageCode::MotorCurrent => Some("A"),
+            MessageCode::RelativeCurrent => Some("%"),
+            MessageCode::BusVoltage => Some("V"),
+            MessageCode::MotorTemperature => Some("°C"),
+            MessageCode::MotorPower => Some("kW"),
+            MessageCode::Reserved(_) | MessageCode::Unknown(_) => None,
         }
     }
 }
 
-impl fmt::Display for MessageKind {
+impl fmt::Display for MessageCode {
     /// Format the kind as its SPEC §6.2 name.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -180,23 +185,23 @@ mod tests {
 
     /// SPEC §1.2's message-code table: (code, kind, name, unit).
     #[rustfmt::skip]
-    const TABLE: [(i32, MessageKind, &str, Option<&str>); 10] = [
-        (0, MessageKind::MotorSpeed,       "motor_speed",       Some("rpm")),
-        (1, MessageKind::MotorCurrent,     "motor_current",     Some("A")),
-        (2, MessageKind::RelativeCurrent,  "relative_current",  Some("%")),
-        (3, MessageKind::BusVoltage,       "bus_voltage",       Some("V")),
-        (4, MessageKind::MotorTemperature, "motor_temperature", Some("°C")),
-        (5, MessageKind::MotorPower,       "motor_power",       Some("kW")),
-        (6, MessageKind::Reserved(6),      "reserved",          None),
-        (7, MessageKind::Reserved(7),      "reserved",          None),
-        (8, MessageKind::Reserved(8),      "reserved",          None),
-        (9, MessageKind::Reserved(9),      "reserved",          None),
+    const TABLE: [(i32, MessageCode, &str, Option<&str>); 10] = [
+        (0, MessageCode::MotorSpeed,       "motor_speed",       Some("rpm")),
+        (1, MessageCode::MotorCurrent,     "motor_current",     Some("A")),
+        (2, MessageCode::RelativeCurrent,  "relative_current",  Some("%")),
+        (3, MessageCode::BusVoltage,       "bus_voltage",       Some("V")),
+        (4, MessageCode::MotorTemperature, "motor_temperature", Some("°C")),
+        (5, MessageCode::MotorPower,       "motor_power",       Some("kW")),
+        (6, MessageCode::Reserved(6),      "reserved",          None),
+        (7, MessageCode::Reserved(7),      "reserved",          None),
+        (8, MessageCode::Reserved(8),      "reserved",          None),
+        (9, MessageCode::Reserved(9),      "reserved",          None),
     ];
 
     #[test]
     fn message_code_table() {
         for (code, kind, name, unit) in TABLE {
-            assert_eq!(MessageKind::from_code(code), kind);
+            assert_eq!(MessageCode::from_code(code), kind);
             assert_eq!(kind.code(), code);
             assert_eq!(kind.name(), name);
             assert_eq!(kind.to_string(), name);
@@ -207,8 +212,8 @@ mod tests {
     #[test]
     fn other_codes_are_unknown_and_kept() {
         for code in [-1, 10, 42, i32::MIN, i32::MAX] {
-            let kind = MessageKind::from_code(code);
-            assert_eq!(kind, MessageKind::Unknown(code));
+            let kind = MessageCode::from_code(code);
+            assert_eq!(kind, MessageCode::Unknown(code));
             assert_eq!(kind.code(), code);
             assert_eq!(kind.name(), "unknown");
             assert_eq!(kind.unit(), None);
@@ -218,7 +223,7 @@ mod tests {
     #[test]
     fn display() {
         assert_eq!(
-            Message::new(MessageKind::MotorSpeed, 1500.0).to_string(),
+            Message::new(MessageCode::MotorSpeed, 1500.0).to_string(),
             "motor_speed 1500 rpm"
         );
         assert_eq!(
@@ -231,6 +236,6 @@ mod tests {
     fn raw_bits_are_kept() {
         let message = Message::from_raw(-7, f32::from_bits(0xFFC0_0001));
         assert_eq!(message.data.to_bits(), 0xFFC0_0001);
-        assert_eq!(message.kind(), MessageKind::Unknown(-7));
+        assert_eq!(message.kind(), MessageCode::Unknown(-7));
     }
 }

@@ -33,7 +33,7 @@
 //! - `error_word`: [`ServoErrorWord`], [`ServoFault`], [`ECode`] (SPEC §1.5);
 //! - `command`: [`CommandFrame`], [`Command`] (SPEC §1.1);
 //! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
-//! - `message`: [`Message`], [`MessageKind`] (SPEC §1.2);
+//! - `message`: [`Message`], [`MessageCode`] (SPEC §1.2);
 //! - `behaviour`: the pure behaviours (SPEC §1.6);
 //! - `enable`: [`EnableHandshake`], the NC side of the enable handshake
 //!   (SPEC §1.6);
@@ -66,5 +66,5 @@ pub use drive::{
 pub use enable::{EnableHandshake, EnablePhase};
 pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
 pub use feedback::{ActualPosition, Feedback, FeedbackDetails, FeedbackFrame, FEEDBACK_LEN};
-pub use message::{Message, MessageKind};
+pub use message::{Message, MessageCode};
 pub use status_word::{EncoderKind, ServoStatusWord};

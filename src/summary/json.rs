@@ -138,7 +138,7 @@ impl Serialize for SdoAbort {
         let mut map = serializer.serialize_map(Some(7))?;
         map.serialize_entry("line", &self.line)?;
         map.serialize_entry("index", &self.multiplexer.index)?;
-        map.serialize_entry("subindex", &self.multiplexer.subindex)?;
+        map.serialize_entry("subindex", &self.multiplexer.sub_index)?;
         map.serialize_entry("object", &self.object)?;
         map.serialize_entry("code", &self.code.get())?;
         map.serialize_entry("description", self.code.description())?;

@@ -3,10 +3,8 @@
 
 use core::time::Duration;
 
-use crate::canopen::sdo::{
-    SdoMessage, SdoMultiplexer, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTransfer,
-};
-use crate::canopen::SdoAbortCode;
+use crate::canopen::sdo::{SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTransfer};
+use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::decoder::SdoStep;
 
 /// One abort seen on a node's channel (SPEC §7.4 `aborts`).
@@ -17,7 +15,7 @@ pub struct SdoAbort {
     /// The object: the abort's multiplexer, or the aborted transfer's when
     /// the abort carries none (python-canopen's client aborts with
     /// 0000h.00).
-    pub multiplexer: SdoMultiplexer,
+    pub multiplexer: ObjectAddress,
     /// The object's name, where known (SPEC §7.3 `object`).
     pub object: Option<&'static str>,
     /// The abort code.
@@ -79,7 +77,7 @@ impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) {
         let s = &mut self.summary;
-        if step.direction == crate::canopen::sdo::SdoDirection::Request {
+        if step.sender == SdoParty::Client {
             s.requests += 1;
         }
         if step.started {
@@ -99,7 +97,7 @@ impl SdoStats {
         };
         if let Some((multiplexer, code, by)) = abort {
             let multiplexer = match step.ended {
-                Some(ended) if multiplexer == SdoMultiplexer::default() => {
+                Some(ended) if multiplexer == ObjectAddress::default() => {
                     ended.transfer.multiplexer
                 }
                 _ => multiplexer,

@@ -7,6 +7,8 @@ pub(crate) mod can;
 pub(crate) mod candump;
 pub(crate) mod canopen;
 pub(crate) mod cia402;
+#[cfg(feature = "embedded-can")]
+pub(crate) mod embedded_can;
 pub(crate) mod emcy_producer;
 pub(crate) mod error_control;
 #[cfg(feature = "serde")]

@@ -13,7 +13,7 @@ use crate::canopen::{
     RecvEmcyResult, SdoAbortCode, SlotUpdate,
 };
 use crate::profiles::baumer::{Appearance, ResetBehaviour, Variant};
-use crate::servo::{ECode, EncoderKind, Feedback, Message, MessageKind, RegulatorMode, ServoFault};
+use crate::servo::{ECode, EncoderKind, Feedback, Message, MessageCode, RegulatorMode, ServoFault};
 
 /// Any error class.
 pub(crate) fn error_class() -> impl Strategy<Value = ErrorClass> {
@@ -144,8 +144,8 @@ pub(crate) fn e_code() -> impl Strategy<Value = ECode> {
 }
 
 /// Any message kind: known, reserved and unknown codes.
-pub(crate) fn message_kind() -> impl Strategy<Value = MessageKind> {
-    prop_oneof![0i32..=9, any::<i32>()].prop_map(MessageKind::from_code)
+pub(crate) fn message_code() -> impl Strategy<Value = MessageCode> {
+    prop_oneof![0i32..=9, any::<i32>()].prop_map(MessageCode::from_code)
 }
 
 /// Any finite float, signed zeros and subnormals included: the values a

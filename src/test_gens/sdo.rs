@@ -3,13 +3,13 @@
 use proptest::prelude::*;
 
 use crate::canopen::sdo::{
-    SdoBlockSegment, SdoInitiateData, SdoMultiplexer, SdoRequest, SdoResponse, SdoSegmentData,
+    SdoBlockSegment, SdoInitiateData, SdoRequest, SdoResponse, SdoSegmentData,
 };
-use crate::canopen::SdoAbortCode;
+use crate::canopen::{ObjectAddress, SdoAbortCode};
 
 /// Any multiplexer.
-pub(crate) fn multiplexer() -> impl Strategy<Value = SdoMultiplexer> {
-    (any::<u16>(), any::<u8>()).prop_map(|(index, subindex)| SdoMultiplexer::new(index, subindex))
+pub(crate) fn multiplexer() -> impl Strategy<Value = ObjectAddress> {
+    (any::<u16>(), any::<u8>()).prop_map(|(index, subindex)| ObjectAddress::new(index, subindex))
 }
 
 /// Any initiate data, in the canonical form a frame reads back.

@@ -4,7 +4,7 @@ use core::iter::FusedIterator;
 
 use super::TrcParser;
 use crate::can::LogEvent;
-use crate::error::Result;
+use crate::Result;
 
 /// Return an iterator over the lines of `buf` that parses each one with
 /// one [`TrcParser`] (SPEC §5.4, §5.7): it yields the 1-based line number

@@ -116,7 +116,7 @@
 use core::fmt;
 
 use crate::can::{LogEvent, Timestamp};
-use crate::error::Result;
+use crate::Result;
 
 mod header;
 mod lines;

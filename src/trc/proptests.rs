@@ -6,8 +6,9 @@ use proptest::prelude::*;
 use super::row::{FD_LENGTHS, PROT_LOCATION, PROT_TX, PROT_TYPES};
 use super::*;
 use crate::can::{CanFrame, Direction, FdFlags, Iface, LogFrame};
-use crate::error::{Error, LogFormat};
+use crate::error::LogFormat;
 use crate::test_gens::can::can_id;
+use crate::Error;
 
 /// Every state a header can put the parser in, with and without columns.
 fn parsers() -> Vec<TrcParser> {

@@ -13,14 +13,13 @@ pub mod server;
 pub mod tracker;
 
 pub use frame::{
-    BlockCrc, BlockSubcommand, SdoBlockSegment, SdoDirection, SdoFields, SdoFrame, SdoInitiateData,
-    SdoMultiplexer, SdoRequest, SdoResponse, SdoSegmentData, SdoService, BLKSIZE_MAX, SDO_LEN,
-    SEGMENT_MAX,
+    BlockCrc, BlockSubcommand, SdoBlockSegment, SdoFields, SdoFrame, SdoInitiateData, SdoParty,
+    SdoRequest, SdoResponse, SdoSegmentData, SdoService, BLKSIZE_MAX, SDO_LEN, SEGMENT_MAX,
 };
 pub use server::serve_error_objects;
 pub use tracker::{
-    BrokenReason, SdoEvent, SdoMessage, SdoOutcome, SdoParty, SdoTracker, SdoTransfer,
-    TransferDirection, TransferMode,
+    BrokenReason, SdoEvent, SdoMessage, SdoOutcome, SdoTracker, SdoTransfer, TransferDirection,
+    TransferMode,
 };
 
 #[cfg(test)]

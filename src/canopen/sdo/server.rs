@@ -7,7 +7,8 @@
 //! [`serve_error_objects`] and sends the response it returns.
 //!
 //! ```
-//! use motionwire::canopen::sdo::{serve_error_objects, SdoMultiplexer, SdoRequest, SdoResponse, SdoInitiateData};
+//! use motionwire::canopen::sdo::{serve_error_objects, SdoRequest, SdoResponse, SdoInitiateData};
+//! use motionwire::canopen::ObjectAddress;
 //! use motionwire::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, SdoAbortCode};
 //!
 //! let register = ErrorRegister::GENERIC | ErrorRegister::COMMUNICATION;
@@ -15,31 +16,31 @@
 //! history.record(&Emcy::new(ErrorCode::new(0x8130), register, [0; 5]));
 //!
 //! // Read 1003h.00: one entry.
-//! let read = SdoRequest::InitiateUpload { multiplexer: SdoMultiplexer::new(0x1003, 0) };
+//! let read = SdoRequest::InitiateUpload { multiplexer: ObjectAddress::new(0x1003, 0) };
 //! let answer = serve_error_objects(&read.to_bytes(), &mut history, register);
 //! assert_eq!(answer.map(|b| b[..5].to_vec()), Some(vec![0x4F, 0x03, 0x10, 0x00, 1]));
 //!
 //! // Clear it by writing 0 to sub-index 0.
 //! let clear = SdoRequest::InitiateDownload {
-//!     multiplexer: SdoMultiplexer::new(0x1003, 0),
+//!     multiplexer: ObjectAddress::new(0x1003, 0),
 //!     data: SdoInitiateData::expedited(&[0]).unwrap(),
 //! };
 //! let answer = serve_error_objects(&clear.to_bytes(), &mut history, register).unwrap();
 //! assert_eq!(SdoResponse::parse(&answer)?, SdoResponse::InitiateDownload {
-//!     multiplexer: SdoMultiplexer::new(0x1003, 0),
+//!     multiplexer: ObjectAddress::new(0x1003, 0),
 //! });
 //! assert_eq!(history.read(0), Ok(0));
 //!
 //! // Any other object: "object does not exist".
-//! let other = SdoRequest::InitiateUpload { multiplexer: SdoMultiplexer::new(0x6041, 0) };
+//! let other = SdoRequest::InitiateUpload { multiplexer: ObjectAddress::new(0x6041, 0) };
 //! let answer = serve_error_objects(&other.to_bytes(), &mut history, register).unwrap();
 //! assert!(matches!(SdoResponse::parse(&answer)?,
 //!     SdoResponse::Abort { code: SdoAbortCode::OBJECT_DOES_NOT_EXIST, .. }));
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
-use super::frame::{SdoInitiateData, SdoMultiplexer, SdoRequest, SdoResponse, SDO_LEN};
-use crate::canopen::{ErrorHistory, ErrorRegister, SdoAbortCode};
+use super::frame::{SdoInitiateData, SdoRequest, SdoResponse, SDO_LEN};
+use crate::canopen::{ErrorHistory, ErrorRegister, ObjectAddress, SdoAbortCode};
 
 /// The error register (CiA 301 §7.5.2.2).
 pub const ERROR_REGISTER_INDEX: u16 = 0x1001;
@@ -90,12 +91,15 @@ pub fn serve_error_objects<const N: usize>(
         }
         _ => {
             return abort(
-                SdoMultiplexer::default(),
+                ObjectAddress::default(),
                 SdoAbortCode::INVALID_COMMAND_SPECIFIER,
             )
         }
     };
-    let SdoMultiplexer { index, subindex } = multiplexer;
+    let ObjectAddress {
+        index,
+        sub_index: subindex,
+    } = multiplexer;
     if index != ERROR_REGISTER_INDEX && index != ERROR_HISTORY_INDEX {
         return abort(multiplexer, SdoAbortCode::OBJECT_DOES_NOT_EXIST);
     }
@@ -148,7 +152,7 @@ pub fn serve_error_objects<const N: usize>(
 
 /// The abort for a block transfer: the object's own refusal first (it does
 /// not exist), else `code`.
-fn owned_or(multiplexer: SdoMultiplexer, code: SdoAbortCode) -> SdoAbortCode {
+fn owned_or(multiplexer: ObjectAddress, code: SdoAbortCode) -> SdoAbortCode {
     if multiplexer.index == ERROR_REGISTER_INDEX || multiplexer.index == ERROR_HISTORY_INDEX {
         code
     } else {

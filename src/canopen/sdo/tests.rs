@@ -4,13 +4,13 @@
 
 use super::*;
 use crate::can::Timestamp;
-use crate::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, SdoAbortCode};
+use crate::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, ObjectAddress, SdoAbortCode};
 use crate::test_gens::sdo as gens;
 use proptest::prelude::*;
-use SdoDirection::{Request as Rq, Response as Rs};
+use SdoParty::{Client as Rq, Server as Rs};
 
-fn mux(index: u16, subindex: u8) -> SdoMultiplexer {
-    SdoMultiplexer::new(index, subindex)
+fn mux(index: u16, subindex: u8) -> ObjectAddress {
+    ObjectAddress::new(index, subindex)
 }
 
 // ---------------------------------------------------------------- frames
@@ -314,7 +314,7 @@ fn ts(ms: u32) -> Option<Timestamp> {
 
 /// Feed `frames` (direction, bytes, time in ms) as lines 1, 2, …, then end
 /// the input.
-fn run(frames: &[(SdoDirection, [u8; 8], u32)]) -> Run {
+fn run(frames: &[(SdoParty, [u8; 8], u32)]) -> Run {
     let mut tracker = SdoTracker::new();
     let mut out = Run::default();
     for (i, (direction, bytes, ms)) in frames.iter().enumerate() {

@@ -11,22 +11,22 @@
 //!
 //! ```
 //! use motionwire::can::Timestamp;
-//! use motionwire::canopen::sdo::{SdoDirection::*, SdoOutcome, SdoTracker, TransferDirection};
+//! use motionwire::canopen::sdo::{SdoOutcome, SdoParty::*, SdoTracker, TransferDirection};
 //!
 //! let mut tracker = SdoTracker::new();
 //! let at = |ms: u32| Timestamp::new(0, ms * 1000);
 //! let mut name = Vec::new();
 //!
 //! // An upload of 1008h.00, "AKD-P00306" in two segments.
-//! for (line, (direction, bytes, ms)) in [
-//!     (Request, [0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0], 0),
-//!     (Response, [0x41, 0x08, 0x10, 0x00, 10, 0, 0, 0], 1),
-//!     (Request, [0x60, 0, 0, 0, 0, 0, 0, 0], 2),
-//!     (Response, [0x00, b'A', b'K', b'D', b'-', b'P', b'0', b'0'], 3),
-//!     (Request, [0x70, 0, 0, 0, 0, 0, 0, 0], 4),
-//!     (Response, [0x19, b'3', b'0', b'6', 0, 0, 0, 0], 5),
+//! for (line, (sender, bytes, ms)) in [
+//!     (Client, [0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0], 0),
+//!     (Server, [0x41, 0x08, 0x10, 0x00, 10, 0, 0, 0], 1),
+//!     (Client, [0x60, 0, 0, 0, 0, 0, 0, 0], 2),
+//!     (Server, [0x00, b'A', b'K', b'D', b'-', b'P', b'0', b'0'], 3),
+//!     (Client, [0x70, 0, 0, 0, 0, 0, 0, 0], 4),
+//!     (Server, [0x19, b'3', b'0', b'6', 0, 0, 0, 0], 5),
 //! ].into_iter().enumerate() {
-//!     let event = tracker.feed(direction, &bytes, at(ms), line as u64 + 1);
+//!     let event = tracker.feed(sender, &bytes, at(ms), line as u64 + 1);
 //!     name.extend_from_slice(event.chunk);
 //!     if let Some(transfer) = event.ended {
 //!         assert_eq!(transfer.direction, TransferDirection::Upload);
@@ -44,12 +44,12 @@ use core::fmt;
 use core::time::Duration;
 
 use super::frame::{
-    BlockCrc, SdoBlockSegment, SdoDirection, SdoInitiateData, SdoMultiplexer, SdoRequest,
-    SdoResponse, SdoService, BLKSIZE_MAX, SEGMENT_MAX,
+    BlockCrc, SdoBlockSegment, SdoInitiateData, SdoParty, SdoRequest, SdoResponse, SdoService,
+    BLKSIZE_MAX, SEGMENT_MAX,
 };
 use crate::can::Timestamp;
-use crate::canopen::SdoAbortCode;
-use crate::error::Error;
+use crate::canopen::{ObjectAddress, SdoAbortCode};
+use crate::Error;
 
 /// Which way a transfer moves the data (CiA 301 §7.2.4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -102,29 +102,6 @@ impl TransferMode {
             TransferMode::Expedited => "expedited",
             TransferMode::Segmented => "segmented",
             TransferMode::Block => "block",
-        }
-    }
-}
-
-/// Which side of the channel sent a frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum SdoParty {
-    /// The client (the master, a tool), sending requests.
-    Client,
-    /// The server (the device), sending responses.
-    Server,
-}
-
-impl SdoParty {
-    /// Return the name SPEC §7.4's `by` writes: `client` or `server`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            SdoParty::Client => "client",
-            SdoParty::Server => "server",
         }
     }
 }
@@ -247,7 +224,7 @@ pub struct SdoTransfer {
     /// Upload or download.
     pub direction: TransferDirection,
     /// The object, from the initiate frame.
-    pub multiplexer: SdoMultiplexer,
+    pub multiplexer: ObjectAddress,
     /// Expedited, segmented or block, as far as the transfer got (a block
     /// upload that the server answers with a normal upload is expedited or
     /// segmented).
@@ -413,7 +390,7 @@ impl Phase {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Open {
     direction: TransferDirection,
-    multiplexer: SdoMultiplexer,
+    multiplexer: ObjectAddress,
     mode: TransferMode,
     size: Option<u32>,
     bytes: u32,
@@ -525,21 +502,21 @@ impl SdoTracker {
     /// Return whether the next frame the server sends is read as a block
     /// segment.
     #[must_use]
-    pub fn expects_block_segment(&self, direction: SdoDirection) -> bool {
+    pub fn expects_block_segment(&self, sender: SdoParty) -> bool {
         match self.open.map(|o| o.phase) {
-            Some(Phase::BlockDownloadSub(_)) => direction == SdoDirection::Request,
-            Some(Phase::BlockUploadSub(_)) => direction == SdoDirection::Response,
+            Some(Phase::BlockDownloadSub(_)) => sender == SdoParty::Client,
+            Some(Phase::BlockUploadSub(_)) => sender == SdoParty::Server,
             _ => false,
         }
     }
 
-    /// Feed one frame of the channel: its direction, its data, its time
+    /// Feed one frame of the channel: the side that sent it, its data, its time
     /// (if the log has one) and a position the caller uses to find the
     /// frame again (a line number), which comes back as a transfer's
     /// `start_position`.
     pub fn feed<'a>(
         &'a mut self,
-        direction: SdoDirection,
+        sender: SdoParty,
         data: &'a [u8],
         time: Option<Timestamp>,
         position: u64,
@@ -550,7 +527,7 @@ impl SdoTracker {
             ended: None,
             started: false,
         };
-        let message = self.step(direction, data, time, position, &mut step);
+        let message = self.step(sender, data, time, position, &mut step);
         let chunk: &'a [u8] = match step.chunk {
             Chunk::None => &[],
             Chunk::Input(range) => data.get(range).unwrap_or(&[]),
@@ -578,13 +555,13 @@ impl SdoTracker {
 
     fn step(
         &mut self,
-        direction: SdoDirection,
+        sender: SdoParty,
         data: &[u8],
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
     ) -> Result<SdoMessage, Error> {
-        if self.expects_block_segment(direction) && data.first() != Some(&ABORT_BYTE) {
+        if self.expects_block_segment(sender) && data.first() != Some(&ABORT_BYTE) {
             let segment = match SdoBlockSegment::parse(data) {
                 Ok(segment) => segment,
                 Err(e) => {
@@ -599,9 +576,9 @@ impl SdoTracker {
             self.block_segment(&segment, time, step);
             return Ok(SdoMessage::BlockSegment(segment));
         }
-        let message = match direction {
-            SdoDirection::Request => SdoRequest::parse(data).map(SdoMessage::Request),
-            SdoDirection::Response => SdoResponse::parse(data).map(SdoMessage::Response),
+        let message = match sender {
+            SdoParty::Client => SdoRequest::parse(data).map(SdoMessage::Request),
+            SdoParty::Server => SdoResponse::parse(data).map(SdoMessage::Response),
         };
         let Ok(message) = message else {
             self.malformed(time, step);
@@ -1101,7 +1078,7 @@ const ABORT_BYTE: u8 = 4 << 5;
 
 /// The direction and multiplexer a response that answers no request
 /// implies.
-fn stray(response: &SdoResponse) -> (TransferDirection, SdoMultiplexer) {
+fn stray(response: &SdoResponse) -> (TransferDirection, ObjectAddress) {
     match *response {
         SdoResponse::InitiateUpload { multiplexer, .. }
         | SdoResponse::BlockUploadInitiate { multiplexer, .. } => {
@@ -1111,11 +1088,11 @@ fn stray(response: &SdoResponse) -> (TransferDirection, SdoMultiplexer) {
         | SdoResponse::BlockDownloadInitiate { multiplexer, .. }
         | SdoResponse::Abort { multiplexer, .. } => (TransferDirection::Download, multiplexer),
         SdoResponse::UploadSegment { .. } | SdoResponse::BlockUploadEnd { .. } => {
-            (TransferDirection::Upload, SdoMultiplexer::default())
+            (TransferDirection::Upload, ObjectAddress::default())
         }
         SdoResponse::DownloadSegment { .. }
         | SdoResponse::BlockDownloadAck { .. }
-        | SdoResponse::BlockDownloadEnd => (TransferDirection::Download, SdoMultiplexer::default()),
+        | SdoResponse::BlockDownloadEnd => (TransferDirection::Download, ObjectAddress::default()),
     }
 }
 
