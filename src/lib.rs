@@ -16,9 +16,10 @@
 //!   identifiers, [`can::CanFrame`] (data, remote, CAN FD, error frames;
 //!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
 //!   with the time and interface a log records (ISO 11898-1, SPEC §5).
-//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
-//!   parsed without allocation into [`can::LogFrame`]s and written back
-//!   (SPEC §5.1, §5.2).
+//! - [`logs`]: every log format in one folder — candump text (can-utils),
+//!   Vector ASC, PEAK TRC, and with `std` Vector BLF and pcap/pcapng —
+//!   each read into [`can::LogFrame`]s, the format detected from the
+//!   content (SPEC §5).
 //! - [`canopen`]: a [`can::CanFrame`] read as CANopen
 //!   ([`canopen::CanOpenMessage::decode`], SPEC §6.1); node-IDs and COB-IDs,
 //!   the EMCY frame, error register and
@@ -133,11 +134,7 @@
 #![deny(clippy::must_use_candidate)]
 #![deny(clippy::return_self_not_must_use)]
 
-pub mod asc;
-#[cfg(feature = "blf")]
-pub mod blf;
 pub mod can;
-pub mod candump;
 pub mod canopen;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
@@ -146,13 +143,10 @@ pub mod eds;
 mod error;
 pub mod logs;
 mod names;
-#[cfg(feature = "pcap")]
-pub mod pcap;
 pub mod profiles;
 pub mod servo;
-pub mod trc;
 
-pub use error::{BinaryError, Error, Found, LogFormat, PdoEntryError, Result, SyntaxError, What};
+pub use error::{Error, PdoEntryError, Result, What};
 
 #[cfg(test)]
 mod display_tests;

@@ -4,13 +4,13 @@
 //! JSON adds 1 to python-can's 0-based channel), direction, time to the
 //! microsecond (python-can computes it in floats).
 //!
-//! One documented difference (`motionwire::blf`'s decision): python-can
+//! One documented difference (`motionwire::logs::blf`'s decision): python-can
 //! reads a `CAN_ERROR_EXT` object as an error frame with the object's
 //! identifier and data bytes; the crate gives Linux's layout of the
 //! object's error code capture (classes bus_error and protocol).
 
-use motionwire::blf::BlfReader;
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent};
+use motionwire::logs::blf::BlfReader;
 use motionwire::logs::{ReadLog, Record};
 use serde_json::Value;
 

@@ -22,9 +22,10 @@
 //!   crate follows the specification.
 
 use motionwire::can::{Iface, LogEvent, LogFrame};
+use motionwire::logs::pcap::PcapReader;
+use motionwire::logs::{BinaryError, LogFormat};
 use motionwire::logs::{ReadError, ReadLog, MAX_RECORD_LEN};
-use motionwire::pcap::PcapReader;
-use motionwire::{BinaryError, Error, LogFormat};
+use motionwire::Error;
 use serde_json::Value;
 
 /// (number, frame) of every record, the error, the other records.

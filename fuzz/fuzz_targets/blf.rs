@@ -15,10 +15,11 @@
 use std::io::Read;
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::blf::BlfReader;
+use motionwire::logs::blf::BlfReader;
 use motionwire::can::{Iface, LogEvent};
 use motionwire::logs::{ReadError, ReadLog};
-use motionwire::{Error, LogFormat};
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 /// A reader that hands out one byte at a time.
 struct Trickle<'a>(&'a [u8]);

@@ -1,4 +1,4 @@
-//! pcap and pcapng captures (SPEC §5.5): `motionwire::pcap::PcapReader`.
+//! pcap and pcapng captures (SPEC §5.5): `motionwire::logs::pcap::PcapReader`.
 //!
 //! Arbitrary bytes → the reader, once over the whole input and once through
 //! a reader that hands out a few bytes per call. Invariants:
@@ -21,8 +21,9 @@ use std::io::Read;
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{CanFrame, Timestamp};
 use motionwire::logs::{ReadError, ReadLog};
-use motionwire::pcap::PcapReader;
-use motionwire::{Error, LogFormat};
+use motionwire::logs::pcap::PcapReader;
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 struct Chunked<'a> {
     data: &'a [u8],

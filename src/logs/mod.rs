@@ -3,71 +3,35 @@
 //! whatever a damaged or hostile file claims.
 //!
 //! The text formats (candump, ASC, TRC) are read line by line, without
-//! allocation, by their own modules ([`crate::candump`], …); the binary
+//! allocation, by their own modules ([`candump`], …); the binary
 //! formats (pcap, pcapng, BLF) read from a [`std::io::Read`] through
 //! [`ReadLog`] and need the standard library.
 
+pub mod asc;
+#[cfg(feature = "blf")]
+pub mod blf;
+mod calendar;
+pub mod candump;
 mod detect;
+mod error;
+#[cfg(feature = "pcap")]
+pub mod pcap;
+mod text;
+pub mod trc;
 
 pub use detect::{detect, Detected, DETECT_LEN};
-
-/// The lines of a text buffer, split at `\n` (16 bytes at a time), each
-/// without its `\n`; a last line without one counts too, nothing after a
-/// final `\n` does. What the line readers of the text formats are fed.
-///
-/// ```
-/// let lines: Vec<&[u8]> = motionwire::logs::split_lines(b"a\r\nbc\n\nd").collect();
-/// assert_eq!(lines, [&b"a\r"[..], b"bc", b"", b"d"]);
-/// ```
-#[must_use]
-pub fn split_lines(buf: &[u8]) -> SplitLines<'_> {
-    SplitLines { rest: buf }
-}
-
-/// The iterator of [`split_lines`].
-#[derive(Debug, Clone)]
-pub struct SplitLines<'a> {
-    rest: &'a [u8],
-}
-
-impl<'a> Iterator for SplitLines<'a> {
-    type Item = &'a [u8];
-
-    #[inline]
-    fn next(&mut self) -> Option<&'a [u8]> {
-        take_line(&mut self.rest)
-    }
-}
-
-/// Take the first line off `rest` (without its `\n`; `None` when `rest`
-/// is empty): the one line splitter of the text readers.
-#[inline]
-pub(crate) fn take_line<'a>(rest: &mut &'a [u8]) -> Option<&'a [u8]> {
-    if rest.is_empty() {
-        return None;
-    }
-    let (line, after) = match crate::candump::find_newline(rest) {
-        Some(i) => (
-            rest.get(..i).unwrap_or_default(),
-            rest.get(i + 1..).unwrap_or_default(),
-        ),
-        None => (*rest, &[][..]),
-    };
-    *rest = after;
-    Some(line)
-}
-
-impl core::iter::FusedIterator for SplitLines<'_> {}
+pub use error::{BinaryError, Found, LogFormat, SyntaxError};
+pub use text::{split_lines, SplitLines};
 
 #[cfg(feature = "std")]
 use crate::can::LogEvent;
 #[cfg(feature = "std")]
-use crate::{Error, LogFormat};
+use crate::Error;
 
 /// The longest record, block or decompressed container a binary reader
 /// holds in memory (16 MiB). A CAN record is at most a few hundred bytes and
 /// a BLF container 128 KiB as the Vector tools write it; a length above this
-/// is reported as [`crate::BinaryError::TooLarge`], never allocated.
+/// is reported as [`BinaryError::TooLarge`], never allocated.
 pub const MAX_RECORD_LEN: usize = 16 << 20;
 
 /// One record of a binary log: its number and what it holds.

@@ -4,8 +4,8 @@ use proptest::prelude::*;
 
 use core::fmt;
 
-use crate::can::{CanFrame, Iface, LogFrame};
-use crate::candump::{self, CanId, Direction, FdFlags, Timestamp};
+use crate::can::{CanFrame, CanId, Direction, FdFlags, Iface, LogFrame, Timestamp};
+use crate::logs::candump;
 
 /// Any timestamp.
 pub(crate) fn timestamp() -> impl Strategy<Value = Timestamp> {

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use motionwire::canopen::{MessageKind, NodeId, ObjectSet};
-use motionwire::LogFormat;
+use motionwire::logs::LogFormat;
 
 /// Decode the diagnostic and cyclic-control messages of industrial motion
 /// devices: CANopen candump logs and EtherCAT servo ↔ NC frames.

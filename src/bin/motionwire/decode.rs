@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use motionwire::can::{LogEvent, LogFrame};
-use motionwire::candump::{self, LineState, RelativeTimestamps};
 use motionwire::canopen::{CanOpenMessage, MessageKind};
+use motionwire::logs::candump::{self, LineState, RelativeTimestamps};
+use motionwire::logs::LogFormat;
 use motionwire::logs::{detect, Detected, ReadError, ReadLog, DETECT_LEN};
-use motionwire::LogFormat;
 
 use crate::args::{DecodeArgs, IdRange, TimestampBase};
 use crate::context::{Context, PdoView};
@@ -354,7 +354,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 sink.clear_progress()?;
             }
             LogFormat::Asc => {
-                let mut parser = motionwire::asc::AscParser::new();
+                let mut parser = motionwire::logs::asc::AscParser::new();
                 read_text(
                     &mut sink,
                     &mut progress,
@@ -366,7 +366,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 sink.clear_progress()?;
             }
             LogFormat::Trc => {
-                let mut parser = motionwire::trc::TrcParser::new();
+                let mut parser = motionwire::logs::trc::TrcParser::new();
                 read_text(
                     &mut sink,
                     &mut progress,
@@ -378,12 +378,12 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 sink.clear_progress()?;
             }
             LogFormat::Blf => {
-                let mut log = motionwire::blf::BlfReader::new(reader)
+                let mut log = motionwire::logs::blf::BlfReader::new(reader)
                     .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
                 read_binary(&mut sink, &mut log, &name, path.as_deref())?;
             }
             LogFormat::Pcap | LogFormat::Pcapng => {
-                let mut log = motionwire::pcap::PcapReader::new(reader)
+                let mut log = motionwire::logs::pcap::PcapReader::new(reader)
                     .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
                 read_binary(&mut sink, &mut log, &name, path.as_deref())?;
             }
@@ -522,14 +522,14 @@ trait LineReader {
     fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>>;
 }
 
-impl LineReader for motionwire::trc::TrcParser {
+impl LineReader for motionwire::logs::trc::TrcParser {
     #[inline]
     fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
         self.parse_line(line)
     }
 }
 
-impl LineReader for motionwire::asc::AscParser {
+impl LineReader for motionwire::logs::asc::AscParser {
     #[inline]
     fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
         self.parse_line(line)

@@ -40,7 +40,7 @@ pub enum Failure {
         /// The input's name.
         name: String,
         /// The format.
-        format: motionwire::LogFormat,
+        format: motionwire::logs::LogFormat,
         /// Why.
         why: &'static str,
     },

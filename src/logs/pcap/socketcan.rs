@@ -27,7 +27,7 @@
 //! with the records of other link types, never misread as CAN or CAN FD.
 
 use crate::can::{CanFrame, CanId, FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use crate::BinaryError;
+use crate::logs::BinaryError;
 
 /// The frame header: identifier word, length, flags, two reserved bytes.
 pub(super) const HEADER_LEN: usize = 8;

@@ -28,7 +28,7 @@ fn written_start(start: Timestamp) -> Timestamp {
 ///
 /// ```
 /// use motionwire::can::Timestamp;
-/// use motionwire::trc;
+/// use motionwire::logs::trc;
 ///
 /// let mut text = String::new();
 /// trc::write_header(&mut text, Timestamp::new(1_700_000_000, 500).unwrap()).unwrap();
@@ -64,7 +64,7 @@ pub fn write_header(out: &mut impl Write, start: Timestamp) -> fmt::Result {
 ///
 /// ```
 /// use motionwire::can::{CanFrame, CanId, Direction, Iface, LogFrame, Timestamp};
-/// use motionwire::trc;
+/// use motionwire::logs::trc;
 ///
 /// let start = Timestamp::new(1_700_000_000, 0).unwrap();
 /// let frame = LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[5])?)

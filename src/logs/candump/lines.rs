@@ -9,7 +9,7 @@ use super::*;
 /// before it is ignored); a last line without `\n` is read too.
 ///
 /// ```
-/// use motionwire::candump;
+/// use motionwire::logs::candump;
 ///
 /// let log = b"(1.000000) can0 701#05\r\n\n(1.000100) can0 0X1#00\n  can0  705   [1]  remote request\n";
 /// let mut lines = candump::lines(log);
@@ -33,7 +33,7 @@ use super::*;
 /// other line, so no frame and no malformed line is ever hidden.
 ///
 /// ```
-/// use motionwire::candump;
+/// use motionwire::logs::candump;
 ///
 /// let log = b"  can0  20000004   [8]  00 04 00 00 00 00 00 00   ERRORFRAME\n\
 ///             \tcontroller-problem{rx-error-warning}\n\
@@ -135,7 +135,7 @@ pub enum RelativeTimestamps {
 /// frames without a decrease: read more first.
 ///
 /// ```
-/// use motionwire::candump::{detect_relative_timestamps, RelativeTimestamps};
+/// use motionwire::logs::candump::{detect_relative_timestamps, RelativeTimestamps};
 ///
 /// let deltas = b"(000.000000) can0 081#00\n(000.001000) can0 081#00\n(000.000500) can0 081#00\n";
 /// assert_eq!(detect_relative_timestamps(deltas, true), Some(RelativeTimestamps::Delta));
@@ -284,28 +284,6 @@ impl<'a> CandumpLines<'a> {
 }
 
 impl FusedIterator for CandumpLines<'_> {}
-
-/// The index of the first `\n` in `buf`, 16 bytes at a time.
-#[inline(always)]
-pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
-    let mut chunks = buf.chunks_exact(16);
-    let mut at = 0;
-    for chunk in &mut chunks {
-        let w = chunk
-            .first_chunk::<16>()
-            .map_or(0, |c| u128::from_le_bytes(*c));
-        let hits = first_eq(w, b'\n');
-        if hits != 0 {
-            return Some(at + lanes_before(hits));
-        }
-        at += 16;
-    }
-    chunks
-        .remainder()
-        .iter()
-        .position(|&b| b == b'\n')
-        .map(|i| at + i)
-}
 
 /// can-utils' names of the error classes, with which every explanation line
 /// of `candump -e` starts (`lib.c`, `error_classes`, in class-bit order).

@@ -73,7 +73,7 @@ impl<'a> Parsed<'a> {
 ///
 /// ```
 /// use motionwire::can::{CanFrame, CanId, Iface, LogFrame, Timestamp};
-/// use motionwire::candump;
+/// use motionwire::logs::candump;
 ///
 /// let frame = CanFrame::new(CanId::standard(0x081).unwrap(), &[0x10, 0x81, 0x11, 0, 0, 0, 0, 0])?;
 /// let logged = LogFrame::new(frame)

@@ -6,7 +6,8 @@ use proptest::prelude::*;
 use super::row::{FD_LENGTHS, PROT_LOCATION, PROT_TX, PROT_TYPES};
 use super::*;
 use crate::can::{CanFrame, Direction, FdFlags, Iface, LogFrame};
-use crate::error::{Error, LogFormat};
+use crate::error::Error;
+use crate::logs::LogFormat;
 use crate::test_gens::can::can_id;
 
 /// Every state a header can put the parser in, with and without columns.

@@ -50,7 +50,7 @@
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
 //! ```
-//! use motionwire::asc::AscParser;
+//! use motionwire::logs::asc::AscParser;
 //! use motionwire::can::{Direction, Iface, LogEvent};
 //!
 //! let mut parser = AscParser::new();
@@ -75,8 +75,9 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
-use crate::candump::hex_value;
-use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
+use crate::error::{Error, Result};
+use crate::logs::text::{hex_value, take_line};
+use crate::logs::{Found, LogFormat, SyntaxError};
 
 #[cfg(test)]
 mod proptests;
@@ -507,7 +508,7 @@ impl<'a> Iterator for AscLines<'a> {
     type Item = (usize, Result<Option<LogEvent<'a>>>);
 
     fn next(&mut self) -> Option<Self::Item> {
-        let line = crate::logs::take_line(&mut self.rest)?;
+        let line = take_line(&mut self.rest)?;
         self.line += 1;
         Some((self.line, self.parser.parse_line(line)))
     }

@@ -52,8 +52,8 @@
 //! ```
 //! use motionwire::can::{CanId, Iface, LogEvent};
 //! use motionwire::logs::ReadLog;
-//! use motionwire::pcap::PcapReader;
-//! use motionwire::LogFormat;
+//! use motionwire::logs::pcap::PcapReader;
+//! use motionwire::logs::LogFormat;
 //!
 //! // pcap, little-endian, microseconds, link type 227; one packet:
 //! // 705#05 at 1700000000.000500.
@@ -91,8 +91,8 @@ use core::time::Duration;
 use std::io::Read;
 
 use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
-use crate::logs::{ReadError, ReadLog, Record, MAX_RECORD_LEN};
-use crate::{BinaryError, Error, LogFormat};
+use crate::logs::{BinaryError, LogFormat, ReadError, ReadLog, Record, MAX_RECORD_LEN};
+use crate::Error;
 use input::Input;
 use socketcan::Payload;
 

@@ -1,5 +1,5 @@
 use super::*;
-use crate::error::SyntaxError as K;
+use crate::logs::SyntaxError as K;
 
 fn parse(parser: &mut AscParser, line: &str) -> Result<Option<LogEvent<'static>>> {
     // Leak-free: the lines are 'static literals.

@@ -15,7 +15,7 @@ use crate::error::Result;
 ///
 /// ```
 /// use motionwire::can::LogEvent;
-/// use motionwire::trc;
+/// use motionwire::logs::trc;
 ///
 /// let log = b";$FILEVERSION=1.1\r\n;$STARTTIME=44548.6028595139\r\n\
 ///             1)  17535.4  Tx  00000100  2  00 01\r\n\
@@ -65,7 +65,7 @@ impl<'a> Iterator for TrcLines<'a> {
     type Item = (usize, Result<Option<LogEvent<'a>>>);
 
     fn next(&mut self) -> Option<Self::Item> {
-        let line = crate::logs::take_line(&mut self.rest)?;
+        let line = crate::logs::text::take_line(&mut self.rest)?;
         self.line_number += 1;
         Some((self.line_number, self.parser.parse_line(line)))
     }

@@ -59,14 +59,6 @@ pub(super) const fn non_graphic(w: u128) -> u128 {
     (!(ge(x, 0x21) & !ge(x, 0x7F)) | w) & HIGH
 }
 
-/// A mask with the high bit set in the lanes holding `b` (and possibly
-/// in later lanes: the first set lane is exact).
-#[inline(always)]
-pub(super) const fn first_eq(w: u128, b: u8) -> u128 {
-    let x = w ^ splat(b);
-    x.wrapping_sub(ONES) & !x & HIGH
-}
-
 /// Pack 16 hex values (one per lane, first the most significant nibble)
 /// into 8 bytes, first byte least significant.
 #[inline(always)]
@@ -174,12 +166,6 @@ mod tests {
         #[test]
         fn non_graphic_is_printable_by_byte(w in word()) {
             prop_assert_eq!(non_graphic(w), high_bits(|b| !b.is_ascii_graphic(), w));
-        }
-
-        #[test]
-        fn first_eq_finds_the_first_lane(w in word(), b in any::<u8>()) {
-            let first = lanes(w).iter().position(|&x| x == b).unwrap_or(16);
-            prop_assert_eq!(lanes_before(first_eq(w, b)), first);
         }
 
         #[test]

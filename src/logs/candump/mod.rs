@@ -91,7 +91,7 @@
 //!
 //! ```
 //! use motionwire::can::{CanId, Direction, Iface};
-//! use motionwire::candump;
+//! use motionwire::logs::candump;
 //!
 //! let frame = candump::parse_line_str("(1700000000.000500) can0 081#1081110000000000 R")?
 //!     .expect("a frame");
@@ -122,9 +122,12 @@
 use core::fmt;
 use core::iter::FusedIterator;
 
-pub use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use crate::can::{FrameType, LogFrame};
-use crate::error::{Error, Found, LogFormat, Result, SyntaxError};
+use crate::error::{Error, Result};
+use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::text::{find_newline, hex_value};
+use crate::logs::{Found, LogFormat, SyntaxError};
 
 mod error;
 mod fast;
@@ -141,9 +144,7 @@ use error::*;
 use fast::*;
 use frame::*;
 pub use frame::{write_log, write_screen};
-pub(crate) use hex::hex_value;
 use hex::*;
-pub(crate) use lines::find_newline;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
@@ -152,8 +153,6 @@ use parse::*;
 use screen::*;
 use swar::*;
 use timestamp::*;
-#[cfg(feature = "blf")]
-pub(crate) use timestamp::{days_in_month, days_since_epoch};
 
 /// Parse one candump line in either format of SPEC §5 (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the

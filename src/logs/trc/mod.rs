@@ -83,7 +83,7 @@
 //!
 //! ```
 //! use motionwire::can::{Direction, FdFlags, Iface, LogEvent};
-//! use motionwire::trc::TrcParser;
+//! use motionwire::logs::trc::TrcParser;
 //!
 //! let mut parser = TrcParser::new();
 //! for header in [

@@ -6,7 +6,8 @@ use core::time::Duration;
 use super::tokens::{bad_field, decimal_fraction, syntax, trim_end};
 use super::TrcVersion;
 use crate::can::Timestamp;
-use crate::error::{Found, Result, SyntaxError};
+use crate::error::Result;
+use crate::logs::{Found, SyntaxError};
 
 /// A column of a TRC 2.x row, as a letter of `;$COLUMNS=` names it
 /// (PEAK's TRC format description, version 2.0).

@@ -1,6 +1,7 @@
 //! The white-space separated fields of a TRC line, and the numbers in them.
 
-use crate::error::{Error, Found, LogFormat, SyntaxError};
+use crate::error::Error;
+use crate::logs::{Found, LogFormat, SyntaxError};
 
 /// Whether `b` separates fields: PEAK writes spaces; tabs are taken too.
 #[inline]

@@ -10,7 +10,8 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
-use crate::error::{Error, Found, Result, SyntaxError};
+use crate::error::{Error, Result};
+use crate::logs::{Found, SyntaxError};
 
 /// What the file's header said, as a row needs it.
 #[derive(Debug, Clone, Copy)]

@@ -2,17 +2,6 @@
 
 use super::*;
 
-/// The hex value of one character, or `None`.
-#[inline]
-pub(crate) const fn hex_value(b: u8) -> Option<u8> {
-    match b {
-        b'0'..=b'9' => Some(b - b'0'),
-        b'A'..=b'F' => Some(b - b'A' + 10),
-        b'a'..=b'f' => Some(b - b'a' + 10),
-        _ => None,
-    }
-}
-
 /// Decode the hex digits `line[start..end]` into `out` (whose unused bytes
 /// stay zero); `end - start` is at most `2 * out.len()`. An odd count is
 /// decoded as if a `0` followed. On a non-hex byte, return its index.

@@ -50,7 +50,7 @@
 //!
 //! ```
 //! # fn main() -> Result<(), motionwire::logs::ReadError> {
-//! use motionwire::blf::BlfReader;
+//! use motionwire::logs::blf::BlfReader;
 //! use motionwire::logs::ReadLog;
 //!
 //! // A file with the header only: no records.
@@ -69,9 +69,9 @@ use crate::can::{
     CanFrame, CanId, Direction, ErrorClasses, FdFlags, Iface, LogEvent, LogFrame, Timestamp,
     CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
-use crate::candump::{days_in_month, days_since_epoch};
-use crate::error::{BinaryError, Error, LogFormat};
-use crate::logs::{ReadError, ReadLog, Record, MAX_RECORD_LEN};
+use crate::error::Error;
+use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::{BinaryError, LogFormat, ReadError, ReadLog, Record, MAX_RECORD_LEN};
 
 #[cfg(test)]
 mod tests;

@@ -3,7 +3,8 @@
 
 use super::*;
 use crate::can::{CanFrame, CanId, Direction, FdFlags, FrameType, Iface, LogFrame};
-use crate::error::{Error, Found, LogFormat, SyntaxError};
+use crate::error::Error;
+use crate::logs::{Found, LogFormat, SyntaxError};
 
 fn parser(header: &[&str]) -> TrcParser {
     let mut parser = TrcParser::new();
