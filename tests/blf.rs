@@ -11,7 +11,7 @@
 
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent};
 use motionwire::logs::blf::BlfReader;
-use motionwire::logs::{ReadLog, Record};
+use motionwire::logs::{LogRecord, ReadLog};
 use serde_json::Value;
 
 fn fixture(name: &str) -> (Vec<u8>, Value) {
@@ -26,8 +26,9 @@ fn fixture(name: &str) -> (Vec<u8>, Value) {
 fn read(file: &[u8]) -> Vec<(u64, motionwire::can::LogFrame<'static>)> {
     let mut reader = BlfReader::new(file).unwrap();
     let mut out = Vec::new();
-    while let Some(record) = reader.next_record() {
-        let Record { number, event } = record.unwrap();
+    while let Some(record) = reader.next_event() {
+        let LogRecord { position, event } = record.unwrap();
+        let number = position.number();
         let LogEvent::Frame(frame) = event else {
             panic!("BLF has no status events")
         };

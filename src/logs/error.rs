@@ -5,7 +5,7 @@
 //! [`Error::Syntax`] and [`Error::Binary`]; the reading itself fails with a
 //! `LogError` that adds where.
 
-#[cfg(doc)]
+#[cfg(any(doc, feature = "std"))]
 use crate::Error;
 
 /// A log format of SPEC §5, as an error names it.
@@ -643,6 +643,145 @@ impl core::fmt::Display for SyntaxError {
             SyntaxError::AscFlags { found } => {
                 write!(f, "expected the message duration, bit count and hex flags after the data, found {found}")
             }
+        }
+    }
+}
+
+/// The formats [`crate::logs::read`] knows, in words: what an unrecognised
+/// input was expected to be (SPEC §5.7).
+#[cfg(feature = "std")]
+pub(crate) const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
+                                   pcap or pcapng (gzip-compressed or not)";
+
+/// Why a log reader could not hand on an event, and where (SPEC §5.7):
+/// what every [`ReadLog`](crate::logs::ReadLog) returns.
+///
+/// [`is_skipped`](LogError::is_skipped) tells the two kinds apart: a line
+/// or record that was reported and skipped, after which the reading goes
+/// on, and an error after which the input ends here. `Display` writes the
+/// position, then the [`LogErrorKind`]: `line 3: candump line, column 26:
+/// expected an identifier at most 0x7FF, found 0x800`.
+#[cfg(feature = "std")]
+#[derive(Debug)]
+pub struct LogError {
+    position: Option<crate::logs::Position>,
+    kind: LogErrorKind,
+}
+
+/// What went wrong while reading a log: the reason of a [`LogError`],
+/// written without its position by `Display`.
+#[cfg(feature = "std")]
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum LogErrorKind {
+    /// A line of a text log that is no line of its format
+    /// ([`Error::Syntax`]), or a record of a binary log whose content cannot
+    /// be read but whose size is known ([`Error::Binary`], e.g. a BLF frame
+    /// object with a standard identifier above 0x7FF). Only it is skipped.
+    Malformed(Error),
+    /// A line longer than [`MAX_LINE_LEN`](crate::logs::MAX_LINE_LEN): not a
+    /// log line of any format. It is skipped unread, so memory stays
+    /// bounded whatever the input.
+    OverlongLine,
+    /// The structure of a binary log is damaged ([`Error::Binary`]): the
+    /// records before it were read, the rest of the file cannot be.
+    Damaged(Error),
+    /// Reading the input failed.
+    Io(std::io::Error),
+    /// The input is none of the formats of SPEC §5 (said once, when it is
+    /// opened: not one error per line).
+    Unrecognised,
+}
+
+#[cfg(feature = "std")]
+impl LogError {
+    /// Return an error of `kind` at `position`: for readers outside the
+    /// crate that implement [`ReadLog`](crate::logs::ReadLog).
+    #[must_use]
+    pub const fn new(position: Option<crate::logs::Position>, kind: LogErrorKind) -> Self {
+        LogError { position, kind }
+    }
+
+    /// Return the line or record the error is about, where it has one (an
+    /// unrecognised input or a damaged file header has none).
+    #[must_use]
+    pub const fn position(&self) -> Option<crate::logs::Position> {
+        self.position
+    }
+
+    /// Return what went wrong.
+    #[must_use]
+    pub const fn kind(&self) -> &LogErrorKind {
+        &self.kind
+    }
+
+    /// Return what went wrong, by value (e.g. to keep the I/O error).
+    #[must_use]
+    pub fn into_kind(self) -> LogErrorKind {
+        self.kind
+    }
+
+    /// Return whether only this line or record was lost and the reading
+    /// goes on (a malformed or over-long line, a damaged record of known
+    /// size: SPEC §5.7, "reported with its position and reason; decoding
+    /// continues"), rather than the input ending here.
+    #[must_use]
+    pub const fn is_skipped(&self) -> bool {
+        matches!(
+            self.kind,
+            LogErrorKind::Malformed(_) | LogErrorKind::OverlongLine
+        )
+    }
+
+    /// The same error at `position`, unless it has one already.
+    pub(crate) fn or_at(mut self, position: crate::logs::Position) -> Self {
+        self.position.get_or_insert(position);
+        self
+    }
+}
+
+#[cfg(feature = "std")]
+impl From<std::io::Error> for LogError {
+    fn from(error: std::io::Error) -> Self {
+        LogError::new(None, LogErrorKind::Io(error))
+    }
+}
+
+#[cfg(feature = "std")]
+impl core::fmt::Display for LogErrorKind {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            LogErrorKind::Malformed(error) | LogErrorKind::Damaged(error) => error.fmt(f),
+            LogErrorKind::OverlongLine => write!(
+                f,
+                "line longer than {} MiB: not a log line, skipped",
+                crate::logs::MAX_LINE_LEN >> 20
+            ),
+            LogErrorKind::Io(error) => write!(f, "read error: {error}"),
+            LogErrorKind::Unrecognised => {
+                write!(f, "unrecognised log format: expected {EXPECTED}")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl core::fmt::Display for LogError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if let Some(position) = self.position {
+            write!(f, "{} {position}: ", position.unit())?;
+        }
+        self.kind.fmt(f)
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for LogError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match &self.kind {
+            LogErrorKind::Malformed(error) | LogErrorKind::Damaged(error) => Some(error),
+            LogErrorKind::Io(error) => Some(error),
+            LogErrorKind::OverlongLine | LogErrorKind::Unrecognised => None,
         }
     }
 }

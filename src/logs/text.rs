@@ -105,6 +105,436 @@ pub(crate) const fn hex_value(b: u8) -> Option<u8> {
     }
 }
 
+/// The longest line a text reader holds (1 MiB). A longer one is not a log
+/// line of any format: it is reported
+/// ([`LogErrorKind::OverlongLine`](crate::logs::LogErrorKind::OverlongLine))
+/// and skipped unread, so memory stays bounded whatever the input (SPEC
+/// §5.7).
+#[cfg(feature = "std")]
+pub const MAX_LINE_LEN: usize = 1 << 20;
+
+/// How much a text reader asks its input for at a time (256 KiB): lines
+/// are parsed where they lie in the block, without a copy.
+#[cfg(feature = "std")]
+const BLOCK_LEN: usize = 1 << 18;
+
+/// The most text a reader holds back while it decides how to read the log
+/// (candump's relative timestamps, SPEC §5.2): as much as format detection
+/// looks at.
+#[cfg(feature = "std")]
+const HOLD_LEN: usize = crate::logs::DETECT_LEN;
+
+/// The most interface names a reader keeps at a stable address (a log
+/// names a handful); beyond it the table starts again.
+#[cfg(feature = "std")]
+const MAX_NAMES: usize = 256;
+
+/// Whole lines of an input, a block at a time: [`BLOCK_LEN`], more for a
+/// long line, at most [`MAX_LINE_LEN`] for one line; a longer line is
+/// dropped up to its end and said in the next block.
+#[cfg(feature = "std")]
+#[derive(Debug)]
+struct TextInput<R> {
+    reader: R,
+    buf: Vec<u8>,
+    /// Bytes of `buf` read from the input.
+    filled: usize,
+    /// The block handed out: `buf[..text]`, whole lines.
+    text: usize,
+    /// Keep the block at the next call and hand it out again, with more.
+    held: bool,
+    /// The input has ended.
+    at_end: bool,
+    /// Dropping the rest of an over-long line.
+    skipping: bool,
+    /// Bytes taken from the input.
+    bytes: u64,
+}
+
+/// What [`TextInput::next_block`] found, besides the block's text.
+#[cfg(feature = "std")]
+#[derive(Debug, Clone, Copy)]
+struct BlockInfo {
+    /// The read that ended the block took everything the input had
+    /// buffered (it returned fewer bytes than asked): live use.
+    drained: bool,
+    /// The block holds the end of the input (its last line may lack its
+    /// `\n`).
+    at_end: bool,
+    /// The buffer is full: no more text can join a held block.
+    full: bool,
+    /// An over-long line was skipped right before the block's text.
+    overlong: bool,
+}
+
+#[cfg(feature = "std")]
+impl<R: std::io::Read> TextInput<R> {
+    fn new(reader: R) -> Self {
+        TextInput {
+            reader,
+            buf: Vec::new(),
+            filled: 0,
+            text: 0,
+            held: false,
+            at_end: false,
+            skipping: false,
+            bytes: 0,
+        }
+    }
+
+    /// The block handed out last.
+    #[inline(always)]
+    fn text(&self) -> &[u8] {
+        self.buf.get(..self.text).unwrap_or_default()
+    }
+
+    /// Hand the last block out again, with more after it, at the next call.
+    fn hold(&mut self) {
+        self.held = true;
+    }
+
+    /// Read the next block of whole lines (all that is left at the end of
+    /// the input); `None` when nothing is left.
+    fn next_block(&mut self) -> std::io::Result<Option<BlockInfo>> {
+        if !self.held {
+            self.buf.copy_within(self.text..self.filled, 0);
+            self.filled -= self.text;
+            self.text = 0;
+        }
+        self.held = false;
+        if self.at_end && self.filled == 0 {
+            return Ok(None);
+        }
+        if self.buf.is_empty() {
+            self.buf.resize(BLOCK_LEN, 0);
+        }
+        let mut info = BlockInfo {
+            drained: false,
+            at_end: false,
+            full: false,
+            overlong: false,
+        };
+        while !self.at_end {
+            if self.filled == self.buf.len() {
+                if self
+                    .buf
+                    .get(..self.filled)
+                    .is_some_and(|b| b.contains(&b'\n'))
+                {
+                    // Held lines fill the buffer: hand them out as they are.
+                    info.full = true;
+                    break;
+                }
+                if self.buf.len() < MAX_LINE_LEN {
+                    let len = (self.buf.len() * 2).min(MAX_LINE_LEN);
+                    self.buf.resize(len, 0);
+                } else {
+                    // One line fills the largest buffer: drop it up to its
+                    // end.
+                    self.skipping = true;
+                    self.filled = 0;
+                }
+            }
+            let start = self.filled;
+            let space = self.buf.get_mut(start..).unwrap_or_default();
+            let room = space.len();
+            let n = match self.reader.read(space) {
+                // A reader that claims more than it was given is not believed.
+                Ok(n) => n.min(room),
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            };
+            self.bytes += n as u64;
+            self.filled += n;
+            self.at_end = n == 0;
+            info.drained = n < room && !self.at_end;
+            let new = self.buf.get(start..self.filled).unwrap_or_default();
+            if self.skipping {
+                match new.iter().position(|&b| b == b'\n') {
+                    Some(i) => {
+                        self.buf.copy_within(start + i + 1..self.filled, 0);
+                        self.filled -= start + i + 1;
+                        self.skipping = false;
+                        info.overlong = true;
+                    }
+                    None => {
+                        self.filled = 0;
+                        if self.at_end {
+                            self.skipping = false;
+                            info.overlong = true;
+                        }
+                        continue;
+                    }
+                }
+                let rest = self.buf.get(..self.filled).unwrap_or_default();
+                if rest.contains(&b'\n') || self.filled == 0 {
+                    // Say the skipped line before waiting for more.
+                    break;
+                }
+                continue;
+            }
+            if new.contains(&b'\n') {
+                break;
+            }
+        }
+        let filled = self.buf.get(..self.filled).unwrap_or_default();
+        self.text = if self.at_end {
+            self.filled
+        } else {
+            filled
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |i| i + 1)
+        };
+        info.at_end = self.at_end;
+        Ok(Some(info))
+    }
+}
+
+/// The interface names a text reader's events borrow (candump: `can0`),
+/// each kept once at a stable address, so that every event of one
+/// interface names it with the same slice.
+#[cfg(feature = "std")]
+#[derive(Debug, Default)]
+pub(crate) struct Names {
+    names: Vec<Box<str>>,
+    /// The names before the table last started again, kept where they are
+    /// until it starts again once more (see [`ReadLog::generation`]).
+    ///
+    /// [`ReadLog::generation`]: crate::logs::ReadLog::generation
+    retired: Vec<Box<str>>,
+    /// The name of the last event.
+    last: usize,
+    /// Times the table started again.
+    resets: u64,
+}
+
+#[cfg(feature = "std")]
+impl Names {
+    /// Make `name` the last event's name.
+    #[inline(always)]
+    pub(crate) fn intern(&mut self, name: &[u8]) {
+        if self
+            .names
+            .get(self.last)
+            .is_some_and(|n| n.as_bytes() == name)
+        {
+            return;
+        }
+        self.intern_other(name);
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn intern_other(&mut self, name: &[u8]) {
+        if let Some(at) = self.names.iter().position(|n| n.as_bytes() == name) {
+            self.last = at;
+            return;
+        }
+        if self.names.len() == MAX_NAMES {
+            self.retired = core::mem::take(&mut self.names);
+            self.resets += 1;
+        }
+        // The parsers take printable ASCII only; the fallback is never taken.
+        let text = core::str::from_utf8(name).unwrap_or_default();
+        self.last = self.names.len();
+        self.names.push(text.into());
+    }
+
+    /// The last event's name.
+    #[inline(always)]
+    fn last(&self) -> &str {
+        self.names.get(self.last).map_or("", |n| n)
+    }
+}
+
+/// A text format's parser as the line layer drives it: one line at a time,
+/// with the state the lines before it set (a header's base, candump's
+/// relative timestamps).
+#[cfg(feature = "std")]
+pub(crate) trait TextParser: Clone {
+    /// Read the line at the start of `rest` and take it off, with its
+    /// `\n`. A frame whose interface has a name leaves it in `names` and
+    /// its `iface` `None`: the reader fills it in.
+    fn next_line(
+        &mut self,
+        rest: &mut &[u8],
+        names: &mut Names,
+    ) -> crate::Result<Option<LogEvent<'static>>>;
+
+    /// Whether `line` holds nothing (blank, comment, header) whatever comes
+    /// before it: where a live stream's reader can tell that the events
+    /// of a block are all handed out.
+    fn holds_nothing(&self, line: &[u8]) -> bool;
+
+    /// Decide how to read the log from its first block(s) (`complete`: no
+    /// more text comes with this block); `false` to see more text first.
+    fn prepare(&mut self, _text: &[u8], _complete: bool) -> bool {
+        true
+    }
+
+    /// Whether a frame's interface comes from `names`.
+    const NAMED: bool = false;
+}
+
+#[cfg(feature = "std")]
+use crate::can::{Iface, LogEvent};
+#[cfg(feature = "std")]
+use crate::logs::{LogError, LogErrorKind, LogRecord, Position};
+
+/// The reader of a text log over the line layer: blocks of whole lines
+/// from a [`std::io::Read`], each line parsed where it lies, positions
+/// counted, over-long lines reported, a live stream's end of block known.
+#[cfg(feature = "std")]
+#[derive(Debug)]
+pub(crate) struct TextLog<R, P> {
+    input: TextInput<R>,
+    parser: P,
+    names: Names,
+    /// Offset of the next line in the block.
+    pos: usize,
+    /// The number of the last line read.
+    line: u64,
+    /// The parser is ready for the block ([`TextParser::prepare`]).
+    ready: bool,
+    /// An over-long line is to be said before the block.
+    overlong: bool,
+    /// The block came from a read that drained the input.
+    drained: bool,
+    /// From this offset on, the block's lines hold nothing (a drained
+    /// block only).
+    tail: usize,
+    done: bool,
+}
+
+#[cfg(feature = "std")]
+impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
+    pub(crate) fn new(reader: R, parser: P) -> Self {
+        TextLog {
+            input: TextInput::new(reader),
+            parser,
+            names: Names::default(),
+            pos: 0,
+            line: 0,
+            ready: false,
+            overlong: false,
+            drained: false,
+            tail: 0,
+            done: false,
+        }
+    }
+
+    /// The parser, with the state the lines read so far set.
+    pub(crate) const fn parser(&self) -> &P {
+        &self.parser
+    }
+
+    #[inline]
+    pub(crate) fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
+        let event = loop {
+            if self.overlong {
+                self.overlong = false;
+                self.line += 1;
+                return Some(Err(LogError::new(
+                    Some(Position::Line(self.line)),
+                    LogErrorKind::OverlongLine,
+                )));
+            }
+            if self.ready {
+                if let Some(mut rest) = self.input.text().get(self.pos..).filter(|r| !r.is_empty())
+                {
+                    let len = rest.len();
+                    let parsed = self.parser.next_line(&mut rest, &mut self.names);
+                    self.pos += len - rest.len();
+                    self.line += 1;
+                    match parsed {
+                        Ok(None) => continue,
+                        Ok(Some(event)) => break event,
+                        Err(error) => {
+                            return Some(Err(LogError::new(
+                                Some(Position::Line(self.line)),
+                                LogErrorKind::Malformed(error),
+                            )))
+                        }
+                    }
+                }
+            }
+            if self.done {
+                return None;
+            }
+            if let Err(error) = self.next_block() {
+                self.done = true;
+                return Some(Err(error.or_at(Position::Line(self.line + 1))));
+            }
+        };
+        let mut event = event;
+        if P::NAMED {
+            if let LogEvent::Frame(frame) = &mut event {
+                frame.iface = Some(Iface::Name(self.names.last()));
+            }
+        }
+        Some(Ok(LogRecord {
+            position: Position::Line(self.line),
+            event,
+        }))
+    }
+
+    /// Read the next block and get the parser ready for it.
+    #[cold]
+    fn next_block(&mut self) -> Result<(), LogError> {
+        let Some(info) = self.input.next_block()? else {
+            self.done = true;
+            return Ok(());
+        };
+        self.pos = 0;
+        self.overlong = info.overlong;
+        self.drained = info.drained;
+        let text = self.input.text();
+        let complete = info.at_end || info.full || text.len() >= HOLD_LEN;
+        self.ready = self.parser.prepare(text, complete);
+        if !self.ready {
+            self.input.hold();
+            return Ok(());
+        }
+        self.tail = if info.drained {
+            quiet_tail(text, &self.parser)
+        } else {
+            text.len()
+        };
+        Ok(())
+    }
+
+    pub(crate) fn bytes_read(&self) -> u64 {
+        self.input.bytes
+    }
+
+    pub(crate) fn drained(&self) -> bool {
+        self.drained && self.ready && !self.overlong && self.pos >= self.tail
+    }
+
+    pub(crate) fn generation(&self) -> u64 {
+        self.names.resets
+    }
+}
+
+/// The offset in `text` from which every line holds nothing.
+#[cfg(feature = "std")]
+fn quiet_tail<P: TextParser>(text: &[u8], parser: &P) -> usize {
+    let mut end = text.len();
+    while end > 0 {
+        let body = match text.get(..end) {
+            Some([body @ .., b'\n']) | Some(body) => body,
+            None => break,
+        };
+        let start = body.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        if !parser.holds_nothing(body.get(start..).unwrap_or_default()) {
+            break;
+        }
+        end = start;
+    }
+    end
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -81,8 +81,13 @@ use crate::logs::{Found, LogFormat, SyntaxError};
 
 #[cfg(test)]
 mod proptests;
+#[cfg(feature = "std")]
+mod reader;
 #[cfg(test)]
 mod tests;
+
+#[cfg(feature = "std")]
+pub use reader::AscReader;
 
 /// The `CANFD` flags field's bits that matter here (Vector's
 /// documentation, as can-utils' `asc2log` names them).
@@ -143,7 +148,7 @@ impl AscParser {
     ///
     /// [`Error::Syntax`] with [`LogFormat::Asc`], the 1-based column and
     /// what was expected there.
-    pub fn parse_line<'l>(&mut self, line: &'l [u8]) -> Result<Option<LogEvent<'l>>> {
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
         let line = trim_end(line);
         let mut tokens = Tokens::new(line);
         let Some((start, first)) = tokens.next_token() else {
@@ -212,7 +217,7 @@ impl AscParser {
         start: usize,
         time: &'l [u8],
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'l>>> {
+    ) -> Result<Option<LogEvent<'static>>> {
         let written = parse_time(time).ok_or_else(|| {
             tokens.error_at(start + bad_time_at(time), |found| SyntaxError::AscTime {
                 found,
@@ -329,7 +334,7 @@ impl AscParser {
         line: &'l [u8],
         timestamp: Timestamp,
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'l>>> {
+    ) -> Result<Option<LogEvent<'static>>> {
         let (at, channel) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
         let channel = channel_number(channel)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;

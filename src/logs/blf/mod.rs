@@ -49,7 +49,7 @@
 //!   containers' data in a row) for an object inside a container.
 //!
 //! ```
-//! # fn main() -> Result<(), motionwire::logs::ReadError> {
+//! # fn main() -> Result<(), motionwire::logs::LogError> {
 //! use motionwire::logs::blf::BlfReader;
 //! use motionwire::logs::ReadLog;
 //!
@@ -58,7 +58,7 @@
 //! file[..4].copy_from_slice(b"LOGG");
 //! file[4..8].copy_from_slice(&144u32.to_le_bytes());
 //! let mut reader = BlfReader::new(&file[..])?;
-//! assert!(reader.next_record().is_none());
+//! assert!(reader.next_event().is_none());
 //! # Ok(())
 //! # }
 //! ```
@@ -71,7 +71,9 @@ use crate::can::{
 };
 use crate::error::Error;
 use crate::logs::calendar::{days_in_month, days_since_epoch};
-use crate::logs::{BinaryError, LogFormat, ReadError, ReadLog, Record, MAX_RECORD_LEN};
+use crate::logs::{
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN,
+};
 
 #[cfg(test)]
 mod tests;
@@ -133,12 +135,13 @@ impl<R: Read> BlfReader<R> {
     ///
     /// # Errors
     ///
-    /// [`ReadError::Io`] when reading fails; [`ReadError::Log`] with an
+    /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
+    /// of kind [`LogErrorKind::Damaged`] with an
     /// [`Error::Binary`] of [`LogFormat::Blf`] when the file does not start
     /// with `LOGG` ([`BinaryError::BadMagic`]), is cut inside its header, or
     /// its header size is shorter than the header or above
     /// [`MAX_RECORD_LEN`].
-    pub fn new(mut reader: R) -> Result<Self, ReadError> {
+    pub fn new(mut reader: R) -> Result<Self, LogError> {
         let mut head = [0u8; FILE_HEADER_LEN];
         let got = read_full(&mut reader, &mut head)?;
         if got >= 4 && head.get(..4) != Some(b"LOGG") {
@@ -211,7 +214,7 @@ impl<R: Read> BlfReader<R> {
     /// Make `need` bytes available in the stream from `pos`, reading
     /// containers (or top-level objects) from the file; `false` at the end
     /// of the file.
-    fn fill(&mut self, need: usize) -> Result<bool, ReadError> {
+    fn fill(&mut self, need: usize) -> Result<bool, LogError> {
         while self.stream.len() - self.pos < need {
             if self.file_done {
                 return Ok(false);
@@ -229,7 +232,7 @@ impl<R: Read> BlfReader<R> {
 
     /// Read one top-level object: a container's data goes to the stream, as
     /// does any other object (whole, as it stands in the file).
-    fn read_top_level(&mut self) -> Result<(), ReadError> {
+    fn read_top_level(&mut self) -> Result<(), LogError> {
         let at = self.file_offset;
         let mut header = [0u8; BASE_HEADER_LEN];
         let got = read_full(&mut self.reader, &mut header)?;
@@ -347,7 +350,7 @@ impl<R: Read> BlfReader<R> {
     }
 
     /// The next object in the stream: `None` at the end.
-    fn next_object(&mut self) -> Result<Option<Object>, ReadError> {
+    fn next_object(&mut self) -> Result<Option<Object>, LogError> {
         // Padding before an object: up to 7 bytes before `LOBJ`.
         if !self.fill(4)? {
             return self.end_of_stream();
@@ -399,16 +402,17 @@ impl<R: Read> BlfReader<R> {
                 Object::Other
             }
             // The object's size is known: report it, go on after it.
-            Err(reason) => match self.stream_fail(reason) {
-                ReadError::Log(error) => Object::Bad(error),
-                io => return Err(io),
-            },
+            Err(reason) => Object::Bad(Error::Binary {
+                format: LogFormat::Blf,
+                offset: self.stream_base + self.pos as u64,
+                reason,
+            }),
         };
         self.pos = at + size;
         Ok(Some(outcome))
     }
 
-    fn end_of_stream(&self) -> Result<Option<Object>, ReadError> {
+    fn end_of_stream(&self) -> Result<Option<Object>, LogError> {
         // Nothing but padding may be left.
         let rest = self.stream.get(self.pos..).unwrap_or_default();
         if rest.iter().all(|&b| b == 0) {
@@ -418,14 +422,14 @@ impl<R: Read> BlfReader<R> {
         }
     }
 
-    fn truncated(&self, needed: usize) -> ReadError {
+    fn truncated(&self, needed: usize) -> LogError {
         self.stream_fail(BinaryError::Truncated {
             needed: needed as u64,
             found: (self.stream.len() - self.pos) as u64,
         })
     }
 
-    fn stream_fail(&self, reason: BinaryError) -> ReadError {
+    fn stream_fail(&self, reason: BinaryError) -> LogError {
         fail(self.stream_base + self.pos as u64, reason)
     }
 }
@@ -435,27 +439,32 @@ impl<R: Read> ReadLog for BlfReader<R> {
         LogFormat::Blf
     }
 
-    fn next_record(&mut self) -> Option<Result<Record<'_>, ReadError>> {
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         loop {
             if self.done {
                 return None;
             }
             match self.next_object() {
                 Ok(Some(Object::Frame(frame))) => {
-                    return Some(Ok(Record {
-                        number: self.number,
+                    return Some(Ok(LogRecord {
+                        position: Position::Record(self.number),
                         event: LogEvent::Frame(frame),
                     }))
                 }
                 Ok(Some(Object::Other)) => continue,
-                Ok(Some(Object::Bad(error))) => return Some(Err(ReadError::Log(error))),
+                Ok(Some(Object::Bad(error))) => {
+                    return Some(Err(LogError::new(
+                        Some(Position::Record(self.number)),
+                        LogErrorKind::Malformed(error),
+                    )))
+                }
                 Ok(None) => {
                     self.done = true;
                     return None;
                 }
                 Err(e) => {
                     self.done = true;
-                    return Some(Err(e));
+                    return Some(Err(e.or_at(Position::Record(self.number + 1))));
                 }
             }
         }
@@ -463,6 +472,10 @@ impl<R: Read> ReadLog for BlfReader<R> {
 
     fn other_records(&self) -> u64 {
         self.other
+    }
+
+    fn bytes_read(&self) -> u64 {
+        self.file_offset
     }
 }
 
@@ -726,10 +739,14 @@ fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
     Ok(got)
 }
 
-fn fail(offset: u64, reason: BinaryError) -> ReadError {
-    ReadError::Log(Error::Binary {
-        format: LogFormat::Blf,
-        offset,
-        reason,
-    })
+/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+fn fail(offset: u64, reason: BinaryError) -> LogError {
+    LogError::new(
+        None,
+        LogErrorKind::Damaged(Error::Binary {
+            format: LogFormat::Blf,
+            offset,
+            reason,
+        }),
+    )
 }

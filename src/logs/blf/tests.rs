@@ -5,23 +5,21 @@ use crate::can::FrameType;
 fn read_all(file: &[u8]) -> (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64) {
     let mut reader = match BlfReader::new(file) {
         Ok(reader) => reader,
-        Err(ReadError::Log(e)) => return (Vec::new(), Some(e), 0),
-        Err(e) => panic!("{e}"),
+        Err(e) => return (Vec::new(), Some(binary_error(e)), 0),
     };
     let mut frames = Vec::new();
     let mut error = None;
-    while let Some(record) = reader.next_record() {
+    while let Some(record) = reader.next_event() {
         match record {
-            Ok(Record {
-                number,
+            Ok(LogRecord {
+                position: Position::Record(number),
                 event: LogEvent::Frame(frame),
             }) => frames.push((number, owned(&frame))),
             Ok(other) => panic!("{other:?}"),
-            Err(ReadError::Log(e)) => error = Some(e),
-            Err(e) => panic!("{e}"),
+            Err(e) => error = Some(binary_error(e)),
         }
     }
-    assert!(reader.next_record().is_none());
+    assert!(reader.next_event().is_none());
     (frames, error, reader.other_records())
 }
 
@@ -330,5 +328,13 @@ mod proptests {
                 prop_assert_eq!(got.timestamp, start.checked_add(core::time::Duration::from_nanos(*nanos)));
             }
         }
+    }
+}
+
+/// The `Error::Binary` of a reader's error (an I/O error is a test failure).
+fn binary_error(e: LogError) -> Error {
+    match e.into_kind() {
+        LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
+        other => panic!("{other}"),
     }
 }

@@ -57,6 +57,19 @@ impl<'a> Parsed<'a> {
             direction: self.direction,
         }
     }
+
+    /// The frame without its interface, which the reader fills in from its
+    /// table of names.
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub(super) fn into_unnamed_log_frame(self) -> LogFrame<'static> {
+        LogFrame {
+            frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
+            timestamp: self.timestamp,
+            iface: None,
+            direction: self.direction,
+        }
+    }
 }
 
 /// Write a frame in candump's log format (`candump -l`, SPEC §5.1), without

@@ -193,39 +193,12 @@ impl<'a> Iterator for CandumpLines<'a> {
             return None;
         }
         self.line_number += 1;
-        if let Some((frame, used)) = parse_canonical_log(self.rest) {
-            self.rest = self.rest.get(used..).unwrap_or_default();
-            self.state.after_error_frame = false;
-            let frame = frame.into_log_frame_after(&mut self.last_iface);
-            return Some((self.line_number, Ok(Some(frame))));
-        }
-        Some(self.next_general())
-    }
-
-    /// Read every line, handing each to `f` straight from the parser (what
-    /// `for_each`, `count`, `sum` and most adapters use).
-    #[inline]
-    fn fold<B, F>(mut self, init: B, mut f: F) -> B
-    where
-        F: FnMut(B, Self::Item) -> B,
-    {
-        let mut acc = init;
-        while !self.rest.is_empty() {
-            self.line_number += 1;
-            acc = match parse_canonical_log(self.rest) {
-                Some((frame, used)) => {
-                    self.rest = self.rest.get(used..).unwrap_or_default();
-                    self.state.after_error_frame = false;
-                    let frame = frame.into_log_frame_after(&mut self.last_iface);
-                    f(acc, (self.line_number, Ok(Some(frame))))
-                }
-                None => {
-                    let item = self.next_general();
-                    f(acc, item)
-                }
-            };
-        }
-        acc
+        let parsed = next_parsed(&mut self.rest, &mut self.state);
+        let last = &mut self.last_iface;
+        Some((
+            self.line_number,
+            parsed.map(|frame| frame.map(|f| f.into_log_frame_after(last))),
+        ))
     }
 }
 
@@ -244,43 +217,48 @@ impl<'a> CandumpLines<'a> {
     pub fn remainder(&self) -> &'a [u8] {
         self.rest
     }
+}
 
-    /// Read the next line when it is not in the canonical log shape.
-    #[inline(never)]
-    fn next_general(&mut self) -> (usize, Result<Option<LogFrame<'a>>>) {
-        let (line, rest) = match find_newline(self.rest) {
-            Some(i) => (
-                self.rest.get(..i).unwrap_or_default(),
-                self.rest.get(i + 1..).unwrap_or_default(),
-            ),
-            None => (self.rest, &[][..]),
-        };
-        self.rest = rest;
-        let parsed = parse_general(line);
-        if parsed.is_err() && self.state.after_error_frame && is_explanation(line) {
-            return (self.line_number, Ok(None));
-        }
-        self.state.after_error_frame = matches!(
-            parsed,
-            Ok(Some(Parsed {
-                kind: FrameType::Error,
-                ..
-            }))
-        );
-        let last = &mut self.last_iface;
-        let state = &mut self.state;
-        (
-            self.line_number,
-            parsed.map(|frame| {
-                frame.map(|mut f| {
-                    if f.relative {
-                        f.timestamp = state.resolve(f.timestamp, true);
-                    }
-                    f.into_log_frame_after(last)
-                })
-            }),
-        )
+/// Read the line at the start of `rest` and take it off (with its `\n`),
+/// with the state the lines before it set: the one step of [`CandumpLines`]
+/// and of the reader. The canonical `candump -l` shape is read by the fast
+/// path straight from the buffer; any other line is found first.
+#[inline(always)]
+pub(super) fn next_parsed<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+) -> Result<Option<Parsed<'a>>> {
+    if let Some((frame, used)) = parse_canonical_log(rest) {
+        *rest = rest.get(used..).unwrap_or_default();
+        state.after_error_frame = false;
+        return Ok(Some(frame));
     }
+    next_general(rest, state)
+}
+
+/// [`next_parsed`] for a line that is not in the canonical log shape.
+#[inline(never)]
+fn next_general<'a>(rest: &mut &'a [u8], state: &mut LineState) -> Result<Option<Parsed<'a>>> {
+    let line = take_line(rest).unwrap_or_default();
+    let parsed = parse_general(line);
+    if parsed.is_err() && state.after_error_frame && is_explanation(line) {
+        return Ok(None);
+    }
+    state.after_error_frame = matches!(
+        parsed,
+        Ok(Some(Parsed {
+            kind: FrameType::Error,
+            ..
+        }))
+    );
+    parsed.map(|frame| {
+        frame.map(|mut f| {
+            if f.relative {
+                f.timestamp = state.resolve(f.timestamp, true);
+            }
+            f
+        })
+    })
 }
 
 impl FusedIterator for CandumpLines<'_> {}
@@ -304,7 +282,7 @@ const EXPLANATION_WORDS: [&[u8]; 10] = [
 /// its indentation, then an error class name up to `{`, white space or the
 /// end of the line.
 #[cold]
-fn is_explanation(line: &[u8]) -> bool {
+pub(super) fn is_explanation(line: &[u8]) -> bool {
     let start = skip_space(line, 0);
     let (indent, text) = line.split_at(start.min(line.len()));
     let word_end = text

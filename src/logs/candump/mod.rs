@@ -126,7 +126,7 @@ use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_L
 use crate::can::{FrameType, LogFrame};
 use crate::error::{Error, Result};
 use crate::logs::calendar::{days_in_month, days_since_epoch};
-use crate::logs::text::{find_newline, hex_value};
+use crate::logs::text::{hex_value, take_line};
 use crate::logs::{Found, LogFormat, SyntaxError};
 
 mod error;
@@ -136,6 +136,8 @@ mod hex;
 mod lines;
 mod log;
 mod parse;
+#[cfg(feature = "std")]
+mod reader;
 mod screen;
 mod swar;
 mod timestamp;
@@ -148,8 +150,11 @@ use hex::*;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
+use lines::{is_explanation, next_parsed};
 use log::*;
 use parse::*;
+#[cfg(feature = "std")]
+pub use reader::CandumpReader;
 use screen::*;
 use swar::*;
 use timestamp::*;

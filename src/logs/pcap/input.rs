@@ -24,6 +24,11 @@ pub(super) struct Input<R> {
     offset: u64,
     /// The reader returned 0: no more bytes.
     eof: bool,
+    /// Bytes taken from the reader.
+    taken: u64,
+    /// The last read returned fewer bytes than asked (and some): it took
+    /// everything the input had buffered.
+    short: bool,
 }
 
 impl<R: Read> Input<R> {
@@ -36,6 +41,8 @@ impl<R: Read> Input<R> {
             end: 0,
             offset: 0,
             eof: false,
+            taken: 0,
+            short: false,
         }
     }
 
@@ -65,9 +72,15 @@ impl<R: Read> Input<R> {
                 }
             }
             let space = self.buf.get_mut(self.end..).unwrap_or_default();
+            let room = space.len();
             match self.reader.read(space) {
                 Ok(0) => self.eof = true,
-                Ok(n) => self.end += n.min(space_len(self.buf.len(), self.end)),
+                Ok(n) => {
+                    let n = n.min(space_len(self.buf.len(), self.end));
+                    self.end += n;
+                    self.taken += n as u64;
+                    self.short = n < room;
+                }
                 Err(e) if e.kind() == ErrorKind::Interrupted => {}
                 Err(e) => return Err(e),
             }
@@ -90,6 +103,17 @@ impl<R: Read> Input<R> {
     /// Return the offset of the position in the file.
     pub(super) fn offset(&self) -> u64 {
         self.offset
+    }
+
+    /// Return how many bytes were taken from the reader.
+    pub(super) fn taken(&self) -> u64 {
+        self.taken
+    }
+
+    /// Return whether the last read took everything the reader had
+    /// buffered (it returned fewer bytes than asked).
+    pub(super) fn drained(&self) -> bool {
+        self.short && !self.eof
     }
 }
 

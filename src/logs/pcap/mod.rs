@@ -43,17 +43,18 @@
 //!
 //! **Damaged or hostile files.** Every error is an [`Error::Binary`] with
 //! the byte offset of the damaged structure, returned after the frames
-//! before it; [`ReadLog::next_record`] returns `None` afterwards. A length
+//! before it; [`ReadLog::next_event`] returns `None` afterwards. A length
 //! above [`MAX_RECORD_LEN`] is [`BinaryError::TooLarge`] and is never
 //! allocated; memory stays bounded whatever the file claims (the read-ahead
 //! window grows only while the file supplies bytes; a section's interface
-//! descriptions are held up to [`MAX_RECORD_LEN`] bytes).
+//! descriptions are held up to [`MAX_RECORD_LEN`] bytes, those of the
+//! section before too, so that no interface name of the last section takes
+//! the address of one still cached: [`ReadLog::generation`]).
 //!
 //! ```
 //! use motionwire::can::{CanId, Iface, LogEvent};
-//! use motionwire::logs::ReadLog;
 //! use motionwire::logs::pcap::PcapReader;
-//! use motionwire::logs::LogFormat;
+//! use motionwire::logs::{LogFormat, Position, ReadLog};
 //!
 //! // pcap, little-endian, microseconds, link type 227; one packet:
 //! // 705#05 at 1700000000.000500.
@@ -68,14 +69,14 @@
 //!
 //! let mut reader = PcapReader::new(&file[..])?;
 //! assert_eq!(reader.format(), LogFormat::Pcap);
-//! let record = reader.next_record().unwrap()?;
-//! assert_eq!(record.number, 1);
+//! let record = reader.next_event().unwrap()?;
+//! assert_eq!(record.position, Position::Record(1));
 //! let LogEvent::Frame(logged) = record.event else { panic!() };
 //! assert_eq!(logged.frame.id(), CanId::standard(0x705).unwrap());
 //! assert_eq!(logged.frame.data(), [0x05]);
 //! assert_eq!(logged.to_string(), "(1700000000.000500) 705#05");
-//! assert!(reader.next_record().is_none());
-//! # Ok::<(), motionwire::logs::ReadError>(())
+//! assert!(reader.next_event().is_none());
+//! # Ok::<(), motionwire::logs::LogError>(())
 //! ```
 
 mod input;
@@ -91,7 +92,9 @@ use core::time::Duration;
 use std::io::Read;
 
 use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
-use crate::logs::{BinaryError, LogFormat, ReadError, ReadLog, Record, MAX_RECORD_LEN};
+use crate::logs::{
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN,
+};
 use crate::Error;
 use input::Input;
 use socketcan::Payload;
@@ -254,6 +257,11 @@ pub struct PcapReader<R: Read> {
     number: u64,
     other: u64,
     done: bool,
+    /// The interfaces of the section before, kept where they are until the
+    /// next section starts (see [`ReadLog::generation`]).
+    retired: Vec<Interface>,
+    /// Sections started after the first.
+    sections: u64,
 }
 
 impl<R: Read> PcapReader<R> {
@@ -262,12 +270,13 @@ impl<R: Read> PcapReader<R> {
     ///
     /// # Errors
     ///
-    /// [`ReadError::Io`] when reading fails; [`ReadError::Log`] with an
+    /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
+    /// of kind [`LogErrorKind::Damaged`] with an
     /// [`Error::Binary`] when the magic number is neither pcap's nor
     /// pcapng's ([`BinaryError::BadMagic`], format [`LogFormat::Pcap`]),
     /// the header is cut off, its version unknown or its snapshot length
     /// above [`MAX_RECORD_LEN`].
-    pub fn new(reader: R) -> Result<Self, ReadError> {
+    pub fn new(reader: R) -> Result<Self, LogError> {
         let mut input = Input::new(reader);
         let available = input.fill(4)?;
         let first = input
@@ -292,6 +301,8 @@ impl<R: Read> PcapReader<R> {
             number: 0,
             other: 0,
             done: false,
+            retired: Vec::new(),
+            sections: 0,
         };
         match first {
             magic::MICROS | magic::MICROS_SWAPPED | magic::NANOS | magic::NANOS_SWAPPED => {
@@ -309,7 +320,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// Read the 24-byte pcap file header whose magic number is `first`.
-    fn read_pcap_header(&mut self, first: u32) -> Result<(), ReadError> {
+    fn read_pcap_header(&mut self, first: u32) -> Result<(), LogError> {
         let big_endian = matches!(first, magic::MICROS_SWAPPED | magic::NANOS_SWAPPED);
         let nanos = matches!(first, magic::NANOS | magic::NANOS_SWAPPED);
         self.layout = Layout::Pcap { big_endian };
@@ -343,7 +354,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// Return the next packet, `None` at the end of the file.
-    fn next_packet(&mut self) -> Result<Option<Packet>, ReadError> {
+    fn next_packet(&mut self) -> Result<Option<Packet>, LogError> {
         match self.layout {
             Layout::Pcap { big_endian } => self.next_pcap_record(big_endian),
             Layout::Pcapng { .. } => loop {
@@ -357,7 +368,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// Read one pcap record.
-    fn next_pcap_record(&mut self, big_endian: bool) -> Result<Option<Packet>, ReadError> {
+    fn next_pcap_record(&mut self, big_endian: bool) -> Result<Option<Packet>, LogError> {
         let available = self.input.fill(PCAP_RECORD_LEN)?;
         if available == 0 {
             return Ok(None);
@@ -398,7 +409,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// Read one pcapng block.
-    fn next_pcapng_block(&mut self) -> Result<Block, ReadError> {
+    fn next_pcapng_block(&mut self) -> Result<Block, LogError> {
         let available = self.input.fill(8)?;
         if available == 0 {
             return Ok(Block::End);
@@ -486,7 +497,7 @@ impl<R: Read> PcapReader<R> {
 
     /// A section header block's body: byte order, version, section length,
     /// options. Starts a new list of interfaces.
-    fn read_section_header(&mut self, body: &[u8]) -> Result<(), ReadError> {
+    fn read_section_header(&mut self, body: &[u8]) -> Result<(), LogError> {
         let Layout::Pcapng { big_endian } = self.layout else {
             return Ok(());
         };
@@ -498,14 +509,17 @@ impl<R: Read> PcapReader<R> {
         if major != 1 {
             return Err(self.fail(0, BinaryError::UnsupportedVersion { major, minor }));
         }
-        self.interfaces.clear();
+        if !self.interfaces.is_empty() {
+            self.retired = core::mem::take(&mut self.interfaces);
+            self.sections += 1;
+        }
         self.interface_bytes = 0;
         Ok(())
     }
 
     /// An interface description block's body: link type, reserved,
     /// snaplen, options (`if_name`, `if_tsresol`, `if_tsoffset`).
-    fn read_interface(&mut self, body: &[u8]) -> Result<(), ReadError> {
+    fn read_interface(&mut self, body: &[u8]) -> Result<(), LogError> {
         let Layout::Pcapng { big_endian } = self.layout else {
             return Ok(());
         };
@@ -571,7 +585,7 @@ impl<R: Read> PcapReader<R> {
         body: &[u8],
         big_endian: bool,
         len: usize,
-    ) -> Result<Packet, ReadError> {
+    ) -> Result<Packet, LogError> {
         const FIXED: usize = 20;
         if body.len() < FIXED {
             return Err(self.fail(0, bad_length(body.len() + BLOCK_OVERHEAD)));
@@ -614,7 +628,7 @@ impl<R: Read> PcapReader<R> {
         body: &[u8],
         big_endian: bool,
         len: usize,
-    ) -> Result<Packet, ReadError> {
+    ) -> Result<Packet, LogError> {
         let Some(head) = body.first_chunk::<4>() else {
             return Err(self.fail(0, bad_length(body.len() + BLOCK_OVERHEAD)));
         };
@@ -638,7 +652,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// Return the interface `id` of the current section.
-    fn interface(&self, id: u32) -> Result<&Interface, ReadError> {
+    fn interface(&self, id: u32) -> Result<&Interface, LogError> {
         self.interfaces.get(id as usize).ok_or_else(|| {
             self.fail(
                 0,
@@ -650,6 +664,18 @@ impl<R: Read> PcapReader<R> {
         })
     }
 
+    /// Whether the bytes read ahead hold the whole next record (pcap) or
+    /// block (pcapng), so that handing it on needs no read.
+    fn whole_record_buffered(&self) -> bool {
+        let bytes = self.input.bytes();
+        let (len_at, overhead, big_endian) = match self.layout {
+            Layout::Pcap { big_endian } => (8, PCAP_RECORD_LEN, big_endian),
+            Layout::Pcapng { big_endian } => (4, 0, big_endian),
+        };
+        bytes.len() >= len_at + 4
+            && bytes.len() >= overhead + u32_at(bytes, len_at, big_endian) as usize
+    }
+
     /// The reader's format.
     fn log_format(&self) -> LogFormat {
         match self.layout {
@@ -659,7 +685,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// An error at `at` bytes from the position.
-    fn fail(&self, at: usize, reason: BinaryError) -> ReadError {
+    fn fail(&self, at: usize, reason: BinaryError) -> LogError {
         fail(
             self.log_format(),
             self.input.offset().saturating_add(at as u64),
@@ -668,7 +694,7 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// The file ends inside a structure of `needed` bytes at the position.
-    fn truncated(&self, needed: usize, found: usize) -> ReadError {
+    fn truncated(&self, needed: usize, found: usize) -> LogError {
         self.fail(
             0,
             BinaryError::Truncated {
@@ -684,7 +710,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
         self.log_format()
     }
 
-    fn next_record(&mut self) -> Option<Result<Record<'_>, ReadError>> {
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         loop {
             if self.done {
                 return None;
@@ -697,7 +723,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
                 Err(e) => {
                     self.done = true;
-                    return Some(Err(e));
+                    return Some(Err(e.or_at(Position::Record(self.number + 1))));
                 }
             };
             self.number = self.number.saturating_add(1);
@@ -720,7 +746,8 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
                 Err(reason) => {
                     self.done = true;
-                    return Some(Err(self.fail(packet.data.start, reason)));
+                    let error = self.fail(packet.data.start, reason);
+                    return Some(Err(error.or_at(Position::Record(self.number))));
                 }
             };
             self.input.consume(packet.len);
@@ -729,8 +756,8 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 .get(packet.interface)
                 .and_then(|i| i.name.as_deref())
                 .map(Iface::Name);
-            return Some(Ok(Record {
-                number: self.number,
+            return Some(Ok(LogRecord {
+                position: Position::Record(self.number),
                 event: LogEvent::Frame(LogFrame {
                     frame,
                     timestamp: packet.timestamp,
@@ -744,15 +771,30 @@ impl<R: Read> ReadLog for PcapReader<R> {
     fn other_records(&self) -> u64 {
         self.other
     }
+
+    fn bytes_read(&self) -> u64 {
+        self.input.taken()
+    }
+
+    fn drained(&self) -> bool {
+        self.input.drained() && !self.whole_record_buffered()
+    }
+
+    fn generation(&self) -> u64 {
+        self.sections
+    }
 }
 
-/// An [`Error::Binary`] as a [`ReadError`].
-fn fail(format: LogFormat, offset: u64, reason: BinaryError) -> ReadError {
-    ReadError::Log(Error::Binary {
-        format,
-        offset,
-        reason,
-    })
+/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+fn fail(format: LogFormat, offset: u64, reason: BinaryError) -> LogError {
+    LogError::new(
+        None,
+        LogErrorKind::Damaged(Error::Binary {
+            format,
+            offset,
+            reason,
+        }),
+    )
 }
 
 /// A length above [`MAX_RECORD_LEN`].

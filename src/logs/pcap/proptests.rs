@@ -43,24 +43,20 @@ fn outcome<R: Read>(input: R) -> Outcome {
     let mut frames = Vec::new();
     let mut error = None;
     let mut last = 0;
-    while let Some(record) = reader.next_record() {
+    while let Some(record) = reader.next_event() {
         match record {
             Ok(record) => {
-                assert!(record.number > last, "numbers increase");
-                last = record.number;
+                let number = record.position.number();
+                assert!(number > last, "numbers increase");
+                last = number;
                 let f = *record.event.frame().expect("pcap yields frames");
                 assert_eq!(f.direction, None);
-                frames.push((
-                    record.number,
-                    f.frame,
-                    f.timestamp,
-                    f.iface.map(|i| i.to_string()),
-                ));
+                frames.push((number, f.frame, f.timestamp, f.iface.map(|i| i.to_string())));
             }
             Err(e) => {
                 assert!(error.is_none(), "one error at most");
-                match &e {
-                    ReadError::Log(Error::Binary { format, .. }) => {
+                match e.kind() {
+                    LogErrorKind::Damaged(Error::Binary { format, .. }) => {
                         assert_eq!(*format, reader.format());
                     }
                     other => panic!("{other:?}"),
@@ -69,7 +65,7 @@ fn outcome<R: Read>(input: R) -> Outcome {
             }
         }
     }
-    assert!(reader.next_record().is_none());
+    assert!(reader.next_event().is_none());
     if error.is_none() {
         assert_eq!(
             frames.len() as u64 + reader.other_records(),

@@ -120,12 +120,16 @@ use crate::error::Result;
 
 mod header;
 mod lines;
+#[cfg(feature = "std")]
+mod reader;
 mod row;
 mod tokens;
 mod write;
 
 use header::{parse_header, HeaderKey, Layout};
 pub use lines::{lines, TrcLines};
+#[cfg(feature = "std")]
+pub use reader::TrcReader;
 pub use row::ERROR_FRAME_CLASSES;
 use row::{parse_row, Context};
 pub use write::{write_header, write_line};
@@ -242,7 +246,7 @@ impl TrcParser {
     /// parser's state), a [`LogEvent::Frame`] or [`LogEvent::Status`] for a
     /// row, and an [`Error::Syntax`](crate::Error::Syntax) with the column
     /// and reason for anything else.
-    pub fn parse_line<'l>(&mut self, line: &'l [u8]) -> Result<Option<LogEvent<'l>>> {
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
         let trimmed = tokens::trim_end(line);
         let Some(first) = trimmed.iter().position(|&b| !tokens::is_space(b)) else {
             return Ok(None);
