@@ -55,7 +55,7 @@ pub use error::{BinaryError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
 #[cfg(feature = "logs")]
-pub use reader::{open, read, LogReader, ReadOptions};
+pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 #[cfg(feature = "std")]
 pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};

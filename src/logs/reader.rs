@@ -223,11 +223,7 @@ impl ReadOptions {
                 LogFormat::Pcap | LogFormat::Pcapng => Inner::Pcap(PcapReader::new(again)?),
                 LogFormat::Blf => Inner::Blf(BlfReader::new(again)?),
             };
-            return Ok(LogReader {
-                inner,
-                gzip,
-                skipped: 0,
-            });
+            return Ok(LogReader { inner, gzip });
         }
     }
 }
@@ -255,12 +251,10 @@ fn fill(reader: &mut Input, head: &mut Vec<u8>, want: usize) -> io::Result<bool>
 
 /// A log of any format of SPEC §5, read by its format's reader: what
 /// [`open`] and [`read`] return. It is a [`ReadLog`] like each of them,
-/// and adds what the dispatch knows: whether the input was gzip, and how
-/// many lines or records were skipped.
+/// and adds what the dispatch knows: whether the input was gzip.
 pub struct LogReader {
     inner: Inner,
     gzip: bool,
-    skipped: u64,
 }
 
 /// The format's reader: an enum, so that each event costs one predictable
@@ -294,12 +288,52 @@ impl LogReader {
         self.gzip
     }
 
-    /// Return how many lines or records were reported and skipped so far
-    /// (errors for which [`LogError::is_skipped`] is true).
-    #[must_use]
-    pub const fn skipped(&self) -> u64 {
-        self.skipped
+    /// Hand the format's own reader to `visitor`, so that its loop over
+    /// the events is compiled for that reader's type.
+    ///
+    /// [`LogReader::next_event`](ReadLog::next_event) picks the format's
+    /// reader at every call; in a loop that does little with each event
+    /// that costs about as much as reading a candump line (the event is
+    /// written out to memory instead of staying where the parser put it).
+    /// A visitor's loop has no such cost.
+    ///
+    /// ```
+    /// use motionwire::logs::{self, LogVisitor, ReadLog};
+    ///
+    /// /// The frames of a log, counted.
+    /// struct CountFrames;
+    ///
+    /// impl LogVisitor for CountFrames {
+    ///     type Output = u64;
+    ///
+    ///     fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> u64 {
+    ///         let mut frames = 0;
+    ///         while let Some(next) = log.next_event() {
+    ///             if next.is_ok_and(|record| record.event.frame().is_some()) {
+    ///                 frames += 1;
+    ///             }
+    ///         }
+    ///         frames
+    ///     }
+    /// }
+    ///
+    /// let text: &[u8] = b"(1.000000) can0 705#05\n(1.100000) can0 705#05\n";
+    /// assert_eq!(logs::read(text)?.visit(CountFrames), 2);
+    /// # Ok::<(), motionwire::logs::LogError>(())
+    /// ```
+    pub fn visit<V: LogVisitor>(&mut self, visitor: V) -> V::Output {
+        each!(&mut self.inner, reader => visitor.visit(reader))
     }
+}
+
+/// Code that reads a log through whichever reader its format has, compiled
+/// for each: see [`LogReader::visit`].
+pub trait LogVisitor {
+    /// What the visit returns.
+    type Output;
+
+    /// Read `log`, a [`LogReader`]'s reader of the log's format.
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Self::Output;
 }
 
 impl ReadLog for LogReader {
@@ -307,15 +341,13 @@ impl ReadLog for LogReader {
         each!(&self.inner, reader => reader.format())
     }
 
-    #[inline]
+    #[inline(always)]
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
-        let next = each!(&mut self.inner, reader => reader.next_event());
-        if let Some(Err(error)) = &next {
-            if error.is_skipped() {
-                self.skipped += 1;
-            }
-        }
-        next
+        each!(&mut self.inner, reader => reader.next_event())
+    }
+
+    fn skipped(&self) -> u64 {
+        each!(&self.inner, reader => reader.skipped())
     }
 
     fn other_records(&self) -> u64 {
@@ -326,10 +358,12 @@ impl ReadLog for LogReader {
         each!(&self.inner, reader => reader.bytes_read())
     }
 
+    #[inline(always)]
     fn drained(&self) -> bool {
         each!(&self.inner, reader => reader.drained())
     }
 
+    #[inline(always)]
     fn generation(&self) -> u64 {
         each!(&self.inner, reader => reader.generation())
     }
@@ -340,7 +374,7 @@ impl fmt::Debug for LogReader {
         f.debug_struct("LogReader")
             .field("format", &self.format())
             .field("gzip", &self.gzip)
-            .field("skipped", &self.skipped)
+            .field("skipped", &self.skipped())
             .field("bytes_read", &self.bytes_read())
             .finish_non_exhaustive()
     }

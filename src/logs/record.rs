@@ -108,6 +108,10 @@ pub trait ReadLog {
         0
     }
 
+    /// Return how many lines or records were reported and skipped so far
+    /// (the errors for which [`LogError::is_skipped`] is true).
+    fn skipped(&self) -> u64;
+
     /// Return how many bytes the reader has taken from its input so far
     /// (the decompressed bytes when it reads through gzip): for progress.
     fn bytes_read(&self) -> u64;

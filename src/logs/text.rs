@@ -343,7 +343,7 @@ impl Names {
 
     /// The last event's name.
     #[inline(always)]
-    fn last(&self) -> &str {
+    pub(crate) fn last(&self) -> &str {
         self.names.get(self.last).map_or("", |n| n)
     }
 }
@@ -353,14 +353,23 @@ impl Names {
 /// relative timestamps).
 #[cfg(feature = "std")]
 pub(crate) trait TextParser: Clone {
+    /// What a line that holds something is parsed into, borrowing the
+    /// line.
+    type Line<'t>;
+
     /// Read the line at the start of `rest` and take it off, with its
-    /// `\n`. A frame whose interface has a name leaves it in `names` and
-    /// its `iface` `None`: the reader fills it in.
-    fn next_line(
+    /// `\n`: `Ok(None)` when it holds nothing. A frame's interface name is
+    /// left in `names`.
+    fn next_line<'t>(
         &mut self,
-        rest: &mut &[u8],
+        rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> crate::Result<Option<LogEvent<'static>>>;
+    ) -> crate::Result<Option<Self::Line<'t>>>;
+
+    /// The record of a line that holds something, at `position`, its
+    /// interface name from `names`. (Built where the reader returns it, so
+    /// that the frame is written once, where the caller reads it.)
+    fn record<'a>(line: Self::Line<'_>, position: Position, names: &'a Names) -> LogRecord<'a>;
 
     /// Whether `line` holds nothing (blank, comment, header) whatever comes
     /// before it: where a live stream's reader can tell that the events
@@ -372,13 +381,8 @@ pub(crate) trait TextParser: Clone {
     fn prepare(&mut self, _text: &[u8], _complete: bool) -> bool {
         true
     }
-
-    /// Whether a frame's interface comes from `names`.
-    const NAMED: bool = false;
 }
 
-#[cfg(feature = "std")]
-use crate::can::{Iface, LogEvent};
 #[cfg(feature = "std")]
 use crate::logs::{LogError, LogErrorKind, LogRecord, Position};
 
@@ -393,18 +397,34 @@ pub(crate) struct TextLog<R, P> {
     names: Names,
     /// Offset of the next line in the block.
     pos: usize,
+    /// Where the lines to read now end: the block's end, or 0 while the
+    /// parser is not ready or an over-long line is still to be said (one
+    /// comparison per line tells the usual case).
+    end: usize,
     /// The number of the last line read.
     line: u64,
     /// The parser is ready for the block ([`TextParser::prepare`]).
     ready: bool,
     /// An over-long line is to be said before the block.
     overlong: bool,
-    /// The block came from a read that drained the input.
-    drained: bool,
-    /// From this offset on, the block's lines hold nothing (a drained
-    /// block only).
+    /// Lines reported and skipped.
+    skipped: u64,
+    /// From this offset on, the block's lines hold nothing and it came
+    /// from a read that drained the input: the reader is drained once it
+    /// gets there (`usize::MAX` otherwise).
     tail: usize,
     done: bool,
+}
+
+/// What the slow path of [`TextLog::next_event`] found.
+#[cfg(feature = "std")]
+enum Step {
+    /// Lines to read.
+    Lines,
+    /// The end of the input.
+    End,
+    /// An error to hand on.
+    Error(LogError),
 }
 
 #[cfg(feature = "std")]
@@ -415,11 +435,12 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
             parser,
             names: Names::default(),
             pos: 0,
+            end: 0,
             line: 0,
             ready: false,
             overlong: false,
-            drained: false,
-            tail: 0,
+            skipped: 0,
+            tail: usize::MAX,
             done: false,
         }
     }
@@ -431,90 +452,110 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
 
     #[inline]
     pub(crate) fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
-        let event = loop {
-            if self.overlong {
-                self.overlong = false;
+        loop {
+            if self.pos < self.end {
+                let mut rest = self.input.buf.get(self.pos..self.end).unwrap_or_default();
+                let len = rest.len();
+                let parsed = self.parser.next_line(&mut rest, &mut self.names);
+                self.pos += len - rest.len();
                 self.line += 1;
-                return Some(Err(LogError::new(
-                    Some(Position::Line(self.line)),
-                    LogErrorKind::OverlongLine,
-                )));
-            }
-            if self.ready {
-                if let Some(mut rest) = self.input.text().get(self.pos..).filter(|r| !r.is_empty())
-                {
-                    let len = rest.len();
-                    let parsed = self.parser.next_line(&mut rest, &mut self.names);
-                    self.pos += len - rest.len();
-                    self.line += 1;
-                    match parsed {
-                        Ok(None) => continue,
-                        Ok(Some(event)) => break event,
-                        Err(error) => {
-                            return Some(Err(LogError::new(
-                                Some(Position::Line(self.line)),
-                                LogErrorKind::Malformed(error),
-                            )))
-                        }
+                match parsed {
+                    Ok(None) => continue,
+                    Ok(Some(line)) => {
+                        // Borrowed only on the way out: the loop goes on
+                        // without it.
+                        let position = Position::Line(self.line);
+                        return Some(Ok(P::record(line, position, &self.names)));
+                    }
+                    Err(error) => {
+                        self.skipped += 1;
+                        return Some(Err(malformed(self.line, error)));
                     }
                 }
             }
-            if self.done {
-                return None;
-            }
-            if let Err(error) = self.next_block() {
-                self.done = true;
-                return Some(Err(error.or_at(Position::Line(self.line + 1))));
-            }
-        };
-        let mut event = event;
-        if P::NAMED {
-            if let LogEvent::Frame(frame) = &mut event {
-                frame.iface = Some(Iface::Name(self.names.last()));
+            match self.step() {
+                Step::Lines => {}
+                Step::End => return None,
+                Step::Error(error) => return Some(Err(error)),
             }
         }
-        Some(Ok(LogRecord {
-            position: Position::Line(self.line),
-            event,
-        }))
     }
 
-    /// Read the next block and get the parser ready for it.
+    /// The block is read: say a skipped over-long line, or read the next
+    /// block and get the parser ready for it.
     #[cold]
-    fn next_block(&mut self) -> Result<(), LogError> {
-        let Some(info) = self.input.next_block()? else {
-            self.done = true;
-            return Ok(());
+    #[inline(never)]
+    fn step(&mut self) -> Step {
+        if self.overlong {
+            self.overlong = false;
+            self.line += 1;
+            self.skipped += 1;
+            if self.ready {
+                self.end = self.input.text;
+            }
+            return Step::Error(LogError::new(
+                Some(Position::Line(self.line)),
+                LogErrorKind::OverlongLine,
+            ));
+        }
+        if self.done {
+            return Step::End;
+        }
+        let info = match self.input.next_block() {
+            Ok(Some(info)) => info,
+            Ok(None) => {
+                self.done = true;
+                return Step::End;
+            }
+            Err(error) => {
+                self.done = true;
+                return Step::Error(LogError::from(error).or_at(Position::Line(self.line + 1)));
+            }
         };
         self.pos = 0;
+        self.end = 0;
+        self.tail = usize::MAX;
         self.overlong = info.overlong;
-        self.drained = info.drained;
         let text = self.input.text();
         let complete = info.at_end || info.full || text.len() >= HOLD_LEN;
         self.ready = self.parser.prepare(text, complete);
         if !self.ready {
             self.input.hold();
-            return Ok(());
+            return Step::Lines;
         }
-        self.tail = if info.drained {
-            quiet_tail(text, &self.parser)
-        } else {
-            text.len()
-        };
-        Ok(())
+        if info.drained {
+            self.tail = quiet_tail(text, &self.parser);
+        }
+        if !self.overlong {
+            self.end = text.len();
+        }
+        Step::Lines
     }
 
     pub(crate) fn bytes_read(&self) -> u64 {
         self.input.bytes
     }
 
+    pub(crate) const fn skipped(&self) -> u64 {
+        self.skipped
+    }
+
+    #[inline]
     pub(crate) fn drained(&self) -> bool {
-        self.drained && self.ready && !self.overlong && self.pos >= self.tail
+        self.pos >= self.tail
     }
 
     pub(crate) fn generation(&self) -> u64 {
         self.names.resets
     }
+}
+
+/// The error for line `line`, malformed as `error` says: reported, and
+/// the reading goes on.
+#[cfg(feature = "std")]
+#[cold]
+pub(crate) fn malformed(line: u64, error: crate::Error) -> LogError {
+    LogError::new(Some(Position::Line(line)), LogErrorKind::Malformed(error))
 }
 
 /// The offset in `text` from which every line holds nothing.

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 use motionwire::can::{LogEvent, LogFrame};
 use motionwire::canopen::{CanOpenMessage, MessageKind};
 use motionwire::logs::candump::RelativeTimestamps;
-use motionwire::logs::{LogError, LogErrorKind, LogReader, Position, ReadLog, ReadOptions};
+use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 
 use crate::args::{DecodeArgs, IdRange, TimestampBase};
 use crate::context::{Context, PdoView};
@@ -284,7 +284,12 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             .read(reader)
             .map_err(|e| open_failure(&name, path.as_deref(), e))?;
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
-        read_log(&mut sink, &mut progress, &mut log, &name, path.as_deref())?;
+        log.visit(ReadAll {
+            sink: &mut sink,
+            progress: &mut progress,
+            name: &name,
+            path: path.as_deref(),
+        })?;
         sink.clear_progress()?;
     }
 
@@ -343,60 +348,73 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
 /// Read a log event by event, each with its line or record (SPEC §5.7):
 /// frames and bus events to the sink, malformed lines and damaged records
 /// said on standard error, and the output flushed whenever the input has
-/// nothing more buffered (live use, SPEC §6.4).
-fn read_log(
-    sink: &mut Sink<'_>,
-    progress: &mut Progress,
-    log: &mut LogReader,
-    name: &str,
-    path: Option<&Path>,
-) -> Result<(), Failure> {
-    /// How many events pass between looks at the progress.
-    const PROGRESS_EVERY: u64 = 4096;
-    let mut generation = None;
-    let mut events: u64 = 0;
-    let mut number = 0;
-    loop {
-        // Interface names the summary and the context cache by address.
-        if generation != Some(log.generation()) {
-            generation = Some(log.generation());
-            if let Some(summary) = sink.summary.as_mut() {
-                summary.new_block();
+/// nothing more buffered (live use, SPEC §6.4). A [`LogVisitor`], so that
+/// the loop is compiled for each format's reader.
+struct ReadAll<'r, 's, 'a> {
+    sink: &'r mut Sink<'a>,
+    progress: &'r mut Progress,
+    name: &'s str,
+    path: Option<&'s Path>,
+}
+
+impl LogVisitor for ReadAll<'_, '_, '_> {
+    type Output = Result<(), Failure>;
+
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<(), Failure> {
+        /// How many events pass between looks at the progress.
+        const PROGRESS_EVERY: u64 = 4096;
+        let ReadAll {
+            sink,
+            progress,
+            name,
+            path,
+        } = self;
+        let mut generation = None;
+        let mut events: u64 = 0;
+        let mut number = 0;
+        loop {
+            // Interface names the summary and the context cache by address.
+            if generation != Some(log.generation()) {
+                generation = Some(log.generation());
+                if let Some(summary) = sink.summary.as_mut() {
+                    summary.new_block();
+                }
+                sink.context.new_block();
             }
-            sink.context.new_block();
-        }
-        let Some(next) = log.next_event() else { break };
-        match next {
-            Ok(record) => {
-                number = record.position.number();
-                sink.event(number, &record.event)?;
+            match log.next_event() {
+                None => break,
+                // Read where it lies: the record is not moved.
+                Some(Ok(ref record)) => {
+                    number = record.position.number();
+                    sink.event(number, &record.event)?;
+                }
+                Some(Err(error)) => {
+                    number = error.position().map_or(number, Position::number);
+                    report(sink, error, name, path)?;
+                }
             }
-            Err(error) => {
-                number = error.position().map_or(number, Position::number);
-                report(sink, error, name, path)?;
+            events += 1;
+            if events % PROGRESS_EVERY == 0 {
+                progress.advance(sink, log.bytes_read(), number)?;
+            }
+            if log.drained() {
+                // Live use: what was decoded so far is written out now
+                // (SPEC §6.4); a file read in full blocks never gets here.
+                sink.flush()?;
             }
         }
-        events += 1;
-        if events % PROGRESS_EVERY == 0 {
-            progress.advance(sink, log.bytes_read(), number)?;
+        let others = log.other_records();
+        if others > 0 {
+            // SPEC §5.5, §5.6: counted and said once, not per record.
+            let s = if others == 1 { "" } else { "s" };
+            writeln!(
+                sink.err,
+                "{name}: {others} {} record{s} without a CAN frame skipped",
+                log.format()
+            )?;
         }
-        if log.drained() {
-            // Live use: what was decoded so far is written out now
-            // (SPEC §6.4); a file read in full blocks never gets here.
-            sink.flush()?;
-        }
+        Ok(())
     }
-    let others = log.other_records();
-    if others > 0 {
-        // SPEC §5.5, §5.6: counted and said once, not per record.
-        let s = if others == 1 { "" } else { "s" };
-        writeln!(
-            sink.err,
-            "{name}: {others} {} record{s} without a CAN frame skipped",
-            log.format()
-        )?;
-    }
-    Ok(())
 }
 
 /// Say an error of the reader: a malformed or over-long line is counted

@@ -4,9 +4,8 @@ use std::io::Read;
 
 use super::AscParser;
 use crate::can::LogEvent;
-use crate::error::Result;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, ReadLog};
+use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of Vector ASC logs (SPEC §5.3) from any [`Read`]: whole lines
 /// a block at a time, each read by one [`AscParser`] where it lies, with
@@ -52,14 +51,19 @@ impl<R: Read> ReadLog for AscReader<R> {
     }
 
     #[inline]
-    fn next_event(&mut self) -> Option<std::result::Result<LogRecord<'_>, LogError>> {
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         self.log.next_event()
+    }
+
+    fn skipped(&self) -> u64 {
+        self.log.skipped()
     }
 
     fn bytes_read(&self) -> u64 {
         self.log.bytes_read()
     }
 
+    #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
     }
@@ -70,13 +74,24 @@ impl<R: Read> ReadLog for AscReader<R> {
 }
 
 impl TextParser for AscParser {
+    type Line<'t> = LogEvent<'static>;
+
     #[inline]
     fn next_line(
         &mut self,
         rest: &mut &[u8],
         _names: &mut Names,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> crate::Result<Option<LogEvent<'static>>> {
         self.parse_line(take_line(rest).unwrap_or_default())
+    }
+
+    #[inline]
+    fn record<'a>(
+        event: LogEvent<'static>,
+        position: Position,
+        _names: &'a Names,
+    ) -> LogRecord<'a> {
+        LogRecord { position, event }
     }
 
     fn holds_nothing(&self, line: &[u8]) -> bool {

@@ -125,6 +125,8 @@ pub struct BlfReader<R: Read> {
     /// Objects (not containers) seen.
     number: u64,
     other: u64,
+    /// Objects reported as damaged and skipped.
+    bad: u64,
     done: bool,
     /// The file has no more containers.
     file_done: bool,
@@ -200,6 +202,7 @@ impl<R: Read> BlfReader<R> {
             stream_base: 0,
             number: 0,
             other: 0,
+            bad: 0,
             done: false,
             file_done: false,
         })
@@ -453,10 +456,11 @@ impl<R: Read> ReadLog for BlfReader<R> {
                 }
                 Ok(Some(Object::Other)) => continue,
                 Ok(Some(Object::Bad(error))) => {
+                    self.bad += 1;
                     return Some(Err(LogError::new(
                         Some(Position::Record(self.number)),
                         LogErrorKind::Malformed(error),
-                    )))
+                    )));
                 }
                 Ok(None) => {
                     self.done = true;
@@ -472,6 +476,10 @@ impl<R: Read> ReadLog for BlfReader<R> {
 
     fn other_records(&self) -> u64 {
         self.other
+    }
+
+    fn skipped(&self) -> u64 {
+        self.bad
     }
 
     fn bytes_read(&self) -> u64 {

@@ -9,7 +9,7 @@ use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
 /// invariants of [`CanFrame`] (lengths, an extended identifier for an error
 /// frame), so the conversion checks nothing.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Parsed<'a> {
+pub(crate) struct Parsed<'a> {
     pub(super) timestamp: Option<Timestamp>,
     /// The timestamp is relative (`candump -t d` or `-t z`: fewer than ten
     /// digits of seconds), not Unix time.
@@ -58,15 +58,15 @@ impl<'a> Parsed<'a> {
         }
     }
 
-    /// The frame without its interface, which the reader fills in from its
-    /// table of names.
+    /// The frame with the interface named `iface` (the reader's copy of
+    /// the name, which outlives the line).
     #[cfg(feature = "std")]
     #[inline(always)]
-    pub(super) fn into_unnamed_log_frame(self) -> LogFrame<'static> {
+    pub(super) fn into_log_frame_with(self, iface: &str) -> LogFrame<'_> {
         LogFrame {
             frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
             timestamp: self.timestamp,
-            iface: None,
+            iface: Some(Iface::Name(iface)),
             direction: self.direction,
         }
     }

@@ -6,7 +6,7 @@ use std::io::Read;
 use super::*;
 use crate::can::LogEvent;
 use crate::logs::text::{Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, ReadLog};
+use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of candump logs and screen output (SPEC §5.1, §5.2) from any
 /// [`Read`]: whole lines a block at a time (256 KiB), each parsed where it
@@ -96,10 +96,15 @@ impl<R: Read> ReadLog for CandumpReader<R> {
         self.log.next_event()
     }
 
+    fn skipped(&self) -> u64 {
+        self.log.skipped()
+    }
+
     fn bytes_read(&self) -> u64 {
         self.log.bytes_read()
     }
 
+    #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
     }
@@ -118,21 +123,27 @@ pub(super) struct Candump {
 }
 
 impl TextParser for Candump {
-    const NAMED: bool = true;
+    type Line<'t> = Parsed<'t>;
 
     #[inline(always)]
-    fn next_line(
+    fn next_line<'t>(
         &mut self,
-        rest: &mut &[u8],
+        rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> Result<Option<LogEvent<'static>>> {
-        Ok(match next_parsed(rest, &mut self.state)? {
-            Some(frame) => {
-                names.intern(frame.iface);
-                Some(LogEvent::Frame(frame.into_unnamed_log_frame()))
-            }
-            None => None,
-        })
+    ) -> Result<Option<Parsed<'t>>> {
+        let parsed = next_parsed(rest, &mut self.state);
+        if let Ok(Some(frame)) = &parsed {
+            names.intern(frame.iface);
+        }
+        parsed
+    }
+
+    #[inline(always)]
+    fn record<'a>(line: Parsed<'_>, position: Position, names: &'a Names) -> LogRecord<'a> {
+        LogRecord {
+            position,
+            event: LogEvent::Frame(line.into_log_frame_with(names.last())),
+        }
     }
 
     fn holds_nothing(&self, line: &[u8]) -> bool {

@@ -772,10 +772,16 @@ impl<R: Read> ReadLog for PcapReader<R> {
         self.other
     }
 
+    fn skipped(&self) -> u64 {
+        // Every error of a capture ends it.
+        0
+    }
+
     fn bytes_read(&self) -> u64 {
         self.input.taken()
     }
 
+    #[inline]
     fn drained(&self) -> bool {
         self.input.drained() && !self.whole_record_buffered()
     }

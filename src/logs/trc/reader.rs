@@ -4,9 +4,8 @@ use std::io::Read;
 
 use super::TrcParser;
 use crate::can::LogEvent;
-use crate::error::Result;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, ReadLog};
+use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of PEAK TRC logs (SPEC §5.4) from any [`Read`]: whole lines a
 /// block at a time, each read by one [`TrcParser`] where it lies, with the
@@ -53,14 +52,19 @@ impl<R: Read> ReadLog for TrcReader<R> {
     }
 
     #[inline]
-    fn next_event(&mut self) -> Option<std::result::Result<LogRecord<'_>, LogError>> {
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         self.log.next_event()
+    }
+
+    fn skipped(&self) -> u64 {
+        self.log.skipped()
     }
 
     fn bytes_read(&self) -> u64 {
         self.log.bytes_read()
     }
 
+    #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
     }
@@ -71,13 +75,24 @@ impl<R: Read> ReadLog for TrcReader<R> {
 }
 
 impl TextParser for TrcParser {
+    type Line<'t> = LogEvent<'static>;
+
     #[inline]
     fn next_line(
         &mut self,
         rest: &mut &[u8],
         _names: &mut Names,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> crate::Result<Option<LogEvent<'static>>> {
         self.parse_line(take_line(rest).unwrap_or_default())
+    }
+
+    #[inline]
+    fn record<'a>(
+        event: LogEvent<'static>,
+        position: Position,
+        _names: &'a Names,
+    ) -> LogRecord<'a> {
+        LogRecord { position, event }
     }
 
     fn holds_nothing(&self, line: &[u8]) -> bool {
