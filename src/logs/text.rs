@@ -277,6 +277,9 @@ impl<R: std::io::Read> TextInput<R> {
                 break;
             }
         }
+        if self.at_end && self.filled == 0 && !info.overlong {
+            return Ok(None);
+        }
         let filled = self.buf.get(..self.filled).unwrap_or_default();
         self.text = if self.at_end {
             self.filled
@@ -607,6 +610,83 @@ mod tests {
             }
             prop_assert_eq!(split_lines(&bytes).collect::<Vec<_>>(), expected);
         }
+    }
+
+    /// A held block that a long partial line would push past the largest
+    /// buffer is handed out as it is (`full`), never dropped with the
+    /// over-long line.
+    #[cfg(feature = "std")]
+    #[test]
+    fn held_lines_are_handed_out_when_the_buffer_is_full() {
+        let mut text = b"a\nb\n".to_vec();
+        text.extend(std::iter::repeat(b'x').take(3 * MAX_LINE_LEN));
+        text.extend_from_slice(b"\nc\n");
+        let mut input = TextInput::new(&text[..]);
+        let first = input.next_block().unwrap().unwrap();
+        assert!(!first.full);
+        assert_eq!(input.text(), b"a\nb\n");
+        let mut holds = 0;
+        loop {
+            input.hold();
+            let info = input.next_block().unwrap().unwrap();
+            assert_eq!(input.text(), b"a\nb\n");
+            holds += 1;
+            if info.full {
+                break;
+            }
+            assert!(holds < 10, "the buffer never fills");
+        }
+        assert!(input.buf.len() <= MAX_LINE_LEN);
+        let info = input.next_block().unwrap().unwrap();
+        assert!(info.overlong);
+        assert_eq!(input.text(), b"c\n");
+        assert!(input.buf.len() <= MAX_LINE_LEN);
+        assert!(input.next_block().unwrap().is_none());
+    }
+
+    /// Where the lines that hold nothing begin at the end of a block.
+    #[cfg(feature = "std")]
+    #[test]
+    fn the_quiet_tail_of_a_block() {
+        use crate::logs::trc::TrcParser;
+        let parser = TrcParser::new();
+        for (text, tail) in [
+            (&b""[..], 0),
+            (b"\n\n", 0),
+            (b"1)  1841  0001  8  00 01 02 03 04 05 06 07\n", 43),
+            (
+                b"1)  1841  0001  8  00 01 02 03 04 05 06 07\n; comment\n\r\n",
+                43,
+            ),
+            (b"; comment\n1)  1841  0001  8  00 01 02 03 04 05 06 07", 52),
+            (b"X\n;\n", 2),
+        ] {
+            assert_eq!(
+                quiet_tail(text, &parser),
+                tail,
+                "{:?}",
+                String::from_utf8_lossy(text)
+            );
+        }
+    }
+
+    /// The interface names keep their address while the table lasts, and
+    /// the names before a new table stay where they were for one more.
+    #[cfg(feature = "std")]
+    #[test]
+    fn names_keep_their_address() {
+        let mut names = Names::default();
+        names.intern(b"can0");
+        let can0 = names.last().as_ptr();
+        names.intern(b"can1");
+        names.intern(b"can0");
+        assert_eq!(names.last().as_ptr(), can0);
+        for i in 0..MAX_NAMES {
+            names.intern(format!("x{i}").as_bytes());
+        }
+        assert_eq!(names.resets, 1);
+        assert_eq!(names.retired.len(), MAX_NAMES);
+        assert!(names.retired.iter().any(|n| n.as_ptr() == can0));
     }
 
     #[test]
