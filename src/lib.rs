@@ -40,9 +40,20 @@
 //!
 //! ## Optional features
 //!
-//! - `std`: links the standard library. The library needs nothing from it
-//!   today ([`Error`] implements `core::error::Error` either way); it is the
-//!   feature the std-only readers and the `cli` feature build on.
+//! - `std`: links the standard library: each log format's reader of a
+//!   `std::io::Read` (`logs::candump::CandumpReader`, `logs::asc::AscReader`,
+//!   `logs::trc::TrcReader`), their one trait `logs::ReadLog` and its error
+//!   `logs::LogError`. The rest of the library needs nothing from it
+//!   ([`Error`] implements `core::error::Error` either way).
+//! - `logs`: one way to read any log — `logs::open(path)`, `logs::read(input)`
+//!   and `logs::ReadOptions` detect the format from the content, inflate
+//!   gzip and hand on the events of every format through one
+//!   `logs::LogReader` (SPEC §5.7, §6.4). Needs `std`; enables `pcap` and
+//!   `blf` and adds `flate2`.
+//! - `pcap`: `logs::pcap::PcapReader`, pcap and pcapng captures of
+//!   SocketCAN interfaces (SPEC §5.5). Needs `std`, no dependency.
+//! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (SPEC §5.6). Needs
+//!   `std`; adds `flate2` for the zlib containers.
 //! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
 //!   the zero-copy views, not the state machines).
 //!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],

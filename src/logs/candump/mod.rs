@@ -150,7 +150,6 @@ use hex::*;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
-use lines::{is_explanation, next_parsed};
 use log::*;
 use parse::*;
 #[cfg(feature = "std")]

@@ -3,6 +3,7 @@
 
 use std::io::Read;
 
+use super::lines::{is_explanation, next_parsed};
 use super::*;
 use crate::can::LogEvent;
 use crate::logs::text::{Names, TextLog, TextParser};
