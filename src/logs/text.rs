@@ -453,7 +453,7 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
         &self.parser
     }
 
-    #[inline]
+    #[inline(always)]
     pub(crate) fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         loop {
             if self.pos < self.end {

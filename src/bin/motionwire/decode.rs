@@ -361,21 +361,20 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
     type Output = Result<(), Failure>;
 
     fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<(), Failure> {
-        /// How many events pass between looks at the progress.
-        const PROGRESS_EVERY: u64 = 4096;
+        /// How many lines or records pass between looks at the progress.
+        const PROGRESS_EVERY: u64 = 1 << 12;
         let ReadAll {
             sink,
             progress,
             name,
             path,
         } = self;
-        let mut generation = None;
-        let mut events: u64 = 0;
+        let mut generation = u64::MAX;
         let mut number = 0;
         loop {
             // Interface names the summary and the context cache by address.
-            if generation != Some(log.generation()) {
-                generation = Some(log.generation());
+            if generation != log.generation() {
+                generation = log.generation();
                 if let Some(summary) = sink.summary.as_mut() {
                     summary.new_block();
                 }
@@ -393,8 +392,7 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                     report(sink, error, name, path)?;
                 }
             }
-            events += 1;
-            if events % PROGRESS_EVERY == 0 {
+            if number % PROGRESS_EVERY == 0 {
                 progress.advance(sink, log.bytes_read(), number)?;
             }
             if log.drained() {

@@ -50,7 +50,7 @@ impl<R: Read> ReadLog for AscReader<R> {
         LogFormat::Asc
     }
 
-    #[inline]
+    #[inline(always)]
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         self.log.next_event()
     }

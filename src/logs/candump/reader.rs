@@ -92,7 +92,7 @@ impl<R: Read> ReadLog for CandumpReader<R> {
         LogFormat::Candump
     }
 
-    #[inline]
+    #[inline(always)]
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         self.log.next_event()
     }

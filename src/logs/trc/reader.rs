@@ -51,7 +51,7 @@ impl<R: Read> ReadLog for TrcReader<R> {
         LogFormat::Trc
     }
 
-    #[inline]
+    #[inline(always)]
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
         self.log.next_event()
     }
