@@ -292,10 +292,12 @@ impl LogReader {
     /// the events is compiled for that reader's type.
     ///
     /// [`LogReader::next_event`](ReadLog::next_event) picks the format's
-    /// reader at every call; in a loop that does little with each event
-    /// that costs about as much as reading a candump line (the event is
-    /// written out to memory instead of staying where the parser put it).
-    /// A visitor's loop has no such cost.
+    /// reader at every call, and the event is written out to memory instead
+    /// of staying where the parser put it: in a loop that does little with
+    /// each event, reading a candump log that way takes about a third more
+    /// time (`benches/logs.rs`: 2.84 ms against 2.07 ms for 100 000 lines).
+    /// A visitor's loop is compiled for the format's reader and has no such
+    /// cost.
     ///
     /// ```
     /// use motionwire::logs::{self, LogVisitor, ReadLog};
