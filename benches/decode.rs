@@ -26,7 +26,7 @@
 //!
 //! The candump groups run over a generated log of realistic CANopen
 //! traffic: `candump/parse` parses every line with
-//! `motionwire::candump::lines`, `candump/byte_by_byte` is a plain
+//! `motionwire::logs::candump::lines`, `candump/byte_by_byte` is a plain
 //! byte-at-a-time parser of the same lines (written here as the baseline),
 //! and `candump/decode` does the library-level work of `motionwire decode`
 //! without the output: parse, decode each frame once with
@@ -40,8 +40,8 @@ use byteorder::{LittleEndian, ReadBytesExt};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use deku::prelude::*;
 use motionwire::can::{Iface, LogFrame};
-use motionwire::candump;
 use motionwire::canopen::{CanOpenMessage, Emcy, EmcyFrame, ErrorCode, NmtState, EMCY_LEN};
+use motionwire::logs::candump;
 use motionwire::servo::{
     Command, CommandFrame, Feedback, FeedbackFrame, COMMAND_LEN, FEEDBACK_LEN,
 };

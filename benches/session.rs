@@ -63,7 +63,7 @@ fn sample() -> Vec<LogFrame<'static>> {
     let text = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/samples/machine.log")).unwrap();
     let text: &'static [u8] = Box::leak(text.into_boxed_slice());
     text.split(|&b| b == b'\n')
-        .filter_map(|line| motionwire::candump::parse_line(line).ok().flatten())
+        .filter_map(|line| motionwire::logs::candump::parse_line(line).ok().flatten())
         .collect()
 }
 

@@ -16,9 +16,10 @@
 //!   identifiers, [`can::CanFrame`] (data, remote, CAN FD, error frames;
 //!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
 //!   with the time and interface a log records (ISO 11898-1, SPEC §5).
-//! - [`candump`]: candump text logs (can-utils), one CAN frame per line,
-//!   parsed without allocation into [`can::LogFrame`]s and written back
-//!   (SPEC §5.1, §5.2).
+//! - [`logs`]: every log format in one folder — candump text (can-utils),
+//!   Vector ASC, PEAK TRC, and with `std` Vector BLF and pcap/pcapng —
+//!   each read into [`can::LogFrame`]s, the format detected from the
+//!   content (SPEC §5).
 //! - [`canopen`]: a [`can::CanFrame`] read as CANopen
 //!   ([`canopen::CanOpenMessage::decode`], SPEC §6.1); node-IDs and COB-IDs,
 //!   the EMCY frame, error register and
@@ -39,9 +40,20 @@
 //!
 //! ## Optional features
 //!
-//! - `std`: links the standard library. The library needs nothing from it
-//!   today ([`Error`] implements `core::error::Error` either way); it is the
-//!   feature the std-only readers and the `cli` feature build on.
+//! - `std`: links the standard library: each log format's reader of a
+//!   `std::io::Read` (`logs::candump::CandumpReader`, `logs::asc::AscReader`,
+//!   `logs::trc::TrcReader`), their one trait `logs::ReadLog` and its error
+//!   `logs::LogError`. The rest of the library needs nothing from it
+//!   ([`Error`] implements `core::error::Error` either way).
+//! - `logs`: one way to read any log — `logs::open(path)`, `logs::read(input)`
+//!   and `logs::ReadOptions` detect the format from the content, inflate
+//!   gzip and hand on the events of every format through one
+//!   `logs::LogReader` (SPEC §5.7, §6.4). Needs `std`; enables `pcap` and
+//!   `blf` and adds `flate2`.
+//! - `pcap`: `logs::pcap::PcapReader`, pcap and pcapng captures of
+//!   SocketCAN interfaces (SPEC §5.5). Needs `std`, no dependency.
+//! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (SPEC §5.6). Needs
+//!   `std`; adds `flate2` for the zlib containers.
 //! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
 //!   the zero-copy views, not the state machines).
 //!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],
@@ -133,11 +145,7 @@
 #![deny(clippy::must_use_candidate)]
 #![deny(clippy::return_self_not_must_use)]
 
-pub mod asc;
-#[cfg(feature = "blf")]
-pub mod blf;
 pub mod can;
-pub mod candump;
 pub mod canopen;
 #[cfg(feature = "decoder")]
 pub mod decoder;
@@ -148,15 +156,14 @@ pub mod eds;
 mod error;
 pub mod logs;
 mod names;
-#[cfg(feature = "pcap")]
-pub mod pcap;
 pub mod profiles;
 pub mod servo;
 #[cfg(feature = "decoder")]
 pub mod summary;
-pub mod trc;
 
-pub use error::{BinaryError, Found, LogFormat, SyntaxError, What};
+pub use error::What;
+
+use logs::{BinaryError, LogFormat, SyntaxError};
 
 /// What went wrong while decoding or constructing a value: the crate's one
 /// error type, which every fallible decoder and checked constructor

@@ -11,7 +11,7 @@
 //!   relative`, a symbolic name, `TxRq`, statistics, chip status); truth:
 //!   python-can's `ASCReader`, with the time since the start added up.
 //!
-//! Differences, each a decision of SPEC §5.3/§5.7 or of `motionwire::asc`:
+//! Differences, each a decision of SPEC §5.3/§5.7 or of `motionwire::logs::asc`:
 //! python-can marks every `CANFD` line as CAN FD and gives an error frame
 //! identifier 0 and no data (the crate: class `bus_error`, 8 zero bytes, as
 //! `asc2log`); python-can reads a `TxRq` line as a frame (the crate skips
@@ -21,8 +21,8 @@
 //! line with identifier 0x80 and zero data; `asc2log` and the crate both
 //! read what the line says.
 
-use motionwire::asc::{self, AscParser};
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent, LogFrame};
+use motionwire::logs::asc::{self, AscParser};
 use serde_json::Value;
 
 fn fixture(name: &str) -> (Vec<u8>, Vec<Value>) {

@@ -4,14 +4,14 @@
 //! JSON adds 1 to python-can's 0-based channel), direction, time to the
 //! microsecond (python-can computes it in floats).
 //!
-//! One documented difference (`motionwire::blf`'s decision): python-can
+//! One documented difference (`motionwire::logs::blf`'s decision): python-can
 //! reads a `CAN_ERROR_EXT` object as an error frame with the object's
 //! identifier and data bytes; the crate gives Linux's layout of the
 //! object's error code capture (classes bus_error and protocol).
 
-use motionwire::blf::BlfReader;
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent};
-use motionwire::logs::{ReadLog, Record};
+use motionwire::logs::blf::BlfReader;
+use motionwire::logs::{LogRecord, ReadLog};
 use serde_json::Value;
 
 fn fixture(name: &str) -> (Vec<u8>, Value) {
@@ -26,8 +26,9 @@ fn fixture(name: &str) -> (Vec<u8>, Value) {
 fn read(file: &[u8]) -> Vec<(u64, motionwire::can::LogFrame<'static>)> {
     let mut reader = BlfReader::new(file).unwrap();
     let mut out = Vec::new();
-    while let Some(record) = reader.next_record() {
-        let Record { number, event } = record.unwrap();
+    while let Some(record) = reader.next_event() {
+        let LogRecord { position, event } = record.unwrap();
+        let number = position.number();
         let LogEvent::Frame(frame) = event else {
             panic!("BLF has no status events")
         };

@@ -12,8 +12,9 @@
 //! be read back faithfully and are errors saying so.
 
 use motionwire::can::{Direction, FdFlags, Iface, LogFrame};
-use motionwire::candump::{self, RelativeTimestamps};
-use motionwire::{Error, SyntaxError};
+use motionwire::logs::candump::{self, RelativeTimestamps};
+use motionwire::logs::SyntaxError;
+use motionwire::Error;
 use serde_json::Value;
 
 fn fixture(mode: &str) -> (Vec<u8>, Vec<Value>) {

@@ -22,23 +22,31 @@
 //!   crate follows the specification.
 
 use motionwire::can::{Iface, LogEvent, LogFrame};
-use motionwire::logs::{ReadError, ReadLog, MAX_RECORD_LEN};
-use motionwire::pcap::PcapReader;
-use motionwire::{BinaryError, Error, LogFormat};
+use motionwire::logs::pcap::PcapReader;
+use motionwire::logs::{BinaryError, LogFormat};
+use motionwire::logs::{LogError, LogErrorKind, ReadLog, MAX_RECORD_LEN};
+use motionwire::Error;
 use serde_json::Value;
 
 /// (number, frame) of every record, the error, the other records.
 type Read = (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64);
 
+/// The `Error::Binary` of a reader's error (an I/O error is a test failure).
+fn binary_error(e: LogError) -> Error {
+    match e.into_kind() {
+        LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
+        other => panic!("{other}"),
+    }
+}
+
 fn read(bytes: &[u8]) -> Read {
     let mut reader = match PcapReader::new(bytes) {
         Ok(r) => r,
-        Err(ReadError::Log(e)) => return (Vec::new(), Some(e), 0),
-        Err(e) => panic!("{e}"),
+        Err(e) => return (Vec::new(), Some(binary_error(e)), 0),
     };
     let mut frames = Vec::new();
     let mut error = None;
-    while let Some(record) = reader.next_record() {
+    while let Some(record) = reader.next_event() {
         match record {
             Ok(record) => {
                 let LogEvent::Frame(f) = record.event else {
@@ -54,14 +62,13 @@ fn read(bytes: &[u8]) -> Read {
                     iface,
                     direction: f.direction,
                 };
-                frames.push((record.number, f));
+                frames.push((record.position.number(), f));
             }
-            Err(ReadError::Log(e)) => error = Some(e),
-            Err(e) => panic!("{e}"),
+            Err(e) => error = Some(binary_error(e)),
         }
     }
     assert!(
-        reader.next_record().is_none(),
+        reader.next_event().is_none(),
         "None after the end or an error"
     );
     (frames, error, reader.other_records())

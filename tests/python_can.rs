@@ -11,7 +11,7 @@
 //! bytes.
 
 use motionwire::can::{FdFlags, Iface};
-use motionwire::candump;
+use motionwire::logs::candump;
 use serde_json::Value;
 
 #[test]

@@ -26,7 +26,7 @@
 //!   received; the crate has no direction.
 
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent, LogFrame};
-use motionwire::trc::{self, TrcVersion};
+use motionwire::logs::trc::{self, TrcVersion};
 use serde_json::Value;
 
 /// What a file holds besides python-can's frames.

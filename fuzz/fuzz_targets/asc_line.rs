@@ -14,9 +14,10 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::asc::{self, AscParser};
+use motionwire::logs::asc::{self, AscParser};
 use motionwire::can::{Iface, LogEvent};
-use motionwire::{Error, LogFormat};
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 const FD_LENGTHS: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 

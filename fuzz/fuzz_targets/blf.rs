@@ -15,10 +15,11 @@
 use std::io::Read;
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::blf::BlfReader;
+use motionwire::logs::blf::BlfReader;
 use motionwire::can::{Iface, LogEvent};
-use motionwire::logs::{ReadError, ReadLog};
-use motionwire::{Error, LogFormat};
+use motionwire::logs::{LogError, LogErrorKind, ReadLog};
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 /// A reader that hands out one byte at a time.
 struct Trickle<'a>(&'a [u8]);
@@ -48,11 +49,12 @@ fn records<R: Read>(reader: R) -> Vec<String> {
     };
     let mut last = 0;
     let mut errors = 0usize;
-    while let Some(record) = reader.next_record() {
+    while let Some(record) = reader.next_event() {
         match record {
             Ok(record) => {
-                assert!(record.number > last, "numbers increase");
-                last = record.number;
+                let number = record.position.number();
+                assert!(number > last, "numbers increase");
+                last = number;
                 let LogEvent::Frame(frame) = record.event else {
                     panic!("BLF has no status events");
                 };
@@ -65,7 +67,7 @@ fn records<R: Read>(reader: R) -> Vec<String> {
                 if can.is_rtr() {
                     assert!(can.data().is_empty());
                 }
-                out.push(format!("{} {frame}", record.number));
+                out.push(format!("{number} {frame}"));
             }
             Err(e) => {
                 check(&e);
@@ -75,7 +77,7 @@ fn records<R: Read>(reader: R) -> Vec<String> {
             }
         }
     }
-    assert!(reader.next_record().is_none());
+    assert!(reader.next_event().is_none());
     out
 }
 
@@ -84,9 +86,14 @@ fn data_len_bound() -> usize {
     1 << 16
 }
 
-fn check(e: &ReadError) {
-    match e {
-        ReadError::Log(Error::Binary {
+fn check(e: &LogError) {
+    match e.kind() {
+        LogErrorKind::Damaged(Error::Binary {
+            format: LogFormat::Blf,
+            reason,
+            ..
+        })
+        | LogErrorKind::Malformed(Error::Binary {
             format: LogFormat::Blf,
             reason,
             ..

@@ -26,9 +26,11 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{CanFrame, FdFlags, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use motionwire::candump;
-use motionwire::{Error, LogFormat};
+use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use motionwire::can::FdFlags;
+use motionwire::logs::candump;
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);

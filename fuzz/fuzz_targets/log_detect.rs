@@ -12,7 +12,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::logs::{detect, Detected};
-use motionwire::LogFormat;
+use motionwire::logs::LogFormat;
 
 fuzz_target!(|data: &[u8]| {
     let whole = detect(data, true);
@@ -26,7 +26,7 @@ fuzz_target!(|data: &[u8]| {
     if whole == Detected::Format(LogFormat::Candump) {
         let deciding = data
             .split(|&b| b == b'\n')
-            .find(|line| matches!(motionwire::candump::parse_line(line), Ok(Some(_))));
+            .find(|line| matches!(motionwire::logs::candump::parse_line(line), Ok(Some(_))));
         assert!(deciding.is_some(), "candump without a frame line: {data:?}");
     }
     // A prefix that decides decides the same as the whole.

@@ -1,4 +1,4 @@
-//! pcap and pcapng captures (SPEC §5.5): `motionwire::pcap::PcapReader`.
+//! pcap and pcapng captures (SPEC §5.5): `motionwire::logs::pcap::PcapReader`.
 //!
 //! Arbitrary bytes → the reader, once over the whole input and once through
 //! a reader that hands out a few bytes per call. Invariants:
@@ -7,7 +7,7 @@
 //!   ends cleanly, the frames and the other records add up to the last
 //!   number or more (skipped packets after the last frame);
 //! - at most one error, an `Error::Binary` of the reader's format whose
-//!   offset lies within the input and whose message prints; `next_record`
+//!   offset lies within the input and whose message prints; `next_event`
 //!   returns `None` after it and after the end;
 //! - every frame keeps the frame invariants (identifier in range, at most
 //!   8 data bytes, 64 for CAN FD, a remote request without data) and has
@@ -20,9 +20,10 @@ use std::io::Read;
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{CanFrame, Timestamp};
-use motionwire::logs::{ReadError, ReadLog};
-use motionwire::pcap::PcapReader;
-use motionwire::{Error, LogFormat};
+use motionwire::logs::{LogError, LogErrorKind, ReadLog};
+use motionwire::logs::pcap::PcapReader;
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 struct Chunked<'a> {
     data: &'a [u8],
@@ -48,46 +49,56 @@ type Outcome = (
 fn read_all<R: Read>(input: R, len: usize) -> Outcome {
     let mut reader = match PcapReader::new(input) {
         Ok(reader) => reader,
-        Err(ReadError::Log(e)) => {
+        Err(e) => {
+            let e = binary(e);
             check_error(&e, None, len);
             return (Vec::new(), Some(e), 0);
         }
-        Err(e) => panic!("a slice never fails to read: {e}"),
     };
     let format = reader.format();
     assert!(matches!(format, LogFormat::Pcap | LogFormat::Pcapng));
     let mut frames = Vec::new();
     let mut error = None;
     let mut last = 0;
-    while let Some(record) = reader.next_record() {
+    while let Some(record) = reader.next_event() {
         assert!(error.is_none(), "a record after an error");
         match record {
             Ok(record) => {
-                assert!(record.number > last);
-                last = record.number;
+                let number = record.position.number();
+                assert!(number > last);
+                last = number;
                 let logged = *record.event.frame().expect("pcap yields frames");
                 assert_eq!(logged.direction, None);
                 check_frame(&logged.frame);
                 frames.push((
-                    record.number,
+                    number,
                     logged.frame,
                     logged.timestamp,
                     logged.iface.map(|i| i.to_string()),
                 ));
             }
-            Err(ReadError::Log(e)) => {
+            Err(e) => {
+                assert!(!e.is_skipped(), "every error of a capture ends it");
+                let e = binary(e);
                 check_error(&e, Some(format), len);
                 error = Some(e);
             }
-            Err(e) => panic!("a slice never fails to read: {e}"),
         }
     }
-    assert!(reader.next_record().is_none());
+    assert!(reader.next_event().is_none());
     let other = reader.other_records();
     if error.is_none() {
         assert!(frames.len() as u64 + other >= last);
     }
     (frames, error, other)
+}
+
+/// The `Error::Binary` of a reader's error: a slice never fails to read.
+fn binary(e: LogError) -> Error {
+    match e.into_kind() {
+        LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
+        other => panic!("a slice never fails to read: {other}"),
+    }
 }
 
 fn check_error(error: &Error, format: Option<LogFormat>, len: usize) {

@@ -17,8 +17,9 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use motionwire::trc::{self, TrcParser, TrcVersion};
-use motionwire::{Error, LogFormat};
+use motionwire::logs::trc::{self, TrcParser, TrcVersion};
+use motionwire::logs::LogFormat;
+use motionwire::Error;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);

@@ -2,8 +2,8 @@
 //! magic numbers, and for text the shape of the first lines that are not
 //! blank — never the file name.
 
-use crate::candump;
-use crate::LogFormat;
+use crate::logs::candump;
+use crate::logs::LogFormat;
 
 /// The most text [`detect`] looks at: enough for the longest headers
 /// (PEAK TRC 2.x writes about a dozen comment lines, Vector ASC four).
@@ -48,7 +48,7 @@ pub enum Detected {
 ///
 /// ```
 /// use motionwire::logs::{detect, Detected};
-/// use motionwire::LogFormat;
+/// use motionwire::logs::LogFormat;
 ///
 /// let candump = b"(1700000000.000500) can0 081#1081110000000000\n";
 /// assert_eq!(detect(candump, true), Detected::Format(LogFormat::Candump));

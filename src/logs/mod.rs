@@ -1,121 +1,64 @@
-//! What every log reader shares (SPEC §5, §5.7): the record a binary
-//! reader hands on, its error, and the limits that keep memory bounded
-//! whatever a damaged or hostile file claims.
+//! Every log format in one folder (SPEC §5), as python-can's `can/io`
+//! shows them: one module per format, the detection of the format from the
+//! content, the one line layer the text formats share, and — with the
+//! `logs` feature — one way to read any log, [`open`] or [`read`].
 //!
-//! The text formats (candump, ASC, TRC) are read line by line, without
-//! allocation, by their own modules ([`crate::candump`], …); the binary
-//! formats (pcap, pcapng, BLF) read from a [`std::io::Read`] through
-//! [`ReadLog`] and need the standard library.
+//! | file or folder | what it holds | needs |
+//! |---|---|---|
+//! | [`candump/`](candump) | candump log and screen output (can-utils; SPEC §5.1, §5.2) | |
+//! | [`asc/`](asc) | Vector ASC (CANalyzer, CANoe; SPEC §5.3) | |
+//! | [`trc/`](trc) | PEAK TRC 1.0 to 2.1 (PCAN-View, PCAN-Explorer; SPEC §5.4) | |
+//! | `pcap/` | pcap and pcapng captures of SocketCAN interfaces (SPEC §5.5) | feature `pcap` |
+//! | `blf/` | Vector BLF (SPEC §5.6) | feature `blf` |
+//! | `detect.rs` | the format from the first bytes: [`detect`] (SPEC §5.7) | |
+//! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a [`Read`](std::io::Read), the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
+//! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
+//! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
+//! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
+//! | `calendar.rs` | logged dates as Unix time | |
+//!
+//! Without the standard library, each text format parses lines from a
+//! buffer without allocating ([`candump::parse_line`], [`candump::lines`],
+//! [`asc::AscParser`], [`trc::TrcParser`]). With `std`, every format has a
+//! reader that reads a [`Read`](std::io::Read) and implements the one
+//! trait `ReadLog` (`CandumpReader`, `AscReader`, `TrcReader`,
+//! `PcapReader`, `BlfReader`), and `LogReader` reads any of them.
+//!
+//! What holds for every reader (SPEC §5.7):
+//!
+//! - an event's [`Position`] is the 1-based line of a text file, or the
+//!   1-based number of the packet or object in a binary one;
+//! - a malformed line, an over-long line and a damaged record whose size is
+//!   known are reported with their position and skipped, and the reading
+//!   goes on; an I/O error or a damaged binary structure ends it;
+//! - memory is bounded whatever the input claims: a text line is held up to
+//!   `MAX_LINE_LEN` (1 MiB), a binary record, block or container up to
+//!   [`MAX_RECORD_LEN`] (16 MiB).
 
+pub mod asc;
+#[cfg(feature = "blf")]
+pub mod blf;
+mod calendar;
+pub mod candump;
 mod detect;
+mod error;
+#[cfg(feature = "pcap")]
+pub mod pcap;
+#[cfg(feature = "logs")]
+mod reader;
+mod record;
+mod text;
+pub mod trc;
 
 pub use detect::{detect, Detected, DETECT_LEN};
-
-/// The lines of a text buffer, split at `\n` (16 bytes at a time), each
-/// without its `\n`; a last line without one counts too, nothing after a
-/// final `\n` does. What the line readers of the text formats are fed.
-///
-/// ```
-/// let lines: Vec<&[u8]> = motionwire::logs::split_lines(b"a\r\nbc\n\nd").collect();
-/// assert_eq!(lines, [&b"a\r"[..], b"bc", b"", b"d"]);
-/// ```
-#[must_use]
-pub fn split_lines(buf: &[u8]) -> SplitLines<'_> {
-    SplitLines { rest: buf }
-}
-
-/// The iterator of [`split_lines`].
-#[derive(Debug, Clone)]
-pub struct SplitLines<'a> {
-    rest: &'a [u8],
-}
-
-impl<'a> Iterator for SplitLines<'a> {
-    type Item = &'a [u8];
-
-    #[inline]
-    fn next(&mut self) -> Option<&'a [u8]> {
-        take_line(&mut self.rest)
-    }
-}
-
-/// Take the first line off `rest` (without its `\n`; `None` when `rest`
-/// is empty): the one line splitter of the text readers.
-#[inline]
-pub(crate) fn take_line<'a>(rest: &mut &'a [u8]) -> Option<&'a [u8]> {
-    if rest.is_empty() {
-        return None;
-    }
-    let (line, after) = match crate::candump::find_newline(rest) {
-        Some(i) => (
-            rest.get(..i).unwrap_or_default(),
-            rest.get(i + 1..).unwrap_or_default(),
-        ),
-        None => (*rest, &[][..]),
-    };
-    *rest = after;
-    Some(line)
-}
-
-impl core::iter::FusedIterator for SplitLines<'_> {}
-
+pub use error::{BinaryError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
-use crate::can::LogEvent;
+pub use error::{LogError, LogErrorKind};
+#[cfg(feature = "logs")]
+pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 #[cfg(feature = "std")]
-use crate::{Error, LogFormat};
-
-/// The longest record, block or decompressed container a binary reader
-/// holds in memory (16 MiB). A CAN record is at most a few hundred bytes and
-/// a BLF container 128 KiB as the Vector tools write it; a length above this
-/// is reported as [`crate::BinaryError::TooLarge`], never allocated.
-pub const MAX_RECORD_LEN: usize = 16 << 20;
-
-/// One record of a binary log: its number and what it holds.
+pub use record::ReadLog;
+pub use record::{LogRecord, Position, MAX_RECORD_LEN};
 #[cfg(feature = "std")]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Record<'a> {
-    /// The 1-based number of the packet (pcap, pcapng: as tshark's
-    /// `frame.number`) or object (BLF, every object type counted) in the
-    /// file (SPEC §5.7 `line`).
-    pub number: u64,
-    /// The frame or bus event the record holds.
-    pub event: LogEvent<'a>,
-}
-
-/// Why a binary log reader could not hand on a record: the input could not
-/// be read, or the file is damaged at a known place ([`Error::Binary`]).
-/// The records before the error were handed on. After damage to the file's
-/// structure (a cut-off or inconsistent block) the reader returns `None`;
-/// after an error in one record's content whose size is known (e.g. an
-/// identifier out of range) it may go on with the next record, as a text
-/// reader goes on after a malformed line (SPEC §5.7).
-#[cfg(feature = "std")]
-#[derive(Debug, thiserror::Error)]
-pub enum ReadError {
-    /// Reading the input failed.
-    #[error("read error: {0}")]
-    Io(#[from] std::io::Error),
-    /// The file is damaged (or not of the format it was read as).
-    #[error(transparent)]
-    Log(#[from] Error),
-}
-
-/// A reader of a binary log: hands on its records one at a time, each
-/// borrowing what it names (a pcapng interface name) from the reader.
-///
-/// Records that hold no CAN frame (a pcap packet of another link type, a
-/// BLF object of another type) are counted in [`ReadLog::other_records`]
-/// and still take their number, so numbers match what other tools show.
-#[cfg(feature = "std")]
-pub trait ReadLog {
-    /// The format the reader reads.
-    fn format(&self) -> LogFormat;
-
-    /// Return the next record, `None` at the end of the file or after
-    /// damage to its structure (see [`ReadError`]).
-    fn next_record(&mut self) -> Option<Result<Record<'_>, ReadError>>;
-
-    /// The number of records read so far that hold no CAN frame or bus
-    /// event and were skipped.
-    fn other_records(&self) -> u64;
-}
+pub use text::MAX_LINE_LEN;
+pub use text::{split_lines, SplitLines};

@@ -21,7 +21,7 @@
 //! let mut decoder = Decoder::new(DecoderConfig::new().signals(false));
 //! let mut summarizer = Summarizer::new();
 //! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
-//!     if let Ok(Some(frame)) = motionwire::candump::parse_line(text) {
+//!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
 //!         let decoded = decoder.decode(line as u64 + 1, &frame);
 //!         summarizer.add_frame(line as u64 + 1, &frame, &decoded);
 //!     }

@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use core::fmt;
 
 use crate::can::{CanFrame, CanId, Direction, FdFlags, Iface, LogFrame, Timestamp};
-use crate::candump;
+use crate::logs::candump;
 
 /// Any timestamp.
 pub(crate) fn timestamp() -> impl Strategy<Value = Timestamp> {

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use motionwire::canopen::{MessageKind, NodeId};
+use motionwire::logs::LogFormat;
 use motionwire::profiles::{NodeProfiles, Profile};
-use motionwire::LogFormat;
 
 /// Decode the diagnostic and cyclic-control messages of industrial motion
 /// devices: CANopen candump logs and EtherCAT servo ↔ NC frames.

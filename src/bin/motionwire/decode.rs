@@ -1,21 +1,20 @@
 //! `motionwire decode`: a log → one record per CAN frame (SPEC §6.1), or
-//! the summary (SPEC §6.3). The streaming loop: open, detect the format
-//! (SPEC §5.7), read with the library's reader, hand each frame to the
-//! [`Sink`], which filters and renders.
+//! the summary (SPEC §6.3). The streaming loop: open, read with the
+//! library's [`LogReader`] (which detects the format, SPEC §5.7), hand each
+//! event to the [`Sink`], which filters and renders.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Cursor, Read, StderrLock, StdoutLock, Write};
+use std::io::{self, BufWriter, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
 use motionwire::can::{LogEvent, LogFrame};
-use motionwire::candump::{self, LineState, RelativeTimestamps};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::{Decoder, DecoderConfig};
-use motionwire::logs::{detect, Detected, ReadError, ReadLog, DETECT_LEN};
+use motionwire::logs::candump::RelativeTimestamps;
+use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::summary::Summarizer;
-use motionwire::LogFormat;
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
@@ -25,7 +24,7 @@ use crate::record::{Record, CSV_HEADER};
 struct Input {
     name: String,
     path: Option<PathBuf>,
-    reader: Box<dyn Read>,
+    reader: Box<dyn Read + Send>,
 }
 
 fn open_inputs(files: &[PathBuf]) -> Result<Vec<Input>, Failure> {
@@ -56,73 +55,6 @@ fn stdin_input() -> Input {
         name: "<stdin>".to_owned(),
         path: None,
         reader: Box::new(io::stdin()),
-    }
-}
-
-/// The formats `detect` knows, in words, for the unrecognised-format error.
-const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
-                        pcap or pcapng (gzip-compressed or not)";
-
-/// Read the first bytes of an input, decide its format (SPEC §5.7: from
-/// the content; `--format` overrides; gzip is inflated and looked into),
-/// and return it with a reader that starts again at the first byte.
-fn open_log(
-    input: Input,
-    forced: Option<LogFormat>,
-) -> Result<(LogFormat, Box<dyn Read>, bool), Failure> {
-    let Input { name, path, reader } = input;
-    let mut reader = reader;
-    let mut gzip = false;
-    loop {
-        let mut head = Vec::with_capacity(4096);
-        let detected = loop {
-            let complete = fill(&mut reader, &mut head, DETECT_LEN)
-                .map_err(|e| read_failure(&name, path.as_deref(), e))?;
-            match detect(&head, complete) {
-                Detected::NeedMore if !complete => continue,
-                // Inflating once is enough: a gzip inside a gzip is no log.
-                Detected::Gzip if gzip => break Detected::Unrecognised,
-                other => break other,
-            }
-        };
-        let again: Box<dyn Read> = Box::new(Cursor::new(head).chain(reader));
-        match (detected, forced) {
-            (Detected::Gzip, _) => {
-                gzip = true;
-                reader = Box::new(flate2::read::MultiGzDecoder::new(again));
-            }
-            (_, Some(format)) => return Ok((format, again, gzip)),
-            (Detected::Format(format), None) => return Ok((format, again, gzip)),
-            // Nothing but blank or comment lines: nothing to read.
-            (Detected::Empty, None) => return Ok((LogFormat::Candump, again, gzip)),
-            (Detected::NeedMore | Detected::Unrecognised, None) => {
-                return Err(Failure::Unrecognised {
-                    name,
-                    expected: EXPECTED,
-                })
-            }
-        }
-    }
-}
-
-/// Read into `head` until it holds `want` bytes or the input ends; return
-/// whether it ended. Stops early when a read returns less than asked, so
-/// that a live pipe is decided on its first lines.
-fn fill(reader: &mut dyn Read, head: &mut Vec<u8>, want: usize) -> io::Result<bool> {
-    let start = head.len();
-    head.resize(want, 0);
-    loop {
-        match reader.read(&mut head[start..]) {
-            Ok(n) => {
-                head.truncate(start + n);
-                return Ok(n == 0);
-            }
-            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-            Err(e) => {
-                head.truncate(start);
-                return Err(e);
-            }
-        }
     }
 }
 
@@ -288,70 +220,34 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     if sink.output == Output::Csv {
         write!(sink.out, "{CSV_HEADER}\r\n")?;
     }
+    let mut options = ReadOptions::new();
+    if let Some(format) = args.format {
+        options = options.format(format);
+    }
+    if let Some(base) = args.timestamps {
+        options = options.relative_timestamps(match base {
+            TimestampBase::Delta => RelativeTimestamps::Delta,
+            TimestampBase::Zero => RelativeTimestamps::Zero,
+        });
+    }
     for input in inputs {
-        let name = input.name.clone();
-        let path = input.path.clone();
+        let Input { name, path, reader } = input;
         // Progress: the file's size, when the bytes read are the file's.
         let size = path
             .as_deref()
             .and_then(|p| std::fs::metadata(p).ok())
             .map(|m| m.len());
-        let (format, reader, gzip) = open_log(input, args.format)?;
-        let mut progress = Progress::new(&name, size.filter(|_| !gzip));
-        match format {
-            LogFormat::Candump => {
-                read_candump(
-                    &mut sink,
-                    &mut progress,
-                    reader,
-                    &name,
-                    path.as_deref(),
-                    args.timestamps,
-                )?;
-                sink.clear_progress()?;
-            }
-            LogFormat::Asc => {
-                let mut parser = motionwire::asc::AscParser::new();
-                read_text(
-                    &mut sink,
-                    &mut progress,
-                    reader,
-                    &name,
-                    path.as_deref(),
-                    &mut parser,
-                )?;
-                sink.clear_progress()?;
-            }
-            LogFormat::Trc => {
-                let mut parser = motionwire::trc::TrcParser::new();
-                read_text(
-                    &mut sink,
-                    &mut progress,
-                    reader,
-                    &name,
-                    path.as_deref(),
-                    &mut parser,
-                )?;
-                sink.clear_progress()?;
-            }
-            LogFormat::Blf => {
-                let mut log = motionwire::blf::BlfReader::new(reader)
-                    .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
-                read_binary(&mut sink, &mut log, &name, path.as_deref())?;
-            }
-            LogFormat::Pcap | LogFormat::Pcapng => {
-                let mut log = motionwire::pcap::PcapReader::new(reader)
-                    .map_err(|e| binary_failure(&name, path.as_deref(), e))?;
-                read_binary(&mut sink, &mut log, &name, path.as_deref())?;
-            }
-            other => {
-                return Err(Failure::Unreadable {
-                    name,
-                    format: other,
-                    why: "its reader is not built yet",
-                })
-            }
-        }
+        let mut log = options
+            .read(reader)
+            .map_err(|e| open_failure(&name, path.as_deref(), e))?;
+        let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
+        log.visit(ReadAll {
+            sink: &mut sink,
+            progress: &mut progress,
+            name: &name,
+            path: path.as_deref(),
+        })?;
+        sink.clear_progress()?;
     }
 
     let Sink {
@@ -409,170 +305,102 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Read a candump log (SPEC §5.1, §5.2) block by block.
-fn read_candump(
-    sink: &mut Sink<'_>,
-    progress: &mut Progress,
-    reader: Box<dyn Read>,
-    name: &str,
-    path: Option<&Path>,
-    base: Option<TimestampBase>,
-) -> Result<(), Failure> {
-    let mut blocks = Blocks::new(reader);
-    let mut state = base.map(|base| {
-        LineState::new(match base {
-            TimestampBase::Delta => RelativeTimestamps::Delta,
-            TimestampBase::Zero => RelativeTimestamps::Zero,
-        })
-    });
-    let mut line_base: u64 = 0;
-    loop {
-        let block = blocks
-            .next_block()
-            .map_err(|e| read_failure(name, path, e))?;
-        let Some(block) = block else { break };
-        if block.overlong {
-            line_base += 1;
-            sink.malformed(name, line_base, &OverlongLine)?;
-        }
-        let line_state = match state {
-            Some(state) => state,
-            // Relative timestamps: -t d or -t z? Up to 64 frames decide
-            // (SPEC §5.2); a live stream waits for them.
-            None => match candump::detect_relative_timestamps(block.text, block.at_end) {
-                Some(relative) => *state.insert(LineState::new(relative)),
-                None => {
-                    blocks.hold();
-                    continue;
+/// Read a log event by event, each with its line or record (SPEC §5.7):
+/// frames and bus events to the sink, malformed lines and damaged records
+/// said on standard error, and the output flushed whenever the input has
+/// nothing more buffered (live use, SPEC §6.4). A [`LogVisitor`], so that
+/// the loop is compiled for each format's reader.
+struct ReadAll<'r, 's, 'a> {
+    sink: &'r mut Sink<'a>,
+    progress: &'r mut Progress,
+    name: &'s str,
+    path: Option<&'s Path>,
+}
+
+impl LogVisitor for ReadAll<'_, '_, '_> {
+    type Output = Result<(), Failure>;
+
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<(), Failure> {
+        /// How many lines or records pass between looks at the progress.
+        const PROGRESS_EVERY: u64 = 1 << 12;
+        let ReadAll {
+            sink,
+            progress,
+            name,
+            path,
+        } = self;
+        let mut number = 0;
+        loop {
+            match log.next_event() {
+                None => break,
+                // Read where it lies: the record is not moved.
+                Some(Ok(ref record)) => {
+                    number = record.position.number();
+                    sink.event(number, &record.event)?;
                 }
-            },
-        };
-        let drained = block.drained;
-        let block_len = block.text.len() as u64;
-        let mut lines = candump::lines_from(block.text, line_state);
-        let mut last = 0;
-        for (number, parsed) in lines.by_ref() {
-            last = number;
-            let line = line_base + number as u64;
-            match parsed {
-                Ok(None) => {}
-                Ok(Some(frame)) => sink.frame(line, &frame)?,
-                Err(e) => sink.malformed(name, line, &e)?,
+                Some(Err(error)) => {
+                    number = error.position().map_or(number, Position::number);
+                    report(sink, error, name, path)?;
+                }
+            }
+            if number % PROGRESS_EVERY == 0 {
+                progress.advance(sink, log.bytes_read(), number)?;
+            }
+            if log.drained() {
+                // Live use: what was decoded so far is written out now
+                // (SPEC §6.4); a file read in full blocks never gets here.
+                sink.flush()?;
             }
         }
-        state = Some(lines.state());
-        line_base += last as u64;
-        progress.advance(sink, block_len, line_base)?;
-        if drained {
-            // Live use: what was decoded so far is written out now
-            // (SPEC §6.4); a file read in full blocks never gets here.
-            sink.flush()?;
+        let others = log.other_records();
+        if others > 0 {
+            // SPEC §5.5, §5.6: counted and said once, not per record.
+            let s = if others == 1 { "" } else { "s" };
+            writeln!(
+                sink.err,
+                "{name}: {others} {} record{s} without a CAN frame skipped",
+                log.format()
+            )?;
         }
-    }
-    Ok(())
-}
-
-/// A text log read line by line by a stateful parser (PEAK TRC, Vector
-/// ASC): the state its header sets is carried from line to line.
-trait LineReader {
-    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>>;
-}
-
-impl LineReader for motionwire::trc::TrcParser {
-    #[inline]
-    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
-        self.parse_line(line)
+        Ok(())
     }
 }
 
-impl LineReader for motionwire::asc::AscParser {
-    #[inline]
-    fn read_line<'l>(&mut self, line: &'l [u8]) -> motionwire::Result<Option<LogEvent<'l>>> {
-        self.parse_line(line)
-    }
-}
-
-/// Read a text log (TRC, ASC) block by block, line by line.
-fn read_text(
+/// Say an error of the reader: a malformed or over-long line is counted
+/// with its line; a damaged record of a binary log is said with its byte
+/// offset; an input that cannot be read ends the run.
+#[cold]
+fn report(
     sink: &mut Sink<'_>,
-    progress: &mut Progress,
-    reader: Box<dyn Read>,
-    name: &str,
-    path: Option<&Path>,
-    parser: &mut dyn LineReader,
-) -> Result<(), Failure> {
-    let mut blocks = Blocks::new(reader);
-    let mut line: u64 = 0;
-    while let Some(block) = blocks
-        .next_block()
-        .map_err(|e| read_failure(name, path, e))?
-    {
-        if block.overlong {
-            line += 1;
-            sink.malformed(name, line, &OverlongLine)?;
-        }
-        let drained = block.drained;
-        let block_len = block.text.len() as u64;
-        for text in motionwire::logs::split_lines(block.text) {
-            line += 1;
-            match parser.read_line(text) {
-                Ok(None) => {}
-                Ok(Some(event)) => sink.event(line, &event)?,
-                Err(e) => sink.malformed(name, line, &e)?,
-            }
-        }
-        progress.advance(sink, block_len, line)?;
-        if drained {
-            sink.flush()?;
-        }
-    }
-    Ok(())
-}
-
-/// Read a binary log (pcap, pcapng, BLF) record by record; `line` is the
-/// record's number (SPEC §5.7).
-fn read_binary(
-    sink: &mut Sink<'_>,
-    log: &mut dyn ReadLog,
+    error: LogError,
     name: &str,
     path: Option<&Path>,
 ) -> Result<(), Failure> {
-    while let Some(record) = log.next_record() {
-        match record {
-            Ok(record) => {
-                // Names borrowed from the reader may move between records.
-                sink.event(record.number, &record.event)?;
-            }
-            Err(ReadError::Io(e)) => return Err(read_failure(name, path, e)),
-            // The file is damaged here; what came before was read, and the
-            // reader ends.
-            Err(ReadError::Log(e)) => {
-                sink.damaged += 1;
-                sink.clear_progress()?;
-                writeln!(sink.err, "{name}: {e}")?;
-            }
+    let skipped = error.is_skipped();
+    match (error.position(), error.into_kind()) {
+        (Some(Position::Line(line)), kind) if skipped => sink.malformed(name, line, &kind)?,
+        (_, LogErrorKind::Io(e)) => return Err(read_failure(name, path, e)),
+        (_, kind) => {
+            sink.damaged += 1;
+            sink.clear_progress()?;
+            writeln!(sink.err, "{name}: {kind}")?;
         }
-    }
-    let others = log.other_records();
-    if others > 0 {
-        // SPEC §5.5, §5.6: counted and said once, not per record.
-        let s = if others == 1 { "" } else { "s" };
-        writeln!(
-            sink.err,
-            "{name}: {others} {} record{s} without a CAN frame skipped",
-            log.format()
-        )?;
     }
     Ok(())
 }
 
-/// A binary log whose header cannot be read: the input's failure.
-fn binary_failure(name: &str, path: Option<&Path>, e: ReadError) -> Failure {
-    match e {
-        ReadError::Io(e) => read_failure(name, path, e),
-        ReadError::Log(e) => Failure::Damaged {
+/// A log that cannot be opened: unreadable, unrecognised, or a binary log
+/// whose header is damaged.
+fn open_failure(name: &str, path: Option<&Path>, error: LogError) -> Failure {
+    match error.into_kind() {
+        LogErrorKind::Io(e) => read_failure(name, path, e),
+        LogErrorKind::Damaged(error) | LogErrorKind::Malformed(error) => Failure::Damaged {
             name: name.to_owned(),
-            error: e,
+            error,
+        },
+        kind => Failure::Log {
+            name: name.to_owned(),
+            kind,
         },
     }
 }
@@ -606,8 +434,8 @@ impl Progress {
         }
     }
 
-    fn advance(&mut self, sink: &mut Sink<'_>, bytes: u64, lines: u64) -> io::Result<()> {
-        self.read += bytes;
+    fn advance(&mut self, sink: &mut Sink<'_>, read: u64, lines: u64) -> io::Result<()> {
+        self.read = read;
         if !self.enabled {
             return Ok(());
         }
@@ -631,148 +459,6 @@ impl Progress {
             _ => write!(err, "\r{}: {mib} MiB, {lines} lines\x1b[K", self.name)?,
         }
         err.flush()
-    }
-}
-
-/// The longest line a text reader holds (1 MiB); a longer one is reported
-/// and skipped, so memory stays bounded whatever the input (issue 11).
-const MAX_LINE: usize = 1 << 20;
-
-/// The error for a line longer than [`MAX_LINE`].
-struct OverlongLine;
-
-impl std::fmt::Display for OverlongLine {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "line longer than {} MiB: not a log line, skipped",
-            MAX_LINE >> 20
-        )
-    }
-}
-
-/// Whole lines of an input, a block at a time (256 KiB, more for a long
-/// line, at most [`MAX_LINE`] for one line).
-struct Blocks {
-    reader: Box<dyn Read>,
-    buf: Vec<u8>,
-    filled: usize,
-    handed: usize,
-    at_end: bool,
-    /// Dropping the rest of an overlong line.
-    skipping: bool,
-}
-
-struct Block<'b> {
-    /// Whole lines (the last one may lack its line end at the end of the
-    /// input).
-    text: &'b [u8],
-    /// The read that filled the block took everything the input had
-    /// buffered: flush the output (live use).
-    drained: bool,
-    /// The block holds the end of the input.
-    at_end: bool,
-    /// An overlong line was skipped right before the block's text.
-    overlong: bool,
-}
-
-impl Blocks {
-    const BLOCK: usize = 1 << 18;
-
-    fn new(reader: Box<dyn Read>) -> Self {
-        Blocks {
-            reader,
-            buf: vec![0; Self::BLOCK],
-            filled: 0,
-            handed: 0,
-            at_end: false,
-            skipping: false,
-        }
-    }
-
-    /// Hand out the last block's text again, with more after it, at the
-    /// next call (the caller needs more lines to decide something).
-    fn hold(&mut self) {
-        self.handed = 0;
-    }
-
-    fn next_block(&mut self) -> io::Result<Option<Block<'_>>> {
-        // Drop what the last block handed out.
-        self.buf.copy_within(self.handed..self.filled, 0);
-        self.filled -= self.handed;
-        self.handed = 0;
-        if self.at_end && self.filled == 0 {
-            return Ok(None);
-        }
-        let mut overlong = false;
-        let mut drained = false;
-        while !self.at_end {
-            if self.filled == self.buf.len() {
-                if self.buf.len() >= MAX_LINE {
-                    // One line fills the largest buffer: drop it up to its
-                    // end.
-                    self.skipping = true;
-                    self.filled = 0;
-                } else {
-                    let len = (self.buf.len() * 2).min(MAX_LINE);
-                    self.buf.resize(len, 0);
-                }
-            }
-            let room = self.buf.len() - self.filled;
-            let n = match self.reader.read(&mut self.buf[self.filled..]) {
-                Ok(n) => n,
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e),
-            };
-            let start = self.filled;
-            self.filled += n;
-            self.at_end = n == 0;
-            drained = n < room && !self.at_end;
-            if self.skipping {
-                match self.buf[start..self.filled]
-                    .iter()
-                    .position(|&b| b == b'\n')
-                {
-                    Some(i) => {
-                        self.buf.copy_within(start + i + 1..self.filled, 0);
-                        self.filled -= start + i + 1;
-                        self.skipping = false;
-                        overlong = true;
-                    }
-                    None => {
-                        self.filled = 0;
-                        if self.at_end {
-                            self.skipping = false;
-                            overlong = true;
-                        }
-                        continue;
-                    }
-                }
-            }
-            if self.buf[start..self.filled].contains(&b'\n') || self.at_end {
-                break;
-            }
-            if overlong && self.filled == 0 {
-                // Report the skipped line before waiting for more.
-                break;
-            }
-        }
-        // Up to the last complete line (all of it at the end).
-        let complete = if self.at_end {
-            self.filled
-        } else {
-            self.buf[..self.filled]
-                .iter()
-                .rposition(|&b| b == b'\n')
-                .map_or(0, |i| i + 1)
-        };
-        self.handed = complete;
-        Ok(Some(Block {
-            text: &self.buf[..complete],
-            drained,
-            at_end: self.at_end,
-            overlong,
-        }))
     }
 }
 

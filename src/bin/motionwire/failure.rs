@@ -17,14 +17,14 @@ pub enum Failure {
         /// Why it cannot be read.
         source: io::Error,
     },
-    /// An input that is none of the log formats of SPEC §5 (§5.7: one
-    /// clear error, not one per line).
-    #[error("{name}: unrecognised log format: expected {expected}")]
-    Unrecognised {
+    /// An input that cannot be read as a log: none of the formats of SPEC
+    /// §5 (§5.7: one clear error, not one per line).
+    #[error("{name}: {kind}")]
+    Log {
         /// The input's name.
         name: String,
-        /// What was expected, in words.
-        expected: &'static str,
+        /// Why.
+        kind: motionwire::logs::LogErrorKind,
     },
     /// A binary log whose header is damaged: nothing in it can be read.
     #[error("{name}: {error}")]
@@ -33,16 +33,6 @@ pub enum Failure {
         name: String,
         /// What is wrong, and where.
         error: motionwire::Error,
-    },
-    /// An input of a format this build cannot read.
-    #[error("{name}: {format} logs cannot be read by this build: {why}")]
-    Unreadable {
-        /// The input's name.
-        name: String,
-        /// The format.
-        format: motionwire::LogFormat,
-        /// Why.
-        why: &'static str,
     },
     /// Writing the output failed.
     #[error("writing the output: {0}")]

@@ -1,0 +1,775 @@
+//! Vector ASC text logs (CANalyzer, CANoe, python-can's `ASCWriter`,
+//! can-utils' `log2asc`; SPEC §5.3, §5.7).
+//!
+//! An ASC file is a short header (`date …`, `base hex|dec  timestamps
+//! absolute|relative`, `internal events logged`, `Begin Triggerblock …`)
+//! followed by one line per event. [`AscParser`] keeps what the header sets
+//! and reads one line at a time; [`lines`] walks a whole buffer;
+//! [`write_line`] writes a frame as python-can's writer does, which reads
+//! back to the same frame. Nothing here allocates, and no input makes it
+//! panic.
+//!
+//! | line | example |
+//! |---|---|
+//! | classic frame | `   0.012345 1  123             Rx   d 8 11 22 33 44 55 66 77 88` |
+//! | extended identifier | `   0.012345 2  18FF1234x       Tx   d 2 01 02` |
+//! | remote request | `   0.012345 1  705             Rx   r 1` (`r` alone before v8.5) |
+//! | error frame | `   0.012345 1  ErrorFrame` |
+//! | CAN FD (or classic in FD form) | `   0.012345 CANFD   1 Rx 123  1 0 9 12 00 … 0B   0  0  3000 0 0 0 0 0` |
+//!
+//! # Decisions (where SPEC §5.3 and the tools leave room)
+//!
+//! - `ts` is the event's time as written, in seconds since the start of
+//!   the measurement (SPEC §5.7); with `timestamps relative` each time is
+//!   the time since the previous event, and the parser adds them up, so
+//!   `ts` is still seconds since the start. python-can's reader (by
+//!   default) returns relative times as written. The `date` and `Begin
+//!   Triggerblock` dates (local time, no zone) are not used.
+//! - `iface` is the channel number as written ([`Iface::Channel`], 1 for
+//!   the first channel); python-can counts channels from 0.
+//! - `base dec` applies to identifiers and data bytes, of classic and
+//!   `CANFD` lines alike (as python-can reads them; can-utils' `asc2log`
+//!   reads `CANFD` lines in hex whatever the base). The DLC is one hex
+//!   digit in both bases; 9 to F on a classic frame carry 8 bytes.
+//! - A `CANFD` line is a CAN FD frame only when its flags field has
+//!   EDL/FDF (0x1000) set, with BRS (0x2000) and ESI (0x4000) from the same
+//!   field; without it the line carries a classic frame, a remote request
+//!   when the flags have 0x10 (SPEC §5.3 decision, as `asc2log` reads it).
+//!   python-can marks every `CANFD` line as CAN FD and reads BRS/ESI from
+//!   their columns.
+//! - `ErrorFrame` says no more than that an error happened: it is an error
+//!   frame of class `bus_error` with 8 zero data bytes, as `asc2log` writes
+//!   it (python-can gives identifier 0 and no data).
+//! - Not frames, and not reported: blank lines, `//` comments, the header
+//!   lines above, `End TriggerBlock`, `Start of measurement`, `Log trigger
+//!   event`, bus `Statistic:`, `J1939TP` and system-variable (`SV:`) lines
+//!   and `TxRq` (transmit request) lines, which announce a frame the log
+//!   shows again when it is on the bus. Chip status lines (`CAN 1
+//!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every
+//!   other line is an [`Error::Syntax`] with its
+//!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
+//!
+//! ```
+//! use motionwire::logs::asc::AscParser;
+//! use motionwire::can::{Direction, Iface, LogEvent};
+//!
+//! let mut parser = AscParser::new();
+//! assert_eq!(parser.parse_line(b"base hex  timestamps absolute")?, None);
+//! let Some(LogEvent::Frame(logged)) =
+//!     parser.parse_line(b"   1.500000 1  701             Rx   d 1 05")?
+//! else {
+//!     panic!("a frame");
+//! };
+//! assert_eq!(logged.frame.id().raw(), 0x701);
+//! assert_eq!(logged.frame.data(), &[0x05]);
+//! assert_eq!(logged.iface, Some(Iface::Channel(1)));
+//! assert_eq!(logged.direction, Some(Direction::Rx));
+//! assert_eq!(logged.timestamp.map(|t| t.as_duration().as_millis()), Some(1500));
+//! # Ok::<(), motionwire::Error>(())
+//! ```
+
+use core::fmt;
+use core::iter::FusedIterator;
+
+use crate::can::{
+    BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
+    LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
+};
+use crate::logs::text::{hex_value, take_line};
+use crate::logs::{Found, LogFormat, SyntaxError};
+use crate::{Error, Result};
+
+#[cfg(test)]
+mod proptests;
+#[cfg(feature = "std")]
+mod reader;
+#[cfg(test)]
+mod tests;
+
+#[cfg(feature = "std")]
+pub use reader::AscReader;
+
+/// The `CANFD` flags field's bits that matter here (Vector's
+/// documentation, as can-utils' `asc2log` names them).
+const FLAG_RTR: u32 = 0x0000_0010;
+const FLAG_FDF: u32 = 0x0000_1000;
+const FLAG_BRS: u32 = 0x0000_2000;
+const FLAG_ESI: u32 = 0x0000_4000;
+
+/// How an ASC file writes numbers and times, as its `base` header line
+/// says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct AscParser {
+    /// Identifiers and data bytes in hex (`base hex`, the default) or
+    /// decimal (`base dec`).
+    hex: bool,
+    /// `timestamps relative`: each time is the delta to the previous event.
+    relative: bool,
+    /// The time of the last event, for relative timestamps.
+    elapsed: Timestamp,
+}
+
+impl Default for AscParser {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl AscParser {
+    /// A parser for a file whose header has not been read yet: hex
+    /// numbers and absolute times, as Vector's tools default to.
+    #[must_use]
+    pub const fn new() -> Self {
+        AscParser {
+            hex: true,
+            relative: false,
+            elapsed: Timestamp::ZERO,
+        }
+    }
+
+    /// Whether identifiers and data are hex (`base hex`).
+    #[must_use]
+    pub const fn is_hex(&self) -> bool {
+        self.hex
+    }
+
+    /// Whether times are relative to the previous event (`timestamps
+    /// relative`).
+    #[must_use]
+    pub const fn is_relative(&self) -> bool {
+        self.relative
+    }
+
+    /// Read one line (without or with its line end): `Ok(None)` for a line
+    /// that holds no frame or bus event (header, comment, blank), the
+    /// event, or an error with its column.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Syntax`] with [`LogFormat::Asc`], the 1-based column and
+    /// what was expected there.
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+        let line = trim_end(line);
+        let mut tokens = Tokens::new(line);
+        let Some((start, first)) = tokens.next_token() else {
+            return Ok(None);
+        };
+        if first.first().is_some_and(u8::is_ascii_digit) {
+            return self.parse_event(line, start, first, tokens);
+        }
+        let rest = line.get(start..).unwrap_or_default();
+        if rest.starts_with(b"//") {
+            return Ok(None);
+        }
+        if eq_ignore_case(first, b"base") {
+            return self.parse_base(tokens).map(|()| None);
+        }
+        if eq_ignore_case(first, b"date")
+            || eq_ignore_case(first, b"internal")
+            || starts_with_ignore_case(rest, b"no internal events logged")
+            || starts_with_ignore_case(rest, b"begin triggerblock")
+            || starts_with_ignore_case(rest, b"end triggerblock")
+        {
+            if starts_with_ignore_case(rest, b"begin triggerblock") {
+                // A new measurement: relative times start again.
+                self.elapsed = Timestamp::ZERO;
+            }
+            return Ok(None);
+        }
+        Err(syntax(
+            start + 1,
+            SyntaxError::AscLine {
+                found: found(line, start),
+            },
+        ))
+    }
+
+    /// `base hex|dec [timestamps absolute|relative]`.
+    fn parse_base(&mut self, mut tokens: Tokens<'_>) -> Result<()> {
+        let (at, base) = tokens.expect(|found| SyntaxError::AscBase { found })?;
+        self.hex = if eq_ignore_case(base, b"hex") {
+            true
+        } else if eq_ignore_case(base, b"dec") {
+            false
+        } else {
+            return Err(tokens.error_at(at, |found| SyntaxError::AscBase { found }));
+        };
+        if let Some((at, word)) = tokens.next_token() {
+            if !eq_ignore_case(word, b"timestamps") {
+                return Err(tokens.error_at(at, |found| SyntaxError::AscBase { found }));
+            }
+            let (at, kind) = tokens.expect(|found| SyntaxError::AscBase { found })?;
+            self.relative = if eq_ignore_case(kind, b"relative") {
+                true
+            } else if eq_ignore_case(kind, b"absolute") {
+                false
+            } else {
+                return Err(tokens.error_at(at, |found| SyntaxError::AscBase { found }));
+            };
+        }
+        Ok(())
+    }
+
+    /// A line that starts with a time.
+    fn parse_event<'l>(
+        &mut self,
+        line: &'l [u8],
+        start: usize,
+        time: &'l [u8],
+        mut tokens: Tokens<'l>,
+    ) -> Result<Option<LogEvent<'static>>> {
+        let written = parse_time(time).ok_or_else(|| {
+            tokens.error_at(start + bad_time_at(time), |found| SyntaxError::AscTime {
+                found,
+            })
+        })?;
+        let (at, second) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
+        // Every event's time counts, relative times add up over all of them.
+        let timestamp = self.time(written);
+        let rest = line.get(at..).unwrap_or_default();
+        // Events that hold no frame.
+        if starts_with_ignore_case(rest, b"start of measurement")
+            || starts_with_ignore_case(rest, b"log trigger event")
+        {
+            return Ok(None);
+        }
+        if second == b"CANFD" {
+            return self.parse_fd(line, timestamp, tokens);
+        }
+        if second == b"SV:" {
+            // A system variable's value: no frame.
+            return Ok(None);
+        }
+        if second == b"CANXL" {
+            return Err(tokens.error_at(at, |found| SyntaxError::AscLine { found }));
+        }
+        if second == b"CAN" {
+            // `CAN 1 Status:chip status error active`: a bus event.
+            let (at, channel) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
+            let channel = channel_number(channel)
+                .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;
+            return match tokens.next_token() {
+                Some((_, word)) if starts_with_ignore_case(word, b"status") => {
+                    Ok(Some(LogEvent::Status(BusStatus {
+                        timestamp: Some(timestamp),
+                        iface: Some(Iface::Channel(channel)),
+                    })))
+                }
+                Some((at, _)) => Err(tokens.error_at(at, |found| SyntaxError::AscLine { found })),
+                None => Err(tokens.error_at(line.len(), |found| SyntaxError::AscLine { found })),
+            };
+        }
+        let channel = channel_number(second)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;
+        let iface = Iface::Channel(channel);
+        let (at, id) = tokens.expect(|found| SyntaxError::AscIdentifier { found })?;
+        if starts_with_ignore_case(id, b"errorframe") {
+            return Ok(Some(LogEvent::Frame(error_frame(timestamp, iface))));
+        }
+        if starts_with_ignore_case(id, b"statistic:") || id == b"J1939TP" {
+            // Bus statistics, a J1939 transport-protocol summary: no frame.
+            return Ok(None);
+        }
+        if id == b"OverloadFrame" {
+            return Ok(Some(LogEvent::Status(BusStatus {
+                timestamp: Some(timestamp),
+                iface: Some(iface),
+            })));
+        }
+        let id = self
+            .parse_id(id)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscIdentifier { found }))?;
+        let (at, dir) = tokens.expect(|found| SyntaxError::AscDirection { found })?;
+        let direction = match dir {
+            b"Rx" => Direction::Rx,
+            b"Tx" => Direction::Tx,
+            // A transmit request: the frame shows again when it is sent.
+            b"TxRq" => return Ok(None),
+            _ => return Err(tokens.error_at(at, |found| SyntaxError::AscDirection { found })),
+        };
+        let (at, kind) = tokens.expect(|found| SyntaxError::AscFrameType { found })?;
+        let remote = match kind {
+            b"d" | b"D" => false,
+            b"r" | b"R" => true,
+            _ => return Err(tokens.error_at(at, |found| SyntaxError::AscFrameType { found })),
+        };
+        let dlc = match tokens.next_token() {
+            Some((at, dlc)) => Some(
+                hex_digit(dlc)
+                    .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?,
+            ),
+            None if remote => None,
+            None => return Err(tokens.error_at(line.len(), |found| SyntaxError::AscDlc { found })),
+        };
+        let frame = if remote {
+            // `r` alone (before v8.5) requests nothing: length 0.
+            let dlc = dlc.unwrap_or(0).min(CLASSIC_MAX_LEN as u8);
+            CanFrame::new_remote(id, dlc)
+        } else {
+            let len = usize::from(dlc.unwrap_or(0)).min(CLASSIC_MAX_LEN);
+            let mut data = [0u8; CLASSIC_MAX_LEN];
+            for slot in data.iter_mut().take(len) {
+                let (at, byte) = tokens.expect(|found| SyntaxError::AscDataByte { found })?;
+                *slot = self.parse_byte(byte).ok_or_else(|| {
+                    tokens.error_at(at, |found| SyntaxError::AscDataByte { found })
+                })?;
+            }
+            // What follows (`Length = …`, `BitCount = …`, `ID = …`) is
+            // bus timing and the symbolic name: not part of the frame.
+            CanFrame::new(id, data.get(..len).unwrap_or_default())
+        };
+        let frame =
+            frame.map_err(|_| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?;
+        Ok(Some(LogEvent::Frame(
+            LogFrame::new(frame)
+                .with_timestamp(timestamp)
+                .with_iface(iface)
+                .with_direction(direction),
+        )))
+    }
+
+    /// `CANFD ch dir id [name] brs esi dlc len data… duration bits flags …`.
+    fn parse_fd<'l>(
+        &self,
+        line: &'l [u8],
+        timestamp: Timestamp,
+        mut tokens: Tokens<'l>,
+    ) -> Result<Option<LogEvent<'static>>> {
+        let (at, channel) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
+        let channel = channel_number(channel)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;
+        let (at, dir) = tokens.expect(|found| SyntaxError::AscDirection { found })?;
+        let direction = match dir {
+            b"Rx" => Direction::Rx,
+            b"Tx" => Direction::Tx,
+            _ => return Err(tokens.error_at(at, |found| SyntaxError::AscDirection { found })),
+        };
+        let (at, id) = tokens.expect(|found| SyntaxError::AscIdentifier { found })?;
+        if starts_with_ignore_case(id, b"errorframe") {
+            let frame = error_frame(timestamp, Iface::Channel(channel)).with_direction(direction);
+            return Ok(Some(LogEvent::Frame(frame)));
+        }
+        let id = self
+            .parse_id(id)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscIdentifier { found }))?;
+        // An optional symbolic name stands before the BRS and ESI columns
+        // (each `0` or `1`).
+        let bit = |t: Option<(usize, &[u8])>| matches!(t, Some((_, b"0" | b"1")));
+        let mut ahead = tokens.clone();
+        let (first, second) = (ahead.next_token(), ahead.next_token());
+        if !(bit(first) && bit(second)) {
+            tokens.next_token();
+        }
+        for _ in 0..2 {
+            let (at, flag) = tokens.expect(|found| SyntaxError::AscFdColumn { found })?;
+            if !matches!(flag, b"0" | b"1") {
+                return Err(tokens.error_at(at, |found| SyntaxError::AscFdColumn { found }));
+            }
+        }
+        let (at, dlc) = tokens.expect(|found| SyntaxError::AscDlc { found })?;
+        let dlc = hex_digit(dlc)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?;
+        let (len_at, len) = tokens.expect(|found| SyntaxError::AscDataLength { found })?;
+        let len = decimal(len, FD_MAX_LEN as u64)
+            .filter(|&len| FD_LENGTHS.contains(&(len as u8)))
+            .ok_or_else(|| tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }))?
+            as usize;
+        let mut data = [0u8; FD_MAX_LEN];
+        for slot in data.iter_mut().take(len) {
+            let (at, byte) = tokens.expect(|found| SyntaxError::AscDataByte { found })?;
+            *slot = self
+                .parse_byte(byte)
+                .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscDataByte { found }))?;
+        }
+        // Message duration and bit count, then the flags.
+        for _ in 0..2 {
+            tokens.expect(|found| SyntaxError::AscFlags { found })?;
+        }
+        let (at, flags) = tokens.expect(|found| SyntaxError::AscFlags { found })?;
+        let flags = hex(flags)
+            .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscFlags { found }))?;
+        let payload = data.get(..len).unwrap_or_default();
+        let frame = if flags & FLAG_FDF != 0 {
+            // FDF itself is what makes the frame CAN FD here; the flags
+            // kept are BRS and ESI, as the other readers keep them.
+            let mut fd = FdFlags::EMPTY;
+            if flags & FLAG_BRS != 0 {
+                fd = fd.union(FdFlags::BRS);
+            }
+            if flags & FLAG_ESI != 0 {
+                fd = fd.union(FdFlags::ESI);
+            }
+            if FD_LENGTHS.get(usize::from(dlc)) != Some(&(len as u8)) {
+                return Err(tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }));
+            }
+            CanFrame::new_fd(id, fd, payload)
+        } else if flags & FLAG_RTR != 0 {
+            CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
+        } else {
+            // Classic content in the CAN FD form: at most 8 bytes.
+            if len > CLASSIC_MAX_LEN {
+                return Err(tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }));
+            }
+            CanFrame::new(id, payload)
+        };
+        let frame = frame
+            .map_err(|_| tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }))?;
+        let _ = line;
+        Ok(Some(LogEvent::Frame(
+            LogFrame::new(frame)
+                .with_timestamp(timestamp)
+                .with_iface(Iface::Channel(channel))
+                .with_direction(direction),
+        )))
+    }
+
+    /// The event's time since the start: as written, or added up.
+    fn time(&mut self, written: Timestamp) -> Timestamp {
+        if self.relative {
+            self.elapsed = self
+                .elapsed
+                .checked_add(written.as_duration())
+                .unwrap_or(self.elapsed);
+            self.elapsed
+        } else {
+            written
+        }
+    }
+
+    /// An identifier in the file's base, `x` after an extended one.
+    fn parse_id(&self, text: &[u8]) -> Option<CanId> {
+        let (digits, extended) = match text.split_last() {
+            Some((b'x' | b'X', digits)) => (digits, true),
+            _ => (text, false),
+        };
+        let raw = if self.hex {
+            hex(digits)?
+        } else {
+            u32::try_from(decimal(digits, u64::from(u32::MAX))?).ok()?
+        };
+        if extended {
+            CanId::extended(raw)
+        } else {
+            CanId::standard(raw)
+        }
+    }
+
+    /// A data byte in the file's base.
+    fn parse_byte(&self, text: &[u8]) -> Option<u8> {
+        if self.hex {
+            match *text {
+                [lo] => hex_value(lo),
+                [hi, lo] => Some(hex_value(hi)? << 4 | hex_value(lo)?),
+                _ => None,
+            }
+        } else {
+            decimal(text, 255).and_then(|v| u8::try_from(v).ok())
+        }
+    }
+}
+
+/// An `ErrorFrame` line's frame: all the line says is that an error
+/// happened, so class `bus_error` with 8 zero bytes, as can-utils'
+/// `asc2log` writes it.
+fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static> {
+    // The class bits are an extended identifier and 8 bytes an error
+    // frame's data: the parts are valid as they are.
+    let id = CanId::new_unchecked(ErrorClasses::BUS_ERROR.bits(), true);
+    let frame =
+        CanFrame::from_checked_parts(id, FrameType::Error, [0; FD_MAX_LEN], CLASSIC_MAX_LEN as u8);
+    LogFrame::new(frame)
+        .with_timestamp(timestamp)
+        .with_iface(iface)
+}
+
+/// Walk a whole buffer line by line: `(line number, what the line holds)`,
+/// numbered from 1 (SPEC §5.7 `line`).
+#[must_use]
+pub fn lines(buf: &[u8]) -> AscLines<'_> {
+    AscLines {
+        rest: buf,
+        line: 0,
+        parser: AscParser::new(),
+    }
+}
+
+/// The iterator of [`lines`].
+#[derive(Debug, Clone)]
+pub struct AscLines<'a> {
+    rest: &'a [u8],
+    line: usize,
+    parser: AscParser,
+}
+
+impl<'a> AscLines<'a> {
+    /// The parser's state after the lines read so far.
+    #[must_use]
+    pub const fn parser(&self) -> &AscParser {
+        &self.parser
+    }
+}
+
+impl<'a> Iterator for AscLines<'a> {
+    type Item = (usize, Result<Option<LogEvent<'a>>>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let line = take_line(&mut self.rest)?;
+        self.line += 1;
+        Some((self.line, self.parser.parse_line(line)))
+    }
+}
+
+impl FusedIterator for AscLines<'_> {}
+
+/// Write a frame as one ASC event line the way python-can's `ASCWriter`
+/// writes it in a `base hex  timestamps absolute` file (without a line
+/// end): classic and remote frames in the classic form, CAN FD frames in
+/// the `CANFD` form with their flags, error frames as `ErrorFrame`. The
+/// time is the record's (0 without one); the channel is the record's
+/// channel (1 without one).
+///
+/// # Errors
+///
+/// [`fmt::Error`] for what an ASC line cannot hold: an interface given by
+/// name, a CAN FD frame whose length is no DLC's (e.g. 49 bytes).
+pub fn write_line<W: fmt::Write + ?Sized>(logged: &LogFrame<'_>, w: &mut W) -> fmt::Result {
+    let channel = match logged.iface {
+        Some(Iface::Channel(channel)) => channel,
+        None => 1,
+        Some(Iface::Name(_)) => return Err(fmt::Error),
+    };
+    let ts = logged.timestamp.unwrap_or(Timestamp::ZERO);
+    let nanos = ts.subsec_nanos();
+    if nanos % 1000 == 0 {
+        write!(w, "{:>9}.{:06} ", ts.secs(), nanos / 1000)?;
+    } else {
+        write!(w, "{:>9}.{:09} ", ts.secs(), nanos)?;
+    }
+    let frame = &logged.frame;
+    let dir = match logged.direction {
+        Some(Direction::Tx) => "Tx",
+        _ => "Rx",
+    };
+    let id = frame.id();
+    let x = if id.is_extended() { "x" } else { "" };
+    match frame.frame_type() {
+        FrameType::Error => write!(w, "{channel}  ErrorFrame"),
+        FrameType::Fd(flags) => {
+            if !FD_LENGTHS.contains(&(frame.data().len() as u8)) {
+                return Err(fmt::Error);
+            }
+            let mut bits = FLAG_FDF;
+            if flags.contains(FdFlags::BRS) {
+                bits |= FLAG_BRS;
+            }
+            if flags.contains(FdFlags::ESI) {
+                bits |= FLAG_ESI;
+            }
+            write!(
+                w,
+                "CANFD {channel:>3} {dir:<4} {:>8} {} {} {:x} {:>2}",
+                HexId(id.raw(), x),
+                u8::from(flags.contains(FdFlags::BRS)),
+                u8::from(flags.contains(FdFlags::ESI)),
+                frame.dlc(),
+                frame.data().len()
+            )?;
+            for byte in frame.data() {
+                write!(w, " {byte:02X}")?;
+            }
+            write!(w, " {:>8} {:>4} {bits:>8X} 0 0 0 0 0", 0, 0)
+        }
+        FrameType::Remote { dlc } => {
+            write!(
+                w,
+                "{channel}  {:<15} {dir:<4} r {dlc:x}",
+                HexId(id.raw(), x)
+            )
+        }
+        FrameType::Data => {
+            write!(
+                w,
+                "{channel}  {:<15} {dir:<4} d {:x}",
+                HexId(id.raw(), x),
+                frame.dlc()
+            )?;
+            for byte in frame.data() {
+                write!(w, " {byte:02X}")?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// An identifier in upper-case hex with its extended marker, padded as a
+/// whole.
+struct HexId(u32, &'static str);
+
+impl fmt::Display for HexId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut buf = [0u8; 9];
+        let mut n = 0;
+        let mut started = false;
+        for shift in (0..8).rev() {
+            let digit = (self.0 >> (shift * 4)) & 0xF;
+            if digit != 0 || started || shift == 0 {
+                started = true;
+                if let Some(slot) = buf.get_mut(n) {
+                    *slot = b"0123456789ABCDEF"[digit as usize];
+                }
+                n += 1;
+            }
+        }
+        if !self.1.is_empty() {
+            if let Some(slot) = buf.get_mut(n) {
+                *slot = b'x';
+            }
+            n += 1;
+        }
+        let text = core::str::from_utf8(buf.get(..n).unwrap_or_default()).unwrap_or_default();
+        f.pad(text)
+    }
+}
+
+// ------------------------------------------------------------ tokens
+
+fn trim_end(line: &[u8]) -> &[u8] {
+    let end = line
+        .iter()
+        .rposition(|&b| !matches!(b, b' ' | b'\t' | b'\r' | b'\n'))
+        .map_or(0, |i| i + 1);
+    line.get(..end).unwrap_or_default()
+}
+
+const fn is_space(b: u8) -> bool {
+    b == b' ' || b == b'\t'
+}
+
+/// The white-space separated fields of a line, with their positions.
+#[derive(Debug, Clone)]
+struct Tokens<'l> {
+    line: &'l [u8],
+    pos: usize,
+}
+
+impl<'l> Tokens<'l> {
+    const fn new(line: &'l [u8]) -> Self {
+        Tokens { line, pos: 0 }
+    }
+
+    #[inline]
+    fn next_token(&mut self) -> Option<(usize, &'l [u8])> {
+        let line = self.line;
+        let mut start = self.pos;
+        while line.get(start).is_some_and(|&b| is_space(b)) {
+            start += 1;
+        }
+        if start >= line.len() {
+            self.pos = start;
+            return None;
+        }
+        let mut end = start + 1;
+        while line.get(end).is_some_and(|&b| !is_space(b)) {
+            end += 1;
+        }
+        self.pos = end;
+        Some((start, line.get(start..end).unwrap_or_default()))
+    }
+
+    fn expect(&mut self, reason: fn(Found) -> SyntaxError) -> Result<(usize, &'l [u8])> {
+        match self.next_token() {
+            Some(token) => Ok(token),
+            None => Err(self.error_at(self.line.len(), reason)),
+        }
+    }
+
+    /// The error `reason` for what stands at byte `at` (0-based).
+    fn error_at(&self, at: usize, reason: fn(Found) -> SyntaxError) -> Error {
+        syntax(at + 1, reason(found(self.line, at)))
+    }
+}
+
+fn found(line: &[u8], at: usize) -> Found {
+    line.get(at).map_or(Found::EndOfLine, |&b| Found::Byte(b))
+}
+
+const fn syntax(column: usize, reason: SyntaxError) -> Error {
+    Error::Syntax {
+        format: LogFormat::Asc,
+        column,
+        reason,
+    }
+}
+
+fn eq_ignore_case(a: &[u8], b: &[u8]) -> bool {
+    a.eq_ignore_ascii_case(b)
+}
+
+fn starts_with_ignore_case(text: &[u8], prefix: &[u8]) -> bool {
+    text.get(..prefix.len())
+        .is_some_and(|head| head.eq_ignore_ascii_case(prefix))
+}
+
+fn decimal(field: &[u8], max: u64) -> Option<u64> {
+    if field.is_empty() || field.len() > 19 || !field.iter().all(u8::is_ascii_digit) {
+        return None;
+    }
+    let value = field
+        .iter()
+        .fold(0u64, |acc, &b| acc * 10 + u64::from(b - b'0'));
+    (value <= max).then_some(value)
+}
+
+fn hex(field: &[u8]) -> Option<u32> {
+    if field.is_empty() || field.len() > 8 {
+        return None;
+    }
+    let mut value = 0u32;
+    for &b in field {
+        value = value << 4 | u32::from(hex_value(b)?);
+    }
+    Some(value)
+}
+
+fn hex_digit(field: &[u8]) -> Option<u8> {
+    match field {
+        [b] => char::from(*b)
+            .to_digit(16)
+            .and_then(|d| u8::try_from(d).ok()),
+        _ => None,
+    }
+}
+
+/// A channel number, 1 to 65535.
+fn channel_number(field: &[u8]) -> Option<u16> {
+    decimal(field, u64::from(u16::MAX))
+        .and_then(|n| u16::try_from(n).ok())
+        .filter(|&n| n > 0)
+}
+
+/// `seconds.fraction` with 1 to 9 digits of fraction, exactly.
+fn parse_time(field: &[u8]) -> Option<Timestamp> {
+    let point = field.iter().position(|&b| b == b'.')?;
+    let (secs, fraction) = (field.get(..point)?, field.get(point + 1..)?);
+    if fraction.is_empty() || fraction.len() > 9 {
+        return None;
+    }
+    let secs = decimal(secs, u64::MAX / 2)?;
+    let digits = decimal(fraction, 999_999_999)?;
+    let nanos = digits * 10u64.pow(9 - fraction.len() as u32);
+    Timestamp::from_nanos(secs, u32::try_from(nanos).ok()?)
+}
+
+/// Where a bad time goes wrong: the first byte that is not a digit or the
+/// one point (or its end).
+fn bad_time_at(field: &[u8]) -> usize {
+    let mut seen_point = false;
+    for (i, &b) in field.iter().enumerate() {
+        match b {
+            b'0'..=b'9' => {}
+            b'.' if !seen_point && i > 0 => seen_point = true,
+            _ => return i,
+        }
+    }
+    field.len()
+}

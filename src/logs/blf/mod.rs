@@ -1,0 +1,760 @@
+//! Vector BLF binary logs (CANoe, CANalyzer, python-can's `BLFWriter`;
+//! SPEC §5.6, §5.7), behind the `blf` feature.
+//!
+//! A BLF file is a 144-byte `LOGG` header (with the measurement's start
+//! time) followed by objects, each behind a `LOBJ` header; the objects that
+//! matter sit in `LOG_CONTAINER` objects whose data is zlib-compressed (or
+//! stored), and an object may continue from one container into the next.
+//! [`BlfReader`] streams them: one container inflated at a time, memory
+//! bounded by [`MAX_RECORD_LEN`] whatever the file claims.
+//!
+//! | object | type | read as |
+//! |---|---|---|
+//! | `CAN_MESSAGE`, `CAN_MESSAGE2` | 1, 86 | classic data or remote frame |
+//! | `CAN_FD_MESSAGE` | 100 | CAN FD frame (EDL set) or classic frame |
+//! | `CAN_FD_MESSAGE_64` | 101 | CAN FD frame (EDL set) or classic frame |
+//! | `CAN_ERROR_EXT` | 73 | error frame |
+//! | `LOG_CONTAINER` | 10 | its objects |
+//! | any other | | counted ([`ReadLog::other_records`]), skipped |
+//!
+//! # Decisions (where SPEC §5.6 and the tools leave room)
+//!
+//! - `line` is the 1-based number of the object among the objects that are
+//!   not containers, every type counted (SPEC §5.7); containers only hold
+//!   them.
+//! - `ts` is the header's start time (a `SYSTEMTIME`, read as UTC as
+//!   python-can does; 0 when the header has none) plus the object's time
+//!   (units of 10 µs when its header's flags say 1, else nanoseconds).
+//! - `iface` is the object's channel ([`Iface::Channel`], 1 for the first,
+//!   as the file writes it; python-can counts from 0). `direction` is `Tx`
+//!   when the object says it was sent.
+//! - A frame whose valid-data-bytes count exceeds the bytes stored is padded
+//!   with zeros; a remote request has no data whatever the object stores
+//!   (SPEC §5.6). A classic frame's DLC above 8 carries 8 bytes.
+//! - `CAN_ERROR_EXT` is an error frame of classes `bus_error | protocol`
+//!   whose data is Linux's layout (SPEC §5.1) of what the object's error
+//!   code capture (ECC, SJA1000's register) says: byte 2 the error type
+//!   (bit 0x01, form 0x02, stuff 0x04, other 0) with 0x80 when it happened
+//!   while sending, byte 3 the location (the ECC's segment code). python-can
+//!   gives the object's identifier and data bytes instead.
+//! - Objects inside a container follow each other after their size, with
+//!   up to 7 bytes of padding skipped before the next `LOBJ` (writers pad
+//!   differently); top-level objects are followed by `size % 4` padding
+//!   bytes, as Vector's and python-can's writers write them.
+//! - A damaged file ends the reading with one [`Error::Binary`] after the
+//!   frames before it; a frame object whose content cannot be read (a
+//!   standard identifier above 0x7FF, a body shorter than its type) is one
+//!   error and the reading goes on with the next object. Its offset is the byte in the file for the header
+//!   and containers, and the byte in the decompressed object stream (all
+//!   containers' data in a row) for an object inside a container.
+//!
+//! ```
+//! # fn main() -> Result<(), motionwire::logs::LogError> {
+//! use motionwire::logs::blf::BlfReader;
+//! use motionwire::logs::ReadLog;
+//!
+//! // A file with the header only: no records.
+//! let mut file = vec![0u8; 144];
+//! file[..4].copy_from_slice(b"LOGG");
+//! file[4..8].copy_from_slice(&144u32.to_le_bytes());
+//! let mut reader = BlfReader::new(&file[..])?;
+//! assert!(reader.next_event().is_none());
+//! # Ok(())
+//! # }
+//! ```
+
+use std::io::{self, Read};
+
+use crate::can::{
+    CanFrame, CanId, Direction, ErrorClasses, FdFlags, Iface, LogEvent, LogFrame, Timestamp,
+    CLASSIC_MAX_LEN, FD_MAX_LEN,
+};
+use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::{
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN,
+};
+use crate::Error;
+
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+pub(crate) mod writer;
+
+/// Object types (Vector's binlog headers, as python-can names them).
+mod object {
+    pub(super) const CAN_MESSAGE: u32 = 1;
+    pub(super) const LOG_CONTAINER: u32 = 10;
+    pub(super) const CAN_ERROR_EXT: u32 = 73;
+    pub(super) const CAN_MESSAGE2: u32 = 86;
+    pub(super) const CAN_FD_MESSAGE: u32 = 100;
+    pub(super) const CAN_FD_MESSAGE_64: u32 = 101;
+}
+
+/// The fixed part of the file header.
+const FILE_HEADER_LEN: usize = 72;
+/// `LOBJ`, header size, header version, object size, object type.
+const BASE_HEADER_LEN: usize = 16;
+const V1_HEADER_LEN: usize = 16;
+const V2_HEADER_LEN: usize = 24;
+const CONTAINER_HEADER_LEN: usize = 16;
+
+/// What one object in the stream is.
+#[derive(Debug)]
+enum Object {
+    Frame(LogFrame<'static>),
+    /// A type that holds no frame: counted.
+    Other,
+    /// A frame object whose content cannot be read (e.g. a standard
+    /// identifier above 0x7FF); the reading goes on after it.
+    Bad(Error),
+}
+
+/// A reader of Vector BLF files (SPEC §5.6): see the
+/// [module documentation](self).
+#[derive(Debug)]
+pub struct BlfReader<R: Read> {
+    reader: R,
+    /// Bytes of the file read so far.
+    file_offset: u64,
+    start: Timestamp,
+    /// Decompressed object bytes not yet read, from `pos`.
+    stream: Vec<u8>,
+    pos: usize,
+    /// Bytes of the decompressed stream dropped before `stream[0]`.
+    stream_base: u64,
+    /// Objects (not containers) seen.
+    number: u64,
+    other: u64,
+    /// Objects reported as damaged and skipped.
+    bad: u64,
+    done: bool,
+    /// The file has no more containers.
+    file_done: bool,
+}
+
+impl<R: Read> BlfReader<R> {
+    /// Read the file header.
+    ///
+    /// # Errors
+    ///
+    /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
+    /// of kind [`LogErrorKind::Damaged`] with an
+    /// [`Error::Binary`] of [`LogFormat::Blf`] when the file does not start
+    /// with `LOGG` ([`BinaryError::BadMagic`]), is cut inside its header, or
+    /// its header size is shorter than the header or above
+    /// [`MAX_RECORD_LEN`].
+    pub fn new(mut reader: R) -> Result<Self, LogError> {
+        let mut head = [0u8; FILE_HEADER_LEN];
+        let got = read_full(&mut reader, &mut head)?;
+        if got >= 4 && head.get(..4) != Some(b"LOGG") {
+            return Err(fail(
+                0,
+                BinaryError::BadMagic {
+                    found: u32_at(&head, 0),
+                },
+            ));
+        }
+        if got < FILE_HEADER_LEN {
+            return Err(fail(
+                0,
+                BinaryError::Truncated {
+                    needed: FILE_HEADER_LEN as u64,
+                    found: got as u64,
+                },
+            ));
+        }
+        let header_len = u32_at(&head, 4) as usize;
+        if header_len < FILE_HEADER_LEN {
+            return Err(fail(
+                4,
+                BinaryError::BadLength {
+                    length: header_len as u64,
+                },
+            ));
+        }
+        if header_len > MAX_RECORD_LEN {
+            return Err(fail(
+                4,
+                BinaryError::TooLarge {
+                    length: header_len as u64,
+                    limit: MAX_RECORD_LEN as u64,
+                },
+            ));
+        }
+        let rest = (header_len - FILE_HEADER_LEN) as u64;
+        let skipped = io::copy(&mut (&mut reader).take(rest), &mut io::sink())?;
+        if skipped < rest {
+            return Err(fail(
+                0,
+                BinaryError::Truncated {
+                    needed: header_len as u64,
+                    found: FILE_HEADER_LEN as u64 + skipped,
+                },
+            ));
+        }
+        let start = system_time(&head, 40);
+        Ok(BlfReader {
+            reader,
+            file_offset: header_len as u64,
+            start,
+            stream: Vec::new(),
+            pos: 0,
+            stream_base: 0,
+            number: 0,
+            other: 0,
+            bad: 0,
+            done: false,
+            file_done: false,
+        })
+    }
+
+    /// The measurement's start time from the file header (UTC).
+    #[must_use]
+    pub const fn start_time(&self) -> Timestamp {
+        self.start
+    }
+
+    /// Make `need` bytes available in the stream from `pos`, reading
+    /// containers (or top-level objects) from the file; `false` at the end
+    /// of the file.
+    fn fill(&mut self, need: usize) -> Result<bool, LogError> {
+        while self.stream.len() - self.pos < need {
+            if self.file_done {
+                return Ok(false);
+            }
+            // Drop what was read.
+            if self.pos > 0 {
+                self.stream.drain(..self.pos);
+                self.stream_base += self.pos as u64;
+                self.pos = 0;
+            }
+            self.read_top_level()?;
+        }
+        Ok(true)
+    }
+
+    /// Read one top-level object: a container's data goes to the stream, as
+    /// does any other object (whole, as it stands in the file).
+    fn read_top_level(&mut self) -> Result<(), LogError> {
+        let at = self.file_offset;
+        let mut header = [0u8; BASE_HEADER_LEN];
+        let got = read_full(&mut self.reader, &mut header)?;
+        if got == 0 {
+            self.file_done = true;
+            return Ok(());
+        }
+        if got < BASE_HEADER_LEN {
+            return Err(fail(
+                at,
+                BinaryError::Truncated {
+                    needed: BASE_HEADER_LEN as u64,
+                    found: got as u64,
+                },
+            ));
+        }
+        if header.get(..4) != Some(b"LOBJ") {
+            return Err(fail(
+                at,
+                BinaryError::BadMagic {
+                    found: u32_at(&header, 0),
+                },
+            ));
+        }
+        let size = u32_at(&header, 8) as usize;
+        let kind = u32_at(&header, 12);
+        if size < BASE_HEADER_LEN {
+            return Err(fail(
+                at + 8,
+                BinaryError::BadLength {
+                    length: size as u64,
+                },
+            ));
+        }
+        if size > MAX_RECORD_LEN {
+            return Err(fail(
+                at + 8,
+                BinaryError::TooLarge {
+                    length: size as u64,
+                    limit: MAX_RECORD_LEN as u64,
+                },
+            ));
+        }
+        let mut body = vec![0u8; size - BASE_HEADER_LEN];
+        let got = read_full(&mut self.reader, &mut body)?;
+        if got < body.len() {
+            return Err(fail(
+                at,
+                BinaryError::Truncated {
+                    needed: size as u64,
+                    found: (BASE_HEADER_LEN + got) as u64,
+                },
+            ));
+        }
+        // Padding after a top-level object: size % 4 bytes (Vector's and
+        // python-can's writers); the end of the file may come first.
+        let padding = size % 4;
+        let mut pad = [0u8; 3];
+        let got_pad = read_full(&mut self.reader, pad.get_mut(..padding).unwrap_or_default())?;
+        self.file_offset = at + size as u64 + got_pad as u64;
+        if kind != object::LOG_CONTAINER {
+            // An object outside any container: into the stream as it is.
+            self.stream.extend_from_slice(&header);
+            self.stream.extend_from_slice(&body);
+            return Ok(());
+        }
+        if body.len() < CONTAINER_HEADER_LEN {
+            return Err(fail(
+                at + 8,
+                BinaryError::BadLength {
+                    length: size as u64,
+                },
+            ));
+        }
+        let method = u16::from_le_bytes([body[0], body[1]]);
+        let uncompressed = u32_at(&body, 8) as usize;
+        if uncompressed > MAX_RECORD_LEN {
+            return Err(fail(
+                at + BASE_HEADER_LEN as u64 + 8,
+                BinaryError::TooLarge {
+                    length: uncompressed as u64,
+                    limit: MAX_RECORD_LEN as u64,
+                },
+            ));
+        }
+        let data = body.get(CONTAINER_HEADER_LEN..).unwrap_or_default();
+        match method {
+            0 => self.stream.extend_from_slice(data),
+            2 => {
+                let before = self.stream.len();
+                self.stream.reserve(uncompressed);
+                let mut inflater = flate2::Decompress::new(true);
+                let status = inflater.decompress_vec(
+                    data,
+                    &mut self.stream,
+                    flate2::FlushDecompress::Finish,
+                );
+                let produced = self.stream.len() - before;
+                let whole = matches!(status, Ok(flate2::Status::StreamEnd));
+                if !whole || produced != uncompressed {
+                    self.stream.truncate(before);
+                    return Err(fail(at, BinaryError::Decompression));
+                }
+            }
+            other => {
+                return Err(fail(
+                    at + BASE_HEADER_LEN as u64,
+                    BinaryError::UnsupportedCompression {
+                        method: u32::from(other),
+                    },
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// The next object in the stream: `None` at the end.
+    fn next_object(&mut self) -> Result<Option<Object>, LogError> {
+        // Padding before an object: up to 7 bytes before `LOBJ`.
+        if !self.fill(4)? {
+            return self.end_of_stream();
+        }
+        let mut skipped = 0;
+        while self.stream.get(self.pos..self.pos + 4) != Some(b"LOBJ") {
+            if skipped == 7 || !self.fill(5)? {
+                return if skipped == 7 {
+                    Err(self.stream_fail(BinaryError::BadMagic {
+                        found: u32_at(&self.stream, self.pos),
+                    }))
+                } else {
+                    self.end_of_stream()
+                };
+            }
+            self.pos += 1;
+            skipped += 1;
+        }
+        if !self.fill(BASE_HEADER_LEN)? {
+            return Err(self.truncated(BASE_HEADER_LEN));
+        }
+        let at = self.pos;
+        let header_len = usize::from(u16_at(&self.stream, at + 4));
+        let version = u16_at(&self.stream, at + 6);
+        let size = u32_at(&self.stream, at + 8) as usize;
+        let kind = u32_at(&self.stream, at + 12);
+        if size > MAX_RECORD_LEN {
+            return Err(self.stream_fail(BinaryError::TooLarge {
+                length: size as u64,
+                limit: MAX_RECORD_LEN as u64,
+            }));
+        }
+        if size < BASE_HEADER_LEN || header_len > size {
+            return Err(self.stream_fail(BinaryError::BadLength {
+                length: size as u64,
+            }));
+        }
+        if !self.fill(size)? {
+            return Err(self.truncated(size));
+        }
+        // Filling may have moved the unread bytes to the front.
+        let at = self.pos;
+        self.number = self.number.saturating_add(1);
+        let object = self.stream.get(at..at + size).unwrap_or_default();
+        let outcome = match decode_object(object, kind, version, self.start) {
+            Ok(Some(frame)) => Object::Frame(frame),
+            Ok(None) => {
+                self.other = self.other.saturating_add(1);
+                Object::Other
+            }
+            // The object's size is known: report it, go on after it.
+            Err(reason) => Object::Bad(Error::Binary {
+                format: LogFormat::Blf,
+                offset: self.stream_base + self.pos as u64,
+                reason,
+            }),
+        };
+        self.pos = at + size;
+        Ok(Some(outcome))
+    }
+
+    fn end_of_stream(&self) -> Result<Option<Object>, LogError> {
+        // Nothing but padding may be left.
+        let rest = self.stream.get(self.pos..).unwrap_or_default();
+        if rest.iter().all(|&b| b == 0) {
+            Ok(None)
+        } else {
+            Err(self.truncated(BASE_HEADER_LEN))
+        }
+    }
+
+    fn truncated(&self, needed: usize) -> LogError {
+        self.stream_fail(BinaryError::Truncated {
+            needed: needed as u64,
+            found: (self.stream.len() - self.pos) as u64,
+        })
+    }
+
+    fn stream_fail(&self, reason: BinaryError) -> LogError {
+        fail(self.stream_base + self.pos as u64, reason)
+    }
+}
+
+impl<R: Read> ReadLog for BlfReader<R> {
+    fn format(&self) -> LogFormat {
+        LogFormat::Blf
+    }
+
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
+        loop {
+            if self.done {
+                return None;
+            }
+            match self.next_object() {
+                Ok(Some(Object::Frame(frame))) => {
+                    return Some(Ok(LogRecord {
+                        position: Position::Record(self.number),
+                        event: LogEvent::Frame(frame),
+                    }))
+                }
+                Ok(Some(Object::Other)) => continue,
+                Ok(Some(Object::Bad(error))) => {
+                    self.bad += 1;
+                    return Some(Err(LogError::new(
+                        Some(Position::Record(self.number)),
+                        LogErrorKind::Malformed(error),
+                    )));
+                }
+                Ok(None) => {
+                    self.done = true;
+                    return None;
+                }
+                Err(e) => {
+                    self.done = true;
+                    return Some(Err(e.or_at(Position::Record(self.number + 1))));
+                }
+            }
+        }
+    }
+
+    fn other_records(&self) -> u64 {
+        self.other
+    }
+
+    fn skipped(&self) -> u64 {
+        self.bad
+    }
+
+    fn bytes_read(&self) -> u64 {
+        self.file_offset
+    }
+}
+
+/// Decode one object (`LOBJ` header included): a frame, or `None` for a
+/// type that holds none.
+fn decode_object(
+    object: &[u8],
+    kind: u32,
+    version: u16,
+    start: Timestamp,
+) -> Result<Option<LogFrame<'static>>, BinaryError> {
+    let header_len = match version {
+        1 => BASE_HEADER_LEN + V1_HEADER_LEN,
+        2 => BASE_HEADER_LEN + V2_HEADER_LEN,
+        // An unknown header version: nothing can be read from it.
+        _ => return Ok(None),
+    };
+    if !matches!(
+        kind,
+        object::CAN_MESSAGE
+            | object::CAN_MESSAGE2
+            | object::CAN_FD_MESSAGE
+            | object::CAN_FD_MESSAGE_64
+            | object::CAN_ERROR_EXT
+    ) {
+        return Ok(None);
+    }
+    if object.len() < header_len {
+        return Err(BinaryError::BadLength {
+            length: object.len() as u64,
+        });
+    }
+    let flags = u32_at(object, BASE_HEADER_LEN);
+    let time = u64_at(object, BASE_HEADER_LEN + 8);
+    let offset = if flags == 1 {
+        // Units of 10 µs.
+        core::time::Duration::from_micros(time.saturating_mul(10))
+    } else {
+        core::time::Duration::from_nanos(time)
+    };
+    let timestamp = start.checked_add(offset).unwrap_or(start);
+    let body = object.get(header_len..).unwrap_or_default();
+    let need = |len: usize| {
+        if body.len() < len {
+            Err(BinaryError::BadLength {
+                length: object.len() as u64,
+            })
+        } else {
+            Ok(())
+        }
+    };
+    let (channel, frame, direction) = match kind {
+        object::CAN_MESSAGE | object::CAN_MESSAGE2 => {
+            need(16)?;
+            let channel = u16_at(body, 0);
+            let msg_flags = body[2];
+            let dlc = body[3];
+            let (id, extended) = id_of(u32_at(body, 4));
+            let id = can_id(id, extended)?;
+            let frame = if msg_flags & 0x80 != 0 {
+                CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
+            } else {
+                let len = usize::from(dlc).min(CLASSIC_MAX_LEN);
+                CanFrame::new(id, body.get(8..8 + len).unwrap_or_default())
+            };
+            (channel, frame, tx(msg_flags & 0x01 != 0))
+        }
+        object::CAN_FD_MESSAGE => {
+            need(84)?;
+            let channel = u16_at(body, 0);
+            let msg_flags = body[2];
+            let dlc = body[3] & 0x0F;
+            let (id, extended) = id_of(u32_at(body, 4));
+            let id = can_id(id, extended)?;
+            let fd_flags = body[13];
+            let valid = usize::from(body[14]).min(FD_MAX_LEN);
+            let stored = body.get(20..84).unwrap_or_default();
+            let frame = frame_of(
+                id,
+                msg_flags & 0x80 != 0,
+                fd_flags & 0x1 != 0,
+                fd_flags & 0x2 != 0,
+                fd_flags & 0x4 != 0,
+                dlc,
+                valid,
+                stored,
+            );
+            (channel, frame, tx(msg_flags & 0x01 != 0))
+        }
+        object::CAN_FD_MESSAGE_64 => {
+            need(40)?;
+            let channel = u16::from(body[0]);
+            let dlc = body[1] & 0x0F;
+            let valid = usize::from(body[2]).min(FD_MAX_LEN);
+            let (id, extended) = id_of(u32_at(body, 4));
+            let id = can_id(id, extended)?;
+            let fd_flags = u32_at(body, 12);
+            let direction = body[34];
+            let ext_offset = usize::from(body[35]);
+            // The data run up to the extended data (or the object's end).
+            let data_end = if ext_offset != 0 {
+                ext_offset
+            } else {
+                object.len()
+            };
+            let room = data_end.saturating_sub(header_len + 40);
+            let stored = body.get(40..40 + room.min(valid)).unwrap_or_default();
+            let frame = frame_of(
+                id,
+                fd_flags & 0x0010 != 0,
+                fd_flags & 0x1000 != 0,
+                fd_flags & 0x2000 != 0,
+                fd_flags & 0x4000 != 0,
+                dlc,
+                valid,
+                stored,
+            );
+            (channel, frame, tx(direction != 0))
+        }
+        _ => {
+            // CAN_ERROR_EXT: channel, length, flags, ECC, position, DLC, …
+            need(16)?;
+            let channel = u16_at(body, 0);
+            let ecc = body[8];
+            let error_type = match ecc >> 6 {
+                0 => 0x01, // bit error
+                1 => 0x02, // form error
+                2 => 0x04, // stuff error
+                _ => 0x00, // other
+            };
+            let sending = ecc & 0x20 == 0;
+            let mut data = [0u8; CLASSIC_MAX_LEN];
+            data[2] = error_type | if sending { 0x80 } else { 0 };
+            data[3] = ecc & 0x1F;
+            let classes = ErrorClasses::BUS_ERROR.union(ErrorClasses::PROTOCOL);
+            (channel, CanFrame::new_error(classes.bits(), &data), None)
+        }
+    };
+    let frame = frame.map_err(|_| BinaryError::BadLength {
+        length: object.len() as u64,
+    })?;
+    let mut logged = LogFrame::new(frame)
+        .with_timestamp(timestamp)
+        .with_iface(Iface::Channel(channel));
+    logged.direction = direction;
+    Ok(Some(logged))
+}
+
+const fn tx(sent: bool) -> Option<Direction> {
+    Some(if sent { Direction::Tx } else { Direction::Rx })
+}
+
+/// A frame from an FD object's fields: CAN FD when EDL is set (length: the
+/// valid bytes), else classic (at most 8 bytes;
+/// a remote request with the DLC). Stored bytes short of the valid count
+/// are padded with zeros (SPEC §5.6).
+#[allow(clippy::too_many_arguments)]
+fn frame_of(
+    id: CanId,
+    remote: bool,
+    edl: bool,
+    brs: bool,
+    esi: bool,
+    dlc: u8,
+    valid: usize,
+    stored: &[u8],
+) -> crate::Result<CanFrame> {
+    let mut data = [0u8; FD_MAX_LEN];
+    let len = if edl {
+        valid
+    } else {
+        valid.min(CLASSIC_MAX_LEN)
+    };
+    let copy = stored.len().min(len);
+    data[..copy].copy_from_slice(&stored[..copy]);
+    if edl {
+        let mut flags = FdFlags::EMPTY;
+        if brs {
+            flags = flags.union(FdFlags::BRS);
+        }
+        if esi {
+            flags = flags.union(FdFlags::ESI);
+        }
+        CanFrame::new_fd(id, flags, &data[..len])
+    } else if remote {
+        CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
+    } else {
+        CanFrame::new(id, &data[..len])
+    }
+}
+
+/// The identifier and whether bit 31 (`CAN_MSG_EXT`) marks it extended.
+const fn id_of(raw: u32) -> (u32, bool) {
+    (raw & 0x1FFF_FFFF, raw & 0x8000_0000 != 0)
+}
+
+fn can_id(raw: u32, extended: bool) -> Result<CanId, BinaryError> {
+    let id = if extended {
+        CanId::extended(raw)
+    } else {
+        CanId::standard(raw)
+    };
+    id.ok_or(BinaryError::BadIdentifier { raw })
+}
+
+/// A `SYSTEMTIME` (year, month, day of week, day, hour, minute, second,
+/// milliseconds; little-endian `u16`s) at `at`, as UTC; zero when it is no
+/// valid date (python-can does the same).
+fn system_time(head: &[u8], at: usize) -> Timestamp {
+    let field = |i: usize| u64::from(u16_at(head, at + 2 * i));
+    let (year, month, day) = (field(0), field(1), field(3));
+    let (hour, minute, second, millis) = (field(4), field(5), field(6), field(7));
+    if !(1970..10_000).contains(&year)
+        || !(1..=12).contains(&month)
+        || day == 0
+        || day > days_in_month(year, month)
+        || hour > 23
+        || minute > 59
+        || second > 59
+        || millis > 999
+    {
+        return Timestamp::ZERO;
+    }
+    let days = days_since_epoch(year, month, day);
+    let secs = days * 86_400 + hour * 3_600 + minute * 60 + second;
+    Timestamp::new(secs, (millis * 1000) as u32).unwrap_or(Timestamp::ZERO)
+}
+
+fn u16_at(bytes: &[u8], at: usize) -> u16 {
+    bytes
+        .get(at..at + 2)
+        .and_then(|b| b.first_chunk::<2>())
+        .map_or(0, |b| u16::from_le_bytes(*b))
+}
+
+fn u32_at(bytes: &[u8], at: usize) -> u32 {
+    bytes
+        .get(at..at + 4)
+        .and_then(|b| b.first_chunk::<4>())
+        .map_or(0, |b| u32::from_le_bytes(*b))
+}
+
+fn u64_at(bytes: &[u8], at: usize) -> u64 {
+    bytes
+        .get(at..at + 8)
+        .and_then(|b| b.first_chunk::<8>())
+        .map_or(0, |b| u64::from_le_bytes(*b))
+}
+
+/// Read until `buf` is full or the input ends; the bytes read.
+fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
+    let mut got = 0;
+    while got < buf.len() {
+        match reader.read(&mut buf[got..]) {
+            Ok(0) => break,
+            Ok(n) => got += n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(got)
+}
+
+/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+fn fail(offset: u64, reason: BinaryError) -> LogError {
+    LogError::new(
+        None,
+        LogErrorKind::Damaged(Error::Binary {
+            format: LogFormat::Blf,
+            offset,
+            reason,
+        }),
+    )
+}

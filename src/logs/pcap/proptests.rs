@@ -1,0 +1,179 @@
+//! Property tests: arbitrary bytes never panic and end cleanly; frames
+//! written by the test writer read back to themselves in both formats and
+//! both byte orders, however the input is split into reads.
+
+use std::io::Read;
+
+use proptest::prelude::*;
+
+use super::writer::{self, Interface, Pcapng};
+use super::*;
+use crate::can::CanFrame;
+use crate::test_gens::can::any_can_frame;
+
+/// A reader that hands out at most `step` bytes per call.
+struct Chunked<'a> {
+    data: &'a [u8],
+    step: usize,
+}
+
+impl Read for Chunked<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.step.min(buf.len()).min(self.data.len());
+        let (head, rest) = self.data.split_at(n);
+        buf[..n].copy_from_slice(head);
+        self.data = rest;
+        Ok(n)
+    }
+}
+
+/// What a reader yields: (number, frame, timestamp, iface name), the error
+/// and the other records.
+type Outcome = (
+    Vec<(u64, CanFrame, Option<Timestamp>, Option<String>)>,
+    Option<String>,
+    u64,
+);
+
+fn outcome<R: Read>(input: R) -> Outcome {
+    let mut reader = match PcapReader::new(input) {
+        Ok(r) => r,
+        Err(e) => return (Vec::new(), Some(e.to_string()), 0),
+    };
+    let mut frames = Vec::new();
+    let mut error = None;
+    let mut last = 0;
+    while let Some(record) = reader.next_event() {
+        match record {
+            Ok(record) => {
+                let number = record.position.number();
+                assert!(number > last, "numbers increase");
+                last = number;
+                let f = *record.event.frame().expect("pcap yields frames");
+                assert_eq!(f.direction, None);
+                frames.push((number, f.frame, f.timestamp, f.iface.map(|i| i.to_string())));
+            }
+            Err(e) => {
+                assert!(error.is_none(), "one error at most");
+                match e.kind() {
+                    LogErrorKind::Damaged(Error::Binary { format, .. }) => {
+                        assert_eq!(*format, reader.format());
+                    }
+                    other => panic!("{other:?}"),
+                }
+                error = Some(e.to_string());
+            }
+        }
+    }
+    assert!(reader.next_event().is_none());
+    if error.is_none() {
+        assert_eq!(
+            frames.len() as u64 + reader.other_records(),
+            last.max(frames.len() as u64 + reader.other_records())
+        );
+    }
+    (frames, error, reader.other_records())
+}
+
+fn micros_timestamp() -> impl Strategy<Value = Timestamp> {
+    (0u64..=u64::from(u32::MAX), 0u32..1_000_000).prop_map(|(s, us)| Timestamp::new(s, us).unwrap())
+}
+
+fn nanos_timestamp() -> impl Strategy<Value = Timestamp> {
+    (0u64..=u64::from(u32::MAX), 0u32..1_000_000_000)
+        .prop_map(|(s, ns)| Timestamp::from_nanos(s, ns).unwrap())
+}
+
+proptest! {
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..600)) {
+        let whole = outcome(&bytes[..]);
+        prop_assert_eq!(outcome(Chunked { data: &bytes, step: 1 }), whole);
+    }
+
+    #[test]
+    fn damaged_files_never_panic(
+        frames in proptest::collection::vec((any_can_frame(), micros_timestamp()), 1..6),
+        ng in any::<bool>(),
+        flips in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..4),
+        cut in any::<usize>(),
+    ) {
+        let mut bytes = if ng {
+            let mut w = Pcapng::default();
+            w.section(false).interface(&Interface { link: 227, name: Some("can0".into()), tsresol: None, tsoffset: None });
+            for (f, ts) in &frames {
+                w.packet(0, ts.as_micros() as u64, &writer::socketcan(f));
+            }
+            w.bytes
+        } else {
+            let packets: Vec<_> = frames.iter().map(|(f, ts)| (*ts, writer::socketcan(f))).collect();
+            writer::pcap(&packets, 227, false, false)
+        };
+        for (at, b) in flips {
+            let at = at % bytes.len();
+            bytes[at] = b;
+        }
+        bytes.truncate(cut % (bytes.len() + 1));
+        let whole = outcome(&bytes[..]);
+        prop_assert_eq!(outcome(Chunked { data: &bytes, step: 7 }), whole);
+    }
+
+    #[test]
+    fn pcap_round_trip(
+        frames in proptest::collection::vec((any_can_frame(), nanos_timestamp()), 0..20),
+        be in any::<bool>(),
+        nanos in any::<bool>(),
+    ) {
+        let packets: Vec<_> = frames.iter().map(|(f, ts)| (*ts, writer::socketcan(f))).collect();
+        let bytes = writer::pcap(&packets, 227, be, nanos);
+        let (read, error, other) = outcome(Chunked { data: &bytes, step: 13 });
+        prop_assert_eq!(error, None);
+        prop_assert_eq!(other, 0);
+        prop_assert_eq!(read.len(), frames.len());
+        for (i, ((number, frame, ts, iface), (want, want_ts))) in read.into_iter().zip(&frames).enumerate() {
+            prop_assert_eq!(number, i as u64 + 1);
+            prop_assert_eq!(frame, *want);
+            let ns = if nanos { want_ts.subsec_nanos() } else { want_ts.micros() * 1000 };
+            prop_assert_eq!(ts, Timestamp::from_nanos(want_ts.secs(), ns));
+            prop_assert_eq!(iface, None);
+        }
+    }
+
+    #[test]
+    fn pcapng_round_trip(
+        frames in proptest::collection::vec((any_can_frame(), any::<u64>(), 0u32..3), 0..20),
+        be in any::<bool>(),
+    ) {
+        let ifaces = [
+            Interface { link: 227, name: Some("can0".into()), tsresol: None, tsoffset: None },
+            Interface { link: 1, name: Some("eth0".into()), tsresol: None, tsoffset: None },
+            Interface { link: 227, name: None, tsresol: Some(9), tsoffset: None },
+        ];
+        let mut w = Pcapng::default();
+        w.section(be);
+        for i in &ifaces {
+            w.interface(i);
+        }
+        for (f, ticks, iface) in &frames {
+            w.packet(*iface, *ticks, &writer::socketcan(f));
+        }
+        let (read, error, other) = outcome(Chunked { data: &w.bytes, step: 61 });
+        prop_assert_eq!(error, None);
+        let want: Vec<_> = frames
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, _, iface))| *iface != 1)
+            .map(|(i, (f, ticks, iface))| {
+                let ts = if *iface == 0 {
+                    Timestamp::from_nanos(ticks / 1_000_000, (ticks % 1_000_000) as u32 * 1000)
+                } else {
+                    Timestamp::from_nanos(ticks / 1_000_000_000, (ticks % 1_000_000_000) as u32)
+                };
+                let name = if *iface == 0 { Some("can0".to_string()) } else { None };
+                (i as u64 + 1, *f, ts, name)
+            })
+            .collect();
+        prop_assert_eq!(other, (frames.len() - want.len()) as u64);
+        prop_assert_eq!(read, want);
+    }
+}
