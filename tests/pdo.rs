@@ -4,6 +4,8 @@
 //! with no EDS at all and with the node's EDS, against python-canopen's
 //! (and, for entries that straddle bytes, cantools') reading of the same
 //! bytes; and the sample log's drive timeline against its own statuswords.
+//! Decoded by the library (`motionwire::decoder`, `summary`) with the
+//! options of the command lines the tests name (`tests/common`).
 
 mod common;
 

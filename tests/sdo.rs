@@ -1,7 +1,9 @@
 //! SDO in the decoder (SPEC §7): hand-made frames for what the real stack
 //! never does, and python-canopen's real traffic
 //! (`tests/fixtures/sdo/`, made by `scripts/gen_sdo_fixtures.py`), whose
-//! transfers must come out as python-canopen made them.
+//! transfers must come out as python-canopen made them. Decoded by the
+//! library (`motionwire::decoder`, `summary`) with the options of the
+//! command lines the tests name (`tests/common`).
 
 mod common;
 

@@ -1,36 +1,143 @@
-//! What the decoder's integration tests share: run `motionwire decode` and
-//! read its JSON lines.
+//! What the decoder's integration tests share: decode a log with the
+//! library as `motionwire decode ARGS` would, and read its JSON records.
+//!
+//! [`decode`] takes the program's options that the tests use — `--json`
+//! (implied), `--summary`, `--heartbeat-ms MS`, `--profile LIST`, `--eds
+//! NODE=FILE` — and builds the library's configuration from them, so that
+//! the tests check the library itself (no `cli` feature) while reading as
+//! the command lines they stand for; `tests/library.rs` checks that the
+//! program writes the same on every fixture.
+#![allow(dead_code)]
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::time::Duration;
 
+use motionwire::canopen::NodeId;
+use motionwire::decoder::{Decoder, DecoderConfig};
+use motionwire::logs::{self, ReadLog};
+use motionwire::profiles::{NodeProfiles, Profile};
+use motionwire::summary::Summarizer;
 use serde_json::Value;
 
-/// Run `motionwire decode ARGS`, which must succeed.
-pub fn decode(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_motionwire"))
-        .arg("decode")
-        .args(args)
-        .output()
-        .expect("the motionwire binary runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+/// A decoding as `motionwire decode` would run it.
+pub struct Run {
+    /// `--summary`: the summary's records instead of one per frame.
+    pub summary: bool,
+    /// `--heartbeat-ms`.
+    pub heartbeat: Option<Duration>,
+    /// `--profile` and `--eds`.
+    pub config: DecoderConfig,
+    /// The logs, read one after the other.
+    pub files: Vec<String>,
 }
 
-/// Every stdout line as JSON.
-pub fn records(out: &Output) -> Vec<Value> {
-    String::from_utf8(out.stdout.clone())
-        .unwrap()
-        .lines()
+impl Run {
+    /// Read the options of `motionwire decode ARGS`; `None` for an option
+    /// outside the list above (the program's filters and renderings).
+    pub fn from_args<'a>(args: impl IntoIterator<Item = &'a str>) -> Option<Run> {
+        let mut words = args.into_iter();
+        let (mut summary, mut heartbeat) = (false, None);
+        let mut profiles = NodeProfiles::default();
+        let mut eds = Vec::new();
+        let mut files = Vec::new();
+        while let Some(word) = words.next() {
+            match word {
+                "--json" => {}
+                "--summary" => summary = true,
+                "--heartbeat-ms" => {
+                    let ms = words.next()?.parse().ok()?;
+                    heartbeat = Some(Duration::from_millis(ms));
+                }
+                "--profile" => {
+                    let mut default = profiles.default_profile();
+                    let mut nodes = Vec::new();
+                    for item in words.next()?.split(',') {
+                        match item.split_once('=') {
+                            None => default = Profile::from_name(item)?,
+                            Some((node, name)) => nodes.push((
+                                NodeId::new(node.parse().ok()?)?,
+                                Profile::from_name(name)?,
+                            )),
+                        }
+                    }
+                    profiles = NodeProfiles::new(default);
+                    for (node, profile) in nodes {
+                        profiles.set(node, profile);
+                    }
+                }
+                "--eds" => {
+                    let (node, file) = words.next()?.split_once('=')?;
+                    eds.push((NodeId::new(node.parse().ok()?)?, file.to_owned()));
+                }
+                file if !file.starts_with('-') => files.push(file.to_owned()),
+                _ => return None,
+            }
+        }
+        let mut config = DecoderConfig::new()
+            .profiles_from(profiles)
+            .signals(!summary);
+        for (node, file) in eds {
+            config = config.eds_file(node, path(&file)).unwrap();
+        }
+        Some(Run {
+            summary,
+            heartbeat,
+            config,
+            files,
+        })
+    }
+
+    /// Decode: every frame's JSON record, or the summary's records, one a
+    /// line, as the program writes them to standard output.
+    pub fn output(self) -> String {
+        let mut decoder = Decoder::new(self.config);
+        let mut summarizer = Summarizer::new();
+        if let Some(time) = self.heartbeat {
+            summarizer = summarizer.heartbeat_timeout(time);
+        }
+        let mut out = Vec::new();
+        for file in &self.files {
+            let mut log = logs::open(path(file)).unwrap();
+            while let Some(next) = log.next_event() {
+                // Malformed lines and damaged records go to the program's
+                // standard error; the records are what is compared.
+                let Ok(record) = next else { continue };
+                let position = record.position.number();
+                if self.summary {
+                    summarizer.add(position, &record.event, &mut decoder);
+                } else if let Some(frame) = record.event.frame() {
+                    decoder
+                        .decode(position, frame)
+                        .write_json(&mut out)
+                        .unwrap();
+                }
+            }
+        }
+        if self.summary {
+            for record in summarizer.finish(&mut decoder).records() {
+                serde_json::to_writer(&mut out, &record).unwrap();
+                out.push(b'\n');
+            }
+        }
+        String::from_utf8(out).unwrap()
+    }
+}
+
+/// Decode as `motionwire decode ARGS` (with the options of [`Run`]).
+pub fn decode(args: &[&str]) -> String {
+    Run::from_args(args.iter().copied())
+        .unwrap_or_else(|| panic!("options the tests do not know: {args:?}"))
+        .output()
+}
+
+/// Every output line as JSON.
+pub fn records(out: &str) -> Vec<Value> {
+    out.lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
         .collect()
 }
 
-/// A path inside the repository.
+/// A path inside the repository (an absolute path stays as it is).
 pub fn path(rel: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join(rel)
