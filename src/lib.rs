@@ -5,7 +5,9 @@
 //! frames, CANopen emergency messages and error control, the CiA 405
 //! `RECV_EMCY` consumer, and device profiles (Kollmorgen AKD, Baumer EAM580).
 //!
-//! The crate is `no_std`, allocates nothing and contains no `unsafe` code.
+//! The crate's core is `no_std`, allocates nothing and contains no `unsafe`
+//! code; reading log files, the decoder session and the post-mortem need
+//! `std` and sit behind features.
 //! Every decoder takes outside bytes and returns a typed [`Error`] instead of
 //! panicking. The formats and behaviours are those of the project's
 //! specification (`SPEC.md`); each item's documentation names its section.
@@ -34,9 +36,17 @@
 //!   [`canopen::object_name`] (CiA 301, CiA 402, CiA 406, SPEC §7.3).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
 //!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
+//!   [`profiles::Profile`] says which one reads a node.
 //! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,
-//!   status and error words, and the enable, error-clear and zero-pulse
-//!   handshakes (SPEC §1).
+//!   status and error words, the enable, error-clear and zero-pulse
+//!   handshakes (SPEC §1), and a drive model to test an NC against
+//!   (SPEC §9.2).
+//! - `decoder` (feature `decoder`): the decoder session — each frame of a
+//!   log read in the context of the frames before it: SDO transfers, PDO
+//!   signals from the mappings the log teaches, CiA 402 readings, the JSON
+//!   record of `motionwire decode --json` (SPEC §6.1, §7, §8).
+//! - `summary` (feature `decoder`): the post-mortem of a log, one record per
+//!   device and per bus, as typed values, text and JSON (SPEC §6.3).
 //!
 //! ## Optional features
 //!
@@ -50,6 +60,12 @@
 //!   gzip and hand on the events of every format through one
 //!   `logs::LogReader` (SPEC §5.7, §6.4). Needs `std`; enables `pcap` and
 //!   `blf` and adds `flate2`.
+//! - `decoder`: `decoder::Decoder` and `summary::Summarizer`, the decoder
+//!   session and the post-mortem (SPEC §6.1, §6.3, §7, §8). Needs `std`;
+//!   enables `eds` and `serde`; adds `serde_json` (the summary's exact
+//!   times) and `itoa` (the JSON records).
+//! - `cli`: the `motionwire` program; enables `decoder`, `logs` and `eds`
+//!   and adds `clap`.
 //! - `pcap`: `logs::pcap::PcapReader`, pcap and pcapng captures of
 //!   SocketCAN interfaces (SPEC §5.5). Needs `std`, no dependency.
 //! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (SPEC §5.6). Needs
