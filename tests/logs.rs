@@ -732,3 +732,16 @@ fn errors_say_where_and_why() {
     assert!(!io.is_skipped());
     assert!(std::error::Error::source(&io).is_some());
 }
+
+/// A reader can move to another thread (`read` takes `Send` inputs).
+#[test]
+fn a_log_reader_is_send() {
+    fn send<T: Send>(_: &T) {}
+    let log = logs::read(&b"(1.0) can0 705#05\n"[..]).unwrap();
+    send(&log);
+    let handle = std::thread::spawn(move || {
+        let mut log = log;
+        drain(&mut log).len()
+    });
+    assert_eq!(handle.join().unwrap(), 1);
+}

@@ -246,6 +246,7 @@ impl TrcParser {
     /// parser's state), a [`LogEvent::Frame`] or [`LogEvent::Status`] for a
     /// row, and an [`Error::Syntax`](crate::Error::Syntax) with the column
     /// and reason for anything else.
+    #[inline]
     pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
         let trimmed = tokens::trim_end(line);
         let Some(first) = trimmed.iter().position(|&b| !tokens::is_space(b)) else {
