@@ -187,39 +187,62 @@ impl Timestamp {
     }
 
     /// Write [`seconds`](Self::seconds) into `buf` without the formatting
-    /// machinery, for writers of one record per frame, and return it.
+    /// machinery, for writers of one record per frame, and return the
+    /// ASCII text written.
     ///
     /// ```
     /// use motionwire::can::{Timestamp, SECONDS_LEN};
     ///
     /// let mut buf = [0; SECONDS_LEN];
-    /// assert_eq!(Timestamp::new(1_700_000_000, 500).unwrap().format_seconds(&mut buf), "1700000000.000500");
+    /// let text = Timestamp::new(1_700_000_000, 500).unwrap().format_seconds(&mut buf);
+    /// assert_eq!(text, b"1700000000.000500");
     /// ```
-    pub fn format_seconds(self, buf: &mut [u8; SECONDS_LEN]) -> &str {
+    pub fn format_seconds(self, buf: &mut [u8; SECONDS_LEN]) -> &[u8] {
+        // Two digits a division, from a table, right to left.
+        const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
+                                    2021222324252627282930313233343536373839\
+                                    4041424344454647484950515253545556575859\
+                                    6061626364656667686970717273747576777879\
+                                    8081828384858687888990919293949596979899";
+        fn pair(buf: &mut [u8; SECONDS_LEN], at: usize, n: u64) {
+            let i = 2 * (n % 100) as usize;
+            buf[at] = PAIRS[i];
+            buf[at + 1] = PAIRS[i + 1];
+        }
+        // The fraction: microseconds, or nanoseconds when the time has them.
+        let nanos = self.subsec_nanos();
+        let (mut fraction, width) = if nanos % 1000 == 0 {
+            (u64::from(nanos / 1000), 6)
+        } else {
+            (u64::from(nanos), 9)
+        };
+        let end = 21 + width;
+        let mut at = end;
+        while at > 22 {
+            at -= 2;
+            pair(buf, at, fraction);
+            fraction /= 100;
+        }
+        if at == 22 {
+            buf[21] = b'0' + fraction as u8;
+        }
+        buf[20] = b'.';
         // The seconds' digits, right-aligned in the first 20 bytes.
         let mut secs = self.secs;
         let mut start = 20;
-        loop {
-            start -= 1;
-            buf[start] = b'0' + (secs % 10) as u8;
-            secs /= 10;
-            if secs == 0 {
-                break;
-            }
+        while secs >= 100 {
+            start -= 2;
+            pair(buf, start, secs);
+            secs /= 100;
         }
-        buf[20] = b'.';
-        // Microseconds, or nanoseconds when the time has them.
-        let nanos = self.subsec_nanos();
-        let (mut fraction, width) = if nanos % 1000 == 0 {
-            (nanos / 1000, 6)
+        if secs >= 10 {
+            start -= 2;
+            pair(buf, start, secs);
         } else {
-            (nanos, 9)
-        };
-        for at in (21..21 + width).rev() {
-            buf[at] = b'0' + (fraction % 10) as u8;
-            fraction /= 10;
+            start -= 1;
+            buf[start] = b'0' + secs as u8;
         }
-        core::str::from_utf8(&buf[start..21 + width]).unwrap_or_default()
+        &buf[start..end]
     }
 }
 
@@ -235,7 +258,8 @@ pub struct Seconds(Timestamp);
 impl fmt::Display for Seconds {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut buf = [0; SECONDS_LEN];
-        f.write_str(self.0.format_seconds(&mut buf))
+        let text = self.0.format_seconds(&mut buf);
+        f.write_str(core::str::from_utf8(text).map_err(|_| fmt::Error)?)
     }
 }
 

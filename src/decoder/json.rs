@@ -196,7 +196,7 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
 /// §5.7: exact to the format's resolution, no float rounding).
 pub(crate) fn timestamp<W: Write>(out: &mut W, ts: crate::can::Timestamp) -> io::Result<()> {
     let mut buf = [0; crate::can::SECONDS_LEN];
-    out.write_all(ts.format_seconds(&mut buf).as_bytes())
+    out.write_all(ts.format_seconds(&mut buf))
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259).

@@ -149,25 +149,27 @@ impl<'a> Sink<'a> {
                 return Ok(());
             }
         }
+        if !self.kinds[decoded.kind.index()] {
+            return Ok(());
+        }
+        if let Some(nodes) = &self.nodes {
+            match decoded.node {
+                Some(node) if nodes[usize::from(node.get())] => {}
+                _ => return Ok(()),
+            }
+        }
+        if self.output == Output::Json {
+            return decoded.write_json(&mut self.out);
+        }
         let record = Record {
             line,
             log: frame,
             decoded: &decoded,
             message: decoded.message(),
         };
-        if !self.kinds[record.kind().index()] {
-            return Ok(());
-        }
-        if let Some(nodes) = &self.nodes {
-            match record.node() {
-                Some(node) if nodes[usize::from(node.get())] => {}
-                _ => return Ok(()),
-            }
-        }
         match self.output {
-            Output::Json => decoded.write_json(&mut self.out),
             Output::Text => record.write_text(&mut self.out),
-            Output::Csv => record.write_csv(&mut self.out),
+            _ => record.write_csv(&mut self.out),
         }
     }
 

@@ -135,7 +135,7 @@ impl Record<'_, '_, '_> {
         out.write_all(b",")?;
         if let Some(ts) = log.timestamp {
             let mut buf = [0; SECONDS_LEN];
-            out.write_all(ts.format_seconds(&mut buf).as_bytes())?;
+            out.write_all(ts.format_seconds(&mut buf))?;
         }
         out.write_all(b",")?;
         match log.iface {
