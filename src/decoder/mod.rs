@@ -436,14 +436,14 @@ impl Decoder {
     /// to or from a PDO parameter changes the mapping from here on
     /// (SPEC §8.1), an upload of 1000h can make the node a drive, and an
     /// expedited transfer of 6040h/6041h/6060h/6061h is read as CiA 402.
-    fn sdo(
-        &mut self,
-        frame: &LogFrame<'_>,
+    fn sdo<'d>(
+        &'d mut self,
+        frame: &'d LogFrame<'d>,
         node: NodeId,
         sender: SdoParty,
         position: u64,
         profile: Profile,
-    ) -> (SdoStep<'_>, Option<Cia402Reading>) {
+    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
         let at = self.bus(frame.iface);
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
@@ -458,7 +458,6 @@ impl Decoder {
             _ => None,
         };
         let cia402 = learned.and_then(|(transfer, value)| self.learn(at, node, &transfer, value));
-        let (service, multiplexer) = sdo::service_and_multiplexer(sender, &fed.message, bytes);
         let state = self.buses.get(at).nodes[usize::from(node.get())]
             .as_ref()
             .expect("made above");
@@ -466,8 +465,7 @@ impl Decoder {
             node,
             sender,
             message: fed.message,
-            service,
-            multiplexer,
+            data: bytes,
             latency: fed.latency,
             started: fed.started,
             ended: fed.ended.map(|transfer| EndedTransfer {

@@ -191,12 +191,12 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
     let out = obj.key("sdo")?;
     let mut o = Object::begin(out)?;
     o.name("direction", step.sender.direction_name())?;
-    o.name("service", step.service.name())?;
+    o.name("service", step.service().name())?;
     let message = match &step.message {
         Ok(message) => message,
         Err(_) => {
             // A short frame: the multiplexer as far as it goes.
-            if let Some(m) = step.multiplexer {
+            if let Some(m) = step.multiplexer() {
                 write_multiplexer(&mut o, m, step.objects)?;
             }
             return o.end();

@@ -30,13 +30,8 @@ pub struct SdoStep<'d> {
     /// The frame read in its transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier).
     pub message: Result<SdoMessage, Error>,
-    /// The service: the message's, or what the first byte says when the
-    /// frame could not be read ([`SdoService::Unknown`] for no byte).
-    pub service: SdoService,
-    /// The index and sub-index the frame carries: the message's, or, when
-    /// it could not be read, bytes 1–3 if the service has them and they are
-    /// there.
-    pub multiplexer: Option<ObjectAddress>,
+    /// The frame's data bytes.
+    pub data: &'d [u8],
     /// The request → response latency this frame closes (SPEC §7.2).
     pub latency: Option<Duration>,
     /// The frame starts a transfer.
@@ -49,11 +44,37 @@ pub struct SdoStep<'d> {
 }
 
 impl SdoStep<'_> {
+    /// Return the service: the message's, or what the first byte says when
+    /// the frame could not be read ([`SdoService::Unknown`] for no byte).
+    #[must_use]
+    pub fn service(&self) -> SdoService {
+        match &self.message {
+            Ok(message) => message.service(),
+            Err(_) => self
+                .data
+                .first()
+                .map_or(SdoService::Unknown, |&b| SdoService::of(self.sender, b)),
+        }
+    }
+
+    /// Return the index and sub-index the frame carries: the message's, or,
+    /// when it could not be read, bytes 1–3 if the service has them and
+    /// they are there (SPEC §7.1: a short frame is decoded as far as it
+    /// goes).
+    #[must_use]
+    pub fn multiplexer(&self) -> Option<ObjectAddress> {
+        match &self.message {
+            Ok(message) => message.fields().multiplexer,
+            Err(_) => (self.service().has_multiplexer() && self.data.len() >= 4)
+                .then(|| SdoFrame::new_unchecked(self.data).multiplexer()),
+        }
+    }
+
     /// Return the name of the object the frame addresses, if it addresses
     /// one and the name is known (SPEC §7.3 `object`).
     #[must_use]
     pub fn object(&self) -> Option<&'static str> {
-        self.multiplexer
+        self.multiplexer()
             .and_then(|m| object_name(m.index, self.objects))
     }
 }
@@ -152,27 +173,6 @@ impl SdoChannel {
 fn push(data: &mut Vec<u8>, chunk: &[u8], cap: usize) {
     let room = cap.saturating_sub(data.len());
     data.extend_from_slice(&chunk[..chunk.len().min(room)]);
-}
-
-/// The service and multiplexer of a frame, from its message or, when it
-/// could not be read, as far as its bytes go (SPEC §7.1: a short frame is
-/// decoded as far as it goes).
-pub(crate) fn service_and_multiplexer(
-    sender: SdoParty,
-    message: &Result<SdoMessage, Error>,
-    bytes: &[u8],
-) -> (SdoService, Option<ObjectAddress>) {
-    match message {
-        Ok(message) => (message.service(), message.fields().multiplexer),
-        Err(_) => {
-            let service = bytes
-                .first()
-                .map_or(SdoService::Unknown, |&b| SdoService::of(sender, b));
-            let multiplexer = (service.has_multiplexer() && bytes.len() >= 4)
-                .then(|| SdoFrame::new_unchecked(bytes).multiplexer());
-            (service, multiplexer)
-        }
-    }
 }
 
 fn ms(d: Duration) -> f64 {
