@@ -119,14 +119,7 @@ impl DecoderConfig {
     /// with [`node_profile`](Self::node_profile) (SPEC §6.1 `--profile akd`).
     #[must_use]
     pub fn profile(mut self, profile: Profile) -> Self {
-        let mut profiles = NodeProfiles::new(profile);
-        for raw in 1..=127u8 {
-            let node = NodeId::new(raw).expect("1..=127");
-            if self.profiles.of(Some(node)) != self.profiles.default_profile() {
-                profiles.set(node, self.profiles.of(Some(node)));
-            }
-        }
-        self.profiles = profiles;
+        self.profiles.set_default(profile);
         self
     }
 

@@ -98,8 +98,10 @@ impl core::fmt::Display for Profile {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NodeProfiles {
-    /// Index 0: the default; 1..=127: each node.
-    table: [Profile; 128],
+    /// The profile of the nodes not named.
+    default: Profile,
+    /// Index 1..=127: the profile a node was given, if it was.
+    nodes: [Option<Profile>; 128],
 }
 
 impl Default for NodeProfiles {
@@ -113,20 +115,27 @@ impl NodeProfiles {
     #[must_use]
     pub const fn new(default: Profile) -> Self {
         NodeProfiles {
-            table: [default; 128],
+            default,
+            nodes: [None; 128],
         }
     }
 
     /// Return the table with `node` read with `profile`.
     #[must_use]
     pub const fn with(mut self, node: NodeId, profile: Profile) -> Self {
-        self.table[node.get() as usize] = profile;
+        self.nodes[node.get() as usize] = Some(profile);
         self
     }
 
     /// Read `node` with `profile` from now on.
     pub fn set(&mut self, node: NodeId, profile: Profile) {
-        self.table[usize::from(node.get())] = profile;
+        self.nodes[usize::from(node.get())] = Some(profile);
+    }
+
+    /// Read every node not named with [`set`](Self::set) or
+    /// [`with`](Self::with) with `profile` from now on.
+    pub fn set_default(&mut self, profile: Profile) {
+        self.default = profile;
     }
 
     /// Return the profile of `node`; the default for `None` (a frame that
@@ -134,13 +143,14 @@ impl NodeProfiles {
     #[inline]
     #[must_use]
     pub fn of(&self, node: Option<NodeId>) -> Profile {
-        self.table[node.map_or(0, |n| usize::from(n.get()))]
+        node.and_then(|n| self.nodes[usize::from(n.get())])
+            .unwrap_or(self.default)
     }
 
     /// Return the profile of the nodes not named.
     #[must_use]
     pub const fn default_profile(&self) -> Profile {
-        self.table[0]
+        self.default
     }
 }
 

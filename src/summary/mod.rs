@@ -200,6 +200,9 @@ pub struct Summary {
     pub nodes: Vec<NodeSummary>,
     /// One record per interface.
     pub buses: Vec<BusSummary>,
+    /// Whether heartbeat timeouts were checked: `None` when not asked,
+    /// `Some(false)` when frames without a time made it impossible.
+    checked: Option<bool>,
 }
 
 /// One record of the summary, as `decode --summary` writes them: the
@@ -226,9 +229,7 @@ impl Summary {
     /// so once).
     #[must_use]
     pub fn timeouts_not_checked(&self) -> bool {
-        self.nodes
-            .iter()
-            .any(|n| n.heartbeat.timeouts == Timeouts::NotChecked)
+        self.checked == Some(false)
     }
 
     /// Return the node `node` on `bus`, if it was seen.
@@ -600,6 +601,7 @@ impl Summarizer {
         let mut summary = Summary {
             nodes: Vec::new(),
             buses: Vec::new(),
+            checked,
         };
         for (name, bus) in buses {
             let mut nodes = Vec::new();

@@ -138,6 +138,18 @@ fn a_drives_fault_names_the_emcy_before_it() {
 }
 
 #[test]
+fn a_log_without_times_says_timeouts_were_not_checked_even_with_no_node() {
+    let summary = summarize(
+        &[(None, 0x080, &[]), (Some(1), 0x080, &[])],
+        Summarizer::new().heartbeat_timeout(Duration::from_millis(100)),
+    );
+    assert!(summary.nodes.is_empty());
+    assert!(summary.timeouts_not_checked());
+    let summary = summarize(&[(None, 0x080, &[])], Summarizer::new());
+    assert!(!summary.timeouts_not_checked(), "not asked");
+}
+
+#[test]
 fn times_keep_their_digits_in_json() {
     let mut decoder = Decoder::new(DecoderConfig::new());
     let mut summarizer = Summarizer::new();
