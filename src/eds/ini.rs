@@ -150,16 +150,18 @@ impl<'a> IniFile<'a> {
                 kind,
             };
             if let Some(rest) = trimmed.strip_prefix('[') {
+                // A broken section header belongs to no section: the error
+                // names its line, not the section before it.
                 let Some(close) = rest.find(']') else {
-                    return Err(error(&sections, IniErrorKind::UnclosedSection));
+                    return Err(error(&[], IniErrorKind::UnclosedSection));
                 };
                 let after = strip_comment(&rest[close + 1..]);
                 if !after.is_empty() {
-                    return Err(error(&sections, IniErrorKind::TextAfterSection));
+                    return Err(error(&[], IniErrorKind::TextAfterSection));
                 }
                 let name = rest[..close].trim();
                 if name.is_empty() {
-                    return Err(error(&sections, IniErrorKind::EmptyName));
+                    return Err(error(&[], IniErrorKind::EmptyName));
                 }
                 let lower = name.to_ascii_lowercase();
                 if let Some(&at) = seen.get(&lower) {

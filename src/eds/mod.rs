@@ -393,9 +393,17 @@ pub struct EdsError {
 }
 
 impl fmt::Display for EdsError {
-    /// `file:line: [section] key: reason`.
+    /// `file:line: [section] key: reason`, `file:line: reason` for a line
+    /// outside any section, `file: reason` for what belongs to no line
+    /// (the file cannot be read).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:", self.file, self.line)?;
+        f.write_str(&self.file)?;
+        if self.line > 0 {
+            write!(f, ":{}", self.line)?;
+        }
+        if self.section.is_some() || self.key.is_some() {
+            f.write_str(":")?;
+        }
         if let Some(section) = &self.section {
             write!(f, " [{section}]")?;
         }

@@ -421,3 +421,25 @@ mod proptests {
         }
     }
 }
+
+#[test]
+fn errors_name_the_broken_line_and_a_file_that_cannot_be_read() {
+    // A broken section header is reported on its own line, not as part of
+    // the section before it.
+    let text = "[1000]\nParameterName=Device type\nDataType=0x0007\n[1001\n";
+    let e = Eds::parse(text, "bad.eds", None).unwrap_err();
+    assert_eq!(e.line, 4);
+    assert_eq!(e.section, None);
+    assert_eq!(
+        e.to_string(),
+        "bad.eds:4: expected ']' to close the section name"
+    );
+    // A file that cannot be read has no line to name.
+    let e = Eds::read_file(std::path::Path::new("/nonexistent/x.eds"), None).unwrap_err();
+    assert_eq!(e.line, 0);
+    let text = e.to_string();
+    assert!(
+        text.starts_with("/nonexistent/x.eds: cannot be read: "),
+        "{text}"
+    );
+}
