@@ -435,7 +435,7 @@ fn errors_name_the_broken_line_and_a_file_that_cannot_be_read() {
         "bad.eds:4: expected ']' to close the section name"
     );
     // A file that cannot be read has no line to name.
-    let e = Eds::read_file(std::path::Path::new("/nonexistent/x.eds"), None).unwrap_err();
+    let e = Eds::read_file(Path::new("/nonexistent/x.eds"), None).unwrap_err();
     assert_eq!(e.line, 0);
     let text = e.to_string();
     assert!(
