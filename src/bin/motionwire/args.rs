@@ -1,5 +1,5 @@
 //! The command line: `motionwire decode …` and `motionwire servo …`
-//! (SPEC §6), parsed by clap.
+//! (docs/output.md#command), parsed by clap.
 
 use std::path::PathBuf;
 
@@ -8,10 +8,16 @@ use motionwire::canopen::{MessageKind, NodeId};
 use motionwire::logs::LogFormat;
 use motionwire::profiles::{NodeProfiles, Profile};
 
-/// Decode the diagnostic and cyclic-control messages of industrial motion
-/// devices: CANopen candump logs and EtherCAT servo ↔ NC frames.
+/// motionwire: read CAN logs of motion machines as CANopen — EMCYs with
+/// their root cause, heartbeats and guarding, SDO transfers, PDO signals,
+/// CiA 402 drive states, a post-mortem per device — and decode EtherCAT
+/// servo ↔ NC frames.
 #[derive(Debug, Parser)]
-#[command(name = "motionwire", version, about, long_about = None)]
+#[command(
+    name = "motionwire",
+    version,
+    after_help = "The output contract, field by field: docs/README.md in the repository."
+)]
 pub struct Cli {
     #[command(subcommand)]
     /// What to do.
@@ -22,13 +28,41 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng;
-    /// detected from the content, gzip too) into one record per CAN frame
-    /// (SPEC §5, §6.1).
+    /// detected from the content, gzip too) into one record per CAN frame,
+    /// or a summary per device (docs/output.md, docs/summary.md).
+    #[command(after_long_help = DECODE_AFTER_HELP)]
     Decode(DecodeArgs),
-    /// Decode one EtherCAT servo ↔ NC frame given as hex (SPEC §6.2).
+    /// Decode one EtherCAT servo ↔ NC frame given as hex (docs/servo.md).
     #[command(subcommand)]
     Servo(ServoCommand),
 }
+
+/// What `motionwire decode --help` says after the options: the text
+/// columns and the exit statuses (docs/output.md#text, #exit-status).
+const DECODE_AFTER_HELP: &str = "\
+Text output, one line per frame:
+  line  ts                 iface  id        kind           node      detail
+   613  1700000002.003641  can0        083  emcy           node   3  0x7305 additional_modules: …
+  line    the line of a text log, or the record number of a binary one
+  ts      seconds (absolute Unix time, or since the recording started), - without one
+  iface   interface name or channel number, - without one
+  id      CAN identifier in hex (8 digits for an extended one)
+  kind    emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo,
+          error_frame, other
+  node    the node-ID the identifier names, blank for kinds without one
+  detail  what the frame says: an EMCY in words, a heartbeat's state, an SDO
+          step or the transfer it ends, a PDO's signals, an error frame's
+          classes; [n] and the bytes for the others
+--json writes one JSON object per frame, --csv one row; --summary one record per
+device and per bus. Every key: docs/output.md and docs/summary.md in the
+repository.
+
+Exit status:
+  0  every line or record was read
+  1  some lines were malformed or some records damaged: each said on standard
+     error with its position, then a count; the rest was decoded
+  2  the command could not do its job: bad arguments, a file that cannot be
+     read, an input in no known log format, a damaged binary header";
 
 /// The arguments of `motionwire decode`.
 #[derive(Debug, Args)]
@@ -36,15 +70,16 @@ pub struct DecodeArgs {
     /// Write one JSON object per line instead of aligned text.
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
-    /// Write one CSV row per frame, under a header row (SPEC §6.4).
+    /// Write one CSV row per frame, under a header row (docs/output.md#csv).
     #[arg(long, conflicts_with = "summary")]
     pub csv: bool,
-    /// Read the input as this format instead of detecting it (SPEC §5.7).
-    #[arg(long, value_name = "FORMAT", value_parser = parse_format)]
+    /// Read the input as this format instead of detecting it from the
+    /// content (docs/formats.md#detection).
+    #[arg(long, value_name = "FORMAT", value_parser = parse_format, help = format_help())]
     pub format: Option<LogFormat>,
     /// What candump's relative timestamps `(000.000123)` count: `delta`
     /// (`candump -t d`) or `zero` (`-t z`); detected from the first 64
-    /// frames when not given (SPEC §5.2).
+    /// frames when not given (docs/formats.md#candump-relative-times).
     #[arg(long, value_name = "delta|zero")]
     pub timestamps: Option<TimestampBase>,
     /// How to read the manufacturer-specific bytes of EMCY frames:
@@ -61,7 +96,7 @@ pub struct DecodeArgs {
     /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
     /// for several nodes): its PDO mappings, object names and data types
     /// decode that node's PDOs until the log's own SDO configuration
-    /// changes them (SPEC §8.1).
+    /// changes them (docs/canopen.md#pdo-mappings).
     #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
     pub eds: Vec<(NodeId, PathBuf)>,
     /// After the input, write one record per node seen instead of one per
@@ -74,7 +109,7 @@ pub struct DecodeArgs {
     pub heartbeat_ms: Option<u16>,
     /// Keep only frames of these kinds (comma-separated) in the per-frame
     /// output; the summary always counts every frame.
-    #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
+    #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind, help = kind_help())]
     pub only: Vec<MessageKind>,
     /// Keep only frames that carry one of these node-IDs (comma-separated;
     /// an NMT command's target is not one); the summary counts every frame.
@@ -171,8 +206,7 @@ pub struct ServoArgs {
     pub hex: Vec<String>,
 }
 
-/// Read a kind name of SPEC §6.1 (`emcy`, `heartbeat`, …).
-/// What `(000.000123)` timestamps count (SPEC §5.2).
+/// What `(000.000123)` timestamps count (docs/formats.md#candump-relative-times).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum TimestampBase {
     /// `candump -t d`: the time since the previous frame.
@@ -231,6 +265,25 @@ fn parse_node(text: &str) -> Result<NodeId, String> {
         .parse()
         .map_err(|_| format!("{text:?} is not a node-ID (1..=127)"))?;
     NodeId::try_new(raw).map_err(|e| e.to_string())
+}
+
+/// `--format`'s help, with the format names.
+fn format_help() -> String {
+    let names: Vec<_> = LogFormat::ALL.iter().map(|f| f.name()).collect();
+    format!(
+        "Read the input as this format instead of detecting it from the content: {}",
+        names.join(", ")
+    )
+}
+
+/// `--only`'s help, with the kind names.
+fn kind_help() -> String {
+    let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
+    format!(
+        "Keep only frames of these kinds (comma-separated) in the per-frame output: {}; the \
+         summary always counts every frame",
+        names.join(", ")
+    )
 }
 
 fn parse_format(text: &str) -> Result<LogFormat, String> {
