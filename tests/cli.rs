@@ -827,6 +827,13 @@ fn an_unrecognised_file_is_one_error() {
     let empty = run(&["decode", "--json"], "\n# nothing yet\n\n");
     assert_eq!(empty.status.code(), Some(0));
     assert!(empty.stdout.is_empty());
+    // ... but said (issue 22): an empty input is not silently nothing,
+    // with or without the summary.
+    assert_eq!(stderr(&empty), "<stdin>: 0 frames\n");
+    let summary = run(&["decode", "--summary"], "");
+    assert_eq!(summary.status.code(), Some(0));
+    assert!(summary.stdout.is_empty());
+    assert_eq!(stderr(&summary), "<stdin>: 0 frames\n");
 }
 
 /// SPEC §6.4: a gzip-compressed log is read as the log inside it, detected

@@ -81,6 +81,8 @@ struct Sink<'a> {
     damaged: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
+    /// Frames read so far, from every input.
+    frames: u64,
     /// The decoder session: what the log teaches as it is read (SDO
     /// channels, PDO mappings, drive states; SPEC §7, §8).
     decoder: Decoder,
@@ -131,12 +133,14 @@ impl<'a> Sink<'a> {
             skipped: 0,
             damaged: 0,
             progress_shown: false,
+            frames: 0,
             decoder: Decoder::new(config),
         })
     }
 
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
+        self.frames += 1;
         // Every frame teaches the decoder, shown or not.
         let decoded = self.decoder.decode(line, frame);
         if let Some(summary) = self.summary.as_mut() {
@@ -243,6 +247,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             .read(reader)
             .map_err(|e| open_failure(&name, path.as_deref(), e))?;
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
+        let before = sink.frames;
         log.visit(ReadAll {
             sink: &mut sink,
             progress: &mut progress,
@@ -250,6 +255,10 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             path: path.as_deref(),
         })?;
         sink.clear_progress()?;
+        if sink.frames == before {
+            // Nothing to write is not nothing to say (docs/output.md#stderr).
+            writeln!(sink.err, "{name}: 0 frames")?;
+        }
     }
 
     let Sink {
