@@ -836,11 +836,14 @@ def kind_of(cid: int, rtr: bool) -> str:
 
 
 NODE_KINDS = ("emcy", "heartbeat", "guard_request", "pdo", "sdo")
+# The summary's frame counts: the kinds, with node-guarding answers counted
+# apart from heartbeats.
+NODE_COUNTS = ("emcy", "heartbeat", "guard_request", "guard_answer", "pdo", "sdo")
 GAP_MS = 300
 
 RULES = {
     "line": "1-based line number in the log (= pcap packet number)",
-    "frames": "frames per SPEC 6.1 kind; node = CAN id & 0x7F for emcy, heartbeat, guard_request, pdo, sdo",
+    "frames": "frames per SPEC 6.1 kind; node = CAN id & 0x7F for emcy, heartbeat, guard_request, pdo, sdo; a guarding answer (see guarding) counts as guard_answer, not heartbeat",
     "emcy": "error = code outside 0x0000-0x00FF, reset = code 0x0000-0x00FF (SPEC 2.3)",
     "slot_at_end": "SPEC 3 RECV_EMCY_DEV: an error EMCY is stored only while the slot holds no error; a reset always overwrites; null = no EMCY ever received",
     "boot_up_lines": "data frames on 0x700+node whose byte is 0x00",
@@ -864,7 +867,7 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
         e = nodes.get(n)
         if e is None:
             e = nodes[n] = {
-                "frames": {k: 0 for k in NODE_KINDS},
+                "frames": {k: 0 for k in NODE_COUNTS},
                 "emcy": {"count": 0, "errors": 0, "resets": 0, "first_error": None, "slot_at_end": None,
                          "last": None},
                 "boot_up_lines": [],
@@ -929,6 +932,8 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
                 g, gd = e["_g"], e["guarding"]
                 g["pending"] = None
                 gd["answers"] += 1
+                e["frames"]["heartbeat"] -= 1
+                e["frames"]["guard_answer"] += 1
                 state = STATE_NAMES.get(byte & 0x7F, "invalid")
                 gd["answer_states"][state] = gd["answer_states"].get(state, 0) + 1
                 toggle = byte >> 7

@@ -84,11 +84,12 @@ impl Serialize for EmcySeen {
 }
 
 impl Serialize for FrameCounts {
-    /// `{kind: count}` for every kind, in the order of SPEC §6.1.
+    /// `{kind: count}` for every kind, in the order of SPEC §6.1, with
+    /// `guard_answer` after `guard_request`.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(Some(self.0.len()))?;
-        for (kind, n) in self.iter() {
-            map.serialize_entry(kind.name(), &n)?;
+        let mut map = serializer.serialize_map(None)?;
+        for (key, n) in self.iter() {
+            map.serialize_entry(key, &n)?;
         }
         map.end()
     }

@@ -118,21 +118,41 @@ pub struct GuardingSummary {
     pub toggle_errors: Vec<u64>,
 }
 
-/// The frames of a node by kind (SPEC §6.3 `frames`).
+/// The frames of a node by kind (SPEC §6.3 `frames`), with the
+/// node-guarding answers apart from the heartbeats: both are data frames
+/// on 0x700 + node, told apart by the guard request before an answer
+/// (docs/summary.md#frames).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct FrameCounts([u64; MessageKind::ALL.len()]);
+pub struct FrameCounts {
+    by_kind: [u64; MessageKind::ALL.len()],
+    guard_answers: u64,
+}
 
 impl FrameCounts {
-    /// Return the count of frames of `kind`.
+    /// Return the count of frames of `kind`; for
+    /// [`MessageKind::Heartbeat`], the heartbeats and boot-ups without the
+    /// node-guarding answers ([`guard_answers`](Self::guard_answers)).
     #[must_use]
     pub fn get(&self, kind: MessageKind) -> u64 {
-        self.0[kind.index()]
+        self.by_kind[kind.index()]
     }
 
-    /// Return every kind with its count, in the order of
-    /// [`MessageKind::ALL`].
-    pub fn iter(&self) -> impl Iterator<Item = (MessageKind, u64)> + '_ {
-        MessageKind::ALL.into_iter().map(|k| (k, self.0[k.index()]))
+    /// Return the count of node-guarding answers: the data frames on
+    /// 0x700 + node that answer a guard request.
+    #[must_use]
+    pub fn guard_answers(&self) -> u64 {
+        self.guard_answers
+    }
+
+    /// Return every count under its key in the summary, in order: the kinds
+    /// of [`MessageKind::ALL`] by name, with `guard_answer` after
+    /// `guard_request`.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, u64)> + '_ {
+        MessageKind::ALL.into_iter().flat_map(move |kind| {
+            let answers =
+                (kind == MessageKind::GuardRequest).then_some(("guard_answer", self.guard_answers));
+            core::iter::once((kind.name(), self.by_kind[kind.index()])).chain(answers)
+        })
     }
 }
 
@@ -448,7 +468,7 @@ impl Summarizer {
             ..
         } = bus;
         let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
-        state.frames.0[kind.index()] += 1;
+        state.frames.by_kind[kind.index()] += 1;
         if let Some(step) = &decoded.sdo {
             state.sdo.add(step, position);
         }
@@ -503,6 +523,9 @@ impl Summarizer {
             CanOpenMessage::Heartbeat { byte, .. } if state.guard_request_pending => {
                 state.guard_request_pending = false;
                 state.guarding_summary.answers += 1;
+                // Counted as an answer, not as a heartbeat.
+                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
+                state.frames.guard_answers += 1;
                 if let Some(answer) = byte.guard_answer() {
                     let events = state
                         .guarding

@@ -73,9 +73,9 @@ impl fmt::Display for NodeSummary {
     /// the CiA 402 timeline of a drive.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} node {:>3}  frames", self.bus, self.node.get())?;
-        for (kind, n) in self.frames.iter() {
+        for (key, n) in self.frames.iter() {
             if n > 0 {
-                write!(f, " {}={n}", kind.name())?;
+                write!(f, " {key}={n}")?;
             }
         }
         writeln!(f)?;
