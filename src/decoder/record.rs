@@ -279,8 +279,14 @@ fn write_transfer_json<W: Write>(
     o.uint("frames", u64::from(transfer.frames))?;
     o.name("outcome", transfer.outcome.name())?;
     match transfer.outcome {
-        SdoOutcome::Aborted { code, .. } => o.uint("abort_code", u64::from(code.get()))?,
-        _ => o.null("abort_code")?,
+        SdoOutcome::Aborted { code, .. } => {
+            o.uint("abort_code", u64::from(code.get()))?;
+            o.name("abort_description", code.description())?;
+        }
+        _ => {
+            o.null("abort_code")?;
+            o.null("abort_description")?;
+        }
     }
     match transfer.outcome {
         SdoOutcome::Broken(reason) => o.name("reason", reason.name())?,
