@@ -71,8 +71,8 @@ fn sdo_and_transfer_keys() {
         json!({"direction": "upload", "index": 0x1008, "subindex": 0,
                "object": "Manufacturer device name", "size": 10,
                "data": "414b442d503030333036", "truncated": false, "frames": 6,
-               "outcome": "ok", "abort_code": null, "reason": null, "start_line": 1,
-               "duration_ms": 5.0})
+               "outcome": "ok", "abort_code": null, "abort_description": null,
+               "reason": null, "start_line": 1, "duration_ms": 5.0})
     );
     assert_eq!(
         recs[7]["sdo"],
@@ -82,6 +82,10 @@ fn sdo_and_transfer_keys() {
     );
     assert_eq!(recs[7]["transfer"]["outcome"], "abort");
     assert_eq!(recs[7]["transfer"]["abort_code"], 0x0602_0000u32);
+    assert_eq!(
+        recs[7]["transfer"]["abort_description"],
+        "Object does not exist in the object dictionary"
+    );
     // Expedited download of 1017h.00 = 100 ms: no answer before the next
     // request, reported on that request.
     assert_eq!(
