@@ -4,12 +4,15 @@
 
 /// Data types of a CN (`cn_data_type`), those a CAN member may have.
 mod data_type {
+    pub(super) const UINT_LE: u8 = 0;
     pub(super) const UINT_BE: u8 = 1;
     pub(super) const INT_LE: u8 = 2;
     pub(super) const INT_BE: u8 = 3;
     pub(super) const FLOAT_LE: u8 = 4;
     pub(super) const FLOAT_BE: u8 = 5;
 }
+
+use crate::logs::mf4::block::le;
 
 /// Where a channel's value comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -78,6 +81,7 @@ impl Conversion {
     }
 
     /// Return whether the conversion leaves every value as it is.
+    #[inline]
     pub(super) fn is_identity(&self) -> bool {
         match self {
             Conversion::Identity => true,
@@ -135,6 +139,7 @@ impl Channel {
     /// Return the raw bits of the channel in `record` (the bytes after the
     /// record id); `index` is the record's index in its channel group, for
     /// a virtual channel. `None` when the record is too short.
+    #[inline]
     fn raw(&self, record: &[u8], index: u64) -> Option<Raw> {
         let Location::Bits {
             byte,
@@ -152,6 +157,25 @@ impl Channel {
         }
         let bit = u32::from(bit);
         let start = byte as usize;
+        if data_type == data_type::UINT_LE && bit + bits <= 64 {
+            // The common case: an unsigned little-endian field read as one
+            // word (of the record's bytes from `start`, zeros past them).
+            let needed = (bit + bits).div_ceil(8) as usize;
+            let rest = record.get(start..)?;
+            if rest.len() < needed {
+                return None;
+            }
+            let word = match rest.first_chunk::<8>() {
+                Some(word) => u64::from_le_bytes(*word),
+                None => u64::from_le_bytes(le(rest, 0)),
+            };
+            let value = if bits == 0 {
+                0
+            } else {
+                (word >> bit) & (u64::MAX >> (64 - bits))
+            };
+            return Some(Raw::Unsigned(value));
+        }
         let len = (bit + bits).div_ceil(8) as usize;
         let bytes = record.get(start..start.checked_add(len)?)?;
         let big_endian = matches!(
@@ -189,6 +213,7 @@ impl Channel {
     }
 
     /// Return the channel's value, converted.
+    #[inline]
     pub(super) fn value(&self, record: &[u8], index: u64) -> Option<f64> {
         let x = match self.raw(record, index)? {
             Raw::Unsigned(v) => v as f64,
@@ -201,6 +226,7 @@ impl Channel {
     /// Return the channel's value as an unsigned integer: the raw bits when
     /// the conversion changes nothing, else the converted value rounded
     /// (0 below 0, saturated above).
+    #[inline]
     pub(super) fn unsigned(&self, record: &[u8], index: u64) -> Option<u64> {
         if self.conversion.is_identity() {
             if let Some(Raw::Unsigned(v)) = self.raw(record, index) {

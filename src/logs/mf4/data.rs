@@ -412,15 +412,25 @@ fn dz_header<R: Read + Seek>(
 /// (ASAM MDF 4.1 §5.26.2): `columns` bytes a record, the rows that fill
 /// whole records transposed, the bytes after them as they are.
 fn untranspose(transposed: &[u8], columns: usize, out: &mut Vec<u8>) {
+    /// Rows put in place at a time: a tile of `TILE × columns` bytes stays
+    /// in the cache while each column's run of `TILE` bytes is read.
+    const TILE: usize = 64;
     let rows = transposed.len() / columns;
     let whole = rows * columns;
     let start = out.len();
     out.resize(start + whole, 0);
     let records = &mut out[start..];
-    for (column, bytes) in transposed[..whole].chunks_exact(rows.max(1)).enumerate() {
-        for (row, &byte) in bytes.iter().enumerate() {
-            records[row * columns + column] = byte;
+    let mut first = 0;
+    while first < rows {
+        let n = TILE.min(rows - first);
+        let tile = &mut records[first * columns..(first + n) * columns];
+        for column in 0..columns {
+            let run = &transposed[column * rows + first..column * rows + first + n];
+            for (row, &byte) in run.iter().enumerate() {
+                tile[row * columns + column] = byte;
+            }
         }
+        first += n;
     }
     out.extend_from_slice(&transposed[whole..]);
 }

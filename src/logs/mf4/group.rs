@@ -662,13 +662,11 @@ fn fields(group: &CanGroup, record: &[u8], index: u64, start_ns: u64) -> Fields 
     let ts = group.master.as_ref().and_then(|master| {
         let seconds = master.value(record, index)?;
         let ns = (seconds * 1e9).round();
-        if !ns.is_finite() {
+        if !(-9.2e18..9.2e18).contains(&ns) {
             return None;
         }
-        let total = i128::from(start_ns).checked_add(ns as i128)?;
-        let total = u128::try_from(total).ok()?;
-        let secs = u64::try_from(total / 1_000_000_000).ok()?;
-        Timestamp::from_nanos(secs, (total % 1_000_000_000) as u32)
+        let total = start_ns.checked_add_signed(ns as i64)?;
+        Timestamp::from_nanos(total / 1_000_000_000, (total % 1_000_000_000) as u32)
     });
     Fields {
         kind: group.kind,
