@@ -1283,7 +1283,11 @@ fn mf4_files() {
         let ts: f64 = want["timestamp"].as_str().unwrap().parse().unwrap();
         assert!((rec["ts"].as_f64().unwrap() - ts).abs() < 1e-6);
     }
-    let lines: Vec<u64> = recs.iter().take(4).map(|r| r["line"].as_u64().unwrap()).collect();
+    let lines: Vec<u64> = recs
+        .iter()
+        .take(4)
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
     assert_eq!(lines, [1, 2, 39, 3]);
     // The same file through a pipe, and gzip-compressed.
     let whole = std::fs::read(&path).unwrap();

@@ -518,7 +518,7 @@ impl GroupReader {
                 match data {
                     Data::Stored(n) => self.finish(key, fields, &bytes[..n]),
                     Data::Signal(offset) => self.signal(source, i, key, fields, offset)?,
-                    Data::Group(Some(vlsd), offset) => self.from_pool(key, fields, vlsd, offset),
+                    Data::Group(Some(vlsd), offset) => self.vlsd_record(key, fields, vlsd, offset),
                     Data::Group(None, offset) => self.missing(Waiting {
                         key,
                         fields,
@@ -533,7 +533,7 @@ impl GroupReader {
 
     /// A frame whose data is VLSD record `offset` of VLSD group `vlsd`:
     /// from the pool, or waiting for it.
-    fn from_pool(&mut self, key: Key, fields: Fields, vlsd: usize, offset: u64) {
+    fn vlsd_record(&mut self, key: Key, fields: Fields, vlsd: usize, offset: u64) {
         match self
             .pool
             .iter()

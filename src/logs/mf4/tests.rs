@@ -248,8 +248,11 @@ pub(crate) fn file(id_len: u8, groups: &[(&str, u64)], data: &[u8], storage: Sto
     file.bytes
 }
 
+/// A frame with its record number, or an error.
+type Event = Result<(u64, LogFrame<'static>), LogError>;
+
 /// Every event of `bytes`: frames, and errors as their reasons.
-fn read_all(bytes: &[u8]) -> Result<Vec<Result<(u64, LogFrame<'static>), LogError>>, LogError> {
+fn read_all(bytes: &[u8]) -> Result<Vec<Event>, LogError> {
     let mut reader = Mf4Reader::new(Cursor::new(bytes.to_vec()))?;
     let mut out = Vec::new();
     while let Some(next) = reader.next_event() {
