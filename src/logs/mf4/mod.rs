@@ -96,8 +96,11 @@
 //! # Ok::<(), motionwire::logs::LogError>(())
 //! ```
 
+#[cfg(feature = "logs")]
 use std::fs::File;
-use std::io::{self, Cursor, Read, Seek, SeekFrom};
+#[cfg(feature = "logs")]
+use std::io::{self, SeekFrom};
+use std::io::{Cursor, Read, Seek};
 
 use crate::can::{LogEvent, Timestamp};
 use crate::logs::{BinaryError, LogError, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN};
@@ -365,12 +368,14 @@ fn in_memory<Rd: Read>(input: Rd) -> Result<Vec<u8>, LogError> {
 
 /// What [`LogReader`](crate::logs::LogReader) reads an MF4 file from: the
 /// file itself, or a stream that cannot seek, held in memory.
+#[cfg(feature = "logs")]
 #[derive(Debug)]
 pub(crate) enum Input {
     File(File),
     Memory(Cursor<Vec<u8>>),
 }
 
+#[cfg(feature = "logs")]
 impl Input {
     /// The whole of a stream, in memory (up to [`MAX_STREAMED_LEN`]).
     pub(crate) fn memory<Rd: Read>(input: Rd) -> Result<Self, LogError> {
@@ -408,6 +413,7 @@ impl Input {
     }
 }
 
+#[cfg(feature = "logs")]
 impl Read for Input {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         match self {
@@ -417,6 +423,7 @@ impl Read for Input {
     }
 }
 
+#[cfg(feature = "logs")]
 impl Seek for Input {
     fn seek(&mut self, pos: SeekFrom) -> io::Result<u64> {
         match self {
