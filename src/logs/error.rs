@@ -714,7 +714,7 @@ impl core::fmt::Display for SyntaxError {
 /// input was expected to be (SPEC §5.7).
 #[cfg(feature = "std")]
 pub(crate) const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
-                                   pcap or pcapng (gzip-compressed or not)";
+                                   pcap or pcapng, ASAM MDF 4 (gzip-compressed or not)";
 
 /// Why a log reader could not hand on an event, and where (SPEC §5.7):
 /// what every [`ReadLog`](crate::logs::ReadLog) returns.

@@ -21,9 +21,9 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng;
-    /// detected from the content, gzip too) into one record per CAN frame
-    /// (SPEC §5, §6.1).
+    /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng,
+    /// ASAM MDF 4; detected from the content, gzip too) into one record per
+    /// CAN frame (SPEC §5, §6.1).
     Decode(DecodeArgs),
     /// Decode one EtherCAT servo ↔ NC frame given as hex (SPEC §6.2).
     #[command(subcommand)]
