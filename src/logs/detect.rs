@@ -206,6 +206,17 @@ mod tests {
         assert_eq!(detect(&[0xa1], false), Detected::NeedMore);
     }
 
+    /// SPEC §5.8: `MDF     ` or `UnFinMF `, then `4.` at byte 8; MDF 3 and
+    /// other text starting so are no MF4.
+    #[test]
+    fn mf4_magic() {
+        for head in [&b"MDF     4.10    "[..], b"UnFinMF 4.11    ", b"MDF     4."] {
+            assert_eq!(detect(head, false), Detected::Format(LogFormat::Mf4));
+        }
+        assert_eq!(detect(b"MDF     3.30    ", true), Detected::Unrecognised);
+        assert_eq!(detect(b"MDF 4.10\n", true), Detected::Unrecognised);
+    }
+
     #[test]
     fn text_shapes() {
         let rows: &[(&str, Detected)] = &[

@@ -267,7 +267,10 @@ impl DataStream {
             self.pos = 0;
         }
         let want = self.buf.len() + n;
-        let others = self.budget.load(Ordering::Relaxed) - self.held;
+        let others = self
+            .budget
+            .load(Ordering::Relaxed)
+            .saturating_sub(self.held);
         if others + want > MAX_BUFFERED {
             return Err(damaged(
                 self.offset,
