@@ -27,6 +27,10 @@
 #   summary-asc  hyperfine: decode --summary on the ASC file vs python-can's ASCReader peer
 #   summary-blf  hyperfine: decode --summary on the BLF file vs python-can's BLFReader peer
 #   summary-pcap hyperfine: decode --summary on the pcap vs tshark -T fields
+#   gen-mf4      write $BENCH_DIR/1m.mf4 from 1m.log with asammdf (python-can's MF4Writer layout)
+#   summary-mf4  hyperfine: decode --summary on the MF4 file vs python-can's MF4Reader peer
+#   read-mf4     hyperfine: reading the MF4 file alone: logs::open (examples/read_log)
+#                vs python-can's MF4Reader vs asammdf reading every CAN_DataFrame channel
 #
 # Environment: BENCH_DIR (default /tmp/motionwire-bench), BENCH_FRAMES
 # (default 1000000), BENCH_RUNS (default 3), MOTIONWIRE (default
@@ -49,6 +53,7 @@ LOG=$BENCH_DIR/1m.log
 PCAP=$BENCH_DIR/1m.pcap
 ASC=$BENCH_DIR/1m.asc
 BLF=$BENCH_DIR/1m.blf
+MF4=$BENCH_DIR/1m.mf4
 # Wireshark's SocketCAN dissector hands the payload to the dissector chosen in
 # its "can.subdissector" Decode-As table; without this it guesses (heuristics,
 # e.g. AUTOSAR NM) or shows raw CAN data.
@@ -100,6 +105,31 @@ gen_formats() {
     fi
     python3 bench/convert_python_can.py "$LOG" "$ASC" "$BLF"
     ls -l "$ASC" "$BLF"
+}
+
+gen_mf4() {
+    gen
+    step "the same frames as ASAM MDF 4, written by asammdf: $MF4"
+    if [[ -s $MF4 && $MF4 -nt $LOG && $MF4 -nt bench/convert_mf4.py ]]; then
+        echo "up to date"
+        return
+    fi
+    python3 -c 'import asammdf' 2>/dev/null || python3 -m pip install -q asammdf
+    python3 bench/convert_mf4.py "$LOG" "$MF4"
+    ls -l "$MF4"
+}
+
+read_mf4() {
+    gen_mf4
+    step "cargo build --release --example read_log --features logs"
+    cargo build --release --example read_log --features logs
+    step "hyperfine: reading $MF4 alone ($FRAMES frames)"
+    mkdir -p "$RESULTS"
+    hyperfine --warmup 1 --runs "$RUNS" \
+        --export-markdown "$RESULTS/read-mf4.md" --export-json "$RESULTS/read-mf4.json" \
+        -n "motionwire logs::open (examples/read_log)" "target/release/examples/read_log $MF4 >/dev/null" \
+        -n "python-can MF4Reader" "python3 -c 'import can,sys; n=sum(1 for _ in can.MF4Reader(sys.argv[1])); print(n)' $MF4 >/dev/null" \
+        -n "asammdf MDF.get (every CAN_DataFrame channel)" "python3 -c 'import asammdf,sys; m=asammdf.MDF(sys.argv[1]); [m.get(c.name, 0) for c in m.groups[0].channels]' $MF4 >/dev/null 2>&1"
 }
 
 # One hyperfine run: decode --summary of FILE against PEER (a command).
@@ -201,7 +231,8 @@ ratios() {
 import json, os, sys
 results = sys.argv[1]
 goals = {"summary": 150.0, "json": 30.0, "json-fields": 30.0,
-         "summary-asc": 50.0, "summary-blf": 20.0, "summary-pcap": 100.0}
+         "summary-asc": 50.0, "summary-blf": 20.0, "summary-pcap": 100.0,
+         "summary-mf4": 20.0, "read-mf4": 1.0}
 failed = False
 for name, goal in goals.items():
     path = os.path.join(results, f"{name}.json")
@@ -245,6 +276,9 @@ run_step() {
         gen-formats) gen_formats ;;
         summary-asc) gen_formats; summary_of summary-asc "$ASC" "python-can ASCReader + canopen peer" "python3 bench/peer_python.py $ASC" ;;
         summary-blf) gen_formats; summary_of summary-blf "$BLF" "python-can BLFReader + canopen peer" "python3 bench/peer_python.py $BLF" ;;
+        gen-mf4) gen_mf4 ;;
+        summary-mf4) gen_mf4; summary_of summary-mf4 "$MF4" "python-can MF4Reader + canopen peer" "python3 bench/peer_python.py $MF4" ;;
+        read-mf4) read_mf4 ;;
         summary-pcap) gen; summary_of summary-pcap "$PCAP" "tshark -T fields (CANopen)" "tshark -r $PCAP ${TSHARK_CANOPEN[*]} ${TSHARK_FIELDS[*]}" ;;
         *) echo "unknown step: $1 (see the header of $0)" >&2; exit 2 ;;
     esac

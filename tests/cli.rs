@@ -1269,6 +1269,55 @@ fn blf_files() {
     assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
 }
 
+/// SPEC §5.8: an MF4 file is detected and read, by name and from standard
+/// input (gzip-compressed too): `iface` the bus channel, `ts` start time +
+/// master channel, frames in time order across the data groups, `line` the
+/// record's number over them; `--format mf4` names it.
+#[test]
+fn mf4_files() {
+    let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/mf4/");
+    let path = format!("{fixtures}python_can.mf4");
+    let truth: Value =
+        serde_json::from_slice(&std::fs::read(format!("{fixtures}python_can.json")).unwrap())
+            .unwrap();
+    let out = run(&["decode", "--json", "--format", "mf4", &path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let want = truth["frames"].as_array().unwrap();
+    assert_eq!(recs.len(), want.len());
+    for (rec, want) in recs.iter().zip(want) {
+        assert_eq!(rec["iface"].as_str().unwrap(), want["channel"].to_string());
+        if want["error"] == false {
+            assert_eq!(rec["id"], want["id"]);
+        }
+        let ts: f64 = want["timestamp"].as_str().unwrap().parse().unwrap();
+        assert!((rec["ts"].as_f64().unwrap() - ts).abs() < 1e-6);
+    }
+    let lines: Vec<u64> = recs
+        .iter()
+        .take(4)
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [1, 2, 39, 3]);
+    // The same file through a pipe, and gzip-compressed.
+    let whole = std::fs::read(&path).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let gz = dir.join("python_can.mf4.gz");
+    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    std::io::Write::write_all(&mut encoder, &whole).unwrap();
+    std::fs::write(&gz, encoder.finish().unwrap()).unwrap();
+    let zipped = run(&["decode", "--json", gz.to_str().unwrap()], "");
+    assert!(zipped.status.success(), "{}", stderr(&zipped));
+    assert_eq!(zipped.stdout, out.stdout);
+    // Cut inside its data: the frames before, one error.
+    let cut = dir.join("cut.mf4");
+    std::fs::write(&cut, &whole[..400]).unwrap();
+    let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
+    assert_ne!(out.status.code(), Some(0));
+    assert!(stderr(&out).contains("mf4 file, byte "), "{}", stderr(&out));
+}
+
 /// SPEC §6.1's keys for NMT commands, SYNC and TIME.
 #[test]
 fn nmt_sync_and_time_keys() {

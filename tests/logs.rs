@@ -262,7 +262,7 @@ fn gzip_is_inflated_once() {
     assert_eq!(
         error.to_string(),
         "unrecognised log format: expected a candump log or screen output, Vector ASC or BLF, \
-         PEAK TRC, pcap or pcapng (gzip-compressed or not)"
+         PEAK TRC, pcap or pcapng, ASAM MDF 4 (gzip-compressed or not)"
     );
 }
 

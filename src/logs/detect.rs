@@ -32,7 +32,7 @@ pub enum Detected {
 ///
 /// - pcap: magic `a1b2c3d4` or `a1b23c4d` (nanoseconds), in either byte
 ///   order; pcapng: the section header block type `0a0d0d0a`; BLF: `LOGG`;
-///   gzip: `1f 8b`.
+///   MF4: `MDF     ` or `UnFinMF ` and `4.` at byte 8; gzip: `1f 8b`.
 /// - Text, line by line, blank lines skipped: a line starting with `;` is a
 ///   PEAK TRC header, and `N)` followed by a time a TRC row; `date `,
 ///   `base `, `Begin Triggerblock`, `internal events logged`, `// version`
@@ -73,6 +73,7 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
         ) => return Detected::Format(LogFormat::Pcap),
         Some([0x0a, 0x0d, 0x0d, 0x0a]) => return Detected::Format(LogFormat::Pcapng),
         Some(b"LOGG") => return Detected::Format(LogFormat::Blf),
+        Some(b"MDF " | b"UnFi") if is_mf4(head) => return Detected::Format(LogFormat::Mf4),
         Some(_) => {}
         None if complete || head.len() >= 4 => {}
         None => return Detected::NeedMore,
@@ -111,6 +112,13 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
     } else {
         Detected::NeedMore
     }
+}
+
+/// Whether `head` starts as an MDF 4 file does (SPEC §5.8): `MDF     ` or
+/// `UnFinMF `, then the version `4.` at byte 8.
+pub(crate) fn is_mf4(head: &[u8]) -> bool {
+    let magic = head.get(..8);
+    (magic == Some(b"MDF     ") || magic == Some(b"UnFinMF ")) && head.get(8..10) == Some(b"4.")
 }
 
 fn trim_start(line: &[u8]) -> &[u8] {
@@ -196,6 +204,17 @@ mod tests {
         assert_eq!(detect(&[0x1f, 0x8b, 8, 0], false), Detected::Gzip);
         assert_eq!(detect(&[0x1f, 0x8b], false), Detected::Gzip);
         assert_eq!(detect(&[0xa1], false), Detected::NeedMore);
+    }
+
+    /// SPEC §5.8: `MDF     ` or `UnFinMF `, then `4.` at byte 8; MDF 3 and
+    /// other text starting so are no MF4.
+    #[test]
+    fn mf4_magic() {
+        for head in [&b"MDF     4.10    "[..], b"UnFinMF 4.11    ", b"MDF     4."] {
+            assert_eq!(detect(head, false), Detected::Format(LogFormat::Mf4));
+        }
+        assert_eq!(detect(b"MDF     3.30    ", true), Detected::Unrecognised);
+        assert_eq!(detect(b"MDF 4.10\n", true), Detected::Unrecognised);
     }
 
     #[test]

@@ -24,17 +24,20 @@ pub enum LogFormat {
     Pcapng,
     /// Vector BLF (SPEC §5.6).
     Blf,
+    /// ASAM MDF 4 bus logging (SPEC §5.8).
+    Mf4,
 }
 
 impl LogFormat {
     /// Every format, in the order of SPEC §5.
-    pub const ALL: [LogFormat; 6] = [
+    pub const ALL: [LogFormat; 7] = [
         LogFormat::Candump,
         LogFormat::Asc,
         LogFormat::Trc,
         LogFormat::Pcap,
         LogFormat::Pcapng,
         LogFormat::Blf,
+        LogFormat::Mf4,
     ];
 
     /// Return the format's name as messages and `--format` write it, e.g.
@@ -48,6 +51,7 @@ impl LogFormat {
             LogFormat::Pcap => "pcap",
             LogFormat::Pcapng => "pcapng",
             LogFormat::Blf => "blf",
+            LogFormat::Mf4 => "mf4",
         }
     }
 }
@@ -159,6 +163,38 @@ pub enum BinaryError {
         /// The identifier as stored.
         raw: u32,
     },
+    /// An MF4 link leads to a block of another kind than the one its place
+    /// calls for, or to no block at all (SPEC §5.8).
+    UnexpectedBlock {
+        /// The block kinds the link may lead to, e.g. `##DG`.
+        expected: &'static str,
+        /// The first four bytes found there.
+        found: [u8; 4],
+    },
+    /// An MF4 link points outside the file (SPEC §5.8).
+    LinkOutOfFile {
+        /// The link as read.
+        link: u64,
+        /// The file's length.
+        len: u64,
+    },
+    /// A chain of MF4 blocks (data groups, channel groups, channels, data
+    /// lists) leads back to a block it has passed, or is longer than the
+    /// file could hold (SPEC §5.8).
+    LinkLoop,
+    /// An MF4 record starts with a record id that no channel group of its
+    /// data group has (SPEC §5.8): the rest of the data group cannot be
+    /// split into records.
+    UnknownRecordId {
+        /// The record id as read.
+        id: u64,
+    },
+    /// An MF4 frame's variable-length data (VLSD) is not where its record
+    /// says (SPEC §5.8).
+    MissingVlsd {
+        /// The offset the record holds.
+        offset: u64,
+    },
 }
 
 impl core::fmt::Display for BinaryError {
@@ -202,6 +238,33 @@ impl core::fmt::Display for BinaryError {
             BinaryError::BadIdentifier { raw } => write!(
                 f,
                 "expected a standard identifier at most 0x7FF, found {raw:#x}"
+            ),
+            BinaryError::UnexpectedBlock { expected, found } => {
+                write!(f, "expected an MDF block {expected}, found ")?;
+                if found.iter().all(u8::is_ascii_graphic) {
+                    f.write_str("'")?;
+                    for b in found {
+                        core::fmt::Write::write_char(f, char::from(b))?;
+                    }
+                    f.write_str("'")
+                } else {
+                    write!(f, "{:#010x}", u32::from_le_bytes(found))
+                }
+            }
+            BinaryError::LinkOutOfFile { link, len } => write!(
+                f,
+                "expected a link inside the file of {len} bytes, found {link}"
+            ),
+            BinaryError::LinkLoop => {
+                f.write_str("expected a chain of blocks that ends, found one that loops")
+            }
+            BinaryError::UnknownRecordId { id } => write!(
+                f,
+                "expected the record id of a channel group of the data group, found {id}"
+            ),
+            BinaryError::MissingVlsd { offset } => write!(
+                f,
+                "expected the frame's variable-length data at offset {offset}, found none"
             ),
         }
     }
@@ -651,7 +714,7 @@ impl core::fmt::Display for SyntaxError {
 /// input was expected to be (SPEC §5.7).
 #[cfg(feature = "std")]
 pub(crate) const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
-                                   pcap or pcapng (gzip-compressed or not)";
+                                   pcap or pcapng, ASAM MDF 4 (gzip-compressed or not)";
 
 /// Why a log reader could not hand on an event, and where (SPEC §5.7):
 /// what every [`ReadLog`](crate::logs::ReadLog) returns.

@@ -10,6 +10,7 @@
 //! | [`trc/`](trc) | PEAK TRC 1.0 to 2.1 (PCAN-View, PCAN-Explorer; SPEC §5.4) | |
 //! | `pcap/` | pcap and pcapng captures of SocketCAN interfaces (SPEC §5.5) | feature `pcap` |
 //! | `blf/` | Vector BLF (SPEC §5.6) | feature `blf` |
+//! | `mf4/` | ASAM MDF 4 bus logging (CANedge, CANoe, asammdf; SPEC §5.8) | feature `mf4` |
 //! | `detect.rs` | the format from the first bytes: [`detect`] (SPEC §5.7) | |
 //! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a [`Read`](std::io::Read), the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
@@ -22,7 +23,8 @@
 //! [`asc::AscParser`], [`trc::TrcParser`]). With `std`, every format has a
 //! reader that reads a [`Read`](std::io::Read) and implements the one
 //! trait `ReadLog` (`CandumpReader`, `AscReader`, `TrcReader`,
-//! `PcapReader`, `BlfReader`), and `LogReader` reads any of them.
+//! `PcapReader`, `BlfReader`, `Mf4Reader`), and `LogReader` reads any of
+//! them.
 //!
 //! What holds for every reader (SPEC §5.7):
 //!
@@ -34,6 +36,10 @@
 //! - memory is bounded whatever the input claims: a text line is held up to
 //!   `MAX_LINE_LEN` (1 MiB), a binary record, block or container up to
 //!   [`MAX_RECORD_LEN`] (16 MiB).
+//!
+//! MF4 (SPEC §5.8) is read at any offset rather than in one pass, and its
+//! frames come out in time order across its channel groups: its positions
+//! (record numbers) do not always increase.
 
 pub mod asc;
 #[cfg(feature = "blf")]
@@ -42,6 +48,8 @@ mod calendar;
 pub mod candump;
 mod detect;
 mod error;
+#[cfg(feature = "mf4")]
+pub mod mf4;
 #[cfg(feature = "pcap")]
 pub mod pcap;
 #[cfg(feature = "logs")]

@@ -10,6 +10,7 @@ use std::path::Path;
 use crate::logs::asc::AscReader;
 use crate::logs::blf::BlfReader;
 use crate::logs::candump::{CandumpReader, RelativeTimestamps};
+use crate::logs::mf4::{self, Mf4Reader};
 use crate::logs::pcap::PcapReader;
 use crate::logs::trc::TrcReader;
 use crate::logs::{
@@ -175,7 +176,14 @@ impl ReadOptions {
     /// As [`ReadOptions::read`]; the file cannot be opened:
     /// [`LogErrorKind::Io`].
     pub fn open(&self, path: impl AsRef<Path>) -> Result<LogReader, LogError> {
-        self.read(File::open(path)?)
+        match mf4::Input::file(File::open(path)?, self.format)? {
+            // MF4 is read in place, at any offset (SPEC §5.8).
+            Ok(file) => Ok(LogReader {
+                inner: Inner::Mf4(Mf4Reader::new(file)?),
+                gzip: false,
+            }),
+            Err(file) => self.read(file),
+        }
     }
 
     /// Read a log from `input` as [`read`] does, with these options.
@@ -222,6 +230,7 @@ impl ReadOptions {
                 LogFormat::Trc => Inner::Trc(TrcReader::new(again)),
                 LogFormat::Pcap | LogFormat::Pcapng => Inner::Pcap(PcapReader::new(again)?),
                 LogFormat::Blf => Inner::Blf(BlfReader::new(again)?),
+                LogFormat::Mf4 => Inner::Mf4(Mf4Reader::new(mf4::Input::memory(again)?)?),
             };
             return Ok(LogReader { inner, gzip });
         }
@@ -265,6 +274,7 @@ enum Inner {
     Trc(TrcReader<Input>),
     Pcap(PcapReader<Input>),
     Blf(BlfReader<Input>),
+    Mf4(Mf4Reader<mf4::Input>),
 }
 
 /// `$body` with `$reader` bound to the format's reader.
@@ -276,6 +286,7 @@ macro_rules! each {
             Inner::Trc($reader) => $body,
             Inner::Pcap($reader) => $body,
             Inner::Blf($reader) => $body,
+            Inner::Mf4($reader) => $body,
         }
     };
 }

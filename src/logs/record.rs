@@ -86,7 +86,9 @@ pub struct LogRecord<'a> {
 /// record whose size is known) loses that line or record only and the next
 /// call goes on; after any other error (the input cannot be read, a binary
 /// file's structure is damaged) [`next_event`](ReadLog::next_event) returns
-/// `None`. Positions increase from one event or error to the next.
+/// `None`. Positions increase from one event or error to the next, except
+/// in MF4 files, whose frames come in time order across channel groups
+/// (SPEC §5.8).
 ///
 /// Lines and records that hold no event (blank lines, comments, headers; a
 /// pcap packet of another link type, a BLF object of another type) are not

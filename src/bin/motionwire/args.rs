@@ -27,9 +27,9 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng;
-    /// detected from the content, gzip too) into one record per CAN frame,
-    /// or a summary per device (docs/output.md, docs/summary.md).
+    /// Decode CAN logs (candump, Vector ASC and BLF, PEAK TRC, pcap/pcapng,
+    /// ASAM MDF 4; detected from the content, gzip too) into one record per
+    /// CAN frame, or a summary per device (docs/output.md, docs/summary.md).
     #[command(after_long_help = DECODE_AFTER_HELP)]
     Decode(DecodeArgs),
     /// Decode one EtherCAT servo ↔ NC frame given as hex (docs/servo.md).
