@@ -195,9 +195,16 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
     let message = match &step.message {
         Ok(message) => message,
         Err(_) => {
-            // A short frame: the multiplexer as far as it goes.
+            // A short frame, as far as it goes (SPEC §7.1 decision): the
+            // multiplexer, or from a 3-byte frame the index alone.
             if let Some(m) = step.multiplexer() {
                 write_multiplexer(&mut o, m, step.objects)?;
+            } else if let Some(index) = step.index() {
+                o.uint("index", u64::from(index))?;
+                match step.object() {
+                    Some(name) => o.name("object", name)?,
+                    None => o.null("object")?,
+                }
             }
             return o.end();
         }
