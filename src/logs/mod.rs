@@ -50,7 +50,7 @@ mod record;
 mod text;
 pub mod trc;
 
-pub use detect::{detect, Detected, DETECT_LEN};
+pub use detect::{detect, Detected, DETECT_LEN, DETECT_MAX_UNDECIDED};
 pub use error::{BinaryError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
