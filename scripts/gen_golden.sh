@@ -58,6 +58,8 @@ done
   echo "decode --json --profile akd tests/fixtures/pdo/python_canopen.log"
   echo "decode --json samples/machine.log tests/fixtures/sdo/python_canopen.log"
   echo "decode --summary --json samples/machine.log tests/fixtures/pcap/multi.pcapng"
+  echo "decode --json --eds 3=tests/fixtures/eds/array_drive.eds tests/fixtures/eds/array_drive.log"
+  echo "decode --summary --eds 3=tests/fixtures/eds/array_drive.eds tests/fixtures/eds/array_drive.log"
 } > "$out/cases.txt"
 n=0
 while read -r line; do

@@ -10,7 +10,9 @@ use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
 };
-use crate::canopen::{object_name, NodeId, ObjectAddress, ObjectSet};
+use crate::canopen::{NodeId, ObjectAddress};
+
+use super::ObjectNames;
 use crate::Error;
 
 /// One SDO frame as its channel's tracker read it (SPEC §7.3 `sdo`), and
@@ -38,12 +40,12 @@ pub struct SdoStep<'d> {
     pub started: bool,
     /// The transfer this frame ends, with its data.
     pub ended: Option<EndedTransfer<'d>>,
-    /// The objects that name this node's SDO objects (SPEC §7.3 `object`):
-    /// the communication objects and the node's profile's.
-    pub objects: Option<ObjectSet>,
+    /// Where this node's SDO objects get their names (SPEC §7.3 `object`):
+    /// its EDS first, then the communication objects and the profile's.
+    pub names: ObjectNames<'d>,
 }
 
-impl SdoStep<'_> {
+impl<'d> SdoStep<'d> {
     /// Return the service: the message's, or what the first byte says when
     /// the frame could not be read ([`SdoService::Unknown`] for no byte).
     #[must_use]
@@ -124,8 +126,8 @@ impl SdoStep<'_> {
     /// Return the name of the object the frame addresses, if it addresses
     /// one and the name is known (SPEC §7.3 `object`).
     #[must_use]
-    pub fn object(&self) -> Option<&'static str> {
-        self.index().and_then(|index| object_name(index, self.objects))
+    pub fn object(&self) -> Option<&'d str> {
+        self.index().and_then(|index| self.names.name(index))
     }
 }
 
@@ -312,7 +314,7 @@ impl fmt::Display for SdoStep<'_> {
         }
         if let Some(m) = fields.multiplexer {
             write!(f, " {m}")?;
-            if let Some(name) = object_name(m.index, self.objects) {
+            if let Some(name) = self.names.name(m.index) {
                 write!(f, " {name}")?;
             }
         }

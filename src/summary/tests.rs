@@ -147,7 +147,11 @@ fn a_drive_never_seen_has_unknown_faults() {
     let summary = summarize(
         &[
             (Some(0), 0x603, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),
-            (Some(1), 0x583, &[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0]),
+            (
+                Some(1),
+                0x583,
+                &[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0],
+            ),
         ],
         Summarizer::new(),
     );

@@ -197,7 +197,7 @@ impl fmt::Display for SdoSummary {
                 abort.by.name(),
                 abort.multiplexer
             )?;
-            if let Some(name) = abort.object {
+            if let Some(name) = &abort.object {
                 write!(f, " ({name})")?;
             }
             writeln!(f, ": {}", abort.code)?;
