@@ -232,7 +232,10 @@ fn canoe_lines_as_python_can_reads_them() {
         .filter(|f| f.frame.is_rtr())
         .map(|f| (f.frame.id().raw(), f.frame.dlc()))
         .collect();
-    assert_eq!(remote, [(0x705, 0), (0x603, 0), (0x18FF_50E5, 8), (0x5_0005, 5)]);
+    assert_eq!(
+        remote,
+        [(0x705, 0), (0x603, 0), (0x18FF_50E5, 8), (0x5_0005, 5)]
+    );
     let long: Vec<_> = frames
         .iter()
         .filter(|f| f.frame.data().len() > 8 && !f.frame.is_error())

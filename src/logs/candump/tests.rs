@@ -1614,9 +1614,7 @@ fn indentation_never_decides_how_a_coloured_line_reads() {
     // Tabs too, and a coloured frame line still reads.
     let mut tabbed = b"\t\t".to_vec();
     tabbed.extend_from_slice(line);
-    assert!(
-        matches!(parse_line(&tabbed), Err(Error::Syntax { column: c, .. }) if c == column + 2)
-    );
+    assert!(matches!(parse_line(&tabbed), Err(Error::Syntax { column: c, .. }) if c == column + 2));
     let coloured = b"   \x1b[1;31mcan0  123   [1]  42\x1b[0m";
     let frame = parse_line(coloured).unwrap().unwrap();
     assert_eq!(frame.frame.data(), [0x42]);
