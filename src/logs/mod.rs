@@ -47,6 +47,7 @@ pub mod pcap;
 #[cfg(feature = "logs")]
 mod reader;
 mod record;
+mod skipped;
 mod text;
 pub mod trc;
 
@@ -59,6 +60,9 @@ pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 #[cfg(feature = "std")]
 pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};
+#[cfg(feature = "std")]
+pub(crate) use skipped::OtherCounts;
+pub use skipped::{OtherRecord, OtherRecords};
 #[cfg(feature = "std")]
 pub use text::MAX_LINE_LEN;
 pub use text::{split_lines, SplitLines};

@@ -370,6 +370,10 @@ impl ReadLog for LogReader {
         each!(&self.inner, reader => reader.other_records())
     }
 
+    fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
+        each!(&self.inner, reader => reader.other_kinds())
+    }
+
     fn bytes_read(&self) -> u64 {
         each!(&self.inner, reader => reader.bytes_read())
     }
