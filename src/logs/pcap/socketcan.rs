@@ -220,7 +220,10 @@ mod tests {
 
     #[test]
     fn damaged_packets() {
-        assert_eq!(decode(&[0; 7], FrameLayout::LinkType227), Err(too_short(8, 7)));
+        assert_eq!(
+            decode(&[0; 7], FrameLayout::LinkType227),
+            Err(too_short(8, 7))
+        );
         assert_eq!(
             decode(&packet(0x1, 8, 0, &[1, 2], 0), FrameLayout::LinkType227),
             Err(too_short(16, 10))
@@ -234,7 +237,10 @@ mod tests {
             Err(BinaryError::CanDataTooLong { len: 65, max: 64 })
         );
         assert_eq!(
-            decode(&packet(RTR_FLAG | 0x1, 9, 0, &[], CAN_MTU), FrameLayout::LinkType227),
+            decode(
+                &packet(RTR_FLAG | 0x1, 9, 0, &[], CAN_MTU),
+                FrameLayout::LinkType227
+            ),
             Err(BinaryError::CanDataTooLong { len: 9, max: 8 })
         );
     }
