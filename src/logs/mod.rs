@@ -60,7 +60,7 @@ pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 #[cfg(feature = "std")]
 pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};
-#[cfg(feature = "std")]
+#[cfg(any(feature = "pcap", feature = "blf"))]
 pub(crate) use skipped::OtherCounts;
 pub use skipped::{OtherRecord, OtherRecords};
 #[cfg(feature = "std")]

@@ -123,15 +123,16 @@ impl fmt::Display for OtherRecords {
 }
 
 /// The counts of a reader's skipped records, kind by kind in the order
-/// first met (a handful of kinds at most: a linear search).
-#[cfg(feature = "std")]
+/// first met (a handful of kinds at most: a linear search): what the
+/// binary readers keep.
+#[cfg(any(feature = "pcap", feature = "blf"))]
 #[derive(Debug, Clone, Default)]
 pub(crate) struct OtherCounts {
     counts: Vec<OtherRecords>,
     total: u64,
 }
 
-#[cfg(feature = "std")]
+#[cfg(any(feature = "pcap", feature = "blf"))]
 impl OtherCounts {
     /// Count one record of `kind`.
     pub(crate) fn add(&mut self, kind: OtherRecord) {
