@@ -2,27 +2,49 @@
 # Run every fuzz target of motionwire for a bounded time (libFuzzer through
 # cargo-fuzz), failing on any crash or broken invariant.
 #
-#   fuzz/run.sh [SECONDS]      SECONDS per target, default 20
+#   fuzz/run.sh [SECONDS]          every target, SECONDS each (default 20)
+#   fuzz/run.sh --long [SECONDS]   the long mode: every reader's target
+#                                  (LONG_TARGETS below), SECONDS each
+#                                  (default 300); same as FUZZ_LONG=1
 #
 # Prints one line per target and a closing count; exits non-zero when a
 # target fails (its log and crashing input are named in its line; the input
 # is kept under fuzz/artifacts/<target>/). Installs cargo-fuzz when missing.
 #
 # Environment:
+#   FUZZ_LONG       1: the long mode, as --long.
 #   FUZZ_SANITIZER  cargo-fuzz sanitizer, default "none": the library has no
 #                   unsafe code, so AddressSanitizer adds little but halves the
 #                   speed and needs a nightly toolchain ("address" works with one).
-#   FUZZ_TARGETS    space-separated subset of targets, default all.
+#   FUZZ_TARGETS    space-separated subset of targets, default all (the long
+#                   mode: the readers' targets).
 #   FUZZ_JOBS       targets fuzzed at once, default the number of cores.
 #
 # The committed seeds in fuzz/corpus/<target>/ are read only; new inputs go
 # to fuzz/target/corpus/<target>/, which a later run on the same machine
-# starts from.
+# starts from: runs add up. 20 s finds what is shallow; some inputs need
+# half a million runs and more (a 150 s run of candump_line found what
+# every 20 s run had missed, issue 20), which the long mode gives the
+# readers of outside files.
 set -euo pipefail
 
-seconds="${1:-20}"
+# The targets that read outside files: each log format's reader, detection
+# and the reading of any log.
+LONG_TARGETS="candump_line asc_line trc_line pcap blf log_detect logs_read"
+
+long="${FUZZ_LONG:-0}"
+if [ "${1:-}" = "--long" ]; then
+    long=1
+    shift
+fi
+if [ "$long" = 1 ]; then
+    seconds="${1:-300}"
+    FUZZ_TARGETS="${FUZZ_TARGETS:-$LONG_TARGETS}"
+else
+    seconds="${1:-20}"
+fi
 if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
-    echo "usage: fuzz/run.sh [SECONDS]   (SECONDS per target, a positive integer)" >&2
+    echo "usage: fuzz/run.sh [--long] [SECONDS]   (SECONDS per target, a positive integer)" >&2
     exit 2
 fi
 sanitizer="${FUZZ_SANITIZER:-none}"

@@ -8,6 +8,14 @@ beside each a JSON file with what a real reader reads back, frame by frame.
 - log2asc.asc and log2asc_fd.asc: can-utils' log2asc from log2asc_in.log
   (a candump log), the second with -f (every frame in the CANFD form);
   truth: can-utils' asc2log reading them back into candump lines.
+- canoe.asc: hand-written in the shapes CANoe writes (as python-can's own
+  test data, test/data/logfile.asc and test_CanFdMessage64.asc, has them;
+  our identifiers and data): statistics after classic data and right
+  after a remote request's `r` (`Tx r Length = 1704000 BitCount = 145 ID =
+  88888888x`), `r 8` with statistics, error frames with CANoe's details,
+  CANFD lines with EDL (0x1000) and, at 12 and 64 bytes, without it (flags
+  `0`), a CANFD remote request (flags 0x200050, length 0); truth:
+  python-can's ASCReader.
 - handmade_dec_relative.asc: hand-written (python-can cannot write it):
   base dec, timestamps relative, a symbolic name in a CANFD line, TxRq,
   Statistic and chip status lines; truth: python-can's ASCReader (which, in
@@ -16,6 +24,7 @@ beside each a JSON file with what a real reader reads back, frame by frame.
 
 Run: python3 scripts/gen_asc_fixtures.py   (python-can 4.x; can-utils'
 log2asc and asc2log on the PATH, e.g. Debian's can-utils package)
+     python3 scripts/gen_asc_fixtures.py canoe   (canoe.asc alone: python-can only)
 """
 import json
 import os
@@ -212,8 +221,62 @@ def handmade():
         f.write("\n")
 
 
+ZEROS_60 = " ".join(["00"] * 60)
+FD64 = "11 22 33 44 " + ZEROS_60
+CANOE = f"""date Mon Nov 23 07:35:00.000 am 2026
+base hex  timestamps absolute
+internal events logged
+// version 13.0.0
+Begin Triggerblock Mon Nov 23 07:35:00.000 am 2026
+   0.000000 Start of measurement
+   0.001000 CAN 1 Status:chip status error active
+   0.001000 CAN 2 Status:chip status error active
+   0.501000 1 ErrorFrame
+   0.501010 1 ErrorFrame ECC: 10100010
+   0.501020 2 ErrorFrame Flags = 0xe CodeExt = 0x20a2 Code = 0x82 ID = 0 DLC = 0 Position = 5 Length = 11300
+   0.510001 1  705             Tx   r
+   0.520002 1  603             Tx   r Length = 1704000 BitCount = 145 ID = 1539
+   0.584921 2  18FF50E5x       Tx   r 8 Length = 1704000 BitCount = 145 ID = 419385573x
+   1.015991 1  Statistic: D 0 R 0 XD 0 XR 0 E 0 O 0 B 0.00%
+   1.098426 1  183             Rx   d 6 37 02 A0 86 01 00  Length = 240015 BitCount = 124 ID = 387
+   1.148421 2  18FF50E5x       Rx   d 8 01 02 03 04 05 06 07 08    Length = 273910 BitCount = 141 ID = 419385573x
+   2.005071 CANFD   1 Rx        283  Drive_TPDO3                      1 0 8  8 37 02 00 00 A0 86 01 00   102203  133   303000 e0006659 46500250 4b140250 20011736 2001040d
+   2.005141 CANFD   2 Tx        1C4D80A7x                                   0 1 9 12 01 02 03 04 05 06 07 08 09 0A 0B 0C   130000  150   105000 1a2b3c 46500250 4b140250 20011736 2001040d
+   2.300981 CANFD   1 Tx     50005x                                0 0 5 0 140000 73 200050 7a60 46500250 460a0250 20011736 20010205
+   2.506898 CANFD   1 Rx        4EE                                   1 0 f 64 {FD64} 1331984 11 0 46500250 460a0250 20011736 20010205
+   2.606898 CANFD   2 Rx        1C4D80A8x    AlphaNumericName_2                             0 1 f 64 {FD64} 1331984 11 0 46500250 460a0250 20011736 20010205
+   2.706898 CANFD   1 Rx        2A1                                   1 1 9 12 01 02 03 04 05 06 07 08 09 0A 0B 0C 130000 150 0 0 46500250 460a0250 20011736 20010205
+   2.806898 CANFD   2 Tx ErrorFrame Not Acknowledge error, dominant error flag fffe c7 31ca Arb. 556 44 0 0 f 64 {" ".join(["00"] * 64)} 1331984 11 0 46500250 460a0250 20011736 20010205
+ 113.016026 1  Statistic: D 0 R 0 XD 0 XR 0 E 0 O 0 B 0.00%
+End TriggerBlock
+"""
+
+
+def canoe():
+    path = os.path.join(OUT, "canoe.asc")
+    with open(path, "w") as f:
+        f.write(CANOE)
+    with can.ASCReader(path, relative_timestamp=False) as reader:
+        read = [message_json(m, True) for m in reader]
+        start = reader.start_time
+    for fr in read:
+        fr["as_written"] = f"{float(fr['timestamp']) - start:.6f}"
+    with open(path.replace(".asc", ".json"), "w") as f:
+        json.dump({"python_can": can.__version__, "read_from": "canoe.asc",
+                   "note": "ASCReader(relative_timestamp=False); as_written is the time "
+                           "less the reader's start_time (the date line); channel is "
+                           "python-can's plus 1",
+                   "frames": read}, f, indent=1)
+        f.write("\n")
+
+
 if __name__ == "__main__":
+    import sys
     os.makedirs(OUT, exist_ok=True)
+    if sys.argv[1:] == ["canoe"]:
+        canoe()
+        sys.exit(0)
     python_can()
     can_utils()
     handmade()
+    canoe()

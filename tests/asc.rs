@@ -7,6 +7,10 @@
 //! - `log2asc.asc`, `log2asc_fd.asc` (`-f`, every frame in the `CANFD`
 //!   form): can-utils' `log2asc` from `log2asc_in.log`; truth: can-utils'
 //!   `asc2log` reading them back.
+//! - `canoe.asc`: hand-written in the shapes CANoe writes, as python-can's
+//!   own test data has them (statistics after data and after a remote
+//!   request's `r`, error frames with details, `CANFD` lines with and
+//!   without EDL); truth: python-can's `ASCReader`.
 //! - `handmade_dec_relative.asc`: hand-written (`base dec`, `timestamps
 //!   relative`, a symbolic name, `TxRq`, statistics, chip status); truth:
 //!   python-can's `ASCReader`, with the time since the start added up.
@@ -186,4 +190,64 @@ fn canfd_lines_without_fdf_are_classic_frames() {
     let f = frame(fd, &mut parser);
     assert!(f.is_fd());
     assert_eq!(f.fd_flags(), FdFlags::BRS.union(FdFlags::ESI));
+}
+
+/// CANoe's lines (SPEC §5.3): statistics after a remote request's `r`
+/// (`Tx r Length = 1704000 BitCount = 145 ID = …`) and after `r 8`, and
+/// `CANFD` lines of 12 and 64 bytes whose flags lack EDL, read frame for
+/// frame as python-can's `ASCReader` reads them. The one difference is the
+/// SPEC §5.3 decision: a `CANFD` line without EDL of at most 8 bytes (here
+/// the remote request with flags 0x200050) is classic; python-can marks
+/// every `CANFD` line as CAN FD.
+#[test]
+fn canoe_lines_as_python_can_reads_them() {
+    let (text, truth) = fixture("canoe");
+    let (frames, status) = read(&text);
+    assert_eq!(status, 2, "the two chip status lines");
+    assert_eq!(frames.len(), truth.len());
+    for (i, (frame, want)) in frames.iter().zip(&truth).enumerate() {
+        let at = format!("frame {i} at {}", want["as_written"]);
+        check_common(&at, frame, want);
+        assert_eq!(time(frame), want["as_written"].as_str().unwrap(), "{at}");
+        // An error frame is no CAN FD frame (python-can: a `CANFD`
+        // ErrorFrame line is).
+        let classic_canfd_line = frame.frame.is_rtr() && want["fd"] == true;
+        if !classic_canfd_line && !frame.frame.is_error() {
+            assert_eq!(frame.frame.is_fd(), want["fd"], "{at}");
+        }
+        if !frame.frame.is_error() {
+            let direction = if want["rx"] == true {
+                Direction::Rx
+            } else {
+                Direction::Tx
+            };
+            assert_eq!(frame.direction, Some(direction), "{at}");
+        }
+    }
+    // What was rejected before: the remote requests followed by statistics
+    // (length 0 without a DLC, 8 with one) and the 64-byte lines without
+    // EDL (BRS / ESI from their columns).
+    let remote: Vec<_> = frames
+        .iter()
+        .filter(|f| f.frame.is_rtr())
+        .map(|f| (f.frame.id().raw(), f.frame.dlc()))
+        .collect();
+    assert_eq!(
+        remote,
+        [(0x705, 0), (0x603, 0), (0x18FF_50E5, 8), (0x5_0005, 5)]
+    );
+    let long: Vec<_> = frames
+        .iter()
+        .filter(|f| f.frame.data().len() > 8 && !f.frame.is_error())
+        .map(|f| (f.frame.data().len(), f.frame.fd_flags()))
+        .collect();
+    assert_eq!(
+        long,
+        [
+            (12, FdFlags::ESI),
+            (64, FdFlags::BRS),
+            (64, FdFlags::ESI),
+            (12, FdFlags::BRS.union(FdFlags::ESI)),
+        ]
+    );
 }

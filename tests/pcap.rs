@@ -7,6 +7,14 @@
 //! interface and packet, a name resolution block), and beside each
 //! `FILE.json`, what `tshark -T fields` reads from it.
 //!
+//! `scripts/gen_sll_fixtures.py` wrote the Linux "cooked" captures with
+//! scapy's `CookedLinux`/`CookedLinuxV2` and `CAN`/`CANFD` layers (the
+//! identifier word in host byte order, as the kernel hands it to `tcpdump
+//! -i any`): `sll.pcap` (link type 113), `sll2.pcap` (276), `sll2.pcapng`
+//! (`editcap -F pcapng`) and `sll_mixed.pcapng` (`mergecap` with an
+//! Ethernet capture), each with an IPv4 packet among the CAN ones, and the
+//! same `FILE.json` from tshark.
+//!
 //! Documented differences from tshark 4.0:
 //! - a remote request has no data: tshark shows the bytes after the header
 //!   as `data.data` (here the padding `00`), the crate keeps the length as
@@ -98,9 +106,15 @@ fn check_against_tshark(name: &str, format: LogFormat) {
     assert_eq!(PcapReader::new(&bytes[..]).unwrap().format(), format);
     let (frames, error, other) = read(&bytes);
     assert_eq!(error, None, "{name}");
+    // `can:data`, `canfd`; after a cooked header `sll:can:data`.
     let can: Vec<_> = packets
         .iter()
-        .filter(|p| field(p, "frame.protocols").unwrap().starts_with("can"))
+        .filter(|p| {
+            field(p, "frame.protocols")
+                .unwrap()
+                .split(':')
+                .any(|layer| layer == "can" || layer == "canfd")
+        })
         .collect();
     assert_eq!(other as usize, packets.len() - can.len(), "{name}");
     assert_eq!(frames.len(), can.len(), "{name}");
@@ -212,6 +226,89 @@ fn multi_interface_pcapng_reads_as_tshark_reads_it() {
     let (frames, _, other) = read(&fixture("multi.pcapng"));
     assert_eq!(other, 1, "the Ethernet packet");
     assert_eq!(frames[3].0, 5, "the Ethernet packet took number 4");
+}
+
+/// Linux cooked captures (SPEC §5.5): link types 113 and 276, protocol
+/// 0x000C / 0x000D, the SocketCAN frame in host byte order — every frame
+/// as tshark reads it; the IPv4 packet (and the Ethernet ones of the mixed
+/// file) counted by kind, named by link type.
+#[test]
+fn linux_cooked_captures_read_as_tshark_reads_them() {
+    use motionwire::logs::{OtherRecord, OtherRecords};
+    check_against_tshark("sll.pcap", LogFormat::Pcap);
+    check_against_tshark("sll2.pcap", LogFormat::Pcap);
+    check_against_tshark("sll2.pcapng", LogFormat::Pcapng);
+    check_against_tshark("sll_mixed.pcapng", LogFormat::Pcapng);
+    let ip = |link_type| OtherRecord::CookedProtocol {
+        link_type,
+        protocol: 0x0800,
+    };
+    for (name, kinds) in [
+        ("sll.pcap", vec![(ip(113), 1)]),
+        ("sll2.pcap", vec![(ip(276), 1)]),
+        ("sll2.pcapng", vec![(ip(276), 1)]),
+        (
+            "sll_mixed.pcapng",
+            vec![(OtherRecord::LinkType(1), 2), (ip(276), 1)],
+        ),
+    ] {
+        let bytes = fixture(name);
+        let mut reader = PcapReader::new(&bytes[..]).unwrap();
+        let mut frames = 0;
+        while let Some(record) = reader.next_event() {
+            record.unwrap();
+            frames += 1;
+        }
+        assert_eq!(frames, 10, "{name}");
+        let counted: Vec<_> = reader
+            .other_kinds()
+            .iter()
+            .map(|k| (k.kind, k.count))
+            .collect();
+        assert_eq!(counted, kinds, "{name}");
+        assert_eq!(
+            reader.other_records(),
+            kinds.iter().map(|k| k.1).sum::<u64>(),
+            "{name}"
+        );
+    }
+    assert_eq!(
+        OtherRecords {
+            kind: OtherRecord::LinkType(1),
+            count: 2
+        }
+        .to_string(),
+        "2 packets of link type 1 (Ethernet) skipped: not CAN"
+    );
+}
+
+/// A cooked packet cut inside its header, or inside the SocketCAN frame
+/// after it: the error says where, after the frames before it.
+#[test]
+fn a_cut_cooked_packet_is_damage() {
+    let bytes = fixture("sll.pcap");
+    let records = pcap_record_offsets(&bytes);
+    // The first packet: 16-byte cooked header + 16-byte can_frame.
+    let first = records[0];
+    let len = u32::from_le_bytes(bytes[first + 8..first + 12].try_into().unwrap());
+    assert_eq!(len, 32);
+    for (captured, needed, at) in [(10u32, 16u64, 0u64), (20, 8, 16)] {
+        let mut b = bytes.clone();
+        b[first + 8..first + 12].copy_from_slice(&captured.to_le_bytes());
+        b.truncate(first + 16 + captured as usize);
+        let (frames, error, _) = read(&b);
+        assert!(frames.is_empty());
+        let found = u64::from(captured) - at;
+        assert_eq!(
+            error,
+            binary(
+                LogFormat::Pcap,
+                (first + 16) as u64 + at,
+                BinaryError::SocketCanTooShort { needed, found }
+            ),
+            "captured {captured}"
+        );
+    }
 }
 
 fn binary(format: LogFormat, offset: u64, reason: BinaryError) -> Option<Error> {

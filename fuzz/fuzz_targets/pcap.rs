@@ -12,6 +12,8 @@
 //! - every frame keeps the frame invariants (identifier in range, at most
 //!   8 data bytes, 64 for CAN FD, a remote request without data) and has
 //!   no direction;
+//! - the skipped packets' counts by kind (`other_kinds`) add up to
+//!   `other_records`, one entry per kind;
 //! - both readings give the same records, error and count: the read-ahead
 //!   window does not depend on how the input arrives.
 #![no_main]
@@ -87,6 +89,15 @@ fn read_all<R: Read>(input: R, len: usize) -> Outcome {
     }
     assert!(reader.next_event().is_none());
     let other = reader.other_records();
+    // The counts by kind add up to the count, one entry per kind, each
+    // message printable.
+    let kinds = reader.other_kinds();
+    assert_eq!(kinds.iter().map(|k| k.count).sum::<u64>(), other);
+    for (i, k) in kinds.iter().enumerate() {
+        assert!(k.count > 0);
+        assert!(kinds[..i].iter().all(|o| o.kind != k.kind));
+        let _ = k.to_string();
+    }
     if error.is_none() {
         assert!(frames.len() as u64 + other >= last);
     }

@@ -40,6 +40,7 @@
 mod bus;
 mod cia402;
 mod json;
+mod names;
 mod pdo;
 mod record;
 mod sdo;
@@ -49,6 +50,7 @@ use std::path::Path;
 
 pub use bus::BusName;
 pub use cia402::Cia402Reading;
+pub use names::ObjectNames;
 pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};
 
@@ -454,6 +456,7 @@ impl Decoder {
         let state = self.buses.get(at).nodes[usize::from(node.get())]
             .as_ref()
             .expect("made above");
+        let names = object_names(&self.config, node, profile);
         let step = SdoStep {
             node,
             sender,
@@ -465,7 +468,7 @@ impl Decoder {
                 transfer,
                 data: state.sdo.finished(),
             }),
-            objects: profile.object_set(),
+            names,
         };
         (step, cia402)
     }
@@ -651,6 +654,15 @@ impl Decoder {
         Some((reading, cia402))
     }
 
+    /// Return how `node`'s objects are named (SPEC §7.3 `object`): its EDS
+    /// or DCF's `ParameterName` first, then the CiA 301 communication
+    /// objects and the objects of its profile (CiA 402's for a node whose
+    /// EDS makes it a drive): what [`SdoStep::object`] names.
+    #[must_use]
+    pub fn object_names(&self, node: NodeId) -> ObjectNames<'_> {
+        object_names(&self.config, node, self.config.profiles.of(Some(node)))
+    }
+
     /// Return whether `node` on `bus` is a CiA 402 drive: its profile, its
     /// EDS's device type or an SDO upload of 1000h in the log says so
     /// (SPEC §8.3).
@@ -682,6 +694,19 @@ impl Decoder {
         }
         open
     }
+}
+
+/// How `node`, of `profile`, names its objects (SPEC §7.3 `object`).
+fn object_names(config: &DecoderConfig, node: NodeId, profile: Profile) -> ObjectNames<'_> {
+    let eds = config
+        .descriptions
+        .iter()
+        .find(|d| d.node == node)
+        .map(|d| &d.eds);
+    let set = profile.object_set().or(eds
+        .is_some_and(Eds::is_cia402)
+        .then_some(crate::canopen::ObjectSet::Drive));
+    ObjectNames::new(eds, set)
 }
 
 /// The value of a completed expedited transfer's data, little-endian, for

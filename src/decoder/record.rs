@@ -5,15 +5,13 @@ use std::io::{self, Write};
 
 use crate::can::Iface;
 use crate::canopen::sdo::SdoOutcome;
-use crate::canopen::{
-    object_name, CanOpenMessage, Emcy, MessageKind, NodeId, ObjectAddress, ObjectSet,
-};
+use crate::canopen::{CanOpenMessage, Emcy, MessageKind, NodeId, ObjectAddress};
 use crate::profiles::akd::AkdManufacturerField;
 use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
 
 use super::json::{self, Object};
-use super::{Cia402Reading, Decoded, EndedTransfer, PdoReading, SdoStep};
+use super::{Cia402Reading, Decoded, EndedTransfer, ObjectNames, PdoReading, SdoStep};
 
 impl Decoded<'_> {
     /// Write the frame as one JSON object and a newline: SPEC §6.1's
@@ -80,7 +78,7 @@ impl Decoded<'_> {
                 if let Some(step) = &decoded.sdo {
                     write_sdo_json(&mut obj, step)?;
                     if let Some(ended) = &step.ended {
-                        write_transfer_json(&mut obj, ended, step.objects)?;
+                        write_transfer_json(&mut obj, ended, step.names)?;
                     }
                     if let Some(cia402) = &decoded.cia402 {
                         cia402_json(&mut obj, cia402)?;
@@ -195,9 +193,18 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
     let message = match &step.message {
         Ok(message) => message,
         Err(_) => {
-            // A short frame: the multiplexer as far as it goes.
+            // A short frame, as far as it goes (SPEC §7.1 decision): the
+            // multiplexer, or from a 3-byte frame the index alone.
             if let Some(m) = step.multiplexer() {
-                write_multiplexer(&mut o, m, step.objects)?;
+                write_multiplexer(&mut o, m, step.names)?;
+            } else if let Some(index) = step.index() {
+                o.uint("index", u64::from(index))?;
+                match step.object() {
+                    // From the EDS or a table: escaped (a file's name may
+                    // hold anything).
+                    Some(name) => o.str("object", name)?,
+                    None => o.null("object")?,
+                }
             }
             return o.end();
         }
@@ -207,7 +214,7 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
         o.name("subcommand", sub.name())?;
     }
     if let Some(m) = f.multiplexer {
-        write_multiplexer(&mut o, m, step.objects)?;
+        write_multiplexer(&mut o, m, step.names)?;
     }
     if let Some(e) = f.expedited {
         o.bool("expedited", e)?;
@@ -252,12 +259,12 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
 fn write_multiplexer<W: Write>(
     o: &mut Object<'_, W>,
     m: ObjectAddress,
-    objects: Option<ObjectSet>,
+    names: ObjectNames<'_>,
 ) -> io::Result<()> {
     o.uint("index", u64::from(m.index))?;
     o.uint("subindex", u64::from(m.sub_index))?;
-    match object_name(m.index, objects) {
-        Some(name) => o.name("object", name),
+    match names.name(m.index) {
+        Some(name) => o.str("object", name),
         None => o.null("object"),
     }
 }
@@ -266,13 +273,13 @@ fn write_multiplexer<W: Write>(
 fn write_transfer_json<W: Write>(
     obj: &mut Object<'_, W>,
     ended: &EndedTransfer<'_>,
-    objects: Option<ObjectSet>,
+    names: ObjectNames<'_>,
 ) -> io::Result<()> {
     let transfer = &ended.transfer;
     let out = obj.key("transfer")?;
     let mut o = Object::begin(out)?;
     o.name("direction", transfer.direction.name())?;
-    write_multiplexer(&mut o, transfer.multiplexer, objects)?;
+    write_multiplexer(&mut o, transfer.multiplexer, names)?;
     o.uint("size", u64::from(transfer.bytes))?;
     json::hex_string(o.key("data")?, ended.data)?;
     o.bool("truncated", ended.truncated())?;

@@ -10,7 +10,9 @@ use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
 };
-use crate::canopen::{object_name, NodeId, ObjectAddress, ObjectSet};
+use crate::canopen::{NodeId, ObjectAddress};
+
+use super::ObjectNames;
 use crate::Error;
 
 /// One SDO frame as its channel's tracker read it (SPEC §7.3 `sdo`), and
@@ -38,12 +40,12 @@ pub struct SdoStep<'d> {
     pub started: bool,
     /// The transfer this frame ends, with its data.
     pub ended: Option<EndedTransfer<'d>>,
-    /// The objects that name this node's SDO objects (SPEC §7.3 `object`):
-    /// the communication objects and the node's profile's.
-    pub objects: Option<ObjectSet>,
+    /// Where this node's SDO objects get their names (SPEC §7.3 `object`):
+    /// its EDS first, then the communication objects and the profile's.
+    pub names: ObjectNames<'d>,
 }
 
-impl SdoStep<'_> {
+impl<'d> SdoStep<'d> {
     /// Return the service: the message's, or what the first byte says when
     /// the frame could not be read ([`SdoService::Unknown`] for no byte).
     #[must_use]
@@ -58,24 +60,74 @@ impl SdoStep<'_> {
     }
 
     /// Return the index and sub-index the frame carries: the message's, or,
-    /// when it could not be read, bytes 1–3 if the service has them and
-    /// they are there (SPEC §7.1: a short frame is decoded as far as it
-    /// goes).
+    /// when it could not be read, bytes 1–3 if the frame is an initiate or
+    /// an abort and they are there (SPEC §7.1 decision: a short frame is
+    /// decoded as far as it goes; 3 bytes give the index only, see
+    /// [`index`](Self::index)).
     #[must_use]
     pub fn multiplexer(&self) -> Option<ObjectAddress> {
         match &self.message {
             Ok(message) => message.fields().multiplexer,
-            Err(_) => (self.service().has_multiplexer() && self.data.len() >= 4)
+            Err(_) => (self.data.len() >= 4 && self.carries_multiplexer())
                 .then(|| SdoFrame::new_unchecked(self.data).multiplexer()),
+        }
+    }
+
+    /// Return the index of the object the frame addresses: the
+    /// multiplexer's, or, for a frame cut after byte 2 that is an initiate
+    /// or an abort, bytes 1–2 (little-endian; SPEC §7.1 decision: "3 bytes
+    /// give the service and the index, 4 the sub-index too").
+    ///
+    /// ```
+    /// use motionwire::can::{CanFrame, CanId, LogFrame};
+    /// use motionwire::decoder::{Decoder, DecoderConfig};
+    ///
+    /// let mut decoder = Decoder::new(DecoderConfig::new());
+    /// let cut = LogFrame::new(CanFrame::new(CanId::standard(0x603).unwrap(), &[0x40, 0x00, 0x10]).unwrap());
+    /// let step = decoder.decode(1, &cut).sdo.unwrap();
+    /// assert!(step.message.is_err());
+    /// assert_eq!((step.index(), step.multiplexer()), (Some(0x1000), None));
+    /// assert_eq!(
+    ///     step.to_string(),
+    ///     "request initiate upload 1000h Device type, error: SDO frame: buffer of 3 bytes where 8 are needed"
+    /// );
+    /// ```
+    #[must_use]
+    pub fn index(&self) -> Option<u16> {
+        if let Some(m) = self.multiplexer() {
+            return Some(m.index);
+        }
+        match (&self.message, self.data) {
+            (Err(_), [_, lo, hi, ..]) if self.carries_multiplexer() => {
+                Some(u16::from_le_bytes([*lo, *hi]))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the first byte makes the frame one whose bytes 1–3 are the
+    /// multiplexer: an initiate of any service (a block transfer's
+    /// sub-command 0), or an abort (SPEC §7.1).
+    fn carries_multiplexer(&self) -> bool {
+        let Some(&first) = self.data.first() else {
+            return false;
+        };
+        match self.service() {
+            SdoService::BlockDownload | SdoService::BlockUpload => {
+                // ccs 5 / scs 5: the sub-command in bits 1–0; ccs 6 / scs
+                // 6: in bit 0. Initiate is 0.
+                let mask = if first >> 5 == 5 { 0x03 } else { 0x01 };
+                first & mask == 0
+            }
+            service => service.has_multiplexer(),
         }
     }
 
     /// Return the name of the object the frame addresses, if it addresses
     /// one and the name is known (SPEC §7.3 `object`).
     #[must_use]
-    pub fn object(&self) -> Option<&'static str> {
-        self.multiplexer()
-            .and_then(|m| object_name(m.index, self.objects))
+    pub fn object(&self) -> Option<&'d str> {
+        self.index().and_then(|index| self.names.name(index))
     }
 }
 
@@ -228,7 +280,24 @@ impl fmt::Display for SdoStep<'_> {
         }
         let message = match &self.message {
             Ok(m) => m,
-            Err(e) => return write!(f, "{} error: {e}", self.sender.direction_name()),
+            Err(e) => {
+                // SPEC §7.1 decision: as far as the frame goes — the
+                // service, the index (3 bytes), the sub-index (4).
+                f.write_str(self.sender.direction_name())?;
+                let service = self.service();
+                if service != SdoService::Unknown {
+                    write_words(f, service.name())?;
+                }
+                match (self.multiplexer(), self.index()) {
+                    (Some(m), _) => write!(f, " {m}")?,
+                    (None, Some(index)) => write!(f, " {index:04X}h")?,
+                    (None, None) => {}
+                }
+                if let Some(name) = self.object() {
+                    write!(f, " {name}")?;
+                }
+                return write!(f, ", error: {e}");
+            }
         };
         let fields = message.fields();
         if let Some(code) = fields.abort_code {
@@ -238,19 +307,14 @@ impl fmt::Display for SdoStep<'_> {
             }
             return write!(f, ": {}", code.description());
         }
-        write!(f, "{} ", self.sender.direction_name())?;
-        for (i, word) in message.service().name().split('_').enumerate() {
-            if i > 0 {
-                f.write_str(" ")?;
-            }
-            f.write_str(word)?;
-        }
+        f.write_str(self.sender.direction_name())?;
+        write_words(f, message.service().name())?;
         if let Some(sub) = fields.subcommand {
             write!(f, " {}", sub.name())?;
         }
         if let Some(m) = fields.multiplexer {
             write!(f, " {m}")?;
-            if let Some(name) = object_name(m.index, self.objects) {
+            if let Some(name) = self.names.name(m.index) {
                 write!(f, " {name}")?;
             }
         }
@@ -292,6 +356,15 @@ impl fmt::Display for SdoStep<'_> {
         }
         Ok(())
     }
+}
+
+/// A service's name as words (`initiate_upload` → ` initiate upload`),
+/// each after a space.
+fn write_words(f: &mut fmt::Formatter<'_>, name: &str) -> fmt::Result {
+    for word in name.split('_') {
+        write!(f, " {word}")?;
+    }
+    Ok(())
 }
 
 /// Transfer data as a person reads it: expedited data as a little-endian

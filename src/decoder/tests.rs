@@ -150,6 +150,64 @@ fn sdo_steps_and_transfers_read_as_a_person_says_them() {
     );
 }
 
+/// SPEC §7.1 decision: a short SDO frame is decoded as far as it goes —
+/// 3 bytes give the service and the index, 4 the sub-index too — in the
+/// text and in the JSON `sdo` object.
+#[test]
+fn a_short_sdo_frame_says_as_much_as_it_holds() {
+    let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
+    let rows: [(u32, &[u8], &str, &str); 6] = [
+        (
+            0x603,
+            &[0x40, 0x41, 0x60],
+            "request initiate upload 6041h Statusword, error: SDO frame: buffer of 3 bytes where 8 are needed",
+            r#""sdo":{"direction":"request","service":"initiate_upload","index":24641,"object":"Statusword"}"#,
+        ),
+        (
+            0x603,
+            &[0x2B, 0x40, 0x60, 0x00],
+            "request initiate download 6040h.00 Controlword, error: SDO frame: buffer of 4 bytes where 8 are needed",
+            r#""sdo":{"direction":"request","service":"initiate_download","index":24640,"subindex":0,"object":"Controlword"}"#,
+        ),
+        (
+            0x583,
+            &[0x80, 0x00, 0x10],
+            "response abort 1000h Device type, error: SDO frame: buffer of 3 bytes where 8 are needed",
+            r#""sdo":{"direction":"response","service":"abort","index":4096,"object":"Device type"}"#,
+        ),
+        (
+            0x603,
+            &[0x40, 0x41],
+            "request initiate upload, error: SDO frame: buffer of 2 bytes where 8 are needed",
+            r#""sdo":{"direction":"request","service":"initiate_upload"}"#,
+        ),
+        // A segment has no multiplexer: bytes 1–2 are data.
+        (
+            0x603,
+            &[0x60, 0x41, 0x60],
+            "request upload segment, error: SDO frame: buffer of 3 bytes where 8 are needed",
+            r#""sdo":{"direction":"request","service":"upload_segment"}"#,
+        ),
+        // A block download's end (sub-command 1): bytes 1–2 are the CRC.
+        (
+            0x603,
+            &[0xC1, 0x34, 0x12],
+            "request block download, error: SDO frame: buffer of 3 bytes where 8 are needed",
+            r#""sdo":{"direction":"request","service":"block_download"}"#,
+        ),
+    ];
+    for (i, (id, data, text, json)) in rows.into_iter().enumerate() {
+        let frame = at(i as u64, id, data);
+        let decoded = decoder.decode(i as u64 + 1, &frame);
+        let step = decoded.sdo.unwrap();
+        assert_eq!(step.to_string(), text);
+        let mut out = Vec::new();
+        decoded.write_json(&mut out).unwrap();
+        let out = String::from_utf8(out).unwrap();
+        assert!(out.contains(json), "{out}");
+    }
+}
+
 #[test]
 fn the_sdo_data_cap_keeps_the_first_bytes() {
     let mut decoder = Decoder::new(DecoderConfig::new().sdo_data_cap(2));

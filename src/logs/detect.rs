@@ -9,6 +9,11 @@ use crate::logs::LogFormat;
 /// (PEAK TRC 2.x writes about a dozen comment lines, Vector ASC four).
 pub const DETECT_LEN: usize = 64 * 1024;
 
+/// The most lines that are neither blank, comments nor deciding that
+/// [`detect`] reads past before the first deciding line (SPEC §5.7
+/// decision): a 17th makes the input [`Detected::Unrecognised`].
+pub const DETECT_MAX_UNDECIDED: usize = 16;
+
 /// What the first bytes of a log are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Detected {
@@ -19,8 +24,9 @@ pub enum Detected {
     Gzip,
     /// Not enough bytes to decide: read more.
     NeedMore,
-    /// The whole input holds nothing but blank and `#` comment lines (or
-    /// nothing at all): there is nothing to read, whatever its format.
+    /// The whole input holds nothing but blank and comment lines (`#`,
+    /// `;`, `//`), or nothing at all: there is nothing to read, whatever
+    /// its format.
     Empty,
     /// None of the formats of SPEC §5.
     Unrecognised,
@@ -33,18 +39,22 @@ pub enum Detected {
 /// - pcap: magic `a1b2c3d4` or `a1b23c4d` (nanoseconds), in either byte
 ///   order; pcapng: the section header block type `0a0d0d0a`; BLF: `LOGG`;
 ///   MF4: `MDF     ` or `UnFinMF ` and `4.` at byte 8; gzip: `1f 8b`.
-/// - Text, line by line, blank lines skipped: a line starting with `;` is a
-///   PEAK TRC header, and `N)` followed by a time a TRC row; `date `,
-///   `base `, `Begin Triggerblock`, `internal events logged`, `// version`
-///   or `no internal events logged` start a Vector ASC file, and a decimal
-///   time followed by a channel number or `CANFD` is an ASC event line; a
-///   line that [`candump::parse_line`] reads as a frame is candump (log or
-///   screen). The first line that decides decides; other lines (`#`
-///   comments, a damaged line) decide nothing, so a log with a bad first
-///   line is still read (and the line reported). No deciding line in the
-///   first [`DETECT_LEN`] bytes (or the whole input) makes it
-///   [`Detected::Unrecognised`]; nothing but blank and comment lines,
-///   [`Detected::Empty`].
+/// - Text (SPEC §5.7 decision: random bytes must never pass for a log),
+///   line by line: only a line with a format's own shape decides — a
+///   PEAK TRC `;$FILEVERSION=` header or row (`N)` and a time); a Vector
+///   ASC header that names the format (`date `, `base `, `Begin
+///   Triggerblock`, `internal events logged`, `no internal events
+///   logged`) or event line (a decimal time followed by a channel number
+///   or `CANFD`); a line that [`candump::parse_line`] reads as a frame
+///   (candump log or screen). The first deciding line decides. Blank lines
+///   and lines that merely start with a comment character (`#`, `;`, `//`)
+///   decide nothing; other lines (a damaged line) decide nothing either,
+///   so that a log with a bad first line is still read (and the line
+///   reported) — but more than [`DETECT_MAX_UNDECIDED`] of them before the
+///   first deciding line, or a NUL byte in any line up to it, make the
+///   input [`Detected::Unrecognised`], as does no deciding line in the
+///   first [`DETECT_LEN`] bytes (or the whole input); nothing but blank
+///   and comment lines, [`Detected::Empty`].
 ///
 /// ```
 /// use motionwire::logs::{detect, Detected};
@@ -58,6 +68,9 @@ pub enum Detected {
 /// assert_eq!(detect(trc, true), Detected::Format(LogFormat::Trc));
 /// assert_eq!(detect(&[0xd4, 0xc3, 0xb2, 0xa1, 2, 0, 4, 0], false), Detected::Format(LogFormat::Pcap));
 /// assert_eq!(detect(b"Hello, world!\n", true), Detected::Unrecognised);
+/// // A comment character alone decides nothing.
+/// assert_eq!(detect(b";\xe9\x17 \x80\n", true), Detected::Empty);
+/// assert_eq!(detect(b"junk\n;\x01\x02\x00\n(1.0) can0 705#05\n", true), Detected::Unrecognised);
 /// ```
 #[must_use]
 pub fn detect(head: &[u8], complete: bool) -> Detected {
@@ -80,7 +93,7 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
     }
     let head = head.get(..DETECT_LEN).unwrap_or(head);
     let mut rest = head;
-    let mut undecided = false;
+    let mut undecided = 0;
     while !rest.is_empty() {
         let (line, next, whole) = match rest.iter().position(|&b| b == b'\n') {
             Some(i) => (
@@ -91,6 +104,11 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
             None => (rest, &[][..], complete || head.len() == DETECT_LEN),
         };
         rest = next;
+        if line.contains(&0) {
+            // No text log has a NUL before its first frame: binary data
+            // (even in a line cut off here, whatever follows it).
+            return Detected::Unrecognised;
+        }
         if !whole {
             // The last line may be cut off: decide on it only when it is
             // all there is.
@@ -99,12 +117,18 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
         match line_shape(line) {
             Some(format) => return Detected::Format(format),
             None if is_blank_or_comment(line) => {}
-            // A damaged first line does not hide the log after it.
-            None => undecided = true,
+            // A damaged first line does not hide the log after it; many
+            // of them are no log.
+            None => {
+                undecided += 1;
+                if undecided > DETECT_MAX_UNDECIDED {
+                    return Detected::Unrecognised;
+                }
+            }
         }
     }
     if complete || head.len() == DETECT_LEN {
-        if undecided {
+        if undecided > 0 {
             Detected::Unrecognised
         } else {
             Detected::Empty
@@ -129,29 +153,29 @@ fn trim_start(line: &[u8]) -> &[u8] {
     line.get(start..).unwrap_or_default()
 }
 
+/// A blank line, or one that starts with a comment character of one of the
+/// text formats: `#` (candump), `;` (PEAK TRC), `//` (Vector ASC).
 fn is_blank_or_comment(line: &[u8]) -> bool {
     match trim_start(line) {
-        [] | [b'\r', ..] | [b'#', ..] => true,
+        [] | [b'\r', ..] | [b'#' | b';', ..] | [b'/', b'/', ..] => true,
         // A UTF-8 byte order mark before anything else.
         [0xEF, 0xBB, 0xBF, rest @ ..] => is_blank_or_comment(rest),
         _ => false,
     }
 }
 
-/// The format a single line belongs to, if it tells.
+/// The format a single line belongs to, if it has that format's own shape.
 fn line_shape(line: &[u8]) -> Option<LogFormat> {
     let text = trim_start(line);
     let text = text.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(text);
-    const ASC_HEADERS: [&[u8]; 7] = [
+    const ASC_HEADERS: [&[u8]; 5] = [
         b"date ",
         b"base ",
         b"Begin Triggerblock",
         b"internal events logged",
         b"no internal events logged",
-        b"// version",
-        b"Start of measurement",
     ];
-    if text.first() == Some(&b';') {
+    if text.starts_with(b";$FILEVERSION=") {
         return Some(LogFormat::Trc);
     }
     if ASC_HEADERS.iter().any(|h| text.starts_with(h)) {
@@ -160,9 +184,13 @@ fn line_shape(line: &[u8]) -> Option<LogFormat> {
     let digits = text.iter().take_while(|b| b.is_ascii_digit()).count();
     if digits > 0 {
         let after = text.get(digits..).unwrap_or_default();
-        // TRC row: `   1)      1059.9 …` (1.x: `1)  1059 …`).
-        if let [b')', b' ' | b'\t', ..] = after {
-            return Some(LogFormat::Trc);
+        // TRC 1.x row: `   1)      1059.900 …` (1.0: `1)  1059 …`): the
+        // message number, `)`, then the time offset.
+        if let [b')', rest @ ..] = after {
+            let time = trim_start(rest);
+            if time.len() < rest.len() && time.first().is_some_and(u8::is_ascii_digit) {
+                return Some(LogFormat::Trc);
+            }
         }
         // ASC event: `   0.012345 1  123 …`, `   0.0123 CANFD   1 …`.
         if let [b'.', frac @ ..] = after {
@@ -252,6 +280,14 @@ mod tests {
                 "     1)      1059.900 DT 0300 Rx 7 00 00 00 00 04 00 00\n",
                 Detected::Format(LogFormat::Trc),
             ),
+            // A comment line alone decides nothing (it used to make TRC).
+            (";anything\n", Detected::Empty),
+            ("// a comment\n", Detected::Empty),
+            (
+                ";##########\n;   Start time: 1\n     1)      1059.900 DT 0300 Rx 7 00 00 00 00 04 00 00\n",
+                Detected::Format(LogFormat::Trc),
+            ),
+            ("1) x\n", Detected::Unrecognised),
             ("Hello, world!\n", Detected::Unrecognised),
             ("# only a comment\n\n", Detected::Empty),
             ("", Detected::Empty),
@@ -281,5 +317,69 @@ mod tests {
         proptest!(|(bytes in proptest::collection::vec(any::<u8>(), 0..300), complete in any::<bool>())| {
             let _ = detect(&bytes, complete);
         });
+    }
+
+    /// SPEC §5.7 decision: up to 16 lines that decide nothing are read
+    /// past, the 17th makes the input unrecognised; a NUL byte before the
+    /// deciding line too.
+    #[test]
+    fn sixteen_undecided_lines_at_most_and_no_nul() {
+        let frame = "(1700000000.000500) can0 081#10\n";
+        for junk in [0, 1, 16, 17] {
+            let mut text = "junk line\n# comment\n\n".repeat(junk);
+            text.push_str(frame);
+            let want = if junk <= DETECT_MAX_UNDECIDED {
+                Detected::Format(LogFormat::Candump)
+            } else {
+                Detected::Unrecognised
+            };
+            assert_eq!(detect(text.as_bytes(), true), want, "{junk} junk lines");
+        }
+        // Comment lines do not count.
+        let mut text = "; a comment\n".repeat(100);
+        text.push_str(frame);
+        assert_eq!(
+            detect(text.as_bytes(), true),
+            Detected::Format(LogFormat::Candump)
+        );
+        for text in [&b"# \x00\n(1.0) can0 705#05\n"[..], b"\x00", b"ab\x00cd"] {
+            assert_eq!(detect(text, true), Detected::Unrecognised, "{text:?}");
+        }
+        // A NUL in a cut-off line already decides.
+        assert_eq!(detect(b"abc\x00", false), Detected::Unrecognised);
+    }
+
+    /// One MiB of random bytes (a fixed seed) is no log (issue 20: one line
+    /// starting with `;` made it TRC).
+    #[test]
+    fn random_bytes_are_no_log() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut bytes = vec![0u8; 1 << 20];
+        for b in &mut bytes {
+            // xorshift64*
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            *b = (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 56) as u8;
+        }
+        assert_eq!(detect(&bytes, true), Detected::Unrecognised);
+        // The same bytes without any NUL, from every line start.
+        let no_nul: Vec<u8> = bytes.iter().map(|&b| b.max(1)).collect();
+        let mut at = 0;
+        while let Some(i) = no_nul[at..].iter().position(|&b| b == b'\n') {
+            assert_ne!(
+                detect(&no_nul[at..], true),
+                Detected::Format(LogFormat::Trc),
+                "from byte {at}"
+            );
+            assert!(
+                !matches!(detect(&no_nul[at..], true), Detected::Format(_)),
+                "from byte {at}"
+            );
+            at += i + 1;
+            if at > 64 * 1024 {
+                break;
+            }
+        }
     }
 }

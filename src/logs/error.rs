@@ -139,7 +139,8 @@ pub enum BinaryError {
         count: u32,
     },
     /// A SocketCAN packet (link type 227) is shorter than its 8-byte header
-    /// and the data length it declares (SPEC §5.5).
+    /// and the data length it declares, or a Linux cooked packet (link type
+    /// 113 or 276) than its own header (SPEC §5.5).
     SocketCanTooShort {
         /// The bytes the header and the declared data need.
         needed: u64,

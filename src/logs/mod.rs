@@ -55,10 +55,11 @@ pub mod pcap;
 #[cfg(feature = "logs")]
 mod reader;
 mod record;
+mod skipped;
 mod text;
 pub mod trc;
 
-pub use detect::{detect, Detected, DETECT_LEN};
+pub use detect::{detect, Detected, DETECT_LEN, DETECT_MAX_UNDECIDED};
 pub use error::{BinaryError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
@@ -67,6 +68,9 @@ pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 #[cfg(feature = "std")]
 pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};
+#[cfg(any(feature = "pcap", feature = "blf"))]
+pub(crate) use skipped::OtherCounts;
+pub use skipped::{OtherRecord, OtherRecords};
 #[cfg(feature = "std")]
 pub use text::MAX_LINE_LEN;
 pub use text::{split_lines, SplitLines};

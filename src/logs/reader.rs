@@ -64,7 +64,7 @@ pub fn open(path: impl AsRef<Path>) -> Result<LogReader, LogError> {
 /// detected from the content ([`detect`]), a gzip stream is inflated
 /// (once: a gzip inside a gzip is no log), and the format's reader hands
 /// on the events ([`LogReader`], a [`ReadLog`]). An input of nothing but
-/// blank and `#` comment lines reads as an empty candump log.
+/// blank and comment lines (`#`, `;`, `//`) reads as an empty candump log.
 ///
 /// Reading starts with what detection needs (up to [`DETECT_LEN`] bytes,
 /// less when the input pauses: a live stream is decided on its first
@@ -207,6 +207,7 @@ impl ReadOptions {
                 }
             };
             // The reader starts again at the first byte.
+            let head_len = head.len();
             let again: Input = Box::new(Cursor::new(head).chain(input));
             let format = match (detected, self.format) {
                 (Detected::Gzip, _) => {
@@ -215,8 +216,21 @@ impl ReadOptions {
                     continue;
                 }
                 (_, Some(format)) | (Detected::Format(format), None) => format,
-                // Nothing but blank or comment lines: nothing to read.
-                (Detected::Empty, None) => LogFormat::Candump,
+                // Nothing but blank or comment lines (`#`, `;`, `//`):
+                // nothing to read. The whole input: an empty candump log
+                // (the lines are no one's frames: not reported). The first
+                // DETECT_LEN bytes only: read on as candump, which takes
+                // `#` comments.
+                (Detected::Empty, None) => {
+                    if head_len < DETECT_LEN {
+                        let nothing: Input = Box::new(io::empty());
+                        return Ok(LogReader {
+                            inner: Inner::Candump(CandumpReader::new(nothing)),
+                            gzip,
+                        });
+                    }
+                    LogFormat::Candump
+                }
                 (Detected::NeedMore | Detected::Unrecognised, None) => {
                     return Err(LogError::new(None, LogErrorKind::Unrecognised))
                 }
@@ -365,6 +379,10 @@ impl ReadLog for LogReader {
 
     fn other_records(&self) -> u64 {
         each!(&self.inner, reader => reader.other_records())
+    }
+
+    fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
+        each!(&self.inner, reader => reader.other_kinds())
     }
 
     fn bytes_read(&self) -> u64 {

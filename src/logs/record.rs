@@ -110,6 +110,14 @@ pub trait ReadLog {
         0
     }
 
+    /// Return the records counted by [`other_records`](ReadLog::other_records),
+    /// kind by kind in the order first met (SPEC §5.5: the program names
+    /// the link type of what it skipped); `Display` of each says it
+    /// ("12 packets of link type 1 (Ethernet) skipped: not CAN").
+    fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
+        &[]
+    }
+
     /// Return how many lines or records were reported and skipped so far
     /// (the errors for which [`LogError::is_skipped`] is true).
     fn skipped(&self) -> u64;

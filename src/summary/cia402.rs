@@ -35,8 +35,10 @@ pub struct Cia402Fault {
 pub struct Cia402Timeline {
     /// Every change of state, in order.
     pub transitions: Vec<Cia402Transition>,
-    /// Every fault, in order.
-    pub faults: Vec<Cia402Fault>,
+    /// Every fault, in order; `None` when no statusword was seen (SPEC
+    /// §8.3 decision: nothing observed is not "no fault", `"faults":
+    /// null`), `Some` and empty when the drive was seen and never faulted.
+    pub faults: Option<Vec<Cia402Fault>>,
 }
 
 impl Cia402Timeline {
@@ -44,6 +46,13 @@ impl Cia402Timeline {
     #[must_use]
     pub fn last_state(&self) -> Option<Cia402State> {
         self.transitions.last().map(|t| t.to)
+    }
+
+    /// Return whether a statusword of the drive was seen: whether its
+    /// faults are known ([`faults`](Self::faults) is `Some`).
+    #[must_use]
+    pub fn observed(&self) -> bool {
+        self.faults.is_some()
     }
 }
 
@@ -75,8 +84,10 @@ impl TimelineBuilder {
             return;
         }
         let transition = Cia402Transition { line, ts, from, to };
+        // The first statusword makes the faults known: none so far.
+        let faults = timeline.faults.get_or_insert_with(Vec::new);
         if to.is_fault() && !from.is_some_and(Cia402State::is_fault) {
-            timeline.faults.push(Cia402Fault {
+            faults.push(Cia402Fault {
                 transition,
                 emcy_before: last_error,
             });

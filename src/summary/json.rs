@@ -176,7 +176,8 @@ impl Serialize for SdoSummary {
 
 impl Serialize for Cia402Timeline {
     /// SPEC §8.3: `{"transitions": [{"line", "ts", "from", "to"}],
-    /// "last_state", "faults": [lines]}`.
+    /// "last_state", "faults": [lines]}`; `"faults": null` when no
+    /// statusword was seen (SPEC §8.3 decision).
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         struct Transitions<'a>(&'a Cia402Timeline);
         impl Serialize for Transitions<'_> {
@@ -191,7 +192,10 @@ impl Serialize for Cia402Timeline {
         let mut map = serializer.serialize_map(Some(3))?;
         map.serialize_entry("transitions", &Transitions(self))?;
         map.serialize_entry("last_state", &self.last_state().map(|s| s.name()))?;
-        let faults: Vec<u64> = self.faults.iter().map(|f| f.transition.line).collect();
+        let faults: Option<Vec<u64>> = self
+            .faults
+            .as_ref()
+            .map(|faults| faults.iter().map(|f| f.transition.line).collect());
         map.serialize_entry("faults", &faults)?;
         map.end()
     }

@@ -8,7 +8,7 @@ use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::decoder::SdoStep;
 
 /// One abort seen on a node's channel (SPEC §7.4 `aborts`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SdoAbort {
     /// The line of the abort frame.
     pub line: u64,
@@ -16,8 +16,10 @@ pub struct SdoAbort {
     /// the abort carries none (python-canopen's client aborts with
     /// 0000h.00).
     pub multiplexer: ObjectAddress,
-    /// The object's name, where known (SPEC §7.3 `object`).
-    pub object: Option<&'static str>,
+    /// The object's name, where known (SPEC §7.3 `object`: the node's
+    /// EDS first, then the communication objects and the profile's;
+    /// [`SdoStep::object`]).
+    pub object: Option<String>,
     /// The abort code.
     pub code: SdoAbortCode,
     /// Who aborted.
@@ -105,7 +107,7 @@ impl SdoStats {
             s.aborts.push(SdoAbort {
                 line,
                 multiplexer,
-                object: crate::canopen::object_name(multiplexer.index, step.objects),
+                object: step.names.name(multiplexer.index).map(str::to_owned),
                 code,
                 by,
             });

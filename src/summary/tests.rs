@@ -124,8 +124,9 @@ fn a_drives_fault_names_the_emcy_before_it() {
         states,
         [(2, Cia402State::OperationEnabled), (5, Cia402State::Fault)]
     );
-    assert_eq!(drive.faults.len(), 1);
-    assert_eq!(drive.faults[0].emcy_before.unwrap().line, 3);
+    let faults = drive.faults.as_ref().expect("statuswords seen");
+    assert_eq!(faults.len(), 1);
+    assert_eq!(faults[0].emcy_before.unwrap().line, 3);
     let text = summary.nodes[0].to_string();
     assert!(
         text.contains("went operation_enabled → fault at line 5, 17.0 ms after EMCY 0x7305"),
@@ -135,6 +136,50 @@ fn a_drives_fault_names_the_emcy_before_it() {
     assert_eq!(json[0]["cia402"]["faults"], serde_json::json!([5]));
     assert_eq!(json[0]["cia402"]["last_state"], "fault");
     assert_eq!(json[0]["sdo"]["latency_ms"]["count"], 2);
+}
+
+/// SPEC §8.3 decision: a drive whose statusword was never seen has
+/// `"faults": null` — nothing observed is not "no fault" — and one that was
+/// seen and never faulted `[]`.
+#[test]
+fn a_drive_never_seen_has_unknown_faults() {
+    // Node 3 (akd) only answers a read of its device type: no statusword.
+    let summary = summarize(
+        &[
+            (Some(0), 0x603, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),
+            (
+                Some(1),
+                0x583,
+                &[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0],
+            ),
+        ],
+        Summarizer::new(),
+    );
+    let drive = summary.nodes[0].cia402.as_ref().expect("an akd is a drive");
+    assert!(drive.transitions.is_empty());
+    assert_eq!(drive.faults, None);
+    assert!(!drive.observed());
+    let json = serde_json::to_value(&summary).unwrap();
+    assert_eq!(
+        json[0]["cia402"],
+        serde_json::json!({"transitions": [], "last_state": null, "faults": null})
+    );
+    assert!(summary.nodes[0]
+        .to_string()
+        .contains("CiA 402: no statusword seen"));
+
+    // Seen in operation enabled, never faulted: no fault, known.
+    let summary = summarize(
+        &[
+            (Some(0), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+            (Some(1), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+        ],
+        Summarizer::new(),
+    );
+    let drive = summary.nodes[0].cia402.as_ref().unwrap();
+    assert_eq!(drive.faults, Some(Vec::new()));
+    let json = serde_json::to_value(&summary).unwrap();
+    assert_eq!(json[0]["cia402"]["faults"], serde_json::json!([]));
 }
 
 #[test]

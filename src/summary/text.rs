@@ -197,7 +197,7 @@ impl fmt::Display for SdoSummary {
                 abort.by.name(),
                 abort.multiplexer
             )?;
-            if let Some(name) = abort.object {
+            if let Some(name) = &abort.object {
                 write!(f, " ({name})")?;
             }
             writeln!(f, ": {}", abort.code)?;
@@ -246,7 +246,7 @@ impl fmt::Display for Cia402Timeline {
             write!(f, " {} (line {})", t.to.name(), t.line)?;
         }
         writeln!(f)?;
-        for fault in &self.faults {
+        for fault in self.faults.iter().flatten() {
             let t = fault.transition;
             write!(
                 f,

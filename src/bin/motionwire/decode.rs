@@ -363,15 +363,11 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                 sink.flush()?;
             }
         }
-        let others = log.other_records();
-        if others > 0 {
-            // SPEC §5.5, §5.6: counted and said once, not per record.
-            let s = if others == 1 { "" } else { "s" };
-            writeln!(
-                sink.err,
-                "{name}: {others} {} record{s} without a CAN frame skipped",
-                log.format()
-            )?;
+        // SPEC §5.5, §5.6: counted and said once per kind, not per record,
+        // naming the link type ("12 packets of link type 1 (Ethernet)
+        // skipped: not CAN").
+        for kind in log.other_kinds() {
+            writeln!(sink.err, "{name}: {kind}")?;
         }
         Ok(())
     }

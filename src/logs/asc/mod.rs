@@ -34,9 +34,14 @@
 //! - A `CANFD` line is a CAN FD frame only when its flags field has
 //!   EDL/FDF (0x1000) set, with BRS (0x2000) and ESI (0x4000) from the same
 //!   field; without it the line carries a classic frame, a remote request
-//!   when the flags have 0x10 (SPEC §5.3 decision, as `asc2log` reads it).
-//!   python-can marks every `CANFD` line as CAN FD and reads BRS/ESI from
-//!   their columns.
+//!   when the flags have 0x10 (SPEC §5.3 decision, as `asc2log` reads it)
+//!   — unless its data length exceeds 8 bytes, which only CAN FD can have
+//!   (CANoe writes such lines, flags `11`): then it is CAN FD with BRS and
+//!   ESI from their columns, as python-can reads it. python-can marks every
+//!   `CANFD` line as CAN FD and reads BRS/ESI from their columns.
+//! - CANoe's statistics after a frame's data (`Length = 1704000 BitCount
+//!   = 145 ID = 88888888x`) are read past; after a remote request's `r`
+//!   without a DLC they make a request of length 0, as python-can reads it.
 //! - `ErrorFrame` says no more than that an error happened: it is an error
 //!   frame of class `bus_error` with 8 zero data bytes, as `asc2log` writes
 //!   it (python-can gives identifier 0 and no data).
@@ -293,11 +298,19 @@ impl AscParser {
             b"r" | b"R" => true,
             _ => return Err(tokens.error_at(at, |found| SyntaxError::AscFrameType { found })),
         };
-        let dlc = match tokens.next_token() {
-            Some((at, dlc)) => Some(
-                hex_digit(dlc)
-                    .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?,
-            ),
+        let dlc = match tokens.clone().next_token() {
+            // CANoe writes its statistics right after `r` when the request
+            // has no DLC (`Tx r Length = 1704000 BitCount = 145 ID = …`):
+            // a remote request of length 0, as python-can reads it.
+            Some((_, next)) if remote && hex_digit(next).is_none() => None,
+            Some((at, dlc)) => {
+                tokens.next_token();
+                Some(
+                    hex_digit(dlc).ok_or_else(|| {
+                        tokens.error_at(at, |found| SyntaxError::AscDlc { found })
+                    })?,
+                )
+            }
             None if remote => None,
             None => return Err(tokens.error_at(line.len(), |found| SyntaxError::AscDlc { found })),
         };
@@ -360,12 +373,17 @@ impl AscParser {
         if !(bit(first) && bit(second)) {
             tokens.next_token();
         }
-        for _ in 0..2 {
+        // The BRS and ESI columns.
+        let mut columns = [false; 2];
+        for column in &mut columns {
             let (at, flag) = tokens.expect(|found| SyntaxError::AscFdColumn { found })?;
-            if !matches!(flag, b"0" | b"1") {
-                return Err(tokens.error_at(at, |found| SyntaxError::AscFdColumn { found }));
-            }
+            *column = match flag {
+                b"0" => false,
+                b"1" => true,
+                _ => return Err(tokens.error_at(at, |found| SyntaxError::AscFdColumn { found })),
+            };
         }
+        let [brs_column, esi_column] = columns;
         let (at, dlc) = tokens.expect(|found| SyntaxError::AscDlc { found })?;
         let dlc = hex_digit(dlc)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?;
@@ -389,14 +407,24 @@ impl AscParser {
         let flags = hex(flags)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscFlags { found }))?;
         let payload = data.get(..len).unwrap_or_default();
-        let frame = if flags & FLAG_FDF != 0 {
+        // Without EDL/FDF, more than 8 bytes can only be CAN FD (CANoe
+        // writes such lines; SPEC §5.3 decision): BRS and ESI then come
+        // from their columns, as python-can reads them, and the flags'
+        // other bits (0x10 included) are not read.
+        let fd_without_edl = flags & FLAG_FDF == 0 && len > CLASSIC_MAX_LEN;
+        let frame = if flags & FLAG_FDF != 0 || fd_without_edl {
             // FDF itself is what makes the frame CAN FD here; the flags
             // kept are BRS and ESI, as the other readers keep them.
+            let (brs, esi) = if fd_without_edl {
+                (brs_column, esi_column)
+            } else {
+                (flags & FLAG_BRS != 0, flags & FLAG_ESI != 0)
+            };
             let mut fd = FdFlags::EMPTY;
-            if flags & FLAG_BRS != 0 {
+            if brs {
                 fd = fd.union(FdFlags::BRS);
             }
-            if flags & FLAG_ESI != 0 {
+            if esi {
                 fd = fd.union(FdFlags::ESI);
             }
             if FD_LENGTHS.get(usize::from(dlc)) != Some(&(len as u8)) {
@@ -406,10 +434,8 @@ impl AscParser {
         } else if flags & FLAG_RTR != 0 {
             CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
         } else {
-            // Classic content in the CAN FD form: at most 8 bytes.
-            if len > CLASSIC_MAX_LEN {
-                return Err(tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }));
-            }
+            // Classic content in the CAN FD form: at most 8 bytes (more
+            // is CAN FD, above).
             CanFrame::new(id, payload)
         };
         let frame = frame

@@ -71,7 +71,8 @@ use crate::can::{
 };
 use crate::logs::calendar::{days_in_month, days_since_epoch};
 use crate::logs::{
-    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN,
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
+    OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
 use crate::Error;
 
@@ -124,7 +125,7 @@ pub struct BlfReader<R: Read> {
     stream_base: u64,
     /// Objects (not containers) seen.
     number: u64,
-    other: u64,
+    other: OtherCounts,
     /// Objects reported as damaged and skipped.
     bad: u64,
     done: bool,
@@ -201,7 +202,7 @@ impl<R: Read> BlfReader<R> {
             pos: 0,
             stream_base: 0,
             number: 0,
-            other: 0,
+            other: OtherCounts::default(),
             bad: 0,
             done: false,
             file_done: false,
@@ -401,7 +402,7 @@ impl<R: Read> BlfReader<R> {
         let outcome = match decode_object(object, kind, version, self.start) {
             Ok(Some(frame)) => Object::Frame(frame),
             Ok(None) => {
-                self.other = self.other.saturating_add(1);
+                self.other.add(OtherRecord::BlfObject(kind));
                 Object::Other
             }
             // The object's size is known: report it, go on after it.
@@ -475,7 +476,11 @@ impl<R: Read> ReadLog for BlfReader<R> {
     }
 
     fn other_records(&self) -> u64 {
-        self.other
+        self.other.total()
+    }
+
+    fn other_kinds(&self) -> &[OtherRecords] {
+        self.other.by_kind()
     }
 
     fn skipped(&self) -> u64 {

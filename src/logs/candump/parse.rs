@@ -67,13 +67,20 @@ const COLOURED_MAX: usize = 512;
 /// 0x40–0x7E), parsed as any line; the interface name (which candump never
 /// colours inside) is taken from the line itself and error columns count in
 /// the line as it was.
+///
+/// The line's leading spaces and tabs are not copied (the parser skips them
+/// anyway), so that indentation never decides whether the rest fits in
+/// [`COLOURED_MAX`]: a line reads the same, its error columns shifted,
+/// however far it is indented (found by a 150 s fuzz run: a 512-byte
+/// coloured line fitted, the same line with one more leading space did not
+/// and was read with its escapes, its error 9 columns further right).
 #[cold]
 #[inline(never)]
 fn parse_coloured(line: &[u8]) -> Result<Option<Parsed<'_>>> {
     let mut plain = [0u8; COLOURED_MAX];
     let mut origin = [0u16; COLOURED_MAX + 1];
     let mut len = 0;
-    let mut at = 0;
+    let mut at = skip_space(line, 0);
     while let Some(&b) = line.get(at) {
         if b == ESC && line.get(at + 1) == Some(&b'[') {
             let params = line

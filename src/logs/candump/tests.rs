@@ -1577,3 +1577,45 @@ fn error_frame_explanation_lines_belong_to_the_frame() {
     // Without the state, a lone explanation line is malformed.
     assert!(parse_line(b"\tcontroller-problem{rx-error-warning}").is_err());
 }
+
+/// A 150 s fuzz run of `candump_line` (issue 20): a `candump -c` line whose
+/// text without its colour escapes is 512 bytes long fitted the buffer the
+/// escapes are stripped into; the same line with one leading space did not,
+/// was read with its escapes, and reported its error 9 columns further
+/// right instead of 1. Leading white space is no longer copied.
+#[test]
+fn indentation_never_decides_how_a_coloured_line_reads() {
+    let input = include_bytes!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/regressions/candump_line-crash-60073776.bin"
+    ));
+    let line = match input.iter().position(|&b| b == b'\n') {
+        Some(end) => &input[..=end],
+        None => &input[..],
+    };
+    let Err(Error::Syntax { column, reason, .. }) = parse_line(line) else {
+        panic!("the line is malformed");
+    };
+    for indent in 1..=3 {
+        let mut spaced = vec![b' '; indent];
+        spaced.extend_from_slice(line);
+        match parse_line(&spaced) {
+            Err(Error::Syntax {
+                column: shifted,
+                reason: shifted_reason,
+                ..
+            }) => {
+                assert_eq!(shifted, column + indent, "{indent} spaces: {reason}");
+                assert_eq!(shifted_reason, reason);
+            }
+            other => panic!("{indent} spaces: {other:?}"),
+        }
+    }
+    // Tabs too, and a coloured frame line still reads.
+    let mut tabbed = b"\t\t".to_vec();
+    tabbed.extend_from_slice(line);
+    assert!(matches!(parse_line(&tabbed), Err(Error::Syntax { column: c, .. }) if c == column + 2));
+    let coloured = b"   \x1b[1;31mcan0  123   [1]  42\x1b[0m";
+    let frame = parse_line(coloured).unwrap().unwrap();
+    assert_eq!(frame.frame.data(), [0x42]);
+}

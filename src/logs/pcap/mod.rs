@@ -17,9 +17,16 @@
 //!
 //! Packets of link type 227, `LINKTYPE_CAN_SOCKETCAN`, are CAN frames (the
 //! 8-byte header of `linux/can.h` with the identifier word big-endian, then
-//! the data; see the `socketcan` notes below). Packets of any other link
-//! type, and CAN XL frames, take their number and are counted in
-//! [`ReadLog::other_records`]: the caller reports them once (SPEC §5.5).
+//! the data; see the `socketcan` notes below). So are the Linux "cooked"
+//! captures of `tcpdump -i any` (and of Wireshark or dumpcap on a CAN
+//! interface in some setups): link type 113 ([`LINKTYPE_LINUX_SLL`],
+//! 16-byte header) and 276 ([`LINKTYPE_LINUX_SLL2`], 20-byte header) with
+//! protocol 0x000C (CAN) or 0x000D (CAN FD), whose SocketCAN frame follows
+//! in the capturing machine's byte order, read little-endian as tshark
+//! reads it (SPEC §5.5 decision). Packets of any other link type or
+//! protocol, and CAN XL frames, take their number and are counted by kind
+//! in [`ReadLog::other_records`] and [`ReadLog::other_kinds`]: the caller
+//! reports them once, naming the link type (SPEC §5.5).
 //!
 //! What each frame gets (SPEC §5.7):
 //! - `number`: the 1-based packet number, tshark's `frame.number`;
@@ -79,6 +86,7 @@
 //! # Ok::<(), motionwire::logs::LogError>(())
 //! ```
 
+mod cooked;
 mod input;
 #[cfg(test)]
 mod proptests;
@@ -93,11 +101,14 @@ use std::io::Read;
 
 use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
 use crate::logs::{
-    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN,
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
+    OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
 use crate::Error;
+use cooked::Cooked;
+pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
-use socketcan::Payload;
+use socketcan::{FrameLayout, Payload};
 
 /// `LINKTYPE_CAN_SOCKETCAN`: SocketCAN frames (SPEC §5.5).
 pub const LINKTYPE_CAN_SOCKETCAN: u16 = 227;
@@ -255,7 +266,8 @@ pub struct PcapReader<R: Read> {
     /// Bytes the interfaces hold, bounded by [`MAX_RECORD_LEN`].
     interface_bytes: usize,
     number: u64,
-    other: u64,
+    /// The packets that hold no CAN frame, by kind.
+    other: OtherCounts,
     done: bool,
     /// The interfaces of the section before, kept where they are until the
     /// next section starts (see [`ReadLog::generation`]).
@@ -299,7 +311,7 @@ impl<R: Read> PcapReader<R> {
             interfaces: Vec::new(),
             interface_bytes: 0,
             number: 0,
-            other: 0,
+            other: OtherCounts::default(),
             done: false,
             retired: Vec::new(),
             sections: 0,
@@ -727,26 +739,42 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
             };
             self.number = self.number.saturating_add(1);
-            let payload = if packet.link_type == Some(LINKTYPE_CAN_SOCKETCAN) {
-                let data = self
-                    .input
-                    .bytes()
-                    .get(packet.data.clone())
-                    .unwrap_or_default();
-                socketcan::decode(data)
-            } else {
-                Ok(Payload::NotCan)
+            let data = self
+                .input
+                .bytes()
+                .get(packet.data.clone())
+                .unwrap_or_default();
+            // The SocketCAN frame's offset in the packet, and how it is
+            // laid out; or the kind of packet that holds none.
+            let framed = match packet.link_type {
+                Some(LINKTYPE_CAN_SOCKETCAN) => Ok((0, FrameLayout::LinkType227)),
+                Some(link_type @ (LINKTYPE_LINUX_SLL | LINKTYPE_LINUX_SLL2)) => {
+                    match cooked::split(link_type, data) {
+                        Ok(Cooked::Can { at, layout }) => Ok((at, layout)),
+                        Ok(Cooked::Other(kind)) => Err(Ok(kind)),
+                        Err(reason) => Err(Err((0, reason))),
+                    }
+                }
+                Some(link_type) => Err(Ok(OtherRecord::LinkType(link_type))),
+                None => Err(Ok(OtherRecord::SystemdJournal)),
             };
-            let frame = match payload {
-                Ok(Payload::Frame(frame)) => frame,
-                Ok(Payload::NotCan) => {
+            let decoded = framed.and_then(|(at, layout)| {
+                match socketcan::decode(data.get(at..).unwrap_or_default(), layout) {
+                    Ok(Payload::Frame(frame)) => Ok(frame),
+                    Ok(Payload::NotCan) => Err(Ok(OtherRecord::CanXl)),
+                    Err(reason) => Err(Err((at, reason))),
+                }
+            });
+            let frame = match decoded {
+                Ok(frame) => frame,
+                Err(Ok(kind)) => {
                     self.input.consume(packet.len);
-                    self.other = self.other.saturating_add(1);
+                    self.other.add(kind);
                     continue;
                 }
-                Err(reason) => {
+                Err(Err((at, reason))) => {
                     self.done = true;
-                    let error = self.fail(packet.data.start, reason);
+                    let error = self.fail(packet.data.start + at, reason);
                     return Some(Err(error.or_at(Position::Record(self.number))));
                 }
             };
@@ -769,7 +797,11 @@ impl<R: Read> ReadLog for PcapReader<R> {
     }
 
     fn other_records(&self) -> u64 {
-        self.other
+        self.other.total()
+    }
+
+    fn other_kinds(&self) -> &[OtherRecords] {
+        self.other.by_kind()
     }
 
     fn skipped(&self) -> u64 {

@@ -55,6 +55,23 @@ const FD_KNOWN: u8 = 0x07;
 /// CAN XL frame marker in byte 4 (`CANXL_XLF`).
 const XLF: u8 = 0x80;
 
+/// How a packet lays out its frame: the identifier word's byte order and
+/// how CAN FD is told from classic CAN.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum FrameLayout {
+    /// `LINKTYPE_CAN_SOCKETCAN` (227): the identifier word big-endian, CAN
+    /// FD by Wireshark's rule (FDF, or the whole `canfd_frame`).
+    LinkType227,
+    /// After a Linux cooked header (link types 113, 276): the identifier
+    /// word in the capturing machine's byte order, read little-endian as
+    /// tshark does (SPEC §5.5 decision); CAN FD when the protocol says so
+    /// (`ETH_P_CANFD`), classic when it says `ETH_P_CAN`.
+    Cooked {
+        /// The protocol is `ETH_P_CANFD`.
+        fd: bool,
+    },
+}
+
 /// What a SocketCAN packet holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Payload {
@@ -65,9 +82,10 @@ pub(super) enum Payload {
     NotCan,
 }
 
-/// Decode one packet; the error says what is wrong with it.
+/// Decode one packet laid out as `layout` says; the error says what is
+/// wrong with it.
 #[inline]
-pub(super) fn decode(packet: &[u8]) -> Result<Payload, BinaryError> {
+pub(super) fn decode(packet: &[u8], layout: FrameLayout) -> Result<Payload, BinaryError> {
     let Some(header) = packet.first_chunk::<HEADER_LEN>() else {
         return Err(too_short(HEADER_LEN, packet.len()));
     };
@@ -75,9 +93,16 @@ pub(super) fn decode(packet: &[u8]) -> Result<Payload, BinaryError> {
     if len & XLF != 0 {
         return Ok(Payload::NotCan);
     }
-    let word = u32::from_be_bytes([i0, i1, i2, i3]);
-    let marked_fd = flags & FDF != 0 && flags & !FD_KNOWN == 0 && res0 == 0 && res1 == 0;
-    let fd = marked_fd || packet.len() == CANFD_MTU;
+    let (word, fd) = match layout {
+        FrameLayout::LinkType227 => {
+            let marked_fd = flags & FDF != 0 && flags & !FD_KNOWN == 0 && res0 == 0 && res1 == 0;
+            (
+                u32::from_be_bytes([i0, i1, i2, i3]),
+                marked_fd || packet.len() == CANFD_MTU,
+            )
+        }
+        FrameLayout::Cooked { fd } => (u32::from_le_bytes([i0, i1, i2, i3]), fd),
+    };
     let max = if fd { FD_MAX_LEN } else { CLASSIC_MAX_LEN };
     if usize::from(len) > max {
         return Err(BinaryError::CanDataTooLong {
@@ -140,7 +165,7 @@ mod tests {
     }
 
     fn frame(p: &[u8]) -> CanFrame {
-        match decode(p) {
+        match decode(p, FrameLayout::LinkType227) {
             Ok(Payload::Frame(f)) => f,
             other => panic!("{other:?}"),
         }
@@ -190,26 +215,32 @@ mod tests {
     fn can_xl_is_not_misread() {
         // prio, flags (XLF|SEC), sdt, len (little-endian), af, data
         let p = [0, 0, 0x01, 0x23, 0x81, 0x03, 4, 0, 0, 0, 0, 0, 1, 2, 3, 4];
-        assert_eq!(decode(&p), Ok(Payload::NotCan));
+        assert_eq!(decode(&p, FrameLayout::LinkType227), Ok(Payload::NotCan));
     }
 
     #[test]
     fn damaged_packets() {
-        assert_eq!(decode(&[0; 7]), Err(too_short(8, 7)));
         assert_eq!(
-            decode(&packet(0x1, 8, 0, &[1, 2], 0)),
+            decode(&[0; 7], FrameLayout::LinkType227),
+            Err(too_short(8, 7))
+        );
+        assert_eq!(
+            decode(&packet(0x1, 8, 0, &[1, 2], 0), FrameLayout::LinkType227),
             Err(too_short(16, 10))
         );
         assert_eq!(
-            decode(&packet(0x1, 9, 0, &[0; 9], 0)),
+            decode(&packet(0x1, 9, 0, &[0; 9], 0), FrameLayout::LinkType227),
             Err(BinaryError::CanDataTooLong { len: 9, max: 8 })
         );
         assert_eq!(
-            decode(&packet(0x1, 65, FDF, &[0; 65], 0)),
+            decode(&packet(0x1, 65, FDF, &[0; 65], 0), FrameLayout::LinkType227),
             Err(BinaryError::CanDataTooLong { len: 65, max: 64 })
         );
         assert_eq!(
-            decode(&packet(RTR_FLAG | 0x1, 9, 0, &[], CAN_MTU)),
+            decode(
+                &packet(RTR_FLAG | 0x1, 9, 0, &[], CAN_MTU),
+                FrameLayout::LinkType227
+            ),
             Err(BinaryError::CanDataTooLong { len: 9, max: 8 })
         );
     }

@@ -1,0 +1,155 @@
+//! The records a binary reader skips because they hold no CAN frame or bus
+//! event, by kind (SPEC §5.5, §5.6): said once per kind with its count —
+//! "12 packets of link type 1 (Ethernet) skipped: not CAN" — never per
+//! record.
+
+use core::fmt;
+
+/// A kind of record that holds no CAN frame or bus event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum OtherRecord {
+    /// A pcap or pcapng packet of a link type that carries no CAN frames
+    /// (SPEC §5.5; the link type as the tcpdump.org link-type list numbers
+    /// it).
+    LinkType(u16),
+    /// A packet of a Linux "cooked" capture (link type 113 or 276) whose
+    /// protocol is neither CAN (0x000C) nor CAN FD (0x000D) (SPEC §5.5).
+    CookedProtocol {
+        /// The link type: 113 (`LINUX_SLL`) or 276 (`LINUX_SLL2`).
+        link_type: u16,
+        /// The protocol type, an Ethernet type or Linux's `ETH_P_*`.
+        protocol: u16,
+    },
+    /// A CAN XL frame, which [`CanFrame`](crate::can::CanFrame) cannot
+    /// hold: counted, never misread.
+    CanXl,
+    /// A pcapng systemd journal export block: numbered as a packet, as
+    /// tshark numbers it.
+    SystemdJournal,
+    /// A BLF object of a type that holds no frame (SPEC §5.6).
+    BlfObject(u32),
+}
+
+impl OtherRecord {
+    /// Return the name of a pcap link type, where it is a common one
+    /// (tcpdump.org's list of link-layer header types).
+    #[must_use]
+    pub const fn link_type_name(link_type: u16) -> Option<&'static str> {
+        Some(match link_type {
+            0 => "BSD loopback",
+            1 => "Ethernet",
+            101 => "raw IP",
+            105 => "IEEE 802.11",
+            113 => "Linux cooked v1",
+            127 => "IEEE 802.11 radiotap",
+            201 => "Bluetooth HCI H4",
+            220 => "Linux USB",
+            227 => "SocketCAN",
+            228 => "IPv4",
+            229 => "IPv6",
+            253 => "Linux netlink",
+            276 => "Linux cooked v2",
+            _ => return None,
+        })
+    }
+
+    /// The noun for one record of this kind.
+    const fn noun(self) -> &'static str {
+        match self {
+            OtherRecord::LinkType(_) | OtherRecord::CookedProtocol { .. } => "packet",
+            OtherRecord::CanXl => "CAN XL frame",
+            OtherRecord::SystemdJournal => "systemd journal export block",
+            OtherRecord::BlfObject(_) => "BLF object",
+        }
+    }
+}
+
+/// Writes ` of link type 1 (Ethernet)`.
+fn link_type(f: &mut fmt::Formatter<'_>, link_type: u16) -> fmt::Result {
+    write!(f, " of link type {link_type}")?;
+    match OtherRecord::link_type_name(link_type) {
+        Some(name) => write!(f, " ({name})"),
+        None => Ok(()),
+    }
+}
+
+/// How many records of one kind a reader skipped.
+///
+/// `Display` says it as the program does (SPEC §5.5):
+///
+/// ```
+/// use motionwire::logs::{OtherRecord, OtherRecords};
+///
+/// let ethernet = OtherRecords { kind: OtherRecord::LinkType(1), count: 12 };
+/// assert_eq!(ethernet.to_string(), "12 packets of link type 1 (Ethernet) skipped: not CAN");
+/// let ip = OtherRecords {
+///     kind: OtherRecord::CookedProtocol { link_type: 113, protocol: 0x0800 },
+///     count: 1,
+/// };
+/// assert_eq!(
+///     ip.to_string(),
+///     "1 packet of link type 113 (Linux cooked v1) with protocol 0x0800 skipped: not CAN"
+/// );
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct OtherRecords {
+    /// The kind.
+    pub kind: OtherRecord,
+    /// How many.
+    pub count: u64,
+}
+
+impl fmt::Display for OtherRecords {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = if self.count == 1 { "" } else { "s" };
+        write!(f, "{} {}{s}", self.count, self.kind.noun())?;
+        match self.kind {
+            OtherRecord::LinkType(t) => link_type(f, t)?,
+            OtherRecord::CookedProtocol {
+                link_type: t,
+                protocol,
+            } => {
+                link_type(f, t)?;
+                write!(f, " with protocol {protocol:#06x}")?;
+            }
+            OtherRecord::BlfObject(t) => write!(f, " of type {t}")?,
+            OtherRecord::CanXl | OtherRecord::SystemdJournal => {}
+        }
+        f.write_str(match self.kind {
+            OtherRecord::CanXl => " skipped: not read",
+            _ => " skipped: not CAN",
+        })
+    }
+}
+
+/// The counts of a reader's skipped records, kind by kind in the order
+/// first met (a handful of kinds at most: a linear search): what the
+/// binary readers keep.
+#[cfg(any(feature = "pcap", feature = "blf"))]
+#[derive(Debug, Clone, Default)]
+pub(crate) struct OtherCounts {
+    counts: Vec<OtherRecords>,
+    total: u64,
+}
+
+#[cfg(any(feature = "pcap", feature = "blf"))]
+impl OtherCounts {
+    /// Count one record of `kind`.
+    pub(crate) fn add(&mut self, kind: OtherRecord) {
+        self.total = self.total.saturating_add(1);
+        match self.counts.iter_mut().find(|c| c.kind == kind) {
+            Some(c) => c.count = c.count.saturating_add(1),
+            None => self.counts.push(OtherRecords { kind, count: 1 }),
+        }
+    }
+
+    /// Every record counted.
+    pub(crate) const fn total(&self) -> u64 {
+        self.total
+    }
+
+    /// The counts by kind.
+    pub(crate) fn by_kind(&self) -> &[OtherRecords] {
+        &self.counts
+    }
+}
