@@ -1430,3 +1430,66 @@ fn nmt_sync_and_time_keys() {
         lines[5]
     );
 }
+
+/// Several files are several recordings, each record naming its file; a
+/// file given twice is read once; `--joined` reads them as one recording
+/// with lines numbered on (docs/output.md#several-files, issue 22).
+#[test]
+fn several_files_are_kept_apart() {
+    let a = temp_file(
+        "several_a.log",
+        "(1.000000) can0 705#00\n(1.100000) can0 085#1081110000000000\n",
+    );
+    let b = temp_file("several_b.log", "(2.000000) can0 705#05\n");
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+
+    let out = run(&["decode", "--json", a, b, a], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(
+        stderr(&out),
+        format!("motionwire: {a} is given more than once: read once\n")
+    );
+    let recs = records(&out);
+    let files: Vec<(&str, u64)> = recs
+        .iter()
+        .map(|r| (r["file"].as_str().unwrap(), r["line"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(files, [(a, 1), (a, 2), (b, 1)]);
+
+    // One summary per file, each record naming its file: node 5 twice.
+    let out = run(&["decode", "--summary", "--json", a, b], "");
+    let recs = records(&out);
+    let nodes: Vec<(&str, &Value)> = recs
+        .iter()
+        .filter(|r| r["type"] == "node")
+        .map(|r| (r["file"].as_str().unwrap(), &r["heartbeat"]["boot_ups"]))
+        .collect();
+    assert_eq!(nodes, [(a, &json!([1])), (b, &json!([]))]);
+    let text = run(&["decode", "--summary", a, b], "");
+    assert!(stdout(&text).starts_with(&format!("{a}: can0 node   5  frames")));
+
+    // --joined: one recording, lines numbered on, a record per file.
+    let out = run(&["decode", "--summary", "--json", "--joined", a, b], "");
+    let recs = records(&out);
+    let node = recs.iter().find(|r| r["type"] == "node").unwrap();
+    assert!(node.get("file").is_none());
+    assert_eq!(node["heartbeat"]["count"], 2);
+    assert_eq!(node["emcy"], 1);
+    let spans: Vec<&Value> = recs.iter().filter(|r| r["type"] == "file").collect();
+    assert_eq!(
+        spans,
+        [
+            &json!({"type": "file", "file": a, "first_line": 1, "last_line": 2}),
+            &json!({"type": "file", "file": b, "first_line": 3, "last_line": 3}),
+        ]
+    );
+    let out = run(&["decode", "--csv", "--joined", a, b], "");
+    let csv = stdout(&out);
+    let rows: Vec<&str> = csv.lines().collect();
+    assert!(rows[0].starts_with("file,line,ts,"));
+    assert!(
+        rows[3].starts_with(&format!("{b},3,2.000000,")),
+        "{}",
+        rows[3]
+    );
+}

@@ -27,12 +27,30 @@ impl Decoded<'_> {
     ///
     /// Writing to `out` failed.
     pub fn write_json<W: Write>(&self, out: &mut W) -> io::Result<()> {
+        self.write_record(out, None)
+    }
+
+    /// Write the frame's record as [`write_json`](Self::write_json) does,
+    /// with `"file": file` first: the record of one of several logs read
+    /// at once (docs/output.md#several-files).
+    ///
+    /// # Errors
+    ///
+    /// Writing to `out` failed.
+    pub fn write_json_in<W: Write>(&self, out: &mut W, file: &str) -> io::Result<()> {
+        self.write_record(out, Some(file))
+    }
+
+    fn write_record<W: Write>(&self, out: &mut W, file: Option<&str>) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
         let decoded = self;
         let profile = decoded.profile;
         let message = self.message();
         let mut obj = Object::begin(out)?;
+        if let Some(file) = file {
+            obj.str("file", file)?;
+        }
         obj.uint("line", self.position)?;
         match log.timestamp {
             Some(ts) => json::timestamp(obj.key("ts")?, ts)?,

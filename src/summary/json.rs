@@ -15,7 +15,8 @@ use crate::decoder::BusName;
 use super::text::ms;
 use super::{
     BusSummary, Cia402Timeline, EmcySeen, FrameCounts, GuardingSummary, HeartbeatGap,
-    HeartbeatSummary, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryRecord, Timeouts,
+    HeartbeatSummary, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryItem, SummaryRecord,
+    Timeouts,
 };
 
 /// A time as a JSON number with six or nine decimals.
@@ -30,11 +31,7 @@ impl Serialize for Ts {
     }
 }
 
-fn ts<S: Serializer>(
-    map: &mut S::SerializeMap,
-    key: &str,
-    ts: Option<Timestamp>,
-) -> Result<(), S::Error> {
+fn ts<M: SerializeMap>(map: &mut M, key: &str, ts: Option<Timestamp>) -> Result<(), M::Error> {
     map.serialize_entry(key, &ts.map(Ts))
 }
 
@@ -63,11 +60,18 @@ impl Serialize for Summary {
 }
 
 impl Serialize for SummaryRecord<'_> {
+    /// The node or bus record, with `"file"` first when the summary names
+    /// its file.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        match self {
-            SummaryRecord::Node(node) => node.serialize(serializer),
-            SummaryRecord::Bus(bus) => bus.serialize(serializer),
+        let mut map = serializer.serialize_map(None)?;
+        if let Some(file) = self.file {
+            map.serialize_entry("file", file)?;
         }
+        match self.item {
+            SummaryItem::Node(node) => node_entries(node, &mut map)?,
+            SummaryItem::Bus(bus) => bus_entries(bus, &mut map)?,
+        }
+        map.end()
     }
 }
 
@@ -76,7 +80,7 @@ impl Serialize for EmcySeen {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(4))?;
         map.serialize_entry("line", &self.line)?;
-        ts::<S>(&mut map, "ts", self.ts)?;
+        ts(&mut map, "ts", self.ts)?;
         map.serialize_entry("code", &self.code.get())?;
         map.serialize_entry("description", self.code.description())?;
         map.end()
@@ -206,7 +210,7 @@ impl Serialize for super::Cia402Transition {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(4))?;
         map.serialize_entry("line", &self.line)?;
-        ts::<S>(&mut map, "ts", self.ts)?;
+        ts(&mut map, "ts", self.ts)?;
         map.serialize_entry("from", &self.from.map(|s| s.name()))?;
         map.serialize_entry("to", self.to.name())?;
         map.end()
@@ -216,39 +220,47 @@ impl Serialize for super::Cia402Transition {
 impl Serialize for NodeSummary {
     /// SPEC §6.3's node record.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(Some(15))?;
-        map.serialize_entry("type", "node")?;
-        map.serialize_entry("iface", &Iface(&self.bus))?;
-        map.serialize_entry("node", &self.node.get())?;
-        map.serialize_entry("frames", &self.frames)?;
-        map.serialize_entry("emcy", &self.emcy)?;
-        map.serialize_entry("first_error", &self.first_error)?;
-        map.serialize_entry("active_error", &self.active_error)?;
-        map.serialize_entry("resets", &self.resets)?;
-        map.serialize_entry("last_register", &self.last_register.map(|r| r.bits()))?;
-        map.serialize_entry("heartbeat", &self.heartbeat)?;
-        map.serialize_entry("guarding", &self.guarding)?;
-        map.serialize_entry("sdo", &self.sdo)?;
-        map.serialize_entry("cia402", &self.cia402)?;
+        let mut map = serializer.serialize_map(None)?;
+        node_entries(self, &mut map)?;
         map.end()
     }
+}
+
+fn node_entries<M: SerializeMap>(n: &NodeSummary, map: &mut M) -> Result<(), M::Error> {
+    map.serialize_entry("type", "node")?;
+    map.serialize_entry("iface", &Iface(&n.bus))?;
+    map.serialize_entry("node", &n.node.get())?;
+    map.serialize_entry("frames", &n.frames)?;
+    map.serialize_entry("emcy", &n.emcy)?;
+    map.serialize_entry("first_error", &n.first_error)?;
+    map.serialize_entry("active_error", &n.active_error)?;
+    map.serialize_entry("resets", &n.resets)?;
+    map.serialize_entry("last_register", &n.last_register.map(|r| r.bits()))?;
+    map.serialize_entry("heartbeat", &n.heartbeat)?;
+    map.serialize_entry("guarding", &n.guarding)?;
+    map.serialize_entry("sdo", &n.sdo)?;
+    map.serialize_entry("cia402", &n.cia402)
 }
 
 impl Serialize for BusSummary {
     /// SPEC §6.3's bus record.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(Some(10))?;
-        map.serialize_entry("type", "bus")?;
-        map.serialize_entry("iface", &Iface(&self.bus))?;
-        map.serialize_entry("frames", &self.frames)?;
-        map.serialize_entry("error_frames", &self.error_frames)?;
-        map.serialize_entry("bus_off", &self.bus_off)?;
-        map.serialize_entry("error_passive", &self.error_passive)?;
-        map.serialize_entry("status_events", &self.status_events)?;
-        ts::<S>(&mut map, "first_ts", self.first_ts)?;
-        ts::<S>(&mut map, "last_ts", self.last_ts)?;
-        let nodes: Vec<u8> = self.nodes.iter().map(|n| n.get()).collect();
-        map.serialize_entry("nodes", &nodes)?;
+        let mut map = serializer.serialize_map(None)?;
+        bus_entries(self, &mut map)?;
         map.end()
     }
+}
+
+fn bus_entries<M: SerializeMap>(b: &BusSummary, map: &mut M) -> Result<(), M::Error> {
+    map.serialize_entry("type", "bus")?;
+    map.serialize_entry("iface", &Iface(&b.bus))?;
+    map.serialize_entry("frames", &b.frames)?;
+    map.serialize_entry("error_frames", &b.error_frames)?;
+    map.serialize_entry("bus_off", &b.bus_off)?;
+    map.serialize_entry("error_passive", &b.error_passive)?;
+    map.serialize_entry("status_events", &b.status_events)?;
+    ts(map, "first_ts", b.first_ts)?;
+    ts(map, "last_ts", b.last_ts)?;
+    let nodes: Vec<u8> = b.nodes.iter().map(|n| n.get()).collect();
+    map.serialize_entry("nodes", &nodes)
 }

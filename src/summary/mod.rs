@@ -220,15 +220,29 @@ pub struct Summary {
     pub nodes: Vec<NodeSummary>,
     /// One record per interface.
     pub buses: Vec<BusSummary>,
+    /// The file the summary is of, when it should name it: set by a caller
+    /// that summarizes several logs apart, so that every record says which
+    /// log its lines are in (`"file"` in JSON, `FILE: ` in text).
+    pub file: Option<String>,
     /// Whether heartbeat timeouts were checked: `None` when not asked,
     /// `Some(false)` when frames without a time made it impossible.
     checked: Option<bool>,
 }
 
 /// One record of the summary, as `decode --summary` writes them: the
-/// nodes, then the buses.
+/// nodes, then the buses; with the file the summary is of, when it names
+/// one (several logs read apart; docs/output.md#several-files).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SummaryRecord<'s> {
+pub struct SummaryRecord<'s> {
+    /// The summary's file ([`Summary::file`]).
+    pub file: Option<&'s str>,
+    /// The record.
+    pub item: SummaryItem<'s>,
+}
+
+/// What a [`SummaryRecord`] is about.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SummaryItem<'s> {
     /// A device.
     Node(&'s NodeSummary),
     /// A bus.
@@ -238,10 +252,12 @@ pub enum SummaryRecord<'s> {
 impl Summary {
     /// Return the records in output order: every node, then every bus.
     pub fn records(&self) -> impl Iterator<Item = SummaryRecord<'_>> + '_ {
+        let file = self.file.as_deref();
         self.nodes
             .iter()
-            .map(SummaryRecord::Node)
-            .chain(self.buses.iter().map(SummaryRecord::Bus))
+            .map(SummaryItem::Node)
+            .chain(self.buses.iter().map(SummaryItem::Bus))
+            .map(move |item| SummaryRecord { file, item })
     }
 
     /// Return whether heartbeat timeouts were asked for but could not be
@@ -624,6 +640,7 @@ impl Summarizer {
         let mut summary = Summary {
             nodes: Vec::new(),
             buses: Vec::new(),
+            file: None,
             checked,
         };
         for (name, bus) in buses {

@@ -204,7 +204,7 @@ fn times_keep_their_digits_in_json() {
     let log = log.with_timestamp(Timestamp::from_nanos(1_700_000_001, 1).unwrap());
     summarizer.add(2, &LogEvent::Frame(log), &mut decoder);
     let summary = summarizer.finish(&mut decoder);
-    let bus = serde_json::to_string(&SummaryRecord::Bus(&summary.buses[0])).unwrap();
+    let bus = serde_json::to_string(&summary.records().last().unwrap()).unwrap();
     assert_eq!(
         bus,
         r#"{"type":"bus","iface":null,"frames":2,"error_frames":0,"bus_off":[],"error_passive":[],"status_events":0,"first_ts":1700000000.000500,"last_ts":1700000001.000000001,"nodes":[5]}"#

@@ -7,7 +7,8 @@ use crate::can::Timestamp;
 use crate::canopen::Cia402State;
 
 use super::{
-    BusSummary, Cia402Timeline, EmcySeen, NodeSummary, SdoSummary, Summary, SummaryRecord, Timeouts,
+    BusSummary, Cia402Timeline, EmcySeen, NodeSummary, SdoSummary, Summary, SummaryItem,
+    SummaryRecord, Timeouts,
 };
 
 impl fmt::Display for Summary {
@@ -21,10 +22,15 @@ impl fmt::Display for Summary {
 }
 
 impl fmt::Display for SummaryRecord<'_> {
+    /// The record's sentences, after `FILE: ` when the summary names its
+    /// file.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SummaryRecord::Node(node) => fmt::Display::fmt(node, f),
-            SummaryRecord::Bus(bus) => fmt::Display::fmt(bus, f),
+        if let Some(file) = self.file {
+            write!(f, "{file}: ")?;
+        }
+        match self.item {
+            SummaryItem::Node(node) => fmt::Display::fmt(node, f),
+            SummaryItem::Bus(bus) => fmt::Display::fmt(bus, f),
         }
     }
 }

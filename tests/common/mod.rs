@@ -88,15 +88,18 @@ impl Run {
     }
 
     /// Decode: every frame's JSON record, or the summary's records, one a
-    /// line, as the program writes them to standard output.
+    /// line, as the program writes them to standard output. Several files
+    /// are several recordings, each decoded and summarized apart, every
+    /// record naming its file (docs/output.md#several-files).
     pub fn output(self) -> String {
-        let mut decoder = Decoder::new(self.config);
-        let mut summarizer = Summarizer::new();
-        if let Some(time) = self.heartbeat {
-            summarizer = summarizer.heartbeat_timeout(time);
-        }
+        let several = self.files.len() > 1;
         let mut out = Vec::new();
         for file in &self.files {
+            let mut decoder = Decoder::new(self.config.clone());
+            let mut summarizer = Summarizer::new();
+            if let Some(time) = self.heartbeat {
+                summarizer = summarizer.heartbeat_timeout(time);
+            }
             let mut log = logs::open(path(file)).unwrap();
             while let Some(next) = log.next_event() {
                 // Malformed lines and damaged records go to the program's
@@ -106,17 +109,21 @@ impl Run {
                 if self.summary {
                     summarizer.add(position, &record.event, &mut decoder);
                 } else if let Some(frame) = record.event.frame() {
-                    decoder
-                        .decode(position, frame)
-                        .write_json(&mut out)
-                        .unwrap();
+                    let decoded = decoder.decode(position, frame);
+                    if several {
+                        decoded.write_json_in(&mut out, file).unwrap();
+                    } else {
+                        decoded.write_json(&mut out).unwrap();
+                    }
                 }
             }
-        }
-        if self.summary {
-            for record in summarizer.finish(&mut decoder).records() {
-                serde_json::to_writer(&mut out, &record).unwrap();
-                out.push(b'\n');
+            if self.summary {
+                let mut summary = summarizer.finish(&mut decoder);
+                summary.file = several.then(|| file.clone());
+                for record in summary.records() {
+                    serde_json::to_writer(&mut out, &record).unwrap();
+                    out.push(b'\n');
+                }
             }
         }
         String::from_utf8(out).unwrap()

@@ -103,6 +103,13 @@ pub struct DecodeArgs {
     /// frame: frame counts, EMCYs with the root cause, heartbeats, guarding.
     #[arg(long)]
     pub summary: bool,
+    /// With several files: read them as one recording (rotated logs of one
+    /// bus, in order): one decoder and one summary across them, lines
+    /// numbered on from one file to the next. Without it each file is a
+    /// recording of its own, decoded and summarized apart
+    /// (docs/output.md#several-files).
+    #[arg(long)]
+    pub joined: bool,
     /// With --summary: report heartbeat gaps longer than this many
     /// milliseconds as timeouts.
     #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u16).range(1..))]

@@ -27,27 +27,40 @@ struct Input {
     reader: Box<dyn Read + Send>,
 }
 
-fn open_inputs(files: &[PathBuf]) -> Result<Vec<Input>, Failure> {
+/// Open the inputs; a file named twice (by any path) is opened once, and
+/// returned among the names said twice.
+fn open_inputs(files: &[PathBuf]) -> Result<(Vec<Input>, Vec<String>), Failure> {
     if files.is_empty() {
-        return Ok(vec![stdin_input()]);
+        return Ok((vec![stdin_input()], Vec::new()));
     }
-    files
-        .iter()
-        .map(|path| {
-            if path.as_os_str() == "-" {
-                return Ok(stdin_input());
+    let mut seen = std::collections::HashSet::new();
+    let mut twice = Vec::new();
+    let mut inputs = Vec::new();
+    for path in files {
+        if path.as_os_str() == "-" {
+            if seen.insert(PathBuf::from("-")) {
+                inputs.push(stdin_input());
+            } else {
+                twice.push("<stdin>".to_owned());
             }
-            let file = File::open(path).map_err(|source| Failure::File {
-                path: path.clone(),
-                source,
-            })?;
-            Ok(Input {
-                name: path.display().to_string(),
-                path: Some(path.clone()),
-                reader: Box::new(file),
-            })
-        })
-        .collect()
+            continue;
+        }
+        let file = File::open(path).map_err(|source| Failure::File {
+            path: path.clone(),
+            source,
+        })?;
+        let same = std::fs::canonicalize(path).unwrap_or_else(|_| path.clone());
+        if !seen.insert(same) {
+            twice.push(path.display().to_string());
+            continue;
+        }
+        inputs.push(Input {
+            name: path.display().to_string(),
+            path: Some(path.clone()),
+            reader: Box::new(file),
+        });
+    }
+    Ok((inputs, twice))
 }
 
 fn stdin_input() -> Input {
@@ -86,6 +99,17 @@ struct Sink<'a> {
     /// The decoder session: what the log teaches as it is read (SDO
     /// channels, PDO mappings, drive states; SPEC §7, §8).
     decoder: Decoder,
+    /// How the decoder was configured: a new recording starts with it.
+    config: DecoderConfig,
+    /// The summary's heartbeat consumer time, for a new recording.
+    heartbeat: Option<Duration>,
+    /// The input's name, when several are read: every record names it.
+    file: Option<String>,
+    /// Added to every position: the lines of the files before this one,
+    /// when several files are one recording (`--joined`).
+    offset: u64,
+    /// A summary was written.
+    summary_written: bool,
 }
 
 impl<'a> Sink<'a> {
@@ -109,13 +133,10 @@ impl<'a> Sink<'a> {
             }
             nodes
         });
-        let summary = args.summary.then(|| {
-            let summarizer = Summarizer::new();
-            match args.heartbeat_ms {
-                Some(ms) => summarizer.heartbeat_timeout(Duration::from_millis(u64::from(ms))),
-                None => summarizer,
-            }
-        });
+        let heartbeat = args
+            .heartbeat_ms
+            .map(|ms| Duration::from_millis(u64::from(ms)));
+        let summary = args.summary.then(|| new_summarizer(heartbeat));
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
             err: BufWriter::new(io::stderr().lock()),
@@ -134,7 +155,12 @@ impl<'a> Sink<'a> {
             damaged: 0,
             progress_shown: false,
             frames: 0,
-            decoder: Decoder::new(config),
+            decoder: Decoder::new(config.clone()),
+            config,
+            heartbeat,
+            file: None,
+            offset: 0,
+            summary_written: false,
         })
     }
 
@@ -163,13 +189,17 @@ impl<'a> Sink<'a> {
             }
         }
         if self.output == Output::Json {
-            return decoded.write_json(&mut self.out);
+            return match &self.file {
+                Some(file) => decoded.write_json_in(&mut self.out, file),
+                None => decoded.write_json(&mut self.out),
+            };
         }
         let record = Record {
             line,
             log: frame,
             decoded: &decoded,
             message: decoded.message(),
+            file: self.file.as_deref(),
         };
         match self.output {
             Output::Text => record.write_text(&mut self.out),
@@ -221,9 +251,19 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             "--heartbeat-ms needs --summary (heartbeat gaps are reported per node)".to_owned(),
         ));
     }
-    let inputs = open_inputs(&args.files)?;
+    let (inputs, twice) = open_inputs(&args.files)?;
+    let several = inputs.len() > 1;
     let mut sink = Sink::new(args)?;
+    for name in twice {
+        writeln!(
+            sink.err,
+            "motionwire: {name} is given more than once: read once"
+        )?;
+    }
     if sink.output == Output::Csv {
+        if several {
+            sink.out.write_all(b"file,")?;
+        }
         write!(sink.out, "{CSV_HEADER}\r\n")?;
     }
     let mut options = ReadOptions::new();
@@ -236,8 +276,22 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             TimestampBase::Zero => RelativeTimestamps::Zero,
         });
     }
-    for input in inputs {
+    // With --joined: where each file's lines lie in the recording.
+    let mut spans: Vec<(String, u64, u64)> = Vec::new();
+    let joined = several && args.joined;
+    for (i, input) in inputs.into_iter().enumerate() {
         let Input { name, path, reader } = input;
+        if several {
+            sink.file = Some(name.clone());
+            if !joined && i > 0 {
+                // A recording of its own: nothing learned from the file
+                // before carries over (docs/output.md#several-files).
+                sink.decoder = Decoder::new(sink.config.clone());
+                if args.summary {
+                    sink.summary = Some(new_summarizer(sink.heartbeat));
+                }
+            }
+        }
         // Progress: the file's size, when the bytes read are the file's.
         let size = path
             .as_deref()
@@ -248,7 +302,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             .map_err(|e| open_failure(&name, path.as_deref(), e))?;
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
-        log.visit(ReadAll {
+        let last = log.visit(ReadAll {
             sink: &mut sink,
             progress: &mut progress,
             name: &name,
@@ -259,35 +313,27 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
         }
+        if joined {
+            spans.push((name, sink.offset + 1, sink.offset + last));
+            sink.offset += last;
+        } else if several {
+            write_summary(&mut sink, args.json, Some(name))?;
+        }
+    }
+    if !several || joined {
+        write_summary(&mut sink, args.json, None)?;
+        if sink.summary_written {
+            write_spans(&mut sink, args.json, &spans)?;
+        }
     }
 
     let Sink {
         mut out,
         mut err,
-        summary,
         skipped,
         damaged,
-        mut decoder,
         ..
     } = sink;
-    if let Some(summarizer) = summary {
-        let summary = summarizer.finish(&mut decoder);
-        if summary.timeouts_not_checked() {
-            writeln!(
-                err,
-                "motionwire: the log has frames without timestamps: heartbeat timeouts were not \
-                 checked (--heartbeat-ms)"
-            )?;
-        }
-        if args.json {
-            for record in summary.records() {
-                serde_json::to_writer(&mut out, &record).map_err(io::Error::from)?;
-                out.write_all(b"\n")?;
-            }
-        } else {
-            write!(out, "{summary}")?;
-        }
-    }
     out.flush()?;
     if skipped > 0 || damaged > 0 {
         let plural = |n: u64| if n == 1 { "" } else { "s" };
@@ -329,9 +375,10 @@ struct ReadAll<'r, 's, 'a> {
 }
 
 impl LogVisitor for ReadAll<'_, '_, '_> {
-    type Output = Result<(), Failure>;
+    /// The last line or record number of the input.
+    type Output = Result<u64, Failure>;
 
-    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<(), Failure> {
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<u64, Failure> {
         /// How many lines or records pass between looks at the progress.
         const PROGRESS_EVERY: u64 = 1 << 12;
         let ReadAll {
@@ -347,7 +394,7 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                 // Read where it lies: the record is not moved.
                 Some(Ok(ref record)) => {
                     number = record.position.number();
-                    sink.event(number, &record.event)?;
+                    sink.event(sink.offset + number, &record.event)?;
                 }
                 Some(Err(error)) => {
                     number = error.position().map_or(number, Position::number);
@@ -369,8 +416,62 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
         for kind in log.other_kinds() {
             writeln!(sink.err, "{name}: {kind}")?;
         }
-        Ok(())
+        Ok(number)
     }
+}
+
+/// A summarizer for a new recording.
+fn new_summarizer(heartbeat: Option<Duration>) -> Summarizer {
+    match heartbeat {
+        Some(time) => Summarizer::new().heartbeat_timeout(time),
+        None => Summarizer::new(),
+    }
+}
+
+/// Write the summary of the recording read so far (with `--summary`),
+/// naming its file when several are read apart.
+fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Result<(), Failure> {
+    let Some(summarizer) = sink.summary.take() else {
+        return Ok(());
+    };
+    let mut summary = summarizer.finish(&mut sink.decoder);
+    summary.file = file;
+    if summary.timeouts_not_checked() {
+        let about = summary
+            .file
+            .as_deref()
+            .map_or_else(String::new, |file| format!("{file}: "));
+        writeln!(
+            sink.err,
+            "motionwire: {about}the log has frames without timestamps: heartbeat timeouts were \
+             not checked (--heartbeat-ms)"
+        )?;
+    }
+    if json {
+        for record in summary.records() {
+            serde_json::to_writer(&mut sink.out, &record).map_err(io::Error::from)?;
+            sink.out.write_all(b"\n")?;
+        }
+    } else {
+        write!(sink.out, "{summary}")?;
+    }
+    sink.summary_written = true;
+    Ok(())
+}
+
+/// With `--joined`: where each file's lines lie in the one recording
+/// (docs/output.md#several-files).
+fn write_spans(sink: &mut Sink<'_>, json: bool, spans: &[(String, u64, u64)]) -> io::Result<()> {
+    for (file, first, last) in spans {
+        if json {
+            sink.out.write_all(b"{\"type\":\"file\",\"file\":")?;
+            serde_json::to_writer(&mut sink.out, file).map_err(io::Error::from)?;
+            writeln!(sink.out, ",\"first_line\":{first},\"last_line\":{last}}}")?;
+        } else {
+            writeln!(sink.out, "file {file}  lines {first} to {last}")?;
+        }
+    }
+    Ok(())
 }
 
 /// Say an error of the reader: a malformed or over-long line is counted

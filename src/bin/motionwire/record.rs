@@ -20,6 +20,8 @@ pub struct Record<'r, 'a, 'd> {
     pub decoded: &'r Decoded<'d>,
     /// The frame read as CANopen.
     pub message: Result<CanOpenMessage, DecodeError>,
+    /// The input's name, when several are read (docs/output.md#several-files).
+    pub file: Option<&'r str>,
 }
 
 impl Record<'_, '_, '_> {
@@ -39,6 +41,9 @@ impl Record<'_, '_, '_> {
         let log = self.log;
         let decoded = self.decoded;
         let frame = &log.frame;
+        if let Some(file) = self.file {
+            write!(out, "{file}:")?;
+        }
         write!(out, "{:>7}  ", self.line)?;
         match log.timestamp {
             Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
@@ -131,6 +136,10 @@ impl Record<'_, '_, '_> {
         let log = self.log;
         let frame = &log.frame;
         let mut digits = itoa::Buffer::new();
+        if let Some(file) = self.file {
+            csv_field(out, file)?;
+            out.write_all(b",")?;
+        }
         out.write_all(digits.format(self.line).as_bytes())?;
         out.write_all(b",")?;
         if let Some(ts) = log.timestamp {
