@@ -17,7 +17,7 @@
 //! | `LOG_CONTAINER` | 10 | its objects |
 //! | any other | | counted ([`ReadLog::other_records`]), skipped |
 //!
-//! # Decisions (where docs/formats.md#blf and the tools leave room)
+//! # Decisions (where the format and the tools leave room; docs/formats.md#blf)
 //!
 //! - `line` is the 1-based number of the object among the objects that are
 //!   not containers, every type counted (docs/formats.md#positions); containers

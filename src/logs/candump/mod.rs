@@ -35,8 +35,9 @@
 //! The formats are those written by can-utils' `lib.c`
 //! (`snprintf_canframe`, `snprintf_long_canframe`) and `candump.c`.
 //!
-//! # Decisions (where can-utils leaves room; docs/formats.md#candump-log,
-//! docs/formats.md#candump-screen)
+//! # Decisions (where can-utils leaves room)
+//!
+//! See docs/formats.md#candump-log and docs/formats.md#candump-screen.
 //!
 //! - A blank line (nothing but white space) and a comment line (first
 //!   non-blank byte `#`) are `Ok(None)`: there is no frame in them.
