@@ -15,7 +15,8 @@
 //!   relative`, a symbolic name, `TxRq`, statistics, chip status); truth:
 //!   python-can's `ASCReader`, with the time since the start added up.
 //!
-//! Differences, each a decision of docs/formats.md#asc/§5.7 or of
+//! Differences, each a decision of docs/formats.md#where-tools-disagree or
+//! of
 //! `motionwire::logs::asc`: python-can marks every `CANFD` line as CAN FD and
 //! gives an error frame identifier 0 and no data (the crate: class `bus_error`,
 //! 8 zero bytes, as `asc2log`); python-can reads a `TxRq` line as a frame (the
