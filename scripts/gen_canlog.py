@@ -6,15 +6,15 @@ devices, each behaving as its manual says (see docs/canopen.md and
 the seeds cited below):
 
 * node 3, a Kollmorgen AKD servo drive (docs/canopen.md#akd,
-  docs/canopen.md#emcy-producer, seed 000): heartbeat every 100 ms, TPDO1
-  0x183 (statusword, position actual) and RPDO1 0x203 (controlword, target
-  velocity) every SYNC, a CiA 402 state machine that
-  goes to "fault" while an error is active, EMCYs that follow the EMCY error
-  state machine of docs/canopen.md#emcy-producer (error EMCYs with the
-  accumulated error register, reset EMCYs with code 0x0000 and the remaining
-  register) with byte 3 = axis id (bits 0-3) and feedback id (bits 4-7), kept in
-  the reset EMCYs as docs/canopen.md#akd says, and an object 1003h history (10
-  entries) read by SDO;
+  docs/canopen.md#emcy-producer, seed 000): heartbeat every 100 ms, TPDO1 0x183
+  (statusword, position actual) and RPDO1 0x203 (controlword, target velocity)
+  every SYNC, a CiA 402 state machine that goes to "fault" while an error is
+  active, EMCYs that follow the EMCY error state machine of
+  docs/canopen.md#emcy-producer (error EMCYs with the accumulated error
+  register, reset EMCYs with code 0x0000 and the remaining register) with byte
+  3 = axis id (bits 0-3) and feedback id (bits 4-7), kept in the reset EMCYs as
+  docs/canopen.md#akd says, and an object 1003h history (10 entries) read by
+  SDO;
 * node 5, a Baumer EAM580 absolute encoder (docs/canopen.md#baumer, seed 003):
   heartbeat every 100 ms, TPDO1 0x185 (position 6004h) every SYNC, EMCYs with
   the alarms 6503h in bytes 3-4 and the warnings 6505h in bytes 5-6 (battery

@@ -27,17 +27,16 @@
 //!   content (docs/formats.md).
 //! - [`canopen`]: a [`can::CanFrame`] read as CANopen
 //!   ([`canopen::CanOpenMessage::decode`], docs/canopen.md#identifiers);
-//!   node-IDs and COB-IDs, the EMCY frame, error register and
-//!   error codes with their descriptions, the EMCY producer state machine
-//!   and the 1003h error history (CiA 301 §7.2.7, CiA 402,
-//!   docs/canopen.md#emcy); NMT states, heartbeat, node guarding and life
-//!   guarding (CiA 301 §7.2.8, docs/canopen.md#error-control); the CiA 405
-//!   `RECV_EMCY` consumer (docs/canopen.md#recv-emcy); the CiA 402 drive state
-//!   machine, statusword, controlword and modes of operation
-//!   (docs/canopen.md#cia402); SDO frames, the transfer tracker and the
-//!   1001h/1003h server (docs/canopen.md#sdo); PDO mappings and signals
-//!   (docs/canopen.md#pdo-mappings, docs/canopen.md#signals); the names of
-//!   object-dictionary entries,
+//!   node-IDs and COB-IDs, the EMCY frame, error register and error codes with
+//!   their descriptions, the EMCY producer state machine and the 1003h error
+//!   history (CiA 301 §7.2.7, CiA 402, docs/canopen.md#emcy); NMT states,
+//!   heartbeat, node guarding and life guarding (CiA 301 §7.2.8,
+//!   docs/canopen.md#error-control); the CiA 405 `RECV_EMCY` consumer
+//!   (docs/canopen.md#recv-emcy); the CiA 402 drive state machine, statusword,
+//!   controlword and modes of operation (docs/canopen.md#cia402); SDO frames,
+//!   the transfer tracker and the 1001h/1003h server (docs/canopen.md#sdo);
+//!   PDO mappings and signals (docs/canopen.md#pdo-mappings,
+//!   docs/canopen.md#signals); the names of object-dictionary entries,
 //!   [`canopen::object_name`] (CiA 301, CiA 402, CiA 406,
 //!   docs/canopen.md#object-names).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and

@@ -15,16 +15,15 @@
 //!   relative`, a symbolic name, `TxRq`, statistics, chip status); truth:
 //!   python-can's `ASCReader`, with the time since the start added up.
 //!
-//! Differences, each a decision of docs/formats.md#where-tools-disagree or
-//! of
+//! Differences, each a decision of docs/formats.md#where-tools-disagree or of
 //! `motionwire::logs::asc`: python-can marks every `CANFD` line as CAN FD and
-//! gives an error frame identifier 0 and no data (the crate: class `bus_error`,
-//! 8 zero bytes, as `asc2log`); python-can reads a `TxRq` line as a frame (the
-//! crate skips the transmit request, as `asc2log` does); python-can (4.6)
-//! returns relative times as written (the crate adds them up: seconds since the
-//! start). can-utils' old `log2asc -f` writes an error frame as a `CANFD`
-//! line with identifier 0x80 and zero data; `asc2log` and the crate both
-//! read what the line says.
+//! gives an error frame identifier 0 and no data (the crate: class
+//! `bus_error`, 8 zero bytes, as `asc2log`); python-can reads a `TxRq` line as
+//! a frame (the crate skips the transmit request, as `asc2log` does);
+//! python-can (4.6) returns relative times as written (the crate adds them up:
+//! seconds since the start). can-utils' old `log2asc -f` writes an error frame
+//! as a `CANFD` line with identifier 0x80 and zero data; `asc2log` and the
+//! crate both read what the line says.
 
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent, LogFrame};
 use motionwire::logs::asc::{self, AscParser};

@@ -715,9 +715,8 @@ fn error_frames_are_frames_with_their_keys() {
 }
 
 /// docs/formats.md#timestamps, docs/summary.md#heartbeat: a log without
-/// timestamps cannot be checked for
-/// heartbeat timeouts: `timeouts` is null, the text says so, and standard
-/// error says it once — never "no timeouts".
+/// timestamps cannot be checked for heartbeat timeouts: `timeouts` is null,
+/// the text says so, and standard error says it once — never "no timeouts".
 #[test]
 fn without_timestamps_timeouts_are_not_checked() {
     let log = "can0 705#05\ncan0 705#05\ncan0 706#05\n";
@@ -843,11 +842,10 @@ fn an_unrecognised_file_is_one_error() {
 }
 
 /// The decision in docs/formats.md#detection: random bytes never pass for a
-/// log. One MiB of them
-/// (a fixed seed; issue 20: a line starting with `;` made it a PEAK TRC
-/// file, read as 4 068 line errors and exit status 1) is one "unrecognised
-/// log format" and exit status 2; so are they with every NUL replaced, and
-/// a TRC header comment alone reads as nothing.
+/// log. One MiB of them (a fixed seed; issue 20: a line starting with `;` made
+/// it a PEAK TRC file, read as 4 068 line errors and exit status 1) is one
+/// "unrecognised log format" and exit status 2; so are they with every NUL
+/// replaced, and a TRC header comment alone reads as nothing.
 #[test]
 fn random_bytes_are_one_unrecognised_error() {
     let mut state = 0x9E37_79B9_7F4A_7C15u64;

@@ -121,9 +121,8 @@ impl Heartbeat {
 
 impl GuardAnswer {
     /// Write `node`'s node-guarding answer into a frame: COB-ID 0x700 +
-    /// node-ID, 1 data byte with the toggle in bit 7 (CiA 301
-    /// §7.2.8.3.2.1; docs/canopen.md#error-control). `None` when `F::new`
-    /// refuses, as
+    /// node-ID, 1 data byte with the toggle in bit 7 (CiA 301 §7.2.8.3.2.1;
+    /// docs/canopen.md#error-control). `None` when `F::new` refuses, as
     /// [`Frame::new`] does.
     #[must_use]
     pub fn to_frame<F: Frame>(&self, node: NodeId) -> Option<F> {

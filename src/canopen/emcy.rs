@@ -317,8 +317,7 @@ mod proptests {
 
 impl core::fmt::Display for Emcy {
     /// The EMCY in words (docs/canopen.md#emcy, docs/canopen.md#emcy-codes):
-    /// code, description, register
-    /// and manufacturer bytes.
+    /// code, description, register and manufacturer bytes.
     ///
     /// ```
     /// use motionwire::canopen::Emcy;

@@ -12,8 +12,7 @@
 //! [`DEFAULT_ACTIVE_ERRORS`]).
 //!
 //! The rules, the **Decision**s taken where CiA 301 leaves a choice
-//! (docs/canopen.md#emcy-producer), and an
-//! example are on [`EmcyProducer`].
+//! (docs/canopen.md#emcy-producer), and an example are on [`EmcyProducer`].
 
 use core::fmt;
 
@@ -219,8 +218,8 @@ impl EmcyEvent {
     }
 }
 
-/// Why an event caused no transition and sent nothing
-/// (the Decisions of docs/canopen.md#emcy-producer).
+/// Why an event caused no transition and sent nothing (the Decisions of
+/// docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IgnoredEvent {

@@ -10,8 +10,7 @@
 //! with the value or the [`SdoAbortCode`] CiA 301 prescribes.
 //!
 //! The **Decision**s taken where CiA 301 leaves a choice
-//! (docs/canopen.md#error-history), and an example, are
-//! on [`ErrorHistory`].
+//! (docs/canopen.md#error-history), and an example, are on [`ErrorHistory`].
 
 use byteorder::{ByteOrder, LittleEndian};
 

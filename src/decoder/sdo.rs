@@ -64,10 +64,9 @@ impl<'d> SdoStep<'d> {
     }
 
     /// Return the index and sub-index the frame carries: the message's, or,
-    /// when it could not be read, bytes 1–3 if the frame is an initiate or
-    /// an abort and they are there (the decision in docs/canopen.md#sdo: a
-    /// short frame is decoded as far as it goes; 3 bytes give the index only,
-    /// see
+    /// when it could not be read, bytes 1–3 if the frame is an initiate or an
+    /// abort and they are there (the decision in docs/canopen.md#sdo: a short
+    /// frame is decoded as far as it goes; 3 bytes give the index only, see
     /// [`index`](Self::index)).
     #[must_use]
     pub fn multiplexer(&self) -> Option<ObjectAddress> {

@@ -10,8 +10,8 @@ use crate::logs::LogFormat;
 pub const DETECT_LEN: usize = 64 * 1024;
 
 /// The most lines that are neither blank, comments nor deciding that
-/// [`detect`] reads past before the first deciding line
-/// (the decision in docs/formats.md#detection): a 17th makes the input
+/// [`detect`] reads past before the first deciding line (the decision in
+/// docs/formats.md#detection): a 17th makes the input
 /// [`Detected::Unrecognised`].
 pub const DETECT_MAX_UNDECIDED: usize = 16;
 

@@ -1,10 +1,9 @@
 //! The errors of the log readers' layer (docs/formats.md,
 //! docs/formats.md#reported): which format a log is in ([`LogFormat`]), why a
-//! line of a text log is malformed ([`SyntaxError`], what it [`Found`]) and why
-//! a binary log cannot be read further ([`BinaryError`]). They are the payloads
-//! of the crate's
-//! [`Error::Syntax`] and [`Error::Binary`]; the reading itself fails with a
-//! `LogError` that adds where.
+//! line of a text log is malformed ([`SyntaxError`], what it [`Found`]) and
+//! why a binary log cannot be read further ([`BinaryError`]). They are the
+//! payloads of the crate's [`Error::Syntax`] and [`Error::Binary`]; the
+//! reading itself fails with a `LogError` that adds where.
 
 #[cfg(any(doc, feature = "std"))]
 use crate::Error;

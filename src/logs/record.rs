@@ -83,13 +83,12 @@ pub struct LogRecord<'a> {
 /// Every reader of [`crate::logs`] implements it, and so does
 /// [`LogReader`](crate::logs::LogReader), which detects the format and
 /// dispatches to them. The rule of docs/formats.md#reported holds for all: an
-/// error that
-/// [`LogError::is_skipped`] (a malformed line, an over-long line, a damaged
-/// record whose size is known) loses that line or record only and the next
-/// call goes on; after any other error (the input cannot be read, a binary
-/// file's structure is damaged) [`next_event`](ReadLog::next_event) returns
-/// `None`. Positions increase from one event or error to the next, except
-/// in MF4 files, whose frames come in time order across channel groups
+/// error that [`LogError::is_skipped`] (a malformed line, an over-long line, a
+/// damaged record whose size is known) loses that line or record only and the
+/// next call goes on; after any other error (the input cannot be read, a
+/// binary file's structure is damaged) [`next_event`](ReadLog::next_event)
+/// returns `None`. Positions increase from one event or error to the next,
+/// except in MF4 files, whose frames come in time order across channel groups
 /// (docs/formats.md#mf4).
 ///
 /// Lines and records that hold no event (blank lines, comments, headers; a

@@ -1,9 +1,8 @@
 //! The one line layer of the text readers (candump, ASC, TRC;
 //! docs/formats.md#memory): a buffer split into lines at `\n` (16 bytes at a
 //! time), the hex digits every format writes, and — with `std` — whole lines
-//! read from a
-//! [`std::io::Read`] a block at a time, with the over-long-line rule that
-//! keeps memory bounded whatever the input.
+//! read from a [`std::io::Read`] a block at a time, with the over-long-line
+//! rule that keeps memory bounded whatever the input.
 //!
 //! A line is the bytes before a `\n`, without it; a last line without one
 //! counts too, nothing after a final `\n` does. A `\r` before the `\n`

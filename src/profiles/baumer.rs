@@ -929,8 +929,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // Row 7; manual §9.5 "CAN-Controller RX Buffer
-    // Overflow".
+    // Row 7; manual §9.5 "CAN-Controller RX Buffer Overflow".
     DiagnosticSource {
         name: "can_controller_rx_buffer_overflow",
         source: "CAN controller RX buffer overflow",
@@ -958,8 +957,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // Row 9; manual §9.5 "CAN-Controller Bus Off": no
-    // EMCY is sent.
+    // Row 9; manual §9.5 "CAN-Controller Bus Off": no EMCY is sent.
     DiagnosticSource {
         name: "can_controller_bus_off",
         source: "CAN controller bus off",
@@ -1021,8 +1019,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupWarning, 0x001C),
         variant: Variant::Redundant,
     },
-    // Row 13; manual §9.5 "Battery Monitoring Error
-    // (Battery Empty)", at startup; reset "(1)".
+    // Row 13; manual §9.5 "Battery Monitoring Error (Battery Empty)", at
+    // startup; reset "(1)".
     DiagnosticSource {
         name: "battery_monitoring_error_startup",
         source: "Battery monitoring error (battery empty)",
@@ -1039,8 +1037,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0004),
         variant: Variant::Both,
     },
-    // Row 14; manual §9.5 "Battery Monitoring Error
-    // (Battery Empty)", at runtime; reset "(1)".
+    // Row 14; manual §9.5 "Battery Monitoring Error (Battery Empty)", at
+    // runtime; reset "(1)".
     DiagnosticSource {
         name: "battery_monitoring_error_runtime",
         source: "Battery monitoring error (battery empty)",
@@ -1057,8 +1055,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0004),
         variant: Variant::Both,
     },
-    // Row 15; manual §9.5 "Multiturn Magnetic Field
-    // sequence (non-redundant encoder)", at startup.
+    // Row 15; manual §9.5 "Multiturn Magnetic Field sequence (non-redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_non_redundant_startup",
         source: "Multiturn magnetic field sequence",
@@ -1074,8 +1072,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupWarning, 0x0003),
         variant: Variant::NonRedundant,
     },
-    // Row 16; manual §9.5 "Multiturn Magnetic Field
-    // sequence (non-redundant encoder)", at runtime.
+    // Row 16; manual §9.5 "Multiturn Magnetic Field sequence (non-redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_non_redundant_runtime",
         source: "Multiturn magnetic field sequence",
@@ -1091,8 +1089,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0003),
         variant: Variant::NonRedundant,
     },
-    // Row 17; manual §9.5 "Multiturn Magnetic Field
-    // sequence (redundant encoder)", at startup.
+    // Row 17; manual §9.5 "Multiturn Magnetic Field sequence (redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_redundant_startup",
         source: "Multiturn magnetic field sequence",
@@ -1108,8 +1106,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x001A),
         variant: Variant::Redundant,
     },
-    // Row 18; manual §9.5 "Multiturn Magnetic Field
-    // sequence (redundant encoder)", at runtime.
+    // Row 18; manual §9.5 "Multiturn Magnetic Field sequence (redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_redundant_runtime",
         source: "Multiturn magnetic field sequence",
@@ -1125,8 +1123,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x001A),
         variant: Variant::Redundant,
     },
-    // Row 19; manual §9.5 "Multiturn Magnetic Field
-    // strength (redundant encoder)", at startup.
+    // Row 19; manual §9.5 "Multiturn Magnetic Field strength (redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_strength_redundant_startup",
         source: "Multiturn magnetic field strength",
@@ -1142,8 +1140,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x001B),
         variant: Variant::Redundant,
     },
-    // Row 20; manual §9.5 "Multiturn Magnetic Field
-    // strength (redundant encoder)", at runtime.
+    // Row 20; manual §9.5 "Multiturn Magnetic Field strength (redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_strength_redundant_runtime",
         source: "Multiturn magnetic field strength",
@@ -1159,8 +1157,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x001B),
         variant: Variant::Redundant,
     },
-    // Row 21; manual §9.5 "Multiturn Communication
-    // Monitor", at startup.
+    // Row 21; manual §9.5 "Multiturn Communication Monitor", at startup.
     DiagnosticSource {
         name: "multiturn_communication_monitor_startup",
         source: "Multiturn communication monitor",
@@ -1176,8 +1173,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0009),
         variant: Variant::Both,
     },
-    // Row 22; manual §9.5 "Multiturn Communication
-    // Monitor", at runtime.
+    // Row 22; manual §9.5 "Multiturn Communication Monitor", at runtime.
     DiagnosticSource {
         name: "multiturn_communication_monitor_runtime",
         source: "Multiturn communication monitor",
@@ -1226,8 +1222,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0022),
         variant: Variant::Both,
     },
-    // Row 25; manual §9.5 "Singleturn/Multiturn
-    // Supervision".
+    // Row 25; manual §9.5 "Singleturn/Multiturn Supervision".
     DiagnosticSource {
         name: "singleturn_multiturn_supervision",
         source: "Singleturn/multiturn supervision",

@@ -200,10 +200,10 @@ mod sealed {
     pub trait Sealed {}
 }
 
-/// The pair of bits one handshake uses: a request bit in the control word
-/// and an ack bit in the status word (docs/servo.md#scw, docs/servo.md#ssw,
-/// docs/servo.md#handshakes). Implemented by
-/// [`ErrorClear`] and [`ZeroPulse`] only.
+/// The pair of bits one handshake uses: a request bit in the control word and
+/// an ack bit in the status word (docs/servo.md#scw, docs/servo.md#ssw,
+/// docs/servo.md#handshakes). Implemented by [`ErrorClear`] and [`ZeroPulse`]
+/// only.
 pub trait HandshakeBits: sealed::Sealed + Copy {
     /// The control-word bit the NC raises to request.
     const REQUEST: ServoControlWord;
@@ -251,8 +251,7 @@ pub type ZeroPulseHandshake = Handshake<ZeroPulse>;
 
 /// The NC side of a request/ack handshake (docs/servo.md#handshakes): a pure
 /// state machine stepped once per NC cycle. Use it as [`ErrorClearHandshake`]
-/// or
-/// [`ZeroPulseHandshake`].
+/// or [`ZeroPulseHandshake`].
 ///
 /// Each cycle, [`step`](Self::step) takes the control word the NC wrote in
 /// the previous cycle (so the machine knows whether its request is on the

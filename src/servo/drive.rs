@@ -519,10 +519,9 @@ impl Drive {
 
     /// Set the value the message channel reports for `kind`
     /// (docs/servo.md#feedback): current, relative current, bus voltage,
-    /// temperature (as
-    /// [`Drive::set_motor_temperature`]), power or a reserved code. The motor
-    /// speed (code 0) is the applied speed and unknown codes are not sent:
-    /// for those nothing changes.
+    /// temperature (as [`Drive::set_motor_temperature`]), power or a reserved
+    /// code. The motor speed (code 0) is the applied speed and unknown codes
+    /// are not sent: for those nothing changes.
     pub fn set_measurement(&mut self, kind: MessageCode, value: f32) {
         let code = kind.code();
         if (1..=9).contains(&code) {

@@ -33,9 +33,8 @@ pub enum EnablePhase {
     Enabled,
     /// The drive dropped ServoEn while the NC held 0b10 — the drive model
     /// disables itself on any error (docs/servo.md#drive-model). The NC writes
-    /// 0b00; a new
-    /// [`start`](EnableHandshake::start), once the errors are cleared, arms
-    /// again.
+    /// 0b00; a new [`start`](EnableHandshake::start), once the errors are
+    /// cleared, arms again.
     Dropped,
 }
 

@@ -425,8 +425,7 @@ impl ServoFault {
     }
 
     /// Return the fault's name exactly as the name column of docs/servo.md#sew
-    /// spells it
-    /// (and the command-line decoder's `faults` writes it,
+    /// spells it (and the command-line decoder's `faults` writes it,
     /// docs/servo.md#cli-feedback).
     #[must_use]
     pub const fn name(self) -> &'static str {

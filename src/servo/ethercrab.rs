@@ -6,9 +6,9 @@
 //! [`EtherCrabWireWriteSized`] with `PACKED_LEN` 10 and 40: the bytes are
 //! exactly those of [`Command::to_bytes`] / [`Feedback::to_bytes`], and
 //! reading is [`Command::parse`] / [`Feedback::parse`] (docs/servo.md#command,
-//! docs/servo.md#feedback). A program on the master reads a drive's input image
-//! straight into a
-//! [`Feedback`] and packs a [`Command`] into its output image.
+//! docs/servo.md#feedback). A program on the master reads a drive's input
+//! image straight into a [`Feedback`] and packs a [`Command`] into its output
+//! image.
 //!
 //! A slice shorter than the frame is [`WireError::ReadBufferTooShort`] or
 //! [`WireError::WriteBufferTooShort`], never a panic; longer slices are read

@@ -396,10 +396,10 @@ impl Feedback {
 /// position in the encoder's layout (docs/servo.md#feedback), the status word
 /// in hex with the names of its set flags and the active parameter table
 /// (docs/servo.md#ssw), the error word in hex and one line per fault with its
-/// bit, E-code, name and meaning (docs/servo.md#sew), the message with its unit
-/// and code (docs/servo.md#feedback), and the four extra floats. Made by
-/// [`Feedback::details`]; its
-/// [`Display`](fmt::Display) writes the lines without a final newline.
+/// bit, E-code, name and meaning (docs/servo.md#sew), the message with its
+/// unit and code (docs/servo.md#feedback), and the four extra floats. Made by
+/// [`Feedback::details`]; its [`Display`](fmt::Display) writes the lines
+/// without a final newline.
 ///
 /// A separate type because the lines are a view for a terminal, not the
 /// one way to print a feedback frame.

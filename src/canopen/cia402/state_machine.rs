@@ -61,12 +61,11 @@ impl Cia402State {
         })
     }
 
-    /// Return the command a controlword gives in this state after
-    /// `previous` ([`Cia402Command::from_controlword`]) and the transition it
-    /// causes ([`Cia402State::next`]): the next state from state and
-    /// controlword (docs/canopen.md#cia402) in one call. The state afterwards
-    /// is the transition's
-    /// [`Cia402Transition::to`], or `self` when there is none.
+    /// Return the command a controlword gives in this state after `previous`
+    /// ([`Cia402Command::from_controlword`]) and the transition it causes
+    /// ([`Cia402State::next`]): the next state from state and controlword
+    /// (docs/canopen.md#cia402) in one call. The state afterwards is the
+    /// transition's [`Cia402Transition::to`], or `self` when there is none.
     ///
     /// ```
     /// use motionwire::canopen::{Cia402Command, Cia402State, Cia402Transition};

@@ -57,10 +57,9 @@ pub const ERROR_HISTORY_INDEX: u16 = 0x1003;
 ///   sub-index: sub-index 0 the count (UNSIGNED8), 1..=N the entries
 ///   (UNSIGNED32), expedited with the size indicated.
 /// - A download of 0 to 1003h.00 clears the history.
-/// - Everything [`ErrorHistory::read`] and [`ErrorHistory::write`] refuse
-///   is aborted with their codes (docs/canopen.md#error-history); writing 1001h
-///   is
-///   [`SdoAbortCode::WRITE_OF_READ_ONLY`], a sub-index other than 0 of
+/// - Everything [`ErrorHistory::read`] and [`ErrorHistory::write`] refuse is
+///   aborted with their codes (docs/canopen.md#error-history); writing 1001h
+///   is [`SdoAbortCode::WRITE_OF_READ_ONLY`], a sub-index other than 0 of
 ///   1001h [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`]; any other object
 ///   [`SdoAbortCode::OBJECT_DOES_NOT_EXIST`] (0x0602_0000).
 ///

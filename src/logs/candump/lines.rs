@@ -75,10 +75,9 @@ pub struct LineState {
 }
 
 impl LineState {
-    /// The state at the start of a log whose relative timestamps (`candump
-    /// -t d` or `-t z`, docs/formats.md#candump-relative-times) are read as
-    /// `relative` says; see
-    /// [`detect_relative_timestamps`].
+    /// The state at the start of a log whose relative timestamps (`candump -t
+    /// d` or `-t z`, docs/formats.md#candump-relative-times) are read as
+    /// `relative` says; see [`detect_relative_timestamps`].
     #[inline]
     #[must_use]
     pub const fn new(relative: RelativeTimestamps) -> Self {

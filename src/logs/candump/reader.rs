@@ -10,10 +10,10 @@ use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of candump logs and screen output (docs/formats.md#candump-log,
-/// docs/formats.md#candump-screen) from any
-/// [`Read`]: whole lines a block at a time (256 KiB), each parsed where it
-/// lies in the block — what [`lines`] does for a buffer, for an input of
-/// any length, with the rules of docs/formats.md#reported (see [`ReadLog`]).
+/// docs/formats.md#candump-screen) from any [`Read`]: whole lines a block at a
+/// time (256 KiB), each parsed where it lies in the block — what [`lines`]
+/// does for a buffer, for an input of any length, with the rules of
+/// docs/formats.md#reported (see [`ReadLog`]).
 ///
 /// Relative timestamps (`candump -t d` or `-t z`) are read as
 /// [`detect_relative_timestamps`] decides from the first 64 frames (or the
