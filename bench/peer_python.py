@@ -3,13 +3,14 @@
 
 Reads a log file with python-can's reader for its format (`can.LogReader`
 picks it by the file's suffix: `.log` candump, `.asc` Vector ASC, `.blf`
-Vector BLF, `.trc` PEAK TRC; SPEC 5), classifies every frame by its CAN identifier as
-SPEC 6.1 does, feeds every EMCY to python-canopen's `canopen.emcy.EmcyConsumer`
-(one per node, as `canopen.RemoteNode` does) and describes the codes with
-`canopen.emcy.EmcyError.get_desc()`. Prints one JSON summary: per node the
-frame counts per kind, EMCY count, resets, first error (line, code,
-description), the errors still active at the end (python-canopen's view:
-a reset clears all), boot-ups and the described codes.
+Vector BLF, `.trc` PEAK TRC; docs/formats.md), classifies every frame by its CAN
+identifier as docs/canopen.md#identifiers does, feeds every EMCY to
+python-canopen's `canopen.emcy.EmcyConsumer` (one per node, as
+`canopen.RemoteNode` does) and describes the codes with
+`canopen.emcy.EmcyError.get_desc()`. Prints one JSON summary: per node the frame
+counts per kind, EMCY count, resets, first error (line, code, description), the
+errors still active at the end (python-canopen's view: a reset clears all),
+boot-ups and the described codes.
 
 This is the benchmark's peer (bench/run.sh), not part of motionwire. Needs
 `pip install python-can canopen`.
@@ -29,7 +30,7 @@ KINDS = ("emcy", "heartbeat", "guard_request", "pdo", "sdo")
 
 
 def kind_of(can_id: int, extended: bool, remote: bool) -> str:
-    """SPEC 6.1's kind of a frame, by identifier."""
+    """The `kind` of a frame, by identifier (docs/canopen.md#identifiers)."""
     if extended:
         return "other"
     if can_id == 0x000:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peer benchmark for `motionwire decode` (SPEC 6.1).
+# Peer benchmark for `motionwire decode` (docs/output.md#json).
 #
 # Goals (issue 10): `decode --summary` at least 150x faster than a python
 # peer (python-can + python-canopen, bench/peer_python.py), and
@@ -43,7 +43,8 @@ FRAMES=${BENCH_FRAMES:-1000000}
 RUNS=${BENCH_RUNS:-3}
 MOTIONWIRE=${MOTIONWIRE:-target/release/motionwire}
 MOTIONWIRE_BEFORE=${MOTIONWIRE_BEFORE:-}
-# tshark -T fields with the fields that match decode --json's keys (SPEC 6.1).
+# tshark -T fields with the fields that match decode --json's keys
+# (docs/output.md#json).
 TSHARK_FIELDS=(-T fields -E separator=, -e frame.number -e frame.time_epoch -e can.id
     -e can.flags.xtd -e can.flags.rtr -e can.len -e data.data -e canopen.function_code
     -e canopen.node_id -e canopen.em.err_code -e canopen.em.err_reg -e canopen.nmt_guard.state
@@ -160,7 +161,7 @@ verify_tshark() {
 
 need_motionwire() {
     if [[ ! -x $MOTIONWIRE ]]; then
-        echo "error: $MOTIONWIRE not built (run: bench/run.sh build); the CLI (SPEC 6.1) must exist" >&2
+        echo "error: $MOTIONWIRE not built (run: bench/run.sh build); the CLI (docs/output.md) must exist" >&2
         exit 1
     fi
 }

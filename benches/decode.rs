@@ -1,6 +1,6 @@
-//! Decoding speed of the hot paths: the servo frames (SPEC §1), the EMCY
-//! (SPEC §2.1) and candump log text (SPEC §5). Run it with
-//! `cargo bench --bench decode`; BENCHMARKS.md has the numbers.
+//! Decoding speed of the hot paths: the servo frames (docs/servo.md), the EMCY
+//! (docs/canopen.md#emcy) and candump log text (docs/formats.md#candump-log).
+//! Run it with `cargo bench --bench decode`; BENCHMARKS.md has the numbers.
 //!
 //! Every frame group decodes a buffer of [`FRAMES`] frames per iteration,
 //! with varied, realistic contents generated deterministically, and times

@@ -1,7 +1,7 @@
-//! Speed of the drive model (SPEC §9.2): one EtherCAT cycle of `Drive::cycle`
-//! alone, and with the frames of that cycle encoded and decoded as they are
-//! on the bus, reported by criterion as elements (axis cycles) per second.
-//! Run it with `cargo bench --bench drive`.
+//! Speed of the drive model (docs/servo.md#drive-model): one EtherCAT cycle of
+//! `Drive::cycle` alone, and with the frames of that cycle encoded and decoded
+//! as they are on the bus, reported by criterion as elements (axis cycles) per
+//! second. Run it with `cargo bench --bench drive`.
 //!
 //! Every group runs the same script of [`CYCLES`] NC commands per iteration
 //! for each axis: enable (SE 0b01 → 0b10), move at changing speeds, a zero

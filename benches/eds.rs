@@ -1,5 +1,5 @@
-//! Reading EDS and DCF files (SPEC §8.1): the crate's hand-written INI layer
-//! against the rust-ini crate in the same run. Run it with
+//! Reading EDS and DCF files (docs/canopen.md#eds): the crate's hand-written
+//! INI layer against the rust-ini crate in the same run. Run it with
 //! `cargo bench --bench eds --features eds`; BENCHMARKS.md has the numbers.
 //!
 //! The input is the real DCF of a CiA 402 drive, `prbt_0_1.dcf` (2 052

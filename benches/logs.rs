@@ -1,5 +1,5 @@
-//! Reading a log through `motionwire::logs` (SPEC §5.7) against parsing the
-//! same text where it lies, in the same run. Run it with
+//! Reading a log through `motionwire::logs` (docs/formats.md) against parsing
+//! the same text where it lies, in the same run. Run it with
 //! `cargo bench --bench logs --features logs`; BENCHMARKS.md has the
 //! numbers.
 //!

@@ -1,4 +1,4 @@
-//! Unpacking PDO payloads with a mapping (SPEC §8.2). Run it with
+//! Unpacking PDO payloads with a mapping (docs/canopen.md#signals). Run it with
 //! `cargo bench --bench pdo`; BENCHMARKS.md has the numbers.
 //!
 //! 1024 payloads of a CiA 402 drive's TPDO — statusword 6041h (16 bits),

@@ -1,4 +1,4 @@
-//! The decoder session and the post-mortem (SPEC §6.1, §6.3, §7, §8) on
+//! The decoder session and the post-mortem (docs/output.md, docs/summary.md) on
 //! four traffic mixes, against the stateless floors in the same run. Run it
 //! with `cargo bench --features decoder --bench session`; BENCHMARKS.md has
 //! the numbers.

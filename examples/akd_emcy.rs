@@ -1,6 +1,6 @@
 //! Decode the EMCY frames a Kollmorgen AKD sends through its error state
-//! machine (seed 000, "Application of the Emergency Object"; SPEC §2.4,
-//! §2.5) and print them in words.
+//! machine (seed 000, "Application of the Emergency Object";
+//! docs/canopen.md#akd, docs/canopen.md#emcy-producer) and print them in words.
 //!
 //! Run with `cargo run --example akd_emcy`.
 

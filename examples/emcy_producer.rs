@@ -1,6 +1,7 @@
 //! A drive's EMCY producer: errors come and go, the EMCY state machine
-//! (SPEC §2.5) decides what to send, and the pre-defined error field 1003h
-//! (SPEC §2.6) fills with the errors sent.
+//! (docs/canopen.md#emcy-producer) decides what to send, and the pre-defined
+//! error field 1003h (docs/canopen.md#error-history) fills with the errors
+//! sent.
 //!
 //! Run with `cargo run --example emcy_producer`.
 
@@ -8,7 +9,7 @@ use motionwire::canopen::{
     EmcyEvent, EmcyOutcome, EmcyProducer, ErrorCode, ErrorHistory, ErrorRegister, NodeId,
 };
 
-/// Axis 1 in byte 3 of the AKD manufacturer field (SPEC §2.4).
+/// Axis 1 in byte 3 of the AKD manufacturer field (docs/canopen.md#akd).
 const AXIS_1: [u8; 5] = [0x01, 0, 0, 0, 0];
 /// Axis 1, feedback 2 (a feedback fault).
 const AXIS_1_FB2: [u8; 5] = [0x21, 0, 0, 0, 0];

@@ -1,6 +1,6 @@
 //! How a program on the ethercrab EtherCAT master reads a servo drive's
 //! inputs into [`Feedback`] and writes [`Command`] into its outputs, through
-//! ethercrab-wire's traits (SPEC §9.1; feature `ethercrab`).
+//! ethercrab-wire's traits (docs/servo.md#ethercrab; feature `ethercrab`).
 //!
 //! Run with `cargo run --example ethercrab_drive --features ethercrab`.
 //!
@@ -101,8 +101,8 @@ fn main() -> Result<(), WireError> {
         for axis in 0..AXES {
             let (inputs, outputs) = image.io_mut(axis);
             let feedback: Feedback = read_inputs(inputs)?;
-            // Enable on SE 0b01 → 0b10 (SPEC §1.6), then run each axis at its
-            // own speed.
+            // Enable on SE 0b01 → 0b10 (docs/servo.md#handshakes), then run
+            // each axis at its own speed.
             let se = if cycle < 2 {
                 ServoEnable::ARM
             } else {

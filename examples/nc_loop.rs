@@ -1,6 +1,7 @@
 //! An NC running against the crate's drive model for a few thousand cycles
-//! (SPEC §1.6, §9.2): enable, move, a fault, error clear, enable again, the
-//! zero-pulse search, a lost encoder and an over-temperature warning.
+//! (docs/servo.md#handshakes, docs/servo.md#drive-model): enable, move, a
+//! fault, error clear, enable again, the zero-pulse search, a lost encoder and
+//! an over-temperature warning.
 //!
 //! The NC is written only against the crate's three handshakes
 //! ([`EnableHandshake`], [`ErrorClearHandshake`], [`ZeroPulseHandshake`]):

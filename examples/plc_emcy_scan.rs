@@ -1,5 +1,5 @@
 //! A PLC calling CiA 405 `RECV_EMCY` once per cycle over a simulated CAN bus
-//! (SPEC §3).
+//! (docs/canopen.md#recv-emcy).
 //!
 //! Three devices are configured: a Kollmorgen AKD drive (node 3), a Baumer
 //! encoder (node 5) and an I/O module (node 12). Their errors come and go as

@@ -1,5 +1,5 @@
-//! Read a log of any format of SPEC §5 through `logs::open` and count its
-//! frames: the library's reading alone, without decoding (the MF4 read
+//! Read a log of any format of docs/formats.md through `logs::open` and count
+//! its frames: the library's reading alone, without decoding (the MF4 read
 //! measurement of BENCHMARKS.md runs it).
 //!
 //!     cargo run --release --example read_log --features logs -- FILE…

@@ -1,5 +1,5 @@
 //! A few hundred simulated NC cycles against a simulated servo drive,
-//! exchanging real 10-byte command and 40-byte feedback frames (SPEC §1).
+//! exchanging real 10-byte command and 40-byte feedback frames (docs/servo.md).
 //!
 //! The NC enables the drive (SE 0b01 → 0b10), runs the axis, searches the
 //! incremental encoder's zero pulse, and — after a following error is

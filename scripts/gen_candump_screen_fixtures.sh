@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Writes tests/fixtures/candump_screen/*.txt, candump's screen output with the
-# option sets of SPEC §5.2 (-t a|A|d|z, -N, -x, -e, -a, -8, -c, -S, -i), and
-# beside each a .json with what every printed line holds.
+# option sets of docs/formats.md#candump-screen (-t a|A|d|z, -N, -x, -e, -a, -8,
+# -c, -S, -i), and beside each a .json with what every printed line holds.
 #
 # The lines are made by can-utils' own formatting code (lib.c) and candump.c's
 # line assembly, reproduced in scripts/candump_screen/driver.c: candump itself
@@ -20,8 +20,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cc -O1 -std=gnu11 -I"$src/include" -I"$src" -o "$tmp/driver" \
     "$here/candump_screen/driver.c" "$src/lib.c"
-# -t A prints local time; the reader reads it as UTC (SPEC §5.2), so the
-# fixture is made in UTC.
+# -t A prints local time; the reader reads it as UTC
+# (docs/formats.md#candump-screen), so the fixture is made in UTC.
 for mode in plain ta_x_e tA_a_8 td tz_N c3_ta c1_tA_N_a S i; do
     TZ=UTC "$tmp/driver" "$mode" "$out/$mode.txt" "$out/$mode.json"
 done

@@ -2,30 +2,32 @@
 """Generate a realistic candump log of a simulated CANopen machine bus.
 
 The bus (500 kbit/s, interface ``can0``) carries an NMT master and three
-devices, each behaving as its manual says (see /work/shared/SPEC.md and the
-seeds it cites):
+devices, each behaving as its manual says (see docs/canopen.md and
+the seeds cited below):
 
-* node 3, a Kollmorgen AKD servo drive (SPEC 2.4, 2.5, seed 000): heartbeat
-  every 100 ms, TPDO1 0x183 (statusword, position actual) and RPDO1 0x203
-  (controlword, target velocity) every SYNC, a CiA 402 state machine that
-  goes to "fault" while an error is active, EMCYs that follow the EMCY error
-  state machine of SPEC 2.5 (error EMCYs with the accumulated error register,
-  reset EMCYs with code 0x0000 and the remaining register) with byte 3 =
-  axis id (bits 0-3) and feedback id (bits 4-7), kept in the reset EMCYs as
-  SPEC 2.4 says, and an object 1003h history (10 entries) read by SDO;
-* node 5, a Baumer EAM580 absolute encoder (SPEC 4, seed 003): heartbeat
-  every 100 ms, TPDO1 0x185 (position 6004h) every SYNC, EMCYs with the
-  alarms 6503h in bytes 3-4 and the warnings 6505h in bytes 5-6 (battery
+* node 3, a Kollmorgen AKD servo drive (docs/canopen.md#akd,
+  docs/canopen.md#emcy-producer, seed 000): heartbeat every 100 ms, TPDO1 0x183
+  (statusword, position actual) and RPDO1 0x203 (controlword, target velocity)
+  every SYNC, a CiA 402 state machine that goes to "fault" while an error is
+  active, EMCYs that follow the EMCY error state machine of
+  docs/canopen.md#emcy-producer (error EMCYs with the accumulated error
+  register, reset EMCYs with code 0x0000 and the remaining register) with byte
+  3 = axis id (bits 0-3) and feedback id (bits 4-7), kept in the reset EMCYs as
+  docs/canopen.md#akd says, and an object 1003h history (10 entries) read by
+  SDO;
+* node 5, a Baumer EAM580 absolute encoder (docs/canopen.md#baumer, seed 003):
+  heartbeat every 100 ms, TPDO1 0x185 (position 6004h) every SYNC, EMCYs with
+  the alarms 6503h in bytes 3-4 and the warnings 6505h in bytes 5-6 (battery
   warning 0xFF00, CAN bus passive 0x8120, temperature 0x4200, watchdog reset
   reason 0x6100, reset 0x0000); it drops off the bus for about 3.3 s and
   comes back with a boot-up;
 * node 10, an inclination sensor monitored with node guarding (seed 004,
-  SPEC 2.7): the master sends the RTR ``70A#R`` every 200 ms (guard time
-  100Ch = 200 ms, life time factor 100Dh = 3) and the sensor answers one byte,
-  bit 7 a toggle that starts at 0 after the boot-up, bits 0-6 its NMT state;
-  it sends TPDO2 0x28A (slope X and Y, 0.01 deg) every 100 ms. Once its
-  toggle fails to alternate (exactly one answer with a wrong toggle), and
-  once it goes bus-off for 0.7 s: four guard requests stay unanswered, its
+  docs/canopen.md#error-control): the master sends the RTR ``70A#R`` every 200
+  ms (guard time 100Ch = 200 ms, life time factor 100Dh = 3) and the sensor
+  answers one byte, bit 7 a toggle that starts at 0 after the boot-up, bits 0-6
+  its NMT state; it sends TPDO2 0x28A (slope X and Y, 0.01 deg) every 100 ms.
+  Once its toggle fails to alternate (exactly one answer with a wrong toggle),
+  and once it goes bus-off for 0.7 s: four guard requests stay unanswered, its
   life guarding expires, it sends EMCY 0x8130, answers as pre-operational
   and is started again by the master.
 
@@ -67,7 +69,7 @@ frames; that is the default output. ``--frames N`` repeats the scenario
 (episodes after the first skip the power-on reset and start with the drive's
 fault reset) until N frames exist and cuts the log at exactly N frames.
 
-Output formats: candump log lines (default, SPEC 5)::
+Output formats: candump log lines (default, docs/formats.md)::
 
     (1700000000.000500) can0 080#
     (1700000000.000812) can0 183#3706A0860100
@@ -85,10 +87,11 @@ payload length, three zero bytes, and the payload padded to 8 bytes.
 ``--truth FILE`` writes the ground truth as JSON, computed from the frames
 written (not from the scenario script) with the rules stated in its "rules"
 key, and cross-checked against what the scenario injected: per node the
-frame counts per SPEC 6.1 kind, the EMCY counts, first error, the EMCY slot
-at the end under SPEC 3's root-cause rule, boot-up lines, heartbeat gaps
-over 300 ms and the node-guarding answers with a wrong toggle. Line numbers
-are 1-based and equal pcap packet numbers.
+frame counts per kind (docs/output.md#common-keys), the EMCY counts, first
+error, the EMCY slot at the end under the root-cause rule of
+docs/canopen.md#recv-emcy, boot-up lines, heartbeat gaps over 300 ms and the
+node-guarding answers with a wrong toggle. Line numbers are 1-based and equal
+pcap packet numbers.
 
 The output depends only on the options: the same ``--seed`` gives the same
 bytes. Python 3.11 standard library only.
@@ -114,7 +117,7 @@ from operator import itemgetter
 # ---------------------------------------------------------------------------
 # Bus and scenario constants (times in microseconds)
 
-START_US = 1_700_000_000_000_500  # first SYNC, as in SPEC 5's example
+START_US = 1_700_000_000_000_500  # first SYNC, as docs/formats.md#candump-log
 CYCLE_US = 10_000  # SYNC period
 EPISODE_US = 10_000_000  # one run of the scenario
 CYCLES_PER_EPISODE = EPISODE_US // CYCLE_US
@@ -133,7 +136,7 @@ NODE_NAMES = {
 }
 NODE_PROFILES = {AKD: "akd", ENC: "baumer", INCL: "generic"}
 
-# NMT states on the wire (SPEC 2.7)
+# NMT states on the wire (docs/canopen.md#error-control)
 BOOT_UP, STOPPED, OPERATIONAL, PRE_OPERATIONAL = 0x00, 0x04, 0x05, 0x7F
 STATE_NAMES = {
     BOOT_UP: "boot_up",
@@ -167,7 +170,8 @@ FRAME_US = [((47 + 8 * n) * 11 // 10) * 1_000_000 // BITRATE for n in range(9)]
 
 
 def class_register_bits(code: int) -> int:
-    """Error-register class bits derived from an error code (SPEC 2.5)."""
+    """Error-register class bits derived from an error code
+    (docs/canopen.md#emcy-producer)."""
     high = code >> 12
     if high == 0x2:
         return 0x02
@@ -181,14 +185,15 @@ def class_register_bits(code: int) -> int:
 
 
 class AkdEmcy:
-    """The AKD's EMCY error state machine (SPEC 2.5) with its byte 3 (SPEC 2.4).
+    """The AKD's EMCY error state machine (docs/canopen.md#emcy-producer) with
+    its byte 3 (docs/canopen.md#akd).
 
     Error EMCYs carry the code, the register accumulated over all active
     errors (bit 0 plus the class bits) and byte 3 = axis | feedback << 4.
     Reset EMCYs carry code 0x0000, the register of the remaining errors and
-    still the cleared error's byte 3 (SPEC 2.4 overrides 2.5's "manufacturer
-    area zero" for this drive). An active error occurring again, or clearing
-    an error that is not active, sends nothing.
+    still the cleared error's byte 3 (docs/canopen.md#akd: this drive keeps it
+    where a generic device sends a zero manufacturer area). An active error
+    occurring again, or clearing an error that is not active, sends nothing.
     """
 
     def __init__(self) -> None:
@@ -225,8 +230,8 @@ class AkdEmcy:
         return struct.pack("<HBB4x", 0x0000, 0x00, axis & 0x0F)
 
 
-# Baumer diagnostic sources used here (SPEC 4): code -> (register bits,
-# 6503h alarm bits, 6505h warning bits)
+# Baumer diagnostic sources used here (docs/canopen.md#baumer): code ->
+# (register bits, 6503h alarm bits, 6505h warning bits)
 BAUMER_SOURCES = {
     0xFF00: (0x00, 0x0000, 1 << 4),  # battery low, runtime, non-redundant
     0x8120: (0x10, 0x0000, 0x0000),  # CAN controller bus passive
@@ -675,7 +680,8 @@ class Bus:
         self.incl_busoff = True
 
     def ev_incl_recover(self, t: int) -> None:
-        """Back from bus-off: life guarding expired meanwhile (SPEC 2.7)."""
+        """Back from bus-off: life guarding expired meanwhile
+        (docs/canopen.md#error-control)."""
         self.incl_busoff = False
         life = GUARD_US * LIFE_TIME_FACTOR
         if self.incl_last_rtr is not None and t - self.incl_last_rtr > life:
@@ -819,7 +825,7 @@ def write_pcap(frames: list[tuple], path: str) -> None:
 
 
 def kind_of(cid: int, rtr: bool) -> str:
-    """SPEC 6.1's kind of a base-format frame."""
+    """The `kind` (docs/output.md#common-keys) of a base-format frame."""
     if cid == 0x000:
         return "nmt_command"
     if cid == 0x080:
@@ -843,9 +849,9 @@ GAP_MS = 300
 
 RULES = {
     "line": "1-based line number in the log (= pcap packet number)",
-    "frames": "frames per SPEC 6.1 kind; node = CAN id & 0x7F for emcy, heartbeat, guard_request, pdo, sdo; a guarding answer (see guarding) counts as guard_answer, not heartbeat",
-    "emcy": "error = code outside 0x0000-0x00FF, reset = code 0x0000-0x00FF (SPEC 2.3)",
-    "slot_at_end": "SPEC 3 RECV_EMCY_DEV: an error EMCY is stored only while the slot holds no error; a reset always overwrites; null = no EMCY ever received",
+    "frames": "frames per kind (docs/output.md#common-keys); node = CAN id & 0x7F for emcy, heartbeat, guard_request, pdo, sdo; a guarding answer (see guarding) counts as guard_answer, not heartbeat",
+    "emcy": "error = code outside 0x0000-0x00FF, reset = code 0x0000-0x00FF (docs/canopen.md#emcy-codes)",
+    "slot_at_end": "RECV_EMCY_DEV (docs/canopen.md#recv-emcy): an error EMCY is stored only while the slot holds no error; a reset always overwrites; null = no EMCY ever received",
     "boot_up_lines": "data frames on 0x700+node whose byte is 0x00",
     "heartbeat_gaps": f"consecutive data frames on 0x700+node (heartbeats, boot-ups, guarding answers) more than {GAP_MS} ms apart; gap_ms = difference of the log timestamps",
     "sdo": "requests = data frames on 0x600+node; transfers = requests whose command specifier (byte 0 bits 7-5) is 1 or 2 (initiate download, initiate upload; the log has no block transfers); aborts = SDO frames whose byte 0 is 0x80, with the multiplexer of bytes 1-3 and the code of bytes 4-7",

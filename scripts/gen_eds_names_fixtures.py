@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Write the EDS-names fixture of tests/eds_names.rs and its truth file.
 
-SPEC §8.2 and §7.3: a PDO signal mapped from a sub-entry of an ARRAY
-(object type 0x8) or a RECORD (0x9) is named `Object name.Sub-entry name`;
-with `--eds`, an SDO record names its object by the file's ParameterName.
+docs/canopen.md#signals and docs/canopen.md#object-names: a PDO signal mapped
+from a sub-entry of an ARRAY (object type 0x8) or a RECORD (0x9) is named
+`Object name.Sub-entry name`; with `--eds`, an SDO record names its object by
+the file's ParameterName.
 
 - array_drive.eds   a CiA 402 drive (device type 0x00020192) whose file
                     names its objects in its own words ("Control word",

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Write tests/fixtures/sdo/broken.log and broken.json: hand-made SDO frames
-that a working stack never sends, one scenario per node, and what SPEC 7.2
-says the transfer tracker must report for each transfer.
+that a working stack never sends, one scenario per node, and what
+docs/canopen.md#transfers says the transfer tracker must report for each
+transfer.
 
 The frames are written here, not recorded: each scenario below lists its
 frames (time offset in ms, COB-ID, data hex) and its transfers. The line

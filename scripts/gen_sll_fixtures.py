@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Write the Linux "cooked" capture fixtures of tests/pcap.rs (SPEC §5.5)
-with scapy, and beside each what tshark reads from it.
+"""Write the Linux "cooked" capture fixtures of tests/pcap.rs
+(docs/formats.md#pcap) with scapy, and beside each what tshark reads from it.
 
 `tcpdump -i any`, and dumpcap/Wireshark on a CAN interface in some setups,
 write link type 113 (LINUX_SLL, 16-byte header) or 276 (LINUX_SLL2, 20-byte

@@ -97,10 +97,11 @@ fn servo_words() {
     assert_eq!(status.to_string(), "0x00000003 [ServoEn|ServoRDY]");
 }
 
-/// `motionwire servo command` and `servo feedback` print these lines (SPEC
-/// §6.2); the program's output is a contract, so the spacing is too: the
-/// flags line of a word without flags keeps its trailing space, a message
-/// without a unit keeps the empty unit between two spaces.
+/// `motionwire servo command` and `servo feedback` print these lines
+/// (docs/servo.md#cli-command, docs/servo.md#cli-feedback); the program's
+/// output is a contract, so the spacing is too: the flags line of a word
+/// without flags keeps its trailing space, a message without a unit keeps the
+/// empty unit between two spaces.
 #[test]
 fn servo_frame_details() {
     let command =

@@ -9,44 +9,50 @@
 //! code; reading log files, the decoder session and the post-mortem need
 //! `std` and sit behind features.
 //! Every decoder takes outside bytes and returns a typed [`Error`] instead of
-//! panicking. The formats and behaviours are those of the project's
-//! specification (`SPEC.md`); each item's documentation names its section.
+//! panicking. The formats and behaviours are described in the repository's
+//! reference, the `docs/` folder (`docs/README.md`: the program's output,
+//! the summary, every log format, CANopen as the crate reads it, the servo
+//! frames); each item's documentation names the page and section that
+//! covers it, as `docs/output.md#sdo`.
 //!
 //! ## Layout
 //!
 //! - [`can`]: the one CAN frame vocabulary every other part speaks —
 //!   identifiers, [`can::CanFrame`] (data, remote, CAN FD, error frames;
 //!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
-//!   with the time and interface a log records (ISO 11898-1, SPEC §5).
+//!   with the time and interface a log records (ISO 11898-1, docs/formats.md).
 //! - [`logs`]: every log format in one folder — candump text (can-utils),
 //!   Vector ASC, PEAK TRC, and with `std` Vector BLF and pcap/pcapng —
 //!   each read into [`can::LogFrame`]s, the format detected from the
-//!   content (SPEC §5).
+//!   content (docs/formats.md).
 //! - [`canopen`]: a [`can::CanFrame`] read as CANopen
-//!   ([`canopen::CanOpenMessage::decode`], SPEC §6.1); node-IDs and COB-IDs,
-//!   the EMCY frame, error register and
-//!   error codes with their descriptions, the EMCY producer state machine
-//!   and the 1003h error history (CiA 301 §7.2.7, CiA 402, SPEC §2.1–2.6);
-//!   NMT states, heartbeat, node guarding and life guarding (CiA 301
-//!   §7.2.8, SPEC §2.7); the CiA 405 `RECV_EMCY` consumer (SPEC §3); the
-//!   CiA 402 drive state machine, statusword, controlword and modes of
-//!   operation (SPEC §8.3); SDO frames, the transfer tracker and the
-//!   1001h/1003h server (SPEC §7); PDO mappings and signals (SPEC §8.1,
-//!   §8.2); the names of object-dictionary entries,
-//!   [`canopen::object_name`] (CiA 301, CiA 402, CiA 406, SPEC §7.3).
+//!   ([`canopen::CanOpenMessage::decode`], docs/canopen.md#identifiers);
+//!   node-IDs and COB-IDs, the EMCY frame, error register and error codes with
+//!   their descriptions, the EMCY producer state machine and the 1003h error
+//!   history (CiA 301 §7.2.7, CiA 402, docs/canopen.md#emcy); NMT states,
+//!   heartbeat, node guarding and life guarding (CiA 301 §7.2.8,
+//!   docs/canopen.md#error-control); the CiA 405 `RECV_EMCY` consumer
+//!   (docs/canopen.md#recv-emcy); the CiA 402 drive state machine, statusword,
+//!   controlword and modes of operation (docs/canopen.md#cia402); SDO frames,
+//!   the transfer tracker and the 1001h/1003h server (docs/canopen.md#sdo);
+//!   PDO mappings and signals (docs/canopen.md#pdo-mappings,
+//!   docs/canopen.md#signals); the names of object-dictionary entries,
+//!   [`canopen::object_name`] (CiA 301, CiA 402, CiA 406,
+//!   docs/canopen.md#object-names).
 //! - [`profiles`]: device-specific layouts of the EMCY manufacturer field and
-//!   diagnostic sources (Kollmorgen AKD, SPEC §2.4; Baumer EAM580, SPEC §4).
+//!   diagnostic sources (Kollmorgen AKD, docs/canopen.md#akd; Baumer EAM580,
+//!   docs/canopen.md#baumer).
 //!   [`profiles::Profile`] says which one reads a node.
 //! - [`servo`]: the EtherCAT servo ↔ NC cyclic frames, their control,
 //!   status and error words, the enable, error-clear and zero-pulse
-//!   handshakes (SPEC §1), and a drive model to test an NC against
-//!   (SPEC §9.2).
+//!   handshakes (docs/servo.md), and a drive model to test an NC against
+//!   (docs/servo.md#drive-model).
 //! - `decoder` (feature `decoder`): the decoder session — each frame of a
 //!   log read in the context of the frames before it: SDO transfers, PDO
 //!   signals from the mappings the log teaches, CiA 402 readings, the JSON
-//!   record of `motionwire decode --json` (SPEC §6.1, §7, §8).
+//!   record of `motionwire decode --json` (docs/output.md#json).
 //! - `summary` (feature `decoder`): the post-mortem of a log, one record per
-//!   device and per bus, as typed values, text and JSON (SPEC §6.3).
+//!   device and per bus, as typed values, text and JSON (docs/summary.md).
 //!
 //! ## Optional features
 //!
@@ -58,18 +64,18 @@
 //! - `logs`: one way to read any log — `logs::open(path)`, `logs::read(input)`
 //!   and `logs::ReadOptions` detect the format from the content, inflate
 //!   gzip and hand on the events of every format through one
-//!   `logs::LogReader` (SPEC §5.7, §6.4). Needs `std`; enables `pcap` and
-//!   `blf` and adds `flate2`.
+//!   `logs::LogReader` (docs/formats.md#detection, docs/formats.md#gzip). Needs
+//!   `std`; enables `pcap` and `blf` and adds `flate2`.
 //! - `decoder`: `decoder::Decoder` and `summary::Summarizer`, the decoder
-//!   session and the post-mortem (SPEC §6.1, §6.3, §7, §8). Needs `std`;
-//!   enables `eds` and `serde`; adds `serde_json` (the summary's exact
+//!   session and the post-mortem (docs/output.md, docs/summary.md). Needs
+//!   `std`; enables `eds` and `serde`; adds `serde_json` (the summary's exact
 //!   times) and `itoa` (the JSON records).
 //! - `cli`: the `motionwire` program; enables `decoder`, `logs` and `eds`
 //!   and adds `clap`.
 //! - `pcap`: `logs::pcap::PcapReader`, pcap and pcapng captures of
-//!   SocketCAN interfaces (SPEC §5.5). Needs `std`, no dependency.
-//! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (SPEC §5.6). Needs
-//!   `std`; adds `flate2` for the zlib containers.
+//!   SocketCAN interfaces (docs/formats.md#pcap). Needs `std`, no dependency.
+//! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (docs/formats.md#blf).
+//!   Needs `std`; adds `flate2` for the zlib containers.
 //! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
 //!   the zero-copy views, not the state machines).
 //!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],
@@ -99,7 +105,7 @@
 //!   crate's [`can::CanFrame`].
 //! - `eds`: `motionwire::eds`, the CiA 306 EDS/DCF reader: object names, data types
 //!   and values, and each PDO's communication parameters and mapping with
-//!   its signals' names and types (SPEC §8.1, §8.2). Needs `std`.
+//!   its signals' names and types (docs/canopen.md#eds). Needs `std`.
 //! - `defmt`: `defmt::Format` on the frame vocabulary and the value types,
 //!   for firmware that logs with defmt.
 //!
@@ -245,7 +251,7 @@ pub enum Error {
         /// The form the text must have, in words.
         expected: &'static str,
     },
-    /// A line of a text log does not follow its format (SPEC §5); the
+    /// A line of a text log does not follow its format (docs/formats.md); the
     /// reason says what was expected at `column` and what was found there,
     /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
     /// found 0x800`.
@@ -258,11 +264,11 @@ pub enum Error {
         /// What was expected there and what was found.
         reason: SyntaxError,
     },
-    /// A binary log (pcap, pcapng, BLF; SPEC §5.5, §5.6) is damaged at
-    /// `offset` (bytes from the start of the file, or of the decompressed
-    /// container for BLF objects): the records before it were read, the rest
-    /// of the file cannot be, e.g. `pcap file, byte 4120: record of 16 bytes
-    /// cut off after 9`.
+    /// A binary log (pcap, pcapng, BLF; docs/formats.md#pcap,
+    /// docs/formats.md#blf) is damaged at `offset` (bytes from the start of the
+    /// file, or of the decompressed container for BLF objects): the records
+    /// before it were read, the rest of the file cannot be, e.g. `pcap file,
+    /// byte 4120: record of 16 bytes cut off after 9`.
     #[error("{format} file, byte {offset}: {reason}")]
     Binary {
         /// The log format the file was read as.
@@ -273,8 +279,8 @@ pub enum Error {
         reason: BinaryError,
     },
     /// A PDO mapping entry cannot be read from, or written into, a payload
-    /// (SPEC §8.2), e.g. `PDO entry 6064sub0 (32 bits) at bit 24: expected
-    /// a payload of at least 7 bytes, found 4`.
+    /// (docs/canopen.md#signals), e.g. `PDO entry 6064sub0 (32 bits) at bit 24:
+    /// expected a payload of at least 7 bytes, found 4`.
     #[error(transparent)]
     PdoEntry(#[from] canopen::PdoEntryError),
 }

@@ -15,15 +15,15 @@
 //!   relative`, a symbolic name, `TxRq`, statistics, chip status); truth:
 //!   python-can's `ASCReader`, with the time since the start added up.
 //!
-//! Differences, each a decision of SPEC §5.3/§5.7 or of `motionwire::logs::asc`:
-//! python-can marks every `CANFD` line as CAN FD and gives an error frame
-//! identifier 0 and no data (the crate: class `bus_error`, 8 zero bytes, as
-//! `asc2log`); python-can reads a `TxRq` line as a frame (the crate skips
-//! the transmit request, as `asc2log` does); python-can (4.6) returns
-//! relative times as written (the crate adds them up: seconds since the
-//! start). can-utils' old `log2asc -f` writes an error frame as a `CANFD`
-//! line with identifier 0x80 and zero data; `asc2log` and the crate both
-//! read what the line says.
+//! Differences, each a decision of docs/formats.md#where-tools-disagree or of
+//! `motionwire::logs::asc`: python-can marks every `CANFD` line as CAN FD and
+//! gives an error frame identifier 0 and no data (the crate: class
+//! `bus_error`, 8 zero bytes, as `asc2log`); python-can reads a `TxRq` line as
+//! a frame (the crate skips the transmit request, as `asc2log` does);
+//! python-can (4.6) returns relative times as written (the crate adds them up:
+//! seconds since the start). can-utils' old `log2asc -f` writes an error frame
+//! as a `CANFD` line with identifier 0x80 and zero data; `asc2log` and the
+//! crate both read what the line says.
 
 use motionwire::can::{Direction, FdFlags, Iface, LogEvent, LogFrame};
 use motionwire::logs::asc::{self, AscParser};
@@ -172,7 +172,8 @@ fn decimal_base_and_relative_times() {
 
 #[test]
 fn canfd_lines_without_fdf_are_classic_frames() {
-    // SPEC §5.3 decision: asc2log's reading of the flags field.
+    // The decision in docs/formats.md#asc: asc2log's reading of the flags
+    // field.
     let mut parser = AscParser::new();
     let classic = b"   0.1 CANFD   1 Rx 123  0 0 2  2 01 02   130000  130        0 0 0 0 0 0";
     let remote = b"   0.2 CANFD   1 Rx 123  0 0 3  0   130000  130       10 0 0 0 0 0";
@@ -192,13 +193,13 @@ fn canfd_lines_without_fdf_are_classic_frames() {
     assert_eq!(f.fd_flags(), FdFlags::BRS.union(FdFlags::ESI));
 }
 
-/// CANoe's lines (SPEC §5.3): statistics after a remote request's `r`
+/// CANoe's lines (docs/formats.md#asc): statistics after a remote request's `r`
 /// (`Tx r Length = 1704000 BitCount = 145 ID = …`) and after `r 8`, and
 /// `CANFD` lines of 12 and 64 bytes whose flags lack EDL, read frame for
 /// frame as python-can's `ASCReader` reads them. The one difference is the
-/// SPEC §5.3 decision: a `CANFD` line without EDL of at most 8 bytes (here
-/// the remote request with flags 0x200050) is classic; python-can marks
-/// every `CANFD` line as CAN FD.
+/// decision in docs/formats.md#asc: a `CANFD` line without EDL of at most 8
+/// bytes (here the remote request with flags 0x200050) is classic; python-can
+/// marks every `CANFD` line as CAN FD.
 #[test]
 fn canoe_lines_as_python_can_reads_them() {
     let (text, truth) = fixture("canoe");

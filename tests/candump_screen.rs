@@ -1,15 +1,16 @@
-//! candump's screen output with every option of SPEC §5.2, as can-utils'
-//! own formatting code prints it: `scripts/gen_candump_screen_fixtures.sh`
-//! builds can-utils' `lib.c` with `scripts/candump_screen/driver.c`, which
-//! assembles each line as `candump.c` does (timestamp modes `-t a|A|d|z`,
-//! `-N`, `-x`, `-e`, `-a`, `-8`, `-c`, `-S`, `-i`), and writes beside each
-//! `tests/fixtures/candump_screen/MODE.txt` a `MODE.json` with what every
-//! line holds. The crate must read every frame as written.
+//! candump's screen output with every option of docs/formats.md#candump-screen,
+//! as can-utils' own formatting code prints it:
+//! `scripts/gen_candump_screen_fixtures.sh` builds can-utils' `lib.c` with
+//! `scripts/candump_screen/driver.c`, which assembles each line as `candump.c`
+//! does (timestamp modes `-t a|A|d|z`, `-N`, `-x`, `-e`, `-a`, `-8`, `-c`,
+//! `-S`, `-i`), and writes beside each `tests/fixtures/candump_screen/MODE.txt`
+//! a `MODE.json` with what every line holds. The crate must read every frame as
+//! written.
 //!
-//! The truth's `ts` follows SPEC §5.2's decision: `-t a` and `-t A` (read as
-//! UTC) are Unix time, `-t z` the time since the first frame as printed,
-//! `-t d` the printed deltas added up. `-S` and `-i` lines with data cannot
-//! be read back faithfully and are errors saying so.
+//! The truth's `ts` follows the decision in docs/formats.md#candump-screen: `-t
+//! a` and `-t A` (read as UTC) are Unix time, `-t z` the time since the first
+//! frame as printed, `-t d` the printed deltas added up. `-S` and `-i` lines
+//! with data cannot be read back faithfully and are errors saying so.
 
 use motionwire::can::{Direction, FdFlags, Iface, LogFrame};
 use motionwire::logs::candump::{self, RelativeTimestamps};
@@ -149,7 +150,7 @@ fn swapped_and_binary_data_are_reported_as_unsupported() {
 /// can-utils' `log2long` writes a candump log (`log2long_in.log`) in the
 /// screen form with the ASCII column and the timestamp
 /// (`log2long.txt`); both read as the same frames, except the CAN FD flags
-/// the screen form does not show without `-x` (SPEC §5.2).
+/// the screen form does not show without `-x` (docs/formats.md#candump-screen).
 #[test]
 fn log2long_output_reads_as_its_input() {
     let dir = concat!(

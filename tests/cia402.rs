@@ -1,5 +1,5 @@
-//! The CiA 402 drive state machine (SPEC §8.3) against an independent
-//! implementation: python-canopen's `canopen/profiles/p402.py`.
+//! The CiA 402 drive state machine (docs/canopen.md#cia402) against an
+//! independent implementation: python-canopen's `canopen/profiles/p402.py`.
 //!
 //! `scripts/gen_cia402_fixtures.py` wrote
 //! `tests/fixtures/cia402/python_canopen.json` from python-canopen itself:
@@ -10,8 +10,10 @@
 //!
 //! Statuswords: the crate and python-canopen agree on all 65 536.
 //!
-//! Where python-canopen and SPEC §8.3 / CiA 402 differ, the crate follows
-//! SPEC and the test checks the difference exactly:
+//! Where python-canopen and docs/canopen.md#cia402 / CiA 402 differ, the crate
+//! follows docs/canopen.md#cia402 (its differences are listed in
+//! docs/canopen.md#where-tools-disagree) and the test checks the difference
+//! exactly:
 //!
 //! 1. **Automatic transitions.** python-canopen's TRANSITIONTABLE lists
 //!    transitions 0 (START → NOT READY TO SWITCH ON), 1 (NOT READY TO SWITCH
@@ -24,16 +26,17 @@
 //!    `Cia402State::on_drive_event` (power on, initialisation complete,
 //!    fault reaction complete).
 //! 2. **0x07 in OPERATION ENABLED.** python-canopen names the controlword
-//!    `CW_SWITCH_ON` for transition 5 (its table's comment); SPEC §8.3 names
-//!    it `disable_operation` there. Same bits, same target state.
+//!    `CW_SWITCH_ON` for transition 5 (its table's comment);
+//!    docs/canopen.md#cia402 names it `disable_operation` there. Same bits,
+//!    same target state.
 //! 3. **0x80.** python-canopen calls 0x80 `CW_SWITCH_ON_DISABLED` and writes
-//!    it from FAULT; SPEC §8.3 (and CiA 402) read it as `fault_reset`, the
-//!    0 → 1 edge of bit 7, only after a controlword with bit 7 clear. Every
-//!    0x80 python-canopen writes follows one (or is the first controlword),
-//!    so each is a fault reset.
+//!    it from FAULT; docs/canopen.md#cia402 (and CiA 402) read it as
+//!    `fault_reset`, the 0 → 1 edge of bit 7, only after a controlword with bit
+//!    7 clear. Every 0x80 python-canopen writes follows one (or is the first
+//!    controlword), so each is a fault reset.
 //! 4. **Mode names.** python-canopen writes `PROFILED POSITION`, `PROFILED
 //!    VELOCITY`, `PROFILED TORQUE`; CiA 402 names the modes "profile
-//!    position mode", … and SPEC §8.3 uses CiA 402's names
+//!    position mode", … and docs/canopen.md#cia402 uses CiA 402's names
 //!    (`profile_position`). Its `OPEN_LOOP_SCALAR_MODE` (−1) and
 //!    `OPEN_LOOP_VECTOR_MODE` (−2) are negative, which CiA 402 leaves to
 //!    manufacturers: the crate calls them `manufacturer_specific`.
@@ -161,10 +164,10 @@ fn check_step(from: &str, controlword: u16, previous: Option<u16>, to: &str) {
             assert_eq!(t.numbers(), &[number], "{context}");
             match number {
                 // Difference 2: python-canopen's CW_SWITCH_ON in OPERATION
-                // ENABLED is SPEC's disable_operation.
+                // ENABLED is disable_operation (docs/canopen.md#cia402).
                 5 => assert_eq!(command, Cia402Command::DisableOperation, "{context}"),
                 // Difference 3: python-canopen's CW_SWITCH_ON_DISABLED is
-                // SPEC's fault_reset, on the edge of bit 7.
+                // fault_reset (docs/canopen.md#cia402), on the edge of bit 7.
                 15 => {
                     assert_eq!(command, Cia402Command::FaultReset, "{context}");
                     assert!(previous.map_or(true, |p| p & 0x80 == 0), "{context}");

@@ -1,5 +1,5 @@
 //! Integration tests of the `motionwire` program: they run the built binary
-//! on files and standard input and check its output against SPEC §6.
+//! on files and standard input and check its output against docs/output.md.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -45,8 +45,8 @@ fn records(out: &Output) -> Vec<Value> {
         .collect()
 }
 
-/// The summary's node records (SPEC §6.3), without the bus records that
-/// follow them.
+/// The summary's node records (docs/summary.md#node), without the bus records
+/// that follow them.
 fn node_records(out: &Output) -> Vec<Value> {
     let all = records(out);
     let nodes: Vec<Value> = all
@@ -114,7 +114,7 @@ fn every_format_and_kind_as_json() {
         (8, 0x080, "sync", false, false, false, ""),
         (9, 0x581, "sdo", false, false, false, "4300100000000000"),
         (10, 0x77F, "heartbeat", false, false, false, "ff"),
-        // SPEC §6.1: identifier 0x100 is `time`.
+        // docs/canopen.md#identifiers: identifier 0x100 is `time`.
         (11, 0x100, "time", false, false, false, ""),
         (12, 0x283, "pdo", false, false, false, "00"),
     ];
@@ -156,7 +156,7 @@ fn every_format_and_kind_as_json() {
             Some(json!(3)),
         ]
     );
-    // The EMCY keys (SPEC §6.1).
+    // The EMCY keys (docs/output.md#emcy).
     let emcy = &recs[0];
     assert_eq!(emcy["code"], 0x8110);
     assert_eq!(emcy["class"], "monitoring");
@@ -184,7 +184,7 @@ fn frames_that_cannot_be_decoded_as_their_kind_carry_an_error() {
         recs[0]["error"],
         "EMCY frame: buffer of 2 bytes where 8 are needed"
     );
-    // SPEC §6.1: a short EMCY still gets `code` from its 2 bytes, no
+    // docs/output.md#emcy: a short EMCY still gets `code` from its 2 bytes, no
     // `register` without a third.
     assert_eq!(recs[0]["code"], 0x8110);
     assert!(recs[0].get("register").is_none());
@@ -212,7 +212,8 @@ fn profiles() {
         (&akd[0]["axis"], &akd[0]["feedback"]),
         (&json!(1), &json!(2))
     );
-    // The reset EMCY still carries the axis and feedback ids (SPEC §2.4).
+    // The reset EMCY still carries the axis and feedback ids
+    // (docs/canopen.md#akd).
     assert_eq!(
         (&akd[1]["axis"], &akd[1]["feedback"]),
         (&json!(1), &json!(2))
@@ -665,9 +666,10 @@ fn profiles_per_node() {
     }
 }
 
-/// SPEC §5.1 and §6.1: error frames (candump -e, python-can) are frames of
-/// kind `error_frame` with their classes, controller status and counters;
-/// candump's explanation lines after a screen error frame are not malformed.
+/// docs/formats.md#error-frames and docs/output.md#error-frame: error frames
+/// (candump -e, python-can) are frames of kind `error_frame` with their
+/// classes, controller status and counters; candump's explanation lines after a
+/// screen error frame are not malformed.
 #[test]
 fn error_frames_are_frames_with_their_keys() {
     let log = "\
@@ -712,9 +714,9 @@ fn error_frames_are_frames_with_their_keys() {
     assert!(stdout(&text).contains("error frame: controller (tx_passive)"));
 }
 
-/// SPEC §5.7, §6.3: a log without timestamps cannot be checked for
-/// heartbeat timeouts: `timeouts` is null, the text says so, and standard
-/// error says it once — never "no timeouts".
+/// docs/formats.md#timestamps, docs/summary.md#heartbeat: a log without
+/// timestamps cannot be checked for heartbeat timeouts: `timeouts` is null,
+/// the text says so, and standard error says it once — never "no timeouts".
 #[test]
 fn without_timestamps_timeouts_are_not_checked() {
     let log = "can0 705#05\ncan0 705#05\ncan0 706#05\n";
@@ -741,8 +743,8 @@ fn without_timestamps_timeouts_are_not_checked() {
     assert!(stderr(&timed).is_empty());
 }
 
-/// SPEC §6.4, live use: `candump -L can0 | motionwire decode --json -`
-/// prints each record as soon as its line arrives, while the input is still
+/// docs/output.md#live, live use: `candump -L can0 | motionwire decode --json
+/// -` prints each record as soon as its line arrives, while the input is still
 /// open.
 #[test]
 fn a_pipe_is_decoded_live() {
@@ -815,8 +817,8 @@ fn a_python_can_log_decodes() {
 
 // ------------------------------------------------- issue 11: inputs, shapes
 
-/// SPEC §5.7: a file that is none of the formats is one clear error and
-/// exit status 2, not one error per line.
+/// docs/formats.md#detection: a file that is none of the formats is one clear
+/// error and exit status 2, not one error per line.
 #[test]
 fn an_unrecognised_file_is_one_error() {
     let text = "Hello, world!\nThis is not a CAN log.\nNor is this.\n";
@@ -839,11 +841,11 @@ fn an_unrecognised_file_is_one_error() {
     assert_eq!(stderr(&summary), "<stdin>: 0 frames\n");
 }
 
-/// SPEC §5.7 decision: random bytes never pass for a log. One MiB of them
-/// (a fixed seed; issue 20: a line starting with `;` made it a PEAK TRC
-/// file, read as 4 068 line errors and exit status 1) is one "unrecognised
-/// log format" and exit status 2; so are they with every NUL replaced, and
-/// a TRC header comment alone reads as nothing.
+/// The decision in docs/formats.md#detection: random bytes never pass for a
+/// log. One MiB of them (a fixed seed; issue 20: a line starting with `;` made
+/// it a PEAK TRC file, read as 4 068 line errors and exit status 1) is one
+/// "unrecognised log format" and exit status 2; so are they with every NUL
+/// replaced, and a TRC header comment alone reads as nothing.
 #[test]
 fn random_bytes_are_one_unrecognised_error() {
     let mut state = 0x9E37_79B9_7F4A_7C15u64;
@@ -878,8 +880,8 @@ fn random_bytes_are_one_unrecognised_error() {
     assert_eq!(stderr(&header), "<stdin>: 0 frames\n");
 }
 
-/// SPEC §6.4: a gzip-compressed log is read as the log inside it, detected
-/// by content whatever the file is called.
+/// docs/formats.md#gzip: a gzip-compressed log is read as the log inside it,
+/// detected by content whatever the file is called.
 #[test]
 fn gzip_input_is_detected_by_content() {
     use flate2::write::GzEncoder;
@@ -899,7 +901,8 @@ fn gzip_input_is_detected_by_content() {
     assert_eq!(records(&zipped).len(), 2);
 }
 
-/// SPEC §6.4: `--csv` writes the header row and one RFC 4180 row per frame.
+/// docs/output.md#csv: `--csv` writes the header row and one RFC 4180 row per
+/// frame.
 #[test]
 fn csv_rows_under_the_header() {
     let log = "(1700000000.000500) can0 081#1081110000000000\n\
@@ -928,8 +931,9 @@ fn csv_rows_under_the_header() {
     );
 }
 
-/// SPEC §6.4: `--node` keeps frames that carry one of the node-IDs,
-/// `--id` identifiers and ranges; the summary still counts everything.
+/// docs/output.md#filters: `--node` keeps frames that carry one of the
+/// node-IDs, `--id` identifiers and ranges; the summary still counts
+/// everything.
 #[test]
 fn node_and_id_filters() {
     let log = "can0 000#0105\ncan0 085#1081110000000000\ncan0 705#05\ncan0 706#05\n\
@@ -966,7 +970,8 @@ fn node_and_id_filters() {
     assert_eq!(nodes, [5, 6]);
 }
 
-/// SPEC §5.7, §6.3: node 5 on can0 and node 5 on can1 are two devices;
+/// docs/formats.md#interfaces, docs/summary.md#bus: node 5 on can0 and node 5
+/// on can1 are two devices;
 /// one bus record per interface with its error frames, bus-off and
 /// error-passive lines.
 #[test]
@@ -1045,8 +1050,8 @@ fn an_overlong_line_is_reported_and_skipped() {
     );
 }
 
-/// SPEC §5.2: `candump -t d` screen output: the deltas add up, detected or
-/// forced with --timestamps.
+/// docs/formats.md#candump-relative-times: `candump -t d` screen output: the
+/// deltas add up, detected or forced with --timestamps.
 #[test]
 fn delta_timestamps_add_up() {
     let log = " (000.000000)  can0  705   [1]  05\n\
@@ -1065,7 +1070,7 @@ fn delta_timestamps_add_up() {
     assert_eq!(ts(&["--timestamps", "delta"]), [0.0, 0.25, 0.35]);
 }
 
-/// SPEC §5.7: `--format` overrides detection.
+/// docs/formats.md#detection: `--format` overrides detection.
 #[test]
 fn format_overrides_detection() {
     let out = run(
@@ -1109,7 +1114,7 @@ fn a_gzip_bomb_is_one_overlong_line() {
     assert_eq!(stderr(&out).matches("line longer than 1 MiB").count(), 1);
 }
 
-/// SPEC §5.5, §5.7: a pcap or pcapng capture is detected and read like any
+/// docs/formats.md#pcap: a pcap or pcapng capture is detected and read like any
 /// log: `line` is tshark's `frame.number`, `iface` the pcapng interface
 /// name (null in pcap), and packets of other link types are said once,
 /// with their link type.
@@ -1159,7 +1164,7 @@ fn pcap_and_pcapng_captures() {
         let skipped = truth["packets"].as_array().unwrap().len() - can.len();
         let err = stderr(&out);
         if skipped > 0 {
-            // SPEC §5.5: once, naming the link type.
+            // docs/formats.md#pcap: once, naming the link type.
             assert_eq!(
                 err.matches("packet of link type 1 (Ethernet) skipped: not CAN")
                     .count(),
@@ -1189,9 +1194,9 @@ fn pcap_and_pcapng_captures() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }
 
-/// SPEC §5.4, §5.7, §6.3: a PEAK TRC file is detected and read: `line` is
-/// the file's line, `iface` the bus number, status rows are the bus
-/// record's `status_events`, not frames and not malformed.
+/// docs/formats.md#trc, docs/summary.md#bus: a PEAK TRC file is detected and
+/// read: `line` is the file's line, `iface` the bus number, status rows are the
+/// bus record's `status_events`, not frames and not malformed.
 #[test]
 fn trc_files() {
     let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/trc/");
@@ -1242,7 +1247,7 @@ fn trc_files() {
     assert!(status > 0 && errors > 0, "{buses:?}");
 }
 
-/// SPEC §5.3, §5.7: a Vector ASC file is detected and read: `line` is the
+/// docs/formats.md#asc: a Vector ASC file is detected and read: `line` is the
 /// file's line, `iface` the channel as written, `ts` seconds since the
 /// start (relative times added up).
 #[test]
@@ -1277,7 +1282,7 @@ fn asc_files() {
     assert_eq!(status, 1);
 }
 
-/// SPEC §5.6, §5.7: a Vector BLF file is detected and read: `line` is the
+/// docs/formats.md#blf: a Vector BLF file is detected and read: `line` is the
 /// object's number, `iface` the channel, `ts` start time + offset; a file
 /// cut inside a container gives the frames before it and one error.
 #[test]
@@ -1311,10 +1316,10 @@ fn blf_files() {
     assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
 }
 
-/// SPEC §5.8: an MF4 file is detected and read, by name and from standard
-/// input (gzip-compressed too): `iface` the bus channel, `ts` start time +
-/// master channel, frames in time order across the data groups, `line` the
-/// record's number over them; `--format mf4` names it.
+/// docs/formats.md#mf4: an MF4 file is detected and read, by name and from
+/// standard input (gzip-compressed too): `iface` the bus channel, `ts` start
+/// time + master channel, frames in time order across the data groups, `line`
+/// the record's number over them; `--format mf4` names it.
 #[test]
 fn mf4_files() {
     let fixtures = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/mf4/");
@@ -1360,7 +1365,8 @@ fn mf4_files() {
     assert!(stderr(&out).contains("mf4 file, byte "), "{}", stderr(&out));
 }
 
-/// SPEC §6.1's keys for NMT commands, SYNC and TIME.
+/// The keys of docs/output.md#nmt-command, docs/output.md#sync and
+/// docs/output.md#time.
 #[test]
 fn nmt_sync_and_time_keys() {
     let log = "\

@@ -1,5 +1,5 @@
 //! EDS and DCF files from public projects read as python-canopen reads them
-//! (SPEC §8.1, §8.2). `scripts/gen_eds_fixtures.py` imported each file of
+//! (docs/canopen.md#eds). `scripts/gen_eds_fixtures.py` imported each file of
 //! `tests/fixtures/eds/` with `canopen.import_od`, built its PDOs with
 //! `PdoMap.read(from_od=True)` and decoded four payload patterns; the
 //! results are the `.json` beside each file (origins and licences in the
@@ -13,8 +13,8 @@
 //!   the offset). `sample.eds` maps 6040h, 6060h, … that it does not
 //!   describe, and python-canopen's maps come out empty. The crate keeps
 //!   every entry where the mapping puts it; such an entry has no name
-//!   (the decoder then names it from the profile or `6040sub0`, SPEC §8.2)
-//!   and no type (unsigned of its length).
+//!   (the decoder then names it from the profile or `6040sub0`,
+//!   docs/canopen.md#signals) and no type (unsigned of its length).
 //! - Unnamed sub-indices of a `CompactSubObj` array: python-canopen names
 //!   sub-index 1 as the array and generates `name_2`, `name_3`, … only when
 //!   asked; the crate names every sub-index `name1`, `name2`, … (lely's

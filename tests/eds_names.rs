@@ -1,4 +1,5 @@
-//! Names from a node's EDS (SPEC §7.3, §8.2): `tests/fixtures/eds/
+//! Names from a node's EDS (docs/canopen.md#object-names,
+//! docs/canopen.md#signals): `tests/fixtures/eds/
 //! array_drive.eds` names its objects in its own words ("Control word",
 //! "Status word") and has an ARRAY 20C2h "Driver temperature" and a RECORD
 //! 2010h whose sub-entries its TPDO1 maps; `array_drive.log` reads and
@@ -64,8 +65,8 @@ fn sdo_records_name_the_object_from_the_eds() {
 
 /// TPDO1's signals as python-canopen maps and decodes them: a sub-entry of
 /// the ARRAY 20C2h is `Driver temperature.Actual temperature`, of the
-/// RECORD 2010h `Digital inputs.Enable input` (SPEC §8.2), with the values
-/// python-canopen reads.
+/// RECORD 2010h `Digital inputs.Enable input` (docs/canopen.md#signals), with
+/// the values python-canopen reads.
 #[test]
 fn array_and_record_sub_entries_are_named_object_dot_sub_entry() {
     let truth = truth();
@@ -93,7 +94,7 @@ fn array_and_record_sub_entries_are_named_object_dot_sub_entry() {
     }
 }
 
-/// The summary's abort names its object from the EDS too (SPEC §7.4).
+/// The summary's abort names its object from the EDS too (docs/summary.md#sdo).
 #[test]
 fn the_summary_names_an_abort_from_the_eds() {
     let records = records(&decode(&["--summary", "--json", "--eds", EDS, LOG]));

@@ -1,9 +1,9 @@
 //! The library alone reproduces what `motionwire decode --json` and
-//! `motionwire decode --summary --json` write (SPEC §6.1, §6.3): read any
-//! log with `logs::open`, decode each frame with a `Decoder`, build the
-//! summary with a `Summarizer`, serialize with serde_json. Compared line
-//! for line with the program's output on every fixture and the sample
-//! (the snapshot `tests/golden.rs` checks the program against), with no
+//! `motionwire decode --summary --json` write (docs/output.md#json,
+//! docs/summary.md): read any log with `logs::open`, decode each frame with a
+//! `Decoder`, build the summary with a `Summarizer`, serialize with serde_json.
+//! Compared line for line with the program's output on every fixture and the
+//! sample (the snapshot `tests/golden.rs` checks the program against), with no
 //! `cli` feature.
 
 use std::io::Read;

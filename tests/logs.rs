@@ -1,4 +1,4 @@
-//! `motionwire::logs`: one way to read any log (SPEC §5.7, §6.4). Every
+//! `motionwire::logs`: one way to read any log (docs/formats.md). Every
 //! fixture reads through `logs::open` as its format's own reader reads it;
 //! gzip is inflated once; the line layer's rules hold (over-long lines,
 //! NUL bytes, CRLF); a live stream is known to be drained; any bytes end
@@ -154,7 +154,8 @@ fn fixtures() -> Vec<(PathBuf, LogFormat)> {
 
 /// What the format's own reader makes of the file: the buffer iterators of
 /// the text formats (candump with the relative timestamps its first frames
-/// say, SPEC §5.2), the readers of the binary ones.
+/// say, docs/formats.md#candump-relative-times), the readers of the binary
+/// ones.
 fn own_reader(path: &Path, format: LogFormat) -> Items {
     let text = std::fs::read(path).unwrap();
     let line = |n: usize| Position::Line(n as u64);
@@ -233,8 +234,8 @@ fn gzip(bytes: &[u8]) -> Vec<u8> {
     gz.finish().unwrap()
 }
 
-/// SPEC §6.4: a gzip-compressed log is the log inside it, whatever its
-/// format; inflated once only.
+/// docs/formats.md#gzip: a gzip-compressed log is the log inside it, whatever
+/// its format; inflated once only.
 #[test]
 fn gzip_is_inflated_once() {
     for (name, format) in [
@@ -411,9 +412,9 @@ impl Read for Made {
     }
 }
 
-/// SPEC §5.7, bounded memory: a line of 100 MB is one error at its line,
-/// skipped unread, and the lines after it are read; the reader never holds
-/// more than a line of `MAX_LINE_LEN` and its blocks.
+/// docs/formats.md#memory, bounded memory: a line of 100 MB is one error at its
+/// line, skipped unread, and the lines after it are read; the reader never
+/// holds more than a line of `MAX_LINE_LEN` and its blocks.
 #[test]
 fn a_100_mb_line_is_one_error_and_memory_stays_bounded() {
     let input = Made {
@@ -538,8 +539,8 @@ impl Read for Pipe {
     }
 }
 
-/// SPEC §6.4, live use: the reader says it is drained as soon as it has
-/// handed on every event of what arrived, before it waits for more —
+/// docs/output.md#live, live use: the reader says it is drained as soon as it
+/// has handed on every event of what arrived, before it waits for more —
 /// comment lines and `candump -e` explanation lines after the last event
 /// included.
 #[test]
@@ -586,9 +587,10 @@ fn a_file_read_in_full_blocks_is_not_drained() {
     assert!(drained_at.len() <= 2, "{drained_at:?}");
 }
 
-/// SPEC §5.2: screen output without timestamps longer than what the
-/// relative-timestamp decision looks at reads whole (it once waited for 64
-/// timestamped frames that never came and dropped the held lines).
+/// docs/formats.md#candump-relative-times: screen output without timestamps
+/// longer than what the relative-timestamp decision looks at reads whole (it
+/// once waited for 64 timestamped frames that never came and dropped the held
+/// lines).
 #[test]
 fn a_long_log_without_timestamps_reads_whole() {
     let text: String = (0..20_000)
@@ -601,7 +603,8 @@ fn a_long_log_without_timestamps_reads_whole() {
     assert!(items.iter().all(|(_, t)| !t.starts_with("error")));
 }
 
-/// SPEC §5.2: relative timestamps decided from the first frames, or given.
+/// docs/formats.md#candump-relative-times: relative timestamps decided from the
+/// first frames, or given.
 #[test]
 fn relative_timestamps_detected_or_given() {
     let text = "(000.000000) can0 705#05\n(000.250000) can0 705#05\n(000.100000) can0 705#05\n";

@@ -5,7 +5,7 @@
 //! identifier, flags, DLC, data, channel, direction, time to the
 //! microsecond (python-can computes it in floats).
 //!
-//! Documented differences (SPEC §5.8, `motionwire::logs::mf4`'s
+//! Documented differences (docs/formats.md#mf4, `motionwire::logs::mf4`'s
 //! decisions): an error frame is Linux's layout of its `ErrorType`, not
 //! python-can's identifier and data; a classic frame carries at most 8
 //! bytes (python-can hands on `DataLength` bytes).
@@ -111,7 +111,8 @@ fn same_as_python_can(name: &str, ours: &[(u64, LogFrame<'static>)], theirs: &[V
         let frame = &ours.frame;
         assert_eq!(frame.is_error(), theirs["error"].as_bool().unwrap(), "{at}");
         if frame.is_error() {
-            // SPEC §5.8: classes bus_error | protocol, data from ErrorType.
+            // docs/formats.md#mf4: classes bus_error | protocol, data from
+            // ErrorType.
             assert_eq!(frame.id().raw(), 0x88, "{at}");
             continue;
         }
@@ -152,7 +153,7 @@ fn same_as_python_can(name: &str, ours: &[(u64, LogFrame<'static>)], theirs: &[V
         } else if frame.is_fd() {
             assert_eq!(frame.data(), data, "{at}");
         } else {
-            // SPEC §5.8: at most 8 bytes in a classic frame.
+            // docs/formats.md#mf4: at most 8 bytes in a classic frame.
             assert_eq!(frame.data(), &data[..data.len().min(8)], "{at}");
         }
     }

@@ -1,5 +1,5 @@
 //! pcap and pcapng files made by the real tools, read as tshark reads them
-//! (SPEC §5.5, §5.7). `scripts/gen_pcap_fixtures.py` wrote the files in
+//! (docs/formats.md#pcap). `scripts/gen_pcap_fixtures.py` wrote the files in
 //! `tests/fixtures/pcap/`: `can.pcap` (libpcap's layout, little-endian,
 //! microseconds), `can.pcapng` (`editcap -F pcapng`), `can_ns.pcap`
 //! (`editcap -F nsecpcap`), `can_be.pcap` (big-endian) and `multi.pcapng`
@@ -18,9 +18,10 @@
 //! Documented differences from tshark 4.0:
 //! - a remote request has no data: tshark shows the bytes after the header
 //!   as `data.data` (here the padding `00`), the crate keeps the length as
-//!   the DLC only (SPEC §5.1: `123#R1`);
+//!   the DLC only (docs/formats.md#candump-log: `123#R1`);
 //! - tshark names an interface without `if_name` `unknown` (`editcap`
-//!   writes none); the crate gives no interface, as for pcap (SPEC §5.7);
+//!   writes none); the crate gives no interface, as for pcap
+//!   (docs/formats.md#interfaces);
 //! - in a pcapng file of several sections, an enhanced packet block's
 //!   interface id counts the interfaces of its own section (pcapng
 //!   specification, "Interface ID … in the current section"): the packets
@@ -228,10 +229,10 @@ fn multi_interface_pcapng_reads_as_tshark_reads_it() {
     assert_eq!(frames[3].0, 5, "the Ethernet packet took number 4");
 }
 
-/// Linux cooked captures (SPEC §5.5): link types 113 and 276, protocol
-/// 0x000C / 0x000D, the SocketCAN frame in host byte order — every frame
-/// as tshark reads it; the IPv4 packet (and the Ethernet ones of the mixed
-/// file) counted by kind, named by link type.
+/// Linux cooked captures (docs/formats.md#pcap): link types 113 and 276,
+/// protocol 0x000C / 0x000D, the SocketCAN frame in host byte order — every
+/// frame as tshark reads it; the IPv4 packet (and the Ethernet ones of the
+/// mixed file) counted by kind, named by link type.
 #[test]
 fn linux_cooked_captures_read_as_tshark_reads_them() {
     use motionwire::logs::{OtherRecord, OtherRecords};

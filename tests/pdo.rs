@@ -1,11 +1,12 @@
-//! PDOs decoded into signals and the CiA 402 state (SPEC §8): a log in
-//! which python-canopen configures the PDOs over SDO and then sends them
-//! (`tests/fixtures/pdo/`, made by `scripts/gen_pdo_fixtures.py`), decoded
-//! with no EDS at all and with the node's EDS, against python-canopen's
-//! (and, for entries that straddle bytes, cantools') reading of the same
-//! bytes; and the sample log's drive timeline against its own statuswords.
-//! Decoded by the library (`motionwire::decoder`, `summary`) with the
-//! options of the command lines the tests name (`tests/common`).
+//! PDOs decoded into signals and the CiA 402 state
+//! (docs/canopen.md#pdo-mappings): a log in which python-canopen configures the
+//! PDOs over SDO and then sends them (`tests/fixtures/pdo/`, made by
+//! `scripts/gen_pdo_fixtures.py`), decoded with no EDS at all and with the
+//! node's EDS, against python-canopen's (and, for entries that straddle bytes,
+//! cantools') reading of the same bytes; and the sample log's drive timeline
+//! against its own statuswords. Decoded by the library (`motionwire::decoder`,
+//! `summary`) with the options of the command lines the tests name
+//! (`tests/common`).
 
 mod common;
 
@@ -21,7 +22,7 @@ fn oracle() -> Value {
 }
 
 /// The oracle's signals of one frame, dummies left out (they carry no
-/// signal, SPEC §8.2).
+/// signal, docs/canopen.md#signals).
 fn oracle_signals(frame: &Value) -> Vec<&Value> {
     frame["signals"]
         .as_array()
@@ -32,9 +33,9 @@ fn oracle_signals(frame: &Value) -> Vec<&Value> {
 }
 
 /// No EDS, no profile: the mapping comes from the SDO configuration the log
-/// shows (SPEC §8.1 item 1), the remap applies from where it happens, and
-/// each entry is the unsigned of its bit length, 1-bit entries booleans,
-/// named `6041sub0` style (SPEC §8.2).
+/// shows (docs/canopen.md#pdo-mappings item 1), the remap applies from where it
+/// happens, and each entry is the unsigned of its bit length, 1-bit entries
+/// booleans, named `6041sub0` style (docs/canopen.md#signals).
 #[test]
 fn learned_from_the_log_with_no_eds() {
     let oracle = oracle();
@@ -51,8 +52,8 @@ fn learned_from_the_log_with_no_eds() {
         let want: serde_json::Map<String, Value> = oracle_signals(frame)
             .iter()
             .map(|s| {
-                // SPEC §8.2's `6041sub0`, the sub-index in hex as CiA 306's
-                // section names write it.
+                // The `6041sub0` of docs/canopen.md#signals, the sub-index in
+                // hex as CiA 306's section names write it.
                 let name = format!(
                     "{:04X}sub{:X}",
                     s["index"].as_u64().unwrap(),
@@ -80,10 +81,11 @@ fn learned_from_the_log_with_no_eds() {
     assert!(recs[..206].iter().all(|r| r.get("signals").is_none()));
 }
 
-/// With the node's EDS: names and types from the file (SPEC §8.2), values
-/// as python-canopen (or cantools, where python-canopen misreads entries
-/// that straddle bytes; see the fixture's README) reads them; the EDS's
-/// device type makes the node a drive, so its words get `cia402`.
+/// With the node's EDS: names and types from the file
+/// (docs/canopen.md#signals), values as python-canopen (or cantools, where
+/// python-canopen misreads entries that straddle bytes; see the fixture's
+/// README) reads them; the EDS's device type makes the node a drive, so its
+/// words get `cia402`.
 #[test]
 fn with_the_eds_names_types_and_values_agree() {
     let oracle = oracle();
@@ -211,10 +213,11 @@ fn sample_drive_timeline() {
 
 /// A crafted drive (node 4, `--profile 4=akd`) whose TPDO1 mapping is
 /// written by SDO with no COB-ID: the pre-defined connection set puts it on
-/// 0x184 (SPEC §8.1 item 3); a refused write changes nothing; a PDO
-/// shorter than its mapping carries the signals that fit and `error`
-/// (SPEC §8.2); expedited SDO transfers of 6041h and 6040h get `cia402`
-/// and the statusword read by SDO joins the summary's timeline (SPEC §8.3).
+/// 0x184 (docs/canopen.md#pdo-mappings item 3); a refused write changes
+/// nothing; a PDO shorter than its mapping carries the signals that fit and
+/// `error` (docs/canopen.md#signals); expedited SDO transfers of 6041h and
+/// 6040h get `cia402` and the statusword read by SDO joins the summary's
+/// timeline (docs/summary.md#cia402).
 #[test]
 fn sdo_configured_mapping_short_pdos_and_sdo_statuswords() {
     let log = "\

@@ -4,9 +4,9 @@
 //! (`scripts/gen_python_can_fixture.py`). The crate must read every frame as
 //! python-can's own reader does.
 //!
-//! One documented difference (SPEC §5.1): python-can reads its own error
-//! frame `(…) can0 20000080#0004000000000000` as an error frame with
-//! identifier 0, no channel and no data; the crate keeps what the line
+//! One documented difference (docs/formats.md#candump-log): python-can reads
+//! its own error frame `(…) can0 20000080#0004000000000000` as an error frame
+//! with identifier 0, no channel and no data; the crate keeps what the line
 //! holds — the interface, the class bits (0x080, bus error) and the 8 data
 //! bytes.
 

@@ -1,5 +1,5 @@
-//! SDO in the decoder (SPEC §7): hand-made frames for what the real stack
-//! never does, and python-canopen's real traffic
+//! SDO in the decoder (docs/canopen.md#sdo): hand-made frames for what the real
+//! stack never does, and python-canopen's real traffic
 //! (`tests/fixtures/sdo/`, made by `scripts/gen_sdo_fixtures.py`), whose
 //! transfers must come out as python-canopen made them. Decoded by the
 //! library (`motionwire::decoder`, `summary`) with the options of the
@@ -24,8 +24,8 @@ fn temp_log(name: &str, text: &str) -> String {
 }
 
 /// A segmented upload of 1008h.00 (10 bytes), an abort, and a request
-/// left without an answer: every key of SPEC §7.3 on the frames that carry
-/// it.
+/// left without an answer: every key of docs/output.md#sdo and
+/// docs/output.md#transfer on the frames that carry it.
 #[test]
 fn sdo_and_transfer_keys() {
     let log = temp_log(
@@ -151,7 +151,7 @@ fn python_canopen_transfers_decode_as_python_canopen_made_them() {
         assert_eq!(got["reason"], Value::Null, "{what}");
     }
     // The aborts by the client are python-canopen's: with multiplexer
-    // 0000h.00, ending the transfer that was open (SPEC §7.2).
+    // 0000h.00, ending the transfer that was open (docs/canopen.md#transfers).
     let client_aborts: Vec<_> = recs
         .iter()
         .filter(|r| r["sdo"]["service"] == "abort" && r["sdo"]["direction"] == "request")
@@ -163,9 +163,9 @@ fn python_canopen_transfers_decode_as_python_canopen_made_them() {
         })
         .collect();
     assert_eq!(client_aborts, [(173, 0), (175, 0), (223, 0)]);
-    // Block segments are named only with the tracker's help (SPEC §7.1):
-    // ⌈size / 7⌉ of each block transfer, 61, 45, 28, 20, 45, 28 and 10
-    // bytes: 9 + 7 + 4 + 3 + 7 + 4 + 2.
+    // Block segments are named only with the tracker's help
+    // (docs/canopen.md#sdo): ⌈size / 7⌉ of each block transfer, 61, 45, 28, 20,
+    // 45, 28 and 10 bytes: 9 + 7 + 4 + 3 + 7 + 4 + 2.
     let segments = recs
         .iter()
         .filter(|r| r["sdo"]["service"] == "block_segment")
@@ -174,7 +174,7 @@ fn python_canopen_transfers_decode_as_python_canopen_made_them() {
 }
 
 /// The summary of the same log: requests, transfers, aborts and
-/// latencies per node (SPEC §7.4).
+/// latencies per node (docs/summary.md#sdo).
 #[test]
 fn python_canopen_summary() {
     let recs = records(&decode(&[
@@ -264,7 +264,8 @@ fn broken_traffic_outcomes() {
                 }
             }
             None => {
-                // Summary only (SPEC §7.2): listed by its start line.
+                // Summary only (docs/canopen.md#transfers): listed by its start
+                // line.
                 let node = summary.iter().find(|r| r["node"] == want["node"]).unwrap();
                 let list = if outcome == "timeout" {
                     "timeouts"
@@ -326,9 +327,9 @@ fn int(text: &str) -> u64 {
 /// same frames (`tshark_fields.tsv`, `scripts/gen_sdo_tshark.sh`).
 ///
 /// tshark reads each frame alone, so it cannot tell a block segment from a
-/// request or response (SPEC §7.1): those rows are skipped, and counted.
-/// It gives no field for block initiate frames with the CRC bit set; those
-/// rows have nothing to compare. Where it gives a field, ours is equal.
+/// request or response (docs/canopen.md#sdo): those rows are skipped, and
+/// counted. It gives no field for block initiate frames with the CRC bit set;
+/// those rows have nothing to compare. Where it gives a field, ours is equal.
 #[test]
 fn per_frame_fields_agree_with_tshark() {
     for (log, tsv) in [

@@ -1,6 +1,6 @@
-//! The servo ↔ NC interface end to end through real frame bytes (SPEC §1):
-//! the NC side uses the crate's handshakes, the drive side is scripted
-//! feedback, and every command the NC sends is checked byte for byte.
+//! The servo ↔ NC interface end to end through real frame bytes
+//! (docs/servo.md): the NC side uses the crate's handshakes, the drive side is
+//! scripted feedback, and every command the NC sends is checked byte for byte.
 
 use motionwire::servo::{
     enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, ECode,
@@ -30,9 +30,9 @@ fn command_bytes(ssp: i32, scw: u32) -> [u8; COMMAND_LEN] {
     bytes
 }
 
-/// SPEC §1.6: the NC clears a following error (E09). The drive reports it,
-/// the NC raises ErrorClear, the drive clears and acks, the NC drops the
-/// request, the drive drops the ack.
+/// docs/servo.md#handshakes: the NC clears a following error (E09). The drive
+/// reports it, the NC raises ErrorClear, the drive clears and acks, the NC
+/// drops the request, the drive drops the ack.
 #[test]
 fn error_clear_through_frames() {
     // SSW: ServoRDY=0 while the error is up (mode 0), AbsIncr=1.
@@ -71,8 +71,8 @@ fn error_clear_through_frames() {
     }
 }
 
-/// SPEC §1.6: zero-pulse search on an incremental encoder; the zero-pulse
-/// position is read in POSW2..3 in the cycle of the ack.
+/// docs/servo.md#handshakes: zero-pulse search on an incremental encoder; the
+/// zero-pulse position is read in POSW2..3 in the cycle of the ack.
 #[test]
 fn zero_pulse_through_frames() {
     // SSW 0x0007: ServoEn, ServoRDY, AbsIncr; +0x08 ZPulseAck.
@@ -121,7 +121,7 @@ fn zero_pulse_through_frames() {
     assert_eq!(zero_pulses, [0, 0, 1_800, 1_800, 1_800, 3_400]);
 }
 
-/// SPEC §1.6: a drive that reacts to the NC's SE field with
+/// docs/servo.md#handshakes: a drive that reacts to the NC's SE field with
 /// `enable_handshake` and reports ServoRDY by the truth table, driven by the
 /// NC's command bytes; the feedback's first status byte is checked.
 #[test]
@@ -166,8 +166,8 @@ fn enable_through_frames() {
     }
 }
 
-/// SPEC §1.1–1.2: every buffer shorter than a frame is the exact length
-/// error, for both frames, views and owned values.
+/// docs/servo.md#command, docs/servo.md#feedback: every buffer shorter than a
+/// frame is the exact length error, for both frames, views and owned values.
 #[test]
 fn every_short_buffer_is_an_exact_error() {
     let long = [0x5Au8; 64];
@@ -207,7 +207,7 @@ fn every_short_buffer_is_an_exact_error() {
     }
 }
 
-/// SPEC §6.2: the names a decoder prints for a feedback frame.
+/// docs/servo.md#cli-feedback: the names a decoder prints for a feedback frame.
 #[test]
 fn names_for_the_command_line_decoder() {
     let mut bytes = feedback_bytes(0x1F7F, 0xFFFF_FFFF, -1, -2);

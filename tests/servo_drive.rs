@@ -1,8 +1,9 @@
 //! The crate's NC-side handshakes against the crate's drive model
-//! (SPEC §1.6, §9.2), through real frame bytes: every `ServoReadyMode` and
-//! encoder kind, `EnableHandshake` with faults and error clears for
-//! thousands of cycles, and a property test of random command sequences with
-//! injected faults that checks the drive-side rules on every cycle.
+//! (docs/servo.md#handshakes, docs/servo.md#drive-model), through real frame
+//! bytes: every `ServoReadyMode` and encoder kind, `EnableHandshake` with
+//! faults and error clears for thousands of cycles, and a property test of
+//! random command sequences with injected faults that checks the drive-side
+//! rules on every cycle.
 
 use std::num::NonZeroU32;
 
@@ -414,7 +415,7 @@ struct Seen {
 type Step = (u8, bool, bool, bool, bool, i32, Injection);
 
 /// Run `steps` against a drive with `config`, checking every drive-side
-/// rule of SPEC §1.6 on every cycle.
+/// rule of docs/servo.md#handshakes on every cycle.
 fn check_sequence(config: DriveConfig, steps: &[Step]) -> Result<Seen, TestCaseError> {
     let mut seen = Seen::default();
     let mut drive = Drive::new(config);
@@ -585,7 +586,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(2_000))]
 
     /// Thousands of random command sequences with faults injected: every
-    /// drive-side rule of SPEC §1.6 holds on every cycle.
+    /// drive-side rule of docs/servo.md#handshakes holds on every cycle.
     #[test]
     fn drive_rules_hold_on_every_cycle(
         config in config(),

@@ -1,4 +1,4 @@
-//! PEAK TRC files read as python-can reads them (SPEC §5.4).
+//! PEAK TRC files read as python-can reads them (docs/formats.md#trc).
 //!
 //! `scripts/gen_trc_fixtures.py` made the files of `tests/fixtures/trc/`:
 //! python-can's own `TRCWriter` wrote `python_can_v1_0.trc` and
@@ -11,11 +11,11 @@
 //!
 //! - python-can skips error frames (`ER`, `Error`) and bus status rows
 //!   (`ST`, `EC`, `Warng`, identifier `FFFFFFFF`); the crate reads them as
-//!   error frames and as bus status events (SPEC §5.4). The tests count
-//!   them per file.
+//!   error frames and as bus status events (docs/formats.md#trc). The tests
+//!   count them per file.
 //! - Versions without a bus column (1.0, 1.1, 2.0 without `B`): python-can
-//!   says channel 1; the crate has no interface (SPEC §5.7: `iface` is null
-//!   for TRC without a bus column).
+//!   says channel 1; the crate has no interface (docs/formats.md#interfaces:
+//!   `iface` is null for TRC without a bus column).
 //! - `FE` and `BI` rows: python-can sets BRS for `FE` and not for `BI`;
 //!   PEAK defines `FE` as ESI alone and `BI` as BRS and ESI, which the crate
 //!   follows (python-can's ESI agrees).

@@ -1,4 +1,4 @@
-//! Vector ASC lines (SPEC §5.3): arbitrary bytes → `asc::lines` and
+//! Vector ASC lines (docs/formats.md#asc): arbitrary bytes → `asc::lines` and
 //! `AscParser::parse_line`. Invariants:
 //! - nothing panics; an error is an `Error::Syntax` of the ASC format whose
 //!   column lies in the line (1-based, at most one past its end), and whose

@@ -1,5 +1,5 @@
-//! Vector BLF files (SPEC §5.6): arbitrary bytes → `BlfReader`, both as
-//! they are and behind a valid file header (so the fuzzer reaches the
+//! Vector BLF files (docs/formats.md#blf): arbitrary bytes → `BlfReader`, both
+//! as they are and behind a valid file header (so the fuzzer reaches the
 //! objects and containers). Invariants:
 //! - nothing panics, and memory stays bounded (every length is checked
 //!   against `MAX_RECORD_LEN` before anything is allocated);

@@ -1,4 +1,4 @@
-//! candump text lines (SPEC §5): the fast (SWAR) log-format path, the
+//! candump text lines (docs/formats.md): the fast (SWAR) log-format path, the
 //! general path, the line iterator and the two writers.
 //!
 //! Arbitrary bytes → `candump::parse_line` and `candump::lines`. Invariants:
@@ -12,8 +12,8 @@
 //!   length 0..=8;
 //! - a parsed frame written back with `write_log` (and `Display`) parses to
 //!   the same frame; written with `write_screen` it parses to the same frame
-//!   but for the CAN FD flags the screen cannot show (SPEC §5 decision:
-//!   only BRS/ESI, only with a direction);
+//!   but for the CAN FD flags the screen cannot show (the decision in
+//!   docs/formats.md#candump-screen: only BRS/ESI, only with a direction);
 //! - the same line with one leading space (which the fast path never takes)
 //!   gives the same frame, or the same error one column further right: the
 //!   fast path and the general parser agree;

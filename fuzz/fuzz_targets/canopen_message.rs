@@ -1,6 +1,7 @@
 //! The crate's CAN frame and a frame read as CANopen (ISO 11898-1; CiA 301
-//! §7.3.5 Table 72; SPEC §5.1, §6.1): the `CanFrame` constructors,
-//! `ErrorFrame`, `MessageKind::classify` and `CanOpenMessage::decode`.
+//! §7.3.5 Table 72; docs/formats.md#error-frames, docs/canopen.md#identifiers):
+//! the `CanFrame` constructors, `ErrorFrame`, `MessageKind::classify` and
+//! `CanOpenMessage::decode`.
 //!
 //! Input: identifier u32 LE, a type byte (low 2 bits: 0 data, 1 remote,
 //! 2 CAN FD, 3 error frame; bit 2: extended identifier; bits 4–7: the FD
@@ -12,9 +13,9 @@
 //!   never a panic; an accepted frame keeps its identifier, type and data;
 //!   the borrowed form agrees with the owned one;
 //! - `CanOpenMessage::decode` never panics; its kind and node are the ones
-//!   SPEC §6.1's identifier table gives (also on a `DecodeError`); only the
-//!   kinds with a codec refuse data; what decodes encodes to a frame that
-//!   decodes to the same message;
+//!   identifier table of docs/canopen.md#identifiers gives (also on a
+//!   `DecodeError`); only the kinds with a codec refuse data; what decodes
+//!   encodes to a frame that decodes to the same message;
 //! - an error frame's details appear only when their class is set.
 #![no_main]
 

@@ -1,5 +1,5 @@
-//! The CiA 402 drive state machine (SPEC §8.3): arbitrary controlwords,
-//! statuswords, drive events and mode bytes through the machine.
+//! The CiA 402 drive state machine (docs/canopen.md#cia402): arbitrary
+//! controlwords, statuswords, drive events and mode bytes through the machine.
 //!
 //! Input: a sequence of operations, an opcode byte (taken modulo 4) and its
 //! payload:

@@ -1,5 +1,5 @@
-//! The decoder session and the post-mortem (SPEC §6.1, §6.3, §7, §8) fed
-//! arbitrary frames: a stream of CANopen traffic on two buses, with SDO
+//! The decoder session and the post-mortem (docs/output.md, docs/summary.md)
+//! fed arbitrary frames: a stream of CANopen traffic on two buses, with SDO
 //! transfers that teach PDO mappings, drives' statuswords and EMCY storms.
 //!
 //! Input: records of `[header, id, bytes…]`: header bits 0–3 the data

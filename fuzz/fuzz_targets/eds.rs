@@ -1,4 +1,4 @@
-//! The CiA 306 EDS/DCF reader (SPEC §8.1, §8.2): `Eds::from_bytes` on any
+//! The CiA 306 EDS/DCF reader (docs/canopen.md#eds): `Eds::from_bytes` on any
 //! bytes, for node 5 and for none, then `pdos`.
 //!
 //! Invariants:

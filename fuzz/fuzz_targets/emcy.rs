@@ -1,12 +1,13 @@
-//! The generic EMCY frame (SPEC §2.1–§2.3) and the look-ups a decoder
-//! applies to the numbers a device sends.
+//! The generic EMCY frame (docs/canopen.md#emcy, docs/canopen.md#emcy-codes)
+//! and the look-ups a decoder applies to the numbers a device sends.
 //!
 //! Arbitrary bytes → `Emcy::parse`. Invariants:
 //! - fewer than 8 bytes is exactly `Error::Length { expected: 8, found }`;
 //!   8 or more always parse, view and owned value agree, and `to_bytes` /
 //!   `emit` give the first 8 bytes back;
-//! - `ErrorCode::class` follows SPEC §2.3's range table, `is_reset` is the
-//!   0x00xx class, `register_class_bits` agrees with the class;
+//! - `ErrorCode::class` follows the range table of docs/canopen.md#emcy-codes,
+//!   `is_reset` is the 0x00xx class, `register_class_bits` agrees with the
+//!   class;
 //! - `describe()` is consistent with `class()`: an unknown class (and only
 //!   that) gives `Specificity::Unknown` without a source; a class-level
 //!   match gives the class's own text; `description()` is `describe().text`;
@@ -63,8 +64,9 @@ fuzz_target!(|data: &[u8]| {
     check_register(emcy.register);
 });
 
-/// SPEC §2.3's range table, written out as the spec writes it.
-fn spec_class(raw: u16) -> ErrorClass {
+/// The range table of docs/canopen.md#emcy-codes, written out as the docs write
+/// it.
+fn table_class(raw: u16) -> ErrorClass {
     match raw >> 8 {
         0x00 => ErrorClass::Reset,
         0x10 => ErrorClass::Generic,
@@ -85,13 +87,14 @@ fn spec_class(raw: u16) -> ErrorClass {
 fn check_code(code: ErrorCode) {
     let raw = code.get();
     let class = code.class();
-    assert_eq!(class, spec_class(raw), "class of {code}");
+    assert_eq!(class, table_class(raw), "class of {code}");
     assert_eq!(code.is_reset(), class == ErrorClass::Reset);
     assert_eq!(ErrorCode::new(raw), code);
     assert_eq!(code.to_string(), format!("0x{raw:04X}"));
     assert!(!class.name().is_empty() && !class.description().is_empty());
 
-    // The register bits a code implies agree with its class (SPEC §2.5).
+    // The register bits a code implies agree with its class
+    // (docs/canopen.md#emcy-producer).
     let bits = code.register_class_bits();
     let expected = match class {
         ErrorClass::Current => ErrorRegister::CURRENT,

@@ -1,4 +1,4 @@
-//! The Kollmorgen AKD EMCY (SPEC §2.4).
+//! The Kollmorgen AKD EMCY (docs/canopen.md#akd).
 //!
 //! Arbitrary bytes → `AkdEmcy::parse`. Invariants:
 //! - fewer than 8 bytes is exactly the EMCY `Error::Length`;

@@ -1,4 +1,5 @@
-//! The Baumer EAM580 EMCY and its diagnostic-source table (SPEC §4).
+//! The Baumer EAM580 EMCY and its diagnostic-source table
+//! (docs/canopen.md#baumer).
 //!
 //! Arbitrary bytes → `BaumerEmcy::parse`. Invariants:
 //! - fewer than 8 bytes is exactly the EMCY `Error::Length`; 8 or more

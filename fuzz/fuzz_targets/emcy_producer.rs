@@ -1,5 +1,6 @@
-//! The EMCY producer state machine (SPEC §2.5) and the 1003h error history
-//! fed from its outcomes (SPEC §2.6), driven by arbitrary event sequences.
+//! The EMCY producer state machine (docs/canopen.md#emcy-producer) and the
+//! 1003h error history fed from its outcomes (docs/canopen.md#error-history),
+//! driven by arbitrary event sequences.
 //!
 //! Input: a sequence of operations, an opcode byte (taken modulo 6) and its
 //! payload, little-endian:
@@ -15,8 +16,9 @@
 //!
 //! Each event goes to two producers, one with 2 slots (so that the capacity
 //! overflow is reached) and one with the default 8, each checked against a
-//! plain model of SPEC §2.5, and each feeding its own history (3 and the
-//! default 10 entries), checked against a model of SPEC §2.6.
+//! plain model of docs/canopen.md#emcy-producer, and each feeding its own
+//! history (3 and the default 10 entries), checked against a model of
+//! docs/canopen.md#error-history.
 //!
 //! Invariants after every step:
 //! - exactly one of `transition` / `ignored` is set; an EMCY is sent exactly
@@ -33,7 +35,7 @@
 //! - `step` is pure: it leaves the state alone and agrees with `apply`;
 //! - the history holds at most N entries, newest first, no reset codes;
 //!   reads and writes of every sub-index never panic and answer as
-//!   SPEC §2.6 says.
+//!   docs/canopen.md#error-history says.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -89,12 +91,14 @@ struct Checked<const N: usize, const H: usize> {
     producer: EmcyProducer<N>,
     history: ErrorHistory<H>,
     model: ProducerModel,
-    /// The history as SPEC §2.6 describes it: raw u32 entries, newest first.
+    /// The history as docs/canopen.md#error-history describes it: raw u32
+    /// entries, newest first.
     history_model: Vec<u32>,
 }
 
-/// SPEC §2.5 as plainly as it can be written: the tracked errors with their
-/// register contributions, and the bits of errors that found no slot.
+/// docs/canopen.md#emcy-producer as plainly as it can be written: the tracked
+/// errors with their register contributions, and the bits of errors that found
+/// no slot.
 #[derive(Default)]
 struct ProducerModel {
     tracked: Vec<(u16, u8)>,
@@ -217,8 +221,8 @@ impl<const N: usize, const H: usize> Checked<N, H> {
         }
     }
 
-    /// Step the model; return (transition, ignored, overflow) as SPEC §2.5
-    /// and its rules say.
+    /// Step the model; return (transition, ignored, overflow) as
+    /// docs/canopen.md#emcy-producer and its rules say.
     fn model_step(
         &mut self,
         event: EmcyEvent,

@@ -1,7 +1,7 @@
-//! Error control as SPEC §2.7 describes it: the heartbeat consumer and
-//! producer, the node-guarding master and life guarding, driven by arbitrary
-//! sequences of messages, polls and configuration changes at arbitrary times
-//! (forwards, backwards, up to the end of the clock).
+//! Error control as docs/canopen.md#error-control describes it: the heartbeat
+//! consumer and producer, the node-guarding master and life guarding, driven by
+//! arbitrary sequences of messages, polls and configuration changes at
+//! arbitrary times (forwards, backwards, up to the end of the clock).
 //!
 //! Input: a 10-byte header — master guard time u16 (100Ch, ms), flags u8
 //! (bit 0: the master is a passive observer), life guarding's 1017h u16,

@@ -1,5 +1,5 @@
-//! Log format detection (SPEC §5.7): arbitrary bytes → `logs::detect`.
-//! Invariants:
+//! Log format detection (docs/formats.md#detection): arbitrary bytes →
+//! `logs::detect`. Invariants:
 //! - nothing panics;
 //! - a decision on a complete input is never `NeedMore`;
 //! - the binary magics decide on the first four bytes alone, and gzip on

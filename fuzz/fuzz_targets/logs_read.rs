@@ -1,4 +1,4 @@
-//! One way to read any log (SPEC §5.7, §6.4): arbitrary bytes →
+//! One way to read any log (docs/formats.md): arbitrary bytes →
 //! `logs::read` (the format detected, or forced; gzip-compressed or not;
 //! candump's relative timestamps decided or given), once over the whole
 //! input and once through a reader that hands out a few bytes per call.

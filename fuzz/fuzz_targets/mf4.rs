@@ -1,4 +1,4 @@
-//! ASAM MDF 4 bus-logging files (SPEC §5.8): arbitrary bytes →
+//! ASAM MDF 4 bus-logging files (docs/formats.md#mf4): arbitrary bytes →
 //! `Mf4Reader`, both as they are (the seeds are real files: python-can's
 //! `MF4Writer`, asammdf, a CANedge logger) and behind an identification
 //! block (so the fuzzer reaches the header and the blocks it links).

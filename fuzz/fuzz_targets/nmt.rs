@@ -1,5 +1,5 @@
-//! The one-byte error-control messages and object values (SPEC §2.7;
-//! CiA 301 §7.2.8.3).
+//! The one-byte error-control messages and object values
+//! (docs/canopen.md#error-control; CiA 301 §7.2.8.3).
 //!
 //! Arbitrary bytes → `Heartbeat::parse`, `GuardAnswer::parse`,
 //! `NmtState::from_byte`, and the object values 1016h / 1017h / 100Ch /

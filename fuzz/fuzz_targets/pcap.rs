@@ -1,4 +1,5 @@
-//! pcap and pcapng captures (SPEC §5.5): `motionwire::logs::pcap::PcapReader`.
+//! pcap and pcapng captures (docs/formats.md#pcap):
+//! `motionwire::logs::pcap::PcapReader`.
 //!
 //! Arbitrary bytes → the reader, once over the whole input and once through
 //! a reader that hands out a few bytes per call. Invariants:

@@ -1,5 +1,6 @@
-//! PDO mappings and payloads (SPEC §8.1, §8.2): `PdoMapping::push`,
-//! `unpack`, `unpack_with` and `pack_with`.
+//! PDO mappings and payloads (docs/canopen.md#pdo-mappings,
+//! docs/canopen.md#signals): `PdoMapping::push`, `unpack`, `unpack_with` and
+//! `pack_with`.
 //!
 //! Input: a count byte n (modulo 80), n little-endian `u32` mapping entries,
 //! an 8-byte seed that picks each entry's data type (or none), then the

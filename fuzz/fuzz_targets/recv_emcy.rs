@@ -1,5 +1,6 @@
-//! The CiA 405 consumer (SPEC §3): arbitrary sequences of received EMCYs,
-//! `RECV_EMCY` / `RECV_EMCY_DEV` calls and configuration changes.
+//! The CiA 405 consumer (docs/canopen.md#recv-emcy): arbitrary sequences of
+//! received EMCYs, `RECV_EMCY` / `RECV_EMCY_DEV` calls and configuration
+//! changes.
 //!
 //! Input: a sequence of operations, an opcode byte (taken modulo 7) and its
 //! payload. A node byte `n` names node `n % 8 + 1` when below 0x80 (so that
@@ -18,8 +19,9 @@
 //! | 6 | a full scan without new EMCYs | block byte |
 //!
 //! Two `RecvEmcy` blocks scan the one storage, each checked against a model
-//! of the scan SPEC §3 and the type's documentation describe (ascending
-//! node-IDs from after the last delivered device, wrapping past 127).
+//! of the scan docs/canopen.md#recv-emcy and the type's documentation describe
+//! (ascending node-IDs from after the last delivered device, wrapping past
+//! 127).
 //!
 //! Invariants:
 //! - `receive` keeps the first error since the last reset (the root cause)
@@ -84,8 +86,9 @@ impl Model {
         self.configured.iter().any(|&c| c)
     }
 
-    /// The scan of SPEC §3: the first configured device from `next` on,
-    /// wrapping past 127, that holds an error or whose error was delivered.
+    /// The scan of docs/canopen.md#recv-emcy: the first configured device from
+    /// `next` on, wrapping past 127, that holds an error or whose error was
+    /// delivered.
     fn scan(&self, block: usize) -> Option<u8> {
         let b = &self.blocks[block];
         (0..127u8)

@@ -1,5 +1,5 @@
-//! SDO frames and the transfer tracker (SPEC §7.1, §7.2) fed arbitrary
-//! frames of both directions.
+//! SDO frames and the transfer tracker (docs/canopen.md#sdo,
+//! docs/canopen.md#transfers) fed arbitrary frames of both directions.
 //!
 //! Input: records of `[header, bytes…]`: header bit 0 the direction
 //! (1 request, 0 response), bits 1–4 the frame length (0..=15, cut to 8 and

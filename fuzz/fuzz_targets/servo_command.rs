@@ -1,4 +1,5 @@
-//! The 10-byte servo command frame, NC → servo (SPEC §1.1, §1.3).
+//! The 10-byte servo command frame, NC → servo (docs/servo.md#command,
+//! docs/servo.md#scw).
 //!
 //! Arbitrary bytes → `Command::parse`. Invariants:
 //! - fewer than 10 bytes is exactly `Error::Length { expected: 10, found }`;

@@ -1,9 +1,10 @@
-//! The drive model of SPEC §9.2 fed arbitrary command frames and injections:
-//! every drive-side rule of SPEC §1.6 must hold on every cycle, whatever the
-//! NC writes (any set point, any control word, reserved bits included).
+//! The drive model of docs/servo.md#drive-model fed arbitrary command frames
+//! and injections: every drive-side rule of docs/servo.md#handshakes must hold
+//! on every cycle, whatever the NC writes (any set point, any control word,
+//! reserved bits included).
 //!
 //! Input: one configuration byte, then cycles of 11 bytes each:
-//! `[injection, command (10 bytes, the frame of SPEC §1.1)]`.
+//! `[injection, command (10 bytes, the frame of docs/servo.md#command)]`.
 //! - configuration: bit 0 Servo_Ready_Mode, bit 1 incremental encoder,
 //!   bit 2 disable on fault, bits 3–4 error-clear delay, bit 5 a zero pulse
 //!   every 256 counts (else a single one), bit 6 16-bit set point; the zero

@@ -1,4 +1,5 @@
-//! The 40-byte servo feedback frame, servo → NC (SPEC §1.2, §1.4, §1.5).
+//! The 40-byte servo feedback frame, servo → NC (docs/servo.md#feedback,
+//! docs/servo.md#ssw, docs/servo.md#sew).
 //!
 //! Arbitrary bytes → `Feedback::parse`. Invariants:
 //! - fewer than 40 bytes is exactly `Error::Length { expected: 40, found }`;

@@ -1,5 +1,5 @@
-//! The NC-side handshakes of SPEC §1.6 driven by an arbitrary drive: the
-//! error-clear and zero-pulse request/ack machines, the NC's enable
+//! The NC-side handshakes of docs/servo.md#handshakes driven by an arbitrary
+//! drive: the error-clear and zero-pulse request/ack machines, the NC's enable
 //! handshake (`EnableHandshake`), the drive's enable rule and the ServoRDY
 //! truth table.
 //!
@@ -14,14 +14,14 @@
 //! Invariants, checked every cycle:
 //! - `step` is pure and changes only its own request bit of the control word;
 //!   the request bit is written 1 exactly in `Requested`;
-//! - each phase is entered only the way SPEC §1.6's handshake allows:
-//!   `Acknowledged` only from `Requested` with the request on the wire and
-//!   the ack up; `Releasing` only from `Acknowledged` with the request
-//!   dropped and the ack still up; `Done` only from `Acknowledged` or
-//!   `Releasing` once the ack is down; `UnsolicitedAck` only with the ack up
-//!   and no request of ours on the wire; back to `Requested` only for a
-//!   held-back start; an ack that is up never leaves the machine in `Idle`
-//!   or `Done`;
+//! - each phase is entered only the way the handshake of
+//!   docs/servo.md#handshakes allows: `Acknowledged` only from `Requested` with
+//!   the request on the wire and the ack up; `Releasing` only from
+//!   `Acknowledged` with the request dropped and the ack still up; `Done` only
+//!   from `Acknowledged` or `Releasing` once the ack is down; `UnsolicitedAck`
+//!   only with the ack up and no request of ours on the wire; back to
+//!   `Requested` only for a held-back start; an ack that is up never leaves the
+//!   machine in `Idle` or `Done`;
 //! - `cycles_in_phase` counts the steps spent in the phase;
 //! - `start` / `cancel` do what their documentation says;
 //! - `EnableHandshake::step` is pure and changes only SE, which it writes as
@@ -89,7 +89,7 @@ fuzz_target!(|data: &[u8]| {
         enabled = now_enabled;
         command = written.with_servo_enable(current_se);
 
-        // ServoRDY truth table, SPEC §1.6.
+        // ServoRDY truth table, docs/servo.md#servo-ready.
         let mode = ServoReadyMode::new((action >> 4) & 1).expect("one bit");
         let drive_enabled = status.contains(ServoStatusWord::SERVO_EN);
         let errors = ServoErrorWord::from_bits_retain(status.bits());

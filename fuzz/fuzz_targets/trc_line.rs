@@ -1,4 +1,4 @@
-//! PEAK TRC text (SPEC §5.4): `trc::lines` over the whole input and
+//! PEAK TRC text (docs/formats.md#trc): `trc::lines` over the whole input and
 //! `TrcParser::parse_line` on its first line in every version's state.
 //!
 //! Invariants:

@@ -1,8 +1,9 @@
 /*
  * Prints CAN frames as `candump` (can-utils) prints them on screen, with the
- * option sets of SPEC §5.2, using can-utils' own formatting code (lib.c:
- * snprintf_long_canframe, snprintf_can_error_frame) and the line assembly of
- * candump.c (timestamp, colour, interface, -x columns, -e explanation lines).
+ * option sets of docs/formats.md#candump-screen, using can-utils' own
+ * formatting code (lib.c: snprintf_long_canframe, snprintf_can_error_frame)
+ * and the line assembly of candump.c (timestamp, colour, interface, -x
+ * columns, -e explanation lines).
  * candump itself needs a CAN socket, which this machine does not have.
  *
  * Usage: driver MODE OUT.txt OUT.json  (MODE: see `modes` below)
@@ -150,7 +151,8 @@ static int sprint_ts(char *out, char timestamp, int use_ns, struct timespec *ts,
 				    (unsigned long long)diff.tv_nsec / 1000);
 		long long shown = diff.tv_sec * 1000000000LL +
 				  (use_ns ? diff.tv_nsec : diff.tv_nsec / 1000 * 1000);
-		/* SPEC §5.2: -t d accumulates the deltas, -t z is as written. */
+		/* docs/formats.md#candump-relative-times: -t d accumulates the
+		 * deltas, -t z is as written. */
 		*shown_ns = (timestamp == 'd') ? *shown_ns + shown : shown;
 		if (timestamp == 'd')
 			*last_ts = *ts;

@@ -1,5 +1,6 @@
 //! Error frames as Linux reports them (`linux/can/error.h`; candump `-e`;
-//! SPEC §5.1 and the `error_frame` keys of SPEC §6.1).
+//! docs/formats.md#error-frames and the `error_frame` keys of
+//! docs/output.md#error-frame).
 //!
 //! An error frame is a [`CanFrame`] of type [`FrameType::Error`]: its
 //! identifier holds the error classes, its 8 data bytes their details.
@@ -29,7 +30,8 @@ use crate::{Error, Result};
 bitflags::bitflags! {
     /// The error classes of an error frame: bits 0–9 of its identifier
     /// (Linux `linux/can/error.h`, `CAN_ERR_TX_TIMEOUT` … `CAN_ERR_CNT`;
-    /// SPEC §5.1). Bits above 9 are kept as they were received.
+    /// docs/formats.md#error-frames). Bits above 9 are kept as they were
+    /// received.
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
     #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
     pub struct ErrorClasses: u32 {
@@ -61,8 +63,9 @@ bitflags::bitflags! {
 }
 
 impl ErrorClasses {
-    /// Every class with the name SPEC §6.1's `error_classes` writes, in bit
-    /// order: the one table that the names, `Display` and the tests read.
+    /// Every class with the name `error_classes` writes
+    /// (docs/output.md#error-frame), in bit order: the one table that the
+    /// names, `Display` and the tests read.
     pub const NAMES: [(ErrorClasses, &'static str); 10] = [
         (ErrorClasses::TX_TIMEOUT, "tx_timeout"),
         (ErrorClasses::LOST_ARBITRATION, "lost_arbitration"),
@@ -76,8 +79,8 @@ impl ErrorClasses {
         (ErrorClasses::COUNTERS, "counters"),
     ];
 
-    /// Return the names of the set classes in bit order (SPEC §6.1
-    /// `error_classes`).
+    /// Return the names of the set classes in bit order (`error_classes`
+    /// in docs/output.md#error-frame).
     pub fn names(self) -> impl Iterator<Item = &'static str> + Clone {
         Self::NAMES
             .into_iter()
@@ -88,7 +91,8 @@ impl ErrorClasses {
 
 bitflags::bitflags! {
     /// The controller status of an error frame: data byte 1 when the
-    /// `controller` class is set (Linux `CAN_ERR_CRTL_*`; SPEC §5.1).
+    /// `controller` class is set (Linux `CAN_ERR_CRTL_*`;
+    /// docs/formats.md#error-frames).
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
     #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
     pub struct ControllerStatus: u8 {
@@ -112,8 +116,8 @@ bitflags::bitflags! {
 }
 
 impl ControllerStatus {
-    /// Every status flag with the name SPEC §6.1's `controller` writes, in
-    /// bit order.
+    /// Every status flag with the name `controller` writes
+    /// (docs/output.md#error-frame), in bit order.
     pub const NAMES: [(ControllerStatus, &'static str); 7] = [
         (ControllerStatus::RX_OVERFLOW, "rx_overflow"),
         (ControllerStatus::TX_OVERFLOW, "tx_overflow"),
@@ -124,8 +128,8 @@ impl ControllerStatus {
         (ControllerStatus::ACTIVE, "active"),
     ];
 
-    /// Return the names of the set flags in bit order (SPEC §6.1
-    /// `controller`).
+    /// Return the names of the set flags in bit order (`controller`
+    /// in docs/output.md#error-frame).
     pub fn names(self) -> impl Iterator<Item = &'static str> + Clone {
         Self::NAMES
             .into_iter()
@@ -142,12 +146,12 @@ impl ControllerStatus {
 }
 
 /// An error frame read: its classes and the details the data bytes carry
-/// (Linux `linux/can/error.h`; SPEC §5.1).
+/// (Linux `linux/can/error.h`; docs/formats.md#error-frames).
 ///
 /// A detail is only what its class says is there: [`controller`](Self::controller)
 /// is empty unless the `controller` class is set, the counters are `None`
-/// unless the `counters` class is set (SPEC §6.1), and a byte that a
-/// short frame does not have is `None` or empty, never a guessed zero.
+/// unless the `counters` class is set (docs/output.md#error-frame), and a byte
+/// that a short frame does not have is `None` or empty, never a guessed zero.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ErrorFrame {
     /// The error classes, bits 0..=28 of the identifier.
@@ -245,14 +249,15 @@ impl ErrorFrame {
         self.byte(7, ErrorClasses::COUNTERS)
     }
 
-    /// Return whether the frame reports bus-off (SPEC §6.3 `bus_off`).
+    /// Return whether the frame reports bus-off (`bus_off` in
+    /// docs/summary.md#bus).
     #[must_use]
     pub fn is_bus_off(&self) -> bool {
         self.classes.contains(ErrorClasses::BUS_OFF)
     }
 
-    /// Return whether the frame reports the error-passive level (SPEC §6.3
-    /// `error_passive`).
+    /// Return whether the frame reports the error-passive level
+    /// (`error_passive` in docs/summary.md#bus).
     #[must_use]
     pub fn is_error_passive(&self) -> bool {
         self.controller().is_error_passive()
@@ -284,7 +289,8 @@ mod tests {
     use super::*;
     use crate::can::CanId;
 
-    /// The classes of `linux/can/error.h` and SPEC §5.1, written out.
+    /// The classes of `linux/can/error.h` and docs/formats.md#error-frames,
+    /// written out.
     const CLASSES: [(u32, &str); 10] = [
         (0x001, "tx_timeout"),
         (0x002, "lost_arbitration"),
@@ -298,7 +304,8 @@ mod tests {
         (0x200, "counters"),
     ];
 
-    /// The controller status flags of SPEC §5.1, written out.
+    /// The controller status flags of docs/formats.md#error-frames, written
+    /// out.
     const CONTROLLER: [(u8, &str); 7] = [
         (0x01, "rx_overflow"),
         (0x02, "tx_overflow"),

@@ -4,8 +4,9 @@
 use core::fmt;
 
 /// The flags nibble of a CAN FD frame, `123##<flags>…` in candump's log
-/// format (SPEC §5.1; bit values from Linux `linux/can.h`, `CANFD_BRS`,
-/// `CANFD_ESI`, `CANFD_FDF`). Bits the kernel may add later are kept.
+/// format (docs/formats.md#candump-log; bit values from Linux `linux/can.h`,
+/// `CANFD_BRS`, `CANFD_ESI`, `CANFD_FDF`). Bits the kernel may add later are
+/// kept.
 ///
 /// `Display` writes the set flags' names joined by `|` (`BRS|ESI`), `-`
 /// when none is set, and a bit without a name as hex.
@@ -107,7 +108,7 @@ impl fmt::Display for FdFlags {
 /// Whether the logging host received the frame or sent it itself: the ` R`
 /// / ` T` suffix of candump's log format, the `RX`/`TX` column of its
 /// screen output (`candump -x`), `Rx`/`Tx` in Vector ASC and PEAK TRC
-/// (SPEC §5).
+/// (docs/formats.md).
 ///
 /// ```
 /// use motionwire::can::Direction;

@@ -1,6 +1,6 @@
 //! The crate's one CAN frame: what every log reader yields, what the
 //! CANopen decoders take and what `embedded-can` converts to and from
-//! (ISO 11898-1; Linux `linux/can.h`; SPEC §5).
+//! (ISO 11898-1; Linux `linux/can.h`; docs/formats.md).
 
 use crate::error::What;
 use core::fmt;
@@ -19,7 +19,7 @@ pub const FD_MAX_LEN: usize = 64;
 pub const FD_LENGTHS: [u8; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 
 /// What kind of frame a [`CanFrame`] is (ISO 11898-1; Linux `linux/can.h`
-/// for error frames; SPEC §5.1).
+/// for error frames; docs/formats.md#error-frames).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -35,8 +35,8 @@ pub enum FrameType {
     /// A CAN FD frame, 0..=64 data bytes, with its flags.
     Fd(FdFlags),
     /// An error frame as Linux reports it (`CAN_ERR_FLAG`, candump `-e`;
-    /// SPEC §5.1): the identifier holds the error classes, the 0..=8 data
-    /// bytes their details. Read it with
+    /// docs/formats.md#error-frames): the identifier holds the error classes,
+    /// the 0..=8 data bytes their details. Read it with
     /// [`ErrorFrame`](super::ErrorFrame).
     Error,
 }
@@ -152,7 +152,7 @@ fn too_long(what: What, len: usize, max: usize) -> Error {
 }
 
 /// One CAN frame: identifier, kind (data, remote request, CAN FD with its
-/// flags, error frame) and data (ISO 11898-1; SPEC §5).
+/// flags, error frame) and data (ISO 11898-1; docs/formats.md).
 ///
 /// This is the crate's one frame type. Every log reader yields it (inside a
 /// [`LogFrame`](super::LogFrame) with the time and interface), the CANopen
@@ -172,9 +172,10 @@ fn too_long(what: What, len: usize, max: usize) -> Error {
 /// identifier is an extended one (the 29 bits of Linux `can_id` under
 /// `CAN_ERR_FLAG`).
 ///
-/// `Display` writes the frame in candump's log notation (SPEC §5.1):
-/// `081#1081110000000000`, `701#R`, `123##1AABB`, and an error frame with
-/// `CAN_ERR_FLAG` set, `20000004#0004000000000000`.
+/// `Display` writes the frame in candump's log notation
+/// (docs/formats.md#candump-log): `081#1081110000000000`, `701#R`,
+/// `123##1AABB`, and an error frame with `CAN_ERR_FLAG` set,
+/// `20000004#0004000000000000`.
 ///
 /// ```
 /// use motionwire::can::{CanFrame, CanFrameRef, CanId, FdFlags, FrameType};
@@ -259,8 +260,9 @@ impl CanFrame {
 
     /// Return an error frame whose identifier holds the error classes
     /// `classes` (the low 29 bits of Linux `can_id`, without
-    /// `CAN_ERR_FLAG`) and whose data holds their details (SPEC §5.1).
-    /// Above `0x1FFFFFFF`, or more than 8 bytes, is an error.
+    /// `CAN_ERR_FLAG`) and whose data holds their details
+    /// (docs/formats.md#error-frames). Above `0x1FFFFFFF`, or more than 8
+    /// bytes, is an error.
     pub fn new_error(classes: u32, data: &[u8]) -> Result<Self> {
         let id = CanId::extended(classes).ok_or(Error::OutOfRange {
             what: What::CanErrorFrameClasses,
@@ -359,7 +361,7 @@ impl<D: AsRef<[u8]>> CanFrame<D> {
         matches!(self.frame_type, FrameType::Fd(_))
     }
 
-    /// Return whether this is an error frame (SPEC §5.1).
+    /// Return whether this is an error frame (docs/formats.md#error-frames).
     #[inline]
     #[must_use]
     pub fn is_error(&self) -> bool {
@@ -453,15 +455,16 @@ impl<'a> From<&'a CanFrame> for CanFrameRef<'a> {
 }
 
 /// Linux `CAN_ERR_FLAG`: the identifier bit that marks an error frame in
-/// candump's log notation (SPEC §5.1).
+/// candump's log notation (docs/formats.md#error-frames).
 pub const CAN_ERR_FLAG: u32 = 0x2000_0000;
 
 const HEX_UPPER: [u8; 16] = *b"0123456789ABCDEF";
 
 impl<D: AsRef<[u8]>> fmt::Display for CanFrame<D> {
-    /// Write the frame in candump's log notation (SPEC §5.1), as can-utils'
-    /// `snprintf_canframe` does: upper-case hex, `R` and the DLC when it is
-    /// not 0 for a remote request, `##` and the flags nibble for CAN FD.
+    /// Write the frame in candump's log notation (docs/formats.md#candump-log),
+    /// as can-utils' `snprintf_canframe` does: upper-case hex, `R` and the DLC
+    /// when it is not 0 for a remote request, `##` and the flags nibble for CAN
+    /// FD.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.frame_type {
             FrameType::Error => write!(f, "{:08X}#", self.id.raw() | CAN_ERR_FLAG)?,

@@ -3,8 +3,8 @@
 use core::fmt;
 
 /// A CAN identifier: standard (11-bit) or extended (29-bit) (ISO 11898-1;
-/// SPEC §5.1: 3 hex digits in candump text for a standard identifier, 8 for
-/// an extended one).
+/// docs/formats.md#candump-log: 3 hex digits in candump text for a standard
+/// identifier, 8 for an extended one).
 ///
 /// `Display` writes it as candump does: 3 upper-case hex digits for a
 /// standard identifier, 8 for an extended one.

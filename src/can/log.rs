@@ -1,5 +1,5 @@
 //! A frame as a log records it: the frame with its time, interface and
-//! direction (SPEC §5, §5.7).
+//! direction (docs/formats.md#timestamps, docs/formats.md#interfaces).
 
 use core::fmt;
 
@@ -7,10 +7,10 @@ use super::{CanFrame, Direction, Timestamp};
 
 /// Where a log says a frame was seen: an interface name (candump,
 /// pcapng's interface description) or a channel number (Vector ASC and
-/// BLF, PEAK TRC's bus column) (SPEC §5.7 `iface`).
+/// BLF, PEAK TRC's bus column) (`iface` in docs/formats.md#interfaces).
 ///
 /// `Display` writes the name, or the channel number as decimal text
-/// (`"1"`), as SPEC §6.1's `iface` does.
+/// (`"1"`), as `iface` does in the JSON (docs/output.md#common-keys).
 ///
 /// ```
 /// use motionwire::can::Iface;
@@ -35,11 +35,13 @@ impl fmt::Display for Iface<'_> {
     }
 }
 
-/// One frame as a log records it: what every log reader yields (SPEC §5).
+/// One frame as a log records it: what every log reader yields
+/// (docs/formats.md).
 ///
 /// The fields are public, as in smoltcp's `Repr`s: a reader fills what its
 /// format records and leaves the rest `None` — nothing is made up
-/// (SPEC §5.7: `ts` and `iface` are null where the file has none).
+/// (docs/formats.md#timestamps: `ts` and `iface` are null where the file has
+/// none).
 ///
 /// ```
 /// use motionwire::can::{CanFrame, CanId, Direction, Iface, LogFrame, Timestamp};
@@ -104,9 +106,10 @@ impl<'a> LogFrame<'a> {
 }
 
 impl fmt::Display for LogFrame<'_> {
-    /// Write the record in candump's log notation (SPEC §5.1): the
-    /// timestamp in parentheses, the interface, the frame and the direction
-    /// letter, each where the record has it.
+    /// Write the record in candump's log notation
+    /// (docs/formats.md#candump-log): the timestamp in parentheses, the
+    /// interface, the frame and the direction letter, each where the record has
+    /// it.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(ts) = self.timestamp {
             write!(f, "({ts}) ")?;
@@ -123,9 +126,9 @@ impl fmt::Display for LogFrame<'_> {
 }
 
 /// One entry of a log that a reader hands on: a frame, or a bus event that
-/// is not a frame (SPEC §5.4: PEAK TRC status rows; SPEC §6.3 counts them
-/// as `status_events`). Lines and records that are neither (headers,
-/// comments) are not entries; nothing else is dropped.
+/// is not a frame (docs/formats.md#trc: PEAK TRC status rows;
+/// docs/summary.md#bus counts them as `status_events`). Lines and records that
+/// are neither (headers, comments) are not entries; nothing else is dropped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LogEvent<'a> {
     /// A CAN frame (data, remote, CAN FD or error frame).
@@ -174,8 +177,9 @@ impl<'a> From<LogFrame<'a>> for LogEvent<'a> {
 }
 
 /// A bus event that is not a frame: a status row of a PEAK TRC file
-/// (`ST`, or a status word such as `Warng` or `BUSHEAVY`; SPEC §5.4).
-/// The summary's bus record counts them (SPEC §6.3 `status_events`).
+/// (`ST`, or a status word such as `Warng` or `BUSHEAVY`; docs/formats.md#trc).
+/// The summary's bus record counts them (`status_events` in
+/// docs/summary.md#bus).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct BusStatus<'a> {
     /// When the event was recorded.

@@ -1,11 +1,12 @@
 //! CAN: the one frame vocabulary every part of the crate speaks
-//! (ISO 11898-1; Linux `linux/can.h` and `linux/can/error.h`; SPEC §5).
+//! (ISO 11898-1; Linux `linux/can.h` and `linux/can/error.h`; docs/formats.md).
 //!
 //! - [`CanId`]: a standard (11-bit) or extended (29-bit) identifier.
 //! - [`CanFrame`]: one frame — identifier, [`FrameType`] (data, remote
 //!   request, CAN FD with its [`FdFlags`], error frame) and up to 64 data
 //!   bytes — owned and `Copy`, or borrowed as [`CanFrameRef`].
-//! - [`ErrorFrame`]: the classes and details of an error frame (SPEC §5.1).
+//! - [`ErrorFrame`]: the classes and details of an error frame
+//!   (docs/formats.md#error-frames).
 //! - [`LogFrame`]: a frame as a log records it, with its [`Timestamp`],
 //!   [`Iface`] and [`Direction`]: what every log reader yields.
 //!

@@ -1,4 +1,5 @@
-//! When a log recorded a frame (SPEC §5.7, SPEC §6.1 `ts`).
+//! When a log recorded a frame (docs/formats.md#timestamps, `ts` in
+//! docs/output.md#common-keys).
 
 use crate::error::What;
 use core::fmt;
@@ -7,7 +8,7 @@ use core::time::Duration;
 use crate::{Error, Result};
 
 /// When a log recorded a frame: a point on the logger's clock, to the
-/// nanosecond (SPEC §5.7; SPEC §6.1 `ts`).
+/// nanosecond (docs/formats.md#timestamps; `ts` in docs/output.md#common-keys).
 ///
 /// The clock is the log's: Unix time (UTC) where the file records it
 /// (`candump -l`, `-t a`, pcap, BLF, TRC with `$STARTTIME`), else time since
@@ -130,8 +131,9 @@ impl Timestamp {
         self.secs as u128 * 1_000_000 + (self.nanos / 1_000) as u128
     }
 
-    /// Return the timestamp in seconds as a float (SPEC §6.1 `ts`); exact
-    /// to the microsecond for any date of this era.
+    /// Return the timestamp in seconds as a float (`ts` in
+    /// docs/output.md#common-keys); exact to the microsecond for any date of
+    /// this era.
     #[inline]
     #[must_use]
     pub fn as_secs_f64(self) -> f64 {
@@ -172,8 +174,9 @@ impl Timestamp {
     /// Return the time as seconds without padding and with the
     /// resolution it has: six decimals, or nine when it is not a whole
     /// number of microseconds (`1700000000.000500`, `0.052000`,
-    /// `1700000000.000500001`) — SPEC §6.1's `ts` as a JSON number, exact
-    /// (SPEC §5.7: no float rounding).
+    /// `1700000000.000500001`) — `ts` as a JSON number
+    /// (docs/output.md#common-keys), exact (docs/formats.md#timestamps: no
+    /// float rounding).
     ///
     /// ```
     /// use motionwire::can::Timestamp;

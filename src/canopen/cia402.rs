@@ -1,6 +1,6 @@
 //! The CiA 402 drive state machine: statusword 6041h → state, controlword
 //! 6040h → command, and the pure transition function (CiA 402-2 /
-//! IEC 61800-7-201, "drive state machine"; SPEC §8.3).
+//! IEC 61800-7-201, "drive state machine"; docs/canopen.md#cia402).
 //!
 //! - [`Cia402State`]: the eight states of the state diagram, read from a
 //!   statusword with [`Cia402State::from_statusword`] (bits 0–3, 5 and 6, as
@@ -8,7 +8,8 @@
 //! - [`Cia402Command`]: the seven device-control commands, read from a
 //!   controlword with [`Cia402Command::from_controlword`] (bits 0–3 and 7,
 //!   as CiA 402's command-coding table of object 6040h gives them), with
-//!   SPEC §8.3's decision for the patterns that table leaves to context.
+//!   the decision in docs/canopen.md#cia402 for the patterns that table leaves
+//!   to context.
 //! - [`Cia402State::next`]: the state a command leads to and the number of
 //!   the transition (0–16) as the state diagram draws it; the drive's own
 //!   transitions (0, 1, 12 automatic, 13, 14) come from
@@ -67,11 +68,11 @@ pub use state_machine::{Cia402DriveEvent, Cia402Transition};
 pub use statusword::{Cia402State, Statusword};
 
 /// The device profile number of CiA 402 drives, 0x0192 (402), in the low
-/// word of the device type 1000h (CiA 301 §7.5.2.1; SPEC §8.3).
+/// word of the device type 1000h (CiA 301 §7.5.2.1; docs/canopen.md#cia402).
 pub const DRIVE_DEVICE_PROFILE: u16 = 402;
 
 /// Return whether a device type (object 1000h) names a CiA 402 drive: its
-/// low word is [`DRIVE_DEVICE_PROFILE`] (SPEC §8.3).
+/// low word is [`DRIVE_DEVICE_PROFILE`] (docs/canopen.md#cia402).
 ///
 /// ```
 /// use motionwire::canopen::cia402::is_drive_device_type;

@@ -1,5 +1,5 @@
 //! The CiA 301 basic data types and the values they hold (CiA 301
-//! Table 44, "Object dictionary data types"; SPEC §8.2).
+//! Table 44, "Object dictionary data types"; docs/canopen.md#signals).
 //!
 //! [`DataType`] is a type as the object dictionary names it (by index,
 //! 0001h BOOLEAN … 001Bh UNSIGNED64); [`Value`] is a value of one, as a
@@ -24,7 +24,7 @@ use crate::error::What;
 use crate::{Error, Result};
 
 /// A CiA 301 basic data type, named by its index in the object dictionary
-/// (CiA 301 Table 44, "Object dictionary data types"; SPEC §8.2).
+/// (CiA 301 Table 44, "Object dictionary data types"; docs/canopen.md#signals).
 ///
 /// Indices 0001h–0007h double as the dummy entries of a PDO mapping
 /// ([`MappingEntry::is_dummy`](super::MappingEntry::is_dummy)).
@@ -342,7 +342,7 @@ impl fmt::Display for Octets {
     }
 }
 
-/// The value of one signal of a PDO (SPEC §8.2).
+/// The value of one signal of a PDO (docs/canopen.md#signals).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

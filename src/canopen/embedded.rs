@@ -17,7 +17,7 @@ use crate::can::CanFrame;
 
 impl CanOpenMessage {
     /// Read any `embedded_can` frame as CANopen (CiA 301 §7.3.5 Table 72;
-    /// SPEC §6.1): [`CanFrame::from_embedded`], then
+    /// docs/canopen.md#identifiers): [`CanFrame::from_embedded`], then
     /// [`CanOpenMessage::decode`].
     ///
     /// ```
@@ -100,8 +100,8 @@ fn classic<F: Frame>(cob_id: u16, data: &[u8]) -> Option<F> {
 
 impl Emcy {
     /// Write the EMCY of `node` into a frame: COB-ID 0x080 + node-ID, the 8
-    /// data bytes (CiA 301 §7.2.7.3; SPEC §2.1). `None` when `F::new`
-    /// refuses, as [`Frame::new`] does.
+    /// data bytes (CiA 301 §7.2.7.3; docs/canopen.md#emcy). `None` when
+    /// `F::new` refuses, as [`Frame::new`] does.
     #[must_use]
     pub fn to_frame<F: Frame>(&self, node: NodeId) -> Option<F> {
         classic(node.emcy_cob_id(), &self.to_bytes())
@@ -111,7 +111,8 @@ impl Emcy {
 impl Heartbeat {
     /// Write the heartbeat (or boot-up message) of `node` into a frame:
     /// COB-ID 0x700 + node-ID, 1 data byte (CiA 301 §7.2.8.3.2.2;
-    /// SPEC §2.7). `None` when `F::new` refuses, as [`Frame::new`] does.
+    /// docs/canopen.md#error-control). `None` when `F::new` refuses, as
+    /// [`Frame::new`] does.
     #[must_use]
     pub fn to_frame<F: Frame>(&self, node: NodeId) -> Option<F> {
         classic(node.error_control_cob_id(), &self.to_bytes())
@@ -120,8 +121,8 @@ impl Heartbeat {
 
 impl GuardAnswer {
     /// Write `node`'s node-guarding answer into a frame: COB-ID 0x700 +
-    /// node-ID, 1 data byte with the toggle in bit 7 (CiA 301
-    /// §7.2.8.3.2.1; SPEC §2.7). `None` when `F::new` refuses, as
+    /// node-ID, 1 data byte with the toggle in bit 7 (CiA 301 §7.2.8.3.2.1;
+    /// docs/canopen.md#error-control). `None` when `F::new` refuses, as
     /// [`Frame::new`] does.
     #[must_use]
     pub fn to_frame<F: Frame>(&self, node: NodeId) -> Option<F> {

@@ -1,4 +1,4 @@
-//! The EMCY frame (CiA 301 §7.2.7.3; SPEC §2.1).
+//! The EMCY frame (CiA 301 §7.2.7.3; docs/canopen.md#emcy).
 //!
 //! [`EmcyFrame`] is a zero-copy view over the 8 data bytes of a CAN frame;
 //! [`Emcy`] is the owned, `Copy` value. Both share the offsets in `field`.
@@ -49,7 +49,7 @@ pub const EMCY_LEN: usize = field::MANUFACTURER.end;
 
 const WHAT: What = What::EmcyFrame;
 
-/// A zero-copy view over an EMCY frame's data (SPEC §2.1).
+/// A zero-copy view over an EMCY frame's data (docs/canopen.md#emcy).
 ///
 /// After [`EmcyFrame::new_checked`] (or [`EmcyFrame::check_len`]) succeeds,
 /// no accessor panics.
@@ -127,7 +127,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> EmcyFrame<T> {
     }
 }
 
-/// An emergency message, owned (CiA 301 §7.2.7.3; SPEC §2.1).
+/// An emergency message, owned (CiA 301 §7.2.7.3; docs/canopen.md#emcy).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -154,7 +154,7 @@ impl Emcy {
 
     /// Return the reset EMCY a producer sends when errors are reset: code
     /// 0x0000, the remaining `register`, and a zero manufacturer area
-    /// (SPEC §2.5, transitions 2 and 4).
+    /// (docs/canopen.md#emcy-producer, transitions 2 and 4).
     #[inline]
     #[must_use]
     pub const fn reset(register: ErrorRegister) -> Self {
@@ -162,7 +162,7 @@ impl Emcy {
     }
 
     /// Return whether this EMCY reports "error reset or no error" (any
-    /// 0x00xx code, SPEC §2.3).
+    /// 0x00xx code, docs/canopen.md#emcy-codes).
     #[inline]
     #[must_use]
     pub const fn is_reset(&self) -> bool {
@@ -186,7 +186,7 @@ impl Emcy {
     }
 
     /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is an
-    /// [`Error::Length`] (SPEC §2.1: a decoder does not guess).
+    /// [`Error::Length`] (docs/canopen.md#emcy: a decoder does not guess).
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
         // Through the fixed-size array rather than the view over the slice:
@@ -316,8 +316,8 @@ mod proptests {
 }
 
 impl core::fmt::Display for Emcy {
-    /// The EMCY in words (SPEC §2.1, §2.3): code, description, register
-    /// and manufacturer bytes.
+    /// The EMCY in words (docs/canopen.md#emcy, docs/canopen.md#emcy-codes):
+    /// code, description, register and manufacturer bytes.
     ///
     /// ```
     /// use motionwire::canopen::Emcy;

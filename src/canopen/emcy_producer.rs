@@ -1,17 +1,18 @@
-//! The EMCY error state machine, producer side (SPEC §2.5; seed 000, "Application of
-//! the Emergency Object"; CiA 301 §7.2.7.2).
+//! The EMCY error state machine, producer side (docs/canopen.md#emcy-producer;
+//! seed 000, "Application of the Emergency Object"; CiA 301 §7.2.7.2).
 //!
 //! A device tells [`EmcyProducer`] what happens to it as [`EmcyEvent`]s: it was
 //! initialised, an error occurred, one error was reset, all errors were reset.
 //! [`EmcyProducer::step`] is a pure function of the state and the event: it
 //! returns the next state and an [`EmcyOutcome`] that holds the EMCY to send
-//! (if any), the number of the transition taken (0–4 of SPEC §2.5's table),
-//! and an overflow report when the fixed capacity for active errors was
-//! exceeded. There is no clock, no I/O and no heap: the active errors live in
-//! an array of `N` slots (default [`DEFAULT_ACTIVE_ERRORS`]).
+//! (if any), the number of the transition taken (0–4,
+//! docs/canopen.md#emcy-producer), and an overflow report when the fixed
+//! capacity for active errors was exceeded. There is no clock, no I/O and no
+//! heap: the active errors live in an array of `N` slots (default
+//! [`DEFAULT_ACTIVE_ERRORS`]).
 //!
-//! The rules, the **Decision**s taken where SPEC leaves a choice, and an
-//! example are on [`EmcyProducer`].
+//! The rules, the **Decision**s taken where CiA 301 leaves a choice
+//! (docs/canopen.md#emcy-producer), and an example are on [`EmcyProducer`].
 
 use core::fmt;
 
@@ -19,13 +20,15 @@ use super::{Emcy, ErrorCode, ErrorRegister};
 
 /// The default number of active errors an [`EmcyProducer`] tracks, 8.
 ///
-/// SPEC §2.5 asks for a fixed capacity without naming it (**Decision**: 8,
-/// enough for one error of each register class bit at once; a device that
-/// needs more chooses its own `N`).
+/// The active errors are held in a fixed capacity
+/// (docs/canopen.md#emcy-producer) of no set size (**Decision**: 8, enough for
+/// one error of each register class bit at once; a device that needs more
+/// chooses its own `N`).
 pub const DEFAULT_ACTIVE_ERRORS: usize = 8;
 
 /// The two error conditions of the EMCY state machine (seed 000: "The error
-/// conditions error-free and error occurred are distinguished"; SPEC §2.5).
+/// conditions error-free and error occurred are distinguished";
+/// docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorCondition {
@@ -36,7 +39,8 @@ pub enum ErrorCondition {
 }
 
 impl ErrorCondition {
-    /// Return the condition's name as SPEC §2.5 writes it, e.g. `"error-free"`.
+    /// Return the condition's name as docs/canopen.md#emcy-producer names it,
+    /// e.g. `"error-free"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -53,8 +57,9 @@ impl fmt::Display for ErrorCondition {
     }
 }
 
-/// A transition of the EMCY state machine, numbered as in SPEC §2.5's table
-/// and seed 000 ("Transition 0" … "Transition 4").
+/// A transition of the EMCY state machine, numbered as in
+/// docs/canopen.md#emcy-producer and seed 000 ("Transition 0" … "Transition
+/// 4").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -72,7 +77,8 @@ pub enum EmcyTransition {
 }
 
 impl EmcyTransition {
-    /// Return the transition's number, 0–4, as in SPEC §2.5's table.
+    /// Return the transition's number, 0–4, as in
+    /// docs/canopen.md#emcy-producer.
     #[must_use]
     pub const fn number(self) -> u8 {
         self as u8
@@ -92,7 +98,7 @@ impl EmcyTransition {
     }
 
     /// Return the condition the machine is in after this transition
-    /// (SPEC §2.5, column "from → to").
+    /// (the transitions of docs/canopen.md#emcy-producer).
     #[must_use]
     pub const fn target(self) -> ErrorCondition {
         match self {
@@ -113,8 +119,8 @@ impl fmt::Display for EmcyTransition {
     }
 }
 
-/// What happens to the device, as the EMCY state machine sees it (SPEC §2.5,
-/// column "trigger").
+/// What happens to the device, as the EMCY state machine sees it
+/// (the events of the transitions of docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum EmcyEvent {
@@ -123,8 +129,8 @@ pub enum EmcyEvent {
     Initialised,
     /// An error occurred.
     ErrorOccurred {
-        /// The error's emergency error code (SPEC §2.3). A reset code
-        /// (0x00xx) is refused, see [`EmcyProducer`].
+        /// The error's emergency error code (docs/canopen.md#emcy-codes). A
+        /// reset code (0x00xx) is refused, see [`EmcyProducer`].
         code: ErrorCode,
         /// The error-register bits this error contributes; `None` derives
         /// them from the code ([`ErrorCode::register_class_bits`]). Bit 0 is
@@ -132,7 +138,8 @@ pub enum EmcyEvent {
         /// bit 6 is ignored.
         register: Option<ErrorRegister>,
         /// The manufacturer-specific error field sent with this error's EMCY
-        /// (bytes 3–7, SPEC §2.1; the AKD layout is SPEC §2.4).
+        /// (bytes 3–7, docs/canopen.md#emcy; the AKD layout is
+        /// docs/canopen.md#akd).
         manufacturer: [u8; 5],
     },
     /// The error with this code is no longer present.
@@ -140,9 +147,10 @@ pub enum EmcyEvent {
         /// The code of the error that went away.
         code: ErrorCode,
         /// The manufacturer-specific field of the reset EMCY: `None` sends a
-        /// zero field, as SPEC §2.5 says a generic device does; a device
-        /// profile that names the error's source in reset EMCYs too (the
-        /// AKD keeps its axis id in byte 3, SPEC §2.4) passes it here.
+        /// zero field, as a generic device does
+        /// (docs/canopen.md#emcy-producer); a device profile that names the
+        /// error's source in reset EMCYs too (the AKD keeps its axis id in byte
+        /// 3, docs/canopen.md#akd) passes it here.
         manufacturer: Option<[u8; 5]>,
     },
     /// Every error is gone (e.g. after a fault reset).
@@ -177,7 +185,7 @@ impl EmcyEvent {
     }
 
     /// Return an [`EmcyEvent::ErrorReset`] for `code` whose reset EMCY has
-    /// a zero manufacturer field (SPEC §2.5).
+    /// a zero manufacturer field (docs/canopen.md#emcy-producer).
     #[must_use]
     pub const fn reset(code: ErrorCode) -> Self {
         EmcyEvent::ErrorReset {
@@ -188,7 +196,7 @@ impl EmcyEvent {
 
     /// Return an [`EmcyEvent::ErrorReset`] for `code` whose reset EMCY
     /// carries `manufacturer`, e.g. the AKD's axis and feedback ids
-    /// (SPEC §2.4).
+    /// (docs/canopen.md#akd).
     ///
     /// ```
     /// use motionwire::canopen::{EmcyEvent, EmcyProducer, ErrorCode};
@@ -210,8 +218,8 @@ impl EmcyEvent {
     }
 }
 
-/// Why an event caused no transition and sent nothing (SPEC §2.5, "Rules
-/// beyond the table").
+/// Why an event caused no transition and sent nothing (the Decisions of
+/// docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IgnoredEvent {
@@ -227,9 +235,10 @@ pub enum IgnoredEvent {
     ResetCodeIsNotAnError,
 }
 
-/// What one step of the EMCY state machine produced (SPEC §2.5: `(state,
-/// event) → (state, Option<EMCY>, transition number)`), as one of the
-/// things that can happen — never a combination that cannot.
+/// What one step of the EMCY state machine produced
+/// (docs/canopen.md#emcy-producer: `(state, event) → (state, Option<EMCY>,
+/// transition number)`), as one of the things that can happen — never a
+/// combination that cannot.
 ///
 /// ```
 /// use motionwire::canopen::{EmcyEvent, EmcyOutcome, EmcyProducer, EmcyTransition, ErrorCode, IgnoredEvent};
@@ -257,9 +266,9 @@ pub enum EmcyOutcome {
         emcy: Emcy,
     },
     /// Transition 1 or 2 was taken and `emcy` must be sent, but the error
-    /// cannot be tracked: all `N` slots hold other active errors (SPEC
-    /// §2.5: "the overflow is reported, never silently dropped"). Its code
-    /// is `emcy.code`.
+    /// cannot be tracked: all `N` slots hold other active errors
+    /// (docs/canopen.md#emcy-producer: the EMCY is still produced and the
+    /// overflow reported). Its code is `emcy.code`.
     SentUntracked {
         /// The transition taken.
         transition: EmcyTransition,
@@ -315,7 +324,7 @@ impl EmcyOutcome {
 }
 
 /// One active error: its code and the error-register bits it contributes
-/// (SPEC §2.5).
+/// (docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ActiveError {
@@ -345,20 +354,22 @@ impl ActiveError {
 }
 
 /// The EMCY error state machine of a producer, holding up to `N` active
-/// errors (SPEC §2.5; seed 000; CiA 301 §7.2.7.2).
+/// errors (docs/canopen.md#emcy-producer; seed 000; CiA 301 §7.2.7.2).
 ///
 /// The value is the state: it is `Copy`, and two states compare equal when
 /// they hold the same active errors with the same register contributions
 /// (the order in which the errors occurred does not matter) and the same
 /// untracked-overflow memory.
 ///
-/// The rules, with the **Decision**s taken where SPEC leaves a choice:
+/// The rules, with the **Decision**s taken where CiA 301 leaves a choice
+/// (docs/canopen.md#emcy-producer):
 ///
 /// - The error register (object 1001h) has bit 0 set whenever any error is
 ///   active; its class bits are the union of every active error's
 ///   *contribution*: the bits the caller supplied for that error, or else
-///   [`ErrorCode::register_class_bits`] (SPEC §2.5). The reserved bit 6 is
-///   always cleared from a contribution (SPEC §2.2: always 0 when produced).
+///   [`ErrorCode::register_class_bits`] (docs/canopen.md#emcy-producer). The
+///   reserved bit 6 is always cleared from a contribution
+///   (docs/canopen.md#error-register: always 0 when produced).
 /// - Transitions 1 and 3 send the error's code, the accumulated register of
 ///   all active errors including the new one, and the error's manufacturer
 ///   bytes. Transition 2 sends code 0x0000, the register of the remaining
@@ -369,9 +380,9 @@ impl ActiveError {
 ///   Resetting an error that is not active sends nothing. "All errors reset"
 ///   from error-occurred is transition 4; from error-free it sends nothing.
 /// - **Decision:** an "error occurred" event whose code is a reset code
-///   (0x00xx, SPEC §2.3) is refused: nothing is sent and the state is
-///   unchanged ([`IgnoredEvent::ResetCodeIsNotAnError`]). Treating it as
-///   "reset all" would let one wrong call clear real faults from the error
+///   (0x00xx, docs/canopen.md#emcy-codes) is refused: nothing is sent and the
+///   state is unchanged ([`IgnoredEvent::ResetCodeIsNotAnError`]). Treating it
+///   as "reset all" would let one wrong call clear real faults from the error
 ///   register; a device that means "all errors are gone" says
 ///   [`EmcyEvent::AllErrorsReset`].
 /// - **Decision (capacity overflow):** when an error occurs while all `N`
@@ -389,9 +400,10 @@ impl ActiveError {
 ///   (a re-initialised device starts over, e.g. after an NMT reset): the machine
 ///   starts again error-free, without sending anything (seed 000: "No error
 ///   signal is generated in this condition").
-/// - The manufacturer area of a reset EMCY is zero (SPEC §2.5), unless the
-///   device passes one with [`EmcyEvent::reset_with`]: the AKD keeps its
-///   axis id in byte 3 of reset EMCYs (seed 000, SPEC §2.4).
+/// - The manufacturer area of a reset EMCY is zero
+///   (docs/canopen.md#emcy-producer), unless the device passes one with
+///   [`EmcyEvent::reset_with`]: the AKD keeps its axis id in byte 3 of reset
+///   EMCYs (seed 000, docs/canopen.md#akd).
 ///
 /// ```
 /// use motionwire::canopen::{
@@ -490,7 +502,8 @@ impl<const N: usize> EmcyProducer<N> {
 
     /// Return the error register, object 1001h, that the device presents
     /// now: 0x00 when error-free, else bit 0 and every active error's
-    /// contribution (SPEC §2.2, §2.5).
+    /// contribution (docs/canopen.md#error-register,
+    /// docs/canopen.md#emcy-producer).
     #[must_use]
     pub fn error_register(&self) -> ErrorRegister {
         if self.is_error_free() {
@@ -530,7 +543,7 @@ impl<const N: usize> EmcyProducer<N> {
     }
 
     /// Return the next state and what the step produced, leaving `self` as
-    /// it is (SPEC §2.5: the function is pure).
+    /// it is (docs/canopen.md#emcy-producer: the function is pure).
     pub fn step(&self, event: EmcyEvent) -> (Self, EmcyOutcome) {
         let mut next = *self;
         let outcome = next.apply(event);
@@ -668,7 +681,8 @@ mod tests {
     const CAN_OVERRUN: ErrorCode = ErrorCode::new(0x8110);
     const INTERNAL_VOLTAGE: ErrorCode = ErrorCode::new(0x3210);
     const HARDWARE: ErrorCode = ErrorCode::new(0x5000);
-    /// Axis 1 in the AKD layout of the manufacturer field (SPEC §2.4).
+    /// Axis 1 in the AKD layout of the manufacturer field
+    /// (docs/canopen.md#akd).
     const AXIS_1: [u8; 5] = [0x01, 0, 0, 0, 0];
 
     /// Apply `events` to a fresh machine, asserting that each took a
@@ -778,7 +792,8 @@ mod tests {
         assert_eq!(next, EmcyProducer::new());
     }
 
-    /// SPEC §2.5's table as a table: (transition, number, target condition).
+    /// The transitions of docs/canopen.md#emcy-producer as a table:
+    /// (transition, number, target condition).
     #[test]
     fn transition_table() {
         use EmcyTransition::*;
@@ -1043,8 +1058,8 @@ mod proptests {
     use super::*;
     use crate::test_gens::emcy_producer::emcy_events;
 
-    /// A plain reference model of SPEC §2.5, written independently of the
-    /// array-based machine.
+    /// A plain reference model of docs/canopen.md#emcy-producer, written
+    /// independently of the array-based machine.
     #[derive(Default)]
     struct Model {
         /// (code, contribution) in occurrence order.

@@ -1,4 +1,5 @@
-//! Emergency error codes and their classes (CiA 301 Table 26; SPEC §2.3).
+//! Emergency error codes and their classes (CiA 301 Table 26;
+//! docs/canopen.md#emcy-codes).
 
 use core::fmt;
 
@@ -8,7 +9,8 @@ mod descriptions;
 
 pub use descriptions::{Description, DescriptionSource, Specificity};
 
-/// An emergency error code, bytes 0–1 of an EMCY (CiA 301 §7.2.7.3.2; SPEC §2.3).
+/// An emergency error code, bytes 0–1 of an EMCY (CiA 301 §7.2.7.3.2;
+/// docs/canopen.md#emcy-codes).
 ///
 /// Every `u16` is a valid code: [`ErrorCode::class`] sorts it into one of the
 /// classes of CiA 301's table, or [`ErrorClass::Unknown`] when it lies outside
@@ -34,7 +36,7 @@ pub struct ErrorCode(u16);
 
 impl ErrorCode {
     /// 0x0000, "error reset or no error": the only code a producer sends for
-    /// a reset (SPEC §2.3, **Decision**).
+    /// a reset (the **Decision** in docs/canopen.md#emcy-codes).
     pub const NO_ERROR: ErrorCode = ErrorCode(0x0000);
     /// 0x8130, life guard error or heartbeat error (CiA 301 Table 26).
     pub const LIFE_GUARD: ErrorCode = ErrorCode(0x8130);
@@ -54,7 +56,7 @@ impl ErrorCode {
     }
 
     /// Return whether this is an "error reset or no error" code: any 0x00xx
-    /// when decoding (SPEC §2.3, **Decision**).
+    /// when decoding (the **Decision** in docs/canopen.md#emcy-codes).
     #[inline]
     #[must_use]
     pub const fn is_reset(self) -> bool {
@@ -62,7 +64,7 @@ impl ErrorCode {
     }
 
     /// Return the class of the code, from the ranges of CiA 301 Table 26
-    /// (SPEC §2.3).
+    /// (docs/canopen.md#emcy-codes).
     #[must_use]
     pub const fn class(self) -> ErrorClass {
         match self.0 {
@@ -84,8 +86,8 @@ impl ErrorCode {
 
     /// Return the error-register class bits that this code implies: 2xxx
     /// current, 3xxx voltage, 4xxx temperature, 81xx/82xx communication
-    /// (SPEC §2.5). Bit 0 (generic) is not included: the EMCY state machine
-    /// sets it whenever any error is active.
+    /// (docs/canopen.md#emcy-producer). Bit 0 (generic) is not included: the
+    /// EMCY state machine sets it whenever any error is active.
     #[must_use]
     pub const fn register_class_bits(self) -> ErrorRegister {
         match self.0 >> 8 {
@@ -117,7 +119,8 @@ impl fmt::Display for ErrorCode {
     }
 }
 
-/// The class of an emergency error code (CiA 301 Table 26; SPEC §2.3).
+/// The class of an emergency error code (CiA 301 Table 26;
+/// docs/canopen.md#emcy-codes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -152,8 +155,8 @@ pub enum ErrorClass {
 }
 
 impl ErrorClass {
-    /// Return the class's name as the JSON output writes it (SPEC §2.3),
-    /// e.g. `"device_hardware"`.
+    /// Return the class's name as the JSON output writes it
+    /// (docs/canopen.md#emcy-codes), e.g. `"device_hardware"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -205,7 +208,8 @@ impl fmt::Display for ErrorClass {
 mod tests {
     use super::*;
 
-    /// SPEC §2.3's range table, written out: (first, last, class).
+    /// The range table of docs/canopen.md#emcy-codes, written out: (first,
+    /// last, class).
     const RANGES: &[(u16, u16, ErrorClass)] = &[
         (0x0000, 0x00FF, ErrorClass::Reset),
         (0x1000, 0x10FF, ErrorClass::Generic),

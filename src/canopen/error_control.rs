@@ -1,6 +1,7 @@
 //! What the error-control state machines share: the time unit, the choice
 //! between heartbeat and node/life guarding, and the small fixed-capacity
-//! list in which one input returns its events (CiA 301 §7.2.8; SPEC §2.7).
+//! list in which one input returns its events (CiA 301 §7.2.8;
+//! docs/canopen.md#error-control).
 //!
 //! # Time
 //!
@@ -20,7 +21,8 @@
 //! use core::time::Duration;
 //! use motionwire::canopen::{ErrorControlConfig, ErrorControlMethod};
 //!
-//! // Only one method is used: a non-zero 1017h wins (SPEC §2.7).
+//! // Only one method is used: a non-zero 1017h wins
+//! // (docs/canopen.md#error-control).
 //! let config = ErrorControlConfig {
 //!     producer_heartbeat_time_ms: 100,
 //!     guard_time_ms: 50,
@@ -45,8 +47,8 @@ pub(crate) const fn millis(ms: u32) -> Duration {
 }
 
 /// Which error-control method a node's configuration puts in force
-/// (CiA 301 §7.2.8.1; SPEC §2.7; seed 004 §11.1: "Only one of the two
-/// monitoring methods can be used").
+/// (CiA 301 §7.2.8.1; docs/canopen.md#error-control; seed 004 §11.1: "Only one
+/// of the two monitoring methods can be used").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorControlMethod {
@@ -100,7 +102,7 @@ impl fmt::Display for ErrorControlMethod {
 }
 
 /// A node's error-control objects (CiA 301, objects 1017h, 100Ch and 100Dh;
-/// SPEC §2.7).
+/// docs/canopen.md#error-control).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ErrorControlConfig {
@@ -122,7 +124,7 @@ impl ErrorControlConfig {
 
     /// Return the node life time, guard time × life time factor; `None` when either is 0 (seed 004 §11.1.1: "If one of
     /// the two parameters is 0 … no lifeguarding") or when heartbeat is
-    /// configured (heartbeat wins, SPEC §2.7).
+    /// configured (heartbeat wins, docs/canopen.md#error-control).
     #[inline]
     #[must_use]
     pub const fn node_life_time(&self) -> Option<Duration> {
@@ -137,8 +139,9 @@ impl ErrorControlConfig {
 }
 
 /// The events one input to an error-control state machine produced, in the
-/// order they occurred: at most `N`, stored in place (no heap; SPEC §2.7:
-/// pure state machines). Iterate it, or check [`Events::is_empty`].
+/// order they occurred: at most `N`, stored in place (no heap;
+/// docs/canopen.md#error-control: pure state machines). Iterate it, or check
+/// [`Events::is_empty`].
 ///
 /// One input can stand for more than one event: a heartbeat that arrives
 /// after its deadline without a poll in between is both a timeout and a
@@ -212,7 +215,8 @@ impl<E: Copy, const N: usize> ExactSizeIterator for Events<E, N> {}
 mod tests {
     use super::*;
 
-    /// Which method is in force, as a truth table (SPEC §2.7, seed 004 §11.1).
+    /// Which method is in force, as a truth table
+    /// (docs/canopen.md#error-control, seed 004 §11.1).
     #[test]
     fn method_truth_table() {
         use ErrorControlMethod as M;

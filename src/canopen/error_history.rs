@@ -1,6 +1,6 @@
-//! The pre-defined error field, object 1003h (CiA 301 §7.5.2.3; SPEC §2.6;
-//! seed 000: "The last 10 Emergency error codes can be read using object
-//! 1003").
+//! The pre-defined error field, object 1003h (CiA 301 §7.5.2.3;
+//! docs/canopen.md#error-history; seed 000: "The last 10 Emergency error codes
+//! can be read using object 1003").
 //!
 //! [`ErrorHistory`] holds the last `N` errors a device reported (N = 10 on the
 //! AKD, the default). Sub-index 0 is the number of entries; sub-index 1 the
@@ -9,20 +9,20 @@
 //! [`ErrorHistory::read`] and [`ErrorHistory::write`] answer SDO accesses
 //! with the value or the [`SdoAbortCode`] CiA 301 prescribes.
 //!
-//! The **Decision**s taken where SPEC leaves a choice, and an example, are
-//! on [`ErrorHistory`].
+//! The **Decision**s taken where CiA 301 leaves a choice
+//! (docs/canopen.md#error-history), and an example, are on [`ErrorHistory`].
 
 use byteorder::{ByteOrder, LittleEndian};
 
 use super::{Emcy, EmcyOutcome, ErrorCode, SdoAbortCode};
 
 /// The default capacity of an [`ErrorHistory`], 10 entries as on the AKD
-/// (seed 000; SPEC §2.6).
+/// (seed 000; docs/canopen.md#error-history).
 pub const DEFAULT_ERROR_HISTORY_LEN: usize = 10;
 
 /// One entry of the pre-defined error field 1003h (CiA 301 §7.5.2.3;
-/// SPEC §2.6): the error code in bits 0–15 and manufacturer-specific
-/// additional information in bits 16–31.
+/// docs/canopen.md#error-history): the error code in bits 0–15 and
+/// manufacturer-specific additional information in bits 16–31.
 ///
 /// ```
 /// use motionwire::canopen::{ErrorCode, ErrorHistoryEntry};
@@ -89,23 +89,23 @@ impl From<ErrorHistoryEntry> for u32 {
 }
 
 /// The pre-defined error field, object 1003h, holding the last `N` errors
-/// (CiA 301 §7.5.2.3; SPEC §2.6).
+/// (CiA 301 §7.5.2.3; docs/canopen.md#error-history).
 ///
 /// Sub-index 0 is the number of entries, sub-index 1 the newest; a new error
 /// shifts the older ones down and the oldest falls off when full; reset
 /// EMCYs (0x00xx) are not recorded.
 ///
-/// **Decisions** where SPEC §2.6 leaves a choice:
+/// **Decisions** where CiA 301 leaves a choice (docs/canopen.md#error-history):
 ///
 /// - [`ErrorHistory::record`] fills bits 16–31 from the EMCY's
 ///   manufacturer-specific bytes 0–1 (frame bytes 3–4) read little-endian,
 ///   so an AKD entry carries the axis and feedback id in bits 16–23
-///   (SPEC §2.4).
+///   (docs/canopen.md#akd).
 /// - Sub-indices `count + 1 ..= N` exist but hold no data: reading one is
-///   refused with [`SdoAbortCode::NO_DATA_AVAILABLE`] (SPEC §2.6). Sub-indices
-///   above `N` do not exist in the object dictionary: reading or writing one
-///   is refused with [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`] (CiA 301
-///   Table 22).
+///   refused with [`SdoAbortCode::NO_DATA_AVAILABLE`]
+///   (docs/canopen.md#error-history). Sub-indices above `N` do not exist in the
+///   object dictionary: reading or writing one is refused with
+///   [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`] (CiA 301 Table 22).
 /// - Writing sub-indices 1..=N is refused with
 ///   [`SdoAbortCode::WRITE_OF_READ_ONLY`]: CiA 301 gives them read-only
 ///   access.
@@ -230,7 +230,8 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Add an entry as the newest; the older ones shift down and the oldest
     /// falls off when the history is full. A reset code (0x00xx) is not an
-    /// error and is not recorded (SPEC §2.6): return whether it was.
+    /// error and is not recorded (docs/canopen.md#error-history): return
+    /// whether it was.
     pub fn push(&mut self, entry: ErrorHistoryEntry) -> bool {
         if entry.code.is_reset() {
             return false;
@@ -247,8 +248,8 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Record an EMCY that was sent: its code and, as additional
     /// information, its manufacturer bytes 0–1 (**Decision**, see
-    /// [`ErrorHistory`]). Reset EMCYs are not recorded (SPEC §2.6); return
-    /// whether it was.
+    /// [`ErrorHistory`]). Reset EMCYs are not recorded
+    /// (docs/canopen.md#error-history); return whether it was.
     pub fn record(&mut self, emcy: &Emcy) -> bool {
         self.push(ErrorHistoryEntry::from_emcy(emcy))
     }
@@ -269,7 +270,7 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Answer an SDO read (upload) of sub-index `sub_index`: sub-index 0 the
     /// count, 1..=count the entries newest first (CiA 301 §7.5.2.3;
-    /// SPEC §2.6).
+    /// docs/canopen.md#error-history).
     ///
     /// # Errors
     ///
@@ -289,7 +290,7 @@ impl<const N: usize> ErrorHistory<N> {
 
     /// Answer an SDO write (download) of `value` to sub-index `sub_index`:
     /// writing 0 to sub-index 0 clears the history (CiA 301 §7.5.2.3;
-    /// SPEC §2.6).
+    /// docs/canopen.md#error-history).
     ///
     /// # Errors
     ///
@@ -491,7 +492,7 @@ mod tests {
     #[test]
     fn record_takes_additional_info_from_manufacturer_bytes_0_and_1() {
         let mut history = ErrorHistory::new();
-        // AKD: axis 1, feedback 2 in byte 3 of the frame (SPEC §2.4).
+        // AKD: axis 1, feedback 2 in byte 3 of the frame (docs/canopen.md#akd).
         let emcy = Emcy::new(
             ErrorCode::new(0x7305),
             ErrorRegister::GENERIC,

@@ -1,10 +1,11 @@
-//! The error register, object 1001h (CiA 301 §7.5.2.2; SPEC §2.2).
+//! The error register, object 1001h (CiA 301 §7.5.2.2;
+//! docs/canopen.md#error-register).
 
 use bitflags::bitflags;
 
 bitflags! {
     /// The error register, object 1001h, sent in byte 2 of every EMCY
-    /// (CiA 301 §7.5.2.2; SPEC §2.2).
+    /// (CiA 301 §7.5.2.2; docs/canopen.md#error-register).
     ///
     /// Decode a byte that a device sent with [`ErrorRegister::from_bits_retain`]
     /// so that the reserved bit 6 survives a round trip.
@@ -48,8 +49,8 @@ bitflags! {
 
 impl ErrorRegister {
     /// The eight bits in bit order with the names the JSON output of the
-    /// command-line decoder writes (SPEC §6.1, `register_flags`): the one
-    /// table that the names, `Display` and the tests read.
+    /// command-line decoder writes (docs/output.md#emcy, `register_flags`): the
+    /// one table that the names, `Display` and the tests read.
     pub const NAMES: [(ErrorRegister, &'static str); 8] = [
         (ErrorRegister::GENERIC, "generic"),
         (ErrorRegister::CURRENT, "current"),
@@ -61,7 +62,8 @@ impl ErrorRegister {
         (ErrorRegister::MANUFACTURER, "manufacturer"),
     ];
 
-    /// Return the names of the set bits in bit order (SPEC §6.1).
+    /// Return the names of the set bits in bit order (`register_flags` in
+    /// docs/output.md#emcy).
     pub fn names(self) -> impl Iterator<Item = &'static str> + Clone {
         Self::NAMES
             .into_iter()

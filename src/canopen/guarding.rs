@@ -1,5 +1,5 @@
 //! Node guarding and life guarding as pure state machines
-//! (CiA 301 §7.2.8.3.2.1; SPEC §2.7; seed 004 §11.1.1).
+//! (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1).
 //!
 //! - [`NodeGuardingMaster`] is the master's side for one node: when to send
 //!   the next guard request (a remote frame on 0x700 + node-ID) and what the
@@ -107,7 +107,8 @@ impl Default for AcceptedStates {
     }
 }
 
-/// A guarding error the master sees (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
+/// A guarding error the master sees (CiA 301 §7.2.8.3.2.1;
+/// docs/canopen.md#error-control).
 ///
 /// Every time is on the caller's clock (a `Duration` since its epoch).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -228,7 +229,7 @@ impl fmt::Display for GuardingEvent {
 pub type GuardingEvents = Events<GuardingEvent, 3>;
 
 /// The node-guarding master's view of one node (CiA 301 §7.2.8.3.2.1;
-/// SPEC §2.7; seed 004 §11.1.1).
+/// docs/canopen.md#error-control; seed 004 §11.1.1).
 ///
 /// | input at `now` | effect | event |
 /// |---|---|---|
@@ -448,8 +449,9 @@ impl NodeGuardingMaster {
 }
 
 /// What a node does when its life time expires without a guard request
-/// (CiA 301 §7.2.8.3.2.1; SPEC §2.7; seed 004 §11.1.1: "It transmits an
-/// emergency telegram and returns to the 'pre-operational' state").
+/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1: "It
+/// transmits an emergency telegram and returns to the 'pre-operational'
+/// state").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LifeGuardExpiry {
@@ -476,7 +478,7 @@ enum LifeTimer {
 }
 
 /// Life guarding on the node: the node monitors its guarding master
-/// (CiA 301 §7.2.8.3.2.1; SPEC §2.7; seed 004 §11.1.1).
+/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1).
 ///
 /// Node life time = guard time (100Ch, ms) × life time factor (100Dh); 0 in
 /// either, or a non-zero producer heartbeat time (heartbeat wins), disables
@@ -514,10 +516,11 @@ pub struct LifeGuard {
 impl LifeGuard {
     /// The EMCY a node sends when its life time expires: code 0x8130 (life
     /// guard error or heartbeat error), register generic + communication
-    /// (0x11), manufacturer field zero (CiA 301 Table 26; SPEC §2.3, §2.7).
+    /// (0x11), manufacturer field zero (CiA 301 Table 26;
+    /// docs/canopen.md#emcy-codes, docs/canopen.md#error-control).
     ///
     /// A device with other active errors ORs their class bits into the
-    /// register (SPEC §2.5).
+    /// register (docs/canopen.md#emcy-producer).
     pub const EMCY: Emcy = Emcy::new(
         ErrorCode::LIFE_GUARD,
         ErrorRegister::GENERIC.union(ErrorRegister::COMMUNICATION),

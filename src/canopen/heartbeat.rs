@@ -1,6 +1,6 @@
 //! The heartbeat protocol as pure state machines: the producer's schedule
 //! (object 1017h) and the consumer's monitor (object 1016h)
-//! (CiA 301 §7.2.8.3.2.2; SPEC §2.7; seed 004 §11.1.2).
+//! (CiA 301 §7.2.8.3.2.2; docs/canopen.md#error-control; seed 004 §11.1.2).
 //!
 //! Time is a [`Duration`] since the caller's epoch on its monotonic clock,
 //! passed with every call; the object dictionary values are milliseconds
@@ -49,7 +49,7 @@ use super::{Heartbeat, NmtState, NodeId};
 use crate::{Error, Result};
 
 /// The heartbeat producer's schedule, object 1017h (CiA 301 §7.2.8.3.2.2
-/// and object 1017h; SPEC §2.7).
+/// and object 1017h; docs/canopen.md#error-control).
 ///
 /// [`HeartbeatProducer::poll`] says when to send: it returns the
 /// [`Heartbeat`] to send (bit 7 never set) once per producer time. A
@@ -170,7 +170,7 @@ impl HeartbeatProducer {
 
 /// One entry of object 1016h, consumer heartbeat time: the node to monitor
 /// and the time within which its heartbeat must come (CiA 301, object 1016h;
-/// SPEC §2.7).
+/// docs/canopen.md#error-control).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ConsumerEntry {
@@ -251,7 +251,8 @@ pub enum MonitorState {
     },
 }
 
-/// What the heartbeat consumer reports (CiA 301 §7.2.8.3.2.2; SPEC §2.7).
+/// What the heartbeat consumer reports (CiA 301 §7.2.8.3.2.2;
+/// docs/canopen.md#error-control).
 ///
 /// Every time is on the caller's clock (a `Duration` since its epoch). For a log analyser: a
 /// `Timeout` says "no heartbeat in the gap after the heartbeat at
@@ -491,7 +492,7 @@ impl Monitored {
 }
 
 /// The heartbeat consumer: monitors up to `N` nodes, each with its consumer
-/// time (object 1016h; CiA 301 §7.2.8.3.2.2; SPEC §2.7).
+/// time (object 1016h; CiA 301 §7.2.8.3.2.2; docs/canopen.md#error-control).
 ///
 /// Behaviour, per node:
 ///

@@ -1,14 +1,15 @@
 //! A CAN frame read as CANopen: its identifier classified by the
 //! pre-defined connection set and its data decoded by the crate's codecs,
-//! once (CiA 301 §7.3.5 Table 72; SPEC §6.1, "Identifiers").
+//! once (CiA 301 §7.3.5 Table 72; docs/canopen.md#identifiers).
 //!
 //! [`CanOpenMessage::decode`] takes the crate's one frame type,
 //! [`CanFrame`] (owned or borrowed), and returns the message: an [`Emcy`],
 //! a heartbeat, an [`NmtNodeControl`], … or [`CanOpenMessage::Other`] for a
 //! frame without a CANopen function. [`CanOpenMessage::kind`] names it as
-//! SPEC §6.1's `kind` does; [`CanOpenMessage::encode`] gives the frame back.
-//! With the `embedded-can` feature, `CanOpenMessage::from_frame` and
-//! `to_frame` do the same with any `embedded_can::Frame`.
+//! `kind` does (docs/output.md#common-keys); [`CanOpenMessage::encode`] gives
+//! the frame back. With the `embedded-can` feature,
+//! `CanOpenMessage::from_frame` and `to_frame` do the same with any
+//! `embedded_can::Frame`.
 //!
 //! ```
 //! use motionwire::can::{CanFrame, CanId};
@@ -55,7 +56,7 @@ use super::{
 use crate::can::{CanFrame, CanId, ErrorFrame, FrameData};
 use crate::Error;
 
-/// What a frame is on a CANopen bus: the `kind` of SPEC §6.1.
+/// What a frame is on a CANopen bus: the `kind` of docs/output.md#common-keys.
 ///
 /// ```
 /// use motionwire::canopen::MessageKind;
@@ -90,7 +91,7 @@ pub enum MessageKind {
     Pdo,
     /// 0x581–0x5FF and 0x601–0x67F: SDO (CiA 301 §7.2.4).
     Sdo,
-    /// An error frame (SPEC §5.1).
+    /// An error frame (docs/formats.md#error-frames).
     ErrorFrame,
     /// Everything else, and every extended frame.
     Other,
@@ -111,7 +112,7 @@ impl MessageKind {
         MessageKind::Other,
     ];
 
-    /// Return the name SPEC §6.1's `kind` writes.
+    /// Return the name `kind` writes (docs/output.md#common-keys).
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -134,7 +135,8 @@ impl MessageKind {
         self as usize
     }
 
-    /// Return the kind named `name` as SPEC §6.1 writes it.
+    /// Return the kind named `name` as `kind` writes it
+    /// (docs/output.md#common-keys).
     #[must_use]
     pub fn from_name(name: &str) -> Option<MessageKind> {
         MessageKind::ALL
@@ -143,9 +145,9 @@ impl MessageKind {
     }
 
     /// Classify a frame by its identifier and type alone, and return the
-    /// node its identifier belongs to where the kind has one (SPEC §6.1's
-    /// identifier table). [`CanOpenMessage::decode`] gives the same kind and
-    /// node, with the data decoded.
+    /// node its identifier belongs to where the kind has one (the identifier
+    /// table of docs/canopen.md#identifiers). [`CanOpenMessage::decode`] gives
+    /// the same kind and node, with the data decoded.
     #[must_use]
     pub fn classify<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> (MessageKind, Option<NodeId>) {
         let (kind, node, _) = Self::classify_with_function(frame);
@@ -191,12 +193,12 @@ impl fmt::Display for MessageKind {
 
 /// The one byte of an error-control frame as received: a heartbeat, a
 /// boot-up message or a node-guarding answer, which share the identifier
-/// (CiA 301 §7.2.8.3.2; SPEC §2.7 and the `state`, `state_raw` and `toggle`
-/// keys of SPEC §6.1).
+/// (CiA 301 §7.2.8.3.2; docs/canopen.md#error-control and the `state`,
+/// `state_raw` and `toggle` keys of docs/output.md#heartbeat).
 ///
 /// Every byte is kept: bits 0–6 that code no NMT state are read as
-/// `None` (SPEC §6.1's `invalid`), bit 7 is the node-guarding toggle (a
-/// heartbeat producer leaves it 0).
+/// `None` (`invalid` in docs/output.md#heartbeat), bit 7 is the node-guarding
+/// toggle (a heartbeat producer leaves it 0).
 ///
 /// ```
 /// use motionwire::canopen::{NmtState, NmtStateByte};
@@ -229,7 +231,8 @@ impl NmtStateByte {
         self.0
     }
 
-    /// Return bits 0–6, the NMT state as a number (SPEC §6.1 `state_raw`).
+    /// Return bits 0–6, the NMT state as a number (`state_raw` in
+    /// docs/output.md#heartbeat).
     #[inline]
     #[must_use]
     pub const fn state_raw(self) -> u8 {
@@ -237,7 +240,7 @@ impl NmtStateByte {
     }
 
     /// Return bit 7: the toggle of a node-guarding answer, reserved (0) in a
-    /// heartbeat (SPEC §6.1 `toggle`).
+    /// heartbeat (`toggle` in docs/output.md#heartbeat).
     #[inline]
     #[must_use]
     pub const fn toggle(self) -> bool {
@@ -251,8 +254,8 @@ impl NmtStateByte {
         NmtState::from_byte(self.state_raw()).ok()
     }
 
-    /// Return the state's name as SPEC §6.1's `state` writes it: `boot_up`,
-    /// `stopped`, `operational`, `pre_operational`, or `invalid`.
+    /// Return the state's name as `state` writes it (docs/output.md#heartbeat):
+    /// `boot_up`, `stopped`, `operational`, `pre_operational`, or `invalid`.
     #[must_use]
     pub fn state_name(self) -> &'static str {
         self.state().map_or("invalid", NmtState::name)
@@ -285,8 +288,8 @@ impl fmt::Display for NmtStateByte {
     }
 }
 
-/// What a truncated EMCY still says (SPEC §6.1: an EMCY shorter than 8
-/// bytes still gets `code` when 2 bytes are there and `register` when 3
+/// What a truncated EMCY still says (docs/output.md#emcy: an EMCY shorter than
+/// 8 bytes still gets `code` when 2 bytes are there and `register` when 3
 /// are, as Wireshark does).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -313,7 +316,7 @@ impl PartialEmcy {
 
 /// A frame whose identifier names a CANopen kind but whose data that
 /// kind's codec refuses: the kind and node are still known, and the error
-/// says what was expected and found (SPEC §6.1 `error`).
+/// says what was expected and found (`error` in docs/output.md#error).
 ///
 /// It converts into the crate's [`Error`] (the codec's error), so `?` works
 /// in functions returning [`motionwire::Result`](crate::Result).
@@ -353,7 +356,8 @@ impl From<DecodeError> for Error {
 const GUARD_REQUEST_DLC: u8 = HEARTBEAT_LEN as u8;
 
 /// A CAN frame read as CANopen, by the function its identifier has in the
-/// pre-defined connection set (CiA 301 §7.3.5 Table 72; SPEC §6.1).
+/// pre-defined connection set (CiA 301 §7.3.5 Table 72;
+/// docs/canopen.md#identifiers).
 ///
 /// Data that a kind's codec refuses (an EMCY shorter than 8 bytes, an NMT
 /// command specifier CiA 301 does not define, …) makes
@@ -375,7 +379,7 @@ pub enum CanOpenMessage {
         /// The SYNC counter, if the frame carries one.
         counter: Option<u8>,
     },
-    /// 0x081..=0x0FF: an EMCY (CiA 301 §7.2.7; SPEC §2.1).
+    /// 0x081..=0x0FF: an EMCY (CiA 301 §7.2.7; docs/canopen.md#emcy).
     Emcy {
         /// The node that sent it, from the identifier.
         node: NodeId,
@@ -383,7 +387,7 @@ pub enum CanOpenMessage {
         emcy: Emcy,
     },
     /// 0x100: TIME (CiA 301 §7.2.6): the producer's TIME_OF_DAY
-    /// (SPEC §6.1 `time_of_day`).
+    /// (`time_of_day` in docs/output.md#time).
     Time(TimeOfDay),
     /// 0x181..=0x57F: one of the four default TPDOs or RPDOs of a node
     /// (CiA 301 §7.2.2); the data's meaning comes from the PDO mapping.
@@ -415,7 +419,7 @@ pub enum CanOpenMessage {
     },
     /// 0x701..=0x77F, data frame: a heartbeat, a boot-up message or a
     /// node-guarding answer — one byte on the same identifier, told apart
-    /// only by context (CiA 301 §7.2.8.3.2; SPEC §2.7).
+    /// only by context (CiA 301 §7.2.8.3.2; docs/canopen.md#error-control).
     Heartbeat {
         /// The node that sent it.
         node: NodeId,
@@ -423,20 +427,20 @@ pub enum CanOpenMessage {
         byte: NmtStateByte,
     },
     /// 0x701..=0x77F, remote frame: the NMT master's node-guarding request
-    /// (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
+    /// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control).
     GuardRequest {
         /// The guarded node.
         node: NodeId,
     },
-    /// An error frame (SPEC §5.1): not a CANopen message, but a fact about
-    /// the bus that a CANopen log carries.
+    /// An error frame (docs/formats.md#error-frames): not a CANopen message,
+    /// but a fact about the bus that a CANopen log carries.
     ErrorFrame(ErrorFrame),
     /// A frame that is not decoded further: an identifier without a
     /// function (e.g. 0x7E5, or node-ID 0 in a node range), a frame with a
     /// 29-bit identifier, which CANopen's pre-defined connection set does
-    /// not use (CiA 301 §7.3.5; SPEC §6.1), or a remote request on an
-    /// identifier other than error control and EMCY (such as a request for
-    /// an RTR-triggered TPDO, CiA 301 §7.2.2.2). Its
+    /// not use (CiA 301 §7.3.5; docs/canopen.md#identifiers), or a remote
+    /// request on an identifier other than error control and EMCY (such as a
+    /// request for an RTR-triggered TPDO, CiA 301 §7.2.2.2). Its
     /// [`kind`](CanOpenMessage::kind) and [`node`](CanOpenMessage::node) are
     /// still what the identifier says: a TPDO request is kind `pdo`.
     Other(CanFrame),
@@ -543,7 +547,7 @@ impl CanOpenMessage {
         })
     }
 
-    /// Return the kind, as SPEC §6.1's `kind` names it.
+    /// Return the kind, as `kind` names it (docs/output.md#common-keys).
     #[must_use]
     pub fn kind(&self) -> MessageKind {
         match self {
@@ -562,9 +566,10 @@ impl CanOpenMessage {
         }
     }
 
-    /// Return the node the identifier belongs to, for the kinds that SPEC
-    /// §6.1 gives a `node`: EMCY, heartbeat, guard request, PDO and SDO.
-    /// (An NMT command's addressed node is in its data, not here.)
+    /// Return the node the identifier belongs to, for the kinds that
+    /// have a `node` (docs/output.md#common-keys): EMCY, heartbeat, guard
+    /// request, PDO and SDO. (An NMT command's addressed node is in its data,
+    /// not here.)
     #[must_use]
     pub fn node(&self) -> Option<NodeId> {
         match *self {
@@ -753,11 +758,12 @@ mod tests {
         FrameData::new(raw).unwrap()
     }
 
-    /// The AKD EMCY of seed 000 (SPEC §2.1): code 0x8130, register 0x11, axis 1.
+    /// The AKD EMCY of seed 000 (docs/canopen.md#emcy): code 0x8130, register
+    /// 0x11, axis 1.
     static EMCY_BYTES: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
 
-    /// SPEC §6.1's identifier table, one frame per row: (frame, message,
-    /// kind, node).
+    /// The identifier table of docs/canopen.md#identifiers, one frame per row:
+    /// (frame, message, kind, node).
     #[test]
     fn identifiers_of_spec_6_1() {
         use CanOpenMessage::*;
@@ -1046,8 +1052,8 @@ mod tests {
         }
     }
 
-    /// SPEC §6.1: a short EMCY keeps `code` from 2 bytes and `register`
-    /// from 3.
+    /// docs/output.md#emcy: a short EMCY keeps `code` from 2 bytes and
+    /// `register` from 3.
     #[test]
     fn every_short_emcy_is_an_exact_error_with_what_it_still_says() {
         for len in 0..EMCY_LEN {

@@ -1,7 +1,7 @@
 //! CANopen: identifiers, the EMCY frame and its codes, error control and the
 //! monitors built on them, the CiA 402 drive state machine, PDO mappings and
 //! the names of object-dictionary entries (CiA 301, CiA 402, CiA 405,
-//! CiA 406; SPEC §2–§3, §7.3, §8).
+//! CiA 406; docs/canopen.md).
 //!
 //! Each submodule holds one frame, register or state machine and documents
 //! its decisions; the types are re-exported here.

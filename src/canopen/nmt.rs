@@ -1,6 +1,6 @@
 //! NMT states and the two one-byte error-control messages: the heartbeat
 //! (and boot-up) message and the node-guarding answer (CiA 301 §7.2.8.3;
-//! SPEC §2.7).
+//! docs/canopen.md#error-control).
 //!
 //! Both messages travel on COB-ID 0x700 + node-ID
 //! ([`NodeId::error_control_cob_id`](super::NodeId::error_control_cob_id))
@@ -65,7 +65,8 @@ const GUARD_ANSWER_WHAT: What = What::NodeGuardingAnswer;
 
 /// The state of a CANopen node's NMT state machine as it appears on the wire
 /// in heartbeat, boot-up and node-guarding messages (CiA 301 §7.2.8.3.2,
-/// the state values of the error-control protocols; SPEC §2.7).
+/// the state values of the error-control protocols;
+/// docs/canopen.md#error-control).
 ///
 /// ```
 /// use motionwire::canopen::NmtState;
@@ -101,8 +102,9 @@ impl NmtState {
     ];
 
     /// Return the state coded by `byte`, or an [`Error::InvalidValue`] for
-    /// any byte other than 0x00, 0x04, 0x05 and 0x7F (SPEC §2.7: "other
-    /// values are invalid (report, don't panic)").
+    /// any byte other than 0x00, 0x04, 0x05 and 0x7F
+    /// (docs/canopen.md#error-control: any other value is invalid, reported,
+    /// never a panic).
     ///
     /// The whole byte is checked: strip a toggle bit first (as
     /// [`GuardAnswerFrame::state`] does).
@@ -129,8 +131,8 @@ impl NmtState {
     }
 
     /// Return the state's name as the command-line decoder writes it
-    /// (SPEC §6.1, key `state`): `boot_up`, `stopped`, `operational` or
-    /// `pre_operational`.
+    /// (docs/output.md#heartbeat, key `state`): `boot_up`, `stopped`,
+    /// `operational` or `pre_operational`.
     #[inline]
     #[must_use]
     pub const fn name(self) -> &'static str {
@@ -165,7 +167,7 @@ impl fmt::Display for NmtState {
 }
 
 /// A zero-copy view over a heartbeat (or boot-up) message's data
-/// (CiA 301 §7.2.8.3.2.2; SPEC §2.7).
+/// (CiA 301 §7.2.8.3.2.2; docs/canopen.md#error-control).
 ///
 /// After [`HeartbeatFrame::new_checked`] (or [`HeartbeatFrame::check_len`])
 /// succeeds, no accessor panics.
@@ -203,7 +205,8 @@ impl<T: AsRef<[u8]>> HeartbeatFrame<T> {
     }
 
     /// Return the NMT state field (bits 0–6 of byte 0) as a number, whether
-    /// or not it codes a defined state (SPEC §6.1, key `state_raw`).
+    /// or not it codes a defined state (docs/output.md#heartbeat, key
+    /// `state_raw`).
     #[inline]
     pub fn state_raw(&self) -> u8 {
         self.buffer.as_ref()[field::STATE] & field::STATE_MASK
@@ -242,7 +245,8 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> HeartbeatFrame<T> {
     }
 }
 
-/// A heartbeat or boot-up message, owned (CiA 301 §7.2.8.3.2.2; SPEC §2.7).
+/// A heartbeat or boot-up message, owned (CiA 301 §7.2.8.3.2.2;
+/// docs/canopen.md#error-control).
 ///
 /// [`Heartbeat::new`] never sets the reserved bit 7 ("a producer never sets
 /// it"); decoding keeps it, so that a received byte with bit 7 set
@@ -348,7 +352,7 @@ impl Heartbeat {
 }
 
 /// A zero-copy view over a node-guarding answer's data
-/// (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
+/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control).
 ///
 /// After [`GuardAnswerFrame::new_checked`] (or [`GuardAnswerFrame::check_len`])
 /// succeeds, no accessor panics.
@@ -428,7 +432,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> GuardAnswerFrame<T> {
 }
 
 /// A node-guarding answer, owned: the node's reply to the master's remote
-/// frame (CiA 301 §7.2.8.3.2.1; SPEC §2.7).
+/// frame (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -493,8 +497,8 @@ impl GuardAnswer {
 mod tests {
     use super::*;
 
-    /// The wire codes of CiA 301 §7.2.8.3.2 (SPEC §2.7) with their JSON names
-    /// (SPEC §6.1).
+    /// The wire codes of CiA 301 §7.2.8.3.2 (docs/canopen.md#error-control)
+    /// with their JSON names (docs/output.md#heartbeat).
     const STATE_TABLE: [(u8, NmtState, &str); 4] = [
         (0x00, NmtState::BootUp, "boot_up"),
         (0x04, NmtState::Stopped, "stopped"),
@@ -595,7 +599,8 @@ mod tests {
         };
         assert_eq!(Heartbeat::parse(&[0x12]), Err(expected));
         assert_eq!(Heartbeat::parse(&[0x92]), Err(expected));
-        // The view still reads the raw fields (SPEC §6.1: state "invalid").
+        // The view still reads the raw fields (docs/output.md#heartbeat: state
+        // "invalid").
         let frame = HeartbeatFrame::new_checked(&[0x92u8][..]).unwrap();
         assert_eq!(frame.state_raw(), 0x12);
         assert!(frame.reserved_bit());

@@ -132,9 +132,9 @@ impl NmtCommand {
 }
 
 impl NmtCommand {
-    /// Return the short name SPEC §6.1's `command` key writes: `start`,
-    /// `stop`, `enter_pre_operational`, `reset_node`,
-    /// `reset_communication`.
+    /// Return the short name the `command` key writes
+    /// (docs/output.md#nmt-command): `start`, `stop`, `enter_pre_operational`,
+    /// `reset_node`, `reset_communication`.
     ///
     /// ```
     /// use motionwire::canopen::NmtCommand;

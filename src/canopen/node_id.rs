@@ -9,7 +9,8 @@ use core::fmt;
 
 use crate::{Error, Result};
 
-/// A CANopen node-ID, always within 1..=127 (CiA 301 §7.3.5; SPEC §2.1).
+/// A CANopen node-ID, always within 1..=127 (CiA 301 §7.3.5;
+/// docs/canopen.md#emcy).
 ///
 /// ```
 /// use motionwire::canopen::NodeId;
@@ -84,7 +85,7 @@ impl NodeId {
     }
 
     /// Return the COB-ID of this node's EMCY message, 0x080 + node-ID
-    /// (CiA 301 §7.2.7.3.1; SPEC §2.1).
+    /// (CiA 301 §7.2.7.3.1; docs/canopen.md#emcy).
     #[inline]
     #[must_use]
     pub const fn emcy_cob_id(self) -> u16 {
@@ -92,7 +93,8 @@ impl NodeId {
     }
 
     /// Return the COB-ID of this node's error-control messages (heartbeat,
-    /// boot-up and node guarding), 0x700 + node-ID (CiA 301 §7.2.8.3; SPEC §2.7).
+    /// boot-up and node guarding), 0x700 + node-ID (CiA 301 §7.2.8.3;
+    /// docs/canopen.md#error-control).
     #[inline]
     #[must_use]
     pub const fn error_control_cob_id(self) -> u16 {

@@ -42,8 +42,8 @@ impl ObjectAddress {
     }
 
     /// Return the address written as CiA 306 names a sub-object's section
-    /// and SPEC §8.2 a signal that neither an EDS nor a profile names: the
-    /// index in four hex digits, `sub`, the sub-index in hex without
+    /// and docs/canopen.md#signals a signal that neither an EDS nor a profile
+    /// names: the index in four hex digits, `sub`, the sub-index in hex without
     /// padding (`6041sub0`, `1A00sub1A`).
     #[must_use]
     pub const fn sub_notation(self) -> SubNotation {

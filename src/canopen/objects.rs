@@ -1,16 +1,17 @@
 //! Names of object-dictionary entries: one table for the CiA 301
 //! communication objects, the CiA 402 drive objects and the encoder objects
-//! of CiA 406 and the Baumer EAM580 (SPEC §7.3 `object`, §8.2 names).
+//! of CiA 406 and the Baumer EAM580 (`object` in docs/canopen.md#object-names,
+//! signal names in docs/canopen.md#signals).
 //!
 //! [`OBJECT_NAMES`] is the one place the crate names an object by its index.
 //! Each row is an index or an index range with the object area it belongs
 //! to ([`ObjectSet`]) and its name as the defining document writes it. An
 //! SDO names its object with [`object_name`]: the communication objects
 //! 1000h–1FFFh always, a device profile's objects only for a node given that
-//! profile (SPEC §7.3), since the same index means different things in
-//! different profiles (6041h is the CiA 402 statusword, 6503h the drive
-//! catalogue number of CiA 402 and the alarms of CiA 406). The name is the
-//! object's, not a sub-entry's.
+//! profile (docs/canopen.md#object-names), since the same index means different
+//! things in different profiles (6041h is the CiA 402 statusword, 6503h the
+//! drive catalogue number of CiA 402 and the alarms of CiA 406). The name is
+//! the object's, not a sub-entry's.
 //!
 //! Where one range holds numbered instances of one object (1400h–15FFh are
 //! RPDO 1 to RPDO 512), the row's name has no number and
@@ -36,7 +37,7 @@
 //! ```
 
 /// Which object-dictionary area an entry belongs to (CiA 301 §7.4.1, the
-/// object dictionary's structure; SPEC §7.3).
+/// object dictionary's structure; docs/canopen.md#object-names).
 ///
 /// The order of the variants is the order of [`OBJECT_NAMES`].
 ///
@@ -68,7 +69,7 @@ impl ObjectSet {
 }
 
 /// One row of [`OBJECT_NAMES`]: an index or an index range with its name
-/// (SPEC §7.3, §8.2).
+/// (docs/canopen.md#object-names, docs/canopen.md#signals).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ObjectName {
@@ -201,7 +202,7 @@ const fn row(
 ///   listed there; 2101h from its section "Changing the node ID" (the
 ///   node-ID can be changed in object 2101h); 2116h by the name the list
 ///   gives its sub-index 1, "Diagnostic Injection", where the error
-///   injection codes of SPEC §4 are written.
+///   injection codes of docs/canopen.md#baumer are written.
 pub const OBJECT_NAMES: &[ObjectName] = &[
     // CiA 301 v4.2.0, communication profile area.
     comm(0x1000, "Device type"),
@@ -494,7 +495,7 @@ fn find_in(set: ObjectSet, index: u16) -> Option<&'static ObjectName> {
 
 /// Return the row of [`OBJECT_NAMES`] that names object `index`: a
 /// communication object always, a profile object only when `profile` names
-/// its set (SPEC §7.3).
+/// its set (docs/canopen.md#object-names).
 ///
 /// The look-up is a binary search of the sorted table.
 ///
@@ -516,7 +517,8 @@ pub fn find_object(index: u16, profile: Option<ObjectSet>) -> Option<&'static Ob
 
 /// Return the name of object `index`: communication objects (1000h–1FFFh)
 /// always, profile objects only when `profile` names their set; `None` for
-/// an index no row names (SPEC §7.3 `object`, §8.2).
+/// an index no row names (`object` in docs/canopen.md#object-names,
+/// docs/canopen.md#signals).
 ///
 /// The name is the object's, not a sub-entry's; a numbered range's name has
 /// no number (see [`object_instance`]).
@@ -792,8 +794,9 @@ mod tests {
     }
 
     #[test]
-    fn names_the_spec_and_the_brief_use() {
-        // SPEC §8.2's examples and the CiA 301 names of SPEC §2.
+    fn names_the_docs_and_the_brief_use() {
+        // The examples of docs/canopen.md#signals and the CiA 301 names of
+        // docs/canopen.md#emcy.
         assert_eq!(object_name(0x1000, None), Some("Device type"));
         assert_eq!(object_name(0x1001, None), Some("Error register"));
         assert_eq!(object_name(0x1003, None), Some("Pre-defined error field"));
@@ -884,9 +887,9 @@ macro_rules! types {
 }
 
 /// The data types of the objects a PDO commonly maps, for decoding a PDO
-/// without an EDS (SPEC §8.2: "types from the EDS, else from the profile"):
-/// the CiA 402 drive objects of process data (CiA 402-2's object
-/// descriptions) and the CiA 406 encoder objects (CiA 406's object
+/// without an EDS (docs/canopen.md#signals: the type from the EDS, else from
+/// the profile's table): the CiA 402 drive objects of process data (CiA 402-2's
+/// object descriptions) and the CiA 406 encoder objects (CiA 406's object
 /// descriptions), plus the communication objects a PDO may carry. Sorted by
 /// (set, index); records list their sub-entries.
 pub const OBJECT_DATA_TYPES: &[ObjectDataType] = types! {

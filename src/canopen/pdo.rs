@@ -1,6 +1,6 @@
 //! Process data objects: the communication and mapping parameters of a PDO
 //! and its payload read as signals (CiA 301 PDO protocol, §7.5.2.35–§7.5.2.38;
-//! SPEC §8.1, §8.2).
+//! docs/canopen.md#pdo-mappings, docs/canopen.md#signals).
 //!
 //! A PDO's bytes mean nothing without its mapping. [`PdoMapping`] holds the
 //! mapping parameter (objects 1600h–17FFh for RPDOs, 1A00h–1BFFh for TPDOs):
@@ -93,7 +93,7 @@ pub use mapping::{
 };
 
 /// A PDO mapping entry that cannot be read from, or written into, a payload
-/// (SPEC §8.2): the entry, its first bit and why. The crate's
+/// (docs/canopen.md#signals): the entry, its first bit and why. The crate's
 /// [`Error`](crate::Error) carries it as [`Error::PdoEntry`](crate::Error::PdoEntry); its message reads e.g. `PDO entry
 /// 6064sub0 (32 bits) at bit 24: expected a payload of at least 7 bytes,
 /// found 4`.
@@ -108,8 +108,8 @@ pub struct PdoEntryError {
     pub reason: PdoEntryReason,
 }
 
-/// Why a PDO mapping entry cannot be read or written (SPEC §8.2): the
-/// reason a [`PdoEntryError`] gives.
+/// Why a PDO mapping entry cannot be read or written (docs/canopen.md#signals):
+/// the reason a [`PdoEntryError`] gives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum PdoEntryReason {

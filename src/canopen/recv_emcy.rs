@@ -1,5 +1,6 @@
 //! The PLC-side EMCY consumer of CiA 405: `RECV_EMCY` and `RECV_EMCY_DEV`
-//! (SPEC §3; seed `001`, the CoDeSys help page of `CIA405.RECV_EMCY`).
+//! (docs/canopen.md#recv-emcy; seed `001`, the CoDeSys help page of
+//! `CIA405.RECV_EMCY`).
 //!
 //! CiA 405 (the IEC 61131-3 interface to CANopen) gives a PLC two function
 //! blocks for the emergency messages of the devices 1..=127 on its network,
@@ -227,7 +228,7 @@ impl fmt::Display for KernelError {
 
 /// A set of devices of one network, node-IDs 1..=127, one bit each: the
 /// devices that exist (are configured) for CiA 405's "scan over all existing
-/// devices" (SPEC §3).
+/// devices" (docs/canopen.md#recv-emcy).
 ///
 /// ```
 /// use motionwire::canopen::{DeviceSet, NodeId};
@@ -333,8 +334,8 @@ impl DeviceSet {
     }
 
     /// Return the first device of the set at or after `start`, wrapping past
-    /// 127 to 1: the order in which `RECV_EMCY` continues its scan (SPEC §3).
-    /// `None` when the set is empty.
+    /// 127 to 1: the order in which `RECV_EMCY` continues its scan
+    /// (docs/canopen.md#recv-emcy). `None` when the set is empty.
     #[must_use]
     pub fn first_from(self, start: NodeId) -> Option<NodeId> {
         let at_or_after = self.0 & (u128::MAX << start.index());
@@ -415,7 +416,7 @@ impl<'de> serde::Deserialize<'de> for DeviceSet {
 // Per-device storage: RECV_EMCY_DEV
 
 /// What [`EmcyStorage::receive`] did with a received EMCY (CiA 405,
-/// recommendation for `RECV_EMCY_DEV`; SPEC §3).
+/// recommendation for `RECV_EMCY_DEV`; docs/canopen.md#recv-emcy).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -440,7 +441,8 @@ pub enum SlotUpdate {
 
 /// The EMCY slots of all 127 devices and the set of devices that exist: the
 /// "lower level software" under CiA 405's `RECV_EMCY` and `RECV_EMCY_DEV`
-/// (SPEC §3; CiA 405, recommendations for `RECV_EMCY_DEV` and `RECV_EMCY`).
+/// (docs/canopen.md#recv-emcy; CiA 405, recommendations for `RECV_EMCY_DEV` and
+/// `RECV_EMCY`).
 ///
 /// Each device has one slot, which holds "no error" at the start.
 /// [`EmcyStorage::receive`] stores an error EMCY only when the slot holds
@@ -545,7 +547,7 @@ impl EmcyStorage {
 
     /// Take in an EMCY received from `node` (COB-ID 0x080 + node-ID): store
     /// an error only when the slot holds "no error", store a reset always
-    /// (SPEC §3).
+    /// (docs/canopen.md#recv-emcy).
     pub fn receive(&mut self, node: NodeId, emcy: Emcy) -> SlotUpdate {
         let slot = &mut self.slots[node.index()];
         let held = *slot;
@@ -586,7 +588,7 @@ impl EmcyStorage {
     /// `RECV_EMCY_DEV` for `node`: the error pending for the device — the
     /// same on every call until the device sends a reset — or `None` when it
     /// has no error; [`KernelError::NodeIdUnknown`] when `node` is not a
-    /// configured device (CiA 405 `RECV_EMCY_DEV`; SPEC §3).
+    /// configured device (CiA 405 `RECV_EMCY_DEV`; docs/canopen.md#recv-emcy).
     pub fn recv_emcy_dev(&self, node: NodeId) -> Result<Option<Emcy>, KernelError> {
         if self.is_configured(node) {
             Ok(self.root_cause(node))
@@ -616,8 +618,8 @@ impl EmcyStorage {
 
 /// The `ERRORINFO` for a stored EMCY: the EMCY itself, with the code of a
 /// reset set to exactly 0x0000 so that CiA 405's test "code ≠ 0" holds for
-/// every 0x00xx a device may send (SPEC §2.3 **Decision**); register and
-/// manufacturer bytes are kept.
+/// every 0x00xx a device may send (the **Decision** in
+/// docs/canopen.md#emcy-codes); register and manufacturer bytes are kept.
 #[inline]
 fn as_errorinfo(emcy: Emcy) -> Emcy {
     if emcy.is_reset() {
@@ -677,7 +679,8 @@ impl RecvEmcyDevOutputs {
 // ---------------------------------------------------------------------------
 // The scan: RECV_EMCY
 
-/// What one `RECV_EMCY` call delivers (CiA 405 `RECV_EMCY`; SPEC §3).
+/// What one `RECV_EMCY` call delivers (CiA 405 `RECV_EMCY`;
+/// docs/canopen.md#recv-emcy).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -782,7 +785,7 @@ impl RecvEmcyOutputs {
     }
 
     /// Return whether an emergency was received: `DEVICE` ≠ 0 and
-    /// `ERRORINFO`'s code ≠ 0 (CiA 405 `RECV_EMCY`; SPEC §3).
+    /// `ERRORINFO`'s code ≠ 0 (CiA 405 `RECV_EMCY`; docs/canopen.md#recv-emcy).
     #[inline]
     #[must_use]
     pub const fn emergency_received(&self) -> bool {
@@ -807,7 +810,8 @@ impl From<Result<RecvEmcyResult, KernelError>> for RecvEmcyOutputs {
 }
 
 /// One `RECV_EMCY` function block: the scan over the existing devices of an
-/// [`EmcyStorage`] (CiA 405 `RECV_EMCY`, with its recommendation; SPEC §3).
+/// [`EmcyStorage`] (CiA 405 `RECV_EMCY`, with its recommendation;
+/// docs/canopen.md#recv-emcy).
 ///
 /// Every [`RecvEmcy::call`] continues the scan at the device after the one
 /// it delivered last, in ascending node-ID order wrapping past 127 to 1,
@@ -860,7 +864,7 @@ impl RecvEmcy {
         }
     }
 
-    /// Execute `RECV_EMCY` once over `storage` (SPEC §3).
+    /// Execute `RECV_EMCY` once over `storage` (docs/canopen.md#recv-emcy).
     pub fn call(&mut self, storage: &EmcyStorage) -> Result<RecvEmcyResult, KernelError> {
         let devices = storage.devices();
         if devices.is_empty() {
@@ -902,7 +906,7 @@ mod tests {
         NodeId::new(raw).unwrap()
     }
 
-    // EMCY frames as devices send them (8 data bytes, SPEC §2.1).
+    // EMCY frames as devices send them (8 data bytes, docs/canopen.md#emcy).
     /// 0x4310 excess temperature (CiA 402), register generic + temperature.
     const OVER_TEMPERATURE: [u8; 8] = [0x10, 0x43, 0x09, 0, 0, 0, 0, 0];
     /// 0x3210 DC link over-voltage (CiA 402), register generic + voltage.
@@ -912,9 +916,11 @@ mod tests {
     const LIFE_GUARD: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0];
     /// 0x8210 PDO not processed due to length error.
     const PDO_LENGTH: [u8; 8] = [0x10, 0x82, 0x11, 0, 0, 0, 0, 0];
-    /// 0x5100 non-volatile memory problem (Baumer EAM580, SPEC §4).
+    /// 0x5100 non-volatile memory problem (Baumer EAM580,
+    /// docs/canopen.md#baumer).
     const MEMORY: [u8; 8] = [0x00, 0x51, 0x01, 0x03, 0x00, 0, 0, 0];
-    /// 0x0000 error reset, no error remaining (SPEC §2.5 transition 4).
+    /// 0x0000 error reset, no error remaining (docs/canopen.md#emcy-producer
+    /// transition 4).
     const RESET: [u8; 8] = [0; 8];
 
     /// One line of a scenario: what arrives on the bus, what the
@@ -1108,7 +1114,8 @@ mod tests {
         let mut block = RecvEmcy::new();
         storage.receive(node, Emcy::parse(&LIFE_GUARD).unwrap());
         block.call(&storage).unwrap();
-        // A device sending 0x0001 (a 0x00xx reset, SPEC §2.3) with register 0x05.
+        // A device sending 0x0001 (a 0x00xx reset, docs/canopen.md#emcy-codes)
+        // with register 0x05.
         let reset = Emcy::parse(&[0x01, 0x00, 0x05, 0x01, 0, 0, 0, 0]).unwrap();
         storage.receive(node, reset);
         let typed = block.clone().call(&storage);

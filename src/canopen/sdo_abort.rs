@@ -76,8 +76,8 @@ impl SdoAbortCode {
     /// 0x0609_0011: sub-index does not exist.
     pub const SUB_INDEX_DOES_NOT_EXIST: SdoAbortCode = SdoAbortCode(0x0609_0011);
     /// 0x0609_0030: invalid value for parameter (download only); older
-    /// editions of CiA 301 and SPEC §2.6 call it "value range of parameter
-    /// exceeded".
+    /// editions of CiA 301 and docs/canopen.md#error-history call it "value
+    /// range of parameter exceeded".
     #[doc(alias = "VALUE_RANGE_EXCEEDED")]
     pub const INVALID_VALUE: SdoAbortCode = SdoAbortCode(0x0609_0030);
     /// 0x0609_0031: value of parameter written too high (download only).

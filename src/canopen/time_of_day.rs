@@ -1,5 +1,5 @@
 //! The TIME object's data: CiA 301's TIME_OF_DAY (CiA 301 §7.1.6.5,
-//! §7.2.6; SPEC §6.1 `time_of_day`).
+//! §7.2.6; `time_of_day` in docs/output.md#time).
 //!
 //! Six bytes: milliseconds after midnight in the low 28 bits of bytes 0–3
 //! (the top 4 bits are reserved) and days since 1984-01-01 in bytes 4–5,

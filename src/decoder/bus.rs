@@ -1,5 +1,6 @@
-//! Which bus a frame was seen on, kept beyond the log's buffer (SPEC §5.7:
-//! a node's identity is its interface and its node-ID).
+//! Which bus a frame was seen on, kept beyond the log's buffer
+//! (docs/formats.md#interfaces: a node's identity is its interface and its
+//! node-ID).
 
 use core::fmt;
 
@@ -56,8 +57,8 @@ impl BusName {
         }
     }
 
-    /// Return the interface as SPEC §6.1's `iface` holds it: the name, the
-    /// channel as decimal text, or `None`.
+    /// Return the interface as `iface` holds it (docs/output.md#common-keys):
+    /// the name, the channel as decimal text, or `None`.
     #[must_use]
     pub fn iface(&self) -> Option<Iface<'_>> {
         match self {

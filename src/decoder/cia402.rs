@@ -1,12 +1,12 @@
 //! The CiA 402 reading of one frame, and what the decoder remembers of a
-//! drive to make it: its last state and controlword (SPEC §8.3).
+//! drive to make it: its last state and controlword (docs/canopen.md#cia402).
 
 use core::fmt;
 
 use crate::canopen::{Cia402Command, Cia402State, ModeOfOperation, NodeId};
 
-/// What one frame tells of a drive's CiA 402 state machine (SPEC §8.3
-/// `cia402`): each part where the frame carries it.
+/// What one frame tells of a drive's CiA 402 state machine (`cia402`
+/// in docs/output.md#cia402): each part where the frame carries it.
 ///
 /// `Display` writes the parts that are there, joined by commas:
 /// `operation_enabled, enable_operation, profile position`.
@@ -21,7 +21,7 @@ pub struct Cia402Reading {
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub state: Option<Cia402State>,
     /// The command, from a controlword (6040h), the drive's previous
-    /// controlword and its state (SPEC §8.3's decision).
+    /// controlword and its state (the decision in docs/canopen.md#cia402).
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub command: Option<Cia402Command>,
     /// The mode of operation (6060h) or its display (6061h).
@@ -72,7 +72,7 @@ pub(crate) struct DriveState {
 }
 
 impl DriveState {
-    /// A statusword seen: the state it codes (CiA 402; SPEC §8.3).
+    /// A statusword seen: the state it codes (CiA 402; docs/canopen.md#cia402).
     pub(crate) fn observe_statusword(&mut self, sw: u16) -> Option<Cia402State> {
         let state = Cia402State::from_statusword(sw);
         if state.is_some() {
@@ -82,7 +82,8 @@ impl DriveState {
     }
 
     /// A controlword seen: the command it gives in the current state, with
-    /// the previous controlword for the fault-reset edge (SPEC §8.3).
+    /// the previous controlword for the fault-reset edge
+    /// (docs/canopen.md#cia402).
     pub(crate) fn observe_controlword(&mut self, cw: u16) -> Option<Cia402Command> {
         let command = Cia402Command::from_controlword(cw, self.controlword, self.state);
         self.controlword = Some(cw);

@@ -1,10 +1,11 @@
-//! A small streaming JSON writer for the decoder's records (SPEC §6.1).
+//! A small streaming JSON writer for the decoder's records
+//! (docs/output.md#json).
 //!
 //! Records are written straight into the buffered output, key by key, so that
-//! decoding a line allocates nothing (SPEC §6.1). Keys and the library's
-//! constant texts (kind, class and flag names, descriptions) are written as
-//! they are — a test checks that none of them needs escaping — and only
-//! texts that come from the input (interface names, error messages) are
+//! decoding a line allocates nothing (docs/output.md#json). Keys and the
+//! library's constant texts (kind, class and flag names, descriptions) are
+//! written as they are — a test checks that none of them needs escaping — and
+//! only texts that come from the input (interface names, error messages) are
 //! escaped as RFC 8259 says. Integers are written with `itoa`, floats
 //! through `serde_json`, which prints the shortest representation that
 //! reads back to the same value.
@@ -25,7 +26,7 @@ impl<'w, W: Write> Object<'w, W> {
     }
 
     /// Write the key and return the writer for its value. Keys are the
-    /// contract's names (SPEC §6): ASCII letters, digits and `_`, which
+    /// contract's names (docs/output.md): ASCII letters, digits and `_`, which
     /// need no escaping.
     pub(crate) fn key(&mut self, key: &'static str) -> io::Result<&mut W> {
         debug_assert!(key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
@@ -107,7 +108,7 @@ impl<'w, W: Write> Object<'w, W> {
     }
 
     /// Write a key with a float value; NaN and infinities become `null`
-    /// (SPEC §6.2).
+    /// (docs/servo.md#cli-feedback, docs/output.md#pdo).
     pub(crate) fn float(&mut self, key: &'static str, value: f64) -> io::Result<()> {
         let out = self.key(key)?;
         float(out, value)
@@ -192,8 +193,9 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
 }
 
 /// Write a timestamp as seconds with six decimals, `1700000000.000500`, or
-/// nine when it is not a whole number of microseconds (SPEC §6.1 `ts`,
-/// §5.7: exact to the format's resolution, no float rounding).
+/// nine when it is not a whole number of microseconds (`ts` in
+/// docs/output.md#common-keys; docs/formats.md#timestamps: exact to the
+/// format's resolution, no float rounding).
 pub(crate) fn timestamp<W: Write>(out: &mut W, ts: crate::can::Timestamp) -> io::Result<()> {
     let mut buf = [0; crate::can::SECONDS_LEN];
     out.write_all(ts.format_seconds(&mut buf))
@@ -232,8 +234,8 @@ pub(crate) fn display_string<W: Write>(
     escaper.out.write_all(b"\"")
 }
 
-/// Write a PDO signal's value (SPEC §8.2): integers and booleans as JSON
-/// numbers and booleans, reals as numbers (null when not finite), octets
+/// Write a PDO signal's value (docs/output.md#pdo): integers and booleans as
+/// JSON numbers and booleans, reals as numbers (null when not finite), octets
 /// as a hex string.
 pub(crate) fn pdo_value<W: Write>(out: &mut W, value: &crate::canopen::Value) -> io::Result<()> {
     use crate::canopen::Value;

@@ -1,14 +1,15 @@
 //! The decoder session: every frame of a log read as CANopen, in the
-//! context the log itself builds (SPEC §6.1, §7, §8).
+//! context the log itself builds (docs/output.md#json,
+//! docs/canopen.md#sdo, docs/canopen.md#pdo-mappings).
 //!
 //! A [`Decoder`] keeps what ties frames together, per interface and node:
-//! the SDO channels and their transfers (SPEC §7.2), the PDO mappings —
-//! learned from the SDO configuration seen in the log, from a node's
-//! EDS/DCF, or the pre-defined connection set (SPEC §8.1) — and each
-//! drive's CiA 402 state (SPEC §8.3). [`Decoder::decode`] turns one logged
-//! frame into a [`Decoded`]: the [`CanOpenMessage`], the SDO step and the
-//! transfer it ends with its data, the PDO's signals and the CiA 402
-//! reading — typed values that borrow the session, with no allocation per
+//! the SDO channels and their transfers (docs/canopen.md#transfers), the PDO
+//! mappings — learned from the SDO configuration seen in the log, from a node's
+//! EDS/DCF, or the pre-defined connection set (docs/canopen.md#pdo-mappings) —
+//! and each drive's CiA 402 state (docs/canopen.md#cia402). [`Decoder::decode`]
+//! turns one logged frame into a [`Decoded`]: the [`CanOpenMessage`], the SDO
+//! step and the transfer it ends with its data, the PDO's signals and the CiA
+//! 402 reading — typed values that borrow the session, with no allocation per
 //! frame. The [`summary`](crate::summary) builds the post-mortem from them.
 //!
 //! ```
@@ -70,8 +71,8 @@ use cia402::DriveState;
 use pdo::{Names, PdoParams};
 use sdo::SdoChannel;
 
-/// The SDO data a transfer keeps by default: SPEC §7.3's `transfer.data`
-/// holds the first 4096 bytes.
+/// The SDO data a transfer keeps by default: `transfer.data`
+/// (docs/output.md#transfer) holds the first 4096 bytes.
 pub const SDO_DATA_CAP: usize = 4096;
 
 /// How a [`Decoder`] reads a log: each node's profile, the EDS/DCF files
@@ -118,15 +119,16 @@ impl DecoderConfig {
     }
 
     /// Return the configuration with `profile` for every node not named
-    /// with [`node_profile`](Self::node_profile) (SPEC §6.1 `--profile akd`).
+    /// with [`node_profile`](Self::node_profile) (`--profile akd` in
+    /// docs/output.md#command).
     #[must_use]
     pub fn profile(mut self, profile: Profile) -> Self {
         self.profiles.set_default(profile);
         self
     }
 
-    /// Return the configuration with `profile` for `node` (SPEC §6.1
-    /// `--profile 3=akd`).
+    /// Return the configuration with `profile` for `node`
+    /// (`--profile 3=akd` in docs/output.md#command).
     #[must_use]
     pub fn node_profile(mut self, node: NodeId, profile: Profile) -> Self {
         self.profiles.set(node, profile);
@@ -146,11 +148,12 @@ impl DecoderConfig {
         &self.profiles
     }
 
-    /// Return the configuration with `eds` describing `node` (SPEC §8.1
-    /// item 2, `--eds NODE=FILE`): its PDOs decode that node's frames
-    /// until the log's own SDO configuration changes them, its names and
-    /// types name the signals, and a device type of 402 makes the node a
-    /// drive. Read the file for that node (`$NODEID` resolves to it).
+    /// Return the configuration with `eds` describing `node`
+    /// (docs/canopen.md#pdo-mappings item 2, `--eds NODE=FILE`): its PDOs
+    /// decode that node's frames until the log's own SDO configuration changes
+    /// them, its names and types name the signals, and a device type of 402
+    /// makes the node a drive. Read the file for that node (`$NODEID` resolves
+    /// to it).
     ///
     /// # Errors
     ///
@@ -229,32 +232,34 @@ impl Names for Description {
 }
 
 /// One frame as the decoder read it: its kind and node, the CANopen
-/// message, and what the session adds to it (SPEC §6.1, §7.3, §8.2,
-/// §8.3). Borrows the decoder and the frame until the next frame.
+/// message, and what the session adds to it (docs/output.md#json,
+/// docs/output.md#sdo, docs/output.md#pdo, docs/output.md#cia402). Borrows the
+/// decoder and the frame until the next frame.
 #[derive(Debug, Clone, Copy)]
 pub struct Decoded<'d> {
-    /// Where the log has the frame: its line or record number (SPEC §5.7
-    /// `line`).
+    /// Where the log has the frame: its line or record number (`line`
+    /// in docs/formats.md#positions).
     pub position: u64,
     /// The frame as the log recorded it.
     pub log: &'d LogFrame<'d>,
-    /// The frame's kind, from its identifier (SPEC §6.1 `kind`).
+    /// The frame's kind, from its identifier (`kind` in
+    /// docs/output.md#common-keys).
     pub kind: MessageKind,
     /// The node the identifier names, for the kinds that have one
-    /// (SPEC §6.1 `node`).
+    /// (`node` in docs/output.md#common-keys).
     pub node: Option<NodeId>,
     /// The profile of the frame's node (the default profile for frames
     /// without a node): how its EMCY's manufacturer bytes read.
     pub profile: Profile,
     /// An SDO frame as its channel's tracker read it, with the transfer it
-    /// ends (SPEC §7.3).
+    /// ends (docs/output.md#transfer).
     pub sdo: Option<SdoStep<'d>>,
-    /// A PDO read with the mapping in force for its COB-ID (SPEC §8.2);
-    /// `None` when no mapping is known.
+    /// A PDO read with the mapping in force for its COB-ID
+    /// (docs/canopen.md#signals); `None` when no mapping is known.
     pub pdo: Option<PdoReading<'d>>,
     /// What the frame tells of a drive's CiA 402 state machine: a drive's
     /// PDO that maps its statusword, controlword or mode, or a completed
-    /// expedited SDO transfer of one of them (SPEC §8.3).
+    /// expedited SDO transfer of one of them (docs/output.md#cia402).
     pub cia402: Option<Cia402Reading>,
 }
 
@@ -272,8 +277,8 @@ impl Decoded<'_> {
     }
 }
 
-/// A transfer that the input ended in the middle of (SPEC §7.2: reported
-/// in the summary only).
+/// A transfer that the input ended in the middle of (docs/canopen.md#transfers:
+/// reported in the summary only).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct OpenTransfer {
     /// The bus.
@@ -351,9 +356,9 @@ impl Decoder {
     }
 
     /// Read one frame, logged at `position` (the line or record number a
-    /// transfer's `start_line` names, SPEC §5.7), in the context of the
-    /// frames before it; the session learns from it (SDO transfers, PDO
-    /// mappings, drive states).
+    /// transfer's `start_line` names, docs/formats.md#positions), in the
+    /// context of the frames before it; the session learns from it (SDO
+    /// transfers, PDO mappings, drive states).
     pub fn decode<'d>(&'d mut self, position: u64, frame: &'d LogFrame<'d>) -> Decoded<'d> {
         let can = &frame.frame;
         let (kind, node) = MessageKind::classify(can);
@@ -403,7 +408,8 @@ impl Decoder {
     }
 
     /// A new bus: every node given an EDS/DCF starts with its PDOs, and
-    /// every node of a drive profile is a drive (SPEC §8.1, §8.3).
+    /// every node of a drive profile is a drive (docs/canopen.md#pdo-mappings,
+    /// docs/canopen.md#cia402).
     fn describe(&mut self, at: usize) {
         for d in 0..self.config.descriptions.len() {
             let description = &self.config.descriptions[d];
@@ -427,10 +433,11 @@ impl Decoder {
         }
     }
 
-    /// Feed one SDO frame to its channel (SPEC §7.2); a completed transfer
-    /// to or from a PDO parameter changes the mapping from here on
-    /// (SPEC §8.1), an upload of 1000h can make the node a drive, and an
-    /// expedited transfer of 6040h/6041h/6060h/6061h is read as CiA 402.
+    /// Feed one SDO frame to its channel (docs/canopen.md#transfers); a
+    /// completed transfer to or from a PDO parameter changes the mapping from
+    /// here on (docs/canopen.md#pdo-mappings), an upload of 1000h can make the
+    /// node a drive, and an expedited transfer of 6040h/6041h/6060h/6061h is
+    /// read as CiA 402.
     fn sdo<'d>(
         &'d mut self,
         frame: &'d LogFrame<'d>,
@@ -473,7 +480,8 @@ impl Decoder {
         (step, cia402)
     }
 
-    /// What a completed transfer teaches (SPEC §8.1, §8.3).
+    /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,
+    /// docs/canopen.md#cia402).
     fn learn(
         &mut self,
         at: usize,
@@ -545,7 +553,8 @@ impl Decoder {
             return;
         };
         // A node whose device type says CiA 402 reads with the drive
-        // profile's names and types, whatever its profile (SPEC §8.2).
+        // profile's names and types, whatever its profile
+        // (docs/canopen.md#signals).
         let set = profile
             .object_set()
             .or(drive.then_some(crate::canopen::ObjectSet::Drive));
@@ -568,7 +577,7 @@ impl Decoder {
 
     /// The mapping in force for a PDO frame on `cob_id`, its signals (when
     /// the session unpacks them), and its CiA 402 reading for a drive
-    /// (SPEC §8.2, §8.3).
+    /// (docs/canopen.md#signals, docs/canopen.md#cia402).
     fn pdo(
         &mut self,
         iface: Option<Iface<'_>>,
@@ -592,7 +601,7 @@ impl Decoder {
         self.signals.clear();
         if !self.config.signals {
             // Only the statusword of a drive (the summary's timeline is
-            // observed from statuswords, SPEC §8.3).
+            // observed from statuswords, docs/summary.md#cia402).
             let mut cia402 = None;
             if drive {
                 let sw = map
@@ -654,10 +663,11 @@ impl Decoder {
         Some((reading, cia402))
     }
 
-    /// Return how `node`'s objects are named (SPEC §7.3 `object`): its EDS
-    /// or DCF's `ParameterName` first, then the CiA 301 communication
-    /// objects and the objects of its profile (CiA 402's for a node whose
-    /// EDS makes it a drive): what [`SdoStep::object`] names.
+    /// Return how `node`'s objects are named (`object` in
+    /// docs/canopen.md#object-names): its EDS or DCF's `ParameterName` first,
+    /// then the CiA 301 communication objects and the objects of its profile
+    /// (CiA 402's for a node whose EDS makes it a drive): what
+    /// [`SdoStep::object`] names.
     #[must_use]
     pub fn object_names(&self, node: NodeId) -> ObjectNames<'_> {
         object_names(&self.config, node, self.config.profiles.of(Some(node)))
@@ -665,7 +675,7 @@ impl Decoder {
 
     /// Return whether `node` on `bus` is a CiA 402 drive: its profile, its
     /// EDS's device type or an SDO upload of 1000h in the log says so
-    /// (SPEC §8.3).
+    /// (docs/canopen.md#cia402).
     #[must_use]
     pub fn is_drive(&self, bus: &BusName, node: NodeId) -> bool {
         self.buses
@@ -676,8 +686,8 @@ impl Decoder {
     }
 
     /// End of the input: take every transfer left open, which ends here
-    /// (SPEC §7.2: reported in the summary only). The session can go on
-    /// with a new input afterwards.
+    /// (docs/canopen.md#transfers: reported in the summary only). The session
+    /// can go on with a new input afterwards.
     pub fn finish(&mut self) -> Vec<OpenTransfer> {
         let mut open = Vec::new();
         for (bus, state) in self.buses.iter_mut() {
@@ -696,7 +706,8 @@ impl Decoder {
     }
 }
 
-/// How `node`, of `profile`, names its objects (SPEC §7.3 `object`).
+/// How `node`, of `profile`, names its objects (`object` in
+/// docs/canopen.md#object-names).
 fn object_names(config: &DecoderConfig, node: NodeId, profile: Profile) -> ObjectNames<'_> {
     let eds = config
         .descriptions

@@ -1,17 +1,17 @@
-//! Where the names of a node's objects come from (SPEC §7.3 `object`):
-//! the node's EDS/DCF first, then the CiA 301 communication objects and
-//! the device profile's.
+//! Where the names of a node's objects come from (`object` in
+//! docs/canopen.md#object-names): the node's EDS/DCF first, then the CiA 301
+//! communication objects and the device profile's.
 
 use crate::canopen::{object_name, ObjectSet};
 use crate::eds::Eds;
 
-/// How a node's objects are named (SPEC §7.3 `object`): for a node given
-/// an EDS or DCF (`--eds`, [`DecoderConfig::eds`](super::DecoderConfig::eds)),
-/// the object's `ParameterName` there; else — or where the file does not
-/// describe the object — the CiA 301 communication objects 1000h–1FFFh
-/// and the device profile's objects (of the node's profile, or CiA 402's
-/// for a node whose EDS makes it a drive). The name is the object's, not
-/// a sub-entry's.
+/// How a node's objects are named (`object` in docs/canopen.md#object-names):
+/// for a node given an EDS or DCF (`--eds`,
+/// [`DecoderConfig::eds`](super::DecoderConfig::eds)), the object's
+/// `ParameterName` there; else — or where the file does not describe the object
+/// — the CiA 301 communication objects 1000h–1FFFh and the device profile's
+/// objects (of the node's profile, or CiA 402's for a node whose EDS makes it a
+/// drive). The name is the object's, not a sub-entry's.
 ///
 /// ```
 /// use motionwire::canopen::{NodeId, ObjectSet};

@@ -1,7 +1,7 @@
 //! PDO mappings as the decoder applies them: learned from the SDO
 //! configuration in the log, from a node's EDS/DCF, or the pre-defined
-//! connection set (SPEC §8.1), each with its signals' names and types
-//! (SPEC §8.2).
+//! connection set (docs/canopen.md#pdo-mappings), each with its signals' names
+//! and types (docs/canopen.md#signals).
 
 use std::borrow::Cow;
 use std::cell::Cell;
@@ -14,7 +14,8 @@ use crate::canopen::{
 use crate::Error;
 
 /// A PDO's mapping as the decoder applies it to the frames on its COB-ID:
-/// the owner, the PDO, its layout and the name of each signal (SPEC §8.2).
+/// the owner, the PDO, its layout and the name of each signal
+/// (docs/canopen.md#signals).
 #[derive(Debug)]
 pub struct PdoMap {
     id: u32,
@@ -25,7 +26,7 @@ pub struct PdoMap {
     names: Vec<Cow<'static, str>>,
     /// Each name as a JSON object key, escaped once, with the comma before
     /// it for all but the first: `"Statusword":`, `,"Position actual
-    /// value":` (the record's `signals`, SPEC §8.2).
+    /// value":` (the record's `signals`, docs/output.md#pdo).
     pub(crate) keys: Vec<Box<[u8]>>,
     drive: bool,
     /// Where the statusword (6041h, 16 bits) is mapped, if it is.
@@ -67,15 +68,15 @@ impl PdoMap {
     }
 
     /// Return the name of each signal, in mapping order, dummies left out
-    /// (SPEC §8.2: the EDS's `ParameterName`, else the profile's name, else
-    /// `6041sub0`).
+    /// (docs/canopen.md#signals: the EDS's `ParameterName`, else the profile's
+    /// name, else `6041sub0`).
     #[must_use]
     pub fn names(&self) -> &[Cow<'static, str>] {
         &self.names
     }
 
     /// Return whether the node is a CiA 402 drive, whose controlword and
-    /// statusword are read (SPEC §8.3).
+    /// statusword are read (docs/canopen.md#cia402).
     #[must_use]
     pub fn is_drive(&self) -> bool {
         self.drive
@@ -87,8 +88,8 @@ impl PdoMap {
     }
 }
 
-/// A PDO frame read with the mapping in force for its COB-ID (SPEC §8.2
-/// `signals`).
+/// A PDO frame read with the mapping in force for its COB-ID (`signals`
+/// in docs/output.md#pdo).
 ///
 /// `Display` writes the PDO and its signals as a person reads them:
 /// `TPDO1 Statusword=567 Position actual value=100000`, with `  error: …`
@@ -98,9 +99,10 @@ pub struct PdoReading<'d> {
     /// The mapping in force.
     pub map: &'d PdoMap,
     /// The frame's signals in mapping order (the i-th is named
-    /// `map.names()[i]`), and why the rest could not be read (SPEC §8.2:
-    /// a PDO shorter than its mapping). Empty when the decoder does not
-    /// unpack signals ([`DecoderConfig::signals`](super::DecoderConfig::signals)).
+    /// `map.names()[i]`), and why the rest could not be read
+    /// (docs/canopen.md#signals: a PDO shorter than its mapping). Empty when
+    /// the decoder does not unpack signals
+    /// ([`DecoderConfig::signals`](super::DecoderConfig::signals)).
     pub signals: &'d [Result<Signal, Error>],
 }
 
@@ -181,7 +183,7 @@ pub(crate) fn pdo_parameter(index: u16) -> Option<((bool, u16), bool)> {
 }
 
 /// Where names and data types come from for a node: its EDS/DCF first,
-/// then the profile's objects (SPEC §8.2).
+/// then the profile's objects (docs/canopen.md#signals).
 pub(crate) trait Names {
     fn name(&self, index: u16, sub: u8) -> Option<&str>;
     fn data_type(&self, index: u16, sub: u8) -> Option<DataType>;
@@ -213,7 +215,7 @@ pub(crate) fn in_force(
 }
 
 /// Build the map of a mapping in force: names and types from the node's
-/// description, else the object set's (SPEC §8.2).
+/// description, else the object set's (docs/canopen.md#signals).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn build_map(
     id: u32,

@@ -1,5 +1,7 @@
-//! A decoded frame as SPEC §6.1's JSON record, with the keys SPEC §7.3
-//! and §8 add: written key by key into the output, without allocating.
+//! A decoded frame as its JSON record (docs/output.md#json), with the keys
+//! that SDO (docs/output.md#sdo, docs/output.md#transfer), PDOs
+//! (docs/output.md#pdo) and CiA 402 (docs/output.md#cia402) add: written key by
+//! key into the output, without allocating.
 
 use std::io::{self, Write};
 
@@ -14,14 +16,14 @@ use super::json::{self, Object};
 use super::{Cia402Reading, Decoded, EndedTransfer, ObjectNames, PdoReading, SdoStep};
 
 impl Decoded<'_> {
-    /// Write the frame as one JSON object and a newline: SPEC §6.1's
-    /// record — `line`, `ts`, `iface`, `id`, the flags, `data`, `kind`,
-    /// `node` and the keys of its kind (EMCY with the node's profile,
+    /// Write the frame as one JSON object and a newline: the record of
+    /// docs/output.md#json — `line`, `ts`, `iface`, `id`, the flags, `data`,
+    /// `kind`, `node` and the keys of its kind (EMCY with the node's profile,
     /// heartbeat, NMT, SYNC, TIME, error frames, `error` where the data
-    /// cannot be read) — with `sdo` and `transfer` on SDO frames (SPEC
-    /// §7.3), `signals` on PDOs with a known mapping (SPEC §8.2) and
-    /// `cia402` on a drive's (SPEC §8.3). This is `motionwire decode
-    /// --json`'s line.
+    /// cannot be read) — with `sdo` and `transfer` on SDO frames
+    /// (docs/output.md#sdo, docs/output.md#transfer), `signals` on PDOs with a
+    /// known mapping (docs/output.md#pdo) and `cia402` on a drive's
+    /// (docs/output.md#cia402). This is `motionwire decode --json`'s line.
     ///
     /// # Errors
     ///
@@ -164,7 +166,7 @@ impl Decoded<'_> {
     }
 }
 
-/// The EMCY keys of SPEC §6.1, with the profile's keys.
+/// The EMCY keys of docs/output.md#emcy, with the profile's keys.
 fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
     obj.uint("code", u64::from(emcy.code.get()))?;
     obj.name("class", emcy.code.class().name())?;
@@ -202,7 +204,7 @@ fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
     out.write_all(b"\n")
 }
 
-/// Write the `sdo` key's object for one frame (SPEC §7.3).
+/// Write the `sdo` key's object for one frame (docs/output.md#sdo).
 fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::Result<()> {
     let out = obj.key("sdo")?;
     let mut o = Object::begin(out)?;
@@ -211,8 +213,9 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
     let message = match &step.message {
         Ok(message) => message,
         Err(_) => {
-            // A short frame, as far as it goes (SPEC §7.1 decision): the
-            // multiplexer, or from a 3-byte frame the index alone.
+            // A short frame, as far as it goes (the decision in
+            // docs/canopen.md#sdo): the multiplexer, or from a 3-byte frame the
+            // index alone.
             if let Some(m) = step.multiplexer() {
                 write_multiplexer(&mut o, m, step.names)?;
             } else if let Some(index) = step.index() {
@@ -287,7 +290,7 @@ fn write_multiplexer<W: Write>(
     }
 }
 
-/// Write the `transfer` key (SPEC §7.3).
+/// Write the `transfer` key (docs/output.md#transfer).
 fn write_transfer_json<W: Write>(
     obj: &mut Object<'_, W>,
     ended: &EndedTransfer<'_>,
@@ -325,9 +328,9 @@ fn write_transfer_json<W: Write>(
     o.end()
 }
 
-/// SPEC §8.2's `signals`: name → value in mapping order, and `error` when
-/// the PDO is shorter than its mapping (its signals are those that fit);
-/// §8.3's `cia402` for a drive.
+/// The `signals` of docs/output.md#pdo: name → value in mapping order, and
+/// `error` when the PDO is shorter than its mapping (its signals are those that
+/// fit); the `cia402` of docs/output.md#cia402 for a drive.
 fn pdo_json<W: Write>(
     obj: &mut Object<'_, W>,
     reading: &PdoReading<'_>,
@@ -362,8 +365,8 @@ fn pdo_json<W: Write>(
     Ok(())
 }
 
-/// SPEC §8.3's `cia402`: `state`, `command`, `mode` where the frame tells
-/// them.
+/// The `cia402` of docs/output.md#cia402: `state`, `command`, `mode` where the
+/// frame tells them.
 fn cia402_json<W: Write>(obj: &mut Object<'_, W>, reading: &Cia402Reading) -> io::Result<()> {
     let out = obj.raw_after_first(b",\"cia402\":{")?;
     let mut sep: &[u8] = b"";

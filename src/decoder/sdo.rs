@@ -1,6 +1,7 @@
 //! SDO channels as the decoder follows them: one [`SdoTracker`] per
 //! (interface, node), the data of the transfer in progress (up to the
-//! decoder's cap), and what each frame is in its transfer (SPEC §7.2, §7.3).
+//! decoder's cap), and what each frame is in its transfer
+//! (docs/canopen.md#transfers, docs/output.md#sdo).
 
 use core::fmt;
 use core::time::Duration;
@@ -15,8 +16,9 @@ use crate::canopen::{NodeId, ObjectAddress};
 use super::ObjectNames;
 use crate::Error;
 
-/// One SDO frame as its channel's tracker read it (SPEC §7.3 `sdo`), and
-/// the transfer it ends with that transfer's data (`transfer`).
+/// One SDO frame as its channel's tracker read it (`sdo` in
+/// docs/output.md#sdo), and the transfer it ends with that transfer's data
+/// (`transfer`).
 ///
 /// `Display` says it as a person reads it: the transfer it ends (`read
 /// 1008h.00 "AKD-P00306" (segmented, 10 B, 2.1 ms)`), an abort (`abort
@@ -26,22 +28,24 @@ use crate::Error;
 pub struct SdoStep<'d> {
     /// The node whose SDO server the channel reaches (from the identifier).
     pub node: NodeId,
-    /// Who sent the frame: the client (a request, SPEC §7.3 `"direction":
-    /// "request"`) or the server (a response).
+    /// Who sent the frame: the client (a request, docs/output.md#sdo
+    /// `"direction": "request"`) or the server (a response).
     pub sender: SdoParty,
     /// The frame read in its transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier).
     pub message: Result<SdoMessage, Error>,
     /// The frame's data bytes.
     pub data: &'d [u8],
-    /// The request → response latency this frame closes (SPEC §7.2).
+    /// The request → response latency this frame closes
+    /// (docs/canopen.md#transfers).
     pub latency: Option<Duration>,
     /// The frame starts a transfer.
     pub started: bool,
     /// The transfer this frame ends, with its data.
     pub ended: Option<EndedTransfer<'d>>,
-    /// Where this node's SDO objects get their names (SPEC §7.3 `object`):
-    /// its EDS first, then the communication objects and the profile's.
+    /// Where this node's SDO objects get their names (`object` in
+    /// docs/canopen.md#object-names): its EDS first, then the communication
+    /// objects and the profile's.
     pub names: ObjectNames<'d>,
 }
 
@@ -60,9 +64,9 @@ impl<'d> SdoStep<'d> {
     }
 
     /// Return the index and sub-index the frame carries: the message's, or,
-    /// when it could not be read, bytes 1–3 if the frame is an initiate or
-    /// an abort and they are there (SPEC §7.1 decision: a short frame is
-    /// decoded as far as it goes; 3 bytes give the index only, see
+    /// when it could not be read, bytes 1–3 if the frame is an initiate or an
+    /// abort and they are there (the decision in docs/canopen.md#sdo: a short
+    /// frame is decoded as far as it goes; 3 bytes give the index only, see
     /// [`index`](Self::index)).
     #[must_use]
     pub fn multiplexer(&self) -> Option<ObjectAddress> {
@@ -75,8 +79,9 @@ impl<'d> SdoStep<'d> {
 
     /// Return the index of the object the frame addresses: the
     /// multiplexer's, or, for a frame cut after byte 2 that is an initiate
-    /// or an abort, bytes 1–2 (little-endian; SPEC §7.1 decision: "3 bytes
-    /// give the service and the index, 4 the sub-index too").
+    /// or an abort, bytes 1–2 (little-endian; the decision in
+    /// docs/canopen.md#sdo: 3 bytes give the service and the index, 4 the
+    /// sub-index too).
     ///
     /// ```
     /// use motionwire::can::{CanFrame, CanId, LogFrame};
@@ -107,7 +112,7 @@ impl<'d> SdoStep<'d> {
 
     /// Whether the first byte makes the frame one whose bytes 1–3 are the
     /// multiplexer: an initiate of any service (a block transfer's
-    /// sub-command 0), or an abort (SPEC §7.1).
+    /// sub-command 0), or an abort (docs/canopen.md#sdo).
     fn carries_multiplexer(&self) -> bool {
         let Some(&first) = self.data.first() else {
             return false;
@@ -124,14 +129,15 @@ impl<'d> SdoStep<'d> {
     }
 
     /// Return the name of the object the frame addresses, if it addresses
-    /// one and the name is known (SPEC §7.3 `object`).
+    /// one and the name is known (`object` in docs/canopen.md#object-names).
     #[must_use]
     pub fn object(&self) -> Option<&'d str> {
         self.index().and_then(|index| self.names.name(index))
     }
 }
 
-/// A transfer that ended, with its data (SPEC §7.3 `transfer`).
+/// A transfer that ended, with its data (`transfer` in
+/// docs/output.md#transfer).
 ///
 /// `Display` writes the transfer as a person reads it: `read 1008h.00
 /// "AKD-P00306" (segmented, 10 B, 2.1 ms)`, `write 1A00h.00 = 0x00 …`,
@@ -281,8 +287,8 @@ impl fmt::Display for SdoStep<'_> {
         let message = match &self.message {
             Ok(m) => m,
             Err(e) => {
-                // SPEC §7.1 decision: as far as the frame goes — the
-                // service, the index (3 bytes), the sub-index (4).
+                // The decision in docs/canopen.md#sdo: as far as the frame goes
+                // — the service, the index (3 bytes), the sub-index (4).
                 f.write_str(self.sender.direction_name())?;
                 let service = self.service();
                 if service != SdoService::Unknown {

@@ -1,6 +1,8 @@
 //! The decoder session: what each frame reads as in the context of the
-//! frames before it (SPEC §7.2, §7.3, §8.1–§8.3), and that no input makes
-//! it panic or lose a transfer.
+//! frames before it (docs/canopen.md#transfers, docs/output.md#sdo,
+//! docs/canopen.md#pdo-mappings, docs/canopen.md#signals,
+//! docs/canopen.md#cia402), and that no input makes it panic or lose a
+//! transfer.
 
 use proptest::prelude::*;
 
@@ -150,9 +152,9 @@ fn sdo_steps_and_transfers_read_as_a_person_says_them() {
     );
 }
 
-/// SPEC §7.1 decision: a short SDO frame is decoded as far as it goes —
-/// 3 bytes give the service and the index, 4 the sub-index too — in the
-/// text and in the JSON `sdo` object.
+/// The decision in docs/canopen.md#sdo: a short SDO frame is decoded as far as
+/// it goes — 3 bytes give the service and the index, 4 the sub-index too — in
+/// the text and in the JSON `sdo` object.
 #[test]
 fn a_short_sdo_frame_says_as_much_as_it_holds() {
     let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));

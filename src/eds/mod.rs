@@ -1,5 +1,5 @@
 //! The CiA 306 electronic data sheet (EDS) and device configuration file
-//! (DCF) reader (feature `eds`; SPEC §8.1, §8.2).
+//! (DCF) reader (feature `eds`; docs/canopen.md#eds).
 //!
 //! An EDS describes a device's object dictionary; a DCF is an EDS with the
 //! values of one configured node. [`Eds::parse`] reads either into the
@@ -21,8 +21,8 @@
 //!   allowed) resolve to the node-ID given, else to `[DeviceComissioning]
 //!   NodeID`; with neither, such a value is an error.
 //! - Names: an object's `ParameterName`; for a sub-entry of an ARRAY or
-//!   RECORD, `Record name.Sub-entry name` (SPEC §8.2; python-canopen's
-//!   `qualname`).
+//!   RECORD, `Record name.Sub-entry name` (docs/canopen.md#signals;
+//!   python-canopen's `qualname`).
 //!
 //! Every error names the file (as the caller calls it), the line, and the
 //! section and key where there is one: [`EdsError`].
@@ -237,8 +237,8 @@ pub struct Entry {
     pub index: u16,
     /// The sub-index.
     pub sub_index: u8,
-    /// The name SPEC §8.2 gives a signal: `ParameterName`, or for a
-    /// sub-entry of an ARRAY or RECORD `Record name.Sub-entry name`.
+    /// The name a signal gets (docs/canopen.md#signals): `ParameterName`, or
+    /// for a sub-entry of an ARRAY or RECORD `Record name.Sub-entry name`.
     pub name: String,
     /// The entry's own `ParameterName`.
     pub parameter_name: String,
@@ -260,7 +260,7 @@ pub struct Entry {
 
 impl Entry {
     /// Return the value: the DCF's `ParameterValue` when written, else the
-    /// `DefaultValue` (CiA 306; SPEC §8.1).
+    /// `DefaultValue` (CiA 306; docs/canopen.md#eds).
     #[must_use]
     pub fn value(&self) -> Option<&EdsValue> {
         self.parameter_value
@@ -281,7 +281,8 @@ pub struct SignalInfo {
 }
 
 /// One PDO of the file: its communication parameters, mapping and the
-/// names and types of its signals (SPEC §8.1, §8.2).
+/// names and types of its signals (docs/canopen.md#eds,
+/// docs/canopen.md#signals).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EdsPdo {
     /// TPDO (1800h–19FFh) or RPDO (1400h–15FFh).
@@ -422,7 +423,7 @@ impl From<IniError> for EdsErrorKind {
     }
 }
 
-/// A parsed EDS or DCF (CiA 306; SPEC §8.1).
+/// A parsed EDS or DCF (CiA 306; docs/canopen.md#eds).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Eds {
     file: String,
@@ -758,7 +759,8 @@ impl Eds {
         self.objects.get(&index)?.entry(sub_index)
     }
 
-    /// Return the name SPEC §8.2 gives the entry (see [`Entry::name`]).
+    /// Return the name the entry's signal gets (docs/canopen.md#signals; see
+    /// [`Entry::name`]).
     #[must_use]
     pub fn name(&self, index: u16, sub_index: u8) -> Option<&str> {
         self.entry(index, sub_index).map(|e| e.name.as_str())
@@ -786,7 +788,7 @@ impl Eds {
     }
 
     /// Return whether the device type names CiA 402 (0x0192 in the low
-    /// word of 1000h; SPEC §8.3).
+    /// word of 1000h; docs/canopen.md#cia402).
     #[must_use]
     pub fn is_cia402(&self) -> bool {
         self.device_type()

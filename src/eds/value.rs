@@ -7,7 +7,7 @@ use std::fmt;
 use crate::canopen::{DataType, NodeId};
 
 /// A `DefaultValue` or `ParameterValue` read with its object's data type
-/// (CiA 306; SPEC §8.1).
+/// (CiA 306; docs/canopen.md#eds).
 #[derive(Debug, Clone, PartialEq)]
 pub enum EdsValue {
     /// BOOLEAN, UNSIGNEDn, TIME_OF_DAY, TIME_DIFFERENCE.

@@ -1,5 +1,5 @@
 //! The civil calendar the readers turn logged dates into Unix time with
-//! (candump `-t A`, BLF's `SYSTEMTIME`; SPEC §5.2, §5.6, §5.7), proleptic
+//! (candump `-t A`, BLF's `SYSTEMTIME`; docs/formats.md#timestamps), proleptic
 //! Gregorian, UTC.
 
 /// Whether `year` is a leap year (proleptic Gregorian calendar).

@@ -1,5 +1,5 @@
-//! Which format a log is in, from its first bytes (SPEC §5.7): binary
-//! magic numbers, and for text the shape of the first lines that are not
+//! Which format a log is in, from its first bytes (docs/formats.md#detection):
+//! binary magic numbers, and for text the shape of the first lines that are not
 //! blank — never the file name.
 
 use crate::logs::candump;
@@ -10,8 +10,9 @@ use crate::logs::LogFormat;
 pub const DETECT_LEN: usize = 64 * 1024;
 
 /// The most lines that are neither blank, comments nor deciding that
-/// [`detect`] reads past before the first deciding line (SPEC §5.7
-/// decision): a 17th makes the input [`Detected::Unrecognised`].
+/// [`detect`] reads past before the first deciding line (the decision in
+/// docs/formats.md#detection): a 17th makes the input
+/// [`Detected::Unrecognised`].
 pub const DETECT_MAX_UNDECIDED: usize = 16;
 
 /// What the first bytes of a log are.
@@ -20,7 +21,7 @@ pub enum Detected {
     /// A log of this format.
     Format(LogFormat),
     /// A gzip stream (RFC 1952 magic `1f 8b`): inflate it and detect again
-    /// (SPEC §6.4).
+    /// (docs/formats.md#gzip).
     Gzip,
     /// Not enough bytes to decide: read more.
     NeedMore,
@@ -28,7 +29,7 @@ pub enum Detected {
     /// `;`, `//`), or nothing at all: there is nothing to read, whatever
     /// its format.
     Empty,
-    /// None of the formats of SPEC §5.
+    /// None of the formats of docs/formats.md.
     Unrecognised,
 }
 
@@ -39,10 +40,10 @@ pub enum Detected {
 /// - pcap: magic `a1b2c3d4` or `a1b23c4d` (nanoseconds), in either byte
 ///   order; pcapng: the section header block type `0a0d0d0a`; BLF: `LOGG`;
 ///   MF4: `MDF     ` or `UnFinMF ` and `4.` at byte 8; gzip: `1f 8b`.
-/// - Text (SPEC §5.7 decision: random bytes must never pass for a log),
-///   line by line: only a line with a format's own shape decides — a
-///   PEAK TRC `;$FILEVERSION=` header or row (`N)` and a time); a Vector
-///   ASC header that names the format (`date `, `base `, `Begin
+/// - Text (the decision in docs/formats.md#detection: random bytes must never
+///   pass for a log), line by line: only a line with a format's own shape
+///   decides — a PEAK TRC `;$FILEVERSION=` header or row (`N)` and a time); a
+///   Vector ASC header that names the format (`date `, `base `, `Begin
 ///   Triggerblock`, `internal events logged`, `no internal events
 ///   logged`) or event line (a decimal time followed by a channel number
 ///   or `CANFD`); a line that [`candump::parse_line`] reads as a frame
@@ -138,8 +139,8 @@ pub fn detect(head: &[u8], complete: bool) -> Detected {
     }
 }
 
-/// Whether `head` starts as an MDF 4 file does (SPEC §5.8): `MDF     ` or
-/// `UnFinMF `, then the version `4.` at byte 8.
+/// Whether `head` starts as an MDF 4 file does (docs/formats.md#mf4): `MDF
+/// ` or `UnFinMF `, then the version `4.` at byte 8.
 pub(crate) fn is_mf4(head: &[u8]) -> bool {
     let magic = head.get(..8);
     (magic == Some(b"MDF     ") || magic == Some(b"UnFinMF ")) && head.get(8..10) == Some(b"4.")
@@ -234,8 +235,8 @@ mod tests {
         assert_eq!(detect(&[0xa1], false), Detected::NeedMore);
     }
 
-    /// SPEC §5.8: `MDF     ` or `UnFinMF `, then `4.` at byte 8; MDF 3 and
-    /// other text starting so are no MF4.
+    /// docs/formats.md#mf4: `MDF     ` or `UnFinMF `, then `4.` at byte 8; MDF
+    /// 3 and other text starting so are no MF4.
     #[test]
     fn mf4_magic() {
         for head in [&b"MDF     4.10    "[..], b"UnFinMF 4.11    ", b"MDF     4."] {
@@ -319,9 +320,9 @@ mod tests {
         });
     }
 
-    /// SPEC §5.7 decision: up to 16 lines that decide nothing are read
-    /// past, the 17th makes the input unrecognised; a NUL byte before the
-    /// deciding line too.
+    /// The decision in docs/formats.md#detection: up to 16 lines that decide
+    /// nothing are read past, the 17th makes the input unrecognised; a NUL byte
+    /// before the deciding line too.
     #[test]
     fn sixteen_undecided_lines_at_most_and_no_nul() {
         let frame = "(1700000000.000500) can0 081#10\n";

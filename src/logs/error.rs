@@ -1,35 +1,36 @@
-//! The errors of the log readers' layer (SPEC §5, §5.7): which format a
-//! log is in ([`LogFormat`]), why a line of a text log is malformed
-//! ([`SyntaxError`], what it [`Found`]) and why a binary log cannot be read
-//! further ([`BinaryError`]). They are the payloads of the crate's
-//! [`Error::Syntax`] and [`Error::Binary`]; the reading itself fails with a
-//! `LogError` that adds where.
+//! The errors of the log readers' layer (docs/formats.md,
+//! docs/formats.md#reported): which format a log is in ([`LogFormat`]), why a
+//! line of a text log is malformed ([`SyntaxError`], what it [`Found`]) and
+//! why a binary log cannot be read further ([`BinaryError`]). They are the
+//! payloads of the crate's [`Error::Syntax`] and [`Error::Binary`]; the
+//! reading itself fails with a `LogError` that adds where.
 
 #[cfg(any(doc, feature = "std"))]
 use crate::Error;
 
-/// A log format of SPEC §5, as an error names it.
+/// A log format of docs/formats.md, as an error names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum LogFormat {
-    /// candump text, log and screen formats (SPEC §5.1, §5.2).
+    /// candump text, log and screen formats (docs/formats.md#candump-log,
+    /// docs/formats.md#candump-screen).
     Candump,
-    /// Vector ASC text (SPEC §5.3).
+    /// Vector ASC text (docs/formats.md#asc).
     Asc,
-    /// PEAK TRC text, versions 1.0 to 2.1 (SPEC §5.4).
+    /// PEAK TRC text, versions 1.0 to 2.1 (docs/formats.md#trc).
     Trc,
-    /// pcap with link type 227, SocketCAN (SPEC §5.5).
+    /// pcap with link type 227, SocketCAN (docs/formats.md#pcap).
     Pcap,
-    /// pcapng with SocketCAN interfaces (SPEC §5.5).
+    /// pcapng with SocketCAN interfaces (docs/formats.md#pcap).
     Pcapng,
-    /// Vector BLF (SPEC §5.6).
+    /// Vector BLF (docs/formats.md#blf).
     Blf,
-    /// ASAM MDF 4 bus logging (SPEC §5.8).
+    /// ASAM MDF 4 bus logging (docs/formats.md#mf4).
     Mf4,
 }
 
 impl LogFormat {
-    /// Every format, in the order of SPEC §5.
+    /// Every format, in the order of docs/formats.md.
     pub const ALL: [LogFormat; 7] = [
         LogFormat::Candump,
         LogFormat::Asc,
@@ -83,8 +84,9 @@ impl core::fmt::Display for Found {
     }
 }
 
-/// Why a binary log cannot be read further (SPEC §5.5, §5.6, §5.7):
-/// carried by [`Error::Binary`] with the format and the byte offset.
+/// Why a binary log cannot be read further (docs/formats.md#reported,
+/// docs/output.md#stderr): carried by [`Error::Binary`] with the format and the
+/// byte offset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum BinaryError {
@@ -131,7 +133,7 @@ pub enum BinaryError {
         method: u32,
     },
     /// A pcapng packet names an interface that its section has not
-    /// described (SPEC §5.5).
+    /// described (docs/formats.md#pcap).
     UnknownInterface {
         /// The interface id the packet names.
         id: u32,
@@ -140,7 +142,7 @@ pub enum BinaryError {
     },
     /// A SocketCAN packet (link type 227) is shorter than its 8-byte header
     /// and the data length it declares, or a Linux cooked packet (link type
-    /// 113 or 276) than its own header (SPEC §5.5).
+    /// 113 or 276) than its own header (docs/formats.md#pcap).
     SocketCanTooShort {
         /// The bytes the header and the declared data need.
         needed: u64,
@@ -148,7 +150,8 @@ pub enum BinaryError {
         found: u64,
     },
     /// A SocketCAN packet declares more data than its frame kind carries:
-    /// 8 bytes for a classic or error frame, 64 for CAN FD (SPEC §5.5).
+    /// 8 bytes for a classic or error frame, 64 for CAN FD
+    /// (docs/formats.md#pcap).
     CanDataTooLong {
         /// The data length as read.
         len: u8,
@@ -156,7 +159,7 @@ pub enum BinaryError {
         max: u8,
     },
     /// A packet's time, with its interface's offset, lies before the Unix
-    /// epoch or beyond what a timestamp holds (SPEC §5.7).
+    /// epoch or beyond what a timestamp holds (docs/formats.md#timestamps).
     TimestampOutOfRange,
     /// A frame's identifier is out of range for its kind (above 0x7FF for
     /// a standard frame); the record is skipped, the file read on.
@@ -165,14 +168,14 @@ pub enum BinaryError {
         raw: u32,
     },
     /// An MF4 link leads to a block of another kind than the one its place
-    /// calls for, or to no block at all (SPEC §5.8).
+    /// calls for, or to no block at all (docs/formats.md#mf4).
     UnexpectedBlock {
         /// The block kinds the link may lead to, e.g. `##DG`.
         expected: &'static str,
         /// The first four bytes found there.
         found: [u8; 4],
     },
-    /// An MF4 link points outside the file (SPEC §5.8).
+    /// An MF4 link points outside the file (docs/formats.md#mf4).
     LinkOutOfFile {
         /// The link as read.
         link: u64,
@@ -181,17 +184,17 @@ pub enum BinaryError {
     },
     /// A chain of MF4 blocks (data groups, channel groups, channels, data
     /// lists) leads back to a block it has passed, or is longer than the
-    /// file could hold (SPEC §5.8).
+    /// file could hold (docs/formats.md#mf4).
     LinkLoop,
     /// An MF4 record starts with a record id that no channel group of its
-    /// data group has (SPEC §5.8): the rest of the data group cannot be
-    /// split into records.
+    /// data group has (docs/formats.md#mf4): the rest of the data group cannot
+    /// be split into records.
     UnknownRecordId {
         /// The record id as read.
         id: u64,
     },
     /// An MF4 frame's variable-length data (VLSD) is not where its record
-    /// says (SPEC §5.8).
+    /// says (docs/formats.md#mf4).
     MissingVlsd {
         /// The offset the record holds.
         offset: u64,
@@ -271,7 +274,7 @@ impl core::fmt::Display for BinaryError {
     }
 }
 
-/// Why a line of a text log is malformed (SPEC §5, §5.7): carried by
+/// Why a line of a text log is malformed (docs/formats.md#reported): carried by
 /// [`Error::Syntax`] with the format and the column where the problem
 /// starts. Each reason's message says what was expected and what was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -364,9 +367,9 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
-    /// An error frame (`CAN_ERR_FLAG` in its identifier, SPEC §5.1) written
-    /// as a remote request or a CAN FD frame: Linux error frames are classic
-    /// data frames.
+    /// An error frame (`CAN_ERR_FLAG` in its identifier,
+    /// docs/formats.md#error-frames) written as a remote request or a CAN FD
+    /// frame: Linux error frames are classic data frames.
     BadErrorFrame {
         /// What stood where the data was expected.
         found: Found,
@@ -385,20 +388,20 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
-    /// A screen form that cannot be read back faithfully (SPEC §5.2):
-    /// `candump -S` (data bytes swapped, marked with a backquote) or
-    /// `candump -i` (data bytes in binary).
+    /// A screen form that cannot be read back faithfully
+    /// (docs/formats.md#candump-screen): `candump -S` (data bytes swapped,
+    /// marked with a backquote) or `candump -i` (data bytes in binary).
     UnsupportedOutput {
         /// The candump option that made the line: `b'S'` or `b'i'`.
         option: u8,
     },
-    /// A PEAK TRC `;$FILEVERSION=` names no version of SPEC §5.4.
+    /// A PEAK TRC `;$FILEVERSION=` names no version of docs/formats.md#trc.
     TrcFileVersion {
         /// What stood where the version was expected.
         found: Found,
     },
     /// A PEAK TRC `;$STARTTIME=` is not days since 1899-12-30 as a decimal
-    /// number (SPEC §5.4), or lies before 1970.
+    /// number (docs/formats.md#trc), or lies before 1970.
     TrcStartTime {
         /// What stood there.
         found: Found,
@@ -466,7 +469,8 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
-    /// A Vector ASC line that is no header, comment or event line the format defines (SPEC §5.3).
+    /// A Vector ASC line that is no header, comment or event line the format
+    /// defines (docs/formats.md#asc).
     AscLine {
         /// What stood there.
         found: Found,
@@ -712,13 +716,14 @@ impl core::fmt::Display for SyntaxError {
 }
 
 /// The formats [`crate::logs::read`] knows, in words: what an unrecognised
-/// input was expected to be (SPEC §5.7).
+/// input was expected to be (docs/formats.md#detection).
 #[cfg(feature = "std")]
 pub(crate) const EXPECTED: &str = "a candump log or screen output, Vector ASC or BLF, PEAK TRC, \
                                    pcap or pcapng, ASAM MDF 4 (gzip-compressed or not)";
 
-/// Why a log reader could not hand on an event, and where (SPEC §5.7):
-/// what every [`ReadLog`](crate::logs::ReadLog) returns.
+/// Why a log reader could not hand on an event, and where
+/// (docs/formats.md#reported): what every [`ReadLog`](crate::logs::ReadLog)
+/// returns.
 ///
 /// [`is_skipped`](LogError::is_skipped) tells the two kinds apart: a line
 /// or record that was reported and skipped, after which the reading goes
@@ -752,8 +757,8 @@ pub enum LogErrorKind {
     Damaged(Error),
     /// Reading the input failed.
     Io(std::io::Error),
-    /// The input is none of the formats of SPEC §5 (said once, when it is
-    /// opened: not one error per line).
+    /// The input is none of the formats of docs/formats.md (said once, when it
+    /// is opened: not one error per line).
     Unrecognised,
 }
 
@@ -787,8 +792,8 @@ impl LogError {
 
     /// Return whether only this line or record was lost and the reading
     /// goes on (a malformed or over-long line, a damaged record of known
-    /// size: SPEC §5.7, "reported with its position and reason; decoding
-    /// continues"), rather than the input ending here.
+    /// size, each reported with its position and reason:
+    /// docs/formats.md#reported), rather than the input ending here.
     #[must_use]
     pub const fn is_skipped(&self) -> bool {
         matches!(

@@ -1,17 +1,22 @@
-//! Every log format in one folder (SPEC §5), as python-can's `can/io`
+//! Every log format in one folder (docs/formats.md), as python-can's `can/io`
 //! shows them: one module per format, the detection of the format from the
 //! content, the one line layer the text formats share, and — with the
 //! `logs` feature — one way to read any log, [`open`] or [`read`].
 //!
 //! | file or folder | what it holds | needs |
 //! |---|---|---|
-//! | [`candump/`](candump) | candump log and screen output (can-utils; SPEC §5.1, §5.2) | |
-//! | [`asc/`](asc) | Vector ASC (CANalyzer, CANoe; SPEC §5.3) | |
-//! | [`trc/`](trc) | PEAK TRC 1.0 to 2.1 (PCAN-View, PCAN-Explorer; SPEC §5.4) | |
-//! | `pcap/` | pcap and pcapng captures of SocketCAN interfaces (SPEC §5.5) | feature `pcap` |
-//! | `blf/` | Vector BLF (SPEC §5.6) | feature `blf` |
-//! | `mf4/` | ASAM MDF 4 bus logging (CANedge, CANoe, asammdf; SPEC §5.8) | feature `mf4` |
-//! | `detect.rs` | the format from the first bytes: [`detect`] (SPEC §5.7) | |
+//! | [`candump/`](candump) | candump log and screen output (can-utils;
+//! docs/formats.md#candump-log, docs/formats.md#candump-screen) | |
+//! | [`asc/`](asc) | Vector ASC (CANalyzer, CANoe; docs/formats.md#asc) | |
+//! | [`trc/`](trc) | PEAK TRC 1.0 to 2.1 (PCAN-View, PCAN-Explorer;
+//! docs/formats.md#trc) | |
+//! | `pcap/` | pcap and pcapng captures of SocketCAN interfaces
+//! (docs/formats.md#pcap) | feature `pcap` |
+//! | `blf/` | Vector BLF (docs/formats.md#blf) | feature `blf` |
+//! | `mf4/` | ASAM MDF 4 bus logging (CANedge, CANoe, asammdf;
+//! docs/formats.md#mf4) | feature `mf4` |
+//! | `detect.rs` | the format from the first bytes: [`detect`]
+//! (docs/formats.md#detection) | |
 //! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a [`Read`](std::io::Read), the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
 //! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
@@ -26,7 +31,8 @@
 //! `PcapReader`, `BlfReader`, `Mf4Reader`), and `LogReader` reads any of
 //! them.
 //!
-//! What holds for every reader (SPEC §5.7):
+//! What holds for every reader (docs/formats.md#positions,
+//! docs/formats.md#reported, docs/formats.md#memory):
 //!
 //! - an event's [`Position`] is the 1-based line of a text file, or the
 //!   1-based number of the packet or object in a binary one;
@@ -37,8 +43,8 @@
 //!   `MAX_LINE_LEN` (1 MiB), a binary record, block or container up to
 //!   [`MAX_RECORD_LEN`] (16 MiB).
 //!
-//! MF4 (SPEC §5.8) is read at any offset rather than in one pass, and its
-//! frames come out in time order across its channel groups: its positions
+//! MF4 (docs/formats.md#mf4) is read at any offset rather than in one pass, and
+//! its frames come out in time order across its channel groups: its positions
 //! (record numbers) do not always increase.
 
 pub mod asc;

@@ -1,6 +1,6 @@
-//! One way to read any log (SPEC §5.7, §6.4): the format detected from the
-//! content, a gzip stream inflated, and the format's reader behind one
-//! type.
+//! One way to read any log (docs/formats.md#detection, docs/formats.md#gzip):
+//! the format detected from the content, a gzip stream inflated, and the
+//! format's reader behind one type.
 
 use std::fmt;
 use std::fs::File;
@@ -60,7 +60,7 @@ pub fn open(path: impl AsRef<Path>) -> Result<LogReader, LogError> {
     ReadOptions::new().open(path)
 }
 
-/// Read a log of any format of SPEC §5 from `input`: the format is
+/// Read a log of any format of docs/formats.md from `input`: the format is
 /// detected from the content ([`detect`]), a gzip stream is inflated
 /// (once: a gzip inside a gzip is no log), and the format's reader hands
 /// on the events ([`LogReader`], a [`ReadLog`]). An input of nothing but
@@ -114,8 +114,9 @@ pub fn read<R: Read + Send + 'static>(input: R) -> Result<LogReader, LogError> {
 }
 
 /// How [`ReadOptions::read`] and [`ReadOptions::open`] read a log where the
-/// defaults of [`read`] do not fit: the format forced (`--format`, SPEC
-/// §5.7), candump's relative timestamps given (`--timestamps`, SPEC §5.2).
+/// defaults of [`read`] do not fit: the format forced (`--format`,
+/// docs/formats.md#detection), candump's relative timestamps given
+/// (`--timestamps`, docs/formats.md#candump-relative-times).
 ///
 /// ```
 /// use motionwire::logs::candump::RelativeTimestamps;
@@ -161,7 +162,8 @@ impl ReadOptions {
     }
 
     /// Read candump's relative timestamps (`(000.000123)`) as `relative`
-    /// says instead of deciding from the first frames (SPEC §5.2).
+    /// says instead of deciding from the first frames
+    /// (docs/formats.md#candump-relative-times).
     #[must_use]
     pub const fn relative_timestamps(mut self, relative: RelativeTimestamps) -> Self {
         self.relative = Some(relative);
@@ -177,7 +179,7 @@ impl ReadOptions {
     /// [`LogErrorKind::Io`].
     pub fn open(&self, path: impl AsRef<Path>) -> Result<LogReader, LogError> {
         match mf4::Input::file(File::open(path)?, self.format)? {
-            // MF4 is read in place, at any offset (SPEC §5.8).
+            // MF4 is read in place, at any offset (docs/formats.md#mf4).
             Ok(file) => Ok(LogReader {
                 inner: Inner::Mf4(Mf4Reader::new(file)?),
                 gzip: false,
@@ -272,7 +274,7 @@ fn fill(reader: &mut Input, head: &mut Vec<u8>, want: usize) -> io::Result<bool>
     }
 }
 
-/// A log of any format of SPEC §5, read by its format's reader: what
+/// A log of any format of docs/formats.md, read by its format's reader: what
 /// [`open`] and [`read`] return. It is a [`ReadLog`] like each of them,
 /// and adds what the dispatch knows: whether the input was gzip.
 pub struct LogReader {
@@ -307,7 +309,7 @@ macro_rules! each {
 
 impl LogReader {
     /// Return whether the input was a gzip stream, inflated while it is read
-    /// (SPEC §6.4).
+    /// (docs/formats.md#gzip).
     #[must_use]
     pub const fn is_gzip(&self) -> bool {
         self.gzip

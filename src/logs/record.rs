@@ -1,6 +1,6 @@
-//! What every reader hands on (SPEC §5.7): an event with its position, the
-//! one trait of the readers, and the limit that keeps a binary reader's
-//! memory bounded.
+//! What every reader hands on (docs/formats.md#positions,
+//! docs/formats.md#memory): an event with its position, the one trait of
+//! the readers, and the limit that keeps a binary reader's memory bounded.
 
 use core::fmt;
 
@@ -15,8 +15,9 @@ use crate::logs::{LogError, LogFormat};
 /// never allocated.
 pub const MAX_RECORD_LEN: usize = 16 << 20;
 
-/// Where an event or an error is in its log (SPEC §5.7 `line`): the line of
-/// a text file or the record of a binary one, numbered from 1.
+/// Where an event or an error is in its log (`line` in
+/// docs/formats.md#positions): the line of a text file or the record of a
+/// binary one, numbered from 1.
 ///
 /// `Display` writes the number alone, as the program's records (`"line":
 /// 12`) and messages (`log.txt:12: …`) do.
@@ -81,14 +82,14 @@ pub struct LogRecord<'a> {
 ///
 /// Every reader of [`crate::logs`] implements it, and so does
 /// [`LogReader`](crate::logs::LogReader), which detects the format and
-/// dispatches to them. The rule of SPEC §5.7 holds for all: an error that
-/// [`LogError::is_skipped`] (a malformed line, an over-long line, a damaged
-/// record whose size is known) loses that line or record only and the next
-/// call goes on; after any other error (the input cannot be read, a binary
-/// file's structure is damaged) [`next_event`](ReadLog::next_event) returns
-/// `None`. Positions increase from one event or error to the next, except
-/// in MF4 files, whose frames come in time order across channel groups
-/// (SPEC §5.8).
+/// dispatches to them. The rule of docs/formats.md#reported holds for all: an
+/// error that [`LogError::is_skipped`] (a malformed line, an over-long line, a
+/// damaged record whose size is known) loses that line or record only and the
+/// next call goes on; after any other error (the input cannot be read, a
+/// binary file's structure is damaged) [`next_event`](ReadLog::next_event)
+/// returns `None`. Positions increase from one event or error to the next,
+/// except in MF4 files, whose frames come in time order across channel groups
+/// (docs/formats.md#mf4).
 ///
 /// Lines and records that hold no event (blank lines, comments, headers; a
 /// pcap packet of another link type, a BLF object of another type) are not
@@ -104,15 +105,15 @@ pub trait ReadLog {
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>>;
 
     /// Return how many records read so far hold no CAN frame or bus event
-    /// and were skipped (SPEC §5.5, §5.6: said once, not per record). Text
-    /// readers have none.
+    /// and were skipped (docs/formats.md#pcap, docs/formats.md#blf: said once,
+    /// not per record). Text readers have none.
     fn other_records(&self) -> u64 {
         0
     }
 
     /// Return the records counted by [`other_records`](ReadLog::other_records),
-    /// kind by kind in the order first met (SPEC §5.5: the program names
-    /// the link type of what it skipped); `Display` of each says it
+    /// kind by kind in the order first met (docs/formats.md#pcap: the program
+    /// names the link type of what it skipped); `Display` of each says it
     /// ("12 packets of link type 1 (Ethernet) skipped: not CAN").
     fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
         &[]
@@ -130,8 +131,8 @@ pub trait ReadLog {
     /// has delivered, and the last read took everything it had buffered:
     /// the next call may wait for the input. A program that writes what it
     /// decodes flushes its output then, so that a live stream (`candump -L
-    /// can0 | motionwire decode --json -`, SPEC §6.4) is shown as it comes,
-    /// while a file, read in full blocks, streams at full speed.
+    /// can0 | motionwire decode --json -`, docs/output.md#live) is shown as it
+    /// comes, while a file, read in full blocks, streams at full speed.
     fn drained(&self) -> bool {
         false
     }

@@ -1,7 +1,7 @@
 //! The records a binary reader skips because they hold no CAN frame or bus
-//! event, by kind (SPEC §5.5, §5.6): said once per kind with its count —
-//! "12 packets of link type 1 (Ethernet) skipped: not CAN" — never per
-//! record.
+//! event, by kind (docs/formats.md#pcap, docs/formats.md#blf): said once per
+//! kind with its count — "12 packets of link type 1 (Ethernet) skipped: not
+//! CAN" — never per record.
 
 use core::fmt;
 
@@ -9,11 +9,12 @@ use core::fmt;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum OtherRecord {
     /// A pcap or pcapng packet of a link type that carries no CAN frames
-    /// (SPEC §5.5; the link type as the tcpdump.org link-type list numbers
-    /// it).
+    /// (docs/formats.md#pcap; the link type as the tcpdump.org link-type list
+    /// numbers it).
     LinkType(u16),
     /// A packet of a Linux "cooked" capture (link type 113 or 276) whose
-    /// protocol is neither CAN (0x000C) nor CAN FD (0x000D) (SPEC §5.5).
+    /// protocol is neither CAN (0x000C) nor CAN FD (0x000D)
+    /// (docs/formats.md#pcap).
     CookedProtocol {
         /// The link type: 113 (`LINUX_SLL`) or 276 (`LINUX_SLL2`).
         link_type: u16,
@@ -26,7 +27,7 @@ pub enum OtherRecord {
     /// A pcapng systemd journal export block: numbered as a packet, as
     /// tshark numbers it.
     SystemdJournal,
-    /// A BLF object of a type that holds no frame (SPEC §5.6).
+    /// A BLF object of a type that holds no frame (docs/formats.md#blf).
     BlfObject(u32),
 }
 
@@ -75,7 +76,7 @@ fn link_type(f: &mut fmt::Formatter<'_>, link_type: u16) -> fmt::Result {
 
 /// How many records of one kind a reader skipped.
 ///
-/// `Display` says it as the program does (SPEC §5.5):
+/// `Display` says it as the program does (docs/formats.md#pcap):
 ///
 /// ```
 /// use motionwire::logs::{OtherRecord, OtherRecords};

@@ -1,8 +1,8 @@
-//! The one line layer of the text readers (candump, ASC, TRC; SPEC §5,
-//! §5.7): a buffer split into lines at `\n` (16 bytes at a time), the hex
-//! digits every format writes, and — with `std` — whole lines read from a
-//! [`std::io::Read`] a block at a time, with the over-long-line rule that
-//! keeps memory bounded whatever the input.
+//! The one line layer of the text readers (candump, ASC, TRC;
+//! docs/formats.md#memory): a buffer split into lines at `\n` (16 bytes at a
+//! time), the hex digits every format writes, and — with `std` — whole lines
+//! read from a [`std::io::Read`] a block at a time, with the over-long-line
+//! rule that keeps memory bounded whatever the input.
 //!
 //! A line is the bytes before a `\n`, without it; a last line without one
 //! counts too, nothing after a final `\n` does. A `\r` before the `\n`
@@ -108,8 +108,8 @@ pub(crate) const fn hex_value(b: u8) -> Option<u8> {
 /// The longest line a text reader holds (1 MiB). A longer one is not a log
 /// line of any format: it is reported
 /// ([`LogErrorKind::OverlongLine`](crate::logs::LogErrorKind::OverlongLine))
-/// and skipped unread, so memory stays bounded whatever the input (SPEC
-/// §5.7).
+/// and skipped unread, so memory stays bounded whatever the input
+/// (docs/formats.md#memory).
 #[cfg(feature = "std")]
 pub const MAX_LINE_LEN: usize = 1 << 20;
 
@@ -119,8 +119,8 @@ pub const MAX_LINE_LEN: usize = 1 << 20;
 const BLOCK_LEN: usize = 1 << 18;
 
 /// The most text a reader holds back while it decides how to read the log
-/// (candump's relative timestamps, SPEC §5.2): as much as format detection
-/// looks at.
+/// (candump's relative timestamps, docs/formats.md#candump-relative-times): as
+/// much as format detection looks at.
 #[cfg(feature = "std")]
 const HOLD_LEN: usize = crate::logs::DETECT_LEN;
 

@@ -1,5 +1,5 @@
 //! Kollmorgen AKD: the manufacturer-specific field of its EMCY (seed 000,
-//! "Composition of the Emergency Object"; SPEC §2.4).
+//! "Composition of the Emergency Object"; docs/canopen.md#akd).
 //!
 //! The AKD fills bytes 3–7 of every EMCY (the 5-byte manufacturer field,
 //! [`Emcy::manufacturer`]) like this:
@@ -11,7 +11,7 @@
 //! | 4–7 | 1–4 | — | reserved, kept as sent |
 //!
 //! A reset EMCY (code 0x0000) still carries the axis id and feedback id,
-//! with the register of the errors that remain (SPEC §2.4).
+//! with the register of the errors that remain (docs/canopen.md#akd).
 //!
 //! [`AkdManufacturerField`] is a zero-copy view over the 5 bytes that never
 //! fails to read them, not even a feedback nibble of 6..=15;
@@ -68,7 +68,7 @@ mod field {
 }
 
 /// The length of the AKD's manufacturer field, 5 bytes (EMCY bytes 3–7;
-/// seed 000; SPEC §2.4).
+/// seed 000; docs/canopen.md#akd).
 pub const AKD_MANUFACTURER_LEN: usize = field::RESERVED.end;
 
 const WHAT: What = What::AkdManufacturerField;
@@ -76,7 +76,7 @@ const AXIS_WHAT: What = What::AkdAxisId;
 const FEEDBACK_WHAT: What = What::AkdFeedbackId;
 
 /// The axis an AKD EMCY reports, bits 0–3 of EMCY byte 3: 1 = axis 1,
-/// 0 = not given (seed 000; SPEC §2.4).
+/// 0 = not given (seed 000; docs/canopen.md#akd).
 ///
 /// ```
 /// use motionwire::profiles::akd::AxisId;
@@ -178,7 +178,7 @@ impl fmt::Display for AxisId {
 }
 
 /// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3
-/// (seed 000; SPEC §2.4): 0 = none (not a feedback fault), 1..=5 =
+/// (seed 000; docs/canopen.md#akd): 0 = none (not a feedback fault), 1..=5 =
 /// FB1..FB5. The values 6..=15 are not defined: building one with
 /// [`FeedbackId::try_new`] is an [`Error::InvalidValue`] that names the
 /// nibble, while decoding a received EMCY keeps it as
@@ -220,8 +220,8 @@ pub enum FeedbackId {
 }
 
 /// A feedback nibble seed 000 does not define, 6..=15, kept as received
-/// ([`FeedbackId::Unknown`]; SPEC §2.4). Only the crate makes one, so it
-/// never holds a defined value.
+/// ([`FeedbackId::Unknown`]; docs/canopen.md#akd). Only the crate makes one, so
+/// it never holds a defined value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -343,7 +343,7 @@ impl FeedbackId {
     }
 
     /// Return the feedback's number, 1..=5, or `None` when the EMCY is not
-    /// a feedback fault or names an undefined feedback (SPEC §6.1,
+    /// a feedback fault or names an undefined feedback (docs/output.md#emcy,
     /// `feedback`: integer or null).
     #[inline]
     #[must_use]
@@ -383,7 +383,7 @@ impl fmt::Display for FeedbackId {
 }
 
 /// A zero-copy view over the AKD's 5-byte manufacturer field (EMCY bytes
-/// 3–7; SPEC §2.4).
+/// 3–7; docs/canopen.md#akd).
 ///
 /// Reading never fails once the length is checked: the raw feedback nibble
 /// is readable with [`AkdManufacturerField::feedback_nibble`] even when it
@@ -481,7 +481,8 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> AkdManufacturerField<T> {
     }
 }
 
-/// The AKD's manufacturer field, owned and typed (EMCY bytes 3–7; SPEC §2.4).
+/// The AKD's manufacturer field, owned and typed (EMCY bytes 3–7;
+/// docs/canopen.md#akd).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -551,7 +552,7 @@ impl AkdManufacturer {
 }
 
 /// An EMCY from a Kollmorgen AKD: the generic code and register with a typed
-/// manufacturer field (seed 000; SPEC §2.1, §2.4).
+/// manufacturer field (seed 000; docs/canopen.md#emcy, docs/canopen.md#akd).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -585,7 +586,8 @@ impl AkdEmcy {
 
     /// Return the reset EMCY an AKD sends when errors are reset: code
     /// 0x0000, the `remaining` register (empty once the last error is
-    /// reset), and still the `axis` and `feedback` id in byte 3 (SPEC §2.4).
+    /// reset), and still the `axis` and `feedback` id in byte 3
+    /// (docs/canopen.md#akd).
     #[inline]
     #[must_use]
     pub const fn reset(remaining: ErrorRegister, axis: AxisId, feedback: FeedbackId) -> Self {
@@ -593,7 +595,7 @@ impl AkdEmcy {
     }
 
     /// Return whether this EMCY reports "error reset or no error" (any
-    /// 0x00xx code, SPEC §2.3).
+    /// 0x00xx code, docs/canopen.md#emcy-codes).
     #[inline]
     #[must_use]
     pub const fn is_reset(&self) -> bool {

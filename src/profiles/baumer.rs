@@ -1,25 +1,27 @@
 //! Baumer EAM580 absolute encoder: its EMCY manufacturer field and its
-//! diagnostic sources (SPEC §4; Baumer EAM580 CANopen manual §8 "Emergency
-//! message" and §9.5 "Encoder diagnostic sources", `seeds/003_*.txt`).
+//! diagnostic sources (docs/canopen.md#baumer; Baumer EAM580 CANopen manual §8
+//! "Emergency message" and §9.5 "Encoder diagnostic sources",
+//! `seeds/003_*.txt`).
 //!
 //! The encoder sends the alarms object 6503h in bytes 3–4 and the warnings
 //! object 6505h in bytes 5–6 of every EMCY; byte 7 is not used
 //! ([`BaumerManufacturer`], [`BaumerEmcy`]). Each condition the encoder
-//! reports is a row of SPEC §4's table, kept here as the typed const table
+//! reports is a row of the diagnostic-source table (Baumer EAM580 manual §9.5;
+//! docs/canopen.md#baumer), kept here as the typed const table
 //! [`DIAGNOSTIC_SOURCES`] with look-ups by EMCY code ([`sources_for_code`]),
 //! by error injection code ([`source_for_injection`]), by name
 //! ([`source_by_name`]) and by a received EMCY ([`matching_sources`], which
 //! uses the alarm and warning bits to tell apart rows sharing a code).
 //!
 //! The manual remarks that whenever any diagnostic source appears, the
-//! absolute position may be incorrect (SPEC §4).
+//! absolute position may be incorrect (docs/canopen.md#baumer).
 //!
 //! ```
 //! use motionwire::canopen::{ErrorCode, ErrorRegister};
 //! use motionwire::profiles::baumer::{self, Alarms, BaumerEmcy, Warnings};
 //!
 //! // Battery empty, seen at startup: code 0xFF01, error register bit 0,
-//! // alarms 6503h bits 0 and 15 (SPEC §4).
+//! // alarms 6503h bits 0 and 15 (docs/canopen.md#baumer).
 //! let data = [0x01, 0xFF, 0x01, 0x01, 0x80, 0x00, 0x00, 0x00];
 //! let emcy = BaumerEmcy::parse(&data)?;
 //! assert_eq!(emcy.code, ErrorCode::new(0xFF01));
@@ -48,8 +50,8 @@ use crate::{Error, Result};
 
 bitflags! {
     /// The alarms object 6503h (u16), sent in bytes 3–4 of the encoder's
-    /// EMCY; only the bits SPEC §4's table uses are named (SPEC §4; CiA 406;
-    /// Baumer EAM580 manual §8, §9.5).
+    /// EMCY; only the bits the diagnostic-source table uses are named
+    /// (docs/canopen.md#baumer; CiA 406; Baumer EAM580 manual §8, §9.5).
     ///
     /// Decode a word that the encoder sent with [`Alarms::from_bits_retain`]
     /// so that unnamed bits survive a round trip.
@@ -65,32 +67,32 @@ bitflags! {
     )]
     pub struct Alarms: u16 {
         /// Bit 0: position error (CiA 406); set with every alarm the encoder
-        /// raises at startup (SPEC §4).
+        /// raises at startup (docs/canopen.md#baumer).
         const POSITION_ERROR = 1 << 0;
         /// Bit 1: problem with the non-volatile memory, seen at startup
-        /// (SPEC §4, non-volatile data manager; CiA 406 calls this bit
-        /// "commissioning diagnostic").
+        /// (docs/canopen.md#baumer, non-volatile data manager; CiA 406 calls
+        /// this bit "commissioning diagnostic").
         const NON_VOLATILE_MEMORY = 1 << 1;
         /// Bit 12: the encoder's data are not valid; set at startup by the
-        /// multiturn communication monitor (SPEC §4; Baumer's object list
-        /// calls it "data valid encoder").
+        /// multiturn communication monitor (docs/canopen.md#baumer; Baumer's
+        /// object list calls it "data valid encoder").
         const ENCODER_DATA_INVALID = 1 << 12;
-        /// Bit 15: battery empty, seen at startup (SPEC §4: battery
-        /// monitoring error, multiturn power-on reset).
+        /// Bit 15: battery empty, seen at startup (docs/canopen.md#baumer:
+        /// battery monitoring error, multiturn power-on reset).
         const BATTERY_EMPTY = 1 << 15;
     }
 }
 
 impl Alarms {
-    /// The object index of the alarms, 6503h (CiA 406; SPEC §4); its name is
-    /// the encoder row of [`crate::canopen::OBJECT_NAMES`].
+    /// The object index of the alarms, 6503h (CiA 406; docs/canopen.md#baumer);
+    /// its name is the encoder row of [`crate::canopen::OBJECT_NAMES`].
     pub const OBJECT_INDEX: u16 = 0x6503;
 }
 
 bitflags! {
     /// The warnings object 6505h (u16), sent in bytes 5–6 of the encoder's
-    /// EMCY; only the bits SPEC §4's table uses are named (SPEC §4; CiA 406;
-    /// Baumer EAM580 manual §8, §9.5).
+    /// EMCY; only the bits the diagnostic-source table uses are named
+    /// (docs/canopen.md#baumer; CiA 406; Baumer EAM580 manual §8, §9.5).
     ///
     /// Decode a word that the encoder sent with [`Warnings::from_bits_retain`]
     /// so that unnamed bits survive a round trip.
@@ -106,55 +108,57 @@ bitflags! {
     )]
     pub struct Warnings: u16 {
         /// Bit 0: frequency exceeded, the maximum rotation speed was exceeded
-        /// (CiA 406; SPEC §4, speed monitoring).
+        /// (CiA 406; docs/canopen.md#baumer, speed monitoring).
         const FREQUENCY_EXCEEDED = 1 << 0;
-        /// Bit 2: software reset by the CPU watchdog (CiA 406; SPEC §4, reset
-        /// reason watchdog).
+        /// Bit 2: software reset by the CPU watchdog (CiA 406;
+        /// docs/canopen.md#baumer, reset reason watchdog).
         const CPU_WATCHDOG = 1 << 2;
         /// Bit 3: problem with the non-volatile memory, seen at runtime
-        /// (SPEC §4, non-volatile data manager; CiA 406 and Baumer's object
-        /// list call this bit "operating time limit").
+        /// (docs/canopen.md#baumer, non-volatile data manager; CiA 406 and
+        /// Baumer's object list call this bit "operating time limit").
         const NON_VOLATILE_MEMORY = 1 << 3;
         /// Bit 4: battery of the multiturn system low (CiA 406 "battery
-        /// charge"; SPEC §4, battery monitoring warning).
+        /// charge"; docs/canopen.md#baumer, battery monitoring warning).
         const BATTERY_LOW = 1 << 4;
         /// Bit 12: mounting error, the multiturn magnetic field is weak,
-        /// disturbed or in the wrong sequence (SPEC §4).
+        /// disturbed or in the wrong sequence (docs/canopen.md#baumer).
         const MOUNTING_ERROR = 1 << 12;
         /// Bit 13: multiturn system fault at runtime: battery empty, internal
-        /// communication error or power-on reset (SPEC §4).
+        /// communication error or power-on reset (docs/canopen.md#baumer).
         const MULTITURN_SYSTEM = 1 << 13;
         /// Bit 14: singleturn system fault, sensor amplitude out of range
-        /// (SPEC §4, singleturn magnetic field strength).
+        /// (docs/canopen.md#baumer, singleturn magnetic field strength).
         const SINGLETURN_SYSTEM = 1 << 14;
         /// Bit 15: multiturn supervision, singleturn and multiturn sensors
-        /// out of sync (SPEC §4).
+        /// out of sync (docs/canopen.md#baumer).
         const MULTITURN_SUPERVISION = 1 << 15;
     }
 }
 
 impl Warnings {
-    /// The object index of the warnings, 6505h (CiA 406; SPEC §4); its name
-    /// is the encoder row of [`crate::canopen::OBJECT_NAMES`].
+    /// The object index of the warnings, 6505h (CiA 406;
+    /// docs/canopen.md#baumer); its name is the encoder row of
+    /// [`crate::canopen::OBJECT_NAMES`].
     pub const OBJECT_INDEX: u16 = 0x6505;
 }
 
 /// The bits of the error register 1001h that this encoder uses: bit 0
-/// generic, bit 3 temperature, bit 4 communication (SPEC §4).
+/// generic, bit 3 temperature, bit 4 communication (docs/canopen.md#baumer).
 pub const ERROR_REGISTER_BITS: ErrorRegister = ErrorRegister::GENERIC
     .union(ErrorRegister::TEMPERATURE)
     .union(ErrorRegister::COMMUNICATION);
 
 /// The number of entries of the encoder's error history, object 1003h
-/// (SPEC §4).
+/// (docs/canopen.md#baumer).
 pub const ERROR_HISTORY_LEN: usize = 8;
 
 /// The object an error injection code is written to, 2116h, to simulate a
-/// diagnostic source (SPEC §4); named in [`crate::canopen::OBJECT_NAMES`].
+/// diagnostic source (docs/canopen.md#baumer); named in
+/// [`crate::canopen::OBJECT_NAMES`].
 pub const INJECTION_OBJECT_INDEX: u16 = 0x2116;
 
 /// Return whether `code` is one of the encoder's manufacturer-reserved error
-/// codes, 0xFF0A..=0xFF16 or 0xFF18..=0xFFFF (SPEC §4).
+/// codes, 0xFF0A..=0xFF16 or 0xFF18..=0xFFFF (docs/canopen.md#baumer).
 ///
 /// ```
 /// use motionwire::canopen::ErrorCode;
@@ -172,7 +176,7 @@ mod field {
     use core::ops::Range;
 
     // Offsets inside the EMCY's manufacturer field, which starts at EMCY
-    // byte 3 (SPEC §2.1, §4).
+    // byte 3 (docs/canopen.md#emcy, docs/canopen.md#baumer).
 
     /// EMCY bytes 3–4: alarms, object 6503h, u16.
     pub(super) const ALARMS: Range<usize> = 0..2;
@@ -183,11 +187,11 @@ mod field {
 }
 
 /// The length of the encoder's manufacturer field, 5 bytes (EMCY bytes 3–7;
-/// SPEC §2.1, §4).
+/// docs/canopen.md#emcy, docs/canopen.md#baumer).
 pub const MANUFACTURER_LEN: usize = field::UNUSED + 1;
 
-/// The EAM580's manufacturer-specific EMCY field, bytes 3–7 (SPEC §4;
-/// Baumer EAM580 manual §8 "Emergency message").
+/// The EAM580's manufacturer-specific EMCY field, bytes 3–7
+/// (docs/canopen.md#baumer; Baumer EAM580 manual §8 "Emergency message").
 ///
 /// ```
 /// use motionwire::profiles::baumer::{Alarms, BaumerManufacturer, Warnings};
@@ -247,7 +251,8 @@ impl BaumerManufacturer {
     }
 }
 
-/// An EMCY from the EAM580, its manufacturer field decoded (SPEC §2.1, §4).
+/// An EMCY from the EAM580, its manufacturer field decoded
+/// (docs/canopen.md#emcy, docs/canopen.md#baumer).
 ///
 /// Every 8-byte EMCY decodes, and encoding gives the same bytes back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -312,7 +317,7 @@ impl BaumerEmcy {
     }
 
     /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is an
-    /// [`Error::Length`] (SPEC §2.1).
+    /// [`Error::Length`] (docs/canopen.md#emcy).
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
         Ok(Self::from_emcy(&Emcy::parse(data)?))
@@ -338,7 +343,8 @@ impl From<BaumerEmcy> for Emcy {
     }
 }
 
-/// When a diagnostic source is signalled (SPEC §4, column "appearance").
+/// When a diagnostic source is signalled (docs/canopen.md#baumer: when it
+/// appears).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -360,7 +366,7 @@ impl Appearance {
     }
 }
 
-/// Which encoder design a diagnostic source exists on (SPEC §4).
+/// Which encoder design a diagnostic source exists on (docs/canopen.md#baumer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -386,8 +392,8 @@ impl Variant {
     }
 }
 
-/// When the signalling of a diagnostic source is reset (SPEC §4, column
-/// "reset").
+/// When the signalling of a diagnostic source is reset (docs/canopen.md#baumer:
+/// how it is reset).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -397,7 +403,7 @@ pub enum ResetBehaviour {
     /// Reset only by a reboot.
     AtReboot,
     /// Reset by a reboot, except on the redundant encoder, where it is never
-    /// reset (SPEC §4, rows marked "(1)").
+    /// reset (the rows marked "(1)" in Baumer EAM580 manual §9.5).
     AtRebootExceptRedundant,
     /// Never reset.
     NoReset,
@@ -408,7 +414,7 @@ impl ResetBehaviour {
     /// encoder [`ResetBehaviour::AtRebootExceptRedundant`] becomes
     /// [`ResetBehaviour::NoReset`], on the non-redundant one
     /// [`ResetBehaviour::AtReboot`]; with [`Variant::Both`] it stays as it is
-    /// (SPEC §4, "(1)").
+    /// (Baumer EAM580 manual §9.5, "(1)").
     #[must_use]
     pub const fn on(self, variant: Variant) -> ResetBehaviour {
         match (self, variant) {
@@ -423,7 +429,8 @@ impl ResetBehaviour {
     }
 }
 
-/// What an error injection code simulates, told by its high word (SPEC §4).
+/// What an error injection code simulates, told by its high word
+/// (docs/canopen.md#baumer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -469,7 +476,7 @@ impl InjectionKind {
 }
 
 /// An error injection code, written to object 2116h to simulate a
-/// diagnostic source (SPEC §4; Baumer EAM580 manual §9.5).
+/// diagnostic source (docs/canopen.md#baumer; Baumer EAM580 manual §9.5).
 ///
 /// The high word tells the [`InjectionKind`]; the low word numbers the
 /// source. 0x0000_0000 ([`InjectionCode::NO_ERROR`]) belongs to "error
@@ -497,7 +504,8 @@ impl InjectionKind {
 pub struct InjectionCode(u32);
 
 impl InjectionCode {
-    /// 0x0000_0000, the code of "error reset or no error" (SPEC §4).
+    /// 0x0000_0000, the code of "error reset or no error"
+    /// (docs/canopen.md#baumer).
     pub const NO_ERROR: InjectionCode = InjectionCode(0);
 
     /// Return the code of kind `kind` with low word `number`.
@@ -567,7 +575,8 @@ impl fmt::Display for InjectionCode {
 }
 
 /// Where a diagnostic source becomes visible: error register 1001h bits,
-/// alarms 6503h bits and warnings 6505h bits (SPEC §4, column "signalling").
+/// alarms 6503h bits and warnings 6505h bits (docs/canopen.md#baumer: how it
+/// is signalled).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Signalling {
@@ -603,8 +612,8 @@ impl Signalling {
     }
 }
 
-/// One row of the encoder's diagnostic-source table (SPEC §4; Baumer EAM580
-/// manual §9.5).
+/// One row of the encoder's diagnostic-source table (docs/canopen.md#baumer;
+/// Baumer EAM580 manual §9.5).
 ///
 /// The rows are the entries of [`DIAGNOSTIC_SOURCES`]; a source that
 /// appears both at startup and at runtime, or on both encoder designs with
@@ -626,7 +635,7 @@ pub struct DiagnosticSource {
 impl DiagnosticSource {
     /// Return the row's stable, unique snake_case name, e.g.
     /// `"non_volatile_data_manager_startup"`: the string the command-line
-    /// decoder writes in `sources` (SPEC §6.1).
+    /// decoder writes in `sources` (docs/output.md#json).
     #[inline]
     #[must_use]
     pub const fn name(&self) -> &'static str {
@@ -706,7 +715,8 @@ impl DiagnosticSource {
 
     /// Return the EMCY the encoder sends when this is its only active
     /// source: the row's code, its error register bits and its alarm and
-    /// warning bits (SPEC §4); `None` when no EMCY is sent (bus off).
+    /// warning bits (docs/canopen.md#baumer); `None` when no EMCY is sent (bus
+    /// off).
     #[must_use]
     pub const fn emcy(&self) -> Option<BaumerEmcy> {
         match self.code {
@@ -728,7 +738,7 @@ impl fmt::Display for DiagnosticSource {
 }
 
 /// Return the rows whose EMCY error code is `code`, in table order; empty
-/// for a code the encoder does not send (SPEC §4).
+/// for a code the encoder does not send (docs/canopen.md#baumer).
 ///
 /// ```
 /// use motionwire::canopen::ErrorCode;
@@ -746,7 +756,7 @@ pub fn sources_for_code(
 }
 
 /// Return the row simulated by injection code `code`; at most one row has
-/// each code (SPEC §4).
+/// each code (docs/canopen.md#baumer).
 #[must_use]
 pub fn source_for_injection(code: InjectionCode) -> Option<&'static DiagnosticSource> {
     DIAGNOSTIC_SOURCES
@@ -761,11 +771,13 @@ pub fn source_by_name(name: &str) -> Option<&'static DiagnosticSource> {
 }
 
 /// Return the rows a received EMCY reports, using its alarm and warning bits
-/// to tell apart rows that share a code (SPEC §4, §6.1 `sources`).
+/// to tell apart rows that share a code (docs/canopen.md#baumer; `sources` in
+/// docs/output.md#emcy).
 ///
 /// The rule:
 /// 1. Take the rows whose code is the EMCY's code; any 0x00xx code counts as
-///    0x0000, "error reset or no error" (SPEC §2.3, **Decision**).
+///    0x0000, "error reset or no error" (the **Decision** in
+///    docs/canopen.md#emcy-codes).
 /// 2. Of these, keep the rows that signal at least one 6503h/6505h bit and
 ///    whose signalled alarm bits are all set in bytes 3–4 and warning bits
 ///    all set in bytes 5–6 (other bits may be set too: the objects hold
@@ -817,13 +829,13 @@ const fn inject(kind: InjectionKind, number: u16) -> Option<InjectionCode> {
     Some(InjectionCode::new(kind, number))
 }
 
-/// The number of rows of SPEC §4's table.
+/// The number of rows of the diagnostic-source table.
 pub const DIAGNOSTIC_SOURCE_COUNT: usize = 27;
 
-/// Every diagnostic source of the EAM580, one entry per row of SPEC §4's
-/// table, in its order (Baumer EAM580 manual §9.5).
+/// Every diagnostic source of the EAM580, one entry per row of the
+/// diagnostic-source table, in its order (Baumer EAM580 manual §9.5).
 pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
-    // SPEC §4 row 1; manual §9.5 "Error reset or no error".
+    // Row 1; manual §9.5 "Error reset or no error".
     DiagnosticSource {
         name: "error_reset_or_no_error",
         source: "Error reset or no error",
@@ -835,7 +847,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: Some(InjectionCode::NO_ERROR),
         variant: Variant::Both,
     },
-    // SPEC §4 row 2; manual §9.5 "Temperature Monitoring".
+    // Row 2; manual §9.5 "Temperature Monitoring".
     DiagnosticSource {
         name: "temperature_monitoring",
         source: "Temperature monitoring",
@@ -851,7 +863,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0020),
         variant: Variant::Both,
     },
-    // SPEC §4 row 3; manual §9.5 "Non-Volatile Data Manager", at startup.
+    // Row 3; manual §9.5 "Non-Volatile Data Manager", at
+    // startup.
     DiagnosticSource {
         name: "non_volatile_data_manager_startup",
         source: "Non-volatile data manager",
@@ -867,7 +880,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0024),
         variant: Variant::Both,
     },
-    // SPEC §4 row 4; manual §9.5 "Non-Volatile Data Manager", at runtime.
+    // Row 4; manual §9.5 "Non-Volatile Data Manager", at
+    // runtime.
     DiagnosticSource {
         name: "non_volatile_data_manager_runtime",
         source: "Non-volatile data manager",
@@ -883,7 +897,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0024),
         variant: Variant::Both,
     },
-    // SPEC §4 row 5; manual §9.5 "Reset Reason Watchdog".
+    // Row 5; manual §9.5 "Reset Reason Watchdog".
     DiagnosticSource {
         name: "reset_reason_watchdog",
         source: "Reset reason watchdog",
@@ -899,7 +913,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0025),
         variant: Variant::Both,
     },
-    // SPEC §4 row 6; manual §9.5 "CAN-Controller Bus Warning".
+    // Row 6; manual §9.5 "CAN-Controller Bus Warning".
     DiagnosticSource {
         name: "can_controller_bus_warning",
         source: "CAN controller bus warning",
@@ -915,7 +929,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // SPEC §4 row 7; manual §9.5 "CAN-Controller RX Buffer Overflow".
+    // Row 7; manual §9.5 "CAN-Controller RX Buffer Overflow".
     DiagnosticSource {
         name: "can_controller_rx_buffer_overflow",
         source: "CAN controller RX buffer overflow",
@@ -927,7 +941,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // SPEC §4 row 8; manual §9.5 "CAN-Controller Bus Passive".
+    // Row 8; manual §9.5 "CAN-Controller Bus Passive".
     DiagnosticSource {
         name: "can_controller_bus_passive",
         source: "CAN controller bus passive",
@@ -943,7 +957,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // SPEC §4 row 9; manual §9.5 "CAN-Controller Bus Off": no EMCY is sent.
+    // Row 9; manual §9.5 "CAN-Controller Bus Off": no EMCY is sent.
     DiagnosticSource {
         name: "can_controller_bus_off",
         source: "CAN controller bus off",
@@ -959,7 +973,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // SPEC §4 row 10; manual §9.5 "Lifeguard or Heartbeat".
+    // Row 10; manual §9.5 "Lifeguard or Heartbeat".
     DiagnosticSource {
         name: "lifeguard_or_heartbeat",
         source: "Lifeguard or heartbeat",
@@ -971,7 +985,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: None,
         variant: Variant::Both,
     },
-    // SPEC §4 row 11; manual §9.5 "Battery Monitoring Warning
+    // Row 11; manual §9.5 "Battery Monitoring Warning
     // (non-redundant encoder)".
     DiagnosticSource {
         name: "battery_monitoring_warning_non_redundant",
@@ -988,8 +1002,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0005),
         variant: Variant::NonRedundant,
     },
-    // SPEC §4 row 12; manual §9.5 "Battery Monitoring Warning (redundant
-    // encoder)".
+    // Row 12; manual §9.5 "Battery Monitoring Warning
+    // (redundant encoder)".
     DiagnosticSource {
         name: "battery_monitoring_warning_redundant",
         source: "Battery monitoring warning",
@@ -1005,8 +1019,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupWarning, 0x001C),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 13; manual §9.5 "Battery Monitoring Error (Battery
-    // Empty)", at startup; reset "(1)".
+    // Row 13; manual §9.5 "Battery Monitoring Error (Battery Empty)", at
+    // startup; reset "(1)".
     DiagnosticSource {
         name: "battery_monitoring_error_startup",
         source: "Battery monitoring error (battery empty)",
@@ -1023,8 +1037,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0004),
         variant: Variant::Both,
     },
-    // SPEC §4 row 14; manual §9.5 "Battery Monitoring Error (Battery
-    // Empty)", at runtime; reset "(1)".
+    // Row 14; manual §9.5 "Battery Monitoring Error (Battery Empty)", at
+    // runtime; reset "(1)".
     DiagnosticSource {
         name: "battery_monitoring_error_runtime",
         source: "Battery monitoring error (battery empty)",
@@ -1041,8 +1055,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0004),
         variant: Variant::Both,
     },
-    // SPEC §4 row 15; manual §9.5 "Multiturn Magnetic Field sequence
-    // (non-redundant encoder)", at startup.
+    // Row 15; manual §9.5 "Multiturn Magnetic Field sequence (non-redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_non_redundant_startup",
         source: "Multiturn magnetic field sequence",
@@ -1058,8 +1072,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupWarning, 0x0003),
         variant: Variant::NonRedundant,
     },
-    // SPEC §4 row 16; manual §9.5 "Multiturn Magnetic Field sequence
-    // (non-redundant encoder)", at runtime.
+    // Row 16; manual §9.5 "Multiturn Magnetic Field sequence (non-redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_non_redundant_runtime",
         source: "Multiturn magnetic field sequence",
@@ -1075,8 +1089,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0003),
         variant: Variant::NonRedundant,
     },
-    // SPEC §4 row 17; manual §9.5 "Multiturn Magnetic Field sequence
-    // (redundant encoder)", at startup.
+    // Row 17; manual §9.5 "Multiturn Magnetic Field sequence (redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_redundant_startup",
         source: "Multiturn magnetic field sequence",
@@ -1092,8 +1106,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x001A),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 18; manual §9.5 "Multiturn Magnetic Field sequence
-    // (redundant encoder)", at runtime.
+    // Row 18; manual §9.5 "Multiturn Magnetic Field sequence (redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_sequence_redundant_runtime",
         source: "Multiturn magnetic field sequence",
@@ -1109,8 +1123,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x001A),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 19; manual §9.5 "Multiturn Magnetic Field strength
-    // (redundant encoder)", at startup.
+    // Row 19; manual §9.5 "Multiturn Magnetic Field strength (redundant
+    // encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_magnetic_field_strength_redundant_startup",
         source: "Multiturn magnetic field strength",
@@ -1126,8 +1140,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x001B),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 20; manual §9.5 "Multiturn Magnetic Field strength
-    // (redundant encoder)", at runtime.
+    // Row 20; manual §9.5 "Multiturn Magnetic Field strength (redundant
+    // encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_magnetic_field_strength_redundant_runtime",
         source: "Multiturn magnetic field strength",
@@ -1143,8 +1157,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x001B),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 21; manual §9.5 "Multiturn Communication Monitor", at
-    // startup.
+    // Row 21; manual §9.5 "Multiturn Communication Monitor", at startup.
     DiagnosticSource {
         name: "multiturn_communication_monitor_startup",
         source: "Multiturn communication monitor",
@@ -1160,8 +1173,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0009),
         variant: Variant::Both,
     },
-    // SPEC §4 row 22; manual §9.5 "Multiturn Communication Monitor", at
-    // runtime.
+    // Row 22; manual §9.5 "Multiturn Communication Monitor", at runtime.
     DiagnosticSource {
         name: "multiturn_communication_monitor_runtime",
         source: "Multiturn communication monitor",
@@ -1177,7 +1189,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0009),
         variant: Variant::Both,
     },
-    // SPEC §4 row 23; manual §9.5 "Speed Monitoring".
+    // Row 23; manual §9.5 "Speed Monitoring".
     DiagnosticSource {
         name: "speed_monitoring",
         source: "Speed monitoring",
@@ -1193,7 +1205,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0021),
         variant: Variant::Both,
     },
-    // SPEC §4 row 24; manual §9.5 "Singleturn Magnetic Field strength".
+    // Row 24; manual §9.5 "Singleturn Magnetic Field
+    // strength".
     DiagnosticSource {
         name: "singleturn_magnetic_field_strength",
         source: "Singleturn magnetic field strength",
@@ -1209,7 +1222,7 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0022),
         variant: Variant::Both,
     },
-    // SPEC §4 row 25; manual §9.5 "Singleturn/Multiturn Supervision".
+    // Row 25; manual §9.5 "Singleturn/Multiturn Supervision".
     DiagnosticSource {
         name: "singleturn_multiturn_supervision",
         source: "Singleturn/multiturn supervision",
@@ -1225,8 +1238,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::Runtime, 0x0023),
         variant: Variant::Both,
     },
-    // SPEC §4 row 26; manual §9.5 "Multiturn Power On Reset (redundant
-    // encoder)", at startup.
+    // Row 26; manual §9.5 "Multiturn Power On Reset
+    // (redundant encoder)", at startup.
     DiagnosticSource {
         name: "multiturn_power_on_reset_redundant_startup",
         source: "Multiturn power-on reset",
@@ -1242,8 +1255,8 @@ pub static DIAGNOSTIC_SOURCES: [DiagnosticSource; DIAGNOSTIC_SOURCE_COUNT] = [
         injection: inject(InjectionKind::StartupAlarm, 0x0014),
         variant: Variant::Redundant,
     },
-    // SPEC §4 row 27; manual §9.5 "Multiturn Power On Reset (redundant
-    // encoder)", at runtime.
+    // Row 27; manual §9.5 "Multiturn Power On Reset
+    // (redundant encoder)", at runtime.
     DiagnosticSource {
         name: "multiturn_power_on_reset_redundant_runtime",
         source: "Multiturn power-on reset",
@@ -1275,13 +1288,12 @@ mod tests {
     const AT_REBOOT_1: Option<ResetBehaviour> = Some(ResetBehaviour::AtRebootExceptRedundant);
     const NO_RESET: Option<ResetBehaviour> = Some(ResetBehaviour::NoReset);
 
-    /// One row of SPEC §4's table, written out as the SPEC writes it:
-    /// signalling as lists of bit numbers.
-    struct SpecRow {
+    /// One row of the diagnostic-source table (Baumer EAM580 manual §9.5),
+    /// written out by hand: signalling as lists of bit numbers.
+    struct ManualRow {
         name: &'static str,
         source: &'static str,
-        /// A phrase of SPEC §4's (or, where SPEC has none, the manual's)
-        /// description that the row's description contains.
+        /// A phrase that the row's description contains.
         says: &'static str,
         code: Option<u16>,
         appearance: Appearance,
@@ -1294,34 +1306,34 @@ mod tests {
     }
 
     #[rustfmt::skip]
-    const SPEC_TABLE: [SpecRow; 27] = [
-        SpecRow { name: "error_reset_or_no_error", source: "error reset or no error", says: "no error", code: Some(0x0000), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: None, injection: Some(0x0000_0000), variant: BOTH },
-        SpecRow { name: "temperature_monitoring", source: "temperature monitoring", says: "temperature out of range", code: Some(0x4200), appearance: RUNTIME, register_bits: &[0, 3], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: Some(0x0008_0020), variant: BOTH },
-        SpecRow { name: "non_volatile_data_manager_startup", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 1], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0024), variant: BOTH },
-        SpecRow { name: "non_volatile_data_manager_runtime", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[3], reset: AT_REBOOT, injection: Some(0x0008_0024), variant: BOTH },
-        SpecRow { name: "reset_reason_watchdog", source: "reset reason watchdog", says: "watchdog timer issue", code: Some(0x6100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[2], reset: AT_REBOOT, injection: Some(0x0008_0025), variant: BOTH },
-        SpecRow { name: "can_controller_bus_warning", source: "can controller bus warning", says: "bus warning", code: Some(0x8100), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
-        SpecRow { name: "can_controller_rx_buffer_overflow", source: "can controller rx buffer overflow", says: "receive buffer overflow", code: Some(0x8110), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
-        SpecRow { name: "can_controller_bus_passive", source: "can controller bus passive", says: "error passive mode", code: Some(0x8120), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
-        SpecRow { name: "can_controller_bus_off", source: "can controller bus off", says: "bus-off mode", code: None, appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
-        SpecRow { name: "lifeguard_or_heartbeat", source: "lifeguard or heartbeat", says: "life guard error or heartbeat error", code: Some(0x8130), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
-        SpecRow { name: "battery_monitoring_warning_non_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_RUNTIME, injection: Some(0x0008_0005), variant: NON_REDUNDANT },
-        SpecRow { name: "battery_monitoring_warning_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_REBOOT, injection: Some(0x0004_001C), variant: REDUNDANT },
-        SpecRow { name: "battery_monitoring_error_startup", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: AT_REBOOT_1, injection: Some(0x0001_0004), variant: BOTH },
-        SpecRow { name: "battery_monitoring_error_runtime", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT_1, injection: Some(0x0008_0004), variant: BOTH },
-        SpecRow { name: "multiturn_magnetic_field_sequence_non_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0004_0003), variant: NON_REDUNDANT },
-        SpecRow { name: "multiturn_magnetic_field_sequence_non_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0008_0003), variant: NON_REDUNDANT },
-        SpecRow { name: "multiturn_magnetic_field_sequence_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001A), variant: REDUNDANT },
-        SpecRow { name: "multiturn_magnetic_field_sequence_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001A), variant: REDUNDANT },
-        SpecRow { name: "multiturn_magnetic_field_strength_redundant_startup", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001B), variant: REDUNDANT },
-        SpecRow { name: "multiturn_magnetic_field_strength_redundant_runtime", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001B), variant: REDUNDANT },
-        SpecRow { name: "multiturn_communication_monitor_startup", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 12], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0009), variant: BOTH },
-        SpecRow { name: "multiturn_communication_monitor_runtime", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT, injection: Some(0x0008_0009), variant: BOTH },
-        SpecRow { name: "speed_monitoring", source: "speed monitoring", says: "maximum rotation speed exceeded", code: Some(0xFF05), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[0], reset: AT_REBOOT, injection: Some(0x0008_0021), variant: BOTH },
-        SpecRow { name: "singleturn_magnetic_field_strength", source: "singleturn magnetic field strength", says: "amplitude out of range", code: Some(0xFF06), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[14], reset: AT_REBOOT, injection: Some(0x0008_0022), variant: BOTH },
-        SpecRow { name: "singleturn_multiturn_supervision", source: "singleturn/multiturn supervision", says: "out of sync", code: Some(0xFF07), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[15], reset: AT_REBOOT, injection: Some(0x0008_0023), variant: BOTH },
-        SpecRow { name: "multiturn_power_on_reset_redundant_startup", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_0014), variant: REDUNDANT },
-        SpecRow { name: "multiturn_power_on_reset_redundant_runtime", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: NO_RESET, injection: Some(0x0008_0014), variant: REDUNDANT },
+    const MANUAL_TABLE: [ManualRow; 27] = [
+        ManualRow { name: "error_reset_or_no_error", source: "error reset or no error", says: "no error", code: Some(0x0000), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: None, injection: Some(0x0000_0000), variant: BOTH },
+        ManualRow { name: "temperature_monitoring", source: "temperature monitoring", says: "temperature out of range", code: Some(0x4200), appearance: RUNTIME, register_bits: &[0, 3], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: Some(0x0008_0020), variant: BOTH },
+        ManualRow { name: "non_volatile_data_manager_startup", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 1], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0024), variant: BOTH },
+        ManualRow { name: "non_volatile_data_manager_runtime", source: "non-volatile data manager", says: "problem with the non-volatile memory", code: Some(0x5100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[3], reset: AT_REBOOT, injection: Some(0x0008_0024), variant: BOTH },
+        ManualRow { name: "reset_reason_watchdog", source: "reset reason watchdog", says: "watchdog timer issue", code: Some(0x6100), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[2], reset: AT_REBOOT, injection: Some(0x0008_0025), variant: BOTH },
+        ManualRow { name: "can_controller_bus_warning", source: "can controller bus warning", says: "bus warning", code: Some(0x8100), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        ManualRow { name: "can_controller_rx_buffer_overflow", source: "can controller rx buffer overflow", says: "receive buffer overflow", code: Some(0x8110), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        ManualRow { name: "can_controller_bus_passive", source: "can controller bus passive", says: "error passive mode", code: Some(0x8120), appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        ManualRow { name: "can_controller_bus_off", source: "can controller bus off", says: "bus-off mode", code: None, appearance: RUNTIME, register_bits: &[4], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        ManualRow { name: "lifeguard_or_heartbeat", source: "lifeguard or heartbeat", says: "life guard error or heartbeat error", code: Some(0x8130), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[], reset: AT_RUNTIME, injection: None, variant: BOTH },
+        ManualRow { name: "battery_monitoring_warning_non_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_RUNTIME, injection: Some(0x0008_0005), variant: NON_REDUNDANT },
+        ManualRow { name: "battery_monitoring_warning_redundant", source: "battery monitoring warning", says: "replace the encoder", code: Some(0xFF00), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[4], reset: AT_REBOOT, injection: Some(0x0004_001C), variant: REDUNDANT },
+        ManualRow { name: "battery_monitoring_error_startup", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: AT_REBOOT_1, injection: Some(0x0001_0004), variant: BOTH },
+        ManualRow { name: "battery_monitoring_error_runtime", source: "battery monitoring error (battery empty)", says: "absolute position may be wrong after restart", code: Some(0xFF01), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT_1, injection: Some(0x0008_0004), variant: BOTH },
+        ManualRow { name: "multiturn_magnetic_field_sequence_non_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0004_0003), variant: NON_REDUNDANT },
+        ManualRow { name: "multiturn_magnetic_field_sequence_non_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: AT_REBOOT, injection: Some(0x0008_0003), variant: NON_REDUNDANT },
+        ManualRow { name: "multiturn_magnetic_field_sequence_redundant_startup", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001A), variant: REDUNDANT },
+        ManualRow { name: "multiturn_magnetic_field_sequence_redundant_runtime", source: "multiturn magnetic field sequence", says: "weak or disturbed field", code: Some(0xFF02), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001A), variant: REDUNDANT },
+        ManualRow { name: "multiturn_magnetic_field_strength_redundant_startup", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_001B), variant: REDUNDANT },
+        ManualRow { name: "multiturn_magnetic_field_strength_redundant_runtime", source: "multiturn magnetic field strength", says: "field too low", code: Some(0xFF03), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[12], reset: NO_RESET, injection: Some(0x0008_001B), variant: REDUNDANT },
+        ManualRow { name: "multiturn_communication_monitor_startup", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 12], warning_bits: &[], reset: AT_REBOOT, injection: Some(0x0001_0009), variant: BOTH },
+        ManualRow { name: "multiturn_communication_monitor_runtime", source: "multiturn communication monitor", says: "internal communication error", code: Some(0xFF04), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: AT_REBOOT, injection: Some(0x0008_0009), variant: BOTH },
+        ManualRow { name: "speed_monitoring", source: "speed monitoring", says: "maximum rotation speed exceeded", code: Some(0xFF05), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[0], reset: AT_REBOOT, injection: Some(0x0008_0021), variant: BOTH },
+        ManualRow { name: "singleturn_magnetic_field_strength", source: "singleturn magnetic field strength", says: "amplitude out of range", code: Some(0xFF06), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[14], reset: AT_REBOOT, injection: Some(0x0008_0022), variant: BOTH },
+        ManualRow { name: "singleturn_multiturn_supervision", source: "singleturn/multiturn supervision", says: "out of sync", code: Some(0xFF07), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[15], reset: AT_REBOOT, injection: Some(0x0008_0023), variant: BOTH },
+        ManualRow { name: "multiturn_power_on_reset_redundant_startup", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: STARTUP, register_bits: &[0], alarm_bits: &[0, 15], warning_bits: &[], reset: NO_RESET, injection: Some(0x0001_0014), variant: REDUNDANT },
+        ManualRow { name: "multiturn_power_on_reset_redundant_runtime", source: "multiturn power-on reset", says: "absolute position may be wrong", code: Some(0xFF17), appearance: RUNTIME, register_bits: &[], alarm_bits: &[], warning_bits: &[13], reset: NO_RESET, injection: Some(0x0008_0014), variant: REDUNDANT },
     ];
 
     /// The word with the listed bits set.
@@ -1334,9 +1346,9 @@ mod tests {
     }
 
     #[test]
-    fn every_row_matches_spec_table_field_by_field() {
-        assert_eq!(DIAGNOSTIC_SOURCES.len(), SPEC_TABLE.len());
-        for (row, spec) in DIAGNOSTIC_SOURCES.iter().zip(&SPEC_TABLE) {
+    fn every_row_matches_manual_table_field_by_field() {
+        assert_eq!(DIAGNOSTIC_SOURCES.len(), MANUAL_TABLE.len());
+        for (row, spec) in DIAGNOSTIC_SOURCES.iter().zip(&MANUAL_TABLE) {
             let name = spec.name;
             assert_eq!(row.name(), name);
             assert_eq!(row.source().to_lowercase(), spec.source, "{name}: source");
@@ -1375,7 +1387,7 @@ mod tests {
     }
 
     #[test]
-    fn row_count_is_spec_table_row_count() {
+    fn row_count_is_manual_table_row_count() {
         assert_eq!(DIAGNOSTIC_SOURCE_COUNT, 27);
         // The reset row and the bus-off row (no EMCY) are both present.
         assert_eq!(DIAGNOSTIC_SOURCES[0].code(), Some(ErrorCode::NO_ERROR));
@@ -1471,7 +1483,8 @@ mod tests {
         }
     }
 
-    /// SPEC §4: every EMCY code of the table and the rows it has, in order.
+    /// docs/canopen.md#baumer: every EMCY code of the table and the rows it
+    /// has, in order.
     #[rustfmt::skip]
     const ROWS_BY_CODE: &[(u16, &[&str])] = &[
         (0x0000, &["error_reset_or_no_error"]),
@@ -1607,7 +1620,8 @@ mod tests {
 
     #[test]
     fn any_reset_code_is_the_reset_row() {
-        // SPEC §2.3, Decision: any 0x00xx is "error reset or no error".
+        // The Decision in docs/canopen.md#emcy-codes: any 0x00xx is "error
+        // reset or no error".
         for code in [0x0000, 0x0001, 0x00FF] {
             assert_eq!(
                 names(matching_sources(&emcy(code, 0, 0))),
@@ -1796,8 +1810,8 @@ mod tests {
         }
     }
 
-    /// Multiturn communication monitor at startup (SPEC §4): code 0xFF04,
-    /// register bit 0, alarms bits 0 and 12, unused byte 0xA5.
+    /// Multiturn communication monitor at startup (docs/canopen.md#baumer):
+    /// code 0xFF04, register bit 0, alarms bits 0 and 12, unused byte 0xA5.
     static FRAME_BYTES: [u8; 8] = [0x04, 0xFF, 0x01, 0x01, 0x10, 0x00, 0x00, 0xA5];
 
     #[test]

@@ -1,6 +1,6 @@
 //! Device-specific layouts: how one vendor's device fills the fields that
 //! CANopen leaves to the manufacturer (STYLE.md, "device-specific profiles
-//! apart"; SPEC §2.4, §4).
+//! apart"; docs/canopen.md#profiles).
 //!
 //! The generic codecs in [`crate::canopen`] decode every device's frames;
 //! a profile gives the manufacturer-specific bytes their meaning for one
@@ -12,8 +12,9 @@ pub mod baumer;
 use crate::canopen::{NodeId, ObjectSet};
 
 /// How a node's device-specific bytes are read: the manufacturer field of
-/// its EMCYs (SPEC §6.1 `--profile`) and the profile objects that name its
-/// SDO objects and PDO signals (SPEC §7.3, §8.2).
+/// its EMCYs (`--profile` in docs/output.md#command) and the profile objects
+/// that name its SDO objects and PDO signals (docs/canopen.md#object-names,
+/// docs/canopen.md#signals).
 ///
 /// ```
 /// use motionwire::profiles::Profile;
@@ -30,10 +31,11 @@ pub enum Profile {
     #[default]
     Generic,
     /// Kollmorgen AKD, a CiA 402 drive: axis and feedback ids in the EMCY
-    /// (SPEC §2.4, [`akd`]); the node is a drive (SPEC §8.3).
+    /// (docs/canopen.md#akd, [`akd`]); the node is a drive
+    /// (docs/canopen.md#cia402).
     Akd,
     /// Baumer EAM580 encoder: alarms, warnings and diagnostic sources
-    /// (SPEC §4, [`baumer`]).
+    /// (docs/canopen.md#baumer, [`baumer`]).
     Baumer,
 }
 
@@ -59,8 +61,9 @@ impl Profile {
     }
 
     /// Return the device profile's objects that name a node's SDO objects
-    /// and PDO signals (SPEC §7.3 `object`, §8.2): CiA 402 for the AKD, the
-    /// encoder objects for the Baumer EAM580, none for `generic`.
+    /// and PDO signals (docs/canopen.md#object-names, docs/canopen.md#signals):
+    /// CiA 402 for the AKD, the encoder objects for the Baumer EAM580, none for
+    /// `generic`.
     #[must_use]
     pub const fn object_set(self) -> Option<ObjectSet> {
         match self {
@@ -70,7 +73,8 @@ impl Profile {
         }
     }
 
-    /// Return whether the profile is a CiA 402 drive's (SPEC §8.3).
+    /// Return whether the profile is a CiA 402 drive's
+    /// (docs/canopen.md#cia402).
     #[must_use]
     pub const fn is_drive(self) -> bool {
         matches!(self, Profile::Akd)
@@ -84,7 +88,7 @@ impl core::fmt::Display for Profile {
 }
 
 /// The profile of every node: one for the nodes not named, and one per
-/// node named (SPEC §6.1 `--profile 3=akd,5=baumer`).
+/// node named (`--profile 3=akd,5=baumer` in docs/output.md#command).
 ///
 /// ```
 /// use motionwire::canopen::NodeId;
@@ -157,8 +161,9 @@ impl NodeProfiles {
 /// An EMCY read with a node's profile: `Display` writes it as a person
 /// reads it — code, class, description, error register and its flags, and
 /// the manufacturer bytes as the profile reads them (raw hex for
-/// `generic`; axis and feedback for the AKD, SPEC §2.4; alarms, warnings
-/// and diagnostic sources for the Baumer EAM580, SPEC §4).
+/// `generic`; axis and feedback for the AKD, docs/canopen.md#akd; alarms,
+/// warnings and diagnostic sources for the Baumer EAM580,
+/// docs/canopen.md#baumer).
 ///
 /// ```
 /// use motionwire::canopen::{Emcy, ErrorCode, ErrorRegister};

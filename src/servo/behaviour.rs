@@ -1,6 +1,6 @@
-//! The pure behaviours of the servo ↔ NC interface (SPEC §1.6; seed 002):
-//! the ServoRDY truth table, the enable handshake on SCW.SE, and the NC side
-//! of the error-clear and zero-pulse handshakes.
+//! The pure behaviours of the servo ↔ NC interface (docs/servo.md#handshakes;
+//! seed 002): the ServoRDY truth table, the enable handshake on SCW.SE, and the
+//! NC side of the error-clear and zero-pulse handshakes.
 //!
 //! Nothing here reads a clock or does I/O; every state is `Copy`. A PLC
 //! calls the handshakes once per NC cycle with the control word it wrote
@@ -37,7 +37,7 @@ use super::{ServoControlWord, ServoEnable, ServoErrorWord, ServoStatusWord};
 use crate::{Error, Result};
 
 /// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY
-/// depends on ServoEn (SPEC §1.6; seed 002, "Servo ReaDY").
+/// depends on ServoEn (docs/servo.md#servo-ready; seed 002, "Servo ReaDY").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
@@ -84,8 +84,8 @@ impl ServoReadyMode {
 /// Return SSW.ServoRDY for Servo_Ready_Mode `mode`, the drive's status
 /// word (its SSW.ServoEn bit is e) and error word (its summary bit
 /// SEW.ServoErrors, bit 0, is x — the only error bit the seed's table
-/// reads): `!x && (m == 0 || e)` (SPEC §1.6; seed 002, ServoRDY truth
-/// table). The other bits of both words do not matter.
+/// reads): `!x && (m == 0 || e)` (docs/servo.md#servo-ready; seed 002, ServoRDY
+/// truth table). The other bits of both words do not matter.
 ///
 /// ```
 /// use motionwire::servo::{servo_ready, ServoErrorWord, ServoReadyMode, ServoStatusWord};
@@ -110,13 +110,13 @@ pub const fn servo_ready(
 }
 
 /// Return whether the drive is enabled after a cycle in which SCW.SE went
-/// from `previous` to `current`, given whether it `was_enabled` (SPEC §1.6;
-/// seed 002, "Servo Enable").
+/// from `previous` to `current`, given whether it `was_enabled`
+/// (docs/servo.md#handshakes; seed 002, "Servo Enable").
 ///
 /// The drive enables only on 0b01 → 0b10 (bit 0 falls and bit 1 rises in
-/// the same cycle). **Decision (SPEC §1.6):** it stays enabled while SE
-/// stays 0b10; every other value disables it; 0b10 not preceded by 0b01
-/// does not enable. An enabled drive whose previous SE was not 0b10 cannot
+/// the same cycle). **Decision (docs/servo.md#handshakes):** it stays enabled
+/// while SE stays 0b10; every other value disables it; 0b10 not preceded by
+/// 0b01 does not enable. An enabled drive whose previous SE was not 0b10 cannot
 /// occur; such input yields "disabled", the safe answer.
 ///
 /// ```
@@ -141,7 +141,8 @@ pub const fn enable_handshake(
     }
 }
 
-/// The phase of an NC-side handshake (SPEC §1.6, error clear and zero pulse).
+/// The phase of an NC-side handshake (docs/servo.md#handshakes, error clear and
+/// zero pulse).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum HandshakePhase {
@@ -199,9 +200,10 @@ mod sealed {
     pub trait Sealed {}
 }
 
-/// The pair of bits one handshake uses: a request bit in the control word
-/// and an ack bit in the status word (SPEC §1.3, §1.4, §1.6). Implemented by
-/// [`ErrorClear`] and [`ZeroPulse`] only.
+/// The pair of bits one handshake uses: a request bit in the control word and
+/// an ack bit in the status word (docs/servo.md#scw, docs/servo.md#ssw,
+/// docs/servo.md#handshakes). Implemented by [`ErrorClear`] and [`ZeroPulse`]
+/// only.
 pub trait HandshakeBits: sealed::Sealed + Copy {
     /// The control-word bit the NC raises to request.
     const REQUEST: ServoControlWord;
@@ -235,20 +237,21 @@ impl HandshakeBits for ZeroPulse {
 
 /// The NC side of the error-clear handshake: ErrorClear=1 → drive clears
 /// its errors and answers ErrClearAck=1 → ErrorClear=0 → drive drops
-/// ErrClearAck (SPEC §1.6; seed 002, "Error Clear", "ErrClearAck").
+/// ErrClearAck (docs/servo.md#handshakes; seed 002, "Error Clear",
+/// "ErrClearAck").
 pub type ErrorClearHandshake = Handshake<ErrorClear>;
 
 /// The NC side of the zero-pulse handshake of an incremental encoder:
 /// ZPulseRequest=1 → drive answers ZPulseAck=1 once the first zero pulse is
 /// found, its position in POSW2..3 → ZPulseRequest=0 → drive drops ZPulseAck
-/// (SPEC §1.6; seed 002, "ZpulseRequest", "ZpulseAck"). Read the zero-pulse
-/// position from the feedback of the cycle that reports
+/// (docs/servo.md#handshakes; seed 002, "ZpulseRequest", "ZpulseAck"). Read the
+/// zero-pulse position from the feedback of the cycle that reports
 /// [`HandshakePhase::Acknowledged`].
 pub type ZeroPulseHandshake = Handshake<ZeroPulse>;
 
-/// The NC side of a request/ack handshake (SPEC §1.6): a pure state machine
-/// stepped once per NC cycle. Use it as [`ErrorClearHandshake`] or
-/// [`ZeroPulseHandshake`].
+/// The NC side of a request/ack handshake (docs/servo.md#handshakes): a pure
+/// state machine stepped once per NC cycle. Use it as [`ErrorClearHandshake`]
+/// or [`ZeroPulseHandshake`].
 ///
 /// Each cycle, [`step`](Self::step) takes the control word the NC wrote in
 /// the previous cycle (so the machine knows whether its request is on the
@@ -487,7 +490,7 @@ mod tests {
         assert_eq!(ServoReadyMode::EnabledAndErrorFree.get(), 1);
     }
 
-    /// SPEC §1.6 and its Decision: all 4 × 4 × 2 cases of
+    /// docs/servo.md#handshakes and its Decision: all 4 × 4 × 2 cases of
     /// (previous SE, current SE, was enabled) → enabled.
     #[rustfmt::skip]
     const ENABLE_TABLE: [(u8, u8, bool, bool); 32] = [
@@ -582,8 +585,8 @@ mod tests {
 
     use HandshakePhase::*;
 
-    /// SPEC §1.6: ErrorClear=1 → ErrClearAck=1 → ErrorClear=0 → ack drops.
-    /// SCW 0x0604 = NORMAL + ErrorClear, 0x0404 = NORMAL.
+    /// docs/servo.md#handshakes: ErrorClear=1 → ErrClearAck=1 → ErrorClear=0 →
+    /// ack drops. SCW 0x0604 = NORMAL + ErrorClear, 0x0404 = NORMAL.
     #[test]
     fn error_clear_sequence() {
         let steps = run(
@@ -728,8 +731,9 @@ mod tests {
         assert_eq!(hs.phase(), Requested);
     }
 
-    /// SPEC §1.6: ZPulseRequest=1 → ZPulseAck=1 (zero pulse found) →
-    /// ZPulseRequest=0 → ack drops. SCW 0x0C04 = NORMAL + ZPulseRequest.
+    /// docs/servo.md#handshakes: ZPulseRequest=1 → ZPulseAck=1 (zero pulse
+    /// found) → ZPulseRequest=0 → ack drops. SCW 0x0C04 = NORMAL +
+    /// ZPulseRequest.
     #[test]
     fn zero_pulse_sequence() {
         let steps = run(
@@ -840,9 +844,9 @@ mod proptests {
     }
 
     proptest! {
-        /// SPEC §1.6 as a model over a whole sequence: after each cycle the
-        /// drive is enabled exactly when some earlier cycle made the edge
-        /// 0b01 → 0b10 and SE has stayed 0b10 since.
+        /// docs/servo.md#handshakes as a model over a whole sequence: after
+        /// each cycle the drive is enabled exactly when some earlier cycle made
+        /// the edge 0b01 → 0b10 and SE has stayed 0b10 since.
         #[test]
         fn enable_matches_the_sequence_model(ses in proptest::collection::vec(servo_enable(), 1..40)) {
             let mut previous = ServoEnable::DISABLED;

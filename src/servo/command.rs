@@ -1,5 +1,5 @@
 //! The 10-byte command frame, NC → servo, sent once per NC control cycle
-//! (SPEC §1.1; seed 002, "1. type message").
+//! (docs/servo.md#command; seed 002, "1. type message").
 //!
 //! [`CommandFrame`] is a zero-copy view over the bytes; [`Command`] is the
 //! owned, `Copy` value. Both share the offsets in `field`.
@@ -50,12 +50,12 @@ mod field {
     pub(super) const EXTRA_DATA_CODE: Range<usize> = 8..10;
 }
 
-/// The length of a command frame, 10 bytes (SPEC §1.1).
+/// The length of a command frame, 10 bytes (docs/servo.md#command).
 pub const COMMAND_LEN: usize = field::EXTRA_DATA_CODE.end;
 
 const WHAT: What = What::ServoCommandFrame;
 
-/// A zero-copy view over a command frame, NC → servo (SPEC §1.1).
+/// A zero-copy view over a command frame, NC → servo (docs/servo.md#command).
 ///
 /// After [`CommandFrame::new_checked`] (or [`CommandFrame::check_len`])
 /// succeeds, no accessor panics.
@@ -149,7 +149,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> CommandFrame<T> {
     }
 }
 
-/// A command frame, owned (SPEC §1.1; seed 002).
+/// A command frame, owned (docs/servo.md#command; seed 002).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -190,7 +190,7 @@ impl Command {
     }
 
     /// Return the speed set point read as a 16-bit reference: the low word
-    /// SSPW0 (SPEC §1.1).
+    /// SSPW0 (docs/servo.md#command).
     #[inline]
     #[must_use]
     pub const fn speed_setpoint_word(&self) -> i16 {
@@ -241,7 +241,7 @@ impl Command {
 
     /// Return the command laid out for people, one field per line
     /// ([`CommandDetails`]): the text `motionwire servo command` prints
-    /// (SPEC §6.2).
+    /// (docs/servo.md#cli-command).
     #[inline]
     #[must_use]
     pub const fn details(&self) -> CommandDetails {
@@ -250,11 +250,11 @@ impl Command {
 }
 
 /// A [`Command`] laid out for people, one field per line, as `motionwire
-/// servo command HEX` prints it (SPEC §6.2): the two readings of the set
-/// point (SPEC §1.1), the control word in hex, then its fields — SE, the
-/// active-low EMGON and Brake read as states, the regulator mode, the
-/// parameter table and the names of the set flags (SPEC §1.3) — and the
-/// extra data code. Made by [`Command::details`]; its
+/// servo command HEX` prints it (docs/servo.md#cli-command): the two readings
+/// of the set point (docs/servo.md#command), the control word in hex, then its
+/// fields — SE, the active-low EMGON and Brake read as states, the regulator
+/// mode, the parameter table and the names of the set flags (docs/servo.md#scw)
+/// — and the extra data code. Made by [`Command::details`]; its
 /// [`Display`](fmt::Display) writes the lines without a final newline.
 ///
 /// A separate type because the lines are a view for a terminal, not the
@@ -294,7 +294,8 @@ impl CommandDetails {
 }
 
 impl fmt::Display for CommandDetails {
-    /// Write the command's lines (SPEC §6.2), without a final newline.
+    /// Write the command's lines (docs/servo.md#cli-command), without a final
+    /// newline.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let c = &self.0;
         let control = c.control;
@@ -401,7 +402,7 @@ mod tests {
         assert_eq!(bytes, FRAME_BYTES);
     }
 
-    /// SPEC §1.1: with a 16-bit reference only SSPW0 counts.
+    /// docs/servo.md#command: with a 16-bit reference only SSPW0 counts.
     #[test]
     fn word_type_speed_setpoint() {
         // High word 0x0001 is not significant for the word reading.

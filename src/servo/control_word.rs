@@ -1,5 +1,5 @@
 //! SCW, the servo control word the NC sends in every command frame
-//! (SPEC §1.3; seed 002, "ServoControlWord").
+//! (docs/servo.md#scw; seed 002, "ServoControlWord").
 //!
 //! [`ServoControlWord`] holds the eight single-bit flags as bitflags; the
 //! multi-bit fields are typed: [`ServoEnable`] (bits 0–1),
@@ -37,7 +37,7 @@ use bitflags::bitflags;
 use crate::{Error, Result};
 
 bitflags! {
-    /// SCW, the servo control word, NC → servo (SPEC §1.3; seed 002).
+    /// SCW, the servo control word, NC → servo (docs/servo.md#scw; seed 002).
     ///
     /// Only the single-bit fields are flags. The 2-bit and 3-bit fields are
     /// read and written through [`ServoControlWord::servo_enable`],
@@ -72,13 +72,13 @@ bitflags! {
         /// Bit 8, SIntLock: 1 = freeze the speed regulator's integrator.
         const SINT_LOCK = 1 << 8;
         /// Bit 9, ErrorClear: 1 = request clearing of the drive's errors
-        /// (handshake of SPEC §1.6).
+        /// (handshake of docs/servo.md#handshakes).
         const ERROR_CLEAR = 1 << 9;
         /// Bit 10, Brake, **active low**: 1 = normal mode, 0 = "internal"
         /// braking or feed without drive enable (documented as not used yet).
         const BRAKE = 1 << 10;
         /// Bit 11, ZPulseRequest: 1 = search the incremental encoder's zero
-        /// pulse (handshake of SPEC §1.6).
+        /// pulse (handshake of docs/servo.md#handshakes).
         const Z_PULSE_REQUEST = 1 << 11;
         /// Bit 12, ExtPRMTBL: high bit of the parameter-table select; see
         /// [`ServoControlWord::parameter_table`].
@@ -106,10 +106,11 @@ mod bits {
 impl ServoControlWord {
     /// The word for normal operation with nothing requested: EMGON=1 and
     /// Brake=1 (both active low, so neither braking mode is on), SE=00
-    /// (disabled), parameter table 1, speed mode (SPEC §1.3).
+    /// (disabled), parameter table 1, speed mode (docs/servo.md#scw).
     pub const NORMAL: ServoControlWord = ServoControlWord::EMGON.union(ServoControlWord::BRAKE);
 
-    /// The names of the single-bit flags as SPEC §6.2 writes them, in bit order.
+    /// The names of the single-bit flags as docs/servo.md#cli-command writes
+    /// them, in bit order.
     pub const NAMES: [(ServoControlWord, &'static str); 8] = [
         (ServoControlWord::EMGON, "EMGON"),
         (ServoControlWord::POSLOCK, "POSLOCK"),
@@ -122,7 +123,8 @@ impl ServoControlWord {
     ];
 
     /// Return the names of the set single-bit flags in bit order, as the
-    /// command-line decoder's `control_flags` writes them (SPEC §6.2).
+    /// command-line decoder's `control_flags` writes them
+    /// (docs/servo.md#cli-command).
     ///
     /// The names are the wire bits, not their meaning: `"EMGON"` appears
     /// when bit 2 is 1, i.e. when the emergency state is *off*.
@@ -157,7 +159,7 @@ impl ServoControlWord {
     }
 
     /// Return whether the emergency state is requested: EMGON (bit 2) is
-    /// **0** on the wire (SPEC §1.3, active low).
+    /// **0** on the wire (docs/servo.md#scw, active low).
     #[must_use]
     pub const fn emergency_active(self) -> bool {
         !self.contains(ServoControlWord::EMGON)
@@ -171,7 +173,8 @@ impl ServoControlWord {
     }
 
     /// Return whether "internal" braking is requested: Brake (bit 10) is
-    /// **0** on the wire (SPEC §1.3, active low; documented as not used yet).
+    /// **0** on the wire (docs/servo.md#scw, active low; documented as not used
+    /// yet).
     #[must_use]
     pub const fn internal_brake_active(self) -> bool {
         !self.contains(ServoControlWord::BRAKE)
@@ -195,8 +198,8 @@ impl ServoControlWord {
     }
 
     /// Return the selected parameter table, ExtPRMTBL·4 + PRMTBL + 1, from
-    /// PRMTBL (bits 4–5) and ExtPRMTBL (bit 12) (SPEC §1.3 Decision: PRMTBL
-    /// is bits 4–5).
+    /// PRMTBL (bits 4–5) and ExtPRMTBL (bit 12) (the Decision in
+    /// docs/servo.md#scw: PRMTBL is bits 4–5).
     #[must_use]
     pub const fn parameter_table(self) -> ParameterTable {
         ParameterTable::from_select(
@@ -227,7 +230,7 @@ impl ServoControlWord {
 }
 
 /// The SE field of the control word (bits 0–1), the 2-bit servo enable
-/// request, always within 0..=3 (SPEC §1.3; seed 002, "Servo Enable").
+/// request, always within 0..=3 (docs/servo.md#scw; seed 002, "Servo Enable").
 ///
 /// The drive enables only on the change 0b01 → 0b10 between two consecutive
 /// cycles; see [`enable_handshake`](crate::servo::enable_handshake).
@@ -324,7 +327,7 @@ impl fmt::Display for ServoEnable {
 }
 
 /// The regulator mode selected by ModeSel, control-word bits 6–7
-/// (SPEC §1.3; seed 002, "Mode Select", documented as not used yet).
+/// (docs/servo.md#scw; seed 002, "Mode Select", documented as not used yet).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -393,7 +396,8 @@ impl RegulatorMode {
     }
 
     /// Return the mode's name as the command-line decoder's
-    /// `regulator_mode` writes it (SPEC §6.2), e.g. `"precise_speed"`.
+    /// `regulator_mode` writes it (docs/servo.md#cli-command), e.g.
+    /// `"precise_speed"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -414,14 +418,15 @@ impl TryFrom<u8> for RegulatorMode {
 }
 
 impl fmt::Display for RegulatorMode {
-    /// Format the mode as its SPEC §6.2 name.
+    /// Format the mode as its name (docs/servo.md#cli-command).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-/// A drive parameter table, always within 1..=8 (SPEC §1.3 and §1.4;
-/// seed 002, "PaRaMeterTaBLe Select" and "ExtendedPaRaMeterTaBLe Select").
+/// A drive parameter table, always within 1..=8 (docs/servo.md#scw and
+/// docs/servo.md#ssw; seed 002, "PaRaMeterTaBLe Select" and
+/// "ExtendedPaRaMeterTaBLe Select").
 ///
 /// On the wire the table is ExtPRMTBL·4 + PRMTBL + 1: the 2-bit PRMTBL field
 /// selects among tables 1–4, and ExtPRMTBL moves to tables 5–8. The control
@@ -541,7 +546,8 @@ impl fmt::Display for ParameterTable {
 mod tests {
     use super::*;
 
-    /// SPEC §1.3 / seed 002's bit diagram: every single-bit flag at its bit.
+    /// docs/servo.md#scw / seed 002's bit diagram: every single-bit flag at its
+    /// bit.
     #[test]
     fn flag_bit_positions() {
         let table = [
@@ -561,7 +567,7 @@ mod tests {
     }
 
     #[test]
-    fn flag_names_are_spec_6_2_in_bit_order() {
+    fn flag_names_are_the_json_names_in_bit_order() {
         assert_eq!(
             ServoControlWord::from_bits_retain(u32::MAX)
                 .flag_names()
@@ -634,7 +640,7 @@ mod tests {
         assert_eq!(ServoEnable::ARM.to_string(), "0b01");
     }
 
-    /// SPEC §1.3: EMGON and Brake are active low.
+    /// docs/servo.md#scw: EMGON and Brake are active low.
     #[test]
     fn active_low_bits() {
         // (wire bits, emergency_active, internal_brake_active)
@@ -663,8 +669,9 @@ mod tests {
         );
     }
 
-    /// SPEC §1.3 Decision and seed 002, "ExtendedPaRaMeterTaBLe Select": the
-    /// eight combinations of ExtPRMTBL (bit 12) and PRMTBL (bits 5–4).
+    /// The Decision in docs/servo.md#scw and seed 002, "ExtendedPaRaMeterTaBLe
+    /// Select": the eight combinations of ExtPRMTBL (bit 12) and PRMTBL (bits
+    /// 5–4).
     #[test]
     fn every_parameter_table_combination() {
         // (ExtPRMTBL, PRMTBL, wire bits, table)
@@ -753,8 +760,8 @@ mod tests {
         );
     }
 
-    /// SPEC §1.3: the reserved bits 13–30 round-trip, and so do the fields
-    /// through every flag operation, complement included.
+    /// docs/servo.md#scw: the reserved bits 13–30 round-trip, and so do the
+    /// fields through every flag operation, complement included.
     #[test]
     fn reserved_bits_survive() {
         let reserved = 0x7FFF_E000u32;
@@ -825,7 +832,7 @@ mod proptests {
 
 impl fmt::Display for ServoControlWord {
     /// The word in hex with the names of its set single-bit flags, as
-    /// SPEC §6.2 names them: `0x00000021 [EMGON|Brake]`.
+    /// docs/servo.md#cli-command names them: `0x00000021 [EMGON|Brake]`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         crate::names::write_word(f, format_args!("{:#010x}", self.bits()), self.flag_names())
     }

@@ -1,5 +1,5 @@
-//! The drive model (SPEC §9.2): [`Drive`], its [`DriveConfig`] and the
-//! types they use. The rules and decisions are documented on [`Drive`].
+//! The drive model (docs/servo.md#drive-model): [`Drive`], its [`DriveConfig`]
+//! and the types they use. The rules and decisions are documented on [`Drive`].
 
 use core::fmt;
 use core::num::NonZeroU32;
@@ -11,12 +11,12 @@ use super::{
 };
 
 /// The temperature above which the drive raises SSW.TempWarning, °C
-/// (SPEC §1.4, bit 11: "motor temperature measured in the encoder above
-/// 80 °C").
+/// (docs/servo.md#ssw, bit 11: motor temperature, measured in the encoder,
+/// above 80 °C).
 pub const TEMP_WARNING_CELSIUS: f32 = 80.0;
 
-/// How the drive reads the speed set point SSP (SPEC §1.1: a drive may be
-/// configured for a 16-bit "word type" reference).
+/// How the drive reads the speed set point SSP (docs/servo.md#command: a drive
+/// may be configured for a 16-bit "word type" reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SetpointWidth {
@@ -27,7 +27,8 @@ pub enum SetpointWidth {
 }
 
 impl SetpointWidth {
-    /// Return the set point of `command` read at this width (SPEC §1.1).
+    /// Return the set point of `command` read at this width
+    /// (docs/servo.md#command).
     #[must_use]
     pub const fn read(self, command: &Command) -> i32 {
         match self {
@@ -38,9 +39,10 @@ impl SetpointWidth {
 }
 
 /// How far the axis moves in one cycle per unit of speed set point: `counts`
-/// position counts per cycle for a set point of `per_setpoint` (SPEC §9.2,
-/// "integrates the speed set point into ActPos"). Fractions are carried from
-/// cycle to cycle, so the position never drifts from the exact integral.
+/// position counts per cycle for a set point of `per_setpoint`
+/// (docs/servo.md#drive-model, "integrates the speed set point into ActPos").
+/// Fractions are carried from cycle to cycle, so the position never drifts from
+/// the exact integral.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpeedScale {
@@ -70,14 +72,14 @@ impl SpeedScale {
     }
 
     /// Return the counts per cycle for a set point of
-    /// [`per_setpoint`](Self::per_setpoint) (SPEC §9.2).
+    /// [`per_setpoint`](Self::per_setpoint) (docs/servo.md#drive-model).
     #[must_use]
     pub const fn counts(self) -> u32 {
         self.counts
     }
 
     /// Return the set point that moves the axis [`counts`](Self::counts)
-    /// counts per cycle (never 0; SPEC §9.2).
+    /// counts per cycle (never 0; docs/servo.md#drive-model).
     #[must_use]
     pub const fn per_setpoint(self) -> u32 {
         self.per_setpoint.get()
@@ -91,8 +93,8 @@ impl Default for SpeedScale {
 }
 
 /// The message codes the drive rotates through on the message channel, one
-/// per cycle in increasing order (SPEC §1.2: codes 0–9 of the message-code
-/// table; codes outside 0..=9 are never sent by the model).
+/// per cycle in increasing order (docs/servo.md#feedback: codes 0–9 of the
+/// message-code table; codes outside 0..=9 are never sent by the model).
 ///
 /// ```
 /// use motionwire::servo::{MessageCode, MessageRotation};
@@ -110,16 +112,17 @@ pub struct MessageRotation {
     codes: u16,
 }
 
-/// The codes SPEC §1.2's table lists, 0..=9.
+/// The codes the message-code table of docs/servo.md#feedback lists, 0..=9.
 const TABLE_CODES: u16 = 0x03FF;
 
 impl MessageRotation {
     /// The measurements the drive has: codes 0–4 (speed, current, relative
-    /// current, bus voltage, temperature). Code 5, motor power, is "not
-    /// available on current firmware" (SPEC §1.2). The default.
+    /// current, bus voltage, temperature). Code 5, motor power, is not on
+    /// current firmware (docs/servo.md#feedback). The default.
     pub const MEASUREMENTS: MessageRotation = MessageRotation { codes: 0b1_1111 };
 
-    /// Every code of SPEC §1.2's table, 0–9 (the reserved ones carry 0.0).
+    /// Every code of the message-code table of docs/servo.md#feedback, 0–9 (the
+    /// reserved ones carry 0.0).
     pub const ALL_CODES: MessageRotation = MessageRotation { codes: TABLE_CODES };
 
     /// Return the rotation through the codes whose bits are set in `codes`
@@ -157,24 +160,27 @@ impl MessageRotation {
         Self::from_kinds(&[kind])
     }
 
-    /// Return the set of message codes as bits (bit n = code n; SPEC §1.2).
+    /// Return the set of message codes as bits (bit n = code n;
+    /// docs/servo.md#feedback).
     #[must_use]
     pub const fn bits(self) -> u16 {
         self.codes
     }
 
-    /// Return whether message code `code` is in the rotation (SPEC §1.2).
+    /// Return whether message code `code` is in the rotation
+    /// (docs/servo.md#feedback).
     #[must_use]
     pub const fn contains(self, code: i32) -> bool {
         code >= 0 && code <= 9 && self.codes & (1 << code) != 0
     }
 
-    /// Return the message codes in the order they are sent (SPEC §1.2).
+    /// Return the message codes in the order they are sent
+    /// (docs/servo.md#feedback).
     pub fn codes(self) -> impl Iterator<Item = i32> + Clone {
         (0..=9).filter(move |&code| self.contains(code))
     }
 
-    /// Return the first message code of the rotation (SPEC §1.2).
+    /// Return the first message code of the rotation (docs/servo.md#feedback).
     #[must_use]
     pub const fn first(self) -> i32 {
         // `codes` is never 0 and has no bit above 9.
@@ -182,7 +188,8 @@ impl MessageRotation {
     }
 
     /// Return the code sent after `code`: the next higher code of the
-    /// rotation, wrapping to the first. Any `code` is accepted (SPEC §1.2).
+    /// rotation, wrapping to the first. Any `code` is accepted
+    /// (docs/servo.md#feedback).
     #[must_use]
     pub const fn next_after(self, code: i32) -> i32 {
         if code < 0 || code >= 9 {
@@ -204,46 +211,48 @@ impl Default for MessageRotation {
     }
 }
 
-/// The drive's parameters (SPEC §9.2). [`Default`] gives a drive with an
-/// incremental encoder, Servo_Ready_Mode 0, the zero pulse at 1 000 counts
-/// (one per revolution of 10 000 counts), one count per cycle per unit of a
-/// 32-bit set point, the measurements 0–4 on the message channel, a 2-cycle
-/// error clear and an EnDat maximum temperature of 95 °C.
+/// The drive's parameters (docs/servo.md#drive-model). [`Default`] gives a
+/// drive with an incremental encoder, Servo_Ready_Mode 0, the zero pulse at 1
+/// 000 counts (one per revolution of 10 000 counts), one count per cycle per
+/// unit of a 32-bit set point, the measurements 0–4 on the message channel, a
+/// 2-cycle error clear and an EnDat maximum temperature of 95 °C.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DriveConfig {
     /// The encoder, reported in SSW.Abs/Incr; it decides the ActPos layout
-    /// (SPEC §1.2, §1.4).
+    /// (docs/servo.md#feedback, docs/servo.md#ssw).
     pub encoder: EncoderKind,
-    /// Servo_Ready_Mode, which decides ServoRDY (SPEC §1.6).
+    /// Servo_Ready_Mode, which decides ServoRDY (docs/servo.md#servo-ready).
     pub ready_mode: ServoReadyMode,
     /// Where the incremental encoder's zero pulse lies, in counts: the
-    /// position the drive reports in POSW2..3 when it finds it (SPEC §1.2,
-    /// §1.6).
+    /// position the drive reports in POSW2..3 when it finds it
+    /// (docs/servo.md#feedback, docs/servo.md#handshakes).
     pub zero_pulse_position: i32,
     /// The distance between two zero pulses (counts per revolution), or
     /// `None` for a single zero pulse at
     /// [`zero_pulse_position`](Self::zero_pulse_position). Later zero
-    /// pulses update POSW2..3 (SPEC §1.2, §1.6).
+    /// pulses update POSW2..3 (docs/servo.md#feedback,
+    /// docs/servo.md#handshakes).
     pub zero_pulse_pitch: Option<NonZeroU32>,
-    /// How the drive reads SSP (SPEC §1.1).
+    /// How the drive reads SSP (docs/servo.md#command).
     pub setpoint_width: SetpointWidth,
-    /// Position counts per cycle per unit of speed set point (SPEC §9.2).
+    /// Position counts per cycle per unit of speed set point
+    /// (docs/servo.md#drive-model).
     pub speed_scale: SpeedScale,
     /// The speed applied while SCW.EMGON = 0, the "Emergency Feed"
-    /// parameter, in set-point units (SPEC §1.3; 0 stops the axis).
+    /// parameter, in set-point units (docs/servo.md#scw; 0 stops the axis).
     pub emergency_feed: i32,
-    /// The message codes sent on the message channel (SPEC §1.2).
+    /// The message codes sent on the message channel (docs/servo.md#feedback).
     pub messages: MessageRotation,
     /// Cycles the drive takes to clear its errors after it sees ErrorClear,
-    /// before it answers ErrClearAck (SPEC §1.6); 0 answers in the same
-    /// cycle.
+    /// before it answers ErrClearAck (docs/servo.md#handshakes); 0 answers in
+    /// the same cycle.
     pub error_clear_delay: u16,
     /// Whether a drive error disables the drive (see the module's
-    /// decisions; SPEC §1.6 is silent).
+    /// decisions and docs/servo.md#drive-model).
     pub disable_on_fault: bool,
     /// The EnDat encoder's Max_Temperature, °C: above it an absolute
-    /// encoder raises SEW.I2t_Endat, E19 (SPEC §1.5).
+    /// encoder raises SEW.I2t_Endat, E19 (docs/servo.md#sew).
     pub max_temperature: f32,
 }
 
@@ -265,7 +274,8 @@ impl Default for DriveConfig {
     }
 }
 
-/// Where the drive's side of the error-clear handshake is (SPEC §1.6).
+/// Where the drive's side of the error-clear handshake is
+/// (docs/servo.md#handshakes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorClearState {
@@ -277,7 +287,8 @@ pub enum ErrorClearState {
     Acknowledged,
 }
 
-/// Where the drive's side of the zero-pulse handshake is (SPEC §1.6).
+/// Where the drive's side of the zero-pulse handshake is
+/// (docs/servo.md#handshakes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ZeroPulseState {
@@ -290,8 +301,8 @@ pub enum ZeroPulseState {
 }
 
 /// A model of the servo drive's side of the interface, to test NC code
-/// against without hardware (SPEC §9.2, following every drive-side rule of
-/// SPEC §1.6; seed 002).
+/// against without hardware (docs/servo.md#drive-model, following every
+/// drive-side rule of docs/servo.md#handshakes; seed 002).
 ///
 /// [`Drive::cycle`] is one EtherCAT cycle: it takes the NC's [`Command`] and
 /// returns the drive's [`Feedback`]. It is deterministic and pure: no
@@ -306,7 +317,7 @@ pub enum ZeroPulseState {
 ///
 /// let mut drive = Drive::new(DriveConfig::default());
 /// let scw = |se| ServoControlWord::NORMAL.with_servo_enable(se);
-/// // The enable edge SE 0b01 → 0b10 (SPEC §1.6).
+/// // The enable edge SE 0b01 → 0b10 (docs/servo.md#handshakes).
 /// let armed = drive.cycle(&Command::new(0, scw(ServoEnable::ARM), 0));
 /// assert!(!armed.status.contains(ServoStatusWord::SERVO_EN));
 /// let on = drive.cycle(&Command::new(100, scw(ServoEnable::ENABLE), 0));
@@ -318,7 +329,7 @@ pub enum ZeroPulseState {
 /// assert_eq!(next.actual_position().raw(), 200);
 /// ```
 ///
-/// # Decisions where SPEC §1 is silent
+/// # Decisions where the manual is silent (docs/servo.md#drive-model)
 ///
 /// - A drive error disables the drive and keeps it disabled until the errors
 ///   are cleared and the NC makes the SE edge 0b01 → 0b10 again
@@ -381,7 +392,7 @@ const INITIAL_MEASUREMENTS: [f32; 10] = [0.0, 0.0, 0.0, 560.0, 40.0, 0.0, 0.0, 0
 
 impl Drive {
     /// Return a drive with `config`, disabled (as if SE had been 0b00),
-    /// without errors, at position 0 (SPEC §9.2).
+    /// without errors, at position 0 (docs/servo.md#drive-model).
     #[must_use]
     pub const fn new(config: DriveConfig) -> Self {
         Drive {
@@ -404,68 +415,72 @@ impl Drive {
         }
     }
 
-    /// Return the drive's parameters (SPEC §9.2).
+    /// Return the drive's parameters (docs/servo.md#drive-model).
     #[must_use]
     pub const fn config(&self) -> &DriveConfig {
         &self.config
     }
 
-    /// Return the number of cycles run: the model's only clock (SPEC §9.2).
+    /// Return the number of cycles run: the model's only clock
+    /// (docs/servo.md#drive-model).
     #[must_use]
     pub const fn cycles(&self) -> u64 {
         self.cycles
     }
 
     /// Return whether the drive is enabled: SSW.ServoEn of the last cycle
-    /// (SPEC §1.4, §1.6).
+    /// (docs/servo.md#ssw, docs/servo.md#handshakes).
     #[must_use]
     pub const fn is_enabled(&self) -> bool {
         self.enabled
     }
 
-    /// Return the axis position in counts: ActPos (SPEC §1.2; for an
-    /// incremental encoder the frame carries its low 32 bits).
+    /// Return the axis position in counts: ActPos (docs/servo.md#feedback; for
+    /// an incremental encoder the frame carries its low 32 bits).
     #[must_use]
     pub const fn position(&self) -> i64 {
         self.position
     }
 
     /// Return the error word the next feedback reports if nothing changes:
-    /// the latched errors with the summary bit (SPEC §1.5).
+    /// the latched errors with the summary bit (docs/servo.md#sew).
     #[must_use]
     pub const fn errors(&self) -> ServoErrorWord {
         with_summary(self.latched.union(self.persistent_causes()))
     }
 
-    /// Return the drive side of the error-clear handshake (SPEC §1.6).
+    /// Return the drive side of the error-clear handshake
+    /// (docs/servo.md#handshakes).
     #[must_use]
     pub const fn error_clear_state(&self) -> ErrorClearState {
         self.clear
     }
 
-    /// Return the drive side of the zero-pulse handshake (SPEC §1.6).
+    /// Return the drive side of the zero-pulse handshake
+    /// (docs/servo.md#handshakes).
     #[must_use]
     pub const fn zero_pulse_state(&self) -> ZeroPulseState {
         self.zero
     }
 
     /// Return the position latched at the last zero pulse passed, which an
-    /// incremental encoder's frame carries in POSW2..3 (SPEC §1.2; 0 before
-    /// the first one found after a request).
+    /// incremental encoder's frame carries in POSW2..3 (docs/servo.md#feedback;
+    /// 0 before the first one found after a request).
     #[must_use]
     pub const fn zero_pulse_latch(&self) -> i64 {
         self.zero_latch
     }
 
-    /// Return whether the encoder is lost ([`Drive::lose_encoder`]; SPEC
-    /// §1.5, EncoderErr).
+    /// Return whether the encoder is lost ([`Drive::lose_encoder`];
+    /// docs/servo.md#sew, EncoderErr).
     #[must_use]
     pub const fn encoder_lost(&self) -> bool {
         self.encoder_lost
     }
 
-    /// Return the speed applied in the last cycle, in set-point units (SPEC
-    /// §1.1, §1.3; the set point, the emergency feed or 0).
+    /// Return the speed applied in the last cycle, in set-point units
+    /// (docs/servo.md#command, docs/servo.md#scw; the set point, the emergency
+    /// feed or 0).
     #[must_use]
     pub const fn applied_speed(&self) -> i32 {
         self.applied_speed
@@ -473,7 +488,8 @@ impl Drive {
 
     /// Make the drive detect `fault`: its SEW bit (and so its E-code, if it
     /// has one) is set from the next cycle on, with the summary bit
-    /// ServoErrors, until the NC clears it (SPEC §1.5, §1.6). Injecting
+    /// ServoErrors, until the NC clears it (docs/servo.md#sew,
+    /// docs/servo.md#handshakes). Injecting
     /// [`ServoFault::ServoErrors`] sets the summary bit alone.
     pub fn inject(&mut self, fault: ServoFault) {
         self.latched = self.latched.union(fault.flag());
@@ -481,7 +497,7 @@ impl Drive {
 
     /// Lose the encoder (a broken cable): SEW.EncoderErr (E01) is set from
     /// the next cycle on and comes back after every clear, and the position
-    /// stops changing, until [`Drive::restore_encoder`] (SPEC §1.5).
+    /// stops changing, until [`Drive::restore_encoder`] (docs/servo.md#sew).
     pub fn lose_encoder(&mut self) {
         self.encoder_lost = true;
     }
@@ -492,20 +508,20 @@ impl Drive {
     }
 
     /// Set the motor temperature the encoder measures, °C: above
-    /// [`TEMP_WARNING_CELSIUS`] the drive raises SSW.TempWarning (SPEC
-    /// §1.4); with an absolute (EnDat) encoder, above
+    /// [`TEMP_WARNING_CELSIUS`] the drive raises SSW.TempWarning
+    /// (docs/servo.md#ssw); with an absolute (EnDat) encoder, above
     /// [`DriveConfig::max_temperature`] it also raises SEW.I2t_Endat, E19
-    /// (SPEC §1.5), which comes back after every clear until the motor
+    /// (docs/servo.md#sew), which comes back after every clear until the motor
     /// cools down. Message code 4 reports the value.
     pub fn set_motor_temperature(&mut self, celsius: f32) {
         self.measurements[4] = celsius;
     }
 
-    /// Set the value the message channel reports for `kind` (SPEC §1.2):
-    /// current, relative current, bus voltage, temperature (as
-    /// [`Drive::set_motor_temperature`]), power or a reserved code. The motor
-    /// speed (code 0) is the applied speed and unknown codes are not sent:
-    /// for those nothing changes.
+    /// Set the value the message channel reports for `kind`
+    /// (docs/servo.md#feedback): current, relative current, bus voltage,
+    /// temperature (as [`Drive::set_motor_temperature`]), power or a reserved
+    /// code. The motor speed (code 0) is the applied speed and unknown codes
+    /// are not sent: for those nothing changes.
     pub fn set_measurement(&mut self, kind: MessageCode, value: f32) {
         let code = kind.code();
         if (1..=9).contains(&code) {
@@ -530,7 +546,8 @@ impl Drive {
     }
 
     /// Run one EtherCAT cycle: take the NC's `command`, return the feedback
-    /// (SPEC §1.6, §9.2). The steps, in order:
+    /// (docs/servo.md#handshakes, docs/servo.md#drive-model). The steps, in
+    /// order:
     ///
     /// 1. Error clear: ErrorClear = 1 starts a clear (or continues it);
     ///    after [`DriveConfig::error_clear_delay`] cycles the latched errors
@@ -552,7 +569,7 @@ impl Drive {
         self.cycles = self.cycles.wrapping_add(1);
         let scw = command.control;
 
-        // 1. Error clear (SPEC §1.6).
+        // 1. Error clear (docs/servo.md#handshakes).
         self.clear = if scw.contains(ServoControlWord::ERROR_CLEAR) {
             match self.clear {
                 ErrorClearState::Idle => self.clearing(self.config.error_clear_delay),
@@ -567,7 +584,7 @@ impl Drive {
         self.latched = self.latched.union(self.persistent_causes());
         let errors = with_summary(self.latched);
 
-        // 3. Enable (SPEC §1.6).
+        // 3. Enable (docs/servo.md#handshakes).
         let se = scw.servo_enable();
         let faulted = self.config.disable_on_fault && !errors.is_empty();
         self.enabled = enable_handshake(self.previous_se, se, self.enabled) && !faulted;
@@ -590,7 +607,7 @@ impl Drive {
             self.position = old.wrapping_add(delta);
         }
 
-        // 5. Zero pulse (SPEC §1.2, §1.6).
+        // 5. Zero pulse (docs/servo.md#feedback, docs/servo.md#handshakes).
         let requested = scw.contains(ServoControlWord::Z_PULSE_REQUEST);
         let passed = match self.config.encoder {
             EncoderKind::Incremental => self.pulse_passed(old, self.position),
@@ -651,7 +668,8 @@ impl Drive {
         };
         feedback.set_actual_position(match self.config.encoder {
             EncoderKind::Absolute => ActualPosition::Absolute(self.position),
-            // The frame carries the low 32 bits of both (SPEC §1.2).
+            // The frame carries the low 32 bits of both
+            // (docs/servo.md#feedback).
             EncoderKind::Incremental => ActualPosition::Incremental {
                 position: self.position as i32,
                 zero_pulse_position: self.zero_latch as i32,
@@ -762,7 +780,7 @@ macro_rules! euclid {
 euclid!(i64, i128);
 
 /// Return `errors` with the summary bit set when any other bit is
-/// (SPEC §1.5); a lone summary bit (an injected ServoErrors) stays.
+/// (docs/servo.md#sew); a lone summary bit (an injected ServoErrors) stays.
 const fn with_summary(errors: ServoErrorWord) -> ServoErrorWord {
     if errors.is_empty() {
         errors
@@ -830,7 +848,7 @@ mod tests {
         assert_eq!(drive.cycles(), 1);
     }
 
-    /// SPEC §1.6, the seed's eight rows, produced by the model:
+    /// docs/servo.md#servo-ready, the seed's eight rows, produced by the model:
     /// (Servo_Ready_Mode, ServoEn, ServoErrors) → ServoRDY.
     #[test]
     fn servo_ready_truth_table_from_the_model() {

@@ -1,13 +1,13 @@
-//! The NC side of the enable handshake on SCW.SE (SPEC §1.6; seed 002,
-//! "Servo Enable"): [`EnableHandshake`] and its [`EnablePhase`]. The
+//! The NC side of the enable handshake on SCW.SE (docs/servo.md#handshakes;
+//! seed 002, "Servo Enable"): [`EnableHandshake`] and its [`EnablePhase`]. The
 //! drive's side of the same rule is [`enable_handshake`](super::enable_handshake).
 
 use core::fmt;
 
 use super::{ServoControlWord, ServoEnable, ServoStatusWord};
 
-/// The phase of the NC side of the enable handshake (SPEC §1.6), and so
-/// the SE value the NC writes ([`EnablePhase::servo_enable`]).
+/// The phase of the NC side of the enable handshake (docs/servo.md#handshakes),
+/// and so the SE value the NC writes ([`EnablePhase::servo_enable`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum EnablePhase {
@@ -24,17 +24,17 @@ pub enum EnablePhase {
     Arming,
     /// The NC writes SE 0b10 right after 0b01 — the enable edge — and holds
     /// it while waiting for ServoEn. A drive that refuses the edge (the
-    /// drive model refuses it while it has an error, SPEC §9.2) never
-    /// answers: holding 0b10 cannot enable it any more, so the caller bounds
-    /// the wait with [`EnableHandshake::cycles_in_phase`] and arms again
+    /// drive model refuses it while it has an error, docs/servo.md#drive-model)
+    /// never answers: holding 0b10 cannot enable it any more, so the caller
+    /// bounds the wait with [`EnableHandshake::cycles_in_phase`] and arms again
     /// with `cancel().start()`.
     Enabling,
     /// The drive answered the edge with ServoEn = 1; the NC holds SE 0b10.
     Enabled,
     /// The drive dropped ServoEn while the NC held 0b10 — the drive model
-    /// disables itself on any error (SPEC §9.2). The NC writes 0b00; a new
-    /// [`start`](EnableHandshake::start), once the errors are cleared, arms
-    /// again.
+    /// disables itself on any error (docs/servo.md#drive-model). The NC writes
+    /// 0b00; a new [`start`](EnableHandshake::start), once the errors are
+    /// cleared, arms again.
     Dropped,
 }
 
@@ -52,7 +52,8 @@ impl EnablePhase {
         }
     }
 
-    /// Return the SE value the NC writes in this phase (SPEC §1.3, §1.6):
+    /// Return the SE value the NC writes in this phase (docs/servo.md#scw,
+    /// docs/servo.md#handshakes):
     /// 0b01 while arming, 0b10 while enabling and enabled, 0b00 otherwise.
     /// The handshake never writes 0b11.
     #[must_use]
@@ -76,8 +77,8 @@ impl fmt::Display for EnablePhase {
 
 /// The NC side of the enable handshake: SE 0b01, then 0b10 in the next
 /// cycle — the edge on which the drive enables — then 0b10 held while
-/// ServoEn stays up (SPEC §1.6; seed 002, "Servo Enable"). A pure state
-/// machine stepped once per NC cycle, like
+/// ServoEn stays up (docs/servo.md#handshakes; seed 002, "Servo Enable"). A
+/// pure state machine stepped once per NC cycle, like
 /// [`ErrorClearHandshake`](super::ErrorClearHandshake) and
 /// [`ZeroPulseHandshake`](super::ZeroPulseHandshake): no clock, no I/O, no
 /// heap.
@@ -110,7 +111,8 @@ impl fmt::Display for EnablePhase {
 /// The machine writes 0b10 only in Enabling and Enabled, which it enters
 /// only after 0b01 was on the wire, and leaves as soon as any value but
 /// 0b01 or 0b10 is: every 0b10 it writes is the edge or held since the
-/// edge, never a 0b10 "not preceded by 0b01" (SPEC §1.6's decision).
+/// edge, never a 0b10 "not preceded by 0b01" (the decision in
+/// docs/servo.md#handshakes).
 ///
 /// The machine assumes the status words arrive in the order the drive sent
 /// them. A drive that answers a few cycles late only makes the phases last
@@ -205,7 +207,8 @@ impl EnableHandshake {
         self.cycles_in_phase
     }
 
-    /// Return the SE value the NC must write next (SPEC §1.3, §1.6).
+    /// Return the SE value the NC must write next (docs/servo.md#scw,
+    /// docs/servo.md#handshakes).
     #[must_use]
     pub const fn servo_enable(self) -> ServoEnable {
         self.phase.servo_enable()
@@ -414,8 +417,8 @@ mod tests {
         assert_eq!(at(Disabling).cancel(), at(Disabling));
     }
 
-    /// SPEC §1.6 from the NC's side: 0b01, then 0b10 in the next cycle,
-    /// then 0b10 held; a drive without lag answers ServoEn in the cycle
+    /// docs/servo.md#handshakes from the NC's side: 0b01, then 0b10 in the next
+    /// cycle, then 0b10 held; a drive without lag answers ServoEn in the cycle
     /// that carried the edge.
     #[test]
     fn disabled_to_enabled_sequence() {
@@ -512,8 +515,9 @@ mod tests {
         assert_eq!(hs.start().phase(), Arming);
     }
 
-    /// Another SE value on the wire disables the drive (SPEC §1.6): the
-    /// enable is withdrawn, not dropped by the drive.
+    /// Another SE value on the wire disables the drive
+    /// (docs/servo.md#handshakes): the enable is withdrawn, not dropped by the
+    /// drive.
     #[test]
     fn enabled_to_disabling_when_another_value_is_on_the_wire() {
         for se in [SE_OFF, SE_ARM, SE_BOTH] {
@@ -649,11 +653,11 @@ mod proptests {
             }
         }
 
-        /// Against a drive that follows SPEC §1.6 and refuses the edge
-        /// while faulted (SPEC §9.2), answering `lag` cycles late: an
-        /// obedient NC's handshake is Enabled only on the drive's ServoEn,
-        /// and a start not disturbed by a fault or a cancel leaves Arming
-        /// and Enabling within a few cycles.
+        /// Against a drive that follows docs/servo.md#handshakes and refuses
+        /// the edge while faulted (docs/servo.md#drive-model), answering `lag`
+        /// cycles late: an obedient NC's handshake is Enabled only on the
+        /// drive's ServoEn, and a start not disturbed by a fault or a cancel
+        /// leaves Arming and Enabling within a few cycles.
         #[test]
         fn against_a_lagging_drive(
             lag in 0usize..4,

@@ -1,9 +1,10 @@
-//! SEW, the servo error word, and the drive's E-codes (SPEC §1.5; seed 002,
-//! "ServoErrorWord").
+//! SEW, the servo error word, and the drive's E-codes (docs/servo.md#sew; seed
+//! 002, "ServoErrorWord").
 //!
 //! [`ServoErrorWord`] holds the 25 defined bits as bitflags. Each defined bit
-//! is also a [`ServoFault`] with its SPEC name, meaning and — for most bits —
-//! the [`ECode`] the drive shows on its display. The mapping works both ways:
+//! is also a [`ServoFault`] with its name (docs/servo.md#sew), meaning and —
+//! for most bits — the [`ECode`] the drive shows on its display. The mapping
+//! works both ways:
 //! [`ServoFault::e_code`] / [`ECode::fault`], [`ServoErrorWord::from_e_code`].
 //!
 //! ```
@@ -31,7 +32,7 @@ use bitflags::bitflags;
 use crate::{Error, Result};
 
 bitflags! {
-    /// SEW, the servo error word, servo → NC (SPEC §1.5; seed 002).
+    /// SEW, the servo error word, servo → NC (docs/servo.md#sew; seed 002).
     ///
     /// Bit 0 (ServoErrors) summarises the others. The reserved bits 4 and
     /// 25–31 are declared as known to bitflags, so they survive decoding with
@@ -104,7 +105,7 @@ bitflags! {
     }
 }
 
-/// The bits SPEC §1.5 defines: 0–3 and 5–24.
+/// The bits docs/servo.md#sew defines: 0–3 and 5–24.
 const DEFINED_BITS: u32 = 0x01FF_FFEF;
 /// The defined bits other than the summary bit 0.
 const CAUSE_BITS: u32 = DEFINED_BITS & !1;
@@ -119,7 +120,7 @@ impl ServoErrorWord {
 
     /// Return the active faults in bit order, the summary bit 0 included as
     /// [`ServoFault::ServoErrors`]; the reserved bits 4 and 25–31 are not
-    /// faults (SPEC §1.5, §6.2 `faults`).
+    /// faults (docs/servo.md#sew; `faults` in docs/servo.md#cli-feedback).
     pub fn faults(self) -> impl Iterator<Item = ServoFault> + Clone {
         ServoFault::ALL
             .into_iter()
@@ -146,11 +147,12 @@ impl ServoErrorWord {
     }
 }
 
-/// One defined bit of the servo error word, with its SPEC §1.5 name, E-code
-/// and meaning (seed 002, "ServoErrorWord").
+/// One defined bit of the servo error word, with its docs/servo.md#sew name,
+/// E-code and meaning (seed 002, "ServoErrorWord").
 ///
-/// The variant names spell SPEC's names in Rust's case; [`ServoFault::name`]
-/// returns SPEC's spelling exactly (e.g. `I2tEndat` → `"I2t_Endat"`).
+/// The variant names spell the names of docs/servo.md#sew in Rust's case;
+/// [`ServoFault::name`] returns their spelling exactly (e.g. `I2tEndat` →
+/// `"I2t_Endat"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -206,28 +208,30 @@ pub enum ServoFault {
     CurrDiffErr = 24,
 }
 
-/// One row of SPEC §1.5's error-word table: a fault with its name, E-code
-/// and meaning. [`ServoFault::TABLE`] holds every row; the names, E-codes,
-/// descriptions, `Display`, the JSON of `motionwire servo` and the tests all
-/// read it.
+/// One row of the error-word table of docs/servo.md#sew: a fault with its name,
+/// E-code and meaning. [`ServoFault::TABLE`] holds every row; the names,
+/// E-codes, descriptions, `Display`, the JSON of `motionwire servo` and the
+/// tests all read it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FaultInfo {
     /// The fault (its discriminant is the bit number).
     pub fault: ServoFault,
-    /// The name exactly as SPEC §1.5's name column spells it (and the
-    /// command-line decoder's `faults` writes it, SPEC §6.2).
+    /// The name exactly as the name column of docs/servo.md#sew spells it (and
+    /// the command-line decoder's `faults` writes it,
+    /// docs/servo.md#cli-feedback).
     pub name: &'static str,
-    /// The E-code the drive shows, `None` for the bits SPEC §1.5 gives none.
+    /// The E-code the drive shows, `None` for the bits docs/servo.md#sew gives
+    /// none.
     pub e_code: Option<ECode>,
-    /// The meaning in words (SPEC §1.5's meaning column).
+    /// The meaning in words (the meaning column of docs/servo.md#sew).
     pub description: &'static str,
 }
 
 impl ServoFault {
-    /// SPEC §1.5's error-word table in bit order (bit 4 is reserved and has
-    /// no row): the one place the bit → name → E-code → meaning facts are
-    /// written.
+    /// The error-word table of docs/servo.md#sew in bit order (bit 4 is
+    /// reserved and has no row): the one place the bit → name → E-code →
+    /// meaning facts are written.
     pub const TABLE: [FaultInfo; 24] = [
         FaultInfo {
             fault: ServoFault::ServoErrors,
@@ -420,21 +424,23 @@ impl ServoFault {
         &Self::TABLE[if bit < 4 { bit } else { bit - 1 }]
     }
 
-    /// Return the fault's name exactly as SPEC §1.5's name column spells it
-    /// (and the command-line decoder's `faults` writes it, SPEC §6.2).
+    /// Return the fault's name exactly as the name column of docs/servo.md#sew
+    /// spells it (and the command-line decoder's `faults` writes it,
+    /// docs/servo.md#cli-feedback).
     #[must_use]
     pub const fn name(self) -> &'static str {
         self.info().name
     }
 
     /// Return the E-code the drive shows for this fault, or `None` for the
-    /// bits SPEC §1.5 gives none (0, 9–14, 18).
+    /// bits docs/servo.md#sew gives none (0, 9–14, 18).
     #[must_use]
     pub const fn e_code(self) -> Option<ECode> {
         self.info().e_code
     }
 
-    /// Return the fault's meaning in words (SPEC §1.5's meaning column).
+    /// Return the fault's meaning in words (the meaning column of
+    /// docs/servo.md#sew).
     #[must_use]
     pub const fn description(self) -> &'static str {
         self.info().description
@@ -442,16 +448,17 @@ impl ServoFault {
 }
 
 impl fmt::Display for ServoFault {
-    /// Format the fault as its SPEC §1.5 name.
+    /// Format the fault as its docs/servo.md#sew name.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
 /// An error code the drive shows on its display, `E01`…`E32`, for the
-/// error-word bits that have one (SPEC §1.5; seed 002, "Error Code" columns).
+/// error-word bits that have one (docs/servo.md#sew; seed 002, "Error Code"
+/// columns).
 ///
-/// Only the sixteen codes of SPEC §1.5 exist; each maps to exactly one
+/// Only the sixteen codes of docs/servo.md#sew exist; each maps to exactly one
 /// [`ServoFault`]. Parse one from its number ([`ECode::from_number`]) or from
 /// its text (`"E05".parse()`); [`Display`](fmt::Display) prints `E05`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -518,8 +525,8 @@ impl ECode {
         ECode::E32,
     ];
 
-    /// Return the E-code numbered `number` (5 → E05), or `None` when SPEC
-    /// §1.5 defines no such code.
+    /// Return the E-code numbered `number` (5 → E05), or `None` when
+    /// docs/servo.md#sew defines no such code.
     #[must_use]
     pub const fn from_number(number: u8) -> Option<Self> {
         let mut i = 0;
@@ -601,8 +608,8 @@ impl FromStr for ECode {
     type Err = Error;
 
     /// Parse `E` (or `e`) followed by one or two decimal digits, e.g. `E05`
-    /// or `E5`. Other text is an [`Error::Malformed`]; a number SPEC §1.5
-    /// does not define is an [`Error::InvalidValue`].
+    /// or `E5`. Other text is an [`Error::Malformed`]; a number
+    /// docs/servo.md#sew does not define is an [`Error::InvalidValue`].
     fn from_str(text: &str) -> Result<Self> {
         let malformed = Error::Malformed {
             what: What::ServoECode,
@@ -658,7 +665,7 @@ mod tests {
     use ServoErrorWord as W;
     use ServoFault as F;
 
-    /// SPEC §1.5 written out: (bit, flag, fault, name, E-code).
+    /// docs/servo.md#sew written out: (bit, flag, fault, name, E-code).
     #[rustfmt::skip]
     const TABLE: [(u8, W, F, &str, Option<E>); 24] = [
         (0,  W::SERVO_ERRORS,      F::ServoErrors,     "ServoErrors",     None),
@@ -835,7 +842,7 @@ mod proptests {
 }
 
 impl fmt::Display for ServoErrorWord {
-    /// The word in hex with its faults and their E-codes (SPEC §1.5):
+    /// The word in hex with its faults and their E-codes (docs/servo.md#sew):
     /// `0x00000101 [ServoErrors, FollowerErr E09]`.
     ///
     /// ```

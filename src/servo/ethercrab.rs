@@ -1,13 +1,14 @@
 //! The servo frames as process data of the ethercrab EtherCAT master
-//! (SPEC §9.1; feature `ethercrab`).
+//! (docs/servo.md#ethercrab; feature `ethercrab`).
 //!
 //! [`Command`] and [`Feedback`] implement ethercrab-wire's
 //! [`EtherCrabWireRead`], [`EtherCrabWireWrite`], [`EtherCrabWireSized`] and
 //! [`EtherCrabWireWriteSized`] with `PACKED_LEN` 10 and 40: the bytes are
 //! exactly those of [`Command::to_bytes`] / [`Feedback::to_bytes`], and
-//! reading is [`Command::parse`] / [`Feedback::parse`] (SPEC §1.1, §1.2). A
-//! program on the master reads a drive's input image straight into a
-//! [`Feedback`] and packs a [`Command`] into its output image.
+//! reading is [`Command::parse`] / [`Feedback::parse`] (docs/servo.md#command,
+//! docs/servo.md#feedback). A program on the master reads a drive's input
+//! image straight into a [`Feedback`] and packs a [`Command`] into its output
+//! image.
 //!
 //! A slice shorter than the frame is [`WireError::ReadBufferTooShort`] or
 //! [`WireError::WriteBufferTooShort`], never a panic; longer slices are read
@@ -49,8 +50,8 @@ use super::{Command, Feedback, COMMAND_LEN, FEEDBACK_LEN};
 /// Implement the ethercrab-wire traits for a frame type with
 /// `from_bytes(&[u8; N])` and `to_bytes() -> [u8; N]`.
 macro_rules! process_data {
-    ($frame:ty, $len:expr, $section:literal) => {
-        #[doc = concat!("The frame's ", stringify!($len), " bytes (SPEC ", $section, ", §9.1).")]
+    ($frame:ty, $len:expr, $docs:literal) => {
+        #[doc = concat!("The frame's ", stringify!($len), " bytes (", $docs, ", docs/servo.md#ethercrab).")]
         impl EtherCrabWireSized for $frame {
             const PACKED_LEN: usize = $len;
 
@@ -61,7 +62,7 @@ macro_rules! process_data {
             }
         }
 
-        #[doc = concat!("Read the frame from the start of a slice (SPEC ", $section, ", §9.1).")]
+        #[doc = concat!("Read the frame from the start of a slice (", $docs, ", docs/servo.md#ethercrab).")]
         impl EtherCrabWireRead for $frame {
             /// Decode the frame from the start of `buf`, as `parse` does; a
             /// shorter slice is [`WireError::ReadBufferTooShort`].
@@ -72,7 +73,7 @@ macro_rules! process_data {
             }
         }
 
-        #[doc = concat!("Write the frame into the start of a slice (SPEC ", $section, ", §9.1).")]
+        #[doc = concat!("Write the frame into the start of a slice (", $docs, ", docs/servo.md#ethercrab).")]
         impl EtherCrabWireWrite for $frame {
             /// Encode the frame into the start of `buf` and return the bytes
             /// written; a shorter slice is [`WireError::WriteBufferTooShort`]
@@ -105,7 +106,7 @@ macro_rules! process_data {
             }
         }
 
-        #[doc = concat!("The frame as a fixed array (SPEC ", $section, ", §9.1).")]
+        #[doc = concat!("The frame as a fixed array (", $docs, ", docs/servo.md#ethercrab).")]
         impl EtherCrabWireWriteSized for $frame {
             /// Return the frame's bytes, as `to_bytes` does.
             fn pack(&self) -> Self::Buffer {
@@ -115,8 +116,8 @@ macro_rules! process_data {
     };
 }
 
-process_data!(Command, COMMAND_LEN, "§1.1");
-process_data!(Feedback, FEEDBACK_LEN, "§1.2");
+process_data!(Command, COMMAND_LEN, "docs/servo.md#command");
+process_data!(Feedback, FEEDBACK_LEN, "docs/servo.md#feedback");
 
 #[cfg(test)]
 mod tests {

@@ -1,5 +1,5 @@
 //! The 40-byte feedback frame, servo → NC, sent once per NC control cycle
-//! (SPEC §1.2; seed 002, "1. type message").
+//! (docs/servo.md#feedback; seed 002, "1. type message").
 //!
 //! [`FeedbackFrame`] is a zero-copy view over the bytes; [`Feedback`] is the
 //! owned, `Copy` value. Both share the offsets in `field`. The actual
@@ -62,13 +62,14 @@ mod field {
     pub(super) const EXTRA_DATA: Range<usize> = 24..40;
 }
 
-/// The length of a feedback frame, 40 bytes (SPEC §1.2).
+/// The length of a feedback frame, 40 bytes (docs/servo.md#feedback).
 pub const FEEDBACK_LEN: usize = field::EXTRA_DATA.end;
 
 const WHAT: What = What::ServoFeedbackFrame;
 
 /// The actual position, read according to the status word's Abs/Incr bit
-/// (SPEC §1.2, "ActPos interpretation"; seed 002, "ActualPosition").
+/// (docs/servo.md#feedback, "ActPos interpretation"; seed 002,
+/// "ActualPosition").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -122,7 +123,7 @@ impl ActualPosition {
     }
 }
 
-/// A zero-copy view over a feedback frame, servo → NC (SPEC §1.2).
+/// A zero-copy view over a feedback frame, servo → NC (docs/servo.md#feedback).
 ///
 /// After [`FeedbackFrame::new_checked`] (or [`FeedbackFrame::check_len`])
 /// succeeds, no accessor panics.
@@ -298,7 +299,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> FeedbackFrame<T> {
     }
 }
 
-/// A feedback frame, owned (SPEC §1.2; seed 002).
+/// A feedback frame, owned (docs/servo.md#feedback; seed 002).
 ///
 /// `PartialEq` compares the floats by value (NaN ≠ NaN, 0.0 == -0.0); to
 /// test that two values carry the same bits compare
@@ -382,7 +383,7 @@ impl Feedback {
 
     /// Return the feedback laid out for people, one field per line
     /// ([`FeedbackDetails`]): the text `motionwire servo feedback` prints
-    /// (SPEC §6.2).
+    /// (docs/servo.md#cli-feedback).
     #[inline]
     #[must_use]
     pub const fn details(&self) -> FeedbackDetails {
@@ -391,13 +392,14 @@ impl Feedback {
 }
 
 /// A [`Feedback`] laid out for people, one field per line, as `motionwire
-/// servo feedback HEX` prints it (SPEC §6.2): the actual position in the
-/// encoder's layout (SPEC §1.2), the status word in hex with the names of
-/// its set flags and the active parameter table (SPEC §1.4), the error word
-/// in hex and one line per fault with its bit, E-code, name and meaning
-/// (SPEC §1.5), the message with its unit and code (SPEC §1.2), and the
-/// four extra floats. Made by [`Feedback::details`]; its
-/// [`Display`](fmt::Display) writes the lines without a final newline.
+/// servo feedback HEX` prints it (docs/servo.md#cli-feedback): the actual
+/// position in the encoder's layout (docs/servo.md#feedback), the status word
+/// in hex with the names of its set flags and the active parameter table
+/// (docs/servo.md#ssw), the error word in hex and one line per fault with its
+/// bit, E-code, name and meaning (docs/servo.md#sew), the message with its
+/// unit and code (docs/servo.md#feedback), and the four extra floats. Made by
+/// [`Feedback::details`]; its [`Display`](fmt::Display) writes the lines
+/// without a final newline.
 ///
 /// A separate type because the lines are a view for a terminal, not the
 /// one way to print a feedback frame.
@@ -447,7 +449,8 @@ impl FeedbackDetails {
 }
 
 impl fmt::Display for FeedbackDetails {
-    /// Write the feedback's lines (SPEC §6.2), without a final newline.
+    /// Write the feedback's lines (docs/servo.md#cli-feedback), without a final
+    /// newline.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let fb = &self.0;
         match fb.actual_position() {
@@ -601,7 +604,8 @@ mod tests {
         assert_eq!(bytes, FRAME_BYTES);
     }
 
-    /// SPEC §1.2: Abs/Incr = 0 means the whole 64 bits are the position.
+    /// docs/servo.md#feedback: Abs/Incr = 0 means the whole 64 bits are the
+    /// position.
     #[test]
     fn absolute_position_is_64_bit() {
         let mut bytes = FRAME_BYTES;

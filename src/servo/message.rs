@@ -1,5 +1,6 @@
 //! The multiplexed measurement of the feedback frame: message code and
-//! message data (SPEC §1.2; seed 002, "Message Code", "Message Data").
+//! message data (docs/servo.md#feedback; seed 002, "Message Code", "Message
+//! Data").
 //!
 //! The drive sends one measurement per cycle; the i32 message code says what
 //! the f32 message data holds. [`Message`] keeps both exactly as received —
@@ -23,7 +24,7 @@
 use core::fmt;
 
 /// The message data of one cycle with the code that says what it holds
-/// (SPEC §1.2).
+/// (docs/servo.md#feedback).
 ///
 /// Both fields are the raw wire values. `PartialEq` compares the float by
 /// value, so a message holding NaN is not equal to itself; compare
@@ -66,9 +67,9 @@ impl Message {
 }
 
 /// The message code of the feedback frame, read: what the message data
-/// holds (SPEC §1.2's table; seed 002, "Message Code"). A code table: each
-/// code the seed defines is a variant, every other code is kept
-/// ([`MessageCode::Reserved`], [`MessageCode::Unknown`]).
+/// holds (the table of docs/servo.md#feedback; seed 002, "Message Code"). A
+/// code table: each code the seed defines is a variant, every other code is
+/// kept ([`MessageCode::Reserved`], [`MessageCode::Unknown`]).
 ///
 /// Not to be confused with `canopen::MessageKind`, the kind of a CANopen
 /// frame.
@@ -129,7 +130,7 @@ impl MessageCode {
     }
 
     /// Return the kind's name as the command-line decoder's `message` writes
-    /// it (SPEC §6.2), e.g. `"relative_current"`.
+    /// it (docs/servo.md#cli-feedback), e.g. `"relative_current"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -144,8 +145,8 @@ impl MessageCode {
         }
     }
 
-    /// Return the unit of the message data (SPEC §1.2), or `None` for a
-    /// reserved or unknown code.
+    /// Return the unit of the message data (docs/servo.md#feedback), or `None`
+    /// for a reserved or unknown code.
     #[must_use]
     pub const fn unit(self) -> Option<&'static str> {
         match self {
@@ -161,7 +162,7 @@ impl MessageCode {
 }
 
 impl fmt::Display for MessageCode {
-    /// Format the kind as its SPEC §6.2 name.
+    /// Format the kind as its name (docs/servo.md#cli-feedback).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
@@ -183,7 +184,8 @@ impl fmt::Display for Message {
 mod tests {
     use super::*;
 
-    /// SPEC §1.2's message-code table: (code, kind, name, unit).
+    /// The message-code table of docs/servo.md#feedback: (code, kind, name,
+    /// unit).
     #[rustfmt::skip]
     const TABLE: [(i32, MessageCode, &str, Option<&str>); 10] = [
         (0, MessageCode::MotorSpeed,       "motor_speed",       Some("rpm")),

@@ -1,5 +1,5 @@
-//! The EtherCAT servo ↔ NC cyclic process data (SPEC §1; seed 002, "EtherCat
-//! Communication interface V0.18").
+//! The EtherCAT servo ↔ NC cyclic process data (docs/servo.md; seed 002,
+//! "EtherCat Communication interface V0.18").
 //!
 //! Once per NC control cycle the NC sends a 10-byte [`Command`] (speed set
 //! point, [`ServoControlWord`], extra data code) and the servo answers with a
@@ -8,38 +8,42 @@
 //! frame has a zero-copy view ([`CommandFrame`], [`FeedbackFrame`]) and an
 //! owned `Copy` value sharing one set of offsets.
 //!
-//! The behaviours of SPEC §1.6 are pure functions and state machines:
+//! The behaviours of docs/servo.md#handshakes are pure functions and state
+//! machines:
 //! [`servo_ready`] (the ServoRDY truth table), [`enable_handshake`] (SE
 //! 0b01 → 0b10, the drive's rule), and the NC side of the three
 //! handshakes: [`EnableHandshake`] and the two request/ack handshakes,
 //! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
 //!
 //! [`Drive`] is the other side: a deterministic model of a servo drive
-//! following SPEC §1.6 from the drive's side, to test NC code against
-//! without hardware (SPEC §9.2).
+//! following docs/servo.md#handshakes from the drive's side, to test NC code
+//! against without hardware (docs/servo.md#drive-model).
 //!
 //! With the `ethercrab` feature, [`Command`] and [`Feedback`] implement the
 //! process-data traits of the ethercrab EtherCAT master's `ethercrab-wire`
 //! crate (`EtherCrabWireRead`, `EtherCrabWireWrite`, `EtherCrabWireSized`
 //! with `PACKED_LEN` 10 and 40, `EtherCrabWireWriteSized`), byte for byte
 //! the frames' own [`Command::to_bytes`] / [`Command::parse`]; a short slice
-//! is a `WireError`, never a panic (SPEC §9.1). ethercrab-wire 0.3 is
-//! `no_std` and needs Rust 1.79, below this crate's MSRV 1.81.
+//! is a `WireError`, never a panic (docs/servo.md#ethercrab). ethercrab-wire
+//! 0.3 is `no_std` and needs Rust 1.79, below this crate's MSRV 1.81.
 //!
 //! Layout, one file per word or frame:
 //! - `control_word`: [`ServoControlWord`], [`ServoEnable`],
-//!   [`RegulatorMode`], [`ParameterTable`] (SPEC §1.3);
-//! - `status_word`: [`ServoStatusWord`], [`EncoderKind`] (SPEC §1.4);
-//! - `error_word`: [`ServoErrorWord`], [`ServoFault`], [`ECode`] (SPEC §1.5);
-//! - `command`: [`CommandFrame`], [`Command`] (SPEC §1.1);
-//! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`] (SPEC §1.2);
-//! - `message`: [`Message`], [`MessageCode`] (SPEC §1.2);
-//! - `behaviour`: the pure behaviours (SPEC §1.6);
+//!   [`RegulatorMode`], [`ParameterTable`] (docs/servo.md#scw);
+//! - `status_word`: [`ServoStatusWord`], [`EncoderKind`] (docs/servo.md#ssw);
+//! - `error_word`: [`ServoErrorWord`], [`ServoFault`], [`ECode`]
+//!   (docs/servo.md#sew);
+//! - `command`: [`CommandFrame`], [`Command`] (docs/servo.md#command);
+//! - `feedback`: [`FeedbackFrame`], [`Feedback`], [`ActualPosition`]
+//!   (docs/servo.md#feedback);
+//! - `message`: [`Message`], [`MessageCode`] (docs/servo.md#feedback);
+//! - `behaviour`: the pure behaviours (docs/servo.md#handshakes);
 //! - `enable`: [`EnableHandshake`], the NC side of the enable handshake
-//!   (SPEC §1.6);
-//! - `drive`: [`Drive`], the drive model, and its [`DriveConfig`] (SPEC §9.2);
+//!   (docs/servo.md#handshakes);
+//! - `drive`: [`Drive`], the drive model, and its [`DriveConfig`]
+//!   (docs/servo.md#drive-model);
 //! - `ethercrab` (feature `ethercrab`): the frames as ethercrab-wire process
-//!   data (SPEC §9.1).
+//!   data (docs/servo.md#ethercrab).
 
 mod behaviour;
 mod command;

@@ -1,5 +1,5 @@
 //! SSW, the servo status word the drive sends in every feedback frame
-//! (SPEC §1.4; seed 002, "ServoStatusWord").
+//! (docs/servo.md#ssw; seed 002, "ServoStatusWord").
 //!
 //! ```
 //! use motionwire::servo::{EncoderKind, ServoStatusWord};
@@ -21,7 +21,7 @@ use bitflags::bitflags;
 use super::ParameterTable;
 
 bitflags! {
-    /// SSW, the servo status word, servo → NC (SPEC §1.4; seed 002).
+    /// SSW, the servo status word, servo → NC (docs/servo.md#ssw; seed 002).
     ///
     /// The 2-bit PRMTBL field (bits 8–9) is read with
     /// [`ServoStatusWord::parameter_table`], not as flags. All bits are
@@ -41,17 +41,18 @@ bitflags! {
     pub struct ServoStatusWord: u32 {
         /// Bit 0, ServoEn: the drive is enabled (motor live).
         const SERVO_EN = 1 << 0;
-        /// Bit 1, ServoRDY: the drive is ready (truth table of SPEC §1.6,
+        /// Bit 1, ServoRDY: the drive is ready (truth table of
+        /// docs/servo.md#servo-ready,
         /// [`servo_ready`](crate::servo::servo_ready)).
         const SERVO_RDY = 1 << 1;
         /// Bit 2, Abs/Incr: 0 = absolute (EnDat) encoder, 1 = incremental
         /// encoder; see [`ServoStatusWord::encoder`].
         const ABS_INCR = 1 << 2;
         /// Bit 3, ZPulseAck: the zero pulse was found after a request
-        /// (handshake of SPEC §1.6).
+        /// (handshake of docs/servo.md#handshakes).
         const Z_PULSE_ACK = 1 << 3;
         /// Bit 4, ErrClearAck: the drive's errors were cleared after
-        /// ErrorClear (handshake of SPEC §1.6).
+        /// ErrorClear (handshake of docs/servo.md#handshakes).
         const ERR_CLEAR_ACK = 1 << 4;
         /// Bit 5, N=0: motor speed below the standstill threshold.
         const N_ZERO = 1 << 5;
@@ -61,7 +62,7 @@ bitflags! {
         const PULSE_ENABLED = 1 << 7;
         /// Bit 10, NoEncoder: the axis has no encoder (e.g. an inverter).
         /// (The seed's caption "Errors are deleted yet" for this bit is a
-        /// copy error; SPEC §1.4.)
+        /// copy error; docs/servo.md#ssw.)
         const NO_ENCODER = 1 << 10;
         /// Bit 11, TempWarning: motor temperature measured in the encoder
         /// above 80 °C.
@@ -81,7 +82,8 @@ const PRMTBL_SHIFT: u32 = 8;
 const PRMTBL_MASK: u32 = 0b11 << PRMTBL_SHIFT;
 
 impl ServoStatusWord {
-    /// The names of the single-bit flags as SPEC §6.2 writes them, in bit order.
+    /// The names of the single-bit flags as docs/servo.md#cli-feedback writes
+    /// them, in bit order.
     pub const NAMES: [(ServoStatusWord, &'static str); 11] = [
         (ServoStatusWord::SERVO_EN, "ServoEn"),
         (ServoStatusWord::SERVO_RDY, "ServoRDY"),
@@ -97,7 +99,8 @@ impl ServoStatusWord {
     ];
 
     /// Return the names of the set single-bit flags in bit order, as the
-    /// command-line decoder's `status_flags` writes them (SPEC §6.2).
+    /// command-line decoder's `status_flags` writes them
+    /// (docs/servo.md#cli-feedback).
     pub fn flag_names(self) -> impl Iterator<Item = &'static str> + Clone {
         Self::NAMES
             .into_iter()
@@ -106,7 +109,7 @@ impl ServoStatusWord {
     }
 
     /// Return the active parameter table, ExtPRMTBL·4 + PRMTBL + 1, from
-    /// PRMTBL (bits 8–9) and ExtPRMTBL (bit 12) (SPEC §1.4).
+    /// PRMTBL (bits 8–9) and ExtPRMTBL (bit 12) (docs/servo.md#ssw).
     #[must_use]
     pub const fn parameter_table(self) -> ParameterTable {
         ParameterTable::from_select(
@@ -125,7 +128,7 @@ impl ServoStatusWord {
     }
 
     /// Return the kind of encoder the Abs/Incr bit (bit 2) reports; it
-    /// decides how the feedback's ActPos is read (SPEC §1.2).
+    /// decides how the feedback's ActPos is read (docs/servo.md#feedback).
     #[must_use]
     pub const fn encoder(self) -> EncoderKind {
         if self.contains(ServoStatusWord::ABS_INCR) {
@@ -155,7 +158,8 @@ impl ServoStatusWord {
     }
 }
 
-/// The kind of position encoder, from SSW bit 2 Abs/Incr (SPEC §1.2, §1.4).
+/// The kind of position encoder, from SSW bit 2 Abs/Incr
+/// (docs/servo.md#feedback, docs/servo.md#ssw).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -169,7 +173,7 @@ pub enum EncoderKind {
 
 impl EncoderKind {
     /// Return the name the command-line decoder's `encoder` writes
-    /// (SPEC §6.2): `"absolute"` or `"incremental"`.
+    /// (docs/servo.md#cli-feedback): `"absolute"` or `"incremental"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -180,7 +184,7 @@ impl EncoderKind {
 }
 
 impl fmt::Display for EncoderKind {
-    /// Format the kind as its SPEC §6.2 name.
+    /// Format the kind as its name (docs/servo.md#cli-feedback).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
@@ -190,7 +194,8 @@ impl fmt::Display for EncoderKind {
 mod tests {
     use super::*;
 
-    /// SPEC §1.4 / seed 002's bit diagram: every single-bit flag at its bit.
+    /// docs/servo.md#ssw / seed 002's bit diagram: every single-bit flag at its
+    /// bit.
     #[test]
     fn flag_bit_positions() {
         let table = [
@@ -212,7 +217,7 @@ mod tests {
     }
 
     #[test]
-    fn flag_names_are_spec_6_2_in_bit_order() {
+    fn flag_names_are_the_json_names_in_bit_order() {
         assert_eq!(
             ServoStatusWord::from_bits_retain(u32::MAX)
                 .flag_names()
@@ -327,7 +332,7 @@ mod proptests {
 
 impl fmt::Display for ServoStatusWord {
     /// The word in hex with the names of its set single-bit flags, as
-    /// SPEC §6.2 names them: `0x00000021 [EMGON|Brake]`.
+    /// docs/servo.md#cli-feedback names them: `0x00000021 [EMGON|Brake]`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         crate::names::write_word(f, format_args!("{:#010x}", self.bits()), self.flag_names())
     }

@@ -1,4 +1,5 @@
-//! A drive's observed CiA 402 timeline, from statuswords only (SPEC §8.3).
+//! A drive's observed CiA 402 timeline, from statuswords only
+//! (docs/summary.md#cia402).
 
 use crate::can::Timestamp;
 use crate::canopen::Cia402State;
@@ -6,7 +7,8 @@ use crate::decoder::Cia402Reading;
 
 use super::EmcySeen;
 
-/// One change of a drive's observed state (SPEC §8.3 `transitions`).
+/// One change of a drive's observed state (`transitions` in
+/// docs/summary.md#cia402).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Cia402Transition {
     /// The line of the frame that first showed the new state.
@@ -20,8 +22,8 @@ pub struct Cia402Transition {
 }
 
 /// A fault: the state entered `fault_reaction_active` or `fault` from a
-/// state that is neither (SPEC §8.3 `faults`), with the drive's last error
-/// EMCY before it — what the text summary names as its likely cause.
+/// state that is neither (`faults` in docs/summary.md#cia402), with the drive's
+/// last error EMCY before it — what the text summary names as its likely cause.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Cia402Fault {
     /// The transition into the fault.
@@ -30,14 +32,16 @@ pub struct Cia402Fault {
     pub emcy_before: Option<EmcySeen>,
 }
 
-/// A drive's observed timeline (SPEC §8.3, the summary's `cia402`).
+/// A drive's observed timeline (docs/summary.md#cia402, the summary's
+/// `cia402`).
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Cia402Timeline {
     /// Every change of state, in order.
     pub transitions: Vec<Cia402Transition>,
-    /// Every fault, in order; `None` when no statusword was seen (SPEC
-    /// §8.3 decision: nothing observed is not "no fault", `"faults":
-    /// null`), `Some` and empty when the drive was seen and never faulted.
+    /// Every fault, in order; `None` when no statusword was seen (the
+    /// decision in docs/summary.md#cia402: nothing observed is not "no fault",
+    /// `"faults": null`), `Some` and empty when the drive was seen and never
+    /// faulted.
     pub faults: Option<Vec<Cia402Fault>>,
 }
 

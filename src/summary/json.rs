@@ -1,10 +1,10 @@
 //! `Serialize` for the summary: exactly the records of `motionwire decode
-//! --summary --json` (SPEC §6.3, §7.4, §8.3), key for key and in order.
+//! --summary --json` (docs/summary.md), key for key and in order.
 //!
 //! Times are written as JSON numbers with the log's resolution, six or
 //! nine decimals (`1700000000.000500`), never rounded through a float
-//! (SPEC §5.7): with `serde_json` they are raw numbers; other serializers
-//! see serde_json's raw-value token.
+//! (docs/formats.md#timestamps): with `serde_json` they are raw numbers; other
+//! serializers see serde_json's raw-value token.
 
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
@@ -35,7 +35,8 @@ fn ts<M: SerializeMap>(map: &mut M, key: &str, ts: Option<Timestamp>) -> Result<
     map.serialize_entry(key, &ts.map(Ts))
 }
 
-/// SPEC §6.1's `iface`: the name, the channel as a string, or null.
+/// The `iface` of docs/output.md#common-keys: the name, the channel as a
+/// string, or null.
 struct Iface<'a>(&'a BusName);
 
 impl Serialize for Iface<'_> {
@@ -88,8 +89,8 @@ impl Serialize for EmcySeen {
 }
 
 impl Serialize for FrameCounts {
-    /// `{kind: count}` for every kind, in the order of SPEC §6.1, with
-    /// `guard_answer` after `guard_request`.
+    /// `{kind: count}` for every kind, in the order of
+    /// docs/summary.md#frames, with `guard_answer` after `guard_request`.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         for (key, n) in self.iter() {
@@ -153,7 +154,7 @@ impl Serialize for SdoAbort {
 }
 
 impl Serialize for SdoSummary {
-    /// SPEC §7.4: `{"requests", "transfers", "aborts", "broken",
+    /// docs/summary.md#sdo: `{"requests", "transfers", "aborts", "broken",
     /// "timeouts", "latency_ms"}`.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         struct Latency<'a>(&'a super::LatencyStats);
@@ -179,9 +180,9 @@ impl Serialize for SdoSummary {
 }
 
 impl Serialize for Cia402Timeline {
-    /// SPEC §8.3: `{"transitions": [{"line", "ts", "from", "to"}],
+    /// docs/summary.md#cia402: `{"transitions": [{"line", "ts", "from", "to"}],
     /// "last_state", "faults": [lines]}`; `"faults": null` when no
-    /// statusword was seen (SPEC §8.3 decision).
+    /// statusword was seen (the decision in docs/summary.md#cia402).
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         struct Transitions<'a>(&'a Cia402Timeline);
         impl Serialize for Transitions<'_> {
@@ -218,7 +219,7 @@ impl Serialize for super::Cia402Transition {
 }
 
 impl Serialize for NodeSummary {
-    /// SPEC §6.3's node record.
+    /// The node record of docs/summary.md#node.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         node_entries(self, &mut map)?;
@@ -243,7 +244,7 @@ fn node_entries<M: SerializeMap>(n: &NodeSummary, map: &mut M) -> Result<(), M::
 }
 
 impl Serialize for BusSummary {
-    /// SPEC §6.3's bus record.
+    /// The bus record of docs/summary.md#bus.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         bus_entries(self, &mut map)?;

@@ -1,9 +1,10 @@
 //! The post-mortem of a log: one record per device and per bus
-//! (SPEC §6.3), built with the crate's own state machines — the CiA 405
-//! EMCY storage for the root cause (SPEC §3), the heartbeat consumer for
-//! timeouts and the node-guarding observer for toggle errors (SPEC §2.7) —
-//! from what the [decoder](crate::decoder) makes of each frame: SDO
-//! statistics (SPEC §7.4) and each drive's CiA 402 timeline (SPEC §8.3).
+//! (docs/summary.md), built with the crate's own state machines — the CiA 405
+//! EMCY storage for the root cause (docs/canopen.md#recv-emcy), the heartbeat
+//! consumer for timeouts and the node-guarding observer for toggle errors
+//! (docs/canopen.md#error-control) — from what the [decoder](crate::decoder)
+//! makes of each frame: SDO statistics (docs/summary.md#sdo) and each drive's
+//! CiA 402 timeline (docs/summary.md#cia402).
 //!
 //! A [`Summarizer`] is fed every frame with its [`Decoded`] reading and
 //! every bus event, in log order; [`Summarizer::finish`] returns the typed
@@ -52,7 +53,7 @@ use crate::canopen::{
 use crate::decoder::{BusName, Buses, Decoded, Decoder};
 
 /// An EMCY the summary points at: where it was seen and its code
-/// (SPEC §6.3 `first_error`, `active_error`).
+/// (`first_error` in docs/summary.md#emcy, `active_error`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EmcySeen {
     /// The line (or record number) it was read on.
@@ -63,8 +64,8 @@ pub struct EmcySeen {
     pub code: ErrorCode,
 }
 
-/// A heartbeat gap longer than the consumer time (SPEC §6.3
-/// `heartbeat.timeouts`).
+/// A heartbeat gap longer than the consumer time (`heartbeat.timeouts`
+/// in docs/summary.md#heartbeat).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct HeartbeatGap {
     /// The line of the heartbeat before the gap.
@@ -74,16 +75,16 @@ pub struct HeartbeatGap {
 }
 
 impl HeartbeatGap {
-    /// Return the gap in milliseconds, as SPEC §6.3's `gap_ms` (exact for
-    /// every gap below 2^53 µs).
+    /// Return the gap in milliseconds, as `gap_ms` (docs/summary.md#heartbeat;
+    /// exact for every gap below 2^53 µs).
     #[must_use]
     pub fn gap_ms(&self) -> f64 {
         self.gap.as_micros() as f64 / 1000.0
     }
 }
 
-/// Whether heartbeat timeouts were checked, and what was found (SPEC §6.3,
-/// §5.7).
+/// Whether heartbeat timeouts were checked, and what was found
+/// (docs/summary.md#heartbeat, docs/formats.md#timestamps).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Timeouts {
     /// No consumer time was given: timeouts are not part of the summary
@@ -96,7 +97,7 @@ pub enum Timeouts {
     Checked(Vec<HeartbeatGap>),
 }
 
-/// A node's heartbeats (SPEC §6.3 `heartbeat`).
+/// A node's heartbeats (`heartbeat` in docs/summary.md#heartbeat).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct HeartbeatSummary {
     /// Heartbeats seen (not node-guarding answers).
@@ -109,16 +110,17 @@ pub struct HeartbeatSummary {
     pub timeouts: Timeouts,
 }
 
-/// A node's node-guarding answers (SPEC §6.3 `guarding`).
+/// A node's node-guarding answers (`guarding` in docs/summary.md#guarding).
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct GuardingSummary {
     /// Answers seen (the data frame after a guard request).
     pub answers: u64,
-    /// The lines of the answers whose toggle bit is wrong (SPEC §2.7).
+    /// The lines of the answers whose toggle bit is wrong
+    /// (docs/canopen.md#error-control).
     pub toggle_errors: Vec<u64>,
 }
 
-/// The frames of a node by kind (SPEC §6.3 `frames`), with the
+/// The frames of a node by kind (`frames` in docs/summary.md#frames), with the
 /// node-guarding answers apart from the heartbeats: both are data frames
 /// on 0x700 + node, told apart by the guard request before an answer
 /// (docs/summary.md#frames).
@@ -156,7 +158,7 @@ impl FrameCounts {
     }
 }
 
-/// One device: an (interface, node) seen in the log (SPEC §6.3, node
+/// One device: an (interface, node) seen in the log (docs/summary.md#node, node
 /// record).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeSummary {
@@ -171,7 +173,8 @@ pub struct NodeSummary {
     /// Its first error EMCY.
     pub first_error: Option<EmcySeen>,
     /// The error in its RECV_EMCY_DEV slot at the end of the input: the
-    /// root cause under SPEC §3's rule, `None` after a reset.
+    /// root cause under the rule of docs/canopen.md#recv-emcy, `None` after a
+    /// reset.
     pub active_error: Option<EmcySeen>,
     /// Reset EMCYs (error code 0000h) seen.
     pub resets: u64,
@@ -182,14 +185,14 @@ pub struct NodeSummary {
     pub heartbeat: HeartbeatSummary,
     /// Its node-guarding answers.
     pub guarding: GuardingSummary,
-    /// Its SDO channel (SPEC §7.4).
+    /// Its SDO channel (docs/summary.md#sdo).
     pub sdo: SdoSummary,
-    /// Its observed CiA 402 timeline, for a drive (SPEC §8.3); `None` for
-    /// a node that is not a drive.
+    /// Its observed CiA 402 timeline, for a drive (docs/summary.md#cia402);
+    /// `None` for a node that is not a drive.
     pub cia402: Option<Cia402Timeline>,
 }
 
-/// One interface (SPEC §6.3, bus record).
+/// One interface (docs/summary.md#bus, bus record).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BusSummary {
     /// The bus.
@@ -212,7 +215,7 @@ pub struct BusSummary {
     pub nodes: Vec<NodeId>,
 }
 
-/// The post-mortem of a whole input (SPEC §6.3): the devices by bus then
+/// The post-mortem of a whole input (docs/summary.md): the devices by bus then
 /// node-ID, then the buses in the same order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
@@ -261,8 +264,8 @@ impl Summary {
     }
 
     /// Return whether heartbeat timeouts were asked for but could not be
-    /// checked because frames had no timestamps (SPEC §5.7: a program says
-    /// so once).
+    /// checked because frames had no timestamps (docs/formats.md#timestamps: a
+    /// program says so once).
     #[must_use]
     pub fn timeouts_not_checked(&self) -> bool {
         self.checked == Some(false)
@@ -417,7 +420,7 @@ impl Summarizer {
 
     /// Return the summarizer monitoring every node's heartbeats with the
     /// consumer time `time` (object 1016h; `--heartbeat-ms`): each gap
-    /// longer than it is a timeout (SPEC §6.3).
+    /// longer than it is a timeout (docs/summary.md#heartbeat).
     #[must_use]
     pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
         self.heartbeat = Some(time);
@@ -433,8 +436,9 @@ impl Summarizer {
         self.buses.get_mut(at)
     }
 
-    /// Add one log entry read at `position` (SPEC §5.7 `line`): a frame is
-    /// read by `decoder` first; a bus event is counted.
+    /// Add one log entry read at `position` (`line` in
+    /// docs/formats.md#positions): a frame is read by `decoder` first; a bus
+    /// event is counted.
     pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
         match event {
             LogEvent::Frame(frame) => {
@@ -445,8 +449,8 @@ impl Summarizer {
         }
     }
 
-    /// Count a log entry that is not a frame (a TRC status row; SPEC §6.3
-    /// `status_events`).
+    /// Count a log entry that is not a frame (a TRC status row; `status_events`
+    /// in docs/summary.md#bus).
     pub fn add_status(&mut self, status: &BusStatus<'_>) {
         let bus = self.bus(status.iface);
         bus.status_events += 1;
@@ -588,9 +592,10 @@ impl Summarizer {
         }
     }
 
-    /// Close the input: transfers left open end (SPEC §7.2), heartbeats
-    /// still missing at the last timestamp are timeouts up to it, and the
-    /// nodes that are drives get their CiA 402 timeline (SPEC §8.3).
+    /// Close the input: transfers left open end (docs/canopen.md#transfers),
+    /// heartbeats still missing at the last timestamp are timeouts up to it,
+    /// and the nodes that are drives get their CiA 402 timeline
+    /// (docs/summary.md#cia402).
     #[must_use]
     pub fn finish(mut self, decoder: &mut Decoder) -> Summary {
         for open in decoder.finish() {

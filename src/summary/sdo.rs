@@ -1,5 +1,5 @@
-//! A node's SDO channel in the summary (SPEC §7.4): requests, transfers,
-//! aborts, broken and unanswered transfers, response latencies.
+//! A node's SDO channel in the summary (docs/summary.md#sdo): requests,
+//! transfers, aborts, broken and unanswered transfers, response latencies.
 
 use core::time::Duration;
 
@@ -7,7 +7,7 @@ use crate::canopen::sdo::{SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoRespo
 use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::decoder::SdoStep;
 
-/// One abort seen on a node's channel (SPEC §7.4 `aborts`).
+/// One abort seen on a node's channel (`aborts` in docs/summary.md#sdo).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SdoAbort {
     /// The line of the abort frame.
@@ -16,8 +16,9 @@ pub struct SdoAbort {
     /// the abort carries none (python-canopen's client aborts with
     /// 0000h.00).
     pub multiplexer: ObjectAddress,
-    /// The object's name, where known (SPEC §7.3 `object`: the node's
-    /// EDS first, then the communication objects and the profile's;
+    /// The object's name, where known (`object` in
+    /// docs/canopen.md#object-names: the node's EDS first, then the
+    /// communication objects and the profile's;
     /// [`SdoStep::object`]).
     pub object: Option<String>,
     /// The abort code.
@@ -26,8 +27,8 @@ pub struct SdoAbort {
     pub by: SdoParty,
 }
 
-/// The request → response latencies of a channel (SPEC §7.4 `latency_ms`):
-/// nearest-rank percentiles.
+/// The request → response latencies of a channel (`latency_ms` in
+/// docs/summary.md#sdo): nearest-rank percentiles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct LatencyStats {
     /// How many latencies.
@@ -40,7 +41,7 @@ pub struct LatencyStats {
     pub max: Duration,
 }
 
-/// A node's SDO record (SPEC §7.4).
+/// A node's SDO record (docs/summary.md#sdo).
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct SdoSummary {
     /// Client → server frames.

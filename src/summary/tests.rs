@@ -1,4 +1,4 @@
-//! The post-mortem's rules (SPEC §6.3, §7.4, §8.3), each on a few frames.
+//! The post-mortem's rules (docs/summary.md), each on a few frames.
 
 use core::time::Duration;
 
@@ -138,9 +138,9 @@ fn a_drives_fault_names_the_emcy_before_it() {
     assert_eq!(json[0]["sdo"]["latency_ms"]["count"], 2);
 }
 
-/// SPEC §8.3 decision: a drive whose statusword was never seen has
-/// `"faults": null` — nothing observed is not "no fault" — and one that was
-/// seen and never faulted `[]`.
+/// The decision in docs/summary.md#cia402: a drive whose statusword was never
+/// seen has `"faults": null` — nothing observed is not "no fault" — and one
+/// that was seen and never faulted `[]`.
 #[test]
 fn a_drive_never_seen_has_unknown_faults() {
     // Node 3 (akd) only answers a read of its device type: no statusword.

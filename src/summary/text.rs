@@ -1,4 +1,4 @@
-//! The text summary: the records of SPEC §6.3 in sentences a service
+//! The text summary: the records of docs/summary.md#text in sentences a service
 //! engineer can act on.
 
 use core::fmt;
@@ -91,7 +91,7 @@ impl fmt::Display for NodeSummary {
         if let Some(register) = self.last_register.filter(|r| r.bits() != 0) {
             if self.active_error.is_none() {
                 // A reset EMCY with a non-zero register: other errors are
-                // still active (SPEC §6.3).
+                // still active (docs/summary.md#emcy).
                 write!(
                     f,
                     ", error register {:#04x} still set by the last EMCY",

@@ -1,4 +1,4 @@
-//! Strategies for the Kollmorgen AKD profile (SPEC §2.4).
+//! Strategies for the Kollmorgen AKD profile (docs/canopen.md#akd).
 
 use proptest::prelude::*;
 

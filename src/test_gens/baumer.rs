@@ -1,4 +1,4 @@
-//! Strategies for the Baumer EAM580 profile types (SPEC §4).
+//! Strategies for the Baumer EAM580 profile types (docs/canopen.md#baumer).
 
 use proptest::prelude::*;
 

@@ -1,4 +1,4 @@
-//! Strategies for the candump types (SPEC §5).
+//! Strategies for the candump types (docs/formats.md).
 
 use proptest::prelude::*;
 

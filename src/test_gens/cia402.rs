@@ -1,4 +1,4 @@
-//! Strategies for the CiA 402 drive state machine (SPEC §8.3).
+//! Strategies for the CiA 402 drive state machine (docs/canopen.md#cia402).
 
 use proptest::prelude::*;
 

@@ -1,6 +1,7 @@
 //! Strategies for the error-control types: NMT states, heartbeat and
 //! node-guarding messages, and timed input sequences for the heartbeat
-//! consumer, the node-guarding master and life guarding (SPEC §2.7).
+//! consumer, the node-guarding master and life guarding
+//! (docs/canopen.md#error-control).
 
 use proptest::prelude::*;
 

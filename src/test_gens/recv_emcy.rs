@@ -20,8 +20,8 @@ pub(crate) fn device_set() -> impl Strategy<Value = DeviceSet> {
     proptest::collection::vec(scan_device(), 0..6).prop_map(DeviceSet::from_iter)
 }
 
-/// A reset EMCY: mostly code 0x0000, sometimes another 0x00xx (SPEC §2.3),
-/// any register and manufacturer bytes.
+/// A reset EMCY: mostly code 0x0000, sometimes another 0x00xx
+/// (docs/canopen.md#emcy-codes), any register and manufacturer bytes.
 pub(crate) fn reset_emcy() -> impl Strategy<Value = Emcy> {
     (
         prop_oneof![3 => Just(0u16), 1 => 1u16..=0x00FF],

@@ -1,4 +1,4 @@
-//! Strategies for the SDO frames (SPEC §7.1).
+//! Strategies for the SDO frames (docs/canopen.md#sdo).
 
 use proptest::prelude::*;
 

@@ -1,4 +1,4 @@
-//! Strategies for the servo ↔ NC types (SPEC §1).
+//! Strategies for the servo ↔ NC types (docs/servo.md).
 
 use proptest::prelude::*;
 

@@ -1,7 +1,8 @@
-//! `motionwire decode`: a log → one record per CAN frame (SPEC §6.1), or
-//! the summary (SPEC §6.3). The streaming loop: open, read with the
-//! library's [`LogReader`] (which detects the format, SPEC §5.7), hand each
-//! event to the [`Sink`], which filters and renders.
+//! `motionwire decode`: a log → one record per CAN frame (docs/output.md), or
+//! the summary (docs/summary.md). The streaming loop: open, read with the
+//! library's [`LogReader`] (which detects the format,
+//! docs/formats.md#detection), hand each event to the [`Sink`], which filters
+//! and renders.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Read, StderrLock, StdoutLock, Write};
@@ -80,7 +81,8 @@ enum Output {
 }
 
 /// Where frames go: read by the library's decoder, then filtered and
-/// rendered, or added to the summary (which sees every frame, SPEC §6.4).
+/// rendered, or added to the summary (which sees every frame,
+/// docs/output.md#filters).
 struct Sink<'a> {
     out: BufWriter<StdoutLock<'static>>,
     err: BufWriter<StderrLock<'static>>,
@@ -97,7 +99,8 @@ struct Sink<'a> {
     /// Frames read so far, from every input.
     frames: u64,
     /// The decoder session: what the log teaches as it is read (SDO
-    /// channels, PDO mappings, drive states; SPEC §7, §8).
+    /// channels, PDO mappings, drive states; docs/canopen.md#transfers,
+    /// docs/canopen.md#pdo-mappings, docs/canopen.md#cia402).
     decoder: Decoder,
     /// How the decoder was configured: a new recording starts with it.
     config: DecoderConfig,
@@ -221,7 +224,7 @@ impl<'a> Sink<'a> {
     }
 
     /// A line or record that could not be read: said on standard error
-    /// with its position, counted (SPEC §5.7).
+    /// with its position, counted (docs/formats.md#reported).
     #[cold]
     fn malformed(&mut self, name: &str, line: u64, why: &dyn std::fmt::Display) -> io::Result<()> {
         self.skipped += 1;
@@ -362,11 +365,12 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Read a log event by event, each with its line or record (SPEC §5.7):
-/// frames and bus events to the sink, malformed lines and damaged records
-/// said on standard error, and the output flushed whenever the input has
-/// nothing more buffered (live use, SPEC §6.4). A [`LogVisitor`], so that
-/// the loop is compiled for each format's reader.
+/// Read a log event by event, each with its line or record
+/// (docs/formats.md#positions): frames and bus events to the sink, malformed
+/// lines and damaged records said on standard error, and the output flushed
+/// whenever the input has nothing more buffered (live use,
+/// docs/output.md#live). A [`LogVisitor`], so that the loop is compiled for
+/// each format's reader.
 struct ReadAll<'r, 's, 'a> {
     sink: &'r mut Sink<'a>,
     progress: &'r mut Progress,
@@ -406,13 +410,14 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
             }
             if log.drained() {
                 // Live use: what was decoded so far is written out now
-                // (SPEC §6.4); a file read in full blocks never gets here.
+                // (docs/output.md#live); a file read in full blocks never gets
+                // here.
                 sink.flush()?;
             }
         }
-        // SPEC §5.5, §5.6: counted and said once per kind, not per record,
-        // naming the link type ("12 packets of link type 1 (Ethernet)
-        // skipped: not CAN").
+        // docs/formats.md#pcap, docs/formats.md#blf: counted and said once per
+        // kind, not per record, naming the link type ("12 packets of link type
+        // 1 (Ethernet) skipped: not CAN").
         for kind in log.other_kinds() {
             writeln!(sink.err, "{name}: {kind}")?;
         }
@@ -514,8 +519,8 @@ fn open_failure(name: &str, path: Option<&Path>, error: LogError) -> Failure {
 }
 
 /// Progress of a long run on standard error, only when it is a terminal
-/// (SPEC §6.4): `name: 42 % (310 MiB), 9 200 000 lines`, redrawn at most
-/// four times a second after the first second, erased at the end.
+/// (docs/output.md#progress): `name: 42 % (310 MiB), 9 200 000 lines`, redrawn
+/// at most four times a second after the first second, erased at the end.
 struct Progress {
     name: String,
     size: Option<u64>,

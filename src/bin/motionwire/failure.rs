@@ -17,8 +17,9 @@ pub enum Failure {
         /// Why it cannot be read.
         source: io::Error,
     },
-    /// An input that cannot be read as a log: none of the formats of SPEC
-    /// §5 (§5.7: one clear error, not one per line).
+    /// An input that cannot be read as a log: none of the formats of
+    /// docs/formats.md (docs/formats.md#detection: one clear error, not one per
+    /// line).
     #[error("{name}: {kind}")]
     Log {
         /// The input's name.

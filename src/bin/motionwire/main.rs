@@ -1,9 +1,9 @@
 //! `motionwire`: decode CANopen logs and EtherCAT servo frames.
 //!
 //! Built with the feature `cli`. The JSON output is a stable contract
-//! (SPEC §6): names and meanings change only with a CHANGELOG entry. The
-//! program only parses arguments and renders what the library decodes
-//! (STYLE.md, rule 13).
+//! (docs/output.md, docs/summary.md, docs/servo.md#cli): names and meanings
+//! change only with a CHANGELOG entry. The program only parses arguments and
+//! renders what the library decodes (STYLE.md, rule 13).
 //!
 //! ```text
 //! motionwire decode [--json] [--profile generic|akd|baumer|NODE=PROFILE,…] [--summary]

@@ -1,5 +1,5 @@
 //! One decoded frame, rendered as an aligned text line or a CSV row
-//! (SPEC §6.1, §6.4); its JSON record is the library's
+//! (docs/output.md#text, docs/output.md#csv); its JSON record is the library's
 //! (`Decoded::write_json`). The library decodes; this file only writes
 //! what it says.
 
@@ -25,7 +25,7 @@ pub struct Record<'r, 'a, 'd> {
 }
 
 impl Record<'_, '_, '_> {
-    /// Return the frame's kind (SPEC §6.1).
+    /// Return the frame's kind (`kind` in docs/output.md#common-keys).
     pub fn kind(&self) -> MessageKind {
         self.decoded.kind
     }
@@ -36,7 +36,7 @@ impl Record<'_, '_, '_> {
     }
 
     /// Write the record as one aligned line of text; an SDO frame in words
-    /// from its view (SPEC §7.3).
+    /// from its view (docs/output.md#sdo-text).
     pub fn write_text<W: Write>(&self, out: &mut W) -> io::Result<()> {
         let log = self.log;
         let decoded = self.decoded;
@@ -124,14 +124,15 @@ impl Record<'_, '_, '_> {
     }
 }
 
-/// The header row of `--csv` (SPEC §6.4).
+/// The header row of `--csv` (docs/output.md#csv).
 pub const CSV_HEADER: &str = "line,ts,iface,id,extended,rtr,fd,data,kind,node,code,description";
 
 impl Record<'_, '_, '_> {
-    /// Write the frame as one CSV row under [`CSV_HEADER`] (SPEC §6.4):
-    /// values as in the JSON, integers in decimal, `true`/`false`, data as
-    /// hex, empty for null; a field with a comma, quote or line break is
-    /// quoted as RFC 4180 says. Rows end with CRLF, as RFC 4180 says.
+    /// Write the frame as one CSV row under [`CSV_HEADER`]
+    /// (docs/output.md#csv): values as in the JSON, integers in decimal,
+    /// `true`/`false`, data as hex, empty for null; a field with a comma, quote
+    /// or line break is quoted as RFC 4180 says. Rows end with CRLF, as RFC
+    /// 4180 says.
     pub fn write_csv<W: Write>(&self, out: &mut W) -> io::Result<()> {
         let log = self.log;
         let frame = &log.frame;
@@ -212,7 +213,8 @@ fn write_data<W: Write>(out: &mut W, log: &LogFrame<'_>) -> io::Result<()> {
     Ok(())
 }
 
-/// Bytes as lowercase hex digits, no separators (SPEC §6.1 `data`).
+/// Bytes as lowercase hex digits, no separators (`data` in
+/// docs/output.md#common-keys).
 fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
     const DIGITS: &[u8; 16] = b"0123456789abcdef";
     let mut buf = [0u8; 128];

@@ -1,5 +1,5 @@
 //! `motionwire servo command|feedback HEX`: one EtherCAT servo ↔ NC frame
-//! (SPEC §6.2). The text is the library's (`Command::details`,
+//! (docs/servo.md#cli). The text is the library's (`Command::details`,
 //! `Feedback::details`); this module reads the hex and writes the JSON.
 
 use std::io::{self, BufWriter, Write};
@@ -14,9 +14,9 @@ use serde::Serialize;
 /// Which frame the hex holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Frame {
-    /// The 10-byte NC → servo command frame (SPEC §1.1).
+    /// The 10-byte NC → servo command frame (docs/servo.md#command).
     Command,
-    /// The 40-byte servo → NC feedback frame (SPEC §1.2).
+    /// The 40-byte servo → NC feedback frame (docs/servo.md#feedback).
     Feedback,
 }
 
@@ -98,8 +98,8 @@ pub fn run(frame: Frame, args: &ServoArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The command frame as SPEC §6.2's JSON object, keys in the contract's
-/// order.
+/// The command frame as its JSON object (docs/servo.md#cli-command), keys in
+/// the contract's order.
 #[derive(Serialize)]
 struct CommandJson {
     speed_setpoint: i32,
@@ -112,7 +112,8 @@ struct CommandJson {
     extra_data_code: i16,
 }
 
-/// Write the command frame as SPEC §6.2's JSON object and a newline.
+/// Write the command frame as its JSON object (docs/servo.md#cli-command) and a
+/// newline.
 pub fn command_json<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
     let json = CommandJson {
         speed_setpoint: c.speed_setpoint,
@@ -136,8 +137,8 @@ struct FaultJson {
     e_code: Option<String>,
 }
 
-/// The feedback frame as SPEC §6.2's JSON object, keys in the contract's
-/// order; floats as their `f64` value, a non-finite one as null.
+/// The feedback frame as its JSON object (docs/servo.md#cli-feedback), keys in
+/// the contract's order; floats as their `f64` value, a non-finite one as null.
 #[derive(Serialize)]
 struct FeedbackJson {
     position: i64,
@@ -155,7 +156,8 @@ struct FeedbackJson {
     extra: [f64; 4],
 }
 
-/// Write the feedback frame as SPEC §6.2's JSON object and a newline.
+/// Write the feedback frame as its JSON object (docs/servo.md#cli-feedback) and
+/// a newline.
 pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
     let (incremental_position, zero_pulse_position) = match f.actual_position() {
         ActualPosition::Absolute(_) => (None, None),

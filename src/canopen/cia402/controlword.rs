@@ -1,7 +1,7 @@
 //! The controlword 6040h and the device-control command it codes:
 //! [`Cia402Command`], read from bits 0–3 and 7 as CiA 402's command-coding
 //! table gives them, and [`Controlword`], every bit named (CiA 402-2 /
-//! IEC 61800-7-201, object 6040h; SPEC §8.3).
+//! IEC 61800-7-201, object 6040h; docs/canopen.md#cia402).
 
 use core::fmt;
 
@@ -11,7 +11,7 @@ use super::Cia402State;
 
 /// A device-control command of the CiA 402 drive state machine, coded in
 /// bits 0–3 and 7 of the controlword 6040h (CiA 402-2 / IEC 61800-7-201,
-/// command coding of object 6040h; SPEC §8.3).
+/// command coding of object 6040h; docs/canopen.md#cia402).
 ///
 /// | command | bit 7 | bit 3 | bit 2 | bit 1 | bit 0 | transitions |
 /// |---|---|---|---|---|---|---|
@@ -88,10 +88,10 @@ impl Cia402Command {
         (Cia402Command::EnableOperation, COMMAND_MASK, 0x000F),
     ];
 
-    /// Return the command a controlword (object 6040h) gives, by SPEC §8.3's
-    /// decision: a command is a function of the controlword, the previous
-    /// controlword and the current state, as CiA 402's transition table
-    /// draws it.
+    /// Return the command a controlword (object 6040h) gives, by the
+    /// decision in docs/canopen.md#cia402: a command is a function of the
+    /// controlword, the previous controlword and the current state, as CiA
+    /// 402's transition table draws it.
     ///
     /// - Bit 7 rising from 0 (in `previous`) to 1 (in `controlword`) is
     ///   [`Cia402Command::FaultReset`], whatever bits 0–3 say. With no
@@ -173,8 +173,8 @@ impl Cia402Command {
         Controlword::from_bits_retain(self.controlword_pattern().1)
     }
 
-    /// Return the command's name in lower-case words as SPEC §8.3 writes it,
-    /// e.g. `"enable_operation"`.
+    /// Return the command's name in lower-case words as docs/canopen.md#cia402
+    /// writes it, e.g. `"enable_operation"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -204,8 +204,8 @@ impl fmt::Display for Cia402Command {
 
 bitflags! {
     /// The controlword, object 6040h (CiA 402-2 / IEC 61800-7-201, object
-    /// 6040h; SPEC §8.3): the device-control command in bits 0–3 and 7
-    /// ([`Controlword::command`]), halt and the mode-specific bits.
+    /// 6040h; docs/canopen.md#cia402): the device-control command in bits 0–3
+    /// and 7 ([`Controlword::command`]), halt and the mode-specific bits.
     ///
     /// Decode a word that a master sent with
     /// [`Controlword::from_bits_retain`]; every bit has a name, so all 16
@@ -319,7 +319,8 @@ impl Controlword {
     ];
 
     /// Return the command the word gives after `previous` in `state`
-    /// ([`Cia402Command::from_controlword`], SPEC §8.3's decision).
+    /// ([`Cia402Command::from_controlword`], the decision in
+    /// docs/canopen.md#cia402).
     #[must_use]
     pub const fn command(
         self,

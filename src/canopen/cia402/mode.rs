@@ -1,12 +1,12 @@
 //! The modes of operation, objects 6060h and 6061h (CiA 402-2 /
-//! IEC 61800-7-201; SPEC §8.3).
+//! IEC 61800-7-201; docs/canopen.md#cia402).
 
 use core::fmt;
 
 /// A mode of operation, the INTEGER8 of objects 6060h (modes of operation,
 /// written by the master) and 6061h (modes of operation display, the mode the
 /// drive runs) (CiA 402-2 / IEC 61800-7-201, objects 6060h and 6061h;
-/// SPEC §8.3).
+/// docs/canopen.md#cia402).
 ///
 /// Every value is a mode and is kept as it is: 0 is no mode, 1–4 and 6–10
 /// are the profile's modes (the associated constants), negative values are
@@ -124,8 +124,9 @@ impl ModeOfOperation {
     }
 
     /// Return the mode's name in lower-case words, e.g. `"profile_position"`
-    /// (SPEC §8.3: modes of operation by name); `"manufacturer_specific"` or
-    /// `"reserved"` for the values the profile does not name.
+    /// (docs/canopen.md#cia402: modes of operation by name);
+    /// `"manufacturer_specific"` or `"reserved"` for the values the profile
+    /// does not name.
     #[must_use]
     pub const fn name(self) -> &'static str {
         let mut i = 0;

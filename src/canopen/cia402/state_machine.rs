@@ -1,7 +1,7 @@
 //! The drive state machine's transitions: the state a command or a drive
 //! event leads to, numbered 0–16 as CiA 402's state diagram draws them
-//! (CiA 402-2 / IEC 61800-7-201, "drive state machine"; SPEC §8.3). Pure:
-//! `(state, event) -> transition`.
+//! (CiA 402-2 / IEC 61800-7-201, "drive state machine";
+//! docs/canopen.md#cia402). Pure: `(state, event) -> transition`.
 
 use core::fmt;
 
@@ -9,10 +9,11 @@ use super::{Cia402Command, Cia402State};
 
 impl Cia402State {
     /// Return the transition a device-control command causes in this state,
-    /// as CiA 402's state diagram and transition table draw it (SPEC §8.3),
-    /// or `None` when the command causes no transition here (the drive stays
-    /// where it is: e.g. shutdown in ready to switch on, any command in not
-    /// ready to switch on or fault reaction active).
+    /// as CiA 402's state diagram and transition table draw it
+    /// (docs/canopen.md#cia402), or `None` when the command causes no
+    /// transition here (the drive stays where it is: e.g. shutdown in ready to
+    /// switch on, any command in not ready to switch on or fault reaction
+    /// active).
     ///
     /// | from | command | transition |
     /// |---|---|---|
@@ -60,11 +61,11 @@ impl Cia402State {
         })
     }
 
-    /// Return the command a controlword gives in this state after
-    /// `previous` ([`Cia402Command::from_controlword`]) and the transition it
-    /// causes ([`Cia402State::next`]): SPEC §8.3's "next state from state +
-    /// controlword" in one call. The state afterwards is the transition's
-    /// [`Cia402Transition::to`], or `self` when there is none.
+    /// Return the command a controlword gives in this state after `previous`
+    /// ([`Cia402Command::from_controlword`]) and the transition it causes
+    /// ([`Cia402State::next`]): the next state from state and controlword
+    /// (docs/canopen.md#cia402) in one call. The state afterwards is the
+    /// transition's [`Cia402Transition::to`], or `self` when there is none.
     ///
     /// ```
     /// use motionwire::canopen::{Cia402Command, Cia402State, Cia402Transition};
@@ -91,8 +92,8 @@ impl Cia402State {
 
     /// Return the transition an event inside the drive causes in this state
     /// (CiA 402's automatic and fault transitions, which no controlword
-    /// commands; SPEC §8.3: "usable by drive firmware too"), or `None` when
-    /// the event causes none here.
+    /// commands; usable by drive firmware too, docs/canopen.md#cia402), or
+    /// `None` when the event causes none here.
     ///
     /// | from | event | transition |
     /// |---|---|---|
@@ -177,7 +178,7 @@ impl Cia402DriveEvent {
 
 /// A transition of the CiA 402 drive state machine, named by its number in
 /// the state diagram (CiA 402-2 / IEC 61800-7-201, the drive state machine's
-/// diagram and transition table; SPEC §8.3), plus
+/// diagram and transition table; docs/canopen.md#cia402), plus
 /// [`Cia402Transition::T3T4`] for switch on followed at once by enable
 /// operation.
 ///
@@ -239,7 +240,7 @@ pub enum Cia402Transition {
     T16,
     /// 3 + 4: ready to switch on → operation enabled (enable operation,
     /// `0x0F`, in ready to switch on: switch on followed by enable
-    /// operation; SPEC §8.3).
+    /// operation; docs/canopen.md#cia402).
     T3T4,
 }
 

@@ -1,14 +1,14 @@
 //! The statusword 6041h and the drive state it codes: [`Cia402State`],
 //! read from bits 0–3, 5 and 6 as CiA 402's state-coding table gives them,
 //! and [`Statusword`], every bit named (CiA 402-2 / IEC 61800-7-201,
-//! object 6041h; SPEC §8.3).
+//! object 6041h; docs/canopen.md#cia402).
 
 use core::fmt;
 
 use bitflags::bitflags;
 
 /// A state of the CiA 402 drive state machine (CiA 402-2 / IEC 61800-7-201,
-/// the state diagram of the drive state machine; SPEC §8.3).
+/// the state diagram of the drive state machine; docs/canopen.md#cia402).
 ///
 /// ```
 /// use motionwire::canopen::Cia402State;
@@ -74,7 +74,7 @@ impl Cia402State {
     /// [`Cia402State::from_statusword`], [`Cia402State::statusword_pattern`]
     /// and the tests read: `(state, mask, value)`, where a statusword `sw`
     /// shows the state when `sw & mask == value` (CiA 402-2 /
-    /// IEC 61800-7-201, state coding of object 6041h; SPEC §8.3).
+    /// IEC 61800-7-201, state coding of object 6041h; docs/canopen.md#cia402).
     ///
     /// The patterns are disjoint, so at most one state matches any word.
     pub const STATUSWORD_CODING: [(Cia402State, u16, u16); 8] = [
@@ -146,8 +146,8 @@ impl Cia402State {
         Statusword::from_bits_retain(self.statusword_pattern().1)
     }
 
-    /// Return the state's name in lower-case words as SPEC §8.3 writes it,
-    /// e.g. `"not_ready_to_switch_on"`.
+    /// Return the state's name in lower-case words as docs/canopen.md#cia402
+    /// writes it, e.g. `"not_ready_to_switch_on"`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -169,8 +169,8 @@ impl Cia402State {
     }
 
     /// Return whether the state is one of the two fault states (fault
-    /// reaction active, fault): SPEC §8.3 counts a fault where the state
-    /// enters one of them from a state that is neither.
+    /// reaction active, fault): docs/summary.md#cia402 counts a fault where the
+    /// state enters one of them from a state that is neither.
     #[must_use]
     pub const fn is_fault(self) -> bool {
         matches!(self, Cia402State::FaultReactionActive | Cia402State::Fault)
@@ -186,7 +186,7 @@ impl fmt::Display for Cia402State {
 
 bitflags! {
     /// The statusword, object 6041h (CiA 402-2 / IEC 61800-7-201, object
-    /// 6041h; SPEC §8.3): the drive's state in bits 0–3, 5, 6
+    /// 6041h; docs/canopen.md#cia402): the drive's state in bits 0–3, 5, 6
     /// ([`Statusword::state`]) and its other status bits.
     ///
     /// Decode a word that a drive sent with [`Statusword::from_bits_retain`];

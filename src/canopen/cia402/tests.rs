@@ -272,8 +272,8 @@ fn every_other_command_leaves_the_state() {
     }
 }
 
-// SPEC §8.3's decision: a command is a function of (controlword,
-// previous controlword, current state).
+// The decision in docs/canopen.md#cia402: a command is a function of
+// (controlword, previous controlword, current state).
 
 /// CiA 402's command coding of 6040h bits 7, 3, 2, 1, 0 ("x" = any),
 /// for the level-coded commands (bit 7 = 0).

@@ -1,5 +1,5 @@
 //! Emergency error code descriptions, from the most specific text known to
-//! the least (SPEC §2.3).
+//! the least (docs/canopen.md#emcy-codes).
 //!
 //! A lookup tries, in this order:
 //!
@@ -25,7 +25,7 @@ use core::fmt;
 
 use super::{ErrorClass, ErrorCode};
 
-/// The document a description comes from (SPEC §2.3).
+/// The document a description comes from (docs/canopen.md#emcy-codes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum DescriptionSource {
@@ -61,7 +61,8 @@ impl fmt::Display for DescriptionSource {
     }
 }
 
-/// How specific the description found for a code is (SPEC §2.3).
+/// How specific the description found for a code is
+/// (docs/canopen.md#emcy-codes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Specificity {
@@ -98,7 +99,8 @@ impl fmt::Display for Specificity {
 }
 
 /// The most specific description known for an error code, and where it
-/// comes from (SPEC §2.3); returned by [`ErrorCode::describe`].
+/// comes from (docs/canopen.md#emcy-codes); returned by
+/// [`ErrorCode::describe`].
 ///
 /// ```
 /// use motionwire::canopen::{DescriptionSource, ErrorCode, Specificity};
@@ -430,7 +432,7 @@ impl<K> Entry<K> {
 impl ErrorCode {
     /// Return the most specific description known for this code: the exact
     /// code (CiA 301, then CiA 402), else its sub-class, else its class;
-    /// `"Unknown error code"` outside every range (SPEC §2.3).
+    /// `"Unknown error code"` outside every range (docs/canopen.md#emcy-codes).
     ///
     /// ```
     /// use motionwire::canopen::ErrorCode;
@@ -448,7 +450,8 @@ impl ErrorCode {
     }
 
     /// Return the most specific description known for this code, with how
-    /// specific it is and the document it comes from (SPEC §2.3).
+    /// specific it is and the document it comes from
+    /// (docs/canopen.md#emcy-codes).
     #[must_use]
     pub fn describe(self) -> Description {
         let class = self.class();
@@ -721,7 +724,7 @@ mod tests {
     }
 
     /// The lookup, written out the slow way: a linear search through the
-    /// tables in the order SPEC §2.3 gives.
+    /// tables in the order of docs/canopen.md#emcy-codes.
     fn reference(raw: u16) -> Description {
         let class = ErrorCode::new(raw).class();
         if class == ErrorClass::Unknown {

@@ -1,6 +1,6 @@
 //! An entry's bits in a PDO payload: read and written little-endian, bit
 //! by bit in mapping order, and decoded as or encoded from a [`Value`]
-//! (CiA 301, PDO mapping; SPEC §8.2).
+//! (CiA 301, PDO mapping; docs/canopen.md#signals).
 
 use super::PdoEntryReason;
 use crate::canopen::data_type::{Octets, Value, ValueKind, MAX_OCTETS};

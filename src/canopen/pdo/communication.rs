@@ -1,6 +1,6 @@
 //! The communication parameter of a PDO, objects 1400h–15FFh (RPDO) and
 //! 1800h–19FFh (TPDO): its COB-ID, transmission type, inhibit time and
-//! event timer (CiA 301 §7.5.2.35, §7.5.2.37; SPEC §8.1).
+//! event timer (CiA 301 §7.5.2.35, §7.5.2.37; docs/canopen.md#pdo-mappings).
 
 use core::fmt;
 use core::time::Duration;
@@ -8,9 +8,10 @@ use core::time::Duration;
 use crate::can::CanId;
 
 /// The COB-ID of a PDO, sub-index 1 of its communication parameter
-/// (CiA 301 §7.5.2.35, §7.5.2.37, "COB-ID used by PDO"; SPEC §8.1): bit 31 set = the PDO is not valid, bit 30
-/// set = no RTR is allowed on it, bit 29 set = a 29-bit identifier. Every
-/// bit of the 32 survives a round trip.
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "COB-ID used by PDO";
+/// docs/canopen.md#pdo-mappings): bit 31 set = the PDO is not valid, bit 30 set
+/// = no RTR is allowed on it, bit 29 set = a 29-bit identifier. Every bit of
+/// the 32 survives a round trip.
 ///
 /// ```
 /// use motionwire::canopen::PdoCobId;
@@ -105,7 +106,8 @@ impl From<PdoCobId> for u32 {
 }
 
 /// What a [`TransmissionType`] says about when the PDO is sent
-/// (CiA 301 §7.5.2.35, §7.5.2.37, "transmission type"; SPEC §8.1).
+/// (CiA 301 §7.5.2.35, §7.5.2.37, "transmission type";
+/// docs/canopen.md#pdo-mappings).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -150,8 +152,9 @@ impl fmt::Display for TransmissionKind {
 }
 
 /// The transmission type of a PDO, sub-index 2 of its communication
-/// parameter (CiA 301 §7.5.2.35, §7.5.2.37; SPEC §8.1). Every byte is a transmission
-/// type; [`TransmissionType::kind`] says what it means.
+/// parameter (CiA 301 §7.5.2.35, §7.5.2.37; docs/canopen.md#pdo-mappings).
+/// Every byte is a transmission type; [`TransmissionType::kind`] says what it
+/// means.
 ///
 /// ```
 /// use motionwire::canopen::{TransmissionKind, TransmissionType};
@@ -232,7 +235,7 @@ impl From<TransmissionType> for u8 {
 
 /// The inhibit time of a PDO, sub-index 3 of its communication parameter:
 /// the least time between two transmissions, in multiples of 100 µs
-/// (CiA 301 §7.5.2.35; SPEC §8.1).
+/// (CiA 301 §7.5.2.35; docs/canopen.md#pdo-mappings).
 ///
 /// ```
 /// use core::time::Duration;
@@ -268,7 +271,7 @@ impl InhibitTime {
 /// The event timer of a PDO, sub-index 5 of its communication parameter:
 /// for a TPDO the period of event-driven transmission, for an RPDO the
 /// deadline after which a missing PDO is an error; in milliseconds, 0 =
-/// not used (CiA 301 §7.5.2.35; SPEC §8.1).
+/// not used (CiA 301 §7.5.2.35; docs/canopen.md#pdo-mappings).
 ///
 /// ```
 /// use core::time::Duration;
@@ -307,8 +310,9 @@ impl EventTimer {
 }
 
 /// The communication parameter of a PDO, objects 1400h–15FFh (RPDO) and
-/// 1800h–19FFh (TPDO) (CiA 301 §7.5.2.35, §7.5.2.37; SPEC §8.1). The
-/// optional sub-indices are `None` where the device or the file gives none.
+/// 1800h–19FFh (TPDO) (CiA 301 §7.5.2.35, §7.5.2.37;
+/// docs/canopen.md#pdo-mappings). The optional sub-indices are `None` where the
+/// device or the file gives none.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

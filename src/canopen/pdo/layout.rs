@@ -1,5 +1,5 @@
 //! A PDO mapping with each entry's offset and value kind worked out once,
-//! for a decoder that reads many frames of one PDO (SPEC §8.2).
+//! for a decoder that reads many frames of one PDO (docs/canopen.md#signals).
 
 use super::bits::decode;
 use super::mapping::{MappingEntry, PdoMapping, Signal, TypeLookup, MAX_MAPPING_ENTRIES};
@@ -19,7 +19,7 @@ struct Planned {
 }
 
 /// A mapping with each entry's offset and value kind worked out once, for a
-/// decoder that reads many frames of one PDO (SPEC §8.2): its
+/// decoder that reads many frames of one PDO (docs/canopen.md#signals): its
 /// [`unpack`](Self::unpack) gives exactly what [`PdoMapping::unpack_with`]
 /// gives with the same types, without looking the types up per frame.
 ///

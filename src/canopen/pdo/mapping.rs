@@ -1,6 +1,7 @@
 //! The mapping parameter of a PDO, objects 1600h–17FFh (RPDO) and
 //! 1A00h–1BFFh (TPDO): its entries, and a payload unpacked into signals or
-//! packed from values (CiA 301 §7.5.2.36, §7.5.2.38; SPEC §8.1, §8.2).
+//! packed from values (CiA 301 §7.5.2.36, §7.5.2.38;
+//! docs/canopen.md#pdo-mappings, docs/canopen.md#signals).
 
 use core::fmt;
 
@@ -13,8 +14,8 @@ use crate::{Error, Result};
 
 /// One entry of a PDO mapping parameter, the `u32` object value
 /// `index << 16 | sub-index << 8 | length in bits` (CiA 301 §7.5.2.36, §7.5.2.38;
-/// SPEC §8.1). Every `u32` is an entry; [`PdoMapping::push`] refuses the
-/// length 0.
+/// docs/canopen.md#pdo-mappings). Every `u32` is an entry; [`PdoMapping::push`]
+/// refuses the length 0.
 ///
 /// ```
 /// use motionwire::canopen::MappingEntry;
@@ -82,8 +83,9 @@ impl MappingEntry {
     }
 
     /// Return the object the entry maps; its
-    /// [`sub_notation`](ObjectAddress::sub_notation) is how SPEC §8.2 names
-    /// an object no file or profile knows: `6041sub0`.
+    /// [`sub_notation`](ObjectAddress::sub_notation) is how a
+    /// signal is named when no file or profile knows its object
+    /// (docs/canopen.md#signals): `6041sub0`.
     #[must_use]
     pub const fn object(self) -> ObjectAddress {
         ObjectAddress {
@@ -115,9 +117,9 @@ impl From<MappingEntry> for u32 {
 }
 
 impl fmt::Display for MappingEntry {
-    /// Format the entry as `6041sub0 (16 bits)`: the object as SPEC §8.2
-    /// names an unknown one ([`ObjectAddress::sub_notation`]), and the
-    /// length.
+    /// Format the entry as `6041sub0 (16 bits)`: the object named as
+    /// docs/canopen.md#signals names an unknown one
+    /// ([`ObjectAddress::sub_notation`]), and the length.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
@@ -142,7 +144,7 @@ pub const CLASSIC_PDO_BITS: u16 = 64;
 
 /// A PDO mapping parameter: up to [`MAX_MAPPING_ENTRIES`] entries of at
 /// most [`MAX_PDO_BITS`] bits in all, without a heap (objects 1600h–17FFh,
-/// 1A00h–1BFFh; CiA 301 §7.5.2.36, §7.5.2.38; SPEC §8.1).
+/// 1A00h–1BFFh; CiA 301 §7.5.2.36, §7.5.2.38; docs/canopen.md#pdo-mappings).
 ///
 /// See the [module documentation](super) for unpacking and packing. With the
 /// `serde` feature a mapping is the sequence of its entries; reading one
@@ -268,7 +270,8 @@ impl PdoMapping {
 
     /// Read `payload` as this mapping's signals, each entry as unsigned of
     /// its length (1-bit entries as booleans, entries longer than 64 bits as
-    /// [`Octets`](crate::canopen::Octets)) (SPEC §8.2, "else unsigned of the entry's bit length").
+    /// [`Octets`](crate::canopen::Octets)) (docs/canopen.md#signals: else
+    /// unsigned of the entry's length).
     #[must_use]
     pub fn unpack<'a>(&'a self, payload: &'a [u8]) -> Signals<'a, ByLength> {
         Signals::new(self, payload, ByLength)
@@ -349,7 +352,7 @@ impl PdoMapping {
 
 /// The data type of each entry of a mapping, as a caller knows it (from an
 /// EDS, a device profile, …): `None` reads the entry as unsigned of its
-/// length (SPEC §8.2). Implemented by closures
+/// length (docs/canopen.md#signals). Implemented by closures
 /// `Fn(MappingEntry) -> Option<DataType>` and by [`ByLength`].
 pub trait TypeLookup {
     /// Return the data type of the object `entry` maps, if known.
@@ -363,7 +366,7 @@ impl<F: Fn(MappingEntry) -> Option<DataType>> TypeLookup for F {
 }
 
 /// The [`TypeLookup`] that knows no type: every entry is unsigned of its
-/// length, 1-bit entries booleans (SPEC §8.2).
+/// length, 1-bit entries booleans (docs/canopen.md#signals).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ByLength;
 
@@ -375,7 +378,7 @@ impl TypeLookup for ByLength {
 
 impl ValueKind {
     /// Return the kind an entry of `bits` bits reads as with `data_type`
-    /// (SPEC §8.2):
+    /// (docs/canopen.md#signals):
     ///
     /// | type | bits | kind |
     /// |---|---|---|
@@ -424,7 +427,7 @@ impl ValueKind {
     }
 }
 
-/// One signal read from a PDO payload (SPEC §8.2).
+/// One signal read from a PDO payload (docs/canopen.md#signals).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -518,7 +521,8 @@ impl<T: TypeLookup> core::iter::FusedIterator for Signals<'_, T> {}
 
 #[cfg(test)]
 mod tests {
-    //! Unit tests of the mapping codecs, as tables from CiA 301 and SPEC §8.
+    //! Unit tests of the mapping codecs, as tables from CiA 301 and
+    //! docs/canopen.md#pdo-mappings.
 
     use super::*;
     use crate::canopen::data_type::Octets;

@@ -1,6 +1,6 @@
 //! SDO frames: the 8 data bytes of a request (client → server, COB-ID
 //! 0x600 + node) or a response (server → client, 0x580 + node)
-//! (CiA 301 §7.2.4.3; SPEC §7.1).
+//! (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 //!
 //! [`SdoFrame`] is the zero-copy view over the bytes, with the fields every
 //! service shares; [`SdoRequest`], [`SdoResponse`] and [`SdoBlockSegment`]
@@ -100,9 +100,9 @@ const WHAT: What = What::SdoFrame;
 /// ```
 /// use motionwire::canopen::sdo::SdoParty;
 ///
-/// // SPEC §7.3's `direction` of a frame the client sends…
+/// // The `direction` of a frame the client sends (docs/output.md#sdo)…
 /// assert_eq!(SdoParty::Client.direction_name(), "request");
-/// // …and SPEC §7.4's `by` of an abort the server sends.
+/// // …and the `by` of an abort the server sends (docs/summary.md#sdo).
 /// assert_eq!(SdoParty::Server.name(), "server");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -119,7 +119,7 @@ pub enum SdoParty {
 }
 
 impl SdoParty {
-    /// Return the name SPEC §7.4's `by` writes: `client` or `server`.
+    /// Return the name `by` writes (docs/summary.md#sdo): `client` or `server`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -128,7 +128,7 @@ impl SdoParty {
         }
     }
 
-    /// Return the name SPEC §7.3's `direction` writes for a frame this
+    /// Return the name `direction` writes (docs/output.md#sdo) for a frame this
     /// side sends: `request` (client) or `response` (server).
     #[must_use]
     pub const fn direction_name(self) -> &'static str {
@@ -139,7 +139,8 @@ impl SdoParty {
     }
 }
 
-/// The service an SDO frame belongs to, as SPEC §7.3's `service` names it.
+/// The service an SDO frame belongs to, as `service` names it
+/// (docs/output.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -167,7 +168,7 @@ pub enum SdoService {
 }
 
 impl SdoService {
-    /// Every service, in the order of SPEC §7.3.
+    /// Every service, in the order of docs/output.md#sdo.
     pub const ALL: [SdoService; 9] = [
         SdoService::InitiateDownload,
         SdoService::DownloadSegment,
@@ -181,8 +182,9 @@ impl SdoService {
     ];
 
     /// Return the service of a request or response whose command byte is
-    /// `command` (SPEC §7.1's table), without a transfer's context: a block
-    /// segment is read as the request or response its bits also spell.
+    /// `command` (the table of docs/canopen.md#sdo), without a transfer's
+    /// context: a block segment is read as the request or response its bits
+    /// also spell.
     #[must_use]
     pub const fn of(sender: SdoParty, command: u8) -> SdoService {
         let specifier = command >> 5;
@@ -200,7 +202,7 @@ impl SdoService {
         }
     }
 
-    /// Return the name SPEC §7.3's `service` writes, e.g.
+    /// Return the name `service` writes (docs/output.md#sdo), e.g.
     /// `initiate_upload`.
     #[must_use]
     pub const fn name(self) -> &'static str {

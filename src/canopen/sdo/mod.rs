@@ -1,12 +1,13 @@
 //! SDO: service data objects, how a client reads and writes a device's
-//! object dictionary (CiA 301 §7.2.4; SPEC §7).
+//! object dictionary (CiA 301 §7.2.4; docs/canopen.md#sdo).
 //!
 //! - [`frame`]: the request and response frames, every field of CiA 301
-//!   (SPEC §7.1);
-//! - [`tracker`]: the pure transfer tracker of one channel (SPEC §7.2);
+//!   (docs/canopen.md#sdo);
+//! - [`tracker`]: the pure transfer tracker of one channel
+//!   (docs/canopen.md#transfers);
 //! - [`server`]: answering requests for the objects the crate owns, the
 //!   error register 1001h and the pre-defined error field 1003h
-//!   (SPEC §7.5).
+//!   (docs/canopen.md#serving-1001h-and-1003h).
 
 pub mod frame;
 pub mod server;

@@ -1,6 +1,7 @@
 //! Answering SDO requests for the objects the crate owns: the error
-//! register 1001h and the pre-defined error field 1003h (SPEC §7.5, §2.6;
-//! CiA 301 §7.5.2.2, §7.5.2.3).
+//! register 1001h and the pre-defined error field 1003h
+//! (docs/canopen.md#serving-1001h-and-1003h, docs/canopen.md#error-history; CiA
+//! 301 §7.5.2.2, §7.5.2.3).
 //!
 //! A device firmware that keeps its error state with the crate's
 //! [`ErrorHistory`] and [`ErrorRegister`] passes each request frame to
@@ -48,16 +49,17 @@ pub const ERROR_REGISTER_INDEX: u16 = 0x1001;
 pub const ERROR_HISTORY_INDEX: u16 = 0x1003;
 
 /// Answer one SDO request frame for the objects 1001h and 1003h
-/// (SPEC §7.5): the response frame to send, or `None` when no answer is
-/// due (an abort from the client, or a frame too short to be a request).
+/// (docs/canopen.md#serving-1001h-and-1003h): the response frame to send, or
+/// `None` when no answer is due (an abort from the client, or a frame too short
+/// to be a request).
 ///
 /// - An upload of 1001h.00 answers the register (UNSIGNED8); of 1003h any
 ///   sub-index: sub-index 0 the count (UNSIGNED8), 1..=N the entries
 ///   (UNSIGNED32), expedited with the size indicated.
 /// - A download of 0 to 1003h.00 clears the history.
-/// - Everything [`ErrorHistory::read`] and [`ErrorHistory::write`] refuse
-///   is aborted with their codes (SPEC §2.6); writing 1001h is
-///   [`SdoAbortCode::WRITE_OF_READ_ONLY`], a sub-index other than 0 of
+/// - Everything [`ErrorHistory::read`] and [`ErrorHistory::write`] refuse is
+///   aborted with their codes (docs/canopen.md#error-history); writing 1001h
+///   is [`SdoAbortCode::WRITE_OF_READ_ONLY`], a sub-index other than 0 of
 ///   1001h [`SdoAbortCode::SUB_INDEX_DOES_NOT_EXIST`]; any other object
 ///   [`SdoAbortCode::OBJECT_DOES_NOT_EXIST`] (0x0602_0000).
 ///

@@ -1,6 +1,6 @@
-//! Tests of the SDO frames, tracker and server (SPEC §7): vectors written
-//! from CiA 301's figures, one named test per tracker rule, and property
-//! tests over arbitrary bytes.
+//! Tests of the SDO frames, tracker and server (docs/canopen.md#sdo): vectors
+//! written from CiA 301's figures, one named test per tracker rule, and
+//! property tests over arbitrary bytes.
 
 use super::*;
 use crate::can::Timestamp;
@@ -211,7 +211,7 @@ fn undefined_specifiers_are_errors_and_service_unknown() {
     assert_eq!(SdoService::of(Rs, 0xA3), SdoService::Unknown);
 }
 
-/// SPEC §7.1's table, both columns.
+/// The table of docs/canopen.md#sdo, both columns.
 #[test]
 fn services_follow_the_specifier_table() {
     use SdoService::*;
@@ -462,8 +462,8 @@ fn server_abort_ends_the_transfer_with_its_code() {
     assert_eq!(r.latencies, [(2, 1000)]);
 }
 
-/// SPEC §7.2: python-canopen's client aborts with 0000h.00; the abort still
-/// ends the open transfer.
+/// docs/canopen.md#transfers: python-canopen's client aborts with 0000h.00; the
+/// abort still ends the open transfer.
 #[test]
 fn client_abort_with_any_multiplexer_ends_the_open_transfer() {
     let r = run(&[
@@ -730,7 +730,8 @@ fn block_upload_of_ten_bytes() {
     assert_eq!(r.data, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]);
     assert_eq!(r.services[3..5], [SdoService::BlockSegment; 2]);
     // The initiate's answer is a latency; the server's segments and end
-    // answer the start and the confirmation, which SPEC §7.2 does not list.
+    // answer the start and the confirmation, which docs/canopen.md#transfers
+    // does not list.
     assert_eq!(r.latencies, [(2, 1000)]);
 }
 
@@ -809,8 +810,9 @@ fn plausible_frames() -> impl Strategy<Value = Vec<(bool, Vec<u8>)>> {
     )
 }
 
-/// SPEC §7.2 / issue 12: never more data than the frames carried, every
-/// started transfer ends exactly once, frames counted at most once.
+/// docs/canopen.md#transfers / issue 12: never more data than the frames
+/// carried, every started transfer ends exactly once, frames counted at most
+/// once.
 fn check_invariants(frames: &[(bool, Vec<u8>)]) -> Result<(), TestCaseError> {
     let mut tracker = SdoTracker::new();
     let mut open = false;
@@ -911,7 +913,8 @@ fn uploaded(index: u16, sub: u8, data: &[u8]) -> Option<SdoResponse> {
     })
 }
 
-/// SPEC §7.5 and §2.6, one row per rule.
+/// docs/canopen.md#serving-1001h-and-1003h and docs/canopen.md#error-history,
+/// one row per rule.
 #[test]
 fn serving_1003h_and_1001h() {
     let mut h = history();

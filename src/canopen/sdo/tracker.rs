@@ -1,5 +1,5 @@
 //! The SDO transfer tracker: one pure state machine per SDO channel
-//! (SPEC §7.2; CiA 301 §7.2.4.3).
+//! (docs/canopen.md#transfers; CiA 301 §7.2.4.3).
 //!
 //! Fed every frame of one channel (one interface, one server node) in
 //! order, in both directions, with its time, [`SdoTracker::feed`] says what
@@ -64,7 +64,8 @@ pub enum TransferDirection {
 }
 
 impl TransferDirection {
-    /// Return the name SPEC §7.3 writes: `upload` or `download`.
+    /// Return the name of the transfer's `direction` (docs/output.md#transfer):
+    /// `upload` or `download`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -106,7 +107,7 @@ impl TransferMode {
     }
 }
 
-/// Why a transfer is broken (SPEC §7.2).
+/// Why a transfer is broken (docs/canopen.md#transfers).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -139,7 +140,8 @@ pub enum BrokenReason {
 }
 
 impl BrokenReason {
-    /// Return the reason's name, as SPEC §7.3's `reason` writes it.
+    /// Return the reason's name, as `reason` writes it
+    /// (docs/output.md#transfer).
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -180,7 +182,8 @@ impl fmt::Display for BrokenReason {
     }
 }
 
-/// How a transfer ended (SPEC §7.2, §7.3 `outcome`).
+/// How a transfer ended (docs/canopen.md#transfers; `outcome` in
+/// docs/output.md#transfer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -202,8 +205,8 @@ pub enum SdoOutcome {
 }
 
 impl SdoOutcome {
-    /// Return the name SPEC §7.3's `outcome` writes: `ok`, `abort`,
-    /// `broken`, `timeout`.
+    /// Return the name `outcome` writes (docs/output.md#transfer): `ok`,
+    /// `abort`, `broken`, `timeout`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -215,8 +218,8 @@ impl SdoOutcome {
     }
 }
 
-/// A transfer that ended, with what the tracker measured (SPEC §7.2,
-/// §7.3 `transfer`).
+/// A transfer that ended, with what the tracker measured
+/// (docs/canopen.md#transfers; `transfer` in docs/output.md#transfer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -259,7 +262,7 @@ pub enum SdoMessage {
 }
 
 impl SdoMessage {
-    /// Return the service SPEC §7.3 names.
+    /// Return the service, as `service` names it (docs/output.md#sdo).
     #[must_use]
     pub fn service(&self) -> SdoService {
         match self {
@@ -269,7 +272,7 @@ impl SdoMessage {
         }
     }
 
-    /// Return the fields SPEC §7.3 writes for the frame.
+    /// Return the fields of the `sdo` key (docs/output.md#sdo) for the frame.
     #[must_use]
     pub fn fields(&self) -> super::SdoFields<'_> {
         match self {
@@ -294,7 +297,7 @@ pub struct SdoEvent<'a> {
     pub chunk: &'a [u8],
     /// The time from the client frame that expected this answer to this
     /// frame, when this is a server frame answering one and both have a
-    /// time (SPEC §7.2).
+    /// time (docs/canopen.md#transfers).
     pub latency: Option<Duration>,
     /// A transfer that ends at this frame: one this frame completes,
     /// aborts or breaks, or the open one that this new request cut off or
@@ -399,7 +402,8 @@ struct Open {
     started_at: Option<Timestamp>,
     last_at: Option<Timestamp>,
     phase: Phase,
-    /// The time of the client frame whose answer is a latency (SPEC §7.2).
+    /// The time of the client frame whose answer is a latency
+    /// (docs/canopen.md#transfers).
     asked_at: Option<Option<Timestamp>>,
     /// Both sides support a block CRC.
     crc_checked: bool,
@@ -452,13 +456,13 @@ impl Open {
     }
 }
 
-/// One SDO channel's transfer tracker (SPEC §7.2): pure, no heap, no
-/// clock. Feed it every frame of one (interface, node) channel in order
-/// with [`feed`](Self::feed), and [`finish`](Self::finish) at the end of the
-/// input.
+/// One SDO channel's transfer tracker (docs/canopen.md#transfers): pure, no
+/// heap, no clock. Feed it every frame of one (interface, node) channel in
+/// order with [`feed`](Self::feed), and [`finish`](Self::finish) at the end of
+/// the input.
 ///
-/// **Decisions** (SPEC §7.2, where CiA 301 describes endpoints and a log
-/// shows both):
+/// **Decisions** (docs/canopen.md#transfers, where CiA 301 describes endpoints
+/// and a log shows both):
 /// - An abort ends the open transfer whatever multiplexer it carries; an
 ///   abort with no open transfer ends nothing.
 /// - A client frame while the server's answer is due means the answer

@@ -1,5 +1,5 @@
 //! Vector ASC text logs (CANalyzer, CANoe, python-can's `ASCWriter`,
-//! can-utils' `log2asc`; SPEC §5.3, §5.7).
+//! can-utils' `log2asc`; docs/formats.md#asc).
 //!
 //! An ASC file is a short header (`date …`, `base hex|dec  timestamps
 //! absolute|relative`, `internal events logged`, `Begin Triggerblock …`)
@@ -17,12 +17,12 @@
 //! | error frame | `   0.012345 1  ErrorFrame` |
 //! | CAN FD (or classic in FD form) | `   0.012345 CANFD   1 Rx 123  1 0 9 12 00 … 0B   0  0  3000 0 0 0 0 0` |
 //!
-//! # Decisions (where SPEC §5.3 and the tools leave room)
+//! # Decisions (where the format and the tools leave room; docs/formats.md#asc)
 //!
 //! - `ts` is the event's time as written, in seconds since the start of
-//!   the measurement (SPEC §5.7); with `timestamps relative` each time is
-//!   the time since the previous event, and the parser adds them up, so
-//!   `ts` is still seconds since the start. python-can's reader (by
+//!   the measurement (docs/formats.md#timestamps); with `timestamps relative`
+//!   each time is the time since the previous event, and the parser adds them
+//!   up, so `ts` is still seconds since the start. python-can's reader (by
 //!   default) returns relative times as written. The `date` and `Begin
 //!   Triggerblock` dates (local time, no zone) are not used.
 //! - `iface` is the channel number as written ([`Iface::Channel`], 1 for
@@ -34,11 +34,11 @@
 //! - A `CANFD` line is a CAN FD frame only when its flags field has
 //!   EDL/FDF (0x1000) set, with BRS (0x2000) and ESI (0x4000) from the same
 //!   field; without it the line carries a classic frame, a remote request
-//!   when the flags have 0x10 (SPEC §5.3 decision, as `asc2log` reads it)
-//!   — unless its data length exceeds 8 bytes, which only CAN FD can have
-//!   (CANoe writes such lines, flags `11`): then it is CAN FD with BRS and
-//!   ESI from their columns, as python-can reads it. python-can marks every
-//!   `CANFD` line as CAN FD and reads BRS/ESI from their columns.
+//!   when the flags have 0x10 (the decision in docs/formats.md#asc, as
+//!   `asc2log` reads it) — unless its data length exceeds 8 bytes, which only
+//!   CAN FD can have (CANoe writes such lines, flags `11`): then it is CAN FD
+//!   with BRS and ESI from their columns, as python-can reads it. python-can
+//!   marks every `CANFD` line as CAN FD and reads BRS/ESI from their columns.
 //! - CANoe's statistics after a frame's data (`Length = 1704000 BitCount
 //!   = 145 ID = 88888888x`) are read past; after a remote request's `r`
 //!   without a DLC they make a request of length 0, as python-can reads it.
@@ -408,9 +408,9 @@ impl AscParser {
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscFlags { found }))?;
         let payload = data.get(..len).unwrap_or_default();
         // Without EDL/FDF, more than 8 bytes can only be CAN FD (CANoe
-        // writes such lines; SPEC §5.3 decision): BRS and ESI then come
-        // from their columns, as python-can reads them, and the flags'
-        // other bits (0x10 included) are not read.
+        // writes such lines; the decision in docs/formats.md#asc): BRS and ESI
+        // then come from their columns, as python-can reads them, and the
+        // flags' other bits (0x10 included) are not read.
         let fd_without_edl = flags & FLAG_FDF == 0 && len > CLASSIC_MAX_LEN;
         let frame = if flags & FLAG_FDF != 0 || fd_without_edl {
             // FDF itself is what makes the frame CAN FD here; the flags
@@ -509,7 +509,7 @@ fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static>
 }
 
 /// Walk a whole buffer line by line: `(line number, what the line holds)`,
-/// numbered from 1 (SPEC §5.7 `line`).
+/// numbered from 1 (`line` in docs/formats.md#positions).
 #[must_use]
 pub fn lines(buf: &[u8]) -> AscLines<'_> {
     AscLines {

@@ -7,9 +7,9 @@ use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
-/// A reader of Vector ASC logs (SPEC §5.3) from any [`Read`]: whole lines
-/// a block at a time, each read by one [`AscParser`] where it lies, with
-/// the rules of SPEC §5.7 (see [`ReadLog`]).
+/// A reader of Vector ASC logs (docs/formats.md#asc) from any [`Read`]: whole
+/// lines a block at a time, each read by one [`AscParser`] where it lies, with
+/// the rules of docs/formats.md#reported (see [`ReadLog`]).
 ///
 /// ```
 /// use motionwire::can::Iface;

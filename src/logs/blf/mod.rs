@@ -1,5 +1,5 @@
 //! Vector BLF binary logs (CANoe, CANalyzer, python-can's `BLFWriter`;
-//! SPEC §5.6, §5.7), behind the `blf` feature.
+//! docs/formats.md#blf), behind the `blf` feature.
 //!
 //! A BLF file is a 144-byte `LOGG` header (with the measurement's start
 //! time) followed by objects, each behind a `LOBJ` header; the objects that
@@ -17,11 +17,11 @@
 //! | `LOG_CONTAINER` | 10 | its objects |
 //! | any other | | counted ([`ReadLog::other_records`]), skipped |
 //!
-//! # Decisions (where SPEC §5.6 and the tools leave room)
+//! # Decisions (where the format and the tools leave room; docs/formats.md#blf)
 //!
 //! - `line` is the 1-based number of the object among the objects that are
-//!   not containers, every type counted (SPEC §5.7); containers only hold
-//!   them.
+//!   not containers, every type counted (docs/formats.md#positions); containers
+//!   only hold them.
 //! - `ts` is the header's start time (a `SYSTEMTIME`, read as UTC as
 //!   python-can does; 0 when the header has none) plus the object's time
 //!   (units of 10 µs when its header's flags say 1, else nanoseconds).
@@ -30,13 +30,13 @@
 //!   when the object says it was sent.
 //! - A frame whose valid-data-bytes count exceeds the bytes stored is padded
 //!   with zeros; a remote request has no data whatever the object stores
-//!   (SPEC §5.6). A classic frame's DLC above 8 carries 8 bytes.
+//!   (docs/formats.md#blf). A classic frame's DLC above 8 carries 8 bytes.
 //! - `CAN_ERROR_EXT` is an error frame of classes `bus_error | protocol`
-//!   whose data is Linux's layout (SPEC §5.1) of what the object's error
-//!   code capture (ECC, SJA1000's register) says: byte 2 the error type
-//!   (bit 0x01, form 0x02, stuff 0x04, other 0) with 0x80 when it happened
-//!   while sending, byte 3 the location (the ECC's segment code). python-can
-//!   gives the object's identifier and data bytes instead.
+//!   whose data is Linux's layout (docs/formats.md#error-frames) of what the
+//!   object's error code capture (ECC, SJA1000's register) says: byte 2 the
+//!   error type (bit 0x01, form 0x02, stuff 0x04, other 0) with 0x80 when it
+//!   happened while sending, byte 3 the location (the ECC's segment code).
+//!   python-can gives the object's identifier and data bytes instead.
 //! - Objects inside a container follow each other after their size, with
 //!   up to 7 bytes of padding skipped before the next `LOBJ` (writers pad
 //!   differently); top-level objects are followed by `size % 4` padding
@@ -110,7 +110,7 @@ enum Object {
     Bad(Error),
 }
 
-/// A reader of Vector BLF files (SPEC §5.6): see the
+/// A reader of Vector BLF files (docs/formats.md#blf): see the
 /// [module documentation](self).
 #[derive(Debug)]
 pub struct BlfReader<R: Read> {
@@ -644,7 +644,7 @@ const fn tx(sent: bool) -> Option<Direction> {
 /// A frame from an FD object's fields: CAN FD when EDL is set (length: the
 /// valid bytes), else classic (at most 8 bytes;
 /// a remote request with the DLC). Stored bytes short of the valid count
-/// are padded with zeros (SPEC §5.6).
+/// are padded with zeros (docs/formats.md#blf).
 #[allow(clippy::too_many_arguments)]
 fn frame_of(
     id: CanId,

@@ -1,6 +1,6 @@
 //! The parser's working frame, its conversion into the crate's
-//! [`LogFrame`], and the writers of the two text formats (SPEC §5.1,
-//! §5.2).
+//! [`LogFrame`], and the writers of the two text formats
+//! (docs/formats.md#candump-log, docs/formats.md#candump-screen).
 
 use super::*;
 use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
@@ -28,7 +28,7 @@ pub(crate) struct Parsed<'a> {
 }
 
 impl<'a> Parsed<'a> {
-    /// Return the crate's record of the frame (SPEC §5).
+    /// Return the crate's record of the frame (docs/formats.md).
     #[inline(always)]
     pub(super) fn into_log_frame(self) -> LogFrame<'a> {
         // ASCII by construction; the fallback is never taken.
@@ -72,11 +72,11 @@ impl<'a> Parsed<'a> {
     }
 }
 
-/// Write a frame in candump's log format (`candump -l`, SPEC §5.1), without
-/// a line end: `(1700000000.000500) can0 081#1081110000000000 R`, as
-/// can-utils writes it (upper-case hex, at least ten digits of seconds; an
-/// error frame with `CAN_ERR_FLAG` in its 8-digit identifier). This is the
-/// record's `Display`.
+/// Write a frame in candump's log format (`candump -l`,
+/// docs/formats.md#candump-log), without a line end: `(1700000000.000500) can0
+/// 081#1081110000000000 R`, as can-utils writes it (upper-case hex, at least
+/// ten digits of seconds; an error frame with `CAN_ERR_FLAG` in its 8-digit
+/// identifier). This is the record's `Display`.
 ///
 /// The record is written as it is: without a timestamp or a direction, none
 /// is written; a channel number is written as the interface name (`1`); a
@@ -103,11 +103,11 @@ pub fn write_log<W: fmt::Write + ?Sized>(frame: &LogFrame<'_>, w: &mut W) -> fmt
 }
 
 /// Write a frame as candump prints it on screen (`candump can0`, with
-/// `-t a` when it has a timestamp and `-x` when it has a direction; SPEC
-/// §5.2), without a line end: `  can0  081   [8]  10 81 11 00 00 00 00 00`,
-/// `  can0  705   [1]  remote request`, and for an error frame the data
-/// followed by `ERRORFRAME` (the explanation lines of `candump -e` are not
-/// written).
+/// `-t a` when it has a timestamp and `-x` when it has a direction;
+/// docs/formats.md#candump-screen), without a line end: `  can0  081   [8]  10
+/// 81 11 00 00 00 00 00`, `  can0  705   [1]  remote request`, and for an error
+/// frame the data followed by `ERRORFRAME` (the explanation lines of `candump
+/// -e` are not written).
 ///
 /// The screen shows CAN FD flags only as BRS/ESI after a direction
 /// (`RX B E`); other flags, and the flags of a frame without direction, are

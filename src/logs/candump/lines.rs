@@ -3,7 +3,8 @@
 use super::*;
 
 /// Return an iterator over the lines of `buf` that parses each one
-/// (SPEC §5, §6.1): it yields the 1-based line number and what
+/// (docs/formats.md#candump-log, docs/formats.md#candump-screen): it yields the
+/// 1-based line number (docs/formats.md#positions) and what
 /// [`parse_line`] makes of the line, so that a malformed line is reported
 /// with its number and the next line is read on. Lines end at `\n` (a `\r`
 /// before it is ignored); a last line without `\n` is read too.
@@ -25,12 +26,12 @@ use super::*;
 /// ```
 ///
 /// After an error frame, the lines that `candump -e` prints to explain it
-/// belong to the frame: they are `Ok(None)`, not malformed (SPEC §5.2). Such
-/// a line is one that is no frame, is indented with a tab (can-utils
-/// `candump.c` writes `"\n\t"` before each) and starts with one of
-/// can-utils' error class names (`lib.c`, `error_classes`: `bus-off`,
-/// `controller-problem{rx-error-warning}`, …). Anything else is read as any
-/// other line, so no frame and no malformed line is ever hidden.
+/// belong to the frame: they are `Ok(None)`, not malformed
+/// (docs/formats.md#candump-screen). Such a line is one that is no frame, is
+/// indented with a tab (can-utils `candump.c` writes `"\n\t"` before each) and
+/// starts with one of can-utils' error class names (`lib.c`, `error_classes`:
+/// `bus-off`, `controller-problem{rx-error-warning}`, …). Anything else is read
+/// as any other line, so no frame and no malformed line is ever hidden.
 ///
 /// ```
 /// use motionwire::logs::candump;
@@ -74,9 +75,9 @@ pub struct LineState {
 }
 
 impl LineState {
-    /// The state at the start of a log whose relative timestamps (`candump
-    /// -t d` or `-t z`, SPEC §5.2) are read as `relative` says; see
-    /// [`detect_relative_timestamps`].
+    /// The state at the start of a log whose relative timestamps (`candump -t
+    /// d` or `-t z`, docs/formats.md#candump-relative-times) are read as
+    /// `relative` says; see [`detect_relative_timestamps`].
     #[inline]
     #[must_use]
     pub const fn new(relative: RelativeTimestamps) -> Self {
@@ -111,9 +112,10 @@ impl LineState {
     }
 }
 
-/// What a relative timestamp `(000.000123)` counts (SPEC §5.2): `candump
-/// -t z` prints the time since the first frame, `-t d` the time since the
-/// previous one, in the same shape.
+/// What a relative timestamp `(000.000123)` counts
+/// (docs/formats.md#candump-relative-times): `candump -t z` prints the time
+/// since the first frame, `-t d` the time since the previous one, in the same
+/// shape.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum RelativeTimestamps {
     /// Time since the first frame (`-t z`), taken as written.
@@ -124,13 +126,13 @@ pub enum RelativeTimestamps {
 }
 
 /// Decide from the first (up to) 64 timestamped frames of `buf` whether its
-/// relative timestamps are `-t z` or `-t d` (SPEC §5.2 decision): times
-/// since the first frame never decrease, deltas of real traffic do. A
-/// decrease means [`RelativeTimestamps::Delta`]; 64 frames without one, or
-/// the whole log when `complete`, mean [`RelativeTimestamps::Zero`] (also
-/// when the timestamps are absolute, where the choice changes nothing, and
-/// when the first relative time is not 0: both candump modes start at 0, so
-/// such a log is read as written).
+/// relative timestamps are `-t z` or `-t d` (the decision in
+/// docs/formats.md#candump-relative-times): times since the first frame never
+/// decrease, deltas of real traffic do. A decrease means
+/// [`RelativeTimestamps::Delta`]; 64 frames without one, or the whole log when
+/// `complete`, mean [`RelativeTimestamps::Zero`] (also when the timestamps are
+/// absolute, where the choice changes nothing, and when the first relative time
+/// is not 0: both candump modes start at 0, so such a log is read as written).
 /// `None` when `buf` is not `complete` and holds fewer than 64 timestamped
 /// frames without a decrease: read more first.
 ///

@@ -1,4 +1,4 @@
-//! The log format after the identifier's `#` (SPEC §5.1).
+//! The log format after the identifier's `#` (docs/formats.md#candump-log).
 
 use super::*;
 
@@ -21,7 +21,8 @@ pub(super) fn parse_log_frame(line: &[u8], start: usize, frame: &mut Parsed<'_>)
         }
     }
     match line.get(start) {
-        // An error frame is classic data (Linux `CAN_ERR_DLC`, SPEC §5.1).
+        // An error frame is classic data (Linux `CAN_ERR_DLC`,
+        // docs/formats.md#error-frames).
         Some(&b @ (b'R' | b'r' | b'#')) if frame.kind == FrameType::Error => Err(error(
             start,
             SyntaxError::BadErrorFrame {

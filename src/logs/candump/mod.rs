@@ -1,4 +1,5 @@
-//! candump text logs: one CAN frame per line (can-utils `candump`; SPEC §5).
+//! candump text logs: one CAN frame per line (can-utils `candump`;
+//! docs/formats.md).
 //!
 //! [`parse_line`] reads one line in either of the two formats that
 //! can-utils' `candump` writes and returns the crate's
@@ -15,7 +16,7 @@
 //! other shape; the fast path and the general parser are checked to agree
 //! on every line by property tests and the `candump_line` fuzz target.
 //!
-//! | form (SPEC §5) | example |
+//! | form (docs/formats.md) | example |
 //! |---|---|
 //! | log file, `candump -l` | `(1700000000.000500) can0 081#1081110000000000` |
 //! | … with direction, `-x` | `(1700000000.000500) can0 081#1081110000000000 R` |
@@ -34,7 +35,9 @@
 //! The formats are those written by can-utils' `lib.c`
 //! (`snprintf_canframe`, `snprintf_long_canframe`) and `candump.c`.
 //!
-//! # Decisions (where SPEC §5 and can-utils leave room)
+//! # Decisions (where can-utils leaves room)
+//!
+//! See docs/formats.md#candump-log and docs/formats.md#candump-screen.
 //!
 //! - A blank line (nothing but white space) and a comment line (first
 //!   non-blank byte `#`) are `Ok(None)`: there is no frame in them.
@@ -50,8 +53,9 @@
 //!   with 1 to 20 digits of seconds (anything that fits a `u64`) and 1 to 9
 //!   digits of fraction (`-N` writes nanoseconds), read exactly as integers;
 //!   `.5` is 500 ms. `-t A`'s `(2026-11-22 10:11:12.123456)` is read as UTC
-//!   (SPEC §5.2: the log does not say its time zone). Fewer than ten digits
-//!   of seconds mark `-t d`/`-t z` times, relative to the first frame:
+//!   (docs/formats.md#candump-screen: the log does not say its time zone).
+//!   Fewer than ten digits of seconds mark `-t d`/`-t z` times, relative to the
+//!   first frame:
 //!   [`lines_from`] adds `-t d`'s deltas up when its [`LineState`] says so,
 //!   and [`detect_relative_timestamps`] tells the two apart from the first
 //!   64 frames (zero-based times never decrease, deltas of real traffic do).
@@ -59,9 +63,9 @@
 //!   (extended, at most `0x1FFFFFFF`), in either case. Eight digits always
 //!   mean an extended frame, even for a small value, as in can-utils. An
 //!   8-digit identifier with bit 29 set (`CAN_ERR_FLAG`, `0x20000000`) is an
-//!   error frame (SPEC §5.1) whose classes are the other 29 bits; bits 30
-//!   and 31 are out of range. An error frame carries classic data (0 to 8
-//!   bytes); in the screen format it may end with `ERRORFRAME`, and the
+//!   error frame (docs/formats.md#error-frames) whose classes are the other 29
+//!   bits; bits 30 and 31 are out of range. An error frame carries classic data
+//!   (0 to 8 bytes); in the screen format it may end with `ERRORFRAME`, and the
 //!   tab-indented explanation lines `candump -e` prints after it are
 //!   `Ok(None)` when read with [`lines`] (which knows the line before).
 //! - Data: classic frames 0 to 8 bytes, CAN FD frames 0 to 64 bytes (any
@@ -158,7 +162,7 @@ use screen::*;
 use swar::*;
 use timestamp::*;
 
-/// Parse one candump line in either format of SPEC §5 (see the module's
+/// Parse one candump line in either format of docs/formats.md (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the
 /// frame for a frame line, and an [`Error::Syntax`] with the column and
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.

@@ -311,8 +311,9 @@ pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, FrameType, u
     } else if digits == 8 && delimited {
         let raw = (pack_hex(values) as u32).swap_bytes();
         // `CAN_ERR_FLAG` (bit 29) marks an error frame whose other bits are
-        // its classes (candump -e, python-can; SPEC §5.1). Bits 30 and 31
-        // (Linux's RTR and EFF flags) never appear in candump text.
+        // its classes (candump -e, python-can; docs/formats.md#error-frames).
+        // Bits 30 and 31 (Linux's RTR and EFF flags) never appear in candump
+        // text.
         match CanId::extended(raw & !CAN_ERR_FLAG) {
             Some(id) if raw & CAN_ERR_FLAG == 0 => Ok((id, FrameType::Data, end)),
             Some(id) => Ok((id, FrameType::Error, end)),

@@ -9,10 +9,11 @@ use crate::can::LogEvent;
 use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
-/// A reader of candump logs and screen output (SPEC §5.1, §5.2) from any
-/// [`Read`]: whole lines a block at a time (256 KiB), each parsed where it
-/// lies in the block — what [`lines`] does for a buffer, for an input of
-/// any length, with the rules of SPEC §5.7 (see [`ReadLog`]).
+/// A reader of candump logs and screen output (docs/formats.md#candump-log,
+/// docs/formats.md#candump-screen) from any [`Read`]: whole lines a block at a
+/// time (256 KiB), each parsed where it lies in the block — what [`lines`]
+/// does for a buffer, for an input of any length, with the rules of
+/// docs/formats.md#reported (see [`ReadLog`]).
 ///
 /// Relative timestamps (`candump -t d` or `-t z`) are read as
 /// [`detect_relative_timestamps`] decides from the first 64 frames (or the
@@ -63,8 +64,9 @@ impl<R: Read> CandumpReader<R> {
     }
 
     /// Return a reader of `input` whose relative timestamps count as
-    /// `relative` says (`--timestamps delta|zero`, SPEC §5.2), without
-    /// looking at the first frames.
+    /// `relative` says (`--timestamps delta|zero`,
+    /// docs/formats.md#candump-relative-times), without looking at the first
+    /// frames.
     #[must_use]
     pub fn with_relative_timestamps(input: R, relative: RelativeTimestamps) -> Self {
         CandumpReader {

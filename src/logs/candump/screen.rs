@@ -1,4 +1,4 @@
-//! The screen format after the identifier (SPEC §5.2).
+//! The screen format after the identifier (docs/formats.md#candump-screen).
 
 use super::*;
 
@@ -199,7 +199,8 @@ fn parse_ascii(line: &[u8], open: usize, frame: &Parsed<'_>) -> Result<()> {
 
 /// A data field that is not two hex digits: candump's `-S` (bytes swapped,
 /// joined by a backquote) and `-i` (bytes in binary) forms cannot be read
-/// back faithfully and say so (SPEC §5.2); anything else is a bad digit.
+/// back faithfully and say so (docs/formats.md#candump-screen); anything else
+/// is a bad digit.
 #[cold]
 fn unsupported_or_bad_hex(line: &[u8], at: usize) -> Error {
     let rest = line.get(at..).unwrap_or_default();

@@ -3,11 +3,12 @@ use crate::can::LogFrame;
 use crate::error::What;
 use crate::test_gens::candump::{Build, FrameExt};
 
-/// The SPEC §5 log example: the AKD EMCY of seed 000 as candump -l logs it.
-const SPEC_LOG: &str = "(1700000000.000500) can0 081#1081110000000000";
-/// The SPEC §5 screen examples.
-const SPEC_SCREEN: &str = "  can0  081   [8]  10 81 11 00 00 00 00 00";
-const SPEC_SCREEN_RTR: &str = "  can0  705   [1]  remote request";
+/// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000
+/// as candump -l logs it.
+const DOCS_LOG: &str = "(1700000000.000500) can0 081#1081110000000000";
+/// The screen examples of docs/formats.md#candump-screen.
+const DOCS_SCREEN: &str = "  can0  081   [8]  10 81 11 00 00 00 00 00";
+const DOCS_SCREEN_RTR: &str = "  can0  705   [1]  remote request";
 
 const EMCY: [u8; 8] = [0x10, 0x81, 0x11, 0, 0, 0, 0, 0];
 
@@ -59,11 +60,11 @@ fn screen(frame: &LogFrame<'_>) -> String {
     s
 }
 
-// ------------------------------------------------------------ SPEC §5
+// ------------------------------------------ the examples of docs/formats.md
 
 #[test]
-fn spec_log_example() {
-    let f = frame(SPEC_LOG);
+fn docs_log_example() {
+    let f = frame(DOCS_LOG);
     assert_eq!(f.timestamp(), Some(ts(1_700_000_000, 500)));
     assert_eq!(f.iface(), b"can0");
     assert_eq!(f.iface_str(), "can0");
@@ -80,9 +81,9 @@ fn spec_log_example() {
 }
 
 #[test]
-fn spec_log_example_with_direction() {
+fn docs_log_example_with_direction() {
     for (suffix, direction) in [(" R", Direction::Rx), (" T", Direction::Tx)] {
-        let line = format!("{SPEC_LOG}{suffix}");
+        let line = format!("{DOCS_LOG}{suffix}");
         let f = frame(&line);
         assert_eq!(f.direction(), Some(direction));
         assert_eq!(f.data(), &EMCY);
@@ -90,7 +91,7 @@ fn spec_log_example_with_direction() {
 }
 
 #[test]
-fn spec_log_remote_requests() {
+fn docs_log_remote_requests() {
     let f = frame("(1700000000.000500) can0 123#R");
     assert!(f.is_rtr());
     assert_eq!((f.dlc(), f.data()), (0, &[][..]));
@@ -106,7 +107,7 @@ fn spec_log_remote_requests() {
 }
 
 #[test]
-fn spec_log_extended_identifier() {
+fn docs_log_extended_identifier() {
     let f = frame("(1700000000.000500) can0 12345678#0102");
     assert_eq!(f.id(), ext_id(0x1234_5678));
     assert!(f.is_extended());
@@ -114,7 +115,7 @@ fn spec_log_extended_identifier() {
 }
 
 #[test]
-fn spec_log_can_fd() {
+fn docs_log_can_fd() {
     let f = frame("(1700000000.000500) can0 123##1AABB");
     assert!(f.is_fd() && !f.is_rtr());
     assert_eq!(f.fd_flags(), FdFlags::BRS);
@@ -122,15 +123,15 @@ fn spec_log_can_fd() {
 }
 
 #[test]
-fn spec_screen_examples() {
-    let f = frame(SPEC_SCREEN);
+fn docs_screen_examples() {
+    let f = frame(DOCS_SCREEN);
     assert_eq!(f.timestamp(), None);
     assert_eq!(f.iface_str(), "can0");
     assert_eq!(f.id(), std_id(0x081));
     assert_eq!(f.data(), &EMCY);
     assert_eq!(f, Build::new_data("can0", std_id(0x081), &EMCY).unwrap());
 
-    let f = frame(SPEC_SCREEN_RTR);
+    let f = frame(DOCS_SCREEN_RTR);
     assert!(f.is_rtr());
     assert_eq!(f.id(), std_id(0x705));
     assert_eq!((f.dlc(), f.data()), (1, &[][..]));
@@ -654,12 +655,12 @@ fn blank_and_comment_lines_hold_no_frame() {
 #[test]
 fn crlf_and_lf_line_ends() {
     for end in ["", "\n", "\r\n", "\r"] {
-        let line = format!("{SPEC_LOG}{end}");
-        assert_eq!(frame(&line), frame(SPEC_LOG), "{end:?}");
-        let line = format!("{SPEC_LOG} R{end}");
+        let line = format!("{DOCS_LOG}{end}");
+        assert_eq!(frame(&line), frame(DOCS_LOG), "{end:?}");
+        let line = format!("{DOCS_LOG} R{end}");
         assert_eq!(frame(&line).direction(), Some(Direction::Rx), "{end:?}");
-        let line = format!("{SPEC_SCREEN}{end}");
-        assert_eq!(frame(&line), frame(SPEC_SCREEN), "{end:?}");
+        let line = format!("{DOCS_SCREEN}{end}");
+        assert_eq!(frame(&line), frame(DOCS_SCREEN), "{end:?}");
     }
 }
 
@@ -689,7 +690,8 @@ fn identifier_extremes() {
         )
     );
     assert_eq!(frame("(1.0) can0 1FFFFFFF#").id(), ext_id(0x1FFF_FFFF));
-    // Bit 29 is Linux's CAN_ERR_FLAG: an error frame (SPEC §5.1).
+    // Bit 29 is Linux's CAN_ERR_FLAG: an error frame
+    // (docs/formats.md#error-frames).
     let error = frame("(1.0) can0 20000000#");
     assert!(error.can().is_error());
     assert_eq!(error.id(), ext_id(0));
@@ -1236,7 +1238,7 @@ fn error_messages_say_expected_and_found() {
 fn write_log_exact() {
     let t = ts(1_700_000_000, 500);
     let rows: Vec<(LogFrame<'_>, &str)> = vec![
-        (frame(SPEC_LOG), SPEC_LOG),
+        (frame(DOCS_LOG), DOCS_LOG),
         (
             Build::new_data("can0", std_id(0x081), &EMCY)
                 .unwrap()
@@ -1287,8 +1289,8 @@ fn write_screen_exact() {
     let t = ts(1_700_000_000, 500);
     let twelve: Vec<u8> = (0..12).map(|i| i * 0x11).collect();
     let rows: Vec<(LogFrame<'_>, &str)> = vec![
-        (frame(SPEC_SCREEN), SPEC_SCREEN),
-        (frame(SPEC_SCREEN_RTR), SPEC_SCREEN_RTR),
+        (frame(DOCS_SCREEN), DOCS_SCREEN),
+        (frame(DOCS_SCREEN_RTR), DOCS_SCREEN_RTR),
         (
             Build::new_data("can0", std_id(0x081), &EMCY)
                 .unwrap()
@@ -1409,7 +1411,7 @@ fn lines_numbers_every_line() {
     assert_eq!(items.len(), 8);
     let numbers: Vec<usize> = items.iter().map(|(n, _)| *n).collect();
     assert_eq!(numbers, [1, 2, 3, 4, 5, 6, 7, 8]);
-    assert_eq!(items[0].1, Ok(Some(frame(SPEC_LOG))));
+    assert_eq!(items[0].1, Ok(Some(frame(DOCS_LOG))));
     assert_eq!(items[1].1, Ok(None));
     assert_eq!(items[2].1, Ok(None));
     assert_eq!(
@@ -1483,7 +1485,7 @@ fn hex_decoding_matches_a_table() {
     }
 }
 
-// ------------------------------------------------------ error frames (SPEC §5.1)
+// ---------------------------- error frames (docs/formats.md#error-frames)
 
 /// `candump -e -l` and python-can's `CanutilsLogWriter` write error frames
 /// with CAN_ERR_FLAG in an 8-digit identifier.

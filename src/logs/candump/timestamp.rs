@@ -1,7 +1,7 @@
-//! The one timestamp parser, `(seconds.fraction)` (SPEC §5.1, §5.2): the
-//! fixed `candump -l` template for the fast path, the general form with
-//! SWAR, and the byte-by-byte form for the rest; the tests check that the
-//! three agree.
+//! The one timestamp parser, `(seconds.fraction)` (docs/formats.md#candump-log,
+//! docs/formats.md#candump-screen): the fixed `candump -l` template for the
+//! fast path, the general form with SWAR, and the byte-by-byte form for the
+//! rest; the tests check that the three agree.
 
 use super::*;
 
@@ -78,7 +78,7 @@ pub(super) fn bad_timestamp(line: &[u8], at: usize) -> Error {
 /// The byte-by-byte reader of every timestamp form: `(seconds.fraction)`
 /// with 1 to 9 digits of fraction (`candump -N` writes nanoseconds), and
 /// `candump -t A`'s local date and time `(2026-11-22 10:11:12.123456)`,
-/// read as UTC (SPEC §5.2 decision).
+/// read as UTC (the decision in docs/formats.md#candump-screen).
 #[cold]
 #[inline(never)]
 pub(super) fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestamp, usize)> {

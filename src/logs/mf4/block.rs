@@ -1,5 +1,5 @@
-//! The block layer of an MDF 4 file (ASAM MDF 4.1 §4.4; SPEC §5.8): every
-//! block is `##XX`, 4 reserved bytes, its u64 length, its u64 link count,
+//! The block layer of an MDF 4 file (ASAM MDF 4.1 §4.4; docs/formats.md#mf4):
+//! every block is `##XX`, 4 reserved bytes, its u64 length, its u64 link count,
 //! the links (absolute file offsets, 0 for none) and its data, all
 //! little-endian. [`Source`] reads blocks from anywhere in the file and
 //! checks what the file claims before anything is allocated.

@@ -1,6 +1,6 @@
 //! One channel of a record: where its bits are and how they convert
-//! (ASAM MDF 4.1 §5.13 CN, §5.16 CC; SPEC §5.8 "A member is its bits …
-//! through its CC").
+//! (ASAM MDF 4.1 §5.13 CN, §5.16 CC; docs/formats.md#mf4): a member is its
+//! bits, read through its CC.
 
 /// Data types of a CN (`cn_data_type`), those a CAN member may have.
 mod data_type {
@@ -49,8 +49,8 @@ pub(super) enum Conversion {
         ranges: Vec<(f64, f64, f64)>,
         default: f64,
     },
-    /// cc_type 7, value to text, as `Dir` uses it (SPEC §5.8): each key
-    /// with whether its text is `Tx` (1) or not (0), and the default's.
+    /// cc_type 7, value to text, as `Dir` uses it (docs/formats.md#mf4): each
+    /// key with whether its text is `Tx` (1) or not (0), and the default's.
     Text { keys: Vec<(f64, f64)>, default: f64 },
 }
 

@@ -1,6 +1,6 @@
 //! The bytes of a data group or of signal data, read as one stream
-//! (ASAM MDF 4.1 §5.20–5.26; SPEC §5.8 "Data: DT, DZ …, DL …, HL"): a DT
-//! or SD block is read a chunk at a time, a DZ block inflated whole (zlib,
+//! (ASAM MDF 4.1 §5.20–5.26, DT, DZ, DL and HL; docs/formats.md#mf4): a
+//! DT or SD block is read a chunk at a time, a DZ block inflated whole (zlib,
 //! or zlib of the transposed records), a DL a list of such blocks read in
 //! turn with the next DL after it, an HL the DL it leads to.
 //!
@@ -54,7 +54,7 @@ pub(super) struct DataStream {
     /// The part of a DT or SD block not yet read: from, to.
     chunk: Option<(u64, u64)>,
     /// A DT that is the data link itself may run to the end of the file
-    /// (SPEC §5.8, unfinalized files).
+    /// (docs/formats.md#mf4, unfinalized files).
     direct: bool,
     /// What this stream counts in `budget`.
     held: usize,
@@ -218,7 +218,8 @@ impl DataStream {
             let from = link + HEADER_LEN + 8 * links;
             let mut to = link.saturating_add(len);
             if len == HEADER_LEN && self.direct {
-                // Unfinalized: the length was never written (SPEC §5.8).
+                // Unfinalized: the length was never written
+                // (docs/formats.md#mf4).
                 to = source.len;
             }
             self.chunk = Some((from, to.min(source.len)));
@@ -380,7 +381,7 @@ fn dz_header<R: Read + Seek>(
     let org_len = u64::from_le_bytes(le(&head, 8));
     let data_len = u64::from_le_bytes(le(&head, 16));
     if zip_type > 1 {
-        // zstd, lz4 (asammdf's types 2 to 5): not read (SPEC §5.8).
+        // zstd, lz4 (asammdf's types 2 to 5): not read (docs/formats.md#mf4).
         return Err(damaged(
             data_at + 2,
             BinaryError::UnsupportedCompression {

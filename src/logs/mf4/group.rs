@@ -1,5 +1,5 @@
-//! One data group's records, split and decoded (SPEC §5.8): each record
-//! is its channel group's record id (0 to 8 bytes) and its bytes, fixed
+//! One data group's records, split and decoded (docs/formats.md#mf4): each
+//! record is its channel group's record id (0 to 8 bytes) and its bytes, fixed
 //! or, for a VLSD group, a u32 length and the bytes; a CAN group's record
 //! is a frame, a VLSD group's the variable-length data of one, any other
 //! group's counted.
@@ -36,7 +36,7 @@ const MAX_WAITING: usize = 1024;
 const FD_LENGTHS: [usize; 7] = [12, 16, 20, 24, 32, 48, 64];
 
 /// Where a frame goes in the time order: time, data group, channel group,
-/// record number (SPEC §5.8: stable-sorted by `ts`).
+/// record number (docs/formats.md#mf4: stable-sorted by `ts`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(super) struct Key {
     pub(super) ts: Option<Timestamp>,
@@ -410,7 +410,8 @@ impl GroupReader {
     }
 
     /// The data end inside a record of `needed` bytes: nothing when no
-    /// byte of it is there, else it is dropped and counted (SPEC §5.8).
+    /// byte of it is there, else it is dropped and counted
+    /// (docs/formats.md#mf4).
     fn cut(&mut self, needed: usize) -> Result<Option<(Slot, usize)>, LogError> {
         let found = self.stream.available().len();
         if found == 0 {
@@ -684,12 +685,12 @@ fn fields(group: &CanGroup, record: &[u8], index: u64, start_ns: u64) -> Fields 
     }
 }
 
-/// The frame of SPEC §5.8 from a record's fields and its stored data.
+/// The frame of docs/formats.md#mf4 from a record's fields and its stored data.
 fn frame(fields: &Fields, stored: &[u8]) -> Result<LogFrame<'static>, BinaryError> {
     let frame = match fields.kind {
         FrameKind::Error => {
-            // SPEC §5.8: ErrorType 1 bit, 2 form, 3 stuff (byte 2), 4 CRC,
-            // 5 ACK (byte 3); 0x80 in byte 2 when sent.
+            // docs/formats.md#mf4: ErrorType 1 bit, 2 form, 3 stuff (byte 2), 4
+            // CRC, 5 ACK (byte 3); 0x80 in byte 2 when sent.
             let mut data = [0u8; CLASSIC_MAX_LEN];
             match fields.error_type {
                 1 => data[2] = 0x01,

@@ -1,6 +1,6 @@
-//! What the metadata blocks say (ASAM MDF 4.1 §5; SPEC §5.8): the header
-//! (HD), the data groups (DG) and their channel groups (CG), and for each
-//! CAN bus-logging group where its members are (CN) and how they convert
+//! What the metadata blocks say (ASAM MDF 4.1 §5; docs/formats.md#mf4): the
+//! header (HD), the data groups (DG) and their channel groups (CG), and for
+//! each CAN bus-logging group where its members are (CN) and how they convert
 //! (CC).
 
 use std::io::{Read, Seek};
@@ -25,7 +25,7 @@ const MAX_CONVERSION_VALUES: usize = 4096;
 /// bytes).
 const CG_VLSD: u16 = 0x1;
 
-/// The kind of frame a CAN group holds (SPEC §5.8).
+/// The kind of frame a CAN group holds (docs/formats.md#mf4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum FrameKind {
     /// `CAN_DataFrame`.
@@ -57,7 +57,8 @@ pub(super) enum DataBytes {
     Group { offset: Channel, record_id: u64 },
 }
 
-/// The members of a CAN group (SPEC §5.8), each where the group has it.
+/// The members of a CAN group (docs/formats.md#mf4), each where the group has
+/// it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub(super) struct Members {
     pub(super) bus_channel: Option<Channel>,

@@ -1,6 +1,6 @@
 //! ASAM MDF 4 bus logging (MF4: CSS Electronics' CANedge loggers, Vector
-//! CANoe, asammdf, python-can's `MF4Writer`; SPEC §5.8), behind the `mf4`
-//! feature.
+//! CANoe, asammdf, python-can's `MF4Writer`; docs/formats.md#mf4), behind the
+//! `mf4` feature.
 //!
 //! An MDF 4 file is a tree of little-endian blocks linked by absolute file
 //! offsets (ASAM MDF 4.1 §4–§5). [`Mf4Reader`] reads these:
@@ -27,7 +27,8 @@
 //! are counted by name ([`Mf4Reader::other_groups`],
 //! [`ReadLog::other_records`]), never reported as malformed.
 //!
-//! # Decisions (SPEC §5.8; where it is silent, as asammdf reads)
+//! # Decisions (where the standard is silent, as asammdf reads;
+//! docs/formats.md#mf4)
 //!
 //! - `ts` is the header's start time plus the master channel (seconds,
 //!   through its conversion), to the nanosecond; the start time is UTC
@@ -43,10 +44,10 @@
 //!   8 in a classic frame, zero-padded where fewer are stored; a remote
 //!   frame has no data and keeps its DLC (at most 8).
 //! - `CAN_ErrorFrame` is an error frame of classes `bus_error | protocol`
-//!   whose data is Linux's layout (SPEC §5.1) of `ErrorType`: 1 bit, 2
-//!   form, 3 stuff error in byte 2 (0x01, 0x02, 0x04), 4 CRC and 5 ACK in
-//!   byte 3 (0x08, 0x19), byte 2 | 0x80 when `Dir` is Tx. Its `ID` and
-//!   `DataBytes` are not used (python-can gives its own frame's).
+//!   whose data is Linux's layout (docs/formats.md#error-frames) of
+//!   `ErrorType`: 1 bit, 2 form, 3 stuff error in byte 2 (0x01, 0x02, 0x04), 4
+//!   CRC and 5 ACK in byte 3 (0x08, 0x19), byte 2 | 0x80 when `Dir` is Tx. Its
+//!   `ID` and `DataBytes` are not used (python-can gives its own frame's).
 //! - Unfinalized files (every CANedge file): cycle counts are ignored,
 //!   records are read until the data end, a DT block whose length is its
 //!   header runs to the end of the file.
@@ -125,7 +126,7 @@ use group::{GroupReader, Item, Output};
 /// a file is held in memory.
 pub const MAX_STREAMED_LEN: usize = 16 * MAX_RECORD_LEN;
 
-/// A reader of ASAM MDF 4 bus-logging files (SPEC §5.8): see the
+/// A reader of ASAM MDF 4 bus-logging files (docs/formats.md#mf4): see the
 /// [module documentation](self).
 pub struct Mf4Reader<R> {
     source: Source<R>,
@@ -202,8 +203,8 @@ impl<R: Read + Seek> Mf4Reader<R> {
                     &budget,
                 )?);
             }
-            // Counted for the numbers of the records after it (SPEC §5.8
-            // `line`) and for its other groups.
+            // Counted for the numbers of the records after it (`line`
+            // in docs/formats.md#mf4) and for its other groups.
             let (records, others) = reader.count(&mut source)?;
             base = base.saturating_add(records);
             if !has_frames {
@@ -234,8 +235,8 @@ impl<R> Mf4Reader<R> {
         self.version
     }
 
-    /// Return the start time of the recording (the header's, UTC; SPEC
-    /// §5.8).
+    /// Return the start time of the recording (the header's, UTC;
+    /// docs/formats.md#mf4).
     #[must_use]
     pub const fn start_time(&self) -> Timestamp {
         self.start
@@ -244,7 +245,7 @@ impl<R> Mf4Reader<R> {
     /// Return the groups without CAN frames whose records were read so far
     /// (all of them once the reading ends), by name (`LIN_Frame`,
     /// `CAN_OverloadFrame`, a signal group's name), with how many records
-    /// each had: SPEC §5.8 "counted, reported once per name".
+    /// each had: counted, and reported once per name (docs/formats.md#mf4).
     #[must_use]
     pub fn other_groups(&self) -> Vec<(String, u64)> {
         let mut all = self.counted.clone();

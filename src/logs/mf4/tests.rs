@@ -1,6 +1,6 @@
 //! The reader on files built here, block by block (ASAM MDF 4.1 §5): the
-//! decisions of SPEC §5.8 one test each, and damaged and hostile files
-//! (loops, absurd lengths, a DZ block that claims gigabytes, cut files)
+//! decisions of docs/formats.md#mf4, one test each, and damaged and hostile
+//! files (loops, absurd lengths, a DZ block that claims gigabytes, cut files)
 //! ending with one clear error after the frames before the damage.
 
 use std::io::Cursor;

@@ -1,4 +1,4 @@
-//! Linux "cooked" captures (SPEC §5.5): what `tcpdump -i any`, and
+//! Linux "cooked" captures (docs/formats.md#pcap): what `tcpdump -i any`, and
 //! Wireshark or dumpcap on a CAN interface in some setups, write — link
 //! type 113 (`LINKTYPE_LINUX_SLL`) or 276 (`LINKTYPE_LINUX_SLL2`): a header
 //! that says the packet's protocol, then the packet as the kernel handed
@@ -18,16 +18,19 @@
 //!
 //! Protocol 0x000C (`ETH_P_CAN`) carries a `struct can_frame`, 0x000D
 //! (`ETH_P_CANFD`) a `struct canfd_frame`, both in the capturing machine's
-//! byte order (read little-endian, as tshark does: SPEC §5.5 decision);
-//! 0x000E (`ETH_P_CANXL`) a CAN XL frame, which is counted, never misread.
+//! byte order (read little-endian, as tshark does: the decision in
+//! docs/formats.md#pcap); 0x000E (`ETH_P_CANXL`) a CAN XL frame, which is
+//! counted, never misread.
 
 use crate::logs::{BinaryError, OtherRecord};
 
 use super::socketcan::FrameLayout;
 
-/// `LINKTYPE_LINUX_SLL`: Linux cooked capture, version 1 (SPEC §5.5).
+/// `LINKTYPE_LINUX_SLL`: Linux cooked capture, version 1
+/// (docs/formats.md#pcap).
 pub const LINKTYPE_LINUX_SLL: u16 = 113;
-/// `LINKTYPE_LINUX_SLL2`: Linux cooked capture, version 2 (SPEC §5.5).
+/// `LINKTYPE_LINUX_SLL2`: Linux cooked capture, version 2
+/// (docs/formats.md#pcap).
 pub const LINKTYPE_LINUX_SLL2: u16 = 276;
 
 /// The header fields this reader reads.

@@ -1,5 +1,5 @@
 //! pcap and pcapng captures of SocketCAN frames, as Wireshark, tshark,
-//! tcpdump and dumpcap write them (SPEC §5.5, §5.7).
+//! tcpdump and dumpcap write them (docs/formats.md#pcap).
 //!
 //! [`PcapReader`] reads both file formats from any [`std::io::Read`],
 //! detected from the magic number:
@@ -23,12 +23,12 @@
 //! 16-byte header) and 276 ([`LINKTYPE_LINUX_SLL2`], 20-byte header) with
 //! protocol 0x000C (CAN) or 0x000D (CAN FD), whose SocketCAN frame follows
 //! in the capturing machine's byte order, read little-endian as tshark
-//! reads it (SPEC §5.5 decision). Packets of any other link type or
-//! protocol, and CAN XL frames, take their number and are counted by kind
-//! in [`ReadLog::other_records`] and [`ReadLog::other_kinds`]: the caller
-//! reports them once, naming the link type (SPEC §5.5).
+//! reads it (the decision in docs/formats.md#pcap). Packets of any other link
+//! type or protocol, and CAN XL frames, take their number and are counted by
+//! kind in [`ReadLog::other_records`] and [`ReadLog::other_kinds`]: the caller
+//! reports them once, naming the link type (docs/formats.md#pcap).
 //!
-//! What each frame gets (SPEC §5.7):
+//! What each frame gets (docs/formats.md#pcap):
 //! - `number`: the 1-based packet number, tshark's `frame.number`;
 //! - `timestamp`: absolute Unix time to the file's resolution (a simple
 //!   packet block records none);
@@ -110,7 +110,7 @@ pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
 use socketcan::{FrameLayout, Payload};
 
-/// `LINKTYPE_CAN_SOCKETCAN`: SocketCAN frames (SPEC §5.5).
+/// `LINKTYPE_CAN_SOCKETCAN`: SocketCAN frames (docs/formats.md#pcap).
 pub const LINKTYPE_CAN_SOCKETCAN: u16 = 227;
 
 /// The pcap magic numbers as the first four bytes read little-endian.
@@ -251,8 +251,9 @@ enum Block {
     Other,
 }
 
-/// A reader of pcap and pcapng captures of SocketCAN frames (SPEC §5.5):
-/// see the [module documentation](self) for what it reads and how.
+/// A reader of pcap and pcapng captures of SocketCAN frames
+/// (docs/formats.md#pcap): see the [module documentation](self) for what it
+/// reads and how.
 ///
 /// It reads through a window that grows only with the records it holds
 /// (at most [`MAX_RECORD_LEN`] each), so wrapping the input in a

@@ -1,6 +1,6 @@
 //! The payload of a `LINKTYPE_CAN_SOCKETCAN` (227) packet: Linux's
 //! `struct can_frame` / `struct canfd_frame` with the identifier word in
-//! network byte order (SPEC §5.5; the tcpdump.org link-type page;
+//! network byte order (docs/formats.md#pcap; the tcpdump.org link-type page;
 //! `linux/can.h`).
 //!
 //! ```text
@@ -64,8 +64,8 @@ pub(super) enum FrameLayout {
     LinkType227,
     /// After a Linux cooked header (link types 113, 276): the identifier
     /// word in the capturing machine's byte order, read little-endian as
-    /// tshark does (SPEC §5.5 decision); CAN FD when the protocol says so
-    /// (`ETH_P_CANFD`), classic when it says `ETH_P_CAN`.
+    /// tshark does (the decision in docs/formats.md#pcap); CAN FD when the
+    /// protocol says so (`ETH_P_CANFD`), classic when it says `ETH_P_CAN`.
     Cooked {
         /// The protocol is `ETH_P_CANFD`.
         fd: bool,

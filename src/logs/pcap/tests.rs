@@ -1,5 +1,5 @@
 //! The reader against hand-made files: every block kind, resolution and
-//! damage the module documentation names (SPEC §5.5, §5.7).
+//! damage the module documentation names (docs/formats.md#pcap).
 
 use super::writer::{self, Interface, Pcapng};
 use super::*;

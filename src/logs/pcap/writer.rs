@@ -1,5 +1,5 @@
 //! A small pcap/pcapng writer for the tests: frames in, file bytes out,
-//! laid out as libpcap and Wireshark write them (SPEC §5.5).
+//! laid out as libpcap and Wireshark write them (docs/formats.md#pcap).
 
 use crate::can::{CanFrame, FrameType, Timestamp};
 

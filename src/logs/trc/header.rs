@@ -1,5 +1,5 @@
 //! The header keys: `;$FILEVERSION=`, `;$STARTTIME=`, `;$COLUMNS=`
-//! (SPEC §5.4).
+//! (docs/formats.md#trc).
 
 use core::time::Duration;
 

@@ -7,11 +7,11 @@ use crate::can::LogEvent;
 use crate::Result;
 
 /// Return an iterator over the lines of `buf` that parses each one with
-/// one [`TrcParser`] (SPEC §5.4, §5.7): it yields the 1-based line number
-/// and what [`TrcParser::parse_line`] makes of the line, so that a
-/// malformed line is reported with its number and the next one is read on.
-/// Lines end at `\n` (a `\r` before it is ignored); a last line without
-/// `\n` is read too.
+/// one [`TrcParser`] (docs/formats.md#trc): it yields the 1-based line number
+/// (docs/formats.md#positions) and what [`TrcParser::parse_line`] makes of the
+/// line, so that a malformed line is reported with its number and the next one
+/// is read on. Lines end at `\n` (a `\r` before it is ignored); a last line
+/// without `\n` is read too.
 ///
 /// ```
 /// use motionwire::can::LogEvent;

@@ -1,5 +1,5 @@
 //! PEAK TRC text logs, versions 1.0 to 2.1 (PCAN-View, PCAN-Explorer,
-//! python-can's `TRCWriter`; SPEC §5.4, §5.7).
+//! python-can's `TRCWriter`; docs/formats.md#trc).
 //!
 //! A TRC file is a `;` comment header followed by one row per frame or bus
 //! event. Three header keys set how the rows are read: `;$FILEVERSION=`
@@ -26,7 +26,7 @@
 //! in bytes, `D` data. The facts are those of PEAK's "PEAK CAN TRC File
 //! Format" description and of the files PEAK's tools and python-can write.
 //!
-//! # Decisions (where SPEC §5.4 and the tools leave room)
+//! # Decisions (where the format and the tools leave room; docs/formats.md#trc)
 //!
 //! - Blank lines and `;` lines are `Ok(None)`; the three `$` keys among them
 //!   set the parser's state, and a malformed value of one is an error (a
@@ -34,17 +34,18 @@
 //!   days or lies before 1970, a `$COLUMNS` without `O`, `T`, `I` and `L`
 //!   or `l`, with a letter twice or with `D` not last). Other `$` keys are
 //!   comments.
-//! - Time: `$STARTTIME` is read as UTC (SPEC §5.4), exactly from its
+//! - Time: `$STARTTIME` is read as UTC (docs/formats.md#trc), exactly from its
 //!   decimal text (no floats), rounded to the nearest microsecond, half to
 //!   even — what python-can's `timedelta` does, and finer than PEAK's own
 //!   10 digits of days (8.64 µs) anyway. The offset is read exactly, with up
 //!   to 6 digits after the point (nanoseconds). A file without
 //!   `$STARTTIME` counts from [`Timestamp::ZERO`]; every row has a time.
 //!   python-can ignores the start time of a 1.0 file; the crate adds it
-//!   when one is there (SPEC §5.7).
+//!   when one is there (docs/formats.md#timestamps).
 //! - `iface` is [`Iface::Channel`] with the bus column's number where the
-//!   version has one (1.2, 1.3, 2.x with `B`), else `None` (SPEC §5.7);
-//!   python-can says channel 1 for those. A bus `-` is `None`.
+//!   version has one (1.2, 1.3, 2.x with `B`), else `None`
+//!   (docs/formats.md#interfaces); python-can says channel 1 for those. A bus
+//!   `-` is `None`.
 //! - Identifiers: more than 4 hex digits is extended (PEAK writes 4 and 8,
 //!   python-can's writer 4 and 7, and python-can's reader decides so).
 //! - The direction is the `Rx`/`Tx` of the type column (1.1 to 1.3) or of
@@ -62,20 +63,20 @@
 //!   the identifier column in 1.x, the first data byte in 2.x), a direction
 //!   byte (0 while sending, 1 while receiving), the bit stream processor's
 //!   position, and the RX and TX error counters. The crate reads them as
-//!   Linux's SJA1000 driver reports the same controller event (SPEC §5.1):
-//!   classes `bus_error | protocol | counters` ([`ERROR_FRAME_CLASSES`]);
-//!   data byte 2 the protocol error type (bit 0x01, form 0x02 and stuff 0x04
-//!   are numbered alike; "other" is Linux's unspecified 0) with
-//!   `CAN_ERR_PROT_TX` (0x80) when it happened while sending; byte 3 the
-//!   location (the SJA1000 segment code, low 5 bits of the position); byte
-//!   6 the TX and byte 7 the RX error counter. An error row of another
-//!   number of bytes is an error. python-can skips error frames when
+//!   Linux's SJA1000 driver reports the same controller event
+//!   (docs/formats.md#error-frames): classes `bus_error | protocol | counters`
+//!   ([`ERROR_FRAME_CLASSES`]); data byte 2 the protocol error type (bit 0x01,
+//!   form 0x02 and stuff 0x04 are numbered alike; "other" is Linux's
+//!   unspecified 0) with `CAN_ERR_PROT_TX` (0x80) when it happened while
+//!   sending; byte 3 the location (the SJA1000 segment code, low 5 bits of the
+//!   position); byte 6 the TX and byte 7 the RX error counter. An error row of
+//!   another number of bytes is an error. python-can skips error frames when
 //!   reading and writing.
 //! - Bus events — `ST`, `EC` and `EV` rows (2.x), `Warng` rows (1.1 to
 //!   1.3), and rows whose identifier is `FFFFFFFF` (1.0's error warnings,
 //!   `BUSLIGHT`, `BUSHEAVY`, `BUSOFF`) — are [`LogEvent::Status`] with
-//!   their time and bus, whatever else they hold (SPEC §5.4: counted, not
-//!   frames, not malformed). python-can skips them.
+//!   their time and bus, whatever else they hold (docs/formats.md#trc: counted,
+//!   not frames, not malformed). python-can skips them.
 //! - Anything else is an [`Error::Syntax`](crate::Error::Syntax) with its
 //!   column: an unknown row type, a data byte that is not two hex digits,
 //!   fewer or more data bytes than the length says, anything after the
@@ -137,7 +138,8 @@ pub use write::{write_header, write_line};
 #[cfg(doc)]
 use crate::can::{FdFlags, FrameType, Iface};
 
-/// A version of the TRC format, as `;$FILEVERSION=` names it (SPEC §5.4).
+/// A version of the TRC format, as `;$FILEVERSION=` names it
+/// (docs/formats.md#trc).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub enum TrcVersion {
     /// 1.0 (PCAN-View 1, PCAN-Trace; the version of a file without
@@ -208,7 +210,7 @@ impl fmt::Display for TrcVersion {
 }
 
 /// A reader of TRC lines: the state the header sets (file version, start
-/// time, column order) and the rows read in it (SPEC §5.4; see the
+/// time, column order) and the rows read in it (docs/formats.md#trc; see the
 /// module's decisions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct TrcParser {

@@ -7,9 +7,9 @@ use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
-/// A reader of PEAK TRC logs (SPEC §5.4) from any [`Read`]: whole lines a
-/// block at a time, each read by one [`TrcParser`] where it lies, with the
-/// rules of SPEC §5.7 (see [`ReadLog`]). Status rows are
+/// A reader of PEAK TRC logs (docs/formats.md#trc) from any [`Read`]: whole
+/// lines a block at a time, each read by one [`TrcParser`] where it lies, with
+/// the rules of docs/formats.md#reported (see [`ReadLog`]). Status rows are
 /// [`LogEvent::Status`] events.
 ///
 /// ```

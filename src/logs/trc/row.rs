@@ -1,5 +1,5 @@
 //! The rows: one frame or bus event per line, in the columns of the file's
-//! version (SPEC §5.4; PEAK's TRC format description).
+//! version (docs/formats.md#trc; PEAK's TRC format description).
 
 use core::time::Duration;
 

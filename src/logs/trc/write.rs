@@ -20,8 +20,8 @@ fn written_start(start: Timestamp) -> Timestamp {
 }
 
 /// Write the header of a version 2.1 file whose offsets count from `start`
-/// (SPEC §5.4): `;$FILEVERSION=2.1`, `;$STARTTIME=` (days since 1899-12-30
-/// to the microsecond, UTC, as the reader takes it) and
+/// (docs/formats.md#trc): `;$FILEVERSION=2.1`, `;$STARTTIME=` (days since
+/// 1899-12-30 to the microsecond, UTC, as the reader takes it) and
 /// `;$COLUMNS=N,O,T,B,I,d,R,L,D`, each line ending in `\r\n` as PEAK's tools
 /// write. Fails (`fmt::Error`) for a start after the year 29 000, which the
 /// 7 digits of days PEAK's readers take cannot hold.
@@ -52,8 +52,8 @@ pub fn write_header(out: &mut impl Write, start: Timestamp) -> fmt::Result {
 
 /// Write `frame` as row `number` of a version 2.1 file whose header
 /// [`write_header`] wrote with `start`, in PEAK's 2.1 columns
-/// `N,O,T,B,I,d,R,L,D`, ending in `\r\n` (SPEC §5.4). The reader reads the
-/// row back to the same frame.
+/// `N,O,T,B,I,d,R,L,D`, ending in `\r\n` (docs/formats.md#trc). The reader
+/// reads the row back to the same frame.
 ///
 /// Fails (`fmt::Error`) for what a TRC row cannot hold: a frame without a
 /// timestamp or from before `start`, an interface name (TRC has bus

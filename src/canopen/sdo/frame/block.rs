@@ -1,14 +1,14 @@
 //! What only block transfers have: the sub-command of a control frame,
 //! the segments inside a block, and the transfer's CRC (CiA 301
-//! §7.2.4.3.9–§7.2.4.3.16; SPEC §7.1).
+//! §7.2.4.3.9–§7.2.4.3.16; docs/canopen.md#sdo).
 
 use core::fmt;
 
 use super::{field, SdoFields, SdoFrame, SDO_LEN, SEGMENT_MAX};
 use crate::Result;
 
-/// The sub-command of a block transfer's control frame, as SPEC §7.3's
-/// `subcommand` names it (CiA 301 §7.2.4.3.9–§7.2.4.3.16).
+/// The sub-command of a block transfer's control frame, as `subcommand`
+/// names it (docs/output.md#sdo; CiA 301 §7.2.4.3.9–§7.2.4.3.16).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -25,7 +25,7 @@ pub enum BlockSubcommand {
 }
 
 impl BlockSubcommand {
-    /// Return the name SPEC §7.3's `subcommand` writes.
+    /// Return the name `subcommand` writes (docs/output.md#sdo).
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -84,7 +84,8 @@ impl SdoBlockSegment {
         out
     }
 
-    /// Return the fields SPEC §7.3 writes for a block segment.
+    /// Return the fields of the `sdo` key (docs/output.md#sdo) for a block
+    /// segment.
     #[must_use]
     pub fn fields(&self) -> SdoFields<'_> {
         SdoFields {

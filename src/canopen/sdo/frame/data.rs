@@ -1,6 +1,6 @@
 //! The data an SDO initiate or segment frame carries: [`SdoInitiateData`]
 //! (expedited bytes or a segmented size) and [`SdoSegmentData`] (CiA 301
-//! §7.2.4.3.3–§7.2.4.3.7; SPEC §7.1).
+//! §7.2.4.3.3–§7.2.4.3.7; docs/canopen.md#sdo).
 
 use byteorder::{ByteOrder, LittleEndian};
 
@@ -8,7 +8,7 @@ use super::SEGMENT_MAX;
 
 /// What an initiate download request or initiate upload response says
 /// about the data (bits `e`, `s`, `n` and bytes 4–7, CiA 301 §7.2.4.3.3,
-/// §7.2.4.3.6; SPEC §7.1).
+/// §7.2.4.3.6; docs/canopen.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -20,7 +20,7 @@ pub enum SdoInitiateData {
         bytes: [u8; 4],
         /// The data length, 1..=4, when `s` = 1 (4 − `n`); `None` when the
         /// size is not indicated and all four bytes are the value
-        /// (SPEC §7.1).
+        /// (docs/canopen.md#sdo).
         len: Option<u8>,
     },
     /// `e` = 0: segments follow.

@@ -1,6 +1,6 @@
 //! An SDO request, client → server: every service's frame as an owned
 //! value, read with [`SdoRequest::parse`] and written with
-//! [`SdoRequest::to_bytes`] (CiA 301 §7.2.4.3; SPEC §7.1).
+//! [`SdoRequest::to_bytes`] (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
@@ -11,7 +11,7 @@ use crate::canopen::SdoAbortCode;
 use crate::error::What;
 use crate::Result;
 
-/// An SDO request, client → server (CiA 301 §7.2.4.3; SPEC §7.1).
+/// An SDO request, client → server (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -212,13 +212,14 @@ impl SdoRequest {
         out
     }
 
-    /// Return the service (SPEC §7.3).
+    /// Return the service (docs/output.md#sdo).
     #[must_use]
     pub fn service(&self) -> SdoService {
         SdoService::of(SdoParty::Client, self.to_bytes()[0])
     }
 
-    /// Return the fields SPEC §7.3 writes for this request.
+    /// Return the fields of the `sdo` key (docs/output.md#sdo) for this
+    /// request.
     #[must_use]
     pub fn fields(&self) -> SdoFields<'_> {
         let mut f = SdoFields::default();

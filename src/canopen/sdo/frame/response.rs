@@ -1,6 +1,6 @@
 //! An SDO response, server → client: every service's frame as an owned
 //! value, read with [`SdoResponse::parse`] and written with
-//! [`SdoResponse::to_bytes`] (CiA 301 §7.2.4.3; SPEC §7.1).
+//! [`SdoResponse::to_bytes`] (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 
 use super::{
     abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
@@ -11,7 +11,7 @@ use crate::canopen::SdoAbortCode;
 use crate::error::What;
 use crate::Result;
 
-/// An SDO response, server → client (CiA 301 §7.2.4.3; SPEC §7.1).
+/// An SDO response, server → client (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -209,13 +209,14 @@ impl SdoResponse {
         out
     }
 
-    /// Return the service (SPEC §7.3).
+    /// Return the service (docs/output.md#sdo).
     #[must_use]
     pub fn service(&self) -> SdoService {
         SdoService::of(SdoParty::Server, self.to_bytes()[0])
     }
 
-    /// Return the fields SPEC §7.3 writes for this response.
+    /// Return the fields of the `sdo` key (docs/output.md#sdo) for this
+    /// response.
     #[must_use]
     pub fn fields(&self) -> SdoFields<'_> {
         let mut f = SdoFields::default();

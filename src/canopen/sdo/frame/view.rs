@@ -1,6 +1,7 @@
 //! The zero-copy view over an SDO frame's 8 data bytes, [`SdoFrame`], with
-//! the fields every service shares, and [`SdoFields`], the fields SPEC §7.3
-//! writes for one frame (CiA 301 §7.2.4.3; SPEC §7.1, §7.3).
+//! the fields every service shares, and [`SdoFields`], the fields of
+//! the `sdo` key (docs/output.md#sdo) for one frame (CiA 301 §7.2.4.3;
+//! docs/canopen.md#sdo).
 
 use byteorder::{ByteOrder, LittleEndian};
 
@@ -9,8 +10,8 @@ use crate::canopen::SdoAbortCode;
 use crate::error::check_len;
 use crate::Result;
 
-/// A zero-copy view over an SDO frame's data (CiA 301 §7.2.4.3; SPEC §7.1):
-/// the fields every service shares.
+/// A zero-copy view over an SDO frame's data (CiA 301 §7.2.4.3;
+/// docs/canopen.md#sdo): the fields every service shares.
 ///
 /// After [`SdoFrame::new_checked`] (or [`SdoFrame::check_len`]) succeeds,
 /// no accessor panics.
@@ -185,7 +186,8 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> SdoFrame<T> {
     }
 }
 
-/// The fields SPEC §7.3 writes for one frame, whichever its service.
+/// The fields of the `sdo` key (docs/output.md#sdo) for one frame, whichever
+/// its service.
 ///
 /// Every `Option` is `Some` exactly for the services whose frames carry
 /// that field.
