@@ -14,8 +14,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::logs::asc::{self, AscParser};
 use motionwire::can::{Iface, LogEvent};
+use motionwire::logs::asc::{self, AscParser};
 use motionwire::logs::LogFormat;
 use motionwire::Error;
 

@@ -15,10 +15,10 @@
 use std::io::Read;
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::logs::blf::BlfReader;
 use motionwire::can::{Iface, LogEvent};
-use motionwire::logs::{LogError, LogErrorKind, ReadLog};
+use motionwire::logs::blf::BlfReader;
 use motionwire::logs::LogFormat;
+use motionwire::logs::{LogError, LogErrorKind, ReadLog};
 use motionwire::Error;
 
 /// A reader that hands out one byte at a time.

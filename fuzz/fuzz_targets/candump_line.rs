@@ -26,8 +26,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::can::FdFlags;
+use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::logs::candump;
 use motionwire::logs::LogFormat;
 use motionwire::Error;

@@ -11,8 +11,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::logs::{detect, Detected};
 use motionwire::logs::LogFormat;
+use motionwire::logs::{detect, Detected};
 
 fuzz_target!(|data: &[u8]| {
     let whole = detect(data, true);

@@ -45,7 +45,12 @@ impl Read for Chunked {
 /// position.
 type Outcome = Result<Vec<(Position, String)>, String>;
 
-fn read_all<R: Read + Send + 'static>(options: ReadOptions, input: R, len: usize, gzip: bool) -> Outcome {
+fn read_all<R: Read + Send + 'static>(
+    options: ReadOptions,
+    input: R,
+    len: usize,
+    gzip: bool,
+) -> Outcome {
     let mut log = match options.read(input) {
         Ok(log) => log,
         Err(e) => {
@@ -78,7 +83,10 @@ fn read_all<R: Read + Send + 'static>(options: ReadOptions, input: R, len: usize
                 matches!(position, Position::Line(_)),
                 "lines and records mixed"
             );
-            assert!(last.number() < position.number(), "{last:?} then {position:?}");
+            assert!(
+                last.number() < position.number(),
+                "{last:?} then {position:?}"
+            );
         }
         assert!(position.number() >= 1);
         items.push((position, text));
@@ -119,6 +127,15 @@ fuzz_target!(|data: &[u8]| {
     let whole = read_all(options, Cursor::new(input.clone()), input.len(), inflated);
     let step = usize::from(how >> 6) * 5 + 1;
     let len = input.len();
-    let chunked = read_all(options, Chunked { data: input, at: 0, step }, len, inflated);
+    let chunked = read_all(
+        options,
+        Chunked {
+            data: input,
+            at: 0,
+            step,
+        },
+        len,
+        inflated,
+    );
     assert_eq!(whole, chunked);
 });

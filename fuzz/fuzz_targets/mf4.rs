@@ -61,7 +61,11 @@ fn records(data: &[u8]) -> Vec<String> {
             }
         }
     }
-    let _ = (reader.other_records(), reader.other_groups(), reader.skipped());
+    let _ = (
+        reader.other_records(),
+        reader.other_groups(),
+        reader.skipped(),
+    );
     out
 }
 

@@ -23,9 +23,9 @@ use std::io::Read;
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{CanFrame, Timestamp};
-use motionwire::logs::{LogError, LogErrorKind, ReadLog};
 use motionwire::logs::pcap::PcapReader;
 use motionwire::logs::LogFormat;
+use motionwire::logs::{LogError, LogErrorKind, ReadLog};
 use motionwire::Error;
 
 struct Chunked<'a> {

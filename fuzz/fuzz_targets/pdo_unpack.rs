@@ -26,7 +26,9 @@ use motionwire_fuzz::Reader;
 
 fn data_type_for(seed: u64, entry: MappingEntry) -> Option<DataType> {
     let h = (seed ^ u64::from(entry.to_u32())).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40;
-    DataType::ALL.get((h % (DataType::ALL.len() as u64 + 1)) as usize).copied()
+    DataType::ALL
+        .get((h % (DataType::ALL.len() as u64 + 1)) as usize)
+        .copied()
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -67,7 +69,10 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(signal.data_type, types(signal.entry));
                 values.push(signal.value);
             }
-            Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. })) => {
+            Err(Error::PdoEntry(PdoEntryError {
+                reason: PdoEntryReason::Truncated { needed, found },
+                ..
+            })) => {
                 assert!(needed > found && found == payload.len());
                 truncated = true;
                 all_read = false;
@@ -88,7 +93,13 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(truncated, payload.len() < mapping.byte_len());
     for item in mapping.unpack(payload) {
         if let Err(e) = item {
-            assert!(matches!(e, Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. })));
+            assert!(matches!(
+                e,
+                Error::PdoEntry(PdoEntryError {
+                    reason: PdoEntryReason::Truncated { .. },
+                    ..
+                })
+            ));
             let _ = e.to_string();
         }
     }
@@ -105,11 +116,15 @@ fuzz_target!(|data: &[u8]| {
     let mut offset = 0usize;
     for &entry in mapping.entries() {
         let bits = usize::from(entry.bits());
-        let multi_bit_bool = bits > 1
-            && ValueKind::for_entry(types(entry), entry.bits()) == Ok(ValueKind::Bool);
+        let multi_bit_bool =
+            bits > 1 && ValueKind::for_entry(types(entry), entry.bits()) == Ok(ValueKind::Bool);
         for bit in offset..offset + bits {
             let got = buf[bit / 8] >> (bit % 8) & 1;
-            let want = if entry.is_dummy() { 0 } else { payload[bit / 8] >> (bit % 8) & 1 };
+            let want = if entry.is_dummy() {
+                0
+            } else {
+                payload[bit / 8] >> (bit % 8) & 1
+            };
             if !multi_bit_bool {
                 assert_eq!(got, want, "bit {bit} of {entry}");
             }

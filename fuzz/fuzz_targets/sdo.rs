@@ -18,9 +18,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::Timestamp;
-use motionwire::canopen::sdo::{
-    SdoBlockSegment, SdoParty, SdoRequest, SdoResponse, SdoTracker,
-};
+use motionwire::canopen::sdo::{SdoBlockSegment, SdoParty, SdoRequest, SdoResponse, SdoTracker};
 
 fuzz_target!(|input: &[u8]| {
     let mut tracker = SdoTracker::new();
