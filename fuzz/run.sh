@@ -30,7 +30,7 @@ set -euo pipefail
 
 # The targets that read outside files: each log format's reader, detection
 # and the reading of any log.
-LONG_TARGETS="candump_line asc_line trc_line pcap blf log_detect logs_read"
+LONG_TARGETS="candump_line asc_line trc_line pcap blf mf4 log_detect logs_read"
 
 long="${FUZZ_LONG:-0}"
 if [ "${1:-}" = "--long" ]; then

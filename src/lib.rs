@@ -22,9 +22,9 @@
 //!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
 //!   with the time and interface a log records (ISO 11898-1, docs/formats.md).
 //! - [`logs`]: every log format in one folder — candump text (can-utils),
-//!   Vector ASC, PEAK TRC, and with `std` Vector BLF and pcap/pcapng —
-//!   each read into [`can::LogFrame`]s, the format detected from the
-//!   content (docs/formats.md).
+//!   Vector ASC, PEAK TRC, and with `std` Vector BLF, pcap/pcapng and ASAM
+//!   MDF 4 — each read into [`can::LogFrame`]s, the format detected from
+//!   the content (docs/formats.md).
 //! - [`canopen`]: a [`can::CanFrame`] read as CANopen
 //!   ([`canopen::CanOpenMessage::decode`], docs/canopen.md#identifiers);
 //!   node-IDs and COB-IDs, the EMCY frame, error register and error codes with
@@ -65,7 +65,7 @@
 //!   and `logs::ReadOptions` detect the format from the content, inflate
 //!   gzip and hand on the events of every format through one
 //!   `logs::LogReader` (docs/formats.md#detection, docs/formats.md#gzip). Needs
-//!   `std`; enables `pcap` and `blf` and adds `flate2`.
+//!   `std`; enables `pcap`, `blf` and `mf4` and adds `flate2`.
 //! - `decoder`: `decoder::Decoder` and `summary::Summarizer`, the decoder
 //!   session and the post-mortem (docs/output.md, docs/summary.md). Needs
 //!   `std`; enables `eds` and `serde`; adds `serde_json` (the summary's exact
@@ -76,6 +76,9 @@
 //!   SocketCAN interfaces (docs/formats.md#pcap). Needs `std`, no dependency.
 //! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (docs/formats.md#blf).
 //!   Needs `std`; adds `flate2` for the zlib containers.
+//! - `mf4`: `logs::mf4::Mf4Reader`, ASAM MDF 4 bus logging (CANedge,
+//!   CANoe, asammdf, python-can's `MF4Writer`; docs/formats.md#mf4). Needs
+//!   `std`; adds `flate2` for the deflated data blocks.
 //! - `serde`: `Serialize` and `Deserialize` for the owned value types (not
 //!   the zero-copy views, not the state machines).
 //!   - Checked numbers — [`canopen::NodeId`], [`servo::ServoEnable`],

@@ -1499,3 +1499,45 @@ fn several_files_are_kept_apart() {
         rows[3]
     );
 }
+
+/// The program explains itself (issue 22): the help lists the formats,
+/// kinds and exit statuses and points at docs/; a bad profile names the
+/// valid ones; an EDS that cannot be read says so without a line 0.
+#[test]
+fn help_and_messages_speak_plainly() {
+    let top = run(&["--help"], "");
+    assert!(
+        stdout(&top).starts_with("motionwire: read CAN logs"),
+        "{}",
+        stdout(&top)
+    );
+    let help = run(&["decode", "--help"], "");
+    let text = stdout(&help);
+    for needle in [
+        "candump, asc, trc, pcap, pcapng, blf, mf4",
+        "emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo, error_frame, other",
+        "Exit status:",
+        "docs/output.md",
+        "line  ts                 iface  id        kind           node      detail",
+    ] {
+        assert!(text.contains(needle), "{needle:?} not in\n{text}");
+    }
+    assert!(!text.contains("SPEC"), "{text}");
+
+    let profile = run(&["decode", "--profile", "3=kollmorgen"], "");
+    assert_eq!(profile.status.code(), Some(2));
+    assert!(
+        stderr(&profile).contains("\"kollmorgen\" is not a profile; one of generic, akd, baumer"),
+        "{}",
+        stderr(&profile)
+    );
+    let eds = run(&["decode", "--eds", "3=/nonexistent/x.eds"], "");
+    assert_eq!(eds.status.code(), Some(2));
+    assert!(
+        stderr(&eds).starts_with(
+            "motionwire: --eds 3=/nonexistent/x.eds: /nonexistent/x.eds: cannot be read: "
+        ),
+        "{}",
+        stderr(&eds)
+    );
+}

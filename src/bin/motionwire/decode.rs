@@ -300,9 +300,16 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             .as_deref()
             .and_then(|p| std::fs::metadata(p).ok())
             .map(|m| m.len());
-        let mut log = options
-            .read(reader)
-            .map_err(|e| open_failure(&name, path.as_deref(), e))?;
+        // A file by its path: a format read in place (MF4 seeks through
+        // its blocks) needs the file, not a stream of it.
+        let opened = match path.as_deref() {
+            Some(path) => {
+                drop(reader);
+                options.open(path)
+            }
+            None => options.read(reader),
+        };
+        let mut log = opened.map_err(|e| open_failure(&name, path.as_deref(), e))?;
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
         let last = log.visit(ReadAll {
@@ -418,8 +425,21 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
         // docs/formats.md#pcap, docs/formats.md#blf: counted and said once per
         // kind, not per record, naming the link type ("12 packets of link type
         // 1 (Ethernet) skipped: not CAN").
-        for kind in log.other_kinds() {
+        let kinds = log.other_kinds();
+        for kind in kinds {
             writeln!(sink.err, "{name}: {kind}")?;
+        }
+        // What a reader counts without naming its kind (an MF4 file's LIN
+        // or signal groups) is said too: nothing is skipped without a word.
+        let named: u64 = kinds.iter().map(|kind| kind.count).sum();
+        let unnamed = log.other_records().saturating_sub(named);
+        if unnamed > 0 {
+            let s = if unnamed == 1 { "" } else { "s" };
+            writeln!(
+                sink.err,
+                "{name}: {unnamed} {} record{s} without a CAN frame skipped",
+                log.format()
+            )?;
         }
         Ok(number)
     }
