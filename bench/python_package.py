@@ -96,6 +96,7 @@ def main() -> int:
     path = log_file(args.frames)
     frames = args.frames
     results: dict = {"frames": frames, "file": str(path), "cores": os.cpu_count(),
+                     "load_before": os.getloadavg()[0],
                      "python_can": can.__version__, "motionwire": motionwire.__version__}
 
     read, table = timed(lambda: motionwire.read_log(path), args.runs)
@@ -112,17 +113,16 @@ def main() -> int:
         "per_frame_without_data": (table.nbytes - data_bytes) / frames,
     }
     del table
-    sample = 100_000
+    del messages
+    # python-can's list, for comparison: what 100 000 can.Messages hold.
+    sample = log_file(100_000)
     gc.collect()
     tracemalloc.start()
-    kept = messages[:sample]
-    del messages
-    gc.collect()
-    rebuilt = python_can_list(log_file(sample)) if frames > sample else kept
+    kept = python_can_list(sample)
     current, _ = tracemalloc.get_traced_memory()
     tracemalloc.stop()
-    results["memory"]["python_can_per_message"] = current / len(rebuilt)
-    del kept, rebuilt
+    results["memory"]["python_can_per_message"] = current / len(kept)
+    del kept
 
     summary, records = timed(lambda: motionwire.summary(path), args.runs)
     peer_summary, peer = timed(lambda: peer_python.summarize(str(path)), args.peer_runs)
@@ -159,7 +159,11 @@ def main() -> int:
     ]
     results["goals"] = []
     failed = False
-    print(f"\n{frames:,} frames, {path}; python-can {can.__version__}; {os.cpu_count()} cores\n")
+    results["load_after"] = os.getloadavg()[0]
+    print(
+        f"\n{frames:,} frames, {path}; python-can {can.__version__}; {os.cpu_count()} cores; "
+        f"load average {results['load_before']:.2f} before, {results['load_after']:.2f} after\n"
+    )
     print("| call | best | median | frames/s |")
     print("|---|---:|---:|---:|")
     for name, key in (

@@ -29,20 +29,21 @@ use source::Source;
 use table::{Columns, Fill, Finished};
 
 /// Read one log into its columns, decoding each frame with `decoder` when
-/// there is one (no GIL).
+/// there is one (no GIL). `name` names the log in messages; `file` in the
+/// skipped lines (`read_logs`).
 fn fill(
     source: &Source,
+    name: &str,
     options: motionwire::logs::ReadOptions,
     decoder: Option<&mut Decoder>,
     file: Option<&str>,
 ) -> Result<Finished, Failure> {
-    let name = source.name();
-    let mut log = source.open(options)?;
+    let mut log = source.open(options, name)?;
     let mut columns = Columns::new(decoder.is_some());
     log.visit(Fill {
         columns: &mut columns,
         decoder,
-        name: &name,
+        name,
         file,
     })?;
     Ok(columns.finish())
@@ -72,7 +73,8 @@ fn read_log(
 ) -> PyResult<Py<PyAny>> {
     let source = Source::extract(source)?;
     let options = source::options(format)?;
-    let finished = py.detach(|| fill(&source, options, None, None))?;
+    let name = source.name();
+    let finished = py.detach(|| fill(&source, &name, options, None, None))?;
     to_pyarrow(py, vec![finished], None)
 }
 
@@ -115,20 +117,7 @@ fn read_logs(
                         break;
                     };
                     let name = &files[i];
-                    let result = match source {
-                        Source::Path(_) => fill(source, options, None, Some(name)),
-                        // Bytes have no name of their own: messages give
-                        // their place in the list.
-                        Source::Bytes(_) => {
-                            fill(source, options, None, Some(name)).map_err(|failure| match failure
-                            {
-                                Failure::Log(message) => {
-                                    Failure::Log(message.replacen("<bytes>", name, 1))
-                                }
-                                other => other,
-                            })
-                        }
-                    };
+                    let result = fill(source, name, options, None, Some(name));
                     *results[i].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
                 });
             }
@@ -222,7 +211,7 @@ fn decode(
     let config = config(profiles, eds)?;
     let finished = py.detach(|| {
         let mut decoder = Decoder::new(config);
-        fill(&source, options, Some(&mut decoder), None)
+        fill(&source, &source.name(), options, Some(&mut decoder), None)
     })?;
     to_pyarrow(py, vec![finished], None)
 }
@@ -244,7 +233,7 @@ fn summary<'py>(
     let config = config(profiles, eds)?.signals(false);
     let (records, skipped) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
-        let mut log = source.open(options)?;
+        let mut log = source.open(options, &name)?;
         let mut decoder = Decoder::new(config);
         let mut summarizer = Summarizer::new();
         if let Some(ms) = heartbeat_ms {

@@ -152,7 +152,7 @@ impl Reader {
         let source = Source::extract(source)?;
         let options = source::options(format)?;
         let name = source.name();
-        let log = py.detach(|| source.open(options))?;
+        let log = py.detach(|| source.open(options, &name))?;
         let (message, python_can) = match py.import("can") {
             Ok(can) => (can.getattr("Message")?.unbind(), true),
             Err(_) => (py.get_type::<Message>().into_any().unbind(), false),

@@ -41,7 +41,7 @@ impl Source {
         }
     }
 
-    /// The name messages and the `file` column give the source: the path
+    /// The name messages give the source when it is read alone: the path
     /// as given, `<bytes>` for bytes.
     pub fn name(&self) -> String {
         match self {
@@ -51,8 +51,9 @@ impl Source {
     }
 
     /// Open the log: the format detected from the content (or `format`),
-    /// gzip inflated. Runs without the GIL.
-    pub fn open(&self, options: ReadOptions) -> Result<LogReader, Failure> {
+    /// gzip inflated; `name` names it in a [`LogError`](crate::error::LogError).
+    /// Runs without the GIL.
+    pub fn open(&self, options: ReadOptions, name: &str) -> Result<LogReader, Failure> {
         match self {
             Source::Path(path) => {
                 // A path that cannot be opened is an OSError with its name
@@ -62,11 +63,11 @@ impl Source {
                     path: path.clone(),
                     error,
                 })?;
-                options.open(path).map_err(|e| Failure::log(self.name(), e))
+                options.open(path).map_err(|e| Failure::log(name, e))
             }
             Source::Bytes(bytes) => options
                 .read(Cursor::new(Shared(Arc::clone(&bytes.0))))
-                .map_err(|e| Failure::log(self.name(), e)),
+                .map_err(|e| Failure::log(name, e)),
         }
     }
 }

@@ -37,17 +37,17 @@ pub struct Ifaces {
     values: Vec<String>,
     by_name: HashMap<String, i32>,
     by_channel: HashMap<u16, i32>,
-    /// The last name looked up and its key: most logs have one interface
-    /// or alternate between few.
-    last: Option<(usize, i32)>,
+    /// The key of the last name looked up: most logs have one interface or
+    /// alternate between few.
+    last: Option<i32>,
 }
 
 impl Ifaces {
     fn key(&mut self, iface: Iface<'_>) -> i32 {
         match iface {
             Iface::Name(name) => {
-                if let Some((at, key)) = self.last {
-                    if self.values[at] == name {
+                if let Some(key) = self.last {
+                    if self.values[key as usize] == name {
                         return key;
                     }
                 }
@@ -55,7 +55,7 @@ impl Ifaces {
                     Some(&key) => key,
                     None => self.add(name.to_owned()),
                 };
-                self.last = Some((key as usize, key));
+                self.last = Some(key);
                 key
             }
             Iface::Channel(channel) => match self.by_channel.get(&channel) {
@@ -161,31 +161,32 @@ impl Skipped {
 struct DecodedColumns {
     kind: Vec<i8>,
     node: Vec<u8>,
-    node_valid: NullBufferBuilder0,
+    node_valid: Validity,
     code: Vec<u16>,
-    code_valid: NullBufferBuilder0,
+    code_valid: Validity,
     register: Vec<u8>,
-    register_valid: NullBufferBuilder0,
+    register_valid: Validity,
     description: Vec<i32>,
-    description_valid: NullBufferBuilder0,
+    description_valid: Validity,
     state: Vec<i32>,
-    state_valid: NullBufferBuilder0,
+    state_valid: Validity,
     record_offsets: Vec<i32>,
     record: Vec<u8>,
     descriptions: StaticNames,
     states: StaticNames,
 }
 
-/// A [`NullBufferBuilder`] with a [`Default`].
-struct NullBufferBuilder0(NullBufferBuilder);
+/// Which values of a nullable column are there: a [`NullBufferBuilder`]
+/// with a [`Default`], that pushes the value and its validity together.
+struct Validity(NullBufferBuilder);
 
-impl Default for NullBufferBuilder0 {
+impl Default for Validity {
     fn default() -> Self {
-        NullBufferBuilder0(NullBufferBuilder::new(0))
+        Validity(NullBufferBuilder::new(0))
     }
 }
 
-impl NullBufferBuilder0 {
+impl Validity {
     #[inline]
     fn push<T: Default>(&mut self, values: &mut Vec<T>, value: Option<T>) {
         match value {
@@ -213,9 +214,9 @@ pub struct Chunk {
 pub struct Columns {
     line: Vec<u64>,
     ts: Vec<f64>,
-    ts_valid: NullBufferBuilder0,
+    ts_valid: Validity,
     iface: Vec<i32>,
-    iface_valid: NullBufferBuilder0,
+    iface_valid: Validity,
     id: Vec<u32>,
     /// extended, rtr, fd, brs, esi, error.
     flags: [BooleanBufferBuilder; 6],
@@ -235,9 +236,9 @@ impl Columns {
         let mut columns = Columns {
             line: Vec::new(),
             ts: Vec::new(),
-            ts_valid: NullBufferBuilder0::default(),
+            ts_valid: Validity::default(),
             iface: Vec::new(),
-            iface_valid: NullBufferBuilder0::default(),
+            iface_valid: Validity::default(),
             id: Vec::new(),
             flags: std::array::from_fn(|_| BooleanBufferBuilder::new(0)),
             dlc: Vec::new(),
