@@ -68,3 +68,53 @@ fn the_library_writes_what_the_program_writes() {
     assert!(compared >= 80, "only {compared} JSON cases");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `Decoded::columns` (the Python package's `decode` columns) holds what the
+/// record's `code`, `register`, `description` and `state` keys hold, on every
+/// frame of the sample and the SDO fixtures (EMCYs whole and truncated,
+/// heartbeats, boot-ups, guarding answers).
+#[test]
+fn columns_hold_what_the_record_holds() {
+    use motionwire::decoder::{Decoder, DecoderConfig};
+    use motionwire::logs::{self, ReadLog};
+    use serde_json::Value;
+
+    let mut seen = [0; 4];
+    for file in [
+        "samples/machine.log",
+        "tests/fixtures/sdo/broken.log",
+        "tests/fixtures/python_can.log",
+    ] {
+        let mut decoder = Decoder::new(DecoderConfig::new());
+        let mut log = logs::open(root().join(file)).unwrap();
+        while let Some(next) = log.next_event() {
+            let Ok(record) = next else { continue };
+            let Some(frame) = record.event.frame() else {
+                continue;
+            };
+            let decoded = decoder.decode(record.position.number(), frame);
+            let json: Value = serde_json::from_str(&decoded.to_json()).unwrap();
+            let columns = decoded.columns();
+            let keys = [
+                columns.code.map(|c| Value::from(c.get())),
+                columns.register.map(|r| Value::from(r.bits())),
+                columns.description.map(Value::from),
+                columns.state.map(Value::from),
+            ];
+            for (i, (key, value)) in ["code", "register", "description", "state"]
+                .iter()
+                .zip(keys)
+                .enumerate()
+            {
+                assert_eq!(
+                    json.get(key),
+                    value.as_ref(),
+                    "{file}:{}: {key}",
+                    decoded.position
+                );
+                seen[i] += usize::from(value.is_some());
+            }
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 10), "{seen:?}");
+}

@@ -40,6 +40,7 @@
 
 mod bus;
 mod cia402;
+mod columns;
 mod json;
 mod names;
 mod pdo;
@@ -51,6 +52,7 @@ use std::path::Path;
 
 pub use bus::BusName;
 pub use cia402::Cia402Reading;
+pub use columns::FrameColumns;
 pub use names::ObjectNames;
 pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};

@@ -55,6 +55,21 @@ impl LogFormat {
             LogFormat::Mf4 => "mf4",
         }
     }
+
+    /// Return the format [`name`](Self::name) names (`--format`'s value,
+    /// the Python package's `format=`), `None` for any other text.
+    ///
+    /// ```
+    /// use motionwire::logs::LogFormat;
+    ///
+    /// assert_eq!(LogFormat::from_name("pcapng"), Some(LogFormat::Pcapng));
+    /// assert_eq!(LogFormat::from_name("PCAP"), None);
+    /// assert!(LogFormat::ALL.iter().all(|f| LogFormat::from_name(f.name()) == Some(*f)));
+    /// ```
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<LogFormat> {
+        LogFormat::ALL.into_iter().find(|f| f.name() == name)
+    }
 }
 
 impl core::fmt::Display for LogFormat {

@@ -294,13 +294,10 @@ fn kind_help() -> String {
 }
 
 fn parse_format(text: &str) -> Result<LogFormat, String> {
-    LogFormat::ALL
-        .into_iter()
-        .find(|f| f.name() == text)
-        .ok_or_else(|| {
-            let names: Vec<_> = LogFormat::ALL.iter().map(|f| f.name()).collect();
-            format!("{text:?} is not a log format; one of {}", names.join(", "))
-        })
+    LogFormat::from_name(text).ok_or_else(|| {
+        let names: Vec<_> = LogFormat::ALL.iter().map(|f| f.name()).collect();
+        format!("{text:?} is not a log format; one of {}", names.join(", "))
+    })
 }
 
 fn parse_kind(text: &str) -> Result<MessageKind, String> {

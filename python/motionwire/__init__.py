@@ -1,0 +1,29 @@
+"""motionwire: CAN logs and CANopen decoding for Python (docs/python.md).
+
+Every format of docs/formats.md (candump, ASC, TRC, BLF, pcap/pcapng, MF4,
+gzip-compressed or not) read into Arrow tables built in Rust, the CANopen
+decoder's columns and JSON records, the post-mortem summary, and
+python-can messages. The work is done by the Rust library with the GIL
+released; this module only re-exports it.
+"""
+
+from ._motionwire import (
+    LogError,
+    Message,
+    Reader,
+    __version__,
+    decode,
+    read_log,
+    read_logs,
+    summary,
+)
+
+__all__ = [
+    "LogError",
+    "Message",
+    "Reader",
+    "decode",
+    "read_log",
+    "read_logs",
+    "summary",
+]

@@ -1,0 +1,224 @@
+"""motionwire: CAN logs and CANopen decoding for Python (docs/python.md).
+
+Every format of docs/formats.md — candump log and screen output, Vector ASC
+and BLF, PEAK TRC, pcap and pcapng, ASAM MDF 4 — gzip-compressed or not,
+found from the content. Tables are built column by column in Rust and handed
+to pyarrow without a copy; pandas (`table.to_pandas()`), polars
+(`polars.from_arrow(table)`) and DuckDB (`duckdb.sql("… from table")`) read
+them as they are. The GIL is released while a log is read.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Iterator, Mapping
+from types import TracebackType
+from typing import Any, Literal, Optional, Union
+
+import pyarrow
+
+__version__: str
+
+#: A log: its path, or the bytes of the file (gzip-compressed or not).
+Source = Union[str, "os.PathLike[str]", bytes, bytearray, memoryview]
+
+#: A format name of docs/formats.md, to read an input as that format
+#: whatever its content says (`motionwire decode --format`).
+Format = Literal["candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4"]
+
+#: A device profile of docs/canopen.md#profiles: how an EMCY's
+#: manufacturer bytes read, whether a node is a CiA 402 drive.
+ProfileName = Literal["generic", "akd", "baumer"]
+
+#: `profiles=`: one profile for every node, or {node: profile} (the key
+#: None: every node not named).
+Profiles = Union[ProfileName, Mapping[Optional[int], ProfileName]]
+
+class LogError(ValueError):
+    """A log that cannot be read: none of the formats of docs/formats.md
+    (unrecognised), a binary log whose header is damaged, or an input that
+    fails while it is read (a damaged gzip stream). The message names the
+    source and the reason:
+
+        <bytes>: unrecognised log format: expected a candump log or screen
+        output, Vector ASC or BLF, PEAK TRC, pcap or pcapng, ASAM MDF 4
+        (gzip-compressed or not)
+
+    A malformed line inside a recognised log is no LogError: it is skipped
+    and listed in the table's schema metadata. A path that cannot be opened
+    raises the OSError that Python's open() would (FileNotFoundError, …).
+    """
+
+def read_log(source: Source, format: Optional[Format] = None) -> pyarrow.Table:
+    """Read a log into a table, one row per CAN frame, in the log's order
+    (MF4: time order across its channel groups).
+
+    Columns (docs/python.md#read-log; each as the JSON record's key of the
+    same name, docs/output.md#common-keys):
+
+    - ``line`` (uint64): the 1-based line of a text log, or the packet,
+      object or record number of a binary one (docs/formats.md#positions).
+    - ``ts`` (float64, null where the log has no time): seconds, absolute
+      Unix time where the log records the date, else since the start of the
+      recording (docs/formats.md#timestamps).
+    - ``iface`` (dictionary string, null where the log names none): the
+      interface name (``can0``) or channel number as the file writes it
+      (``1``).
+    - ``id`` (uint32): the identifier; of an error frame, its class bits.
+    - ``extended``, ``rtr``, ``fd``, ``brs``, ``esi``, ``error`` (bool).
+    - ``dlc`` (uint8): the data length code: the number of bytes of a
+      classic frame, the requested length of a remote request, the code
+      0–15 of a CAN FD frame (12 bytes: 9; 64 bytes: 15).
+    - ``data`` (binary): the data bytes; empty for a remote request.
+
+    Schema metadata: ``b"motionwire.format"`` (the format read),
+    ``b"motionwire.skipped"`` (a JSON list of ``{"line": …, "reason": …}``,
+    the first 1 000 lines or records skipped as malformed or damaged),
+    ``b"motionwire.skipped_count"`` (how many), and, where a binary log
+    had records without a CAN frame, ``b"motionwire.other"`` (what was
+    passed over, as the program says it).
+
+    Raises LogError for an input that is no log; OSError for a path that
+    cannot be opened.
+    """
+
+def read_logs(
+    sources: Iterable[Source],
+    threads: Optional[int] = None,
+    *,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """Read many logs at once on Rust threads (``threads``: by default one
+    per core) into one table: a ``file`` column (dictionary string: the
+    path as given, ``<bytes N>`` for the N-th source given as bytes) before
+    the columns of read_log, each log's rows in the order of ``sources``.
+    Each log is read on its own: nothing carries over from one to the next.
+
+    The way to take a fleet's logs to pandas, polars or DuckDB, and on to
+    Parquet (``pyarrow.parquet.write_table``). The skipped lines of every log
+    are in the metadata, each with its ``file``.
+
+    Raises LogError naming the first source (in the order given) that is no
+    log.
+    """
+
+def decode(
+    source: Source,
+    *,
+    profiles: Optional[Profiles] = None,
+    eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """Decode a log as CANopen: the columns of read_log, then what the
+    decoder session reads in each frame, with SDO transfers followed, PDO
+    mappings learned from the log (or ``eds``) and each drive's CiA 402 state
+    (docs/python.md#decode):
+
+    - ``kind`` (dictionary string): ``emcy``, ``heartbeat``,
+      ``guard_request``, ``nmt_command``, ``sync``, ``time``, ``pdo``,
+      ``sdo``, ``error_frame``, ``other`` (docs/canopen.md#identifiers).
+    - ``node`` (uint8, null for kinds without one).
+    - ``code`` (uint16), ``register`` (uint8), ``description`` (dictionary
+      string): an EMCY's error code, error register and the code's
+      description (a truncated EMCY: the code and register its bytes hold).
+    - ``state`` (dictionary string): the NMT state of a heartbeat, boot-up
+      or guarding answer (``boot_up``, ``stopped``, ``operational``,
+      ``pre_operational``, ``invalid``).
+    - ``record`` (string): the frame's whole JSON record, exactly the line
+      ``motionwire decode --json`` writes (docs/output.md#json): SDO,
+      transfer, signals, cia402 and every key of its kind.
+
+    ``profiles``: ``"akd"`` for every node, or ``{3: "akd", 5: "baumer"}``
+    (``--profile``; the key None sets the default). ``eds``: ``{node:
+    path}``, an EDS or DCF file describing that node (``--eds``).
+    """
+
+def summary(
+    source: Source,
+    *,
+    heartbeat_ms: Optional[int] = None,
+    profiles: Optional[Profiles] = None,
+    eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
+    format: Optional[Format] = None,
+) -> list[dict[str, Any]]:
+    """The post-mortem of a log: exactly the records of ``motionwire decode
+    --summary --json`` (docs/summary.md), one dict per node and per bus:
+    frame counts, first and active error with the CiA 405 root cause,
+    heartbeat boot-ups and gaps over ``heartbeat_ms``, node-guarding toggle
+    errors, SDO requests, transfers, aborts and latencies, each drive's CiA
+    402 timeline.
+
+    Lines skipped as malformed are said with a UserWarning (read_log lists
+    them).
+    """
+
+class Message:
+    """A CAN frame with python-can's attribute names: what Reader yields
+    when python-can is not installed."""
+
+    @property
+    def timestamp(self) -> float: ...
+    @property
+    def arbitration_id(self) -> int: ...
+    @property
+    def is_extended_id(self) -> bool: ...
+    @property
+    def is_remote_frame(self) -> bool: ...
+    @property
+    def is_error_frame(self) -> bool: ...
+    @property
+    def is_fd(self) -> bool: ...
+    @property
+    def bitrate_switch(self) -> bool: ...
+    @property
+    def error_state_indicator(self) -> bool: ...
+    @property
+    def dlc(self) -> int: ...
+    @property
+    def data(self) -> bytes: ...
+    @property
+    def channel(self) -> Union[str, int, None]: ...
+    @property
+    def is_rx(self) -> bool: ...
+
+class Reader:
+    """A log as python-can messages: a drop-in for python-can's
+    ``can.LogReader`` (docs/python.md#reader), for every format of
+    docs/formats.md.
+
+        with motionwire.Reader("trace.blf") as reader:
+            for msg in reader:          # can.Message
+                ...
+
+    Each message is python-can's ``can.Message`` when python-can is
+    installed (else ``motionwire.Message``, with the same attributes):
+    ``timestamp`` (0.0 where the log has no time), ``arbitration_id``,
+    ``is_extended_id``, ``is_remote_frame``, ``is_error_frame``, ``is_fd``,
+    ``bitrate_switch``, ``error_state_indicator``, ``dlc`` (python-can's:
+    the data length of a CAN FD frame), ``data``, ``channel`` (the interface
+    name, the channel number as the file writes it — from 1 where python-can
+    counts from 0 — or None) and ``is_rx`` (True where the log does not
+    say). Frames are read in blocks with the GIL released.
+
+    Lines skipped as malformed are in ``skipped`` and ``skipped_count``.
+    """
+
+    def __init__(self, source: Source, format: Optional[Format] = None) -> None: ...
+    def __iter__(self) -> Iterator[Any]: ...
+    def __next__(self) -> Any: ...
+    def __enter__(self) -> Reader: ...
+    def __exit__(
+        self,
+        exc_type: Optional[type[BaseException]],
+        exc: Optional[BaseException],
+        tb: Optional[TracebackType],
+    ) -> None: ...
+    def stop(self) -> None:
+        """Stop reading and close the log (python-can's ``stop``)."""
+    @property
+    def skipped(self) -> list[dict[str, Any]]:
+        """The lines or records skipped so far (the first 1 000), as
+        ``{"line": …, "reason": …}``."""
+    @property
+    def skipped_count(self) -> int:
+        """How many lines or records were skipped so far."""

@@ -1,0 +1,601 @@
+//! Arrow columns built frame by frame in Rust (docs/python.md#columns): no
+//! Python object per frame. A log's frames go into plain vectors and bit
+//! buffers that become Arrow arrays without a copy; strings that repeat (the
+//! interface, the kind, an EMCY's description, a heartbeat's state) are
+//! dictionary-encoded.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use arrow_array::types::{Int32Type, Int8Type};
+use arrow_array::{
+    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int8Array,
+    RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
+};
+use arrow_buffer::{BooleanBufferBuilder, Buffer, NullBufferBuilder, OffsetBuffer, ScalarBuffer};
+use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
+use motionwire::can::{FdFlags, Iface, LogEvent, LogFrame};
+use motionwire::canopen::MessageKind;
+use motionwire::decoder::Decoder;
+use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, ReadLog};
+use serde_json::{json, Value};
+
+use crate::error::Failure;
+
+/// The most rows one record batch holds.
+const BATCH_ROWS: usize = 1 << 20;
+/// The most bytes of `data` or `record` one batch holds (Arrow's 32-bit
+/// offsets reach 2 GiB).
+const BATCH_BYTES: usize = 1 << 30;
+/// How many skipped lines the schema metadata lists (SPEC: the first 1 000).
+pub const SKIPPED_LISTED: usize = 1000;
+
+/// The dictionary of an interface column: each interface's name (`can0`)
+/// or channel number (`1`) once, and the key of each.
+#[derive(Default)]
+pub struct Ifaces {
+    values: Vec<String>,
+    by_name: HashMap<String, i32>,
+    by_channel: HashMap<u16, i32>,
+    /// The key of the last name looked up: most logs have one interface or
+    /// alternate between few.
+    last: Option<i32>,
+}
+
+impl Ifaces {
+    fn key(&mut self, iface: Iface<'_>) -> i32 {
+        match iface {
+            Iface::Name(name) => {
+                if let Some(key) = self.last {
+                    if self.values[key as usize] == name {
+                        return key;
+                    }
+                }
+                let key = match self.by_name.get(name) {
+                    Some(&key) => key,
+                    None => self.add(name.to_owned()),
+                };
+                self.last = Some(key);
+                key
+            }
+            Iface::Channel(channel) => match self.by_channel.get(&channel) {
+                Some(&key) => key,
+                None => {
+                    let key = self.add(channel.to_string());
+                    self.by_channel.insert(channel, key);
+                    key
+                }
+            },
+        }
+    }
+
+    /// The key of `name`, added when new (a name and a channel that print
+    /// alike are one value).
+    fn add(&mut self, name: String) -> i32 {
+        if let Some(&key) = self.by_name.get(&name) {
+            return key;
+        }
+        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
+        self.by_name.insert(name.clone(), key);
+        self.values.push(name);
+        key
+    }
+}
+
+/// The dictionary of a column of the library's names (`&'static str`: an
+/// EMCY code's description, a heartbeat's state).
+#[derive(Default)]
+struct StaticNames {
+    values: Vec<&'static str>,
+    keys: HashMap<&'static str, i32>,
+}
+
+impl StaticNames {
+    fn key(&mut self, name: &'static str) -> i32 {
+        if let Some(&key) = self.keys.get(name) {
+            return key;
+        }
+        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
+        self.values.push(name);
+        self.keys.insert(name, key);
+        key
+    }
+
+    fn array(&self) -> ArrayRef {
+        Arc::new(StringArray::from_iter_values(self.values.iter()))
+    }
+}
+
+/// What was skipped while a log was read (docs/formats.md#reported): the
+/// schema metadata `motionwire.skipped` (the first [`SKIPPED_LISTED`]),
+/// `motionwire.skipped_count` and `motionwire.other`.
+#[derive(Default)]
+pub struct Skipped {
+    pub count: u64,
+    pub listed: Vec<Value>,
+    pub other: Vec<Value>,
+}
+
+impl Skipped {
+    fn add(&mut self, file: Option<&str>, line: Option<u64>, reason: String) {
+        self.count += 1;
+        if self.listed.len() < SKIPPED_LISTED {
+            self.listed.push(match file {
+                Some(file) => json!({"file": file, "line": line, "reason": reason}),
+                None => json!({"line": line, "reason": reason}),
+            });
+        }
+    }
+
+    /// Add what `other` skipped to this one, for a table of several logs.
+    pub fn extend(&mut self, other: Skipped) {
+        self.count += other.count;
+        let room = SKIPPED_LISTED.saturating_sub(self.listed.len());
+        self.listed.extend(other.listed.into_iter().take(room));
+        self.other.extend(other.other);
+    }
+
+    /// The schema metadata.
+    pub fn metadata(&self) -> HashMap<String, String> {
+        let mut metadata = HashMap::new();
+        metadata.insert(
+            "motionwire.skipped".to_owned(),
+            Value::Array(self.listed.clone()).to_string(),
+        );
+        metadata.insert(
+            "motionwire.skipped_count".to_owned(),
+            self.count.to_string(),
+        );
+        if !self.other.is_empty() {
+            metadata.insert(
+                "motionwire.other".to_owned(),
+                Value::Array(self.other.clone()).to_string(),
+            );
+        }
+        metadata
+    }
+}
+
+/// The columns `decode` adds (docs/python.md#decode).
+#[derive(Default)]
+struct DecodedColumns {
+    kind: Vec<i8>,
+    node: Vec<u8>,
+    node_valid: Validity,
+    code: Vec<u16>,
+    code_valid: Validity,
+    register: Vec<u8>,
+    register_valid: Validity,
+    description: Vec<i32>,
+    description_valid: Validity,
+    state: Vec<i32>,
+    state_valid: Validity,
+    record_offsets: Vec<i32>,
+    record: Vec<u8>,
+    descriptions: StaticNames,
+    states: StaticNames,
+}
+
+/// Which values of a nullable column are there: a [`NullBufferBuilder`]
+/// with a [`Default`], that pushes the value and its validity together.
+struct Validity(NullBufferBuilder);
+
+impl Default for Validity {
+    fn default() -> Self {
+        Validity(NullBufferBuilder::new(0))
+    }
+}
+
+impl Validity {
+    #[inline]
+    fn push<T: Default>(&mut self, values: &mut Vec<T>, value: Option<T>) {
+        match value {
+            Some(value) => {
+                values.push(value);
+                self.0.append_non_null();
+            }
+            None => {
+                values.push(T::default());
+                self.0.append_null();
+            }
+        }
+    }
+}
+
+/// One record batch's columns, the interface still as keys (its dictionary
+/// is the log's, complete only at the end).
+pub struct Chunk {
+    /// The columns in schema order without `file` and `iface`.
+    columns: Vec<ArrayRef>,
+    iface: Int32Array,
+}
+
+/// The frames of one log, column by column.
+pub struct Columns {
+    line: Vec<u64>,
+    ts: Vec<f64>,
+    ts_valid: Validity,
+    iface: Vec<i32>,
+    iface_valid: Validity,
+    id: Vec<u32>,
+    /// extended, rtr, fd, brs, esi, error.
+    flags: [BooleanBufferBuilder; 6],
+    dlc: Vec<u8>,
+    data_offsets: Vec<i32>,
+    data: Vec<u8>,
+    decoded: Option<Box<DecodedColumns>>,
+    chunks: Vec<Chunk>,
+    ifaces: Ifaces,
+    pub skipped: Skipped,
+    pub format: Option<LogFormat>,
+}
+
+impl Columns {
+    /// Columns for `read_log`, or for `decode` (with `decoded`).
+    pub fn new(decoded: bool) -> Self {
+        let mut columns = Columns {
+            line: Vec::new(),
+            ts: Vec::new(),
+            ts_valid: Validity::default(),
+            iface: Vec::new(),
+            iface_valid: Validity::default(),
+            id: Vec::new(),
+            flags: std::array::from_fn(|_| BooleanBufferBuilder::new(0)),
+            dlc: Vec::new(),
+            data_offsets: vec![0],
+            data: Vec::new(),
+            decoded: decoded.then(Box::default),
+            chunks: Vec::new(),
+            ifaces: Ifaces::default(),
+            skipped: Skipped::default(),
+            format: None,
+        };
+        if let Some(d) = columns.decoded.as_mut() {
+            d.record_offsets.push(0);
+        }
+        columns
+    }
+
+    /// Add a frame, decoded by `decoder` for `decode`'s columns.
+    #[inline]
+    fn push(&mut self, line: u64, frame: &LogFrame<'_>, decoder: Option<&mut Decoder>) {
+        let can = &frame.frame;
+        self.line.push(line);
+        self.ts_valid
+            .push(&mut self.ts, frame.timestamp.map(|ts| ts.as_secs_f64()));
+        let iface = frame.iface.map(|iface| self.ifaces.key(iface));
+        self.iface_valid.push(&mut self.iface, iface);
+        self.id.push(can.id().raw());
+        let fd = can.fd_flags();
+        for (builder, flag) in self.flags.iter_mut().zip([
+            can.is_extended(),
+            can.is_rtr(),
+            can.is_fd(),
+            fd.contains(FdFlags::BRS),
+            fd.contains(FdFlags::ESI),
+            can.is_error(),
+        ]) {
+            builder.append(flag);
+        }
+        self.dlc.push(can.dlc());
+        self.data.extend_from_slice(can.data());
+        self.data_offsets.push(offset(self.data.len()));
+        if let (Some(d), Some(decoder)) = (self.decoded.as_deref_mut(), decoder) {
+            let decoded = decoder.decode(line, frame);
+            d.kind.push(decoded.kind.index() as i8);
+            d.node_valid
+                .push(&mut d.node, decoded.node.map(|node| node.get()));
+            let columns = decoded.columns();
+            d.code_valid
+                .push(&mut d.code, columns.code.map(|code| code.get()));
+            d.register_valid
+                .push(&mut d.register, columns.register.map(|r| r.bits()));
+            let description = columns.description.map(|text| d.descriptions.key(text));
+            d.description_valid.push(&mut d.description, description);
+            let state = columns.state.map(|state| d.states.key(state));
+            d.state_valid.push(&mut d.state, state);
+            decoded.write_json(&mut d.record).expect("writing to a Vec");
+            // The record without its newline.
+            d.record.pop();
+            d.record_offsets.push(offset(d.record.len()));
+        }
+        if self.line.len() >= BATCH_ROWS
+            || self.data.len() >= BATCH_BYTES
+            || self
+                .decoded
+                .as_ref()
+                .is_some_and(|d| d.record.len() >= BATCH_BYTES)
+        {
+            self.flush();
+        }
+    }
+
+    /// A line or record the reader could not read: listed; an input that
+    /// fails while it is read ends the call with a [`LogError`].
+    fn skip(&mut self, error: LogError, name: &str, file: Option<&str>) -> Result<(), Failure> {
+        if matches!(error.kind(), LogErrorKind::Io(_)) {
+            return Err(Failure::log(name, error));
+        }
+        let line = error.position().map(|p| p.number());
+        // The reason without the position, which is the `line` key.
+        self.skipped.add(file, line, error.kind().to_string());
+        Ok(())
+    }
+
+    /// Make a record batch of the rows added since the last.
+    fn flush(&mut self) {
+        if self.line.is_empty() {
+            return;
+        }
+        let mut columns: Vec<ArrayRef> = vec![
+            Arc::new(UInt64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.line)),
+                None,
+            )),
+            Arc::new(Float64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.ts)),
+                self.ts_valid.0.finish(),
+            )),
+            Arc::new(UInt32Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.id)),
+                None,
+            )),
+        ];
+        for builder in &mut self.flags {
+            columns.push(Arc::new(BooleanArray::new(builder.finish(), None)));
+        }
+        columns.push(Arc::new(UInt8Array::new(
+            ScalarBuffer::from(std::mem::take(&mut self.dlc)),
+            None,
+        )));
+        columns.push(Arc::new(BinaryArray::new(
+            offsets(&mut self.data_offsets),
+            Buffer::from_vec(std::mem::take(&mut self.data)),
+            None,
+        )));
+        if let Some(d) = self.decoded.as_deref_mut() {
+            let kinds: ArrayRef = Arc::new(StringArray::from_iter_values(
+                MessageKind::ALL.iter().map(|kind| kind.name()),
+            ));
+            columns.push(Arc::new(DictionaryArray::<Int8Type>::new(
+                Int8Array::new(ScalarBuffer::from(std::mem::take(&mut d.kind)), None),
+                kinds,
+            )));
+            columns.push(Arc::new(UInt8Array::new(
+                ScalarBuffer::from(std::mem::take(&mut d.node)),
+                d.node_valid.0.finish(),
+            )));
+            columns.push(Arc::new(UInt16Array::new(
+                ScalarBuffer::from(std::mem::take(&mut d.code)),
+                d.code_valid.0.finish(),
+            )));
+            columns.push(Arc::new(UInt8Array::new(
+                ScalarBuffer::from(std::mem::take(&mut d.register)),
+                d.register_valid.0.finish(),
+            )));
+            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
+                Int32Array::new(
+                    ScalarBuffer::from(std::mem::take(&mut d.description)),
+                    d.description_valid.0.finish(),
+                ),
+                d.descriptions.array(),
+            )));
+            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
+                Int32Array::new(
+                    ScalarBuffer::from(std::mem::take(&mut d.state)),
+                    d.state_valid.0.finish(),
+                ),
+                d.states.array(),
+            )));
+            // The writer writes UTF-8 (Decoded::write_json); checked once
+            // more here, at memory speed.
+            columns.push(Arc::new(
+                StringArray::try_new(
+                    offsets(&mut d.record_offsets),
+                    Buffer::from_vec(std::mem::take(&mut d.record)),
+                    None,
+                )
+                .expect("the records are UTF-8"),
+            ));
+        }
+        let iface = Int32Array::new(
+            ScalarBuffer::from(std::mem::take(&mut self.iface)),
+            self.iface_valid.0.finish(),
+        );
+        self.chunks.push(Chunk { columns, iface });
+    }
+
+    /// The rows read, as record batches; the interface dictionary and the
+    /// log's other columns apart.
+    pub fn finish(mut self) -> Finished {
+        self.flush();
+        Finished {
+            chunks: self.chunks,
+            ifaces: self.ifaces.values,
+            skipped: self.skipped,
+            format: self.format,
+            decoded: self.decoded.is_some(),
+        }
+    }
+}
+
+/// An offset of a binary or string column (the batch ends before 2 GiB).
+#[inline]
+fn offset(len: usize) -> i32 {
+    i32::try_from(len).expect("a batch holds less than 2 GiB")
+}
+
+/// The offsets of a finished batch, and a fresh start for the next.
+fn offsets(offsets: &mut Vec<i32>) -> OffsetBuffer<i32> {
+    let taken = std::mem::replace(offsets, vec![0]);
+    OffsetBuffer::new(ScalarBuffer::from(taken))
+}
+
+/// The columns of a log read in full.
+pub struct Finished {
+    chunks: Vec<Chunk>,
+    ifaces: Vec<String>,
+    pub skipped: Skipped,
+    pub format: Option<LogFormat>,
+    decoded: bool,
+}
+
+/// Read every event of a log into `columns` (a [`LogVisitor`], so that
+/// the loop is compiled for the format's reader), decoding each frame with
+/// `decoder` when there is one.
+pub struct Fill<'a> {
+    pub columns: &'a mut Columns,
+    pub decoder: Option<&'a mut Decoder>,
+    /// The source's name, for messages.
+    pub name: &'a str,
+    /// The name the skipped lines give (`read_logs`: each names its file).
+    pub file: Option<&'a str>,
+}
+
+impl LogVisitor for Fill<'_> {
+    type Output = Result<(), Failure>;
+
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Result<(), Failure> {
+        let Fill {
+            columns,
+            mut decoder,
+            name,
+            file,
+        } = self;
+        columns.format = Some(log.format());
+        while let Some(next) = log.next_event() {
+            match next {
+                Ok(record) => {
+                    if let LogEvent::Frame(frame) = &record.event {
+                        columns.push(record.position.number(), frame, decoder.as_deref_mut());
+                    }
+                }
+                Err(error) => columns.skip(error, name, file)?,
+            }
+        }
+        // Records that hold no frame, said once per kind as the program
+        // says them (docs/formats.md#pcap, docs/formats.md#blf).
+        let kinds = log.other_kinds();
+        for kind in kinds {
+            columns.skipped.other.push(Value::from(kind.to_string()));
+        }
+        let named: u64 = kinds.iter().map(|kind| kind.count).sum();
+        let unnamed = log.other_records().saturating_sub(named);
+        if unnamed > 0 {
+            let s = if unnamed == 1 { "" } else { "s" };
+            columns.skipped.other.push(Value::from(format!(
+                "{unnamed} {} record{s} without a CAN frame skipped",
+                log.format()
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The schema of `read_log` (with `file` first for `read_logs`) or of
+/// `decode`.
+pub fn schema(decoded: bool, file: bool, metadata: HashMap<String, String>) -> Schema {
+    let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
+    let mut fields = Vec::new();
+    if file {
+        fields.push(Field::new("file", dictionary(DataType::Int32), false));
+    }
+    fields.extend([
+        Field::new("line", DataType::UInt64, false),
+        Field::new("ts", DataType::Float64, true),
+        Field::new("iface", dictionary(DataType::Int32), true),
+        Field::new("id", DataType::UInt32, false),
+        Field::new("extended", DataType::Boolean, false),
+        Field::new("rtr", DataType::Boolean, false),
+        Field::new("fd", DataType::Boolean, false),
+        Field::new("brs", DataType::Boolean, false),
+        Field::new("esi", DataType::Boolean, false),
+        Field::new("error", DataType::Boolean, false),
+        Field::new("dlc", DataType::UInt8, false),
+        Field::new("data", DataType::Binary, false),
+    ]);
+    if decoded {
+        fields.extend([
+            Field::new("kind", dictionary(DataType::Int8), false),
+            Field::new("node", DataType::UInt8, true),
+            Field::new("code", DataType::UInt16, true),
+            Field::new("register", DataType::UInt8, true),
+            Field::new("description", dictionary(DataType::Int32), true),
+            Field::new("state", dictionary(DataType::Int32), true),
+            Field::new("record", DataType::Utf8, false),
+        ]);
+    }
+    Schema::new(fields).with_metadata(metadata)
+}
+
+/// The record batches of one log (`file` = `None`) or of several, each
+/// with its name.
+pub fn batches(
+    logs: Vec<Finished>,
+    files: Option<&[String]>,
+) -> Result<(SchemaRef, Vec<RecordBatch>), ArrowError> {
+    let decoded = logs.first().is_some_and(|log| log.decoded);
+    // One interface dictionary for the whole table: each log's keys mapped
+    // onto it.
+    let mut ifaces = Ifaces::default();
+    let maps: Vec<Vec<i32>> = logs
+        .iter()
+        .map(|log| {
+            log.ifaces
+                .iter()
+                .map(|name| ifaces.add(name.clone()))
+                .collect()
+        })
+        .collect();
+    let mut skipped = Skipped::default();
+    let mut format = None;
+    for log in &logs {
+        format = format.or(log.format);
+    }
+    let mut parts = Vec::new();
+    for (i, log) in logs.into_iter().enumerate() {
+        skipped.extend(log.skipped);
+        parts.push((i, log.chunks));
+    }
+    let mut metadata = skipped.metadata();
+    if files.is_none() {
+        if let Some(format) = format {
+            metadata.insert("motionwire.format".to_owned(), format.name().to_owned());
+        }
+    }
+    let schema = Arc::new(schema(decoded, files.is_some(), metadata));
+    let iface_values: ArrayRef = Arc::new(StringArray::from_iter_values(ifaces.values.iter()));
+    let file_values: Option<ArrayRef> =
+        files.map(|files| Arc::new(StringArray::from_iter_values(files.iter())) as ArrayRef);
+    let mut batches = Vec::new();
+    for (i, chunks) in parts {
+        let map = &maps[i];
+        for chunk in chunks {
+            let rows = chunk.iface.len();
+            let keys = if map.iter().enumerate().all(|(k, &g)| k as i32 == g) {
+                chunk.iface
+            } else {
+                chunk
+                    .iface
+                    .unary(|key| map.get(key as usize).copied().unwrap_or(0))
+            };
+            let mut columns = Vec::with_capacity(chunk.columns.len() + 2);
+            if let Some(values) = &file_values {
+                let key = i32::try_from(i).unwrap_or(i32::MAX);
+                columns.push(Arc::new(DictionaryArray::<Int32Type>::try_new(
+                    Int32Array::from(vec![key; rows]),
+                    values.clone(),
+                )?) as ArrayRef);
+            }
+            let mut rest = chunk.columns.into_iter();
+            columns.extend(rest.by_ref().take(2));
+            columns.push(Arc::new(DictionaryArray::<Int32Type>::try_new(
+                keys,
+                iface_values.clone(),
+            )?));
+            columns.extend(rest);
+            batches.push(RecordBatch::try_new(schema.clone(), columns)?);
+        }
+    }
+    Ok((schema, batches))
+}
