@@ -35,6 +35,17 @@ impl fmt::Display for SummaryRecord<'_> {
     }
 }
 
+/// A count and its noun, plural unless the count is one: `1 request`,
+/// `2 transfers`.
+struct Counted(u64, &'static str);
+
+impl fmt::Display for Counted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = if self.0 == 1 { "" } else { "s" };
+        write!(f, "{} {}{s}", self.0, self.1)
+    }
+}
+
 /// Lines as a comma-separated list: `12, 40, 41`.
 struct Lines<'a, T>(&'a [T]);
 
@@ -181,8 +192,9 @@ impl fmt::Display for SdoSummary {
         }
         write!(
             f,
-            "          SDO: {} requests, {} transfers",
-            self.requests, self.transfers
+            "          SDO: {}, {}",
+            Counted(self.requests, "request"),
+            Counted(self.transfers, "transfer")
         )?;
         if let Some(l) = self.latency {
             write!(
