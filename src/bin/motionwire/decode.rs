@@ -15,7 +15,7 @@ use motionwire::canopen::MessageKind;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
-use motionwire::summary::Summarizer;
+use motionwire::summary::{FileSpan, Summarizer};
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
@@ -280,7 +280,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         });
     }
     // With --joined: where each file's lines lie in the recording.
-    let mut spans: Vec<(String, u64, u64)> = Vec::new();
+    let mut spans: Vec<FileSpan> = Vec::new();
     let joined = several && args.joined;
     for (i, input) in inputs.into_iter().enumerate() {
         let Input { name, path, reader } = input;
@@ -324,7 +324,11 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             writeln!(sink.err, "{name}: 0 frames")?;
         }
         if joined {
-            spans.push((name, sink.offset + 1, sink.offset + last));
+            spans.push(FileSpan {
+                file: name,
+                first_line: sink.offset + 1,
+                last_line: sink.offset + last,
+            });
             sink.offset += last;
         } else if several {
             write_summary(&mut sink, args.json, Some(name))?;
@@ -486,14 +490,13 @@ fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Resul
 
 /// With `--joined`: where each file's lines lie in the one recording
 /// (docs/output.md#several-files).
-fn write_spans(sink: &mut Sink<'_>, json: bool, spans: &[(String, u64, u64)]) -> io::Result<()> {
-    for (file, first, last) in spans {
+fn write_spans(sink: &mut Sink<'_>, json: bool, spans: &[FileSpan]) -> io::Result<()> {
+    for span in spans {
         if json {
-            sink.out.write_all(b"{\"type\":\"file\",\"file\":")?;
-            serde_json::to_writer(&mut sink.out, file).map_err(io::Error::from)?;
-            writeln!(sink.out, ",\"first_line\":{first},\"last_line\":{last}}}")?;
+            serde_json::to_writer(&mut sink.out, span).map_err(io::Error::from)?;
+            writeln!(sink.out)?;
         } else {
-            writeln!(sink.out, "file {file}  lines {first} to {last}")?;
+            writeln!(sink.out, "{span}")?;
         }
     }
     Ok(())
