@@ -28,6 +28,28 @@ const EVENT_ROWS: usize = 2000;
 const LIST_ITEMS: usize = 50;
 /// More bands than this on a row: neighbours narrower than a pixel merge.
 const EXACT_BANDS: usize = 500;
+/// The most marks a page draws: beyond, neighbours cluster within as many
+/// pixels (a power of two) as keep them to this (docs/report.md#clusters).
+const MARK_BUDGET: usize = 20_000;
+/// The most bands a page draws: beyond, neighbouring bands narrower than
+/// as many pixels as keep them to this merge.
+const BAND_BUDGET: usize = 10_000;
+/// Marks and bands have a `<title>` while a page has at most this many
+/// (the script shows the same words from their `data-*`).
+const TITLE_BUDGET: usize = 5_000;
+
+/// How a page draws its marks and bands, to stay small whatever the log
+/// (docs/report.md#size).
+#[derive(Debug, Clone, Copy)]
+struct Budget {
+    /// `None`: each series as docs/report.md#clusters says; else every
+    /// series clustered within this many pixels.
+    radius: Option<f64>,
+    /// Bands narrower than this many pixels merge with their neighbours
+    /// (`None`: only on rows of more than 500).
+    band_px: Option<f64>,
+    titles: bool,
+}
 
 const STYLE: &str = include_str!("page.css");
 const SCRIPT: &str = include_str!("page.js");
@@ -171,10 +193,13 @@ struct Drawn {
 /// The marks of a series as drawn: one by one up to 500, else neighbours
 /// within a pixel of the default width as one cluster
 /// (docs/report.md#clusters).
-fn drawn_marks(axis: &Axis, series: &Series<MarkItem>) -> Vec<Drawn> {
+fn drawn_marks(axis: &Axis, series: &Series<MarkItem>, radius: Option<f64>) -> Vec<Drawn> {
     let mut items: Vec<MarkItem> = series.items().to_vec();
-    items.sort_by_key(|m| (axis.key(m.at), m.at.line));
-    if series.is_exact() {
+    let key = |m: &MarkItem| (axis.key(m.at), m.at.line);
+    if !items.windows(2).all(|w| key(&w[0]) <= key(&w[1])) {
+        items.sort_by_key(key);
+    }
+    if series.is_exact() && radius.is_none() {
         return items
             .into_iter()
             .map(|m| Drawn {
@@ -185,7 +210,7 @@ fn drawn_marks(axis: &Axis, series: &Series<MarkItem>) -> Vec<Drawn> {
             })
             .collect();
     }
-    let pixel = axis.pixel();
+    let pixel = axis.pixel() * radius.unwrap_or(1.0);
     let mut out: Vec<Drawn> = Vec::new();
     for m in items {
         if let Some(last) = out.last_mut() {
@@ -221,7 +246,12 @@ struct DrawnBand {
 
 /// The bands of a series up to `end`; more than 500 on a row: consecutive
 /// bands narrower than a pixel merge into one (docs/report.md#bands).
-fn drawn_bands(axis: &Axis, series: &Series<BandItem>, end: At) -> Vec<DrawnBand> {
+fn drawn_bands(
+    axis: &Axis,
+    series: &Series<BandItem>,
+    end: At,
+    band_px: Option<f64>,
+) -> Vec<DrawnBand> {
     let items = series.items();
     let mut out: Vec<DrawnBand> = Vec::with_capacity(items.len());
     for (i, item) in items.iter().enumerate() {
@@ -234,13 +264,14 @@ fn drawn_bands(axis: &Axis, series: &Series<BandItem>, end: At) -> Vec<DrawnBand
             x1,
         });
     }
-    if out.len() <= EXACT_BANDS {
+    if out.len() <= EXACT_BANDS && band_px.is_none() {
         return out;
     }
+    let px = band_px.unwrap_or(1.0);
     let mut merged: Vec<DrawnBand> = Vec::new();
     for band in out {
         if let Some(last) = merged.last_mut() {
-            if last.x1 - last.x0 < 1.0 && band.x1 - band.x0 < 1.0 {
+            if last.x1 - last.x0 < px && band.x1 - band.x0 < px {
                 last.item.count += band.item.count;
                 last.item.last_state = band.item.last_state;
                 last.x1 = band.x1;
@@ -298,8 +329,8 @@ impl Report {
 
     /// The shared axis: by time when every recording is, else by line.
     fn axis(&self) -> Axis {
-        let timed = !self.recordings.is_empty()
-            && self.recordings.iter().all(|r| r.timeline.is_timed());
+        let timed =
+            !self.recordings.is_empty() && self.recordings.iter().all(|r| r.timeline.is_timed());
         let mut start = u64::MAX;
         let mut end = 0;
         for r in &self.recordings {
@@ -319,6 +350,73 @@ impl Report {
         Axis { timed, start, end }
     }
 
+    /// Every row drawn: its recording's end and data.
+    fn all_rows(&self) -> Vec<(At, &RowData)> {
+        let mut rows = Vec::new();
+        for r in &self.recordings {
+            let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
+            for bus in &r.timeline.buses {
+                rows.push((end, &bus.row));
+                for n in r.summary.nodes.iter().filter(|n| n.bus == bus.name) {
+                    if let Some(row) = bus.node_row(n.node) {
+                        rows.push((end, row));
+                    }
+                }
+            }
+        }
+        rows
+    }
+
+    /// How many marks and bands the page would draw, and how to keep them
+    /// within the budgets (docs/report.md#size).
+    fn budget(&self, axis: &Axis) -> Budget {
+        let rows = self.all_rows();
+        let count_marks = |radius: Option<f64>| -> usize {
+            rows.iter()
+                .flat_map(|(_, row)| row.marks.iter())
+                .filter(|s| s.len() > 0)
+                .map(|s| drawn_marks(axis, s, radius).len())
+                .sum()
+        };
+        let count_bands = |px: Option<f64>| -> usize {
+            rows.iter()
+                .flat_map(|(end, row)| [(end, &row.nmt), (end, &row.cia402)])
+                .map(|(end, s)| drawn_bands(axis, s, *end, px).len())
+                .sum()
+        };
+        let mut radius = None;
+        let mut marks = count_marks(None);
+        if marks > MARK_BUDGET {
+            let mut r = 1.0;
+            loop {
+                marks = count_marks(Some(r));
+                if marks <= MARK_BUDGET || r >= PLOT {
+                    break;
+                }
+                r *= 2.0;
+            }
+            radius = Some(r);
+        }
+        let mut band_px = None;
+        let mut bands = count_bands(None);
+        if bands > BAND_BUDGET {
+            let mut px = 2.0;
+            loop {
+                bands = count_bands(Some(px));
+                if bands <= BAND_BUDGET || px >= PLOT {
+                    break;
+                }
+                px *= 2.0;
+            }
+            band_px = Some(px);
+        }
+        Budget {
+            radius,
+            band_px,
+            titles: marks + bands <= TITLE_BUDGET,
+        }
+    }
+
     /// Write the page (docs/report.md#page) to `out`.
     ///
     /// # Errors
@@ -326,6 +424,7 @@ impl Report {
     /// Writing to `out` failed.
     pub fn write_html(&self, out: &mut impl Write) -> io::Result<()> {
         let axis = self.axis();
+        let budget = self.budget(&axis);
         let mut page = String::with_capacity(1 << 16);
         self.head(&mut page, &axis);
         out.write_all(page.as_bytes())?;
@@ -333,14 +432,14 @@ impl Report {
         self.findings(&mut page, &axis);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.timeline(&mut page, &axis);
+        self.timeline(&mut page, &axis, &budget);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.signals(&mut page, &axis);
+        self.signals(&mut page, &axis, &budget);
         self.tables(&mut page);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.events(&mut page, &axis);
+        self.events(&mut page, &axis, &budget);
         out.write_all(page.as_bytes())?;
         out.write_all(b"<script type=\"application/json\" id=\"motionwire-summary\">")?;
         self.summary_json(out)?;
@@ -421,7 +520,11 @@ impl Report {
             );
         }
         if let Some(command) = &self.command {
-            let _ = write!(p, "<dt>made by</dt><dd><code>{}</code></dd>\n", esc(command));
+            let _ = write!(
+                p,
+                "<dt>made by</dt><dd><code>{}</code></dd>\n",
+                esc(command)
+            );
         }
         for r in &self.recordings {
             let untimed = r.timeline.untimed_frames();
@@ -603,11 +706,19 @@ impl Report {
             }
         }
         let sections: [(&str, &str, &mut Vec<Finding>); 7] = [
-            ("faults", "Faults and first errors, in time order", &mut faults),
+            (
+                "faults",
+                "Faults and first errors, in time order",
+                &mut faults,
+            ),
             ("restarts", "Restarts", &mut restarts),
             ("heartbeat-timeouts", "Heartbeat timeouts", &mut timeouts),
             ("sdo-aborts", "SDO aborts", &mut aborts),
-            ("sdo-transfers", "Broken and unanswered SDO transfers", &mut transfers),
+            (
+                "sdo-transfers",
+                "Broken and unanswered SDO transfers",
+                &mut transfers,
+            ),
             ("toggle-errors", "Node-guarding toggle errors", &mut toggles),
             ("bus-errors", "Bus-off and error-passive", &mut bus_errors),
         ];
@@ -618,7 +729,10 @@ impl Report {
             }
             any = true;
             list.sort_by_key(|f| f.key);
-            let _ = write!(p, "<h3 id=\"{id}\">{heading}</h3>\n<ul class=\"findings\">\n");
+            let _ = write!(
+                p,
+                "<h3 id=\"{id}\">{heading}</h3>\n<ul class=\"findings\">\n"
+            );
             for f in list.iter().take(LIST_ITEMS) {
                 let node = f
                     .node
@@ -644,7 +758,7 @@ impl Report {
         p.push_str("</section>\n");
     }
 
-    fn timeline(&self, p: &mut String, axis: &Axis) {
+    fn timeline(&self, p: &mut String, axis: &Axis, budget: &Budget) {
         p.push_str("<section id=\"timeline\">\n<h2>Timeline</h2>\n");
         p.push_str("<p class=\"help\">One axis for every row. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom, click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
         p.push_str("<div class=\"tools js\"><button type=\"button\" data-zoom=\"in\">zoom in</button> <button type=\"button\" data-zoom=\"out\">zoom out</button> <button type=\"button\" data-zoom=\"reset\">whole log</button> <output id=\"details\"></output></div>\n");
@@ -671,8 +785,12 @@ impl Report {
                 );
                 if let Some(data) = data {
                     rate(&mut body, axis, data, h);
-                    for kind in [MarkKind::ErrorFrame, MarkKind::BusOff, MarkKind::ErrorPassive] {
-                        marks(&mut body, axis, &data.row, kind, None);
+                    for kind in [
+                        MarkKind::ErrorFrame,
+                        MarkKind::BusOff,
+                        MarkKind::ErrorPassive,
+                    ] {
+                        marks(&mut body, axis, budget, &data.row, kind, None);
                     }
                 }
                 body.push_str("</g>\n</g>\n");
@@ -680,7 +798,7 @@ impl Report {
                 y += h + 4.0;
                 for n in r.summary.nodes.iter().filter(|n| n.bus == b.bus) {
                     let row = data.and_then(|d| d.node_row(n.node));
-                    let h = node_row(&mut body, axis, n, row, &file, y, end);
+                    let h = node_row(&mut body, axis, budget, n, row, &file, y, end);
                     y += h + 4.0;
                 }
             }
@@ -698,7 +816,7 @@ impl Report {
         p.push_str("</section>\n");
     }
 
-    fn signals(&self, p: &mut String, axis: &Axis) {
+    fn signals(&self, p: &mut String, axis: &Axis, budget: &Budget) {
         p.push_str("<section id=\"signals\">\n<h2>Drive signals</h2>\n");
         let mut any = false;
         for r in &self.recordings {
@@ -712,11 +830,13 @@ impl Report {
                 }
                 any = true;
                 let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
-                chart(p, axis, n, row, end);
+                chart(p, axis, budget, n, row, end);
             }
         }
         if !any {
-            p.push_str("<p>No drive in this log: no CiA 402 state, position or velocity to chart.</p>\n");
+            p.push_str(
+                "<p>No drive in this log: no CiA 402 state, position or velocity to chart.</p>\n",
+            );
         }
         p.push_str("</section>\n");
     }
@@ -760,7 +880,7 @@ impl Report {
         p.push_str("</tbody>\n</table>\n</section>\n");
     }
 
-    fn events(&self, p: &mut String, axis: &Axis) {
+    fn events(&self, p: &mut String, axis: &Axis, budget: &Budget) {
         struct Row<'a> {
             key: (u64, u64),
             who: String,
@@ -791,7 +911,7 @@ impl Report {
                         None => format!("{prefix}bus {}", bus.name),
                     };
                     for kind in MarkKind::ALL {
-                        for mark in drawn_marks(axis, &row.marks[kind as usize]) {
+                        for mark in drawn_marks(axis, &row.marks[kind as usize], budget.radius) {
                             all.push(Row {
                                 key: (axis.key(mark.at), mark.at.line),
                                 who: who.clone(),
@@ -927,11 +1047,7 @@ fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis) -> String {
             );
         }
         Detail::Gap(us) => {
-            let _ = write!(
-                text,
-                "no heartbeat for {} ms",
-                us as f64 / 1000.0
-            );
+            let _ = write!(text, "no heartbeat for {} ms", us as f64 / 1000.0);
         }
         Detail::None => text.push_str(kind.words()),
     }
@@ -951,18 +1067,24 @@ fn mark_y(kind: MarkKind) -> f64 {
 }
 
 /// Draw a row's marks of one kind; `lane` is the y of its marks lane.
-fn marks(p: &mut String, axis: &Axis, row: &RowData, kind: MarkKind, lane: Option<f64>) {
+fn marks(
+    p: &mut String,
+    axis: &Axis,
+    budget: &Budget,
+    row: &RowData,
+    kind: MarkKind,
+    lane: Option<f64>,
+) {
     let series = &row.marks[kind as usize];
     if series.len() == 0 {
         return;
     }
     let base = lane.unwrap_or(0.0) + mark_y(kind);
     let name = kind.name();
-    for m in drawn_marks(axis, series) {
-        let title = esc(&mark_text(kind, &m, axis));
+    for m in drawn_marks(axis, series, budget.radius) {
         let x0 = axis.x(m.at);
         let x1 = axis.x(m.end);
-        if m.count > 1 || kind == MarkKind::HeartbeatTimeout {
+        let element = if m.count > 1 || kind == MarkKind::HeartbeatTimeout {
             // A span (a heartbeat gap) or a cluster: a bar as wide as it
             // lasts, at least 2 pixels.
             let w = (x1 - x0).max(2.0);
@@ -971,24 +1093,32 @@ fn marks(p: &mut String, axis: &Axis, row: &RowData, kind: MarkKind, lane: Optio
             } else {
                 (base - 6.0, 12.0)
             };
-            let last = if m.count > 1 {
-                format!(" data-last-line=\"{}\"", m.end.line)
-            } else {
-                String::new()
-            };
             let _ = write!(
                 p,
-                "<rect class=\"m {name}{}\" x=\"{x0:.2}\" y=\"{y}\" width=\"{w:.2}\" height=\"{h}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"{}\"{last}><title>{title}</title></rect>\n",
-                if m.count > 1 { " cluster" } else { " span" },
+                "<rect x=\"{x0:.3}\" y=\"{y}\" width=\"{w:.3}\" height=\"{h}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"{}\"",
                 m.at.line,
                 m.count
             );
+            if m.count > 1 {
+                let _ = write!(p, " data-last-line=\"{}\"", m.end.line);
+            }
+            "rect"
         } else {
             let _ = write!(
                 p,
-                "<use class=\"m {name}\" href=\"#s-{name}\" x=\"{x0:.2}\" y=\"{base}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"1\"><title>{title}</title></use>\n",
+                "<use href=\"#s-{name}\" x=\"{x0:.3}\" y=\"{base}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"1\"",
                 m.at.line
             );
+            "use"
+        };
+        if budget.titles {
+            let _ = write!(
+                p,
+                "><title>{}</title></{element}>\n",
+                esc(&mark_text(kind, &m, axis))
+            );
+        } else {
+            p.push_str("/>\n");
         }
     }
 }
@@ -1022,14 +1152,16 @@ fn rate(p: &mut String, axis: &Axis, rows: &BusRows, h: f64) {
     let _ = write!(d, "L{:.2},{bottom}Z", points[points.len() - 1].1);
     let _ = write!(
         p,
-        "<path class=\"rate\" d=\"{d}\" data-kind=\"frame_rate\" data-peak=\"{peak:.0}\"><title>frames per second, at most {peak:.0}</title></path>\n"
+        "<path d=\"{d}\" data-kind=\"frame_rate\" data-peak=\"{peak:.0}\"><title>frames per second, at most {peak:.0}</title></path>\n"
     );
 }
 
 /// A device's row; returns its height.
+#[allow(clippy::too_many_arguments)]
 fn node_row(
     p: &mut String,
     axis: &Axis,
+    budget: &Budget,
     n: &NodeSummary,
     row: Option<&RowData>,
     file: &str,
@@ -1047,10 +1179,19 @@ fn node_row(
         if drive { " · CiA 402" } else { "" }
     );
     if let Some(row) = row {
-        bands(p, axis, &row.nmt, end, 2.0, "nmt_state", nmt_name);
+        bands(p, axis, budget, &row.nmt, end, 2.0, "nmt_state", nmt_name);
         let mut lane = 16.0;
         if drive {
-            bands(p, axis, &row.cia402, end, 16.0, "cia402_state", cia402_name);
+            bands(
+                p,
+                axis,
+                budget,
+                &row.cia402,
+                end,
+                16.0,
+                "cia402_state",
+                cia402_name,
+            );
             lane = 30.0;
         }
         for kind in MarkKind::ALL {
@@ -1060,8 +1201,12 @@ fn node_row(
             ) {
                 continue;
             }
-            let at = if kind == MarkKind::Cia402Fault { 16.0 } else { lane };
-            marks(p, axis, row, kind, Some(at));
+            let at = if kind == MarkKind::Cia402Fault {
+                16.0
+            } else {
+                lane
+            };
+            marks(p, axis, budget, row, kind, Some(at));
         }
     }
     p.push_str("</g>\n</g>\n");
@@ -1069,48 +1214,51 @@ fn node_row(
 }
 
 /// A row's state bands, from `y`, 12 pixels high.
+#[allow(clippy::too_many_arguments)]
 fn bands(
     p: &mut String,
     axis: &Axis,
+    budget: &Budget,
     series: &Series<BandItem>,
     end: At,
     y: f64,
     kind: &str,
     name: fn(u8) -> &'static str,
 ) {
-    for band in drawn_bands(axis, series, end) {
+    for band in drawn_bands(axis, series, end, budget.band_px) {
         let b = band.item;
         let state = name(b.state);
         let w = (band.x1 - band.x0).max(0.5);
-        let (class, title) = if b.count > 1 {
-            (
-                "mixed".to_owned(),
+        let _ = write!(
+            p,
+            "<rect x=\"{:.3}\" y=\"{y}\" width=\"{w:.3}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\" data-line=\"{}\" data-count=\"{}\"",
+            band.x0,
+            b.at.line,
+            b.count,
+        );
+        if b.count > 1 {
+            p.push_str(" class=\"mixed\"");
+        }
+        if budget.titles {
+            let title = if b.count > 1 {
                 format!(
                     "{} state changes from line {} ({}), from {state} to {}",
                     b.count,
                     b.at.line,
                     axis.when(b.at),
                     name(b.last_state)
-                ),
-            )
+                )
+            } else {
+                format!("{state} from line {} ({})", b.at.line, axis.when(b.at))
+            };
+            let _ = write!(p, "><title>{}</title></rect>", esc(&title));
         } else {
-            (
-                state.to_owned(),
-                format!("{state} from line {} ({})", b.at.line, axis.when(b.at)),
-            )
-        };
-        let _ = write!(
-            p,
-            "<rect class=\"b {class}\" x=\"{:.2}\" y=\"{y}\" width=\"{w:.2}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\" data-line=\"{}\" data-count=\"{}\"><title>{}</title></rect>",
-            band.x0,
-            b.at.line,
-            b.count,
-            esc(&title)
-        );
+            p.push_str("/>");
+        }
         if w >= 70.0 && b.count == 1 {
             let _ = write!(
                 p,
-                "<text class=\"bl\" x=\"{:.2}\" y=\"{}\">{state}</text>",
+                "<text class=\"bl\" x=\"{:.3}\" y=\"{}\">{state}</text>",
                 band.x0 + 3.0,
                 y + 9.5
             );
@@ -1206,38 +1354,38 @@ fn legend(p: &mut String) {
     for kind in MarkKind::ALL {
         let _ = write!(
             p,
-            "<li><svg width=\"16\" height=\"16\" viewBox=\"-8 -8 16 16\" aria-hidden=\"true\"><use class=\"m {0}\" href=\"#s-{0}\"/></svg> {1} <code>{0}</code></li>\n",
+            "<li><svg width=\"16\" height=\"16\" viewBox=\"-8 -8 16 16\" aria-hidden=\"true\"><use class=\"lm-{0}\" href=\"#s-{0}\"/></svg> {1} <code>{0}</code></li>\n",
             kind.name(),
             kind.words()
         );
     }
-    p.push_str("<li><svg width=\"16\" height=\"16\" aria-hidden=\"true\"><rect class=\"m emcy cluster\" x=\"2\" y=\"2\" width=\"12\" height=\"12\"/></svg> a cluster of neighbours within a pixel, when a row has more than 500 marks of a kind (its title says how many)</li>\n</ul>\n<h3>Bands</h3>\n<ul class=\"legend\">\n");
+    p.push_str("<li><svg width=\"16\" height=\"16\" aria-hidden=\"true\"><rect class=\"lm-emcy lm-cluster\" x=\"2\" y=\"2\" width=\"12\" height=\"12\"/></svg> a cluster of neighbours within a pixel, when a row has more than 500 marks of a kind (its title says how many)</li>\n</ul>\n<h3>Bands</h3>\n<ul class=\"legend\">\n");
     for state in ["boot_up", "pre_operational", "operational", "stopped"] {
         let _ = write!(
             p,
-            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"b {state}\" width=\"16\" height=\"12\"/></svg> NMT {state}</li>\n"
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{state}\" width=\"16\" height=\"12\"/></svg> NMT {state}</li>\n"
         );
     }
     for state in crate::canopen::Cia402State::ALL {
         let _ = write!(
             p,
-            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"b {0}\" width=\"16\" height=\"12\"/></svg> CiA 402 {0}</li>\n",
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{0}\" width=\"16\" height=\"12\"/></svg> CiA 402 {0}</li>\n",
             state.name()
         );
     }
-    p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"b mixed\" width=\"16\" height=\"12\"/></svg> several states within a pixel</li>\n</ul></div>\n");
+    p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-mixed\" width=\"16\" height=\"12\"/></svg> several states within a pixel</li>\n</ul></div>\n");
 }
 
 /// A drive's charts: its CiA 402 state, position and velocity on the
 /// shared axis (docs/report.md#signals).
-fn chart(p: &mut String, axis: &Axis, n: &NodeSummary, row: &RowData, end: At) {
+fn chart(p: &mut String, axis: &Axis, budget: &Budget, n: &NodeSummary, row: &RowData, end: At) {
     const H: f64 = 70.0;
     let mut body = String::new();
     let mut y = AXIS + 4.0;
     // The CiA 402 state, as a step line over the 8 states.
     if n.cia402.is_some() {
         let levels = crate::canopen::Cia402State::ALL.len() as f64;
-        let bands = drawn_bands(axis, &row.cia402, end);
+        let bands = drawn_bands(axis, &row.cia402, end, budget.band_px);
         let mut d = String::new();
         for (i, band) in bands.iter().enumerate() {
             let level = f64::from(band.item.state);
@@ -1334,14 +1482,7 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
     let seen = |s: Option<crate::summary::EmcySeen>| {
         s.map_or_else(
             || "none".to_owned(),
-            |s| {
-                format!(
-                    "{} {} (line {})",
-                    s.code,
-                    esc(s.code.description()),
-                    s.line
-                )
-            },
+            |s| format!("{} {} (line {})", s.code, esc(s.code.description()), s.line),
         )
     };
     let hb = &n.heartbeat;

@@ -357,7 +357,10 @@ impl Recorder {
                 if entry.sub_index() != 0 {
                     continue;
                 }
-                let Some(i) = CHARTED.iter().position(|(index, _)| *index == entry.index()) else {
+                let Some(i) = CHARTED
+                    .iter()
+                    .position(|(index, _)| *index == entry.index())
+                else {
                     continue;
                 };
                 let value = match signal.value {

@@ -20,10 +20,8 @@
   var rects = [], uses = [], labels = [], paths = [];
   svgs.forEach(function (svg) {
     svg.querySelectorAll("g.plot rect").forEach(function (el) {
-      var c = el.classList;
       rects.push({ el: el, x: +el.getAttribute("x"), w: +el.getAttribute("width"),
-        scales: c.contains("b") || c.contains("span") || c.contains("cluster"),
-        min: c.contains("b") ? 0.5 : 2 });
+        min: el.hasAttribute("data-state") ? 0.5 : 2 });
     });
     svg.querySelectorAll("g.plot use").forEach(function (el) {
       uses.push({ el: el, x: +el.getAttribute("x") });
@@ -77,7 +75,7 @@
     var k = PLOT / (v1 - v0);
     rects.forEach(function (r) {
       r.el.setAttribute("x", map(r.x).toFixed(2));
-      if (r.scales) { r.el.setAttribute("width", Math.max(r.w * k, r.min).toFixed(2)); }
+      r.el.setAttribute("width", Math.max(r.w * k, r.min).toFixed(2));
     });
     uses.forEach(function (u) { u.el.setAttribute("x", map(u.x).toFixed(2)); });
     labels.forEach(function (l) {
@@ -96,7 +94,7 @@
   }
 
   function clamp() {
-    var w = Math.min(Math.max(v1 - v0, PLOT / 1e6), PLOT);
+    var w = Math.min(Math.max(v1 - v0, PLOT / 2000), PLOT);
     if (v0 < 0) { v0 = 0; }
     if (v0 + w > PLOT) { v0 = PLOT - w; }
     v1 = v0 + w;

@@ -52,8 +52,12 @@ pub(crate) trait Item: Copy {
 #[derive(Debug, Clone)]
 pub(crate) struct Series<T> {
     items: Vec<T>,
-    /// 0 while the items are kept exactly; else the bucket width.
-    width: u64,
+    /// Whether the items are kept exactly.
+    exact_now: bool,
+    /// The bucket width is `1 << shift` (microseconds or lines).
+    shift: u32,
+    /// The bucket of the last item.
+    last_bucket: u64,
     exact: usize,
     cap: usize,
     timed: bool,
@@ -65,7 +69,9 @@ impl<T: Item> Series<T> {
     pub(crate) const fn new(exact: usize, cap: usize, timed: bool) -> Self {
         Series {
             items: Vec::new(),
-            width: 0,
+            exact_now: true,
+            shift: 0,
+            last_bucket: 0,
             exact,
             cap,
             timed,
@@ -74,12 +80,16 @@ impl<T: Item> Series<T> {
 
     /// Return whether the items are kept one by one (not bucketed).
     pub(crate) fn is_exact(&self) -> bool {
-        self.width == 0
+        self.exact_now
     }
 
     /// Return the bucket width (0 while items are kept one by one).
     pub(crate) fn width(&self) -> u64 {
-        self.width
+        if self.exact_now {
+            0
+        } else {
+            1 << self.shift
+        }
     }
 
     pub(crate) fn items(&self) -> &[T] {
@@ -92,14 +102,14 @@ impl<T: Item> Series<T> {
 
     #[inline]
     fn key(&self, item: &T) -> u64 {
-        item.at().key(self.timed) / self.width.max(1)
+        item.at().key(self.timed) >> self.shift
     }
 
     /// Add an item; a log is mostly in order, so the common case is a
     /// push at the end.
     pub(crate) fn add(&mut self, item: T) {
         let key = item.at().key(self.timed);
-        if self.width == 0 {
+        if self.exact_now {
             match self.items.last() {
                 Some(last) if last.at().key(self.timed) > key => {
                     let at = self
@@ -110,17 +120,20 @@ impl<T: Item> Series<T> {
                 _ => self.items.push(item),
             }
             if self.items.len() > self.exact {
-                self.width = 1;
+                self.exact_now = false;
                 self.coarsen(false);
             }
             return;
         }
-        let bucket = key / self.width;
+        let bucket = key >> self.shift;
+        if bucket == self.last_bucket {
+            if let Some(last) = self.items.last_mut() {
+                last.absorb(&item);
+                return;
+            }
+        }
         let last = self.items.last().map(|last| self.key(last));
         match last {
-            Some(last) if last == bucket => {
-                self.items.last_mut().expect("there").absorb(&item);
-            }
             Some(last) if last > bucket => {
                 let at = self.items.partition_point(|i| self.key(i) < bucket);
                 match self.items.get(at) {
@@ -142,32 +155,36 @@ impl<T: Item> Series<T> {
         if self.items.len() > self.cap {
             self.coarsen(true);
         }
+        self.last_bucket = self.items.last().map_or(u64::MAX, |last| self.key(last));
     }
 
     /// Merge the items of one bucket, doubling the width (when `double`)
     /// until they fit the cap.
     fn coarsen(&mut self, double: bool) {
         if double {
-            self.width = self.width.saturating_mul(2);
+            self.shift += 1;
         }
         loop {
-            let width = self.width;
+            let shift = self.shift;
             let timed = self.timed;
             let mut merged: Vec<T> = Vec::with_capacity(self.items.len());
             for item in self.items.drain(..) {
                 match merged.last_mut() {
-                    Some(last) if last.at().key(timed) / width == item.at().key(timed) / width => {
+                    Some(last)
+                        if last.at().key(timed) >> shift == item.at().key(timed) >> shift =>
+                    {
                         last.absorb(&item);
                     }
                     _ => merged.push(item),
                 }
             }
             self.items = merged;
-            if self.items.len() <= self.cap || self.width == u64::MAX {
+            if self.items.len() <= self.cap || self.shift >= 63 {
                 break;
             }
-            self.width = self.width.saturating_mul(2);
+            self.shift += 1;
         }
+        self.last_bucket = self.items.last().map_or(u64::MAX, |last| self.key(last));
     }
 }
 
@@ -187,7 +204,10 @@ pub(crate) struct MarkItem {
 pub(crate) enum Detail {
     None,
     /// An EMCY's code and error register.
-    Emcy { code: u16, register: u8 },
+    Emcy {
+        code: u16,
+        register: u8,
+    },
     /// A heartbeat gap, in microseconds.
     Gap(u64),
 }
