@@ -474,9 +474,9 @@ impl Report {
         );
         p.push_str("<dl class=\"facts\">\n");
         for input in &self.inputs {
-            let _ = write!(
+            let _ = writeln!(
                 p,
-                "<dt>log</dt><dd><code>{}</code> ({}, {} lines or records)</dd>\n",
+                "<dt>log</dt><dd><code>{}</code> ({}, {} lines or records)</dd>",
                 esc(&input.name),
                 esc(&input.format),
                 input.last_line
@@ -507,9 +507,9 @@ impl Report {
             } else {
                 format!("{} s (the log's own clock)", seconds(axis.start))
             };
-            let _ = write!(
+            let _ = writeln!(
                 p,
-                "<dt>time</dt><dd>from {start}, for {} s; times on this page are seconds after it</dd>\n",
+                "<dt>time</dt><dd>from {start}, for {} s; times on this page are seconds after it</dd>",
                 seconds(span)
             );
         } else {
@@ -520,23 +520,19 @@ impl Report {
             );
         }
         if let Some(command) = &self.command {
-            let _ = write!(
-                p,
-                "<dt>made by</dt><dd><code>{}</code></dd>\n",
-                esc(command)
-            );
+            let _ = writeln!(p, "<dt>made by</dt><dd><code>{}</code></dd>", esc(command));
         }
         for r in &self.recordings {
             let untimed = r.timeline.untimed_frames();
             if untimed > 0 {
-                let _ = write!(
+                let _ = writeln!(
                     p,
-                    "<dt>note</dt><dd>{untimed} frames without a timestamp are drawn at the time of the frame before them</dd>\n"
+                    "<dt>note</dt><dd>{untimed} frames without a timestamp are drawn at the time of the frame before them</dd>"
                 );
             }
         }
         for note in &self.notes {
-            let _ = write!(p, "<dt>note</dt><dd>{}</dd>\n", esc(note));
+            let _ = writeln!(p, "<dt>note</dt><dd>{}</dd>", esc(note));
         }
         p.push_str("</dl>\n<nav><a href=\"#wrong\">What went wrong</a> · <a href=\"#timeline\">Timeline</a> · <a href=\"#signals\">Signals</a> · <a href=\"#devices\">Devices</a> · <a href=\"#events\">Events</a></nav>\n</header>\n");
     }
@@ -737,16 +733,16 @@ impl Report {
                 let node = f
                     .node
                     .map_or_else(String::new, |n| format!(" data-node=\"{n}\""));
-                let _ = write!(
+                let _ = writeln!(
                     p,
-                    "<li data-line=\"{}\" data-iface=\"{}\"{node}>{}</li>\n",
+                    "<li data-line=\"{}\" data-iface=\"{}\"{node}>{}</li>",
                     f.line, f.iface, f.text
                 );
             }
             if list.len() > LIST_ITEMS {
-                let _ = write!(
+                let _ = writeln!(
                     p,
-                    "<li class=\"more\">… and {} more (the timeline and the event table show every one)</li>\n",
+                    "<li class=\"more\">… and {} more (the timeline and the event table show every one)</li>",
                     list.len() - LIST_ITEMS
                 );
             }
@@ -804,9 +800,9 @@ impl Report {
             }
         }
         let height = y + 4.0;
-        let _ = write!(
+        let _ = writeln!(
             p,
-            "<svg class=\"tl\" id=\"timeline-svg\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">\n"
+            "<svg class=\"tl\" id=\"timeline-svg\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">"
         );
         defs(p);
         axis_ticks(p, axis, height);
@@ -860,9 +856,9 @@ impl Report {
                     t.map_or_else(|| "–".to_owned(), |t| format!("{}", t.seconds()))
                 };
                 let nodes: Vec<u8> = b.nodes.iter().map(|n| n.get()).collect();
-                let _ = write!(
+                let _ = writeln!(
                     p,
-                    "<tr data-iface=\"{}\"><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                    "<tr data-iface=\"{}\"><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                     iface_attr(&b.bus),
                     esc(r.summary.file.as_deref().map_or("", |f| f)),
                     esc(&b.bus.to_string()),
@@ -947,9 +943,9 @@ impl Report {
             let node = row
                 .node
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
-            let _ = write!(
+            let _ = writeln!(
                 p,
-                "<tr data-line=\"{}\" data-iface=\"{}\"{node}><td>{lines}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                "<tr data-line=\"{}\" data-iface=\"{}\"{node}><td>{lines}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 m.at.line,
                 iface_attr(row.bus),
                 if axis.timed { axis.when(m.at) } else { String::new() },
@@ -1112,9 +1108,9 @@ fn marks(
             "use"
         };
         if budget.titles {
-            let _ = write!(
+            let _ = writeln!(
                 p,
-                "><title>{}</title></{element}>\n",
+                "><title>{}</title></{element}>",
                 esc(&mark_text(kind, &m, axis))
             );
         } else {
@@ -1150,9 +1146,9 @@ fn rate(p: &mut String, axis: &Axis, rows: &BusRows, h: f64) {
         let _ = write!(d, "L{x0:.2},{y:.1}L{x1:.2},{y:.1}");
     }
     let _ = write!(d, "L{:.2},{bottom}Z", points[points.len() - 1].1);
-    let _ = write!(
+    let _ = writeln!(
         p,
-        "<path d=\"{d}\" data-kind=\"frame_rate\" data-peak=\"{peak:.0}\"><title>frames per second, at most {peak:.0}</title></path>\n"
+        "<path d=\"{d}\" data-kind=\"frame_rate\" data-peak=\"{peak:.0}\"><title>frames per second, at most {peak:.0}</title></path>"
     );
 }
 
@@ -1329,9 +1325,9 @@ fn axis_ticks(p: &mut String, axis: &Axis, height: f64) {
         } else {
             format!("{}", (axis.start as f64 + v).round())
         };
-        let _ = write!(
+        let _ = writeln!(
             p,
-            "<line class=\"grid\" x1=\"{x:.2}\" x2=\"{x:.2}\" y1=\"{}\" y2=\"{height}\"/><text class=\"tick\" x=\"{x:.2}\" y=\"16\">{label}</text>\n",
+            "<line class=\"grid\" x1=\"{x:.2}\" x2=\"{x:.2}\" y1=\"{}\" y2=\"{height}\"/><text class=\"tick\" x=\"{x:.2}\" y=\"16\">{label}</text>",
             AXIS - 4.0
         );
         v += step;
@@ -1352,24 +1348,24 @@ fn format_tick(v: f64, step: f64) -> String {
 fn legend(p: &mut String) {
     p.push_str("<div class=\"legend\"><svg width=\"0\" height=\"0\" aria-hidden=\"true\"></svg>\n<h3>Marks</h3>\n<ul class=\"legend\">\n");
     for kind in MarkKind::ALL {
-        let _ = write!(
+        let _ = writeln!(
             p,
-            "<li><svg width=\"16\" height=\"16\" viewBox=\"-8 -8 16 16\" aria-hidden=\"true\"><use class=\"lm-{0}\" href=\"#s-{0}\"/></svg> {1} <code>{0}</code></li>\n",
+            "<li><svg width=\"16\" height=\"16\" viewBox=\"-8 -8 16 16\" aria-hidden=\"true\"><use class=\"lm-{0}\" href=\"#s-{0}\"/></svg> {1} <code>{0}</code></li>",
             kind.name(),
             kind.words()
         );
     }
     p.push_str("<li><svg width=\"16\" height=\"16\" aria-hidden=\"true\"><rect class=\"lm-emcy lm-cluster\" x=\"2\" y=\"2\" width=\"12\" height=\"12\"/></svg> a cluster of neighbours within a pixel, when a row has more than 500 marks of a kind (its title says how many)</li>\n</ul>\n<h3>Bands</h3>\n<ul class=\"legend\">\n");
     for state in ["boot_up", "pre_operational", "operational", "stopped"] {
-        let _ = write!(
+        let _ = writeln!(
             p,
-            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{state}\" width=\"16\" height=\"12\"/></svg> NMT {state}</li>\n"
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{state}\" width=\"16\" height=\"12\"/></svg> NMT {state}</li>"
         );
     }
     for state in crate::canopen::Cia402State::ALL {
-        let _ = write!(
+        let _ = writeln!(
             p,
-            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{0}\" width=\"16\" height=\"12\"/></svg> CiA 402 {0}</li>\n",
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{0}\" width=\"16\" height=\"12\"/></svg> CiA 402 {0}</li>",
             state.name()
         );
     }
@@ -1548,9 +1544,9 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
             c.faults.as_ref().map_or(0, Vec::len)
         ),
     };
-    let _ = write!(
+    let _ = writeln!(
         p,
-        "<tr data-iface=\"{}\" data-node=\"{}\"><td>{}{}</td><td>{}</td><td>{} (resets {})</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        "<tr data-iface=\"{}\" data-node=\"{}\"><td>{}{}</td><td>{}</td><td>{} (resets {})</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
         iface_attr(&n.bus),
         n.node.get(),
         esc(prefix),

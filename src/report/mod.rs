@@ -18,15 +18,16 @@
 //! use motionwire::decoder::{Decoder, DecoderConfig};
 //! use motionwire::report::{MarkKind, Recorder, Report};
 //!
-//! let log: &[u8] = b"(1700000000.000000) can0 703#00\n\
-//!                    (1700000000.100000) can0 083#1081110000000000\n\
-//!                    (1700000000.200000) can0 703#05\n";
+//! let log = b"(1700000000.000000) can0 703#00\n\
+//!             (1700000000.100000) can0 083#1081110000000000\n\
+//!             (1700000000.200000) can0 703#05\n";
 //! let mut decoder = Decoder::new(DecoderConfig::new());
 //! let mut recorder = Recorder::new();
-//! let mut events = motionwire::logs::read(log)?;
-//! while let Some(record) = events.next_event() {
-//!     let record = record?;
-//!     recorder.add(record.position.number(), &record.event, &mut decoder);
+//! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
+//!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
+//!         let decoded = decoder.decode(line as u64 + 1, &frame);
+//!         recorder.add_frame(line as u64 + 1, &frame, &decoded);
+//!     }
 //! }
 //! let recording = recorder.finish(&mut decoder);
 //! let node = recording.summary.nodes[0].node;
