@@ -122,6 +122,10 @@ impl<T: Item> Series<T> {
             if self.items.len() > self.exact {
                 self.exact_now = false;
                 self.coarsen(false);
+                // Room for the cap and the one item that overflows it, so
+                // that the vector never doubles past it.
+                let room = (self.cap + 1).saturating_sub(self.items.len());
+                self.items.reserve_exact(room);
             }
             return;
         }
@@ -159,7 +163,9 @@ impl<T: Item> Series<T> {
     }
 
     /// Merge the items of one bucket, doubling the width (when `double`)
-    /// until they fit the cap.
+    /// until they fit the cap. The items are merged in place: no vector
+    /// is allocated, so an EMCY storm's rows do not touch fresh memory each
+    /// time they coarsen (BENCHMARKS.md, "Issue 23").
     fn coarsen(&mut self, double: bool) {
         if double {
             self.shift += 1;
@@ -167,18 +173,18 @@ impl<T: Item> Series<T> {
         loop {
             let shift = self.shift;
             let timed = self.timed;
-            let mut merged: Vec<T> = Vec::with_capacity(self.items.len());
-            for item in self.items.drain(..) {
-                match merged.last_mut() {
-                    Some(last)
-                        if last.at().key(timed) >> shift == item.at().key(timed) >> shift =>
-                    {
-                        last.absorb(&item);
-                    }
-                    _ => merged.push(item),
+            let mut kept = 0;
+            for read in 1..self.items.len() {
+                let item = self.items[read];
+                let last = &mut self.items[kept];
+                if last.at().key(timed) >> shift == item.at().key(timed) >> shift {
+                    last.absorb(&item);
+                } else {
+                    kept += 1;
+                    self.items[kept] = item;
                 }
             }
-            self.items = merged;
+            self.items.truncate((kept + 1).min(self.items.len()));
             if self.items.len() <= self.cap || self.shift >= 63 {
                 break;
             }
