@@ -31,9 +31,15 @@
 #   summary-mf4  hyperfine: decode --summary on the MF4 file vs python-can's MF4Reader peer
 #   read-mf4     hyperfine: reading the MF4 file alone: logs::open (examples/read_log)
 #                vs python-can's MF4Reader vs asammdf reading every CAN_DataFrame channel
+#   gen-report   write the report's other mixes: $BENCH_DIR/storm.log (scripts/gen_storm.py),
+#                drives.log (scripts/gen_drives.py), screen.log (gen_canlog.py --format screen)
+#   report       hyperfine: motionwire report vs decode --summary, same options, on 1m.log,
+#                storm.log, drives.log and screen.log, each pair in one session; the page's
+#                size and the goals (issue 23: <= 5 MB, <= 3x decode --summary's time)
 #
 # Environment: BENCH_DIR (default /tmp/motionwire-bench), BENCH_FRAMES
-# (default 1000000), BENCH_RUNS (default 3), MOTIONWIRE (default
+# (default 1000000), BENCH_RUNS (default 3; the report step: REPORT_RUNS,
+# default 20), MOTIONWIRE (default
 # target/release/motionwire), MOTIONWIRE_BEFORE (optional, a second build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -55,6 +61,10 @@ PCAP=$BENCH_DIR/1m.pcap
 ASC=$BENCH_DIR/1m.asc
 BLF=$BENCH_DIR/1m.blf
 MF4=$BENCH_DIR/1m.mf4
+STORM=$BENCH_DIR/storm.log
+DRIVES=$BENCH_DIR/drives.log
+SCREEN=$BENCH_DIR/screen.log
+REPORT_RUNS=${REPORT_RUNS:-20}
 # Wireshark's SocketCAN dissector hands the payload to the dissector chosen in
 # its "can.subdissector" Decode-As table; without this it guesses (heuristics,
 # e.g. AUTOSAR NM) or shows raw CAN data.
@@ -143,6 +153,60 @@ summary_of() {
         --export-markdown "$RESULTS/$name.md" --export-json "$RESULTS/$name.json" \
         -n "motionwire decode --summary" "$MOTIONWIRE decode --summary $file >/dev/null" \
         -n "$peer_name" "$peer >/dev/null 2>&1"
+}
+
+gen_report() {
+    gen
+    step "the report's other mixes, $FRAMES frames each: $STORM, $DRIVES, $SCREEN"
+    if [[ ! ( -s $STORM && $STORM -nt scripts/gen_storm.py ) ]]; then
+        python3 scripts/gen_storm.py --frames "$FRAMES" -o "$STORM"
+    fi
+    if [[ ! ( -s $DRIVES && $DRIVES -nt scripts/gen_drives.py ) ]]; then
+        python3 scripts/gen_drives.py --frames "$FRAMES" -o "$DRIVES"
+    fi
+    if [[ ! ( -s $SCREEN && $SCREEN -nt scripts/gen_canlog.py ) ]]; then
+        python3 scripts/gen_canlog.py --frames "$FRAMES" --format screen -o "$SCREEN"
+    fi
+    ls -l "$LOG" "$STORM" "$DRIVES" "$SCREEN"
+}
+
+# One hyperfine session: decode --summary and report with the same OPTIONS
+# on FILE, then the page's size.
+report_of() {
+    local mix=$1 file=$2 opts=$3
+    local page=$BENCH_DIR/report-$mix.html
+    step "hyperfine: report vs decode --summary on $file ($mix; load: $(cut -d' ' -f1-3 /proc/loadavg))"
+    mkdir -p "$RESULTS"
+    hyperfine -N --warmup 2 --runs "$REPORT_RUNS" \
+        --export-markdown "$RESULTS/report-$mix.md" --export-json "$RESULTS/report-$mix.json" \
+        -n "decode --summary" "$MOTIONWIRE decode --summary $opts $file" \
+        -n "report" "$MOTIONWIRE report $opts $file -o $page"
+    echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+    stat -c '%s' "$page" >"$RESULTS/report-$mix.size"
+}
+
+report() {
+    need_motionwire
+    report_of sample "$LOG" "--profile 3=akd,5=baumer --heartbeat-ms 300"
+    report_of storm "$STORM" "--heartbeat-ms 300"
+    report_of drives "$DRIVES" "--heartbeat-ms 300"
+    report_of screen "$SCREEN" "--profile 3=akd,5=baumer --heartbeat-ms 300"
+    step "the report's goals: a page <= 5 MB, written in <= 3x decode --summary's time"
+    python3 - "$RESULTS" <<'EOF'
+import json, os, sys
+results = sys.argv[1]
+failed = False
+for mix in ("sample", "storm", "drives", "screen"):
+    runs = {r["command"]: r for r in json.load(open(os.path.join(results, f"report-{mix}.json")))["results"]}
+    summary, report = runs["decode --summary"], runs["report"]
+    size = int(open(os.path.join(results, f"report-{mix}.size")).read())
+    ratio = report["median"] / summary["median"]
+    ok = ratio <= 3.0 and size <= 5_000_000
+    failed |= not ok
+    print(f"{mix}: decode --summary {summary['median'] * 1e3:.1f} ms, report {report['median'] * 1e3:.1f} ms "
+          f"(medians), {ratio:.2f}x; page {size:,} bytes: {'OK' if ok else 'GOAL MISSED'}")
+sys.exit(1 if failed else 0)
+EOF
 }
 
 verify_tshark() {
@@ -280,6 +344,8 @@ run_step() {
         gen-mf4) gen_mf4 ;;
         summary-mf4) gen_mf4; summary_of summary-mf4 "$MF4" "python-can MF4Reader + canopen peer" "python3 bench/peer_python.py $MF4" ;;
         read-mf4) read_mf4 ;;
+        gen-report) gen_report ;;
+        report) gen_report; report ;;
         summary-pcap) gen; summary_of summary-pcap "$PCAP" "tshark -T fields (CANopen)" "tshark -r $PCAP ${TSHARK_CANOPEN[*]} ${TSHARK_FIELDS[*]}" ;;
         *) echo "unknown step: $1 (see the header of $0)" >&2; exit 2 ;;
     esac

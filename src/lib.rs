@@ -182,6 +182,8 @@ mod error;
 pub mod logs;
 mod names;
 pub mod profiles;
+#[cfg(feature = "report")]
+pub mod report;
 pub mod servo;
 #[cfg(feature = "decoder")]
 pub mod summary;

@@ -153,6 +153,12 @@ impl<T> Buses<T> {
         &mut self.buses[at].1
     }
 
+    /// Return the bus at `at` with what is kept of it.
+    pub(crate) fn entry_mut(&mut self, at: usize) -> (&BusName, &mut T) {
+        let (name, value) = &mut self.buses[at];
+        (name, value)
+    }
+
     pub(crate) fn get(&self, at: usize) -> &T {
         &self.buses[at].1
     }

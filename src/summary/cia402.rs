@@ -74,29 +74,34 @@ impl TimelineBuilder {
     /// A frame's CiA 402 reading: a state that differs from the last one
     /// is a transition; entering fault reaction active or fault from a
     /// state that is neither is a fault.
+    /// Return the transition recorded, and the fault it is, if any.
     pub(crate) fn observe(
         &mut self,
         line: u64,
         ts: Option<Timestamp>,
         reading: Cia402Reading,
         last_error: Option<EmcySeen>,
-    ) {
-        let Some(to) = reading.state else { return };
+    ) -> Option<(Cia402Transition, Option<Cia402Fault>)> {
+        let to = reading.state?;
         let timeline = &mut self.timeline;
         let from = timeline.last_state();
         if from == Some(to) {
-            return;
+            return None;
         }
         let transition = Cia402Transition { line, ts, from, to };
         // The first statusword makes the faults known: none so far.
         let faults = timeline.faults.get_or_insert_with(Vec::new);
+        let mut fault = None;
         if to.is_fault() && !from.is_some_and(Cia402State::is_fault) {
-            faults.push(Cia402Fault {
+            let f = Cia402Fault {
                 transition,
                 emcy_before: last_error,
-            });
+            };
+            faults.push(f);
+            fault = Some(f);
         }
         timeline.transitions.push(transition);
+        Some((transition, fault))
     }
 
     pub(crate) fn finish(self) -> Cia402Timeline {

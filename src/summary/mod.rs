@@ -36,6 +36,8 @@
 //! ```
 
 mod cia402;
+mod event;
+mod file;
 mod json;
 mod sdo;
 mod text;
@@ -43,9 +45,12 @@ mod text;
 use core::time::Duration;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
+pub use event::{SummaryEvent, SummaryEventKind};
+pub use file::FileSpan;
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
+use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
     CanOpenMessage, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer,
     HeartbeatEvent, MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
@@ -458,26 +463,61 @@ impl Summarizer {
     }
 
     /// Add one frame, read at `position`, with what the decoder made of it.
+    #[inline]
     pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
+        self.add_frame_with(position, log, decoded, |_| {});
+    }
+
+    /// Add one frame, as [`add_frame`](Self::add_frame) does, and hand
+    /// `on_event` each fact it adds to the summary, in order
+    /// ([`SummaryEvent`]): what the report draws (docs/report.md#timeline).
+    pub fn add_frame_with(
+        &mut self,
+        position: u64,
+        log: &LogFrame<'_>,
+        decoded: &Decoded<'_>,
+        mut on_event: impl FnMut(SummaryEvent<'_>),
+    ) {
         let now = log.timestamp.map(Timestamp::as_duration);
         match now {
             Some(_) => self.last_time = now,
             None => self.untimed += 1,
         }
-        let bus = self.bus(log.iface);
+        let heartbeat = self.heartbeat;
+        let (at, _) = self
+            .buses
+            .find_or_insert(log.iface, |_| BusState::new(heartbeat));
+        let (name, bus) = self.buses.entry_mut(at);
+        let event = |node, kind| SummaryEvent {
+            bus: name,
+            node,
+            line: position,
+            ts: log.timestamp,
+            kind,
+        };
         bus.frames += 1;
         bus.saw(log.timestamp);
         let kind = decoded.kind;
         if kind == MessageKind::ErrorFrame {
             bus.error_frames += 1;
+            let (mut bus_off, mut error_passive) = (false, false);
             if let Ok(error) = ErrorFrame::from_frame(&decoded.log.frame) {
-                if error.is_bus_off() {
+                bus_off = error.is_bus_off();
+                error_passive = error.is_error_passive();
+                if bus_off {
                     bus.bus_off.push(position);
                 }
-                if error.is_error_passive() {
+                if error_passive {
                     bus.error_passive.push(position);
                 }
             }
+            on_event(event(
+                None,
+                SummaryEventKind::ErrorFrame {
+                    bus_off,
+                    error_passive,
+                },
+            ));
             return;
         }
         let Some(node) = decoded.node else { return };
@@ -490,7 +530,21 @@ impl Summarizer {
         let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
         state.frames.by_kind[kind.index()] += 1;
         if let Some(step) = &decoded.sdo {
-            state.sdo.add(step, position);
+            let added = state.sdo.add(step, position);
+            if added.abort {
+                if let Some(abort) = state.sdo.aborts().last() {
+                    on_event(SummaryEvent {
+                        bus: name,
+                        node: Some(node),
+                        line: position,
+                        ts: log.timestamp,
+                        kind: SummaryEventKind::SdoAbort(abort),
+                    });
+                }
+            }
+            if let (true, Some(ended)) = (added.ended, &step.ended) {
+                on_event(sdo_ended(name, node, &ended.transfer));
+            }
         }
         if let Some(reading) = decoded.cia402 {
             // A PDO's drive is the node that owns it, which the log may
@@ -498,9 +552,16 @@ impl Summarizer {
             let drive =
                 nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
             let last_error = drive.last_error;
-            drive
-                .cia402
-                .observe(position, log.timestamp, reading, last_error);
+            if let Some((transition, fault)) =
+                drive
+                    .cia402
+                    .observe(position, log.timestamp, reading, last_error)
+            {
+                on_event(event(
+                    Some(reading.node),
+                    SummaryEventKind::Cia402 { transition, fault },
+                ));
+            }
             return;
         }
         if !matches!(
@@ -521,6 +582,13 @@ impl Summarizer {
                     ts: log.timestamp,
                     code: emcy.code,
                 };
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Emcy {
+                        code: emcy.code,
+                        register: emcy.register,
+                    },
+                ));
                 if emcy.is_reset() {
                     state.resets += 1;
                 } else {
@@ -546,6 +614,13 @@ impl Summarizer {
                 // Counted as an answer, not as a heartbeat.
                 state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
                 state.frames.guard_answers += 1;
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: true,
+                    },
+                ));
                 if let Some(answer) = byte.guard_answer() {
                     let events = state
                         .guarding
@@ -555,15 +630,24 @@ impl Summarizer {
                         .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
                     {
                         state.guarding_summary.toggle_errors.push(position);
+                        on_event(event(Some(node), SummaryEventKind::ToggleError));
                     }
                 }
             }
             CanOpenMessage::Heartbeat { byte, .. } => {
                 state.heartbeats += 1;
                 state.last_state = Some(byte);
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: false,
+                    },
+                ));
                 if byte.state_raw() == 0 {
                     state.boot_ups.push(position);
                     state.guarding.on_boot_up();
+                    on_event(event(Some(node), SummaryEventKind::BootUp));
                 }
                 if let (Some(consumer), Some(now), Some(nmt)) =
                     (consumer.as_mut(), now, byte.state())
@@ -576,9 +660,17 @@ impl Summarizer {
                             HeartbeatEvent::Recovered { at, .. }
                             | HeartbeatEvent::RemoteReset { at, .. } => {
                                 if let Some((after_line, last)) = state.open_gap.take() {
-                                    state.timeouts.push(HeartbeatGap {
+                                    let gap = HeartbeatGap {
                                         after_line,
                                         gap: at.saturating_sub(last),
+                                    };
+                                    state.timeouts.push(gap);
+                                    on_event(SummaryEvent {
+                                        bus: name,
+                                        node: Some(node),
+                                        line: after_line,
+                                        ts: Some(Timestamp::from_duration(last)),
+                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
                                     });
                                 }
                             }
@@ -597,7 +689,20 @@ impl Summarizer {
     /// and the nodes that are drives get their CiA 402 timeline
     /// (docs/summary.md#cia402).
     #[must_use]
-    pub fn finish(mut self, decoder: &mut Decoder) -> Summary {
+    pub fn finish(self, decoder: &mut Decoder) -> Summary {
+        self.finish_with(decoder, |_| {})
+    }
+
+    /// Close the input, as [`finish`](Self::finish) does, and hand
+    /// `on_event` the facts that only the end of the input shows: the
+    /// transfers left open, the heartbeat gaps still open at the last
+    /// timestamp ([`SummaryEvent`]).
+    #[must_use]
+    pub fn finish_with(
+        mut self,
+        decoder: &mut Decoder,
+        mut on_event: impl FnMut(SummaryEvent<'_>),
+    ) -> Summary {
         for open in decoder.finish() {
             if let Some(state) = self
                 .buses
@@ -605,11 +710,13 @@ impl Summarizer {
                 .find(|(name, _)| **name == open.bus)
                 .and_then(|(_, bus)| bus.nodes[open.node.index()].as_mut())
             {
-                state.sdo.ended(&open.transfer);
+                if state.sdo.ended(&open.transfer) {
+                    on_event(sdo_ended(&open.bus, open.node, &open.transfer));
+                }
             }
         }
         if let Some(end) = self.last_time {
-            for (_, bus) in self.buses.iter_mut() {
+            for (name, bus) in self.buses.iter_mut() {
                 let Some(consumer) = bus.consumer.as_mut() else {
                     continue;
                 };
@@ -627,9 +734,17 @@ impl Summarizer {
                 }
                 for state in bus.nodes.iter_mut().flatten() {
                     if let Some((after_line, last)) = state.open_gap.take() {
-                        state.timeouts.push(HeartbeatGap {
+                        let gap = HeartbeatGap {
                             after_line,
                             gap: end.saturating_sub(last),
+                        };
+                        state.timeouts.push(gap);
+                        on_event(SummaryEvent {
+                            bus: name,
+                            node: Some(state.node),
+                            line: after_line,
+                            ts: Some(Timestamp::from_duration(last)),
+                            kind: SummaryEventKind::HeartbeatTimeout(gap),
                         });
                     }
                 }
@@ -690,6 +805,22 @@ impl Summarizer {
             });
         }
         summary
+    }
+}
+
+/// The event of an SDO transfer that ended broken or unanswered, at its
+/// start line (`sdo.broken`, `sdo.timeouts` in docs/summary.md#sdo).
+fn sdo_ended<'s>(bus: &'s BusName, node: NodeId, transfer: &'s SdoTransfer) -> SummaryEvent<'s> {
+    let kind = match transfer.outcome {
+        SdoOutcome::TimedOut => SummaryEventKind::SdoTimeout(transfer),
+        _ => SummaryEventKind::SdoBroken(transfer),
+    };
+    SummaryEvent {
+        bus,
+        node: Some(node),
+        line: transfer.start_position,
+        ts: transfer.started_at,
+        kind,
     }
 }
 

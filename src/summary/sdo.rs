@@ -69,6 +69,15 @@ impl SdoSummary {
     }
 }
 
+/// What one frame added to a channel's record.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Added {
+    /// An abort: the last of [`SdoStats::aborts`].
+    pub(crate) abort: bool,
+    /// The frame's step ended a transfer that is broken or unanswered.
+    pub(crate) ended: bool,
+}
+
 /// What the summarizer keeps of a channel while the log is read.
 #[derive(Debug, Default)]
 pub(crate) struct SdoStats {
@@ -78,7 +87,8 @@ pub(crate) struct SdoStats {
 
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
-    pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) {
+    pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) -> Added {
+        let mut added = Added::default();
         let s = &mut self.summary;
         if step.sender == SdoParty::Client {
             s.requests += 1;
@@ -112,20 +122,28 @@ impl SdoStats {
                 code,
                 by,
             });
+            added.abort = true;
         }
         if let Some(ended) = step.ended {
-            self.ended(&ended.transfer);
+            added.ended = self.ended(&ended.transfer);
         }
+        added
     }
 
     /// A transfer that ended (at a frame, or left open at the end of the
-    /// input).
-    pub(crate) fn ended(&mut self, transfer: &SdoTransfer) {
+    /// input); whether it is recorded as broken or unanswered.
+    pub(crate) fn ended(&mut self, transfer: &SdoTransfer) -> bool {
         match transfer.outcome {
             SdoOutcome::Broken(_) => self.summary.broken.push(transfer.start_position),
             SdoOutcome::TimedOut => self.summary.timeouts.push(transfer.start_position),
-            SdoOutcome::Completed | SdoOutcome::Aborted { .. } => {}
+            SdoOutcome::Completed | SdoOutcome::Aborted { .. } => return false,
         }
+        true
+    }
+
+    /// The aborts recorded so far.
+    pub(crate) fn aborts(&self) -> &[SdoAbort] {
+        &self.summary.aborts
     }
 
     pub(crate) fn finish(mut self) -> SdoSummary {

@@ -7,8 +7,8 @@ use crate::can::Timestamp;
 use crate::canopen::Cia402State;
 
 use super::{
-    BusSummary, Cia402Timeline, EmcySeen, NodeSummary, SdoSummary, Summary, SummaryItem,
-    SummaryRecord, Timeouts,
+    BusSummary, Cia402Fault, Cia402Timeline, EmcySeen, NodeSummary, SdoAbort, SdoSummary, Summary,
+    SummaryItem, SummaryRecord, Timeouts,
 };
 
 impl fmt::Display for Summary {
@@ -208,17 +208,7 @@ impl fmt::Display for SdoSummary {
         }
         writeln!(f)?;
         for abort in &self.aborts {
-            write!(
-                f,
-                "          line {}: {} aborted {}",
-                abort.line,
-                abort.by.name(),
-                abort.multiplexer
-            )?;
-            if let Some(name) = &abort.object {
-                write!(f, " ({name})")?;
-            }
-            writeln!(f, ": {}", abort.code)?;
+            writeln!(f, "          line {}: {abort}", abort.line)?;
         }
         if !self.broken.is_empty() {
             writeln!(
@@ -265,37 +255,57 @@ impl fmt::Display for Cia402Timeline {
         }
         writeln!(f)?;
         for fault in self.faults.iter().flatten() {
-            let t = fault.transition;
-            write!(
-                f,
-                "          went {} → {} at line {}",
-                t.from.map_or("-", Cia402State::name),
-                t.to.name(),
-                t.line
-            )?;
-            if let Some(emcy) = fault.emcy_before {
-                let code = emcy.code;
-                match (t.ts, emcy.ts) {
-                    (Some(at), Some(then)) => {
-                        let gap = at.duration_since(then).unwrap_or_default();
-                        write!(
-                            f,
-                            ", {:.1} ms after EMCY {code} {} (line {})",
-                            gap.as_secs_f64() * 1000.0,
-                            code.description(),
-                            emcy.line
-                        )?;
-                    }
-                    _ => write!(
-                        f,
-                        ", after EMCY {code} {} (line {})",
-                        code.description(),
-                        emcy.line
-                    )?,
-                }
-            }
-            writeln!(f)?;
+            writeln!(f, "          {fault}")?;
         }
         Ok(())
+    }
+}
+
+impl fmt::Display for Cia402Fault {
+    /// `went operation_enabled → fault at line 620, 17.1 ms after EMCY
+    /// 0x7305 Incremental sensor 1 fault (line 613)` (docs/summary.md#text).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let t = self.transition;
+        write!(
+            f,
+            "went {} → {} at line {}",
+            t.from.map_or("-", Cia402State::name),
+            t.to.name(),
+            t.line
+        )?;
+        if let Some(emcy) = self.emcy_before {
+            let code = emcy.code;
+            match (t.ts, emcy.ts) {
+                (Some(at), Some(then)) => {
+                    let gap = at.duration_since(then).unwrap_or_default();
+                    write!(
+                        f,
+                        ", {:.1} ms after EMCY {code} {} (line {})",
+                        gap.as_secs_f64() * 1000.0,
+                        code.description(),
+                        emcy.line
+                    )?;
+                }
+                _ => write!(
+                    f,
+                    ", after EMCY {code} {} (line {})",
+                    code.description(),
+                    emcy.line
+                )?,
+            }
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for SdoAbort {
+    /// `server aborted 1A00h.00 (TPDO mapping parameter): 0x06040043:
+    /// General parameter incompatibility reason` (docs/summary.md#text).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} aborted {}", self.by.name(), self.multiplexer)?;
+        if let Some(name) = &self.object {
+            write!(f, " ({name})")?;
+        }
+        write!(f, ": {}", self.code)
     }
 }

@@ -32,9 +32,88 @@ pub enum Command {
     /// CAN frame, or a summary per device (docs/output.md, docs/summary.md).
     #[command(after_long_help = DECODE_AFTER_HELP)]
     Decode(DecodeArgs),
+    /// Write the post-mortem of CAN logs as one self-contained HTML page:
+    /// what went wrong first, a timeline of every bus and device, drive
+    /// signals, the summary's tables (docs/report.md).
+    Report(ReportArgs),
     /// Decode one EtherCAT servo ↔ NC frame given as hex (docs/servo.md).
     #[command(subcommand)]
     Servo(ServoCommand),
+}
+
+/// The arguments of `motionwire report`: those of `decode --summary` that
+/// shape the summary, and the page's file (docs/report.md#command).
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// The HTML file to write (`-` for standard output).
+    #[arg(short = 'o', long = "output", value_name = "FILE.html")]
+    pub output: PathBuf,
+    /// Read the input as this format instead of detecting it from the
+    /// content (docs/formats.md#detection).
+    #[arg(long, value_name = "FORMAT", value_parser = parse_format, help = format_help())]
+    pub format: Option<LogFormat>,
+    /// What candump's relative timestamps `(000.000123)` count: `delta`
+    /// or `zero` (docs/formats.md#candump-relative-times).
+    #[arg(long, value_name = "delta|zero")]
+    pub timestamps: Option<TimestampBase>,
+    /// How to read each node: `generic`, `akd` or `baumer` for every node,
+    /// or per node as `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`).
+    #[arg(
+        long,
+        value_name = "PROFILE|NODE=PROFILE",
+        value_delimiter = ',',
+        value_parser = parse_profile_choice,
+    )]
+    pub profile: Vec<ProfileChoice>,
+    /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
+    /// for several nodes; docs/canopen.md#pdo-mappings).
+    #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
+    pub eds: Vec<(NodeId, PathBuf)>,
+    /// Accepted for the command line of `decode --summary`: the page is
+    /// the summary's, always.
+    #[arg(long, hide = true)]
+    pub summary: bool,
+    /// With several files: read them as one recording (docs/output.md#several-files).
+    #[arg(long)]
+    pub joined: bool,
+    /// Report heartbeat gaps longer than this many milliseconds as
+    /// timeouts.
+    #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u16).range(1..))]
+    pub heartbeat_ms: Option<u16>,
+    /// Accepted as `decode --summary` accepts it; the page, like the
+    /// summary, counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
+    pub only: Vec<MessageKind>,
+    /// Accepted as `decode --summary` accepts it; the page counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "NODE[,NODE]", value_parser = parse_node)]
+    pub node: Vec<NodeId>,
+    /// Accepted as `decode --summary` accepts it; the page counts every frame.
+    #[arg(long, value_delimiter = ',', value_name = "ID[-ID][,…]", value_parser = parse_id_range)]
+    pub id: Vec<IdRange>,
+    /// Log files to read; none, or `-`, reads standard input.
+    #[arg(value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+}
+
+impl ReportArgs {
+    /// The same reading as `decode --summary` with these options.
+    pub fn as_summary(&self) -> DecodeArgs {
+        DecodeArgs {
+            json: false,
+            csv: false,
+            format: self.format,
+            timestamps: self.timestamps,
+            profile: self.profile.clone(),
+            eds: self.eds.clone(),
+            summary: true,
+            joined: self.joined,
+            heartbeat_ms: self.heartbeat_ms,
+            only: self.only.clone(),
+            node: self.node.clone(),
+            id: self.id.clone(),
+            files: self.files.clone(),
+        }
+    }
 }
 
 /// What `motionwire decode --help` says after the options: the text

@@ -15,7 +15,8 @@ use motionwire::canopen::MessageKind;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
-use motionwire::summary::Summarizer;
+use motionwire::report::{Recorder, Report, ReportInput};
+use motionwire::summary::{FileSpan, Summarizer};
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
@@ -87,6 +88,10 @@ struct Sink<'a> {
     out: BufWriter<StdoutLock<'static>>,
     err: BufWriter<StderrLock<'static>>,
     summary: Option<Summarizer>,
+    /// With `motionwire report`: the recording's timeline and summary, and
+    /// the page they go to (docs/report.md).
+    recorder: Option<Recorder>,
+    report: Option<Report>,
     output: Output,
     kinds: [bool; MessageKind::ALL.len()],
     nodes: Option<[bool; 128]>,
@@ -116,10 +121,11 @@ struct Sink<'a> {
 }
 
 impl<'a> Sink<'a> {
-    fn new(args: &'a DecodeArgs) -> Result<Self, Failure> {
+    fn new(args: &'a DecodeArgs, page: bool) -> Result<Self, Failure> {
+        // The page charts drives' signals (docs/report.md#signals).
         let mut config = DecoderConfig::new()
             .profiles_from(node_profiles(&args.profile))
-            .signals(!args.summary);
+            .signals(page || !args.summary);
         for (node, path) in &args.eds {
             config = config.eds_file(*node, path).map_err(|why| {
                 Failure::Usage(format!("--eds {}={}: {why}", node, path.display()))
@@ -139,11 +145,14 @@ impl<'a> Sink<'a> {
         let heartbeat = args
             .heartbeat_ms
             .map(|ms| Duration::from_millis(u64::from(ms)));
-        let summary = args.summary.then(|| new_summarizer(heartbeat));
+        let summary = (args.summary && !page).then(|| new_summarizer(heartbeat));
+        let recorder = page.then(|| Recorder::with_summarizer(new_summarizer(heartbeat)));
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
             err: BufWriter::new(io::stderr().lock()),
             summary,
+            recorder,
+            report: page.then(Report::new),
             output: if args.csv {
                 Output::Csv
             } else if args.json {
@@ -174,6 +183,10 @@ impl<'a> Sink<'a> {
         let decoded = self.decoder.decode(line, frame);
         if let Some(summary) = self.summary.as_mut() {
             summary.add_frame(line, frame, &decoded);
+            return Ok(());
+        }
+        if let Some(recorder) = self.recorder.as_mut() {
+            recorder.add_frame(line, frame, &decoded);
             return Ok(());
         }
         if !self.ids.is_empty() {
@@ -218,6 +231,9 @@ impl<'a> Sink<'a> {
                 if let Some(summary) = self.summary.as_mut() {
                     summary.add_status(status);
                 }
+                if let Some(recorder) = self.recorder.as_mut() {
+                    recorder.add_status(status);
+                }
                 Ok(())
             }
         }
@@ -249,6 +265,18 @@ impl<'a> Sink<'a> {
 }
 
 pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
+    run_with(args, false).map(|(code, _)| code)
+}
+
+/// Read the logs as `decode --summary` does, into the page of `motionwire
+/// report` (docs/report.md): the same inputs, options, messages on standard
+/// error and exit statuses; the page is returned, not written.
+pub fn run_page(args: &DecodeArgs) -> Result<(ExitCode, Report), Failure> {
+    let (code, report) = run_with(args, true)?;
+    Ok((code, report.unwrap_or_default()))
+}
+
+fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>), Failure> {
     if args.heartbeat_ms.is_some() && !args.summary {
         return Err(Failure::Usage(
             "--heartbeat-ms needs --summary (heartbeat gaps are reported per node)".to_owned(),
@@ -256,7 +284,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
     }
     let (inputs, twice) = open_inputs(&args.files)?;
     let several = inputs.len() > 1;
-    let mut sink = Sink::new(args)?;
+    let mut sink = Sink::new(args, page)?;
     for name in twice {
         writeln!(
             sink.err,
@@ -280,7 +308,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         });
     }
     // With --joined: where each file's lines lie in the recording.
-    let mut spans: Vec<(String, u64, u64)> = Vec::new();
+    let mut spans: Vec<FileSpan> = Vec::new();
     let joined = several && args.joined;
     for (i, input) in inputs.into_iter().enumerate() {
         let Input { name, path, reader } = input;
@@ -290,8 +318,11 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
                 // A recording of its own: nothing learned from the file
                 // before carries over (docs/output.md#several-files).
                 sink.decoder = Decoder::new(sink.config.clone());
-                if args.summary {
+                if args.summary && !page {
                     sink.summary = Some(new_summarizer(sink.heartbeat));
+                }
+                if page {
+                    sink.recorder = Some(Recorder::with_summarizer(new_summarizer(sink.heartbeat)));
                 }
             }
         }
@@ -310,6 +341,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             None => options.read(reader),
         };
         let mut log = opened.map_err(|e| open_failure(&name, path.as_deref(), e))?;
+        let format = log.format();
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
         let last = log.visit(ReadAll {
@@ -323,11 +355,23 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
         }
+        if let Some(report) = sink.report.as_mut() {
+            report.add_input(ReportInput {
+                name: name.clone(),
+                format: format.name().to_owned(),
+                last_line: last,
+            });
+        }
         if joined {
-            spans.push((name, sink.offset + 1, sink.offset + last));
+            spans.push(FileSpan {
+                file: name,
+                first_line: sink.offset + 1,
+                last_line: sink.offset + last,
+            });
             sink.offset += last;
         } else if several {
-            write_summary(&mut sink, args.json, Some(name))?;
+            write_summary(&mut sink, args.json, Some(name.clone()))?;
+            take_recording(&mut sink, Some(name), Vec::new())?;
         }
     }
     if !several || joined {
@@ -335,6 +379,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         if sink.summary_written {
             write_spans(&mut sink, args.json, &spans)?;
         }
+        take_recording(&mut sink, None, spans)?;
     }
 
     let Sink {
@@ -342,8 +387,24 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         mut err,
         skipped,
         damaged,
+        mut report,
         ..
     } = sink;
+    if let Some(report) = report.as_mut() {
+        // The page says what standard error said (docs/report.md#page).
+        if skipped > 0 {
+            report.add_note(format!(
+                "{skipped} malformed line{} skipped (said on standard error)",
+                if skipped == 1 { "" } else { "s" }
+            ));
+        }
+        if damaged > 0 {
+            report.add_note(format!(
+                "{damaged} damaged record{} reported (said on standard error)",
+                if damaged == 1 { "" } else { "s" }
+            ));
+        }
+    }
     out.flush()?;
     if skipped > 0 || damaged > 0 {
         let plural = |n: u64| if n == 1 { "" } else { "s" };
@@ -366,10 +427,10 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
             )?,
         }
         err.flush()?;
-        return Ok(ExitCode::from(1));
+        return Ok((ExitCode::from(1), report));
     }
     err.flush()?;
-    Ok(ExitCode::SUCCESS)
+    Ok((ExitCode::SUCCESS, report))
 }
 
 /// Read a log event by event, each with its line or record
@@ -484,16 +545,46 @@ fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Resul
     Ok(())
 }
 
+/// With `motionwire report`: the recording read so far, with its summary,
+/// onto the page, naming its file when several are read apart.
+fn take_recording(
+    sink: &mut Sink<'_>,
+    file: Option<String>,
+    files: Vec<FileSpan>,
+) -> Result<(), Failure> {
+    let Some(recorder) = sink.recorder.take() else {
+        return Ok(());
+    };
+    let mut recording = recorder.finish(&mut sink.decoder);
+    recording.summary.file = file;
+    recording.files = files;
+    if recording.summary.timeouts_not_checked() {
+        let about = recording
+            .summary
+            .file
+            .as_deref()
+            .map_or_else(String::new, |file| format!("{file}: "));
+        writeln!(
+            sink.err,
+            "motionwire: {about}the log has frames without timestamps: heartbeat timeouts were \
+             not checked (--heartbeat-ms)"
+        )?;
+    }
+    if let Some(report) = sink.report.as_mut() {
+        report.add_recording(recording);
+    }
+    Ok(())
+}
+
 /// With `--joined`: where each file's lines lie in the one recording
 /// (docs/output.md#several-files).
-fn write_spans(sink: &mut Sink<'_>, json: bool, spans: &[(String, u64, u64)]) -> io::Result<()> {
-    for (file, first, last) in spans {
+fn write_spans(sink: &mut Sink<'_>, json: bool, spans: &[FileSpan]) -> io::Result<()> {
+    for span in spans {
         if json {
-            sink.out.write_all(b"{\"type\":\"file\",\"file\":")?;
-            serde_json::to_writer(&mut sink.out, file).map_err(io::Error::from)?;
-            writeln!(sink.out, ",\"first_line\":{first},\"last_line\":{last}}}")?;
+            serde_json::to_writer(&mut sink.out, span).map_err(io::Error::from)?;
+            writeln!(sink.out)?;
         } else {
-            writeln!(sink.out, "file {file}  lines {first} to {last}")?;
+            writeln!(sink.out, "{span}")?;
         }
     }
     Ok(())

@@ -8,6 +8,8 @@
 //! ```text
 //! motionwire decode [--json] [--profile generic|akd|baumer|NODE=PROFILE,…] [--summary]
 //!                   [--heartbeat-ms N] [--only KIND[,KIND]] [FILE…]
+//! motionwire report [--heartbeat-ms N] [--profile …] [--eds …] [--format …]
+//!                   [--joined] LOG… -o FILE.html
 //! motionwire servo command  [--json] HEX
 //! motionwire servo feedback [--json] HEX
 //! ```
@@ -16,6 +18,7 @@ mod args;
 mod decode;
 mod failure;
 mod record;
+mod report;
 mod servo;
 
 use std::io::{self, Write};
@@ -30,6 +33,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Decode(args) => decode::run(&args),
+        Command::Report(args) => report::run(&args),
         Command::Servo(ServoCommand::Command(args)) => servo::run(servo::Frame::Command, &args),
         Command::Servo(ServoCommand::Feedback(args)) => servo::run(servo::Frame::Feedback, &args),
     };

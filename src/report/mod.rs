@@ -1,0 +1,578 @@
+//! The post-mortem as a page a person looks at: `motionwire report`
+//! (docs/report.md). One self-contained HTML file — inline CSS, SVG written
+//! here, a small script for zoom, pan and details only, nothing fetched —
+//! drawn from the library's own [decoder](crate::decoder) and
+//! [summary](crate::summary): the faults first, a timeline with one row per
+//! bus and per device (NMT and CiA 402 state bands, a mark for every fact
+//! the summary records), drive signals, and the summary as tables and as the
+//! embedded `decode --summary --json` records (docs/report.md#contract).
+//!
+//! A [`Recorder`] is fed every frame and bus event of a recording, as a
+//! [`Summarizer`] is (it holds one); [`Recorder::finish`] returns the
+//! [`Recording`]: the [`Summary`] and its [`Timeline`], kept in bounded
+//! memory whatever the log's size (an EMCY storm becomes clusters, signals
+//! are reduced to minima and maxima per bucket; docs/report.md#bounded). A
+//! [`Report`] gathers the recordings of the logs and writes the page.
+//!
+//! ```
+//! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::report::{MarkKind, Recorder, Report};
+//!
+//! let log = b"(1700000000.000000) can0 703#00\n\
+//!             (1700000000.100000) can0 083#1081110000000000\n\
+//!             (1700000000.200000) can0 703#05\n";
+//! let mut decoder = Decoder::new(DecoderConfig::new());
+//! let mut recorder = Recorder::new();
+//! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
+//!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
+//!         let decoded = decoder.decode(line as u64 + 1, &frame);
+//!         recorder.add_frame(line as u64 + 1, &frame, &decoded);
+//!     }
+//! }
+//! let recording = recorder.finish(&mut decoder);
+//! let node = recording.summary.nodes[0].node;
+//! let bus = &recording.summary.nodes[0].bus;
+//! assert_eq!(recording.timeline.mark_count(bus, Some(node), MarkKind::Emcy), 1);
+//! assert_eq!(recording.timeline.mark_count(bus, Some(node), MarkKind::BootUp), 1);
+//!
+//! let mut report = Report::new();
+//! report.add_recording(recording);
+//! let mut page = Vec::new();
+//! report.write_html(&mut page)?;
+//! let page = String::from_utf8(page).unwrap();
+//! assert!(page.contains(r#"data-kind="emcy""#));
+//! assert!(page.contains(r#"<script type="application/json" id="motionwire-summary">"#));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod html;
+mod series;
+
+use core::time::Duration;
+
+pub use html::{Report, ReportInput};
+
+use crate::can::{BusStatus, Iface, LogEvent, LogFrame, Timestamp};
+use crate::canopen::{Cia402State, NodeId, Value};
+use crate::decoder::{BusName, Decoded, Decoder};
+use crate::summary::{FileSpan, Summarizer, Summary, SummaryEvent, SummaryEventKind};
+
+use series::{
+    At, BandItem, Detail, MarkItem, RateBucket, Series, SignalBucket, BUCKETS, EXACT_MARKS,
+    SIGNAL_BUCKETS,
+};
+
+/// What a mark on the timeline stands for: its `data-kind`
+/// (docs/report.md#marks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MarkKind {
+    /// An error EMCY (`emcy` less `resets` in docs/summary.md#emcy).
+    Emcy,
+    /// A reset EMCY, code 0000h (`resets`).
+    EmcyReset,
+    /// A boot-up message (`heartbeat.boot_ups`).
+    BootUp,
+    /// A heartbeat gap longer than the consumer time, drawn as a span
+    /// (`heartbeat.timeouts`).
+    HeartbeatTimeout,
+    /// An SDO abort (`sdo.aborts`).
+    SdoAbort,
+    /// A broken SDO transfer (`sdo.broken`).
+    SdoBroken,
+    /// An SDO transfer no response answered (`sdo.timeouts`).
+    SdoTimeout,
+    /// A node-guarding answer with a wrong toggle (`guarding.toggle_errors`).
+    ToggleError,
+    /// A drive entering a CiA 402 fault state (`cia402.faults`).
+    Cia402Fault,
+    /// An error frame (the bus record's `error_frames`).
+    ErrorFrame,
+    /// An error frame that says bus-off (`bus_off`).
+    BusOff,
+    /// An error frame that says error-passive (`error_passive`).
+    ErrorPassive,
+}
+
+impl MarkKind {
+    /// Every kind, in the order of docs/report.md#marks.
+    pub const ALL: [MarkKind; 12] = [
+        MarkKind::Emcy,
+        MarkKind::EmcyReset,
+        MarkKind::BootUp,
+        MarkKind::HeartbeatTimeout,
+        MarkKind::SdoAbort,
+        MarkKind::SdoBroken,
+        MarkKind::SdoTimeout,
+        MarkKind::ToggleError,
+        MarkKind::Cia402Fault,
+        MarkKind::ErrorFrame,
+        MarkKind::BusOff,
+        MarkKind::ErrorPassive,
+    ];
+
+    /// Return the kind's name, its `data-kind` (docs/report.md#marks).
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            MarkKind::Emcy => "emcy",
+            MarkKind::EmcyReset => "emcy_reset",
+            MarkKind::BootUp => "boot_up",
+            MarkKind::HeartbeatTimeout => "heartbeat_timeout",
+            MarkKind::SdoAbort => "sdo_abort",
+            MarkKind::SdoBroken => "sdo_broken",
+            MarkKind::SdoTimeout => "sdo_timeout",
+            MarkKind::ToggleError => "toggle_error",
+            MarkKind::Cia402Fault => "cia402_fault",
+            MarkKind::ErrorFrame => "error_frame",
+            MarkKind::BusOff => "bus_off",
+            MarkKind::ErrorPassive => "error_passive",
+        }
+    }
+
+    /// Return the kind in words, as the page's legend and titles say it.
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        match self {
+            MarkKind::Emcy => "EMCY",
+            MarkKind::EmcyReset => "reset EMCY",
+            MarkKind::BootUp => "boot-up",
+            MarkKind::HeartbeatTimeout => "heartbeat timeout",
+            MarkKind::SdoAbort => "SDO abort",
+            MarkKind::SdoBroken => "broken SDO transfer",
+            MarkKind::SdoTimeout => "unanswered SDO request",
+            MarkKind::ToggleError => "guarding toggle error",
+            MarkKind::Cia402Fault => "CiA 402 fault",
+            MarkKind::ErrorFrame => "error frame",
+            MarkKind::BusOff => "bus-off",
+            MarkKind::ErrorPassive => "error-passive",
+        }
+    }
+
+    const fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// The signals a drive's charts show (docs/report.md#signals): position
+/// actual value 6064h and velocity actual value 606Ch, sub-index 0.
+const CHARTED: [(u16, &str); 2] = [
+    (0x6064, "Position actual value (6064h)"),
+    (0x606C, "Velocity actual value (606Ch)"),
+];
+
+/// What a row of the timeline keeps: marks by kind, the state bands, a
+/// drive's signals, a bus's frame rate.
+#[derive(Debug, Clone)]
+pub(crate) struct RowData {
+    pub(crate) marks: [Series<MarkItem>; 12],
+    pub(crate) nmt: Series<BandItem>,
+    nmt_state: Option<u8>,
+    pub(crate) cia402: Series<BandItem>,
+    /// Per entry of [`CHARTED`]: its values, once seen.
+    pub(crate) signals: [Option<Series<SignalBucket>>; 2],
+    pub(crate) rate: Series<RateBucket>,
+}
+
+impl RowData {
+    fn new(timed: bool) -> Self {
+        RowData {
+            marks: core::array::from_fn(|_| Series::new(EXACT_MARKS, BUCKETS, timed)),
+            nmt: Series::new(BUCKETS, BUCKETS, timed),
+            nmt_state: None,
+            cia402: Series::new(BUCKETS, BUCKETS, timed),
+            signals: [None, None],
+            rate: Series::new(0, SIGNAL_BUCKETS, timed),
+        }
+    }
+
+    fn mark(&mut self, kind: MarkKind, at: At, end: At, detail: Detail) {
+        self.marks[kind.index()].add(MarkItem {
+            at,
+            end,
+            count: 1,
+            detail,
+        });
+    }
+
+    fn band(series: &mut Series<BandItem>, at: At, state: u8) {
+        series.add(BandItem {
+            at,
+            state,
+            last_state: state,
+            count: 1,
+        });
+    }
+}
+
+/// A bus's rows.
+#[derive(Debug, Clone)]
+pub(crate) struct BusRows {
+    pub(crate) name: BusName,
+    pub(crate) row: RowData,
+    nodes: Vec<Option<Box<RowData>>>,
+}
+
+impl BusRows {
+    fn new(name: BusName, timed: bool) -> Self {
+        BusRows {
+            name,
+            row: RowData::new(timed),
+            nodes: (0..128).map(|_| None).collect(),
+        }
+    }
+
+    fn node(&mut self, node: NodeId, timed: bool) -> &mut RowData {
+        self.nodes[usize::from(node.get())].get_or_insert_with(|| Box::new(RowData::new(timed)))
+    }
+
+    pub(crate) fn node_row(&self, node: NodeId) -> Option<&RowData> {
+        self.nodes[usize::from(node.get())].as_deref()
+    }
+}
+
+/// Microseconds of a time, saturating.
+fn micros(ts: Timestamp) -> u64 {
+    u64::try_from(ts.as_micros()).unwrap_or(u64::MAX)
+}
+
+/// Builds a [`Recording`], frame by frame (see the [module](self)
+/// documentation).
+#[derive(Debug)]
+pub struct Recorder {
+    summarizer: Summarizer,
+    buses: Vec<BusRows>,
+    last_bus: usize,
+    /// Whether the recording is drawn by time: its first frame has one.
+    timed: Option<bool>,
+    /// The last time seen, in microseconds: frames without one are drawn there.
+    last_t: u64,
+    /// Frames without a time in a recording drawn by time.
+    untimed: u64,
+    first: Option<At>,
+    last: At,
+}
+
+impl Default for Recorder {
+    fn default() -> Self {
+        Recorder::new()
+    }
+}
+
+impl Recorder {
+    /// Start a recording without heartbeat timeouts.
+    #[must_use]
+    pub fn new() -> Self {
+        Recorder::with_summarizer(Summarizer::new())
+    }
+
+    /// Return the recorder checking heartbeats against the consumer time
+    /// `time` ([`Summarizer::heartbeat_timeout`]; `--heartbeat-ms`).
+    #[must_use]
+    pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
+        self.summarizer = self.summarizer.heartbeat_timeout(time);
+        self
+    }
+
+    /// Start a recording whose summary is built by `summarizer`.
+    #[must_use]
+    pub fn with_summarizer(summarizer: Summarizer) -> Self {
+        Recorder {
+            summarizer,
+            buses: Vec::new(),
+            last_bus: 0,
+            timed: None,
+            last_t: 0,
+            untimed: 0,
+            first: None,
+            last: At::default(),
+        }
+    }
+
+    /// Add one log entry read at `position` (docs/formats.md#positions): a
+    /// frame is read by `decoder` first.
+    pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
+        match event {
+            LogEvent::Frame(frame) => {
+                let decoded = decoder.decode(position, frame);
+                self.add_frame(position, frame, &decoded);
+            }
+            LogEvent::Status(status) => self.add_status(status),
+        }
+    }
+
+    /// Count a log entry that is not a frame ([`Summarizer::add_status`]).
+    pub fn add_status(&mut self, status: &BusStatus<'_>) {
+        self.summarizer.add_status(status);
+    }
+
+    #[inline]
+    fn bus(&mut self, iface: Option<Iface<'_>>, timed: bool) -> usize {
+        if let Some(bus) = self.buses.get(self.last_bus) {
+            if bus.name.is(iface) {
+                return self.last_bus;
+            }
+        }
+        let at = match self.buses.iter().position(|b| b.name.is(iface)) {
+            Some(at) => at,
+            None => {
+                self.buses.push(BusRows::new(BusName::of(iface), timed));
+                self.buses.len() - 1
+            }
+        };
+        self.last_bus = at;
+        at
+    }
+
+    /// Add one frame, read at `position`, with what the decoder made of it
+    /// (decoded with signals, for the drives' charts:
+    /// [`DecoderConfig::signals`](crate::decoder::DecoderConfig::signals)).
+    pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
+        let timed = *self.timed.get_or_insert(log.timestamp.is_some());
+        match log.timestamp {
+            Some(ts) => self.last_t = micros(ts),
+            None if timed => self.untimed += 1,
+            None => {}
+        }
+        let at = At {
+            t: self.last_t,
+            line: position,
+        };
+        self.first.get_or_insert(at);
+        self.last = at;
+        let b = self.bus(log.iface, timed);
+        let Recorder {
+            summarizer, buses, ..
+        } = self;
+        let rows = &mut buses[b];
+        rows.row.rate.add(RateBucket { at, frames: 1 });
+        summarizer.add_frame_with(position, log, decoded, |event| {
+            record(rows, timed, at, &event);
+        });
+        if let Some(pdo) = decoded.pdo {
+            if pdo.signals.is_empty() {
+                return;
+            }
+            let node = pdo.map.node();
+            for signal in pdo.signals.iter().flatten() {
+                let entry = signal.entry;
+                if entry.sub_index() != 0 {
+                    continue;
+                }
+                let Some(i) = CHARTED
+                    .iter()
+                    .position(|(index, _)| *index == entry.index())
+                else {
+                    continue;
+                };
+                let value = match signal.value {
+                    Value::Signed(v) => v as f64,
+                    Value::Unsigned(v) => v as f64,
+                    Value::Real32(v) => f64::from(v),
+                    Value::Real64(v) => v,
+                    _ => continue,
+                };
+                if !value.is_finite() {
+                    continue;
+                }
+                let series = rows.node(node, timed).signals[i]
+                    .get_or_insert_with(|| Series::new(0, SIGNAL_BUCKETS, timed));
+                series.add(SignalBucket {
+                    at,
+                    min: (at, value),
+                    max: (at, value),
+                });
+            }
+        }
+    }
+
+    /// Close the recording ([`Summarizer::finish`]): its summary and its
+    /// timeline.
+    #[must_use]
+    pub fn finish(self, decoder: &mut Decoder) -> Recording {
+        let Recorder {
+            summarizer,
+            mut buses,
+            timed,
+            untimed,
+            first,
+            last,
+            last_t,
+            ..
+        } = self;
+        let timed = timed.unwrap_or(false);
+        let end = At {
+            t: last_t,
+            line: last.line,
+        };
+        let summary = summarizer.finish_with(decoder, |event| {
+            let at = match buses.iter().position(|b| &b.name == event.bus) {
+                Some(at) => at,
+                None => {
+                    buses.push(BusRows::new(event.bus.clone(), timed));
+                    buses.len() - 1
+                }
+            };
+            record(&mut buses[at], timed, end, &event);
+        });
+        if summary.timeouts_not_checked() {
+            // The summary says null: nothing is drawn as if checked.
+            for bus in &mut buses {
+                for row in bus.nodes.iter_mut().flatten() {
+                    row.marks[MarkKind::HeartbeatTimeout.index()] =
+                        Series::new(EXACT_MARKS, BUCKETS, timed);
+                }
+            }
+        }
+        Recording {
+            summary,
+            timeline: Timeline {
+                timed,
+                untimed,
+                first,
+                last: first.map(|_| last),
+                buses,
+            },
+            files: Vec::new(),
+        }
+    }
+}
+
+/// Record one fact of the summary on its row.
+fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
+    let at = At {
+        t: event.ts.map_or(now.t, micros),
+        line: event.line,
+    };
+    let row = match event.node {
+        Some(node) => rows.node(node, timed),
+        None => &mut rows.row,
+    };
+    match event.kind {
+        SummaryEventKind::Emcy { code, register } => {
+            let kind = if code.get() == 0 {
+                MarkKind::EmcyReset
+            } else {
+                MarkKind::Emcy
+            };
+            let detail = Detail::Emcy {
+                code: code.get(),
+                register: register.bits(),
+            };
+            row.mark(kind, at, at, detail);
+        }
+        SummaryEventKind::Nmt { state, .. } => {
+            let state = state.state_raw();
+            if row.nmt_state != Some(state) {
+                row.nmt_state = Some(state);
+                RowData::band(&mut row.nmt, at, state);
+            }
+        }
+        SummaryEventKind::BootUp => row.mark(MarkKind::BootUp, at, at, Detail::None),
+        SummaryEventKind::HeartbeatTimeout(gap) => {
+            let us = u64::try_from(gap.gap.as_micros()).unwrap_or(u64::MAX);
+            let end = At {
+                t: at.t.saturating_add(us),
+                line: at.line,
+            };
+            row.mark(MarkKind::HeartbeatTimeout, at, end, Detail::Gap(us));
+        }
+        SummaryEventKind::ToggleError => row.mark(MarkKind::ToggleError, at, at, Detail::None),
+        SummaryEventKind::SdoAbort(_) => row.mark(MarkKind::SdoAbort, at, at, Detail::None),
+        SummaryEventKind::SdoBroken(_) => row.mark(MarkKind::SdoBroken, at, at, Detail::None),
+        SummaryEventKind::SdoTimeout(_) => row.mark(MarkKind::SdoTimeout, at, at, Detail::None),
+        SummaryEventKind::Cia402 { transition, fault } => {
+            RowData::band(&mut row.cia402, at, transition.to as u8);
+            if fault.is_some() {
+                row.mark(MarkKind::Cia402Fault, at, at, Detail::None);
+            }
+        }
+        SummaryEventKind::ErrorFrame {
+            bus_off,
+            error_passive,
+        } => {
+            row.mark(MarkKind::ErrorFrame, at, at, Detail::None);
+            if bus_off {
+                row.mark(MarkKind::BusOff, at, at, Detail::None);
+            }
+            if error_passive {
+                row.mark(MarkKind::ErrorPassive, at, at, Detail::None);
+            }
+        }
+    }
+}
+
+/// The CiA 402 state of a band's index.
+pub(crate) fn cia402_state(index: u8) -> Option<Cia402State> {
+    Cia402State::ALL.get(usize::from(index)).copied()
+}
+
+/// A recording's timeline: per bus and device, the marks, state bands,
+/// signals and frame rate the page draws (docs/report.md#timeline), in
+/// bounded memory.
+#[derive(Debug, Clone)]
+pub struct Timeline {
+    timed: bool,
+    untimed: u64,
+    first: Option<At>,
+    last: Option<At>,
+    pub(crate) buses: Vec<BusRows>,
+}
+
+impl Timeline {
+    /// Return whether the recording is drawn by time: its first frame had
+    /// a timestamp (else by line, docs/report.md#no-timestamps).
+    #[must_use]
+    pub fn is_timed(&self) -> bool {
+        self.timed
+    }
+
+    /// Return how many frames had no timestamp in a recording drawn by
+    /// time (each drawn at the time of the frame before it).
+    #[must_use]
+    pub fn untimed_frames(&self) -> u64 {
+        self.untimed
+    }
+
+    pub(crate) fn span(&self) -> Option<(At, At)> {
+        Some((self.first?, self.last?))
+    }
+
+    pub(crate) fn rows(&self, bus: &BusName) -> Option<&BusRows> {
+        self.buses.iter().find(|b| &b.name == bus)
+    }
+
+    fn row(&self, bus: &BusName, node: Option<NodeId>) -> Option<&RowData> {
+        let rows = self.rows(bus)?;
+        match node {
+            Some(node) => rows.node_row(node),
+            None => Some(&rows.row),
+        }
+    }
+
+    /// Return how many events of `kind` the row of `node` on `bus` (the
+    /// bus's own row for `None`) holds: what its marks' `data-count`s add
+    /// up to (docs/report.md#marks).
+    #[must_use]
+    pub fn mark_count(&self, bus: &BusName, node: Option<NodeId>, kind: MarkKind) -> u64 {
+        self.row(bus, node).map_or(0, |row| {
+            row.marks[kind.index()]
+                .items()
+                .iter()
+                .map(|m| m.count)
+                .sum()
+        })
+    }
+}
+
+/// One recording: its summary and its timeline, and with several files
+/// read as one (`--joined`), where each file's lines lie.
+#[derive(Debug, Clone)]
+pub struct Recording {
+    /// The post-mortem, as `decode --summary` writes it.
+    pub summary: Summary,
+    /// What the page draws of it.
+    pub timeline: Timeline,
+    /// The files of a recording read from several (docs/output.md#several-files):
+    /// their records follow the summary's in the embedded JSON.
+    pub files: Vec<FileSpan>,
+}

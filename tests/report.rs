@@ -1,0 +1,358 @@
+//! `motionwire report`: the page's contract (docs/report.md#contract) read
+//! from the HTML the program writes — rows, marks and bands agree with the
+//! summary, the embedded records are exactly `decode --summary --json`'s —
+//! and the sample's faults where the summary puts them.
+
+mod report_common;
+
+use std::io::Write;
+
+use report_common::{check_counts, parse, repo, run, scratch, summary_records, Page};
+use serde_json::Value;
+
+const SAMPLE_ARGS: [&str; 4] = ["--profile", "3=akd,5=baumer", "--heartbeat-ms", "300"];
+
+fn sample_page(dir: &std::path::Path) -> Page {
+    let out = dir.join("sample.html");
+    let sample = repo("samples/machine.log");
+    let mut args = vec!["report"];
+    args.extend_from_slice(&SAMPLE_ARGS);
+    args.extend([sample.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let run = run(&args);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    parse(&std::fs::read_to_string(out).unwrap())
+}
+
+fn sample_records() -> Value {
+    let sample = repo("samples/machine.log");
+    let mut args = SAMPLE_ARGS.to_vec();
+    args.push(sample.to_str().unwrap());
+    summary_records(&args)
+}
+
+#[test]
+fn the_embedded_records_are_decode_summary_json() {
+    let page = sample_page(&scratch("records"));
+    assert_eq!(page.summary(), sample_records());
+}
+
+#[test]
+fn rows_marks_and_bands_agree_with_the_summary() {
+    let page = sample_page(&scratch("counts"));
+    check_counts(&page, &sample_records());
+    assert_eq!(
+        page.rows
+            .iter()
+            .filter(|r| r.row.get("data-row") == Some("bus"))
+            .count(),
+        1
+    );
+}
+
+#[test]
+fn the_samples_faults_are_where_the_summary_says() {
+    let page = sample_page(&scratch("faults"));
+    let records = sample_records();
+    let node = |id: u64| {
+        records
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["type"] == "node" && r["node"] == id)
+            .unwrap()
+            .clone()
+    };
+    let body = page.body();
+    let start: u64 = body.num("data-start");
+    let span: u64 = body.num("data-span");
+    assert_eq!(body.get("data-axis"), Some("time"));
+    // The x of a time in seconds, as the page draws it by default.
+    let x_of = |ts: &Value| {
+        let us = (ts.as_f64().unwrap() * 1e6).round() as u64;
+        170.0 + (us - start) as f64 / span as f64 * 1000.0
+    };
+
+    // Node 3: three faults, each with its EMCY before it.
+    let three = page.node("can0", 3);
+    assert_eq!(three.lines("cia402_fault"), [620, 1291, 3239]);
+    let emcys = three.lines("emcy");
+    for (fault, emcy) in [(620, 613), (1291, 1284), (3239, 3231)] {
+        assert!(
+            emcys.contains(&emcy),
+            "EMCY at line {emcy} before the fault at {fault}"
+        );
+        let f = &node(3)["cia402"]["transitions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["line"] == fault)
+            .unwrap()
+            .clone();
+        let mark = three
+            .kind("cia402_fault")
+            .into_iter()
+            .find(|e| e.num("data-line") == fault)
+            .unwrap();
+        let x: f64 = mark.get("x").unwrap().parse().unwrap();
+        assert!((x - x_of(&f["ts"])).abs() < 0.01, "fault at {fault}: x {x}");
+        assert!(page
+            .html
+            .contains(&format!("went operation_enabled → fault at line {fault}")));
+    }
+    // Its bands: the CiA 402 states in turn, each where it begins.
+    let transitions: Vec<u64> = node(3)["cia402"]["transitions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(three.lines("cia402_state"), transitions);
+    assert!(three
+        .kind("cia402_state")
+        .iter()
+        .any(|b| b.get("data-state") == Some("fault") && b.num("data-line") == 620));
+
+    // The SDO abort at line 95.
+    assert_eq!(three.lines("sdo_abort"), [95, 3518]);
+    assert!(page
+        .html
+        .contains("line 95: server aborted 1A00h.00 (TPDO mapping parameter)"));
+
+    // Node 5: the heartbeat timeout after line 1559, drawn as a span of
+    // its gap, and its two boot-ups.
+    let five = page.node("can0", 5);
+    let gaps = five.kind("heartbeat_timeout");
+    assert_eq!(gaps.len(), 1);
+    assert_eq!(gaps[0].num("data-line"), 1559);
+    let width: f64 = gaps[0].get("width").unwrap().parse().unwrap();
+    let gap_ms = node(5)["heartbeat"]["timeouts"][0]["gap_ms"]
+        .as_f64()
+        .unwrap();
+    assert!((width - gap_ms * 1000.0 / span as f64 * 1000.0).abs() < 0.01);
+    assert_eq!(five.lines("boot_up"), [15, 2681]);
+    assert!(page
+        .html
+        .contains("restarted 1 time (boot-ups at lines 15, 2681)"));
+    assert!(page
+        .html
+        .contains("no heartbeat for 3386.93 ms after line 1559"));
+
+    // Node 10: the guarding toggle error.
+    let ten = page.node("can0", 10);
+    assert_eq!(ten.lines("toggle_error"), [1104]);
+    assert!(page.html.contains("wrong toggle at line 1104"));
+
+    // Faults come first: before the timeline.
+    let wrong = page.html.find("id=\"wrong\"").unwrap();
+    let timeline = page.html.find("id=\"timeline\"").unwrap();
+    assert!(wrong < timeline);
+}
+
+#[test]
+fn the_page_is_self_contained() {
+    let page = sample_page(&scratch("contained"));
+    for e in &page.elements {
+        for (name, value) in &e.attrs {
+            if name == "href" || name == "src" {
+                assert!(value.starts_with('#'), "{name}={value} on {}", e.tag);
+            }
+        }
+    }
+    assert!(!page.html.contains("http://") || !page.html.contains("src=\"http"));
+    assert!(!page.html.contains("<link"));
+    assert!(!page.html.contains("https://"));
+    assert!(!page.html.contains("@import"));
+}
+
+/// A candump log of an EMCY storm from node 7: 3000 EMCYs, 300 of them
+/// resets, and a heartbeat.
+fn storm_log(path: &std::path::Path) {
+    let mut f = std::fs::File::create(path).unwrap();
+    writeln!(f, "(1700000000.000000) can0 707#05").unwrap();
+    for i in 0..3000u64 {
+        let us = 1_000 + i * 997;
+        let data = if i % 10 == 9 {
+            "0000000000000000"
+        } else {
+            "1081110000000000"
+        };
+        writeln!(f, "(1700000000.{us:06}) can0 087#{data}").unwrap();
+    }
+}
+
+#[test]
+fn a_storm_clusters_and_every_emcy_is_counted() {
+    let dir = scratch("storm");
+    let log = dir.join("storm.log");
+    storm_log(&log);
+    let out = dir.join("storm.html");
+    let r = run(&["report", log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(r.status.success());
+    let page = parse(&std::fs::read_to_string(&out).unwrap());
+    let records = summary_records(&[log.to_str().unwrap()]);
+    check_counts(&page, &records);
+    assert_eq!(page.summary(), records);
+    let row = page.node("can0", 7);
+    let clusters = row.kind("emcy");
+    assert_eq!(row.count("emcy"), 2700);
+    assert!(
+        clusters.len() < 1000,
+        "{} marks for 2700 EMCYs",
+        clusters.len()
+    );
+    assert!(clusters.iter().any(|c| c.num("data-count") > 1));
+    // A cluster's line is its first EMCY's.
+    assert_eq!(clusters[0].num("data-line"), 2);
+    // 300 resets: each its own mark.
+    assert_eq!(row.kind("emcy_reset").len(), 300);
+}
+
+#[test]
+fn a_log_without_timestamps_is_drawn_by_line() {
+    let dir = scratch("untimed");
+    let log = dir.join("screen.log");
+    std::fs::write(
+        &log,
+        "  can0  703   [1]  00\n  can0  083   [8]  10 81 11 00 00 00 00 00\n  can0  703   [1]  05\n  can0  703   [1]  05\n",
+    )
+    .unwrap();
+    let out = dir.join("screen.html");
+    let r = run(&[
+        "report",
+        "--heartbeat-ms",
+        "100",
+        log.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let stderr = String::from_utf8(r.stderr).unwrap();
+    assert!(
+        stderr.contains("heartbeat timeouts were not checked"),
+        "{stderr}"
+    );
+    let page = parse(&std::fs::read_to_string(&out).unwrap());
+    assert_eq!(page.body().get("data-axis"), Some("line"));
+    assert!(page.html.contains("The log has no timestamps:"));
+    assert!(!page.html.contains("seconds</text>"));
+    let row = page.node("can0", 3);
+    assert_eq!(row.lines("boot_up"), [1]);
+    assert_eq!(row.lines("emcy"), [2]);
+    assert!(row.kind("heartbeat_timeout").is_empty());
+    assert!(row.kind("frame_rate").is_empty());
+    check_counts(
+        &page,
+        &summary_records(&["--heartbeat-ms", "100", log.to_str().unwrap()]),
+    );
+}
+
+#[test]
+fn several_logs_and_joined_logs_embed_the_same_records_as_decode() {
+    let dir = scratch("several");
+    let sample = repo("samples/machine.log");
+    let pcap = repo("tests/fixtures/pcap/multi.pcapng");
+    for joined in [false, true] {
+        let out = dir.join(format!("several-{joined}.html"));
+        let mut args = vec!["report"];
+        if joined {
+            args.push("--joined");
+        }
+        args.extend([
+            sample.to_str().unwrap(),
+            pcap.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let r = run(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let page = parse(&std::fs::read_to_string(&out).unwrap());
+        let mut decode = Vec::new();
+        if joined {
+            decode.push("--joined");
+        }
+        decode.extend([sample.to_str().unwrap(), pcap.to_str().unwrap()]);
+        let records = summary_records(&decode);
+        assert_eq!(page.summary(), records);
+        check_counts(&page, &records);
+    }
+}
+
+#[test]
+fn damaged_and_hostile_logs_give_the_errors_of_decode() {
+    let dir = scratch("hostile");
+    let garbage = dir.join("garbage.bin");
+    std::fs::write(&garbage, [0xD4u8, 0xC3, 0xB2, 0xA1, 2, 0, 4, 0, 0xFF, 0xFF]).unwrap();
+    let malformed = dir.join("malformed.log");
+    std::fs::write(
+        &malformed,
+        "(1700000000.000000) can0 703#05\n(1700000000.1) can0 7Z3#05\nnot a frame at all\n(1700000000.200000) can0 703#05\n",
+    )
+    .unwrap();
+    let missing = dir.join("missing.log");
+    for log in [&garbage, &malformed, &missing] {
+        let out = dir.join("page.html");
+        let _ = std::fs::remove_file(&out);
+        let report = run(&[
+            "report",
+            "--heartbeat-ms",
+            "300",
+            log.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let decode = run(&[
+            "decode",
+            "--summary",
+            "--heartbeat-ms",
+            "300",
+            log.to_str().unwrap(),
+        ]);
+        assert_eq!(
+            report.status.code(),
+            decode.status.code(),
+            "{}",
+            log.display()
+        );
+        assert_eq!(
+            String::from_utf8_lossy(&report.stderr),
+            String::from_utf8_lossy(&decode.stderr),
+            "{}",
+            log.display()
+        );
+        // A page only when the log could be read.
+        assert_eq!(
+            out.exists(),
+            report.status.code() != Some(2),
+            "{}",
+            log.display()
+        );
+    }
+    let page = parse(&std::fs::read_to_string(dir.join("page.html")).unwrap_or_default());
+    let _ = page;
+    let out = dir.join("page.html");
+    run(&[
+        "report",
+        malformed.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("2 malformed lines skipped"));
+}
+
+#[test]
+fn an_output_folder_that_is_not_there_is_said_first() {
+    let r = run(&[
+        "report",
+        repo("samples/machine.log").to_str().unwrap(),
+        "-o",
+        "/nonexistent-folder-of-motionwire/page.html",
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("does not exist"));
+}

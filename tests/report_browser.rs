@@ -1,0 +1,238 @@
+//! `motionwire report` in a real browser: Debian's `chromium`, headless.
+//! The sample's page loads with no console message, its script runs to the
+//! end, the DOM after load has one row per device and the marks and bands
+//! of docs/report.md#contract in the summary's counts, and a screenshot is
+//! not blank.
+//!
+//! `.ci/run` installs chromium and sets `MOTIONWIRE_BROWSER=required`: then a
+//! missing browser fails these tests. Without it (a developer's machine
+//! without chromium) they say they were skipped and why, on standard error.
+
+mod report_common;
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use report_common::{check_counts, parse, repo, run, scratch, summary_records};
+
+/// The browser, or `None` (said) when it is not there and not required.
+fn chromium() -> Option<PathBuf> {
+    let path = std::env::var_os("CHROMIUM")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("/usr/bin/chromium"));
+    if path.exists() {
+        return Some(path);
+    }
+    let required = std::env::var("MOTIONWIRE_BROWSER").is_ok_and(|v| v == "required");
+    assert!(
+        !required,
+        "MOTIONWIRE_BROWSER=required but there is no browser at {}",
+        path.display()
+    );
+    eprintln!(
+        "SKIPPED: no chromium at {} (apt-get install chromium; .ci/run does)",
+        path.display()
+    );
+    None
+}
+
+/// Run headless chromium on a page with `args`; its standard output and
+/// error.
+fn browse(browser: &Path, page: &Path, args: &[&str]) -> (String, String) {
+    let profile = scratch(&format!("profile-{}", args.len()));
+    let out = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--enable-logging=stderr",
+            "--v=0",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(args)
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .expect("chromium runs");
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn sample_page(dir: &Path) -> PathBuf {
+    let out = dir.join("sample.html");
+    let r = run(&[
+        "report",
+        "--profile",
+        "3=akd,5=baumer",
+        "--heartbeat-ms",
+        "300",
+        repo("samples/machine.log").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success());
+    out
+}
+
+#[test]
+fn the_dom_after_load_agrees_with_the_summary() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("browser-dom");
+    let page = sample_page(&dir);
+    let (dom, log) = browse(&browser, &page, &["--dump-dom"]);
+    let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
+    assert!(console.is_empty(), "console messages: {console:#?}");
+    let dom = parse(&dom);
+    let html = dom.elements.iter().find(|e| e.tag == "html").unwrap();
+    assert_eq!(
+        html.get("data-script"),
+        Some("ready"),
+        "the script ran to its end"
+    );
+    assert!(html.get("class").unwrap_or("").contains("scripted"));
+    let records = summary_records(&[
+        "--profile",
+        "3=akd,5=baumer",
+        "--heartbeat-ms",
+        "300",
+        repo("samples/machine.log").to_str().unwrap(),
+    ]);
+    check_counts(&dom, &records);
+    assert_eq!(dom.summary(), records);
+    // The script drew the axis again: ticks are there after load.
+    assert!(
+        dom.elements
+            .iter()
+            .filter(|e| e.get("class") == Some("tick"))
+            .count()
+            > 4
+    );
+}
+
+/// Decode a PNG (8-bit RGB or RGBA, not interlaced) into its pixels.
+fn png_pixels(bytes: &[u8]) -> (u32, u32, usize, Vec<u8>) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let (mut width, mut height, mut channels) = (0, 0, 0);
+    let mut idat = Vec::new();
+    let mut at = 8;
+    while at + 8 <= bytes.len() {
+        let len = u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        let kind = &bytes[at + 4..at + 8];
+        let data = &bytes[at + 8..at + 8 + len];
+        match kind {
+            b"IHDR" => {
+                width = u32::from_be_bytes(data[0..4].try_into().unwrap());
+                height = u32::from_be_bytes(data[4..8].try_into().unwrap());
+                assert_eq!(data[8], 8, "8-bit");
+                channels = match data[9] {
+                    2 => 3,
+                    6 => 4,
+                    other => panic!("colour type {other}"),
+                };
+                assert_eq!(data[12], 0, "not interlaced");
+            }
+            b"IDAT" => idat.extend_from_slice(data),
+            _ => {}
+        }
+        at += 12 + len;
+    }
+    let mut raw = Vec::new();
+    flate2::read::ZlibDecoder::new(&idat[..])
+        .read_to_end(&mut raw)
+        .unwrap();
+    let stride = width as usize * channels;
+    let mut pixels = vec![0u8; stride * height as usize];
+    for y in 0..height as usize {
+        let filter = raw[y * (stride + 1)];
+        let line = &raw[y * (stride + 1) + 1..(y + 1) * (stride + 1)];
+        for x in 0..stride {
+            let a = if x >= channels {
+                pixels[y * stride + x - channels]
+            } else {
+                0
+            };
+            let b = if y > 0 {
+                pixels[(y - 1) * stride + x]
+            } else {
+                0
+            };
+            let c = if x >= channels && y > 0 {
+                pixels[(y - 1) * stride + x - channels]
+            } else {
+                0
+            };
+            let value = match filter {
+                0 => line[x],
+                1 => line[x].wrapping_add(a),
+                2 => line[x].wrapping_add(b),
+                3 => line[x].wrapping_add(((u16::from(a) + u16::from(b)) / 2) as u8),
+                4 => {
+                    let p = i16::from(a) + i16::from(b) - i16::from(c);
+                    let (pa, pb, pc) = (
+                        (p - i16::from(a)).abs(),
+                        (p - i16::from(b)).abs(),
+                        (p - i16::from(c)).abs(),
+                    );
+                    let pred = if pa <= pb && pa <= pc {
+                        a
+                    } else if pb <= pc {
+                        b
+                    } else {
+                        c
+                    };
+                    line[x].wrapping_add(pred)
+                }
+                other => panic!("filter {other}"),
+            };
+            pixels[y * stride + x] = value;
+        }
+    }
+    (width, height, channels, pixels)
+}
+
+#[test]
+fn a_screenshot_is_not_blank() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("browser-shot");
+    let page = sample_page(&dir);
+    let shot = dir.join("shot.png");
+    let (_, log) = browse(
+        &browser,
+        &page,
+        &[
+            "--hide-scrollbars",
+            "--window-size=1280,1400",
+            &format!("--screenshot={}", shot.display()),
+        ],
+    );
+    let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
+    assert!(console.is_empty(), "console messages: {console:#?}");
+    let (width, height, channels, pixels) = png_pixels(&std::fs::read(&shot).unwrap());
+    assert_eq!((width, height), (1280, 1400));
+    let total = (width * height) as usize;
+    let white = pixels
+        .chunks(channels)
+        .filter(|p| p[0] > 245 && p[1] > 245 && p[2] > 245)
+        .count();
+    // The timeline's bands alone cover far more than 3 % of the window.
+    let drawn = total - white;
+    assert!(
+        drawn * 100 > total * 3,
+        "only {drawn} of {total} pixels drawn"
+    );
+    // And in more than a few colours: bands, marks, text.
+    let mut colours: Vec<[u8; 3]> = pixels
+        .chunks(channels)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 20, "{} colours", colours.len());
+}
