@@ -47,10 +47,10 @@ pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{
-    CanOpenMessage, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer,
-    HeartbeatEvent, MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
+    Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
+    MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusName, Buses, Decoded, Decoder};
+use crate::decoder::{BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
@@ -334,6 +334,92 @@ impl NodeState {
     }
 }
 
+impl NodeState {
+    /// An EMCY of the node, and what the bus's EMCY storage made of it.
+    #[inline]
+    fn emcy(&mut self, position: u64, ts: Option<Timestamp>, emcy: Emcy, update: SlotUpdate) {
+        self.emcy += 1;
+        self.last_register = Some(emcy.register);
+        let seen = EmcySeen {
+            line: position,
+            ts,
+            code: emcy.code,
+        };
+        if emcy.is_reset() {
+            self.resets += 1;
+        } else {
+            self.last_error = Some(seen);
+            if self.first_error.is_none() {
+                self.first_error = Some(seen);
+            }
+        }
+        match update {
+            SlotUpdate::RootCause => self.active_error = Some(seen),
+            SlotUpdate::Reset { .. } => self.active_error = None,
+            SlotUpdate::FollowUp { .. } => {}
+        }
+    }
+
+    /// The answer to a guard request: counted as an answer, not as a
+    /// heartbeat.
+    #[cold]
+    fn guard_answer(&mut self, position: u64, now: Option<Duration>, byte: NmtStateByte) {
+        self.guard_request_pending = false;
+        self.guarding_summary.answers += 1;
+        self.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
+        self.frames.guard_answers += 1;
+        if let Some(answer) = byte.guard_answer() {
+            let events = self
+                .guarding
+                .on_answer(now.unwrap_or(Duration::ZERO), answer);
+            if events
+                .into_iter()
+                .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+            {
+                self.guarding_summary.toggle_errors.push(position);
+            }
+        }
+    }
+
+    /// A heartbeat (or boot-up) of the node, fed to the bus's consumer.
+    #[inline]
+    fn heartbeat(
+        &mut self,
+        position: u64,
+        now: Option<Duration>,
+        byte: NmtStateByte,
+        node: NodeId,
+        consumer: Option<&mut HeartbeatConsumer>,
+    ) {
+        self.heartbeats += 1;
+        self.last_state = Some(byte);
+        if byte.state_raw() == 0 {
+            self.boot_ups.push(position);
+            self.guarding.on_boot_up();
+        }
+        if let (Some(consumer), Some(now), Some(nmt)) = (consumer, now, byte.state()) {
+            for event in consumer.on_heartbeat(now, node, nmt) {
+                match event {
+                    HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                        self.open_gap = Some((self.last_heartbeat_line, last_heartbeat));
+                    }
+                    HeartbeatEvent::Recovered { at, .. }
+                    | HeartbeatEvent::RemoteReset { at, .. } => {
+                        if let Some((after_line, last)) = self.open_gap.take() {
+                            self.timeouts.push(HeartbeatGap {
+                                after_line,
+                                gap: at.saturating_sub(last),
+                            });
+                        }
+                    }
+                    HeartbeatEvent::CapacityExceeded { .. } => {}
+                }
+            }
+        }
+        self.last_heartbeat_line = position;
+    }
+}
+
 /// What the summarizer keeps of one interface.
 #[derive(Debug)]
 struct BusState {
@@ -367,6 +453,20 @@ impl BusState {
             status_events: 0,
             first_ts: None,
             last_ts: None,
+        }
+    }
+
+    /// An error frame: bus-off and error-passive are kept with their lines.
+    #[cold]
+    fn error_frame(&mut self, position: u64, frame: &crate::can::CanFrame) {
+        self.error_frames += 1;
+        if let Ok(error) = ErrorFrame::from_frame(frame) {
+            if error.is_bus_off() {
+                self.bus_off.push(position);
+            }
+            if error.is_error_passive() {
+                self.error_passive.push(position);
+            }
         }
     }
 
@@ -439,13 +539,37 @@ impl Summarizer {
     /// Add one log entry read at `position` (`line` in
     /// docs/formats.md#positions): a frame is read by `decoder` first; a bus
     /// event is counted.
+    ///
+    /// The same summary as [`Decoder::decode`] then
+    /// [`add_frame`](Self::add_frame), for less work: only the frames that
+    /// teach the decoder something (SDO and PDO frames) go through it.
+    #[inline]
     pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
         match event {
-            LogEvent::Frame(frame) => {
-                let decoded = decoder.decode(position, frame);
-                self.add_frame(position, frame, &decoded);
-            }
+            LogEvent::Frame(frame) => self.add_frame_from(position, frame, decoder),
             LogEvent::Status(status) => self.add_status(status),
+        }
+    }
+
+    /// Add one frame, read at `position`, reading it with `decoder` only
+    /// where the decoder keeps state (see [`add`](Self::add)).
+    #[inline]
+    pub fn add_frame_from(&mut self, position: u64, log: &LogFrame<'_>, decoder: &mut Decoder) {
+        let (kind, node) = MessageKind::classify(&log.frame);
+        if matches!(kind, MessageKind::Sdo | MessageKind::Pdo) {
+            let decoded = decoder.decode(position, log);
+            self.add_classified(
+                position,
+                log,
+                kind,
+                decoded.node,
+                decoded.sdo.as_ref(),
+                decoded.cia402,
+            );
+        } else {
+            // The decoder learns nothing from these (`Decoder::decode`
+            // keeps state for SDO and PDO frames only).
+            self.add_classified(position, log, kind, node, None, None);
         }
     }
 
@@ -458,7 +582,30 @@ impl Summarizer {
     }
 
     /// Add one frame, read at `position`, with what the decoder made of it.
+    #[inline]
     pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
+        self.add_classified(
+            position,
+            log,
+            decoded.kind,
+            decoded.node,
+            decoded.sdo.as_ref(),
+            decoded.cia402,
+        );
+    }
+
+    /// Add one frame of `kind` and `node`, with its SDO step and CiA 402
+    /// reading, where the decoder gave one.
+    #[inline(always)]
+    fn add_classified(
+        &mut self,
+        position: u64,
+        log: &LogFrame<'_>,
+        kind: MessageKind,
+        node: Option<NodeId>,
+        sdo: Option<&SdoStep<'_>>,
+        cia402: Option<Cia402Reading>,
+    ) {
         let now = log.timestamp.map(Timestamp::as_duration);
         match now {
             Some(_) => self.last_time = now,
@@ -467,20 +614,11 @@ impl Summarizer {
         let bus = self.bus(log.iface);
         bus.frames += 1;
         bus.saw(log.timestamp);
-        let kind = decoded.kind;
         if kind == MessageKind::ErrorFrame {
-            bus.error_frames += 1;
-            if let Ok(error) = ErrorFrame::from_frame(&decoded.log.frame) {
-                if error.is_bus_off() {
-                    bus.bus_off.push(position);
-                }
-                if error.is_error_passive() {
-                    bus.error_passive.push(position);
-                }
-            }
+            bus.error_frame(position, &log.frame);
             return;
         }
-        let Some(node) = decoded.node else { return };
+        let Some(node) = node else { return };
         let BusState {
             nodes,
             storage,
@@ -489,10 +627,10 @@ impl Summarizer {
         } = bus;
         let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
         state.frames.by_kind[kind.index()] += 1;
-        if let Some(step) = &decoded.sdo {
+        if let Some(step) = sdo {
             state.sdo.add(step, position);
         }
-        if let Some(reading) = decoded.cia402 {
+        if let Some(reading) = cia402 {
             // A PDO's drive is the node that owns it, which the log may
             // have moved to another node's COB-ID.
             let drive =
@@ -503,90 +641,36 @@ impl Summarizer {
                 .observe(position, log.timestamp, reading, last_error);
             return;
         }
-        if !matches!(
-            kind,
-            MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
-        ) {
-            return;
-        }
-        let Ok(message) = &decoded.message() else {
-            return;
-        };
-        match *message {
-            CanOpenMessage::Emcy { emcy, .. } => {
-                state.emcy += 1;
-                state.last_register = Some(emcy.register);
-                let seen = EmcySeen {
-                    line: position,
-                    ts: log.timestamp,
-                    code: emcy.code,
+        // What `CanOpenMessage::decode` reads of the three kinds the
+        // summary follows, read here without the rest of the message: an
+        // EMCY of at least 8 bytes (not a remote request), a heartbeat's
+        // first byte, a guard request.
+        let frame = &log.frame;
+        match kind {
+            MessageKind::Emcy => {
+                if frame.is_rtr() {
+                    return;
+                }
+                let Ok(emcy) = Emcy::parse(frame.data()) else {
+                    return;
                 };
-                if emcy.is_reset() {
-                    state.resets += 1;
-                } else {
-                    state.last_error = Some(seen);
-                    if state.first_error.is_none() {
-                        state.first_error = Some(seen);
-                    }
-                }
-                match storage.receive(node, emcy) {
-                    SlotUpdate::RootCause => state.active_error = Some(seen),
-                    SlotUpdate::Reset { .. } => state.active_error = None,
-                    SlotUpdate::FollowUp { .. } => {}
-                }
+                state.emcy(position, log.timestamp, emcy, storage.receive(node, emcy));
             }
-            CanOpenMessage::GuardRequest { .. } => {
+            MessageKind::GuardRequest => {
                 state.guard_request_pending = true;
                 // A missing answer is not part of the summary's contract.
                 let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
             }
-            CanOpenMessage::Heartbeat { byte, .. } if state.guard_request_pending => {
-                state.guard_request_pending = false;
-                state.guarding_summary.answers += 1;
-                // Counted as an answer, not as a heartbeat.
-                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
-                state.frames.guard_answers += 1;
-                if let Some(answer) = byte.guard_answer() {
-                    let events = state
-                        .guarding
-                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
-                    if events
-                        .into_iter()
-                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
-                    {
-                        state.guarding_summary.toggle_errors.push(position);
-                    }
+            MessageKind::Heartbeat => {
+                let Some(&byte) = frame.data().first() else {
+                    return;
+                };
+                let byte = NmtStateByte::new(byte);
+                if state.guard_request_pending {
+                    state.guard_answer(position, now, byte);
+                } else {
+                    state.heartbeat(position, now, byte, node, consumer.as_mut());
                 }
-            }
-            CanOpenMessage::Heartbeat { byte, .. } => {
-                state.heartbeats += 1;
-                state.last_state = Some(byte);
-                if byte.state_raw() == 0 {
-                    state.boot_ups.push(position);
-                    state.guarding.on_boot_up();
-                }
-                if let (Some(consumer), Some(now), Some(nmt)) =
-                    (consumer.as_mut(), now, byte.state())
-                {
-                    for event in consumer.on_heartbeat(now, node, nmt) {
-                        match event {
-                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
-                            }
-                            HeartbeatEvent::Recovered { at, .. }
-                            | HeartbeatEvent::RemoteReset { at, .. } => {
-                                if let Some((after_line, last)) = state.open_gap.take() {
-                                    state.timeouts.push(HeartbeatGap {
-                                        after_line,
-                                        gap: at.saturating_sub(last),
-                                    });
-                                }
-                            }
-                            HeartbeatEvent::CapacityExceeded { .. } => {}
-                        }
-                    }
-                }
-                state.last_heartbeat_line = position;
             }
             _ => {}
         }

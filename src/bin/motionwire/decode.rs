@@ -170,12 +170,12 @@ impl<'a> Sink<'a> {
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
         self.frames += 1;
-        // Every frame teaches the decoder, shown or not.
-        let decoded = self.decoder.decode(line, frame);
         if let Some(summary) = self.summary.as_mut() {
-            summary.add_frame(line, frame, &decoded);
+            summary.add_frame_from(line, frame, &mut self.decoder);
             return Ok(());
         }
+        // Every frame teaches the decoder, shown or not.
+        let decoded = self.decoder.decode(line, frame);
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
