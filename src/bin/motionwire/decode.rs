@@ -72,6 +72,9 @@ fn stdin_input() -> Input {
     }
 }
 
+/// How many bytes of JSON records are built before they are written out.
+const JSON_BLOCK: usize = 1 << 16;
+
 /// How records are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Output {
@@ -85,6 +88,9 @@ enum Output {
 /// docs/output.md#filters).
 struct Sink<'a> {
     out: BufWriter<StdoutLock<'static>>,
+    /// JSON records built and not yet written to `out`
+    /// (`Decoded::append_json`), written in blocks of [`JSON_BLOCK`].
+    json: Vec<u8>,
     err: BufWriter<StderrLock<'static>>,
     summary: Option<Summarizer>,
     output: Output,
@@ -142,6 +148,7 @@ impl<'a> Sink<'a> {
         let summary = args.summary.then(|| new_summarizer(heartbeat));
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
+            json: Vec::with_capacity(JSON_BLOCK + 4096),
             err: BufWriter::new(io::stderr().lock()),
             summary,
             output: if args.csv {
@@ -192,10 +199,12 @@ impl<'a> Sink<'a> {
             }
         }
         if self.output == Output::Json {
-            return match &self.file {
-                Some(file) => decoded.write_json_in(&mut self.out, file),
-                None => decoded.write_json(&mut self.out),
-            };
+            decoded.append_json(&mut self.json, self.file.as_deref());
+            if self.json.len() >= JSON_BLOCK {
+                self.out.write_all(&self.json)?;
+                self.json.clear();
+            }
+            return Ok(());
         }
         let record = Record {
             line,
@@ -232,6 +241,15 @@ impl<'a> Sink<'a> {
         writeln!(self.err, "{name}:{line}: {why}")
     }
 
+    /// Write out the JSON records built so far.
+    fn write_json(&mut self) -> io::Result<()> {
+        if !self.json.is_empty() {
+            self.out.write_all(&self.json)?;
+            self.json.clear();
+        }
+        Ok(())
+    }
+
     /// Erase the progress line, so that the next message starts on a
     /// clean line.
     fn clear_progress(&mut self) -> io::Result<()> {
@@ -243,6 +261,7 @@ impl<'a> Sink<'a> {
     }
 
     fn flush(&mut self) -> io::Result<()> {
+        self.write_json()?;
         self.out.flush()?;
         self.err.flush()
     }
@@ -337,6 +356,7 @@ pub fn run(args: &DecodeArgs) -> Result<ExitCode, Failure> {
         }
     }
 
+    sink.write_json()?;
     let Sink {
         mut out,
         mut err,
