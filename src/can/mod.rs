@@ -47,5 +47,7 @@ pub use frame::{
     FD_MAX_LEN,
 };
 pub use id::CanId;
+#[cfg(feature = "std")]
+pub(crate) use log::same_name;
 pub use log::{BusStatus, Iface, LogEvent, LogFrame};
 pub use timestamp::{Seconds, Timestamp, SECONDS_LEN};

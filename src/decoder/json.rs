@@ -1,117 +1,116 @@
-//! A small streaming JSON writer for the decoder's records
-//! (docs/output.md#json).
+//! A small JSON writer for the decoder's records (docs/output.md#json).
 //!
-//! Records are written straight into the buffered output, key by key, so that
-//! decoding a line allocates nothing (docs/output.md#json). Keys and the
-//! library's constant texts (kind, class and flag names, descriptions) are
-//! written as they are — a test checks that none of them needs escaping — and
-//! only texts that come from the input (interface names, error messages) are
-//! escaped as RFC 8259 says. Integers are written with `itoa`, floats
-//! through `serde_json`, which prints the shortest representation that
-//! reads back to the same value.
+//! A record is built in a `Vec<u8>` the caller keeps (the program's block of
+//! records, or a buffer kept per thread for `write_json`), key by key, so
+//! that decoding a line allocates nothing (docs/output.md#json) and nothing
+//! here can fail: the buffer is written out whole. Keys and the library's
+//! constant texts (kind, class and flag names, descriptions) are written as
+//! they are — a test checks that none of them needs escaping — and only
+//! texts that come from the input (interface names, error messages) are
+//! escaped as RFC 8259 says. Integers below 10^8, timestamps and hex data
+//! are turned into digits several at a time in one machine word
+//! (`digits8`, `hex16`; a property test checks them against the plain
+//! formatting), larger integers through `itoa`, floats through
+//! `serde_json`, which prints the shortest representation that reads back
+//! to the same value.
 
-use std::io::{self, Write};
-
-/// Writes one JSON object, tracking whether a comma is needed.
-pub(crate) struct Object<'w, W: Write> {
-    out: &'w mut W,
+/// Writes one JSON object into a buffer, tracking whether a comma is
+/// needed. Writing into a `Vec` cannot fail, so nothing here returns a
+/// `Result`: a record is built in the buffer and written out whole.
+pub(crate) struct Object<'w> {
+    out: &'w mut Vec<u8>,
     first: bool,
 }
 
-impl<'w, W: Write> Object<'w, W> {
+impl<'w> Object<'w> {
     /// Open an object (`{`).
-    pub(crate) fn begin(out: &'w mut W) -> io::Result<Self> {
-        out.write_all(b"{")?;
-        Ok(Object { out, first: true })
+    #[inline]
+    pub(crate) fn begin(out: &'w mut Vec<u8>) -> Self {
+        out.push(b'{');
+        Object { out, first: true }
     }
 
-    /// Write the key and return the writer for its value. Keys are the
+    /// Go on with an object whose `{` and first key are written already.
+    #[inline]
+    pub(crate) fn after_first(out: &'w mut Vec<u8>) -> Self {
+        Object { out, first: false }
+    }
+
+    /// Write the key and return the buffer for its value. Keys are the
     /// contract's names (docs/output.md): ASCII letters, digits and `_`, which
     /// need no escaping.
-    pub(crate) fn key(&mut self, key: &'static str) -> io::Result<&mut W> {
+    #[inline(always)]
+    pub(crate) fn key(&mut self, key: &'static str) -> &mut Vec<u8> {
         debug_assert!(key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
-        // `,"key":` in one write.
-        let mut buf = [0u8; 64];
-        let start = usize::from(self.first);
-        self.first = false;
-        buf[0] = b',';
-        buf[1] = b'"';
-        let end = 2 + key.len();
-        match buf.get_mut(2..end) {
-            Some(slot) => slot.copy_from_slice(key.as_bytes()),
-            None => {
-                // Longer than any key of the contract: write it in pieces.
-                self.out.write_all(&buf[start..2])?;
-                self.out.write_all(key.as_bytes())?;
-                self.out.write_all(b"\":")?;
-                return Ok(self.out);
-            }
+        if !self.first {
+            self.out.push(b',');
         }
-        buf[end] = b'"';
-        buf[end + 1] = b':';
-        self.out.write_all(&buf[start..end + 2])?;
-        Ok(self.out)
+        self.first = false;
+        self.out.push(b'"');
+        self.out.extend_from_slice(key.as_bytes());
+        self.out.extend_from_slice(b"\":");
+        self.out
     }
 
     /// Write bytes that hold a comma, a key of the contract and the start
     /// of its value, all escaped already (`,"signals":{`), after at least
     /// one key: one write where [`key`](Self::key) makes several.
     #[inline]
-    pub(crate) fn raw_after_first(&mut self, bytes: &[u8]) -> io::Result<&mut W> {
+    pub(crate) fn raw_after_first(&mut self, bytes: &[u8]) -> &mut Vec<u8> {
         debug_assert!(!self.first && bytes.first() == Some(&b','));
-        self.out.write_all(bytes)?;
-        Ok(self.out)
+        self.out.extend_from_slice(bytes);
+        self.out
     }
 
     /// Write a key with an unsigned integer value.
-    pub(crate) fn uint(&mut self, key: &'static str, value: u64) -> io::Result<()> {
-        let out = self.key(key)?;
-        out.write_all(itoa::Buffer::new().format(value).as_bytes())
+    #[inline]
+    pub(crate) fn uint(&mut self, key: &'static str, value: u64) {
+        let out = self.key(key);
+        uint(out, value);
     }
 
     /// Write a key with a boolean value.
-    pub(crate) fn bool(&mut self, key: &'static str, value: bool) -> io::Result<()> {
-        let out = self.key(key)?;
-        out.write_all(if value { b"true" } else { b"false" })
+    #[inline]
+    pub(crate) fn bool(&mut self, key: &'static str, value: bool) {
+        let out = self.key(key);
+        out.extend_from_slice(if value { b"true" } else { b"false" });
     }
 
     /// Write a key with a string value from the input, escaped.
-    pub(crate) fn str(&mut self, key: &'static str, value: &str) -> io::Result<()> {
-        let out = self.key(key)?;
-        string(out, value)
+    pub(crate) fn str(&mut self, key: &'static str, value: &str) {
+        let out = self.key(key);
+        string(out, value);
     }
 
     /// Write a key with one of the library's constant texts (a name or a
     /// description), which need no escaping (`constant_texts_need_no_escaping`).
-    pub(crate) fn name(&mut self, key: &'static str, value: &'static str) -> io::Result<()> {
+    #[inline]
+    pub(crate) fn name(&mut self, key: &'static str, value: &'static str) {
         debug_assert!(!needs_escaping(value), "{value:?}");
-        let out = self.key(key)?;
-        out.write_all(b"\"")?;
-        out.write_all(value.as_bytes())?;
-        out.write_all(b"\"")
+        let out = self.key(key);
+        out.push(b'"');
+        out.extend_from_slice(value.as_bytes());
+        out.push(b'"');
     }
 
     /// Write a key with a string value given by its `Display`, escaped,
     /// without allocating.
-    pub(crate) fn display(
-        &mut self,
-        key: &'static str,
-        value: &impl std::fmt::Display,
-    ) -> io::Result<()> {
-        let out = self.key(key)?;
-        display_string(out, value)
+    pub(crate) fn display(&mut self, key: &'static str, value: &impl std::fmt::Display) {
+        let out = self.key(key);
+        display_string(out, value);
     }
 
     /// Write a key with a `null` value.
-    pub(crate) fn null(&mut self, key: &'static str) -> io::Result<()> {
-        self.key(key)?.write_all(b"null")
+    #[inline]
+    pub(crate) fn null(&mut self, key: &'static str) {
+        self.key(key).extend_from_slice(b"null");
     }
 
     /// Write a key with a float value; NaN and infinities become `null`
     /// (docs/servo.md#cli-feedback, docs/output.md#pdo).
-    pub(crate) fn float(&mut self, key: &'static str, value: f64) -> io::Result<()> {
-        let out = self.key(key)?;
-        float(out, value)
+    pub(crate) fn float(&mut self, key: &'static str, value: f64) {
+        let out = self.key(key);
+        float(out, value);
     }
 
     /// Write a key with an array of the library's constant names, which
@@ -120,30 +119,35 @@ impl<'w, W: Write> Object<'w, W> {
         &mut self,
         key: &'static str,
         values: impl IntoIterator<Item = &'static str>,
-    ) -> io::Result<()> {
-        let out = self.key(key)?;
-        out.write_all(b"[")?;
+    ) {
+        let out = self.key(key);
+        out.push(b'[');
         for (i, value) in values.into_iter().enumerate() {
             debug_assert!(!needs_escaping(value), "{value:?}");
-            out.write_all(if i > 0 { b",\"" } else { b"\"" })?;
-            out.write_all(value.as_bytes())?;
-            out.write_all(b"\"")?;
+            if i > 0 {
+                out.push(b',');
+            }
+            out.push(b'"');
+            out.extend_from_slice(value.as_bytes());
+            out.push(b'"');
         }
-        out.write_all(b"]")
+        out.push(b']');
     }
 
     /// Close the object (`}`).
-    pub(crate) fn end(self) -> io::Result<()> {
-        self.out.write_all(b"}")
+    #[inline]
+    pub(crate) fn end(self) {
+        self.out.push(b'}');
     }
 }
 
 /// Write a float, or `null` when it is not finite.
-pub(crate) fn float<W: Write>(out: &mut W, value: f64) -> io::Result<()> {
+pub(crate) fn float(out: &mut Vec<u8>, value: f64) {
     if value.is_finite() {
-        serde_json::to_writer(&mut *out, &value).map_err(io::Error::from)
+        // Writing into a `Vec` does not fail.
+        let _ = serde_json::to_writer(&mut *out, &value);
     } else {
-        out.write_all(b"null")
+        out.extend_from_slice(b"null");
     }
 }
 
@@ -154,20 +158,27 @@ pub(crate) fn key(name: &str, comma: bool) -> Box<[u8]> {
     if comma {
         key.push(b',');
     }
-    string(&mut key, name).expect("writing to a Vec");
+    string(&mut key, name);
     key.push(b':');
     key.into_boxed_slice()
 }
 
 /// Write a JSON string with RFC 8259 escaping.
-pub(crate) fn string<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
-    out.write_all(b"\"")?;
-    escaped(out, value)?;
-    out.write_all(b"\"")
+#[inline]
+pub(crate) fn string(out: &mut Vec<u8>, value: &str) {
+    out.push(b'"');
+    // A text without a character to escape (an interface name), in one
+    // write.
+    if !needs_escaping(value) {
+        out.extend_from_slice(value.as_bytes());
+    } else {
+        escaped(out, value);
+    }
+    out.push(b'"');
 }
 
 /// Write the inside of a JSON string with RFC 8259 escaping.
-fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
+fn escaped(out: &mut Vec<u8>, value: &str) {
     let bytes = value.as_bytes();
     let mut start = 0;
     for (i, &b) in bytes.iter().enumerate() {
@@ -178,27 +189,98 @@ fn escaped<W: Write>(out: &mut W, value: &str) -> io::Result<()> {
             b'\r' => b"\\r",
             b'\t' => b"\\t",
             0x00..=0x1F => {
-                out.write_all(&bytes[start..i])?;
-                write!(out, "\\u{b:04x}")?;
+                out.extend_from_slice(&bytes[start..i]);
+                out.extend_from_slice(b"\\u00");
+                out.push(HEX_DIGITS[usize::from(b >> 4)]);
+                out.push(HEX_DIGITS[usize::from(b & 0xF)]);
                 start = i + 1;
                 continue;
             }
             _ => continue,
         };
-        out.write_all(&bytes[start..i])?;
-        out.write_all(escape)?;
+        out.extend_from_slice(&bytes[start..i]);
+        out.extend_from_slice(escape);
         start = i + 1;
     }
-    out.write_all(&bytes[start..])
+    out.extend_from_slice(&bytes[start..]);
+}
+
+const HEX_DIGITS: &[u8; 16] = b"0123456789abcdef";
+
+/// The 8 decimal digits of `v` (below 10^8, with leading zeros) as ASCII,
+/// the first digit in the low byte: two divisions and wide-word arithmetic
+/// on the four pairs of digits at once, instead of a division a digit.
+#[inline(always)]
+pub(crate) const fn digits8(v: u32) -> u64 {
+    let v = v as u64;
+    // Lanes of 32 bits: the first four digits, the last four.
+    let x = (v / 10_000) | (v % 10_000) << 32;
+    // Lanes of 16 bits: each four-digit number split into hundreds and the
+    // rest (10486 / 2^20 is 1/100 within the range).
+    let q = ((x * 10_486) >> 20) & 0x0000_007F_0000_007F;
+    let x = q | (x - q * 100) << 16;
+    // Lanes of 8 bits: tens and units (103 / 2^10 is 1/10 within the range).
+    let q = ((x * 103) >> 10) & 0x000F_000F_000F_000F;
+    let x = q | (x - q * 10) << 8;
+    x | 0x3030_3030_3030_3030
+}
+
+/// Write an unsigned integer in decimal: for numbers below 10^8, the
+/// digits of [`digits8`] with the leading zeros shifted out, in one write
+/// of 8 bytes cut to the length.
+#[inline]
+pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
+    if v < 100_000_000 {
+        let digits = digits8(v as u32);
+        // Leading zeros: the low bytes equal to '0' (all but one for 0).
+        let zeros = (((digits ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize).min(7);
+        let bytes = (digits >> (8 * zeros)).to_le_bytes();
+        out.extend_from_slice(&bytes);
+        out.truncate(out.len() - zeros);
+    } else {
+        out.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
+    }
+}
+
+/// Write a signed integer in decimal.
+#[inline]
+pub(crate) fn int(out: &mut Vec<u8>, v: i64) {
+    if v < 0 {
+        out.push(b'-');
+    }
+    uint(out, v.unsigned_abs());
 }
 
 /// Write a timestamp as seconds with six decimals, `1700000000.000500`, or
 /// nine when it is not a whole number of microseconds (`ts` in
 /// docs/output.md#common-keys; docs/formats.md#timestamps: exact to the
-/// format's resolution, no float rounding).
-pub(crate) fn timestamp<W: Write>(out: &mut W, ts: crate::can::Timestamp) -> io::Result<()> {
+/// format's resolution, no float rounding). A time of today's ten digits
+/// of seconds and whole microseconds is written in one piece.
+#[inline]
+pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
+    let secs = ts.secs();
+    let nanos = ts.subsec_nanos();
+    if (1_000_000_000..10_000_000_000).contains(&secs) && nanos % 1000 == 0 {
+        let top = (secs / 100_000_000) as u32;
+        let mut text = [0u8; 24];
+        text[0] = b'0' + (top / 10) as u8;
+        text[1] = b'0' + (top % 10) as u8;
+        let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
+        let fraction = (digits8(nanos / 1000) >> 16).to_le_bytes();
+        if let Some(a) = text.get_mut(2..10) {
+            a.copy_from_slice(&rest);
+        }
+        if let Some(b) = text.get_mut(11..19) {
+            b.copy_from_slice(&fraction);
+        }
+        text[10] = b'.';
+        if let Some(head) = text.first_chunk::<17>() {
+            out.extend_from_slice(head);
+        }
+        return;
+    }
     let mut buf = [0; crate::can::SECONDS_LEN];
-    out.write_all(ts.format_seconds(&mut buf))
+    out.extend_from_slice(ts.format_seconds(&mut buf));
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259).
@@ -208,83 +290,85 @@ pub(crate) fn needs_escaping(text: &str) -> bool {
 
 /// Write a value's `Display` as a JSON string with RFC 8259 escaping,
 /// piece by piece as `Display` hands them over.
-pub(crate) fn display_string<W: Write>(
-    out: &mut W,
-    value: &impl std::fmt::Display,
-) -> io::Result<()> {
-    struct Escaper<'w, W: Write> {
-        out: &'w mut W,
-        error: Option<io::Error>,
+pub(crate) fn display_string(out: &mut Vec<u8>, value: &impl std::fmt::Display) {
+    struct Escaper<'w> {
+        out: &'w mut Vec<u8>,
     }
-    impl<W: Write> std::fmt::Write for Escaper<'_, W> {
+    impl std::fmt::Write for Escaper<'_> {
         fn write_str(&mut self, s: &str) -> std::fmt::Result {
-            escaped(self.out, s).map_err(|e| {
-                self.error = Some(e);
-                std::fmt::Error
-            })
+            escaped(self.out, s);
+            Ok(())
         }
     }
-    out.write_all(b"\"")?;
-    let mut escaper = Escaper { out, error: None };
-    if std::fmt::write(&mut escaper, format_args!("{value}")).is_err() {
-        return Err(escaper
-            .error
-            .unwrap_or_else(|| io::Error::other("a Display implementation failed")));
-    }
-    escaper.out.write_all(b"\"")
+    out.push(b'"');
+    let mut escaper = Escaper { out };
+    // Writing into a `Vec` does not fail; a failing `Display` leaves what
+    // it wrote.
+    let _ = std::fmt::write(&mut escaper, format_args!("{value}"));
+    escaper.out.push(b'"');
 }
 
 /// Write a PDO signal's value (docs/output.md#pdo): integers and booleans as
 /// JSON numbers and booleans, reals as numbers (null when not finite), octets
 /// as a hex string.
-pub(crate) fn pdo_value<W: Write>(out: &mut W, value: &crate::canopen::Value) -> io::Result<()> {
+pub(crate) fn pdo_value(out: &mut Vec<u8>, value: &crate::canopen::Value) {
     use crate::canopen::Value;
     match value {
-        Value::Bool(b) => out.write_all(if *b { b"true" } else { b"false" }),
-        Value::Signed(v) => out.write_all(itoa::Buffer::new().format(*v).as_bytes()),
-        Value::Unsigned(v) => out.write_all(itoa::Buffer::new().format(*v).as_bytes()),
+        Value::Bool(b) => out.extend_from_slice(if *b { b"true" } else { b"false" }),
+        Value::Signed(v) => int(out, *v),
+        Value::Unsigned(v) => uint(out, *v),
         Value::Real32(v) => float(out, f64::from(*v)),
         Value::Real64(v) => float(out, *v),
         Value::Octets(o) => hex_string(out, o.as_bytes()),
     }
 }
 
+/// The 16 lowercase hex digits of 8 bytes, the first byte's high digit
+/// in the low byte: the nibbles spread into lanes of a `u128` and turned
+/// into digits all at once.
+#[inline(always)]
+const fn hex16(bytes: [u8; 8]) -> u128 {
+    let x = u64::from_le_bytes(bytes) as u128;
+    // Byte i into the low byte of 16-bit lane i.
+    let x = (x | x << 32) & 0x0000_0000_FFFF_FFFF_0000_0000_FFFF_FFFF;
+    let x = (x | x << 16) & 0x0000_FFFF_0000_FFFF_0000_FFFF_0000_FFFF;
+    let x = (x | x << 8) & 0x00FF_00FF_00FF_00FF_00FF_00FF_00FF_00FF;
+    // High nibble first (the low byte of the lane), low nibble second.
+    const NIBBLE: u128 = 0x000F_000F_000F_000F_000F_000F_000F_000F;
+    let n = (x >> 4) & NIBBLE | (x & NIBBLE) << 8;
+    // '0'..'9', and 'a'..'f' for the lanes of 10 and more (39 further on).
+    let letters = ((n + 0x7676_7676_7676_7676_7676_7676_7676_7676) >> 7)
+        & 0x0101_0101_0101_0101_0101_0101_0101_0101;
+    n + 0x3030_3030_3030_3030_3030_3030_3030_3030 + letters * 39
+}
+
 /// Write bytes as lowercase hex digits, no separators, as a JSON string.
-pub(crate) fn hex_string<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
-    if bytes.len() <= 64 {
-        // A frame's data: the quotes and digits in one write.
-        let mut buf = [0u8; 2 + 2 * 64];
-        buf[0] = b'"';
-        let n = 1 + hex_into(&mut buf[1..], bytes);
-        buf[n] = b'"';
-        return out.write_all(&buf[..=n]);
-    }
-    out.write_all(b"\"")?;
-    hex_digits(out, bytes)?;
-    out.write_all(b"\"")
+#[inline]
+pub(crate) fn hex_string(out: &mut Vec<u8>, bytes: &[u8]) {
+    out.push(b'"');
+    hex_digits(out, bytes);
+    out.push(b'"');
 }
 
-/// Write bytes as lowercase hex digits without separators.
-pub(crate) fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
-    let mut buf = [0u8; 2 * 64];
-    for chunk in bytes.chunks(64) {
-        let n = hex_into(&mut buf, chunk);
-        out.write_all(&buf[..n])?;
+/// Write bytes as lowercase hex digits without separators: 8 bytes at a
+/// time, in one write of 16 digits each, the last cut to the length.
+#[inline]
+pub(crate) fn hex_digits(out: &mut Vec<u8>, bytes: &[u8]) {
+    let mut chunks = bytes.chunks_exact(8);
+    for chunk in &mut chunks {
+        if let Some(eight) = chunk.first_chunk::<8>() {
+            out.extend_from_slice(&hex16(*eight).to_le_bytes());
+        }
     }
-    Ok(())
-}
-
-/// Write the hex digits of `bytes` (at most `buf.len() / 2` of them) into
-/// `buf`; return how many digits.
-fn hex_into(buf: &mut [u8], bytes: &[u8]) -> usize {
-    const DIGITS: &[u8; 16] = b"0123456789abcdef";
-    let mut n = 0;
-    for (&b, pair) in bytes.iter().zip(buf.chunks_exact_mut(2)) {
-        pair[0] = DIGITS[usize::from(b >> 4)];
-        pair[1] = DIGITS[usize::from(b & 0xF)];
-        n += 2;
+    let rest = chunks.remainder();
+    if !rest.is_empty() {
+        let mut eight = [0u8; 8];
+        for (d, s) in eight.iter_mut().zip(rest) {
+            *d = *s;
+        }
+        out.extend_from_slice(&hex16(eight).to_le_bytes());
+        out.truncate(out.len() - 2 * (8 - rest.len()));
     }
-    n
 }
 
 #[cfg(test)]
@@ -336,7 +420,7 @@ mod tests {
         use crate::can::Timestamp;
         let render = |ts| {
             let mut out = Vec::new();
-            timestamp(&mut out, ts).unwrap();
+            timestamp(&mut out, ts);
             String::from_utf8(out).unwrap()
         };
         assert_eq!(
@@ -350,10 +434,35 @@ mod tests {
         );
     }
 
-    fn render(f: impl FnOnce(&mut Vec<u8>) -> io::Result<()>) -> String {
+    fn render(f: impl FnOnce(&mut Vec<u8>)) -> String {
         let mut out = Vec::new();
-        f(&mut out).unwrap();
+        f(&mut out);
         String::from_utf8(out).unwrap()
+    }
+
+    proptest::proptest! {
+        /// The wide-word writers against the plain ones.
+        #[test]
+        fn integers_hex_and_times_as_the_plain_writers(
+            v in proptest::prelude::any::<u64>(),
+            small in 0u64..200_000_000,
+            bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..70),
+            secs in proptest::prelude::any::<u64>(),
+            epoch in 1_000_000_000u64..10_000_000_000,
+            nanos in 0u32..1_000_000_000,
+        ) {
+            for n in [v, small, small % 1000, v % 10] {
+                proptest::prop_assert_eq!(render(|o| uint(o, n)), n.to_string());
+                let i = n as i64;
+                proptest::prop_assert_eq!(render(|o| int(o, i)), i.to_string());
+            }
+            let plain: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
+            proptest::prop_assert_eq!(render(|o| hex_digits(o, &bytes)), plain);
+            for (secs, nanos) in [(secs, nanos), (epoch, nanos), (epoch, nanos / 1000 * 1000)] {
+                let ts = crate::can::Timestamp::from_nanos(secs, nanos).unwrap();
+                proptest::prop_assert_eq!(render(|o| timestamp(o, ts)), ts.seconds().to_string());
+            }
+        }
     }
 
     #[test]
@@ -367,13 +476,13 @@ mod tests {
     #[test]
     fn objects_and_floats() {
         let s = render(|o| {
-            let mut obj = Object::begin(o)?;
-            obj.uint("a", 1)?;
-            obj.float("nan", f64::NAN)?;
-            obj.float("x", 1.5)?;
-            obj.names("l", ["p", "q"])?;
-            hex_string(obj.key("h")?, &[0xAB, 0x01])?;
-            obj.end()
+            let mut obj = Object::begin(o);
+            obj.uint("a", 1);
+            obj.float("nan", f64::NAN);
+            obj.float("x", 1.5);
+            obj.names("l", ["p", "q"]);
+            hex_string(obj.key("h"), &[0xAB, 0x01]);
+            obj.end();
         });
         assert_eq!(s, r#"{"a":1,"nan":null,"x":1.5,"l":["p","q"],"h":"ab01"}"#);
     }

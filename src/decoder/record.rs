@@ -1,7 +1,8 @@
 //! A decoded frame as its JSON record (docs/output.md#json), with the keys
 //! that SDO (docs/output.md#sdo, docs/output.md#transfer), PDOs
-//! (docs/output.md#pdo) and CiA 402 (docs/output.md#cia402) add: written key by
-//! key into the output, without allocating.
+//! (docs/output.md#pdo) and CiA 402 (docs/output.md#cia402) add: built key by
+//! key in a buffer (`append_json`, or one kept per thread for `write_json`),
+//! without allocating per frame.
 
 use std::io::{self, Write};
 
@@ -29,7 +30,7 @@ impl Decoded<'_> {
     ///
     /// Writing to `out` failed.
     pub fn write_json<W: Write>(&self, out: &mut W) -> io::Result<()> {
-        self.write_record(out, None)
+        self.write_via_scratch(out, None)
     }
 
     /// Write the frame's record as [`write_json`](Self::write_json) does,
@@ -40,93 +41,169 @@ impl Decoded<'_> {
     ///
     /// Writing to `out` failed.
     pub fn write_json_in<W: Write>(&self, out: &mut W, file: &str) -> io::Result<()> {
-        self.write_record(out, Some(file))
+        self.write_via_scratch(out, Some(file))
     }
 
-    fn write_record<W: Write>(&self, out: &mut W, file: Option<&str>) -> io::Result<()> {
+    /// Append the frame's record, as [`write_json`](Self::write_json)
+    /// writes it (with `"file": file` first when given, as
+    /// [`write_json_in`](Self::write_json_in)), to `buf`: the fastest way
+    /// to write many records, which a caller then writes out in large
+    /// pieces.
+    pub fn append_json(&self, buf: &mut Vec<u8>, file: Option<&str>) {
+        self.write_record(buf, file);
+    }
+
+    /// The record built in a buffer kept by the thread (no allocation per
+    /// frame), then written in one piece.
+    fn write_via_scratch<W: Write>(&self, out: &mut W, file: Option<&str>) -> io::Result<()> {
+        thread_local! {
+            static SCRATCH: core::cell::RefCell<Vec<u8>> = const { core::cell::RefCell::new(Vec::new()) };
+        }
+        SCRATCH.with(|scratch| match scratch.try_borrow_mut() {
+            Ok(mut buf) => {
+                buf.clear();
+                self.write_record(&mut buf, file);
+                out.write_all(&buf)
+            }
+            Err(_) => {
+                let mut buf = Vec::new();
+                self.write_record(&mut buf, file);
+                out.write_all(&buf)
+            }
+        })
+    }
+
+    fn write_record(&self, out: &mut Vec<u8>, file: Option<&str>) {
         let log = self.log;
         let frame = &log.frame;
         let decoded = self;
         let profile = decoded.profile;
-        let message = self.message();
-        let mut obj = Object::begin(out)?;
-        if let Some(file) = file {
-            obj.str("file", file)?;
+        out.reserve(512);
+        match file {
+            None => out.extend_from_slice(b"{\"line\":"),
+            Some(file) => {
+                out.extend_from_slice(b"{\"file\":");
+                json::string(out, file);
+                out.extend_from_slice(b",\"line\":");
+            }
         }
-        obj.uint("line", self.position)?;
+        json::uint(out, self.position);
         match log.timestamp {
-            Some(ts) => json::timestamp(obj.key("ts")?, ts)?,
-            None => obj.null("ts")?,
+            Some(ts) => {
+                out.extend_from_slice(b",\"ts\":");
+                json::timestamp(out, ts);
+            }
+            None => out.extend_from_slice(b",\"ts\":null"),
         }
         match log.iface {
-            Some(Iface::Name(name)) => obj.str("iface", name)?,
-            Some(iface @ Iface::Channel(_)) => obj.display("iface", &iface)?,
-            None => obj.null("iface")?,
+            Some(Iface::Name(name)) => {
+                out.extend_from_slice(b",\"iface\":");
+                json::string(out, name);
+            }
+            Some(Iface::Channel(channel)) => {
+                out.extend_from_slice(b",\"iface\":\"");
+                json::uint(out, u64::from(channel));
+                out.push(b'"');
+            }
+            None => out.extend_from_slice(b",\"iface\":null"),
         }
-        obj.uint("id", u64::from(frame.id().raw()))?;
-        obj.bool("extended", frame.is_extended())?;
-        obj.bool("rtr", frame.is_rtr())?;
-        obj.bool("fd", frame.is_fd())?;
-        json::hex_string(obj.key("data")?, frame.data())?;
-        obj.name("kind", self.kind.name())?;
+        out.extend_from_slice(b",\"id\":");
+        json::uint(out, u64::from(frame.id().raw()));
+        match (frame.is_extended(), frame.is_rtr(), frame.is_fd()) {
+            (false, false, false) => {
+                out.extend_from_slice(b",\"extended\":false,\"rtr\":false,\"fd\":false,\"data\":");
+            }
+            (extended, rtr, fd) => {
+                let word = |b: bool| -> &'static [u8] {
+                    if b {
+                        b"true"
+                    } else {
+                        b"false"
+                    }
+                };
+                out.extend_from_slice(b",\"extended\":");
+                out.extend_from_slice(word(extended));
+                out.extend_from_slice(b",\"rtr\":");
+                out.extend_from_slice(word(rtr));
+                out.extend_from_slice(b",\"fd\":");
+                out.extend_from_slice(word(fd));
+                out.extend_from_slice(b",\"data\":");
+            }
+        }
+        json::hex_string(out, frame.data());
+        // The kind's name is one of the library's constant texts: no escaping.
+        out.extend_from_slice(b",\"kind\":\"");
+        out.extend_from_slice(self.kind.name().as_bytes());
+        out.push(b'"');
         if let Some(node) = self.node {
-            obj.uint("node", u64::from(node.get()))?;
+            out.extend_from_slice(b",\"node\":");
+            json::uint(out, u64::from(node.get()));
         }
-        match &message {
-            Ok(CanOpenMessage::Emcy { emcy, .. }) => emcy_json(&mut obj, emcy, profile)?,
-            Ok(CanOpenMessage::Heartbeat { byte, .. }) => {
-                obj.name("state", byte.state_name())?;
-                obj.uint("state_raw", u64::from(byte.state_raw()))?;
-                obj.bool("toggle", byte.toggle())?;
-            }
-            Ok(CanOpenMessage::NmtNodeControl(control)) => {
-                obj.name("command", control.command.command_name())?;
-                obj.uint("target", u64::from(control.node.map_or(0, NodeId::get)))?;
-            }
-            Ok(CanOpenMessage::Sync { counter }) => match counter {
-                Some(counter) => obj.uint("counter", u64::from(*counter))?,
-                None => obj.null("counter")?,
-            },
-            Ok(CanOpenMessage::Time(time)) => {
-                let out = obj.key("time_of_day")?;
-                let mut t = Object::begin(out)?;
-                t.uint("ms", u64::from(time.ms()))?;
-                t.uint("days", u64::from(time.days()))?;
-                t.end()?;
-            }
-            Ok(CanOpenMessage::SdoRequest { .. } | CanOpenMessage::SdoResponse { .. }) => {
+        let mut obj = Object::after_first(out);
+        // SDO and PDO frames (not remote requests) carry what the session
+        // read of them; their message adds nothing, so it is not worked
+        // out. Every other frame's keys come from its message.
+        let message = match self.kind {
+            MessageKind::Sdo if !frame.is_rtr() => {
                 if let Some(step) = &decoded.sdo {
-                    write_sdo_json(&mut obj, step)?;
+                    write_sdo_json(&mut obj, step);
                     if let Some(ended) = &step.ended {
-                        write_transfer_json(&mut obj, ended, step.names)?;
+                        write_transfer_json(&mut obj, ended, step.names);
                     }
                     if let Some(cia402) = &decoded.cia402 {
-                        cia402_json(&mut obj, cia402)?;
+                        cia402_json(&mut obj, cia402);
                     }
                     if let Err(e) = &step.message {
-                        obj.display("error", e)?;
+                        obj.display("error", e);
                     }
                 }
+                None
             }
-            Ok(CanOpenMessage::Pdo { .. }) => {
+            MessageKind::Pdo if !frame.is_rtr() => {
                 if let Some(reading) = &decoded.pdo {
-                    pdo_json(&mut obj, reading, decoded.cia402.as_ref())?;
+                    pdo_json(&mut obj, reading, decoded.cia402.as_ref());
                 }
+                None
             }
-            Ok(CanOpenMessage::ErrorFrame(error)) => {
-                obj.names("error_classes", error.classes.names())?;
-                obj.names("controller", error.controller().names())?;
+            _ => Some(self.message()),
+        };
+        match &message {
+            None => {}
+            Some(Ok(CanOpenMessage::Emcy { emcy, .. })) => emcy_json(&mut obj, emcy, profile),
+            Some(Ok(CanOpenMessage::Heartbeat { byte, .. })) => {
+                obj.name("state", byte.state_name());
+                obj.uint("state_raw", u64::from(byte.state_raw()));
+                obj.bool("toggle", byte.toggle());
+            }
+            Some(Ok(CanOpenMessage::NmtNodeControl(control))) => {
+                obj.name("command", control.command.command_name());
+                obj.uint("target", u64::from(control.node.map_or(0, NodeId::get)));
+            }
+            Some(Ok(CanOpenMessage::Sync { counter })) => match counter {
+                Some(counter) => obj.uint("counter", u64::from(*counter)),
+                None => obj.null("counter"),
+            },
+            Some(Ok(CanOpenMessage::Time(time))) => {
+                let out = obj.key("time_of_day");
+                let mut t = Object::begin(out);
+                t.uint("ms", u64::from(time.ms()));
+                t.uint("days", u64::from(time.days()));
+                t.end();
+            }
+            Some(Ok(CanOpenMessage::ErrorFrame(error))) => {
+                obj.names("error_classes", error.classes.names());
+                obj.names("controller", error.controller().names());
                 match error.tx_errors() {
-                    Some(n) => obj.uint("tx_errors", u64::from(n))?,
-                    None => obj.null("tx_errors")?,
+                    Some(n) => obj.uint("tx_errors", u64::from(n)),
+                    None => obj.null("tx_errors"),
                 }
                 match error.rx_errors() {
-                    Some(n) => obj.uint("rx_errors", u64::from(n))?,
-                    None => obj.null("rx_errors")?,
+                    Some(n) => obj.uint("rx_errors", u64::from(n)),
+                    None => obj.null("rx_errors"),
                 }
             }
-            Ok(_) => {}
-            Err(e) => {
+            Some(Ok(_)) => {}
+            Some(Err(e)) => {
                 if e.kind == MessageKind::NmtCommand {
                     // An undefined command (or a target above 127): said as
                     // `unknown`, with the bytes that are there.
@@ -134,25 +211,25 @@ impl Decoded<'_> {
                     if let Some(&command) = data.first() {
                         let name = crate::canopen::NmtCommand::from_byte(command)
                             .map_or("unknown", |c| c.command_name());
-                        obj.name("command", name)?;
+                        obj.name("command", name);
                     }
                     if let Some(&target) = data.get(1) {
-                        obj.uint("target", u64::from(target))?;
+                        obj.uint("target", u64::from(target));
                     }
                 }
                 if let Some(partial) = e.partial_emcy {
                     if let Some(code) = partial.code {
-                        obj.uint("code", u64::from(code.get()))?;
+                        obj.uint("code", u64::from(code.get()));
                     }
                     if let Some(register) = partial.register {
-                        obj.uint("register", u64::from(register.bits()))?;
+                        obj.uint("register", u64::from(register.bits()));
                     }
                 }
-                obj.display("error", &e.error)?;
+                obj.display("error", &e.error);
             }
         }
-        obj.end()?;
-        out_newline(out)
+        obj.end();
+        out.push(b'\n');
     }
 
     /// Return the frame's JSON record ([`write_json`](Self::write_json))
@@ -160,56 +237,51 @@ impl Decoded<'_> {
     #[must_use]
     pub fn to_json(&self) -> String {
         let mut out = Vec::with_capacity(256);
-        self.write_json(&mut out).expect("writing to a Vec");
+        self.write_record(&mut out, None);
         out.pop();
         String::from_utf8(out).expect("the writer writes UTF-8")
     }
 }
 
 /// The EMCY keys of docs/output.md#emcy, with the profile's keys.
-fn emcy_json<W: Write>(obj: &mut Object<'_, W>, emcy: &Emcy, profile: Profile) -> io::Result<()> {
-    obj.uint("code", u64::from(emcy.code.get()))?;
-    obj.name("class", emcy.code.class().name())?;
-    obj.name("description", emcy.code.description())?;
-    obj.uint("register", u64::from(emcy.register.bits()))?;
-    obj.names("register_flags", emcy.register.names())?;
-    json::hex_string(obj.key("manufacturer")?, &emcy.manufacturer)?;
+fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
+    obj.uint("code", u64::from(emcy.code.get()));
+    obj.name("class", emcy.code.class().name());
+    obj.name("description", emcy.code.description());
+    obj.uint("register", u64::from(emcy.register.bits()));
+    obj.names("register_flags", emcy.register.names());
+    json::hex_string(obj.key("manufacturer"), &emcy.manufacturer);
     match profile {
         Profile::Generic => {}
         Profile::Akd => {
             let field = AkdManufacturerField::new_unchecked(&emcy.manufacturer[..]);
-            obj.uint("axis", u64::from(field.axis_id().get()))?;
+            obj.uint("axis", u64::from(field.axis_id().get()));
             match field.feedback_id() {
                 Ok(fb) => match fb.number() {
-                    Some(n) => obj.uint("feedback", u64::from(n))?,
-                    None => obj.null("feedback")?,
+                    Some(n) => obj.uint("feedback", u64::from(n)),
+                    None => obj.null("feedback"),
                 },
                 Err(e) => {
-                    obj.null("feedback")?;
-                    obj.display("error", &e)?;
+                    obj.null("feedback");
+                    obj.display("error", &e);
                 }
             }
         }
         Profile::Baumer => {
             let baumer = BaumerEmcy::from_emcy(emcy);
-            obj.uint("alarms", u64::from(baumer.manufacturer.alarms.bits()))?;
-            obj.uint("warnings", u64::from(baumer.manufacturer.warnings.bits()))?;
-            obj.names("sources", baumer.sources().map(|s| s.name()))?;
+            obj.uint("alarms", u64::from(baumer.manufacturer.alarms.bits()));
+            obj.uint("warnings", u64::from(baumer.manufacturer.warnings.bits()));
+            obj.names("sources", baumer.sources().map(|s| s.name()));
         }
     }
-    Ok(())
-}
-
-fn out_newline<W: Write>(out: &mut W) -> io::Result<()> {
-    out.write_all(b"\n")
 }
 
 /// Write the `sdo` key's object for one frame (docs/output.md#sdo).
-fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::Result<()> {
-    let out = obj.key("sdo")?;
-    let mut o = Object::begin(out)?;
-    o.name("direction", step.sender.direction_name())?;
-    o.name("service", step.service().name())?;
+fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>) {
+    let out = obj.key("sdo");
+    let mut o = Object::begin(out);
+    o.name("direction", step.sender.direction_name());
+    o.name("service", step.service().name());
     let message = match &step.message {
         Ok(message) => message,
         Err(_) => {
@@ -217,14 +289,14 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
             // docs/canopen.md#sdo): the multiplexer, or from a 3-byte frame the
             // index alone.
             if let Some(m) = step.multiplexer() {
-                write_multiplexer(&mut o, m, step.names)?;
+                write_multiplexer(&mut o, m, step.names);
             } else if let Some(index) = step.index() {
-                o.uint("index", u64::from(index))?;
+                o.uint("index", u64::from(index));
                 match step.object() {
                     // From the EDS or a table: escaped (a file's name may
                     // hold anything).
-                    Some(name) => o.str("object", name)?,
-                    None => o.null("object")?,
+                    Some(name) => o.str("object", name),
+                    None => o.null("object"),
                 }
             }
             return o.end();
@@ -232,58 +304,54 @@ fn write_sdo_json<W: Write>(obj: &mut Object<'_, W>, step: &SdoStep<'_>) -> io::
     };
     let f = message.fields();
     if let Some(sub) = f.subcommand {
-        o.name("subcommand", sub.name())?;
+        o.name("subcommand", sub.name());
     }
     if let Some(m) = f.multiplexer {
-        write_multiplexer(&mut o, m, step.names)?;
+        write_multiplexer(&mut o, m, step.names);
     }
     if let Some(e) = f.expedited {
-        o.bool("expedited", e)?;
+        o.bool("expedited", e);
     }
     if let Some(size) = f.size {
         match size {
-            Some(size) => o.uint("size", u64::from(size))?,
-            None => o.null("size")?,
+            Some(size) => o.uint("size", u64::from(size)),
+            None => o.null("size"),
         }
     }
     if let Some(value) = f.value {
-        json::hex_string(o.key("value")?, value)?;
+        json::hex_string(o.key("value"), value);
     }
     if let Some(t) = f.toggle {
-        o.uint("toggle", u64::from(t))?;
+        o.uint("toggle", u64::from(t));
     }
     if let Some(last) = f.last {
-        o.bool("last", last)?;
+        o.bool("last", last);
     }
     if let Some(code) = f.abort_code {
-        o.uint("abort_code", u64::from(code.get()))?;
-        o.name("abort_description", code.description())?;
+        o.uint("abort_code", u64::from(code.get()));
+        o.name("abort_description", code.description());
     }
     if let Some(crc) = f.crc_supported {
-        o.bool("crc_supported", crc)?;
+        o.bool("crc_supported", crc);
     }
     if let Some(b) = f.blksize {
-        o.uint("blksize", u64::from(b))?;
+        o.uint("blksize", u64::from(b));
     }
     if let Some(a) = f.ackseq {
-        o.uint("ackseq", u64::from(a))?;
+        o.uint("ackseq", u64::from(a));
     }
     if let Some(s) = f.seqno {
-        o.uint("seqno", u64::from(s))?;
+        o.uint("seqno", u64::from(s));
     }
     if let Some(crc) = f.crc {
-        o.uint("crc", u64::from(crc))?;
+        o.uint("crc", u64::from(crc));
     }
     o.end()
 }
 
-fn write_multiplexer<W: Write>(
-    o: &mut Object<'_, W>,
-    m: ObjectAddress,
-    names: ObjectNames<'_>,
-) -> io::Result<()> {
-    o.uint("index", u64::from(m.index))?;
-    o.uint("subindex", u64::from(m.sub_index))?;
+fn write_multiplexer(o: &mut Object<'_>, m: ObjectAddress, names: ObjectNames<'_>) {
+    o.uint("index", u64::from(m.index));
+    o.uint("subindex", u64::from(m.sub_index));
     match names.name(m.index) {
         Some(name) => o.str("object", name),
         None => o.null("object"),
@@ -291,39 +359,35 @@ fn write_multiplexer<W: Write>(
 }
 
 /// Write the `transfer` key (docs/output.md#transfer).
-fn write_transfer_json<W: Write>(
-    obj: &mut Object<'_, W>,
-    ended: &EndedTransfer<'_>,
-    names: ObjectNames<'_>,
-) -> io::Result<()> {
+fn write_transfer_json(obj: &mut Object<'_>, ended: &EndedTransfer<'_>, names: ObjectNames<'_>) {
     let transfer = &ended.transfer;
-    let out = obj.key("transfer")?;
-    let mut o = Object::begin(out)?;
-    o.name("direction", transfer.direction.name())?;
-    write_multiplexer(&mut o, transfer.multiplexer, names)?;
-    o.uint("size", u64::from(transfer.bytes))?;
-    json::hex_string(o.key("data")?, ended.data)?;
-    o.bool("truncated", ended.truncated())?;
-    o.uint("frames", u64::from(transfer.frames))?;
-    o.name("outcome", transfer.outcome.name())?;
+    let out = obj.key("transfer");
+    let mut o = Object::begin(out);
+    o.name("direction", transfer.direction.name());
+    write_multiplexer(&mut o, transfer.multiplexer, names);
+    o.uint("size", u64::from(transfer.bytes));
+    json::hex_string(o.key("data"), ended.data);
+    o.bool("truncated", ended.truncated());
+    o.uint("frames", u64::from(transfer.frames));
+    o.name("outcome", transfer.outcome.name());
     match transfer.outcome {
         SdoOutcome::Aborted { code, .. } => {
-            o.uint("abort_code", u64::from(code.get()))?;
-            o.name("abort_description", code.description())?;
+            o.uint("abort_code", u64::from(code.get()));
+            o.name("abort_description", code.description());
         }
         _ => {
-            o.null("abort_code")?;
-            o.null("abort_description")?;
+            o.null("abort_code");
+            o.null("abort_description");
         }
     }
     match transfer.outcome {
-        SdoOutcome::Broken(reason) => o.name("reason", reason.name())?,
-        _ => o.null("reason")?,
+        SdoOutcome::Broken(reason) => o.name("reason", reason.name()),
+        _ => o.null("reason"),
     }
-    o.uint("start_line", transfer.start_position)?;
+    o.uint("start_line", transfer.start_position);
     match transfer.duration {
-        Some(d) => o.float("duration_ms", d.as_nanos() as f64 / 1e6)?,
-        None => o.null("duration_ms")?,
+        Some(d) => o.float("duration_ms", d.as_nanos() as f64 / 1e6),
+        None => o.null("duration_ms"),
     }
     o.end()
 }
@@ -331,14 +395,10 @@ fn write_transfer_json<W: Write>(
 /// The `signals` of docs/output.md#pdo: name → value in mapping order, and
 /// `error` when the PDO is shorter than its mapping (its signals are those that
 /// fit); the `cia402` of docs/output.md#cia402 for a drive.
-fn pdo_json<W: Write>(
-    obj: &mut Object<'_, W>,
-    reading: &PdoReading<'_>,
-    cia402: Option<&Cia402Reading>,
-) -> io::Result<()> {
+fn pdo_json(obj: &mut Object<'_>, reading: &PdoReading<'_>, cia402: Option<&Cia402Reading>) {
     let keys = &reading.map.keys;
     // `line` and the frame's keys come first, so this is never the first.
-    let out = obj.raw_after_first(b",\"signals\":{")?;
+    let out = obj.raw_after_first(b",\"signals\":{");
     let mut error = None;
     let mut first = true;
     for (i, signal) in reading.signals.iter().enumerate() {
@@ -348,45 +408,44 @@ fn pdo_json<W: Write>(
             (Ok(signal), Some(key)) => {
                 let key = if first && i > 0 { &key[1..] } else { &key[..] };
                 first = false;
-                out.write_all(key)?;
-                json::pdo_value(out, &signal.value)?;
+                out.extend_from_slice(key);
+                json::pdo_value(out, &signal.value);
             }
             (Ok(_), None) => {}
             (Err(e), _) => error = Some(*e),
         }
     }
-    out.write_all(b"}")?;
+    out.extend_from_slice(b"}");
     if let Some(cia402) = cia402 {
-        cia402_json(obj, cia402)?;
+        cia402_json(obj, cia402);
     }
     if let Some(e) = error {
-        obj.display("error", &e)?;
+        obj.display("error", &e);
     }
-    Ok(())
 }
 
 /// The `cia402` of docs/output.md#cia402: `state`, `command`, `mode` where the
 /// frame tells them.
-fn cia402_json<W: Write>(obj: &mut Object<'_, W>, reading: &Cia402Reading) -> io::Result<()> {
-    let out = obj.raw_after_first(b",\"cia402\":{")?;
+fn cia402_json(obj: &mut Object<'_>, reading: &Cia402Reading) {
+    let out = obj.raw_after_first(b",\"cia402\":{");
     let mut sep: &[u8] = b"";
     if let Some(state) = reading.state {
-        out.write_all(b"\"state\":\"")?;
-        out.write_all(state.name().as_bytes())?;
-        out.write_all(b"\"")?;
+        out.extend_from_slice(b"\"state\":\"");
+        out.extend_from_slice(state.name().as_bytes());
+        out.extend_from_slice(b"\"");
         sep = b",";
     }
     if let Some(command) = reading.command {
-        out.write_all(sep)?;
-        out.write_all(b"\"command\":\"")?;
-        out.write_all(command.name().as_bytes())?;
-        out.write_all(b"\"")?;
+        out.extend_from_slice(sep);
+        out.extend_from_slice(b"\"command\":\"");
+        out.extend_from_slice(command.name().as_bytes());
+        out.extend_from_slice(b"\"");
         sep = b",";
     }
     if let Some(mode) = reading.mode {
-        out.write_all(sep)?;
-        out.write_all(b"\"mode\":")?;
-        json::display_string(out, &mode)?;
+        out.extend_from_slice(sep);
+        out.extend_from_slice(b"\"mode\":");
+        json::display_string(out, &mode);
     }
-    out.write_all(b"}")
+    out.push(b'}');
 }

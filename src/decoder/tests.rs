@@ -315,6 +315,17 @@ proptest! {
             let decoded = decoder.decode(line, &log);
             let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
             prop_assert_eq!(&json["line"], line);
+            // Issue 21: the record appended to a buffer is the record
+            // written, with and without a file name to escape.
+            let mut appended = Vec::new();
+            decoded.append_json(&mut appended, Some("a \"b\"\u{1}.log"));
+            decoded.append_json(&mut appended, None);
+            let mut written = Vec::new();
+            decoded.write_json_in(&mut written, "a \"b\"\u{1}.log").unwrap();
+            decoded.write_json(&mut written).unwrap();
+            prop_assert_eq!(&appended, &written);
+            let with_file = format!("{{\"file\":\"a \\\"b\\\"\\u0001.log\",{}\n", &decoded.to_json()[1..]);
+            prop_assert_eq!(written.get(..with_file.len()), Some(with_file.as_bytes()));
             if let Some(step) = &decoded.sdo {
                 started += u64::from(step.started);
                 if let Some(end) = step.ended {

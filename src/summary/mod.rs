@@ -52,10 +52,10 @@ pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
 use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
-    CanOpenMessage, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer,
-    HeartbeatEvent, MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
+    Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
+    MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusName, Buses, Decoded, Decoder};
+use crate::decoder::{BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
@@ -444,13 +444,38 @@ impl Summarizer {
     /// Add one log entry read at `position` (`line` in
     /// docs/formats.md#positions): a frame is read by `decoder` first; a bus
     /// event is counted.
+    ///
+    /// The same summary as [`Decoder::decode`] then
+    /// [`add_frame`](Self::add_frame), for less work: only the frames that
+    /// teach the decoder something (SDO and PDO frames) go through it.
+    #[inline]
     pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
         match event {
-            LogEvent::Frame(frame) => {
-                let decoded = decoder.decode(position, frame);
-                self.add_frame(position, frame, &decoded);
-            }
+            LogEvent::Frame(frame) => self.add_frame_from(position, frame, decoder),
             LogEvent::Status(status) => self.add_status(status),
+        }
+    }
+
+    /// Add one frame, read at `position`, reading it with `decoder` only
+    /// where the decoder keeps state (see [`add`](Self::add)).
+    #[inline]
+    pub fn add_frame_from(&mut self, position: u64, log: &LogFrame<'_>, decoder: &mut Decoder) {
+        let (kind, node) = MessageKind::classify(&log.frame);
+        if matches!(kind, MessageKind::Sdo | MessageKind::Pdo) {
+            let decoded = decoder.decode(position, log);
+            self.add_classified(
+                position,
+                log,
+                kind,
+                decoded.node,
+                decoded.sdo.as_ref(),
+                decoded.cia402,
+                |_| {},
+            );
+        } else {
+            // The decoder learns nothing from these (`Decoder::decode`
+            // keeps state for SDO and PDO frames only).
+            self.add_classified(position, log, kind, node, None, None, |_| {});
         }
     }
 
@@ -471,11 +496,37 @@ impl Summarizer {
     /// Add one frame, as [`add_frame`](Self::add_frame) does, and hand
     /// `on_event` each fact it adds to the summary, in order
     /// ([`SummaryEvent`]): what the report draws (docs/report.md#timeline).
+    #[inline]
     pub fn add_frame_with(
         &mut self,
         position: u64,
         log: &LogFrame<'_>,
         decoded: &Decoded<'_>,
+        on_event: impl FnMut(SummaryEvent<'_>),
+    ) {
+        self.add_classified(
+            position,
+            log,
+            decoded.kind,
+            decoded.node,
+            decoded.sdo.as_ref(),
+            decoded.cia402,
+            on_event,
+        );
+    }
+
+    /// Add one frame of `kind` and `node`, with its SDO step and CiA 402
+    /// reading where the decoder gave one, handing `on_event` each fact.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn add_classified(
+        &mut self,
+        position: u64,
+        log: &LogFrame<'_>,
+        kind: MessageKind,
+        node: Option<NodeId>,
+        sdo: Option<&SdoStep<'_>>,
+        cia402: Option<Cia402Reading>,
         mut on_event: impl FnMut(SummaryEvent<'_>),
     ) {
         let now = log.timestamp.map(Timestamp::as_duration);
@@ -497,11 +548,10 @@ impl Summarizer {
         };
         bus.frames += 1;
         bus.saw(log.timestamp);
-        let kind = decoded.kind;
         if kind == MessageKind::ErrorFrame {
             bus.error_frames += 1;
             let (mut bus_off, mut error_passive) = (false, false);
-            if let Ok(error) = ErrorFrame::from_frame(&decoded.log.frame) {
+            if let Ok(error) = ErrorFrame::from_frame(&log.frame) {
                 bus_off = error.is_bus_off();
                 error_passive = error.is_error_passive();
                 if bus_off {
@@ -520,7 +570,7 @@ impl Summarizer {
             ));
             return;
         }
-        let Some(node) = decoded.node else { return };
+        let Some(node) = node else { return };
         let BusState {
             nodes,
             storage,
@@ -529,7 +579,7 @@ impl Summarizer {
         } = bus;
         let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
         state.frames.by_kind[kind.index()] += 1;
-        if let Some(step) = &decoded.sdo {
+        if let Some(step) = sdo {
             let added = state.sdo.add(step, position);
             if added.abort {
                 if let Some(abort) = state.sdo.aborts().last() {
@@ -546,7 +596,7 @@ impl Summarizer {
                 on_event(sdo_ended(name, node, &ended.transfer));
             }
         }
-        if let Some(reading) = decoded.cia402 {
+        if let Some(reading) = cia402 {
             // A PDO's drive is the node that owns it, which the log may
             // have moved to another node's COB-ID.
             let drive =
@@ -564,17 +614,19 @@ impl Summarizer {
             }
             return;
         }
-        if !matches!(
-            kind,
-            MessageKind::Emcy | MessageKind::Heartbeat | MessageKind::GuardRequest
-        ) {
-            return;
-        }
-        let Ok(message) = &decoded.message() else {
-            return;
-        };
-        match *message {
-            CanOpenMessage::Emcy { emcy, .. } => {
+        // What `CanOpenMessage::decode` reads of the three kinds the
+        // summary follows, read here without the rest of the message: an
+        // EMCY of at least 8 bytes (not a remote request), a heartbeat's
+        // first byte, a guard request.
+        let frame = &log.frame;
+        match kind {
+            MessageKind::Emcy => {
+                if frame.is_rtr() {
+                    return;
+                }
+                let Ok(emcy) = Emcy::parse(frame.data()) else {
+                    return;
+                };
                 state.emcy += 1;
                 state.last_register = Some(emcy.register);
                 let seen = EmcySeen {
@@ -603,82 +655,88 @@ impl Summarizer {
                     SlotUpdate::FollowUp { .. } => {}
                 }
             }
-            CanOpenMessage::GuardRequest { .. } => {
+            MessageKind::GuardRequest => {
                 state.guard_request_pending = true;
                 // A missing answer is not part of the summary's contract.
                 let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
             }
-            CanOpenMessage::Heartbeat { byte, .. } if state.guard_request_pending => {
-                state.guard_request_pending = false;
-                state.guarding_summary.answers += 1;
-                // Counted as an answer, not as a heartbeat.
-                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
-                state.frames.guard_answers += 1;
-                on_event(event(
-                    Some(node),
-                    SummaryEventKind::Nmt {
-                        state: byte,
-                        guard_answer: true,
-                    },
-                ));
-                if let Some(answer) = byte.guard_answer() {
-                    let events = state
-                        .guarding
-                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
-                    if events
-                        .into_iter()
-                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
-                    {
-                        state.guarding_summary.toggle_errors.push(position);
-                        on_event(event(Some(node), SummaryEventKind::ToggleError));
-                    }
-                }
-            }
-            CanOpenMessage::Heartbeat { byte, .. } => {
-                state.heartbeats += 1;
-                state.last_state = Some(byte);
-                on_event(event(
-                    Some(node),
-                    SummaryEventKind::Nmt {
-                        state: byte,
-                        guard_answer: false,
-                    },
-                ));
-                if byte.state_raw() == 0 {
-                    state.boot_ups.push(position);
-                    state.guarding.on_boot_up();
-                    on_event(event(Some(node), SummaryEventKind::BootUp));
-                }
-                if let (Some(consumer), Some(now), Some(nmt)) =
-                    (consumer.as_mut(), now, byte.state())
-                {
-                    for event in consumer.on_heartbeat(now, node, nmt) {
-                        match event {
-                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
-                            }
-                            HeartbeatEvent::Recovered { at, .. }
-                            | HeartbeatEvent::RemoteReset { at, .. } => {
-                                if let Some((after_line, last)) = state.open_gap.take() {
-                                    let gap = HeartbeatGap {
-                                        after_line,
-                                        gap: at.saturating_sub(last),
-                                    };
-                                    state.timeouts.push(gap);
-                                    on_event(SummaryEvent {
-                                        bus: name,
-                                        node: Some(node),
-                                        line: after_line,
-                                        ts: Some(Timestamp::from_duration(last)),
-                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
-                                    });
-                                }
-                            }
-                            HeartbeatEvent::CapacityExceeded { .. } => {}
+            MessageKind::Heartbeat => {
+                let Some(&byte) = frame.data().first() else {
+                    return;
+                };
+                let byte = NmtStateByte::new(byte);
+                if state.guard_request_pending {
+                    state.guard_request_pending = false;
+                    state.guarding_summary.answers += 1;
+                    // Counted as an answer, not as a heartbeat.
+                    state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
+                    state.frames.guard_answers += 1;
+                    on_event(event(
+                        Some(node),
+                        SummaryEventKind::Nmt {
+                            state: byte,
+                            guard_answer: true,
+                        },
+                    ));
+                    if let Some(answer) = byte.guard_answer() {
+                        let events = state
+                            .guarding
+                            .on_answer(now.unwrap_or(Duration::ZERO), answer);
+                        if events
+                            .into_iter()
+                            .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+                        {
+                            state.guarding_summary.toggle_errors.push(position);
+                            on_event(event(Some(node), SummaryEventKind::ToggleError));
                         }
                     }
+                } else {
+                    state.heartbeats += 1;
+                    state.last_state = Some(byte);
+                    on_event(event(
+                        Some(node),
+                        SummaryEventKind::Nmt {
+                            state: byte,
+                            guard_answer: false,
+                        },
+                    ));
+                    if byte.state_raw() == 0 {
+                        state.boot_ups.push(position);
+                        state.guarding.on_boot_up();
+                        on_event(event(Some(node), SummaryEventKind::BootUp));
+                    }
+                    if let (Some(consumer), Some(now), Some(nmt)) =
+                        (consumer.as_mut(), now, byte.state())
+                    {
+                        for event in consumer.on_heartbeat(now, node, nmt) {
+                            match event {
+                                HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                    state.open_gap =
+                                        Some((state.last_heartbeat_line, last_heartbeat));
+                                }
+                                HeartbeatEvent::Recovered { at, .. }
+                                | HeartbeatEvent::RemoteReset { at, .. } => {
+                                    if let Some((after_line, last)) = state.open_gap.take() {
+                                        let gap = HeartbeatGap {
+                                            after_line,
+                                            gap: at.saturating_sub(last),
+                                        };
+                                        state.timeouts.push(gap);
+                                        on_event(SummaryEvent {
+                                            bus: name,
+                                            node: Some(node),
+                                            line: after_line,
+                                            ts: Some(Timestamp::from_duration(last)),
+                                            kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                        });
+                                    }
+                                }
+                                HeartbeatEvent::CapacityExceeded { .. } => {}
+                            }
+                        }
+                    }
+                    state.last_heartbeat_line = position;
                 }
-                state.last_heartbeat_line = position;
             }
             _ => {}
         }

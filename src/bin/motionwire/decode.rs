@@ -73,6 +73,9 @@ fn stdin_input() -> Input {
     }
 }
 
+/// How many bytes of JSON records are built before they are written out.
+const JSON_BLOCK: usize = 1 << 16;
+
 /// How records are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Output {
@@ -86,6 +89,9 @@ enum Output {
 /// docs/output.md#filters).
 struct Sink<'a> {
     out: BufWriter<StdoutLock<'static>>,
+    /// JSON records built and not yet written to `out`
+    /// (`Decoded::append_json`), written in blocks of [`JSON_BLOCK`].
+    json: Vec<u8>,
     err: BufWriter<StderrLock<'static>>,
     summary: Option<Summarizer>,
     /// With `motionwire report`: the recording's timeline and summary, and
@@ -149,6 +155,7 @@ impl<'a> Sink<'a> {
         let recorder = page.then(|| Recorder::with_summarizer(new_summarizer(heartbeat)));
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
+            json: Vec::with_capacity(JSON_BLOCK + 4096),
             err: BufWriter::new(io::stderr().lock()),
             summary,
             recorder,
@@ -179,12 +186,12 @@ impl<'a> Sink<'a> {
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
         self.frames += 1;
-        // Every frame teaches the decoder, shown or not.
-        let decoded = self.decoder.decode(line, frame);
         if let Some(summary) = self.summary.as_mut() {
-            summary.add_frame(line, frame, &decoded);
+            summary.add_frame_from(line, frame, &mut self.decoder);
             return Ok(());
         }
+        // Every frame teaches the decoder, shown or not.
+        let decoded = self.decoder.decode(line, frame);
         if let Some(recorder) = self.recorder.as_mut() {
             recorder.add_frame(line, frame, &decoded);
             return Ok(());
@@ -205,10 +212,12 @@ impl<'a> Sink<'a> {
             }
         }
         if self.output == Output::Json {
-            return match &self.file {
-                Some(file) => decoded.write_json_in(&mut self.out, file),
-                None => decoded.write_json(&mut self.out),
-            };
+            decoded.append_json(&mut self.json, self.file.as_deref());
+            if self.json.len() >= JSON_BLOCK {
+                self.out.write_all(&self.json)?;
+                self.json.clear();
+            }
+            return Ok(());
         }
         let record = Record {
             line,
@@ -248,6 +257,15 @@ impl<'a> Sink<'a> {
         writeln!(self.err, "{name}:{line}: {why}")
     }
 
+    /// Write out the JSON records built so far.
+    fn write_json(&mut self) -> io::Result<()> {
+        if !self.json.is_empty() {
+            self.out.write_all(&self.json)?;
+            self.json.clear();
+        }
+        Ok(())
+    }
+
     /// Erase the progress line, so that the next message starts on a
     /// clean line.
     fn clear_progress(&mut self) -> io::Result<()> {
@@ -259,6 +277,7 @@ impl<'a> Sink<'a> {
     }
 
     fn flush(&mut self) -> io::Result<()> {
+        self.write_json()?;
         self.out.flush()?;
         self.err.flush()
     }
@@ -382,6 +401,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         take_recording(&mut sink, None, spans)?;
     }
 
+    sink.write_json()?;
     let Sink {
         mut out,
         mut err,
