@@ -356,3 +356,129 @@ fn an_output_folder_that_is_not_there_is_said_first() {
     assert_eq!(r.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&r.stderr).contains("does not exist"));
 }
+
+/// Found by the fuzz target `report`: an EMCY with a code 00xxh other than
+/// 0000h is a reset for the summary (`resets`, docs/canopen.md#emcy-codes),
+/// so the page marks it as one (`emcy_reset`), and the marks of a row add
+/// up to the summary's counts.
+#[test]
+fn every_00xx_code_is_a_reset_mark() {
+    use motionwire::decoder::{Decoder, DecoderConfig};
+    use motionwire::report::{MarkKind, Recorder};
+
+    let log = b"(1.000000) can0 083#0B00000000000000\n\
+                (1.100000) can0 083#0573010000000000\n\
+                (1.200000) can0 083#0000000000000000\n";
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let mut recorder = Recorder::new();
+    for (i, text) in log.split(|&b| b == b'\n').enumerate() {
+        if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
+            let line = i as u64 + 1;
+            let decoded = decoder.decode(line, &frame);
+            recorder.add_frame(line, &frame, &decoded);
+        }
+    }
+    let recording = recorder.finish(&mut decoder);
+    let node = &recording.summary.nodes[0];
+    assert_eq!((node.emcy, node.resets), (3, 2));
+    let marks = |kind| {
+        recording
+            .timeline
+            .mark_count(&node.bus, Some(node.node), kind)
+    };
+    assert_eq!(marks(MarkKind::EmcyReset), 2);
+    assert_eq!(marks(MarkKind::Emcy), 1);
+}
+
+/// A page from any bytes read as a log (detected as the program detects
+/// it): no panic, one whole document whose embedded records are JSON, and
+/// marks that add up to the summary's counts (the fuzz target `report`
+/// checks the same on longer runs).
+fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCaseError> {
+    use motionwire::decoder::{Decoder, DecoderConfig};
+    use motionwire::logs::{self, ReadLog};
+    use motionwire::report::{MarkKind, Recorder, Report};
+    use proptest::prelude::*;
+
+    let Ok(mut log) = logs::read(std::io::Cursor::new(bytes)) else {
+        return Ok(());
+    };
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let mut recorder = Recorder::new().heartbeat_timeout(std::time::Duration::from_millis(50));
+    while let Some(next) = log.next_event() {
+        if let Ok(record) = next {
+            recorder.add(record.position.number(), &record.event, &mut decoder);
+        }
+    }
+    let recording = recorder.finish(&mut decoder);
+    for node in &recording.summary.nodes {
+        let marks = |kind| {
+            recording
+                .timeline
+                .mark_count(&node.bus, Some(node.node), kind)
+        };
+        prop_assert_eq!(
+            marks(MarkKind::Emcy) + marks(MarkKind::EmcyReset),
+            node.emcy
+        );
+        prop_assert_eq!(marks(MarkKind::EmcyReset), node.resets);
+        prop_assert_eq!(
+            marks(MarkKind::BootUp),
+            node.heartbeat.boot_ups.len() as u64
+        );
+    }
+    let records = recording.summary.nodes.len() + recording.summary.buses.len();
+    let mut report = Report::new();
+    report.add_recording(recording);
+    let mut page = Vec::new();
+    report.write_html(&mut page).unwrap();
+    let page = String::from_utf8(page).expect("UTF-8");
+    prop_assert!(page.starts_with("<!DOCTYPE html>") && page.ends_with("</html>\n"));
+    let open = r#"<script type="application/json" id="motionwire-summary">"#;
+    let start = page.find(open).unwrap() + open.len();
+    let end = start + page[start..].find("</script>").unwrap();
+    let embedded: Value = serde_json::from_str(&page[start..end]).expect("JSON");
+    prop_assert_eq!(embedded.as_array().map(Vec::len), Some(records));
+    Ok(())
+}
+
+/// Text that looks like candump lines of CANopen traffic, with noise.
+fn candump_like() -> impl proptest::strategy::Strategy<Value = Vec<u8>> {
+    use proptest::prelude::*;
+    let line = (
+        0u32..3_000_000,
+        prop_oneof![
+            Just(0x000u32),
+            0x080u32..0x100,
+            0x180u32..0x280,
+            0x580u32..0x680,
+            0x700u32..0x780
+        ],
+        proptest::collection::vec(any::<u8>(), 0..=8),
+        0u8..2,
+    )
+        .prop_map(|(us, id, data, iface)| {
+            let hex: String = data.iter().map(|b| format!("{b:02X}")).collect();
+            format!(
+                "({}.{:06}) can{iface} {id:03X}#{hex}\n",
+                us / 1_000_000,
+                us % 1_000_000
+            )
+        });
+    proptest::collection::vec(prop_oneof![9 => line, 1 => "[ -~]{0,20}\n"], 0..60)
+        .prop_map(|lines| lines.concat().into_bytes())
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn any_bytes_make_a_whole_page(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400)) {
+        page_of_any_log(bytes)?;
+    }
+
+    #[test]
+    fn any_candump_traffic_makes_a_whole_page(bytes in candump_like()) {
+        page_of_any_log(bytes)?;
+    }
+}

@@ -68,7 +68,7 @@ use series::{
 pub enum MarkKind {
     /// An error EMCY (`emcy` less `resets` in docs/summary.md#emcy).
     Emcy,
-    /// A reset EMCY, code 0000h (`resets`).
+    /// A reset EMCY, any code 00xxh (`resets`; docs/canopen.md#emcy-codes).
     EmcyReset,
     /// A boot-up message (`heartbeat.boot_ups`).
     BootUp,
@@ -449,7 +449,9 @@ fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
     };
     match event.kind {
         SummaryEventKind::Emcy { code, register } => {
-            let kind = if code.get() == 0 {
+            // A reset is any 00xxh code, as the summary counts `resets`
+            // (docs/canopen.md#emcy-codes).
+            let kind = if code.is_reset() {
                 MarkKind::EmcyReset
             } else {
                 MarkKind::Emcy

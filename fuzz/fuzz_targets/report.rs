@@ -1,0 +1,122 @@
+//! The post-mortem page (docs/report.md) fed arbitrary CANopen traffic: the
+//! [`Recorder`] beside the summary it holds, then [`Report::write_html`].
+//!
+//! Input: one flags byte (bit 0: the frames carry no timestamps, the page is
+//! drawn by line; bit 1: heartbeats are checked against a 50 ms consumer
+//! time), then records of `[header, id, bytes…]` as in the `decoder` target:
+//! header bits 0–3 the data length (cut to 8 and to what is left), bit 4 the
+//! bus, bit 5 a remote frame, bits 6–7 the time step (0, 1, 10 or 1000 ms);
+//! `id`'s high 3 bits pick the function (NMT, SYNC/EMCY, TPDO1, RPDO1, SDO
+//! response, SDO request, heartbeat, any identifier), its low 5 bits the
+//! node.
+//!
+//! Invariants:
+//! - nothing panics, not the recorder and not the page;
+//! - the page is one whole document: UTF-8, from `<!DOCTYPE html>` to
+//!   `</html>`, with the embedded summary records, which parse as JSON and
+//!   are as many as the summary's nodes and buses;
+//! - the timeline counts what the summary counts (docs/report.md#marks):
+//!   each node row's error and reset EMCY marks add up to its `emcy`, its
+//!   boot-up marks to its boot-ups, its toggle-error marks to its toggle
+//!   errors, its SDO abort marks to its aborts, however the marks cluster;
+//! - a recording without timestamps is drawn by line.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use motionwire::can::{CanFrame, CanId, Iface, LogFrame, Timestamp};
+use motionwire::canopen::NodeId;
+use motionwire::decoder::{Decoder, DecoderConfig};
+use motionwire::profiles::Profile;
+use motionwire::report::{MarkKind, Recorder, Report};
+
+const SUMMARY_OPEN: &str = r#"<script type="application/json" id="motionwire-summary">"#;
+
+fuzz_target!(|input: &[u8]| {
+    let Some((&flags, mut rest)) = input.split_first() else {
+        return;
+    };
+    let untimed = flags & 1 != 0;
+    let config = DecoderConfig::new()
+        .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+        .sdo_data_cap(64);
+    let mut decoder = Decoder::new(config);
+    let mut recorder = Recorder::new();
+    if flags & 2 != 0 {
+        recorder = recorder.heartbeat_timeout(core::time::Duration::from_millis(50));
+    }
+    let (mut ms, mut line) = (0u64, 0u64);
+    while let Some((&[header, id], tail)) = rest.split_first_chunk::<2>() {
+        let len = usize::from(header & 0x0F).min(8).min(tail.len());
+        let (data, tail) = tail.split_at(len);
+        rest = tail;
+        line += 1;
+        ms += [0, 1, 10, 1000][usize::from(header >> 6)];
+        let node = u32::from(id & 0x1F);
+        let raw = match id >> 5 {
+            0 => 0x000,
+            1 => 0x080 + node,
+            2 => 0x180 + node,
+            3 => 0x200 + node,
+            4 => 0x580 + node,
+            5 => 0x600 + node,
+            6 => 0x700 + node,
+            _ => (u32::from(id) << 3) | u32::from(header & 7),
+        };
+        let frame = if header & 0x20 != 0 {
+            CanFrame::new_remote(CanId::standard(raw).unwrap(), len as u8)
+        } else {
+            CanFrame::new(CanId::standard(raw).unwrap(), data)
+        };
+        let Ok(frame) = frame else { continue };
+        let iface = if header & 0x10 != 0 { "can1" } else { "can0" };
+        let mut log = LogFrame::new(frame).with_iface(Iface::Name(iface));
+        if !untimed {
+            log = log.with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(
+                ms,
+            )));
+        }
+        let decoded = decoder.decode(line, &log);
+        recorder.add_frame(line, &log, &decoded);
+    }
+    let recording = recorder.finish(&mut decoder);
+    if untimed {
+        assert!(!recording.timeline.is_timed(), "drawn by line");
+    }
+    for node in &recording.summary.nodes {
+        let marks = |kind| {
+            recording
+                .timeline
+                .mark_count(&node.bus, Some(node.node), kind)
+        };
+        assert_eq!(
+            marks(MarkKind::Emcy) + marks(MarkKind::EmcyReset),
+            node.emcy,
+            "EMCY marks of node {}",
+            node.node
+        );
+        assert_eq!(marks(MarkKind::EmcyReset), node.resets);
+        assert_eq!(
+            marks(MarkKind::BootUp),
+            node.heartbeat.boot_ups.len() as u64
+        );
+        assert_eq!(
+            marks(MarkKind::ToggleError),
+            node.guarding.toggle_errors.len() as u64
+        );
+        assert_eq!(marks(MarkKind::SdoAbort), node.sdo.aborts.len() as u64);
+    }
+    let records = recording.summary.nodes.len() + recording.summary.buses.len();
+
+    let mut report = Report::new();
+    report.add_recording(recording);
+    let mut page = Vec::new();
+    report.write_html(&mut page).expect("writing to a Vec");
+    let page = String::from_utf8(page).expect("the page is UTF-8");
+    assert!(page.starts_with("<!DOCTYPE html>"), "a whole document");
+    assert!(page.ends_with("</html>\n"), "a whole document");
+    let start = page.find(SUMMARY_OPEN).expect("the embedded summary") + SUMMARY_OPEN.len();
+    let end = start + page[start..].find("</script>").expect("its end");
+    let embedded: serde_json::Value =
+        serde_json::from_str(&page[start..end]).expect("the embedded records are JSON");
+    assert_eq!(embedded.as_array().map(Vec::len), Some(records));
+});
