@@ -48,27 +48,8 @@ pub struct ReportArgs {
     /// The HTML file to write (`-` for standard output).
     #[arg(short = 'o', long = "output", value_name = "FILE.html")]
     pub output: PathBuf,
-    /// Read the input as this format instead of detecting it from the
-    /// content (docs/formats.md#detection).
-    #[arg(long, value_name = "FORMAT", value_parser = parse_format, help = format_help())]
-    pub format: Option<LogFormat>,
-    /// What candump's relative timestamps `(000.000123)` count: `delta`
-    /// or `zero` (docs/formats.md#candump-relative-times).
-    #[arg(long, value_name = "delta|zero")]
-    pub timestamps: Option<TimestampBase>,
-    /// How to read each node: `generic`, `akd` or `baumer` for every node,
-    /// or per node as `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`).
-    #[arg(
-        long,
-        value_name = "PROFILE|NODE=PROFILE",
-        value_delimiter = ',',
-        value_parser = parse_profile_choice,
-    )]
-    pub profile: Vec<ProfileChoice>,
-    /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
-    /// for several nodes; docs/canopen.md#pdo-mappings).
-    #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
-    pub eds: Vec<(NodeId, PathBuf)>,
+    #[command(flatten)]
+    pub reading: ReadingArgs,
     /// Accepted for the command line of `decode --summary`: the page is
     /// the summary's, always.
     #[arg(long, hide = true)]
@@ -101,10 +82,7 @@ impl ReportArgs {
         DecodeArgs {
             json: false,
             csv: false,
-            format: self.format,
-            timestamps: self.timestamps,
-            profile: self.profile.clone(),
-            eds: self.eds.clone(),
+            reading: self.reading.clone(),
             summary: true,
             joined: self.joined,
             heartbeat_ms: self.heartbeat_ms,
@@ -152,32 +130,8 @@ pub struct DecodeArgs {
     /// Write one CSV row per frame, under a header row (docs/output.md#csv).
     #[arg(long, conflicts_with = "summary")]
     pub csv: bool,
-    /// Read the input as this format instead of detecting it from the
-    /// content (docs/formats.md#detection).
-    #[arg(long, value_name = "FORMAT", value_parser = parse_format, help = format_help())]
-    pub format: Option<LogFormat>,
-    /// What candump's relative timestamps `(000.000123)` count: `delta`
-    /// (`candump -t d`) or `zero` (`-t z`); detected from the first 64
-    /// frames when not given (docs/formats.md#candump-relative-times).
-    #[arg(long, value_name = "delta|zero")]
-    pub timestamps: Option<TimestampBase>,
-    /// How to read the manufacturer-specific bytes of EMCY frames:
-    /// `generic`, `akd` or `baumer` for every node, or per node as
-    /// `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`); a bare profile sets
-    /// the default for the nodes not named.
-    #[arg(
-        long,
-        value_name = "PROFILE|NODE=PROFILE",
-        value_delimiter = ',',
-        value_parser = parse_profile_choice,
-    )]
-    pub profile: Vec<ProfileChoice>,
-    /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
-    /// for several nodes): its PDO mappings, object names and data types
-    /// decode that node's PDOs until the log's own SDO configuration
-    /// changes them (docs/canopen.md#pdo-mappings).
-    #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
-    pub eds: Vec<(NodeId, PathBuf)>,
+    #[command(flatten)]
+    pub reading: ReadingArgs,
     /// After the input, write one record per node seen instead of one per
     /// frame: frame counts, EMCYs with the root cause, heartbeats, guarding.
     #[arg(long)]
@@ -209,6 +163,38 @@ pub struct DecodeArgs {
     /// Log files to read; none, or `-`, reads standard input.
     #[arg(value_name = "FILE")]
     pub files: Vec<PathBuf>,
+}
+
+/// How the logs are read and their nodes described: the options that
+/// `decode` and `report` share (docs/output.md#command, docs/report.md#command).
+#[derive(Debug, Clone, Args)]
+pub struct ReadingArgs {
+    /// Read the input as this format instead of detecting it from the
+    /// content (docs/formats.md#detection).
+    #[arg(long, value_name = "FORMAT", value_parser = parse_format, help = format_help())]
+    pub format: Option<LogFormat>,
+    /// What candump's relative timestamps `(000.000123)` count: `delta`
+    /// (`candump -t d`) or `zero` (`-t z`); detected from the first 64
+    /// frames when not given (docs/formats.md#candump-relative-times).
+    #[arg(long, value_name = "delta|zero")]
+    pub timestamps: Option<TimestampBase>,
+    /// How to read the manufacturer-specific bytes of EMCY frames:
+    /// `generic`, `akd` or `baumer` for every node, or per node as
+    /// `NODE=PROFILE` (e.g. `--profile 3=akd,5=baumer`); a bare profile sets
+    /// the default for the nodes not named.
+    #[arg(
+        long,
+        value_name = "PROFILE|NODE=PROFILE",
+        value_delimiter = ',',
+        value_parser = parse_profile_choice,
+    )]
+    pub profile: Vec<ProfileChoice>,
+    /// The EDS or DCF file that describes a node, as `NODE=FILE` (repeat
+    /// for several nodes): its PDO mappings, object names and data types
+    /// decode that node's PDOs until the log's own SDO configuration
+    /// changes them (docs/canopen.md#pdo-mappings).
+    #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
+    pub eds: Vec<(NodeId, PathBuf)>,
 }
 
 /// One `--profile` item: for every node, or for one node.

@@ -130,9 +130,9 @@ impl<'a> Sink<'a> {
     fn new(args: &'a DecodeArgs, page: bool) -> Result<Self, Failure> {
         // The page charts drives' signals (docs/report.md#signals).
         let mut config = DecoderConfig::new()
-            .profiles_from(node_profiles(&args.profile))
+            .profiles_from(node_profiles(&args.reading.profile))
             .signals(page || !args.summary);
-        for (node, path) in &args.eds {
+        for (node, path) in &args.reading.eds {
             config = config.eds_file(*node, path).map_err(|why| {
                 Failure::Usage(format!("--eds {}={}: {why}", node, path.display()))
             })?;
@@ -317,10 +317,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         write!(sink.out, "{CSV_HEADER}\r\n")?;
     }
     let mut options = ReadOptions::new();
-    if let Some(format) = args.format {
+    if let Some(format) = args.reading.format {
         options = options.format(format);
     }
-    if let Some(base) = args.timestamps {
+    if let Some(base) = args.reading.timestamps {
         options = options.relative_timestamps(match base {
             TimestampBase::Delta => RelativeTimestamps::Delta,
             TimestampBase::Zero => RelativeTimestamps::Zero,
