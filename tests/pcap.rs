@@ -133,8 +133,10 @@ fn check_against_tshark(name: &str, format: LogFormat) {
             field(want, "frame.time_epoch").unwrap(),
             "{at}"
         );
+        // An unnamed interface (or `any`): a cooked SLL2 header's
+        // interface index, tshark's `sll.ifindex` (docs/formats.md#pcap).
         let iface = match field(want, "frame.interface_name") {
-            None | Some("unknown") => None,
+            None | Some("unknown" | "any") => field(want, "sll.ifindex"),
             // tshark 4.0 names the second section's interface 0 after the
             // first section's (see the module documentation).
             Some("can0") if name == "multi.pcapng" && *number >= 8 => Some("can9"),

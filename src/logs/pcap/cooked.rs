@@ -41,6 +41,9 @@ mod field {
     pub(super) const SLL_PROTOCOL: Field = 14..16;
     /// SLL2: the protocol type, first field of the header.
     pub(super) const SLL2_PROTOCOL: Field = 0..2;
+    /// SLL2: the interface index of the interface the packet went
+    /// through (`sll.ifindex` in tshark).
+    pub(super) const SLL2_IFINDEX: Field = 4..8;
     /// SLL2: the address, last field of the header.
     pub(super) const SLL2_ADDRESS: Field = 12..20;
 }
@@ -66,6 +69,10 @@ pub(super) enum Cooked {
         at: usize,
         /// How the frame is laid out.
         layout: FrameLayout,
+        /// SLL2: the capturing machine's index of the interface the frame
+        /// went through (`tcpdump -i any` captures every bus into one
+        /// file); `None` for SLL, which does not record it.
+        ifindex: Option<u32>,
     },
     /// No CAN or CAN FD frame: counted as this kind.
     Other(OtherRecord),
@@ -94,12 +101,17 @@ pub(super) fn split(link_type: u16, packet: &[u8]) -> Result<Cooked, BinaryError
             found: packet.len() as u64,
         });
     };
+    let ifindex = (link_type == LINKTYPE_LINUX_SLL2)
+        .then(|| packet.get(field::SLL2_IFINDEX)?.first_chunk::<4>().copied())
+        .flatten()
+        .map(u32::from_be_bytes);
     Ok(match protocol {
         ETH_P_CAN | ETH_P_CANFD => Cooked::Can {
             at: header_len,
             layout: FrameLayout::Cooked {
                 fd: protocol == ETH_P_CANFD,
             },
+            ifindex,
         },
         ETH_P_CANXL => Cooked::Other(OtherRecord::CanXl),
         protocol => Cooked::Other(OtherRecord::CookedProtocol {
@@ -135,11 +147,13 @@ mod tests {
         let classic = Cooked::Can {
             at: 16,
             layout: FrameLayout::Cooked { fd: false },
+            ifindex: None,
         };
         assert_eq!(split(LINKTYPE_LINUX_SLL, &sll(0x000C, &[])), Ok(classic));
         let fd = Cooked::Can {
             at: 20,
             layout: FrameLayout::Cooked { fd: true },
+            ifindex: Some(3),
         };
         assert_eq!(split(LINKTYPE_LINUX_SLL2, &sll2(0x000D, &[1])), Ok(fd));
     }

@@ -32,8 +32,9 @@
 //! - `number`: the 1-based packet number, tshark's `frame.number`;
 //! - `timestamp`: absolute Unix time to the file's resolution (a simple
 //!   packet block records none);
-//! - `iface`: the interface name of a pcapng interface that has one, else
-//!   `None` (pcap has none);
+//! - `iface`: the interface name of a pcapng interface that has one (other
+//!   than `any`), else the interface index of a cooked SLL2 header as a
+//!   channel number, else `None` (pcap names none);
 //! - `direction`: `None`.
 //!
 //! **Classic, CAN FD, CAN XL.** A packet is CAN FD when its flags byte has
@@ -144,6 +145,10 @@ mod block {
 }
 
 /// The pcap file header: magic, version, reserved, snaplen, link type.
+/// The name of Linux's pseudo-interface that captures every interface
+/// (`tcpdump -i any`): it names no bus.
+const ANY: &str = "any";
+
 const PCAP_HEADER_LEN: usize = 24;
 /// A pcap record header: seconds, fraction, captured and original length.
 const PCAP_RECORD_LEN: usize = 16;
@@ -748,10 +753,14 @@ impl<R: Read> ReadLog for PcapReader<R> {
             // The SocketCAN frame's offset in the packet, and how it is
             // laid out; or the kind of packet that holds none.
             let framed = match packet.link_type {
-                Some(LINKTYPE_CAN_SOCKETCAN) => Ok((0, FrameLayout::LinkType227)),
+                Some(LINKTYPE_CAN_SOCKETCAN) => Ok((0, FrameLayout::LinkType227, None)),
                 Some(link_type @ (LINKTYPE_LINUX_SLL | LINKTYPE_LINUX_SLL2)) => {
                     match cooked::split(link_type, data) {
-                        Ok(Cooked::Can { at, layout }) => Ok((at, layout)),
+                        Ok(Cooked::Can {
+                            at,
+                            layout,
+                            ifindex,
+                        }) => Ok((at, layout, ifindex)),
                         Ok(Cooked::Other(kind)) => Err(Ok(kind)),
                         Err(reason) => Err(Err((0, reason))),
                     }
@@ -759,15 +768,15 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 Some(link_type) => Err(Ok(OtherRecord::LinkType(link_type))),
                 None => Err(Ok(OtherRecord::SystemdJournal)),
             };
-            let decoded = framed.and_then(|(at, layout)| {
+            let decoded = framed.and_then(|(at, layout, ifindex)| {
                 match socketcan::decode(data.get(at..).unwrap_or_default(), layout) {
-                    Ok(Payload::Frame(frame)) => Ok(frame),
+                    Ok(Payload::Frame(frame)) => Ok((frame, ifindex)),
                     Ok(Payload::NotCan) => Err(Ok(OtherRecord::CanXl)),
                     Err(reason) => Err(Err((at, reason))),
                 }
             });
-            let frame = match decoded {
-                Ok(frame) => frame,
+            let (frame, ifindex) = match decoded {
+                Ok(decoded) => decoded,
                 Err(Ok(kind)) => {
                     self.input.consume(packet.len);
                     self.other.add(kind);
@@ -780,11 +789,18 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
             };
             self.input.consume(packet.len);
-            let iface = self
+            let name = self
                 .interfaces
                 .get(packet.interface)
-                .and_then(|i| i.name.as_deref())
-                .map(Iface::Name);
+                .and_then(|i| i.name.as_deref());
+            let iface = match (name, ifindex.and_then(|i| u16::try_from(i).ok())) {
+                // The pcapng interface names the bus.
+                (Some(name), _) if name != ANY => Some(Iface::Name(name)),
+                // `tcpdump -i any`: every bus in one file, told apart by
+                // the cooked header's interface index.
+                (_, Some(index)) => Some(Iface::Channel(index)),
+                (name, None) => name.map(Iface::Name),
+            };
             return Some(Ok(LogRecord {
                 position: Position::Record(self.number),
                 event: LogEvent::Frame(LogFrame {

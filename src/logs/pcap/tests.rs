@@ -292,3 +292,51 @@ fn binary_error(e: LogError) -> Error {
         other => panic!("{other}"),
     }
 }
+
+/// `tcpdump -i any` on two CAN buses: one file, the buses told apart by the
+/// SLL2 header's interface index (tshark's `sll.ifindex`); a pcapng
+/// interface's own name wins, unless it is `any` (docs/formats.md#pcap).
+#[test]
+fn sll2_interface_indices_tell_the_buses_apart() {
+    /// A cooked SLL2 packet of interface `ifindex` holding `705#05`, its
+    /// identifier word little-endian (the capturing machine's order).
+    fn cooked(ifindex: u32) -> Vec<u8> {
+        let mut p = 0x000C_u16.to_be_bytes().to_vec();
+        p.extend([0, 0]);
+        p.extend(ifindex.to_be_bytes());
+        p.extend([0x01, 0x18, 0, 0]);
+        p.extend([0; 8]);
+        p.extend(0x705_u32.to_le_bytes());
+        p.extend([1, 0, 0, 0, 5, 0, 0, 0, 0, 0, 0, 0]);
+        p
+    }
+    let packets: Vec<_> = [3, 4, 3, 70_000]
+        .map(|i| (Timestamp::ZERO, cooked(i)))
+        .into();
+    let (frames, error, other) = read_all(&writer::pcap(&packets, 276, false, false));
+    assert_eq!((error, other), (None, 0));
+    let ifaces: Vec<_> = frames.iter().map(|(_, f)| f.iface).collect();
+    // An index beyond a channel number's range names no bus.
+    let (c3, c4) = (Some(Iface::Channel(3)), Some(Iface::Channel(4)));
+    assert_eq!(ifaces, [c3, c4, c3, None]);
+    assert!(frames.iter().all(|(_, f)| f.frame.data() == [5]));
+
+    for (name, want) in [
+        (None, c4),
+        (Some("any"), c4),
+        (Some("can1"), Some(Iface::Name("can1"))),
+    ] {
+        let mut w = Pcapng::default();
+        w.section(false)
+            .interface(&Interface {
+                link: LINKTYPE_LINUX_SLL2,
+                name: name.map(str::to_owned),
+                tsresol: None,
+                tsoffset: None,
+            })
+            .packet(0, 0, &cooked(4));
+        let (frames, error, _) = read_all(&w.bytes);
+        assert_eq!(error, None, "{name:?}");
+        assert_eq!(frames[0].1.iface, want, "{name:?}");
+    }
+}
