@@ -82,7 +82,9 @@ pub(crate) struct Added {
 #[derive(Debug, Default)]
 pub(crate) struct SdoStats {
     summary: SdoSummary,
-    latencies: Vec<Duration>,
+    /// Every latency in nanoseconds, for exact percentiles: 8 bytes a
+    /// request (a `Duration` takes 16; u64 nanoseconds hold 584 years).
+    latencies: Vec<u64>,
 }
 
 impl SdoStats {
@@ -97,7 +99,8 @@ impl SdoStats {
             s.transfers += 1;
         }
         if let Some(latency) = step.latency {
-            self.latencies.push(latency);
+            self.latencies
+                .push(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
         }
         let abort = match step.message {
             Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
@@ -153,12 +156,14 @@ impl SdoStats {
             let n = sorted.len();
             // Nearest rank: the smallest value with at least p of them at
             // or below it.
-            let rank = |p: f64| sorted[((p * n as f64).ceil() as usize).clamp(1, n) - 1];
+            let rank = |p: f64| {
+                Duration::from_nanos(sorted[((p * n as f64).ceil() as usize).clamp(1, n) - 1])
+            };
             self.summary.latency = Some(LatencyStats {
                 count: n,
                 median: rank(0.5),
                 p99: rank(0.99),
-                max: sorted[n - 1],
+                max: Duration::from_nanos(sorted[n - 1]),
             });
         }
         self.summary
