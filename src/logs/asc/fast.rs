@@ -1,0 +1,228 @@
+//! The fast path: the two event lines a log is made of — a classic data
+//! frame (`   0.012345 1  123             Rx   d 8 11 22 …`) and a `CANFD`
+//! frame — read in one pass over the line, in a `base hex` file.
+//!
+//! It accepts only lines the general parser reads to a frame, and returns
+//! for them what the general parser returns; every other line (a remote
+//! request, an error frame, a symbolic name, `base dec`, a header, a
+//! malformed line) it declines without changing the parser, and the general
+//! parser reads it or says where it goes wrong. The property tests in
+//! `proptests.rs` hold the two to that.
+
+use super::{channel_number, fd_frame, hex, is_space, AscParser};
+use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
+use crate::logs::text::hex_value;
+
+impl AscParser {
+    /// Read `line` (its trailing white space trimmed) when it is a classic
+    /// data frame or a `CANFD` frame in a `base hex` file: the event, as
+    /// the general parser reads it, or `None` for any other line, with the
+    /// parser unchanged.
+    #[inline]
+    pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
+        if !self.hex {
+            return None;
+        }
+        let mut words = Words { line, pos: 0 };
+        let written = words.time()?;
+        let second = words.next()?;
+        let (frame, channel, direction) = if second == b"CANFD" {
+            fd(&mut words)?
+        } else {
+            let channel = channel_number(second)?;
+            let (frame, direction) = classic(&mut words)?;
+            (frame, channel, direction)
+        };
+        let timestamp = self.time(written);
+        Some(LogEvent::Frame(
+            LogFrame::new(frame)
+                .with_timestamp(timestamp)
+                .with_iface(Iface::Channel(channel))
+                .with_direction(direction),
+        ))
+    }
+}
+
+/// `id Rx|Tx d dlc data…` after the channel, in hex; what follows the data
+/// (CANoe's statistics) is not read, as the general parser does not read
+/// it.
+#[inline(always)]
+fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
+    let id = words.id()?;
+    let direction = words.direction_word()?;
+    if !matches!(words.next()?, b"d" | b"D") {
+        return None;
+    }
+    let len = usize::from(words.hex_digit()?).min(CLASSIC_MAX_LEN);
+    let mut data = [0u8; CLASSIC_MAX_LEN];
+    for slot in data.iter_mut().take(len) {
+        *slot = words.byte()?;
+    }
+    Some((CanFrame::new(id, data.get(..len)?).ok()?, direction))
+}
+
+/// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
+/// (no symbolic name), in hex.
+#[inline(always)]
+fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
+    let channel = channel_number(words.next()?)?;
+    let direction = words.direction_word()?;
+    let id = words.id()?;
+    let brs_column = words.bit()?;
+    let esi_column = words.bit()?;
+    let dlc = words.hex_digit()?;
+    // The data length in decimal, one or two digits, a length CAN FD has
+    // (0..=8, 12, …, 64).
+    let len = match *words.next()? {
+        [u] if u.is_ascii_digit() => u - b'0',
+        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
+        _ => return None,
+    };
+    if !FD_LENGTHS.contains(&len) {
+        return None;
+    }
+    let len = usize::from(len);
+    let mut data = [0u8; FD_MAX_LEN];
+    for slot in data.iter_mut().take(len) {
+        *slot = words.byte()?;
+    }
+    // Message duration and bit count, then the flags.
+    words.next()?;
+    words.next()?;
+    let flags = hex(words.next()?)?;
+    let frame = fd_frame(id, dlc, data.get(..len)?, flags, brs_column, esi_column)?;
+    Some((frame, channel, direction))
+}
+
+/// The white-space separated words of a line, read in order.
+struct Words<'l> {
+    line: &'l [u8],
+    pos: usize,
+}
+
+impl<'l> Words<'l> {
+    /// Skip spaces and tabs, 8 bytes at a time while they are spaces (the
+    /// padding the writers put after identifiers).
+    #[inline(always)]
+    fn skip_space(&mut self) {
+        while let Some(chunk) = self
+            .line
+            .get(self.pos..)
+            .and_then(|rest| rest.first_chunk::<8>())
+        {
+            let other = u64::from_le_bytes(*chunk) ^ u64::from_le_bytes([b' '; 8]);
+            if other != 0 {
+                self.pos += (other.trailing_zeros() / 8) as usize;
+                break;
+            }
+            self.pos += 8;
+        }
+        while self.line.get(self.pos).is_some_and(|&b| is_space(b)) {
+            self.pos += 1;
+        }
+    }
+
+    /// The next word, or `None` at the end of the line.
+    #[inline(always)]
+    fn next(&mut self) -> Option<&'l [u8]> {
+        self.skip_space();
+        let start = self.pos;
+        while self.line.get(self.pos).is_some_and(|&b| !is_space(b)) {
+            self.pos += 1;
+        }
+        if self.pos == start {
+            return None;
+        }
+        self.line.get(start..self.pos)
+    }
+
+    /// The first word: `seconds.fraction`, 1 to 15 digits of seconds and 1
+    /// to 9 of fraction.
+    #[inline(always)]
+    fn time(&mut self) -> Option<Timestamp> {
+        let word = self.next()?;
+        let point = word.iter().position(|&b| b == b'.')?;
+        let (secs, fraction) = (word.get(..point)?, word.get(point + 1..)?);
+        if secs.is_empty() || secs.len() > 15 || fraction.is_empty() || fraction.len() > 9 {
+            return None;
+        }
+        let mut value = 0u64;
+        for &b in secs {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                return None;
+            }
+            value = value * 10 + u64::from(d);
+        }
+        let mut nanos = 0u32;
+        for &b in fraction {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                return None;
+            }
+            nanos = nanos * 10 + u32::from(d);
+        }
+        let scale = [
+            1,
+            10,
+            100,
+            1_000,
+            10_000,
+            100_000,
+            1_000_000,
+            10_000_000,
+            100_000_000,
+        ];
+        Timestamp::from_nanos(value, nanos * scale.get(9 - fraction.len())?)
+    }
+
+    /// An identifier in hex, `x` after an extended one.
+    #[inline(always)]
+    fn id(&mut self) -> Option<CanId> {
+        let word = self.next()?;
+        match word.split_last() {
+            Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
+            _ => CanId::standard(hex(word)?),
+        }
+    }
+
+    /// `Rx` or `Tx`.
+    #[inline(always)]
+    fn direction_word(&mut self) -> Option<Direction> {
+        match self.next()? {
+            b"Rx" => Some(Direction::Rx),
+            b"Tx" => Some(Direction::Tx),
+            _ => None,
+        }
+    }
+
+    /// A BRS or ESI column: `0` or `1`.
+    #[inline(always)]
+    fn bit(&mut self) -> Option<bool> {
+        match self.next()? {
+            b"0" => Some(false),
+            b"1" => Some(true),
+            _ => None,
+        }
+    }
+
+    /// One hex digit (a DLC).
+    #[inline(always)]
+    fn hex_digit(&mut self) -> Option<u8> {
+        match self.next()? {
+            &[d] => hex_value(d),
+            _ => None,
+        }
+    }
+
+    /// A data byte: one or two hex digits.
+    #[inline(always)]
+    fn byte(&mut self) -> Option<u8> {
+        match self.next()? {
+            &[hi, lo] => Some(hex_value(hi)? << 4 | hex_value(lo)?),
+            &[lo] => hex_value(lo),
+            _ => None,
+        }
+    }
+}
