@@ -9,7 +9,7 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{channel_number, fd_frame, hex, is_space, AscParser};
+use super::{fd_frame, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
 use crate::logs::text::hex_value;
@@ -30,7 +30,7 @@ impl AscParser {
         let (frame, channel, direction) = if second == b"CANFD" {
             fd(&mut words)?
         } else {
-            let channel = channel_number(second)?;
+            let channel = channel(second)?;
             let (frame, direction) = classic(&mut words)?;
             (frame, channel, direction)
         };
@@ -66,7 +66,7 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 /// (no symbolic name), in hex.
 #[inline(always)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
-    let channel = channel_number(words.next()?)?;
+    let channel = channel(words.next()?)?;
     let direction = words.direction_word()?;
     let id = words.id()?;
     let brs_column = words.bit()?;
@@ -90,9 +90,40 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     // Message duration and bit count, then the flags.
     words.next()?;
     words.next()?;
-    let flags = hex(words.next()?)?;
+    let flags = hex_number(words.next()?)?;
     let frame = fd_frame(id, dlc, data.get(..len)?, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
+}
+
+/// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
+/// zeros, are left to the general parser).
+#[inline(always)]
+fn channel(word: &[u8]) -> Option<u16> {
+    if word.is_empty() || word.len() > 5 {
+        return None;
+    }
+    let mut value = 0u32;
+    for &b in word {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            return None;
+        }
+        value = value * 10 + u32::from(d);
+    }
+    u16::try_from(value).ok().filter(|&n| n > 0)
+}
+
+/// 1 to 8 hex digits.
+#[inline(always)]
+fn hex_number(word: &[u8]) -> Option<u32> {
+    if word.is_empty() || word.len() > 8 {
+        return None;
+    }
+    let mut value = 0u32;
+    for &b in word {
+        value = value << 4 | u32::from(hex_value(b)?);
+    }
+    Some(value)
 }
 
 /// The white-space separated words of a line, read in order.
@@ -106,6 +137,13 @@ impl<'l> Words<'l> {
     /// padding the writers put after identifiers).
     #[inline(always)]
     fn skip_space(&mut self) {
+        // One space between words is the common case.
+        if self.line.get(self.pos) == Some(&b' ')
+            && !self.line.get(self.pos + 1).is_some_and(|&b| is_space(b))
+        {
+            self.pos += 1;
+            return;
+        }
         while let Some(chunk) = self
             .line
             .get(self.pos..)
@@ -137,32 +175,20 @@ impl<'l> Words<'l> {
         self.line.get(start..self.pos)
     }
 
-    /// The first word: `seconds.fraction`, 1 to 15 digits of seconds and 1
-    /// to 9 of fraction.
+    /// The first word, read where it stands: `seconds.fraction`, 1 to 15
+    /// digits of seconds and 1 to 9 of fraction.
     #[inline(always)]
     fn time(&mut self) -> Option<Timestamp> {
-        let word = self.next()?;
-        let point = word.iter().position(|&b| b == b'.')?;
-        let (secs, fraction) = (word.get(..point)?, word.get(point + 1..)?);
-        if secs.is_empty() || secs.len() > 15 || fraction.is_empty() || fraction.len() > 9 {
+        self.skip_space();
+        let (secs, digits, point) = self.digits(self.pos);
+        if digits == 0 || digits > 15 || self.line.get(point) != Some(&b'.') {
             return None;
         }
-        let mut value = 0u64;
-        for &b in secs {
-            let d = b.wrapping_sub(b'0');
-            if d > 9 {
-                return None;
-            }
-            value = value * 10 + u64::from(d);
+        let (fraction, digits, end) = self.digits(point + 1);
+        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !is_space(b)) {
+            return None;
         }
-        let mut nanos = 0u32;
-        for &b in fraction {
-            let d = b.wrapping_sub(b'0');
-            if d > 9 {
-                return None;
-            }
-            nanos = nanos * 10 + u32::from(d);
-        }
+        self.pos = end;
         let scale = [
             1,
             10,
@@ -174,7 +200,26 @@ impl<'l> Words<'l> {
             10_000_000,
             100_000_000,
         ];
-        Timestamp::from_nanos(value, nanos * scale.get(9 - fraction.len())?)
+        let nanos = u32::try_from(fraction).ok()? * scale.get(9 - digits)?;
+        Timestamp::from_nanos(secs, nanos)
+    }
+
+    /// The decimal digits from `at`: their value (wrapped past 20
+    /// digits), their number and where they end.
+    #[inline(always)]
+    fn digits(&self, at: usize) -> (u64, usize, usize) {
+        let mut value = 0u64;
+        let mut end = at;
+        while let Some(d) = self
+            .line
+            .get(end)
+            .map(|b| b.wrapping_sub(b'0'))
+            .filter(|&d| d <= 9)
+        {
+            value = value.wrapping_mul(10).wrapping_add(u64::from(d));
+            end += 1;
+        }
+        (value, end - at, end)
     }
 
     /// An identifier in hex, `x` after an extended one.
@@ -182,8 +227,8 @@ impl<'l> Words<'l> {
     fn id(&mut self) -> Option<CanId> {
         let word = self.next()?;
         match word.split_last() {
-            Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
-            _ => CanId::standard(hex(word)?),
+            Some((b'x' | b'X', digits)) => CanId::extended(hex_number(digits)?),
+            _ => CanId::standard(hex_number(word)?),
         }
     }
 
@@ -216,13 +261,25 @@ impl<'l> Words<'l> {
         }
     }
 
-    /// A data byte: one or two hex digits.
+    /// A data byte: one or two hex digits, read where they stand.
     #[inline(always)]
     fn byte(&mut self) -> Option<u8> {
-        match self.next()? {
-            &[hi, lo] => Some(hex_value(hi)? << 4 | hex_value(lo)?),
-            &[lo] => hex_value(lo),
-            _ => None,
+        self.skip_space();
+        let at = self.pos;
+        let hi = hex_value(*self.line.get(at)?)?;
+        match self.line.get(at + 1) {
+            Some(&lo) if !is_space(lo) => {
+                let lo = hex_value(lo)?;
+                if self.line.get(at + 2).is_some_and(|&b| !is_space(b)) {
+                    return None;
+                }
+                self.pos = at + 2;
+                Some(hi << 4 | lo)
+            }
+            _ => {
+                self.pos = at + 1;
+                Some(hi)
+            }
         }
     }
 }

@@ -79,7 +79,7 @@ fn asc_like_line() -> impl Strategy<Value = String> {
     )
         .prop_flat_map(|(head, g4, kind, g5, dlc, tail)| {
             let digit = field(
-                &[
+                [
                     "0", "1", "2", "3", "4", "5", "6", "7", "8", "9", "A", "B", "C", "D", "E", "F",
                 ][dlc],
                 "[0-9a-f]|[0-9]{2}|G|",
@@ -134,10 +134,10 @@ fn asc_like_line() -> impl Strategy<Value = String> {
 /// where it declines, it leaves the parser as it was.
 fn fast_agrees(parser: &AscParser, line: &[u8]) -> Result<(), TestCaseError> {
     let line = trim_end(line);
-    let mut fast = parser.clone();
+    let mut fast = *parser;
     match fast.parse_fast(line) {
         Some(event) => {
-            let mut general = parser.clone();
+            let mut general = *parser;
             prop_assert_eq!(general.parse_general(line), Ok(Some(event)));
             prop_assert_eq!(fast, general);
         }
