@@ -12,7 +12,7 @@
 use super::{fd_frame, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::text::hex_value;
+use crate::logs::text::{hex_value, HEX_TABLE};
 
 impl AscParser {
     /// Read `line` (its trailing white space trimmed) when it is a classic
@@ -56,9 +56,7 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
     }
     let len = usize::from(words.hex_digit()?).min(CLASSIC_MAX_LEN);
     let mut data = [0u8; CLASSIC_MAX_LEN];
-    for slot in data.iter_mut().take(len) {
-        *slot = words.byte()?;
-    }
+    words.bytes(data.get_mut(..len)?)?;
     Some((CanFrame::new(id, data.get(..len)?).ok()?, direction))
 }
 
@@ -84,9 +82,7 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     }
     let len = usize::from(len);
     let mut data = [0u8; FD_MAX_LEN];
-    for slot in data.iter_mut().take(len) {
-        *slot = words.byte()?;
-    }
+    words.bytes(data.get_mut(..len)?)?;
     // Message duration and bit count, then the flags.
     words.next()?;
     words.next()?;
@@ -259,6 +255,25 @@ impl<'l> Words<'l> {
             &[d] => hex_value(d),
             _ => None,
         }
+    }
+
+    /// `out.len()` data bytes: ` HH` (what the writers write) with a
+    /// table look-up per digit, any other spelling by [`byte`](Self::byte).
+    #[inline(always)]
+    fn bytes(&mut self, out: &mut [u8]) -> Option<()> {
+        for slot in out {
+            let at = self.pos;
+            if let Some(&[b' ', hi, lo]) = self.line.get(at..at + 3) {
+                let (hi, lo) = (HEX_TABLE[usize::from(hi)], HEX_TABLE[usize::from(lo)]);
+                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !is_space(b)) {
+                    *slot = hi << 4 | lo;
+                    self.pos = at + 3;
+                    continue;
+                }
+            }
+            *slot = self.byte()?;
+        }
+        Some(())
     }
 
     /// A data byte: one or two hex digits, read where they stand.
