@@ -77,7 +77,8 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
         [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
         _ => return None,
     };
-    if !FD_LENGTHS.contains(&len) {
+    // (Compared one by one: `contains` on bytes is a `memchr` call.)
+    if !FD_LENGTHS.iter().any(|&n| n == len) {
         return None;
     }
     let len = usize::from(len);
