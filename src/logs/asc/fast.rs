@@ -62,6 +62,9 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 
 /// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
 /// (no symbolic name), in hex.
+// `contains` on bytes is a `memchr` call: 146 instructions per line more
+// on the `fd` mix (BENCHMARKS.md, issue 21, "ASC reader").
+#[allow(clippy::manual_contains)]
 #[inline(always)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let channel = channel(words.next()?)?;
@@ -77,7 +80,6 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
         [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
         _ => return None,
     };
-    // (Compared one by one: `contains` on bytes is a `memchr` call.)
     if !FD_LENGTHS.iter().any(|&n| n == len) {
         return None;
     }
