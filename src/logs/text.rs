@@ -105,6 +105,19 @@ pub(crate) const fn hex_value(b: u8) -> Option<u8> {
     }
 }
 
+/// Hex values by character; 0xF0 marks a character that is no hex digit.
+pub(crate) const HEX_TABLE: [u8; 256] = {
+    let mut table = [0xF0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        if let Some(v) = hex_value(i as u8) {
+            table[i] = v;
+        }
+        i += 1;
+    }
+    table
+};
+
 /// The longest line a text reader holds (1 MiB). A longer one is not a log
 /// line of any format: it is reported
 /// ([`LogErrorKind::OverlongLine`](crate::logs::LogErrorKind::OverlongLine))

@@ -84,6 +84,7 @@ use crate::logs::text::{hex_value, take_line};
 use crate::logs::{Found, LogFormat, SyntaxError};
 use crate::{Error, Result};
 
+mod fast;
 #[cfg(test)]
 mod proptests;
 #[cfg(feature = "std")]
@@ -153,8 +154,20 @@ impl AscParser {
     ///
     /// [`Error::Syntax`] with [`LogFormat::Asc`], the 1-based column and
     /// what was expected there.
+    #[inline]
     pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
         let line = trim_end(line);
+        // The common frame lines in one pass; every other line (and every
+        // line the fast path declines) is read by the general parser.
+        if let Some(event) = self.parse_fast(line) {
+            return Ok(Some(event));
+        }
+        self.parse_general(line)
+    }
+
+    /// [`parse_line`](Self::parse_line) without the fast path, for a line
+    /// whose trailing white space is trimmed.
+    fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
         let mut tokens = Tokens::new(line);
         let Some((start, first)) = tokens.next_token() else {
             return Ok(None);
@@ -407,39 +420,8 @@ impl AscParser {
         let flags = hex(flags)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscFlags { found }))?;
         let payload = data.get(..len).unwrap_or_default();
-        // Without EDL/FDF, more than 8 bytes can only be CAN FD (CANoe
-        // writes such lines; the decision in docs/formats.md#asc): BRS and ESI
-        // then come from their columns, as python-can reads them, and the
-        // flags' other bits (0x10 included) are not read.
-        let fd_without_edl = flags & FLAG_FDF == 0 && len > CLASSIC_MAX_LEN;
-        let frame = if flags & FLAG_FDF != 0 || fd_without_edl {
-            // FDF itself is what makes the frame CAN FD here; the flags
-            // kept are BRS and ESI, as the other readers keep them.
-            let (brs, esi) = if fd_without_edl {
-                (brs_column, esi_column)
-            } else {
-                (flags & FLAG_BRS != 0, flags & FLAG_ESI != 0)
-            };
-            let mut fd = FdFlags::EMPTY;
-            if brs {
-                fd = fd.union(FdFlags::BRS);
-            }
-            if esi {
-                fd = fd.union(FdFlags::ESI);
-            }
-            if FD_LENGTHS.get(usize::from(dlc)) != Some(&(len as u8)) {
-                return Err(tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }));
-            }
-            CanFrame::new_fd(id, fd, payload)
-        } else if flags & FLAG_RTR != 0 {
-            CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
-        } else {
-            // Classic content in the CAN FD form: at most 8 bytes (more
-            // is CAN FD, above).
-            CanFrame::new(id, payload)
-        };
-        let frame = frame
-            .map_err(|_| tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }))?;
+        let frame = fd_frame(id, dlc, payload, flags, brs_column, esi_column)
+            .ok_or_else(|| tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }))?;
         let _ = line;
         Ok(Some(LogEvent::Frame(
             LogFrame::new(frame)
@@ -491,6 +473,51 @@ impl AscParser {
         } else {
             decimal(text, 255).and_then(|v| u8::try_from(v).ok())
         }
+    }
+}
+
+/// The frame of a `CANFD` line from its fields: `dlc`, the data,
+/// the flags field and the BRS and ESI columns; `None` when the data
+/// length does not fit (the line's error is at its data length).
+fn fd_frame(
+    id: CanId,
+    dlc: u8,
+    payload: &[u8],
+    flags: u32,
+    brs_column: bool,
+    esi_column: bool,
+) -> Option<CanFrame> {
+    let len = payload.len();
+    // Without EDL/FDF, more than 8 bytes can only be CAN FD (CANoe
+    // writes such lines; the decision in docs/formats.md#asc): BRS and ESI
+    // then come from their columns, as python-can reads them, and the
+    // flags' other bits (0x10 included) are not read.
+    let fd_without_edl = flags & FLAG_FDF == 0 && len > CLASSIC_MAX_LEN;
+    if flags & FLAG_FDF != 0 || fd_without_edl {
+        // FDF itself is what makes the frame CAN FD here; the flags
+        // kept are BRS and ESI, as the other readers keep them.
+        let (brs, esi) = if fd_without_edl {
+            (brs_column, esi_column)
+        } else {
+            (flags & FLAG_BRS != 0, flags & FLAG_ESI != 0)
+        };
+        let mut fd = FdFlags::EMPTY;
+        if brs {
+            fd = fd.union(FdFlags::BRS);
+        }
+        if esi {
+            fd = fd.union(FdFlags::ESI);
+        }
+        if FD_LENGTHS.get(usize::from(dlc)) != Some(&(len as u8)) {
+            return None;
+        }
+        CanFrame::new_fd(id, fd, payload).ok()
+    } else if flags & FLAG_RTR != 0 {
+        CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8)).ok()
+    } else {
+        // Classic content in the CAN FD form: at most 8 bytes (more
+        // is CAN FD, above).
+        CanFrame::new(id, payload).ok()
     }
 }
 

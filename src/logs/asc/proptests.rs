@@ -2,7 +2,171 @@ use super::*;
 use crate::test_gens::can::any_can_frame as any_frame;
 use proptest::prelude::*;
 
+/// A parser in any state a header can set, partway through a file.
+fn any_parser() -> impl Strategy<Value = AscParser> {
+    (
+        any::<bool>(),
+        any::<bool>(),
+        0u64..1_000_000,
+        0u32..1_000_000_000,
+    )
+        .prop_map(|(hex, relative, secs, nanos)| AscParser {
+            hex,
+            relative,
+            elapsed: Timestamp::from_nanos(secs, nanos).unwrap_or(Timestamp::ZERO),
+        })
+}
+
+/// Mostly `right`, sometimes `wrong` (regular expressions).
+fn field(right: &'static str, wrong: &'static str) -> BoxedStrategy<String> {
+    prop_oneof![19 => right, 1 => wrong].boxed()
+}
+
+/// White space between words: what the writers put, sometimes tabs or
+/// none.
+fn gap() -> BoxedStrategy<String> {
+    field("[ ]{1,3}|[ ]{4,20}", "[ \\t]{1,3}|")
+}
+
+/// `n` data bytes (sometimes a few more or fewer), each after white
+/// space, each sometimes not a byte.
+fn data_bytes(n: usize) -> impl Strategy<Value = String> {
+    let count = prop_oneof![9 => Just(n), 1 => 0..n + 3];
+    count.prop_flat_map(|count| {
+        proptest::collection::vec(
+            (
+                gap(),
+                prop_oneof![
+                    60 => "[0-9A-F]{2}|[0-9a-f]{1,2}",
+                    1 => "[0-9A-F]{3}|G|\\r|"
+                ],
+            ),
+            count,
+        )
+        .prop_map(|bytes| bytes.into_iter().map(|(g, b)| g + &b).collect::<String>())
+    })
+}
+
+/// Lines shaped like the fast path's (a classic data frame, a `CANFD`
+/// frame), each field mostly right and sometimes just wrong.
+fn asc_like_line() -> impl Strategy<Value = String> {
+    let head = (
+        field(
+            "[ ]{0,4}[0-9]{1,6}\\.[0-9]{6}",
+            "[ \\t]{0,4}([0-9]{1,20}\\.[0-9]{0,11}|[0-9.]{1,5}|\\.5)",
+        ),
+        gap(),
+        field("[1-9]|[0-9]{1,5}", "[0-9]{6}|0|CAN|x"),
+        gap(),
+        field(
+            "[0-7][0-9A-F]{2}|[0-9A-Fa-f]{1,8}[xX]",
+            "[0-9A-Fa-f]{9}x?|[0-9A-F]{0,3}[gxX ]|ErrorFrame",
+        ),
+        gap(),
+        field("Rx|Tx", "TxRq|rx|R"),
+    );
+    let tail = field(
+        "",
+        "[ ]+Length = [0-9]+ BitCount = [0-9]+|\\r|[ \\t\\r]{1,3}|\\rx",
+    );
+    let classic = (
+        head.clone(),
+        gap(),
+        field("d", "D|r|R|dd|x"),
+        gap(),
+        0usize..16,
+        tail.clone(),
+    )
+        .prop_flat_map(|(head, g4, kind, g5, dlc, tail)| {
+            let digit = field(
+                [
+                    "0", "1", "2", "3", "4", "5", "6", "7", "8", "9", "A", "B", "C", "D", "E", "F",
+                ][dlc],
+                "[0-9a-f]|[0-9]{2}|G|",
+            );
+            (
+                Just((head, g4, kind, g5, tail)),
+                digit,
+                data_bytes(dlc.min(8)),
+            )
+        })
+        .prop_map(|(((t, g1, c, g2, i, g3, d), g4, k, g5, tail), dlc, data)| {
+            format!("{t}{g1}{c}{g2}{i}{g3}{d}{g4}{k}{g5}{dlc}{data}{tail}")
+        });
+    let fd = (
+        head,
+        field("[ ]{0,40}", "[ ]+[A-Za-z_]{1,8}"),
+        field("[01] [01]", "[01]{2} [01]|2 0|1 x"),
+        gap(),
+        0usize..16,
+        tail,
+    )
+        .prop_flat_map(|((t, g1, c, g2, i, g3, d), name, bits, g4, dlc, tail)| {
+            let len = FD_LENGTHS[dlc];
+            let len_text = field(
+                [
+                    "0", "1", "2", "3", "4", "5", "6", "7", "8", "12", "16", "20", "24", "32",
+                    "48", "64",
+                ][dlc],
+                "[0-9]{1,3}|x",
+            );
+            let flags = field("1000|3000|5000|7000|0|10", "[0-9A-Fa-f]{1,9}|x");
+            let rest = (
+                Just(format!(
+                    "{t}{g1}CANFD{g2}{c}{g3}{d}{g4}{i}{name} {bits} {dlc:x}"
+                )),
+                field("[ ]{1,2}", ""),
+                len_text,
+                data_bytes(usize::from(len)),
+                flags,
+                Just(tail),
+            );
+            rest
+        })
+        .prop_map(|(head, g, len, data, flags, tail)| {
+            format!("{head}{g}{len}{data}        0    0 {flags:>8}        0        0{tail}")
+        });
+    prop_oneof![classic, fd]
+}
+
+/// The fast path, where it reads `line` at all, reads it as the general
+/// parser does and leaves the parser as the general parser leaves it;
+/// where it declines, it leaves the parser as it was.
+fn fast_agrees(parser: &AscParser, line: &[u8]) -> Result<(), TestCaseError> {
+    let line = trim_end(line);
+    let mut fast = *parser;
+    match fast.parse_fast(line) {
+        Some(event) => {
+            let mut general = *parser;
+            prop_assert_eq!(general.parse_general(line), Ok(Some(event)));
+            prop_assert_eq!(fast, general);
+        }
+        None => prop_assert_eq!(&fast, parser),
+    }
+    Ok(())
+}
+
 proptest! {
+    // Each field is wrong in one line of 20: enough cases that most wrong
+    // fields come up in a line that is otherwise right.
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    /// The fast path agrees with the general parser on lines shaped like
+    /// the ones it reads, right and just wrong.
+    #[test]
+    fn fast_path_agrees_on_asc_like_lines(parser in any_parser(), line in asc_like_line()) {
+        fast_agrees(&parser, line.as_bytes())?;
+    }
+}
+
+proptest! {
+    /// The fast path agrees with the general parser on arbitrary bytes.
+    #[test]
+    fn fast_path_agrees_on_any_bytes(parser in any_parser(), line in proptest::collection::vec(any::<u8>(), 0..200)) {
+        fast_agrees(&parser, &line)?;
+    }
+
+
     /// Any bytes, any state: no panic, and an error's column lies in the
     /// line (or one past its end).
     #[test]
@@ -61,6 +225,10 @@ proptest! {
         let mut text = String::new();
         write_line(&logged, &mut text).unwrap();
         let mut parser = AscParser::new();
+        // The data and CAN FD frames python-can writes are the fast path's.
+        let fast = parser.clone().parse_fast(text.as_bytes());
+        prop_assert_eq!(fast.is_some(), matches!(frame.frame_type(), FrameType::Data | FrameType::Fd(_)), "{}", text);
+        fast_agrees(&parser, text.as_bytes())?;
         let read = parser.parse_line(text.as_bytes());
         let expected = if frame.is_error() {
             // ASC says only that an error happened.

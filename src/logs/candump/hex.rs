@@ -48,15 +48,4 @@ pub(super) fn decode_hex(
     Ok(())
 }
 
-/// Hex values by character; 0xF0 marks a character that is no hex digit.
-pub(super) const HEX_TABLE: [u8; 256] = {
-    let mut table = [0xF0u8; 256];
-    let mut i = 0;
-    while i < 256 {
-        if let Some(v) = hex_value(i as u8) {
-            table[i] = v;
-        }
-        i += 1;
-    }
-    table
-};
+pub(super) use crate::logs::text::HEX_TABLE;

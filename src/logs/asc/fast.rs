@@ -1,0 +1,303 @@
+//! The fast path: the two event lines a log is made of — a classic data
+//! frame (`   0.012345 1  123             Rx   d 8 11 22 …`) and a `CANFD`
+//! frame — read in one pass over the line, in a `base hex` file.
+//!
+//! It accepts only lines the general parser reads to a frame, and returns
+//! for them what the general parser returns; every other line (a remote
+//! request, an error frame, a symbolic name, `base dec`, a header, a
+//! malformed line) it declines without changing the parser, and the general
+//! parser reads it or says where it goes wrong. The property tests in
+//! `proptests.rs` hold the two to that.
+
+use super::{fd_frame, is_space, AscParser};
+use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
+use crate::logs::text::{hex_value, HEX_TABLE};
+
+impl AscParser {
+    /// Read `line` (its trailing white space trimmed) when it is a classic
+    /// data frame or a `CANFD` frame in a `base hex` file: the event, as
+    /// the general parser reads it, or `None` for any other line, with the
+    /// parser unchanged.
+    #[inline]
+    pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
+        if !self.hex {
+            return None;
+        }
+        let mut words = Words { line, pos: 0 };
+        let written = words.time()?;
+        let second = words.next()?;
+        let (frame, channel, direction) = if second == b"CANFD" {
+            fd(&mut words)?
+        } else {
+            let channel = channel(second)?;
+            let (frame, direction) = classic(&mut words)?;
+            (frame, channel, direction)
+        };
+        let timestamp = self.time(written);
+        Some(LogEvent::Frame(
+            LogFrame::new(frame)
+                .with_timestamp(timestamp)
+                .with_iface(Iface::Channel(channel))
+                .with_direction(direction),
+        ))
+    }
+}
+
+/// `id Rx|Tx d dlc data…` after the channel, in hex; what follows the data
+/// (CANoe's statistics) is not read, as the general parser does not read
+/// it.
+#[inline(always)]
+fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
+    let id = words.id()?;
+    let direction = words.direction_word()?;
+    if !matches!(words.next()?, b"d" | b"D") {
+        return None;
+    }
+    let len = usize::from(words.hex_digit()?).min(CLASSIC_MAX_LEN);
+    let mut data = [0u8; CLASSIC_MAX_LEN];
+    words.bytes(data.get_mut(..len)?)?;
+    Some((CanFrame::new(id, data.get(..len)?).ok()?, direction))
+}
+
+/// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
+/// (no symbolic name), in hex.
+// `contains` on bytes is a `memchr` call: 146 instructions per line more
+// on the `fd` mix (BENCHMARKS.md, issue 21, "ASC reader").
+#[allow(clippy::manual_contains)]
+#[inline(always)]
+fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
+    let channel = channel(words.next()?)?;
+    let direction = words.direction_word()?;
+    let id = words.id()?;
+    let brs_column = words.bit()?;
+    let esi_column = words.bit()?;
+    let dlc = words.hex_digit()?;
+    // The data length in decimal, one or two digits, a length CAN FD has
+    // (0..=8, 12, …, 64).
+    let len = match *words.next()? {
+        [u] if u.is_ascii_digit() => u - b'0',
+        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
+        _ => return None,
+    };
+    if !FD_LENGTHS.iter().any(|&n| n == len) {
+        return None;
+    }
+    let len = usize::from(len);
+    let mut data = [0u8; FD_MAX_LEN];
+    words.bytes(data.get_mut(..len)?)?;
+    // Message duration and bit count, then the flags.
+    words.next()?;
+    words.next()?;
+    let flags = hex_number(words.next()?)?;
+    let frame = fd_frame(id, dlc, data.get(..len)?, flags, brs_column, esi_column)?;
+    Some((frame, channel, direction))
+}
+
+/// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
+/// zeros, are left to the general parser).
+#[inline(always)]
+fn channel(word: &[u8]) -> Option<u16> {
+    if word.is_empty() || word.len() > 5 {
+        return None;
+    }
+    let mut value = 0u32;
+    for &b in word {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            return None;
+        }
+        value = value * 10 + u32::from(d);
+    }
+    u16::try_from(value).ok().filter(|&n| n > 0)
+}
+
+/// 1 to 8 hex digits.
+#[inline(always)]
+fn hex_number(word: &[u8]) -> Option<u32> {
+    if word.is_empty() || word.len() > 8 {
+        return None;
+    }
+    let mut value = 0u32;
+    for &b in word {
+        value = value << 4 | u32::from(hex_value(b)?);
+    }
+    Some(value)
+}
+
+/// The white-space separated words of a line, read in order.
+struct Words<'l> {
+    line: &'l [u8],
+    pos: usize,
+}
+
+impl<'l> Words<'l> {
+    /// Skip spaces and tabs, 8 bytes at a time while they are spaces (the
+    /// padding the writers put after identifiers).
+    #[inline(always)]
+    fn skip_space(&mut self) {
+        // One space between words is the common case.
+        if self.line.get(self.pos) == Some(&b' ')
+            && !self.line.get(self.pos + 1).is_some_and(|&b| is_space(b))
+        {
+            self.pos += 1;
+            return;
+        }
+        while let Some(chunk) = self
+            .line
+            .get(self.pos..)
+            .and_then(|rest| rest.first_chunk::<8>())
+        {
+            let other = u64::from_le_bytes(*chunk) ^ u64::from_le_bytes([b' '; 8]);
+            if other != 0 {
+                self.pos += (other.trailing_zeros() / 8) as usize;
+                break;
+            }
+            self.pos += 8;
+        }
+        while self.line.get(self.pos).is_some_and(|&b| is_space(b)) {
+            self.pos += 1;
+        }
+    }
+
+    /// The next word, or `None` at the end of the line.
+    #[inline(always)]
+    fn next(&mut self) -> Option<&'l [u8]> {
+        self.skip_space();
+        let start = self.pos;
+        while self.line.get(self.pos).is_some_and(|&b| !is_space(b)) {
+            self.pos += 1;
+        }
+        if self.pos == start {
+            return None;
+        }
+        self.line.get(start..self.pos)
+    }
+
+    /// The first word, read where it stands: `seconds.fraction`, 1 to 15
+    /// digits of seconds and 1 to 9 of fraction.
+    #[inline(always)]
+    fn time(&mut self) -> Option<Timestamp> {
+        self.skip_space();
+        let (secs, digits, point) = self.digits(self.pos);
+        if digits == 0 || digits > 15 || self.line.get(point) != Some(&b'.') {
+            return None;
+        }
+        let (fraction, digits, end) = self.digits(point + 1);
+        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+        self.pos = end;
+        let scale = [
+            1,
+            10,
+            100,
+            1_000,
+            10_000,
+            100_000,
+            1_000_000,
+            10_000_000,
+            100_000_000,
+        ];
+        let nanos = u32::try_from(fraction).ok()? * scale.get(9 - digits)?;
+        Timestamp::from_nanos(secs, nanos)
+    }
+
+    /// The decimal digits from `at`: their value (wrapped past 20
+    /// digits), their number and where they end.
+    #[inline(always)]
+    fn digits(&self, at: usize) -> (u64, usize, usize) {
+        let mut value = 0u64;
+        let mut end = at;
+        while let Some(d) = self
+            .line
+            .get(end)
+            .map(|b| b.wrapping_sub(b'0'))
+            .filter(|&d| d <= 9)
+        {
+            value = value.wrapping_mul(10).wrapping_add(u64::from(d));
+            end += 1;
+        }
+        (value, end - at, end)
+    }
+
+    /// An identifier in hex, `x` after an extended one.
+    #[inline(always)]
+    fn id(&mut self) -> Option<CanId> {
+        let word = self.next()?;
+        match word.split_last() {
+            Some((b'x' | b'X', digits)) => CanId::extended(hex_number(digits)?),
+            _ => CanId::standard(hex_number(word)?),
+        }
+    }
+
+    /// `Rx` or `Tx`.
+    #[inline(always)]
+    fn direction_word(&mut self) -> Option<Direction> {
+        match self.next()? {
+            b"Rx" => Some(Direction::Rx),
+            b"Tx" => Some(Direction::Tx),
+            _ => None,
+        }
+    }
+
+    /// A BRS or ESI column: `0` or `1`.
+    #[inline(always)]
+    fn bit(&mut self) -> Option<bool> {
+        match self.next()? {
+            b"0" => Some(false),
+            b"1" => Some(true),
+            _ => None,
+        }
+    }
+
+    /// One hex digit (a DLC).
+    #[inline(always)]
+    fn hex_digit(&mut self) -> Option<u8> {
+        match self.next()? {
+            &[d] => hex_value(d),
+            _ => None,
+        }
+    }
+
+    /// `out.len()` data bytes: ` HH` (what the writers write) with a
+    /// table look-up per digit, any other spelling by [`byte`](Self::byte).
+    #[inline(always)]
+    fn bytes(&mut self, out: &mut [u8]) -> Option<()> {
+        for slot in out {
+            let at = self.pos;
+            if let Some(&[b' ', hi, lo]) = self.line.get(at..at + 3) {
+                let (hi, lo) = (HEX_TABLE[usize::from(hi)], HEX_TABLE[usize::from(lo)]);
+                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !is_space(b)) {
+                    *slot = hi << 4 | lo;
+                    self.pos = at + 3;
+                    continue;
+                }
+            }
+            *slot = self.byte()?;
+        }
+        Some(())
+    }
+
+    /// A data byte: one or two hex digits, read where they stand.
+    #[inline(always)]
+    fn byte(&mut self) -> Option<u8> {
+        self.skip_space();
+        let at = self.pos;
+        let hi = hex_value(*self.line.get(at)?)?;
+        match self.line.get(at + 1) {
+            Some(&lo) if !is_space(lo) => {
+                let lo = hex_value(lo)?;
+                if self.line.get(at + 2).is_some_and(|&b| !is_space(b)) {
+                    return None;
+                }
+                self.pos = at + 2;
+                Some(hi << 4 | lo)
+            }
+            _ => {
+                self.pos = at + 1;
+                Some(hi)
+            }
+        }
+    }
+}
