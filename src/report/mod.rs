@@ -47,6 +47,7 @@
 
 mod html;
 mod series;
+mod svg;
 
 use core::time::Duration;
 
