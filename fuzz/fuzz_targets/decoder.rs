@@ -2,12 +2,10 @@
 //! fed arbitrary frames: a stream of CANopen traffic on two buses, with SDO
 //! transfers that teach PDO mappings, drives' statuswords and EMCY storms.
 //!
-//! Input: records of `[header, id, bytes…]`: header bits 0–3 the data
-//! length (0..=15, cut to 8 and to what is left), bit 4 the bus (`can0` or
-//! `can1`), bit 5 a remote frame, bits 6–7 the time step (0, 1, 10 or
-//! 1000 ms); `id` picks the function (the high 3 bits: NMT, SYNC/EMCY,
-//! TPDO1/RPDO1, TPDO2…, SDO response, SDO request, heartbeat, any 11-bit
-//! identifier) and the node (the low 5 bits, nodes 1–31, 0 kept as 0).
+//! Input: records of `[header, id, bytes…]`, read by
+//! `motionwire_fuzz::traffic` (fuzz/src/lib.rs): the data length, the bus,
+//! a remote frame and the time step in the header; the function and the
+//! node in `id`.
 //!
 //! Invariants:
 //! - nothing panics: not the decoder, not the summary, not their renderings;
@@ -22,11 +20,12 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{CanFrame, CanId, Iface, LogFrame, Timestamp};
+use motionwire::can::{Iface, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::profiles::Profile;
 use motionwire::summary::Summarizer;
+use motionwire_fuzz::{traffic, TrafficFrame};
 
 const CAP: usize = 64;
 
@@ -39,35 +38,16 @@ fuzz_target!(|input: &[u8]| {
     let mut decoder = Decoder::new(config.clone());
     let mut lean = Decoder::new(config.signals(false));
     let mut summarizer = Summarizer::new().heartbeat_timeout(core::time::Duration::from_millis(50));
-    let mut rest = input;
-    let mut ms: u64 = 0;
-    let mut line = 0u64;
     let (mut started, mut ended) = (0u64, 0u64);
     let mut frames = 0u64;
-    while let Some((&[header, id], tail)) = rest.split_first_chunk::<2>() {
-        let len = usize::from(header & 0x0F).min(8).min(tail.len());
-        let (data, tail) = tail.split_at(len);
-        rest = tail;
-        line += 1;
-        ms += [0, 1, 10, 1000][usize::from(header >> 6)];
-        let node = u32::from(id & 0x1F);
-        let raw = match id >> 5 {
-            0 => 0x000,
-            1 => 0x080 + node,
-            2 => 0x180 + node,
-            3 => 0x200 + node + 0x80 * (node % 4),
-            4 => 0x580 + node,
-            5 => 0x600 + node,
-            6 => 0x700 + node,
-            _ => (u32::from(id) << 3) | u32::from(header & 7),
-        };
-        let frame = if header & 0x20 != 0 {
-            CanFrame::new_remote(CanId::standard(raw).unwrap(), len as u8)
-        } else {
-            CanFrame::new(CanId::standard(raw).unwrap(), data)
-        };
-        let Ok(frame) = frame else { continue };
-        let iface = if header & 0x10 != 0 { "can1" } else { "can0" };
+    for TrafficFrame {
+        line,
+        ms,
+        raw,
+        frame,
+        iface,
+    } in traffic(input)
+    {
         let log = LogFrame::new(frame)
             .with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(
                 ms,

@@ -3,12 +3,8 @@
 //!
 //! Input: one flags byte (bit 0: the frames carry no timestamps, the page is
 //! drawn by line; bit 1: heartbeats are checked against a 50 ms consumer
-//! time), then records of `[header, id, bytes…]` as in the `decoder` target:
-//! header bits 0–3 the data length (cut to 8 and to what is left), bit 4 the
-//! bus, bit 5 a remote frame, bits 6–7 the time step (0, 1, 10 or 1000 ms);
-//! `id`'s high 3 bits pick the function (NMT, SYNC/EMCY, TPDO1, RPDO1, SDO
-//! response, SDO request, heartbeat, any identifier), its low 5 bits the
-//! node.
+//! time), then the `decoder` target's records of `[header, id, bytes…]`
+//! (`motionwire_fuzz::traffic`, fuzz/src/lib.rs).
 //!
 //! Invariants:
 //! - nothing panics, not the recorder and not the page;
@@ -23,16 +19,17 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{CanFrame, CanId, Iface, LogFrame, Timestamp};
+use motionwire::can::{Iface, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::profiles::Profile;
 use motionwire::report::{MarkKind, Recorder, Report};
+use motionwire_fuzz::{traffic, TrafficFrame};
 
 const SUMMARY_OPEN: &str = r#"<script type="application/json" id="motionwire-summary">"#;
 
 fuzz_target!(|input: &[u8]| {
-    let Some((&flags, mut rest)) = input.split_first() else {
+    let Some((&flags, rest)) = input.split_first() else {
         return;
     };
     let untimed = flags & 1 != 0;
@@ -44,31 +41,14 @@ fuzz_target!(|input: &[u8]| {
     if flags & 2 != 0 {
         recorder = recorder.heartbeat_timeout(core::time::Duration::from_millis(50));
     }
-    let (mut ms, mut line) = (0u64, 0u64);
-    while let Some((&[header, id], tail)) = rest.split_first_chunk::<2>() {
-        let len = usize::from(header & 0x0F).min(8).min(tail.len());
-        let (data, tail) = tail.split_at(len);
-        rest = tail;
-        line += 1;
-        ms += [0, 1, 10, 1000][usize::from(header >> 6)];
-        let node = u32::from(id & 0x1F);
-        let raw = match id >> 5 {
-            0 => 0x000,
-            1 => 0x080 + node,
-            2 => 0x180 + node,
-            3 => 0x200 + node,
-            4 => 0x580 + node,
-            5 => 0x600 + node,
-            6 => 0x700 + node,
-            _ => (u32::from(id) << 3) | u32::from(header & 7),
-        };
-        let frame = if header & 0x20 != 0 {
-            CanFrame::new_remote(CanId::standard(raw).unwrap(), len as u8)
-        } else {
-            CanFrame::new(CanId::standard(raw).unwrap(), data)
-        };
-        let Ok(frame) = frame else { continue };
-        let iface = if header & 0x10 != 0 { "can1" } else { "can0" };
+    for TrafficFrame {
+        line,
+        ms,
+        frame,
+        iface,
+        ..
+    } in traffic(rest)
+    {
         let mut log = LogFrame::new(frame).with_iface(Iface::Name(iface));
         if !untimed {
             log = log.with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(
