@@ -105,6 +105,22 @@ pub(crate) const fn hex_value(b: u8) -> Option<u8> {
     }
 }
 
+/// `10^(9 - d)`, at index `9 - d`: what a fraction of `d` decimal digits
+/// is multiplied by to give nanoseconds (`POW10_NANOS[9 - d]`), for the text
+/// readers' timestamps.
+pub(crate) const POW10_NANOS: [u32; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
+
 /// Hex values by character; 0xF0 marks a character that is no hex digit.
 pub(crate) const HEX_TABLE: [u8; 256] = {
     let mut table = [0xF0u8; 256];

@@ -16,7 +16,7 @@ use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::report::{Recorder, Report, ReportInput};
-use motionwire::summary::{FileSpan, Summarizer};
+use motionwire::summary::{FileSpan, Summarizer, Summary};
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
@@ -542,17 +542,7 @@ fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Resul
     };
     let mut summary = summarizer.finish(&mut sink.decoder);
     summary.file = file;
-    if summary.timeouts_not_checked() {
-        let about = summary
-            .file
-            .as_deref()
-            .map_or_else(String::new, |file| format!("{file}: "));
-        writeln!(
-            sink.err,
-            "motionwire: {about}the log has frames without timestamps: heartbeat timeouts were \
-             not checked (--heartbeat-ms)"
-        )?;
-    }
+    say_unchecked_timeouts(&mut sink.err, &summary)?;
     if json {
         for record in summary.records() {
             serde_json::to_writer(&mut sink.out, &record).map_err(io::Error::from)?;
@@ -563,6 +553,23 @@ fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Resul
     }
     sink.summary_written = true;
     Ok(())
+}
+
+/// Say on standard error that `summary`'s heartbeat timeouts could not be
+/// checked: its log has frames without timestamps (docs/output.md#stderr).
+fn say_unchecked_timeouts(err: &mut impl Write, summary: &Summary) -> io::Result<()> {
+    if !summary.timeouts_not_checked() {
+        return Ok(());
+    }
+    let about = summary
+        .file
+        .as_deref()
+        .map_or_else(String::new, |file| format!("{file}: "));
+    writeln!(
+        err,
+        "motionwire: {about}the log has frames without timestamps: heartbeat timeouts were \
+         not checked (--heartbeat-ms)"
+    )
 }
 
 /// With `motionwire report`: the recording read so far, with its summary,
@@ -578,18 +585,7 @@ fn take_recording(
     let mut recording = recorder.finish(&mut sink.decoder);
     recording.summary.file = file;
     recording.files = files;
-    if recording.summary.timeouts_not_checked() {
-        let about = recording
-            .summary
-            .file
-            .as_deref()
-            .map_or_else(String::new, |file| format!("{file}: "));
-        writeln!(
-            sink.err,
-            "motionwire: {about}the log has frames without timestamps: heartbeat timeouts were \
-             not checked (--heartbeat-ms)"
-        )?;
-    }
+    say_unchecked_timeouts(&mut sink.err, &recording.summary)?;
     if let Some(report) = sink.report.as_mut() {
         report.add_recording(recording);
     }

@@ -12,7 +12,7 @@
 use super::{fd_frame, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::text::{hex_value, HEX_TABLE};
+use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
 
 impl AscParser {
     /// Read `line` (its trailing white space trimmed) when it is a classic
@@ -188,18 +188,7 @@ impl<'l> Words<'l> {
             return None;
         }
         self.pos = end;
-        let scale = [
-            1,
-            10,
-            100,
-            1_000,
-            10_000,
-            100_000,
-            1_000_000,
-            10_000_000,
-            100_000_000,
-        ];
-        let nanos = u32::try_from(fraction).ok()? * scale.get(9 - digits)?;
+        let nanos = u32::try_from(fraction).ok()? * POW10_NANOS.get(9 - digits)?;
         Timestamp::from_nanos(secs, nanos)
     }
 

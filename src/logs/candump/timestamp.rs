@@ -4,6 +4,7 @@
 //! rest; the tests check that the three agree.
 
 use super::*;
+use crate::logs::text::POW10_NANOS;
 
 /// Read the template `candump -l` writes, `(SSSSSSSSSS.UUUUUU) ` (ten digits
 /// of seconds, six of microseconds, a space), from the first 20 bytes of a
@@ -114,19 +115,6 @@ pub(super) fn parse_timestamp_slow(line: &[u8], open: usize) -> Result<(Timestam
         at + 1,
     ))
 }
-
-const POW10_NANOS: [u32; 10] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-];
 
 /// Read decimal digits from `at` up to a value of `max`; return the value
 /// and where the digits end.
