@@ -20,7 +20,10 @@ order, as the kernel hands it to a cooked capture).
 - sll2.pcapng    `editcap -F pcapng sll2.pcap` (Wireshark's pcapng writer);
 - sll_mixed.pcapng  `mergecap` of sll2.pcap and an Ethernet capture
                  (link type 1) written here: two interfaces, the Ethernet
-                 packets between the CAN ones by time.
+                 packets between the CAN ones by time;
+- sll2_two_buses.pcap  sll2.pcap's packets with the CAN ones alternating
+                 between interface indices 3 and 4, as `tcpdump -i any`
+                 captures two CAN buses.
 
 Each FILE gets FILE.json: what tshark (`-T fields`, the fields of
 gen_pcap_fixtures.py) reads from it, one object per packet.
@@ -85,9 +88,9 @@ def ip_packet():
     return bytes(IP(src="192.0.2.1", dst="192.0.2.2") / UDP(sport=5000, dport=5001) / Raw(b"not CAN"))
 
 
-def sll(version):
+def sll(version, ifindex=lambda i: 3):
     packets = []
-    for secs, micros, proto, pkttype, frame in FRAMES:
+    for i, (secs, micros, proto, pkttype, frame) in enumerate(FRAMES):
         payload = ip_packet() if frame is None else frame
         hatype = 1 if frame is None else ARPHRD_CAN
         addr_len = 6 if frame is None else 0
@@ -95,7 +98,7 @@ def sll(version):
             head = CookedLinux(pkttype=pkttype, lladdrtype=hatype, lladdrlen=addr_len,
                                src=b"\x02\0\0\0\0\x01\0\0" if addr_len else b"\0" * 8, proto=proto)
         else:
-            head = CookedLinuxV2(proto=proto, ifindex=3 if frame is not None else 2,
+            head = CookedLinuxV2(proto=proto, ifindex=ifindex(i) if frame is not None else 2,
                                  lladdrtype=hatype, pkttype=pkttype, lladdrlen=addr_len,
                                  src=b"\x02\0\0\0\0\x01\0\0" if addr_len else b"\0" * 8)
         pkt = head / Raw(payload)
@@ -144,7 +147,10 @@ def main():
     subprocess.run(["mergecap", "-F", "pcapng", "-w", p("sll_mixed.pcapng"), p("sll2.pcap"), eth_path],
                    check=True)
     os.remove(eth_path)
-    for name in ["sll.pcap", "sll2.pcap", "sll2.pcapng", "sll_mixed.pcapng"]:
+    # `tcpdump -i any` on two buses: the CAN packets alternate between
+    # interfaces 3 and 4.
+    wrpcap(p("sll2_two_buses.pcap"), sll(2, lambda i: 3 + i % 2), linktype=276)
+    for name in ["sll.pcap", "sll2.pcap", "sll2.pcapng", "sll_mixed.pcapng", "sll2_two_buses.pcap"]:
         truth(p(name))
 
 

@@ -11,8 +11,9 @@
 //! scapy's `CookedLinux`/`CookedLinuxV2` and `CAN`/`CANFD` layers (the
 //! identifier word in host byte order, as the kernel hands it to `tcpdump
 //! -i any`): `sll.pcap` (link type 113), `sll2.pcap` (276), `sll2.pcapng`
-//! (`editcap -F pcapng`) and `sll_mixed.pcapng` (`mergecap` with an
-//! Ethernet capture), each with an IPv4 packet among the CAN ones, and the
+//! (`editcap -F pcapng`), `sll_mixed.pcapng` (`mergecap` with an
+//! Ethernet capture) and `sll2_two_buses.pcap` (interfaces 3 and 4), each
+//! with an IPv4 packet among the CAN ones, and the
 //! same `FILE.json` from tshark.
 //!
 //! Documented differences from tshark 4.0:
@@ -242,6 +243,9 @@ fn linux_cooked_captures_read_as_tshark_reads_them() {
     check_against_tshark("sll2.pcap", LogFormat::Pcap);
     check_against_tshark("sll2.pcapng", LogFormat::Pcapng);
     check_against_tshark("sll_mixed.pcapng", LogFormat::Pcapng);
+    // `tcpdump -i any` on two buses: each frame's iface is its packet's
+    // `sll.ifindex` ("3" or "4"), as check_against_tshark compares.
+    check_against_tshark("sll2_two_buses.pcap", LogFormat::Pcap);
     let ip = |link_type| OtherRecord::CookedProtocol {
         link_type,
         protocol: 0x0800,
@@ -250,6 +254,7 @@ fn linux_cooked_captures_read_as_tshark_reads_them() {
         ("sll.pcap", vec![(ip(113), 1)]),
         ("sll2.pcap", vec![(ip(276), 1)]),
         ("sll2.pcapng", vec![(ip(276), 1)]),
+        ("sll2_two_buses.pcap", vec![(ip(276), 1)]),
         (
             "sll_mixed.pcapng",
             vec![(OtherRecord::LinkType(1), 2), (ip(276), 1)],
