@@ -27,7 +27,7 @@ const BATCH_ROWS: usize = 1 << 20;
 /// The most bytes of `data` or `record` one batch holds (Arrow's 32-bit
 /// offsets reach 2 GiB).
 const BATCH_BYTES: usize = 1 << 30;
-/// How many skipped lines the schema metadata lists (SPEC: the first 1 000).
+/// How many skipped lines the schema metadata lists (docs/python.md#metadata: the first 1 000).
 pub const SKIPPED_LISTED: usize = 1000;
 
 /// The dictionary of an interface column: each interface's name (`can0`)
