@@ -22,6 +22,12 @@ canopen. Not a test: prints a Markdown table, writes
 bench/results/python.json, and exits 1 when a goal is missed.
 
 Usage: python3 bench/python_package.py [--frames N] [--runs N]
+       python3 bench/python_package.py --mixes DIR [--runs N]
+
+With --mixes, the two speed goals that depend on the traffic (read_log and
+summary against their peers) on every traffic mix of bench/gen_mix.py, in
+one run: DIR/MIX.log for each mix, written with `bench/gen_mix.py` when
+missing; results in bench/results/python-mixes.json.
 """
 
 from __future__ import annotations
@@ -87,12 +93,60 @@ def motionwire_reader_list(path: Path):
         return list(reader)
 
 
+MIXES = ["sample", "storm", "pdo", "sdo", "fd"]
+
+
+def mixes(directory: Path, frames: int, runs: int, peer_runs: int) -> int:
+    """read_log and summary against their peers on every mix, one run."""
+    directory.mkdir(parents=True, exist_ok=True)
+    rows = []
+    failed = False
+    for mix in MIXES:
+        path = directory / f"{mix}.log"
+        if not path.exists():
+            subprocess.run([sys.executable, str(ROOT / "bench" / "gen_mix.py"), mix,
+                            "--frames", str(frames), "-o", str(path)], check=True)
+        load = os.getloadavg()[0]
+        read, table = timed(lambda: motionwire.read_log(path), runs)
+        n = table.num_rows
+        del table
+        peer_read, messages = timed(lambda: python_can_list(path), peer_runs)
+        assert len(messages) == n, (mix, len(messages), n)
+        del messages
+        summary, _ = timed(lambda: motionwire.summary(path), runs)
+        peer_summary, _ = timed(lambda: peer_python.summarize(str(path)), peer_runs)
+        row = {
+            "mix": mix, "frames": n, "load": load,
+            "read_log": read, "python_can_list": peer_read,
+            "summary": summary, "peer_summary": peer_summary,
+            "read_ratio": peer_read["best"] / read["best"],
+            "summary_ratio": peer_summary["best"] / summary["best"],
+        }
+        failed |= row["read_ratio"] < 50 or row["summary_ratio"] < 100
+        rows.append(row)
+    print(f"\n{frames:,} frames a mix; python-can {can.__version__}; {os.cpu_count()} cores\n")
+    print("| mix | load | read_log | python-can list | ratio (≥ 50×) | summary | peer | ratio (≥ 100×) |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        print(f"| {r['mix']} | {r['load']:.2f} | {r['read_log']['best']*1000:,.1f} ms "
+              f"| {r['python_can_list']['best']*1000:,.0f} ms | {r['read_ratio']:.1f}× "
+              f"| {r['summary']['best']*1000:,.1f} ms | {r['peer_summary']['best']*1000:,.0f} ms "
+              f"| {r['summary_ratio']:.1f}× |")
+    out = ROOT / "bench" / "results" / "python-mixes.json"
+    out.write_text(json.dumps({"python_can": can.__version__, "cores": os.cpu_count(),
+                               "rows": rows}, indent=1) + "\n")
+    return 1 if failed else 0
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--frames", type=int, default=1_000_000)
     parser.add_argument("--runs", type=int, default=5, help="runs of each motionwire call")
     parser.add_argument("--peer-runs", type=int, default=2, help="runs of each Python peer")
+    parser.add_argument("--mixes", type=Path, help="a directory of the traffic mixes' logs")
     args = parser.parse_args()
+    if args.mixes:
+        return mixes(args.mixes, args.frames, args.runs, args.peer_runs)
     path = log_file(args.frames)
     frames = args.frames
     results: dict = {"frames": frames, "file": str(path), "cores": os.cpu_count(),
