@@ -321,7 +321,10 @@ fn summary_keys_on_a_crafted_log() {
         n5["heartbeat"]["timeouts"],
         json!([{"after_line": 5, "gap_ms": 600.0}, {"after_line": 6, "gap_ms": 2000.0}])
     );
-    assert_eq!(n5["guarding"], json!({"answers": 0, "toggle_errors": []}));
+    assert_eq!(
+        n5["guarding"],
+        json!({"answers": 0, "toggle_errors": [], "toggle_error_count": 0})
+    );
 
     let n10 = &recs[2];
     assert_eq!(n10["frames"]["guard_request"], 5);
@@ -337,7 +340,7 @@ fn summary_keys_on_a_crafted_log() {
     // line 17 and must carry toggle 0.
     assert_eq!(
         n10["guarding"],
-        json!({"answers": 5, "toggle_errors": [14, 19]})
+        json!({"answers": 5, "toggle_errors": [14, 19], "toggle_error_count": 2})
     );
 }
 
@@ -1012,13 +1015,15 @@ fn summary_nodes_per_interface_and_bus_records() {
     assert_eq!(
         recs[2],
         json!({"type": "bus", "iface": "can0", "frames": 2, "error_frames": 0,
-               "bus_off": [], "error_passive": [], "status_events": 0,
+               "bus_off": [], "bus_off_count": 0, "error_passive": [],
+               "error_passive_count": 0, "status_events": 0,
                "first_ts": 100.0, "last_ts": 100.2, "nodes": [5]})
     );
     assert_eq!(
         recs[3],
         json!({"type": "bus", "iface": "can1", "frames": 4, "error_frames": 2,
-               "bus_off": [4], "error_passive": [5], "status_events": 0,
+               "bus_off": [4], "bus_off_count": 1, "error_passive": [5],
+               "error_passive_count": 1, "status_events": 0,
                "first_ts": 100.1, "last_ts": 100.5, "nodes": [5]})
     );
     let text = stdout(&run(&["decode", "--summary"], log));

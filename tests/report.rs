@@ -211,6 +211,73 @@ fn a_storm_clusters_and_every_emcy_is_counted() {
     assert_eq!(row.kind("emcy_reset").len(), 300);
 }
 
+/// Node 5 boots 30 times and the server aborts 25 SDO uploads; the bus
+/// goes bus-off 24 times: more of each than the summary lists
+/// (docs/summary.md#lists).
+#[test]
+fn long_lists_are_counted_in_full_and_listed_first_and_last() {
+    let dir = scratch("lists");
+    let log = dir.join("lists.log");
+    let mut f = std::fs::File::create(&log).unwrap();
+    let mut us = 0u64;
+    let mut at = || {
+        us += 1_000;
+        format!("(1700000000.{us:06})")
+    };
+    for _ in 0..30 {
+        writeln!(f, "{} can0 705#00", at()).unwrap();
+        writeln!(f, "{} can0 705#05", at()).unwrap();
+    }
+    for _ in 0..25 {
+        writeln!(f, "{} can0 605#4000100000000000", at()).unwrap();
+        writeln!(f, "{} can0 585#8000100000000206", at()).unwrap();
+    }
+    for _ in 0..24 {
+        // An error frame of class bus-off (docs/output.md#error-frames).
+        writeln!(f, "{} can0 20000040#0000000000000000", at()).unwrap();
+    }
+    drop(f);
+    let out = dir.join("lists.html");
+    let r = run(&["report", log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let html = std::fs::read_to_string(&out).unwrap();
+    let page = parse(&html);
+    let records = summary_records(&[log.to_str().unwrap()]);
+    assert_eq!(page.summary(), records);
+    // Every mark is drawn and counted; every list is its first 10 and
+    // last 10 (check_counts).
+    check_counts(&page, &records);
+    let node = &records[0];
+    assert_eq!(node["heartbeat"]["boot_up_count"], 30);
+    assert_eq!(node["sdo"]["abort_count"], 25);
+    assert_eq!(records[1]["bus_off_count"], 24);
+    let row = page.node("can0", 5);
+    assert_eq!(row.count("boot_up"), 30);
+    assert_eq!(row.count("sdo_abort"), 25);
+    // The findings say where the list omitted events and how many: the
+    // aborts after the tenth (line 80), the bus-offs after the tenth
+    // (line 120).
+    assert!(
+        html.contains("… and 5 more (SDO abort) after line 80"),
+        "{html}"
+    );
+    assert!(
+        html.contains("… and 4 more (bus-off) after line 120"),
+        "{html}"
+    );
+    assert!(html.contains("boot-ups at lines 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, … 10 more …, 41,"));
+
+    let text =
+        String::from_utf8(run(&["decode", "--summary", log.to_str().unwrap()]).stdout).unwrap();
+    assert!(text.contains("          … 5 more aborts …\n"), "{text}");
+    assert!(
+        text.contains(
+            "bus-off at lines 111, 112, 113, 114, 115, 116, 117, 118, 119, 120, … 4 more …, 125,"
+        ),
+        "{text}"
+    );
+}
+
 #[test]
 fn a_log_without_timestamps_is_drawn_by_line() {
     let dir = scratch("untimed");
@@ -422,10 +489,7 @@ fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCase
             node.emcy
         );
         prop_assert_eq!(marks(MarkKind::EmcyReset), node.resets);
-        prop_assert_eq!(
-            marks(MarkKind::BootUp),
-            node.heartbeat.boot_ups.len() as u64
-        );
+        prop_assert_eq!(marks(MarkKind::BootUp), node.heartbeat.boot_ups.count());
     }
     let records = recording.summary.nodes.len() + recording.summary.buses.len();
     let mut report = Report::new();

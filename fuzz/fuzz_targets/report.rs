@@ -77,13 +77,13 @@ fuzz_target!(|input: &[u8]| {
         assert_eq!(marks(MarkKind::EmcyReset), node.resets);
         assert_eq!(
             marks(MarkKind::BootUp),
-            node.heartbeat.boot_ups.len() as u64
+            node.heartbeat.boot_ups.count()
         );
         assert_eq!(
             marks(MarkKind::ToggleError),
-            node.guarding.toggle_errors.len() as u64
+            node.guarding.toggle_errors.count()
         );
-        assert_eq!(marks(MarkKind::SdoAbort), node.sdo.aborts.len() as u64);
+        assert_eq!(marks(MarkKind::SdoAbort), node.sdo.aborts.count());
     }
     let records = recording.summary.nodes.len() + recording.summary.buses.len();
 

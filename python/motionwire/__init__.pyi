@@ -146,7 +146,8 @@ def summary(
     frame counts, first and active error with the CiA 405 root cause,
     heartbeat boot-ups and gaps over ``heartbeat_ms``, node-guarding toggle
     errors, SDO requests, transfers, aborts and latencies, each drive's CiA
-    402 timeline.
+    402 timeline. Each list holds the first 10 and the last 10 events of its
+    kind, and the count key after it counts them all (docs/summary.md#lists).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
     them).

@@ -8,7 +8,7 @@ use std::io::{self, Write};
 
 use crate::canopen::{NmtStateByte, NodeId};
 use crate::decoder::BusName;
-use crate::summary::{NodeSummary, Timeouts};
+use crate::summary::{Listed, NodeSummary, Timeouts};
 
 use super::series::At;
 use super::svg::{
@@ -496,86 +496,151 @@ impl Report {
                         ),
                     );
                 }
-                for fault in n.cia402.iter().flat_map(|c| c.faults.iter().flatten()) {
-                    let t = fault.transition;
-                    let at = At {
-                        t: t.ts.map_or(0, super::micros),
-                        line: t.line,
-                    };
+                // Where a summary list omitted entries: how many, at the
+                // last one kept before them (docs/summary.md#lists).
+                let omitted = |list: &mut Vec<Finding>, kind: MarkKind, n: u64, before: u64| {
+                    let at = Self::at_of(rows, kind, before);
                     push(
-                        &mut faults,
+                        list,
                         at,
-                        format!("{} ({})", esc(&fault.to_string()), axis.when(at)),
+                        format!(
+                            "… and {n} more ({}) after line {before}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
+                            kind.words(),
+                            Listed::<u64>::FIRST,
+                            Listed::<u64>::LAST
+                        ),
                     );
+                };
+                for item in n
+                    .cia402
+                    .iter()
+                    .filter_map(|c| c.faults.as_ref())
+                    .flat_map(items)
+                {
+                    match item {
+                        Item::Kept(fault) => {
+                            let t = fault.transition;
+                            let at = At {
+                                t: t.ts.map_or(0, super::micros),
+                                line: t.line,
+                            };
+                            push(
+                                &mut faults,
+                                at,
+                                format!("{} ({})", esc(&fault.to_string()), axis.when(at)),
+                            );
+                        }
+                        Item::Omitted(more, last) => {
+                            omitted(
+                                &mut faults,
+                                MarkKind::Cia402Fault,
+                                more,
+                                last.transition.line,
+                            );
+                        }
+                    }
                 }
                 let boots = &n.heartbeat.boot_ups;
-                if boots.len() > 1 {
-                    let at = Self::at_of(rows, MarkKind::BootUp, boots[1]);
-                    let times = boots.len() - 1;
+                if boots.count() > 1 {
+                    let at = Self::at_of(rows, MarkKind::BootUp, *boots.get(1).unwrap_or(&0));
+                    let times = boots.count() - 1;
                     push(
                         &mut restarts,
                         at,
                         format!(
                             "restarted {times} time{} (boot-ups at lines {})",
                             if times == 1 { "" } else { "s" },
-                            lines(boots)
+                            listed_lines(boots)
                         ),
                     );
                 }
                 if let Timeouts::Checked(gaps) = &n.heartbeat.timeouts {
-                    for gap in gaps {
-                        let at = Self::at_of(rows, MarkKind::HeartbeatTimeout, gap.after_line);
-                        push(
-                            &mut timeouts,
-                            at,
-                            format!(
-                                "no heartbeat for {} ms after line {} ({})",
-                                gap.gap_ms(),
-                                gap.after_line,
-                                axis.when(at)
+                    for item in items(gaps) {
+                        match item {
+                            Item::Kept(gap) => {
+                                let at =
+                                    Self::at_of(rows, MarkKind::HeartbeatTimeout, gap.after_line);
+                                push(
+                                    &mut timeouts,
+                                    at,
+                                    format!(
+                                        "no heartbeat for {} ms after line {} ({})",
+                                        gap.gap_ms(),
+                                        gap.after_line,
+                                        axis.when(at)
+                                    ),
+                                );
+                            }
+                            Item::Omitted(more, last) => omitted(
+                                &mut timeouts,
+                                MarkKind::HeartbeatTimeout,
+                                more,
+                                last.after_line,
                             ),
-                        );
+                        }
                     }
                 }
-                for abort in &n.sdo.aborts {
-                    let at = Self::at_of(rows, MarkKind::SdoAbort, abort.line);
-                    push(
-                        &mut aborts,
-                        at,
-                        format!(
-                            "line {}: {} ({})",
-                            abort.line,
-                            esc(&abort.to_string()),
-                            axis.when(at)
-                        ),
-                    );
+                for item in items(&n.sdo.aborts) {
+                    match item {
+                        Item::Kept(abort) => {
+                            let at = Self::at_of(rows, MarkKind::SdoAbort, abort.line);
+                            push(
+                                &mut aborts,
+                                at,
+                                format!(
+                                    "line {}: {} ({})",
+                                    abort.line,
+                                    esc(&abort.to_string()),
+                                    axis.when(at)
+                                ),
+                            );
+                        }
+                        Item::Omitted(more, last) => {
+                            omitted(&mut aborts, MarkKind::SdoAbort, more, last.line);
+                        }
+                    }
                 }
-                for &line in &n.sdo.broken {
-                    let at = Self::at_of(rows, MarkKind::SdoBroken, line);
-                    push(
-                        &mut transfers,
-                        at,
-                        format!("broken SDO transfer starting at line {line}"),
-                    );
+                for (kind, list, what) in [
+                    (
+                        MarkKind::SdoBroken,
+                        &n.sdo.broken,
+                        "broken SDO transfer starting",
+                    ),
+                    (
+                        MarkKind::SdoTimeout,
+                        &n.sdo.timeouts,
+                        "unanswered SDO request",
+                    ),
+                ] {
+                    for item in items(list) {
+                        match item {
+                            Item::Kept(&line) => {
+                                let at = Self::at_of(rows, kind, line);
+                                push(&mut transfers, at, format!("{what} at line {line}"));
+                            }
+                            Item::Omitted(more, &last) => {
+                                omitted(&mut transfers, kind, more, last);
+                            }
+                        }
+                    }
                 }
-                for &line in &n.sdo.timeouts {
-                    let at = Self::at_of(rows, MarkKind::SdoTimeout, line);
-                    push(
-                        &mut transfers,
-                        at,
-                        format!("unanswered SDO request at line {line}"),
-                    );
-                }
-                for &line in &n.guarding.toggle_errors {
-                    let at = Self::at_of(rows, MarkKind::ToggleError, line);
-                    push(
-                        &mut toggles,
-                        at,
-                        format!(
-                            "node-guarding answer with a wrong toggle at line {line} ({})",
-                            axis.when(at)
-                        ),
-                    );
+                for item in items(&n.guarding.toggle_errors) {
+                    match item {
+                        Item::Kept(&line) => {
+                            let at = Self::at_of(rows, MarkKind::ToggleError, line);
+                            push(
+                                &mut toggles,
+                                at,
+                                format!(
+                                    "node-guarding answer with a wrong toggle at line {line} ({})",
+                                    axis.when(at)
+                                ),
+                            );
+                        }
+                        Item::Omitted(more, &last) => {
+                            omitted(&mut toggles, MarkKind::ToggleError, more, last);
+                        }
+                    }
                 }
             }
             for b in &r.summary.buses {
@@ -584,7 +649,28 @@ impl Report {
                     (MarkKind::BusOff, &b.bus_off),
                     (MarkKind::ErrorPassive, &b.error_passive),
                 ] {
-                    for &line in list {
+                    for item in items(list) {
+                        let line = match item {
+                            Item::Kept(&line) => line,
+                            Item::Omitted(more, &last) => {
+                                let at = Self::at_of(rows, kind, last);
+                                bus_errors.push(Finding {
+                                    key: (axis.key(at), last),
+                                    line: last,
+                                    iface: iface_attr(&b.bus),
+                                    node: None,
+                                    text: format!(
+                                        "<b>{}bus {}</b> … and {more} more ({}) after line {last}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
+                                        esc(&prefix),
+                                        esc(&b.bus.to_string()),
+                                        kind.words(),
+                                        Listed::<u64>::FIRST,
+                                        Listed::<u64>::LAST
+                                    ),
+                                });
+                                continue;
+                            }
+                        };
                         let at = Self::at_of(rows, kind, line);
                         bus_errors.push(Finding {
                             key: (axis.key(at), line),
@@ -766,8 +852,8 @@ impl Report {
                     esc(&b.bus.to_string()),
                     b.frames,
                     b.error_frames,
-                    lines_or_none(&b.bus_off),
-                    lines_or_none(&b.error_passive),
+                    listed_lines_or_none(&b.bus_off),
+                    listed_lines_or_none(&b.error_passive),
                     b.status_events,
                     ts(b.first_ts),
                     ts(b.last_ts),
@@ -911,12 +997,48 @@ fn lines<T: std::fmt::Display>(list: &[T]) -> String {
     out
 }
 
-fn lines_or_none(list: &[u64]) -> String {
+/// The lines of a summary list, with how many it omitted between its
+/// first and its last (docs/summary.md#lists), as the text summary writes
+/// them.
+fn listed_lines<T: std::fmt::Display>(list: &Listed<T>) -> String {
+    let mut out = String::new();
+    for item in items(list) {
+        let _ = match item {
+            Item::Kept(l) if out.is_empty() => write!(out, "{l}"),
+            Item::Kept(l) => write!(out, ", {l}"),
+            Item::Omitted(more, _) => write!(out, ", … {more} more …"),
+        };
+    }
+    out
+}
+
+fn listed_lines_or_none(list: &Listed<u64>) -> String {
     if list.is_empty() {
         "none".to_owned()
     } else {
-        lines(list)
+        listed_lines(list)
     }
+}
+
+/// An entry a summary list keeps, or the entries it omitted: how many,
+/// and the last entry kept before them (docs/summary.md#lists).
+enum Item<'a, T> {
+    Kept(&'a T),
+    Omitted(u64, &'a T),
+}
+
+/// The entries a summary list keeps, in order, with its omitted ones in
+/// their place.
+fn items<T>(list: &Listed<T>) -> impl Iterator<Item = Item<'_, T>> {
+    let omitted = match (list.omitted(), list.head().last()) {
+        (n @ 1.., Some(last)) => Some(Item::Omitted(n, last)),
+        _ => None,
+    };
+    list.head()
+        .iter()
+        .map(Item::Kept)
+        .chain(omitted)
+        .chain(list.tail().map(Item::Kept))
 }
 
 /// One device's row of the summary table.
@@ -940,14 +1062,18 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
         hb.last_state.map_or("–", |s| s.state_name())
     );
     if !hb.boot_ups.is_empty() {
-        let _ = write!(heartbeat, "; boot-ups at lines {}", lines(&hb.boot_ups));
+        let _ = write!(
+            heartbeat,
+            "; boot-ups at lines {}",
+            listed_lines(&hb.boot_ups)
+        );
     }
     match &hb.timeouts {
         Timeouts::NotAsked => {}
         Timeouts::NotChecked => heartbeat.push_str("; timeouts not checked (no timestamps)"),
         Timeouts::Checked(gaps) if gaps.is_empty() => heartbeat.push_str("; no timeouts"),
         Timeouts::Checked(gaps) => {
-            let _ = write!(heartbeat, "; {} timeouts", gaps.len());
+            let _ = write!(heartbeat, "; {} timeouts", gaps.count());
         }
     }
     let g = &n.guarding;
@@ -957,7 +1083,7 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
         format!(
             "{} answers, wrong toggle at lines {}",
             g.answers,
-            lines_or_none(&g.toggle_errors)
+            listed_lines_or_none(&g.toggle_errors)
         )
     };
     let s = &n.sdo;
@@ -968,13 +1094,13 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
             "{} requests, {} transfers, {} aborts",
             s.requests,
             s.transfers,
-            s.aborts.len()
+            s.aborts.count()
         );
         if !s.broken.is_empty() {
-            let _ = write!(t, ", broken at lines {}", lines(&s.broken));
+            let _ = write!(t, ", broken at lines {}", listed_lines(&s.broken));
         }
         if !s.timeouts.is_empty() {
-            let _ = write!(t, ", unanswered at lines {}", lines(&s.timeouts));
+            let _ = write!(t, ", unanswered at lines {}", listed_lines(&s.timeouts));
         }
         if let Some(l) = s.latency {
             let _ = write!(
@@ -991,9 +1117,9 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
         Some(c) if !c.observed() => "no statusword seen".to_owned(),
         Some(c) => format!(
             "{} states, last {}, {} faults",
-            c.transitions.len(),
+            c.transitions.count(),
             c.last_state().map_or("–", |s| s.name()),
-            c.faults.as_ref().map_or(0, Vec::len)
+            c.faults.as_ref().map_or(0, Listed::count)
         ),
     };
     let _ = writeln!(

@@ -5,7 +5,7 @@ use crate::can::Timestamp;
 use crate::canopen::Cia402State;
 use crate::decoder::Cia402Reading;
 
-use super::EmcySeen;
+use super::{EmcySeen, Listed};
 
 /// One change of a drive's observed state (`transitions` in
 /// docs/summary.md#cia402).
@@ -36,13 +36,14 @@ pub struct Cia402Fault {
 /// `cia402`).
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Cia402Timeline {
-    /// Every change of state, in order.
-    pub transitions: Vec<Cia402Transition>,
-    /// Every fault, in order; `None` when no statusword was seen (the
+    /// The changes of state, in order (the first and the last, and their
+    /// count: docs/summary.md#lists).
+    pub transitions: Listed<Cia402Transition>,
+    /// The faults, in order (the same); `None` when no statusword was seen (the
     /// decision in docs/summary.md#cia402: nothing observed is not "no fault",
     /// `"faults": null`), `Some` and empty when the drive was seen and never
     /// faulted.
-    pub faults: Option<Vec<Cia402Fault>>,
+    pub faults: Option<Listed<Cia402Fault>>,
 }
 
 impl Cia402Timeline {
@@ -90,7 +91,7 @@ impl TimelineBuilder {
         }
         let transition = Cia402Transition { line, ts, from, to };
         // The first statusword makes the faults known: none so far.
-        let faults = timeline.faults.get_or_insert_with(Vec::new);
+        let faults = timeline.faults.get_or_insert_with(Listed::new);
         let mut fault = None;
         if to.is_fault() && !from.is_some_and(Cia402State::is_fault) {
             let f = Cia402Fault {

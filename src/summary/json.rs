@@ -15,8 +15,8 @@ use crate::decoder::BusName;
 use super::text::ms;
 use super::{
     BusSummary, Cia402Timeline, EmcySeen, FrameCounts, GuardingSummary, HeartbeatGap,
-    HeartbeatSummary, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryItem, SummaryRecord,
-    Timeouts,
+    HeartbeatSummary, Listed, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryItem,
+    SummaryRecord, Timeouts,
 };
 
 /// A time as a JSON number with six or nine decimals.
@@ -111,28 +111,37 @@ impl Serialize for HeartbeatGap {
 }
 
 impl Serialize for HeartbeatSummary {
-    /// `{"count", "last_state", "boot_ups"}` and, when asked for,
-    /// `"timeouts"` (a list, or null when not checked).
+    /// `{"count", "last_state", "boot_ups", "boot_up_count"}` and, when
+    /// asked for, `"timeouts"` and `"timeout_count"` (a list and its
+    /// count, or both null when not checked).
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         map.serialize_entry("count", &self.count)?;
         map.serialize_entry("last_state", &self.last_state.map(|s| s.state_name()))?;
         map.serialize_entry("boot_ups", &self.boot_ups)?;
+        map.serialize_entry("boot_up_count", &self.boot_ups.count())?;
         match &self.timeouts {
             Timeouts::NotAsked => {}
-            Timeouts::NotChecked => map.serialize_entry("timeouts", &None::<()>)?,
-            Timeouts::Checked(gaps) => map.serialize_entry("timeouts", gaps)?,
+            Timeouts::NotChecked => {
+                map.serialize_entry("timeouts", &None::<()>)?;
+                map.serialize_entry("timeout_count", &None::<()>)?;
+            }
+            Timeouts::Checked(gaps) => {
+                map.serialize_entry("timeouts", gaps)?;
+                map.serialize_entry("timeout_count", &gaps.count())?;
+            }
         }
         map.end()
     }
 }
 
 impl Serialize for GuardingSummary {
-    /// `{"answers", "toggle_errors"}`.
+    /// `{"answers", "toggle_errors", "toggle_error_count"}`.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(Some(2))?;
+        let mut map = serializer.serialize_map(Some(3))?;
         map.serialize_entry("answers", &self.answers)?;
         map.serialize_entry("toggle_errors", &self.toggle_errors)?;
+        map.serialize_entry("toggle_error_count", &self.toggle_errors.count())?;
         map.end()
     }
 }
@@ -154,8 +163,9 @@ impl Serialize for SdoAbort {
 }
 
 impl Serialize for SdoSummary {
-    /// docs/summary.md#sdo: `{"requests", "transfers", "aborts", "broken",
-    /// "timeouts", "latency_ms"}`.
+    /// docs/summary.md#sdo: `{"requests", "transfers", "aborts",
+    /// "abort_count", "broken", "broken_count", "timeouts", "timeout_count",
+    /// "latency_ms"}`.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         struct Latency<'a>(&'a super::LatencyStats);
         impl Serialize for Latency<'_> {
@@ -168,12 +178,15 @@ impl Serialize for SdoSummary {
                 map.end()
             }
         }
-        let mut map = serializer.serialize_map(Some(6))?;
+        let mut map = serializer.serialize_map(Some(9))?;
         map.serialize_entry("requests", &self.requests)?;
         map.serialize_entry("transfers", &self.transfers)?;
         map.serialize_entry("aborts", &self.aborts)?;
+        map.serialize_entry("abort_count", &self.aborts.count())?;
         map.serialize_entry("broken", &self.broken)?;
+        map.serialize_entry("broken_count", &self.broken.count())?;
         map.serialize_entry("timeouts", &self.timeouts)?;
+        map.serialize_entry("timeout_count", &self.timeouts.count())?;
         map.serialize_entry("latency_ms", &self.latency.as_ref().map(Latency))?;
         map.end()
     }
@@ -181,27 +194,23 @@ impl Serialize for SdoSummary {
 
 impl Serialize for Cia402Timeline {
     /// docs/summary.md#cia402: `{"transitions": [{"line", "ts", "from", "to"}],
-    /// "last_state", "faults": [lines]}`; `"faults": null` when no
-    /// statusword was seen (the decision in docs/summary.md#cia402).
+    /// "transition_count", "last_state", "faults": [lines], "fault_count"}`;
+    /// `"faults"` and `"fault_count"` null when no statusword was seen (the
+    /// decision in docs/summary.md#cia402).
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        struct Transitions<'a>(&'a Cia402Timeline);
-        impl Serialize for Transitions<'_> {
+        /// The lines of the faults kept.
+        struct FaultLines<'a>(&'a Listed<super::Cia402Fault>);
+        impl Serialize for FaultLines<'_> {
             fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-                let mut seq = serializer.serialize_seq(Some(self.0.transitions.len()))?;
-                for t in &self.0.transitions {
-                    seq.serialize_element(t)?;
-                }
-                seq.end()
+                serializer.collect_seq(self.0.iter().map(|f| f.transition.line))
             }
         }
-        let mut map = serializer.serialize_map(Some(3))?;
-        map.serialize_entry("transitions", &Transitions(self))?;
+        let mut map = serializer.serialize_map(Some(5))?;
+        map.serialize_entry("transitions", &self.transitions)?;
+        map.serialize_entry("transition_count", &self.transitions.count())?;
         map.serialize_entry("last_state", &self.last_state().map(|s| s.name()))?;
-        let faults: Option<Vec<u64>> = self
-            .faults
-            .as_ref()
-            .map(|faults| faults.iter().map(|f| f.transition.line).collect());
-        map.serialize_entry("faults", &faults)?;
+        map.serialize_entry("faults", &self.faults.as_ref().map(FaultLines))?;
+        map.serialize_entry("fault_count", &self.faults.as_ref().map(Listed::count))?;
         map.end()
     }
 }
@@ -258,7 +267,9 @@ fn bus_entries<M: SerializeMap>(b: &BusSummary, map: &mut M) -> Result<(), M::Er
     map.serialize_entry("frames", &b.frames)?;
     map.serialize_entry("error_frames", &b.error_frames)?;
     map.serialize_entry("bus_off", &b.bus_off)?;
+    map.serialize_entry("bus_off_count", &b.bus_off.count())?;
     map.serialize_entry("error_passive", &b.error_passive)?;
+    map.serialize_entry("error_passive_count", &b.error_passive.count())?;
     map.serialize_entry("status_events", &b.status_events)?;
     ts(map, "first_ts", b.first_ts)?;
     ts(map, "last_ts", b.last_ts)?;

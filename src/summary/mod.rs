@@ -30,7 +30,7 @@
 //! let summary = summarizer.finish(&mut decoder);
 //! let node = &summary.nodes[0];
 //! assert_eq!(node.node.get(), 3);
-//! assert_eq!(node.heartbeat.boot_ups, [1]);
+//! assert_eq!(node.heartbeat.boot_ups.head(), [1]);
 //! assert_eq!(node.active_error.unwrap().code.get(), 0x8110);
 //! assert!(summary.to_string().contains("active error: 0x8110 CAN overrun (objects lost) (line 2)"));
 //! ```
@@ -39,6 +39,7 @@ mod cia402;
 mod event;
 mod file;
 mod json;
+mod listed;
 mod sdo;
 mod text;
 
@@ -47,6 +48,7 @@ use core::time::Duration;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::FileSpan;
+pub use listed::{Listed, ListedIter};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
@@ -98,8 +100,9 @@ pub enum Timeouts {
     /// A consumer time was given, but frames without timestamps make a
     /// check impossible (`null`, never "none found").
     NotChecked,
-    /// Checked: every gap longer than the consumer time.
-    Checked(Vec<HeartbeatGap>),
+    /// Checked: the gaps longer than the consumer time (the first and the
+    /// last, and their count: docs/summary.md#lists).
+    Checked(Listed<HeartbeatGap>),
 }
 
 /// A node's heartbeats (`heartbeat` in docs/summary.md#heartbeat).
@@ -109,8 +112,9 @@ pub struct HeartbeatSummary {
     pub count: u64,
     /// The state of the last one.
     pub last_state: Option<NmtStateByte>,
-    /// The lines of its boot-up messages.
-    pub boot_ups: Vec<u64>,
+    /// The lines of its boot-up messages (the first and the last, and
+    /// their count: docs/summary.md#lists).
+    pub boot_ups: Listed<u64>,
     /// Its heartbeat timeouts.
     pub timeouts: Timeouts,
 }
@@ -121,8 +125,9 @@ pub struct GuardingSummary {
     /// Answers seen (the data frame after a guard request).
     pub answers: u64,
     /// The lines of the answers whose toggle bit is wrong
-    /// (docs/canopen.md#error-control).
-    pub toggle_errors: Vec<u64>,
+    /// (docs/canopen.md#error-control; the first and the last, and their
+    /// count: docs/summary.md#lists).
+    pub toggle_errors: Listed<u64>,
 }
 
 /// The frames of a node by kind (`frames` in docs/summary.md#frames), with the
@@ -206,10 +211,11 @@ pub struct BusSummary {
     pub frames: u64,
     /// Error frames seen on it.
     pub error_frames: u64,
-    /// The lines of error frames that say bus-off.
-    pub bus_off: Vec<u64>,
-    /// The lines of error frames that say error-passive.
-    pub error_passive: Vec<u64>,
+    /// The lines of error frames that say bus-off (the first and the
+    /// last, and their count: docs/summary.md#lists).
+    pub bus_off: Listed<u64>,
+    /// The lines of error frames that say error-passive (the same).
+    pub error_passive: Listed<u64>,
     /// Log entries that are not frames (a TRC status row).
     pub status_events: u64,
     /// The earliest time seen on it.
@@ -296,13 +302,13 @@ struct NodeState {
     last_register: Option<ErrorRegister>,
     heartbeats: u64,
     last_state: Option<NmtStateByte>,
-    boot_ups: Vec<u64>,
+    boot_ups: Listed<u64>,
     /// The line of the last heartbeat (not guarding answer) seen.
     last_heartbeat_line: u64,
     /// A timeout reported by the consumer and not yet closed by a
     /// heartbeat: the line and time of the heartbeat before it.
     open_gap: Option<(u64, Duration)>,
-    timeouts: Vec<HeartbeatGap>,
+    timeouts: Listed<HeartbeatGap>,
     /// A guard request (RTR) was seen and not yet answered: the next data
     /// frame on 0x700 + node is its answer.
     guard_request_pending: bool,
@@ -325,10 +331,10 @@ impl NodeState {
             last_register: None,
             heartbeats: 0,
             last_state: None,
-            boot_ups: Vec::new(),
+            boot_ups: Listed::new(),
             last_heartbeat_line: 0,
             open_gap: None,
-            timeouts: Vec::new(),
+            timeouts: Listed::new(),
             guard_request_pending: false,
             // A log rarely shows the guard time (100Ch): observe toggles only.
             guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
@@ -347,8 +353,8 @@ struct BusState {
     consumer: Option<HeartbeatConsumer>,
     frames: u64,
     error_frames: u64,
-    bus_off: Vec<u64>,
-    error_passive: Vec<u64>,
+    bus_off: Listed<u64>,
+    error_passive: Listed<u64>,
     status_events: u64,
     first_ts: Option<Timestamp>,
     last_ts: Option<Timestamp>,
@@ -367,8 +373,8 @@ impl BusState {
             consumer,
             frames: 0,
             error_frames: 0,
-            bus_off: Vec::new(),
-            error_passive: Vec::new(),
+            bus_off: Listed::new(),
+            error_passive: Listed::new(),
             status_events: 0,
             first_ts: None,
             last_ts: None,
@@ -582,7 +588,7 @@ impl Summarizer {
         if let Some(step) = sdo {
             let added = state.sdo.add(step, position);
             if added.abort {
-                if let Some(abort) = state.sdo.aborts().last() {
+                if let Some(abort) = state.sdo.last_abort() {
                     on_event(SummaryEvent {
                         bus: name,
                         node: Some(node),

@@ -7,6 +7,8 @@ use crate::canopen::sdo::{SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoRespo
 use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::decoder::SdoStep;
 
+use super::Listed;
+
 /// One abort seen on a node's channel (`aborts` in docs/summary.md#sdo).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SdoAbort {
@@ -48,12 +50,13 @@ pub struct SdoSummary {
     pub requests: u64,
     /// Transfers that started, whatever their outcome.
     pub transfers: u64,
-    /// Every abort, in order.
-    pub aborts: Vec<SdoAbort>,
-    /// The start lines of broken transfers.
-    pub broken: Vec<u64>,
-    /// The start lines of transfers no response answered.
-    pub timeouts: Vec<u64>,
+    /// The aborts, in order (the first and the last, and their count:
+    /// docs/summary.md#lists).
+    pub aborts: Listed<SdoAbort>,
+    /// The start lines of broken transfers (the same).
+    pub broken: Listed<u64>,
+    /// The start lines of transfers no response answered (the same).
+    pub timeouts: Listed<u64>,
     /// The latencies, when there were any.
     pub latency: Option<LatencyStats>,
 }
@@ -72,7 +75,7 @@ impl SdoSummary {
 /// What one frame added to a channel's record.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Added {
-    /// An abort: the last of [`SdoStats::aborts`].
+    /// An abort: [`SdoStats::last_abort`].
     pub(crate) abort: bool,
     /// The frame's step ended a transfer that is broken or unanswered.
     pub(crate) ended: bool,
@@ -144,9 +147,9 @@ impl SdoStats {
         true
     }
 
-    /// The aborts recorded so far.
-    pub(crate) fn aborts(&self) -> &[SdoAbort] {
-        &self.summary.aborts
+    /// The abort recorded last.
+    pub(crate) fn last_abort(&self) -> Option<&SdoAbort> {
+        self.summary.aborts.last()
     }
 
     pub(crate) fn finish(mut self) -> SdoSummary {

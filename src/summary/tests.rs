@@ -72,10 +72,10 @@ fn heartbeat_gaps_are_timeouts_only_when_every_frame_has_a_time() {
         Summarizer::new().heartbeat_timeout(Duration::from_millis(200)),
     );
     let hb = &summary.nodes[0].heartbeat;
-    assert_eq!(hb.boot_ups, [1]);
+    assert_eq!(hb.boot_ups.head(), [1]);
     assert_eq!(
         hb.timeouts,
-        Timeouts::Checked(vec![
+        Timeouts::Checked(Listed::from_iter([
             HeartbeatGap {
                 after_line: 2,
                 gap: Duration::from_millis(300)
@@ -84,7 +84,7 @@ fn heartbeat_gaps_are_timeouts_only_when_every_frame_has_a_time() {
                 after_line: 4,
                 gap: Duration::from_millis(250)
             },
-        ])
+        ]))
     );
     assert!(!summary.timeouts_not_checked());
 
@@ -125,8 +125,8 @@ fn a_drives_fault_names_the_emcy_before_it() {
         [(2, Cia402State::OperationEnabled), (5, Cia402State::Fault)]
     );
     let faults = drive.faults.as_ref().expect("statuswords seen");
-    assert_eq!(faults.len(), 1);
-    assert_eq!(faults[0].emcy_before.unwrap().line, 3);
+    assert_eq!(faults.count(), 1);
+    assert_eq!(faults.head()[0].emcy_before.unwrap().line, 3);
     let text = summary.nodes[0].to_string();
     assert!(
         text.contains("went operation_enabled → fault at line 5, 17.0 ms after EMCY 0x7305"),
@@ -162,7 +162,7 @@ fn a_drive_never_seen_has_unknown_faults() {
     let json = serde_json::to_value(&summary).unwrap();
     assert_eq!(
         json[0]["cia402"],
-        serde_json::json!({"transitions": [], "last_state": null, "faults": null})
+        serde_json::json!({"transitions": [], "transition_count": 0, "last_state": null, "faults": null, "fault_count": null})
     );
     assert!(summary.nodes[0]
         .to_string()
@@ -177,7 +177,7 @@ fn a_drive_never_seen_has_unknown_faults() {
         Summarizer::new(),
     );
     let drive = summary.nodes[0].cia402.as_ref().unwrap();
-    assert_eq!(drive.faults, Some(Vec::new()));
+    assert_eq!(drive.faults, Some(Listed::new()));
     let json = serde_json::to_value(&summary).unwrap();
     assert_eq!(json[0]["cia402"]["faults"], serde_json::json!([]));
 }
@@ -207,7 +207,7 @@ fn times_keep_their_digits_in_json() {
     let bus = serde_json::to_string(&summary.records().last().unwrap()).unwrap();
     assert_eq!(
         bus,
-        r#"{"type":"bus","iface":null,"frames":2,"error_frames":0,"bus_off":[],"error_passive":[],"status_events":0,"first_ts":1700000000.000500,"last_ts":1700000001.000000001,"nodes":[5]}"#
+        r#"{"type":"bus","iface":null,"frames":2,"error_frames":0,"bus_off":[],"bus_off_count":0,"error_passive":[],"error_passive_count":0,"status_events":0,"first_ts":1700000000.000500,"last_ts":1700000001.000000001,"nodes":[5]}"#
     );
     assert_eq!(
         summary.buses[0].to_string(),
@@ -234,4 +234,62 @@ fn a_node_is_one_per_bus() {
     assert!(summary
         .node(&BusName::Name("can1".to_owned()), NodeId::new(5).unwrap())
         .is_some());
+}
+
+#[test]
+fn long_lists_keep_their_first_and_last_entries_and_count_them_all() {
+    // Node 5 boots 30 times; its drive (node 3) goes through 40 states:
+    // enabled / fault by turns, read by SDO.
+    let mut frames: Vec<(Option<u64>, u32, &[u8])> = Vec::new();
+    for i in 0..30 {
+        frames.push((Some(i * 10), 0x705, &[0x00]));
+    }
+    const ENABLED: &[u8] = &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0];
+    const FAULT: &[u8] = &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0];
+    const READ: &[u8] = &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0];
+    for i in 0..40 {
+        frames.push((Some(1000 + i * 10), 0x603, READ));
+        frames.push((
+            Some(1001 + i * 10),
+            0x583,
+            if i % 2 == 0 { ENABLED } else { FAULT },
+        ));
+    }
+    let summary = summarize(&frames, Summarizer::new());
+    let boots = &summary.node(&BusName::Name("can0".into()), NodeId::new(5).unwrap());
+    let boots = &boots.unwrap().heartbeat.boot_ups;
+    assert_eq!(boots.count(), 30);
+    assert_eq!(boots.omitted(), 10);
+    let kept: Vec<u64> = boots.iter().copied().collect();
+    let expected: Vec<u64> = (1..=10).chain(21..=30).collect();
+    assert_eq!(kept, expected);
+
+    let drive = summary.nodes[0].cia402.as_ref().unwrap();
+    assert_eq!(drive.transitions.count(), 40);
+    assert_eq!(drive.faults.as_ref().unwrap().count(), 20);
+    // The last state is the last one seen, not the last one kept first.
+    assert_eq!(drive.last_state(), Some(Cia402State::Fault));
+
+    let json = serde_json::to_value(&summary).unwrap();
+    let node5 = &json[1];
+    assert_eq!(node5["heartbeat"]["boot_up_count"], 30);
+    assert_eq!(node5["heartbeat"]["boot_ups"], serde_json::json!(expected));
+    let cia402 = &json[0]["cia402"];
+    assert_eq!(cia402["transition_count"], 40);
+    assert_eq!(cia402["transitions"].as_array().unwrap().len(), 20);
+    assert_eq!(cia402["fault_count"], 20);
+    assert_eq!(cia402["faults"].as_array().unwrap().len(), 20);
+    assert_eq!(cia402["last_state"], "fault");
+
+    let text = summary.to_string();
+    assert!(
+        text.contains(
+            "boot-ups at lines 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, … 10 more …, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("CiA 402, 40 states in turn:"), "{text}");
+    assert!(text.contains("… 28 more …"), "{text}");
+    // Faults: the first 10 and the last 10 are kept; none omitted.
+    assert_eq!(text.matches("→ fault at line").count(), 20, "{text}");
 }

@@ -7,8 +7,8 @@ use crate::can::Timestamp;
 use crate::canopen::Cia402State;
 
 use super::{
-    BusSummary, Cia402Fault, Cia402Timeline, EmcySeen, NodeSummary, SdoAbort, SdoSummary, Summary,
-    SummaryItem, SummaryRecord, Timeouts,
+    BusSummary, Cia402Fault, Cia402Timeline, EmcySeen, Listed, NodeSummary, SdoAbort, SdoSummary,
+    Summary, SummaryItem, SummaryRecord, Timeouts,
 };
 
 impl fmt::Display for Summary {
@@ -59,6 +59,48 @@ impl<T: fmt::Display> fmt::Display for Lines<'_, T> {
         }
         Ok(())
     }
+}
+
+/// The lines of a [`Listed`], with the count of those omitted between
+/// its first and its last (docs/summary.md#lists): `1, 2, …, 10, … 30
+/// more …, 41, …, 50`.
+struct ListedLines<'a, T>(&'a Listed<T>);
+
+impl<T: fmt::Display> fmt::Display for ListedLines<'_, T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        each(
+            self.0,
+            f,
+            |entry, f, i| {
+                if i > 0 {
+                    f.write_str(", ")?;
+                }
+                write!(f, "{entry}")
+            },
+            |omitted, f| write!(f, ", … {omitted} more …"),
+        )
+    }
+}
+
+/// Write the entries of `listed` in order with `entry` (given its index
+/// among those kept), and `more` where entries were omitted.
+fn each<T>(
+    listed: &Listed<T>,
+    f: &mut fmt::Formatter<'_>,
+    mut entry: impl FnMut(&T, &mut fmt::Formatter<'_>, usize) -> fmt::Result,
+    more: impl FnOnce(u64, &mut fmt::Formatter<'_>) -> fmt::Result,
+) -> fmt::Result {
+    let head = listed.head();
+    for (i, e) in head.iter().enumerate() {
+        entry(e, f, i)?;
+    }
+    if listed.omitted() > 0 {
+        more(listed.omitted(), f)?;
+    }
+    for (i, e) in listed.tail().enumerate() {
+        entry(e, f, head.len() + i)?;
+    }
+    Ok(())
 }
 
 /// A time as seconds with six decimals and no padding (`0.052000`,
@@ -119,7 +161,7 @@ impl fmt::Display for NodeSummary {
             hb.last_state.map_or("-", |st| st.state_name())
         )?;
         if !hb.boot_ups.is_empty() {
-            write!(f, ", boot-ups at lines {}", Lines(&hb.boot_ups))?;
+            write!(f, ", boot-ups at lines {}", ListedLines(&hb.boot_ups))?;
         }
         match &hb.timeouts {
             Timeouts::NotAsked => {}
@@ -128,14 +170,19 @@ impl fmt::Display for NodeSummary {
                 if gaps.is_empty() {
                     f.write_str(", no timeouts")?;
                 }
-                for gap in gaps {
-                    write!(
-                        f,
-                        ", timeout: {} ms after line {}",
-                        gap.gap_ms(),
-                        gap.after_line
-                    )?;
-                }
+                each(
+                    gaps,
+                    f,
+                    |gap, f, _| {
+                        write!(
+                            f,
+                            ", timeout: {} ms after line {}",
+                            gap.gap_ms(),
+                            gap.after_line
+                        )
+                    },
+                    |omitted, f| write!(f, ", … {} …", Counted(omitted, "more timeout")),
+                )?;
             }
         }
         writeln!(f)?;
@@ -143,7 +190,11 @@ impl fmt::Display for NodeSummary {
         if g.answers > 0 || !g.toggle_errors.is_empty() {
             write!(f, "          guarding answers {}", g.answers)?;
             if !g.toggle_errors.is_empty() {
-                write!(f, ", wrong toggle at lines {}", Lines(&g.toggle_errors))?;
+                write!(
+                    f,
+                    ", wrong toggle at lines {}",
+                    ListedLines(&g.toggle_errors)
+                )?;
             }
             writeln!(f)?;
         }
@@ -165,10 +216,14 @@ impl fmt::Display for BusSummary {
             self.bus, self.frames, self.error_frames
         )?;
         if !self.bus_off.is_empty() {
-            write!(f, ", bus-off at lines {}", Lines(&self.bus_off))?;
+            write!(f, ", bus-off at lines {}", ListedLines(&self.bus_off))?;
         }
         if !self.error_passive.is_empty() {
-            write!(f, ", error-passive at lines {}", Lines(&self.error_passive))?;
+            write!(
+                f,
+                ", error-passive at lines {}",
+                ListedLines(&self.error_passive)
+            )?;
         }
         if self.status_events > 0 {
             write!(f, ", status events {}", self.status_events)?;
@@ -207,21 +262,24 @@ impl fmt::Display for SdoSummary {
             )?;
         }
         writeln!(f)?;
-        for abort in &self.aborts {
-            writeln!(f, "          line {}: {abort}", abort.line)?;
-        }
+        each(
+            &self.aborts,
+            f,
+            |abort, f, _| writeln!(f, "          line {}: {abort}", abort.line),
+            |omitted, f| writeln!(f, "          … {} …", Counted(omitted, "more abort")),
+        )?;
         if !self.broken.is_empty() {
             writeln!(
                 f,
                 "          broken transfers starting at lines {}",
-                Lines(&self.broken)
+                ListedLines(&self.broken)
             )?;
         }
         if !self.timeouts.is_empty() {
             writeln!(
                 f,
                 "          unanswered requests at lines {}",
-                Lines(&self.timeouts)
+                ListedLines(&self.timeouts)
             )?;
         }
         Ok(())
@@ -239,10 +297,13 @@ impl fmt::Display for Cia402Timeline {
         if self.transitions.is_empty() {
             return writeln!(f, "          CiA 402: no statusword seen");
         }
-        let n = self.transitions.len();
+        let n = self.transitions.count();
         write!(f, "          CiA 402, {n} states in turn:")?;
+        // Every state kept when there are up to 12, else the first 4 and
+        // the last 8 (the list keeps at least those).
+        let kept = self.transitions.kept();
         for (i, t) in self.transitions.iter().enumerate() {
-            if n > 12 && (4..n - 8).contains(&i) {
+            if n > 12 && (4..kept - 8).contains(&i) {
                 if i == 4 {
                     write!(f, " → … {} more …", n - 12)?;
                 }
@@ -254,8 +315,13 @@ impl fmt::Display for Cia402Timeline {
             write!(f, " {} (line {})", t.to.name(), t.line)?;
         }
         writeln!(f)?;
-        for fault in self.faults.iter().flatten() {
-            writeln!(f, "          {fault}")?;
+        if let Some(faults) = &self.faults {
+            each(
+                faults,
+                f,
+                |fault, f, _| writeln!(f, "          {fault}"),
+                |omitted, f| writeln!(f, "          … {} …", Counted(omitted, "more fault")),
+            )?;
         }
         Ok(())
     }
