@@ -85,9 +85,98 @@ pub(crate) struct Added {
 #[derive(Debug, Default)]
 pub(crate) struct SdoStats {
     summary: SdoSummary,
-    /// Every latency in nanoseconds, for exact percentiles: 8 bytes a
-    /// request (a `Duration` takes 16; u64 nanoseconds hold 584 years).
-    latencies: Vec<u64>,
+    latencies: Latencies,
+}
+
+/// A channel's latencies in nanoseconds (u64 nanoseconds hold 584 years),
+/// for exact nearest-rank percentiles in memory that grows with the
+/// distinct latencies, not with the responses: each distinct value once,
+/// with its count, in order; new latencies wait in a short buffer that is
+/// sorted and merged in when it fills. A log's times have a resolution
+/// (a microsecond for candump, python-can's float seconds for its BLF
+/// files), so a channel's latencies take far fewer values than it has
+/// responses.
+#[derive(Debug, Default)]
+struct Latencies {
+    /// Not yet merged, in log order.
+    pending: Vec<u64>,
+    /// The distinct latencies merged so far, ascending.
+    values: Vec<u64>,
+    /// How many times each of `values` was seen.
+    counts: Vec<u64>,
+}
+
+impl Latencies {
+    /// Latencies buffered before a merge: 4 KiB.
+    const PENDING: usize = 512;
+
+    fn push(&mut self, nanos: u64) {
+        if self.pending.len() == Self::PENDING {
+            self.merge();
+        }
+        self.pending.push(nanos);
+    }
+
+    /// Merge the buffer into the sorted values and counts.
+    fn merge(&mut self) {
+        if self.pending.is_empty() {
+            return;
+        }
+        self.pending.sort_unstable();
+        let mut values = Vec::with_capacity(self.values.len() + self.pending.len());
+        let mut counts = Vec::with_capacity(values.capacity());
+        let mut add = |value: u64, count: u64| match values.last() {
+            Some(&last) if last == value => {
+                if let Some(c) = counts.last_mut() {
+                    *c += count;
+                }
+            }
+            _ => {
+                values.push(value);
+                counts.push(count);
+            }
+        };
+        let mut old = self.values.iter().zip(&self.counts).peekable();
+        for &new in &self.pending {
+            while let Some((&value, &count)) = old.next_if(|(&value, _)| value <= new) {
+                add(value, count);
+            }
+            add(new, 1);
+        }
+        for (&value, &count) in old {
+            add(value, count);
+        }
+        values.shrink_to_fit();
+        counts.shrink_to_fit();
+        self.values = values;
+        self.counts = counts;
+        self.pending.clear();
+    }
+
+    /// Return the nearest-rank statistics (docs/summary.md#sdo): the
+    /// smallest latency with at least p of them at or below it.
+    fn stats(mut self) -> Option<LatencyStats> {
+        self.merge();
+        let n: u64 = self.counts.iter().sum();
+        let max = *self.values.last()?;
+        let rank = |p: f64| {
+            let r = ((p * n as f64).ceil() as u64).clamp(1, n);
+            let mut seen = 0;
+            for (&value, &count) in self.values.iter().zip(&self.counts) {
+                seen += count;
+                if seen >= r {
+                    return Duration::from_nanos(value);
+                }
+            }
+            Duration::from_nanos(max)
+        };
+        Some(LatencyStats {
+            count: usize::try_from(n).unwrap_or(usize::MAX),
+            median: rank(0.5),
+            p99: rank(0.99),
+            max: Duration::from_nanos(max),
+        })
+    }
 }
 
 impl SdoStats {
@@ -153,22 +242,61 @@ impl SdoStats {
     }
 
     pub(crate) fn finish(mut self) -> SdoSummary {
-        if !self.latencies.is_empty() {
-            let sorted = &mut self.latencies;
-            sorted.sort_unstable();
-            let n = sorted.len();
-            // Nearest rank: the smallest value with at least p of them at
-            // or below it.
-            let rank = |p: f64| {
-                Duration::from_nanos(sorted[((p * n as f64).ceil() as usize).clamp(1, n) - 1])
-            };
-            self.summary.latency = Some(LatencyStats {
-                count: n,
-                median: rank(0.5),
-                p99: rank(0.99),
-                max: Duration::from_nanos(sorted[n - 1]),
-            });
-        }
+        self.summary.latency = self.latencies.stats();
         self.summary
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The statistics as the summary computed them before: every latency
+    /// kept, sorted, nearest rank.
+    fn sorted_stats(mut all: Vec<u64>) -> Option<LatencyStats> {
+        if all.is_empty() {
+            return None;
+        }
+        all.sort_unstable();
+        let n = all.len();
+        let rank =
+            |p: f64| Duration::from_nanos(all[((p * n as f64).ceil() as usize).clamp(1, n) - 1]);
+        Some(LatencyStats {
+            count: n,
+            median: rank(0.5),
+            p99: rank(0.99),
+            max: Duration::from_nanos(all[n - 1]),
+        })
+    }
+
+    proptest! {
+        /// Whatever the latencies and their order, the merged histogram
+        /// gives exactly the statistics of sorting them all.
+        #[test]
+        fn the_histogram_is_exact(
+            latencies in proptest::collection::vec(
+                prop_oneof![0u64..50, any::<u64>(), Just(u64::MAX)],
+                0..3000,
+            )
+        ) {
+            let mut kept = Latencies::default();
+            for &l in &latencies {
+                kept.push(l);
+            }
+            prop_assert!(kept.pending.len() <= Latencies::PENDING);
+            prop_assert_eq!(kept.stats(), sorted_stats(latencies));
+        }
+    }
+
+    #[test]
+    fn memory_follows_the_distinct_latencies() {
+        let mut kept = Latencies::default();
+        for i in 0..100_000u64 {
+            kept.push(100_000 + (i * 7919) % 400 * 1000);
+        }
+        kept.merge();
+        assert_eq!(kept.values.len(), 400);
+        assert_eq!(kept.counts.iter().sum::<u64>(), 100_000);
     }
 }
