@@ -8,6 +8,7 @@ use std::fmt::Write as _;
 use crate::canopen::ErrorCode;
 use crate::summary::NodeSummary;
 
+use super::fixed::Fixed;
 use super::html::{
     cia402_name, device, esc, iface_attr, nmt_name, Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT,
     WIDTH,
@@ -195,7 +196,9 @@ pub(super) fn marks(
             };
             let _ = write!(
                 p,
-                "<rect x=\"{x0:.3}\" y=\"{y}\" width=\"{w:.3}\" height=\"{h}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"{}\"",
+                "<rect x=\"{}\" y=\"{y}\" width=\"{}\" height=\"{h}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"{}\"",
+                Fixed::<3>(x0),
+                Fixed::<3>(w),
                 m.at.line,
                 m.count
             );
@@ -206,7 +209,8 @@ pub(super) fn marks(
         } else {
             let _ = write!(
                 p,
-                "<use href=\"#s-{name}\" x=\"{x0:.3}\" y=\"{base}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"1\"",
+                "<use href=\"#s-{name}\" x=\"{}\" y=\"{base}\" data-kind=\"{name}\" data-line=\"{}\" data-count=\"1\"",
+                Fixed::<3>(x0),
                 m.at.line
             );
             "use"
@@ -244,12 +248,12 @@ pub(super) fn rate(p: &mut String, axis: &Axis, rows: &BusRows, h: f64) {
     }
     let top = 16.0;
     let bottom = h - 2.0;
-    let mut d = format!("M{:.2},{bottom}", points[0].0);
-    for (x0, x1, fps) in &points {
-        let y = bottom - (fps / peak.max(1.0)) * (bottom - top);
-        let _ = write!(d, "L{x0:.2},{y:.1}L{x1:.2},{y:.1}");
+    let mut d = format!("M{},{bottom}", Fixed::<2>(points[0].0));
+    for &(x0, x1, fps) in &points {
+        let y = Fixed::<1>(bottom - (fps / peak.max(1.0)) * (bottom - top));
+        let _ = write!(d, "L{},{y}L{},{y}", Fixed::<2>(x0), Fixed::<2>(x1));
     }
-    let _ = write!(d, "L{:.2},{bottom}Z", points[points.len() - 1].1);
+    let _ = write!(d, "L{},{bottom}Z", Fixed::<2>(points[points.len() - 1].1));
     let _ = writeln!(
         p,
         "<path d=\"{d}\" data-kind=\"frame_rate\" data-peak=\"{peak:.0}\"><title>frames per second, at most {peak:.0}</title></path>"
@@ -331,8 +335,9 @@ pub(super) fn bands(
         let w = (band.x1 - band.x0).max(0.5);
         let _ = write!(
             p,
-            "<rect x=\"{:.3}\" y=\"{y}\" width=\"{w:.3}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\" data-line=\"{}\" data-count=\"{}\"",
-            band.x0,
+            "<rect x=\"{}\" y=\"{y}\" width=\"{}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\" data-line=\"{}\" data-count=\"{}\"",
+            Fixed::<3>(band.x0),
+            Fixed::<3>(w),
             b.at.line,
             b.count,
         );
@@ -358,8 +363,8 @@ pub(super) fn bands(
         if w >= 70.0 && b.count == 1 {
             let _ = write!(
                 p,
-                "<text class=\"bl\" x=\"{:.3}\" y=\"{}\">{state}</text>",
-                band.x0 + 3.0,
+                "<text class=\"bl\" x=\"{}\" y=\"{}\">{state}</text>",
+                Fixed::<3>(band.x0 + 3.0),
                 y + 9.5
             );
         }
@@ -499,10 +504,11 @@ pub(super) fn chart(
             let yy = y + 4.0 + (level / (levels - 1.0)) * (H - 8.0);
             let _ = write!(
                 d,
-                "{}{:.2},{yy:.1}H{:.2}",
+                "{}{},{}H{}",
                 if i == 0 { "M" } else { "L" },
-                band.x0,
-                band.x1
+                Fixed::<2>(band.x0),
+                Fixed::<1>(yy),
+                Fixed::<2>(band.x1)
             );
         }
         let _ = write!(
@@ -544,10 +550,10 @@ pub(super) fn chart(
                 }
                 let _ = write!(
                     d,
-                    "{}{:.2},{:.1}",
+                    "{}{},{}",
                     if points == 0 { "M" } else { "L" },
-                    axis.x(*at),
-                    yv(*v)
+                    Fixed::<2>(axis.x(*at)),
+                    Fixed::<1>(yv(*v))
                 );
                 points += 1;
             }
