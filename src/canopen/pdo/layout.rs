@@ -1,7 +1,7 @@
 //! A PDO mapping with each entry's offset and value kind worked out once,
 //! for a decoder that reads many frames of one PDO (docs/canopen.md#signals).
 
-use super::bits::decode;
+use super::bits::decode_aligned;
 use super::mapping::{MappingEntry, PdoMapping, Signal, TypeLookup, MAX_MAPPING_ENTRIES};
 use super::{PdoEntryError, PdoEntryReason};
 use crate::canopen::data_type::{DataType, ValueKind};
@@ -153,7 +153,9 @@ impl Iterator for LayoutSignals<'_> {
                     entry: p.entry,
                     offset: p.offset,
                     data_type: p.data_type,
-                    value: decode(self.payload, p.offset, p.entry.bits(), kind),
+                    // One load for whole bytes from a byte boundary, the
+                    // bit window else (`bits::decode`).
+                    value: decode_aligned(self.payload, p.offset, p.entry.bits(), kind),
                 }),
                 Err(reason) => Err(error(reason)),
             });
@@ -177,9 +179,21 @@ mod proptests {
         #[test]
         fn layout_reads_what_the_mapping_reads(
             raw in proptest::collection::vec(any::<u32>(), 0..70),
+            // Entries of whole bytes, most of them from a byte boundary
+            // (the one-load path), now and then one of a few bits.
+            bytes in proptest::collection::vec(
+                (any::<u16>(), prop::sample::select(vec![8u32, 16, 32, 64, 8, 16, 32, 1, 12])),
+                0..12,
+            ),
+            whole_bytes in any::<bool>(),
             seed in type_lookup_seed(),
             payload in proptest::collection::vec(any::<u8>(), 0..70),
         ) {
+            let raw = if whole_bytes {
+                bytes.iter().map(|&(index, bits)| u32::from(index) << 16 | bits).collect()
+            } else {
+                raw
+            };
             let mut mapping = PdoMapping::new();
             for value in raw {
                 if mapping.push(MappingEntry::from_u32(value)).is_err() {
