@@ -677,6 +677,18 @@ impl SdoTracker {
         })
     }
 
+    /// Whether `request` starts a transfer ([`start`](Self::start) gives
+    /// one for exactly these).
+    const fn is_initiate(request: &SdoRequest) -> bool {
+        matches!(
+            request,
+            SdoRequest::InitiateDownload { .. }
+                | SdoRequest::InitiateUpload { .. }
+                | SdoRequest::BlockUploadInitiate { .. }
+                | SdoRequest::BlockDownloadInitiate { .. }
+        )
+    }
+
     fn request(
         &mut self,
         request: &SdoRequest,
@@ -701,7 +713,7 @@ impl SdoTracker {
             );
             return;
         }
-        if Self::start(request, time, position).is_some() {
+        if Self::is_initiate(request) {
             // A new initiate: the open transfer never got its answer, or was
             // left by the client.
             let outcome = if open.phase.server_due() {
