@@ -1,7 +1,7 @@
 //! A PDO mapping with each entry's offset and value kind worked out once,
 //! for a decoder that reads many frames of one PDO (docs/canopen.md#signals).
 
-use super::bits::decode_aligned;
+use super::bits::{decode, decode_aligned, is_aligned};
 use super::mapping::{MappingEntry, PdoMapping, Signal, TypeLookup, MAX_MAPPING_ENTRIES};
 use super::{PdoEntryError, PdoEntryReason};
 use crate::canopen::data_type::{DataType, ValueKind};
@@ -16,6 +16,10 @@ struct Planned {
     /// The kind to read, or why the entry cannot be read (never for a
     /// dummy, which is skipped).
     kind: core::result::Result<ValueKind, PdoEntryReason>,
+    /// The entry's bytes when it is a number of 1, 2, 4 or 8 whole bytes
+    /// from a byte boundary, read with one load (`bits::is_aligned`); 0
+    /// else.
+    aligned: u8,
 }
 
 /// A mapping with each entry's offset and value kind worked out once, for a
@@ -53,6 +57,7 @@ impl PdoLayout {
             offset: 0,
             data_type: None,
             kind: Ok(ValueKind::Unsigned),
+            aligned: 0,
         };
         let mut layout = PdoLayout {
             planned: [empty; MAX_MAPPING_ENTRIES],
@@ -65,11 +70,17 @@ impl PdoLayout {
             } else {
                 types.data_type(entry)
             };
+            let kind = ValueKind::for_entry(data_type, entry.bits());
+            let aligned = match kind {
+                Ok(kind) if is_aligned(offset, entry.bits(), kind) => entry.bits() / 8,
+                _ => 0,
+            };
             *slot = Planned {
                 entry,
                 offset,
                 data_type,
-                kind: ValueKind::for_entry(data_type, entry.bits()),
+                kind,
+                aligned,
             };
             offset += u16::from(entry.bits());
             layout.len += 1;
@@ -154,8 +165,12 @@ impl Iterator for LayoutSignals<'_> {
                     offset: p.offset,
                     data_type: p.data_type,
                     // One load for whole bytes from a byte boundary, the
-                    // bit window else (`bits::decode`).
-                    value: decode_aligned(self.payload, p.offset, p.entry.bits(), kind),
+                    // bit window else.
+                    value: if p.aligned != 0 {
+                        decode_aligned(self.payload, p.offset, p.aligned, kind)
+                    } else {
+                        decode(self.payload, p.offset, p.entry.bits(), kind)
+                    },
                 }),
                 Err(reason) => Err(error(reason)),
             });
