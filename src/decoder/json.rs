@@ -70,13 +70,14 @@ impl<'w> Object<'w> {
     }
 
     /// Write a key with a boolean value.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn bool(&mut self, key: &'static str, value: bool) {
         let out = self.key(key);
         out.extend_from_slice(if value { b"true" } else { b"false" });
     }
 
     /// Write a key with a string value from the input, escaped.
+    #[inline(always)]
     pub(crate) fn str(&mut self, key: &'static str, value: &str) {
         let out = self.key(key);
         string(out, value);
@@ -84,7 +85,7 @@ impl<'w> Object<'w> {
 
     /// Write a key with one of the library's constant texts (a name or a
     /// description), which need no escaping (`constant_texts_need_no_escaping`).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn name(&mut self, key: &'static str, value: &'static str) {
         debug_assert!(!needs_escaping(value), "{value:?}");
         let out = self.key(key);
@@ -101,7 +102,7 @@ impl<'w> Object<'w> {
     }
 
     /// Write a key with a `null` value.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn null(&mut self, key: &'static str) {
         self.key(key).extend_from_slice(b"null");
     }
@@ -228,7 +229,7 @@ pub(crate) const fn digits8(v: u32) -> u64 {
 /// Write an unsigned integer in decimal: for numbers below 10^8, the
 /// digits of [`digits8`] with the leading zeros shifted out, in one write
 /// of 8 bytes cut to the length.
-#[inline]
+#[inline(always)]
 pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
     if v < 10 {
         // One digit (a toggle, a sub-index, a count): one byte.
