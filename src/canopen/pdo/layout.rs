@@ -104,6 +104,7 @@ impl PdoLayout {
     /// `None` for a position past the mapping or a dummy, else what
     /// [`unpack`](Self::unpack) gives for that entry — when the payload is
     /// too short for it, its truncation error.
+    #[inline]
     #[must_use]
     pub fn read(&self, position: usize, payload: &[u8]) -> Option<Result<Signal>> {
         let p = self.planned[..self.len].get(position)?;
@@ -136,7 +137,7 @@ pub struct LayoutSignals<'a> {
 impl Iterator for LayoutSignals<'_> {
     type Item = Result<Signal>;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             let (p, rest) = self.planned.split_first()?;
