@@ -70,13 +70,14 @@ impl<'w> Object<'w> {
     }
 
     /// Write a key with a boolean value.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn bool(&mut self, key: &'static str, value: bool) {
         let out = self.key(key);
         out.extend_from_slice(if value { b"true" } else { b"false" });
     }
 
     /// Write a key with a string value from the input, escaped.
+    #[inline(always)]
     pub(crate) fn str(&mut self, key: &'static str, value: &str) {
         let out = self.key(key);
         string(out, value);
@@ -84,7 +85,7 @@ impl<'w> Object<'w> {
 
     /// Write a key with one of the library's constant texts (a name or a
     /// description), which need no escaping (`constant_texts_need_no_escaping`).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn name(&mut self, key: &'static str, value: &'static str) {
         debug_assert!(!needs_escaping(value), "{value:?}");
         let out = self.key(key);
@@ -101,7 +102,7 @@ impl<'w> Object<'w> {
     }
 
     /// Write a key with a `null` value.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn null(&mut self, key: &'static str) {
         self.key(key).extend_from_slice(b"null");
     }
@@ -228,9 +229,12 @@ pub(crate) const fn digits8(v: u32) -> u64 {
 /// Write an unsigned integer in decimal: for numbers below 10^8, the
 /// digits of [`digits8`] with the leading zeros shifted out, in one write
 /// of 8 bytes cut to the length.
-#[inline]
+#[inline(always)]
 pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
-    if v < 100_000_000 {
+    if v < 10 {
+        // One digit (a toggle, a sub-index, a count): one byte.
+        out.push(b'0' + v as u8);
+    } else if v < 100_000_000 {
         let digits = digits8(v as u32);
         // Leading zeros: the low bytes equal to '0' (all but one for 0).
         let zeros = (((digits ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize).min(7);
@@ -283,9 +287,38 @@ pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
     out.extend_from_slice(ts.format_seconds(&mut buf));
 }
 
-/// Whether a text needs escaping in a JSON string (RFC 8259).
+/// Whether a text needs escaping in a JSON string (RFC 8259): 8 bytes at a
+/// time (object and interface names are 4 to 40 bytes), the rest one by
+/// one.
+#[inline]
 pub(crate) fn needs_escaping(text: &str) -> bool {
-    text.bytes().any(|b| b == b'"' || b == b'\\' || b < 0x20)
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    /// Whether a byte of `w` is zero (exact: a borrow only runs past a
+    /// zero byte, and a byte above 0x80 is masked off by `!w`).
+    const fn has_zero(w: u64) -> bool {
+        w.wrapping_sub(ONES) & !w & HIGH != 0
+    }
+    let bytes = text.as_bytes();
+    let mut chunks = bytes.chunks_exact(8);
+    for chunk in &mut chunks {
+        let Some(eight) = chunk.first_chunk::<8>() else {
+            break;
+        };
+        let w = u64::from_le_bytes(*eight);
+        // A byte below 0x20: its bits 5-7 are 0 (bytes of 0x80 and more are
+        // not below 0x20, and `& 0xE0` keeps their high bit).
+        if has_zero(w & (0xE0 * ONES))
+            || has_zero(w ^ (u64::from(b'"') * ONES))
+            || has_zero(w ^ (u64::from(b'\\') * ONES))
+        {
+            return true;
+        }
+    }
+    chunks
+        .remainder()
+        .iter()
+        .any(|&b| b == b'"' || b == b'\\' || b < 0x20)
 }
 
 /// Write a value's `Display` as a JSON string with RFC 8259 escaping,
@@ -462,6 +495,26 @@ mod tests {
                 let ts = crate::can::Timestamp::from_nanos(secs, nanos).unwrap();
                 proptest::prop_assert_eq!(render(|o| timestamp(o, ts)), ts.seconds().to_string());
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// The 8-bytes-at-a-time check against the plain one, on any text
+        /// and on texts made of the bytes around the ones that need it.
+        #[test]
+        fn needs_escaping_as_the_plain_check(
+            text in proptest::prelude::any::<String>(),
+            near in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    0x00u8, 0x01, 0x1F, 0x20, 0x21, b'"', 0x23, 0x5B, b'\\', 0x5D, 0x7F, b'a',
+                ]),
+                0..40,
+            ),
+        ) {
+            let plain = |t: &str| t.bytes().any(|b| b == b'"' || b == b'\\' || b < 0x20);
+            proptest::prop_assert_eq!(needs_escaping(&text), plain(&text));
+            let near = String::from_utf8(near).unwrap();
+            proptest::prop_assert_eq!(needs_escaping(&near), plain(&near));
         }
     }
 

@@ -319,10 +319,10 @@ impl BusState {
         }
     }
 
+    #[inline]
     fn node(&mut self, node: NodeId, profiles: &NodeProfiles) -> &mut NodeState {
-        let drive = profiles.of(Some(node)).is_drive();
         self.nodes[usize::from(node.get())].get_or_insert_with(|| NodeState {
-            drive,
+            drive: profiles.of(Some(node)).is_drive(),
             ..NodeState::default()
         })
     }

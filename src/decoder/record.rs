@@ -146,9 +146,12 @@ impl Decoded<'_> {
         let message = match self.kind {
             MessageKind::Sdo if !frame.is_rtr() => {
                 if let Some(step) = &decoded.sdo {
-                    write_sdo_json(&mut obj, step);
+                    // The frame's multiplexer and its transfer's are most
+                    // often the same object: its name is looked up once.
+                    let mut names = NameOnce::new(step.names);
+                    write_sdo_json(&mut obj, step, &mut names);
                     if let Some(ended) = &step.ended {
-                        write_transfer_json(&mut obj, ended, step.names);
+                        write_transfer_json(&mut obj, ended, &mut names);
                     }
                     if let Some(cia402) = &decoded.cia402 {
                         cia402_json(&mut obj, cia402);
@@ -277,7 +280,7 @@ fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
 }
 
 /// Write the `sdo` key's object for one frame (docs/output.md#sdo).
-fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>) {
+fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>, names: &mut NameOnce<'_>) {
     let out = obj.key("sdo");
     let mut o = Object::begin(out);
     o.name("direction", step.sender.direction_name());
@@ -289,7 +292,7 @@ fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>) {
             // docs/canopen.md#sdo): the multiplexer, or from a 3-byte frame the
             // index alone.
             if let Some(m) = step.multiplexer() {
-                write_multiplexer(&mut o, m, step.names);
+                write_multiplexer(&mut o, m, names);
             } else if let Some(index) = step.index() {
                 o.uint("index", u64::from(index));
                 match step.object() {
@@ -307,7 +310,7 @@ fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>) {
         o.name("subcommand", sub.name());
     }
     if let Some(m) = f.multiplexer {
-        write_multiplexer(&mut o, m, step.names);
+        write_multiplexer(&mut o, m, names);
     }
     if let Some(e) = f.expedited {
         o.bool("expedited", e);
@@ -349,7 +352,33 @@ fn write_sdo_json(obj: &mut Object<'_>, step: &SdoStep<'_>) {
     o.end()
 }
 
-fn write_multiplexer(o: &mut Object<'_>, m: ObjectAddress, names: ObjectNames<'_>) {
+/// A node's object names, with the last name looked up kept: a record's
+/// `sdo` and `transfer` keys most often name the same object.
+struct NameOnce<'d> {
+    names: ObjectNames<'d>,
+    last: Option<(u16, Option<&'d str>)>,
+}
+
+impl<'d> NameOnce<'d> {
+    fn new(names: ObjectNames<'d>) -> Self {
+        NameOnce { names, last: None }
+    }
+
+    /// Return what [`ObjectNames::name`] returns for `index`.
+    #[inline]
+    fn name(&mut self, index: u16) -> Option<&'d str> {
+        match self.last {
+            Some((last, name)) if last == index => name,
+            _ => {
+                let name = self.names.name(index);
+                self.last = Some((index, name));
+                name
+            }
+        }
+    }
+}
+
+fn write_multiplexer(o: &mut Object<'_>, m: ObjectAddress, names: &mut NameOnce<'_>) {
     o.uint("index", u64::from(m.index));
     o.uint("subindex", u64::from(m.sub_index));
     match names.name(m.index) {
@@ -359,7 +388,7 @@ fn write_multiplexer(o: &mut Object<'_>, m: ObjectAddress, names: ObjectNames<'_
 }
 
 /// Write the `transfer` key (docs/output.md#transfer).
-fn write_transfer_json(obj: &mut Object<'_>, ended: &EndedTransfer<'_>, names: ObjectNames<'_>) {
+fn write_transfer_json(obj: &mut Object<'_>, ended: &EndedTransfer<'_>, names: &mut NameOnce<'_>) {
     let transfer = &ended.transfer;
     let out = obj.key("transfer");
     let mut o = Object::begin(out);

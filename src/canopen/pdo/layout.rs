@@ -1,7 +1,7 @@
 //! A PDO mapping with each entry's offset and value kind worked out once,
 //! for a decoder that reads many frames of one PDO (docs/canopen.md#signals).
 
-use super::bits::decode;
+use super::bits::{decode, decode_aligned, is_aligned};
 use super::mapping::{MappingEntry, PdoMapping, Signal, TypeLookup, MAX_MAPPING_ENTRIES};
 use super::{PdoEntryError, PdoEntryReason};
 use crate::canopen::data_type::{DataType, ValueKind};
@@ -16,6 +16,10 @@ struct Planned {
     /// The kind to read, or why the entry cannot be read (never for a
     /// dummy, which is skipped).
     kind: core::result::Result<ValueKind, PdoEntryReason>,
+    /// The entry's bytes when it is a number of 1, 2, 4 or 8 whole bytes
+    /// from a byte boundary, read with one load (`bits::is_aligned`); 0
+    /// else.
+    aligned: u8,
 }
 
 /// A mapping with each entry's offset and value kind worked out once, for a
@@ -53,6 +57,7 @@ impl PdoLayout {
             offset: 0,
             data_type: None,
             kind: Ok(ValueKind::Unsigned),
+            aligned: 0,
         };
         let mut layout = PdoLayout {
             planned: [empty; MAX_MAPPING_ENTRIES],
@@ -65,11 +70,17 @@ impl PdoLayout {
             } else {
                 types.data_type(entry)
             };
+            let kind = ValueKind::for_entry(data_type, entry.bits());
+            let aligned = match kind {
+                Ok(kind) if is_aligned(offset, entry.bits(), kind) => entry.bits() / 8,
+                _ => 0,
+            };
             *slot = Planned {
                 entry,
                 offset,
                 data_type,
-                kind: ValueKind::for_entry(data_type, entry.bits()),
+                kind,
+                aligned,
             };
             offset += u16::from(entry.bits());
             layout.len += 1;
@@ -93,6 +104,7 @@ impl PdoLayout {
     /// `None` for a position past the mapping or a dummy, else what
     /// [`unpack`](Self::unpack) gives for that entry — when the payload is
     /// too short for it, its truncation error.
+    #[inline]
     #[must_use]
     pub fn read(&self, position: usize, payload: &[u8]) -> Option<Result<Signal>> {
         let p = self.planned[..self.len].get(position)?;
@@ -125,7 +137,7 @@ pub struct LayoutSignals<'a> {
 impl Iterator for LayoutSignals<'_> {
     type Item = Result<Signal>;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             let (p, rest) = self.planned.split_first()?;
@@ -153,7 +165,13 @@ impl Iterator for LayoutSignals<'_> {
                     entry: p.entry,
                     offset: p.offset,
                     data_type: p.data_type,
-                    value: decode(self.payload, p.offset, p.entry.bits(), kind),
+                    // One load for whole bytes from a byte boundary, the
+                    // bit window else.
+                    value: if p.aligned != 0 {
+                        decode_aligned(self.payload, p.offset, p.aligned, kind)
+                    } else {
+                        decode(self.payload, p.offset, p.entry.bits(), kind)
+                    },
                 }),
                 Err(reason) => Err(error(reason)),
             });
@@ -177,9 +195,21 @@ mod proptests {
         #[test]
         fn layout_reads_what_the_mapping_reads(
             raw in proptest::collection::vec(any::<u32>(), 0..70),
+            // Entries of whole bytes, most of them from a byte boundary
+            // (the one-load path), now and then one of a few bits.
+            bytes in proptest::collection::vec(
+                (any::<u16>(), prop::sample::select(vec![8u32, 16, 32, 64, 8, 16, 32, 1, 12])),
+                0..12,
+            ),
+            whole_bytes in any::<bool>(),
             seed in type_lookup_seed(),
             payload in proptest::collection::vec(any::<u8>(), 0..70),
         ) {
+            let raw = if whole_bytes {
+                bytes.iter().map(|&(index, bits)| u32::from(index) << 16 | bits).collect()
+            } else {
+                raw
+            };
             let mut mapping = PdoMapping::new();
             for value in raw {
                 if mapping.push(MappingEntry::from_u32(value)).is_err() {

@@ -518,6 +518,7 @@ impl SdoTracker {
     /// (if the log has one) and a position the caller uses to find the
     /// frame again (a line number), which comes back as a transfer's
     /// `start_position`.
+    #[inline]
     pub fn feed<'a>(
         &'a mut self,
         sender: SdoParty,
@@ -677,6 +678,18 @@ impl SdoTracker {
         })
     }
 
+    /// Whether `request` starts a transfer ([`start`](Self::start) gives
+    /// one for exactly these).
+    const fn is_initiate(request: &SdoRequest) -> bool {
+        matches!(
+            request,
+            SdoRequest::InitiateDownload { .. }
+                | SdoRequest::InitiateUpload { .. }
+                | SdoRequest::BlockUploadInitiate { .. }
+                | SdoRequest::BlockDownloadInitiate { .. }
+        )
+    }
+
     fn request(
         &mut self,
         request: &SdoRequest,
@@ -684,15 +697,14 @@ impl SdoTracker {
         position: u64,
         step: &mut Step,
     ) {
-        let Some(mut open) = self.open else {
+        let Some(open) = self.open.as_mut() else {
             self.begin(request, time, position, step);
             return;
         };
         if let SdoRequest::Abort { code, .. } = *request {
             open.frames += 1;
             open.last_at = time.or(open.last_at);
-            self.close(
-                open,
+            self.close_open(
                 SdoOutcome::Aborted {
                     by: SdoParty::Client,
                     code,
@@ -701,7 +713,7 @@ impl SdoTracker {
             );
             return;
         }
-        if Self::start(request, time, position).is_some() {
+        if Self::is_initiate(request) {
             // A new initiate: the open transfer never got its answer, or was
             // left by the client.
             let outcome = if open.phase.server_due() {
@@ -732,7 +744,7 @@ impl SdoTracker {
                 },
             ) => {
                 if t != toggle {
-                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                    return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 open.bytes += data.as_slice().len() as u32;
                 step.chunk = Chunk::Input(1..1 + data.as_slice().len());
@@ -744,7 +756,7 @@ impl SdoTracker {
             }
             (Phase::UploadRequestDue { toggle }, SdoRequest::UploadSegment { toggle: t }) => {
                 if t != toggle {
-                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                    return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 open.asked_at = Some(time);
                 Phase::UploadSegmentDue { toggle }
@@ -766,22 +778,15 @@ impl SdoTracker {
                 match Self::acknowledge(sub, ackseq, blksize) {
                     Ok(Some(next)) => Phase::BlockUploadSub(next),
                     Ok(None) => Phase::BlockUploadEndDue,
-                    Err(reason) => return self.close(open, SdoOutcome::Broken(reason), step),
+                    Err(reason) => return self.close_open(SdoOutcome::Broken(reason), step),
                 }
             }
             (Phase::BlockUploadEndSent, SdoRequest::BlockUploadEnd) => {
-                return self.close(open, SdoOutcome::Completed, step);
+                return self.close_open(SdoOutcome::Completed, step);
             }
-            _ => {
-                return self.close(
-                    open,
-                    SdoOutcome::Broken(BrokenReason::UnexpectedRequest),
-                    step,
-                )
-            }
+            _ => return self.close_open(SdoOutcome::Broken(BrokenReason::UnexpectedRequest), step),
         };
         open.phase = next;
-        self.open = Some(open);
     }
 
     /// Open a transfer at an initiate request on an idle channel.
@@ -819,7 +824,7 @@ impl SdoTracker {
         position: u64,
         step: &mut Step,
     ) {
-        let Some(mut open) = self.open else {
+        let Some(open) = self.open.as_mut() else {
             if let SdoResponse::Abort { .. } = response {
                 return;
             }
@@ -868,8 +873,7 @@ impl SdoTracker {
             }
         }
         if let SdoResponse::Abort { code, .. } = *response {
-            return self.close(
-                open,
+            return self.close_open(
                 SdoOutcome::Aborted {
                     by: SdoParty::Server,
                     code,
@@ -880,7 +884,7 @@ impl SdoTracker {
         let next = match (open.phase, *response) {
             (Phase::DownloadInitiated, SdoResponse::InitiateDownload { .. }) => {
                 if open.mode == TransferMode::Expedited {
-                    return self.close(open, SdoOutcome::Completed, step);
+                    return self.close_open(SdoOutcome::Completed, step);
                 }
                 Phase::DownloadSegment { toggle: false }
             }
@@ -889,10 +893,10 @@ impl SdoTracker {
                 SdoResponse::DownloadSegment { toggle: t },
             ) => {
                 if t != toggle {
-                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                    return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 if last {
-                    return self.close(open, SdoOutcome::Completed, step);
+                    return self.close_open(SdoOutcome::Completed, step);
                 }
                 Phase::DownloadSegment { toggle: !toggle }
             }
@@ -904,7 +908,7 @@ impl SdoTracker {
                         let len = data.data().len();
                         open.bytes = len as u32;
                         step.chunk = Chunk::Input(4..4 + len);
-                        return self.close(open, SdoOutcome::Completed, step);
+                        return self.close_open(SdoOutcome::Completed, step);
                     }
                     SdoInitiateData::Segmented { .. } => {
                         open.mode = TransferMode::Segmented;
@@ -935,7 +939,7 @@ impl SdoTracker {
                 },
             ) => {
                 if t != toggle {
-                    return self.close(open, SdoOutcome::Broken(BrokenReason::WrongToggle), step);
+                    return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 open.bytes += data.as_slice().len() as u32;
                 step.chunk = Chunk::Input(1..1 + data.as_slice().len());
@@ -943,7 +947,7 @@ impl SdoTracker {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
                 if last {
-                    return self.close(open, SdoOutcome::Completed, step);
+                    return self.close_open(SdoOutcome::Completed, step);
                 }
                 Phase::UploadRequestDue { toggle: !toggle }
             }
@@ -957,11 +961,8 @@ impl SdoTracker {
             ) => {
                 open.crc_checked &= crc_supported;
                 if !(1..=BLKSIZE_MAX).contains(&blksize) {
-                    return self.close(
-                        open,
-                        SdoOutcome::Broken(BrokenReason::InvalidBlockSize),
-                        step,
-                    );
+                    return self
+                        .close_open(SdoOutcome::Broken(BrokenReason::InvalidBlockSize), step);
                 }
                 Phase::BlockDownloadSub(SubBlock::new(blksize, 0))
             }
@@ -971,10 +972,10 @@ impl SdoTracker {
             ) => match Self::acknowledge(sub, ackseq, blksize) {
                 Ok(Some(next)) => Phase::BlockDownloadSub(next),
                 Ok(None) => Phase::BlockDownloadEndDue,
-                Err(reason) => return self.close(open, SdoOutcome::Broken(reason), step),
+                Err(reason) => return self.close_open(SdoOutcome::Broken(reason), step),
             },
             (Phase::BlockDownloadEndSent, SdoResponse::BlockDownloadEnd) => {
-                return self.close(open, SdoOutcome::Completed, step);
+                return self.close_open(SdoOutcome::Completed, step);
             }
             (Phase::BlockUploadEndDue, SdoResponse::BlockUploadEnd { unused, crc }) => {
                 let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
@@ -986,15 +987,10 @@ impl SdoTracker {
                 Phase::BlockUploadEndSent
             }
             _ => {
-                return self.close(
-                    open,
-                    SdoOutcome::Broken(BrokenReason::UnexpectedResponse),
-                    step,
-                )
+                return self.close_open(SdoOutcome::Broken(BrokenReason::UnexpectedResponse), step)
             }
         };
         open.phase = next;
-        self.open = Some(open);
     }
 
     /// A segment inside a sub-block, from whichever side sends the data.
@@ -1066,6 +1062,13 @@ impl SdoTracker {
             repeat
         };
         Ok(Some(SubBlock::new(blksize, repeat)))
+    }
+
+    /// Close the open transfer where it stands (nothing when none is open).
+    fn close_open(&mut self, outcome: SdoOutcome, step: &mut Step) {
+        if let Some(open) = self.open {
+            self.close(open, outcome, step);
+        }
     }
 
     fn close(&mut self, open: Open, outcome: SdoOutcome, step: &mut Step) {
