@@ -32,6 +32,11 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         return None;
     }
     let iface = buf.get(iface_start..id_start - 1)?;
+    let iface_key = if iface_len <= 8 {
+        word & KEEP_BYTES[iface_len]
+    } else {
+        0
+    };
 
     // Identifier: 3 hex digits and `#`, else 8 and `#`.
     let ids = buf.get(id_start..)?;
@@ -118,6 +123,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         timestamp: Some(timestamp),
         relative: false,
         iface,
+        iface_key,
         id,
         kind,
         direction,

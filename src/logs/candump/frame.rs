@@ -17,6 +17,11 @@ pub(crate) struct Parsed<'a> {
     /// The interface name: printable ASCII without spaces (`scan_iface`, the
     /// fast path's `non_graphic` check).
     pub(super) iface: &'a [u8],
+    /// The interface name as one word, its first byte least significant and
+    /// zeros above, when it has at most 8 bytes and the fast path read it; 0
+    /// otherwise. Names are printable ASCII, so two nonzero keys are equal
+    /// exactly when the names are.
+    pub(super) iface_key: u64,
     pub(super) id: CanId,
     /// The frame's kind, a remote request with its requested length.
     pub(super) kind: FrameType,
@@ -36,16 +41,35 @@ impl<'a> Parsed<'a> {
         self.into_log_frame_named(iface)
     }
 
-    /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier line
-    /// named the interface `last`: the same name is not checked again (a
-    /// log's lines almost always name one interface), and `last` becomes
-    /// this line's.
+    /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier lines
+    /// named the interfaces `recent` (the last line's first, each with its
+    /// [`Parsed::iface_key`]): a name seen there is not checked again (a
+    /// log's lines almost always name one or two interfaces, and UTF-8
+    /// validation costs more than the parse of the name), and this line's
+    /// name becomes the first.
     #[inline(always)]
-    pub(super) fn into_log_frame_after(self, last: &mut &'a str) -> LogFrame<'a> {
-        if self.iface != last.as_bytes() {
-            *last = core::str::from_utf8(self.iface).unwrap_or_default();
+    pub(super) fn into_log_frame_after(self, recent: &mut [(u64, &'a str); 2]) -> LogFrame<'a> {
+        let key = self.iface_key;
+        if key == 0 || key != recent[0].0 {
+            if key != 0 && key == recent[1].0 {
+                recent.swap(0, 1);
+            } else {
+                self.new_name(recent);
+            }
         }
-        self.into_log_frame_named(last)
+        self.into_log_frame_named(recent[0].1)
+    }
+
+    /// Put the line's name first in `recent` when its key is not there:
+    /// unless it has no key and is the last name, as text (ASCII by
+    /// construction; the fallback is never taken).
+    #[inline(never)]
+    fn new_name(&self, recent: &mut [(u64, &'a str); 2]) {
+        if self.iface_key == 0 && self.iface == recent[0].1.as_bytes() {
+            return;
+        }
+        let name = core::str::from_utf8(self.iface).unwrap_or_default();
+        *recent = [(self.iface_key, name), recent[0]];
     }
 
     #[inline(always)]
@@ -58,15 +82,15 @@ impl<'a> Parsed<'a> {
         }
     }
 
-    /// The frame with the interface named `iface` (the reader's copy of
-    /// the name, which outlives the line).
+    /// The frame without its interface, for the reader, which names it
+    /// with its own copy of the name (which outlives the line).
     #[cfg(feature = "std")]
     #[inline(always)]
-    pub(super) fn into_log_frame_with(self, iface: &str) -> LogFrame<'_> {
+    pub(super) fn into_log_frame_unnamed(self) -> LogFrame<'static> {
         LogFrame {
             frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
             timestamp: self.timestamp,
-            iface: Some(Iface::Name(iface)),
+            iface: None,
             direction: self.direction,
         }
     }

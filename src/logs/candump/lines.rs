@@ -59,7 +59,7 @@ pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
         rest: buf,
         line_number: 0,
         state,
-        last_iface: "",
+        recent_ifaces: [(0, ""); 2],
     }
 }
 
@@ -182,8 +182,9 @@ pub struct CandumpLines<'a> {
     rest: &'a [u8],
     line_number: usize,
     state: LineState,
-    /// The interface name of the last frame, from the buffer.
-    last_iface: &'a str,
+    /// The interface names of the last frames, from the buffer, with their
+    /// keys: the last frame's, then the one before it that differs.
+    recent_ifaces: [(u64, &'a str); 2],
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
@@ -195,12 +196,11 @@ impl<'a> Iterator for CandumpLines<'a> {
             return None;
         }
         self.line_number += 1;
-        let parsed = next_parsed(&mut self.rest, &mut self.state);
-        let last = &mut self.last_iface;
-        Some((
-            self.line_number,
-            parsed.map(|frame| frame.map(|f| f.into_log_frame_after(last))),
-        ))
+        let recent = &mut self.recent_ifaces;
+        let parsed = next_parsed(&mut self.rest, &mut self.state, |f| {
+            f.into_log_frame_after(recent)
+        });
+        Some((self.line_number, parsed))
     }
 }
 
@@ -224,18 +224,22 @@ impl<'a> CandumpLines<'a> {
 /// Read the line at the start of `rest` and take it off (with its `\n`),
 /// with the state the lines before it set: the one step of [`CandumpLines`]
 /// and of the reader. The canonical `candump -l` shape is read by the fast
-/// path straight from the buffer; any other line is found first.
+/// path straight from the buffer; any other line is found first. A frame
+/// is handed on as `convert` makes it, on each path apart, so that it is
+/// built once where the caller reads it instead of copied from one path's
+/// result to the other's.
 #[inline(always)]
-pub(super) fn next_parsed<'a>(
+pub(super) fn next_parsed<'a, T>(
     rest: &mut &'a [u8],
     state: &mut LineState,
-) -> Result<Option<Parsed<'a>>> {
+    convert: impl FnOnce(Parsed<'a>) -> T,
+) -> Result<Option<T>> {
     if let Some((frame, used)) = parse_canonical_log(rest) {
         *rest = rest.get(used..).unwrap_or_default();
         state.after_error_frame = false;
-        return Ok(Some(frame));
+        return Ok(Some(convert(frame)));
     }
-    next_general(rest, state)
+    next_general(rest, state).map(|frame| frame.map(convert))
 }
 
 /// [`next_parsed`] for a line that is not in the canonical log shape.

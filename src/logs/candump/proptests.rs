@@ -76,3 +76,57 @@ proptest! {
         prop_assert_eq!(parse_line_str(&line), Ok(Some(frame)));
     }
 }
+
+/// A line for a whole log: a valid log line on one of a few interfaces (of
+/// 1, 4, 8 and more bytes, so that every way `lines` remembers a name is
+/// taken), a screen line, or a mutated line, without a line end inside.
+fn log_line() -> impl Strategy<Value = Vec<u8>> {
+    let name = proptest::sample::select(vec![
+        "can0",
+        "can1",
+        "c",
+        "vcan1234",
+        "vcan12345",
+        "a_long_name_0",
+    ]);
+    prop_oneof![
+        3 => (frame_spec(), name).prop_map(|(mut spec, name)| {
+            spec.iface = name.to_string();
+            write_log(&spec.frame()).into_bytes()
+        }),
+        1 => screen_frame_spec().prop_map(|spec| write_screen(&spec.frame()).into_bytes()),
+        1 => mutated_line().prop_map(|line| {
+            line.into_iter().map(|b| if b == b'\n' { b' ' } else { b }).collect()
+        }),
+    ]
+}
+
+proptest! {
+    /// `lines` reads each line of a log as `parse_line` reads it alone,
+    /// whatever the interfaces of the lines before it (the names it
+    /// remembers), with `\n` or `\r\n` line ends; an explanation line after
+    /// an error frame holds nothing.
+    #[test]
+    fn lines_read_each_line_as_parse_line_does(
+        log in proptest::collection::vec((log_line(), any::<bool>()), 1..40),
+    ) {
+        let mut buf = Vec::new();
+        for (line, crlf) in &log {
+            buf.extend_from_slice(line);
+            buf.extend_from_slice(if *crlf { b"\r\n" } else { b"\n" });
+        }
+        let items: Vec<_> = lines(&buf).collect();
+        prop_assert_eq!(items.len(), log.len());
+        let mut after_error_frame = false;
+        for ((n, item), (number, (line, _))) in items.into_iter().zip((1..).zip(&log)) {
+            prop_assert_eq!(n, number);
+            let alone = parse_line(line);
+            let expected = match alone {
+                Err(_) if after_error_frame && lines::is_explanation(line) => Ok(None),
+                other => other,
+            };
+            prop_assert_eq!(item, expected);
+            after_error_frame = matches!(expected, Ok(Some(f)) if f.frame.is_error());
+        }
+    }
+}

@@ -5,7 +5,7 @@ use std::io::Read;
 
 use super::lines::{is_explanation, next_parsed};
 use super::*;
-use crate::can::LogEvent;
+use crate::can::{Iface, LogEvent, LogFrame};
 use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
@@ -126,26 +126,30 @@ pub(super) struct Candump {
 }
 
 impl TextParser for Candump {
-    type Line<'t> = Parsed<'t>;
+    /// The frame without its interface, which [`Candump::record`] names
+    /// from the reader's copy.
+    type Line<'t> = LogFrame<'static>;
 
     #[inline(always)]
-    fn next_line<'t>(
+    fn next_line(
         &mut self,
-        rest: &mut &'t [u8],
+        rest: &mut &[u8],
         names: &mut Names,
-    ) -> Result<Option<Parsed<'t>>> {
-        let parsed = next_parsed(rest, &mut self.state);
-        if let Ok(Some(frame)) = &parsed {
+    ) -> Result<Option<LogFrame<'static>>> {
+        next_parsed(rest, &mut self.state, |frame| {
             names.intern(frame.iface);
-        }
-        parsed
+            frame.into_log_frame_unnamed()
+        })
     }
 
     #[inline(always)]
-    fn record<'a>(line: Parsed<'_>, position: Position, names: &'a Names) -> LogRecord<'a> {
+    fn record<'a>(line: LogFrame<'static>, position: Position, names: &'a Names) -> LogRecord<'a> {
         LogRecord {
             position,
-            event: LogEvent::Frame(line.into_log_frame_with(names.last())),
+            event: LogEvent::Frame(LogFrame {
+                iface: Some(Iface::Name(names.last())),
+                ..line
+            }),
         }
     }
 

@@ -35,15 +35,6 @@ pub(super) const fn hex_lanes(w: u128) -> (u128, u128) {
     (values, bad & HIGH)
 }
 
-pub(super) const ZERO_CHARS64: u64 = ZERO_CHARS as u64;
-
-/// [`non_digits`] for the 8 lanes of a `u64`.
-#[inline(always)]
-pub(super) const fn non_digits64(d: u64) -> u64 {
-    let low7 = LOW7 as u64;
-    ((d & low7).wrapping_add(splat(0x76) as u64) | d) & HIGH as u64
-}
-
 /// A mask with the high bit of every lane that is not a decimal digit;
 /// `d` is the characters XOR `'0'`.
 #[inline(always)]
@@ -159,8 +150,6 @@ mod tests {
         fn non_digits_is_decimal_digit_by_digit(w in word()) {
             let d = w ^ ZERO_CHARS;
             prop_assert_eq!(non_digits(d), high_bits(|b| !b.is_ascii_digit(), w));
-            let d64 = d as u64;
-            prop_assert_eq!(u128::from(non_digits64(d64)), high_bits(|b| !b.is_ascii_digit(), w) & u128::from(u64::MAX));
         }
 
         #[test]
