@@ -51,14 +51,21 @@ pub(super) const fn non_graphic(w: u128) -> u128 {
 }
 
 /// Pack 16 hex values (one per lane, first the most significant nibble)
-/// into 8 bytes, first byte least significant.
+/// into 8 bytes, first byte least significant: each half of the word apart,
+/// so that no shift crosses the two 64-bit registers it is made of.
 #[inline(always)]
 pub(super) const fn pack_hex(values: u128) -> u64 {
+    pack_hex64(values as u64) as u64 | (pack_hex64((values >> 64) as u64) as u64) << 32
+}
+
+/// Pack 8 hex values (one per lane, first the most significant nibble)
+/// into 4 bytes, first byte least significant.
+#[inline(always)]
+const fn pack_hex64(values: u64) -> u32 {
     // Pairs of lanes → one byte in the low half of each 16-bit lane.
-    let x = ((values << 4) | (values >> 8)) & 0x00FF_00FF_00FF_00FF_00FF_00FF_00FF_00FF;
-    let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF_0000_FFFF_0000_FFFF;
-    let x = (x | (x >> 16)) & 0x0000_0000_FFFF_FFFF_0000_0000_FFFF_FFFF;
-    (x | (x >> 32)) as u64
+    let x = ((values << 4) | (values >> 8)) & 0x00FF_00FF_00FF_00FF;
+    let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF;
+    (x | (x >> 16)) as u32
 }
 
 /// Convert 8 decimal digit values (one per lane, first the most
