@@ -9,8 +9,15 @@ use super::*;
 /// number of bytes read (line end included), or `None` for any other shape
 /// (which [`parse_general`] then reads, or reports). On every line it
 /// accepts it returns what [`parse_general`] returns.
+///
+/// The data bytes are written into `data`, which holds zeros on entry: the
+/// first `len` bytes are the data, the rest stays zero. After `None`, `data`
+/// may hold anything.
 #[inline(always)]
-pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
+pub(super) fn parse_canonical_log<'a>(
+    buf: &'a [u8],
+    data: &mut [u8; FD_MAX_LEN],
+) -> Option<(Canonical<'a>, usize)> {
     // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `.
     let timestamp = parse_canonical_timestamp(buf.first_chunk::<20>()?)?;
 
@@ -68,7 +75,6 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         }
     };
 
-    let mut data = [0; FD_MAX_LEN];
     let (kind, len, end) = match buf.get(body) {
         Some(b'R' | b'r') => match buf.get(body + 1) {
             Some(&d @ b'0'..=b'8') => (FrameType::Remote { dlc: d - b'0' }, 0, body + 2),
@@ -79,7 +85,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
             if flags & 0xF0 != 0 {
                 return None;
             }
-            let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
+            let (len, end) = decode_fd_data(buf, body + 2, data)?;
             (FrameType::Fd(FdFlags::new(flags)?), len, end)
         }
         _ => {
@@ -119,16 +125,14 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         },
         Some(_) => return None,
     }
-    let frame = Parsed {
-        timestamp: Some(timestamp),
-        relative: false,
+    let frame = Canonical {
+        timestamp,
         iface,
         iface_key,
         id,
         kind,
         direction,
         len,
-        data,
     };
     Some((frame, used))
 }

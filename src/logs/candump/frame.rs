@@ -42,34 +42,11 @@ impl<'a> Parsed<'a> {
     }
 
     /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier lines
-    /// named the interfaces `recent` (the last line's first, each with its
-    /// [`Parsed::iface_key`]): a name seen there is not checked again (a
-    /// log's lines almost always name one or two interfaces, and UTF-8
-    /// validation costs more than the parse of the name), and this line's
-    /// name becomes the first.
+    /// named the interfaces `recent` (see [`name_after`]).
     #[inline(always)]
     pub(super) fn into_log_frame_after(self, recent: &mut [(u64, &'a str); 2]) -> LogFrame<'a> {
-        let key = self.iface_key;
-        if key == 0 || key != recent[0].0 {
-            if key != 0 && key == recent[1].0 {
-                recent.swap(0, 1);
-            } else {
-                self.new_name(recent);
-            }
-        }
-        self.into_log_frame_named(recent[0].1)
-    }
-
-    /// Put the line's name first in `recent` when its key is not there:
-    /// unless it has no key and is the last name, as text (ASCII by
-    /// construction; the fallback is never taken).
-    #[inline(never)]
-    fn new_name(&self, recent: &mut [(u64, &'a str); 2]) {
-        if self.iface_key == 0 && self.iface == recent[0].1.as_bytes() {
-            return;
-        }
-        let name = core::str::from_utf8(self.iface).unwrap_or_default();
-        *recent = [(self.iface_key, name), recent[0]];
+        let name = name_after(self.iface, self.iface_key, recent);
+        self.into_log_frame_named(name)
     }
 
     #[inline(always)]
@@ -94,6 +71,95 @@ impl<'a> Parsed<'a> {
             direction: self.direction,
         }
     }
+}
+
+/// What the fast path reads from a `candump -l` line besides its data
+/// bytes, which it writes where the caller keeps them
+/// ([`parse_canonical_log`]): the line's frame is then built once, where it
+/// is read, instead of moved with its 64 data bytes from the parser's
+/// result to the caller's.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Canonical<'a> {
+    pub(super) timestamp: Timestamp,
+    /// As [`Parsed::iface`].
+    pub(super) iface: &'a [u8],
+    /// As [`Parsed::iface_key`].
+    pub(super) iface_key: u64,
+    pub(super) id: CanId,
+    pub(super) kind: FrameType,
+    pub(super) direction: Option<Direction>,
+    /// Data length (0 for a remote request).
+    pub(super) len: u8,
+}
+
+impl<'a> Canonical<'a> {
+    /// The frame as the general parser returns it, with its data `data`.
+    #[inline(always)]
+    pub(super) fn with_data(self, data: [u8; FD_MAX_LEN]) -> Parsed<'a> {
+        Parsed {
+            timestamp: Some(self.timestamp),
+            relative: false,
+            iface: self.iface,
+            iface_key: self.iface_key,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
+            data,
+        }
+    }
+
+    /// The crate's record of the frame with its data `data`, for a line of
+    /// a buffer whose earlier lines named the interfaces `recent` (see
+    /// [`name_after`]).
+    #[inline(always)]
+    pub(super) fn into_log_frame_after(
+        self,
+        data: [u8; FD_MAX_LEN],
+        recent: &mut [(u64, &'a str); 2],
+    ) -> LogFrame<'a> {
+        let name = name_after(self.iface, self.iface_key, recent);
+        LogFrame {
+            frame: CanFrame::from_checked_parts(self.id, self.kind, data, self.len),
+            timestamp: Some(self.timestamp),
+            iface: Some(Iface::Name(name)),
+            direction: self.direction,
+        }
+    }
+}
+
+/// The interface `iface` (with its key, [`Parsed::iface_key`]) as text, for
+/// a line whose earlier lines named the interfaces `recent` (the last
+/// line's first, each with its key): a name seen there is not checked again
+/// (a log's lines almost always name one or two interfaces, and UTF-8
+/// validation costs more than the parse of the name), and this line's name
+/// becomes the first.
+#[inline(always)]
+pub(super) fn name_after<'a>(
+    iface: &'a [u8],
+    key: u64,
+    recent: &mut [(u64, &'a str); 2],
+) -> &'a str {
+    if key == 0 || key != recent[0].0 {
+        if key != 0 && key == recent[1].0 {
+            recent.swap(0, 1);
+        } else {
+            new_name(iface, key, recent);
+        }
+    }
+    recent[0].1
+}
+
+/// Put the name `iface` first in `recent` when its key is not there: unless
+/// it has no key and is the last name, as text (ASCII by construction; the
+/// fallback is never taken).
+#[inline(never)]
+fn new_name<'a>(iface: &'a [u8], key: u64, recent: &mut [(u64, &'a str); 2]) {
+    if key == 0 && iface == recent[0].1.as_bytes() {
+        return;
+    }
+    let name = core::str::from_utf8(iface).unwrap_or_default();
+    *recent = [(key, name), recent[0]];
 }
 
 /// Write a frame in candump's log format (`candump -l`,

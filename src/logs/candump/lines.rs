@@ -202,6 +202,35 @@ impl<'a> Iterator for CandumpLines<'a> {
         });
         Some((self.line_number, parsed))
     }
+
+    /// The lines one after the other, each handed to `f` on the path that
+    /// read it: a line of the canonical shape is built where `f` reads it,
+    /// not copied into an item that either path could have made (what
+    /// `next` has to do), which is most of the cost of a line after its
+    /// parse.
+    #[inline]
+    fn fold<B, F>(mut self, init: B, mut f: F) -> B
+    where
+        F: FnMut(B, Self::Item) -> B,
+    {
+        let mut acc = init;
+        while !self.rest.is_empty() {
+            self.line_number += 1;
+            let mut data = [0; FD_MAX_LEN];
+            if let Some((frame, used)) = parse_canonical_log(self.rest, &mut data) {
+                self.rest = self.rest.get(used..).unwrap_or_default();
+                self.state.after_error_frame = false;
+                let frame = frame.into_log_frame_after(data, &mut self.recent_ifaces);
+                acc = f(acc, (self.line_number, Ok(Some(frame))));
+            } else {
+                let recent = &mut self.recent_ifaces;
+                let parsed = next_general(&mut self.rest, &mut self.state)
+                    .map(|frame| frame.map(|f| f.into_log_frame_after(recent)));
+                acc = f(acc, (self.line_number, parsed));
+            }
+        }
+        acc
+    }
 }
 
 impl<'a> CandumpLines<'a> {
@@ -234,17 +263,21 @@ pub(super) fn next_parsed<'a, T>(
     state: &mut LineState,
     convert: impl FnOnce(Parsed<'a>) -> T,
 ) -> Result<Option<T>> {
-    if let Some((frame, used)) = parse_canonical_log(rest) {
+    let mut data = [0; FD_MAX_LEN];
+    if let Some((frame, used)) = parse_canonical_log(rest, &mut data) {
         *rest = rest.get(used..).unwrap_or_default();
         state.after_error_frame = false;
-        return Ok(Some(convert(frame)));
+        return Ok(Some(convert(frame.with_data(data))));
     }
     next_general(rest, state).map(|frame| frame.map(convert))
 }
 
 /// [`next_parsed`] for a line that is not in the canonical log shape.
 #[inline(never)]
-fn next_general<'a>(rest: &mut &'a [u8], state: &mut LineState) -> Result<Option<Parsed<'a>>> {
+pub(super) fn next_general<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+) -> Result<Option<Parsed<'a>>> {
     let line = take_line(rest).unwrap_or_default();
     let parsed = parse_general(line);
     if parsed.is_err() && state.after_error_frame && is_explanation(line) {

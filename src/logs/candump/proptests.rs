@@ -102,10 +102,10 @@ fn log_line() -> impl Strategy<Value = Vec<u8>> {
 }
 
 proptest! {
-    /// `lines` reads each line of a log as `parse_line` reads it alone,
-    /// whatever the interfaces of the lines before it (the names it
-    /// remembers), with `\n` or `\r\n` line ends; an explanation line after
-    /// an error frame holds nothing.
+    /// `lines` reads each line of a log as `parse_line` reads it alone, by
+    /// `next` and by `fold`, whatever the interfaces of the lines before it
+    /// (the names it remembers), with `\n` or `\r\n` line ends; an
+    /// explanation line after an error frame holds nothing.
     #[test]
     fn lines_read_each_line_as_parse_line_does(
         log in proptest::collection::vec((log_line(), any::<bool>()), 1..40),
@@ -117,6 +117,10 @@ proptest! {
         }
         let items: Vec<_> = lines(&buf).collect();
         prop_assert_eq!(items.len(), log.len());
+        // `fold` (what `for_each` runs) reads each line on its own paths.
+        let mut by_fold = Vec::new();
+        lines(&buf).for_each(|item| by_fold.push(item));
+        prop_assert_eq!(&by_fold, &items);
         let mut after_error_frame = false;
         for ((n, item), (number, (line, _))) in items.into_iter().zip((1..).zip(&log)) {
             prop_assert_eq!(n, number);
