@@ -58,19 +58,6 @@ impl<'a> Parsed<'a> {
             direction: self.direction,
         }
     }
-
-    /// The frame without its interface, for the reader, which names it
-    /// with its own copy of the name (which outlives the line).
-    #[cfg(feature = "std")]
-    #[inline(always)]
-    pub(super) fn into_log_frame_unnamed(self) -> LogFrame<'static> {
-        LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
-            timestamp: self.timestamp,
-            iface: None,
-            direction: self.direction,
-        }
-    }
 }
 
 /// What the fast path reads from a `candump -l` line besides its data
@@ -115,15 +102,80 @@ impl<'a> Canonical<'a> {
     #[inline(always)]
     pub(super) fn into_log_frame_after(
         self,
-        data: [u8; FD_MAX_LEN],
+        data: &[u8; FD_MAX_LEN],
         recent: &mut [(u64, &'a str); 2],
     ) -> LogFrame<'a> {
         let name = name_after(self.iface, self.iface_key, recent);
         LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, data, self.len),
+            frame: CanFrame::from_checked_parts(self.id, self.kind, *data, self.len),
             timestamp: Some(self.timestamp),
             iface: Some(Iface::Name(name)),
             direction: self.direction,
+        }
+    }
+}
+
+/// A frame line without its data bytes, which the parser leaves where its
+/// caller keeps them ([`next_head`]): the reader's line, whose record is
+/// built from the bytes where they are.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Head<'a> {
+    pub(super) timestamp: Option<Timestamp>,
+    /// As [`Parsed::iface`].
+    pub(super) iface: &'a [u8],
+    pub(super) id: CanId,
+    pub(super) kind: FrameType,
+    pub(super) direction: Option<Direction>,
+    /// Data length (0 for a remote request).
+    pub(super) len: u8,
+}
+
+impl Head<'_> {
+    /// The frame with its data `data`, its interface named `iface` (the
+    /// reader's copy of the name, which outlives the line).
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub(super) fn into_log_frame_with<'n>(
+        self,
+        data: &[u8; FD_MAX_LEN],
+        iface: &'n str,
+    ) -> LogFrame<'n> {
+        LogFrame {
+            frame: CanFrame::from_checked_parts(self.id, self.kind, *data, self.len),
+            timestamp: self.timestamp,
+            iface: Some(Iface::Name(iface)),
+            direction: self.direction,
+        }
+    }
+}
+
+impl<'a> Canonical<'a> {
+    /// The frame line without its data.
+    #[inline(always)]
+    pub(super) fn head(self) -> Head<'a> {
+        Head {
+            timestamp: Some(self.timestamp),
+            iface: self.iface,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
+        }
+    }
+}
+
+impl<'a> Parsed<'a> {
+    /// The frame line without its data, which is written into `data`.
+    #[inline(always)]
+    pub(super) fn into_head(self, data: &mut [u8; FD_MAX_LEN]) -> Head<'a> {
+        *data = self.data;
+        Head {
+            timestamp: self.timestamp,
+            iface: self.iface,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
         }
     }
 }

@@ -220,7 +220,7 @@ impl<'a> Iterator for CandumpLines<'a> {
             if let Some((frame, used)) = parse_canonical_log(self.rest, &mut data) {
                 self.rest = self.rest.get(used..).unwrap_or_default();
                 self.state.after_error_frame = false;
-                let frame = frame.into_log_frame_after(data, &mut self.recent_ifaces);
+                let frame = frame.into_log_frame_after(&data, &mut self.recent_ifaces);
                 acc = f(acc, (self.line_number, Ok(Some(frame))));
             } else {
                 let recent = &mut self.recent_ifaces;
@@ -270,6 +270,36 @@ pub(super) fn next_parsed<'a, T>(
         return Ok(Some(convert(frame.with_data(data))));
     }
     next_general(rest, state).map(|frame| frame.map(convert))
+}
+
+/// [`next_parsed`] with the frame's data bytes written into `data` (zeros
+/// on entry) and the rest of the frame returned: for a caller that keeps
+/// the bytes itself (the reader), so that they are copied once, where the
+/// frame is read.
+#[cfg(feature = "std")]
+#[inline(always)]
+pub(super) fn next_head<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Result<Option<Head<'a>>> {
+    if let Some((frame, used)) = parse_canonical_log(rest, data) {
+        *rest = rest.get(used..).unwrap_or_default();
+        state.after_error_frame = false;
+        return Ok(Some(frame.head()));
+    }
+    next_general_head(rest, state, data)
+}
+
+/// [`next_head`] for a line that is not in the canonical log shape.
+#[cfg(feature = "std")]
+#[inline(never)]
+fn next_general_head<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Result<Option<Head<'a>>> {
+    next_general(rest, state).map(|frame| frame.map(|frame| frame.into_head(data)))
 }
 
 /// [`next_parsed`] for a line that is not in the canonical log shape.

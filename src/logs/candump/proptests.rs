@@ -134,3 +134,59 @@ proptest! {
         }
     }
 }
+
+#[cfg(feature = "std")]
+proptest! {
+    /// The reader reads a log as `lines` does: each frame at its line, each
+    /// malformed line reported at its line, nothing for the rest, whatever
+    /// the frames before it left in the reader (the data bytes it keeps, the
+    /// interface names), in blocks of any size the input hands out.
+    #[test]
+    fn the_reader_reads_as_lines_does(
+        log in proptest::collection::vec(log_line(), 1..40),
+        chunk in 1usize..200,
+    ) {
+        use crate::logs::{Position, ReadLog};
+
+        /// An input that hands out at most `chunk` bytes a read.
+        struct Chunks<'a>(&'a [u8], usize);
+        impl std::io::Read for Chunks<'_> {
+            fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+                let n = self.0.len().min(self.1).min(buf.len());
+                buf[..n].copy_from_slice(&self.0[..n]);
+                self.0 = &self.0[n..];
+                Ok(n)
+            }
+        }
+
+        let mut buf = Vec::new();
+        for line in &log {
+            buf.extend_from_slice(line);
+            buf.push(b'\n');
+        }
+        let mut expected = Vec::new();
+        for (n, item) in lines(&buf) {
+            let position = Some(Position::Line(n as u64));
+            match item {
+                Ok(Some(frame)) => expected.push((position, Some(frame.to_string()))),
+                Ok(None) => {}
+                Err(_) => expected.push((position, None)),
+            }
+        }
+        let mut reader = CandumpReader::with_relative_timestamps(
+            Chunks(&buf, chunk),
+            RelativeTimestamps::Zero,
+        );
+        let mut read = Vec::new();
+        while let Some(next) = reader.next_event() {
+            read.push(match next {
+                Ok(record) => (
+                    Some(record.position),
+                    record.event.frame().map(|frame| frame.to_string()),
+                ),
+                Err(error) => (error.position(), None),
+            });
+        }
+        prop_assert_eq!(read, expected);
+    }
+}

@@ -3,9 +3,9 @@
 
 use std::io::Read;
 
-use super::lines::{is_explanation, next_parsed};
+use super::lines::{is_explanation, next_head};
 use super::*;
-use crate::can::{Iface, LogEvent, LogFrame};
+use crate::can::LogEvent;
 use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
@@ -126,30 +126,29 @@ pub(super) struct Candump {
 }
 
 impl TextParser for Candump {
-    /// The frame without its interface, which [`Candump::record`] names
-    /// from the reader's copy.
-    type Line<'t> = LogFrame<'static>;
+    /// The frame line without its data bytes, which the parser leaves in
+    /// the reader's [`Names`].
+    type Line<'t> = Head<'t>;
 
     #[inline(always)]
-    fn next_line(
+    fn next_line<'t>(
         &mut self,
-        rest: &mut &[u8],
+        rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> Result<Option<LogFrame<'static>>> {
-        next_parsed(rest, &mut self.state, |frame| {
-            names.intern(frame.iface);
-            frame.into_log_frame_unnamed()
-        })
+    ) -> Result<Option<Head<'t>>> {
+        names.data = [0; FD_MAX_LEN];
+        let parsed = next_head(rest, &mut self.state, &mut names.data);
+        if let Ok(Some(head)) = &parsed {
+            names.intern(head.iface);
+        }
+        parsed
     }
 
     #[inline(always)]
-    fn record<'a>(line: LogFrame<'static>, position: Position, names: &'a Names) -> LogRecord<'a> {
+    fn record<'a>(line: Head<'_>, position: Position, names: &'a Names) -> LogRecord<'a> {
         LogRecord {
             position,
-            event: LogEvent::Frame(LogFrame {
-                iface: Some(Iface::Name(names.last())),
-                ..line
-            }),
+            event: LogEvent::Frame(line.into_log_frame_with(&names.data, names.last())),
         }
     }
 

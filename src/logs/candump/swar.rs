@@ -62,8 +62,12 @@ pub(super) const fn pack_hex(values: u128) -> u64 {
 /// into 4 bytes, first byte least significant.
 #[inline(always)]
 const fn pack_hex64(values: u64) -> u32 {
-    // Pairs of lanes → one byte in the low half of each 16-bit lane.
-    let x = ((values << 4) | (values >> 8)) & 0x00FF_00FF_00FF_00FF;
+    // Pairs of lanes → one byte in the high half of each 16-bit lane: with
+    // `a` and `b` the pair's values (below 16), `a + 256 b` times
+    // `1 + 2^12` puts `16 a + b` in bits 8..16 of the lane; the other terms
+    // (a at bits 0..4, the lane below's b at bits 4..8) stay out of them, so
+    // nothing carries.
+    let x = (values.wrapping_mul(0x1001) >> 8) & 0x00FF_00FF_00FF_00FF;
     let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF;
     (x | (x >> 16)) as u32
 }
