@@ -149,7 +149,8 @@ pub(super) const KEEP_BYTES: [u64; 16] = {
 };
 
 /// Decode the hex digits of CAN FD data from `start` up to the first other
-/// byte, 16 at a time, into `data`; return the number of bytes and the index
+/// byte, 16 at a time, into `data` (zeros on entry; the bytes after the data
+/// stay zero); return the number of bytes and the index
 /// after the digits, or `None` for an odd count (which [`parse_general`]
 /// reports). Stops after 64 bytes.
 #[inline(never)]
@@ -170,7 +171,15 @@ pub(super) fn decode_fd_data(
         dst.copy_from_slice(&packed.to_le_bytes());
         end += digits;
         len += digits / 2;
-        if digits < 16 {
+        // After a full word, the byte that follows tells whether another
+        // word of digits follows: the data's lengths are mostly multiples
+        // of 8 bytes, whose last word would otherwise be followed by a word
+        // of no digits.
+        if digits < 16
+            || buf
+                .get(end)
+                .map_or(true, |&b| HEX_TABLE[usize::from(b)] > 0xF)
+        {
             break;
         }
     }

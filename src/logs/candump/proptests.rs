@@ -190,3 +190,52 @@ proptest! {
         prop_assert_eq!(read, expected);
     }
 }
+
+proptest! {
+    /// The CAN FD data decoder against a byte-by-byte model: the leading hex
+    /// digits (at most 128 read), an odd count refused, then the bytes;
+    /// whatever follows the digits (a line end, a space, another byte, the
+    /// end of the buffer), at every length, in either case.
+    #[test]
+    fn fd_data_is_its_digits_byte_by_byte(
+        bytes in proptest::collection::vec(any::<u8>(), 0..=66),
+        lower in any::<bool>(),
+        extra_digit in any::<bool>(),
+        tail in proptest::collection::vec(
+            prop_oneof![
+                proptest::sample::select(b"\n\r RT#0aFgG\x00\xff".to_vec()),
+                any::<u8>(),
+            ],
+            0..3,
+        ),
+        prefix in 0usize..4,
+    ) {
+        let mut buf = vec![b'x'; prefix];
+        for b in &bytes {
+            let text = if lower { format!("{b:02x}") } else { format!("{b:02X}") };
+            buf.extend_from_slice(text.as_bytes());
+        }
+        if extra_digit {
+            buf.push(b'7');
+        }
+        buf.extend_from_slice(&tail);
+        let digits = buf[prefix..]
+            .iter()
+            .take_while(|b| b.is_ascii_hexdigit())
+            .count()
+            .min(128);
+        let expected = if digits % 2 == 1 {
+            None
+        } else {
+            let mut data = [0u8; FD_MAX_LEN];
+            for (i, pair) in buf[prefix..prefix + digits].chunks(2).enumerate() {
+                let text = core::str::from_utf8(pair).unwrap();
+                data[i] = u8::from_str_radix(text, 16).unwrap();
+            }
+            Some(((digits / 2) as u8, prefix + digits, data))
+        };
+        let mut data = [0u8; FD_MAX_LEN];
+        let got = decode_fd_data(&buf, prefix, &mut data).map(|(len, end)| (len, end, data));
+        prop_assert_eq!(got, expected);
+    }
+}
