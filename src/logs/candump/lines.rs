@@ -291,9 +291,11 @@ pub(super) fn next_head<'a>(
     next_general_head(rest, state, data)
 }
 
-/// [`next_head`] for a line that is not in the canonical log shape.
+/// [`next_head`] for a line that is not in the canonical log shape: the
+/// general parser out of line, its frame taken apart here, so that the two
+/// paths meet with the frame's fields in registers, not in memory.
 #[cfg(feature = "std")]
-#[inline(never)]
+#[inline(always)]
 fn next_general_head<'a>(
     rest: &mut &'a [u8],
     state: &mut LineState,
