@@ -60,6 +60,7 @@ pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
         line_number: 0,
         state,
         recent_ifaces: [(0, ""); 2],
+        hint: IfaceHint::NONE,
     }
 }
 
@@ -185,6 +186,8 @@ pub struct CandumpLines<'a> {
     /// The interface names of the last frames, from the buffer, with their
     /// keys: the last frame's, then the one before it that differs.
     recent_ifaces: [(u64, &'a str); 2],
+    /// The interface of the last line the fast path read.
+    hint: IfaceHint,
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
@@ -197,7 +200,7 @@ impl<'a> Iterator for CandumpLines<'a> {
         }
         self.line_number += 1;
         let recent = &mut self.recent_ifaces;
-        let parsed = next_parsed(&mut self.rest, &mut self.state, |f| {
+        let parsed = next_parsed(&mut self.rest, &mut self.state, &mut self.hint, |f| {
             f.into_log_frame_after(recent)
         });
         Some((self.line_number, parsed))
@@ -217,7 +220,7 @@ impl<'a> Iterator for CandumpLines<'a> {
         while !self.rest.is_empty() {
             self.line_number += 1;
             let mut data = [0; FD_MAX_LEN];
-            if let Some((frame, used)) = parse_canonical_log(self.rest, &mut data) {
+            if let Some((frame, used)) = parse_canonical_log(self.rest, &mut data, &mut self.hint) {
                 self.rest = self.rest.get(used..).unwrap_or_default();
                 self.state.after_error_frame = false;
                 let frame = frame.into_log_frame_after(&data, &mut self.recent_ifaces);
@@ -261,10 +264,11 @@ impl<'a> CandumpLines<'a> {
 pub(super) fn next_parsed<'a, T>(
     rest: &mut &'a [u8],
     state: &mut LineState,
+    hint: &mut IfaceHint,
     convert: impl FnOnce(Parsed<'a>) -> T,
 ) -> Result<Option<T>> {
     let mut data = [0; FD_MAX_LEN];
-    if let Some((frame, used)) = parse_canonical_log(rest, &mut data) {
+    if let Some((frame, used)) = parse_canonical_log(rest, &mut data, hint) {
         *rest = rest.get(used..).unwrap_or_default();
         state.after_error_frame = false;
         return Ok(Some(convert(frame.with_data(data))));
@@ -281,9 +285,10 @@ pub(super) fn next_parsed<'a, T>(
 pub(super) fn next_head<'a>(
     rest: &mut &'a [u8],
     state: &mut LineState,
+    hint: &mut IfaceHint,
     data: &mut [u8; FD_MAX_LEN],
 ) -> Result<Option<Head<'a>>> {
-    if let Some((frame, used)) = parse_canonical_log(rest, data) {
+    if let Some((frame, used)) = parse_canonical_log(rest, data, hint) {
         *rest = rest.get(used..).unwrap_or_default();
         state.after_error_frame = false;
         return Ok(Some(frame.head()));

@@ -169,7 +169,8 @@ use timestamp::*;
 #[inline]
 pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
     let mut data = [0; FD_MAX_LEN];
-    match parse_canonical_log(line, &mut data) {
+    let mut hint = IfaceHint::NONE;
+    match parse_canonical_log(line, &mut data, &mut hint) {
         Some((frame, used)) if used == line.len() => {
             Ok(Some(frame.with_data(data).into_log_frame()))
         }

@@ -78,22 +78,50 @@ proptest! {
 }
 
 /// A line for a whole log: a valid log line on one of a few interfaces (of
-/// 1, 4, 8 and more bytes, so that every way `lines` remembers a name is
-/// taken), a screen line, or a mutated line, without a line end inside.
+/// 1 to 8 bytes and more, some the start of another, so that every way the
+/// lines remember a name is taken), the same with the byte after the name
+/// replaced or another byte put before it, a screen line, or a mutated
+/// line; without a line end inside.
 fn log_line() -> impl Strategy<Value = Vec<u8>> {
-    let name = proptest::sample::select(vec![
+    let names = vec![
         "can0",
         "can1",
+        "can01",
+        "can",
         "c",
+        "vcan123",
         "vcan1234",
         "vcan12345",
         "a_long_name_0",
-    ]);
+    ];
+    let name = proptest::sample::select(names);
+    let after_name = prop_oneof![
+        proptest::sample::select(b" \t#(0aX\x00\x7f\xff".to_vec()),
+        any::<u8>(),
+    ];
+    let on = |(mut spec, name): (crate::test_gens::candump::FrameSpec, &str)| {
+        spec.iface = name.to_string();
+        write_log(&spec.frame()).into_bytes()
+    };
     prop_oneof![
-        3 => (frame_spec(), name).prop_map(|(mut spec, name)| {
-            spec.iface = name.to_string();
-            write_log(&spec.frame()).into_bytes()
-        }),
+        3 => (frame_spec(), name.clone()).prop_map(on),
+        1 => (frame_spec(), name, after_name, any::<bool>()).prop_map(
+            move |(spec, name, byte, insert)| {
+                let mut line = on((spec, name));
+                // The name starts after the timestamp's `) `, if any.
+                let start = line
+                    .windows(2)
+                    .position(|w| w == b") ")
+                    .map_or(0, |at| at + 2);
+                let at = start + name.len();
+                if insert {
+                    line.insert(at, byte);
+                } else {
+                    line[at] = byte;
+                }
+                line.into_iter().map(|b| if b == b'\n' { b' ' } else { b }).collect()
+            }
+        ),
         1 => screen_frame_spec().prop_map(|spec| write_screen(&spec.frame()).into_bytes()),
         1 => mutated_line().prop_map(|line| {
             line.into_iter().map(|b| if b == b'\n' { b' ' } else { b }).collect()

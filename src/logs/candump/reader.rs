@@ -58,6 +58,7 @@ impl<R: Read> CandumpReader<R> {
                 Candump {
                     state: LineState::default(),
                     decided: false,
+                    hint: IfaceHint::NONE,
                 },
             ),
         }
@@ -75,6 +76,7 @@ impl<R: Read> CandumpReader<R> {
                 Candump {
                     state: LineState::new(relative),
                     decided: true,
+                    hint: IfaceHint::NONE,
                 },
             ),
         }
@@ -123,6 +125,8 @@ pub(super) struct Candump {
     state: LineState,
     /// The relative timestamps are decided (or were given).
     decided: bool,
+    /// The interface of the last line the fast path read.
+    hint: IfaceHint,
 }
 
 impl TextParser for Candump {
@@ -137,7 +141,7 @@ impl TextParser for Candump {
         names: &mut Names,
     ) -> Result<Option<Head<'t>>> {
         names.data = [0; FD_MAX_LEN];
-        let parsed = next_head(rest, &mut self.state, &mut names.data);
+        let parsed = next_head(rest, &mut self.state, &mut self.hint, &mut names.data);
         if let Ok(Some(head)) = &parsed {
             names.intern(head.iface);
         }
