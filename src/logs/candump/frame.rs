@@ -62,9 +62,9 @@ impl<'a> Parsed<'a> {
 
 /// What the fast path reads from a `candump -l` line besides its data
 /// bytes, which it writes where the caller keeps them
-/// ([`parse_canonical_log`]): the line's frame is then built once, where it
-/// is read, instead of moved with its 64 data bytes from the parser's
-/// result to the caller's.
+/// ([`parse_canonical_log`]): the caller builds the frame from the two (the
+/// reader from the bytes in its `Names`), instead of moving the 64 bytes
+/// from the parser's result to its own.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Canonical<'a> {
     pub(super) timestamp: Timestamp,
@@ -93,24 +93,6 @@ impl<'a> Canonical<'a> {
             direction: self.direction,
             len: self.len,
             data,
-        }
-    }
-
-    /// The crate's record of the frame with its data `data`, for a line of
-    /// a buffer whose earlier lines named the interfaces `recent` (see
-    /// [`name_after`]).
-    #[inline(always)]
-    pub(super) fn into_log_frame_after(
-        self,
-        data: &[u8; FD_MAX_LEN],
-        recent: &mut [(u64, &'a str); 2],
-    ) -> LogFrame<'a> {
-        let name = name_after(self.iface, self.iface_key, recent);
-        LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, *data, self.len),
-            timestamp: Some(self.timestamp),
-            iface: Some(Iface::Name(name)),
-            direction: self.direction,
         }
     }
 }

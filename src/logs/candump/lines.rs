@@ -205,35 +205,6 @@ impl<'a> Iterator for CandumpLines<'a> {
         });
         Some((self.line_number, parsed))
     }
-
-    /// The lines one after the other, each handed to `f` on the path that
-    /// read it: a line of the canonical shape is built where `f` reads it,
-    /// not copied into an item that either path could have made (what
-    /// `next` has to do), which is most of the cost of a line after its
-    /// parse.
-    #[inline]
-    fn fold<B, F>(mut self, init: B, mut f: F) -> B
-    where
-        F: FnMut(B, Self::Item) -> B,
-    {
-        let mut acc = init;
-        while !self.rest.is_empty() {
-            self.line_number += 1;
-            let mut data = [0; FD_MAX_LEN];
-            if let Some((frame, used)) = parse_canonical_log(self.rest, &mut data, &mut self.hint) {
-                self.rest = self.rest.get(used..).unwrap_or_default();
-                self.state.after_error_frame = false;
-                let frame = frame.into_log_frame_after(&data, &mut self.recent_ifaces);
-                acc = f(acc, (self.line_number, Ok(Some(frame))));
-            } else {
-                let recent = &mut self.recent_ifaces;
-                let parsed = next_general(&mut self.rest, &mut self.state)
-                    .map(|frame| frame.map(|f| f.into_log_frame_after(recent)));
-                acc = f(acc, (self.line_number, parsed));
-            }
-        }
-        acc
-    }
 }
 
 impl<'a> CandumpLines<'a> {

@@ -131,7 +131,7 @@ fn log_line() -> impl Strategy<Value = Vec<u8>> {
 
 proptest! {
     /// `lines` reads each line of a log as `parse_line` reads it alone, by
-    /// `next` and by `fold`, whatever the interfaces of the lines before it
+    /// `next` and by `for_each`, whatever the interfaces of the lines before it
     /// (the names it remembers), with `\n` or `\r\n` line ends; an
     /// explanation line after an error frame holds nothing.
     #[test]
@@ -145,7 +145,7 @@ proptest! {
         }
         let items: Vec<_> = lines(&buf).collect();
         prop_assert_eq!(items.len(), log.len());
-        // `fold` (what `for_each` runs) reads each line on its own paths.
+        // `for_each` (`fold`) reads the same items.
         let mut by_fold = Vec::new();
         lines(&buf).for_each(|item| by_fold.push(item));
         prop_assert_eq!(&by_fold, &items);
