@@ -98,7 +98,7 @@ impl<'a> Canonical<'a> {
 }
 
 /// A frame line without its data bytes, which the parser leaves where its
-/// caller keeps them ([`next_head`]): the reader's line, whose record is
+/// caller keeps them (`lines::next_head`): the reader's line, whose record is
 /// built from the bytes where they are.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Head<'a> {
