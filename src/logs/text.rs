@@ -327,7 +327,7 @@ impl<R: std::io::Read> TextInput<R> {
 /// each kept once at a stable address, so that every event of one
 /// interface names it with the same slice.
 #[cfg(feature = "std")]
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Names {
     names: Vec<Box<str>>,
     /// The names before the table last started again, kept where they are
@@ -339,6 +339,23 @@ pub(crate) struct Names {
     last: usize,
     /// Times the table started again.
     resets: u64,
+    /// The data bytes of the last event, for a parser that writes them here
+    /// rather than into its line (candump): the record is built from them
+    /// where the caller reads it, so that they are copied once.
+    pub(crate) data: [u8; crate::can::FD_MAX_LEN],
+}
+
+#[cfg(feature = "std")]
+impl Default for Names {
+    fn default() -> Self {
+        Names {
+            names: Vec::new(),
+            retired: Vec::new(),
+            last: 0,
+            resets: 0,
+            data: [0; crate::can::FD_MAX_LEN],
+        }
+    }
 }
 
 #[cfg(feature = "std")]

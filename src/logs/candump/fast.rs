@@ -9,28 +9,35 @@ use super::*;
 /// number of bytes read (line end included), or `None` for any other shape
 /// (which [`parse_general`] then reads, or reports). On every line it
 /// accepts it returns what [`parse_general`] returns.
+///
+/// The data bytes are written into `data`, which holds zeros on entry: the
+/// first `len` bytes are the data, the rest stays zero. After `None`, `data`
+/// may hold anything.
+///
+/// `hint` is the interface name of an earlier line that this path read, or
+/// [`IfaceHint::NONE`]: a line that names the same interface is known to
+/// name it validly, and its name is not checked again; a line that names
+/// another leaves its own name there.
 #[inline(always)]
-pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
+pub(super) fn parse_canonical_log<'a>(
+    buf: &'a [u8],
+    data: &mut [u8; FD_MAX_LEN],
+    hint: &mut IfaceHint,
+) -> Option<(Canonical<'a>, usize)> {
     // Timestamp, bytes 0..20, `(SSSSSSSSSS.UUUUUU) `.
     let timestamp = parse_canonical_timestamp(buf.first_chunk::<20>()?)?;
 
     // Interface: printable ASCII up to a space, not starting with `(`/`#`.
     let iface_start = 20;
     let word = u64::from_le_bytes(*buf.get(iface_start..)?.first_chunk::<8>()?);
-    let stop = non_graphic(u128::from(word)) as u64;
-    let iface_len = if stop != 0 {
-        (stop.trailing_zeros() / 8) as usize
-    } else {
-        lanes_before(non_graphic(load16(buf, iface_start)))
-    };
-    let id_start = iface_start + iface_len + 1;
-    if iface_len == 0
-        || iface_len == 16
-        || buf.get(id_start - 1) != Some(&b' ')
-        || matches!(buf.get(iface_start), Some(b'(' | b'#'))
-    {
-        return None;
+    if word & hint.mask != hint.pattern {
+        *hint = read_iface(buf, word)?;
     }
+    // Else the bytes of a name this path took, then a space: the checks of
+    // `read_iface` would find the same.
+    let iface_len = usize::from(hint.len);
+    let iface_key = hint.key;
+    let id_start = iface_start + iface_len + 1;
     let iface = buf.get(iface_start..id_start - 1)?;
 
     // Identifier: 3 hex digits and `#`, else 8 and `#`.
@@ -63,7 +70,6 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         }
     };
 
-    let mut data = [0; FD_MAX_LEN];
     let (kind, len, end) = match buf.get(body) {
         Some(b'R' | b'r') => match buf.get(body + 1) {
             Some(&d @ b'0'..=b'8') => (FrameType::Remote { dlc: d - b'0' }, 0, body + 2),
@@ -74,7 +80,7 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
             if flags & 0xF0 != 0 {
                 return None;
             }
-            let (len, end) = decode_fd_data(buf, body + 2, &mut data)?;
+            let (len, end) = decode_fd_data(buf, body + 2, data)?;
             (FrameType::Fd(FdFlags::new(flags)?), len, end)
         }
         _ => {
@@ -114,17 +120,81 @@ pub(super) fn parse_canonical_log(buf: &[u8]) -> Option<(Parsed<'_>, usize)> {
         },
         Some(_) => return None,
     }
-    let frame = Parsed {
-        timestamp: Some(timestamp),
-        relative: false,
+    let frame = Canonical {
+        timestamp,
         iface,
+        iface_key,
         id,
         kind,
         direction,
         len,
-        data,
     };
     Some((frame, used))
+}
+
+/// An interface name as the first bytes of a line's interface word (bytes
+/// 20 to 27 of a `candump -l` line), with the space after it: a line whose
+/// word starts with the same bytes names the same interface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct IfaceHint {
+    /// The name's bytes and the space, zeros above them.
+    pattern: u64,
+    /// The bytes of the word that `pattern` covers.
+    mask: u64,
+    /// The name's length.
+    len: u8,
+    /// The name's key ([`Parsed::iface_key`]).
+    key: u64,
+}
+
+impl IfaceHint {
+    /// No name: every word is checked.
+    pub(super) const NONE: IfaceHint = IfaceHint {
+        pattern: 1,
+        mask: 0,
+        len: 0,
+        key: 0,
+    };
+}
+
+/// Read the interface name of a `candump -l` line from byte 20 (`word`,
+/// the first 8 of its bytes): printable ASCII up to a space, 1 to 15 bytes,
+/// not starting with `(` or `#`. Return it as a hint for the lines after it
+/// (one that matches nothing when the name and its space take more than 8
+/// bytes), or `None` for any other shape.
+#[inline(always)]
+fn read_iface(buf: &[u8], word: u64) -> Option<IfaceHint> {
+    let iface_start = 20;
+    let stop = non_graphic(u128::from(word)) as u64;
+    let iface_len = if stop != 0 {
+        (stop.trailing_zeros() / 8) as usize
+    } else {
+        lanes_before(non_graphic(load16(buf, iface_start)))
+    };
+    if iface_len == 0
+        || iface_len == 16
+        || buf.get(iface_start + iface_len) != Some(&b' ')
+        || matches!(buf.get(iface_start), Some(b'(' | b'#'))
+    {
+        return None;
+    }
+    let key = if iface_len <= 8 {
+        word & KEEP_BYTES[iface_len]
+    } else {
+        0
+    };
+    let (pattern, mask) = if iface_len < 8 {
+        let mask = KEEP_BYTES[iface_len + 1];
+        (word & mask, mask)
+    } else {
+        (IfaceHint::NONE.pattern, IfaceHint::NONE.mask)
+    };
+    Some(IfaceHint {
+        pattern,
+        mask,
+        len: iface_len as u8,
+        key,
+    })
 }
 
 /// A mask of the low `n` bytes of a `u64`, for `n` in 0..=8.
@@ -139,7 +209,8 @@ pub(super) const KEEP_BYTES: [u64; 16] = {
 };
 
 /// Decode the hex digits of CAN FD data from `start` up to the first other
-/// byte, 16 at a time, into `data`; return the number of bytes and the index
+/// byte, 16 at a time, into `data` (zeros on entry; the bytes after the data
+/// stay zero); return the number of bytes and the index
 /// after the digits, or `None` for an odd count (which [`parse_general`]
 /// reports). Stops after 64 bytes.
 #[inline(never)]
@@ -160,7 +231,15 @@ pub(super) fn decode_fd_data(
         dst.copy_from_slice(&packed.to_le_bytes());
         end += digits;
         len += digits / 2;
-        if digits < 16 {
+        // After a full word, the byte that follows tells whether another
+        // word of digits follows: the data's lengths are mostly multiples
+        // of 8 bytes, whose last word would otherwise be followed by a word
+        // of no digits.
+        if digits < 16
+            || buf
+                .get(end)
+                .map_or(true, |&b| HEX_TABLE[usize::from(b)] > 0xF)
+        {
             break;
         }
     }

@@ -17,6 +17,11 @@ pub(crate) struct Parsed<'a> {
     /// The interface name: printable ASCII without spaces (`scan_iface`, the
     /// fast path's `non_graphic` check).
     pub(super) iface: &'a [u8],
+    /// The interface name as one word, its first byte least significant and
+    /// zeros above, when it has at most 8 bytes and the fast path read it; 0
+    /// otherwise. Names are printable ASCII, so two nonzero keys are equal
+    /// exactly when the names are.
+    pub(super) iface_key: u64,
     pub(super) id: CanId,
     /// The frame's kind, a remote request with its requested length.
     pub(super) kind: FrameType,
@@ -36,16 +41,12 @@ impl<'a> Parsed<'a> {
         self.into_log_frame_named(iface)
     }
 
-    /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier line
-    /// named the interface `last`: the same name is not checked again (a
-    /// log's lines almost always name one interface), and `last` becomes
-    /// this line's.
+    /// [`Parsed::into_log_frame`] for a line of a buffer whose earlier lines
+    /// named the interfaces `recent` (see [`name_after`]).
     #[inline(always)]
-    pub(super) fn into_log_frame_after(self, last: &mut &'a str) -> LogFrame<'a> {
-        if self.iface != last.as_bytes() {
-            *last = core::str::from_utf8(self.iface).unwrap_or_default();
-        }
-        self.into_log_frame_named(last)
+    pub(super) fn into_log_frame_after(self, recent: &mut [(u64, &'a str); 2]) -> LogFrame<'a> {
+        let name = name_after(self.iface, self.iface_key, recent);
+        self.into_log_frame_named(name)
     }
 
     #[inline(always)]
@@ -57,19 +58,142 @@ impl<'a> Parsed<'a> {
             direction: self.direction,
         }
     }
+}
 
-    /// The frame with the interface named `iface` (the reader's copy of
-    /// the name, which outlives the line).
+/// What the fast path reads from a `candump -l` line besides its data
+/// bytes, which it writes where the caller keeps them
+/// ([`parse_canonical_log`]): the caller builds the frame from the two (the
+/// reader from the bytes in its `Names`), instead of moving the 64 bytes
+/// from the parser's result to its own.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Canonical<'a> {
+    pub(super) timestamp: Timestamp,
+    /// As [`Parsed::iface`].
+    pub(super) iface: &'a [u8],
+    /// As [`Parsed::iface_key`].
+    pub(super) iface_key: u64,
+    pub(super) id: CanId,
+    pub(super) kind: FrameType,
+    pub(super) direction: Option<Direction>,
+    /// Data length (0 for a remote request).
+    pub(super) len: u8,
+}
+
+impl<'a> Canonical<'a> {
+    /// The frame as the general parser returns it, with its data `data`.
+    #[inline(always)]
+    pub(super) fn with_data(self, data: [u8; FD_MAX_LEN]) -> Parsed<'a> {
+        Parsed {
+            timestamp: Some(self.timestamp),
+            relative: false,
+            iface: self.iface,
+            iface_key: self.iface_key,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
+            data,
+        }
+    }
+}
+
+/// A frame line without its data bytes, which the parser leaves where its
+/// caller keeps them (`lines::next_head`): the reader's line, whose record is
+/// built from the bytes where they are.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Head<'a> {
+    pub(super) timestamp: Option<Timestamp>,
+    /// As [`Parsed::iface`].
+    pub(super) iface: &'a [u8],
+    pub(super) id: CanId,
+    pub(super) kind: FrameType,
+    pub(super) direction: Option<Direction>,
+    /// Data length (0 for a remote request).
+    pub(super) len: u8,
+}
+
+impl Head<'_> {
+    /// The frame with its data `data`, its interface named `iface` (the
+    /// reader's copy of the name, which outlives the line).
     #[cfg(feature = "std")]
     #[inline(always)]
-    pub(super) fn into_log_frame_with(self, iface: &str) -> LogFrame<'_> {
+    pub(super) fn into_log_frame_with<'n>(
+        self,
+        data: &[u8; FD_MAX_LEN],
+        iface: &'n str,
+    ) -> LogFrame<'n> {
         LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
+            frame: CanFrame::from_checked_parts(self.id, self.kind, *data, self.len),
             timestamp: self.timestamp,
             iface: Some(Iface::Name(iface)),
             direction: self.direction,
         }
     }
+}
+
+impl<'a> Canonical<'a> {
+    /// The frame line without its data.
+    #[inline(always)]
+    pub(super) fn head(self) -> Head<'a> {
+        Head {
+            timestamp: Some(self.timestamp),
+            iface: self.iface,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
+        }
+    }
+}
+
+impl<'a> Parsed<'a> {
+    /// The frame line without its data, which is written into `data`.
+    #[inline(always)]
+    pub(super) fn into_head(self, data: &mut [u8; FD_MAX_LEN]) -> Head<'a> {
+        *data = self.data;
+        Head {
+            timestamp: self.timestamp,
+            iface: self.iface,
+            id: self.id,
+            kind: self.kind,
+            direction: self.direction,
+            len: self.len,
+        }
+    }
+}
+
+/// The interface `iface` (with its key, [`Parsed::iface_key`]) as text, for
+/// a line whose earlier lines named the interfaces `recent` (the last
+/// line's first, each with its key): a name seen there is not checked again
+/// (a log's lines almost always name one or two interfaces, and UTF-8
+/// validation costs more than the parse of the name), and this line's name
+/// becomes the first.
+#[inline(always)]
+pub(super) fn name_after<'a>(
+    iface: &'a [u8],
+    key: u64,
+    recent: &mut [(u64, &'a str); 2],
+) -> &'a str {
+    if key == 0 || key != recent[0].0 {
+        if key != 0 && key == recent[1].0 {
+            recent.swap(0, 1);
+        } else {
+            new_name(iface, key, recent);
+        }
+    }
+    recent[0].1
+}
+
+/// Put the name `iface` first in `recent` when its key is not there: unless
+/// it has no key and is the last name, as text (ASCII by construction; the
+/// fallback is never taken).
+#[inline(never)]
+fn new_name<'a>(iface: &'a [u8], key: u64, recent: &mut [(u64, &'a str); 2]) {
+    if key == 0 && iface == recent[0].1.as_bytes() {
+        return;
+    }
+    let name = core::str::from_utf8(iface).unwrap_or_default();
+    *recent = [(key, name), recent[0]];
 }
 
 /// Write a frame in candump's log format (`candump -l`,

@@ -59,7 +59,8 @@ pub fn lines_from(buf: &[u8], state: LineState) -> CandumpLines<'_> {
         rest: buf,
         line_number: 0,
         state,
-        last_iface: "",
+        recent_ifaces: [(0, ""); 2],
+        hint: IfaceHint::NONE,
     }
 }
 
@@ -182,8 +183,11 @@ pub struct CandumpLines<'a> {
     rest: &'a [u8],
     line_number: usize,
     state: LineState,
-    /// The interface name of the last frame, from the buffer.
-    last_iface: &'a str,
+    /// The interface names of the last frames, from the buffer, with their
+    /// keys: the last frame's, then the one before it that differs.
+    recent_ifaces: [(u64, &'a str); 2],
+    /// The interface of the last line the fast path read.
+    hint: IfaceHint,
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
@@ -195,12 +199,11 @@ impl<'a> Iterator for CandumpLines<'a> {
             return None;
         }
         self.line_number += 1;
-        let parsed = next_parsed(&mut self.rest, &mut self.state);
-        let last = &mut self.last_iface;
-        Some((
-            self.line_number,
-            parsed.map(|frame| frame.map(|f| f.into_log_frame_after(last))),
-        ))
+        let recent = &mut self.recent_ifaces;
+        let parsed = next_parsed(&mut self.rest, &mut self.state, &mut self.hint, |f| {
+            f.into_log_frame_after(recent)
+        });
+        Some((self.line_number, parsed))
     }
 }
 
@@ -224,23 +227,65 @@ impl<'a> CandumpLines<'a> {
 /// Read the line at the start of `rest` and take it off (with its `\n`),
 /// with the state the lines before it set: the one step of [`CandumpLines`]
 /// and of the reader. The canonical `candump -l` shape is read by the fast
-/// path straight from the buffer; any other line is found first.
+/// path straight from the buffer; any other line is found first. A frame
+/// is handed on as `convert` makes it, on each path apart, so that it is
+/// built once where the caller reads it instead of copied from one path's
+/// result to the other's.
 #[inline(always)]
-pub(super) fn next_parsed<'a>(
+pub(super) fn next_parsed<'a, T>(
     rest: &mut &'a [u8],
     state: &mut LineState,
-) -> Result<Option<Parsed<'a>>> {
-    if let Some((frame, used)) = parse_canonical_log(rest) {
+    hint: &mut IfaceHint,
+    convert: impl FnOnce(Parsed<'a>) -> T,
+) -> Result<Option<T>> {
+    let mut data = [0; FD_MAX_LEN];
+    if let Some((frame, used)) = parse_canonical_log(rest, &mut data, hint) {
         *rest = rest.get(used..).unwrap_or_default();
         state.after_error_frame = false;
-        return Ok(Some(frame));
+        return Ok(Some(convert(frame.with_data(data))));
     }
-    next_general(rest, state)
+    next_general(rest, state).map(|frame| frame.map(convert))
+}
+
+/// [`next_parsed`] with the frame's data bytes written into `data` (zeros
+/// on entry) and the rest of the frame returned: for a caller that keeps
+/// the bytes itself (the reader), so that they are copied once, where the
+/// frame is read.
+#[cfg(feature = "std")]
+#[inline(always)]
+pub(super) fn next_head<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+    hint: &mut IfaceHint,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Result<Option<Head<'a>>> {
+    if let Some((frame, used)) = parse_canonical_log(rest, data, hint) {
+        *rest = rest.get(used..).unwrap_or_default();
+        state.after_error_frame = false;
+        return Ok(Some(frame.head()));
+    }
+    next_general_head(rest, state, data)
+}
+
+/// [`next_head`] for a line that is not in the canonical log shape: the
+/// general parser out of line, its frame taken apart here, so that the two
+/// paths meet with the frame's fields in registers, not in memory.
+#[cfg(feature = "std")]
+#[inline(always)]
+fn next_general_head<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Result<Option<Head<'a>>> {
+    next_general(rest, state).map(|frame| frame.map(|frame| frame.into_head(data)))
 }
 
 /// [`next_parsed`] for a line that is not in the canonical log shape.
 #[inline(never)]
-fn next_general<'a>(rest: &mut &'a [u8], state: &mut LineState) -> Result<Option<Parsed<'a>>> {
+pub(super) fn next_general<'a>(
+    rest: &mut &'a [u8],
+    state: &mut LineState,
+) -> Result<Option<Parsed<'a>>> {
     let line = take_line(rest).unwrap_or_default();
     let parsed = parse_general(line);
     if parsed.is_err() && state.after_error_frame && is_explanation(line) {

@@ -168,8 +168,12 @@ use timestamp::*;
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
 #[inline]
 pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
-    match parse_canonical_log(line) {
-        Some((frame, used)) if used == line.len() => Ok(Some(frame.into_log_frame())),
+    let mut data = [0; FD_MAX_LEN];
+    let mut hint = IfaceHint::NONE;
+    match parse_canonical_log(line, &mut data, &mut hint) {
+        Some((frame, used)) if used == line.len() => {
+            Ok(Some(frame.with_data(data).into_log_frame()))
+        }
         _ => parse_general(line).map(|frame| frame.map(Parsed::into_log_frame)),
     }
 }

@@ -189,6 +189,7 @@ fn parse_plain(line: &[u8]) -> Result<Option<Parsed<'_>>> {
         timestamp,
         relative,
         iface,
+        iface_key: 0,
         id,
         kind,
         direction: None,

@@ -3,7 +3,7 @@
 
 use std::io::Read;
 
-use super::lines::{is_explanation, next_parsed};
+use super::lines::{is_explanation, next_head};
 use super::*;
 use crate::can::LogEvent;
 use crate::logs::text::{Names, TextLog, TextParser};
@@ -58,6 +58,7 @@ impl<R: Read> CandumpReader<R> {
                 Candump {
                     state: LineState::default(),
                     decided: false,
+                    hint: IfaceHint::NONE,
                 },
             ),
         }
@@ -75,6 +76,7 @@ impl<R: Read> CandumpReader<R> {
                 Candump {
                     state: LineState::new(relative),
                     decided: true,
+                    hint: IfaceHint::NONE,
                 },
             ),
         }
@@ -123,29 +125,34 @@ pub(super) struct Candump {
     state: LineState,
     /// The relative timestamps are decided (or were given).
     decided: bool,
+    /// The interface of the last line the fast path read.
+    hint: IfaceHint,
 }
 
 impl TextParser for Candump {
-    type Line<'t> = Parsed<'t>;
+    /// The frame line without its data bytes, which the parser leaves in
+    /// the reader's [`Names`].
+    type Line<'t> = Head<'t>;
 
     #[inline(always)]
     fn next_line<'t>(
         &mut self,
         rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> Result<Option<Parsed<'t>>> {
-        let parsed = next_parsed(rest, &mut self.state);
-        if let Ok(Some(frame)) = &parsed {
-            names.intern(frame.iface);
+    ) -> Result<Option<Head<'t>>> {
+        names.data = [0; FD_MAX_LEN];
+        let parsed = next_head(rest, &mut self.state, &mut self.hint, &mut names.data);
+        if let Ok(Some(head)) = &parsed {
+            names.intern(head.iface);
         }
         parsed
     }
 
     #[inline(always)]
-    fn record<'a>(line: Parsed<'_>, position: Position, names: &'a Names) -> LogRecord<'a> {
+    fn record<'a>(line: Head<'_>, position: Position, names: &'a Names) -> LogRecord<'a> {
         LogRecord {
             position,
-            event: LogEvent::Frame(line.into_log_frame_with(names.last())),
+            event: LogEvent::Frame(line.into_log_frame_with(&names.data, names.last())),
         }
     }
 

@@ -35,15 +35,6 @@ pub(super) const fn hex_lanes(w: u128) -> (u128, u128) {
     (values, bad & HIGH)
 }
 
-pub(super) const ZERO_CHARS64: u64 = ZERO_CHARS as u64;
-
-/// [`non_digits`] for the 8 lanes of a `u64`.
-#[inline(always)]
-pub(super) const fn non_digits64(d: u64) -> u64 {
-    let low7 = LOW7 as u64;
-    ((d & low7).wrapping_add(splat(0x76) as u64) | d) & HIGH as u64
-}
-
 /// A mask with the high bit of every lane that is not a decimal digit;
 /// `d` is the characters XOR `'0'`.
 #[inline(always)]
@@ -60,14 +51,25 @@ pub(super) const fn non_graphic(w: u128) -> u128 {
 }
 
 /// Pack 16 hex values (one per lane, first the most significant nibble)
-/// into 8 bytes, first byte least significant.
+/// into 8 bytes, first byte least significant: each half of the word apart,
+/// so that no shift crosses the two 64-bit registers it is made of.
 #[inline(always)]
 pub(super) const fn pack_hex(values: u128) -> u64 {
-    // Pairs of lanes → one byte in the low half of each 16-bit lane.
-    let x = ((values << 4) | (values >> 8)) & 0x00FF_00FF_00FF_00FF_00FF_00FF_00FF_00FF;
-    let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF_0000_FFFF_0000_FFFF;
-    let x = (x | (x >> 16)) & 0x0000_0000_FFFF_FFFF_0000_0000_FFFF_FFFF;
-    (x | (x >> 32)) as u64
+    pack_hex64(values as u64) as u64 | (pack_hex64((values >> 64) as u64) as u64) << 32
+}
+
+/// Pack 8 hex values (one per lane, first the most significant nibble)
+/// into 4 bytes, first byte least significant.
+#[inline(always)]
+const fn pack_hex64(values: u64) -> u32 {
+    // Pairs of lanes → one byte in the high half of each 16-bit lane: with
+    // `a` and `b` the pair's values (below 16), `a + 256 b` times
+    // `1 + 2^12` puts `16 a + b` in bits 8..16 of the lane; the other terms
+    // (a at bits 0..4, the lane below's b at bits 4..8) stay out of them, so
+    // nothing carries.
+    let x = (values.wrapping_mul(0x1001) >> 8) & 0x00FF_00FF_00FF_00FF;
+    let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF;
+    (x | (x >> 16)) as u32
 }
 
 /// Convert 8 decimal digit values (one per lane, first the most
@@ -159,8 +161,6 @@ mod tests {
         fn non_digits_is_decimal_digit_by_digit(w in word()) {
             let d = w ^ ZERO_CHARS;
             prop_assert_eq!(non_digits(d), high_bits(|b| !b.is_ascii_digit(), w));
-            let d64 = d as u64;
-            prop_assert_eq!(u128::from(non_digits64(d64)), high_bits(|b| !b.is_ascii_digit(), w) & u128::from(u64::MAX));
         }
 
         #[test]

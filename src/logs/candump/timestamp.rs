@@ -8,24 +8,69 @@ use crate::logs::text::POW10_NANOS;
 
 /// Read the template `candump -l` writes, `(SSSSSSSSSS.UUUUUU) ` (ten digits
 /// of seconds, six of microseconds, a space), from the first 20 bytes of a
-/// line: the 16 digits in two words (seconds 1–8, then seconds 9–10 and
-/// microseconds 1–6). `None` for any other shape, which
+/// line, as three words (bytes 0–7, 8–15, 16–19). Each is XORed with the
+/// template ([`TEMPLATE`], `'0'` where a digit stands): a digit becomes its
+/// value, a byte of the template 0, so that one check per word tells the
+/// shape ([`off_template`]) and the digits are read where they stand,
+/// without a division. `None` for any other shape, which
 /// [`parse_timestamp`] then reads or reports.
 #[inline(always)]
 pub(super) fn parse_canonical_timestamp(head: &[u8; 20]) -> Option<Timestamp> {
-    if head[0] != b'(' || head[11] != b'.' || head[18] != b')' || head[19] != b' ' {
+    let [w0, w1, w2] = TEMPLATE_WORDS;
+    let [p0, p1, p2] = TEMPLATE_PLACES;
+    let (first, rest) = head.split_first_chunk::<8>()?;
+    let (second, third) = rest.split_first_chunk::<8>()?;
+    let third: &[u8; 4] = third.first_chunk()?;
+    let a = u64::from_le_bytes(*first) ^ w0;
+    let b = u64::from_le_bytes(*second) ^ w1;
+    let c = u64::from(u32::from_le_bytes(*third)) ^ w2;
+    if off_template(a, p0) | off_template(b, p1) | off_template(c, p2) != 0 {
         return None;
     }
-    let word = |at: usize| head.get(at..).and_then(|s| s.first_chunk::<8>()).copied();
-    let high = u64::from_le_bytes(word(1)?) ^ ZERO_CHARS64;
-    let low = (u64::from(u16::from_le_bytes([head[9], head[10]]))
-        | u64::from_le_bytes(word(12)?) << 16)
-        ^ ZERO_CHARS64;
-    if non_digits64(high) | non_digits64(low) != 0 {
-        return None;
+    // a: `(` s1 … s7, b: s8 s9 s10 `.` u1 … u4, c: u5 u6 `) `, one value a
+    // lane (0 for the template's own bytes).
+    let s1_s2 = (a >> 8) & 0xFFFF;
+    let s3_s10 = (a >> 24) | (b << 40);
+    let secs = ((s1_s2 & 0xFF) * 10 + (s1_s2 >> 8)) * 100_000_000 + decimal8(s3_s10);
+    let micros = decimal8(((b >> 16) & !0xFFFF) | (c << 48));
+    Timestamp::new(secs, micros as u32)
+}
+
+/// The fixed timestamp of the `candump -l` template, `'0'` for each digit.
+const TEMPLATE: &[u8; 20] = b"(0000000000.000000) ";
+
+/// [`TEMPLATE`] as the three words [`parse_canonical_timestamp`] loads.
+const TEMPLATE_WORDS: [u64; 3] = {
+    let t = TEMPLATE;
+    [
+        u64::from_le_bytes([t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7]]),
+        u64::from_le_bytes([t[8], t[9], t[10], t[11], t[12], t[13], t[14], t[15]]),
+        u32::from_le_bytes([t[16], t[17], t[18], t[19]]) as u64,
+    ]
+};
+
+/// For each lane of [`TEMPLATE_WORDS`], what [`off_template`] adds: 0x76
+/// where a digit stands (a value above 9 then reaches the high bit), 0x7F
+/// where the template has its own byte (anything but 0 does), 0 past the
+/// end.
+const TEMPLATE_PLACES: [u64; 3] = {
+    let mut places = [0u64; 3];
+    let mut i = 0;
+    while i < TEMPLATE.len() {
+        let add: u64 = if TEMPLATE[i] == b'0' { 0x76 } else { 0x7F };
+        places[i / 8] |= add << (8 * (i % 8));
+        i += 1;
     }
-    let all = decimal8(high) * 100_000_000 + decimal8(low);
-    Timestamp::new(all / 1_000_000, (all % 1_000_000) as u32)
+    places
+};
+
+/// The high bit of every lane of `x` (the bytes XOR the template) that is
+/// off the template: a digit's lane above 9, a fixed byte's lane other than
+/// 0, or a byte of 0x80 or more.
+#[inline(always)]
+const fn off_template(x: u64, places: u64) -> u64 {
+    let low7 = LOW7 as u64;
+    (((x & low7) + places) | x) & HIGH as u64
 }
 
 /// Read `(seconds.fraction)` starting at the `(` at `open`; return the
@@ -264,6 +309,38 @@ mod tests {
             prop_assert_eq!(parse_canonical_timestamp(head), Some(expected));
             prop_assert_eq!(parse_timestamp(text.as_bytes(), 0), Ok((expected, 19)));
             prop_assert_eq!(parse_timestamp_slow(text.as_bytes(), 0), Ok((expected, 19)));
+        }
+
+        /// The template's words read exactly the lines a byte-by-byte check
+        /// of the shape accepts, the same time as the byte-by-byte reader:
+        /// valid templates with up to three bytes replaced by the bytes that
+        /// matter (digits, the template's own, their neighbours, the high
+        /// half) or by any byte.
+        #[test]
+        fn the_template_is_its_shape_byte_by_byte(
+            secs in 0u64..10_000_000_000,
+            micros in 0u32..1_000_000,
+            edits in proptest::collection::vec((0usize..20, prop_oneof![
+                proptest::sample::select(b"0123456789/:().- \x00\x7f\x80\xb0\xff".to_vec()),
+                any::<u8>(),
+            ]), 0..=3),
+        ) {
+            let mut head = [0u8; 20];
+            head.copy_from_slice(format!("({secs:010}.{micros:06}) ").as_bytes());
+            for (at, byte) in edits {
+                head[at] = byte;
+            }
+            let shape = head.iter().zip(TEMPLATE).all(|(&b, &t)| {
+                if t == b'0' { b.is_ascii_digit() } else { b == t }
+            });
+            let expected = if shape {
+                let (ts, end) = parse_timestamp_slow(&head, 0).expect("the shape is a timestamp");
+                prop_assert_eq!(end, 19);
+                Some(ts)
+            } else {
+                None
+            };
+            prop_assert_eq!(parse_canonical_timestamp(&head), expected);
         }
 
         #[test]
