@@ -63,6 +63,7 @@
 //! # }
 //! ```
 
+use std::collections::VecDeque;
 use std::io::{self, Read};
 
 use crate::can::{
@@ -76,6 +77,7 @@ use crate::logs::{
 };
 use crate::Error;
 
+mod inflate;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -131,6 +133,39 @@ pub struct BlfReader<R: Read> {
     done: bool,
     /// The file has no more containers.
     file_done: bool,
+    /// Inflate containers on a second thread (the default, on a machine
+    /// with more than one core).
+    ahead: bool,
+    /// The second thread, once a compressed container was read.
+    inflater: Option<inflate::Inflater>,
+    /// The top-level objects read ahead of the stream, in file order.
+    queue: VecDeque<Ahead>,
+}
+
+/// A top-level object read from the file.
+enum TopLevel {
+    /// Bytes that go to the stream as they are: an object outside any
+    /// container, or a stored container's data.
+    Bytes(Vec<u8>),
+    /// A compressed container at `at` in the file: its body, whose zlib
+    /// data starts after the container header, and its inflated size.
+    Deflated {
+        at: u64,
+        body: Vec<u8>,
+        uncompressed: usize,
+    },
+}
+
+/// A top-level object read ahead, waiting for the stream.
+#[derive(Debug)]
+enum Ahead {
+    Bytes(Vec<u8>),
+    /// Given to the second thread: the container at `at` in the file.
+    Inflating {
+        at: u64,
+    },
+    /// What reading the file came to: the end of the reading.
+    Failed(LogError),
 }
 
 impl<R: Read> BlfReader<R> {
@@ -206,7 +241,33 @@ impl<R: Read> BlfReader<R> {
             bad: 0,
             done: false,
             file_done: false,
+            ahead: std::thread::available_parallelism().is_ok_and(|n| n.get() > 1),
+            inflater: None,
+            queue: VecDeque::new(),
         })
+    }
+
+    /// Return the reader inflating every container on the thread that
+    /// reads it.
+    ///
+    /// By default, on a machine with more than one core, a second thread
+    /// inflates the next containers (up to three ahead) while the reading
+    /// thread reads the objects of the one before; the records, errors
+    /// included, are the same and in the same order either way
+    /// (docs/formats.md#blf). Where no thread can be started, the reader
+    /// inflates on its own thread.
+    #[must_use]
+    pub fn on_one_thread(mut self) -> Self {
+        self.ahead = false;
+        self
+    }
+
+    /// Inflate ahead on a second thread even on a machine with one core
+    /// (the tests hold both ways to each other).
+    #[cfg(test)]
+    fn ahead_always(mut self) -> Self {
+        self.ahead = true;
+        self
     }
 
     /// The measurement's start time from the file header (UTC).
@@ -220,7 +281,7 @@ impl<R: Read> BlfReader<R> {
     /// of the file.
     fn fill(&mut self, need: usize) -> Result<bool, LogError> {
         while self.stream.len() - self.pos < need {
-            if self.file_done {
+            if self.file_done && self.queue.is_empty() {
                 return Ok(false);
             }
             // Drop what was read.
@@ -229,20 +290,119 @@ impl<R: Read> BlfReader<R> {
                 self.stream_base += self.pos as u64;
                 self.pos = 0;
             }
-            self.read_top_level()?;
+            if self.ahead {
+                self.next_ahead()?;
+                continue;
+            }
+            match self.read_top_level()? {
+                None => self.file_done = true,
+                Some(TopLevel::Bytes(bytes)) => self.stream.extend_from_slice(&bytes),
+                Some(TopLevel::Deflated {
+                    at,
+                    body,
+                    uncompressed,
+                }) => {
+                    let data = body.get(CONTAINER_HEADER_LEN..).unwrap_or_default();
+                    if !inflate::append(data, uncompressed, &mut self.stream) {
+                        return Err(fail(at, BinaryError::Decompression));
+                    }
+                }
+            }
         }
         Ok(true)
     }
 
-    /// Read one top-level object: a container's data goes to the stream, as
-    /// does any other object (whole, as it stands in the file).
-    fn read_top_level(&mut self) -> Result<(), LogError> {
+    /// Read ahead up to [`inflate::AHEAD`] top-level objects, compressed
+    /// containers handed to the second thread, and add the first to the
+    /// stream.
+    fn next_ahead(&mut self) -> Result<(), LogError> {
+        while !self.file_done && self.queue.len() < inflate::AHEAD {
+            let next = match self.read_top_level() {
+                Ok(None) => {
+                    self.file_done = true;
+                    break;
+                }
+                Ok(Some(next)) => next,
+                // Said after the objects before it, as on one thread.
+                Err(e) => {
+                    self.file_done = true;
+                    self.queue.push_back(Ahead::Failed(e));
+                    break;
+                }
+            };
+            let ahead = match next {
+                TopLevel::Bytes(bytes) => Ahead::Bytes(bytes),
+                TopLevel::Deflated {
+                    at,
+                    body,
+                    uncompressed,
+                } => {
+                    if self.inflater.is_none() {
+                        self.inflater = inflate::Inflater::start();
+                    }
+                    match &mut self.inflater {
+                        Some(inflater) => {
+                            if inflater.send(body, CONTAINER_HEADER_LEN, uncompressed) {
+                                Ahead::Inflating { at }
+                            } else {
+                                Ahead::Failed(lost_thread(at))
+                            }
+                        }
+                        None => {
+                            // No second thread here: inflate on this one.
+                            let data = body.get(CONTAINER_HEADER_LEN..).unwrap_or_default();
+                            let mut out = Vec::new();
+                            if inflate::inflate(data, uncompressed, &mut out) {
+                                Ahead::Bytes(out)
+                            } else {
+                                Ahead::Failed(fail(at, BinaryError::Decompression))
+                            }
+                        }
+                    }
+                }
+            };
+            self.queue.push_back(ahead);
+        }
+        match self.queue.pop_front() {
+            None => Ok(()),
+            Some(Ahead::Bytes(bytes)) => {
+                self.stream.extend_from_slice(&bytes);
+                Ok(())
+            }
+            Some(Ahead::Failed(e)) => {
+                self.queue.clear();
+                Err(e)
+            }
+            Some(Ahead::Inflating { at }) => {
+                let inflater = self.inflater.as_mut().ok_or_else(|| lost_thread(at))?;
+                match inflater.next() {
+                    Ok(Some(bytes)) => {
+                        self.stream.extend_from_slice(&bytes);
+                        inflater.recycle(bytes);
+                        Ok(())
+                    }
+                    Ok(None) => {
+                        self.queue.clear();
+                        Err(fail(at, BinaryError::Decompression))
+                    }
+                    Err(_) => {
+                        self.queue.clear();
+                        Err(lost_thread(at))
+                    }
+                }
+            }
+        }
+    }
+
+    /// Read one top-level object: a container's data for the stream, or
+    /// any other object (whole, as it stands in the file); `None` at the
+    /// end of the file.
+    fn read_top_level(&mut self) -> Result<Option<TopLevel>, LogError> {
         let at = self.file_offset;
         let mut header = [0u8; BASE_HEADER_LEN];
         let got = read_full(&mut self.reader, &mut header)?;
         if got == 0 {
-            self.file_done = true;
-            return Ok(());
+            return Ok(None);
         }
         if got < BASE_HEADER_LEN {
             return Err(fail(
@@ -299,9 +459,10 @@ impl<R: Read> BlfReader<R> {
         self.file_offset = at + size as u64 + got_pad as u64;
         if kind != object::LOG_CONTAINER {
             // An object outside any container: into the stream as it is.
-            self.stream.extend_from_slice(&header);
-            self.stream.extend_from_slice(&body);
-            return Ok(());
+            let mut whole = Vec::with_capacity(size);
+            whole.extend_from_slice(&header);
+            whole.extend_from_slice(&body);
+            return Ok(Some(TopLevel::Bytes(whole)));
         }
         if body.len() < CONTAINER_HEADER_LEN {
             return Err(fail(
@@ -322,35 +483,23 @@ impl<R: Read> BlfReader<R> {
                 },
             ));
         }
-        let data = body.get(CONTAINER_HEADER_LEN..).unwrap_or_default();
         match method {
-            0 => self.stream.extend_from_slice(data),
-            2 => {
-                let before = self.stream.len();
-                self.stream.reserve(uncompressed);
-                let mut inflater = flate2::Decompress::new(true);
-                let status = inflater.decompress_vec(
-                    data,
-                    &mut self.stream,
-                    flate2::FlushDecompress::Finish,
-                );
-                let produced = self.stream.len() - before;
-                let whole = matches!(status, Ok(flate2::Status::StreamEnd));
-                if !whole || produced != uncompressed {
-                    self.stream.truncate(before);
-                    return Err(fail(at, BinaryError::Decompression));
-                }
+            0 => {
+                body.drain(..CONTAINER_HEADER_LEN);
+                Ok(Some(TopLevel::Bytes(body)))
             }
-            other => {
-                return Err(fail(
-                    at + BASE_HEADER_LEN as u64,
-                    BinaryError::UnsupportedCompression {
-                        method: u32::from(other),
-                    },
-                ))
-            }
+            2 => Ok(Some(TopLevel::Deflated {
+                at,
+                body,
+                uncompressed,
+            })),
+            other => Err(fail(
+                at + BASE_HEADER_LEN as u64,
+                BinaryError::UnsupportedCompression {
+                    method: u32::from(other),
+                },
+            )),
         }
-        Ok(())
     }
 
     /// The next object in the stream: `None` at the end.
@@ -753,6 +902,14 @@ fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
 }
 
 /// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+/// The error when the second thread stopped before giving back the
+/// container at `at` (it does not, unless the system takes it away).
+fn lost_thread(at: u64) -> LogError {
+    LogError::from(io::Error::other(format!(
+        "the thread inflating BLF containers stopped before the container at byte {at}"
+    )))
+}
+
 fn fail(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,

@@ -2,9 +2,23 @@ use super::writer::{can_fd_message, can_message, container, file_header, object,
 use super::*;
 use crate::can::FrameType;
 
-fn read_all(file: &[u8]) -> (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64) {
+type ReadAll = (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64);
+
+/// Read `file` whole, with the containers inflated on a second thread and
+/// on the reading thread: the records, errors included, must be the same.
+fn read_all(file: &[u8]) -> ReadAll {
+    let ahead = read_all_with(file, |r| r.ahead_always());
+    let one = read_all_with(file, BlfReader::on_one_thread);
+    assert_eq!(ahead, one, "a second thread or one");
+    one
+}
+
+fn read_all_with<'f>(
+    file: &'f [u8],
+    how: impl FnOnce(BlfReader<&'f [u8]>) -> BlfReader<&'f [u8]>,
+) -> ReadAll {
     let mut reader = match BlfReader::new(file) {
-        Ok(reader) => reader,
+        Ok(reader) => how(reader),
         Err(e) => return (Vec::new(), Some(binary_error(e)), 0),
     };
     let mut frames = Vec::new();
@@ -294,6 +308,37 @@ mod proptests {
         fn any_container_content(bytes in proptest::collection::vec(any::<u8>(), 0..600), compress in any::<bool>()) {
             let mut file = file_header(2023, 1, 1, 0, 0, 0, 0);
             file.extend(container(&bytes, compress));
+            let _ = read_all(&file);
+        }
+
+        /// Many containers, one byte of the file changed: the same records
+        /// and the same error, inflated ahead or not (read_all).
+        #[test]
+        fn a_damaged_byte_among_many_containers(
+            frames in 1usize..200,
+            per_container in 1usize..40,
+            at in any::<proptest::sample::Index>(),
+            byte in any::<u8>(),
+        ) {
+            let mut file = file_header(2023, 1, 1, 0, 0, 0, 0);
+            let objects: Vec<Vec<u8>> = (0..frames)
+                .map(|i| {
+                    let data = [i as u8; 8];
+                    object(&Object {
+                        kind: object::CAN_MESSAGE,
+                        nanos: i as u64 * 1000,
+                        body: can_message(1, 0, 8, 0x181, &data),
+                    })
+                })
+                .collect();
+            for (i, chunk) in objects.chunks(per_container).enumerate() {
+                file.extend(container(&chunk.concat(), i % 3 != 0));
+            }
+            let (read, error, _) = read_all(&file);
+            prop_assert_eq!(read.len(), frames);
+            prop_assert_eq!(error, None);
+            let at = 144 + at.index(file.len() - 144);
+            file[at] = byte;
             let _ = read_all(&file);
         }
 
