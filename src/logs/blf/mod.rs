@@ -5,8 +5,11 @@
 //! time) followed by objects, each behind a `LOBJ` header; the objects that
 //! matter sit in `LOG_CONTAINER` objects whose data is zlib-compressed (or
 //! stored), and an object may continue from one container into the next.
-//! [`BlfReader`] streams them: one container inflated at a time, memory
-//! bounded by [`MAX_RECORD_LEN`] whatever the file claims.
+//! [`BlfReader`] streams them, memory bounded by [`MAX_RECORD_LEN`]
+//! whatever the file claims: on a machine with more than one core, a
+//! second thread inflates the next containers (up to three ahead) while
+//! the objects of the one before are read (docs/formats.md#blf;
+//! [`BlfReader::on_one_thread`] to inflate on the reading thread).
 //!
 //! | object | type | read as |
 //! |---|---|---|
