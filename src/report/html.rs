@@ -500,16 +500,7 @@ impl Report {
                 // last one kept before them (docs/summary.md#lists).
                 let omitted = |list: &mut Vec<Finding>, kind: MarkKind, n: u64, before: u64| {
                     let at = Self::at_of(rows, kind, before);
-                    push(
-                        list,
-                        at,
-                        format!(
-                            "… and {n} more ({}) after line {before}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
-                            kind.words(),
-                            Listed::<u64>::FIRST,
-                            Listed::<u64>::LAST
-                        ),
-                    );
+                    push(list, at, omitted_words(kind, n, before));
                 };
                 for item in n
                     .cia402
@@ -650,26 +641,15 @@ impl Report {
                     (MarkKind::ErrorPassive, &b.error_passive),
                 ] {
                     for item in items(list) {
-                        let line = match item {
-                            Item::Kept(&line) => line,
-                            Item::Omitted(more, &last) => {
-                                let at = Self::at_of(rows, kind, last);
-                                bus_errors.push(Finding {
-                                    key: (axis.key(at), last),
-                                    line: last,
-                                    iface: iface_attr(&b.bus),
-                                    node: None,
-                                    text: format!(
-                                        "<b>{}bus {}</b> … and {more} more ({}) after line {last}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
-                                        esc(&prefix),
-                                        esc(&b.bus.to_string()),
-                                        kind.words(),
-                                        Listed::<u64>::FIRST,
-                                        Listed::<u64>::LAST
-                                    ),
-                                });
-                                continue;
+                        let (line, text) = match item {
+                            Item::Kept(&line) => {
+                                let at = Self::at_of(rows, kind, line);
+                                (
+                                    line,
+                                    format!("{} at line {line} ({})", kind.words(), axis.when(at)),
+                                )
                             }
+                            Item::Omitted(more, &last) => (last, omitted_words(kind, more, last)),
                         };
                         let at = Self::at_of(rows, kind, line);
                         bus_errors.push(Finding {
@@ -678,11 +658,9 @@ impl Report {
                             iface: iface_attr(&b.bus),
                             node: None,
                             text: format!(
-                                "<b>{}bus {}</b> {} at line {line} ({})",
+                                "<b>{}bus {}</b> {text}",
                                 esc(&prefix),
                                 esc(&b.bus.to_string()),
-                                kind.words(),
-                                axis.when(at)
                             ),
                         });
                     }
@@ -995,6 +973,17 @@ fn lines<T: std::fmt::Display>(list: &[T]) -> String {
         let _ = write!(out, " … ({} more)", list.len() - 20);
     }
     out
+}
+
+/// A finding in place of the events a summary list omitted: how many of
+/// `kind`, after the line of the last one it kept (docs/summary.md#lists).
+fn omitted_words(kind: MarkKind, n: u64, before: u64) -> String {
+    format!(
+        "… and {n} more ({}) after line {before}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
+        kind.words(),
+        Listed::<u64>::FIRST,
+        Listed::<u64>::LAST
+    )
 }
 
 /// The lines of a summary list, with how many it omitted between its
