@@ -100,6 +100,7 @@ impl<'a> Canonical<'a> {
 /// A frame line without its data bytes, which the parser leaves where its
 /// caller keeps them (`lines::next_head`): the reader's line, whose record is
 /// built from the bytes where they are.
+#[cfg(feature = "std")]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Head<'a> {
     pub(super) timestamp: Option<Timestamp>,
@@ -112,10 +113,10 @@ pub(crate) struct Head<'a> {
     pub(super) len: u8,
 }
 
+#[cfg(feature = "std")]
 impl Head<'_> {
     /// The frame with its data `data`, its interface named `iface` (the
     /// reader's copy of the name, which outlives the line).
-    #[cfg(feature = "std")]
     #[inline(always)]
     pub(super) fn into_log_frame_with<'n>(
         self,
@@ -131,6 +132,7 @@ impl Head<'_> {
     }
 }
 
+#[cfg(feature = "std")]
 impl<'a> Canonical<'a> {
     /// The frame line without its data.
     #[inline(always)]
@@ -146,6 +148,7 @@ impl<'a> Canonical<'a> {
     }
 }
 
+#[cfg(feature = "std")]
 impl<'a> Parsed<'a> {
     /// The frame line without its data, which is written into `data`.
     #[inline(always)]
