@@ -12,7 +12,7 @@ use std::thread::JoinHandle;
 use std::vec::Vec;
 
 /// Containers sent ahead to the second thread: one being inflated, the
-/// next ones waiting. Each holds at most `MAX_RECORD_LEN` (64 MiB) of
+/// next ones waiting. Each holds at most `MAX_RECORD_LEN` (16 MiB) of
 /// compressed and as much inflated data; a writer's containers are far
 /// smaller (python-can: 128 KiB inflated).
 pub(super) const AHEAD: usize = 3;
