@@ -9,7 +9,7 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, is_space, AscParser};
+use super::{fd_frame, hex, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
 use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
@@ -99,7 +99,7 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     // Message duration and bit count, then the flags.
     words.next()?;
     words.next()?;
-    let flags = hex_number(words.next()?)?;
+    let flags = hex(words.next()?)?;
     let frame = fd_frame(id, dlc, data.get(..len)?, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
 }
@@ -120,19 +120,6 @@ fn channel(word: &[u8]) -> Option<u16> {
         value = value * 10 + u32::from(d);
     }
     u16::try_from(value).ok().filter(|&n| n > 0)
-}
-
-/// 1 to 8 hex digits.
-#[inline(always)]
-fn hex_number(word: &[u8]) -> Option<u32> {
-    if word.is_empty() || word.len() > 8 {
-        return None;
-    }
-    let mut value = 0u32;
-    for &b in word {
-        value = value << 4 | u32::from(hex_value(b)?);
-    }
-    Some(value)
 }
 
 /// The white-space separated words of a line, read in order.
@@ -225,8 +212,8 @@ impl<'l> Words<'l> {
     fn id(&mut self) -> Option<CanId> {
         let word = self.next()?;
         match word.split_last() {
-            Some((b'x' | b'X', digits)) => CanId::extended(hex_number(digits)?),
-            _ => CanId::standard(hex_number(word)?),
+            Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
+            _ => CanId::standard(hex(word)?),
         }
     }
 

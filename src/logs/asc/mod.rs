@@ -773,6 +773,8 @@ fn decimal(field: &[u8], max: u64) -> Option<u64> {
     (value <= max).then_some(value)
 }
 
+/// 1 to 8 hex digits (an identifier, CAN FD flags).
+#[inline(always)]
 fn hex(field: &[u8]) -> Option<u32> {
     if field.is_empty() || field.len() > 8 {
         return None;
