@@ -378,7 +378,10 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) = self.sdo_frame(position, frame, node, profile);
+                let (step, cia402) =
+                    self.sdo_frame(position, frame, node, profile, |step, cia402| {
+                        (step, cia402)
+                    });
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -398,20 +401,22 @@ impl Decoder {
     /// profile is `profile`: the SDO step and the CiA 402 reading, without
     /// the rest of a [`Decoded`] (what the [summary](crate::summary)
     /// reads, `Summarizer::add_frame_from`).
-    #[inline]
-    pub(crate) fn sdo_frame<'d>(
+    /// The step and the reading go to `then`.
+    #[inline(always)]
+    pub(crate) fn sdo_frame<'d, R>(
         &'d mut self,
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
         profile: Profile,
-    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
+        then: impl FnOnce(SdoStep<'d>, Option<Cia402Reading>) -> R,
+    ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
         } else {
             SdoParty::Client
         };
-        self.sdo(frame, node, sender, position, profile)
+        self.sdo(frame, node, sender, position, profile, then)
     }
 
     /// [`decode`](Self::decode) for a data frame that
@@ -468,15 +473,19 @@ impl Decoder {
     /// here on (docs/canopen.md#pdo-mappings), an upload of 1000h can make the
     /// node a drive, and an expedited transfer of 6040h/6041h/6060h/6061h is
     /// read as CiA 402.
-    #[inline]
-    fn sdo<'d>(
+    ///
+    /// The step and the reading go to `then`, which the caller inlines:
+    /// the summary reads the step where it was made, without a copy.
+    #[inline(always)]
+    fn sdo<'d, R>(
         &'d mut self,
         frame: &'d LogFrame<'d>,
         node: NodeId,
         sender: SdoParty,
         position: u64,
         profile: Profile,
-    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
+        then: impl FnOnce(SdoStep<'d>, Option<Cia402Reading>) -> R,
+    ) -> R {
         let at = self.bus(frame.iface);
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
@@ -512,7 +521,7 @@ impl Decoder {
             }),
             names,
         };
-        (step, cia402)
+        then(step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,

@@ -473,8 +473,9 @@ impl Summarizer {
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
                 let profile = decoder.config().profiles().of(node);
-                let (step, cia402) = decoder.sdo_frame(position, log, n, profile);
-                self.add_classified(position, log, kind, node, Some(&step), cia402, |_| {});
+                decoder.sdo_frame(position, log, n, profile, |step, cia402| {
+                    self.add_classified(position, log, kind, node, Some(&step), cia402, |_| {});
+                });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let cia402 = decoder.pdo_frame(log).and_then(|(_, cia402)| cia402);

@@ -190,15 +190,11 @@ impl Latencies {
 
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
+    #[inline]
     pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) -> Added {
-        let mut added = Added::default();
         let s = &mut self.summary;
-        if step.sender == SdoParty::Client {
-            s.requests += 1;
-        }
-        if step.started {
-            s.transfers += 1;
-        }
+        s.requests += u64::from(step.sender == SdoParty::Client);
+        s.transfers += u64::from(step.started);
         if let Some(latency) = step.latency {
             self.latencies
                 .push(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
@@ -213,29 +209,44 @@ impl SdoStats {
             _ => None,
         };
         if let Some((multiplexer, code, by)) = abort {
-            let multiplexer = match step.ended {
-                Some(ended) if multiplexer == ObjectAddress::default() => {
-                    ended.transfer.multiplexer
-                }
-                _ => multiplexer,
-            };
-            s.aborts.push(SdoAbort {
-                line,
-                multiplexer,
-                object: step.names.name(multiplexer.index).map(str::to_owned),
-                code,
-                by,
-            });
-            added.abort = true;
+            self.abort(step, line, multiplexer, code, by);
         }
-        if let Some(ended) = step.ended {
-            added.ended = self.ended(&ended.transfer);
+        let ended = match &step.ended {
+            Some(ended) => self.ended(&ended.transfer),
+            None => false,
+        };
+        Added {
+            abort: abort.is_some(),
+            ended,
         }
-        added
+    }
+
+    /// An abort: recorded with the object's name.
+    #[inline(never)]
+    fn abort(
+        &mut self,
+        step: &SdoStep<'_>,
+        line: u64,
+        multiplexer: ObjectAddress,
+        code: SdoAbortCode,
+        by: SdoParty,
+    ) {
+        let multiplexer = match step.ended {
+            Some(ended) if multiplexer == ObjectAddress::default() => ended.transfer.multiplexer,
+            _ => multiplexer,
+        };
+        self.summary.aborts.push(SdoAbort {
+            line,
+            multiplexer,
+            object: step.names.name(multiplexer.index).map(str::to_owned),
+            code,
+            by,
+        });
     }
 
     /// A transfer that ended (at a frame, or left open at the end of the
     /// input); whether it is recorded as broken or unanswered.
+    #[inline]
     pub(crate) fn ended(&mut self, transfer: &SdoTransfer) -> bool {
         match transfer.outcome {
             SdoOutcome::Broken(_) => self.summary.broken.push(transfer.start_position),
