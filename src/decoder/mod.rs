@@ -380,7 +380,7 @@ impl Decoder {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
                 let (step, cia402) =
                     self.sdo_frame(position, frame, node, profile, |step, cia402| {
-                        (step, cia402)
+                        (*step, cia402)
                     });
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
@@ -409,7 +409,7 @@ impl Decoder {
         frame: &'d LogFrame<'d>,
         node: NodeId,
         profile: Profile,
-        then: impl FnOnce(SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
@@ -484,7 +484,7 @@ impl Decoder {
         sender: SdoParty,
         position: u64,
         profile: Profile,
-        then: impl FnOnce(SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
         let bytes = frame.frame.data();
@@ -521,7 +521,7 @@ impl Decoder {
             }),
             names,
         };
-        then(step, cia402)
+        then(&step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,

@@ -474,7 +474,7 @@ impl Summarizer {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
                 let profile = decoder.config().profiles().of(node);
                 decoder.sdo_frame(position, log, n, profile, |step, cia402| {
-                    self.add_classified(position, log, kind, node, Some(&step), cia402, |_| {});
+                    self.add_classified(position, log, kind, node, Some(step), cia402, |_| {});
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
