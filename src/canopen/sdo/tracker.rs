@@ -600,20 +600,30 @@ impl SdoTracker {
             self.block_segment(&segment, time, step);
             return Ok(SdoMessage::BlockSegment(segment));
         }
-        let message = match sender {
-            SdoParty::Client => SdoRequest::parse(data).map(SdoMessage::Request),
-            SdoParty::Server => SdoResponse::parse(data).map(SdoMessage::Response),
-        };
-        let Ok(message) = message else {
-            self.malformed(time, step);
-            return message;
-        };
-        match message {
-            SdoMessage::Request(request) => self.request(&request, time, position, step),
-            SdoMessage::Response(response) => self.response(&response, time, position, step),
-            SdoMessage::BlockSegment(_) => {}
+        // Each side's frame read and followed in its own arm: the message
+        // is made once, not read back out of a `Result<SdoMessage>`.
+        match sender {
+            SdoParty::Client => match SdoRequest::parse(data) {
+                Ok(request) => {
+                    self.request(&request, time, position, step);
+                    Ok(SdoMessage::Request(request))
+                }
+                Err(e) => {
+                    self.malformed(time, step);
+                    Err(e)
+                }
+            },
+            SdoParty::Server => match SdoResponse::parse(data) {
+                Ok(response) => {
+                    self.response(&response, time, position, step);
+                    Ok(SdoMessage::Response(response))
+                }
+                Err(e) => {
+                    self.malformed(time, step);
+                    Err(e)
+                }
+            },
         }
-        Ok(message)
     }
 
     /// A frame that cannot be read breaks the open transfer.
