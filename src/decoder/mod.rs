@@ -504,9 +504,19 @@ impl Decoder {
             (Some(transfer), Some(value)) => self.learn(at, node, transfer, value),
             _ => None,
         };
-        let state = self.buses.get(at).nodes[usize::from(node.get())]
-            .as_ref()
-            .expect("made above");
+        // The node's state again (learning may have changed the bus) for
+        // the ended transfer's data, only when a transfer ended.
+        let ended = match fed.ended {
+            Some(transfer) => Some(EndedTransfer {
+                transfer,
+                data: self.buses.get(at).nodes[usize::from(node.get())]
+                    .as_ref()
+                    .expect("made above")
+                    .sdo
+                    .finished(),
+            }),
+            None => None,
+        };
         let names = object_names(&self.config, node, profile);
         let step = SdoStep {
             node,
@@ -515,10 +525,7 @@ impl Decoder {
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended: fed.ended.map(|transfer| EndedTransfer {
-                transfer,
-                data: state.sdo.finished(),
-            }),
+            ended,
             names,
         };
         then(&step, cia402)
