@@ -378,10 +378,7 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) =
-                    self.sdo_frame(position, frame, node, profile, |step, cia402| {
-                        (*step, cia402)
-                    });
+                let (step, cia402) = self.sdo_owned(position, frame, node, profile);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -417,6 +414,22 @@ impl Decoder {
             SdoParty::Client
         };
         self.sdo(frame, node, sender, position, profile, then)
+    }
+
+    /// [`sdo_frame`](Self::sdo_frame) for [`decode`](Self::decode), out of
+    /// line: `decode`'s other paths (PDOs, every other kind) stay as small
+    /// as they were before the summary's inlined SDO path.
+    #[inline(never)]
+    fn sdo_owned<'d>(
+        &'d mut self,
+        position: u64,
+        frame: &'d LogFrame<'d>,
+        node: NodeId,
+        profile: Profile,
+    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
+        self.sdo_frame(position, frame, node, profile, |step, cia402| {
+            (*step, cia402)
+        })
     }
 
     /// [`decode`](Self::decode) for a data frame that
