@@ -58,6 +58,7 @@ pub use pdo::{PdoMap, PdoReading};
 pub use sdo::{EndedTransfer, SdoStep};
 
 use crate::can::{Iface, LogFrame};
+use crate::canopen::sdo::tracker::Step;
 use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
@@ -377,18 +378,12 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let sender = if can.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
-                    SdoParty::Server
-                } else {
-                    SdoParty::Client
-                };
-                let (step, cia402) = self.sdo(frame, node, sender, position, profile);
+                let (step, cia402) = self.sdo_owned(position, frame, node, profile);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
             (MessageKind::Pdo, Some(_)) if !can.is_rtr() => {
-                let id = can.id().raw() as u16;
-                if let Some((reading, cia402)) = self.pdo(frame.iface, id, can.data()) {
+                if let Some((reading, cia402)) = self.pdo_frame(frame) {
                     decoded.pdo = Some(reading);
                     decoded.cia402 = cia402;
                 }
@@ -396,6 +391,57 @@ impl Decoder {
             _ => {}
         }
         decoded
+    }
+
+    /// [`decode`](Self::decode) for a data frame that
+    /// [`MessageKind::classify`] makes an SDO frame of `node`, whose
+    /// profile is `profile`: the SDO step and the CiA 402 reading, without
+    /// the rest of a [`Decoded`] (what the [summary](crate::summary)
+    /// reads, `Summarizer::add_frame_from`).
+    /// The step and the reading go to `then`.
+    #[inline(always)]
+    pub(crate) fn sdo_frame<'d, R>(
+        &'d mut self,
+        position: u64,
+        frame: &'d LogFrame<'d>,
+        node: NodeId,
+        profile: Profile,
+        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+    ) -> R {
+        let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
+            SdoParty::Server
+        } else {
+            SdoParty::Client
+        };
+        self.sdo(frame, node, sender, position, profile, then)
+    }
+
+    /// [`sdo_frame`](Self::sdo_frame) for [`decode`](Self::decode), out of
+    /// line: `decode`'s other paths (PDOs, every other kind) stay as small
+    /// as they were before the summary's inlined SDO path.
+    #[inline(never)]
+    fn sdo_owned<'d>(
+        &'d mut self,
+        position: u64,
+        frame: &'d LogFrame<'d>,
+        node: NodeId,
+        profile: Profile,
+    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
+        self.sdo_frame(position, frame, node, profile, |step, cia402| {
+            (*step, cia402)
+        })
+    }
+
+    /// [`decode`](Self::decode) for a data frame that
+    /// [`MessageKind::classify`] makes a PDO: its reading and CiA 402
+    /// reading, when a mapping is in force for its COB-ID.
+    #[inline]
+    pub(crate) fn pdo_frame<'d>(
+        &'d mut self,
+        frame: &LogFrame<'_>,
+    ) -> Option<(PdoReading<'d>, Option<Cia402Reading>)> {
+        let can = &frame.frame;
+        self.pdo(frame.iface, can.id().raw() as u16, can.data())
     }
 
     /// The index of the bus of `iface`; a new bus starts with the nodes'
@@ -440,46 +486,62 @@ impl Decoder {
     /// here on (docs/canopen.md#pdo-mappings), an upload of 1000h can make the
     /// node a drive, and an expedited transfer of 6040h/6041h/6060h/6061h is
     /// read as CiA 402.
-    fn sdo<'d>(
+    ///
+    /// The step and the reading go to `then`, which the caller inlines:
+    /// the summary reads the step where it was made, without a copy.
+    #[inline(always)]
+    fn sdo<'d, R>(
         &'d mut self,
         frame: &'d LogFrame<'d>,
         node: NodeId,
         sender: SdoParty,
         position: u64,
         profile: Profile,
-    ) -> (SdoStep<'d>, Option<Cia402Reading>) {
+        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+    ) -> R {
         let at = self.bus(frame.iface);
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
-        let fed = state
+        let mut fed = Step::new();
+        let message = state
             .sdo
-            .feed(sender, bytes, frame.timestamp, position, cap);
-        let learned = match fed.ended {
+            .feed(sender, bytes, frame.timestamp, position, cap, &mut fed);
+        let value = match &fed.ended {
             Some(transfer) if transfer.outcome == SdoOutcome::Completed => {
-                value_of(state.sdo.finished()).map(|value| (transfer, value))
+                value_of(state.sdo.finished())
             }
             _ => None,
         };
-        let cia402 = learned.and_then(|(transfer, value)| self.learn(at, node, &transfer, value));
-        let state = self.buses.get(at).nodes[usize::from(node.get())]
-            .as_ref()
-            .expect("made above");
+        let cia402 = match (&fed.ended, value) {
+            (Some(transfer), Some(value)) => self.learn(at, node, transfer, value),
+            _ => None,
+        };
+        // The node's state again (learning may have changed the bus) for
+        // the ended transfer's data, only when a transfer ended.
+        let ended = match fed.ended {
+            Some(transfer) => Some(EndedTransfer {
+                transfer,
+                data: self.buses.get(at).nodes[usize::from(node.get())]
+                    .as_ref()
+                    .expect("made above")
+                    .sdo
+                    .finished(),
+            }),
+            None => None,
+        };
         let names = object_names(&self.config, node, profile);
         let step = SdoStep {
             node,
             sender,
-            message: fed.message,
+            message,
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended: fed.ended.map(|transfer| EndedTransfer {
-                transfer,
-                data: state.sdo.finished(),
-            }),
+            ended,
             names,
         };
-        (step, cia402)
+        then(&step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,

@@ -7,6 +7,7 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
+use crate::canopen::sdo::tracker::Step;
 use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
@@ -170,17 +171,11 @@ pub(crate) struct SdoChannel {
     finished: Vec<u8>,
 }
 
-/// What the tracker said of one frame, without the data it borrows.
-pub(crate) struct Fed {
-    pub(crate) message: Result<SdoMessage, Error>,
-    pub(crate) latency: Option<Duration>,
-    pub(crate) started: bool,
-    pub(crate) ended: Option<SdoTransfer>,
-}
-
 impl SdoChannel {
-    /// Feed one frame (`position`, time); keep at most `cap` data bytes of
-    /// a transfer.
+    /// Feed one frame (`position`, time), what it is in its transfer
+    /// written to `step` (made with [`Step::new`]); keep at most `cap` data
+    /// bytes of a transfer.
+    #[inline]
     pub(crate) fn feed(
         &mut self,
         sender: SdoParty,
@@ -188,33 +183,33 @@ impl SdoChannel {
         ts: Option<Timestamp>,
         position: u64,
         cap: usize,
-    ) -> Fed {
-        let event = self.tracker.feed(sender, bytes, ts, position);
+        step: &mut Step,
+    ) -> Result<SdoMessage, Error> {
+        let message = self.tracker.feed_step(sender, bytes, ts, position, step);
+        let chunk = self.tracker.chunk(step, bytes);
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
-        let chunk_to_new =
-            event.started && event.ended.map_or(true, |t| t.start_position != position);
-        if event.started && event.ended.is_none() {
+        let chunk_to_new = step.started
+            && step
+                .ended
+                .as_ref()
+                .map_or(true, |t| t.start_position != position);
+        if step.started && step.ended.is_none() {
             self.data.clear();
         }
-        if event.ended.is_some() {
+        if step.ended.is_some() {
             if !chunk_to_new {
-                push(&mut self.data, event.chunk, cap);
+                push(&mut self.data, chunk, cap);
             }
             core::mem::swap(&mut self.data, &mut self.finished);
             self.data.clear();
             if chunk_to_new {
-                push(&mut self.data, event.chunk, cap);
+                push(&mut self.data, chunk, cap);
             }
         } else {
-            push(&mut self.data, event.chunk, cap);
+            push(&mut self.data, chunk, cap);
         }
-        Fed {
-            message: event.message,
-            latency: event.latency,
-            started: event.started,
-            ended: event.ended,
-        }
+        message
     }
 
     /// The data of the transfer that ended last.

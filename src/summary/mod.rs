@@ -466,22 +466,22 @@ impl Summarizer {
     /// where the decoder keeps state (see [`add`](Self::add)).
     #[inline]
     pub fn add_frame_from(&mut self, position: u64, log: &LogFrame<'_>, decoder: &mut Decoder) {
+        // What `Decoder::decode` does with the frame, without the parts of
+        // a `Decoded` the summary does not read: it keeps state for SDO and
+        // PDO data frames only, and learns nothing from the others.
         let (kind, node) = MessageKind::classify(&log.frame);
-        if matches!(kind, MessageKind::Sdo | MessageKind::Pdo) {
-            let decoded = decoder.decode(position, log);
-            self.add_classified(
-                position,
-                log,
-                kind,
-                decoded.node,
-                decoded.sdo.as_ref(),
-                decoded.cia402,
-                |_| {},
-            );
-        } else {
-            // The decoder learns nothing from these (`Decoder::decode`
-            // keeps state for SDO and PDO frames only).
-            self.add_classified(position, log, kind, node, None, None, |_| {});
+        match (kind, node) {
+            (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
+                let profile = decoder.config().profiles().of(node);
+                decoder.sdo_frame(position, log, n, profile, |step, cia402| {
+                    self.add_classified(position, log, kind, node, Some(step), cia402, |_| {});
+                });
+            }
+            (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
+                let cia402 = decoder.pdo_frame(log).and_then(|(_, cia402)| cia402);
+                self.add_classified(position, log, kind, node, None, cia402, |_| {});
+            }
+            _ => self.add_classified(position, log, kind, node, None, None, |_| {}),
         }
     }
 

@@ -91,78 +91,87 @@ pub(crate) struct SdoStats {
 /// A channel's latencies in nanoseconds (u64 nanoseconds hold 584 years),
 /// for exact nearest-rank percentiles in memory that grows with the
 /// distinct latencies, not with the responses: each distinct value once,
-/// with its count, in order; new latencies wait in a short buffer that is
-/// sorted and merged in when it fills. A log's times have a resolution
-/// (a microsecond for candump, python-can's float seconds for its BLF
-/// files), so a channel's latencies take far fewer values than it has
-/// responses.
+/// with its count, in an open-addressing table (linear probing, Fibonacci
+/// hashing), sorted only when the statistics are asked for. A log's times
+/// have a resolution (a microsecond for candump, python-can's float
+/// seconds for its BLF files), so a channel's latencies take far fewer
+/// values than it has responses; a response costs one probe or two, where
+/// buffering and merging sorted runs cost a sort per latency.
 #[derive(Debug, Default)]
 struct Latencies {
-    /// Not yet merged, in log order.
-    pending: Vec<u64>,
-    /// The distinct latencies merged so far, ascending.
-    values: Vec<u64>,
-    /// How many times each of `values` was seen.
-    counts: Vec<u64>,
+    /// The slots, a power of two of them (none before the first latency):
+    /// a latency and its count; a count of 0 marks a free slot.
+    slots: Vec<(u64, u64)>,
+    /// The slots in use: the distinct latencies.
+    distinct: usize,
 }
 
 impl Latencies {
-    /// Latencies buffered before a merge: 4 KiB.
-    const PENDING: usize = 512;
+    /// The slots of a channel's first latency: 1 KiB.
+    const FIRST: usize = 64;
 
-    fn push(&mut self, nanos: u64) {
-        if self.pending.len() == Self::PENDING {
-            self.merge();
-        }
-        self.pending.push(nanos);
+    /// The slot where the search for `nanos` starts, among `len` (a power
+    /// of two): the top bits of a Fibonacci hash, so that latencies that
+    /// are multiples of a resolution spread over the table.
+    #[inline]
+    fn home(nanos: u64, len: usize) -> usize {
+        let bits = len.trailing_zeros();
+        (nanos.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (63 - bits) >> 1) as usize
     }
 
-    /// Merge the buffer into the sorted values and counts.
-    fn merge(&mut self) {
-        if self.pending.is_empty() {
-            return;
+    #[inline]
+    fn push(&mut self, nanos: u64) {
+        // At most three slots in four in use: probes stay short.
+        if (self.distinct + 1) * 4 > self.slots.len() * 3 {
+            self.grow();
         }
-        self.pending.sort_unstable();
-        let mut values = Vec::with_capacity(self.values.len() + self.pending.len());
-        let mut counts = Vec::with_capacity(values.capacity());
-        let mut add = |value: u64, count: u64| match values.last() {
-            Some(&last) if last == value => {
-                if let Some(c) = counts.last_mut() {
-                    *c += count;
-                }
+        let mask = self.slots.len() - 1;
+        let mut at = Self::home(nanos, self.slots.len());
+        loop {
+            let slot = &mut self.slots[at];
+            if slot.1 == 0 {
+                *slot = (nanos, 1);
+                self.distinct += 1;
+                return;
             }
-            _ => {
-                values.push(value);
-                counts.push(count);
+            if slot.0 == nanos {
+                slot.1 += 1;
+                return;
             }
-        };
-        let mut old = self.values.iter().zip(&self.counts).peekable();
-        for &new in &self.pending {
-            while let Some((&value, &count)) = old.next_if(|(&value, _)| value <= new) {
-                add(value, count);
-            }
-            add(new, 1);
+            at = (at + 1) & mask;
         }
-        for (&value, &count) in old {
-            add(value, count);
+    }
+
+    /// Double the table (or make the first), every latency moved over.
+    #[cold]
+    fn grow(&mut self) {
+        let len = (self.slots.len() * 2).max(Self::FIRST);
+        let old = core::mem::replace(&mut self.slots, vec![(0, 0); len]);
+        let mask = len - 1;
+        for (value, count) in old.into_iter().filter(|&(_, count)| count > 0) {
+            let mut at = Self::home(value, len);
+            while self.slots[at].1 != 0 {
+                at = (at + 1) & mask;
+            }
+            self.slots[at] = (value, count);
         }
-        values.shrink_to_fit();
-        counts.shrink_to_fit();
-        self.values = values;
-        self.counts = counts;
-        self.pending.clear();
     }
 
     /// Return the nearest-rank statistics (docs/summary.md#sdo): the
     /// smallest latency with at least p of them at or below it.
-    fn stats(mut self) -> Option<LatencyStats> {
-        self.merge();
-        let n: u64 = self.counts.iter().sum();
-        let max = *self.values.last()?;
+    fn stats(self) -> Option<LatencyStats> {
+        let mut sorted: Vec<(u64, u64)> = self
+            .slots
+            .into_iter()
+            .filter(|&(_, count)| count > 0)
+            .collect();
+        sorted.sort_unstable();
+        let n: u64 = sorted.iter().map(|&(_, count)| count).sum();
+        let max = sorted.last()?.0;
         let rank = |p: f64| {
             let r = ((p * n as f64).ceil() as u64).clamp(1, n);
             let mut seen = 0;
-            for (&value, &count) in self.values.iter().zip(&self.counts) {
+            for &(value, count) in &sorted {
                 seen += count;
                 if seen >= r {
                     return Duration::from_nanos(value);
@@ -181,15 +190,11 @@ impl Latencies {
 
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
+    #[inline]
     pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) -> Added {
-        let mut added = Added::default();
         let s = &mut self.summary;
-        if step.sender == SdoParty::Client {
-            s.requests += 1;
-        }
-        if step.started {
-            s.transfers += 1;
-        }
+        s.requests += u64::from(step.sender == SdoParty::Client);
+        s.transfers += u64::from(step.started);
         if let Some(latency) = step.latency {
             self.latencies
                 .push(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
@@ -204,29 +209,44 @@ impl SdoStats {
             _ => None,
         };
         if let Some((multiplexer, code, by)) = abort {
-            let multiplexer = match step.ended {
-                Some(ended) if multiplexer == ObjectAddress::default() => {
-                    ended.transfer.multiplexer
-                }
-                _ => multiplexer,
-            };
-            s.aborts.push(SdoAbort {
-                line,
-                multiplexer,
-                object: step.names.name(multiplexer.index).map(str::to_owned),
-                code,
-                by,
-            });
-            added.abort = true;
+            self.abort(step, line, multiplexer, code, by);
         }
-        if let Some(ended) = step.ended {
-            added.ended = self.ended(&ended.transfer);
+        let ended = match &step.ended {
+            Some(ended) => self.ended(&ended.transfer),
+            None => false,
+        };
+        Added {
+            abort: abort.is_some(),
+            ended,
         }
-        added
+    }
+
+    /// An abort: recorded with the object's name.
+    #[inline(never)]
+    fn abort(
+        &mut self,
+        step: &SdoStep<'_>,
+        line: u64,
+        multiplexer: ObjectAddress,
+        code: SdoAbortCode,
+        by: SdoParty,
+    ) {
+        let multiplexer = match step.ended {
+            Some(ended) if multiplexer == ObjectAddress::default() => ended.transfer.multiplexer,
+            _ => multiplexer,
+        };
+        self.summary.aborts.push(SdoAbort {
+            line,
+            multiplexer,
+            object: step.names.name(multiplexer.index).map(str::to_owned),
+            code,
+            by,
+        });
     }
 
     /// A transfer that ended (at a frame, or left open at the end of the
     /// input); whether it is recorded as broken or unanswered.
+    #[inline]
     pub(crate) fn ended(&mut self, transfer: &SdoTransfer) -> bool {
         match transfer.outcome {
             SdoOutcome::Broken(_) => self.summary.broken.push(transfer.start_position),
@@ -271,7 +291,7 @@ mod tests {
     }
 
     proptest! {
-        /// Whatever the latencies and their order, the merged histogram
+        /// Whatever the latencies and their order, the table of counts
         /// gives exactly the statistics of sorting them all.
         #[test]
         fn the_histogram_is_exact(
@@ -284,7 +304,11 @@ mod tests {
             for &l in &latencies {
                 kept.push(l);
             }
-            prop_assert!(kept.pending.len() <= Latencies::PENDING);
+            let mut distinct = latencies.clone();
+            distinct.sort_unstable();
+            distinct.dedup();
+            prop_assert_eq!(kept.distinct, distinct.len());
+            prop_assert!(kept.distinct * 4 <= kept.slots.len() * 3);
             prop_assert_eq!(kept.stats(), sorted_stats(latencies));
         }
     }
@@ -295,8 +319,11 @@ mod tests {
         for i in 0..100_000u64 {
             kept.push(100_000 + (i * 7919) % 400 * 1000);
         }
-        kept.merge();
-        assert_eq!(kept.values.len(), 400);
-        assert_eq!(kept.counts.iter().sum::<u64>(), 100_000);
+        assert_eq!(kept.distinct, 400);
+        assert_eq!(kept.slots.len(), 1024);
+        assert_eq!(
+            kept.slots.iter().map(|&(_, count)| count).sum::<u64>(),
+            100_000
+        );
     }
 }

@@ -526,24 +526,43 @@ impl SdoTracker {
         time: Option<Timestamp>,
         position: u64,
     ) -> SdoEvent<'a> {
-        let mut step = Step {
-            chunk: Chunk::None,
-            latency: None,
-            ended: None,
-            started: false,
-        };
+        let mut step = Step::new();
         let message = self.step(sender, data, time, position, &mut step);
-        let chunk: &'a [u8] = match step.chunk {
-            Chunk::None => &[],
-            Chunk::Input(range) => data.get(range).unwrap_or(&[]),
-            Chunk::Held(len) => &self.release[..usize::from(len).min(SEGMENT_MAX)],
-        };
+        let chunk = self.chunk(&step, data);
         SdoEvent {
             message,
             chunk,
             latency: step.latency,
             ended: step.ended,
             started: step.started,
+        }
+    }
+
+    /// [`feed`](Self::feed) with what the frame is in its transfer written
+    /// to `step` (made with [`Step::new`]), where the caller keeps it: the
+    /// decoder's channel, which reads the chunk with
+    /// [`chunk`](Self::chunk) and moves the ended transfer once, not through
+    /// an [`SdoEvent`].
+    #[inline]
+    pub(crate) fn feed_step(
+        &mut self,
+        sender: SdoParty,
+        data: &[u8],
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut Step,
+    ) -> Result<SdoMessage, Error> {
+        self.step(sender, data, time, position, step)
+    }
+
+    /// The chunk of `step`, the step of the frame `data` fed last: the
+    /// event's [`chunk`](SdoEvent::chunk).
+    #[inline]
+    pub(crate) fn chunk<'a>(&'a self, step: &Step, data: &'a [u8]) -> &'a [u8] {
+        match &step.chunk {
+            Chunk::None => &[],
+            Chunk::Input(range) => data.get(range.clone()).unwrap_or(&[]),
+            Chunk::Held(len) => &self.release[..usize::from(*len).min(SEGMENT_MAX)],
         }
     }
 
@@ -581,20 +600,30 @@ impl SdoTracker {
             self.block_segment(&segment, time, step);
             return Ok(SdoMessage::BlockSegment(segment));
         }
-        let message = match sender {
-            SdoParty::Client => SdoRequest::parse(data).map(SdoMessage::Request),
-            SdoParty::Server => SdoResponse::parse(data).map(SdoMessage::Response),
-        };
-        let Ok(message) = message else {
-            self.malformed(time, step);
-            return message;
-        };
-        match message {
-            SdoMessage::Request(request) => self.request(&request, time, position, step),
-            SdoMessage::Response(response) => self.response(&response, time, position, step),
-            SdoMessage::BlockSegment(_) => {}
+        // Each side's frame read and followed in its own arm: the message
+        // is made once, not read back out of a `Result<SdoMessage>`.
+        match sender {
+            SdoParty::Client => match SdoRequest::parse(data) {
+                Ok(request) => {
+                    self.request(&request, time, position, step);
+                    Ok(SdoMessage::Request(request))
+                }
+                Err(e) => {
+                    self.malformed(time, step);
+                    Err(e)
+                }
+            },
+            SdoParty::Server => match SdoResponse::parse(data) {
+                Ok(response) => {
+                    self.response(&response, time, position, step);
+                    Ok(SdoMessage::Response(response))
+                }
+                Err(e) => {
+                    self.malformed(time, step);
+                    Err(e)
+                }
+            },
         }
-        Ok(message)
     }
 
     /// A frame that cannot be read breaks the open transfer.
@@ -1104,15 +1133,33 @@ fn stray(response: &SdoResponse) -> (TransferDirection, ObjectAddress) {
 }
 
 /// Where an event's chunk lies.
-enum Chunk {
+pub(crate) enum Chunk {
     None,
     Input(core::ops::Range<usize>),
     Held(u8),
 }
 
-struct Step {
+/// What one frame is in its transfer: an [`SdoEvent`] without its message,
+/// and with its chunk as where it lies ([`SdoTracker::chunk`]).
+pub(crate) struct Step {
     chunk: Chunk,
-    latency: Option<Duration>,
-    ended: Option<SdoTransfer>,
-    started: bool,
+    /// [`SdoEvent::latency`].
+    pub(crate) latency: Option<Duration>,
+    /// [`SdoEvent::ended`].
+    pub(crate) ended: Option<SdoTransfer>,
+    /// [`SdoEvent::started`].
+    pub(crate) started: bool,
+}
+
+impl Step {
+    /// Nothing yet: no chunk, no latency, no transfer started or ended.
+    #[inline]
+    pub(crate) const fn new() -> Self {
+        Step {
+            chunk: Chunk::None,
+            latency: None,
+            ended: None,
+            started: false,
+        }
+    }
 }

@@ -81,9 +81,11 @@ impl SdoInitiateData {
         let n = (command >> 2) & 0b11;
         match (expedited, size_indicated) {
             (true, true) => {
+                // The `len` low bytes kept, the rest zeros: one mask, not
+                // a copy of a variable length (a `memcpy` call).
                 let len = 4 - n;
-                let mut bytes = [0; 4];
-                bytes[..usize::from(len)].copy_from_slice(&data[..usize::from(len)]);
+                let keep = (1_u64 << (8 * u32::from(len))) - 1;
+                let bytes = (u32::from_le_bytes(data) & keep as u32).to_le_bytes();
                 SdoInitiateData::Expedited {
                     bytes,
                     len: Some(len),
@@ -157,11 +159,18 @@ impl SdoSegmentData {
         SEGMENT_MAX as u8 - self.len
     }
 
+    /// Read bytes 1–7 of a segment frame (`segment`, at least 7 bytes),
+    /// `n` of them unused (0..=7): the data, then zeros.
     pub(super) fn read(n: u8, segment: &[u8]) -> Self {
-        let mut bytes = [0; SEGMENT_MAX];
-        bytes.copy_from_slice(&segment[..SEGMENT_MAX]);
+        // The `len` low bytes kept, the rest zeros: one mask on a word,
+        // not a `memset` call of a variable length.
+        let mut word = [0; 8];
+        word[..SEGMENT_MAX].copy_from_slice(&segment[..SEGMENT_MAX]);
         let len = SEGMENT_MAX as u8 - n;
-        bytes[usize::from(len)..].fill(0);
+        let keep = (1_u64 << (8 * u32::from(len))) - 1;
+        let word = (u64::from_le_bytes(word) & keep).to_le_bytes();
+        let mut bytes = [0; SEGMENT_MAX];
+        bytes.copy_from_slice(&word[..SEGMENT_MAX]);
         SdoSegmentData { bytes, len }
     }
 }
@@ -171,5 +180,38 @@ impl core::ops::Deref for SdoSegmentData {
 
     fn deref(&self) -> &[u8] {
         self.as_slice()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The masks keep exactly what copying the data bytes and zeroing
+        /// the rest kept: a segment's `7 − n` bytes, an expedited
+        /// frame's `4 − n`.
+        #[test]
+        fn masks_keep_what_copies_kept(
+            n in 0_u8..=7,
+            segment in proptest::array::uniform7(any::<u8>()),
+            command in any::<u8>(),
+            data in proptest::array::uniform4(any::<u8>()),
+        ) {
+            let len = SEGMENT_MAX - usize::from(n);
+            let mut bytes = [0; SEGMENT_MAX];
+            bytes[..len].copy_from_slice(&segment[..len]);
+            let read = SdoSegmentData::read(n, &segment);
+            prop_assert_eq!(read, SdoSegmentData { bytes, len: len as u8 });
+
+            let read = SdoInitiateData::read(command, data);
+            if command & 0b11 == 0b11 {
+                let len = 4 - ((command >> 2) & 0b11);
+                let mut bytes = [0; 4];
+                bytes[..usize::from(len)].copy_from_slice(&data[..usize::from(len)]);
+                prop_assert_eq!(read, SdoInitiateData::Expedited { bytes, len: Some(len) });
+            }
+        }
     }
 }

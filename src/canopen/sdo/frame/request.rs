@@ -98,6 +98,7 @@ impl SdoRequest {
     ///
     /// [`Error::Length`](crate::Error::Length) for fewer than 8 bytes; [`Error::InvalidValue`](crate::Error::InvalidValue) for
     /// command specifier 7.
+    #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
         let frame = SdoFrame::new_checked(data)?;
         let command = frame.command();

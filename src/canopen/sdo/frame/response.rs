@@ -93,6 +93,7 @@ impl SdoResponse {
     ///
     /// [`Error::Length`](crate::Error::Length) for fewer than 8 bytes; [`Error::InvalidValue`](crate::Error::InvalidValue) for
     /// command specifier 7 and for sub-command 3 of scs 5.
+    #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
         let frame = SdoFrame::new_checked(data)?;
         let command = frame.command();
