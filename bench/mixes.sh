@@ -13,6 +13,10 @@
 #   pcap      decode --summary MIX.pcap  vs  tshark -T fields (the json step's run)
 #   memory    peak resident memory (/usr/bin/time -v) of decode --summary and
 #             decode --json at 100 000 and 1 000 000 frames
+#   floor     where decode --summary's time goes, in one hyperfine session:
+#             `cat MIX.log` (the read from the page cache), the library's
+#             reading and parsing alone (examples/read_log.rs), and
+#             decode --summary (not a peer figure: printed as a second table)
 #
 # Ours runs BENCH_RUNS times (after a warm-up), the peers PEER_RUNS times
 # (they take seconds to minutes); with MOTIONWIRE_BEFORE set to another build
@@ -25,7 +29,9 @@
 # Environment: BENCH_DIR (default /tmp/motionwire-bench/mixes), BENCH_FRAMES
 # (default 1000000), BENCH_RUNS (default 10), PEER_RUNS (default 1),
 # MOTIONWIRE (default target/release/motionwire), MOTIONWIRE_BEFORE
-# (optional), STEPS (default "summary json asc blf pcap memory").
+# (optional), READ_LOG (default target/release/examples/read_log: cargo build
+# --release --example read_log --features logs), STEPS (default "summary json
+# asc blf pcap memory floor").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,7 +41,8 @@ RUNS=${BENCH_RUNS:-10}
 PEER_RUNS=${PEER_RUNS:-1}
 MOTIONWIRE=${MOTIONWIRE:-target/release/motionwire}
 MOTIONWIRE_BEFORE=${MOTIONWIRE_BEFORE:-}
-STEPS=${STEPS:-summary json asc blf pcap memory}
+READ_LOG=${READ_LOG:-target/release/examples/read_log}
+STEPS=${STEPS:-summary json asc blf pcap memory floor}
 RESULTS=bench/results/mixes
 # The fields of bench/run.sh: those that match decode --json's keys.
 TSHARK=(tshark -d can.subdissector,canopen -T fields -E separator=, -e frame.number
@@ -116,6 +123,12 @@ run_mix() {
                 # The peer is the json step's tshark run.
                 ours "$mix-pcap" "$base.pcap" "decode --summary" ;;
             memory) memory "$mix" ;;
+            floor)
+                load "$mix-floor"
+                hyperfine --warmup 2 --runs "$RUNS" --export-json "$RESULTS/$mix-floor.json" \
+                    -n "cat" "cat $base.log" \
+                    -n "read and parse (examples/read_log)" "$READ_LOG $base.log" \
+                    -n "decode --summary" "$MOTIONWIRE decode --summary $base.log" >/dev/null ;;
             *) echo "unknown step: $s" >&2; exit 2 ;;
         esac
     done
@@ -165,6 +178,16 @@ for mix in mixes:
         else:
             pcell, rcell = "—", "—"
         print(f"| {mix} | {what} | ≥ {goal}× | {cell} | {pcell} | {rcell} | {before} | {load} |")
+floors = [m for m in mixes if os.path.exists(os.path.join(results, m + "-floor.json"))]
+if floors:
+    print()
+    print("| mix | `cat` | reading and parsing | `decode --summary` | the summary beyond the parse | load |")
+    print("|---|---|---|---|---|---|")
+for mix in floors:
+    runs, load = read(f"{mix}-floor")
+    cat, parse, summary = (r["mean"] * 1e3 for r in runs)
+    print(f"| {mix} | {cat:.1f} ms | {parse:.1f} ms | {summary:.1f} ms "
+          f"| {summary - parse:.1f} ms ({(summary - parse) / parse:.1f}× the parse) | {load} |")
 EOF
 }
 
@@ -174,6 +197,10 @@ if [[ ${1:-} == table ]]; then
     exit
 fi
 [[ -x $MOTIONWIRE ]] || { echo "error: $MOTIONWIRE not built (cargo build --release --features cli)" >&2; exit 1; }
+if [[ " $STEPS " == *" floor "* && ! -x $READ_LOG ]]; then
+    echo "error: $READ_LOG not built (cargo build --release --example read_log --features logs)" >&2
+    exit 1
+fi
 if [[ $# -eq 0 ]]; then
     set -- sample storm pdo sdo fd
 fi

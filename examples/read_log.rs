@@ -1,15 +1,21 @@
 //! Read a log of any format of docs/formats.md through `logs::open` and count
 //! its frames: the library's reading alone, without decoding (the MF4 read
-//! measurement of BENCHMARKS.md runs it).
+//! measurement of BENCHMARKS.md runs it, and issue 21's account of where the
+//! summary's time goes). The loop is compiled for the format's reader
+//! (`LogReader::visit`), as the program's is.
 //!
 //!     cargo run --release --example read_log --features logs -- FILE…
 
-use motionwire::logs::{self, ReadLog};
+use motionwire::logs::{self, LogVisitor, ReadLog};
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    for path in std::env::args().skip(1) {
-        let mut log = logs::open(&path)?;
-        let (mut frames, mut errors, mut bytes) = (0u64, 0u64, 0usize);
+/// Frames, their data bytes and the errors of a log.
+struct Count;
+
+impl LogVisitor for Count {
+    type Output = (u64, usize, u64);
+
+    fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> (u64, usize, u64) {
+        let (mut frames, mut bytes, mut errors) = (0u64, 0usize, 0u64);
         while let Some(record) = log.next_event() {
             match record {
                 Ok(record) => {
@@ -21,6 +27,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 Err(_) => errors += 1,
             }
         }
+        (frames, bytes, errors)
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    for path in std::env::args().skip(1) {
+        let mut log = logs::open(&path)?;
+        let (frames, bytes, errors) = log.visit(Count);
         println!(
             "{path}: {} log, {frames} frames ({bytes} data bytes), {errors} errors, {} other records",
             log.format(),
