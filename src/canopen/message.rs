@@ -148,9 +148,26 @@ impl MessageKind {
     /// node its identifier belongs to where the kind has one (the identifier
     /// table of docs/canopen.md#identifiers). [`CanOpenMessage::decode`] gives
     /// the same kind and node, with the data decoded.
+    ///
+    /// One look-up in a table of the 2 048 standard identifiers (6 KiB),
+    /// made at compile time from [`CobFunction::classify`]: the decoder and
+    /// the summary classify every frame.
+    #[inline]
     #[must_use]
     pub fn classify<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> (MessageKind, Option<NodeId>) {
-        let (kind, node, _) = Self::classify_with_function(frame);
+        if frame.is_error() {
+            return (MessageKind::ErrorFrame, None);
+        }
+        let Some(cob_id) = frame.id().standard_raw() else {
+            return (MessageKind::Other, None);
+        };
+        let (kind, node) = BY_COB_ID
+            .get(usize::from(cob_id))
+            .copied()
+            .unwrap_or((MessageKind::Other, None));
+        if kind == MessageKind::Heartbeat && frame.is_rtr() {
+            return (MessageKind::GuardRequest, node);
+        }
         (kind, node)
     }
 
@@ -184,6 +201,28 @@ impl MessageKind {
         (kind, node, function)
     }
 }
+
+/// The kind of a data frame with each standard identifier, and its node:
+/// [`MessageKind::classify`]'s table (a remote request to an error-control
+/// identifier is a guard request instead of a heartbeat).
+static BY_COB_ID: [(MessageKind, Option<NodeId>); 0x800] = {
+    let mut table = [(MessageKind::Other, None); 0x800];
+    let mut id = 0;
+    while id < table.len() {
+        table[id] = match CobFunction::classify(id as u16) {
+            CobFunction::NmtCommand => (MessageKind::NmtCommand, None),
+            CobFunction::Sync => (MessageKind::Sync, None),
+            CobFunction::Time => (MessageKind::Time, None),
+            CobFunction::Emcy(node) => (MessageKind::Emcy, Some(node)),
+            CobFunction::Pdo { node, .. } => (MessageKind::Pdo, Some(node)),
+            CobFunction::SdoTx(node) | CobFunction::SdoRx(node) => (MessageKind::Sdo, Some(node)),
+            CobFunction::ErrorControl(node) => (MessageKind::Heartbeat, Some(node)),
+            CobFunction::Other => (MessageKind::Other, None),
+        };
+        id += 1;
+    }
+    table
+};
 
 impl fmt::Display for MessageKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -735,11 +774,38 @@ impl fmt::Display for CanOpenMessage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::can::FdFlags;
+    use crate::can::{FdFlags, FrameType};
     use crate::canopen::{NmtCommand, NmtState};
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()
+    }
+
+    /// The table gives, for every standard identifier as a data, remote and
+    /// CAN FD frame, the kind and node of the identifier's function
+    /// (`classify_with_function`, which `CanOpenMessage::decode` reads);
+    /// extended and error frames are `Other` and `ErrorFrame`.
+    #[test]
+    fn classify_by_table_is_classify_by_function() {
+        for id in 0..=0x7FF_u16 {
+            let std_id = CanId::standard(u32::from(id)).unwrap();
+            let frames = [
+                CanFrame::new(std_id, &[0x05]).unwrap(),
+                CanFrame::new_remote(std_id, 1).unwrap(),
+                CanFrame::with_type(std_id, FrameType::Fd(FdFlags::BRS), &[0; 12]).unwrap(),
+                CanFrame::new(CanId::extended(u32::from(id)).unwrap(), &[]).unwrap(),
+            ];
+            for frame in frames {
+                let (kind, node, _) = MessageKind::classify_with_function(&frame);
+                assert_eq!(MessageKind::classify(&frame), (kind, node), "{frame}");
+            }
+        }
+        let error =
+            CanFrame::with_type(CanId::extended(0x40).unwrap(), FrameType::Error, &[0; 8]).unwrap();
+        assert_eq!(
+            MessageKind::classify(&error),
+            (MessageKind::ErrorFrame, None)
+        );
     }
 
     fn std_id(raw: u16) -> CanId {
