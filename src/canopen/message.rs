@@ -185,20 +185,24 @@ impl MessageKind {
             return (MessageKind::Other, None, CobFunction::Other);
         };
         let function = CobFunction::classify(cob_id);
-        let (kind, node) = match function {
+        let (kind, node) = Self::of_function(function, frame.is_rtr());
+        (kind, node, function)
+    }
+
+    /// The kind and node of a frame whose identifier has `function`, a
+    /// remote request when `rtr`.
+    const fn of_function(function: CobFunction, rtr: bool) -> (MessageKind, Option<NodeId>) {
+        match function {
             CobFunction::NmtCommand => (MessageKind::NmtCommand, None),
             CobFunction::Sync => (MessageKind::Sync, None),
             CobFunction::Time => (MessageKind::Time, None),
             CobFunction::Emcy(node) => (MessageKind::Emcy, Some(node)),
             CobFunction::Pdo { node, .. } => (MessageKind::Pdo, Some(node)),
             CobFunction::SdoTx(node) | CobFunction::SdoRx(node) => (MessageKind::Sdo, Some(node)),
-            CobFunction::ErrorControl(node) if frame.is_rtr() => {
-                (MessageKind::GuardRequest, Some(node))
-            }
+            CobFunction::ErrorControl(node) if rtr => (MessageKind::GuardRequest, Some(node)),
             CobFunction::ErrorControl(node) => (MessageKind::Heartbeat, Some(node)),
             CobFunction::Other => (MessageKind::Other, None),
-        };
-        (kind, node, function)
+        }
     }
 }
 
@@ -209,16 +213,7 @@ static BY_COB_ID: [(MessageKind, Option<NodeId>); 0x800] = {
     let mut table = [(MessageKind::Other, None); 0x800];
     let mut id = 0;
     while id < table.len() {
-        table[id] = match CobFunction::classify(id as u16) {
-            CobFunction::NmtCommand => (MessageKind::NmtCommand, None),
-            CobFunction::Sync => (MessageKind::Sync, None),
-            CobFunction::Time => (MessageKind::Time, None),
-            CobFunction::Emcy(node) => (MessageKind::Emcy, Some(node)),
-            CobFunction::Pdo { node, .. } => (MessageKind::Pdo, Some(node)),
-            CobFunction::SdoTx(node) | CobFunction::SdoRx(node) => (MessageKind::Sdo, Some(node)),
-            CobFunction::ErrorControl(node) => (MessageKind::Heartbeat, Some(node)),
-            CobFunction::Other => (MessageKind::Other, None),
-        };
+        table[id] = MessageKind::of_function(CobFunction::classify(id as u16), false);
         id += 1;
     }
     table
