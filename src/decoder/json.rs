@@ -9,7 +9,7 @@
 //! texts that come from the input (interface names, error messages) are
 //! escaped as RFC 8259 says. Integers below 10^8, timestamps and hex data
 //! are turned into digits several at a time in one machine word
-//! (`digits8`, `hex16`; a property test checks them against the plain
+//! (`digits8`, `hex32`; a property test checks them against the plain
 //! formatting), larger integers through `itoa`, floats through
 //! `serde_json`, which prints the shortest representation that reads back
 //! to the same value.
@@ -356,23 +356,24 @@ pub(crate) fn pdo_value(out: &mut Vec<u8>, value: &crate::canopen::Value) {
     }
 }
 
-/// The 16 lowercase hex digits of 8 bytes, the first byte's high digit
-/// in the low byte: the nibbles spread into lanes of a `u128` and turned
-/// into digits all at once.
+/// The 32 lowercase hex digits of 16 bytes, in order: each byte spread
+/// over a lane of 16 bits (its high nibble in the low byte, which comes
+/// first), then each lane turned into its two digits by the same few
+/// operations, which the compiler does on eight lanes at once (SSE2 on
+/// x86-64): about 30 instructions for the 16 bytes, against 3 a byte for
+/// a table lookup.
 #[inline(always)]
-const fn hex16(bytes: [u8; 8]) -> u128 {
-    let x = u64::from_le_bytes(bytes) as u128;
-    // Byte i into the low byte of 16-bit lane i.
-    let x = (x | x << 32) & 0x0000_0000_FFFF_FFFF_0000_0000_FFFF_FFFF;
-    let x = (x | x << 16) & 0x0000_FFFF_0000_FFFF_0000_FFFF_0000_FFFF;
-    let x = (x | x << 8) & 0x00FF_00FF_00FF_00FF_00FF_00FF_00FF_00FF;
-    // High nibble first (the low byte of the lane), low nibble second.
-    const NIBBLE: u128 = 0x000F_000F_000F_000F_000F_000F_000F_000F;
-    let n = (x >> 4) & NIBBLE | (x & NIBBLE) << 8;
-    // '0'..'9', and 'a'..'f' for the lanes of 10 and more (39 further on).
-    let letters = ((n + 0x7676_7676_7676_7676_7676_7676_7676_7676) >> 7)
-        & 0x0101_0101_0101_0101_0101_0101_0101_0101;
-    n + 0x3030_3030_3030_3030_3030_3030_3030_3030 + letters * 39
+fn hex32(bytes: &[u8; 16]) -> [u8; 32] {
+    let mut digits = [0u8; 32];
+    for (pair, &b) in digits.chunks_exact_mut(2).zip(bytes) {
+        let lane = u16::from(b) * 0x0101;
+        // High nibble in the low byte, low nibble in the high byte.
+        let n = (lane >> 4) & 0x000F | (lane & 0x0F00);
+        // 1 in each byte of 10 and more: 'a' is 39 past '0' + 10.
+        let letters = ((n + 0x7676) >> 7) & 0x0101;
+        pair.copy_from_slice(&(n + 0x3030 + letters * 39).to_le_bytes());
+    }
+    digits
 }
 
 /// Write bytes as lowercase hex digits, no separators, as a JSON string.
@@ -383,25 +384,57 @@ pub(crate) fn hex_string(out: &mut Vec<u8>, bytes: &[u8]) {
     out.push(b'"');
 }
 
-/// Write bytes as lowercase hex digits without separators: 8 bytes at a
-/// time, in one write of 16 digits each, the last cut to the length.
+/// Write bytes as lowercase hex digits without separators: 16 bytes at a
+/// time, in one write of 32 digits each, the last cut to the length.
 #[inline]
 pub(crate) fn hex_digits(out: &mut Vec<u8>, bytes: &[u8]) {
-    let mut chunks = bytes.chunks_exact(8);
+    let mut chunks = bytes.chunks_exact(16);
     for chunk in &mut chunks {
-        if let Some(eight) = chunk.first_chunk::<8>() {
-            out.extend_from_slice(&hex16(*eight).to_le_bytes());
+        if let Some(block) = chunk.first_chunk::<16>() {
+            out.extend_from_slice(&hex32(block));
         }
     }
     let rest = chunks.remainder();
     if !rest.is_empty() {
-        let mut eight = [0u8; 8];
-        for (d, s) in eight.iter_mut().zip(rest) {
-            *d = *s;
+        let mut block = [0u8; 16];
+        if let Some(head) = block.get_mut(..rest.len()) {
+            head.copy_from_slice(rest);
         }
-        out.extend_from_slice(&hex16(eight).to_le_bytes());
-        out.truncate(out.len() - 2 * (8 - rest.len()));
+        let end = out.len() + 2 * rest.len();
+        out.extend_from_slice(&hex32(&block));
+        out.truncate(end);
     }
+}
+
+/// Write an array of at most 16 bytes (an EMCY's manufacturer field) as
+/// lowercase hex digits: its length is known at compile time, so it is
+/// copied into the block without a call to `memcpy`.
+#[inline(always)]
+pub(crate) fn hex_array<const N: usize>(out: &mut Vec<u8>, bytes: &[u8; N]) {
+    const { assert!(N <= 16) };
+    let mut block = [0u8; 16];
+    for (d, s) in block.iter_mut().zip(bytes) {
+        *d = *s;
+    }
+    let end = out.len() + 2 * N;
+    out.extend_from_slice(&hex32(&block));
+    out.truncate(end);
+}
+
+/// Write the first `len` bytes of a frame's 64-byte data array as
+/// lowercase hex digits: whole blocks of 16 bytes read from the array
+/// (past `len` it holds zeros, which the cut drops), so no block is
+/// copied first.
+#[inline]
+pub(crate) fn hex_frame_data(out: &mut Vec<u8>, bytes: &[u8; 64], len: usize) {
+    let len = len.min(64);
+    let end = out.len() + 2 * len;
+    for chunk in bytes.chunks_exact(16).take(len.div_ceil(16)) {
+        if let Some(block) = chunk.first_chunk::<16>() {
+            out.extend_from_slice(&hex32(block));
+        }
+    }
+    out.truncate(end);
 }
 
 #[cfg(test)]
@@ -490,7 +523,18 @@ mod tests {
                 proptest::prop_assert_eq!(render(|o| int(o, i)), i.to_string());
             }
             let plain: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
-            proptest::prop_assert_eq!(render(|o| hex_digits(o, &bytes)), plain);
+            proptest::prop_assert_eq!(&render(|o| hex_digits(o, &bytes)), &plain);
+            let mut padded = [0u8; 64];
+            let len = bytes.len().min(64);
+            padded[..len].copy_from_slice(&bytes[..len]);
+            let rendered = render(|o| hex_frame_data(o, &padded, len));
+            proptest::prop_assert_eq!(rendered.as_str(), &plain[..2 * len]);
+            let mut five = [0u8; 5];
+            for (d, s) in five.iter_mut().zip(&bytes) {
+                *d = *s;
+            }
+            let plain5: String = five.iter().map(|b| format!("{b:02x}")).collect();
+            proptest::prop_assert_eq!(render(|o| hex_array(o, &five)), plain5);
             for (secs, nanos) in [(secs, nanos), (epoch, nanos), (epoch, nanos / 1000 * 1000)] {
                 let ts = crate::can::Timestamp::from_nanos(secs, nanos).unwrap();
                 proptest::prop_assert_eq!(render(|o| timestamp(o, ts)), ts.seconds().to_string());

@@ -111,7 +111,9 @@ impl Decoded<'_> {
         json::uint(out, u64::from(frame.id().raw()));
         match (frame.is_extended(), frame.is_rtr(), frame.is_fd()) {
             (false, false, false) => {
-                out.extend_from_slice(b",\"extended\":false,\"rtr\":false,\"fd\":false,\"data\":");
+                out.extend_from_slice(
+                    b",\"extended\":false,\"rtr\":false,\"fd\":false,\"data\":\"",
+                );
             }
             (extended, rtr, fd) => {
                 let word = |b: bool| -> &'static [u8] {
@@ -127,10 +129,12 @@ impl Decoded<'_> {
                 out.extend_from_slice(word(rtr));
                 out.extend_from_slice(b",\"fd\":");
                 out.extend_from_slice(word(fd));
-                out.extend_from_slice(b",\"data\":");
+                out.extend_from_slice(b",\"data\":\"");
             }
         }
-        json::hex_string(out, frame.data());
+        let (data, len) = frame.data_array();
+        json::hex_frame_data(out, data, len);
+        out.push(b'"');
         // The kind's name is one of the library's constant texts: no escaping.
         out.extend_from_slice(b",\"kind\":\"");
         out.extend_from_slice(self.kind.name().as_bytes());
@@ -253,7 +257,10 @@ fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
     obj.name("description", emcy.code.description());
     obj.uint("register", u64::from(emcy.register.bits()));
     obj.names("register_flags", emcy.register.names());
-    json::hex_string(obj.key("manufacturer"), &emcy.manufacturer);
+    let out = obj.key("manufacturer");
+    out.push(b'"');
+    json::hex_array(out, &emcy.manufacturer);
+    out.push(b'"');
     match profile {
         Profile::Generic => {}
         Profile::Akd => {
