@@ -142,6 +142,66 @@ impl<'w> Object<'w> {
     }
 }
 
+/// A short text of the writer's own (keys with the comma before them, the
+/// frame's flags, a kind's name) in an array of `N` bytes, written as one
+/// copy of the whole array cut to the text's length: a copy of a length
+/// known at compile time is a few moves, where a length known only at run
+/// time is a call to `memcpy`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Padded<const N: usize> {
+    bytes: [u8; N],
+    len: u8,
+}
+
+impl<const N: usize> Padded<N> {
+    /// No text.
+    pub(crate) const EMPTY: Self = Padded {
+        bytes: [0; N],
+        len: 0,
+    };
+
+    /// The texts of `parts` one after the other; more than `N` bytes (or
+    /// than 255) fails to compile where it is a constant.
+    pub(crate) const fn concat(parts: &[&[u8]]) -> Self {
+        let mut bytes = [0u8; N];
+        let mut len = 0;
+        let mut p = 0;
+        while p < parts.len() {
+            let part = parts[p];
+            let mut i = 0;
+            while i < part.len() {
+                bytes[len] = part[i];
+                len += 1;
+                i += 1;
+            }
+            p += 1;
+        }
+        assert!(len <= u8::MAX as usize);
+        Padded {
+            bytes,
+            len: len as u8,
+        }
+    }
+
+    /// The text `text`, if it fits in `N` bytes.
+    pub(crate) fn new(text: &[u8]) -> Option<Self> {
+        let mut bytes = [0u8; N];
+        bytes.get_mut(..text.len())?.copy_from_slice(text);
+        Some(Padded {
+            bytes,
+            len: u8::try_from(text.len()).ok()?,
+        })
+    }
+
+    /// Write the text: the whole array, cut to the text's length.
+    #[inline(always)]
+    pub(crate) fn write(&self, out: &mut Vec<u8>) {
+        let end = out.len() + usize::from(self.len);
+        out.extend_from_slice(&self.bytes);
+        out.truncate(end);
+    }
+}
+
 /// Write a float, or `null` when it is not finite.
 pub(crate) fn float(out: &mut Vec<u8>, value: f64) {
     if value.is_finite() {
@@ -152,16 +212,38 @@ pub(crate) fn float(out: &mut Vec<u8>, value: f64) {
     }
 }
 
-/// A name as a JSON object key, escaped once (`"Statusword":`), with the
-/// comma before it when it is not the first.
-pub(crate) fn key(name: &str, comma: bool) -> Box<[u8]> {
-    let mut key = Vec::with_capacity(name.len() + 4);
-    if comma {
+/// A name as a JSON object key with the comma before it, escaped once
+/// (`,"Statusword":`): in an array of 32 bytes when it fits, as most
+/// signal names do, so that it is written without a call to `memcpy`.
+#[derive(Debug)]
+pub(crate) enum Key {
+    /// A key of at most 32 bytes.
+    Short(Padded<32>),
+    /// A longer key.
+    Long(Box<[u8]>),
+}
+
+impl Key {
+    /// The key of `name`, escaped.
+    pub(crate) fn new(name: &str) -> Self {
+        let mut key = Vec::with_capacity(name.len() + 4);
         key.push(b',');
+        string(&mut key, name);
+        key.push(b':');
+        match Padded::new(&key) {
+            Some(short) => Key::Short(short),
+            None => Key::Long(key.into_boxed_slice()),
+        }
     }
-    string(&mut key, name);
-    key.push(b':');
-    key.into_boxed_slice()
+
+    /// Write the key.
+    #[inline(always)]
+    pub(crate) fn write(&self, out: &mut Vec<u8>) {
+        match self {
+            Key::Short(key) => key.write(out),
+            Key::Long(key) => out.extend_from_slice(key),
+        }
+    }
 }
 
 /// Write a JSON string with RFC 8259 escaping.

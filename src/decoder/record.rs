@@ -13,8 +13,50 @@ use crate::profiles::akd::AkdManufacturerField;
 use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
 
-use super::json::{self, Object};
+use super::json::{self, Object, Padded};
 use super::{Cia402Reading, Decoded, EndedTransfer, ObjectNames, PdoReading, SdoStep};
+
+/// A frame's flags and the start of its data (`,"extended":false,"rtr":false,
+/// "fd":true,"data":"`), for each of the 8 sets of flags: extended 1, remote
+/// request 2, CAN FD 4 (docs/output.md#common-keys).
+const FLAGS: [Padded<64>; 8] = {
+    const fn word(b: bool) -> &'static [u8] {
+        if b {
+            b"true"
+        } else {
+            b"false"
+        }
+    }
+    let mut table = [Padded::EMPTY; 8];
+    let mut i = 0;
+    while i < table.len() {
+        table[i] = Padded::concat(&[
+            b",\"extended\":",
+            word(i & 1 != 0),
+            b",\"rtr\":",
+            word(i & 2 != 0),
+            b",\"fd\":",
+            word(i & 4 != 0),
+            b",\"data\":\"",
+        ]);
+        i += 1;
+    }
+    table
+};
+
+/// The end of a frame's data and its kind (`","kind":"pdo"`) for each
+/// kind, by the kind's discriminant (docs/output.md#common-keys). The
+/// names are the library's constant texts: no escaping.
+const KINDS: [Padded<32>; MessageKind::ALL.len()] = {
+    let mut table = [Padded::EMPTY; MessageKind::ALL.len()];
+    let mut i = 0;
+    while i < table.len() {
+        let kind = MessageKind::ALL[i];
+        table[kind as usize] = Padded::concat(&[b"\",\"kind\":\"", kind.name().as_bytes(), b"\""]);
+        i += 1;
+    }
+    table
+};
 
 impl Decoded<'_> {
     /// Write the frame as one JSON object and a newline: the record of
@@ -109,36 +151,13 @@ impl Decoded<'_> {
         }
         out.extend_from_slice(b",\"id\":");
         json::uint(out, u64::from(frame.id().raw()));
-        match (frame.is_extended(), frame.is_rtr(), frame.is_fd()) {
-            (false, false, false) => {
-                out.extend_from_slice(
-                    b",\"extended\":false,\"rtr\":false,\"fd\":false,\"data\":\"",
-                );
-            }
-            (extended, rtr, fd) => {
-                let word = |b: bool| -> &'static [u8] {
-                    if b {
-                        b"true"
-                    } else {
-                        b"false"
-                    }
-                };
-                out.extend_from_slice(b",\"extended\":");
-                out.extend_from_slice(word(extended));
-                out.extend_from_slice(b",\"rtr\":");
-                out.extend_from_slice(word(rtr));
-                out.extend_from_slice(b",\"fd\":");
-                out.extend_from_slice(word(fd));
-                out.extend_from_slice(b",\"data\":\"");
-            }
-        }
+        let flags = usize::from(frame.is_extended())
+            | usize::from(frame.is_rtr()) << 1
+            | usize::from(frame.is_fd()) << 2;
+        FLAGS[flags].write(out);
         let (data, len) = frame.data_array();
         json::hex_frame_data(out, data, len);
-        out.push(b'"');
-        // The kind's name is one of the library's constant texts: no escaping.
-        out.extend_from_slice(b",\"kind\":\"");
-        out.extend_from_slice(self.kind.name().as_bytes());
-        out.push(b'"');
+        KINDS[self.kind as usize].write(out);
         if let Some(node) = self.node {
             out.extend_from_slice(b",\"node\":");
             json::uint(out, u64::from(node.get()));
@@ -434,24 +453,29 @@ fn write_transfer_json(obj: &mut Object<'_>, ended: &EndedTransfer<'_>, names: &
 fn pdo_json(obj: &mut Object<'_>, reading: &PdoReading<'_>, cia402: Option<&Cia402Reading>) {
     let keys = &reading.map.keys;
     // `line` and the frame's keys come first, so this is never the first.
-    let out = obj.raw_after_first(b",\"signals\":{");
+    let out = obj.raw_after_first(b",\"signals\":");
+    // Each signal's key starts with a comma: the first one written becomes
+    // the brace that opens the object.
+    let open = out.len();
     let mut error = None;
-    let mut first = true;
     for (i, signal) in reading.signals.iter().enumerate() {
-        match (signal, keys.get(i)) {
-            // The keys carry their leading comma from the second on (not
-            // wanted when the signals before could not be read).
-            (Ok(signal), Some(key)) => {
-                let key = if first && i > 0 { &key[1..] } else { &key[..] };
-                first = false;
-                out.extend_from_slice(key);
-                json::pdo_value(out, &signal.value);
+        match signal {
+            Ok(signal) => {
+                if let Some(key) = keys.get(i) {
+                    key.write(out);
+                    json::pdo_value(out, &signal.value);
+                }
             }
-            (Ok(_), None) => {}
-            (Err(e), _) => error = Some(*e),
+            Err(e) => error = Some(*e),
         }
     }
-    out.extend_from_slice(b"}");
+    match out.get_mut(open) {
+        Some(comma) => {
+            *comma = b'{';
+            out.push(b'}');
+        }
+        None => out.extend_from_slice(b"{}"),
+    }
     if let Some(cia402) = cia402 {
         cia402_json(obj, cia402);
     }
