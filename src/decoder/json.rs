@@ -247,17 +247,86 @@ impl Key {
 }
 
 /// Write a JSON string with RFC 8259 escaping.
-#[inline]
+#[inline(always)]
 pub(crate) fn string(out: &mut Vec<u8>, value: &str) {
+    match short_string(value.as_bytes()) {
+        Some((block, len)) => {
+            let end = out.len() + len;
+            out.extend_from_slice(&block);
+            out.truncate(end);
+        }
+        None => long_string(out, value),
+    }
+}
+
+/// A text of at most 16 bytes without a character to escape (an interface
+/// name, most object names) as a JSON string, in a block of 24 bytes of
+/// which the first `len` are the string: loaded in two words, checked a
+/// word at a time, written whole.
+#[inline(always)]
+fn short_string(bytes: &[u8]) -> Option<([u8; 24], usize)> {
+    let (first, second) = load16(bytes)?;
+    let len = bytes.len();
+    // The bytes past the text read as 'a', which needs no escaping.
+    let fill = |used: usize| {
+        (u64::from(b'a') * ONES)
+            .checked_shl(8 * used as u32)
+            .unwrap_or(0)
+    };
+    if word_needs_escaping(first | fill(len))
+        || (len > 8 && word_needs_escaping(second | fill(len - 8)))
+    {
+        return None;
+    }
+    let mut block = [0u8; 24];
+    block[0] = b'"';
+    block[1..9].copy_from_slice(&first.to_le_bytes());
+    block[9..17].copy_from_slice(&second.to_le_bytes());
+    *block.get_mut(len + 1)? = b'"';
+    Some((block, len + 2))
+}
+
+/// Write a JSON string with RFC 8259 escaping, 8 bytes at a time.
+fn long_string(out: &mut Vec<u8>, value: &str) {
     out.push(b'"');
-    // A text without a character to escape (an interface name), in one
-    // write.
+    // A text without a character to escape, in one write.
     if !needs_escaping(value) {
         out.extend_from_slice(value.as_bytes());
     } else {
         escaped(out, value);
     }
     out.push(b'"');
+}
+
+/// The bytes of a text of at most 16 bytes in two little-endian words,
+/// zeros past the text; `None` for a longer text. Read with two loads of
+/// 8, 4 or 1 bytes that overlap in the middle, as a text of any length
+/// from 1 to 16 bytes can be, instead of a copy whose length is known only
+/// at run time (a call to `memcpy`).
+#[inline(always)]
+fn load16(bytes: &[u8]) -> Option<(u64, u64)> {
+    let len = bytes.len();
+    match len {
+        8..=16 => {
+            let first = u64::from_le_bytes(*bytes.first_chunk::<8>()?);
+            let last = u64::from_le_bytes(*bytes.last_chunk::<8>()?);
+            // The last 8 bytes end with the text: shift out those that
+            // the first word holds already (all of them for 8 bytes).
+            let second = last.checked_shr(8 * (16 - len) as u32).unwrap_or(0);
+            Some((first, second))
+        }
+        4..=7 => {
+            let first = u32::from_le_bytes(*bytes.first_chunk::<4>()?);
+            let last = u32::from_le_bytes(*bytes.last_chunk::<4>()?);
+            Some((u64::from(first) | u64::from(last) << (8 * (len - 4)), 0))
+        }
+        1..=3 => {
+            let byte = |i: usize| u64::from(bytes.get(i).copied().unwrap_or(0)) << (8 * i);
+            Some((byte(0) | byte(len / 2) | byte(len - 1), 0))
+        }
+        0 => Some((0, 0)),
+        _ => None,
+    }
 }
 
 /// Write the inside of a JSON string with RFC 8259 escaping.
@@ -310,7 +379,7 @@ pub(crate) const fn digits8(v: u32) -> u64 {
 
 /// Write an unsigned integer in decimal: for numbers below 10^8, the
 /// digits of [`digits8`] with the leading zeros shifted out, in one write
-/// of 8 bytes cut to the length.
+/// of 8 bytes cut to the length; below 10^16, two such writes.
 #[inline(always)]
 pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
     if v < 10 {
@@ -323,6 +392,16 @@ pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
         let bytes = (digits >> (8 * zeros)).to_le_bytes();
         out.extend_from_slice(&bytes);
         out.truncate(out.len() - zeros);
+    } else if v < 10_000_000_000_000_000 {
+        // Up to 16 digits (a 32-bit value of 9 or 10, a position): the
+        // high eight, their leading zeros cut, then the low eight.
+        let high = digits8((v / 100_000_000) as u32);
+        let low = digits8((v % 100_000_000) as u32);
+        let zeros = ((high ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize;
+        let end = out.len() + 8 - zeros;
+        out.extend_from_slice(&(high >> (8 * zeros)).to_le_bytes());
+        out.truncate(end);
+        out.extend_from_slice(&low.to_le_bytes());
     } else {
         out.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
     }
@@ -369,31 +448,37 @@ pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
     out.extend_from_slice(ts.format_seconds(&mut buf));
 }
 
-/// Whether a text needs escaping in a JSON string (RFC 8259): 8 bytes at a
-/// time (object and interface names are 4 to 40 bytes), the rest one by
-/// one.
-#[inline]
-pub(crate) fn needs_escaping(text: &str) -> bool {
-    const ONES: u64 = 0x0101_0101_0101_0101;
+const ONES: u64 = 0x0101_0101_0101_0101;
+
+/// Whether one of the 8 bytes of `w` needs escaping in a JSON string
+/// (RFC 8259): a quote, a backslash or a byte below 0x20.
+#[inline(always)]
+const fn word_needs_escaping(w: u64) -> bool {
     const HIGH: u64 = 0x8080_8080_8080_8080;
     /// Whether a byte of `w` is zero (exact: a borrow only runs past a
     /// zero byte, and a byte above 0x80 is masked off by `!w`).
     const fn has_zero(w: u64) -> bool {
         w.wrapping_sub(ONES) & !w & HIGH != 0
     }
+    // A byte below 0x20: its bits 5-7 are 0 (bytes of 0x80 and more are
+    // not below 0x20, and `& 0xE0` keeps their high bit).
+    has_zero(w & (0xE0 * ONES))
+        || has_zero(w ^ (b'"' as u64 * ONES))
+        || has_zero(w ^ (b'\\' as u64 * ONES))
+}
+
+/// Whether a text needs escaping in a JSON string (RFC 8259): 8 bytes at a
+/// time (object and interface names are 4 to 40 bytes), the rest one by
+/// one.
+#[inline]
+pub(crate) fn needs_escaping(text: &str) -> bool {
     let bytes = text.as_bytes();
     let mut chunks = bytes.chunks_exact(8);
     for chunk in &mut chunks {
         let Some(eight) = chunk.first_chunk::<8>() else {
             break;
         };
-        let w = u64::from_le_bytes(*eight);
-        // A byte below 0x20: its bits 5-7 are 0 (bytes of 0x80 and more are
-        // not below 0x20, and `& 0xE0` keeps their high bit).
-        if has_zero(w & (0xE0 * ONES))
-            || has_zero(w ^ (u64::from(b'"') * ONES))
-            || has_zero(w ^ (u64::from(b'\\') * ONES))
-        {
+        if word_needs_escaping(u64::from_le_bytes(*eight)) {
             return true;
         }
     }
@@ -599,7 +684,7 @@ mod tests {
             epoch in 1_000_000_000u64..10_000_000_000,
             nanos in 0u32..1_000_000_000,
         ) {
-            for n in [v, small, small % 1000, v % 10] {
+            for n in [v, small, small % 1000, v % 10, v % 10_000_000_000, v % 100_000_000_000_000_000, v >> 11] {
                 proptest::prop_assert_eq!(render(|o| uint(o, n)), n.to_string());
                 let i = n as i64;
                 proptest::prop_assert_eq!(render(|o| int(o, i)), i.to_string());
@@ -641,6 +726,29 @@ mod tests {
             proptest::prop_assert_eq!(needs_escaping(&text), plain(&text));
             let near = String::from_utf8(near).unwrap();
             proptest::prop_assert_eq!(needs_escaping(&near), plain(&near));
+            // The writer, on short texts (two words) and long, against the
+            // plain one, character by character; serde_json reads it back.
+            let plain_string = |t: &str| {
+                let mut s = String::from("\"");
+                for c in t.chars() {
+                    match c {
+                        '"' => s.push_str("\\\""),
+                        '\\' => s.push_str("\\\\"),
+                        '\n' => s.push_str("\\n"),
+                        '\r' => s.push_str("\\r"),
+                        '\t' => s.push_str("\\t"),
+                        c if u32::from(c) < 0x20 => s.push_str(&format!("\\u{:04x}", u32::from(c))),
+                        c => s.push(c),
+                    }
+                }
+                s.push('"');
+                s
+            };
+            for t in [&text, &near] {
+                let written = render(|o| string(o, t));
+                proptest::prop_assert_eq!(&written, &plain_string(t));
+                proptest::prop_assert_eq!(&serde_json::from_str::<String>(&written).unwrap(), t);
+            }
         }
     }
 
