@@ -748,6 +748,23 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// A key, padded (up to 32 bytes) or not, is the name written as
+        /// a string between its comma and its colon.
+        #[test]
+        fn keys_are_the_escaped_name(
+            name in proptest::prelude::any::<String>(),
+            short in "[a-zA-Z0-9 _.\"\\\\]{0,40}",
+        ) {
+            for name in [&name, &short] {
+                let plain = format!(",{}:", render(|o| string(o, name)));
+                let key = Key::new(name);
+                proptest::prop_assert_eq!(matches!(key, Key::Short(_)), plain.len() <= 32);
+                proptest::prop_assert_eq!(render(|o| key.write(o)), plain);
+            }
+        }
+    }
+
     #[test]
     fn strings_are_escaped() {
         let s = render(|o| string(o, "a\"b\\c\nd\u{1}é"));

@@ -509,3 +509,56 @@ fn cia402_json(obj: &mut Object<'_>, reading: &Cia402Reading) {
     }
     out.push(b'}');
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canopen::{PdoDirection, PdoMapping, Signal};
+
+    /// The `signals` object (docs/output.md#pdo) opens at the first signal
+    /// written, whichever that is: a signal that cannot be read leaves no
+    /// key and no comma; no signal at all is `{}`.
+    #[test]
+    fn the_signals_object_opens_at_the_first_signal_written() {
+        let mapping = PdoMapping::from_u32s(&[0x6041_0010, 0x6064_0020, 0x2000_0008]).unwrap();
+        let node = NodeId::new(3).unwrap();
+        let map = super::super::pdo::build_map(
+            1,
+            node,
+            PdoDirection::Transmit,
+            1,
+            &mapping,
+            None,
+            None,
+            false,
+        );
+        let whole: Vec<_> = map.layout().unpack(&[0x37, 0x02, 1, 0, 0, 0, 9]).collect();
+        let error = map.layout().unpack(&[]).next().unwrap();
+        assert!(error.is_err());
+        let render = |signals: &[crate::Result<Signal>]| {
+            let mut out = b"{\"line\":1".to_vec();
+            let mut obj = Object::after_first(&mut out);
+            pdo_json(&mut obj, &PdoReading { map: &map, signals }, None);
+            obj.end();
+            String::from_utf8(out).unwrap()
+        };
+        let error_text = "\"PDO entry 6041sub0 (16 bits) at bit 0: expected a payload of at least 2 bytes, found 0\"";
+        assert_eq!(
+            render(&whole),
+            r#"{"line":1,"signals":{"6041sub0":567,"6064sub0":1,"2000sub0":9}}"#
+        );
+        assert_eq!(
+            render(&[error, whole[1], whole[2]]),
+            format!(r#"{{"line":1,"signals":{{"6064sub0":1,"2000sub0":9}},"error":{error_text}}}"#)
+        );
+        assert_eq!(
+            render(&[whole[0], error]),
+            format!(r#"{{"line":1,"signals":{{"6041sub0":567}},"error":{error_text}}}"#)
+        );
+        assert_eq!(
+            render(&[error]),
+            format!(r#"{{"line":1,"signals":{{}},"error":{error_text}}}"#)
+        );
+        assert_eq!(render(&[]), r#"{"line":1,"signals":{}}"#);
+    }
+}
