@@ -7,12 +7,14 @@
 //! constant texts (kind, class and flag names, descriptions) are written as
 //! they are — a test checks that none of them needs escaping — and only
 //! texts that come from the input (interface names, error messages) are
-//! escaped as RFC 8259 says. Integers below 10^8, timestamps and hex data
-//! are turned into digits several at a time in one machine word
-//! (`digits8`, `hex32`; a property test checks them against the plain
-//! formatting), larger integers through `itoa`, floats through
-//! `serde_json`, which prints the shortest representation that reads back
-//! to the same value.
+//! escaped as RFC 8259 says. Integers below 10^16, timestamps and hex data
+//! are turned into digits several at a time in machine words (`digits8`,
+//! `hex32`; property tests check them against the plain formatting),
+//! larger integers through `itoa`, floats through `serde_json`, which
+//! prints the shortest representation that reads back to the same value.
+//! Short texts of the writer's own (keys, flags, kind names) are kept
+//! padded to a fixed size ([`Padded`]) and written as one fixed-size copy
+//! cut to their length, not through `memcpy`.
 
 /// Writes one JSON object into a buffer, tracking whether a comma is
 /// needed. Writing into a `Vec` cannot fail, so nothing here returns a
