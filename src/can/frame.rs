@@ -300,6 +300,16 @@ impl CanFrame {
         }
     }
 
+    /// Return the data's array of 64 bytes and the number of data bytes
+    /// in it: past that number the array holds zeros ([`FrameData`]), so
+    /// a writer may read it in whole blocks and cut what it writes (the
+    /// decoder's JSON records).
+    #[cfg(feature = "decoder")]
+    #[inline]
+    pub(crate) const fn data_array(&self) -> (&[u8; FD_MAX_LEN], usize) {
+        (&self.data.bytes, self.data.len as usize)
+    }
+
     /// Return the frame in its borrowed form.
     #[inline]
     #[must_use]

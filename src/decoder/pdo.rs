@@ -25,9 +25,9 @@ pub struct PdoMap {
     layout: PdoLayout,
     names: Vec<Cow<'static, str>>,
     /// Each name as a JSON object key, escaped once, with the comma before
-    /// it for all but the first: `"Statusword":`, `,"Position actual
-    /// value":` (the record's `signals`, docs/output.md#pdo).
-    pub(crate) keys: Vec<Box<[u8]>>,
+    /// it: `,"Statusword":`, `,"Position actual value":` (the record's
+    /// `signals`, docs/output.md#pdo).
+    pub(crate) keys: Vec<super::json::Key>,
     drive: bool,
     /// Where the statusword (6041h, 16 bits) is mapped, if it is.
     statusword: Option<usize>,
@@ -259,8 +259,7 @@ pub(crate) fn build_map(
         .filter(|&i| mapping.entries().get(i).map_or(0, |e| e.bits()) == 16);
     let keys = names
         .iter()
-        .enumerate()
-        .map(|(i, name)| super::json::key(name, i > 0))
+        .map(|name| super::json::Key::new(name))
         .collect();
     PdoMap {
         id,

@@ -13,8 +13,50 @@ use crate::profiles::akd::AkdManufacturerField;
 use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
 
-use super::json::{self, Object};
+use super::json::{self, Object, Padded};
 use super::{Cia402Reading, Decoded, EndedTransfer, ObjectNames, PdoReading, SdoStep};
+
+/// A frame's flags and the start of its data (`,"extended":false,"rtr":false,
+/// "fd":true,"data":"`), for each of the 8 sets of flags: extended 1, remote
+/// request 2, CAN FD 4 (docs/output.md#common-keys).
+const FLAGS: [Padded<64>; 8] = {
+    const fn word(b: bool) -> &'static [u8] {
+        if b {
+            b"true"
+        } else {
+            b"false"
+        }
+    }
+    let mut table = [Padded::EMPTY; 8];
+    let mut i = 0;
+    while i < table.len() {
+        table[i] = Padded::concat(&[
+            b",\"extended\":",
+            word(i & 1 != 0),
+            b",\"rtr\":",
+            word(i & 2 != 0),
+            b",\"fd\":",
+            word(i & 4 != 0),
+            b",\"data\":\"",
+        ]);
+        i += 1;
+    }
+    table
+};
+
+/// The end of a frame's data and its kind (`","kind":"pdo"`) for each
+/// kind, by the kind's discriminant (docs/output.md#common-keys). The
+/// names are the library's constant texts: no escaping.
+const KINDS: [Padded<32>; MessageKind::ALL.len()] = {
+    let mut table = [Padded::EMPTY; MessageKind::ALL.len()];
+    let mut i = 0;
+    while i < table.len() {
+        let kind = MessageKind::ALL[i];
+        table[kind as usize] = Padded::concat(&[b"\",\"kind\":\"", kind.name().as_bytes(), b"\""]);
+        i += 1;
+    }
+    table
+};
 
 impl Decoded<'_> {
     /// Write the frame as one JSON object and a newline: the record of
@@ -109,32 +151,13 @@ impl Decoded<'_> {
         }
         out.extend_from_slice(b",\"id\":");
         json::uint(out, u64::from(frame.id().raw()));
-        match (frame.is_extended(), frame.is_rtr(), frame.is_fd()) {
-            (false, false, false) => {
-                out.extend_from_slice(b",\"extended\":false,\"rtr\":false,\"fd\":false,\"data\":");
-            }
-            (extended, rtr, fd) => {
-                let word = |b: bool| -> &'static [u8] {
-                    if b {
-                        b"true"
-                    } else {
-                        b"false"
-                    }
-                };
-                out.extend_from_slice(b",\"extended\":");
-                out.extend_from_slice(word(extended));
-                out.extend_from_slice(b",\"rtr\":");
-                out.extend_from_slice(word(rtr));
-                out.extend_from_slice(b",\"fd\":");
-                out.extend_from_slice(word(fd));
-                out.extend_from_slice(b",\"data\":");
-            }
-        }
-        json::hex_string(out, frame.data());
-        // The kind's name is one of the library's constant texts: no escaping.
-        out.extend_from_slice(b",\"kind\":\"");
-        out.extend_from_slice(self.kind.name().as_bytes());
-        out.push(b'"');
+        let flags = usize::from(frame.is_extended())
+            | usize::from(frame.is_rtr()) << 1
+            | usize::from(frame.is_fd()) << 2;
+        FLAGS[flags].write(out);
+        let (data, len) = frame.data_array();
+        json::hex_frame_data(out, data, len);
+        KINDS[self.kind as usize].write(out);
         if let Some(node) = self.node {
             out.extend_from_slice(b",\"node\":");
             json::uint(out, u64::from(node.get()));
@@ -253,7 +276,10 @@ fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
     obj.name("description", emcy.code.description());
     obj.uint("register", u64::from(emcy.register.bits()));
     obj.names("register_flags", emcy.register.names());
-    json::hex_string(obj.key("manufacturer"), &emcy.manufacturer);
+    let out = obj.key("manufacturer");
+    out.push(b'"');
+    json::hex_array(out, &emcy.manufacturer);
+    out.push(b'"');
     match profile {
         Profile::Generic => {}
         Profile::Akd => {
@@ -427,24 +453,29 @@ fn write_transfer_json(obj: &mut Object<'_>, ended: &EndedTransfer<'_>, names: &
 fn pdo_json(obj: &mut Object<'_>, reading: &PdoReading<'_>, cia402: Option<&Cia402Reading>) {
     let keys = &reading.map.keys;
     // `line` and the frame's keys come first, so this is never the first.
-    let out = obj.raw_after_first(b",\"signals\":{");
+    let out = obj.raw_after_first(b",\"signals\":");
+    // Each signal's key starts with a comma: the first one written becomes
+    // the brace that opens the object.
+    let open = out.len();
     let mut error = None;
-    let mut first = true;
     for (i, signal) in reading.signals.iter().enumerate() {
-        match (signal, keys.get(i)) {
-            // The keys carry their leading comma from the second on (not
-            // wanted when the signals before could not be read).
-            (Ok(signal), Some(key)) => {
-                let key = if first && i > 0 { &key[1..] } else { &key[..] };
-                first = false;
-                out.extend_from_slice(key);
-                json::pdo_value(out, &signal.value);
+        match signal {
+            Ok(signal) => {
+                if let Some(key) = keys.get(i) {
+                    key.write(out);
+                    json::pdo_value(out, &signal.value);
+                }
             }
-            (Ok(_), None) => {}
-            (Err(e), _) => error = Some(*e),
+            Err(e) => error = Some(*e),
         }
     }
-    out.extend_from_slice(b"}");
+    match out.get_mut(open) {
+        Some(comma) => {
+            *comma = b'{';
+            out.push(b'}');
+        }
+        None => out.extend_from_slice(b"{}"),
+    }
     if let Some(cia402) = cia402 {
         cia402_json(obj, cia402);
     }
@@ -477,4 +508,57 @@ fn cia402_json(obj: &mut Object<'_>, reading: &Cia402Reading) {
         json::display_string(out, &mode);
     }
     out.push(b'}');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canopen::{PdoDirection, PdoMapping, Signal};
+
+    /// The `signals` object (docs/output.md#pdo) opens at the first signal
+    /// written, whichever that is: a signal that cannot be read leaves no
+    /// key and no comma; no signal at all is `{}`.
+    #[test]
+    fn the_signals_object_opens_at_the_first_signal_written() {
+        let mapping = PdoMapping::from_u32s(&[0x6041_0010, 0x6064_0020, 0x2000_0008]).unwrap();
+        let node = NodeId::new(3).unwrap();
+        let map = super::super::pdo::build_map(
+            1,
+            node,
+            PdoDirection::Transmit,
+            1,
+            &mapping,
+            None,
+            None,
+            false,
+        );
+        let whole: Vec<_> = map.layout().unpack(&[0x37, 0x02, 1, 0, 0, 0, 9]).collect();
+        let error = map.layout().unpack(&[]).next().unwrap();
+        assert!(error.is_err());
+        let render = |signals: &[crate::Result<Signal>]| {
+            let mut out = b"{\"line\":1".to_vec();
+            let mut obj = Object::after_first(&mut out);
+            pdo_json(&mut obj, &PdoReading { map: &map, signals }, None);
+            obj.end();
+            String::from_utf8(out).unwrap()
+        };
+        let error_text = "\"PDO entry 6041sub0 (16 bits) at bit 0: expected a payload of at least 2 bytes, found 0\"";
+        assert_eq!(
+            render(&whole),
+            r#"{"line":1,"signals":{"6041sub0":567,"6064sub0":1,"2000sub0":9}}"#
+        );
+        assert_eq!(
+            render(&[error, whole[1], whole[2]]),
+            format!(r#"{{"line":1,"signals":{{"6064sub0":1,"2000sub0":9}},"error":{error_text}}}"#)
+        );
+        assert_eq!(
+            render(&[whole[0], error]),
+            format!(r#"{{"line":1,"signals":{{"6041sub0":567}},"error":{error_text}}}"#)
+        );
+        assert_eq!(
+            render(&[error]),
+            format!(r#"{{"line":1,"signals":{{}},"error":{error_text}}}"#)
+        );
+        assert_eq!(render(&[]), r#"{"line":1,"signals":{}}"#);
+    }
 }
