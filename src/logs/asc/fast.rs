@@ -100,7 +100,7 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     words.next()?;
     words.next()?;
     let flags = hex(words.next()?)?;
-    let frame = fd_frame(id, dlc, data.get(..len)?, flags, brs_column, esi_column)?;
+    let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
 }
 

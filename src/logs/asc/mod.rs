@@ -419,8 +419,7 @@ impl AscParser {
         let (at, flags) = tokens.expect(|found| SyntaxError::AscFlags { found })?;
         let flags = hex(flags)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscFlags { found }))?;
-        let payload = data.get(..len).unwrap_or_default();
-        let frame = fd_frame(id, dlc, payload, flags, brs_column, esi_column)
+        let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)
             .ok_or_else(|| tokens.error_at(len_at, |found| SyntaxError::AscDataLength { found }))?;
         let _ = line;
         Ok(Some(LogEvent::Frame(
@@ -476,24 +475,27 @@ impl AscParser {
     }
 }
 
-/// The frame of a `CANFD` line from its fields: `dlc`, the data,
-/// the flags field and the BRS and ESI columns; `None` when the data
-/// length does not fit (the line's error is at its data length).
+/// The frame of a `CANFD` line from its fields: `dlc`, the `len` data
+/// bytes at the start of `data` (zeros after them), the flags field and
+/// the BRS and ESI columns; `None` when the data length does not fit (the
+/// line's error is at its data length). The frame is made from the array
+/// as it is, without copying the bytes again.
+#[inline]
 fn fd_frame(
     id: CanId,
     dlc: u8,
-    payload: &[u8],
+    data: &[u8; FD_MAX_LEN],
+    len: usize,
     flags: u32,
     brs_column: bool,
     esi_column: bool,
 ) -> Option<CanFrame> {
-    let len = payload.len();
     // Without EDL/FDF, more than 8 bytes can only be CAN FD (CANoe
     // writes such lines; the decision in docs/formats.md#asc): BRS and ESI
     // then come from their columns, as python-can reads them, and the
     // flags' other bits (0x10 included) are not read.
     let fd_without_edl = flags & FLAG_FDF == 0 && len > CLASSIC_MAX_LEN;
-    if flags & FLAG_FDF != 0 || fd_without_edl {
+    let frame_type = if flags & FLAG_FDF != 0 || fd_without_edl {
         // FDF itself is what makes the frame CAN FD here; the flags
         // kept are BRS and ESI, as the other readers keep them.
         let (brs, esi) = if fd_without_edl {
@@ -511,14 +513,22 @@ fn fd_frame(
         if FD_LENGTHS.get(usize::from(dlc)) != Some(&(len as u8)) {
             return None;
         }
-        CanFrame::new_fd(id, fd, payload).ok()
+        FrameType::Fd(fd)
     } else if flags & FLAG_RTR != 0 {
-        CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8)).ok()
+        return CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8)).ok();
+    } else if len > CLASSIC_MAX_LEN {
+        // Classic content in the CAN FD form: at most 8 bytes (more is
+        // CAN FD, above).
+        return None;
     } else {
-        // Classic content in the CAN FD form: at most 8 bytes (more
-        // is CAN FD, above).
-        CanFrame::new(id, payload).ok()
-    }
+        FrameType::Data
+    };
+    // The length is one CAN FD has (64 at most), or at most 8 for a data
+    // frame: what `CanFrame::new_fd` and `CanFrame::new` accept; `data`
+    // holds zeros after it.
+    Some(CanFrame::from_checked_parts(
+        id, frame_type, *data, len as u8,
+    ))
 }
 
 /// An `ErrorFrame` line's frame: all the line says is that an error
