@@ -544,6 +544,7 @@ impl SdoTracker {
     /// [`chunk`](Self::chunk) and moves the ended transfer once, not through
     /// an [`SdoEvent`].
     #[inline]
+    #[cfg_attr(not(feature = "decoder"), allow(dead_code))]
     pub(crate) fn feed_step(
         &mut self,
         sender: SdoParty,
