@@ -432,6 +432,28 @@ impl Decoder {
         })
     }
 
+    /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
+    /// makes a PDO, as [`pdo_frame`](Self::pdo_frame) gives it, without
+    /// the PDO's reading where the session does not unpack signals: what
+    /// the [summary](crate::summary) reads (`Summarizer::add_frame_from`).
+    #[inline]
+    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> Option<Cia402Reading> {
+        if self.config.signals {
+            return self.pdo_frame(frame).and_then(|(_, cia402)| cia402);
+        }
+        let can = &frame.frame;
+        let at = self.bus(frame.iface);
+        let BusState {
+            by_cob,
+            maps,
+            nodes,
+        } = self.buses.get_mut(at);
+        let slot = *by_cob.get(usize::from(can.id().raw() as u16))?;
+        let map = maps.get(usize::from(slot).checked_sub(1)?)?;
+        let state = nodes[usize::from(map.node().get())].get_or_insert_with(NodeState::default);
+        statusword_reading(map, state, can.data())
+    }
+
     /// [`decode`](Self::decode) for a data frame that
     /// [`MessageKind::classify`] makes a PDO: its reading and CiA 402
     /// reading, when a mapping is in force for its COB-ID.
@@ -664,24 +686,7 @@ impl Decoder {
         let drive = map.is_drive() || state.drive;
         self.signals.clear();
         if !self.config.signals {
-            // Only the statusword of a drive (the summary's timeline is
-            // observed from statuswords, docs/summary.md#cia402).
-            let mut cia402 = None;
-            if drive {
-                let sw = map
-                    .statusword()
-                    .and_then(|i| map.layout().read(i, data))
-                    .and_then(|s| match s.ok()?.value {
-                        Value::Unsigned(v) => Some(v as u16),
-                        _ => None,
-                    });
-                if let Some(sw) = sw {
-                    cia402 = Some(Cia402Reading {
-                        state: state.cia402.observe_statusword(sw),
-                        ..Cia402Reading::empty(node)
-                    });
-                }
-            }
+            let cia402 = statusword_reading(map, state, data);
             let reading = PdoReading {
                 map,
                 signals: &self.signals,
@@ -782,6 +787,28 @@ fn object_names(config: &DecoderConfig, node: NodeId, profile: Profile) -> Objec
         .is_some_and(Eds::is_cia402)
         .then_some(crate::canopen::ObjectSet::Drive));
     ObjectNames::new(eds, set)
+}
+
+/// The CiA 402 reading of a PDO mapped by `map` on a drive (`state` its
+/// node's) whose statusword it carries, read from `data` alone: what a
+/// session that does not unpack signals reads (the summary's timeline is
+/// observed from statuswords, docs/summary.md#cia402).
+#[inline]
+fn statusword_reading(map: &PdoMap, state: &mut NodeState, data: &[u8]) -> Option<Cia402Reading> {
+    if !(map.is_drive() || state.drive) {
+        return None;
+    }
+    let sw = map
+        .statusword()
+        .and_then(|i| map.layout().read(i, data))
+        .and_then(|s| match s.ok()?.value {
+            Value::Unsigned(v) => Some(v as u16),
+            _ => None,
+        })?;
+    Some(Cia402Reading {
+        state: state.cia402.observe_statusword(sw),
+        ..Cia402Reading::empty(map.node())
+    })
 }
 
 /// The value of a completed expedited transfer's data, little-endian, for

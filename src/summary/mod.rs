@@ -478,7 +478,7 @@ impl Summarizer {
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
-                let cia402 = decoder.pdo_frame(log).and_then(|(_, cia402)| cia402);
+                let cia402 = decoder.pdo_cia402(log);
                 self.add_classified(position, log, kind, node, None, cia402, |_| {});
             }
             _ => self.add_classified(position, log, kind, node, None, None, |_| {}),

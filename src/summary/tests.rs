@@ -293,3 +293,82 @@ fn long_lists_keep_their_first_and_last_entries_and_count_them_all() {
     // Faults: the first 10 and the last 10 are kept; none omitted.
     assert_eq!(text.matches("→ fault at line").count(), 20, "{text}");
 }
+
+/// Every log of the repository (`samples/`, `tests/fixtures/`), for the
+/// tests that read real files.
+#[cfg(feature = "logs")]
+fn repository_logs() -> Vec<std::path::PathBuf> {
+    fn walk(dir: &std::path::Path, found: &mut Vec<std::path::PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(&path, found);
+            } else if path
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| ["log", "asc", "blf", "pcap", "pcapng", "trc", "mf4"].contains(&e))
+            {
+                found.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut found = Vec::new();
+    walk(&root.join("samples"), &mut found);
+    walk(&root.join("tests/fixtures"), &mut found);
+    found.sort();
+    found
+}
+
+/// `Summarizer::add` reads a frame with the decoder only where the
+/// decoder keeps state, through the decoder's own short paths for SDO and
+/// PDO frames; it gives exactly the summary that `Decoder::decode` then
+/// `Summarizer::add_frame` gives, on every log of the repository (PDO
+/// mappings learned from SDO, CiA 402 drives, SDO transfers and aborts,
+/// EMCY, heartbeats with a consumer time, error frames), with a decoder
+/// that unpacks signals and one that does not.
+#[cfg(feature = "logs")]
+#[test]
+fn adding_is_decoding_then_adding_on_every_log() {
+    use crate::logs::ReadLog;
+    let logs = repository_logs();
+    assert!(logs.len() > 20, "{logs:?}");
+    let mut frames = 0u64;
+    for path in &logs {
+        for signals in [false, true] {
+            let config = DecoderConfig::new()
+                .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+                .signals(signals);
+            let (mut short, mut whole) = (Decoder::new(config.clone()), Decoder::new(config));
+            let heartbeat = Duration::from_millis(150);
+            let mut by_add = Summarizer::new().heartbeat_timeout(heartbeat);
+            let mut by_decode = Summarizer::new().heartbeat_timeout(heartbeat);
+            let Ok(mut log) = crate::logs::open(path) else {
+                continue;
+            };
+            while let Some(record) = log.next_event() {
+                let Ok(record) = record else { continue };
+                let position = record.position.number();
+                by_add.add(position, &record.event, &mut short);
+                match &record.event {
+                    LogEvent::Frame(frame) => {
+                        frames += 1;
+                        let decoded = whole.decode(position, frame);
+                        by_decode.add_frame(position, frame, &decoded);
+                    }
+                    LogEvent::Status(status) => by_decode.add_status(status),
+                }
+            }
+            assert_eq!(
+                by_add.finish(&mut short),
+                by_decode.finish(&mut whole),
+                "{}, signals {signals}",
+                path.display()
+            );
+        }
+    }
+    assert!(frames > 1_000, "{frames}");
+}
