@@ -15,7 +15,7 @@ use crate::{Error, Result};
 /// the start of the recording (`candump -t d`/`-t z`, ASC relative). Only
 /// differences between the times of one log are promised exact: take them
 /// with [`Timestamp::duration_since`], which gives a
-/// [`Duration`](core::time::Duration) as every period of the crate is.
+/// [`Duration`] as every period of the crate is.
 ///
 /// `Display` writes it as candump does, `1700000000.000500`: at least ten
 /// digits of seconds and six of the fraction.

@@ -1,7 +1,11 @@
 //! Every log format in one folder (docs/formats.md), as python-can's `can/io`
 //! shows them: one module per format, the detection of the format from the
 //! content, the one line layer the text formats share, and — with the
-//! `logs` feature — one way to read any log, [`open`] or [`read`].
+//! `logs` feature — one way to read any log, `open` or `read`.
+#![cfg_attr(
+    feature = "logs",
+    doc = "([`open`], [`read`]: with the `logs` feature, as here.)"
+)]
 //!
 //! | file or folder | what it holds | needs |
 //! |---|---|---|
@@ -17,7 +21,7 @@
 //! docs/formats.md#mf4) | feature `mf4` |
 //! | `detect.rs` | the format from the first bytes: [`detect`]
 //! (docs/formats.md#detection) | |
-//! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a [`Read`](std::io::Read), the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
+//! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a `std::io::Read`, the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
 //! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
@@ -26,7 +30,7 @@
 //! Without the standard library, each text format parses lines from a
 //! buffer without allocating ([`candump::parse_line`], [`candump::lines`],
 //! [`asc::AscParser`], [`trc::TrcParser`]). With `std`, every format has a
-//! reader that reads a [`Read`](std::io::Read) and implements the one
+//! reader that reads a `std::io::Read` and implements the one
 //! trait `ReadLog` (`CandumpReader`, `AscReader`, `TrcReader`,
 //! `PcapReader`, `BlfReader`, `Mf4Reader`), and `LogReader` reads any of
 //! them.

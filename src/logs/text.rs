@@ -136,7 +136,7 @@ pub(crate) const HEX_TABLE: [u8; 256] = {
 
 /// The longest line a text reader holds (1 MiB). A longer one is not a log
 /// line of any format: it is reported
-/// ([`LogErrorKind::OverlongLine`](crate::logs::LogErrorKind::OverlongLine))
+/// ([`OverlongLine`](crate::logs::LogErrorKind::OverlongLine))
 /// and skipped unread, so memory stays bounded whatever the input
 /// (docs/formats.md#memory).
 #[cfg(feature = "std")]
