@@ -81,7 +81,7 @@ pub struct LogRecord<'a> {
 /// reader (a lending iterator: the next call needs the last event gone).
 ///
 /// Every reader of [`crate::logs`] implements it, and so does
-/// [`LogReader`](crate::logs::LogReader), which detects the format and
+/// `logs::LogReader` (with the `logs` feature), which detects the format and
 /// dispatches to them. The rule of docs/formats.md#reported holds for all: an
 /// error that [`LogError::is_skipped`] (a malformed line, an over-long line, a
 /// damaged record whose size is known) loses that line or record only and the

@@ -77,9 +77,9 @@
 //! together at most 256 MiB (sixteen such blocks), up to
 //! [`REORDER_WINDOW`] frames per data group in the time window, 2^20
 //! metadata blocks. A file read from a stream that cannot seek (a pipe,
-//! gzip: [`logs::read`](crate::logs::read)) is held in memory, up to
-//! [`MAX_STREAMED_LEN`] (256 MiB); give larger files by name
-//! ([`logs::open`](crate::logs::open) reads them in place).
+//! gzip: `logs::read`) is held in memory, up to [`MAX_STREAMED_LEN`]
+//! (256 MiB); give larger files by name (`logs::open` reads them in
+//! place; both with the `logs` feature).
 //!
 //! ```
 //! use motionwire::can::Iface;
