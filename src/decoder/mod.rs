@@ -312,6 +312,19 @@ struct BusState {
 }
 
 impl BusState {
+    /// The mapping in force for a PDO on `cob_id`, and the state of the
+    /// node that owns it (made on first sight); `None` without a mapping.
+    #[inline(always)]
+    fn mapping(&mut self, cob_id: u16) -> Option<(&PdoMap, &mut NodeState)> {
+        let slot = *self.by_cob.get(usize::from(cob_id))?;
+        let map = self.maps.get(usize::from(slot).checked_sub(1)?)?;
+        let state = self
+            .nodes
+            .get_mut(usize::from(map.node().get()))?
+            .get_or_insert_with(NodeState::default);
+        Some((map, state))
+    }
+
     fn new() -> Self {
         BusState {
             nodes: (0..128).map(|_| None).collect(),
@@ -443,14 +456,7 @@ impl Decoder {
         }
         let can = &frame.frame;
         let at = self.bus(frame.iface);
-        let BusState {
-            by_cob,
-            maps,
-            nodes,
-        } = self.buses.get_mut(at);
-        let slot = *by_cob.get(usize::from(can.id().raw() as u16))?;
-        let map = maps.get(usize::from(slot).checked_sub(1)?)?;
-        let state = nodes[usize::from(map.node().get())].get_or_insert_with(NodeState::default);
+        let (map, state) = self.buses.get_mut(at).mapping(can.id().raw() as u16)?;
         statusword_reading(map, state, can.data())
     }
 
@@ -671,18 +677,8 @@ impl Decoder {
         data: &[u8],
     ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let at = self.bus(iface);
-        let BusState {
-            by_cob,
-            maps,
-            nodes,
-        } = self.buses.get_mut(at);
-        let slot = *by_cob.get(usize::from(cob_id))?;
-        if slot == 0 {
-            return None;
-        }
-        let map = &maps[usize::from(slot) - 1];
+        let (map, state) = self.buses.get_mut(at).mapping(cob_id)?;
         let node = map.node();
-        let state = nodes[usize::from(node.get())].get_or_insert_with(NodeState::default);
         let drive = map.is_drive() || state.drive;
         self.signals.clear();
         if !self.config.signals {
