@@ -516,16 +516,14 @@ fn fd_frame(
         FrameType::Fd(fd)
     } else if flags & FLAG_RTR != 0 {
         return CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8)).ok();
-    } else if len > CLASSIC_MAX_LEN {
+    } else {
         // Classic content in the CAN FD form: at most 8 bytes (more is
         // CAN FD, above).
-        return None;
-    } else {
         FrameType::Data
     };
     // The length is one CAN FD has (64 at most), or at most 8 for a data
-    // frame: what `CanFrame::new_fd` and `CanFrame::new` accept; `data`
-    // holds zeros after it.
+    // frame (more without FDF is `fd_without_edl`): what `CanFrame::new_fd`
+    // and `CanFrame::new` accept; `data` holds zeros after it.
     Some(CanFrame::from_checked_parts(
         id, frame_type, *data, len as u8,
     ))
