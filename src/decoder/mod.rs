@@ -348,6 +348,10 @@ impl BusState {
 pub struct Decoder {
     buses: Buses<BusState>,
     config: DecoderConfig,
+    /// Index 1..=127: where each node's objects get their names, worked
+    /// out once from the configuration (which does not change after
+    /// [`Decoder::new`]), not for every SDO frame.
+    names: Box<[NodeNames; 128]>,
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, Error>>,
     next_map: u32,
@@ -357,9 +361,16 @@ impl Decoder {
     /// Start a session.
     #[must_use]
     pub fn new(config: DecoderConfig) -> Self {
+        let mut names = Box::new([NodeNames::default(); 128]);
+        for (raw, slot) in names.iter_mut().enumerate() {
+            if let Some(node) = NodeId::new(raw as u8) {
+                *slot = NodeNames::of(&config, node);
+            }
+        }
         Decoder {
             buses: Buses::default(),
             config,
+            names,
             signals: Vec::with_capacity(64),
             next_map: 0,
         }
@@ -391,7 +402,7 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) = self.sdo_owned(position, frame, node, profile);
+                let (step, cia402) = self.sdo_owned(position, frame, node);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -407,8 +418,8 @@ impl Decoder {
     }
 
     /// [`decode`](Self::decode) for a data frame that
-    /// [`MessageKind::classify`] makes an SDO frame of `node`, whose
-    /// profile is `profile`: the SDO step and the CiA 402 reading, without
+    /// [`MessageKind::classify`] makes an SDO frame of `node`: the SDO step
+    /// and the CiA 402 reading, without
     /// the rest of a [`Decoded`] (what the [summary](crate::summary)
     /// reads, `Summarizer::add_frame_from`).
     /// The step and the reading go to `then`.
@@ -418,7 +429,6 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        profile: Profile,
         then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
@@ -426,7 +436,7 @@ impl Decoder {
         } else {
             SdoParty::Client
         };
-        self.sdo(frame, node, sender, position, profile, then)
+        self.sdo(frame, node, sender, position, then)
     }
 
     /// [`sdo_frame`](Self::sdo_frame) for [`decode`](Self::decode), out of
@@ -438,11 +448,8 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        profile: Profile,
     ) -> (SdoStep<'d>, Option<Cia402Reading>) {
-        self.sdo_frame(position, frame, node, profile, |step, cia402| {
-            (*step, cia402)
-        })
+        self.sdo_frame(position, frame, node, |step, cia402| (*step, cia402))
     }
 
     /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
@@ -524,7 +531,6 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        profile: Profile,
         then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
@@ -558,7 +564,7 @@ impl Decoder {
             }),
             None => None,
         };
-        let names = object_names(&self.config, node, profile);
+        let names = self.names[usize::from(node.get())].get(&self.config);
         let step = SdoStep {
             node,
             sender,
@@ -735,7 +741,7 @@ impl Decoder {
     /// [`SdoStep::object`] names.
     #[must_use]
     pub fn object_names(&self, node: NodeId) -> ObjectNames<'_> {
-        object_names(&self.config, node, self.config.profiles.of(Some(node)))
+        self.names[usize::from(node.get())].get(&self.config)
     }
 
     /// Return whether `node` on `bus` is a CiA 402 drive: its profile, its
@@ -771,18 +777,42 @@ impl Decoder {
     }
 }
 
-/// How `node`, of `profile`, names its objects (`object` in
-/// docs/canopen.md#object-names).
-fn object_names(config: &DecoderConfig, node: NodeId, profile: Profile) -> ObjectNames<'_> {
-    let eds = config
-        .descriptions
-        .iter()
-        .find(|d| d.node == node)
-        .map(|d| &d.eds);
-    let set = profile.object_set().or(eds
-        .is_some_and(Eds::is_cia402)
-        .then_some(crate::canopen::ObjectSet::Drive));
-    ObjectNames::new(eds, set)
+/// Where one node's objects get their names (`object` in
+/// docs/canopen.md#object-names): its description's place in the
+/// configuration, if it has one, and the objects of its profile (CiA 402's
+/// for a node whose EDS makes it a drive).
+#[derive(Debug, Clone, Copy, Default)]
+struct NodeNames {
+    description: Option<u8>,
+    set: Option<crate::canopen::ObjectSet>,
+}
+
+impl NodeNames {
+    /// How `node` names its objects under `config`.
+    fn of(config: &DecoderConfig, node: NodeId) -> Self {
+        let description = config.descriptions.iter().position(|d| d.node == node);
+        let eds = description.map(|at| &config.descriptions[at].eds);
+        let set = config.profiles.of(Some(node)).object_set().or(eds
+            .is_some_and(Eds::is_cia402)
+            .then_some(crate::canopen::ObjectSet::Drive));
+        NodeNames {
+            // One description per node (`DecoderConfig::eds` replaces a
+            // node's): fewer than 128 of them.
+            description: description.and_then(|at| u8::try_from(at).ok()),
+            set,
+        }
+    }
+
+    /// The names, with the EDS from `config` (the configuration they were
+    /// worked out from).
+    #[inline]
+    fn get(self, config: &DecoderConfig) -> ObjectNames<'_> {
+        let eds = self
+            .description
+            .and_then(|at| config.descriptions.get(usize::from(at)))
+            .map(|d| &d.eds);
+        ObjectNames::new(eds, self.set)
+    }
 }
 
 /// The CiA 402 reading of a PDO mapped by `map` on a drive (`state` its

@@ -472,8 +472,7 @@ impl Summarizer {
         let (kind, node) = MessageKind::classify(&log.frame);
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                let profile = decoder.config().profiles().of(node);
-                decoder.sdo_frame(position, log, n, profile, |step, cia402| {
+                decoder.sdo_frame(position, log, n, |step, cia402| {
                     self.add_classified(position, log, kind, node, Some(step), cia402, |_| {});
                 });
             }
