@@ -49,6 +49,7 @@ mod sdo;
 
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub use bus::BusName;
 pub use cia402::Cia402Reading;
@@ -355,6 +356,22 @@ pub struct Decoder {
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, Error>>,
     next_map: u32,
+    /// This session among every decoder made by the program: what makes
+    /// a [`BusKey`] this session's.
+    session: usize,
+}
+
+/// The sessions made so far ([`Decoder::session`]).
+static SESSIONS: AtomicUsize = AtomicUsize::new(0);
+
+/// A bus as one decoder session keeps it: the session and the bus's place
+/// in it, which never changes (buses are only added). The summary keeps
+/// the last key it saw with its own place for that bus, and finds its bus
+/// again without comparing the frame's interface name a second time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct BusKey {
+    session: usize,
+    at: usize,
 }
 
 impl Decoder {
@@ -373,6 +390,7 @@ impl Decoder {
             names,
             signals: Vec::with_capacity(64),
             next_map: 0,
+            session: SESSIONS.fetch_add(1, Ordering::Relaxed),
         }
     }
 
@@ -429,7 +447,7 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
@@ -449,22 +467,36 @@ impl Decoder {
         frame: &'d LogFrame<'d>,
         node: NodeId,
     ) -> (SdoStep<'d>, Option<Cia402Reading>) {
-        self.sdo_frame(position, frame, node, |step, cia402| (*step, cia402))
+        self.sdo_frame(position, frame, node, |_, step, cia402| (*step, cia402))
     }
 
     /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
     /// makes a PDO, as [`pdo_frame`](Self::pdo_frame) gives it, without
     /// the PDO's reading where the session does not unpack signals: what
     /// the [summary](crate::summary) reads (`Summarizer::add_frame_from`).
+    /// With the reading, the key of the frame's bus.
     #[inline]
-    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> Option<Cia402Reading> {
-        if self.config.signals {
-            return self.pdo_frame(frame).and_then(|(_, cia402)| cia402);
-        }
+    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> (BusKey, Option<Cia402Reading>) {
         let can = &frame.frame;
         let at = self.bus(frame.iface);
-        let (map, state) = self.buses.get_mut(at).mapping(can.id().raw() as u16)?;
-        statusword_reading(map, state, can.data())
+        let key = BusKey {
+            session: self.session,
+            at,
+        };
+        let cob_id = can.id().raw() as u16;
+        if self.config.signals {
+            return (
+                key,
+                self.pdo_at(at, cob_id, can.data())
+                    .and_then(|(_, cia402)| cia402),
+            );
+        }
+        let reading = self
+            .buses
+            .get_mut(at)
+            .mapping(cob_id)
+            .and_then(|(map, state)| statusword_reading(map, state, can.data()));
+        (key, reading)
     }
 
     /// [`decode`](Self::decode) for a data frame that
@@ -531,9 +563,13 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
+        let key = BusKey {
+            session: self.session,
+            at,
+        };
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
@@ -575,7 +611,7 @@ impl Decoder {
             ended,
             names,
         };
-        then(&step, cia402)
+        then(key, &step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,
@@ -683,6 +719,17 @@ impl Decoder {
         data: &[u8],
     ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let at = self.bus(iface);
+        self.pdo_at(at, cob_id, data)
+    }
+
+    /// [`pdo`](Self::pdo) on the bus at `at`.
+    #[inline]
+    fn pdo_at(
+        &mut self,
+        at: usize,
+        cob_id: u16,
+        data: &[u8],
+    ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let (map, state) = self.buses.get_mut(at).mapping(cob_id)?;
         let node = map.node();
         let drive = map.is_drive() || state.drive;
