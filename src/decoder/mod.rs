@@ -587,30 +587,30 @@ impl Decoder {
             (Some(transfer), Some(value)) => self.learn(at, node, transfer, value),
             _ => None,
         };
-        // The node's state again (learning may have changed the bus) for
-        // the ended transfer's data, only when a transfer ended.
-        let ended = match fed.ended {
-            Some(transfer) => Some(EndedTransfer {
-                transfer,
-                data: self.buses.get(at).nodes[usize::from(node.get())]
-                    .as_ref()
-                    .expect("made above")
-                    .sdo
-                    .finished(),
-            }),
-            None => None,
-        };
         let names = self.names[usize::from(node.get())].get(&self.config);
-        let step = SdoStep {
+        let mut step = SdoStep {
             node,
             sender,
             message,
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended,
+            ended: None,
             names,
         };
+        // Only when a transfer ended (most frames end none: the step is
+        // not made with a copy of an empty transfer), the node's state again
+        // (learning may have changed the bus) for the transfer's data.
+        if let Some(transfer) = fed.ended {
+            step.ended = Some(EndedTransfer {
+                transfer,
+                data: self.buses.get(at).nodes[usize::from(node.get())]
+                    .as_ref()
+                    .expect("made above")
+                    .sdo
+                    .finished(),
+            });
+        }
         then(key, &step, cia402)
     }
 
