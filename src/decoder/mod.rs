@@ -890,9 +890,13 @@ fn value_of(data: &[u8]) -> Option<u32> {
     if data.is_empty() || data.len() > 4 {
         return None;
     }
-    let mut bytes = [0; 4];
-    bytes[..data.len()].copy_from_slice(data);
-    Some(u32::from_le_bytes(bytes))
+    // Byte by byte (at most four), not by a call to `memcpy` of a
+    // length known only here.
+    Some(
+        data.iter()
+            .rev()
+            .fold(0, |value, &byte| value << 8 | u32::from(byte)),
+    )
 }
 
 #[cfg(test)]
