@@ -578,7 +578,10 @@ impl Decoder {
             .sdo
             .feed(sender, bytes, frame.timestamp, position, cap, &mut fed);
         let value = match &fed.ended {
-            Some(transfer) if transfer.outcome == SdoOutcome::Completed => {
+            Some(transfer)
+                if transfer.outcome == SdoOutcome::Completed
+                    && teaches(transfer.multiplexer.index) =>
+            {
                 value_of(state.sdo.finished())
             }
             _ => None,
@@ -882,6 +885,17 @@ fn statusword_reading(map: &PdoMap, state: &mut NodeState, data: &[u8]) -> Optio
         state: state.cia402.observe_statusword(sw),
         ..Cia402Reading::empty(map.node())
     })
+}
+
+/// Whether a completed transfer of object `index` can teach the session
+/// anything ([`Decoder::learn`]): a PDO parameter, the device type, a
+/// drive's controlword, statusword or mode. Every other object is only
+/// reported: its transfer is not handed to `learn`.
+const fn teaches(index: u16) -> bool {
+    matches!(
+        index,
+        0x1000 | 0x1400..=0x1BFF | 0x6040 | 0x6041 | 0x6060 | 0x6061
+    )
 }
 
 /// The value of a completed expedited transfer's data, little-endian, for
