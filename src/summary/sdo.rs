@@ -199,7 +199,10 @@ impl SdoStats {
             self.latencies
                 .push(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
         }
+        // An abort's first byte says so (command specifier 4, CiA 301
+        // §7.2.4.3.17): the message is read only for such a frame.
         let abort = match step.message {
+            _ if step.data.first().map_or(true, |&b| b >> 5 != 4) => None,
             Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
                 Some((multiplexer, code, SdoParty::Client))
             }
