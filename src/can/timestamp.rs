@@ -38,7 +38,7 @@ use crate::{Error, Result};
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub struct Timestamp {
     /// The time since the clock's zero. A `Duration` keeps its nanoseconds
-    /// below a second, which CPU and compiler know: an `Option<Timestamp>`
+    /// below a second, and the compiler knows it: an `Option<Timestamp>`
     /// is no larger than a timestamp, and
     /// [`as_duration`](Self::as_duration) and
     /// [`duration_since`](Self::duration_since) need no normalization.

@@ -437,10 +437,9 @@ impl Decoder {
 
     /// [`decode`](Self::decode) for a data frame that
     /// [`MessageKind::classify`] makes an SDO frame of `node`: the SDO step
-    /// and the CiA 402 reading, without
-    /// the rest of a [`Decoded`] (what the [summary](crate::summary)
-    /// reads, `Summarizer::add_frame_from`).
-    /// The step and the reading go to `then`.
+    /// and the CiA 402 reading, without the rest of a [`Decoded`] (what the
+    /// [summary](crate::summary) reads, `Summarizer::add_frame_from`).
+    /// The key of the frame's bus, the step and the reading go to `then`.
     #[inline(always)]
     pub(crate) fn sdo_frame<'d, R>(
         &'d mut self,

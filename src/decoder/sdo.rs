@@ -231,6 +231,7 @@ fn push(data: &mut Vec<u8>, chunk: &[u8], cap: usize) {
     extend(data, chunk, cap);
 }
 
+/// [`push`] of a chunk that is not empty, out of line.
 #[inline(never)]
 fn extend(data: &mut Vec<u8>, chunk: &[u8], cap: usize) {
     let room = cap.saturating_sub(data.len());
