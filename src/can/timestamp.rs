@@ -33,16 +33,44 @@ use crate::{Error, Result};
 /// assert_eq!(later.duration_since(ts), Some(Duration::from_millis(2)));
 /// assert_eq!(ts.duration_since(later), None);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+// Ordered, compared and hashed as the seconds then the nanoseconds, as a
+// `Duration` is.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub struct Timestamp {
-    secs: u64,
-    nanos: u32,
+    /// The time since the clock's zero. A `Duration` keeps its nanoseconds
+    /// below a second, and the compiler knows it: an `Option<Timestamp>`
+    /// is no larger than a timestamp, and
+    /// [`as_duration`](Self::as_duration) and
+    /// [`duration_since`](Self::duration_since) need no normalization.
+    since_zero: Duration,
+}
+
+impl fmt::Debug for Timestamp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Timestamp")
+            .field("secs", &self.secs())
+            .field("nanos", &self.subsec_nanos())
+            .finish()
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for Timestamp {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "Timestamp {{ secs: {=u64}, nanos: {=u32} }}",
+            self.secs(),
+            self.subsec_nanos()
+        );
+    }
 }
 
 impl Timestamp {
     /// The clock's zero: the start of the recording, or the Unix epoch.
-    pub const ZERO: Timestamp = Timestamp { secs: 0, nanos: 0 };
+    pub const ZERO: Timestamp = Timestamp {
+        since_zero: Duration::ZERO,
+    };
 
     /// Return the timestamp `secs` + `micros` µs, or `None` when `micros` is
     /// not below 1 000 000.
@@ -51,8 +79,7 @@ impl Timestamp {
     pub const fn new(secs: u64, micros: u32) -> Option<Self> {
         if micros < 1_000_000 {
             Some(Timestamp {
-                secs,
-                nanos: micros * 1_000,
+                since_zero: Duration::new(secs, micros * 1_000),
             })
         } else {
             None
@@ -65,7 +92,9 @@ impl Timestamp {
     #[must_use]
     pub const fn from_nanos(secs: u64, nanos: u32) -> Option<Self> {
         if nanos < 1_000_000_000 {
-            Some(Timestamp { secs, nanos })
+            Some(Timestamp {
+                since_zero: Duration::new(secs, nanos),
+            })
         } else {
             None
         }
@@ -90,45 +119,42 @@ impl Timestamp {
     #[inline]
     #[must_use]
     pub const fn from_duration(since_zero: Duration) -> Self {
-        Timestamp {
-            secs: since_zero.as_secs(),
-            nanos: since_zero.subsec_nanos(),
-        }
+        Timestamp { since_zero }
     }
 
     /// Return the time since the clock's zero.
     #[inline]
     #[must_use]
     pub const fn as_duration(self) -> Duration {
-        Duration::new(self.secs, self.nanos)
+        self.since_zero
     }
 
     /// Return the whole seconds.
     #[inline]
     #[must_use]
     pub const fn secs(self) -> u64 {
-        self.secs
+        self.since_zero.as_secs()
     }
 
     /// Return the microseconds within the second, 0..=999 999 (truncated).
     #[inline]
     #[must_use]
     pub const fn micros(self) -> u32 {
-        self.nanos / 1_000
+        self.since_zero.subsec_micros()
     }
 
     /// Return the nanoseconds within the second, 0..=999 999 999.
     #[inline]
     #[must_use]
     pub const fn subsec_nanos(self) -> u32 {
-        self.nanos
+        self.since_zero.subsec_nanos()
     }
 
     /// Return the timestamp in whole microseconds.
     #[inline]
     #[must_use]
     pub const fn as_micros(self) -> u128 {
-        self.secs as u128 * 1_000_000 + (self.nanos / 1_000) as u128
+        self.since_zero.as_micros()
     }
 
     /// Return the timestamp in seconds as a float (`ts` in
@@ -137,7 +163,7 @@ impl Timestamp {
     #[inline]
     #[must_use]
     pub fn as_secs_f64(self) -> f64 {
-        self.secs as f64 + f64::from(self.nanos) / 1e9
+        self.secs() as f64 + f64::from(self.subsec_nanos()) / 1e9
     }
 
     /// Return how long after `earlier` this timestamp lies, or `None` when it
@@ -145,7 +171,7 @@ impl Timestamp {
     #[inline]
     #[must_use]
     pub fn duration_since(self, earlier: Timestamp) -> Option<Duration> {
-        self.as_duration().checked_sub(earlier.as_duration())
+        self.since_zero.checked_sub(earlier.since_zero)
     }
 
     /// Return the timestamp `period` later, or `None` when it would not fit.
@@ -231,7 +257,7 @@ impl Timestamp {
         }
         buf[20] = b'.';
         // The seconds' digits, right-aligned in the first 20 bytes.
-        let mut secs = self.secs;
+        let mut secs = self.secs();
         let mut start = 20;
         while secs >= 100 {
             start -= 2;
@@ -274,9 +300,9 @@ impl fmt::Display for Timestamp {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let nanos = self.subsec_nanos();
         if nanos % 1000 == 0 {
-            write!(f, "{:010}.{:06}", self.secs, nanos / 1000)
+            write!(f, "{:010}.{:06}", self.secs(), nanos / 1000)
         } else {
-            write!(f, "{:010}.{:09}", self.secs, nanos)
+            write!(f, "{:010}.{:09}", self.secs(), nanos)
         }
     }
 }

@@ -49,6 +49,7 @@ mod sdo;
 
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 pub use bus::BusName;
 pub use cia402::Cia402Reading;
@@ -348,20 +349,48 @@ impl BusState {
 pub struct Decoder {
     buses: Buses<BusState>,
     config: DecoderConfig,
+    /// Index 1..=127: where each node's objects get their names, worked
+    /// out once from the configuration (which does not change after
+    /// [`Decoder::new`]), not for every SDO frame.
+    names: Box<[NodeNames; 128]>,
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, Error>>,
     next_map: u32,
+    /// This session among every decoder made by the program: what makes
+    /// a [`BusKey`] this session's.
+    session: usize,
+}
+
+/// The sessions made so far ([`Decoder::session`]).
+static SESSIONS: AtomicUsize = AtomicUsize::new(0);
+
+/// A bus as one decoder session keeps it: the session and the bus's place
+/// in it, which never changes (buses are only added). The summary keeps
+/// the last key it saw with its own place for that bus, and finds its bus
+/// again without comparing the frame's interface name a second time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct BusKey {
+    session: usize,
+    at: usize,
 }
 
 impl Decoder {
     /// Start a session.
     #[must_use]
     pub fn new(config: DecoderConfig) -> Self {
+        let mut names = Box::new([NodeNames::default(); 128]);
+        for (raw, slot) in names.iter_mut().enumerate() {
+            if let Some(node) = NodeId::new(raw as u8) {
+                *slot = NodeNames::of(&config, node);
+            }
+        }
         Decoder {
             buses: Buses::default(),
             config,
+            names,
             signals: Vec::with_capacity(64),
             next_map: 0,
+            session: SESSIONS.fetch_add(1, Ordering::Relaxed),
         }
     }
 
@@ -391,7 +420,7 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) = self.sdo_owned(position, frame, node, profile);
+                let (step, cia402) = self.sdo_owned(position, frame, node);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -407,26 +436,24 @@ impl Decoder {
     }
 
     /// [`decode`](Self::decode) for a data frame that
-    /// [`MessageKind::classify`] makes an SDO frame of `node`, whose
-    /// profile is `profile`: the SDO step and the CiA 402 reading, without
-    /// the rest of a [`Decoded`] (what the [summary](crate::summary)
-    /// reads, `Summarizer::add_frame_from`).
-    /// The step and the reading go to `then`.
+    /// [`MessageKind::classify`] makes an SDO frame of `node`: the SDO step
+    /// and the CiA 402 reading, without the rest of a [`Decoded`] (what the
+    /// [summary](crate::summary) reads, `Summarizer::add_frame_from`).
+    /// The key of the frame's bus, the step and the reading go to `then`.
     #[inline(always)]
     pub(crate) fn sdo_frame<'d, R>(
         &'d mut self,
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        profile: Profile,
-        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
         } else {
             SdoParty::Client
         };
-        self.sdo(frame, node, sender, position, profile, then)
+        self.sdo(frame, node, sender, position, then)
     }
 
     /// [`sdo_frame`](Self::sdo_frame) for [`decode`](Self::decode), out of
@@ -438,26 +465,37 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        profile: Profile,
     ) -> (SdoStep<'d>, Option<Cia402Reading>) {
-        self.sdo_frame(position, frame, node, profile, |step, cia402| {
-            (*step, cia402)
-        })
+        self.sdo_frame(position, frame, node, |_, step, cia402| (*step, cia402))
     }
 
     /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
     /// makes a PDO, as [`pdo_frame`](Self::pdo_frame) gives it, without
     /// the PDO's reading where the session does not unpack signals: what
     /// the [summary](crate::summary) reads (`Summarizer::add_frame_from`).
+    /// With the reading, the key of the frame's bus.
     #[inline]
-    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> Option<Cia402Reading> {
-        if self.config.signals {
-            return self.pdo_frame(frame).and_then(|(_, cia402)| cia402);
-        }
+    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> (BusKey, Option<Cia402Reading>) {
         let can = &frame.frame;
         let at = self.bus(frame.iface);
-        let (map, state) = self.buses.get_mut(at).mapping(can.id().raw() as u16)?;
-        statusword_reading(map, state, can.data())
+        let key = BusKey {
+            session: self.session,
+            at,
+        };
+        let cob_id = can.id().raw() as u16;
+        if self.config.signals {
+            return (
+                key,
+                self.pdo_at(at, cob_id, can.data())
+                    .and_then(|(_, cia402)| cia402),
+            );
+        }
+        let reading = self
+            .buses
+            .get_mut(at)
+            .mapping(cob_id)
+            .and_then(|(map, state)| statusword_reading(map, state, can.data()));
+        (key, reading)
     }
 
     /// [`decode`](Self::decode) for a data frame that
@@ -524,10 +562,13 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        profile: Profile,
-        then: impl FnOnce(&SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
+        let key = BusKey {
+            session: self.session,
+            at,
+        };
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
@@ -536,7 +577,10 @@ impl Decoder {
             .sdo
             .feed(sender, bytes, frame.timestamp, position, cap, &mut fed);
         let value = match &fed.ended {
-            Some(transfer) if transfer.outcome == SdoOutcome::Completed => {
+            Some(transfer)
+                if transfer.outcome == SdoOutcome::Completed
+                    && teaches(transfer.multiplexer.index) =>
+            {
                 value_of(state.sdo.finished())
             }
             _ => None,
@@ -545,31 +589,31 @@ impl Decoder {
             (Some(transfer), Some(value)) => self.learn(at, node, transfer, value),
             _ => None,
         };
-        // The node's state again (learning may have changed the bus) for
-        // the ended transfer's data, only when a transfer ended.
-        let ended = match fed.ended {
-            Some(transfer) => Some(EndedTransfer {
-                transfer,
-                data: self.buses.get(at).nodes[usize::from(node.get())]
-                    .as_ref()
-                    .expect("made above")
-                    .sdo
-                    .finished(),
-            }),
-            None => None,
-        };
-        let names = object_names(&self.config, node, profile);
-        let step = SdoStep {
+        let names = self.names[usize::from(node.get())].get(&self.config);
+        let mut step = SdoStep {
             node,
             sender,
             message,
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended,
+            ended: None,
             names,
         };
-        then(&step, cia402)
+        // Only when a transfer ended (most frames end none: the step is
+        // not made with a copy of an empty transfer), the node's state again
+        // (learning may have changed the bus) for the transfer's data.
+        if let Some(transfer) = fed.ended {
+            step.ended = Some(EndedTransfer {
+                transfer,
+                data: self.buses.get(at).nodes[usize::from(node.get())]
+                    .as_ref()
+                    .expect("made above")
+                    .sdo
+                    .finished(),
+            });
+        }
+        then(key, &step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,
@@ -677,6 +721,17 @@ impl Decoder {
         data: &[u8],
     ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let at = self.bus(iface);
+        self.pdo_at(at, cob_id, data)
+    }
+
+    /// [`pdo`](Self::pdo) on the bus at `at`.
+    #[inline]
+    fn pdo_at(
+        &mut self,
+        at: usize,
+        cob_id: u16,
+        data: &[u8],
+    ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let (map, state) = self.buses.get_mut(at).mapping(cob_id)?;
         let node = map.node();
         let drive = map.is_drive() || state.drive;
@@ -735,7 +790,7 @@ impl Decoder {
     /// [`SdoStep::object`] names.
     #[must_use]
     pub fn object_names(&self, node: NodeId) -> ObjectNames<'_> {
-        object_names(&self.config, node, self.config.profiles.of(Some(node)))
+        self.names[usize::from(node.get())].get(&self.config)
     }
 
     /// Return whether `node` on `bus` is a CiA 402 drive: its profile, its
@@ -771,18 +826,42 @@ impl Decoder {
     }
 }
 
-/// How `node`, of `profile`, names its objects (`object` in
-/// docs/canopen.md#object-names).
-fn object_names(config: &DecoderConfig, node: NodeId, profile: Profile) -> ObjectNames<'_> {
-    let eds = config
-        .descriptions
-        .iter()
-        .find(|d| d.node == node)
-        .map(|d| &d.eds);
-    let set = profile.object_set().or(eds
-        .is_some_and(Eds::is_cia402)
-        .then_some(crate::canopen::ObjectSet::Drive));
-    ObjectNames::new(eds, set)
+/// Where one node's objects get their names (`object` in
+/// docs/canopen.md#object-names): its description's place in the
+/// configuration, if it has one, and the objects of its profile (CiA 402's
+/// for a node whose EDS makes it a drive).
+#[derive(Debug, Clone, Copy, Default)]
+struct NodeNames {
+    description: Option<u8>,
+    set: Option<crate::canopen::ObjectSet>,
+}
+
+impl NodeNames {
+    /// How `node` names its objects under `config`.
+    fn of(config: &DecoderConfig, node: NodeId) -> Self {
+        let description = config.descriptions.iter().position(|d| d.node == node);
+        let eds = description.map(|at| &config.descriptions[at].eds);
+        let set = config.profiles.of(Some(node)).object_set().or(eds
+            .is_some_and(Eds::is_cia402)
+            .then_some(crate::canopen::ObjectSet::Drive));
+        NodeNames {
+            // One description per node (`DecoderConfig::eds` replaces a
+            // node's): fewer than 128 of them.
+            description: description.and_then(|at| u8::try_from(at).ok()),
+            set,
+        }
+    }
+
+    /// The names, with the EDS from `config` (the configuration they were
+    /// worked out from).
+    #[inline]
+    fn get(self, config: &DecoderConfig) -> ObjectNames<'_> {
+        let eds = self
+            .description
+            .and_then(|at| config.descriptions.get(usize::from(at)))
+            .map(|d| &d.eds);
+        ObjectNames::new(eds, self.set)
+    }
 }
 
 /// The CiA 402 reading of a PDO mapped by `map` on a drive (`state` its
@@ -807,15 +886,30 @@ fn statusword_reading(map: &PdoMap, state: &mut NodeState, data: &[u8]) -> Optio
     })
 }
 
+/// Whether a completed transfer of object `index` can teach the session
+/// anything ([`Decoder::learn`]): a PDO parameter, the device type, a
+/// drive's controlword, statusword or mode. Every other object is only
+/// reported: its transfer is not handed to `learn`.
+const fn teaches(index: u16) -> bool {
+    matches!(
+        index,
+        0x1000 | 0x1400..=0x1BFF | 0x6040 | 0x6041 | 0x6060 | 0x6061
+    )
+}
+
 /// The value of a completed expedited transfer's data, little-endian, for
 /// the objects the decoder learns from (all of them 4 bytes or fewer).
 fn value_of(data: &[u8]) -> Option<u32> {
     if data.is_empty() || data.len() > 4 {
         return None;
     }
-    let mut bytes = [0; 4];
-    bytes[..data.len()].copy_from_slice(data);
-    Some(u32::from_le_bytes(bytes))
+    // Byte by byte (at most four), not by a call to `memcpy` of a
+    // length known only here.
+    Some(
+        data.iter()
+            .rev()
+            .fold(0, |value, &byte| value << 8 | u32::from(byte)),
+    )
 }
 
 #[cfg(test)]

@@ -343,3 +343,49 @@ proptest! {
         serde_json::to_string(&summary).unwrap();
     }
 }
+
+/// A completed transfer reaches `Decoder::learn` only for the objects
+/// `teaches` names: every other object, read or written, at sub-index 0
+/// or 1, gives no CiA 402 reading and changes nothing — no PDO
+/// parameter, no drive made, on a drive (AKD) and on a generic node.
+#[test]
+fn the_objects_left_out_of_learn_teach_nothing() {
+    let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
+    // The bus and both nodes made by a frame each.
+    decoder.decode(1, &at(1, 0x603, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
+    decoder.decode(2, &at(2, 0x605, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
+    let mut left_out = 0;
+    for index in (0..=u16::MAX).filter(|&index| !teaches(index)) {
+        left_out += 1;
+        for (n, direction, sub) in [
+            (3, TransferDirection::Upload, 0),
+            (3, TransferDirection::Download, 0),
+            (3, TransferDirection::Upload, 1),
+            (5, TransferDirection::Upload, 0),
+            (5, TransferDirection::Download, 1),
+        ] {
+            let transfer = SdoTransfer {
+                direction,
+                multiplexer: crate::canopen::ObjectAddress::new(index, sub),
+                mode: crate::canopen::sdo::TransferMode::Expedited,
+                indicated_size: Some(4),
+                bytes: 4,
+                frames: 2,
+                outcome: SdoOutcome::Completed,
+                start_position: 1,
+                started_at: None,
+                duration: None,
+            };
+            // 0x0002_0192: a device type that says CiA 402.
+            let reading = decoder.learn(0, node(n), &transfer, 0x0002_0192);
+            assert!(reading.is_none(), "{index:04X}h.{sub} on node {n}");
+        }
+    }
+    assert_eq!(left_out, 0x1_0000 - 1 - 0x800 - 4);
+    let bus = decoder.buses.get(0);
+    for (n, drive) in [(3, true), (5, false)] {
+        let state = bus.nodes[n].as_ref().expect("made by a frame");
+        assert!(state.pdos.is_empty(), "node {n}");
+        assert_eq!(state.drive, drive, "node {n}");
+    }
+}

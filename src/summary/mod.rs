@@ -57,7 +57,7 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
+use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
@@ -406,6 +406,9 @@ impl BusState {
 #[derive(Debug)]
 pub struct Summarizer {
     buses: Buses<BusState>,
+    /// The bus of the last frame read by a decoder: the decoder's key for
+    /// it and its place here.
+    link: Option<(BusKey, usize)>,
     heartbeat: Option<Duration>,
     last_time: Option<Duration>,
     untimed: u64,
@@ -423,6 +426,7 @@ impl Summarizer {
     pub fn new() -> Self {
         Summarizer {
             buses: Buses::default(),
+            link: None,
             heartbeat: None,
             last_time: None,
             untimed: 0,
@@ -472,16 +476,20 @@ impl Summarizer {
         let (kind, node) = MessageKind::classify(&log.frame);
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                let profile = decoder.config().profiles().of(node);
-                decoder.sdo_frame(position, log, n, profile, |step, cia402| {
-                    self.add_classified(position, log, kind, node, Some(step), cia402, |_| {});
+                decoder.sdo_frame(position, log, n, |key, step, cia402| {
+                    let at = self.bus_of(key, log);
+                    self.add_classified(at, position, log, kind, node, Some(step), cia402, |_| {});
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
-                let cia402 = decoder.pdo_cia402(log);
-                self.add_classified(position, log, kind, node, None, cia402, |_| {});
+                let (key, cia402) = decoder.pdo_cia402(log);
+                let at = self.bus_of(key, log);
+                self.add_classified(at, position, log, kind, node, None, cia402, |_| {});
             }
-            _ => self.add_classified(position, log, kind, node, None, None, |_| {}),
+            _ => {
+                let at = self.find_bus(log);
+                self.add_classified(at, position, log, kind, node, None, None, |_| {});
+            }
         }
     }
 
@@ -510,7 +518,9 @@ impl Summarizer {
         decoded: &Decoded<'_>,
         on_event: impl FnMut(SummaryEvent<'_>),
     ) {
+        let at = self.find_bus(log);
         self.add_classified(
+            at,
             position,
             log,
             decoded.kind,
@@ -521,12 +531,38 @@ impl Summarizer {
         );
     }
 
-    /// Add one frame of `kind` and `node`, with its SDO step and CiA 402
-    /// reading where the decoder gave one, handing `on_event` each fact.
+    /// The place of the bus of `log`, made on first sight.
+    #[inline(always)]
+    fn find_bus(&mut self, log: &LogFrame<'_>) -> usize {
+        let heartbeat = self.heartbeat;
+        self.buses
+            .find_or_insert(log.iface, |_| BusState::new(heartbeat))
+            .0
+    }
+
+    /// The place of the bus of `log`, which a decoder found as `key`: the
+    /// place kept with the last key when it is the same, without a
+    /// comparison of the interface's name.
+    #[inline(always)]
+    fn bus_of(&mut self, key: BusKey, log: &LogFrame<'_>) -> usize {
+        match self.link {
+            Some((last, at)) if last == key => at,
+            _ => {
+                let at = self.find_bus(log);
+                self.link = Some((key, at));
+                at
+            }
+        }
+    }
+
+    /// Add one frame of `kind` and `node` seen on the bus at `at`, with its
+    /// SDO step and CiA 402 reading where the decoder gave one, handing
+    /// `on_event` each fact.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn add_classified(
         &mut self,
+        at: usize,
         position: u64,
         log: &LogFrame<'_>,
         kind: MessageKind,
@@ -540,10 +576,6 @@ impl Summarizer {
             Some(_) => self.last_time = now,
             None => self.untimed += 1,
         }
-        let heartbeat = self.heartbeat;
-        let (at, _) = self
-            .buses
-            .find_or_insert(log.iface, |_| BusState::new(heartbeat));
         let (name, bus) = self.buses.entry_mut(at);
         let event = |node, kind| SummaryEvent {
             bus: name,

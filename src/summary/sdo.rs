@@ -188,6 +188,17 @@ impl Latencies {
     }
 }
 
+/// A latency in nanoseconds, `u64::MAX` for one longer than 584 years:
+/// computed in `u64`, where `Duration::as_nanos` computes in `u128`.
+#[inline]
+fn nanos(latency: Duration) -> u64 {
+    latency
+        .as_secs()
+        .checked_mul(1_000_000_000)
+        .and_then(|n| n.checked_add(u64::from(latency.subsec_nanos())))
+        .unwrap_or(u64::MAX)
+}
+
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     #[inline]
@@ -196,10 +207,12 @@ impl SdoStats {
         s.requests += u64::from(step.sender == SdoParty::Client);
         s.transfers += u64::from(step.started);
         if let Some(latency) = step.latency {
-            self.latencies
-                .push(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
+            self.latencies.push(nanos(latency));
         }
+        // An abort's first byte says so (command specifier 4, CiA 301
+        // §7.2.4.3.17): the message is read only for such a frame.
         let abort = match step.message {
+            _ if step.data.first().map_or(true, |&b| b >> 5 != 4) => None,
             Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
                 Some((multiplexer, code, SdoParty::Client))
             }
@@ -310,6 +323,21 @@ mod tests {
             prop_assert_eq!(kept.distinct, distinct.len());
             prop_assert!(kept.distinct * 4 <= kept.slots.len() * 3);
             prop_assert_eq!(kept.stats(), sorted_stats(latencies));
+        }
+    }
+
+    proptest! {
+        /// A latency's nanoseconds are `as_nanos`, saturated at
+        /// `u64::MAX`.
+        #[test]
+        fn nanos_are_as_nanos_saturated(secs in any::<u64>(), sub in 0u32..1_000_000_000) {
+            let latency = Duration::new(secs, sub);
+            prop_assert_eq!(
+                nanos(latency),
+                u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX)
+            );
+            let short = Duration::new(secs % 1_000_000, sub);
+            prop_assert_eq!(u128::from(nanos(short)), short.as_nanos());
         }
     }
 

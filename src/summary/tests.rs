@@ -372,3 +372,49 @@ fn adding_is_decoding_then_adding_on_every_log() {
     }
     assert!(frames > 1_000, "{frames}");
 }
+
+/// The summary finds a decoder's bus again by the decoder's key for it
+/// (`Summarizer::bus_of`): two decoders that number the same two buses the
+/// other way round, feeding one summarizer in turns, still count each
+/// frame on its own bus.
+#[test]
+fn two_decoders_that_number_buses_apart_count_each_frame_on_its_bus() {
+    let sdo_read = |iface: &'static str, id: u32, first: u8| {
+        LogFrame::new(
+            CanFrame::new(
+                CanId::standard(id).unwrap(),
+                &[first, 0x00, 0x10, 0, 0, 0, 0, 0],
+            )
+            .unwrap(),
+        )
+        .with_iface(Iface::Name(iface))
+    };
+    let (mut a, mut b) = (
+        Decoder::new(DecoderConfig::new()),
+        Decoder::new(DecoderConfig::new()),
+    );
+    let mut summarizer = Summarizer::new();
+    // Decoder `a` meets can0 first, `b` meets can1 first: bus 0 of each
+    // is another interface.
+    summarizer.add_frame_from(1, &sdo_read("can0", 0x602, 0x40), &mut a);
+    summarizer.add_frame_from(2, &sdo_read("can1", 0x605, 0x40), &mut b);
+    summarizer.add_frame_from(3, &sdo_read("can0", 0x602, 0x40), &mut b);
+    summarizer.add_frame_from(4, &sdo_read("can1", 0x605, 0x40), &mut a);
+    summarizer.add_frame_from(5, &sdo_read("can1", 0x605, 0x40), &mut b);
+    let summary = summarizer.finish(&mut a);
+    let frames: Vec<(String, u64)> = summary
+        .buses
+        .iter()
+        .map(|bus| (bus.bus.to_string(), bus.frames))
+        .collect();
+    assert_eq!(frames, [("can0".to_string(), 2), ("can1".to_string(), 3)]);
+    let requests = |bus: &str, node: u8| {
+        summary
+            .node(&BusName::Name(bus.into()), NodeId::new(node).unwrap())
+            .map(|n| n.sdo.requests)
+    };
+    assert_eq!(requests("can0", 2), Some(2));
+    assert_eq!(requests("can1", 5), Some(3));
+    assert_eq!(requests("can0", 5), None);
+    assert_eq!(requests("can1", 2), None);
+}

@@ -507,7 +507,7 @@ impl SdoTracker {
     /// segment.
     #[must_use]
     pub fn expects_block_segment(&self, sender: SdoParty) -> bool {
-        match self.open.map(|o| o.phase) {
+        match self.open.as_ref().map(|o| o.phase) {
             Some(Phase::BlockDownloadSub(_)) => sender == SdoParty::Client,
             Some(Phase::BlockUploadSub(_)) => sender == SdoParty::Server,
             _ => false,
@@ -629,10 +629,10 @@ impl SdoTracker {
 
     /// A frame that cannot be read breaks the open transfer.
     fn malformed(&mut self, time: Option<Timestamp>, step: &mut Step) {
-        if let Some(mut open) = self.open {
+        if let Some(open) = self.open.as_mut() {
             open.frames += 1;
             open.last_at = time.or(open.last_at);
-            self.close(open, SdoOutcome::Broken(BrokenReason::MalformedFrame), step);
+            self.close_open(SdoOutcome::Broken(BrokenReason::MalformedFrame), step);
         }
     }
 
@@ -827,7 +827,9 @@ impl SdoTracker {
         position: u64,
         step: &mut Step,
     ) {
-        let Some(mut new) = Self::start(request, time, position) else {
+        // Made where it is kept, not moved there.
+        self.open = Self::start(request, time, position);
+        let Some(new) = self.open.as_mut() else {
             return;
         };
         step.started = true;
@@ -844,7 +846,6 @@ impl SdoTracker {
             }
             _ => {}
         }
-        self.open = Some(new);
     }
 
     fn response(
@@ -1094,20 +1095,17 @@ impl SdoTracker {
         Ok(Some(SubBlock::new(blksize, repeat)))
     }
 
-    /// Close the open transfer where it stands (nothing when none is open).
+    /// Close the open transfer where it stands (nothing when none is open),
+    /// read where it lies: the open transfer is not copied out first.
     fn close_open(&mut self, outcome: SdoOutcome, step: &mut Step) {
-        if let Some(open) = self.open {
-            self.close(open, outcome, step);
+        if let Some(open) = &self.open {
+            let outcome = match (outcome, open.fault) {
+                (SdoOutcome::Completed, Some(fault)) => SdoOutcome::Broken(fault),
+                _ => outcome,
+            };
+            step.ended = Some(open.end(outcome));
+            self.open = None;
         }
-    }
-
-    fn close(&mut self, open: Open, outcome: SdoOutcome, step: &mut Step) {
-        let outcome = match (outcome, open.fault) {
-            (SdoOutcome::Completed, Some(fault)) => SdoOutcome::Broken(fault),
-            _ => outcome,
-        };
-        step.ended = Some(open.end(outcome));
-        self.open = None;
     }
 }
 
