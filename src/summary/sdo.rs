@@ -209,10 +209,7 @@ impl SdoStats {
         if let Some(latency) = step.latency {
             self.latencies.push(nanos(latency));
         }
-        // An abort's first byte says so (command specifier 4, CiA 301
-        // §7.2.4.3.17): the message is read only for such a frame.
         let abort = match step.message {
-            _ if step.data.first().map_or(true, |&b| b >> 5 != 4) => None,
             Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
                 Some((multiplexer, code, SdoParty::Client))
             }
