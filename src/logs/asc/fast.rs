@@ -9,10 +9,10 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, hex, is_space, AscParser};
+use super::{fd_frame, hex, is_space, trim_end, AscParser};
 use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
+use crate::logs::text::{find_newline, hex_value, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
 /// 12) …
@@ -31,10 +31,38 @@ impl AscParser {
     /// parser unchanged.
     #[inline]
     pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
+        let (read, end) = self.read_fast(line)?;
+        // What follows the frame's last word is white space, or nothing.
+        if line.get(end).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+        Some(self.event(read))
+    }
+
+    /// [`parse_fast`](Self::parse_fast) for the line at the start of
+    /// `text`, read where it lies (its `\n` not looked for first): the
+    /// event and the length of the line with its `\n`, or `None` with
+    /// the parser unchanged.
+    #[inline(always)]
+    pub(super) fn parse_fast_in_place(
+        &mut self,
+        text: &[u8],
+    ) -> Option<(LogEvent<'static>, usize)> {
+        let (read, end) = self.read_fast(text)?;
+        let next = line_after(text, end)?;
+        Some((self.event(read), next))
+    }
+
+    /// The frame of the line at the start of `text` and where its last
+    /// word read ends: a word ends at any byte up to `b' '`, so that the
+    /// line's end (`\r`, `\n`) ends it, and the caller tells what that
+    /// byte may be.
+    #[inline(always)]
+    fn read_fast(&self, text: &[u8]) -> Option<(Read, usize)> {
         if !self.hex {
             return None;
         }
-        let mut words = Words { line, pos: 0 };
+        let mut words = Words { line: text, pos: 0 };
         let written = words.time()?;
         let second = words.next()?;
         let (frame, channel, direction) = if second == b"CANFD" {
@@ -44,14 +72,71 @@ impl AscParser {
             let (frame, direction) = classic(&mut words)?;
             (frame, channel, direction)
         };
-        let timestamp = self.time(written);
-        Some(LogEvent::Frame(
-            LogFrame::new(frame)
-                .with_timestamp(timestamp)
-                .with_iface(Iface::Channel(channel))
-                .with_direction(direction),
-        ))
+        let read = Read {
+            written,
+            frame,
+            channel,
+            direction,
+        };
+        Some((read, words.pos))
     }
+
+    /// The event of a line read, its time counted.
+    #[inline(always)]
+    fn event(&mut self, read: Read) -> LogEvent<'static> {
+        let timestamp = self.time(read.written);
+        LogEvent::Frame(
+            LogFrame::new(read.frame)
+                .with_timestamp(timestamp)
+                .with_iface(Iface::Channel(read.channel))
+                .with_direction(read.direction),
+        )
+    }
+}
+
+/// A frame line as the fast path read it.
+struct Read {
+    written: Timestamp,
+    frame: CanFrame,
+    channel: u16,
+    direction: Direction,
+}
+
+/// Where the line after the one at the start of `text` begins (past its
+/// `\n`, or the end of `text`), when the first line's last word read ends
+/// at `end` and what follows it is white space or nothing, as
+/// [`AscParser::parse_fast`] takes it after the line is trimmed; `None`
+/// otherwise.
+#[inline(always)]
+fn line_after(text: &[u8], end: usize) -> Option<usize> {
+    // The line ends right after its last word: the usual case.
+    match text.get(end) {
+        None => return Some(end),
+        Some(b'\n') => return Some(end + 1),
+        Some(_) => {}
+    }
+    let rest = text.get(end..)?;
+    let (line, next) = match find_newline(rest) {
+        Some(i) => (rest.get(..i)?, end + i + 1),
+        None => (rest, text.len()),
+    };
+    // Trailing white space (a `\r` too), or words the frame does not
+    // read after a space.
+    if trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
+        Some(next)
+    } else {
+        None
+    }
+}
+
+/// Whether `b` ends a word for the fast path: a space or a tab, or a
+/// byte that is no part of a word it reads (`\r`, `\n`, other control
+/// bytes). A word that ends at one that is not a space or a tab is the
+/// line's last (the next word, read from there, is empty), and the
+/// caller decides what follows it.
+#[inline(always)]
+const fn ends_word(b: u8) -> bool {
+    b <= b' '
 }
 
 /// `id Rx|Tx d dlc data…` after the channel, in hex; what follows the data
@@ -157,18 +242,40 @@ impl<'l> Words<'l> {
         }
     }
 
-    /// The next word, or `None` at the end of the line.
+    /// The next word, or `None` at the end of the line (or at a byte
+    /// that [ends a word](ends_word) and is no space).
     #[inline(always)]
     fn next(&mut self) -> Option<&'l [u8]> {
         self.skip_space();
         let start = self.pos;
-        while self.line.get(self.pos).is_some_and(|&b| !is_space(b)) {
-            self.pos += 1;
-        }
+        self.pos = self.word_end(start);
         if self.pos == start {
             return None;
         }
         self.line.get(start..self.pos)
+    }
+
+    /// Where the word at `at` ends: 8 bytes at a time, the lanes (bytes)
+    /// up to `b' '` found with wide-word arithmetic (SWAR), the last bytes
+    /// of the line one by one.
+    #[inline(always)]
+    fn word_end(&self, mut at: usize) -> usize {
+        const ONES: u64 = u64::from_le_bytes([0x01; 8]);
+        const HIGH: u64 = u64::from_le_bytes([0x80; 8]);
+        while let Some(chunk) = self.line.get(at..).and_then(|rest| rest.first_chunk::<8>()) {
+            let w = u64::from_le_bytes(*chunk);
+            // The high bit of each lane below 0x21, and possibly of lanes
+            // after the first such lane (a borrow): the first is exact.
+            let ends = w.wrapping_sub(ONES * 0x21) & !w & HIGH;
+            if ends != 0 {
+                return at + (ends.trailing_zeros() / 8) as usize;
+            }
+            at += 8;
+        }
+        while self.line.get(at).is_some_and(|&b| !ends_word(b)) {
+            at += 1;
+        }
+        at
     }
 
     /// The first word, read where it stands: `seconds.fraction`, 1 to 15
@@ -181,7 +288,7 @@ impl<'l> Words<'l> {
             return None;
         }
         let (fraction, digits, end) = self.digits(point + 1);
-        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !is_space(b)) {
+        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
             return None;
         }
         self.pos = end;
@@ -271,7 +378,7 @@ impl<'l> Words<'l> {
             let at = self.pos;
             if let Some(&[b' ', hi, lo]) = self.line.get(at..at + 3) {
                 let (hi, lo) = (HEX_TABLE[usize::from(hi)], HEX_TABLE[usize::from(lo)]);
-                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !is_space(b)) {
+                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !ends_word(b)) {
                     *slot = hi << 4 | lo;
                     self.pos = at + 3;
                     continue;
@@ -296,7 +403,7 @@ impl<'l> Words<'l> {
         else {
             return false;
         };
-        if u128::from_le_bytes(*chunk) & GROUP_SPACES != SPACES || !is_space(chunk[15]) {
+        if u128::from_le_bytes(*chunk) & GROUP_SPACES != SPACES || !ends_word(chunk[15]) {
             return false;
         }
         let mut all = 0u8;
@@ -320,9 +427,9 @@ impl<'l> Words<'l> {
         let at = self.pos;
         let hi = hex_value(*self.line.get(at)?)?;
         match self.line.get(at + 1) {
-            Some(&lo) if !is_space(lo) => {
+            Some(&lo) if !ends_word(lo) => {
                 let lo = hex_value(lo)?;
-                if self.line.get(at + 2).is_some_and(|&b| !is_space(b)) {
+                if self.line.get(at + 2).is_some_and(|&b| !ends_word(b)) {
                     return None;
                 }
                 self.pos = at + 2;

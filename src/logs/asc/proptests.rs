@@ -146,6 +146,42 @@ fn fast_agrees(parser: &AscParser, line: &[u8]) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// The fast path reading the first line of `text` where it lies (the
+/// reader's way) reads it as it reads the line alone, trimmed, and says
+/// where the next line begins; where it declines, the parser is as it
+/// was. The line alone is held to the general parser by [`fast_agrees`].
+fn in_place_agrees(parser: &AscParser, text: &[u8]) -> Result<(), TestCaseError> {
+    let mut rest = text;
+    let line = take_line(&mut rest).unwrap_or_default();
+    let mut alone = *parser;
+    let expected = alone.parse_fast(trim_end(line));
+    let mut in_place = *parser;
+    match in_place.parse_fast_in_place(text) {
+        Some((event, len)) => {
+            prop_assert_eq!(Some(event), expected);
+            prop_assert_eq!(len, text.len() - rest.len());
+            prop_assert_eq!(in_place, alone);
+        }
+        None => {
+            prop_assert_eq!(expected, None);
+            prop_assert_eq!(&in_place, parser);
+        }
+    }
+    fast_agrees(parser, line)
+}
+
+/// What follows a line in a block: nothing (the last line, without its
+/// `\n`), or its `\n` and another line, shaped like a frame line or any
+/// bytes.
+fn after_line() -> impl Strategy<Value = Vec<u8>> {
+    prop_oneof![
+        1 => Just(Vec::new()),
+        1 => Just(b"\n".to_vec()),
+        4 => asc_like_line().prop_map(|next| [b"\n", next.as_bytes()].concat()),
+        2 => proptest::collection::vec(any::<u8>(), 0..40).prop_map(|next| [&b"\n"[..], &next].concat()),
+    ]
+}
+
 proptest! {
     // Each field is wrong in one line of 20: enough cases that most wrong
     // fields come up in a line that is otherwise right.
@@ -157,6 +193,17 @@ proptest! {
     fn fast_path_agrees_on_asc_like_lines(parser in any_parser(), line in asc_like_line()) {
         fast_agrees(&parser, line.as_bytes())?;
     }
+
+    /// The fast path reads a line in place as it reads it alone, whatever
+    /// follows it.
+    #[test]
+    fn fast_path_in_place_agrees_on_asc_like_lines(
+        parser in any_parser(),
+        line in asc_like_line(),
+        after in after_line(),
+    ) {
+        in_place_agrees(&parser, &[line.as_bytes(), &after].concat())?;
+    }
 }
 
 proptest! {
@@ -164,6 +211,13 @@ proptest! {
     #[test]
     fn fast_path_agrees_on_any_bytes(parser in any_parser(), line in proptest::collection::vec(any::<u8>(), 0..200)) {
         fast_agrees(&parser, &line)?;
+    }
+
+    /// The fast path reads arbitrary bytes in place as it reads their
+    /// first line alone.
+    #[test]
+    fn fast_path_in_place_agrees_on_any_bytes(parser in any_parser(), text in proptest::collection::vec(any::<u8>(), 0..200)) {
+        in_place_agrees(&parser, &text)?;
     }
 
 
