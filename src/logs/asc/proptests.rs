@@ -129,6 +129,69 @@ fn asc_like_line() -> impl Strategy<Value = String> {
     prop_oneof![classic, fd]
 }
 
+/// `n` data bytes as the writers write them, ` HH` (sometimes a few more
+/// or fewer), each group mostly right and sometimes just wrong.
+fn writers_data(n: usize) -> impl Strategy<Value = String> {
+    let count = prop_oneof![9 => Just(n), 1 => 0..n + 3];
+    count.prop_flat_map(|count| {
+        proptest::collection::vec(
+            (
+                field(" ", "  |\\t|"),
+                field(
+                    "[0-9A-F]{2}",
+                    "[0-9a-f]{1,2}|[0-9A-F]{3}|G[0-9]|\\r[0-9]|[0-9]\\n",
+                ),
+            ),
+            count,
+        )
+        .prop_map(|bytes| bytes.into_iter().map(|(g, b)| g + &b).collect::<String>())
+    })
+}
+
+/// Classic lines in the writers' columns (python-can, CANoe: `   0.012345
+/// 1  123             Rx   d 8 11 22 …`, the identifier padded to 15
+/// columns), each field and each run of padding mostly right and
+/// sometimes just wrong: the shape the fast path reads from fixed
+/// columns.
+fn columns_line() -> impl Strategy<Value = String> {
+    let id = field(
+        "[0-7][0-9A-F]{2}|[0-9A-Fa-f]{1,8}[xX]",
+        "[0-9A-Fa-f]{9,15}x?|[0-9A-F]{0,3}[gxX]|[0-9A-F]{16,17}",
+    );
+    let head = (
+        field(
+            "[ ]{1,4}[0-9]{1,6}\\.[0-9]{6}",
+            "[ ]{0,4}[0-9]{1,3}\\.[0-9]{0,10}",
+        ),
+        field("[1-9]|1[0-6]", "0|[0-9]{6}"),
+        id,
+        // The padding to 15 columns, or one space more or less, or a tab.
+        prop_oneof![16 => Just(0i8), 1 => Just(-1i8), 1 => Just(1i8), 1 => Just(2i8)],
+        field("Rx|Tx", "TxRq|rx|R |RX|Rt"),
+        field("   ", "  |    |\\t  | \\t "),
+        field("d|D", "r|R|x|dd"),
+        field(" ", "  |\\t|"),
+        field("[0-8]", "[9A-Fa-f]|G|10|\\r"),
+    );
+    let tail = field(
+        "",
+        "[ ]+Length = [0-9]+ BitCount = [0-9]+|\\r|[ \\t\\r]{1,3}|\\rx|x",
+    );
+    (head, 0usize..=8, tail)
+        .prop_flat_map(|(head, n, tail)| (Just(head), writers_data(n), Just(tail)))
+        .prop_map(
+            |((time, channel, id, pad, dir, gap, kind, g, dlc), data, tail)| {
+                let width = (15 + i32::from(pad)).max(0) as usize;
+                let padded = if pad == 2 {
+                    format!("{id}\t")
+                } else {
+                    format!("{id:<width$}")
+                };
+                format!("{time} {channel}  {padded} {dir}{gap}{kind}{g}{dlc}{data}{tail}")
+            },
+        )
+}
+
 /// The fast path, where it reads `line` at all, reads it as the general
 /// parser does and leaves the parser as the general parser leaves it;
 /// where it declines, it leaves the parser as it was.
@@ -192,6 +255,19 @@ proptest! {
     #[test]
     fn fast_path_agrees_on_asc_like_lines(parser in any_parser(), line in asc_like_line()) {
         fast_agrees(&parser, line.as_bytes())?;
+    }
+
+    /// The fast path agrees with the general parser on classic lines in
+    /// the writers' columns, right and just wrong, read alone and in
+    /// place.
+    #[test]
+    fn fast_path_agrees_on_lines_in_columns(
+        parser in any_parser(),
+        line in columns_line(),
+        after in after_line(),
+    ) {
+        fast_agrees(&parser, line.as_bytes())?;
+        in_place_agrees(&parser, &[line.as_bytes(), &after].concat())?;
     }
 
     /// The fast path reads a line in place as it reads it alone, whatever
