@@ -217,6 +217,35 @@ fn channel(word: &[u8]) -> Option<u16> {
     u16::try_from(value).ok().filter(|&n| n > 0)
 }
 
+/// A hex digit's value times 16 by character, 0x100 for a character that
+/// is no hex digit: or'd with [`HEX_LOW`]'s entry for the second digit,
+/// the byte the two spell, 0x100 set when either is not a digit.
+const HEX_HIGH: [u16; 256] = {
+    let mut table = [0x100u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        if HEX_TABLE[i] & 0xF0 == 0 {
+            table[i] = (HEX_TABLE[i] as u16) << 4;
+        }
+        i += 1;
+    }
+    table
+};
+
+/// A hex digit's value by character, 0x100 for a character that is no hex
+/// digit (see [`HEX_HIGH`]).
+const HEX_LOW: [u16; 256] = {
+    let mut table = [0x100u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        if HEX_TABLE[i] & 0xF0 == 0 {
+            table[i] = HEX_TABLE[i] as u16;
+        }
+        i += 1;
+    }
+    table
+};
+
 /// The white-space separated words of a line, read in order.
 struct Words<'l> {
     line: &'l [u8],
@@ -434,10 +463,11 @@ impl<'l> Words<'l> {
     }
 
     /// A classic line's `len` (up to 8) data bytes, each ` HH` (what the
-    /// writers write), from one 24-byte load: the groups' spaces and
-    /// digits checked at once after a table look-up per digit, then what
-    /// follows the last group. `None`, with the position unchanged, when
-    /// they are not (the other spellings are
+    /// writers write), from one 24-byte load: a look-up per digit in
+    /// [`HEX_HIGH`] and [`HEX_LOW`], whose or is the byte (and 0x100 when
+    /// a digit is no hex digit), the groups' spaces and digits checked
+    /// once for all, then what follows the last group. `None`, with the
+    /// position unchanged, when they are not (the other spellings are
     /// [`classic_bytes_spelt`](Self::classic_bytes_spelt)'s) or fewer than
     /// 24 bytes are left.
     #[inline(always)]
@@ -446,13 +476,18 @@ impl<'l> Words<'l> {
         let groups = self.line.get(at..)?.first_chunk::<24>()?;
         let mut data = [0u8; CLASSIC_MAX_LEN];
         // Not 0 when a group's first byte is no space or a digit no hex
-        // digit (0xF0 in the table).
-        let mut wrong = 0u8;
-        for (group, byte) in groups.chunks_exact(3).zip(&mut data).take(len) {
-            if let [space, hi, lo] = *group {
-                let (hi, lo) = (HEX_TABLE[usize::from(hi)], HEX_TABLE[usize::from(lo)]);
-                wrong |= (space ^ b' ') | ((hi | lo) & 0xF0);
-                *byte = hi << 4 | lo;
+        // digit.
+        let mut wrong = 0u16;
+        for (i, slot) in data.iter_mut().enumerate().take(len) {
+            let group = 3 * i;
+            if let (Some(&space), Some(&hi), Some(&lo)) = (
+                groups.get(group),
+                groups.get(group + 1),
+                groups.get(group + 2),
+            ) {
+                let byte = HEX_HIGH[usize::from(hi)] | HEX_LOW[usize::from(lo)];
+                wrong |= u16::from(space ^ b' ') | (byte & 0x100);
+                *slot = byte as u8;
             }
         }
         let end = at + 3 * len;
