@@ -217,6 +217,38 @@ fn channel(word: &[u8]) -> Option<u16> {
     u16::try_from(value).ok().filter(|&n| n > 0)
 }
 
+/// The decimal digits that start the 8 bytes of `w` (the first in its
+/// lowest lane), when fewer than 8: their value and number, read with
+/// wide-word arithmetic (SWAR); `None` when all 8 are digits.
+#[inline(always)]
+const fn eight_digits(w: u64) -> Option<(u64, usize)> {
+    const HIGH_NIBBLES: u64 = u64::from_le_bytes([0xF0; 8]);
+    const THREES: u64 = u64::from_le_bytes([0x30; 8]);
+    const SIXES: u64 = u64::from_le_bytes([0x06; 8]);
+    // A lane is a digit when its high nibble is 3 and it stays 3 with 6
+    // added (0x30..=0x39). The carry out of a lane 0xFA..=0xFF reaches
+    // only lanes after it, and it is no digit itself: the first lane
+    // marked is exact.
+    let others = ((w & HIGH_NIBBLES) ^ THREES) | ((w.wrapping_add(SIXES) & HIGH_NIBBLES) ^ THREES);
+    if others == 0 {
+        return None;
+    }
+    let n = (others.trailing_zeros() / 8) as usize;
+    if n == 0 {
+        return Some((0, 0));
+    }
+    // The digits' values (a borrow out of the lanes after them reaches
+    // only later lanes), moved to the highest lanes so that the lanes
+    // before them are leading zeros.
+    let mut v = w.wrapping_sub(THREES) << (8 * (8 - n));
+    // Pairs of lanes, then pairs of pairs, then the two halves: the first
+    // of each times 10, 100, 10 000, plus the second.
+    v = (v & 0x0F0F_0F0F_0F0F_0F0F).wrapping_mul(10 << 8 | 1) >> 8;
+    v = (v & 0x00FF_00FF_00FF_00FF).wrapping_mul(100 << 16 | 1) >> 16;
+    v = (v & 0x0000_FFFF_0000_FFFF).wrapping_mul(10_000 << 32 | 1) >> 32;
+    Some((v, n))
+}
+
 /// A hex digit's value times 16 by character, 0x100 for a character that
 /// is no hex digit: or'd with [`HEX_LOW`]'s entry for the second digit,
 /// the byte the two spell, 0x100 set when either is not a digit.
@@ -336,9 +368,16 @@ impl<'l> Words<'l> {
     }
 
     /// The decimal digits from `at`: their value (wrapped past 20
-    /// digits), their number and where they end.
+    /// digits), their number and where they end. Fewer than 8 followed by
+    /// a byte that is none, with 8 bytes to load, are read at once
+    /// ([`eight_digits`]); others one by one.
     #[inline(always)]
     fn digits(&self, at: usize) -> (u64, usize, usize) {
+        if let Some(chunk) = self.line.get(at..).and_then(|rest| rest.first_chunk::<8>()) {
+            if let Some((value, n)) = eight_digits(u64::from_le_bytes(*chunk)) {
+                return (value, n, at + n);
+            }
+        }
         let mut value = 0u64;
         let mut end = at;
         while let Some(d) = self
@@ -475,9 +514,10 @@ impl<'l> Words<'l> {
         let at = self.pos;
         let groups = self.line.get(at..)?.first_chunk::<24>()?;
         let mut data = [0u8; CLASSIC_MAX_LEN];
-        // Not 0 when a group's first byte is no space or a digit no hex
-        // digit.
-        let mut wrong = 0u16;
+        // The or of the bytes (0x100 set when a digit is no hex digit),
+        // and of the groups' first bytes each xor a space (0 when all are
+        // spaces).
+        let (mut all, mut spaces) = (0u16, 0u8);
         for (i, slot) in data.iter_mut().enumerate().take(len) {
             let group = 3 * i;
             if let (Some(&space), Some(&hi), Some(&lo)) = (
@@ -486,12 +526,13 @@ impl<'l> Words<'l> {
                 groups.get(group + 2),
             ) {
                 let byte = HEX_HIGH[usize::from(hi)] | HEX_LOW[usize::from(lo)];
-                wrong |= u16::from(space ^ b' ') | (byte & 0x100);
+                all |= byte;
+                spaces |= space ^ b' ';
                 *slot = byte as u8;
             }
         }
         let end = at + 3 * len;
-        if wrong != 0 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
+        if all & 0x100 != 0 || spaces != 0 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
             return None;
         }
         self.pos = end;
@@ -639,8 +680,26 @@ mod tests {
         })
     }
 
+    /// Eight bytes, mostly digits.
+    fn mostly_digits() -> impl Strategy<Value = [u8; 8]> {
+        proptest::array::uniform8(prop_oneof![
+            8 => proptest::sample::select(b"0123456789".to_vec()),
+            1 => proptest::sample::select(b" ./:\t\n\r\xFA\xFF".to_vec()),
+            1 => any::<u8>(),
+        ])
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The digits read at once are the digits read one by one.
+        #[test]
+        fn eight_digits_read_as_one_by_one(bytes in mostly_digits()) {
+            let n = bytes.iter().take_while(|b| b.is_ascii_digit()).count();
+            let value = bytes[..n].iter().fold(0u64, |v, &b| v * 10 + u64::from(b - b'0'));
+            let expected = (n < 8).then_some((value, n));
+            prop_assert_eq!(eight_digits(u64::from_le_bytes(bytes)), expected);
+        }
 
         #[test]
         fn bytes_read_as_one_by_one_on_data_runs(line in data_run(), n in 0usize..=FD_MAX_LEN) {
