@@ -146,7 +146,7 @@ const fn ends_word(b: u8) -> bool {
 fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
     words.skip_space();
     let id_start = words.pos;
-    let id = words.id()?;
+    let id = words.id_here()?;
     let (direction, dlc) = match words.columns(id_start) {
         Some(head) => head,
         None => words.head_spelt()?,
@@ -318,6 +318,13 @@ impl<'l> Words<'l> {
     #[inline(always)]
     fn next(&mut self) -> Option<&'l [u8]> {
         self.skip_space();
+        self.word()
+    }
+
+    /// The word where the position is (after white space skipped), or
+    /// `None` where none starts.
+    #[inline(always)]
+    fn word(&mut self) -> Option<&'l [u8]> {
         let start = self.pos;
         self.pos = self.word_end(start);
         if self.pos == start {
@@ -395,7 +402,14 @@ impl<'l> Words<'l> {
     /// An identifier in hex, `x` after an extended one.
     #[inline(always)]
     fn id(&mut self) -> Option<CanId> {
-        let word = self.next()?;
+        self.skip_space();
+        self.id_here()
+    }
+
+    /// [`id`](Self::id) where the position is, white space skipped.
+    #[inline(always)]
+    fn id_here(&mut self) -> Option<CanId> {
+        let word = self.word()?;
         match word.split_last() {
             Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
             _ => CanId::standard(hex(word)?),
