@@ -31,12 +31,13 @@ impl AscParser {
     /// parser unchanged.
     #[inline]
     pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
-        let (read, end) = self.read_fast(line)?;
+        let (mut logged, end) = self.read_fast(line)?;
         // What follows the frame's last word is white space, or nothing.
         if line.get(end).is_some_and(|&b| !is_space(b)) {
             return None;
         }
-        Some(self.event(read))
+        self.count_time(&mut logged);
+        Some(LogEvent::Frame(logged))
     }
 
     /// [`parse_fast`](Self::parse_fast) for the line at the start of
@@ -48,17 +49,18 @@ impl AscParser {
         &mut self,
         text: &[u8],
     ) -> Option<(LogEvent<'static>, usize)> {
-        let (read, end) = self.read_fast(text)?;
+        let (mut logged, end) = self.read_fast(text)?;
         let next = line_after(text, end)?;
-        Some((self.event(read), next))
+        self.count_time(&mut logged);
+        Some((LogEvent::Frame(logged), next))
     }
 
-    /// The frame of the line at the start of `text` and where its last
-    /// word read ends: a word ends at any byte up to `b' '`, so that the
-    /// line's end (`\r`, `\n`) ends it, and the caller tells what that
-    /// byte may be.
+    /// The frame of the line at the start of `text`, its time as written,
+    /// and where its last word read ends: a word ends at any byte up to
+    /// `b' '`, so that the line's end (`\r`, `\n`) ends it, and the caller
+    /// tells what that byte may be.
     #[inline(always)]
-    fn read_fast(&self, text: &[u8]) -> Option<(Read, usize)> {
+    fn read_fast(&self, text: &[u8]) -> Option<(LogFrame<'static>, usize)> {
         if !self.hex {
             return None;
         }
@@ -72,34 +74,22 @@ impl AscParser {
             let (frame, direction) = classic(&mut words)?;
             (frame, channel, direction)
         };
-        let read = Read {
-            written,
+        let logged = LogFrame {
             frame,
-            channel,
-            direction,
+            timestamp: Some(written),
+            iface: Some(Iface::Channel(channel)),
+            direction: Some(direction),
         };
-        Some((read, words.pos))
+        Some((logged, words.pos))
     }
 
-    /// The event of a line read, its time counted.
+    /// Count the time of a frame read (add it up, with relative times).
     #[inline(always)]
-    fn event(&mut self, read: Read) -> LogEvent<'static> {
-        let timestamp = self.time(read.written);
-        LogEvent::Frame(
-            LogFrame::new(read.frame)
-                .with_timestamp(timestamp)
-                .with_iface(Iface::Channel(read.channel))
-                .with_direction(read.direction),
-        )
+    fn count_time(&mut self, logged: &mut LogFrame<'static>) {
+        if self.relative {
+            logged.timestamp = logged.timestamp.map(|written| self.time(written));
+        }
     }
-}
-
-/// A frame line as the fast path read it.
-struct Read {
-    written: Timestamp,
-    frame: CanFrame,
-    channel: u16,
-    direction: Direction,
 }
 
 /// Where the line after the one at the start of `text` begins (past its
