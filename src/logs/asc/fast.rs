@@ -2,6 +2,17 @@
 //! frame (`   0.012345 1  123             Rx   d 8 11 22 …`) and a `CANFD`
 //! frame — read in one pass over the line, in a `base hex` file.
 //!
+//! The reader reads a line where it lies in its block
+//! ([`AscParser::parse_fast_in_place`]): the line's `\n` is looked for
+//! only from where the frame's last word ends, and only when something
+//! other than `\n` follows it. A classic line in the writers' columns
+//! (python-can, CANoe) is read mostly from fixed-size loads: the time's
+//! digits 8 bytes at a time, the direction, `d` and DLC after the padded
+//! identifier from one 16-byte and one 8-byte load
+//! ([`Words::columns`]), the data bytes from one 24-byte load
+//! ([`Words::classic_bytes`]); any other spacing or spelling is read
+//! word by word.
+//!
 //! It accepts only lines the general parser reads to a frame, and returns
 //! for them what the general parser returns; every other line (a remote
 //! request, an error frame, a symbolic name, `base dec`, a header, a
@@ -490,9 +501,9 @@ impl<'l> Words<'l> {
 
     /// A `CANFD` line's `out.len()` data bytes (up to 64): ` HH` five at
     /// a time by [`five_bytes`](Self::five_bytes) while they are, the rest
-    /// by [`bytes`](Self::bytes). (Not for a classic line's 8 bytes at
-    /// most: 2 % fewer instructions on the SDO mix, and no faster in
-    /// hyperfine; BENCHMARKS.md, "Issue 21: ASC CAN FD lines".)
+    /// by [`bytes`](Self::bytes). (A classic line's 8 at most are
+    /// [`classic_bytes`](Self::classic_bytes)'s, all from one load;
+    /// BENCHMARKS.md, "Issue 21: the ASC reader, classic lines".)
     #[inline(always)]
     fn fd_bytes(&mut self, out: &mut [u8]) -> Option<()> {
         let mut read = 0;
