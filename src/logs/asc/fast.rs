@@ -145,7 +145,15 @@ const fn ends_word(b: u8) -> bool {
 /// it.
 #[inline(always)]
 fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
-    words.skip_space();
+    // The writers put two spaces after the channel.
+    match words
+        .line
+        .get(words.pos..)
+        .and_then(|rest| rest.first_chunk::<3>())
+    {
+        Some(&[b' ', b' ', b]) if !is_space(b) => words.pos += 2,
+        _ => words.skip_space(),
+    }
     let id_start = words.pos;
     let id = words.id_here()?;
     let (direction, dlc) = match words.columns(id_start) {
