@@ -77,13 +77,28 @@ impl AscParser {
         }
         let mut words = Words { line: text, pos: 0 };
         let written = words.time()?;
-        let second = words.next()?;
-        let (frame, channel, direction) = if second == b"CANFD" {
-            fd(&mut words)?
-        } else {
-            let channel = channel(second)?;
-            let (frame, direction) = classic(&mut words)?;
-            (frame, channel, direction)
+        // A classic line's channel, or `None` for a `CANFD` line.
+        let classic_channel = match words
+            .line
+            .get(words.pos..)
+            .and_then(|rest| rest.first_chunk::<3>())
+        {
+            // One digit between single spaces: the usual channel.
+            Some(&[b' ', digit @ b'1'..=b'9', b' ']) => {
+                words.pos += 2;
+                Some(u16::from(digit - b'0'))
+            }
+            _ => match words.next()? {
+                b"CANFD" => None,
+                second => Some(channel(second)?),
+            },
+        };
+        let (frame, channel, direction) = match classic_channel {
+            Some(channel) => {
+                let (frame, direction) = classic(&mut words)?;
+                (frame, channel, direction)
+            }
+            None => fd(&mut words)?,
         };
         let logged = LogFrame {
             frame,
