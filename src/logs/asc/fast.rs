@@ -176,14 +176,11 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
         None => words.head_spelt()?,
     };
     let len = usize::from(dlc).min(CLASSIC_MAX_LEN);
-    let data = match words.classic_bytes(len) {
-        Some(data) => data,
-        None => words.classic_bytes_spelt(len)?,
-    };
-    // The bytes past `len` are zero, as a frame's must be.
+    // The bytes past `len` stay zero, as a frame's must be.
     let mut bytes = [0u8; FD_MAX_LEN];
-    if let Some(head) = bytes.first_chunk_mut::<CLASSIC_MAX_LEN>() {
-        *head = data;
+    let data = bytes.first_chunk_mut::<CLASSIC_MAX_LEN>()?;
+    if !words.classic_bytes(len, data) {
+        words.classic_bytes_spelt(len, data)?;
     }
     let frame = CanFrame::from_checked_parts(id, FrameType::Data, bytes, len as u8);
     Some((frame, direction))
@@ -540,18 +537,25 @@ impl<'l> Words<'l> {
     }
 
     /// A classic line's `len` (up to 8) data bytes, each ` HH` (what the
-    /// writers write), from one 24-byte load: a look-up per digit in
-    /// [`HEX_HIGH`] and [`HEX_LOW`], whose or is the byte (and 0x100 when
-    /// a digit is no hex digit), the groups' spaces and digits checked
-    /// once for all, then what follows the last group. `None`, with the
-    /// position unchanged, when they are not (the other spellings are
+    /// writers write), into the first `len` of `data` (the frame's array,
+    /// the rest left as it is): from one 24-byte load, a look-up per
+    /// digit in [`HEX_HIGH`] and [`HEX_LOW`], whose or is the byte (and
+    /// 0x100 when a digit is no hex digit), the groups' spaces and digits
+    /// checked once for all, then what follows the last group. `false`,
+    /// with the position unchanged (and the first `len` of `data` written
+    /// over), when they are not (the other spellings are
     /// [`classic_bytes_spelt`](Self::classic_bytes_spelt)'s) or fewer than
     /// 24 bytes are left.
     #[inline(always)]
-    fn classic_bytes(&mut self, len: usize) -> Option<[u8; CLASSIC_MAX_LEN]> {
+    fn classic_bytes(&mut self, len: usize, data: &mut [u8; CLASSIC_MAX_LEN]) -> bool {
         let at = self.pos;
-        let groups = self.line.get(at..)?.first_chunk::<24>()?;
-        let mut data = [0u8; CLASSIC_MAX_LEN];
+        let Some(groups) = self
+            .line
+            .get(at..)
+            .and_then(|rest| rest.first_chunk::<24>())
+        else {
+            return false;
+        };
         // The or of the bytes (0x100 set when a digit is no hex digit),
         // and of the groups' first bytes each xor a space (0 when all are
         // spaces).
@@ -571,21 +575,19 @@ impl<'l> Words<'l> {
         }
         let end = at + 3 * len;
         if all & 0x100 != 0 || spaces != 0 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
-            return None;
+            return false;
         }
         self.pos = end;
-        Some(data)
+        true
     }
 
     /// A classic line's `len` data bytes in any spelling
-    /// [`bytes`](Self::bytes) reads, out of line: what
-    /// [`classic_bytes`](Self::classic_bytes) declines.
+    /// [`bytes`](Self::bytes) reads, into the first `len` of `data`, out
+    /// of line: what [`classic_bytes`](Self::classic_bytes) declines.
     #[cold]
     #[inline(never)]
-    fn classic_bytes_spelt(&mut self, len: usize) -> Option<[u8; CLASSIC_MAX_LEN]> {
-        let mut data = [0u8; CLASSIC_MAX_LEN];
-        self.bytes(data.get_mut(..len)?)?;
-        Some(data)
+    fn classic_bytes_spelt(&mut self, len: usize, data: &mut [u8; CLASSIC_MAX_LEN]) -> Option<()> {
+        self.bytes(data.get_mut(..len)?)
     }
 
     /// `out.len()` data bytes: ` HH` (what the writers write) with a
