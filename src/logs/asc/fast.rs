@@ -7,7 +7,8 @@
 //! only from where the frame's last word ends, and only when something
 //! other than `\n` follows it. A classic line in the writers' columns
 //! (python-can, CANoe) is read mostly from fixed-size loads: the time's
-//! digits 8 bytes at a time, the direction, `d` and DLC after the padded
+//! digits 8 bytes at a time, a one-digit channel from one 3-byte look,
+//! the direction, `d` and DLC after the padded
 //! identifier from one 16-byte and one 8-byte load
 //! ([`Words::columns`]), the data bytes from one 24-byte load
 //! ([`Words::classic_bytes`]); any other spacing or spelling is read
