@@ -2,6 +2,18 @@
 //! frame (`   0.012345 1  123             Rx   d 8 11 22 …`) and a `CANFD`
 //! frame — read in one pass over the line, in a `base hex` file.
 //!
+//! The reader reads a line where it lies in its block
+//! ([`AscParser::parse_fast_in_place`]): the line's `\n` is looked for
+//! only from where the frame's last word ends, and only when something
+//! other than `\n` follows it. A classic line in the writers' columns
+//! (python-can, CANoe) is read mostly from fixed-size loads: the time's
+//! digits 8 bytes at a time, a one-digit channel from one 3-byte look,
+//! the direction, `d` and DLC after the padded
+//! identifier from one 16-byte and one 8-byte load
+//! ([`Words::columns`]), the data bytes from one 24-byte load
+//! ([`Words::classic_bytes`]); any other spacing or spelling is read
+//! word by word.
+//!
 //! It accepts only lines the general parser reads to a frame, and returns
 //! for them what the general parser returns; every other line (a remote
 //! request, an error frame, a symbolic name, `base dec`, a header, a
@@ -9,10 +21,10 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, hex, is_space, AscParser};
-use crate::can::{CanFrame, CanId, Direction, Iface, LogEvent, LogFrame, Timestamp};
+use super::{fd_frame, hex, is_space, trim_end, AscParser};
+use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
+use crate::logs::text::{find_newline, hex_value, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
 /// 12) …
@@ -31,27 +43,117 @@ impl AscParser {
     /// parser unchanged.
     #[inline]
     pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
+        let (mut logged, end) = self.read_fast(line)?;
+        // What follows the frame's last word is white space, or nothing.
+        if line.get(end).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+        self.count_time(&mut logged);
+        Some(LogEvent::Frame(logged))
+    }
+
+    /// [`parse_fast`](Self::parse_fast) for the line at the start of
+    /// `text`, read where it lies (its `\n` not looked for first): the
+    /// event and the length of the line with its `\n`, or `None` with
+    /// the parser unchanged.
+    #[inline(always)]
+    pub(super) fn parse_fast_in_place(
+        &mut self,
+        text: &[u8],
+    ) -> Option<(LogEvent<'static>, usize)> {
+        let (mut logged, end) = self.read_fast(text)?;
+        let next = line_after(text, end)?;
+        self.count_time(&mut logged);
+        Some((LogEvent::Frame(logged), next))
+    }
+
+    /// The frame of the line at the start of `text`, its time as written,
+    /// and where its last word read ends: a word ends at any byte up to
+    /// `b' '`, so that the line's end (`\r`, `\n`) ends it, and the caller
+    /// tells what that byte may be.
+    #[inline(always)]
+    fn read_fast(&self, text: &[u8]) -> Option<(LogFrame<'static>, usize)> {
         if !self.hex {
             return None;
         }
-        let mut words = Words { line, pos: 0 };
+        let mut words = Words { line: text, pos: 0 };
         let written = words.time()?;
-        let second = words.next()?;
-        let (frame, channel, direction) = if second == b"CANFD" {
-            fd(&mut words)?
-        } else {
-            let channel = channel(second)?;
-            let (frame, direction) = classic(&mut words)?;
-            (frame, channel, direction)
+        // A classic line's channel, or `None` for a `CANFD` line.
+        let classic_channel = match words
+            .line
+            .get(words.pos..)
+            .and_then(|rest| rest.first_chunk::<3>())
+        {
+            // One digit between single spaces: the usual channel.
+            Some(&[b' ', digit @ b'1'..=b'9', b' ']) => {
+                words.pos += 2;
+                Some(u16::from(digit - b'0'))
+            }
+            _ => match words.next()? {
+                b"CANFD" => None,
+                second => Some(channel(second)?),
+            },
         };
-        let timestamp = self.time(written);
-        Some(LogEvent::Frame(
-            LogFrame::new(frame)
-                .with_timestamp(timestamp)
-                .with_iface(Iface::Channel(channel))
-                .with_direction(direction),
-        ))
+        let (frame, channel, direction) = match classic_channel {
+            Some(channel) => {
+                let (frame, direction) = classic(&mut words)?;
+                (frame, channel, direction)
+            }
+            None => fd(&mut words)?,
+        };
+        let logged = LogFrame {
+            frame,
+            timestamp: Some(written),
+            iface: Some(Iface::Channel(channel)),
+            direction: Some(direction),
+        };
+        Some((logged, words.pos))
     }
+
+    /// Count the time of a frame read (add it up, with relative times).
+    #[inline(always)]
+    fn count_time(&mut self, logged: &mut LogFrame<'static>) {
+        if self.relative {
+            logged.timestamp = logged.timestamp.map(|written| self.time(written));
+        }
+    }
+}
+
+/// Where the line after the one at the start of `text` begins (past its
+/// `\n`, or the end of `text`), when the first line's last word read ends
+/// at `end` and what follows it is white space or nothing, as
+/// [`AscParser::parse_fast`] takes it after the line is trimmed; `None`
+/// otherwise.
+#[inline(always)]
+fn line_after(text: &[u8], end: usize) -> Option<usize> {
+    // The line ends right after its last word: the usual case.
+    match text.get(end) {
+        None => return Some(end),
+        Some(b'\n') => return Some(end + 1),
+        Some(_) => {}
+    }
+    let rest = text.get(end..)?;
+    let (line, next) = match find_newline(rest) {
+        Some(i) => (rest.get(..i)?, end + i + 1),
+        None => (rest, text.len()),
+    };
+    // Trailing white space (a `\r` too), or words the frame does not
+    // read after a space.
+    if trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
+        Some(next)
+    } else {
+        None
+    }
+}
+
+/// Whether `b` ends a word for the fast path: a space or a tab, or a
+/// byte that is no part of a word it reads (`\r`, `\n`, other control
+/// bytes). A word that ends at one that is not a space or a tab is the
+/// line's last (the next word, read from there, is empty), and the
+/// caller decides what follows it.
+#[inline(always)]
+const fn ends_word(b: u8) -> bool {
+    b <= b' '
 }
 
 /// `id Rx|Tx d dlc data…` after the channel, in hex; what follows the data
@@ -59,15 +161,30 @@ impl AscParser {
 /// it.
 #[inline(always)]
 fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
-    let id = words.id()?;
-    let direction = words.direction_word()?;
-    if !matches!(words.next()?, b"d" | b"D") {
-        return None;
+    // The writers put two spaces after the channel.
+    match words
+        .line
+        .get(words.pos..)
+        .and_then(|rest| rest.first_chunk::<3>())
+    {
+        Some(&[b' ', b' ', b]) if !is_space(b) => words.pos += 2,
+        _ => words.skip_space(),
     }
-    let len = usize::from(words.hex_digit()?).min(CLASSIC_MAX_LEN);
-    let mut data = [0u8; CLASSIC_MAX_LEN];
-    words.bytes(data.get_mut(..len)?)?;
-    Some((CanFrame::new(id, data.get(..len)?).ok()?, direction))
+    let id_start = words.pos;
+    let id = words.id_here()?;
+    let (direction, dlc) = match words.columns(id_start) {
+        Some(head) => head,
+        None => words.head_spelt()?,
+    };
+    let len = usize::from(dlc).min(CLASSIC_MAX_LEN);
+    // The bytes past `len` stay zero, as a frame's must be.
+    let mut bytes = [0u8; FD_MAX_LEN];
+    let data = bytes.first_chunk_mut::<CLASSIC_MAX_LEN>()?;
+    if !words.classic_bytes(len, data) {
+        words.classic_bytes_spelt(len, data)?;
+    }
+    let frame = CanFrame::from_checked_parts(id, FrameType::Data, bytes, len as u8);
+    Some((frame, direction))
 }
 
 /// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
@@ -122,6 +239,67 @@ fn channel(word: &[u8]) -> Option<u16> {
     u16::try_from(value).ok().filter(|&n| n > 0)
 }
 
+/// The decimal digits that start the 8 bytes of `w` (the first in its
+/// lowest lane), when fewer than 8: their value and number, read with
+/// wide-word arithmetic (SWAR); `None` when all 8 are digits.
+#[inline(always)]
+const fn eight_digits(w: u64) -> Option<(u64, usize)> {
+    const HIGH_NIBBLES: u64 = u64::from_le_bytes([0xF0; 8]);
+    const THREES: u64 = u64::from_le_bytes([0x30; 8]);
+    const SIXES: u64 = u64::from_le_bytes([0x06; 8]);
+    // A lane is a digit when its high nibble is 3 and it stays 3 with 6
+    // added (0x30..=0x39). The carry out of a lane 0xFA..=0xFF reaches
+    // only lanes after it, and it is no digit itself: the first lane
+    // marked is exact.
+    let others = ((w & HIGH_NIBBLES) ^ THREES) | ((w.wrapping_add(SIXES) & HIGH_NIBBLES) ^ THREES);
+    if others == 0 {
+        return None;
+    }
+    let n = (others.trailing_zeros() / 8) as usize;
+    if n == 0 {
+        return Some((0, 0));
+    }
+    // The digits' values (a borrow out of the lanes after them reaches
+    // only later lanes), moved to the highest lanes so that the lanes
+    // before them are leading zeros.
+    let mut v = w.wrapping_sub(THREES) << (8 * (8 - n));
+    // Pairs of lanes, then pairs of pairs, then the two halves: the first
+    // of each times 10, 100, 10 000, plus the second.
+    v = (v & 0x0F0F_0F0F_0F0F_0F0F).wrapping_mul(10 << 8 | 1) >> 8;
+    v = (v & 0x00FF_00FF_00FF_00FF).wrapping_mul(100 << 16 | 1) >> 16;
+    v = (v & 0x0000_FFFF_0000_FFFF).wrapping_mul(10_000 << 32 | 1) >> 32;
+    Some((v, n))
+}
+
+/// A hex digit's value times 16 by character, 0x100 for a character that
+/// is no hex digit: or'd with [`HEX_LOW`]'s entry for the second digit,
+/// the byte the two spell, 0x100 set when either is not a digit.
+const HEX_HIGH: [u16; 256] = {
+    let mut table = [0x100u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        if HEX_TABLE[i] & 0xF0 == 0 {
+            table[i] = (HEX_TABLE[i] as u16) << 4;
+        }
+        i += 1;
+    }
+    table
+};
+
+/// A hex digit's value by character, 0x100 for a character that is no hex
+/// digit (see [`HEX_HIGH`]).
+const HEX_LOW: [u16; 256] = {
+    let mut table = [0x100u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        if HEX_TABLE[i] & 0xF0 == 0 {
+            table[i] = HEX_TABLE[i] as u16;
+        }
+        i += 1;
+    }
+    table
+};
+
 /// The white-space separated words of a line, read in order.
 struct Words<'l> {
     line: &'l [u8],
@@ -157,18 +335,47 @@ impl<'l> Words<'l> {
         }
     }
 
-    /// The next word, or `None` at the end of the line.
+    /// The next word, or `None` at the end of the line (or at a byte
+    /// that [ends a word](ends_word) and is no space).
     #[inline(always)]
     fn next(&mut self) -> Option<&'l [u8]> {
         self.skip_space();
+        self.word()
+    }
+
+    /// The word where the position is (after white space skipped), or
+    /// `None` where none starts.
+    #[inline(always)]
+    fn word(&mut self) -> Option<&'l [u8]> {
         let start = self.pos;
-        while self.line.get(self.pos).is_some_and(|&b| !is_space(b)) {
-            self.pos += 1;
-        }
+        self.pos = self.word_end(start);
         if self.pos == start {
             return None;
         }
         self.line.get(start..self.pos)
+    }
+
+    /// Where the word at `at` ends: 8 bytes at a time, the lanes (bytes)
+    /// up to `b' '` found with wide-word arithmetic (SWAR), the last bytes
+    /// of the line one by one.
+    #[inline(always)]
+    fn word_end(&self, mut at: usize) -> usize {
+        const ONES: u64 = u64::from_le_bytes([0x01; 8]);
+        const HIGH: u64 = u64::from_le_bytes([0x80; 8]);
+        while let Some(chunk) = self.line.get(at..).and_then(|rest| rest.first_chunk::<8>()) {
+            let w = u64::from_le_bytes(*chunk);
+            // The high bit of each lane below 0x21, and possibly of lanes
+            // after the first such lane (a borrow): the first is exact.
+            let ends = w.wrapping_sub(ONES * 0x21) & !w & HIGH;
+            if ends != 0 {
+                return at + (ends.trailing_zeros() / 8) as usize;
+            }
+            at += 8;
+        }
+        while self.line.get(at).is_some_and(|&b| !ends_word(b)) {
+            at += 1;
+        }
+        at
     }
 
     /// The first word, read where it stands: `seconds.fraction`, 1 to 15
@@ -181,7 +388,7 @@ impl<'l> Words<'l> {
             return None;
         }
         let (fraction, digits, end) = self.digits(point + 1);
-        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !is_space(b)) {
+        if digits == 0 || digits > 9 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
             return None;
         }
         self.pos = end;
@@ -190,9 +397,16 @@ impl<'l> Words<'l> {
     }
 
     /// The decimal digits from `at`: their value (wrapped past 20
-    /// digits), their number and where they end.
+    /// digits), their number and where they end. Fewer than 8 followed by
+    /// a byte that is none, with 8 bytes to load, are read at once
+    /// ([`eight_digits`]); others one by one.
     #[inline(always)]
     fn digits(&self, at: usize) -> (u64, usize, usize) {
+        if let Some(chunk) = self.line.get(at..).and_then(|rest| rest.first_chunk::<8>()) {
+            if let Some((value, n)) = eight_digits(u64::from_le_bytes(*chunk)) {
+                return (value, n, at + n);
+            }
+        }
         let mut value = 0u64;
         let mut end = at;
         while let Some(d) = self
@@ -210,11 +424,71 @@ impl<'l> Words<'l> {
     /// An identifier in hex, `x` after an extended one.
     #[inline(always)]
     fn id(&mut self) -> Option<CanId> {
-        let word = self.next()?;
+        self.skip_space();
+        self.id_here()
+    }
+
+    /// [`id`](Self::id) where the position is, white space skipped.
+    #[inline(always)]
+    fn id_here(&mut self) -> Option<CanId> {
+        let word = self.word()?;
         match word.split_last() {
             Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
             _ => CanId::standard(hex(word)?),
         }
+    }
+
+    /// A classic line's direction, `d` and DLC in the columns the writers
+    /// put them in (python-can, CANoe: `702             Rx   d 8`): the
+    /// identifier that began at `id_start`, and has just been read,
+    /// padded with spaces to 15 columns, a space, `Rx` or `Tx`, three
+    /// spaces, `d` (or `D`), a space and the DLC digit, then a byte that
+    /// [ends a word](ends_word) or the end — read from one 16-byte and one
+    /// 8-byte load. `None`, with the position unchanged, for any other
+    /// spacing or word (read by [`head_spelt`](Self::head_spelt)).
+    #[inline(always)]
+    fn columns(&mut self, id_start: usize) -> Option<(Direction, u8)> {
+        /// `x   d ` from the second lane on, the kind's case folded.
+        const DIRECTION_TO_DLC: u64 =
+            u64::from_le_bytes([0, b'x', b' ', b' ', b' ', b'd', b' ', 0]);
+        const MIDDLE: u64 = u64::from_le_bytes([0, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0]);
+        const KIND_CASE: u64 = u64::from_le_bytes([0, 0, 0, 0, 0, 0x20, 0, 0]);
+        let head = self.line.get(id_start..)?.first_chunk::<24>()?;
+        let (field, rest) = head.split_first_chunk::<16>()?;
+        let rest = rest.first_chunk::<8>()?;
+        // Every lane after the identifier's is a space.
+        let id_len = self.pos - id_start;
+        let padding = u128::MAX.checked_shl(8 * u32::try_from(id_len).ok()?)?;
+        if (u128::from_le_bytes(*field) ^ u128::from_le_bytes([b' '; 16])) & padding != 0 {
+            return None;
+        }
+        let rest = u64::from_le_bytes(*rest);
+        if (rest | KIND_CASE) & MIDDLE != DIRECTION_TO_DLC {
+            return None;
+        }
+        let direction = match rest.to_le_bytes() {
+            [b'R', ..] => Direction::Rx,
+            [b'T', ..] => Direction::Tx,
+            _ => return None,
+        };
+        let dlc = HEX_TABLE[usize::from(rest.to_le_bytes()[7])];
+        let end = id_start + 24;
+        if dlc & 0xF0 != 0 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
+            return None;
+        }
+        self.pos = end;
+        Some((direction, dlc))
+    }
+
+    /// A classic line's direction, `d` and DLC, each a word after white
+    /// space: what [`columns`](Self::columns) declines, out of line.
+    #[inline(never)]
+    fn head_spelt(&mut self) -> Option<(Direction, u8)> {
+        let direction = self.direction_word()?;
+        if !matches!(self.next()?, b"d" | b"D") {
+            return None;
+        }
+        Some((direction, self.hex_digit()?))
     }
 
     /// `Rx` or `Tx`.
@@ -248,9 +522,9 @@ impl<'l> Words<'l> {
 
     /// A `CANFD` line's `out.len()` data bytes (up to 64): ` HH` five at
     /// a time by [`five_bytes`](Self::five_bytes) while they are, the rest
-    /// by [`bytes`](Self::bytes). (Not for a classic line's 8 bytes at
-    /// most: 2 % fewer instructions on the SDO mix, and no faster in
-    /// hyperfine; BENCHMARKS.md, "Issue 21: ASC CAN FD lines".)
+    /// by [`bytes`](Self::bytes). (A classic line's 8 at most are
+    /// [`classic_bytes`](Self::classic_bytes)'s, all from one load;
+    /// BENCHMARKS.md, "Issue 21: the ASC reader, classic lines".)
     #[inline(always)]
     fn fd_bytes(&mut self, out: &mut [u8]) -> Option<()> {
         let mut read = 0;
@@ -263,6 +537,60 @@ impl<'l> Words<'l> {
         self.bytes(out.get_mut(read..)?)
     }
 
+    /// A classic line's `len` (up to 8) data bytes, each ` HH` (what the
+    /// writers write), into the first `len` of `data` (the frame's array,
+    /// the rest left as it is): from one 24-byte load, a look-up per
+    /// digit in [`HEX_HIGH`] and [`HEX_LOW`], whose or is the byte (and
+    /// 0x100 when a digit is no hex digit), the groups' spaces and digits
+    /// checked once for all, then what follows the last group. `false`,
+    /// with the position unchanged (and the first `len` of `data` written
+    /// over), when they are not (the other spellings are
+    /// [`classic_bytes_spelt`](Self::classic_bytes_spelt)'s) or fewer than
+    /// 24 bytes are left.
+    #[inline(always)]
+    fn classic_bytes(&mut self, len: usize, data: &mut [u8; CLASSIC_MAX_LEN]) -> bool {
+        let at = self.pos;
+        let Some(groups) = self
+            .line
+            .get(at..)
+            .and_then(|rest| rest.first_chunk::<24>())
+        else {
+            return false;
+        };
+        // The or of the bytes (0x100 set when a digit is no hex digit),
+        // and of the groups' first bytes each xor a space (0 when all are
+        // spaces).
+        let (mut all, mut spaces) = (0u16, 0u8);
+        for (i, slot) in data.iter_mut().enumerate().take(len) {
+            let group = 3 * i;
+            if let (Some(&space), Some(&hi), Some(&lo)) = (
+                groups.get(group),
+                groups.get(group + 1),
+                groups.get(group + 2),
+            ) {
+                let byte = HEX_HIGH[usize::from(hi)] | HEX_LOW[usize::from(lo)];
+                all |= byte;
+                spaces |= space ^ b' ';
+                *slot = byte as u8;
+            }
+        }
+        let end = at + 3 * len;
+        if all & 0x100 != 0 || spaces != 0 || self.line.get(end).is_some_and(|&b| !ends_word(b)) {
+            return false;
+        }
+        self.pos = end;
+        true
+    }
+
+    /// A classic line's `len` data bytes in any spelling
+    /// [`bytes`](Self::bytes) reads, into the first `len` of `data`, out
+    /// of line: what [`classic_bytes`](Self::classic_bytes) declines.
+    #[cold]
+    #[inline(never)]
+    fn classic_bytes_spelt(&mut self, len: usize, data: &mut [u8; CLASSIC_MAX_LEN]) -> Option<()> {
+        self.bytes(data.get_mut(..len)?)
+    }
+
     /// `out.len()` data bytes: ` HH` (what the writers write) with a
     /// table look-up per digit, any other spelling by [`byte`](Self::byte).
     #[inline(always)]
@@ -271,7 +599,7 @@ impl<'l> Words<'l> {
             let at = self.pos;
             if let Some(&[b' ', hi, lo]) = self.line.get(at..at + 3) {
                 let (hi, lo) = (HEX_TABLE[usize::from(hi)], HEX_TABLE[usize::from(lo)]);
-                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !is_space(b)) {
+                if (hi | lo) & 0xF0 == 0 && !self.line.get(at + 3).is_some_and(|&b| !ends_word(b)) {
                     *slot = hi << 4 | lo;
                     self.pos = at + 3;
                     continue;
@@ -296,7 +624,7 @@ impl<'l> Words<'l> {
         else {
             return false;
         };
-        if u128::from_le_bytes(*chunk) & GROUP_SPACES != SPACES || !is_space(chunk[15]) {
+        if u128::from_le_bytes(*chunk) & GROUP_SPACES != SPACES || !ends_word(chunk[15]) {
             return false;
         }
         let mut all = 0u8;
@@ -320,9 +648,9 @@ impl<'l> Words<'l> {
         let at = self.pos;
         let hi = hex_value(*self.line.get(at)?)?;
         match self.line.get(at + 1) {
-            Some(&lo) if !is_space(lo) => {
+            Some(&lo) if !ends_word(lo) => {
                 let lo = hex_value(lo)?;
-                if self.line.get(at + 2).is_some_and(|&b| !is_space(b)) {
+                if self.line.get(at + 2).is_some_and(|&b| !ends_word(b)) {
                     return None;
                 }
                 self.pos = at + 2;
@@ -393,8 +721,26 @@ mod tests {
         })
     }
 
+    /// Eight bytes, mostly digits.
+    fn mostly_digits() -> impl Strategy<Value = [u8; 8]> {
+        proptest::array::uniform8(prop_oneof![
+            8 => proptest::sample::select(b"0123456789".to_vec()),
+            1 => proptest::sample::select(b" ./:\t\n\r\xFA\xFF".to_vec()),
+            1 => any::<u8>(),
+        ])
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The digits read at once are the digits read one by one.
+        #[test]
+        fn eight_digits_read_as_one_by_one(bytes in mostly_digits()) {
+            let n = bytes.iter().take_while(|b| b.is_ascii_digit()).count();
+            let value = bytes[..n].iter().fold(0u64, |v, &b| v * 10 + u64::from(b - b'0'));
+            let expected = (n < 8).then_some((value, n));
+            prop_assert_eq!(eight_digits(u64::from_le_bytes(bytes)), expected);
+        }
 
         #[test]
         fn bytes_read_as_one_by_one_on_data_runs(line in data_run(), n in 0usize..=FD_MAX_LEN) {

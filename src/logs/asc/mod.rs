@@ -165,6 +165,14 @@ impl AscParser {
         self.parse_general(line)
     }
 
+    /// [`parse_line`](Self::parse_line) for a line the fast path, reading
+    /// it in place, has declined: the general parser, out of line.
+    #[cfg(feature = "std")]
+    #[inline(never)]
+    fn parse_other(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+        self.parse_general(trim_end(line))
+    }
+
     /// [`parse_line`](Self::parse_line) without the fast path, for a line
     /// whose trailing white space is trimmed.
     fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {

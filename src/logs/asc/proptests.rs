@@ -129,6 +129,69 @@ fn asc_like_line() -> impl Strategy<Value = String> {
     prop_oneof![classic, fd]
 }
 
+/// `n` data bytes as the writers write them, ` HH` (sometimes a few more
+/// or fewer), each group mostly right and sometimes just wrong.
+fn writers_data(n: usize) -> impl Strategy<Value = String> {
+    let count = prop_oneof![9 => Just(n), 1 => 0..n + 3];
+    count.prop_flat_map(|count| {
+        proptest::collection::vec(
+            (
+                field(" ", "  |\\t|"),
+                field(
+                    "[0-9A-F]{2}",
+                    "[0-9a-f]{1,2}|[0-9A-F]{3}|G[0-9]|\\r[0-9]|[0-9]\\n",
+                ),
+            ),
+            count,
+        )
+        .prop_map(|bytes| bytes.into_iter().map(|(g, b)| g + &b).collect::<String>())
+    })
+}
+
+/// Classic lines in the writers' columns (python-can, CANoe: `   0.012345
+/// 1  123             Rx   d 8 11 22 …`, the identifier padded to 15
+/// columns), each field and each run of padding mostly right and
+/// sometimes just wrong: the shape the fast path reads from fixed
+/// columns.
+fn columns_line() -> impl Strategy<Value = String> {
+    let id = field(
+        "[0-7][0-9A-F]{2}|[0-9A-Fa-f]{1,8}[xX]",
+        "[0-9A-Fa-f]{9,15}x?|[0-9A-F]{0,3}[gxX]|[0-9A-F]{16,17}",
+    );
+    let head = (
+        field(
+            "[ ]{1,4}[0-9]{1,6}\\.[0-9]{6}",
+            "[ ]{0,4}[0-9]{1,3}\\.[0-9]{0,10}",
+        ),
+        field("[1-9]|1[0-6]", "0|[0-9]{6}"),
+        id,
+        // The padding to 15 columns, or one space more or less, or a tab.
+        prop_oneof![16 => Just(0i8), 1 => Just(-1i8), 1 => Just(1i8), 1 => Just(2i8)],
+        field("Rx|Tx", "TxRq|rx|R |RX|Rt"),
+        field("   ", "  |    |\\t  | \\t "),
+        field("d|D", "r|R|x|dd"),
+        field(" ", "  |\\t|"),
+        field("[0-8]", "[9A-Fa-f]|G|10|\\r"),
+    );
+    let tail = field(
+        "",
+        "[ ]+Length = [0-9]+ BitCount = [0-9]+|\\r|[ \\t\\r]{1,3}|\\rx|x",
+    );
+    (head, 0usize..=8, tail)
+        .prop_flat_map(|(head, n, tail)| (Just(head), writers_data(n), Just(tail)))
+        .prop_map(
+            |((time, channel, id, pad, dir, gap, kind, g, dlc), data, tail)| {
+                let width = (15 + i32::from(pad)).max(0) as usize;
+                let padded = if pad == 2 {
+                    format!("{id}\t")
+                } else {
+                    format!("{id:<width$}")
+                };
+                format!("{time} {channel}  {padded} {dir}{gap}{kind}{g}{dlc}{data}{tail}")
+            },
+        )
+}
+
 /// The fast path, where it reads `line` at all, reads it as the general
 /// parser does and leaves the parser as the general parser leaves it;
 /// where it declines, it leaves the parser as it was.
@@ -146,6 +209,42 @@ fn fast_agrees(parser: &AscParser, line: &[u8]) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// The fast path reading the first line of `text` where it lies (the
+/// reader's way) reads it as it reads the line alone, trimmed, and says
+/// where the next line begins; where it declines, the parser is as it
+/// was. The line alone is held to the general parser by [`fast_agrees`].
+fn in_place_agrees(parser: &AscParser, text: &[u8]) -> Result<(), TestCaseError> {
+    let mut rest = text;
+    let line = take_line(&mut rest).unwrap_or_default();
+    let mut alone = *parser;
+    let expected = alone.parse_fast(trim_end(line));
+    let mut in_place = *parser;
+    match in_place.parse_fast_in_place(text) {
+        Some((event, len)) => {
+            prop_assert_eq!(Some(event), expected);
+            prop_assert_eq!(len, text.len() - rest.len());
+            prop_assert_eq!(in_place, alone);
+        }
+        None => {
+            prop_assert_eq!(expected, None);
+            prop_assert_eq!(&in_place, parser);
+        }
+    }
+    fast_agrees(parser, line)
+}
+
+/// What follows a line in a block: nothing (the last line, without its
+/// `\n`), or its `\n` and another line, shaped like a frame line or any
+/// bytes.
+fn after_line() -> impl Strategy<Value = Vec<u8>> {
+    prop_oneof![
+        1 => Just(Vec::new()),
+        1 => Just(b"\n".to_vec()),
+        4 => asc_like_line().prop_map(|next| [b"\n", next.as_bytes()].concat()),
+        2 => proptest::collection::vec(any::<u8>(), 0..40).prop_map(|next| [&b"\n"[..], &next].concat()),
+    ]
+}
+
 proptest! {
     // Each field is wrong in one line of 20: enough cases that most wrong
     // fields come up in a line that is otherwise right.
@@ -157,6 +256,30 @@ proptest! {
     fn fast_path_agrees_on_asc_like_lines(parser in any_parser(), line in asc_like_line()) {
         fast_agrees(&parser, line.as_bytes())?;
     }
+
+    /// The fast path agrees with the general parser on classic lines in
+    /// the writers' columns, right and just wrong, read alone and in
+    /// place.
+    #[test]
+    fn fast_path_agrees_on_lines_in_columns(
+        parser in any_parser(),
+        line in columns_line(),
+        after in after_line(),
+    ) {
+        fast_agrees(&parser, line.as_bytes())?;
+        in_place_agrees(&parser, &[line.as_bytes(), &after].concat())?;
+    }
+
+    /// The fast path reads a line in place as it reads it alone, whatever
+    /// follows it.
+    #[test]
+    fn fast_path_in_place_agrees_on_asc_like_lines(
+        parser in any_parser(),
+        line in asc_like_line(),
+        after in after_line(),
+    ) {
+        in_place_agrees(&parser, &[line.as_bytes(), &after].concat())?;
+    }
 }
 
 proptest! {
@@ -164,6 +287,13 @@ proptest! {
     #[test]
     fn fast_path_agrees_on_any_bytes(parser in any_parser(), line in proptest::collection::vec(any::<u8>(), 0..200)) {
         fast_agrees(&parser, &line)?;
+    }
+
+    /// The fast path reads arbitrary bytes in place as it reads their
+    /// first line alone.
+    #[test]
+    fn fast_path_in_place_agrees_on_any_bytes(parser in any_parser(), text in proptest::collection::vec(any::<u8>(), 0..200)) {
+        in_place_agrees(&parser, &text)?;
     }
 
 

@@ -82,7 +82,13 @@ impl TextParser for AscParser {
         rest: &mut &[u8],
         _names: &mut Names,
     ) -> crate::Result<Option<LogEvent<'static>>> {
-        self.parse_line(take_line(rest).unwrap_or_default())
+        // The common frame lines where they lie, the line's end found
+        // from where the frame ends; every other line on its own.
+        if let Some((event, len)) = self.parse_fast_in_place(rest) {
+            *rest = rest.get(len..).unwrap_or_default();
+            return Ok(Some(event));
+        }
+        self.parse_other(take_line(rest).unwrap_or_default())
     }
 
     #[inline]
