@@ -21,10 +21,10 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, hex, is_space, trim_end, AscParser};
+use super::{fd_frame, hex, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::text::{find_newline, hex_value, HEX_TABLE, POW10_NANOS};
+use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
 /// 12) …
@@ -56,6 +56,7 @@ impl AscParser {
     /// `text`, read where it lies (its `\n` not looked for first): the
     /// event and the length of the line with its `\n`, or `None` with
     /// the parser unchanged.
+    #[cfg(any(feature = "std", test))]
     #[inline(always)]
     pub(super) fn parse_fast_in_place(
         &mut self,
@@ -124,6 +125,7 @@ impl AscParser {
 /// at `end` and what follows it is white space or nothing, as
 /// [`AscParser::parse_fast`] takes it after the line is trimmed; `None`
 /// otherwise.
+#[cfg(any(feature = "std", test))]
 #[inline(always)]
 fn line_after(text: &[u8], end: usize) -> Option<usize> {
     // The line ends right after its last word: the usual case.
@@ -133,13 +135,13 @@ fn line_after(text: &[u8], end: usize) -> Option<usize> {
         Some(_) => {}
     }
     let rest = text.get(end..)?;
-    let (line, next) = match find_newline(rest) {
+    let (line, next) = match crate::logs::text::find_newline(rest) {
         Some(i) => (rest.get(..i)?, end + i + 1),
         None => (rest, text.len()),
     };
     // Trailing white space (a `\r` too), or words the frame does not
     // read after a space.
-    if trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
+    if super::trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
         Some(next)
     } else {
         None
