@@ -351,8 +351,16 @@ impl LogReader {
     /// # Ok::<(), motionwire::logs::LogError>(())
     /// ```
     pub fn visit<V: LogVisitor>(&mut self, visitor: V) -> V::Output {
-        each!(&mut self.inner, reader => visitor.visit(reader))
+        each!(&mut self.inner, reader => visit_one(visitor, reader))
     }
+}
+
+/// `visitor` over one format's reader, in a function of its own: each
+/// format's loop is compiled apart, so that the code of one reader does
+/// not change how another's loop is compiled.
+#[inline(never)]
+fn visit_one<V: LogVisitor, L: ReadLog>(visitor: V, log: &mut L) -> V::Output {
+    visitor.visit(log)
 }
 
 /// Code that reads a log through whichever reader its format has, compiled
