@@ -887,14 +887,14 @@ fn statusword_reading(map: &PdoMap, state: &mut NodeState, data: &[u8]) -> Optio
 }
 
 /// Whether a completed transfer of object `index` can teach the session
-/// anything ([`Decoder::learn`]): a PDO parameter, the device type, a
-/// drive's controlword, statusword or mode. Every other object is only
+/// anything ([`Decoder::learn`]): a PDO parameter (`pdo::pdo_parameter`),
+/// the device type, a drive's controlword, statusword or mode (the objects
+/// `learn` reads after the PDO parameters). Every other object is only
 /// reported: its transfer is not handed to `learn`.
-const fn teaches(index: u16) -> bool {
-    matches!(
-        index,
-        0x1000 | 0x1400..=0x1BFF | 0x6040 | 0x6041 | 0x6060 | 0x6061
-    )
+#[inline]
+fn teaches(index: u16) -> bool {
+    pdo::pdo_parameter(index).is_some()
+        || matches!(index, 0x1000 | 0x6040 | 0x6041 | 0x6060 | 0x6061)
 }
 
 /// The value of a completed expedited transfer's data, little-endian, for

@@ -24,6 +24,7 @@
 use super::{fd_frame, hex, is_space, AscParser};
 use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
+use crate::logs::candump::swar::decimal8;
 use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
@@ -263,14 +264,9 @@ const fn eight_digits(w: u64) -> Option<(u64, usize)> {
     }
     // The digits' values (a borrow out of the lanes after them reaches
     // only later lanes), moved to the highest lanes so that the lanes
-    // before them are leading zeros.
-    let mut v = w.wrapping_sub(THREES) << (8 * (8 - n));
-    // Pairs of lanes, then pairs of pairs, then the two halves: the first
-    // of each times 10, 100, 10 000, plus the second.
-    v = (v & 0x0F0F_0F0F_0F0F_0F0F).wrapping_mul(10 << 8 | 1) >> 8;
-    v = (v & 0x00FF_00FF_00FF_00FF).wrapping_mul(100 << 16 | 1) >> 16;
-    v = (v & 0x0000_FFFF_0000_FFFF).wrapping_mul(10_000 << 32 | 1) >> 32;
-    Some((v, n))
+    // before them are leading zeros for the candump reader's `decimal8`.
+    let v = w.wrapping_sub(THREES) << (8 * (8 - n));
+    Some((decimal8(v), n))
 }
 
 /// A hex digit's value times 16 by character, 0x100 for a character that

@@ -143,7 +143,7 @@ mod parse;
 #[cfg(feature = "std")]
 mod reader;
 mod screen;
-mod swar;
+pub(super) mod swar;
 mod timestamp;
 
 use error::*;

@@ -75,7 +75,7 @@ const fn pack_hex64(values: u64) -> u32 {
 /// Convert 8 decimal digit values (one per lane, first the most
 /// significant) to their number.
 #[inline(always)]
-pub(super) const fn decimal8(d: u64) -> u64 {
+pub(in crate::logs) const fn decimal8(d: u64) -> u64 {
     let x = (d.wrapping_mul(10) + (d >> 8)) & 0x00FF_00FF_00FF_00FF;
     let x = (x.wrapping_mul(100) + (x >> 16)) & 0x0000_FFFF_0000_FFFF;
     (x.wrapping_mul(10_000) + (x >> 32)) & 0xFFFF_FFFF
