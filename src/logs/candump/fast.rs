@@ -30,7 +30,8 @@ pub(super) fn parse_canonical_log<'a>(
     // Interface: printable ASCII up to a space, not starting with `(`/`#`.
     let iface_start = 20;
     let word = u64::from_le_bytes(*buf.get(iface_start..)?.first_chunk::<8>()?);
-    if word & hint.mask != hint.pattern {
+    let same_iface = word & hint.mask == hint.pattern;
+    if !same_iface {
         *hint = read_iface(buf, word)?;
     }
     // Else the bytes of a name this path took, then a space: the checks of
@@ -124,6 +125,8 @@ pub(super) fn parse_canonical_log<'a>(
         timestamp,
         iface,
         iface_key,
+        #[cfg(feature = "std")]
+        same_iface,
         id,
         kind,
         direction,

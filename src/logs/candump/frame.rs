@@ -72,6 +72,11 @@ pub(crate) struct Canonical<'a> {
     pub(super) iface: &'a [u8],
     /// As [`Parsed::iface_key`].
     pub(super) iface_key: u64,
+    /// The interface is the one the hint held when the line was read: the
+    /// name of the last line this path read ([`IfaceHint`]). Read by the
+    /// reader only.
+    #[cfg(feature = "std")]
+    pub(super) same_iface: bool,
     pub(super) id: CanId,
     pub(super) kind: FrameType,
     pub(super) direction: Option<Direction>,
@@ -106,6 +111,10 @@ pub(crate) struct Head<'a> {
     pub(super) timestamp: Option<Timestamp>,
     /// As [`Parsed::iface`].
     pub(super) iface: &'a [u8],
+    /// The interface is the last line's, and that line was read by the
+    /// fast path too (`lines::next_head` forgets the hint on any other
+    /// line): the reader's `Names` already holds it as its last name.
+    pub(super) same_iface: bool,
     pub(super) id: CanId,
     pub(super) kind: FrameType,
     pub(super) direction: Option<Direction>,
@@ -140,6 +149,7 @@ impl<'a> Canonical<'a> {
         Head {
             timestamp: Some(self.timestamp),
             iface: self.iface,
+            same_iface: self.same_iface,
             id: self.id,
             kind: self.kind,
             direction: self.direction,
@@ -157,6 +167,7 @@ impl<'a> Parsed<'a> {
         Head {
             timestamp: self.timestamp,
             iface: self.iface,
+            same_iface: false,
             id: self.id,
             kind: self.kind,
             direction: self.direction,

@@ -264,6 +264,9 @@ pub(super) fn next_head<'a>(
         state.after_error_frame = false;
         return Ok(Some(frame.head()));
     }
+    // The general parser interns its line's name without the hint: the
+    // next line of the fast path reads its name again.
+    *hint = IfaceHint::NONE;
     next_general_head(rest, state, data)
 }
 

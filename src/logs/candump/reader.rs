@@ -143,7 +143,10 @@ impl TextParser for Candump {
         names.data = [0; FD_MAX_LEN];
         let parsed = next_head(rest, &mut self.state, &mut self.hint, &mut names.data);
         if let Ok(Some(head)) = &parsed {
-            names.intern(head.iface);
+            // A name the last line interned is there already.
+            if !head.same_iface {
+                names.intern(head.iface);
+            }
         }
         parsed
     }
