@@ -271,7 +271,7 @@ fn linux_cooked_captures_read_as_tshark_reads_them() {
         let counted: Vec<_> = reader
             .other_kinds()
             .iter()
-            .map(|k| (k.kind, k.count))
+            .map(|k| (k.kind.clone(), k.count))
             .collect();
         assert_eq!(counted, kinds, "{name}");
         assert_eq!(

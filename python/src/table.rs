@@ -474,7 +474,8 @@ impl LogVisitor for Fill<'_> {
             }
         }
         // Records that hold no frame, said once per kind as the program
-        // says them (docs/formats.md#pcap, docs/formats.md#blf).
+        // says them (docs/formats.md#pcap, docs/formats.md#blf,
+        // docs/formats.md#mf4).
         let kinds = log.other_kinds();
         for kind in kinds {
             columns.skipped.other.push(Value::from(kind.to_string()));

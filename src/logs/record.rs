@@ -105,16 +105,18 @@ pub trait ReadLog {
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>>;
 
     /// Return how many records read so far hold no CAN frame or bus event
-    /// and were skipped (docs/formats.md#pcap, docs/formats.md#blf: said once,
-    /// not per record). Text readers have none.
+    /// and were skipped (docs/formats.md#pcap, docs/formats.md#blf,
+    /// docs/formats.md#mf4: said once, not per record). Text readers have
+    /// none.
     fn other_records(&self) -> u64 {
         0
     }
 
     /// Return the records counted by [`other_records`](ReadLog::other_records),
-    /// kind by kind in the order first met (docs/formats.md#pcap: the program
-    /// names the link type of what it skipped); `Display` of each says it
-    /// ("12 packets of link type 1 (Ethernet) skipped: not CAN").
+    /// kind by kind in the order first met (an MF4 file's groups in the
+    /// file's order; docs/formats.md#pcap: the program names the link type
+    /// of what it skipped, docs/formats.md#mf4 the group); `Display` of each
+    /// says it ("12 packets of link type 1 (Ethernet) skipped: not CAN").
     fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
         &[]
     }

@@ -1,12 +1,14 @@
 //! The records a binary reader skips because they hold no CAN frame or bus
-//! event, by kind (docs/formats.md#pcap, docs/formats.md#blf): said once per
-//! kind with its count — "12 packets of link type 1 (Ethernet) skipped: not
-//! CAN" — never per record.
+//! event, by kind (docs/formats.md#pcap, docs/formats.md#blf,
+//! docs/formats.md#mf4): said once per kind with its count — "12 packets of
+//! link type 1 (Ethernet) skipped: not CAN" — never per record.
 
 use core::fmt;
 
-/// A kind of record that holds no CAN frame or bus event.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+/// A kind of record that holds no CAN frame or bus event: more may come
+/// with more formats.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[non_exhaustive]
 pub enum OtherRecord {
     /// A pcap or pcapng packet of a link type that carries no CAN frames
     /// (docs/formats.md#pcap; the link type as the tcpdump.org link-type list
@@ -29,6 +31,11 @@ pub enum OtherRecord {
     SystemdJournal,
     /// A BLF object of a type that holds no frame (docs/formats.md#blf).
     BlfObject(u32),
+    /// A record of an MF4 channel group that holds no CAN frame (`LIN_Frame`,
+    /// `CAN_OverloadFrame`, a signal group), by the group's name
+    /// (docs/formats.md#mf4).
+    #[cfg(feature = "mf4")]
+    Mf4Group(String),
 }
 
 impl OtherRecord {
@@ -55,12 +62,14 @@ impl OtherRecord {
     }
 
     /// The noun for one record of this kind.
-    const fn noun(self) -> &'static str {
+    const fn noun(&self) -> &'static str {
         match self {
             OtherRecord::LinkType(_) | OtherRecord::CookedProtocol { .. } => "packet",
             OtherRecord::CanXl => "CAN XL frame",
             OtherRecord::SystemdJournal => "systemd journal export block",
             OtherRecord::BlfObject(_) => "BLF object",
+            #[cfg(feature = "mf4")]
+            OtherRecord::Mf4Group(_) => "MF4 record",
         }
     }
 }
@@ -91,8 +100,12 @@ fn link_type(f: &mut fmt::Formatter<'_>, link_type: u16) -> fmt::Result {
 ///     ip.to_string(),
 ///     "1 packet of link type 113 (Linux cooked v1) with protocol 0x0800 skipped: not CAN"
 /// );
+/// # #[cfg(feature = "mf4")] {
+/// let lin = OtherRecords { kind: OtherRecord::Mf4Group("LIN_Frame".into()), count: 3 };
+/// assert_eq!(lin.to_string(), "3 MF4 records of group LIN_Frame skipped: not CAN");
+/// # }
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct OtherRecords {
     /// The kind.
     pub kind: OtherRecord,
@@ -104,16 +117,20 @@ impl fmt::Display for OtherRecords {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = if self.count == 1 { "" } else { "s" };
         write!(f, "{} {}{s}", self.count, self.kind.noun())?;
-        match self.kind {
-            OtherRecord::LinkType(t) => link_type(f, t)?,
+        match &self.kind {
+            OtherRecord::LinkType(t) => link_type(f, *t)?,
             OtherRecord::CookedProtocol {
                 link_type: t,
                 protocol,
             } => {
-                link_type(f, t)?;
+                link_type(f, *t)?;
                 write!(f, " with protocol {protocol:#06x}")?;
             }
             OtherRecord::BlfObject(t) => write!(f, " of type {t}")?,
+            // The name is the file's: control characters are escaped, so
+            // that it cannot break the line it is said on.
+            #[cfg(feature = "mf4")]
+            OtherRecord::Mf4Group(name) => write!(f, " of group {}", name.escape_debug())?,
             OtherRecord::CanXl | OtherRecord::SystemdJournal => {}
         }
         f.write_str(match self.kind {
@@ -135,7 +152,10 @@ pub(crate) struct OtherCounts {
 
 #[cfg(any(feature = "pcap", feature = "blf"))]
 impl OtherCounts {
-    /// Count one record of `kind`.
+    /// Count one record of `kind`: out of the readers' loops, which read
+    /// frames.
+    #[cold]
+    #[inline(never)]
     pub(crate) fn add(&mut self, kind: OtherRecord) {
         self.total = self.total.saturating_add(1);
         match self.counts.iter_mut().find(|c| c.kind == kind) {

@@ -510,8 +510,9 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
         for kind in kinds {
             writeln!(sink.err, "{name}: {kind}")?;
         }
-        // What a reader counts without naming its kind (an MF4 file's LIN
-        // or signal groups) is said too: nothing is skipped without a word.
+        // What a reader would count without naming its kind is said too
+        // (none does: an MF4 file's LIN or signal groups are named as
+        // kinds): nothing is skipped without a word.
         let named: u64 = kinds.iter().map(|kind| kind.count).sum();
         let unnamed = log.other_records().saturating_sub(named);
         if unnamed > 0 {

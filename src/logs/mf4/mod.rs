@@ -24,8 +24,9 @@
 //! `DataLength`, `DataBytes` (in the record, or VLSD: in signal data or
 //! in a VLSD channel group's records), `Dir`, `EDL`, `BRS`, `ESI`,
 //! `ErrorType`; any may be absent. Records of other groups (LIN, signals)
-//! are counted by name ([`Mf4Reader::other_groups`],
-//! [`ReadLog::other_records`]), never reported as malformed.
+//! are counted by name ([`ReadLog::other_kinds`] as
+//! [`OtherRecord::Mf4Group`],
+//! [`Mf4Reader::other_groups`]), never reported as malformed.
 //!
 //! # Decisions (where the standard is silent, as asammdf reads;
 //! docs/formats.md#mf4)
@@ -104,7 +105,10 @@ use std::io::{self, SeekFrom};
 use std::io::{Cursor, Read, Seek};
 
 use crate::can::{LogEvent, Timestamp};
-use crate::logs::{BinaryError, LogError, LogFormat, LogRecord, Position, ReadLog, MAX_RECORD_LEN};
+use crate::logs::{
+    BinaryError, LogError, LogFormat, LogRecord, OtherRecord, OtherRecords, Position, ReadLog,
+    MAX_RECORD_LEN,
+};
 #[cfg(doc)]
 use crate::Error;
 
@@ -140,6 +144,11 @@ pub struct Mf4Reader<R> {
     /// Records of groups without CAN frames, by name (from the data groups
     /// read when the file was opened).
     counted: Vec<(String, u64)>,
+    /// `counted` and the groups' counts as [`ReadLog::other_kinds`] hands
+    /// them out, brought up to date before each event is handed out.
+    kinds: Vec<OtherRecords>,
+    /// The records `kinds` counts.
+    kinds_total: u64,
     skipped: u64,
     done: bool,
 }
@@ -214,7 +223,7 @@ impl<R: Read + Seek> Mf4Reader<R> {
             }
         }
         let active = (0..groups.len()).collect();
-        Ok(Mf4Reader {
+        let mut reader = Mf4Reader {
             source,
             version: layout.version,
             start,
@@ -222,9 +231,13 @@ impl<R: Read + Seek> Mf4Reader<R> {
             groups,
             active,
             counted,
+            kinds: Vec::new(),
+            kinds_total: 0,
             skipped: 0,
             done: false,
-        })
+        };
+        reader.sync_kinds();
+        Ok(reader)
     }
 }
 
@@ -257,6 +270,35 @@ impl<R> Mf4Reader<R> {
         all.retain(|(_, n)| *n > 0);
         all
     }
+
+    /// Bring `kinds` up to date with the records of other groups counted
+    /// so far.
+    fn sync_kinds(&mut self) {
+        let total = self.other_total();
+        if total != self.kinds_total {
+            self.kinds = self
+                .other_groups()
+                .into_iter()
+                .map(|(name, count)| OtherRecords {
+                    kind: OtherRecord::Mf4Group(name),
+                    count,
+                })
+                .collect();
+            self.kinds_total = total;
+        }
+    }
+
+    /// The records of other groups counted so far.
+    fn other_total(&self) -> u64 {
+        let counted: u64 = self.counted.iter().map(|(_, n)| n).sum();
+        let read: u64 = self
+            .groups
+            .iter()
+            .flat_map(|group| group.others())
+            .map(|(_, n)| n)
+            .sum();
+        counted + read
+    }
 }
 
 /// Add `n` records to `name`'s count.
@@ -273,6 +315,39 @@ impl<R: Read + Seek> ReadLog for Mf4Reader<R> {
     }
 
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
+        let next = self.next_item();
+        // The other groups' records read on the way to it are said with it.
+        self.sync_kinds();
+        let item = match next? {
+            Ok(item) => item,
+            Err(error) => return Some(Err(error)),
+        };
+        Some(Ok(LogRecord {
+            position: Position::Record(item.key.number),
+            event: LogEvent::Frame(item.frame),
+        }))
+    }
+
+    fn other_records(&self) -> u64 {
+        self.other_total()
+    }
+
+    fn other_kinds(&self) -> &[OtherRecords] {
+        &self.kinds
+    }
+
+    fn skipped(&self) -> u64 {
+        self.skipped
+    }
+
+    fn bytes_read(&self) -> u64 {
+        self.source.read
+    }
+}
+
+impl<R: Read + Seek> Mf4Reader<R> {
+    /// The next frame in time order, or an error, with the frame's key.
+    fn next_item(&mut self) -> Option<Result<Item, LogError>> {
         if self.done {
             return None;
         }
@@ -310,29 +385,7 @@ impl<R: Read + Seek> ReadLog for Mf4Reader<R> {
             self.done = true;
             return None;
         };
-        Some(Ok(LogRecord {
-            position: Position::Record(item.key.number),
-            event: LogEvent::Frame(item.frame),
-        }))
-    }
-
-    fn other_records(&self) -> u64 {
-        let counted: u64 = self.counted.iter().map(|(_, n)| n).sum();
-        let read: u64 = self
-            .groups
-            .iter()
-            .flat_map(|group| group.others())
-            .map(|(_, n)| n)
-            .sum();
-        counted + read
-    }
-
-    fn skipped(&self) -> u64 {
-        self.skipped
-    }
-
-    fn bytes_read(&self) -> u64 {
-        self.source.read
+        Some(Ok(item))
     }
 }
 

@@ -9,7 +9,9 @@ use proptest::prelude::*;
 
 use super::Mf4Reader;
 use crate::can::{Direction, Iface, LogEvent, LogFrame};
-use crate::logs::{BinaryError, LogError, LogErrorKind, Position, ReadLog};
+use crate::logs::{
+    BinaryError, LogError, LogErrorKind, OtherRecord, OtherRecords, Position, ReadLog,
+};
 use crate::Error;
 
 /// An MDF 4 file built block by block, links patched in afterwards.
@@ -385,6 +387,79 @@ fn channel_groups_of_one_data_group_merged_by_time() {
         [(1, 0x101), (3, 0x202), (2, 0x103), (5, 0x203), (4, 0x104)]
     );
     assert!(events[1].as_ref().unwrap().1.frame.is_rtr());
+}
+
+/// docs/formats.md#mf4: records of groups without CAN frames are counted
+/// by group name, as `other_kinds` says them, and up to date with each
+/// event handed out.
+#[test]
+fn other_groups_are_said_by_name() {
+    let mut data = Vec::new();
+    for (id, seconds, can_id) in [
+        (2, 0.1, 0x11),
+        (1, 0.2, 0x101),
+        (2, 0.3, 0x12),
+        (2, 0.4, 0x13),
+        (3, 0.5, 0x14),
+        (1, 0.6, 0x102),
+    ] {
+        data.push(id);
+        data.extend(record(seconds, can_id, &[], false));
+    }
+    let bytes = file(
+        1,
+        &[("CAN_DataFrame", 1), ("LIN_Frame", 2), ("Line\nBreak", 3)],
+        &data,
+        Storage::Dt,
+    );
+    let mut reader = Mf4Reader::new(Cursor::new(bytes)).unwrap();
+    assert!(reader.other_kinds().is_empty());
+    let lin = |count| OtherRecords {
+        kind: OtherRecord::Mf4Group("LIN_Frame".into()),
+        count,
+    };
+    let first = reader.next_event().unwrap().unwrap();
+    assert_eq!(first.position, Position::Record(2));
+    // The LIN record before it.
+    assert_eq!(reader.other_kinds(), [lin(1)]);
+    assert_eq!(reader.other_records(), 1);
+    let second = reader.next_event().unwrap().unwrap();
+    assert_eq!(second.position, Position::Record(6));
+    assert!(reader.next_event().is_none());
+    let odd = OtherRecords {
+        kind: OtherRecord::Mf4Group("Line\nBreak".into()),
+        count: 1,
+    };
+    assert_eq!(reader.other_kinds(), [lin(3), odd.clone()]);
+    assert_eq!(reader.other_records(), 4);
+    assert_eq!(
+        reader.other_groups(),
+        [("LIN_Frame".to_string(), 3), ("Line\nBreak".to_string(), 1)]
+    );
+    // Said on one line whatever the name holds.
+    assert_eq!(
+        odd.to_string(),
+        "1 MF4 record of group Line\\nBreak skipped: not CAN"
+    );
+}
+
+/// A data group of other groups only is counted when the file is opened.
+#[test]
+fn a_data_group_without_frames_is_counted_when_opened() {
+    let mut data = Vec::new();
+    for seconds in [0.1, 0.2] {
+        data.extend(record(seconds, 0x11, &[], false));
+    }
+    let bytes = file(0, &[("LIN_Frame", 0)], &data, Storage::Dt);
+    let mut reader = Mf4Reader::new(Cursor::new(bytes)).unwrap();
+    let lin = OtherRecords {
+        kind: OtherRecord::Mf4Group("LIN_Frame".into()),
+        count: 2,
+    };
+    assert_eq!(reader.other_kinds(), core::slice::from_ref(&lin));
+    assert!(reader.next_event().is_none());
+    assert_eq!(reader.other_kinds(), [lin]);
+    assert_eq!(reader.other_records(), 2);
 }
 
 #[test]

@@ -22,9 +22,10 @@
 //! docs/formats.md#pcap); 0x000E (`ETH_P_CANXL`) a CAN XL frame, which is
 //! counted, never misread.
 
-use crate::logs::{BinaryError, OtherRecord};
+use crate::logs::BinaryError;
 
 use super::socketcan::FrameLayout;
+use super::NotCan;
 
 /// `LINKTYPE_LINUX_SLL`: Linux cooked capture, version 1
 /// (docs/formats.md#pcap).
@@ -75,7 +76,7 @@ pub(super) enum Cooked {
         ifindex: Option<u32>,
     },
     /// No CAN or CAN FD frame: counted as this kind.
-    Other(OtherRecord),
+    Other(NotCan),
 }
 
 /// Read the cooked header of a packet of `link_type` (113 or 276).
@@ -113,8 +114,8 @@ pub(super) fn split(link_type: u16, packet: &[u8]) -> Result<Cooked, BinaryError
             },
             ifindex,
         },
-        ETH_P_CANXL => Cooked::Other(OtherRecord::CanXl),
-        protocol => Cooked::Other(OtherRecord::CookedProtocol {
+        ETH_P_CANXL => Cooked::Other(NotCan::CanXl),
+        protocol => Cooked::Other(NotCan::CookedProtocol {
             link_type,
             protocol,
         }),
@@ -162,14 +163,14 @@ mod tests {
     fn other_protocols_are_counted_by_kind() {
         assert_eq!(
             split(LINKTYPE_LINUX_SLL, &sll(0x0800, &[0x45])),
-            Ok(Cooked::Other(OtherRecord::CookedProtocol {
+            Ok(Cooked::Other(NotCan::CookedProtocol {
                 link_type: 113,
                 protocol: 0x0800
             }))
         );
         assert_eq!(
             split(LINKTYPE_LINUX_SLL2, &sll2(0x000E, &[])),
-            Ok(Cooked::Other(OtherRecord::CanXl))
+            Ok(Cooked::Other(NotCan::CanXl))
         );
     }
 

@@ -111,6 +111,38 @@ pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
 use socketcan::{FrameLayout, Payload};
 
+/// A packet that holds no CAN frame, as the reading loop hands it on: the
+/// kinds of [`OtherRecord`] a pcap has, `Copy` so that the loop's results
+/// carry nothing to drop; made an [`OtherRecord`] where it is counted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NotCan {
+    /// [`OtherRecord::LinkType`].
+    LinkType(u16),
+    /// [`OtherRecord::CookedProtocol`].
+    CookedProtocol { link_type: u16, protocol: u16 },
+    /// [`OtherRecord::CanXl`].
+    CanXl,
+    /// [`OtherRecord::SystemdJournal`].
+    SystemdJournal,
+}
+
+impl From<NotCan> for OtherRecord {
+    fn from(kind: NotCan) -> Self {
+        match kind {
+            NotCan::LinkType(link_type) => OtherRecord::LinkType(link_type),
+            NotCan::CookedProtocol {
+                link_type,
+                protocol,
+            } => OtherRecord::CookedProtocol {
+                link_type,
+                protocol,
+            },
+            NotCan::CanXl => OtherRecord::CanXl,
+            NotCan::SystemdJournal => OtherRecord::SystemdJournal,
+        }
+    }
+}
+
 /// `LINKTYPE_CAN_SOCKETCAN`: SocketCAN frames (docs/formats.md#pcap).
 pub const LINKTYPE_CAN_SOCKETCAN: u16 = 227;
 
@@ -765,13 +797,13 @@ impl<R: Read> ReadLog for PcapReader<R> {
                         Err(reason) => Err(Err((0, reason))),
                     }
                 }
-                Some(link_type) => Err(Ok(OtherRecord::LinkType(link_type))),
-                None => Err(Ok(OtherRecord::SystemdJournal)),
+                Some(link_type) => Err(Ok(NotCan::LinkType(link_type))),
+                None => Err(Ok(NotCan::SystemdJournal)),
             };
             let decoded = framed.and_then(|(at, layout, ifindex)| {
                 match socketcan::decode(data.get(at..).unwrap_or_default(), layout) {
                     Ok(Payload::Frame(frame)) => Ok((frame, ifindex)),
-                    Ok(Payload::NotCan) => Err(Ok(OtherRecord::CanXl)),
+                    Ok(Payload::NotCan) => Err(Ok(NotCan::CanXl)),
                     Err(reason) => Err(Err((at, reason))),
                 }
             });
@@ -779,7 +811,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 Ok(decoded) => decoded,
                 Err(Ok(kind)) => {
                     self.input.consume(packet.len);
-                    self.other.add(kind);
+                    self.other.add(kind.into());
                     continue;
                 }
                 Err(Err((at, reason))) => {
