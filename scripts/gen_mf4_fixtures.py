@@ -18,6 +18,10 @@ Written here:
 
 The truths of the last four are short rows (message_json's values in its
 key order), gzip-compressed.
+- asammdf_signals.mf4: python_can.mf4 with a data group of signals
+  (`EngineSpeed`, three records, no CAN frame) appended and saved by
+  asammdf (compression=2): its records are counted by the group's name.
+  `python3 scripts/gen_mf4_fixtures.py signals` writes only this one.
 - asammdf_sd.mf4: canedge_vlsd.mf4 sorted and saved by asammdf
   (compression=2): DataBytes a VLSD channel whose data is an SD block in a
   DZ block.
@@ -185,9 +189,23 @@ def write_asammdf(path, count, compression=2, fragment=None):
     mdf.close()
 
 
+def write_signals():
+    """python_can.mf4 with a data group of signals appended by asammdf."""
+    source = MDF(os.path.join(OUT, "python_can.mf4"))
+    times = np.array([0.05, 0.15, 0.25])
+    speed = Signal(np.array([100, 200, 300], dtype=np.uint16), times, name="EngineSpeed")
+    source.append([speed], comment="signals")
+    source.save(os.path.join(OUT, "asammdf_signals.mf4"), overwrite=True, compression=2)
+    source.close()
+    truth("asammdf_signals.mf4", short=True)
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["bench"]:
         write_asammdf(sys.argv[2], 1_000_000)
+        sys.exit(0)
+    if sys.argv[1:2] == ["signals"]:
+        write_signals()
         sys.exit(0)
     os.makedirs(OUT, exist_ok=True)
     write_python_can("python_can.mf4", frames(), compression_level=2)
@@ -195,6 +213,7 @@ if __name__ == "__main__":
     write_python_can("python_can_plain.mf4", frames(), fixed_start=False, compression_level=0)
     write_asammdf(os.path.join(OUT, "asammdf_many.mf4"), 2_000, fragment=16_384)
     truth("asammdf_many.mf4", short=True)
+    write_signals()
     source = MDF(os.path.join(OUT, "canedge_vlsd.mf4"))
     source.save(os.path.join(OUT, "asammdf_sd.mf4"), overwrite=True, compression=2)
     source.close()

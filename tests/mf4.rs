@@ -196,6 +196,22 @@ fn asammdf_data_list_of_transposed_dz_blocks() {
     assert_eq!(numbers, (1..=2000).collect::<Vec<_>>());
 }
 
+/// docs/formats.md#mf4: a data group of signals (asammdf's `append`) holds
+/// no CAN frame; its records are counted by the group's name, and the
+/// frames read as python-can reads them.
+#[test]
+fn asammdf_signal_group_counted_by_name() {
+    let (frames, others, skipped) = fixture("asammdf_signals");
+    assert_eq!((frames.len(), others, skipped), (40, 3, 0));
+    let mut log = logs::open(format!("{DIR}asammdf_signals.mf4")).unwrap();
+    while log.next_event().is_some() {}
+    let kinds: Vec<String> = log.other_kinds().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        kinds,
+        ["3 MF4 records of group EngineSpeed skipped: not CAN"]
+    );
+}
+
 #[test]
 fn asammdf_vlsd_data_bytes_in_signal_data() {
     let (frames, others, skipped) = fixture("asammdf_sd");
