@@ -186,6 +186,38 @@ pub(super) fn classic_data(packet: &[u8; CAN_MTU]) -> Option<CanFrame> {
     ))
 }
 
+/// [`decode`] of a `LINKTYPE_CAN_SOCKETCAN` packet of exactly
+/// [`CANFD_MTU`] bytes (always CAN FD) whose length is at most 64: the
+/// frame [`decode`] makes of it, read without the general path's slicing.
+/// `None` for a longer length or CAN XL, which [`decode`] reads.
+#[inline]
+pub(super) fn fd_data(packet: &[u8; CANFD_MTU]) -> Option<CanFrame> {
+    let (header, data) = packet.split_at(HEADER_LEN);
+    let [i0, i1, i2, i3, len, flags, _, _] = *header.first_chunk::<HEADER_LEN>()?;
+    // A length above 64 also covers CANXL_XLF.
+    let n = usize::from(len);
+    if n > FD_MAX_LEN {
+        return None;
+    }
+    let word = u32::from_be_bytes([i0, i1, i2, i3]);
+    let id = if word & EFF_FLAG != 0 {
+        CanId::new_unchecked(word & EFF_MASK, true)
+    } else {
+        CanId::new_unchecked(word & SFF_MASK, false)
+    };
+    let flags = FdFlags::new(flags & 0x0F).unwrap_or_default();
+    let mut bytes = [0; FD_MAX_LEN];
+    if let (Some(head), Some(data)) = (bytes.get_mut(..n), data.get(..n)) {
+        head.copy_from_slice(data);
+    }
+    Some(CanFrame::from_checked_parts(
+        id,
+        FrameType::Fd(flags),
+        bytes,
+        len,
+    ))
+}
+
 fn too_short(needed: usize, found: usize) -> BinaryError {
     BinaryError::SocketCanTooShort {
         needed: needed as u64,
