@@ -100,7 +100,7 @@ mod writer;
 use core::time::Duration;
 use std::io::Read;
 
-use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
@@ -312,6 +312,13 @@ pub struct PcapReader<R: Read> {
     retired: Vec<Interface>,
     /// Sections started after the first.
     sections: u64,
+    /// A pcap file of link type 227: its records are read by
+    /// [`next_classic`](Self::next_classic) and [`next_fd`](Self::next_fd)
+    /// first.
+    fast: bool,
+    /// A pcap file's times are in nanoseconds (its interface's resolution,
+    /// kept apart for [`record_time`](Self::record_time)).
+    nanos: bool,
 }
 
 impl<R: Read> PcapReader<R> {
@@ -353,6 +360,8 @@ impl<R: Read> PcapReader<R> {
             done: false,
             retired: Vec::new(),
             sections: 0,
+            fast: false,
+            nanos: false,
         };
         match first {
             magic::MICROS | magic::MICROS_SWAPPED | magic::NANOS | magic::NANOS_SWAPPED => {
@@ -399,6 +408,8 @@ impl<R: Read> PcapReader<R> {
             resolution: Resolution::Decimal(if nanos { 9 } else { 6 }),
             offset_secs: 0,
         });
+        self.fast = link_type == LINKTYPE_CAN_SOCKETCAN;
+        self.nanos = nanos;
         self.input.consume(PCAP_HEADER_LEN);
         Ok(())
     }
@@ -438,17 +449,8 @@ impl<R: Read> PcapReader<R> {
         if available < total {
             return Err(self.truncated(total, available));
         }
-        let secs = u32_at(&header, 0, big_endian);
-        let frac = u64::from(u32_at(&header, 4, big_endian));
         let interface = self.interfaces.first();
-        let nanos = match interface.map(|i| i.resolution) {
-            Some(Resolution::Decimal(9)) => frac,
-            _ => frac.saturating_mul(1_000),
-        };
-        // A fraction of a second or more is carried into the seconds.
-        let timestamp = Timestamp::from_duration(
-            Duration::from_secs(secs.into()).saturating_add(Duration::from_nanos(nanos)),
-        );
+        let timestamp = self.record_time(&header, big_endian);
         Ok(Some(Packet {
             interface: 0,
             timestamp: Some(timestamp),
@@ -456,6 +458,79 @@ impl<R: Read> PcapReader<R> {
             data: PCAP_RECORD_LEN..total,
             len: total,
         }))
+    }
+
+    /// The time of a pcap record, from its header.
+    #[inline]
+    fn record_time(&self, header: &[u8; PCAP_RECORD_LEN], big_endian: bool) -> Timestamp {
+        let secs = u32_at(header, 0, big_endian);
+        let frac = u64::from(u32_at(header, 4, big_endian));
+        let nanos = if self.nanos {
+            frac
+        } else {
+            frac.saturating_mul(1_000)
+        };
+        match u32::try_from(nanos) {
+            Ok(nanos) if nanos < 1_000_000_000 => {
+                Timestamp::from_duration(Duration::new(secs.into(), nanos))
+            }
+            // A fraction of a second or more is carried into the seconds.
+            _ => Timestamp::from_duration(
+                Duration::from_secs(secs.into()).saturating_add(Duration::from_nanos(nanos)),
+            ),
+        }
+    }
+
+    /// The next record of a pcap file of link type 227 when it is whole in
+    /// the bytes read ahead and holds a classic data frame in a packet of
+    /// [`socketcan::CAN_MTU`] bytes, a capture's usual record: its frame
+    /// and time, the record consumed; `None` (nothing consumed) for any
+    /// other, which [`next_packet`](Self::next_packet) reads. The frame and
+    /// time are those the general path makes of the record.
+    #[inline(always)]
+    fn next_classic(&mut self) -> Option<(CanFrame, Timestamp)> {
+        const LEN: usize = PCAP_RECORD_LEN + socketcan::CAN_MTU;
+        let Layout::Pcap { big_endian } = self.layout else {
+            return None;
+        };
+        if !self.fast {
+            return None;
+        }
+        let record = self.input.bytes().first_chunk::<LEN>()?;
+        let (header, packet) = record.split_at(PCAP_RECORD_LEN);
+        let header = header.first_chunk::<PCAP_RECORD_LEN>()?;
+        if u32_at(header, 8, big_endian) as usize != socketcan::CAN_MTU {
+            return None;
+        }
+        let frame = socketcan::classic_data(packet.first_chunk::<{ socketcan::CAN_MTU }>()?)?;
+        let timestamp = self.record_time(header, big_endian);
+        self.input.consume(LEN);
+        Some((frame, timestamp))
+    }
+
+    /// [`next_classic`](Self::next_classic) for a CAN FD frame in a packet
+    /// of [`socketcan::CANFD_MTU`] bytes, a CAN FD capture's usual record;
+    /// tried after it. Its own return in `next_event`: one result for both
+    /// kinds would have the classic frame made in a temporary and copied.
+    #[inline(always)]
+    fn next_fd(&mut self) -> Option<(CanFrame, Timestamp)> {
+        const FD: usize = PCAP_RECORD_LEN + socketcan::CANFD_MTU;
+        let Layout::Pcap { big_endian } = self.layout else {
+            return None;
+        };
+        if !self.fast {
+            return None;
+        }
+        let record = self.input.bytes().first_chunk::<FD>()?;
+        let (header, packet) = record.split_at(PCAP_RECORD_LEN);
+        let header = header.first_chunk::<PCAP_RECORD_LEN>()?;
+        if u32_at(header, 8, big_endian) as usize != socketcan::CANFD_MTU {
+            return None;
+        }
+        let frame = socketcan::fd_data(packet.first_chunk()?)?;
+        let timestamp = self.record_time(header, big_endian);
+        self.input.consume(FD);
+        Some((frame, timestamp))
     }
 
     /// Read one pcapng block.
@@ -764,6 +839,31 @@ impl<R: Read> ReadLog for PcapReader<R> {
         loop {
             if self.done {
                 return None;
+            }
+            if let Some((frame, timestamp)) = self.next_classic() {
+                self.number = self.number.saturating_add(1);
+                // pcap names no interface.
+                return Some(Ok(LogRecord {
+                    position: Position::Record(self.number),
+                    event: LogEvent::Frame(LogFrame {
+                        frame,
+                        timestamp: Some(timestamp),
+                        iface: None,
+                        direction: None,
+                    }),
+                }));
+            }
+            if let Some((frame, timestamp)) = self.next_fd() {
+                self.number = self.number.saturating_add(1);
+                return Some(Ok(LogRecord {
+                    position: Position::Record(self.number),
+                    event: LogEvent::Frame(LogFrame {
+                        frame,
+                        timestamp: Some(timestamp),
+                        iface: None,
+                        direction: None,
+                    }),
+                }));
             }
             let packet = match self.next_packet() {
                 Ok(Some(packet)) => packet,

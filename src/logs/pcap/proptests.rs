@@ -36,10 +36,19 @@ type Outcome = (
 );
 
 fn outcome<R: Read>(input: R) -> Outcome {
+    outcome_of(input, false)
+}
+
+/// [`outcome`], every record read by the general path when `general`
+/// (not by `PcapReader::next_classic` or `next_fd`).
+fn outcome_of<R: Read>(input: R, general: bool) -> Outcome {
     let mut reader = match PcapReader::new(input) {
         Ok(r) => r,
         Err(e) => return (Vec::new(), Some(e.to_string()), 0),
     };
+    if general {
+        reader.fast = false;
+    }
     let mut frames = Vec::new();
     let mut error = None;
     let mut last = 0;
@@ -79,6 +88,46 @@ fn micros_timestamp() -> impl Strategy<Value = Timestamp> {
     (0u64..=u64::from(u32::MAX), 0u32..1_000_000).prop_map(|(s, us)| Timestamp::new(s, us).unwrap())
 }
 
+/// A SocketCAN packet's 8-byte header as a classic or CAN FD frame's often
+/// is, or not: the identifier word's flags, a length around 8 or 64, the
+/// flags byte and the reserved bytes zero or not.
+fn socketcan_header() -> impl Strategy<Value = [u8; 8]> {
+    (
+        prop_oneof![
+            any::<u32>(),
+            0u32..0x800,
+            (0u32..0x2000_0000).prop_map(|id| id | 0x8000_0000),
+        ],
+        prop_oneof![0u8..=9, 60u8..=65, any::<u8>()],
+        prop_oneof![Just(0u8), 0u8..8, any::<u8>()],
+        prop_oneof![Just([0u8; 2]), any::<[u8; 2]>()],
+    )
+        .prop_map(|(word, len, flags, [r0, r1])| {
+            let [i0, i1, i2, i3] = word.to_be_bytes();
+            [i0, i1, i2, i3, len, flags, r0, r1]
+        })
+}
+
+/// One pcap record: seconds, fraction (a microsecond count or not),
+/// captured length (16 or 72 mostly), the packet (a SocketCAN header, then
+/// arbitrary bytes).
+fn pcap_record() -> impl Strategy<Value = (u32, u32, u32, Vec<u8>)> {
+    (
+        any::<u32>(),
+        prop_oneof![0u32..1_000_000, any::<u32>()],
+        socketcan_header(),
+        proptest::collection::vec(any::<u8>(), 64),
+        prop_oneof![4 => Just(16usize), 2 => Just(72usize), 1 => 0usize..80],
+        prop_oneof![4 => Just(None), 1 => (0u32..100).prop_map(Some)],
+    )
+        .prop_map(|(secs, frac, header, data, len, claimed)| {
+            let mut packet = header.to_vec();
+            packet.extend(data);
+            packet.truncate(len);
+            (secs, frac, claimed.unwrap_or(len as u32), packet)
+        })
+}
+
 fn nanos_timestamp() -> impl Strategy<Value = Timestamp> {
     (0u64..=u64::from(u32::MAX), 0u32..1_000_000_000)
         .prop_map(|(s, ns)| Timestamp::from_nanos(s, ns).unwrap())
@@ -116,6 +165,70 @@ proptest! {
         bytes.truncate(cut % (bytes.len() + 1));
         let whole = outcome(&bytes[..]);
         prop_assert_eq!(outcome(Chunked { data: &bytes, step: 7 }), whole);
+    }
+
+    /// A packet of 16 bytes: the fast reading of a classic data frame is
+    /// `decode`'s, and it reads every packet `decode` makes a classic data
+    /// frame of.
+    #[test]
+    fn classic_data_is_decode(header in socketcan_header(), data in any::<[u8; 8]>()) {
+        let mut packet = [0u8; socketcan::CAN_MTU];
+        packet[..8].copy_from_slice(&header);
+        packet[8..].copy_from_slice(&data);
+        let general = socketcan::decode(&packet, FrameLayout::LinkType227);
+        match socketcan::classic_data(&packet) {
+            Some(frame) => prop_assert_eq!(general, Ok(Payload::Frame(frame))),
+            None => prop_assert!(!matches!(
+                general,
+                Ok(Payload::Frame(f)) if f.frame_type() == crate::can::FrameType::Data
+            )),
+        }
+    }
+
+    /// A packet of 72 bytes: the fast reading of a CAN FD frame is
+    /// `decode`'s, and it reads every packet `decode` makes a frame of.
+    #[test]
+    fn fd_data_is_decode(
+        header in socketcan_header(),
+        data in proptest::collection::vec(any::<u8>(), 64),
+    ) {
+        let mut packet = [0u8; socketcan::CANFD_MTU];
+        packet[..8].copy_from_slice(&header);
+        packet[8..].copy_from_slice(&data);
+        let general = socketcan::decode(&packet, FrameLayout::LinkType227);
+        match socketcan::fd_data(&packet) {
+            Some(frame) => prop_assert_eq!(general, Ok(Payload::Frame(frame))),
+            None => prop_assert!(!matches!(general, Ok(Payload::Frame(_)))),
+        }
+    }
+
+    /// A pcap file of arbitrary records, in either byte order and
+    /// resolution, whole or cut, read in whole or in pieces: what the fast
+    /// paths for classic and CAN FD records read is what the general path
+    /// reads.
+    #[test]
+    fn the_fast_paths_read_as_the_general_path(
+        records in proptest::collection::vec(pcap_record(), 0..12),
+        be in any::<bool>(),
+        nanos in any::<bool>(),
+        link in prop_oneof![4 => Just(227u32), 1 => any::<u32>()],
+        cut in any::<usize>(),
+        step in prop_oneof![Just(1usize << 16), 1usize..40],
+    ) {
+        let mut bytes = writer::pcap(&[], link, be, nanos);
+        let u32b = |v: u32| if be { v.to_be_bytes() } else { v.to_le_bytes() };
+        for (secs, frac, claimed, packet) in &records {
+            bytes.extend(u32b(*secs));
+            bytes.extend(u32b(*frac));
+            bytes.extend(u32b(*claimed));
+            bytes.extend(u32b(*claimed));
+            bytes.extend(packet);
+        }
+        if cut % 4 == 0 {
+            bytes.truncate(cut % (bytes.len() + 1));
+        }
+        let general = outcome_of(Chunked { data: &bytes, step }, true);
+        prop_assert_eq!(outcome_of(Chunked { data: &bytes, step }, false), general);
     }
 
     #[test]

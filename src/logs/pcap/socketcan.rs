@@ -32,7 +32,6 @@ use crate::logs::BinaryError;
 /// The frame header: identifier word, length, flags, two reserved bytes.
 pub(super) const HEADER_LEN: usize = 8;
 /// The captured length of a classic frame, `sizeof(struct can_frame)`.
-#[cfg(test)]
 pub(super) const CAN_MTU: usize = 16;
 /// The captured length of a CAN FD frame, `sizeof(struct canfd_frame)`.
 pub(super) const CANFD_MTU: usize = 72;
@@ -143,6 +142,80 @@ pub(super) fn decode(packet: &[u8], layout: FrameLayout) -> Result<Payload, Bina
     Ok(Payload::Frame(CanFrame::from_checked_parts(
         id, frame_type, bytes, data_len,
     )))
+}
+
+/// [`decode`] of a `LINKTYPE_CAN_SOCKETCAN` packet of exactly [`CAN_MTU`]
+/// bytes, a capture's usual packet, when it holds a classic data frame:
+/// the frame [`decode`] makes of it, read without the general path's
+/// slicing and variable-length copy. `None` for any other packet (CAN FD,
+/// CAN XL, remote or error frame, a length above 8), which [`decode`]
+/// reads.
+#[inline]
+pub(super) fn classic_data(packet: &[u8; CAN_MTU]) -> Option<CanFrame> {
+    let (header, data) = packet.split_at(HEADER_LEN);
+    let [i0, i1, i2, i3, len, flags, res0, res1] = *header.first_chunk::<HEADER_LEN>()?;
+    let marked_fd = flags & FDF != 0 && flags & !FD_KNOWN == 0 && res0 == 0 && res1 == 0;
+    // A length above 8 also covers CANXL_XLF.
+    if usize::from(len) > CLASSIC_MAX_LEN || marked_fd {
+        return None;
+    }
+    let word = u32::from_be_bytes([i0, i1, i2, i3]);
+    if word & (ERR_FLAG | RTR_FLAG) != 0 {
+        return None;
+    }
+    let id = if word & EFF_FLAG != 0 {
+        CanId::new_unchecked(word & EFF_MASK, true)
+    } else {
+        CanId::new_unchecked(word & SFF_MASK, false)
+    };
+    // The 8 bytes after the header with those past the length cleared:
+    // `len` is 0..=8, so the shift is 0..=64 (64: no byte kept).
+    let raw = u64::from_le_bytes(*data.first_chunk::<CLASSIC_MAX_LEN>()?);
+    let keep = u64::MAX.checked_shr(64 - 8 * u32::from(len)).unwrap_or(0);
+    let mut bytes = [0; FD_MAX_LEN];
+    if let Some(head) = bytes.first_chunk_mut::<CLASSIC_MAX_LEN>() {
+        *head = (raw & keep).to_le_bytes();
+    }
+    // As in `decode`: the identifier masked to its kind, the length at
+    // most 8, the bytes past it zero.
+    Some(CanFrame::from_checked_parts(
+        id,
+        FrameType::Data,
+        bytes,
+        len,
+    ))
+}
+
+/// [`decode`] of a `LINKTYPE_CAN_SOCKETCAN` packet of exactly
+/// [`CANFD_MTU`] bytes (always CAN FD) whose length is at most 64: the
+/// frame [`decode`] makes of it, read without the general path's slicing.
+/// `None` for a longer length or CAN XL, which [`decode`] reads.
+#[inline]
+pub(super) fn fd_data(packet: &[u8; CANFD_MTU]) -> Option<CanFrame> {
+    let (header, data) = packet.split_at(HEADER_LEN);
+    let [i0, i1, i2, i3, len, flags, _, _] = *header.first_chunk::<HEADER_LEN>()?;
+    // A length above 64 also covers CANXL_XLF.
+    let n = usize::from(len);
+    if n > FD_MAX_LEN {
+        return None;
+    }
+    let word = u32::from_be_bytes([i0, i1, i2, i3]);
+    let id = if word & EFF_FLAG != 0 {
+        CanId::new_unchecked(word & EFF_MASK, true)
+    } else {
+        CanId::new_unchecked(word & SFF_MASK, false)
+    };
+    let flags = FdFlags::new(flags & 0x0F).unwrap_or_default();
+    let mut bytes = [0; FD_MAX_LEN];
+    if let (Some(head), Some(data)) = (bytes.get_mut(..n), data.get(..n)) {
+        head.copy_from_slice(data);
+    }
+    Some(CanFrame::from_checked_parts(
+        id,
+        FrameType::Fd(flags),
+        bytes,
+        len,
+    ))
 }
 
 fn too_short(needed: usize, found: usize) -> BinaryError {
