@@ -241,9 +241,16 @@ pub(super) fn decode_fd_data(
         let d = d.first_chunk::<8>()?;
         let words = [a, b, c, d].map(|w| u64::from_le_bytes(*w));
         let bad = words.map(non_hex64);
-        let packed = words.map(|w| u128::from(hex_bytes64(w)));
-        let packed = packed[0] | packed[1] << 32 | packed[2] << 64 | packed[3] << 96;
+        // Written as four 4-byte pieces, not one 16-byte word built with
+        // shifts: so the compiler packs the four words in SSE registers too
+        // (58.1M -> 51.9M instructions, read_log on fd-100k.log).
+        let bytes = words.map(hex_bytes64);
+        for (to, b) in dst.chunks_exact_mut(4).zip(bytes) {
+            to.copy_from_slice(&b.to_le_bytes());
+        }
         if bad[0] | bad[1] | bad[2] | bad[3] != 0 {
+            let packed = bytes.map(u128::from);
+            let packed = packed[0] | packed[1] << 32 | packed[2] << 64 | packed[3] << 96;
             // The data ends in these 32 bytes: at the first lane flagged.
             let low = u128::from(bad[0]) | u128::from(bad[1]) << 64;
             let high = u128::from(bad[2]) | u128::from(bad[3]) << 64;
@@ -260,7 +267,6 @@ pub(super) fn decode_fd_data(
             *dst = (packed & keep).to_le_bytes();
             return Some(((len + digits / 2) as u8, end + digits));
         }
-        *dst = packed.to_le_bytes();
         end += 32;
         len += 16;
         if buf
