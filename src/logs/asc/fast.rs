@@ -195,20 +195,19 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 // `contains` on bytes is a `memchr` call: 146 instructions per line more
 // on the `fd` mix (BENCHMARKS.md, issue 21, "ASC reader").
 #[allow(clippy::manual_contains)]
-#[inline(always)]
+#[inline(never)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
-    let channel = channel(words.next()?)?;
-    let direction = words.direction_word()?;
-    let id = words.id()?;
-    let brs_column = words.bit()?;
-    let esi_column = words.bit()?;
-    let dlc = words.hex_digit()?;
-    // The data length in decimal, one or two digits, a length CAN FD has
-    // (0..=8, 12, …, 64).
-    let len = match *words.next()? {
-        [u] if u.is_ascii_digit() => u - b'0',
-        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
-        _ => return None,
+    let FdHead {
+        channel,
+        direction,
+        id,
+        brs_column,
+        esi_column,
+        dlc,
+        len,
+    } = match words.fd_columns() {
+        Some(head) => head,
+        None => words.fd_head_spelt()?,
     };
     if !FD_LENGTHS.iter().any(|&n| n == len) {
         return None;
@@ -222,6 +221,28 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let flags = hex(words.next()?)?;
     let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
+}
+
+/// The words of a `CANFD` line before its data.
+struct FdHead {
+    channel: u16,
+    direction: Direction,
+    id: CanId,
+    brs_column: bool,
+    esi_column: bool,
+    dlc: u8,
+    /// The data length, as written (checked by the caller).
+    len: u8,
+}
+
+/// A `CANFD` line's data length in decimal, one or two digits.
+#[inline(always)]
+fn fd_len(word: &[u8]) -> Option<u8> {
+    match *word {
+        [u] if u.is_ascii_digit() => Some(u - b'0'),
+        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => Some((t - b'0') * 10 + (u - b'0')),
+        _ => None,
+    }
 }
 
 /// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
@@ -476,6 +497,107 @@ impl<'l> Words<'l> {
         }
         self.pos = end;
         Some((direction, dlc))
+    }
+
+    /// A `CANFD` line's words before its data in the columns python-can
+    /// writes them in (`{channel:>3} {dir:<4} {id:>8} {name:>32}  {brs}
+    /// {esi} {dlc:x} {len:>2}`, the name empty), from where `CANFD` ends:
+    /// a one-digit channel, `Rx` or `Tx`, an identifier of up to 8
+    /// characters, 35 spaces, BRS, ESI, the DLC and the length, each after
+    /// a single space, then a byte that [ends a word](ends_word) — read from
+    /// one 62-byte look, with no search for where words start and end (the
+    /// 35 spaces are 19 bytes of `skip_space`'s 8-byte steps). `None`, with
+    /// the position unchanged, for any other spacing or word (read by
+    /// [`fd_head_spelt`](Self::fd_head_spelt)). Where it reads a line, the
+    /// words are the ones [`next`](Self::next) reads, so that it returns what
+    /// `fd_head_spelt` would.
+    #[inline(always)]
+    fn fd_columns(&mut self) -> Option<FdHead> {
+        const SPACES: u128 = u128::from_le_bytes([b' '; 16]);
+        let at = self.pos;
+        let head = self.line.get(at..)?.first_chunk::<62>()?;
+        let (start, rest) = head.split_first_chunk::<10>()?;
+        let (id_field, rest) = rest.split_first_chunk::<8>()?;
+        let (gap, rest) = rest.split_first_chunk::<35>()?;
+        let (gap_start, gap_end) = gap.split_first_chunk::<16>()?;
+        let (gap_middle, gap_end) = gap_end.split_first_chunk::<16>()?;
+        let tail = rest.first_chunk::<9>()?;
+        let (channel, direction) = match *start {
+            [b' ', b' ', b' ', d @ b'1'..=b'9', b' ', b'R', b'x', b' ', b' ', b' '] => {
+                (u16::from(d - b'0'), Direction::Rx)
+            }
+            [b' ', b' ', b' ', d @ b'1'..=b'9', b' ', b'T', b'x', b' ', b' ', b' '] => {
+                (u16::from(d - b'0'), Direction::Tx)
+            }
+            _ => return None,
+        };
+        if (u128::from_le_bytes(*gap_start) ^ SPACES) | (u128::from_le_bytes(*gap_middle) ^ SPACES)
+            != 0
+            || gap_end != b"   "
+        {
+            return None;
+        }
+        // The identifier: right-aligned, a word after spaces.
+        let padding =
+            (u64::from_le_bytes(*id_field) ^ u64::from_le_bytes([b' '; 8])).trailing_zeros() / 8;
+        let word = id_field.get(padding as usize..)?;
+        if word.is_empty() || word.iter().any(|&b| ends_word(b)) {
+            return None;
+        }
+        let id = match word.split_last() {
+            Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
+            _ => CanId::standard(hex(word)?),
+        }?;
+        let [brs, b' ', esi, b' ', dlc, b' ', t, u, after] = *tail else {
+            return None;
+        };
+        let bit = |b: u8| match b {
+            b'0' => Some(false),
+            b'1' => Some(true),
+            _ => None,
+        };
+        let len = match t {
+            b' ' => fd_len(&[u])?,
+            _ => fd_len(&[t, u])?,
+        };
+        if !ends_word(after) {
+            return None;
+        }
+        let head = FdHead {
+            channel,
+            direction,
+            id,
+            brs_column: bit(brs)?,
+            esi_column: bit(esi)?,
+            dlc: hex_value(dlc)?,
+            len,
+        };
+        self.pos = at + 61;
+        Some(head)
+    }
+
+    /// A `CANFD` line's words before its data, each a word after white
+    /// space: what [`fd_columns`](Self::fd_columns) declines, out of line.
+    #[inline(never)]
+    fn fd_head_spelt(&mut self) -> Option<FdHead> {
+        let channel = channel(self.next()?)?;
+        let direction = self.direction_word()?;
+        let id = self.id()?;
+        let brs_column = self.bit()?;
+        let esi_column = self.bit()?;
+        let dlc = self.hex_digit()?;
+        // The data length in decimal, one or two digits (a length CAN FD
+        // has is the caller's to check: 0..=8, 12, …, 64).
+        let len = fd_len(self.next()?)?;
+        Some(FdHead {
+            channel,
+            direction,
+            id,
+            brs_column,
+            esi_column,
+            dlc,
+            len,
+        })
     }
 
     /// A classic line's direction, `d` and DLC, each a word after white
