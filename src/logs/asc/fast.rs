@@ -215,10 +215,10 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let len = usize::from(len);
     let mut data = [0u8; FD_MAX_LEN];
     words.fd_bytes(data.get_mut(..len)?)?;
-    // Message duration and bit count, then the flags.
-    words.next()?;
-    words.next()?;
-    let flags = hex(words.next()?)?;
+    let flags = match words.fd_tail_columns() {
+        Some(flags) => flags,
+        None => words.fd_tail_spelt()?,
+    };
     let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
 }
@@ -243,6 +243,23 @@ fn fd_len(word: &[u8]) -> Option<u8> {
         [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => Some((t - b'0') * 10 + (u - b'0')),
         _ => None,
     }
+}
+
+/// The word of a right-aligned column: `field` is a space, then spaces,
+/// then a word that fills the rest of it (one byte at least, no byte that
+/// [ends a word](ends_word)); `None` for any other field.
+#[inline(always)]
+fn right_aligned(field: &[u8]) -> Option<&[u8]> {
+    let (&first, rest) = field.split_first()?;
+    if first != b' ' {
+        return None;
+    }
+    let start = rest.iter().position(|&b| b != b' ')?;
+    let word = rest.get(start..)?;
+    if word.iter().any(|&b| ends_word(b)) {
+        return None;
+    }
+    Some(word)
 }
 
 /// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
@@ -574,6 +591,39 @@ impl<'l> Words<'l> {
         };
         self.pos = at + 61;
         Some(head)
+    }
+
+    /// A `CANFD` line's message duration, bit count and flags after its
+    /// data in the columns python-can writes them in (` {duration:>8}
+    /// {bits:>4} {flags:>8X}`): the flags, read from one 24-byte look.
+    /// `None`, with the position unchanged, for any other spacing (read by
+    /// [`fd_tail_spelt`](Self::fd_tail_spelt)); where it reads them, the
+    /// words are the ones [`next`](Self::next) reads.
+    #[inline(always)]
+    fn fd_tail_columns(&mut self) -> Option<u32> {
+        let at = self.pos;
+        let tail = self.line.get(at..)?.first_chunk::<24>()?;
+        let (duration, rest) = tail.split_first_chunk::<9>()?;
+        let (bits, rest) = rest.split_first_chunk::<5>()?;
+        let (flags, after) = rest.split_first_chunk::<9>()?;
+        right_aligned(duration)?;
+        right_aligned(bits)?;
+        let flags = hex(right_aligned(flags)?)?;
+        if !ends_word(*after.first()?) {
+            return None;
+        }
+        self.pos = at + 23;
+        Some(flags)
+    }
+
+    /// A `CANFD` line's message duration, bit count and flags, each a word
+    /// after white space: what [`fd_tail_columns`](Self::fd_tail_columns)
+    /// declines, out of line.
+    #[inline(never)]
+    fn fd_tail_spelt(&mut self) -> Option<u32> {
+        self.next()?;
+        self.next()?;
+        hex(self.next()?)
     }
 
     /// A `CANFD` line's words before its data, each a word after white

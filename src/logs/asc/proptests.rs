@@ -193,7 +193,8 @@ fn columns_line() -> impl Strategy<Value = String> {
 }
 
 /// `CANFD` lines in the columns python-can writes (`   0.012345 CANFD   2
-/// Rx        181` and 35 spaces, `1 0 d 32`, the data ` HH` …), each
+/// Rx        181` and 35 spaces, `1 0 d 32`, the data ` HH` …, then
+/// `        0    0     3000`), each
 /// field and each run of padding mostly right and sometimes just wrong:
 /// the shape the fast path reads from fixed columns.
 fn fd_columns_line() -> impl Strategy<Value = String> {
@@ -235,6 +236,8 @@ fn fd_columns_line() -> impl Strategy<Value = String> {
                 "[0-9]{1,3}|x|",
             );
             let flags = field("1000|3000|5000|7000|0|10", "[0-9A-Fa-f]{1,9}|x");
+            let duration = field("[0-9]{1,8}", "|[0-9] [0-9]|[0-9]{9}|x\\t|\\r");
+            let bits = field("[0-9]{1,4}", "|[0-9]{5}|\\t|[0-9] ");
             (
                 Just((head, tail)),
                 (
@@ -244,7 +247,7 @@ fn fd_columns_line() -> impl Strategy<Value = String> {
                     len_text,
                 ),
                 writers_data(usize::from(len)),
-                flags,
+                (duration, bits, flags),
             )
         })
         .prop_map(
@@ -252,10 +255,10 @@ fn fd_columns_line() -> impl Strategy<Value = String> {
                 ((time, channel, dir, id, name, gap, brs, g, esi), tail),
                 (g2, dlc, g3, len),
                 data,
-                flags,
+                (duration, bits, flags),
             )| {
                 format!(
-                    "{time} CANFD {channel:>3} {dir:<4} {id:>8} {name:>32}{gap}{brs}{g}{esi}{g2}{dlc}{g3}{len:>2}{data}        0    0 {flags:>8}        0        0{tail}"
+                    "{time} CANFD {channel:>3} {dir:<4} {id:>8} {name:>32}{gap}{brs}{g}{esi}{g2}{dlc}{g3}{len:>2}{data} {duration:>8} {bits:>4} {flags:>8}        0        0{tail}"
                 )
             },
         )
