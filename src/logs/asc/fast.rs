@@ -209,7 +209,7 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
         Some(head) => head,
         None => words.fd_head_spelt()?,
     };
-    if !FD_LENGTHS.iter().any(|&n| n == len) {
+    if len > 64 || FD_LENGTH_BITS >> len & 1 == 0 {
         return None;
     }
     let len = usize::from(len);
@@ -222,6 +222,18 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
 }
+
+/// The lengths CAN FD data has ([`FD_LENGTHS`]), a bit each: a look-up,
+/// where a search of the list took up to 16 steps.
+const FD_LENGTH_BITS: u128 = {
+    let mut bits = 0u128;
+    let mut i = 0;
+    while i < FD_LENGTHS.len() {
+        bits |= 1 << FD_LENGTHS[i];
+        i += 1;
+    }
+    bits
+};
 
 /// The words of a `CANFD` line before its data.
 struct FdHead {
@@ -248,18 +260,35 @@ fn fd_len(word: &[u8]) -> Option<u8> {
 /// The word of a right-aligned column: `field` is a space, then spaces,
 /// then a word that fills the rest of it (one byte at least, no byte that
 /// [ends a word](ends_word)); `None` for any other field.
+///
+/// The field's bytes after its first (4 or 8) are read as one word: the
+/// first that is no space found at once, and the bytes that end a word
+/// flagged at once (wide-word arithmetic, SWAR, with no carry between
+/// lanes), none allowed from the first that is no space on.
 #[inline(always)]
-fn right_aligned(field: &[u8]) -> Option<&[u8]> {
+fn right_aligned<const N: usize>(field: &[u8; N]) -> Option<&[u8]> {
+    const SPACES: u64 = u64::from_le_bytes([b' '; 8]);
+    const LOW7: u64 = u64::from_le_bytes([0x7F; 8]);
+    const HIGH: u64 = u64::from_le_bytes([0x80; 8]);
     let (&first, rest) = field.split_first()?;
-    if first != b' ' {
+    if first != b' ' || rest.len() > 8 {
         return None;
     }
-    let start = rest.iter().position(|&b| b != b' ')?;
-    let word = rest.get(start..)?;
-    if word.iter().any(|&b| ends_word(b)) {
+    // The lanes past the field's hold `0`, a byte of a word.
+    let mut lanes = [b'0'; 8];
+    lanes.get_mut(..rest.len())?.copy_from_slice(rest);
+    let w = u64::from_le_bytes(lanes);
+    let start = ((w ^ SPACES).trailing_zeros() / 8) as usize;
+    if start >= rest.len() {
         return None;
     }
-    Some(word)
+    // The high bit of every lane up to `b' '` (below 0x21, not 0x80 and
+    // up); the spaces before `start` among them.
+    let ends = !((w & LOW7).wrapping_add(u64::from_le_bytes([0x80 - 0x21; 8])) | w) & HIGH;
+    if ends >> (8 * start) != 0 {
+        return None;
+    }
+    rest.get(start..)
 }
 
 /// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
@@ -900,8 +929,40 @@ mod tests {
         ])
     }
 
+    /// [`right_aligned`] byte by byte: a space, spaces, then a word to
+    /// the end.
+    fn right_aligned_one_by_one(field: &[u8]) -> Option<&[u8]> {
+        let rest = field.strip_prefix(b" ")?;
+        let start = rest.iter().position(|&b| b != b' ')?;
+        let word = &rest[start..];
+        (!word.iter().any(|&b| ends_word(b))).then_some(word)
+    }
+
+    /// Fields of spaces, digits and sometimes other bytes.
+    fn column_field<const N: usize>() -> impl Strategy<Value = [u8; N]> {
+        proptest::collection::vec(
+            prop_oneof![
+                6 => Just(b' '),
+                3 => proptest::sample::select(b"0123456789ABCDEF".to_vec()),
+                1 => proptest::sample::select(b"\t\r\n\x00\x1f!\x7f\x80\xa0\xff".to_vec()),
+                1 => any::<u8>(),
+            ],
+            N,
+        )
+        .prop_map(|v| v.try_into().unwrap())
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        #[test]
+        fn right_aligned_reads_as_one_by_one(
+            eight in column_field::<9>(),
+            four in column_field::<5>(),
+        ) {
+            prop_assert_eq!(right_aligned(&eight), right_aligned_one_by_one(&eight));
+            prop_assert_eq!(right_aligned(&four), right_aligned_one_by_one(&four));
+        }
 
         /// The digits read at once are the digits read one by one.
         #[test]
