@@ -134,10 +134,12 @@ const fn ge64(low7: u64, c: u8) -> u64 {
 #[inline(always)]
 pub(super) const fn non_hex64(w: u64) -> u64 {
     let x = w & splat64(0x7F);
-    let digit = ge64(x, b'0') & !ge64(x, b'9' + 1);
+    // `x ^ '0'` is a digit's value, 10 and more for any other lane (below
+    // 0x80, so adding 0x76 carries out of no lane).
+    let not_digit = (x ^ splat64(b'0')).wrapping_add(splat64(0x76));
     let l = x | splat64(0x20);
     let letter = ge64(l, b'a') & !ge64(l, b'f' + 1);
-    (!(digit | letter) | w) & splat64(0x80)
+    ((not_digit & !letter) | w) & splat64(0x80)
 }
 
 /// The 4 bytes that 8 hex digits spell (the first digit the high nibble of
