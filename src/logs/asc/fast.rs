@@ -192,9 +192,9 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 
 /// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
 /// (no symbolic name), in hex.
-// `contains` on bytes is a `memchr` call: 146 instructions per line more
-// on the `fd` mix (BENCHMARKS.md, issue 21, "ASC reader").
-#[allow(clippy::manual_contains)]
+// Out of line: inlined into the line's loop, it made the classic lines'
+// loop 5-6 instructions a frame longer (BENCHMARKS.md, "Issue 21: CAN FD
+// data, candump and ASC").
 #[inline(never)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let FdHead {
@@ -224,7 +224,9 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
 }
 
 /// The lengths CAN FD data has ([`FD_LENGTHS`]), a bit each: a look-up,
-/// where a search of the list took up to 16 steps.
+/// where a search of the list took up to 16 steps (and `contains` on bytes
+/// is a `memchr` call: 146 instructions per line more on the `fd` mix;
+/// BENCHMARKS.md, issue 21, "ASC reader").
 const FD_LENGTH_BITS: u128 = {
     let mut bits = 0u128;
     let mut i = 0;
@@ -552,7 +554,7 @@ impl<'l> Words<'l> {
     /// characters, 35 spaces, BRS, ESI, the DLC and the length, each after
     /// a single space, then a byte that [ends a word](ends_word) — read from
     /// one 62-byte look, with no search for where words start and end (the
-    /// 35 spaces are 19 bytes of `skip_space`'s 8-byte steps). `None`, with
+    /// 35 spaces alone took five of `skip_space`'s 8-byte steps). `None`, with
     /// the position unchanged, for any other spacing or word (read by
     /// [`fd_head_spelt`](Self::fd_head_spelt)). Where it reads a line, the
     /// words are the ones [`next`](Self::next) reads, so that it returns what
