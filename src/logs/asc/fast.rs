@@ -192,36 +192,105 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 
 /// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
 /// (no symbolic name), in hex.
-// `contains` on bytes is a `memchr` call: 146 instructions per line more
-// on the `fd` mix (BENCHMARKS.md, issue 21, "ASC reader").
-#[allow(clippy::manual_contains)]
-#[inline(always)]
+// Out of line: inlined into the line's loop, it made the classic lines'
+// loop 5-6 instructions a frame longer (BENCHMARKS.md, "Issue 21: CAN FD
+// data, candump and ASC").
+#[inline(never)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
-    let channel = channel(words.next()?)?;
-    let direction = words.direction_word()?;
-    let id = words.id()?;
-    let brs_column = words.bit()?;
-    let esi_column = words.bit()?;
-    let dlc = words.hex_digit()?;
-    // The data length in decimal, one or two digits, a length CAN FD has
-    // (0..=8, 12, …, 64).
-    let len = match *words.next()? {
-        [u] if u.is_ascii_digit() => u - b'0',
-        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => (t - b'0') * 10 + (u - b'0'),
-        _ => return None,
+    let FdHead {
+        channel,
+        direction,
+        id,
+        brs_column,
+        esi_column,
+        dlc,
+        len,
+    } = match words.fd_columns() {
+        Some(head) => head,
+        None => words.fd_head_spelt()?,
     };
-    if !FD_LENGTHS.iter().any(|&n| n == len) {
+    if len > 64 || FD_LENGTH_BITS >> len & 1 == 0 {
         return None;
     }
     let len = usize::from(len);
     let mut data = [0u8; FD_MAX_LEN];
     words.fd_bytes(data.get_mut(..len)?)?;
-    // Message duration and bit count, then the flags.
-    words.next()?;
-    words.next()?;
-    let flags = hex(words.next()?)?;
+    let flags = match words.fd_tail_columns() {
+        Some(flags) => flags,
+        None => words.fd_tail_spelt()?,
+    };
     let frame = fd_frame(id, dlc, &data, len, flags, brs_column, esi_column)?;
     Some((frame, channel, direction))
+}
+
+/// The lengths CAN FD data has ([`FD_LENGTHS`]), a bit each: a look-up,
+/// where a search of the list took up to 16 steps (and `contains` on bytes
+/// is a `memchr` call: 146 instructions per line more on the `fd` mix;
+/// BENCHMARKS.md, issue 21, "ASC reader").
+const FD_LENGTH_BITS: u128 = {
+    let mut bits = 0u128;
+    let mut i = 0;
+    while i < FD_LENGTHS.len() {
+        bits |= 1 << FD_LENGTHS[i];
+        i += 1;
+    }
+    bits
+};
+
+/// The words of a `CANFD` line before its data.
+struct FdHead {
+    channel: u16,
+    direction: Direction,
+    id: CanId,
+    brs_column: bool,
+    esi_column: bool,
+    dlc: u8,
+    /// The data length, as written (checked by the caller).
+    len: u8,
+}
+
+/// A `CANFD` line's data length in decimal, one or two digits.
+#[inline(always)]
+fn fd_len(word: &[u8]) -> Option<u8> {
+    match *word {
+        [u] if u.is_ascii_digit() => Some(u - b'0'),
+        [t, u] if t.is_ascii_digit() && u.is_ascii_digit() => Some((t - b'0') * 10 + (u - b'0')),
+        _ => None,
+    }
+}
+
+/// The word of a right-aligned column: `field` is a space, then spaces,
+/// then a word that fills the rest of it (one byte at least, no byte that
+/// [ends a word](ends_word)); `None` for any other field.
+///
+/// The field's bytes after its first (4 or 8) are read as one word: the
+/// first that is no space found at once, and the bytes that end a word
+/// flagged at once (wide-word arithmetic, SWAR, with no carry between
+/// lanes), none allowed from the first that is no space on.
+#[inline(always)]
+fn right_aligned<const N: usize>(field: &[u8; N]) -> Option<&[u8]> {
+    const SPACES: u64 = u64::from_le_bytes([b' '; 8]);
+    const LOW7: u64 = u64::from_le_bytes([0x7F; 8]);
+    const HIGH: u64 = u64::from_le_bytes([0x80; 8]);
+    let (&first, rest) = field.split_first()?;
+    if first != b' ' || rest.len() > 8 {
+        return None;
+    }
+    // The lanes past the field's hold `0`, a byte of a word.
+    let mut lanes = [b'0'; 8];
+    lanes.get_mut(..rest.len())?.copy_from_slice(rest);
+    let w = u64::from_le_bytes(lanes);
+    let start = ((w ^ SPACES).trailing_zeros() / 8) as usize;
+    if start >= rest.len() {
+        return None;
+    }
+    // The high bit of every lane up to `b' '` (below 0x21, not 0x80 and
+    // up); the spaces before `start` among them.
+    let ends = !((w & LOW7).wrapping_add(u64::from_le_bytes([0x80 - 0x21; 8])) | w) & HIGH;
+    if ends >> (8 * start) != 0 {
+        return None;
+    }
+    rest.get(start..)
 }
 
 /// A channel number, 1 to 65535, in 1 to 5 digits (more, with leading
@@ -478,6 +547,140 @@ impl<'l> Words<'l> {
         Some((direction, dlc))
     }
 
+    /// A `CANFD` line's words before its data in the columns python-can
+    /// writes them in (`{channel:>3} {dir:<4} {id:>8} {name:>32}  {brs}
+    /// {esi} {dlc:x} {len:>2}`, the name empty), from where `CANFD` ends:
+    /// a one-digit channel, `Rx` or `Tx`, an identifier of up to 8
+    /// characters, 35 spaces, BRS, ESI, the DLC and the length, each after
+    /// a single space, then a byte that [ends a word](ends_word) — read from
+    /// one 62-byte look, with no search for where words start and end (the
+    /// 35 spaces alone took five of `skip_space`'s 8-byte steps). `None`, with
+    /// the position unchanged, for any other spacing or word (read by
+    /// [`fd_head_spelt`](Self::fd_head_spelt)). Where it reads a line, the
+    /// words are the ones [`next`](Self::next) reads, so that it returns what
+    /// `fd_head_spelt` would.
+    #[inline(always)]
+    fn fd_columns(&mut self) -> Option<FdHead> {
+        const SPACES: u128 = u128::from_le_bytes([b' '; 16]);
+        let at = self.pos;
+        let head = self.line.get(at..)?.first_chunk::<62>()?;
+        let (start, rest) = head.split_first_chunk::<10>()?;
+        let (id_field, rest) = rest.split_first_chunk::<8>()?;
+        let (gap, rest) = rest.split_first_chunk::<35>()?;
+        let (gap_start, gap_end) = gap.split_first_chunk::<16>()?;
+        let (gap_middle, gap_end) = gap_end.split_first_chunk::<16>()?;
+        let tail = rest.first_chunk::<9>()?;
+        let (channel, direction) = match *start {
+            [b' ', b' ', b' ', d @ b'1'..=b'9', b' ', b'R', b'x', b' ', b' ', b' '] => {
+                (u16::from(d - b'0'), Direction::Rx)
+            }
+            [b' ', b' ', b' ', d @ b'1'..=b'9', b' ', b'T', b'x', b' ', b' ', b' '] => {
+                (u16::from(d - b'0'), Direction::Tx)
+            }
+            _ => return None,
+        };
+        if (u128::from_le_bytes(*gap_start) ^ SPACES) | (u128::from_le_bytes(*gap_middle) ^ SPACES)
+            != 0
+            || gap_end != b"   "
+        {
+            return None;
+        }
+        // The identifier: right-aligned, a word after spaces.
+        let padding =
+            (u64::from_le_bytes(*id_field) ^ u64::from_le_bytes([b' '; 8])).trailing_zeros() / 8;
+        let word = id_field.get(padding as usize..)?;
+        if word.is_empty() || word.iter().any(|&b| ends_word(b)) {
+            return None;
+        }
+        let id = match word.split_last() {
+            Some((b'x' | b'X', digits)) => CanId::extended(hex(digits)?),
+            _ => CanId::standard(hex(word)?),
+        }?;
+        let [brs, b' ', esi, b' ', dlc, b' ', t, u, after] = *tail else {
+            return None;
+        };
+        let bit = |b: u8| match b {
+            b'0' => Some(false),
+            b'1' => Some(true),
+            _ => None,
+        };
+        let len = match t {
+            b' ' => fd_len(&[u])?,
+            _ => fd_len(&[t, u])?,
+        };
+        if !ends_word(after) {
+            return None;
+        }
+        let head = FdHead {
+            channel,
+            direction,
+            id,
+            brs_column: bit(brs)?,
+            esi_column: bit(esi)?,
+            dlc: hex_value(dlc)?,
+            len,
+        };
+        self.pos = at + 61;
+        Some(head)
+    }
+
+    /// A `CANFD` line's message duration, bit count and flags after its
+    /// data in the columns python-can writes them in (` {duration:>8}
+    /// {bits:>4} {flags:>8X}`): the flags, read from one 24-byte look.
+    /// `None`, with the position unchanged, for any other spacing (read by
+    /// [`fd_tail_spelt`](Self::fd_tail_spelt)); where it reads them, the
+    /// words are the ones [`next`](Self::next) reads.
+    #[inline(always)]
+    fn fd_tail_columns(&mut self) -> Option<u32> {
+        let at = self.pos;
+        let tail = self.line.get(at..)?.first_chunk::<24>()?;
+        let (duration, rest) = tail.split_first_chunk::<9>()?;
+        let (bits, rest) = rest.split_first_chunk::<5>()?;
+        let (flags, after) = rest.split_first_chunk::<9>()?;
+        right_aligned(duration)?;
+        right_aligned(bits)?;
+        let flags = hex(right_aligned(flags)?)?;
+        if !ends_word(*after.first()?) {
+            return None;
+        }
+        self.pos = at + 23;
+        Some(flags)
+    }
+
+    /// A `CANFD` line's message duration, bit count and flags, each a word
+    /// after white space: what [`fd_tail_columns`](Self::fd_tail_columns)
+    /// declines, out of line.
+    #[inline(never)]
+    fn fd_tail_spelt(&mut self) -> Option<u32> {
+        self.next()?;
+        self.next()?;
+        hex(self.next()?)
+    }
+
+    /// A `CANFD` line's words before its data, each a word after white
+    /// space: what [`fd_columns`](Self::fd_columns) declines, out of line.
+    #[inline(never)]
+    fn fd_head_spelt(&mut self) -> Option<FdHead> {
+        let channel = channel(self.next()?)?;
+        let direction = self.direction_word()?;
+        let id = self.id()?;
+        let brs_column = self.bit()?;
+        let esi_column = self.bit()?;
+        let dlc = self.hex_digit()?;
+        // The data length in decimal, one or two digits (a length CAN FD
+        // has is the caller's to check: 0..=8, 12, …, 64).
+        let len = fd_len(self.next()?)?;
+        Some(FdHead {
+            channel,
+            direction,
+            id,
+            brs_column,
+            esi_column,
+            dlc,
+            len,
+        })
+    }
+
     /// A classic line's direction, `d` and DLC, each a word after white
     /// space: what [`columns`](Self::columns) declines, out of line.
     #[inline(never)]
@@ -728,8 +931,40 @@ mod tests {
         ])
     }
 
+    /// [`right_aligned`] byte by byte: a space, spaces, then a word to
+    /// the end.
+    fn right_aligned_one_by_one(field: &[u8]) -> Option<&[u8]> {
+        let rest = field.strip_prefix(b" ")?;
+        let start = rest.iter().position(|&b| b != b' ')?;
+        let word = &rest[start..];
+        (!word.iter().any(|&b| ends_word(b))).then_some(word)
+    }
+
+    /// Fields of spaces, digits and sometimes other bytes.
+    fn column_field<const N: usize>() -> impl Strategy<Value = [u8; N]> {
+        proptest::collection::vec(
+            prop_oneof![
+                6 => Just(b' '),
+                3 => proptest::sample::select(b"0123456789ABCDEF".to_vec()),
+                1 => proptest::sample::select(b"\t\r\n\x00\x1f!\x7f\x80\xa0\xff".to_vec()),
+                1 => any::<u8>(),
+            ],
+            N,
+        )
+        .prop_map(|v| v.try_into().unwrap())
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        #[test]
+        fn right_aligned_reads_as_one_by_one(
+            eight in column_field::<9>(),
+            four in column_field::<5>(),
+        ) {
+            prop_assert_eq!(right_aligned(&eight), right_aligned_one_by_one(&eight));
+            prop_assert_eq!(right_aligned(&four), right_aligned_one_by_one(&four));
+        }
 
         /// The digits read at once are the digits read one by one.
         #[test]

@@ -212,10 +212,17 @@ pub(super) const KEEP_BYTES: [u64; 16] = {
 };
 
 /// Decode the hex digits of CAN FD data from `start` up to the first other
-/// byte, 16 at a time, into `data` (zeros on entry; the bytes after the data
-/// stay zero); return the number of bytes and the index
-/// after the digits, or `None` for an odd count (which [`parse_general`]
-/// reports). Stops after 64 bytes.
+/// byte into `data` (zeros on entry; the bytes after the data stay zero);
+/// return the number of bytes and the index after the digits, or `None`
+/// for an odd count (which [`parse_general`] reports). Stops after 64
+/// bytes.
+///
+/// 32 digits (16 bytes) at a time, from four 8-byte loads checked at once
+/// ([`non_hex64`]) and packed ([`hex_bytes64`]): the data's lengths are
+/// mostly 16 or 32 bytes (the `fd` mix), a load or two. After a full
+/// 32 digits, the byte that follows tells whether more follow, so that
+/// such data needs no load of the bytes past it. Near the end of `buf`
+/// (fewer than 32 bytes left), [`decode_fd_words`] reads the rest.
 #[inline(never)]
 pub(super) fn decode_fd_data(
     buf: &[u8],
@@ -224,7 +231,71 @@ pub(super) fn decode_fd_data(
 ) -> Option<(u8, usize)> {
     let mut end = start;
     let mut len = 0;
-    for dst in data.chunks_exact_mut(8) {
+    while let Some(dst) = data
+        .get_mut(len..)
+        .and_then(|rest| rest.first_chunk_mut::<16>())
+    {
+        let Some(chunk) = buf.get(end..).and_then(|rest| rest.first_chunk::<32>()) else {
+            return decode_fd_words(buf, end, len, data);
+        };
+        let (a, rest) = chunk.split_first_chunk::<8>()?;
+        let (b, rest) = rest.split_first_chunk::<8>()?;
+        let (c, d) = rest.split_first_chunk::<8>()?;
+        let d = d.first_chunk::<8>()?;
+        let words = [a, b, c, d].map(|w| u64::from_le_bytes(*w));
+        let bad = words.map(non_hex64);
+        // Written as four 4-byte pieces, not one 16-byte word built with
+        // shifts: so the compiler packs the four words in SSE registers too
+        // (58.1M -> 51.9M instructions, read_log on fd-100k.log).
+        let bytes = words.map(hex_bytes64);
+        for (to, b) in dst.chunks_exact_mut(4).zip(bytes) {
+            to.copy_from_slice(&b.to_le_bytes());
+        }
+        if bad[0] | bad[1] | bad[2] | bad[3] != 0 {
+            let packed = bytes.map(u128::from);
+            let packed = packed[0] | packed[1] << 32 | packed[2] << 64 | packed[3] << 96;
+            // The data ends in these 32 bytes: at the first lane flagged.
+            let low = u128::from(bad[0]) | u128::from(bad[1]) << 64;
+            let high = u128::from(bad[2]) | u128::from(bad[3]) << 64;
+            let digits = if low != 0 {
+                lanes_before(low)
+            } else {
+                16 + lanes_before(high)
+            };
+            if digits % 2 != 0 {
+                return None;
+            }
+            // Fewer than 32 digits: the bytes they spell, zeros after.
+            let keep = (1u128 << (4 * digits)) - 1;
+            *dst = (packed & keep).to_le_bytes();
+            return Some(((len + digits / 2) as u8, end + digits));
+        }
+        end += 32;
+        len += 16;
+        if buf
+            .get(end)
+            .map_or(true, |&b| HEX_TABLE[usize::from(b)] > 0xF)
+        {
+            break;
+        }
+    }
+    Some((len as u8, end))
+}
+
+/// [`decode_fd_data`] from `start` on, with `len` bytes (a multiple of 16)
+/// already in `data`, 16 digits at a time from [`load16`], which reads
+/// zeros past the end of `buf`: the last digits of a buffer.
+#[cold]
+#[inline(never)]
+fn decode_fd_words(
+    buf: &[u8],
+    start: usize,
+    len: usize,
+    data: &mut [u8; FD_MAX_LEN],
+) -> Option<(u8, usize)> {
+    let mut end = start;
+    let mut len = len;
+    for dst in data.get_mut(len..)?.chunks_exact_mut(8) {
         let (values, bad) = hex_lanes(load16(buf, end));
         let digits = lanes_before(bad);
         if digits % 2 != 0 {
@@ -235,9 +306,7 @@ pub(super) fn decode_fd_data(
         end += digits;
         len += digits / 2;
         // After a full word, the byte that follows tells whether another
-        // word of digits follows: the data's lengths are mostly multiples
-        // of 8 bytes, whose last word would otherwise be followed by a word
-        // of no digits.
+        // word of digits follows.
         if digits < 16
             || buf
                 .get(end)

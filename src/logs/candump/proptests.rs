@@ -247,23 +247,54 @@ proptest! {
             buf.push(b'7');
         }
         buf.extend_from_slice(&tail);
-        let digits = buf[prefix..]
-            .iter()
-            .take_while(|b| b.is_ascii_hexdigit())
-            .count()
-            .min(128);
-        let expected = if digits % 2 == 1 {
-            None
-        } else {
-            let mut data = [0u8; FD_MAX_LEN];
-            for (i, pair) in buf[prefix..prefix + digits].chunks(2).enumerate() {
-                let text = core::str::from_utf8(pair).unwrap();
-                data[i] = u8::from_str_radix(text, 16).unwrap();
-            }
-            Some(((digits / 2) as u8, prefix + digits, data))
-        };
         let mut data = [0u8; FD_MAX_LEN];
         let got = decode_fd_data(&buf, prefix, &mut data).map(|(len, end)| (len, end, data));
-        prop_assert_eq!(got, expected);
+        prop_assert_eq!(got, fd_data_digit_by_digit(&buf, prefix));
     }
+
+    /// The same with any bytes after the digits, mostly more than the
+    /// 32 that the decoder loads at once, so that the data ends inside
+    /// a load as often as near the end of the buffer; the digits in any
+    /// case, digit by digit.
+    #[test]
+    fn fd_data_is_its_digits_byte_by_byte_before_any_bytes(
+        digits in proptest::collection::vec(
+            proptest::sample::select(b"0123456789abcdefABCDEF".to_vec()),
+            0..=140,
+        ),
+        tail in proptest::collection::vec(
+            prop_oneof![
+                4 => proptest::sample::select(b"0123456789aFgG\n\r #\x00\x80\xc6\xff".to_vec()),
+                1 => any::<u8>(),
+            ],
+            0..48,
+        ),
+        prefix in 0usize..4,
+    ) {
+        let mut buf = vec![b'x'; prefix];
+        buf.extend_from_slice(&digits);
+        buf.extend_from_slice(&tail);
+        let mut data = [0u8; FD_MAX_LEN];
+        let got = decode_fd_data(&buf, prefix, &mut data).map(|(len, end)| (len, end, data));
+        prop_assert_eq!(got, fd_data_digit_by_digit(&buf, prefix));
+    }
+}
+
+/// What [`decode_fd_data`] returns for `buf` from `start`, digit by digit:
+/// the bytes of the hex digits there (up to 128), `None` for an odd count.
+fn fd_data_digit_by_digit(buf: &[u8], start: usize) -> Option<(u8, usize, [u8; FD_MAX_LEN])> {
+    let digits = buf[start..]
+        .iter()
+        .take_while(|b| b.is_ascii_hexdigit())
+        .count()
+        .min(128);
+    if digits % 2 == 1 {
+        return None;
+    }
+    let mut data = [0u8; FD_MAX_LEN];
+    for (i, pair) in buf[start..start + digits].chunks(2).enumerate() {
+        let text = core::str::from_utf8(pair).unwrap();
+        data[i] = u8::from_str_radix(text, 16).unwrap();
+    }
+    Some(((digits / 2) as u8, start + digits, data))
 }

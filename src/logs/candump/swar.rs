@@ -117,6 +117,45 @@ pub(super) fn load16_short(line: &[u8], at: usize) -> u128 {
     u128::from_le_bytes(buf)
 }
 
+/// `b` in every lane of a `u64`.
+const fn splat64(b: u8) -> u64 {
+    u64::from_le_bytes([b; 8])
+}
+
+/// [`ge`] over the 8 lanes of a `u64`.
+#[inline(always)]
+const fn ge64(low7: u64, c: u8) -> u64 {
+    low7.wrapping_add(splat64(0x80 - c)) & splat64(0x80)
+}
+
+/// [`hex_lanes`]'s mask for 8 characters, in a `u64` (the CAN FD data's
+/// loop, which has no use for 16-byte lanes): the high bit of every lane
+/// that is not a hex digit.
+#[inline(always)]
+pub(super) const fn non_hex64(w: u64) -> u64 {
+    let x = w & splat64(0x7F);
+    // `x ^ '0'` is a digit's value, 10 and more for any other lane (below
+    // 0x80, so adding 0x76 carries out of no lane).
+    let not_digit = (x ^ splat64(b'0')).wrapping_add(splat64(0x76));
+    let l = x | splat64(0x20);
+    let letter = ge64(l, b'a') & !ge64(l, b'f' + 1);
+    ((not_digit & !letter) | w) & splat64(0x80)
+}
+
+/// The 4 bytes that 8 hex digits spell (the first digit the high nibble of
+/// the first byte), the first byte least significant; meaningful where all
+/// 8 lanes are hex digits ([`non_hex64`] is 0).
+#[inline(always)]
+pub(super) const fn hex_bytes64(w: u64) -> u32 {
+    // '0'..'9' → 0..9; 'A'..'F' and 'a'..'f' → 1..6 + 9.
+    let v = (w & splat64(0x0F)) + ((w >> 6) & splat64(0x01)) * 9;
+    // Lane 2k: its value times 16 or the value of lane 2k + 1 (both below
+    // 16, so no lane overflows); the odd lanes are dropped.
+    let x = ((v << 4) | (v >> 8)) & 0x00FF_00FF_00FF_00FF;
+    let x = (x | (x >> 8)) & 0x0000_FFFF_0000_FFFF;
+    (x | (x >> 16)) as u32
+}
+
 /// Each trick against a byte-at-a-time model of what it promises, over
 /// arbitrary words and over words of the characters that matter.
 #[cfg(test)]
@@ -155,6 +194,33 @@ mod tests {
                     prop_assert_eq!(lanes(values)[i], v, "lane {}", i);
                 }
             }
+        }
+
+        #[test]
+        fn hex64_is_hex_digit_by_digit(w in word()) {
+            for half in [w as u64, (w >> 64) as u64] {
+                let bytes = half.to_le_bytes();
+                let flags = u64::from_le_bytes(bytes.map(|b| if hex_value(b).is_none() { 0x80 } else { 0 }));
+                prop_assert_eq!(non_hex64(half), flags);
+                if flags == 0 {
+                    let expected: Vec<u8> = bytes
+                        .chunks(2)
+                        .map(|p| hex_value(p[0]).unwrap() << 4 | hex_value(p[1]).unwrap())
+                        .collect();
+                    prop_assert_eq!(hex_bytes64(half).to_le_bytes().to_vec(), expected);
+                }
+            }
+        }
+
+        #[test]
+        fn hex64_on_hex_digits(digits in proptest::array::uniform8(proptest::sample::select(b"0123456789abcdefABCDEF".to_vec()))) {
+            let w = u64::from_le_bytes(digits);
+            prop_assert_eq!(non_hex64(w), 0);
+            let expected: Vec<u8> = digits
+                .chunks(2)
+                .map(|p| hex_value(p[0]).unwrap() << 4 | hex_value(p[1]).unwrap())
+                .collect();
+            prop_assert_eq!(hex_bytes64(w).to_le_bytes().to_vec(), expected);
         }
 
         #[test]
