@@ -482,14 +482,14 @@ impl<R: Read> PcapReader<R> {
     }
 
     /// The next record of a pcap file of link type 227 when it is whole in
-    /// the bytes read ahead and holds a classic data frame in a packet of
-    /// [`socketcan::CAN_MTU`] bytes, a capture's usual record: its frame
-    /// and time, the record consumed; `None` (nothing consumed) for any
-    /// other, which [`next_packet`](Self::next_packet) reads. The frame and
-    /// time are those the general path makes of the record.
+    /// the bytes read ahead (`LEN` bytes, the header's and `MTU`) and its
+    /// packet is `MTU` bytes long: its header,
+    /// packet and byte order, nothing consumed; `None` for any other record,
+    /// which [`next_packet`](Self::next_packet) reads.
     #[inline(always)]
-    fn next_classic(&mut self) -> Option<(CanFrame, Timestamp)> {
-        const LEN: usize = PCAP_RECORD_LEN + socketcan::CAN_MTU;
+    fn fast_record<const MTU: usize, const LEN: usize>(
+        &self,
+    ) -> Option<(&[u8; PCAP_RECORD_LEN], &[u8; MTU], bool)> {
         let Layout::Pcap { big_endian } = self.layout else {
             return None;
         };
@@ -497,14 +497,25 @@ impl<R: Read> PcapReader<R> {
             return None;
         }
         let record = self.input.bytes().first_chunk::<LEN>()?;
-        let (header, packet) = record.split_at(PCAP_RECORD_LEN);
-        let header = header.first_chunk::<PCAP_RECORD_LEN>()?;
-        if u32_at(header, 8, big_endian) as usize != socketcan::CAN_MTU {
+        let (header, packet) = record.split_first_chunk::<PCAP_RECORD_LEN>()?;
+        if u32_at(header, 8, big_endian) as usize != MTU {
             return None;
         }
-        let frame = socketcan::classic_data(packet.first_chunk::<{ socketcan::CAN_MTU }>()?)?;
+        Some((header, packet.first_chunk::<MTU>()?, big_endian))
+    }
+
+    /// A classic data frame in a packet of [`socketcan::CAN_MTU`] bytes, a
+    /// capture's usual record ([`fast_record`](Self::fast_record)): its
+    /// frame and time, the record consumed; `None` (nothing consumed) for
+    /// any other. The frame and time are those the general path makes of
+    /// the record.
+    #[inline(always)]
+    fn next_classic(&mut self) -> Option<(CanFrame, Timestamp)> {
+        let (header, packet, big_endian) =
+            self.fast_record::<{ socketcan::CAN_MTU }, { PCAP_RECORD_LEN + socketcan::CAN_MTU }>()?;
+        let frame = socketcan::classic_data(packet)?;
         let timestamp = self.record_time(header, big_endian);
-        self.input.consume(LEN);
+        self.input.consume(PCAP_RECORD_LEN + socketcan::CAN_MTU);
         Some((frame, timestamp))
     }
 
@@ -514,23 +525,29 @@ impl<R: Read> PcapReader<R> {
     /// kinds would have the classic frame made in a temporary and copied.
     #[inline(always)]
     fn next_fd(&mut self) -> Option<(CanFrame, Timestamp)> {
-        const FD: usize = PCAP_RECORD_LEN + socketcan::CANFD_MTU;
-        let Layout::Pcap { big_endian } = self.layout else {
-            return None;
-        };
-        if !self.fast {
-            return None;
-        }
-        let record = self.input.bytes().first_chunk::<FD>()?;
-        let (header, packet) = record.split_at(PCAP_RECORD_LEN);
-        let header = header.first_chunk::<PCAP_RECORD_LEN>()?;
-        if u32_at(header, 8, big_endian) as usize != socketcan::CANFD_MTU {
-            return None;
-        }
-        let frame = socketcan::fd_data(packet.first_chunk()?)?;
+        let (header, packet, big_endian) = self
+            .fast_record::<{ socketcan::CANFD_MTU }, { PCAP_RECORD_LEN + socketcan::CANFD_MTU }>(
+            )?;
+        let frame = socketcan::fd_data(packet)?;
         let timestamp = self.record_time(header, big_endian);
-        self.input.consume(FD);
+        self.input.consume(PCAP_RECORD_LEN + socketcan::CANFD_MTU);
         Some((frame, timestamp))
+    }
+
+    /// The record of a frame of a pcap file (which names no interface),
+    /// numbered next.
+    #[inline(always)]
+    fn fast_event(&mut self, frame: CanFrame, timestamp: Timestamp) -> LogRecord<'static> {
+        self.number = self.number.saturating_add(1);
+        LogRecord {
+            position: Position::Record(self.number),
+            event: LogEvent::Frame(LogFrame {
+                frame,
+                timestamp: Some(timestamp),
+                iface: None,
+                direction: None,
+            }),
+        }
     }
 
     /// Read one pcapng block.
@@ -841,29 +858,10 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 return None;
             }
             if let Some((frame, timestamp)) = self.next_classic() {
-                self.number = self.number.saturating_add(1);
-                // pcap names no interface.
-                return Some(Ok(LogRecord {
-                    position: Position::Record(self.number),
-                    event: LogEvent::Frame(LogFrame {
-                        frame,
-                        timestamp: Some(timestamp),
-                        iface: None,
-                        direction: None,
-                    }),
-                }));
+                return Some(Ok(self.fast_event(frame, timestamp)));
             }
             if let Some((frame, timestamp)) = self.next_fd() {
-                self.number = self.number.saturating_add(1);
-                return Some(Ok(LogRecord {
-                    position: Position::Record(self.number),
-                    event: LogEvent::Frame(LogFrame {
-                        frame,
-                        timestamp: Some(timestamp),
-                        iface: None,
-                        direction: None,
-                    }),
-                }));
+                return Some(Ok(self.fast_event(frame, timestamp)));
             }
             let packet = match self.next_packet() {
                 Ok(Some(packet)) => packet,
