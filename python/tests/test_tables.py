@@ -151,6 +151,11 @@ def test_records_without_a_frame_are_said():
     table = motionwire.read_log(FIXTURES / "pcap" / "multi.pcapng")
     other = json.loads(table.schema.metadata[b"motionwire.other"])
     assert other == ["1 packet of link type 1 (Ethernet) skipped: not CAN"]
+    # An MF4 file's group without CAN frames, by its name (asammdf wrote it).
+    table = motionwire.read_log(FIXTURES / "mf4" / "asammdf_signals.mf4")
+    assert table.num_rows == 40
+    other = json.loads(table.schema.metadata[b"motionwire.other"])
+    assert other == ["3 MF4 records of group EngineSpeed skipped: not CAN"]
 
 
 def test_summary_warns_of_skipped_lines():
