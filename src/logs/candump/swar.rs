@@ -175,6 +175,14 @@ mod tests {
         char::from(b).to_digit(16).map(|v| v as u8)
     }
 
+    /// The bytes that pairs of hex digits spell, the first the high nibble.
+    fn spelt(digits: &[u8]) -> Vec<u8> {
+        digits
+            .chunks(2)
+            .map(|p| hex_value(p[0]).unwrap() << 4 | hex_value(p[1]).unwrap())
+            .collect()
+    }
+
     /// Words made of the bytes a candump line holds, and any byte.
     fn word() -> impl Strategy<Value = u128> {
         let byte = prop_oneof![
@@ -203,11 +211,7 @@ mod tests {
                 let flags = u64::from_le_bytes(bytes.map(|b| if hex_value(b).is_none() { 0x80 } else { 0 }));
                 prop_assert_eq!(non_hex64(half), flags);
                 if flags == 0 {
-                    let expected: Vec<u8> = bytes
-                        .chunks(2)
-                        .map(|p| hex_value(p[0]).unwrap() << 4 | hex_value(p[1]).unwrap())
-                        .collect();
-                    prop_assert_eq!(hex_bytes64(half).to_le_bytes().to_vec(), expected);
+                    prop_assert_eq!(hex_bytes64(half).to_le_bytes().to_vec(), spelt(&bytes));
                 }
             }
         }
@@ -216,11 +220,7 @@ mod tests {
         fn hex64_on_hex_digits(digits in proptest::array::uniform8(proptest::sample::select(b"0123456789abcdefABCDEF".to_vec()))) {
             let w = u64::from_le_bytes(digits);
             prop_assert_eq!(non_hex64(w), 0);
-            let expected: Vec<u8> = digits
-                .chunks(2)
-                .map(|p| hex_value(p[0]).unwrap() << 4 | hex_value(p[1]).unwrap())
-                .collect();
-            prop_assert_eq!(hex_bytes64(w).to_le_bytes().to_vec(), expected);
+            prop_assert_eq!(hex_bytes64(w).to_le_bytes().to_vec(), spelt(&digits));
         }
 
         #[test]
