@@ -225,6 +225,9 @@ fn every_fixture_reads_through_open_as_its_own_reader_reads_it() {
             "{}",
             path.display()
         );
+        // Every record skipped is said by its kind.
+        let by_kind: u64 = log.other_kinds().iter().map(|kind| kind.count).sum();
+        assert_eq!(by_kind, log.other_records(), "{}", path.display());
     }
 }
 

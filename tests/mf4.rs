@@ -205,6 +205,8 @@ fn asammdf_signal_group_counted_by_name() {
     assert_eq!((frames.len(), others, skipped), (40, 3, 0));
     let mut log = logs::open(format!("{DIR}asammdf_signals.mf4")).unwrap();
     while log.next_event().is_some() {}
+    let by_kind: u64 = log.other_kinds().iter().map(|kind| kind.count).sum();
+    assert_eq!(by_kind, log.other_records());
     let kinds: Vec<String> = log.other_kinds().iter().map(ToString::to_string).collect();
     assert_eq!(
         kinds,

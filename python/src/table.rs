@@ -476,18 +476,8 @@ impl LogVisitor for Fill<'_> {
         // Records that hold no frame, said once per kind as the program
         // says them (docs/formats.md#pcap, docs/formats.md#blf,
         // docs/formats.md#mf4).
-        let kinds = log.other_kinds();
-        for kind in kinds {
+        for kind in log.other_kinds() {
             columns.skipped.other.push(Value::from(kind.to_string()));
-        }
-        let named: u64 = kinds.iter().map(|kind| kind.count).sum();
-        let unnamed = log.other_records().saturating_sub(named);
-        if unnamed > 0 {
-            let s = if unnamed == 1 { "" } else { "s" };
-            columns.skipped.other.push(Value::from(format!(
-                "{unnamed} {} record{s} without a CAN frame skipped",
-                log.format()
-            )));
         }
         Ok(())
     }

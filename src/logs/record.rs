@@ -117,6 +117,8 @@ pub trait ReadLog {
     /// file's order; docs/formats.md#pcap: the program names the link type
     /// of what it skipped, docs/formats.md#mf4 the group); `Display` of each
     /// says it ("12 packets of link type 1 (Ethernet) skipped: not CAN").
+    /// Their counts add up to [`other_records`](ReadLog::other_records):
+    /// every record skipped is said by its kind.
     fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
         &[]
     }

@@ -503,25 +503,12 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                 sink.flush()?;
             }
         }
-        // docs/formats.md#pcap, docs/formats.md#blf: counted and said once per
-        // kind, not per record, naming the link type ("12 packets of link type
-        // 1 (Ethernet) skipped: not CAN").
-        let kinds = log.other_kinds();
-        for kind in kinds {
+        // docs/formats.md#pcap, docs/formats.md#blf, docs/formats.md#mf4:
+        // counted and said once per kind, not per record, naming the link
+        // type or the group ("12 packets of link type 1 (Ethernet) skipped:
+        // not CAN"); the kinds count every record skipped (`ReadLog::other_kinds`).
+        for kind in log.other_kinds() {
             writeln!(sink.err, "{name}: {kind}")?;
-        }
-        // What a reader would count without naming its kind is said too
-        // (none does: an MF4 file's LIN or signal groups are named as
-        // kinds): nothing is skipped without a word.
-        let named: u64 = kinds.iter().map(|kind| kind.count).sum();
-        let unnamed = log.other_records().saturating_sub(named);
-        if unnamed > 0 {
-            let s = if unnamed == 1 { "" } else { "s" };
-            writeln!(
-                sink.err,
-                "{name}: {unnamed} {} record{s} without a CAN frame skipped",
-                log.format()
-            )?;
         }
         Ok(number)
     }
