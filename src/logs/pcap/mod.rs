@@ -976,17 +976,23 @@ impl<R: Read> ReadLog for PcapReader<R> {
             if self.done {
                 return None;
             }
-            if let Some((frame, timestamp)) = self.next_classic() {
-                return Some(Ok(self.fast_event(frame, timestamp)));
-            }
-            if let Some((frame, timestamp)) = self.next_fd() {
-                return Some(Ok(self.fast_event(frame, timestamp)));
-            }
-            if let Some((frame, timestamp, id)) = self.next_block_classic() {
-                return Some(Ok(self.fast_block_event(frame, timestamp, id)));
-            }
-            if let Some((frame, timestamp, id)) = self.next_block_fd() {
-                return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+            match self.layout {
+                Layout::Pcap { .. } => {
+                    if let Some((frame, timestamp)) = self.next_classic() {
+                        return Some(Ok(self.fast_event(frame, timestamp)));
+                    }
+                    if let Some((frame, timestamp)) = self.next_fd() {
+                        return Some(Ok(self.fast_event(frame, timestamp)));
+                    }
+                }
+                Layout::Pcapng { .. } => {
+                    if let Some((frame, timestamp, id)) = self.next_block_classic() {
+                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                    }
+                    if let Some((frame, timestamp, id)) = self.next_block_fd() {
+                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                    }
+                }
             }
             let packet = match self.next_packet() {
                 Ok(Some(packet)) => packet,
