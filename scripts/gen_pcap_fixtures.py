@@ -11,6 +11,12 @@ FD flags, data). From them:
 - can.pcapng      `editcap -F pcapng can.pcap` (Wireshark's pcapng writer);
 - can_ns.pcap     `editcap -F nsecpcap can.pcap` (nanosecond pcap);
 - can_be.pcap     pcap, big-endian, microseconds, written here;
+- can_ns_comments.pcapng
+                  `editcap -F pcapng -a 2:... -a 7:... can_ns.pcap`: an
+                  interface with if_tsresol 9 (nanoseconds), and two enhanced
+                  packet blocks with a comment option (a classic and a CAN
+                  FD frame), which the reader's fast paths leave to its
+                  general path;
 - multi.pcapng    pcapng written here: interface 0 "can0" (link type 227,
                   microseconds), interface 1 "eth0" (link type 1, Ethernet),
                   interface 2 "vcan1" (link type 227, if_tsresol 9 =
@@ -151,8 +157,11 @@ def main():
     subprocess.run(["editcap", "-F", "pcapng", p("can.pcap"), p("can.pcapng")], check=True)
     subprocess.run(["editcap", "-F", "nsecpcap", p("can.pcap"), p("can_ns.pcap")], check=True)
     pcap(p("can_be.pcap"), FRAMES, endian=">")
+    subprocess.run(["editcap", "-F", "pcapng", "-a", "2:a classic frame", "-a", "7:a CAN FD frame",
+                    p("can_ns.pcap"), p("can_ns_comments.pcapng")], check=True)
     multi(p("multi.pcapng"))
-    for name in ["can.pcap", "can.pcapng", "can_ns.pcap", "can_be.pcap", "multi.pcapng"]:
+    for name in ["can.pcap", "can.pcapng", "can_ns.pcap", "can_be.pcap", "can_ns_comments.pcapng",
+                 "multi.pcapng"]:
         truth(p(name))
 
 

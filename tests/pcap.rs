@@ -2,7 +2,9 @@
 //! (docs/formats.md#pcap). `scripts/gen_pcap_fixtures.py` wrote the files in
 //! `tests/fixtures/pcap/`: `can.pcap` (libpcap's layout, little-endian,
 //! microseconds), `can.pcapng` (`editcap -F pcapng`), `can_ns.pcap`
-//! (`editcap -F nsecpcap`), `can_be.pcap` (big-endian) and `multi.pcapng`
+//! (`editcap -F nsecpcap`), `can_be.pcap` (big-endian),
+//! `can_ns_comments.pcapng` (`editcap -F pcapng -a …` of `can_ns.pcap`:
+//! nanosecond `if_tsresol`, two packets with a comment) and `multi.pcapng`
 //! (two sections, named interfaces, nanosecond `if_tsresol`, an Ethernet
 //! interface and packet, a name resolution block), and beside each
 //! `FILE.json`, what `tshark -T fields` reads from it.
@@ -217,6 +219,15 @@ fn editcap_pcapng_reads_as_tshark_reads_it() {
 #[test]
 fn nanosecond_pcap_reads_as_tshark_reads_it() {
     check_against_tshark("can_ns.pcap", LogFormat::Pcap);
+}
+
+/// `editcap -F pcapng` of the nanosecond pcap, with comments on a classic
+/// and a CAN FD frame: an interface whose `if_tsresol` is 9, enhanced
+/// packet blocks with and without options (the reader's fast paths read
+/// those without, its general path the others).
+#[test]
+fn editcap_nanosecond_pcapng_with_comments_reads_as_tshark_reads_it() {
+    check_against_tshark("can_ns_comments.pcapng", LogFormat::Pcapng);
 }
 
 #[test]

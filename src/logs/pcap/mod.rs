@@ -186,6 +186,12 @@ const PCAP_HEADER_LEN: usize = 24;
 const PCAP_RECORD_LEN: usize = 16;
 /// A pcapng block's type, length and trailing length.
 const BLOCK_OVERHEAD: usize = 12;
+/// An enhanced packet block's head: type, length, interface, time (two
+/// words), captured and original length (pcapng specification, §4.3).
+const EPB_HEAD_LEN: usize = 28;
+/// An enhanced packet block without options, besides its packet (a
+/// multiple of 4 bytes long): its head and trailing length.
+const EPB_LEN: usize = EPB_HEAD_LEN + 4;
 /// What one interface description costs in memory besides its name.
 const INTERFACE_COST: usize = size_of::<Interface>();
 
@@ -258,6 +264,21 @@ struct Interface {
     offset_secs: i64,
 }
 
+impl Interface {
+    /// Return the time of a packet stamped `ticks` on this interface: its
+    /// resolution and offset applied (`None` when the time is out of
+    /// range). The general path and the fast paths both read it here.
+    #[inline]
+    fn timestamp(&self, ticks: u64) -> Option<Timestamp> {
+        let (mut secs, nanos) = self.resolution.split(ticks);
+        if self.offset_secs != 0 {
+            let shifted = i128::from(secs) + i128::from(self.offset_secs);
+            secs = u64::try_from(shifted).ok()?;
+        }
+        Timestamp::from_nanos(secs, nanos)
+    }
+}
+
 /// Which file format the reader reads, with its byte order.
 #[derive(Debug, Clone, Copy)]
 enum Layout {
@@ -312,9 +333,13 @@ pub struct PcapReader<R: Read> {
     retired: Vec<Interface>,
     /// Sections started after the first.
     sections: u64,
-    /// A pcap file of link type 227: its records are read by
-    /// [`next_classic`](Self::next_classic) and [`next_fd`](Self::next_fd)
-    /// first.
+    /// The fast paths are tried first: a pcap file of link type 227 (its
+    /// records read by [`next_classic`](Self::next_classic) and
+    /// [`next_fd`](Self::next_fd)), or a pcapng file (its enhanced packet
+    /// blocks on interfaces of link type 227 read by
+    /// [`next_block_classic`](Self::next_block_classic) and
+    /// [`next_block_fd`](Self::next_block_fd)). Cleared, every record takes
+    /// the general path (the property tests compare the two).
     fast: bool,
     /// A pcap file's times are in nanoseconds (its interface's resolution,
     /// kept apart for [`record_time`](Self::record_time)).
@@ -369,6 +394,7 @@ impl<R: Read> PcapReader<R> {
             }
             magic::SECTION_HEADER => {
                 reader.layout = Layout::Pcapng { big_endian: false };
+                reader.fast = true;
                 // The first block is this section header: read it now so
                 // that a bad one fails here.
                 reader.next_pcapng_block()?;
@@ -545,6 +571,104 @@ impl<R: Read> PcapReader<R> {
                 frame,
                 timestamp: Some(timestamp),
                 iface: None,
+                direction: None,
+            }),
+        }
+    }
+
+    /// The next block of a little-endian pcapng section when it is an
+    /// enhanced packet block whole in the bytes read ahead (`LEN` bytes:
+    /// its 28-byte head, a packet of `MTU` bytes, no options, its trailing
+    /// length) on an interface of the section of link type 227: the packet,
+    /// the interface's index and the packet's time, nothing consumed;
+    /// `None` for any other block (and for every block of a big-endian
+    /// section, or an EPB whose time is out of range), which
+    /// [`next_pcapng_block`](Self::next_pcapng_block) reads.
+    ///
+    /// The checks are those the general path makes of such a block, so
+    /// that this reads a block only when the general path would make a
+    /// packet of it: block type and length (one word), the trailing length,
+    /// the captured length, the interface; the time is
+    /// [`Interface::timestamp`], the general path's.
+    #[inline(always)]
+    fn fast_block<const MTU: usize, const LEN: usize>(
+        &self,
+    ) -> Option<(&[u8; MTU], usize, Timestamp)> {
+        let Layout::Pcapng { big_endian: false } = self.layout else {
+            return None;
+        };
+        if !self.fast {
+            return None;
+        }
+        let block = self.input.bytes().first_chunk::<LEN>()?;
+        let (head, rest) = block.split_first_chunk::<EPB_HEAD_LEN>()?;
+        let (packet, trailer) = rest.split_first_chunk::<MTU>()?;
+        let word = |at: usize| u32_at(head, at, false);
+        // Type and length, as the little-endian u64 they make.
+        let kind = (LEN as u64) << 32 | u64::from(block::ENHANCED_PACKET);
+        if u64::from(word(0)) | u64::from(word(4)) << 32 != kind
+            || u32_at(trailer, 0, false) as usize != LEN
+            || word(20) as usize != MTU
+        {
+            return None;
+        }
+        let id = word(8) as usize;
+        let interface = self.interfaces.get(id)?;
+        if interface.link_type != LINKTYPE_CAN_SOCKETCAN {
+            return None;
+        }
+        let ticks = u64::from(word(12)) << 32 | u64::from(word(16));
+        Some((packet, id, interface.timestamp(ticks)?))
+    }
+
+    /// [`next_classic`](Self::next_classic) for a pcapng file: a classic
+    /// data frame in an enhanced packet block of [`socketcan::CAN_MTU`]
+    /// bytes ([`fast_block`](Self::fast_block)), its frame, time and
+    /// interface, the block consumed; `None` (nothing consumed) for any
+    /// other block.
+    #[inline(always)]
+    fn next_block_classic(&mut self) -> Option<(CanFrame, Timestamp, usize)> {
+        let (packet, id, timestamp) =
+            self.fast_block::<{ socketcan::CAN_MTU }, { EPB_LEN + socketcan::CAN_MTU }>()?;
+        let frame = socketcan::classic_data(packet)?;
+        self.input.consume(EPB_LEN + socketcan::CAN_MTU);
+        Some((frame, timestamp, id))
+    }
+
+    /// [`next_block_classic`](Self::next_block_classic) for a CAN FD frame
+    /// in an enhanced packet block of [`socketcan::CANFD_MTU`] bytes.
+    #[inline(always)]
+    fn next_block_fd(&mut self) -> Option<(CanFrame, Timestamp, usize)> {
+        let (packet, id, timestamp) =
+            self.fast_block::<{ socketcan::CANFD_MTU }, { EPB_LEN + socketcan::CANFD_MTU }>()?;
+        let frame = socketcan::fd_data(packet)?;
+        self.input.consume(EPB_LEN + socketcan::CANFD_MTU);
+        Some((frame, timestamp, id))
+    }
+
+    /// The record of a frame of a pcapng file read by a fast path, on the
+    /// section's interface `id`, numbered next: named as the general path
+    /// names a packet of link type 227 (the interface's name, `any`
+    /// included, when it has one).
+    #[inline(always)]
+    fn fast_block_event(
+        &mut self,
+        frame: CanFrame,
+        timestamp: Timestamp,
+        id: usize,
+    ) -> LogRecord<'_> {
+        self.number = self.number.saturating_add(1);
+        let iface = self
+            .interfaces
+            .get(id)
+            .and_then(|i| i.name.as_deref())
+            .map(Iface::Name);
+        LogRecord {
+            position: Position::Record(self.number),
+            event: LogEvent::Frame(LogFrame {
+                frame,
+                timestamp: Some(timestamp),
+                iface,
                 direction: None,
             }),
         }
@@ -745,13 +869,8 @@ impl<R: Read> PcapReader<R> {
             return Err(self.fail(0, bad_length(captured as usize)));
         }
         let interface = self.interface(id)?;
-        let (mut secs, nanos) = interface.resolution.split(ticks);
-        if interface.offset_secs != 0 {
-            let shifted = i128::from(secs) + i128::from(interface.offset_secs);
-            secs = u64::try_from(shifted)
-                .map_err(|_| self.fail(0, BinaryError::TimestampOutOfRange))?;
-        }
-        let timestamp = Timestamp::from_nanos(secs, nanos)
+        let timestamp = interface
+            .timestamp(ticks)
             .ok_or_else(|| self.fail(0, BinaryError::TimestampOutOfRange))?;
         Ok(Packet {
             interface: id as usize,
@@ -857,11 +976,23 @@ impl<R: Read> ReadLog for PcapReader<R> {
             if self.done {
                 return None;
             }
-            if let Some((frame, timestamp)) = self.next_classic() {
-                return Some(Ok(self.fast_event(frame, timestamp)));
-            }
-            if let Some((frame, timestamp)) = self.next_fd() {
-                return Some(Ok(self.fast_event(frame, timestamp)));
+            match self.layout {
+                Layout::Pcap { .. } => {
+                    if let Some((frame, timestamp)) = self.next_classic() {
+                        return Some(Ok(self.fast_event(frame, timestamp)));
+                    }
+                    if let Some((frame, timestamp)) = self.next_fd() {
+                        return Some(Ok(self.fast_event(frame, timestamp)));
+                    }
+                }
+                Layout::Pcapng { .. } => {
+                    if let Some((frame, timestamp, id)) = self.next_block_classic() {
+                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                    }
+                    if let Some((frame, timestamp, id)) = self.next_block_fd() {
+                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                    }
+                }
             }
             let packet = match self.next_packet() {
                 Ok(Some(packet)) => packet,

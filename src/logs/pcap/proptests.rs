@@ -128,6 +128,156 @@ fn pcap_record() -> impl Strategy<Value = (u32, u32, u32, Vec<u8>)> {
         })
 }
 
+/// A pcapng interface as writers describe SocketCAN ones, or not: link
+/// type 227 mostly, a name or none (`any` among them), the default
+/// resolution or another (`if_tsresol`, decimal or binary), an offset or
+/// none (`if_tsoffset`, zero, small or extreme).
+fn pcapng_interface() -> impl Strategy<Value = Interface> {
+    (
+        prop_oneof![6 => Just(227u16), 1 => Just(1u16), 1 => Just(113u16), 1 => any::<u16>()],
+        prop_oneof![
+            Just(None),
+            Just(Some("can0".to_string())),
+            Just(Some("any".to_string())),
+        ],
+        prop_oneof![
+            3 => Just(None),
+            1 => Just(Some(6u8)),
+            1 => Just(Some(9u8)),
+            1 => Just(Some(0u8)),
+            1 => Just(Some(0x80 | 20)),
+            1 => any::<u8>().prop_map(Some),
+        ],
+        prop_oneof![
+            3 => Just(None),
+            1 => Just(Some(0i64)),
+            1 => (-10_000i64..10_000).prop_map(Some),
+            1 => any::<i64>().prop_map(Some),
+        ],
+    )
+        .prop_map(|(link, name, tsresol, tsoffset)| Interface {
+            link,
+            name,
+            tsresol,
+            tsoffset,
+        })
+}
+
+/// One pcapng block after the first section header: an enhanced packet
+/// block mostly (interface 0..3, a time, a captured length that is the
+/// packet's or not, the packet as [`pcap_record`] makes it, options or
+/// none, a trailing length that is the block's or not), or a block of another kind: a simple packet, an interface
+/// description, a new section (either byte order), a name resolution,
+/// statistics or custom block.
+#[derive(Debug, Clone)]
+enum NgBlock {
+    Enhanced {
+        iface: u32,
+        ticks: u64,
+        claimed: Option<u32>,
+        packet: Vec<u8>,
+        options: Vec<u8>,
+        trailer: Option<u32>,
+    },
+    Simple(Vec<u8>),
+    Interface(Interface),
+    Section(bool),
+    Other(u32, Vec<u8>),
+}
+
+fn pcapng_block() -> impl Strategy<Value = NgBlock> {
+    let enhanced = (
+        prop_oneof![4 => Just(0u32), 2 => 0u32..3, 1 => any::<u32>()],
+        prop_oneof![any::<u64>(), 0u64..1 << 52],
+        pcap_record(),
+        prop_oneof![4 => Just(None), 1 => (0u32..100).prop_map(Some)],
+        prop_oneof![
+            4 => Just(Vec::new()),
+            1 => Just(vec![1, 0, 4, 0, b'h', b'i', b'!', 0, 0, 0, 0, 0]),
+            1 => proptest::collection::vec(any::<u8>(), 0..12),
+        ],
+        prop_oneof![3 => Just(None), 1 => any::<u32>().prop_map(Some)],
+    )
+        .prop_map(
+            |(iface, ticks, (_, _, _, packet), claimed, options, trailer)| NgBlock::Enhanced {
+                iface,
+                ticks,
+                claimed,
+                packet,
+                options,
+                trailer,
+            },
+        );
+    prop_oneof![
+        12 => enhanced,
+        1 => proptest::collection::vec(any::<u8>(), 0..20).prop_map(NgBlock::Simple),
+        1 => pcapng_interface().prop_map(NgBlock::Interface),
+        1 => any::<bool>().prop_map(NgBlock::Section),
+        1 => (
+            prop_oneof![Just(4u32), Just(5u32), Just(0xBADu32), Just(9u32)],
+            proptest::collection::vec(any::<u8>(), 0..24),
+        )
+            .prop_map(|(kind, body)| NgBlock::Other(kind, body)),
+    ]
+}
+
+/// A pcapng file of a section header (either byte order), `interfaces`
+/// and `blocks`.
+fn pcapng_file(be: bool, interfaces: &[Interface], blocks: &[NgBlock]) -> Vec<u8> {
+    let mut w = Pcapng::default();
+    w.section(be);
+    for i in interfaces {
+        w.interface(i);
+    }
+    for block in blocks {
+        match block {
+            NgBlock::Enhanced {
+                iface,
+                ticks,
+                claimed,
+                packet,
+                options,
+                trailer,
+            } => {
+                let be = w.be;
+                let u32b = |v: u32| {
+                    if be {
+                        v.to_be_bytes()
+                    } else {
+                        v.to_le_bytes()
+                    }
+                };
+                let mut body = u32b(*iface).to_vec();
+                body.extend(u32b((ticks >> 32) as u32));
+                body.extend(u32b(*ticks as u32));
+                body.extend(u32b(claimed.unwrap_or(packet.len() as u32)));
+                body.extend(u32b(packet.len() as u32));
+                body.extend(packet);
+                body.resize(body.len().div_ceil(4) * 4, 0);
+                body.extend(options);
+                w.block(6, &body);
+                if let Some(trailer) = trailer {
+                    let end = w.bytes.len();
+                    w.bytes[end - 4..].copy_from_slice(&u32b(*trailer));
+                }
+            }
+            NgBlock::Simple(packet) => {
+                w.simple_packet(packet);
+            }
+            NgBlock::Interface(i) => {
+                w.interface(i);
+            }
+            NgBlock::Section(be) => {
+                w.section(*be);
+            }
+            NgBlock::Other(kind, body) => {
+                w.block(*kind, body);
+            }
+        }
+    }
+    w.bytes
+}
+
 fn nanos_timestamp() -> impl Strategy<Value = Timestamp> {
     (0u64..=u64::from(u32::MAX), 0u32..1_000_000_000)
         .prop_map(|(s, ns)| Timestamp::from_nanos(s, ns).unwrap())
@@ -288,5 +438,155 @@ proptest! {
             .collect();
         prop_assert_eq!(other, (frames.len() - want.len()) as u64);
         prop_assert_eq!(read, want);
+    }
+}
+
+proptest! {
+    // The cases where the two paths could part are a few of the blocks
+    // generated: more cases than the default 256.
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// A pcapng file of arbitrary interfaces (link types, names, time
+    /// resolutions and offsets) and blocks (enhanced packet blocks of
+    /// arbitrary packets, captured lengths and options on any interface,
+    /// other blocks, sections of either byte order), whole or cut, read in
+    /// whole or in pieces: what the fast paths for enhanced packet blocks
+    /// read is what the general path reads.
+    #[test]
+    fn the_pcapng_fast_paths_read_as_the_general_path(
+        be in prop_oneof![4 => Just(false), 1 => Just(true)],
+        interfaces in proptest::collection::vec(pcapng_interface(), 1..4),
+        blocks in proptest::collection::vec(pcapng_block(), 0..16),
+        cut in any::<usize>(),
+        step in prop_oneof![Just(1usize << 16), 1usize..40],
+    ) {
+        let mut bytes = pcapng_file(be, &interfaces, &blocks);
+        if cut % 4 == 0 {
+            bytes.truncate(cut % (bytes.len() + 1));
+        }
+        let general = outcome_of(Chunked { data: &bytes, step }, true);
+        prop_assert_eq!(outcome_of(Chunked { data: &bytes, step }, false), general);
+    }
+
+    /// The fast paths' usual file, as dumpcap and editcap write it: one
+    /// little-endian section, SocketCAN interfaces with or without a name,
+    /// resolution and offset, enhanced packet blocks of whole 16- and
+    /// 72-byte packets of arbitrary frames on them: the general path's
+    /// records, in whole or in pieces.
+    #[test]
+    fn the_pcapng_fast_paths_read_usual_files_as_the_general_path(
+        interfaces in proptest::collection::vec(
+            pcapng_interface().prop_map(|i| Interface { link: 227, ..i }),
+            1..3,
+        ),
+        frames in proptest::collection::vec((any_can_frame(), any::<u64>(), 0u32..3), 0..20),
+        step in prop_oneof![Just(1usize << 16), 1usize..120],
+    ) {
+        let mut w = Pcapng::default();
+        w.section(false);
+        for i in &interfaces {
+            w.interface(i);
+        }
+        for (f, ticks, iface) in &frames {
+            w.packet(iface % interfaces.len() as u32, *ticks, &writer::socketcan(f));
+        }
+        let general = outcome_of(Chunked { data: &w.bytes, step }, true);
+        prop_assert_eq!(outcome_of(Chunked { data: &w.bytes, step }, false), general);
+    }
+}
+
+/// Each check of the pcapng fast paths, failed by one block of a usual
+/// file (after a classic frame on interface 0, which the general path
+/// reads as the first packet after the interface's description, and
+/// before a CAN FD frame): the reader with the fast paths reads what the
+/// general path reads.
+#[test]
+fn each_check_of_the_pcapng_fast_paths() {
+    let classic = [0, 0, 0x07, 0x05, 1, 0, 0, 0, 0x05, 0, 0, 0, 0, 0, 0, 0];
+    let mut fd = vec![0, 0, 0x01, 0x23, 12, 0x05, 0, 0];
+    fd.extend(1..=64u8);
+    let can0 = Interface {
+        link: 227,
+        name: Some("can0".into()),
+        tsresol: None,
+        tsoffset: None,
+    };
+    let usual = |be: bool, interface: &Interface| {
+        let mut w = Pcapng::default();
+        w.section(be).interface(interface);
+        w.packet(0, 1_700_000_000_000_400, &classic);
+        w.packet(0, 1_700_000_000_000_500, &classic);
+        w.packet(0, 1_700_000_000_000_600, &fd);
+        w
+    };
+    let mut files = Vec::new();
+    // Other interfaces: times in nanoseconds, 2^-20 s, with an offset, one
+    // before the Unix epoch; Ethernet; named `any`; byte-swapped.
+    for (tsresol, tsoffset) in [
+        (Some(9), None),
+        (Some(0x80 | 20), None),
+        (None, Some(-3600)),
+        (None, Some(-1_800_000_000)),
+    ] {
+        files.push(
+            usual(
+                false,
+                &Interface {
+                    tsresol,
+                    tsoffset,
+                    ..can0.clone()
+                },
+            )
+            .bytes,
+        );
+    }
+    files.push(
+        usual(
+            false,
+            &Interface {
+                link: 1,
+                ..can0.clone()
+            },
+        )
+        .bytes,
+    );
+    files.push(
+        usual(
+            false,
+            &Interface {
+                name: Some("any".into()),
+                ..can0.clone()
+            },
+        )
+        .bytes,
+    );
+    files.push(usual(true, &can0).bytes);
+    // One damaged block each: the trailing length, the block length, the
+    // captured length, the interface.
+    let at = usual(false, &can0).bytes.len() - 48 - 104;
+    for (offset, value) in [(44u32, 52u32), (4, 52), (20, 12), (20, 17), (8, 1)] {
+        let mut w = usual(false, &can0);
+        let at = at + offset as usize;
+        w.bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
+        files.push(w.bytes);
+    }
+    // An option after the packet; a padded shorter packet.
+    let mut w = Pcapng::default();
+    w.section(false).interface(&can0).packet(0, 1, &classic);
+    let mut body = [0u32, 0, 1, 16, 16].map(u32::to_le_bytes).concat();
+    body.extend(classic);
+    body.extend([1, 0, 4, 0, b'h', b'i', b'!', 0, 0, 0, 0, 0]);
+    w.block(6, &body);
+    let mut body = [0u32, 0, 1, 13, 13].map(u32::to_le_bytes).concat();
+    body.extend(&classic[..13]);
+    w.block(6, &body);
+    w.packet(0, 2, &classic);
+    files.push(w.bytes);
+    for (i, bytes) in files.iter().enumerate() {
+        for step in [1 << 16, 1, 50] {
+            let general = outcome_of(Chunked { data: bytes, step }, true);
+            let fast = outcome_of(Chunked { data: bytes, step }, false);
+            assert_eq!(fast, general, "file {i}, step {step}");
+        }
     }
 }
