@@ -41,6 +41,15 @@ fn outcome<R: Read>(input: R) -> Outcome {
 
 /// [`outcome`], every record read by the general path when `general`
 /// (not by `PcapReader::next_classic` or `next_fd`).
+/// What the reader with its fast paths and the general path alone read of
+/// `data`, handed over `step` bytes at a time: (fast, general).
+fn both_paths(data: &[u8], step: usize) -> (Outcome, Outcome) {
+    (
+        outcome_of(Chunked { data, step }, false),
+        outcome_of(Chunked { data, step }, true),
+    )
+}
+
 fn outcome_of<R: Read>(input: R, general: bool) -> Outcome {
     let mut reader = match PcapReader::new(input) {
         Ok(r) => r,
@@ -377,8 +386,8 @@ proptest! {
         if cut % 4 == 0 {
             bytes.truncate(cut % (bytes.len() + 1));
         }
-        let general = outcome_of(Chunked { data: &bytes, step }, true);
-        prop_assert_eq!(outcome_of(Chunked { data: &bytes, step }, false), general);
+        let (fast, general) = both_paths(&bytes, step);
+        prop_assert_eq!(fast, general);
     }
 
     #[test]
@@ -464,8 +473,8 @@ proptest! {
         if cut % 4 == 0 {
             bytes.truncate(cut % (bytes.len() + 1));
         }
-        let general = outcome_of(Chunked { data: &bytes, step }, true);
-        prop_assert_eq!(outcome_of(Chunked { data: &bytes, step }, false), general);
+        let (fast, general) = both_paths(&bytes, step);
+        prop_assert_eq!(fast, general);
     }
 
     /// The fast paths' usual file, as dumpcap and editcap write it: one
@@ -490,8 +499,8 @@ proptest! {
         for (f, ticks, iface) in &frames {
             w.packet(iface % interfaces.len() as u32, *ticks, &writer::socketcan(f));
         }
-        let general = outcome_of(Chunked { data: &w.bytes, step }, true);
-        prop_assert_eq!(outcome_of(Chunked { data: &w.bytes, step }, false), general);
+        let (fast, general) = both_paths(&w.bytes, step);
+        prop_assert_eq!(fast, general);
     }
 }
 
@@ -584,8 +593,7 @@ fn each_check_of_the_pcapng_fast_paths() {
     files.push(w.bytes);
     for (i, bytes) in files.iter().enumerate() {
         for step in [1 << 16, 1, 50] {
-            let general = outcome_of(Chunked { data: bytes, step }, true);
-            let fast = outcome_of(Chunked { data: bytes, step }, false);
+            let (fast, general) = both_paths(bytes, step);
             assert_eq!(fast, general, "file {i}, step {step}");
         }
     }
