@@ -7,12 +7,12 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
-use crate::canopen::sdo::tracker::Step;
+use crate::canopen::sdo::tracker::{self, Step};
 use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
 };
-use crate::canopen::{NodeId, ObjectAddress};
+use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
 use super::ObjectNames;
 use crate::Error;
@@ -137,6 +137,57 @@ impl<'d> SdoStep<'d> {
     }
 }
 
+/// One SDO frame as its channel's tracker followed it: an [`SdoStep`]
+/// without its message, which is read from the frame's bytes where it is
+/// wanted ([`step`](Self::step) for [`Decoder::decode`](super::Decoder::decode);
+/// the summary reads only whether the frame is an abort,
+/// [`abort`](Self::abort)).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SdoSeen<'d> {
+    /// [`SdoStep::node`].
+    pub(crate) node: NodeId,
+    /// [`SdoStep::sender`].
+    pub(crate) sender: SdoParty,
+    /// The tracker read the frame as a segment inside a block.
+    pub(crate) block_segment: bool,
+    /// [`SdoStep::data`].
+    pub(crate) data: &'d [u8],
+    /// [`SdoStep::latency`].
+    pub(crate) latency: Option<Duration>,
+    /// [`SdoStep::started`].
+    pub(crate) started: bool,
+    /// [`SdoStep::ended`].
+    pub(crate) ended: Option<EndedTransfer<'d>>,
+    /// [`SdoStep::names`].
+    pub(crate) names: ObjectNames<'d>,
+}
+
+impl<'d> SdoSeen<'d> {
+    /// Return the step, with the message read from the frame's bytes as the
+    /// tracker read them.
+    #[inline]
+    pub(crate) fn step(&self) -> SdoStep<'d> {
+        SdoStep {
+            node: self.node,
+            sender: self.sender,
+            message: tracker::message(self.sender, self.block_segment, self.data),
+            data: self.data,
+            latency: self.latency,
+            started: self.started,
+            ended: self.ended,
+            names: self.names,
+        }
+    }
+
+    /// Return the multiplexer and code of the frame when it is an abort
+    /// (the step's message is [`SdoRequest::Abort`](crate::canopen::sdo::SdoRequest::Abort)
+    /// or [`SdoResponse::Abort`](crate::canopen::sdo::SdoResponse::Abort)), without the message.
+    #[inline]
+    pub(crate) fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        tracker::abort(self.block_segment, self.data)
+    }
+}
+
 /// A transfer that ended, with its data (`transfer` in
 /// docs/output.md#transfer).
 ///
@@ -184,8 +235,8 @@ impl SdoChannel {
         position: u64,
         cap: usize,
         step: &mut Step,
-    ) -> Result<SdoMessage, Error> {
-        let message = self.tracker.feed_step(sender, bytes, ts, position, step);
+    ) {
+        self.tracker.feed_step(sender, bytes, ts, position, step);
         let chunk = self.tracker.chunk(step, bytes);
         let Some(ended) = &step.ended else {
             // Most frames: no transfer ends here (a segment request, a
@@ -194,7 +245,7 @@ impl SdoChannel {
                 self.data.clear();
             }
             push(&mut self.data, chunk, cap);
-            return message;
+            return;
         };
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
@@ -207,7 +258,6 @@ impl SdoChannel {
         if chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
-        message
     }
 
     /// The data of the transfer that ended last.

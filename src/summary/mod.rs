@@ -49,6 +49,7 @@ pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::FileSpan;
 pub use listed::{Listed, ListedIter};
+use sdo::SdoFrameFacts;
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
@@ -57,7 +58,7 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
+use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder};
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
@@ -476,9 +477,10 @@ impl Summarizer {
         let (kind, node) = MessageKind::classify(&log.frame);
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                decoder.sdo_frame(position, log, n, |key, step, cia402| {
+                decoder.sdo_frame(position, log, n, |key, seen, cia402| {
                     let at = self.bus_of(key, log);
-                    self.add_classified(at, position, log, kind, node, Some(step), cia402, |_| {});
+                    let sdo = SdoFrameFacts::of_seen(seen);
+                    self.add_classified(at, position, log, kind, node, Some(&sdo), cia402, |_| {});
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
@@ -525,7 +527,7 @@ impl Summarizer {
             log,
             decoded.kind,
             decoded.node,
-            decoded.sdo.as_ref(),
+            decoded.sdo.as_ref().map(SdoFrameFacts::of_step).as_ref(),
             decoded.cia402,
             on_event,
         );
@@ -567,7 +569,7 @@ impl Summarizer {
         log: &LogFrame<'_>,
         kind: MessageKind,
         node: Option<NodeId>,
-        sdo: Option<&SdoStep<'_>>,
+        sdo: Option<&SdoFrameFacts<'_>>,
         cia402: Option<Cia402Reading>,
         mut on_event: impl FnMut(SummaryEvent<'_>),
     ) {
@@ -630,8 +632,8 @@ impl Summarizer {
                     });
                 }
             }
-            if let (true, Some(ended)) = (added.ended, &step.ended) {
-                on_event(sdo_ended(name, node, &ended.transfer));
+            if let (true, Some(ended)) = (added.ended, step.ended) {
+                on_event(sdo_ended(name, node, ended));
             }
         }
         if let Some(reading) = cia402 {

@@ -5,7 +5,7 @@ use core::time::Duration;
 
 use crate::canopen::sdo::{SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTransfer};
 use crate::canopen::{ObjectAddress, SdoAbortCode};
-use crate::decoder::SdoStep;
+use crate::decoder::{ObjectNames, SdoSeen, SdoStep};
 
 use super::Listed;
 
@@ -69,6 +69,62 @@ impl SdoSummary {
             && self.transfers == 0
             && self.aborts.is_empty()
             && self.broken.is_empty()
+    }
+}
+
+/// What the summary reads of one SDO frame (docs/summary.md#sdo): of a
+/// public [`SdoStep`] (a [`Decoded`](crate::decoder::Decoded) reading),
+/// or of the decoder's own reading, which makes no message
+/// ([`SdoSeen`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SdoFrameFacts<'a> {
+    /// Who sent the frame.
+    pub(crate) sender: SdoParty,
+    /// The frame starts a transfer.
+    pub(crate) started: bool,
+    /// The request → response latency the frame closes.
+    pub(crate) latency: Option<Duration>,
+    /// The abort's multiplexer and code, when the frame is an abort.
+    pub(crate) abort: Option<(ObjectAddress, SdoAbortCode)>,
+    /// The transfer the frame ends.
+    pub(crate) ended: Option<&'a SdoTransfer>,
+    /// Where the node's objects get their names.
+    pub(crate) names: ObjectNames<'a>,
+}
+
+impl<'a> SdoFrameFacts<'a> {
+    /// What the summary reads of a step: an abort is what its message says.
+    #[inline]
+    pub(crate) fn of_step(step: &'a SdoStep<'_>) -> Self {
+        let abort = match step.message {
+            Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code }))
+            | Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
+                Some((multiplexer, code))
+            }
+            _ => None,
+        };
+        SdoFrameFacts {
+            sender: step.sender,
+            started: step.started,
+            latency: step.latency,
+            abort,
+            ended: step.ended.as_ref().map(|ended| &ended.transfer),
+            names: step.names,
+        }
+    }
+
+    /// What the summary reads of the decoder's reading: an abort read from
+    /// the frame's bytes as the tracker read them.
+    #[inline]
+    pub(crate) fn of_seen(seen: &'a SdoSeen<'_>) -> Self {
+        SdoFrameFacts {
+            sender: seen.sender,
+            started: seen.started,
+            latency: seen.latency,
+            abort: seen.abort(),
+            ended: seen.ended.as_ref().map(|ended| &ended.transfer),
+            names: seen.names,
+        }
     }
 }
 
@@ -202,31 +258,22 @@ fn nanos(latency: Duration) -> u64 {
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     #[inline]
-    pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) -> Added {
+    pub(crate) fn add(&mut self, frame: &SdoFrameFacts<'_>, line: u64) -> Added {
         let s = &mut self.summary;
-        s.requests += u64::from(step.sender == SdoParty::Client);
-        s.transfers += u64::from(step.started);
-        if let Some(latency) = step.latency {
+        s.requests += u64::from(frame.sender == SdoParty::Client);
+        s.transfers += u64::from(frame.started);
+        if let Some(latency) = frame.latency {
             self.latencies.push(nanos(latency));
         }
-        let abort = match step.message {
-            Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
-                Some((multiplexer, code, SdoParty::Client))
-            }
-            Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
-                Some((multiplexer, code, SdoParty::Server))
-            }
-            _ => None,
-        };
-        if let Some((multiplexer, code, by)) = abort {
-            self.abort(step, line, multiplexer, code, by);
+        if let Some((multiplexer, code)) = frame.abort {
+            self.abort(frame, line, multiplexer, code);
         }
-        let ended = match &step.ended {
-            Some(ended) => self.ended(&ended.transfer),
+        let ended = match frame.ended {
+            Some(transfer) => self.ended(transfer),
             None => false,
         };
         Added {
-            abort: abort.is_some(),
+            abort: frame.abort.is_some(),
             ended,
         }
     }
@@ -235,22 +282,21 @@ impl SdoStats {
     #[inline(never)]
     fn abort(
         &mut self,
-        step: &SdoStep<'_>,
+        frame: &SdoFrameFacts<'_>,
         line: u64,
         multiplexer: ObjectAddress,
         code: SdoAbortCode,
-        by: SdoParty,
     ) {
-        let multiplexer = match step.ended {
-            Some(ended) if multiplexer == ObjectAddress::default() => ended.transfer.multiplexer,
+        let multiplexer = match frame.ended {
+            Some(ended) if multiplexer == ObjectAddress::default() => ended.multiplexer,
             _ => multiplexer,
         };
         self.summary.aborts.push(SdoAbort {
             line,
             multiplexer,
-            object: step.names.name(multiplexer.index).map(str::to_owned),
+            object: frame.names.name(multiplexer.index).map(str::to_owned),
             code,
-            by,
+            by: frame.sender,
         });
     }
 
