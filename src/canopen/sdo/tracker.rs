@@ -1238,8 +1238,8 @@ pub(crate) fn message(
         return SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment);
     }
     match sender {
-        SdoParty::Client => SdoRequest::parse(data).map(SdoMessage::Request),
-        SdoParty::Server => SdoResponse::parse(data).map(SdoMessage::Response),
+        SdoParty::Client => SdoRequest::read(data).map(SdoMessage::Request),
+        SdoParty::Server => SdoResponse::read(data).map(SdoMessage::Response),
     }
 }
 
