@@ -50,6 +50,9 @@ pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::FileSpan;
 pub use listed::{Listed, ListedIter};
 use sdo::SdoFrameFacts;
+
+/// No SDO frame, for [`Summarizer::add_classified`].
+const NO_SDO: Option<&crate::decoder::SdoSeen<'static>> = None;
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
@@ -479,18 +482,17 @@ impl Summarizer {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
                 decoder.sdo_frame(position, log, n, |key, seen, cia402| {
                     let at = self.bus_of(key, log);
-                    let sdo = SdoFrameFacts::of_seen(seen);
-                    self.add_classified(at, position, log, kind, node, Some(&sdo), cia402, |_| {});
+                    self.add_classified(at, position, log, kind, node, Some(seen), cia402, |_| {});
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let (key, cia402) = decoder.pdo_cia402(log);
                 let at = self.bus_of(key, log);
-                self.add_classified(at, position, log, kind, node, None, cia402, |_| {});
+                self.add_classified(at, position, log, kind, node, NO_SDO, cia402, |_| {});
             }
             _ => {
                 let at = self.find_bus(log);
-                self.add_classified(at, position, log, kind, node, None, None, |_| {});
+                self.add_classified(at, position, log, kind, node, NO_SDO, None, |_| {});
             }
         }
     }
@@ -527,7 +529,7 @@ impl Summarizer {
             log,
             decoded.kind,
             decoded.node,
-            decoded.sdo.as_ref().map(SdoFrameFacts::of_step).as_ref(),
+            decoded.sdo.as_ref(),
             decoded.cia402,
             on_event,
         );
@@ -569,7 +571,7 @@ impl Summarizer {
         log: &LogFrame<'_>,
         kind: MessageKind,
         node: Option<NodeId>,
-        sdo: Option<&SdoFrameFacts<'_>>,
+        sdo: Option<&impl SdoFrameFacts>,
         cia402: Option<Cia402Reading>,
         mut on_event: impl FnMut(SummaryEvent<'_>),
     ) {
@@ -632,7 +634,7 @@ impl Summarizer {
                     });
                 }
             }
-            if let (true, Some(ended)) = (added.ended, step.ended) {
+            if let (true, Some(ended)) = (added.ended, step.ended()) {
                 on_event(sdo_ended(name, node, ended));
             }
         }

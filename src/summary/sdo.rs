@@ -75,56 +75,92 @@ impl SdoSummary {
 /// What the summary reads of one SDO frame (docs/summary.md#sdo): of a
 /// public [`SdoStep`] (a [`Decoded`](crate::decoder::Decoded) reading),
 /// or of the decoder's own reading, which makes no message
-/// ([`SdoSeen`]).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SdoFrameFacts<'a> {
+/// ([`SdoSeen`]). Read where the frame's reading lies, not copied out.
+pub(crate) trait SdoFrameFacts {
     /// Who sent the frame.
-    pub(crate) sender: SdoParty,
+    fn sender(&self) -> SdoParty;
     /// The frame starts a transfer.
-    pub(crate) started: bool,
+    fn started(&self) -> bool;
     /// The request → response latency the frame closes.
-    pub(crate) latency: Option<Duration>,
+    fn latency(&self) -> Option<Duration>;
     /// The abort's multiplexer and code, when the frame is an abort.
-    pub(crate) abort: Option<(ObjectAddress, SdoAbortCode)>,
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)>;
     /// The transfer the frame ends.
-    pub(crate) ended: Option<&'a SdoTransfer>,
+    fn ended(&self) -> Option<&SdoTransfer>;
     /// Where the node's objects get their names.
-    pub(crate) names: ObjectNames<'a>,
+    fn names(&self) -> ObjectNames<'_>;
 }
 
-impl<'a> SdoFrameFacts<'a> {
-    /// What the summary reads of a step: an abort is what its message says.
+/// A step's abort is what its message says.
+impl SdoFrameFacts for SdoStep<'_> {
     #[inline]
-    pub(crate) fn of_step(step: &'a SdoStep<'_>) -> Self {
-        let abort = match step.message {
+    fn sender(&self) -> SdoParty {
+        self.sender
+    }
+
+    #[inline]
+    fn started(&self) -> bool {
+        self.started
+    }
+
+    #[inline]
+    fn latency(&self) -> Option<Duration> {
+        self.latency
+    }
+
+    #[inline]
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        match self.message {
             Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code }))
             | Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
                 Some((multiplexer, code))
             }
             _ => None,
-        };
-        SdoFrameFacts {
-            sender: step.sender,
-            started: step.started,
-            latency: step.latency,
-            abort,
-            ended: step.ended.as_ref().map(|ended| &ended.transfer),
-            names: step.names,
         }
     }
 
-    /// What the summary reads of the decoder's reading: an abort read from
-    /// the frame's bytes as the tracker read them.
     #[inline]
-    pub(crate) fn of_seen(seen: &'a SdoSeen<'_>) -> Self {
-        SdoFrameFacts {
-            sender: seen.sender,
-            started: seen.started,
-            latency: seen.latency,
-            abort: seen.abort(),
-            ended: seen.ended.as_ref().map(|ended| &ended.transfer),
-            names: seen.names,
-        }
+    fn ended(&self) -> Option<&SdoTransfer> {
+        self.ended.as_ref().map(|ended| &ended.transfer)
+    }
+
+    #[inline]
+    fn names(&self) -> ObjectNames<'_> {
+        self.names
+    }
+}
+
+/// The decoder's reading: an abort read from the frame's bytes as the
+/// tracker read them.
+impl SdoFrameFacts for SdoSeen<'_> {
+    #[inline]
+    fn sender(&self) -> SdoParty {
+        self.sender
+    }
+
+    #[inline]
+    fn started(&self) -> bool {
+        self.started
+    }
+
+    #[inline]
+    fn latency(&self) -> Option<Duration> {
+        self.latency
+    }
+
+    #[inline]
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        SdoSeen::abort(self)
+    }
+
+    #[inline]
+    fn ended(&self) -> Option<&SdoTransfer> {
+        self.ended.as_ref().map(|ended| &ended.transfer)
+    }
+
+    #[inline]
+    fn names(&self) -> ObjectNames<'_> {
+        self.names
     }
 }
 
@@ -258,22 +294,30 @@ fn nanos(latency: Duration) -> u64 {
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     #[inline]
-    pub(crate) fn add(&mut self, frame: &SdoFrameFacts<'_>, line: u64) -> Added {
+    pub(crate) fn add(&mut self, frame: &impl SdoFrameFacts, line: u64) -> Added {
         let s = &mut self.summary;
-        s.requests += u64::from(frame.sender == SdoParty::Client);
-        s.transfers += u64::from(frame.started);
-        if let Some(latency) = frame.latency {
+        s.requests += u64::from(frame.sender() == SdoParty::Client);
+        s.transfers += u64::from(frame.started());
+        if let Some(latency) = frame.latency() {
             self.latencies.push(nanos(latency));
         }
-        if let Some((multiplexer, code)) = frame.abort {
-            self.abort(frame, line, multiplexer, code);
+        let abort = frame.abort();
+        if let Some((multiplexer, code)) = abort {
+            self.abort(
+                frame.sender(),
+                frame.ended(),
+                frame.names(),
+                line,
+                multiplexer,
+                code,
+            );
         }
-        let ended = match frame.ended {
+        let ended = match frame.ended() {
             Some(transfer) => self.ended(transfer),
             None => false,
         };
         Added {
-            abort: frame.abort.is_some(),
+            abort: abort.is_some(),
             ended,
         }
     }
@@ -282,21 +326,23 @@ impl SdoStats {
     #[inline(never)]
     fn abort(
         &mut self,
-        frame: &SdoFrameFacts<'_>,
+        by: SdoParty,
+        ended: Option<&SdoTransfer>,
+        names: ObjectNames<'_>,
         line: u64,
         multiplexer: ObjectAddress,
         code: SdoAbortCode,
     ) {
-        let multiplexer = match frame.ended {
+        let multiplexer = match ended {
             Some(ended) if multiplexer == ObjectAddress::default() => ended.multiplexer,
             _ => multiplexer,
         };
         self.summary.aborts.push(SdoAbort {
             line,
             multiplexer,
-            object: frame.names.name(multiplexer.index).map(str::to_owned),
+            object: names.name(multiplexer.index).map(str::to_owned),
             code,
-            by: frame.sender,
+            by,
         });
     }
 
