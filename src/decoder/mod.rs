@@ -447,7 +447,7 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        then: impl FnOnce(BusKey, &SdoSeen<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
@@ -565,7 +565,7 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        then: impl FnOnce(BusKey, &SdoSeen<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
         let key = BusKey {
@@ -593,29 +593,18 @@ impl Decoder {
             _ => None,
         };
         let names = self.names[usize::from(node.get())].get(&self.config);
-        let mut step = SdoSeen {
+        let step = SdoSeen {
             node,
             sender,
             block_segment: fed.block_segment(),
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended: None,
+            ended: fed.ended.as_ref(),
             names,
+            buses: &self.buses,
+            at,
         };
-        // Only when a transfer ended (most frames end none: the step is
-        // not made with a copy of an empty transfer), the node's state again
-        // (learning may have changed the bus) for the transfer's data.
-        if let Some(transfer) = fed.ended {
-            step.ended = Some(EndedTransfer {
-                transfer,
-                data: self.buses.get(at).nodes[usize::from(node.get())]
-                    .as_ref()
-                    .expect("made above")
-                    .sdo
-                    .finished(),
-            });
-        }
         then(key, &step, cia402)
     }
 

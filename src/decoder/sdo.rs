@@ -142,8 +142,8 @@ impl<'d> SdoStep<'d> {
 /// wanted ([`step`](Self::step) for [`Decoder::decode`](super::Decoder::decode);
 /// the summary reads only whether the frame is an abort,
 /// [`abort`](Self::abort)).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SdoSeen<'d> {
+#[derive(Clone, Copy)]
+pub(crate) struct SdoSeen<'s, 'd> {
     /// [`SdoStep::node`].
     pub(crate) node: NodeId,
     /// [`SdoStep::sender`].
@@ -156,27 +156,52 @@ pub(crate) struct SdoSeen<'d> {
     pub(crate) latency: Option<Duration>,
     /// [`SdoStep::started`].
     pub(crate) started: bool,
-    /// [`SdoStep::ended`].
-    pub(crate) ended: Option<EndedTransfer<'d>>,
+    /// The transfer of [`SdoStep::ended`], where the tracker's step left it;
+    /// its data is looked up only for the step ([`finished`](Self::finished)).
+    pub(crate) ended: Option<&'s SdoTransfer>,
     /// [`SdoStep::names`].
     pub(crate) names: ObjectNames<'d>,
+    /// The decoder's buses and this frame's bus, where the node's channel
+    /// keeps the ended transfer's data.
+    pub(super) buses: &'d super::Buses<super::BusState>,
+    /// This frame's bus.
+    pub(super) at: usize,
 }
 
-impl<'d> SdoSeen<'d> {
+impl<'d> SdoSeen<'_, 'd> {
     /// Return the step, with the message read from the frame's bytes as the
     /// tracker read them.
     #[inline]
     pub(crate) fn step(&self) -> SdoStep<'d> {
-        SdoStep {
+        let mut step = SdoStep {
             node: self.node,
             sender: self.sender,
             message: tracker::message(self.sender, self.block_segment, self.data),
             data: self.data,
             latency: self.latency,
             started: self.started,
-            ended: self.ended,
+            ended: None,
             names: self.names,
+        };
+        // Most frames end no transfer: the step is not made with a copy of
+        // an empty one.
+        if let Some(&transfer) = self.ended {
+            step.ended = Some(EndedTransfer {
+                transfer,
+                data: self.finished(),
+            });
         }
+        step
+    }
+
+    /// The data of the transfer that ended last on the node's channel.
+    #[inline]
+    fn finished(&self) -> &'d [u8] {
+        self.buses.get(self.at).nodes[usize::from(self.node.get())]
+            .as_ref()
+            .expect("made by the decoder")
+            .sdo
+            .finished()
     }
 
     /// Return the multiplexer and code of the frame when it is an abort

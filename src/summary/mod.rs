@@ -52,7 +52,7 @@ pub use listed::{Listed, ListedIter};
 use sdo::SdoFrameFacts;
 
 /// No SDO frame, for [`Summarizer::add_classified`].
-const NO_SDO: Option<&crate::decoder::SdoSeen<'static>> = None;
+const NO_SDO: Option<&crate::decoder::SdoSeen<'static, 'static>> = None;
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};

@@ -132,7 +132,7 @@ impl SdoFrameFacts for SdoStep<'_> {
 
 /// The decoder's reading: an abort read from the frame's bytes as the
 /// tracker read them.
-impl SdoFrameFacts for SdoSeen<'_> {
+impl SdoFrameFacts for SdoSeen<'_, '_> {
     #[inline]
     fn sender(&self) -> SdoParty {
         self.sender
@@ -155,7 +155,7 @@ impl SdoFrameFacts for SdoSeen<'_> {
 
     #[inline]
     fn ended(&self) -> Option<&SdoTransfer> {
-        self.ended.as_ref().map(|ended| &ended.transfer)
+        self.ended
     }
 
     #[inline]
