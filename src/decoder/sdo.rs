@@ -194,7 +194,9 @@ impl<'d> SdoSeen<'_, 'd> {
         step
     }
 
-    /// The data of the transfer that ended last on the node's channel.
+    /// The data of the transfer that ended last on the node's channel,
+    /// looked up in the buses as they are after the frame (what the ended
+    /// transfer taught may have changed them).
     #[inline]
     fn finished(&self) -> &'d [u8] {
         self.buses.get(self.at).nodes[usize::from(self.node.get())]

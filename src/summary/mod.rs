@@ -49,10 +49,6 @@ pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::FileSpan;
 pub use listed::{Listed, ListedIter};
-use sdo::SdoFrameFacts;
-
-/// No SDO frame, for [`Summarizer::add_classified`].
-const NO_SDO: Option<&crate::decoder::SdoSeen<'static, 'static>> = None;
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
 use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
@@ -61,7 +57,11 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder};
+use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoSeen};
+use sdo::SdoFrameFacts;
+
+/// No SDO frame, for [`Summarizer::add_classified`].
+const NO_SDO: Option<&SdoSeen<'static, 'static>> = None;
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
