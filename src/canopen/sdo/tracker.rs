@@ -818,6 +818,7 @@ impl SdoTracker {
     }
 
     /// Open a transfer at an initiate request on an idle channel.
+    #[inline(always)]
     fn begin(&mut self, frame: Frame<'_>, time: Option<Timestamp>, position: u64, step: &mut Step) {
         // Made where it is kept, not moved there.
         self.open = Self::start(frame, time, position);
@@ -1091,6 +1092,7 @@ impl SdoTracker {
 
     /// Close the open transfer where it stands (nothing when none is open),
     /// read where it lies: the open transfer is not copied out first.
+    #[inline(always)]
     fn close_open(&mut self, outcome: SdoOutcome, step: &mut Step) {
         if let Some(open) = &self.open {
             let outcome = match (outcome, open.fault) {
