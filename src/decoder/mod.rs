@@ -56,6 +56,7 @@ pub use cia402::Cia402Reading;
 pub use columns::FrameColumns;
 pub use names::ObjectNames;
 pub use pdo::{PdoMap, PdoReading};
+pub(crate) use sdo::SdoSeen;
 pub use sdo::{EndedTransfer, SdoStep};
 
 use crate::can::{Iface, LogFrame};
@@ -446,7 +447,7 @@ impl Decoder {
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
@@ -466,7 +467,9 @@ impl Decoder {
         frame: &'d LogFrame<'d>,
         node: NodeId,
     ) -> (SdoStep<'d>, Option<Cia402Reading>) {
-        self.sdo_frame(position, frame, node, |_, step, cia402| (*step, cia402))
+        self.sdo_frame(position, frame, node, |_, seen, cia402| {
+            (seen.step(), cia402)
+        })
     }
 
     /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
@@ -562,7 +565,7 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        then: impl FnOnce(BusKey, &SdoStep<'d>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
         let key = BusKey {
@@ -573,7 +576,7 @@ impl Decoder {
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
         let mut fed = Step::new();
-        let message = state
+        state
             .sdo
             .feed(sender, bytes, frame.timestamp, position, cap, &mut fed);
         let value = match &fed.ended {
@@ -590,29 +593,18 @@ impl Decoder {
             _ => None,
         };
         let names = self.names[usize::from(node.get())].get(&self.config);
-        let mut step = SdoStep {
+        let step = SdoSeen {
             node,
             sender,
-            message,
+            block_segment: fed.block_segment(),
             data: bytes,
             latency: fed.latency,
             started: fed.started,
-            ended: None,
+            ended: fed.ended.as_ref(),
             names,
+            buses: &self.buses,
+            at,
         };
-        // Only when a transfer ended (most frames end none: the step is
-        // not made with a copy of an empty transfer), the node's state again
-        // (learning may have changed the bus) for the transfer's data.
-        if let Some(transfer) = fed.ended {
-            step.ended = Some(EndedTransfer {
-                transfer,
-                data: self.buses.get(at).nodes[usize::from(node.get())]
-                    .as_ref()
-                    .expect("made above")
-                    .sdo
-                    .finished(),
-            });
-        }
         then(key, &step, cia402)
     }
 

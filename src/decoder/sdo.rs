@@ -7,12 +7,12 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
-use crate::canopen::sdo::tracker::Step;
+use crate::canopen::sdo::tracker::{self, Step};
 use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
 };
-use crate::canopen::{NodeId, ObjectAddress};
+use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
 use super::ObjectNames;
 use crate::Error;
@@ -137,6 +137,84 @@ impl<'d> SdoStep<'d> {
     }
 }
 
+/// One SDO frame as its channel's tracker followed it: an [`SdoStep`]
+/// without its message, which is read from the frame's bytes where it is
+/// wanted ([`step`](Self::step) for [`Decoder::decode`](super::Decoder::decode);
+/// the summary reads only whether the frame is an abort,
+/// [`abort`](Self::abort)).
+#[derive(Clone, Copy)]
+pub(crate) struct SdoSeen<'s, 'd> {
+    /// [`SdoStep::node`].
+    pub(crate) node: NodeId,
+    /// [`SdoStep::sender`].
+    pub(crate) sender: SdoParty,
+    /// The tracker read the frame as a segment inside a block.
+    pub(crate) block_segment: bool,
+    /// [`SdoStep::data`].
+    pub(crate) data: &'d [u8],
+    /// [`SdoStep::latency`].
+    pub(crate) latency: Option<Duration>,
+    /// [`SdoStep::started`].
+    pub(crate) started: bool,
+    /// The transfer of [`SdoStep::ended`], where the tracker's step left it;
+    /// its data is looked up only for the step ([`finished`](Self::finished)).
+    pub(crate) ended: Option<&'s SdoTransfer>,
+    /// [`SdoStep::names`].
+    pub(crate) names: ObjectNames<'d>,
+    /// The decoder's buses and this frame's bus, where the node's channel
+    /// keeps the ended transfer's data.
+    pub(super) buses: &'d super::Buses<super::BusState>,
+    /// This frame's bus.
+    pub(super) at: usize,
+}
+
+impl<'d> SdoSeen<'_, 'd> {
+    /// Return the step, with the message read from the frame's bytes as the
+    /// tracker read them.
+    #[inline]
+    pub(crate) fn step(&self) -> SdoStep<'d> {
+        let mut step = SdoStep {
+            node: self.node,
+            sender: self.sender,
+            message: tracker::message(self.sender, self.block_segment, self.data),
+            data: self.data,
+            latency: self.latency,
+            started: self.started,
+            ended: None,
+            names: self.names,
+        };
+        // Most frames end no transfer: the step is not made with a copy of
+        // an empty one.
+        if let Some(&transfer) = self.ended {
+            step.ended = Some(EndedTransfer {
+                transfer,
+                data: self.finished(),
+            });
+        }
+        step
+    }
+
+    /// The data of the transfer that ended last on the node's channel,
+    /// looked up in the buses as they are after the frame (what the ended
+    /// transfer taught may have changed them).
+    #[inline]
+    fn finished(&self) -> &'d [u8] {
+        self.buses.get(self.at).nodes[usize::from(self.node.get())]
+            .as_ref()
+            .expect("made by the decoder")
+            .sdo
+            .finished()
+    }
+
+    /// Return the multiplexer and code of the frame when it is an abort
+    /// (the step's message is [`SdoRequest::Abort`](crate::canopen::sdo::SdoRequest::Abort)
+    /// or [`SdoResponse::Abort`](crate::canopen::sdo::SdoResponse::Abort)), without the message.
+    #[inline]
+    pub(crate) fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        tracker::abort(self.block_segment, self.data)
+    }
+}
+
 /// A transfer that ended, with its data (`transfer` in
 /// docs/output.md#transfer).
 ///
@@ -184,8 +262,8 @@ impl SdoChannel {
         position: u64,
         cap: usize,
         step: &mut Step,
-    ) -> Result<SdoMessage, Error> {
-        let message = self.tracker.feed_step(sender, bytes, ts, position, step);
+    ) {
+        self.tracker.feed_step(sender, bytes, ts, position, step);
         let chunk = self.tracker.chunk(step, bytes);
         let Some(ended) = &step.ended else {
             // Most frames: no transfer ends here (a segment request, a
@@ -194,7 +272,7 @@ impl SdoChannel {
                 self.data.clear();
             }
             push(&mut self.data, chunk, cap);
-            return message;
+            return;
         };
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
@@ -207,7 +285,6 @@ impl SdoChannel {
         if chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
-        message
     }
 
     /// The data of the transfer that ended last.

@@ -57,7 +57,11 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoStep};
+use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoSeen};
+use sdo::SdoFrameFacts;
+
+/// No SDO frame, for [`Summarizer::add_classified`].
+const NO_SDO: Option<&SdoSeen<'static, 'static>> = None;
 
 /// An EMCY the summary points at: where it was seen and its code
 /// (`first_error` in docs/summary.md#emcy, `active_error`).
@@ -476,19 +480,19 @@ impl Summarizer {
         let (kind, node) = MessageKind::classify(&log.frame);
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                decoder.sdo_frame(position, log, n, |key, step, cia402| {
+                decoder.sdo_frame(position, log, n, |key, seen, cia402| {
                     let at = self.bus_of(key, log);
-                    self.add_classified(at, position, log, kind, node, Some(step), cia402, |_| {});
+                    self.add_classified(at, position, log, kind, node, Some(seen), cia402, |_| {});
                 });
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let (key, cia402) = decoder.pdo_cia402(log);
                 let at = self.bus_of(key, log);
-                self.add_classified(at, position, log, kind, node, None, cia402, |_| {});
+                self.add_classified(at, position, log, kind, node, NO_SDO, cia402, |_| {});
             }
             _ => {
                 let at = self.find_bus(log);
-                self.add_classified(at, position, log, kind, node, None, None, |_| {});
+                self.add_classified(at, position, log, kind, node, NO_SDO, None, |_| {});
             }
         }
     }
@@ -567,7 +571,7 @@ impl Summarizer {
         log: &LogFrame<'_>,
         kind: MessageKind,
         node: Option<NodeId>,
-        sdo: Option<&SdoStep<'_>>,
+        sdo: Option<&impl SdoFrameFacts>,
         cia402: Option<Cia402Reading>,
         mut on_event: impl FnMut(SummaryEvent<'_>),
     ) {
@@ -630,8 +634,8 @@ impl Summarizer {
                     });
                 }
             }
-            if let (true, Some(ended)) = (added.ended, &step.ended) {
-                on_event(sdo_ended(name, node, &ended.transfer));
+            if let (true, Some(ended)) = (added.ended, step.ended()) {
+                on_event(sdo_ended(name, node, ended));
             }
         }
         if let Some(reading) = cia402 {

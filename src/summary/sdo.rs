@@ -5,7 +5,7 @@ use core::time::Duration;
 
 use crate::canopen::sdo::{SdoMessage, SdoOutcome, SdoParty, SdoRequest, SdoResponse, SdoTransfer};
 use crate::canopen::{ObjectAddress, SdoAbortCode};
-use crate::decoder::SdoStep;
+use crate::decoder::{ObjectNames, SdoSeen, SdoStep};
 
 use super::Listed;
 
@@ -69,6 +69,98 @@ impl SdoSummary {
             && self.transfers == 0
             && self.aborts.is_empty()
             && self.broken.is_empty()
+    }
+}
+
+/// What the summary reads of one SDO frame (docs/summary.md#sdo): of a
+/// public [`SdoStep`] (a [`Decoded`](crate::decoder::Decoded) reading),
+/// or of the decoder's own reading, which makes no message
+/// ([`SdoSeen`]). Read where the frame's reading lies, not copied out.
+pub(crate) trait SdoFrameFacts {
+    /// Who sent the frame.
+    fn sender(&self) -> SdoParty;
+    /// The frame starts a transfer.
+    fn started(&self) -> bool;
+    /// The request → response latency the frame closes.
+    fn latency(&self) -> Option<Duration>;
+    /// The abort's multiplexer and code, when the frame is an abort.
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)>;
+    /// The transfer the frame ends.
+    fn ended(&self) -> Option<&SdoTransfer>;
+    /// Where the node's objects get their names.
+    fn names(&self) -> ObjectNames<'_>;
+}
+
+/// A step's abort is what its message says.
+impl SdoFrameFacts for SdoStep<'_> {
+    #[inline]
+    fn sender(&self) -> SdoParty {
+        self.sender
+    }
+
+    #[inline]
+    fn started(&self) -> bool {
+        self.started
+    }
+
+    #[inline]
+    fn latency(&self) -> Option<Duration> {
+        self.latency
+    }
+
+    #[inline]
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        match self.message {
+            Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code }))
+            | Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
+                Some((multiplexer, code))
+            }
+            _ => None,
+        }
+    }
+
+    #[inline]
+    fn ended(&self) -> Option<&SdoTransfer> {
+        self.ended.as_ref().map(|ended| &ended.transfer)
+    }
+
+    #[inline]
+    fn names(&self) -> ObjectNames<'_> {
+        self.names
+    }
+}
+
+/// The decoder's reading: an abort read from the frame's bytes as the
+/// tracker read them.
+impl SdoFrameFacts for SdoSeen<'_, '_> {
+    #[inline]
+    fn sender(&self) -> SdoParty {
+        self.sender
+    }
+
+    #[inline]
+    fn started(&self) -> bool {
+        self.started
+    }
+
+    #[inline]
+    fn latency(&self) -> Option<Duration> {
+        self.latency
+    }
+
+    #[inline]
+    fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
+        SdoSeen::abort(self)
+    }
+
+    #[inline]
+    fn ended(&self) -> Option<&SdoTransfer> {
+        self.ended
+    }
+
+    #[inline]
+    fn names(&self) -> ObjectNames<'_> {
+        self.names
     }
 }
 
@@ -202,27 +294,26 @@ fn nanos(latency: Duration) -> u64 {
 impl SdoStats {
     /// Add one frame of the node's channel, as its tracker read it.
     #[inline]
-    pub(crate) fn add(&mut self, step: &SdoStep<'_>, line: u64) -> Added {
+    pub(crate) fn add(&mut self, frame: &impl SdoFrameFacts, line: u64) -> Added {
         let s = &mut self.summary;
-        s.requests += u64::from(step.sender == SdoParty::Client);
-        s.transfers += u64::from(step.started);
-        if let Some(latency) = step.latency {
+        s.requests += u64::from(frame.sender() == SdoParty::Client);
+        s.transfers += u64::from(frame.started());
+        if let Some(latency) = frame.latency() {
             self.latencies.push(nanos(latency));
         }
-        let abort = match step.message {
-            Ok(SdoMessage::Request(SdoRequest::Abort { multiplexer, code })) => {
-                Some((multiplexer, code, SdoParty::Client))
-            }
-            Ok(SdoMessage::Response(SdoResponse::Abort { multiplexer, code })) => {
-                Some((multiplexer, code, SdoParty::Server))
-            }
-            _ => None,
-        };
-        if let Some((multiplexer, code, by)) = abort {
-            self.abort(step, line, multiplexer, code, by);
+        let abort = frame.abort();
+        if let Some((multiplexer, code)) = abort {
+            self.abort(
+                frame.sender(),
+                frame.ended(),
+                frame.names(),
+                line,
+                multiplexer,
+                code,
+            );
         }
-        let ended = match &step.ended {
-            Some(ended) => self.ended(&ended.transfer),
+        let ended = match frame.ended() {
+            Some(transfer) => self.ended(transfer),
             None => false,
         };
         Added {
@@ -235,20 +326,21 @@ impl SdoStats {
     #[inline(never)]
     fn abort(
         &mut self,
-        step: &SdoStep<'_>,
+        by: SdoParty,
+        ended: Option<&SdoTransfer>,
+        names: ObjectNames<'_>,
         line: u64,
         multiplexer: ObjectAddress,
         code: SdoAbortCode,
-        by: SdoParty,
     ) {
-        let multiplexer = match step.ended {
-            Some(ended) if multiplexer == ObjectAddress::default() => ended.transfer.multiplexer,
+        let multiplexer = match ended {
+            Some(ended) if multiplexer == ObjectAddress::default() => ended.multiplexer,
             _ => multiplexer,
         };
         self.summary.aborts.push(SdoAbort {
             line,
             multiplexer,
-            object: step.names.name(multiplexer.index).map(str::to_owned),
+            object: names.name(multiplexer.index).map(str::to_owned),
             code,
             by,
         });

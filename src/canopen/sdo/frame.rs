@@ -54,31 +54,31 @@ pub use request::SdoRequest;
 pub use response::SdoResponse;
 pub use view::{SdoFields, SdoFrame};
 
-mod field {
+pub(super) mod field {
     use core::ops::Range;
 
     /// Byte 0: the command byte (specifier in bits 7–5).
-    pub(super) const COMMAND: usize = 0;
+    pub(in crate::canopen::sdo) const COMMAND: usize = 0;
     /// Bytes 1–2: the object index, little-endian.
-    pub(super) const INDEX: Range<usize> = 1..3;
+    pub(in crate::canopen::sdo) const INDEX: Range<usize> = 1..3;
     /// Byte 3: the sub-index.
-    pub(super) const SUBINDEX: usize = 3;
+    pub(in crate::canopen::sdo) const SUBINDEX: usize = 3;
     /// Bytes 4–7: expedited data, the size, or the abort code.
-    pub(super) const DATA: Range<usize> = 4..8;
+    pub(in crate::canopen::sdo) const DATA: Range<usize> = 4..8;
     /// Bytes 1–7: the data of a segment.
-    pub(super) const SEGMENT: Range<usize> = 1..8;
+    pub(in crate::canopen::sdo) const SEGMENT: Range<usize> = 1..8;
     /// Bytes 1–2: the CRC of a block transfer's end frame.
-    pub(super) const CRC: Range<usize> = 1..3;
+    pub(in crate::canopen::sdo) const CRC: Range<usize> = 1..3;
     /// Byte 1: `ackseq` of a sub-block confirmation.
-    pub(super) const ACKSEQ: usize = 1;
+    pub(in crate::canopen::sdo) const ACKSEQ: usize = 1;
     /// Byte 2: `blksize` of a sub-block confirmation.
-    pub(super) const ACK_BLKSIZE: usize = 2;
+    pub(in crate::canopen::sdo) const ACK_BLKSIZE: usize = 2;
     /// Byte 4: `blksize` of a block initiate (upload request, download
     /// response).
-    pub(super) const INITIATE_BLKSIZE: usize = 4;
+    pub(in crate::canopen::sdo) const INITIATE_BLKSIZE: usize = 4;
     /// Byte 5: `pst`, the protocol switch threshold of a block upload
     /// initiate request.
-    pub(super) const PST: usize = 5;
+    pub(in crate::canopen::sdo) const PST: usize = 5;
 }
 
 /// The length of every SDO frame's data: 8 bytes (CiA 301 §7.2.4.3).
@@ -249,13 +249,16 @@ fn invalid(what: What, found: u8, expected: &'static str) -> Error {
 }
 
 /// `n` of a segment: bits 3–1.
-const fn segment_unused(command: u8) -> u8 {
+pub(super) const fn segment_unused(command: u8) -> u8 {
     (command >> 1) & 0b111
 }
 
-const TOGGLE: u8 = 0b1_0000;
-const LAST: u8 = 0b1;
-const CRC_SUPPORTED: u8 = 0b100;
+/// `t`, the toggle bit of a segment and its confirmation.
+pub(super) const TOGGLE: u8 = 0b1_0000;
+/// `c`, the last segment.
+pub(super) const LAST: u8 = 0b1;
+/// `cc`/`sc`, the CRC support of a block initiate.
+pub(super) const CRC_SUPPORTED: u8 = 0b100;
 
 fn abort_of(frame: &SdoFrame<&[u8]>) -> (ObjectAddress, SdoAbortCode) {
     (

@@ -1033,3 +1033,107 @@ proptest! {
         }
     }
 }
+
+mod reference;
+
+/// Frames of both directions built to run through every phase: valid
+/// requests and responses, block segments, and arbitrary bytes (short
+/// frames, undefined specifiers), with their times.
+fn mixed_frames() -> impl Strategy<Value = Vec<(bool, Vec<u8>, u32)>> {
+    proptest::collection::vec(
+        (
+            prop_oneof![
+                3 => gens::request().prop_map(|r| (true, r.to_bytes().to_vec())),
+                3 => gens::response().prop_map(|r| (false, r.to_bytes().to_vec())),
+                2 => (any::<bool>(), gens::block_segment()).prop_map(|(c, s)| (c, s.to_bytes().to_vec())),
+                1 => (any::<bool>(), proptest::collection::vec(any::<u8>(), 0..=9)),
+            ],
+            prop_oneof![Just(None), (0u32..5000).prop_map(Some)],
+        )
+            .prop_map(|((c, bytes), ms)| (c, bytes, ms.unwrap_or(u32::MAX))),
+        0..96,
+    )
+}
+
+/// Feed `frames` to the tracker and to the reference (the tracker as it
+/// was, parsing each frame before following it): every event and the end
+/// of the input the same.
+fn follows_the_reference(frames: &[(bool, Vec<u8>, u32)]) -> Result<(), TestCaseError> {
+    let mut tracker = SdoTracker::new();
+    let mut reference = reference::ReferenceTracker::new();
+    for (i, (request, bytes, ms)) in frames.iter().enumerate() {
+        let direction = if *request { Rq } else { Rs };
+        let time = if *ms == u32::MAX { None } else { ts(*ms) };
+        prop_assert_eq!(
+            tracker.expects_block_segment(direction),
+            reference.expects_block_segment(direction)
+        );
+        let event = tracker.feed(direction, bytes, time, i as u64 + 1);
+        let expected = reference.feed(direction, bytes, time, i as u64 + 1);
+        prop_assert_eq!(event, expected, "frame {}", i + 1);
+        prop_assert_eq!(tracker.is_open(), reference.is_open());
+    }
+    prop_assert_eq!(tracker.finish(), reference.finish());
+    Ok(())
+}
+
+/// A sequence that keeps the protocol most of the time: each step either
+/// the frame the reference's open transfer expects next
+/// ([`reference::ReferenceTracker::proposal`]), that frame with its toggle
+/// bit flipped, its sub-command bits changed, cut short or sent by the
+/// other side, an abort, or arbitrary bytes; with or without a time.
+fn scripted(steps: &[(u8, u8, [u8; 8], Option<u32>)]) -> Vec<(bool, Vec<u8>, u32)> {
+    let mut reference = reference::ReferenceTracker::new();
+    let mut frames = Vec::new();
+    for (i, &(kind, pick, data, ms)) in steps.iter().enumerate() {
+        let (sender, mut bytes) = reference.proposal(pick, data);
+        let mut sender = sender;
+        let mut len = 8;
+        match kind % 16 {
+            0 => bytes[0] ^= 0x10,
+            1 => len = usize::from(pick % 8),
+            2 => sender = if sender == Rq { Rs } else { Rq },
+            3 => bytes[0] = 0x80,
+            4 => bytes = data,
+            5 => bytes[0] = (bytes[0] & 0xE0) | (pick & 0x1F),
+            _ => {}
+        }
+        let time = ms.map(|ms| ms.saturating_add(i as u32 * 10));
+        reference.feed(sender, &bytes[..len], time.and_then(ts), i as u64 + 1);
+        frames.push((
+            sender == Rq,
+            bytes[..len].to_vec(),
+            time.unwrap_or(u32::MAX),
+        ));
+    }
+    frames
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// The tracker, which follows a frame's bytes and makes the message
+    /// only for the event, says of every frame what the tracker that parsed
+    /// each frame first said: message, chunk, latency, started and ended
+    /// transfers, and the transfer left open at the end.
+    #[test]
+    fn the_tracker_follows_the_reference(
+        steps in proptest::collection::vec(
+            (any::<u8>(), any::<u8>(), any::<[u8; 8]>(), prop_oneof![Just(None), (0u32..5).prop_map(Some)]),
+            0..160,
+        )
+    ) {
+        follows_the_reference(&scripted(&steps))?;
+    }
+
+    #[test]
+    fn the_tracker_follows_the_reference_over_mixed_frames(frames in mixed_frames()) {
+        follows_the_reference(&frames)?;
+    }
+
+    #[test]
+    fn the_tracker_follows_the_reference_over_any_bytes(frames in any_frames()) {
+        let frames: Vec<_> = frames.into_iter().enumerate().map(|(i, (c, b))| (c, b, i as u32)).collect();
+        follows_the_reference(&frames)?;
+    }
+}

@@ -44,8 +44,9 @@ use core::fmt;
 use core::time::Duration;
 
 use super::frame::{
-    BlockCrc, SdoBlockSegment, SdoInitiateData, SdoParty, SdoRequest, SdoResponse, SdoService,
-    BLKSIZE_MAX, SEGMENT_MAX,
+    field, segment_unused, BlockCrc, SdoBlockSegment, SdoFrame, SdoInitiateData, SdoParty,
+    SdoRequest, SdoResponse, SdoService, BLKSIZE_MAX, CRC_SUPPORTED, LAST, SDO_LEN, SEGMENT_MAX,
+    TOGGLE,
 };
 use crate::can::Timestamp;
 use crate::canopen::{ObjectAddress, SdoAbortCode};
@@ -527,10 +528,10 @@ impl SdoTracker {
         position: u64,
     ) -> SdoEvent<'a> {
         let mut step = Step::new();
-        let message = self.step(sender, data, time, position, &mut step);
+        self.step(sender, data, time, position, &mut step);
         let chunk = self.chunk(&step, data);
         SdoEvent {
-            message,
+            message: step.message(sender, data),
             chunk,
             latency: step.latency,
             ended: step.ended,
@@ -541,8 +542,9 @@ impl SdoTracker {
     /// [`feed`](Self::feed) with what the frame is in its transfer written
     /// to `step` (made with [`Step::new`]), where the caller keeps it: the
     /// decoder's channel, which reads the chunk with
-    /// [`chunk`](Self::chunk) and moves the ended transfer once, not through
-    /// an [`SdoEvent`].
+    /// [`chunk`](Self::chunk), moves the ended transfer once, not through
+    /// an [`SdoEvent`], and makes the message ([`Step::message`]) only
+    /// where it is read.
     #[inline]
     #[cfg_attr(not(feature = "decoder"), allow(dead_code))]
     pub(crate) fn feed_step(
@@ -552,8 +554,8 @@ impl SdoTracker {
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
-    ) -> Result<SdoMessage, Error> {
-        self.step(sender, data, time, position, step)
+    ) {
+        self.step(sender, data, time, position, step);
     }
 
     /// The chunk of `step`, the step of the frame `data` fed last: the
@@ -578,6 +580,11 @@ impl SdoTracker {
         }))
     }
 
+    /// Follow one frame. The tracker follows the frame's bytes — its
+    /// command specifier first, then only the fields the transfer's phase
+    /// reads — and makes no message: the event's message is read from the
+    /// bytes where it is wanted ([`Step::message`]), not built here and
+    /// handed back through every caller.
     fn step(
         &mut self,
         sender: SdoParty,
@@ -585,49 +592,37 @@ impl SdoTracker {
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
-    ) -> Result<SdoMessage, Error> {
+    ) {
         if self.expects_block_segment(sender) && data.first() != Some(&ABORT_BYTE) {
-            let segment = match SdoBlockSegment::parse(data) {
-                Ok(segment) => segment,
-                Err(e) => {
-                    self.malformed(time, step);
-                    return Err(e);
-                }
-            };
-            if let Some(open) = self.open.as_mut() {
-                open.frames += 1;
-                open.last_at = time.or(open.last_at);
-            }
-            self.block_segment(&segment, time, step);
-            return Ok(SdoMessage::BlockSegment(segment));
+            step.block_segment = true;
+            return self.block_segment_frame(data, time, step);
         }
-        // Each side's frame read and followed in its own arm: the message
-        // is made once, not read back out of a `Result<SdoMessage>`.
+        let Some(frame) = Frame::read(sender, data) else {
+            return self.malformed(time, step);
+        };
         match sender {
-            SdoParty::Client => match SdoRequest::parse(data) {
-                Ok(request) => {
-                    self.request(&request, time, position, step);
-                    Ok(SdoMessage::Request(request))
-                }
-                Err(e) => {
-                    self.malformed(time, step);
-                    Err(e)
-                }
-            },
-            SdoParty::Server => match SdoResponse::parse(data) {
-                Ok(response) => {
-                    self.response(&response, time, position, step);
-                    Ok(SdoMessage::Response(response))
-                }
-                Err(e) => {
-                    self.malformed(time, step);
-                    Err(e)
-                }
-            },
+            SdoParty::Client => self.request(frame, time, position, step),
+            SdoParty::Server => self.response(frame, time, position, step),
         }
     }
 
+    /// A frame the transfer's state makes a block segment.
+    #[cold]
+    #[inline(never)]
+    fn block_segment_frame(&mut self, data: &[u8], time: Option<Timestamp>, step: &mut Step) {
+        let Ok(segment) = SdoBlockSegment::parse(data) else {
+            return self.malformed(time, step);
+        };
+        if let Some(open) = self.open.as_mut() {
+            open.frames += 1;
+            open.last_at = time.or(open.last_at);
+        }
+        self.block_segment(&segment, time, step);
+    }
+
     /// A frame that cannot be read breaks the open transfer.
+    #[cold]
+    #[inline(never)]
     fn malformed(&mut self, time: Option<Timestamp>, step: &mut Step) {
         if let Some(open) = self.open.as_mut() {
             open.frames += 1;
@@ -636,57 +631,58 @@ impl SdoTracker {
         }
     }
 
-    /// Start a transfer at an initiate request, or return `None` for a
+    /// Start a transfer at an initiate request (CiA 301 §7.2.4.3.3,
+    /// §7.2.4.3.6, §7.2.4.3.9, §7.2.4.3.13), or return `None` for a
     /// request that starts none.
-    fn start(request: &SdoRequest, time: Option<Timestamp>, position: u64) -> Option<Open> {
-        let (direction, multiplexer, mode, size, phase, crc) = match *request {
-            SdoRequest::InitiateDownload { multiplexer, data } => (
-                TransferDirection::Download,
-                multiplexer,
-                if data.is_expedited() {
-                    TransferMode::Expedited
-                } else {
-                    TransferMode::Segmented
-                },
-                data.size(),
-                Phase::DownloadInitiated,
-                false,
-            ),
-            SdoRequest::InitiateUpload { multiplexer } => (
+    #[inline]
+    fn start(frame: Frame<'_>, time: Option<Timestamp>, position: u64) -> Option<Open> {
+        let command = frame.command();
+        let view = frame.view();
+        let multiplexer = view.multiplexer();
+        let (direction, mode, size, phase, crc) = match command >> 5 {
+            // Initiate download: expedited (`e`) or segmented, the size
+            // when `s` says so.
+            1 => {
+                let data = SdoInitiateData::read(command, view.data_field());
+                (
+                    TransferDirection::Download,
+                    if data.is_expedited() {
+                        TransferMode::Expedited
+                    } else {
+                        TransferMode::Segmented
+                    },
+                    data.size(),
+                    Phase::DownloadInitiated,
+                    false,
+                )
+            }
+            2 => (
                 TransferDirection::Upload,
-                multiplexer,
                 TransferMode::Segmented,
                 None,
                 Phase::UploadInitiated { block: None },
                 false,
             ),
-            SdoRequest::BlockUploadInitiate {
-                multiplexer,
-                crc_supported,
-                blksize,
-                ..
-            } => (
+            // Block upload initiate: the client's `blksize` in byte 4.
+            5 if command & 0b11 == 0 => (
                 TransferDirection::Upload,
-                multiplexer,
                 TransferMode::Block,
                 None,
                 Phase::UploadInitiated {
-                    block: Some(blksize),
+                    block: Some(frame.byte(field::INITIATE_BLKSIZE)),
                 },
-                crc_supported,
+                command & CRC_SUPPORTED != 0,
             ),
-            SdoRequest::BlockDownloadInitiate {
-                multiplexer,
-                crc_supported,
-                size,
-            } => (
-                TransferDirection::Download,
-                multiplexer,
-                TransferMode::Block,
-                size,
-                Phase::BlockDownloadInitiated,
-                crc_supported,
-            ),
+            6 if command & 0b1 == 0 => {
+                let (crc, size) = view.sized_block_initiate();
+                (
+                    TransferDirection::Download,
+                    TransferMode::Block,
+                    size,
+                    Phase::BlockDownloadInitiated,
+                    crc,
+                )
+            }
             _ => return None,
         };
         Some(Open {
@@ -708,32 +704,33 @@ impl SdoTracker {
         })
     }
 
-    /// Whether `request` starts a transfer ([`start`](Self::start) gives
-    /// one for exactly these).
-    const fn is_initiate(request: &SdoRequest) -> bool {
-        matches!(
-            request,
-            SdoRequest::InitiateDownload { .. }
-                | SdoRequest::InitiateUpload { .. }
-                | SdoRequest::BlockUploadInitiate { .. }
-                | SdoRequest::BlockDownloadInitiate { .. }
-        )
+    /// Whether a client's command byte is an initiate request
+    /// ([`start`](Self::start) gives a transfer for exactly these).
+    const fn is_initiate(command: u8) -> bool {
+        match command >> 5 {
+            1 | 2 => true,
+            5 => command & 0b11 == 0,
+            6 => command & 0b1 == 0,
+            _ => false,
+        }
     }
 
     fn request(
         &mut self,
-        request: &SdoRequest,
+        frame: Frame<'_>,
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
     ) {
         let Some(open) = self.open.as_mut() else {
-            self.begin(request, time, position, step);
+            self.begin(frame, time, position, step);
             return;
         };
-        if let SdoRequest::Abort { code, .. } = *request {
+        let command = frame.command();
+        if command >> 5 == 4 {
             open.frames += 1;
             open.last_at = time.or(open.last_at);
+            let code = frame.abort_code();
             self.close_open(
                 SdoOutcome::Aborted {
                     by: SdoParty::Client,
@@ -743,7 +740,7 @@ impl SdoTracker {
             );
             return;
         }
-        if Self::is_initiate(request) {
+        if Self::is_initiate(command) {
             // A new initiate: the open transfer never got its answer, or was
             // left by the client.
             let outcome = if open.phase.server_due() {
@@ -753,7 +750,7 @@ impl SdoTracker {
             };
             step.ended = Some(open.end(outcome));
             self.open = None;
-            self.begin(request, time, position, step);
+            self.begin(frame, time, position, step);
             return;
         }
         if open.phase.server_due() {
@@ -764,34 +761,34 @@ impl SdoTracker {
         }
         open.frames += 1;
         open.last_at = time.or(open.last_at);
-        let next = match (open.phase, *request) {
-            (
-                Phase::DownloadSegment { toggle },
-                SdoRequest::DownloadSegment {
-                    toggle: t,
-                    data,
-                    last,
-                },
-            ) => {
-                if t != toggle {
+        // The initiates and the abort are taken above: specifier 6 here is
+        // the block download end, 5 the block upload's end, ack or start.
+        let next = match (open.phase, command >> 5) {
+            // Download segment (ccs 0): `t`, `n`, `c`, data in bytes 1–7.
+            (Phase::DownloadSegment { toggle }, 0) => {
+                if (command & TOGGLE != 0) != toggle {
                     return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
-                open.bytes += data.as_slice().len() as u32;
-                step.chunk = Chunk::Input(1..1 + data.as_slice().len());
+                let last = command & LAST != 0;
+                let len = SEGMENT_MAX - usize::from(segment_unused(command));
+                open.bytes += len as u32;
+                step.chunk = Chunk::Input(1..1 + len);
                 if open.too_much() || (last && !open.size_ok()) {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
                 open.asked_at = Some(time);
                 Phase::DownloadSegmentSent { toggle, last }
             }
-            (Phase::UploadRequestDue { toggle }, SdoRequest::UploadSegment { toggle: t }) => {
-                if t != toggle {
+            // Upload segment request (ccs 3): `t`.
+            (Phase::UploadRequestDue { toggle }, 3) => {
+                if (command & TOGGLE != 0) != toggle {
                     return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 open.asked_at = Some(time);
                 Phase::UploadSegmentDue { toggle }
             }
-            (Phase::BlockDownloadEndDue, SdoRequest::BlockDownloadEnd { unused, crc }) => {
+            (Phase::BlockDownloadEndDue, 6) => {
+                let (unused, crc) = frame.view().block_end();
                 let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
                 self.release = open.held;
                 open.bytes += len as u32;
@@ -801,17 +798,18 @@ impl SdoTracker {
                 open.asked_at = Some(time);
                 Phase::BlockDownloadEndSent
             }
-            (Phase::BlockUploadStartDue { blksize }, SdoRequest::BlockUploadStart) => {
+            (Phase::BlockUploadStartDue { blksize }, 5) if command & 0b11 == 3 => {
                 Phase::BlockUploadSub(SubBlock::new(blksize, 0))
             }
-            (Phase::BlockUploadAckDue(sub), SdoRequest::BlockUploadAck { ackseq, blksize }) => {
+            (Phase::BlockUploadAckDue(sub), 5) if command & 0b11 == 2 => {
+                let (ackseq, blksize) = frame.view().block_ack();
                 match Self::acknowledge(sub, ackseq, blksize) {
                     Ok(Some(next)) => Phase::BlockUploadSub(next),
                     Ok(None) => Phase::BlockUploadEndDue,
                     Err(reason) => return self.close_open(SdoOutcome::Broken(reason), step),
                 }
             }
-            (Phase::BlockUploadEndSent, SdoRequest::BlockUploadEnd) => {
+            (Phase::BlockUploadEndSent, 5) if command & 0b11 == 1 => {
                 return self.close_open(SdoOutcome::Completed, step);
             }
             _ => return self.close_open(SdoOutcome::Broken(BrokenReason::UnexpectedRequest), step),
@@ -820,27 +818,23 @@ impl SdoTracker {
     }
 
     /// Open a transfer at an initiate request on an idle channel.
-    fn begin(
-        &mut self,
-        request: &SdoRequest,
-        time: Option<Timestamp>,
-        position: u64,
-        step: &mut Step,
-    ) {
+    #[inline(always)]
+    fn begin(&mut self, frame: Frame<'_>, time: Option<Timestamp>, position: u64, step: &mut Step) {
         // Made where it is kept, not moved there.
-        self.open = Self::start(request, time, position);
+        self.open = Self::start(frame, time, position);
         let Some(new) = self.open.as_mut() else {
             return;
         };
         step.started = true;
-        match *request {
-            SdoRequest::BlockUploadInitiate { blksize, .. }
-                if !(1..=BLKSIZE_MAX).contains(&blksize) =>
-            {
+        match new.phase {
+            Phase::UploadInitiated {
+                block: Some(blksize),
+            } if !(1..=BLKSIZE_MAX).contains(&blksize) => {
                 new.fault = Some(BrokenReason::InvalidBlockSize);
             }
-            SdoRequest::InitiateDownload { data, .. } if data.is_expedited() => {
-                let len = data.data().len();
+            Phase::DownloadInitiated if new.mode == TransferMode::Expedited => {
+                // The expedited data: 4 − `n` bytes when `s` says so, else 4.
+                let len = new.size.map_or(4, |n| n.clamp(1, 4)) as usize;
                 new.bytes = len as u32;
                 step.chunk = Chunk::Input(4..4 + len);
             }
@@ -850,47 +844,17 @@ impl SdoTracker {
 
     fn response(
         &mut self,
-        response: &SdoResponse,
+        frame: Frame<'_>,
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
     ) {
+        let command = frame.command();
         let Some(open) = self.open.as_mut() else {
-            if let SdoResponse::Abort { .. } = response {
-                return;
+            if command >> 5 != 4 {
+                // A response that answers no request: a transfer of its own.
+                self.stray(frame, time, position, step);
             }
-            // A response that answers no request: a transfer of its own.
-            let (direction, multiplexer) = stray(response);
-            step.started = true;
-            let stray = Open {
-                direction,
-                multiplexer,
-                mode: match response {
-                    SdoResponse::UploadSegment { .. } | SdoResponse::DownloadSegment { .. } => {
-                        TransferMode::Segmented
-                    }
-                    SdoResponse::InitiateUpload { data, .. } if data.is_expedited() => {
-                        TransferMode::Expedited
-                    }
-                    SdoResponse::InitiateUpload { .. } | SdoResponse::InitiateDownload { .. } => {
-                        TransferMode::Segmented
-                    }
-                    _ => TransferMode::Block,
-                },
-                size: None,
-                bytes: 0,
-                frames: 1,
-                start_position: position,
-                started_at: time,
-                last_at: time,
-                phase: Phase::DownloadInitiated,
-                asked_at: None,
-                crc_checked: false,
-                crc: BlockCrc::new(),
-                held: [0; SEGMENT_MAX],
-                fault: None,
-            };
-            step.ended = Some(stray.end(SdoOutcome::Broken(BrokenReason::UnexpectedResponse)));
             return;
         };
         open.frames += 1;
@@ -903,7 +867,8 @@ impl SdoTracker {
                 };
             }
         }
-        if let SdoResponse::Abort { code, .. } = *response {
+        if command >> 5 == 4 {
+            let code = frame.abort_code();
             return self.close_open(
                 SdoOutcome::Aborted {
                     by: SdoParty::Server,
@@ -912,18 +877,17 @@ impl SdoTracker {
                 step,
             );
         }
-        let next = match (open.phase, *response) {
-            (Phase::DownloadInitiated, SdoResponse::InitiateDownload { .. }) => {
+        let next = match (open.phase, command >> 5) {
+            // Initiate download response (scs 3).
+            (Phase::DownloadInitiated, 3) => {
                 if open.mode == TransferMode::Expedited {
                     return self.close_open(SdoOutcome::Completed, step);
                 }
                 Phase::DownloadSegment { toggle: false }
             }
-            (
-                Phase::DownloadSegmentSent { toggle, last },
-                SdoResponse::DownloadSegment { toggle: t },
-            ) => {
-                if t != toggle {
+            // Download segment response (scs 1): `t`.
+            (Phase::DownloadSegmentSent { toggle, last }, 1) => {
+                if (command & TOGGLE != 0) != toggle {
                     return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
                 if last {
@@ -931,49 +895,42 @@ impl SdoTracker {
                 }
                 Phase::DownloadSegment { toggle: !toggle }
             }
-            (Phase::UploadInitiated { .. }, SdoResponse::InitiateUpload { data, .. }) => {
+            // Initiate upload response (scs 2): expedited data or the size.
+            (Phase::UploadInitiated { .. }, 2) => {
+                let data = SdoInitiateData::read(command, frame.view().data_field());
                 open.size = data.size();
-                match data {
-                    SdoInitiateData::Expedited { .. } => {
-                        open.mode = TransferMode::Expedited;
-                        let len = data.data().len();
-                        open.bytes = len as u32;
-                        step.chunk = Chunk::Input(4..4 + len);
-                        return self.close_open(SdoOutcome::Completed, step);
-                    }
-                    SdoInitiateData::Segmented { .. } => {
-                        open.mode = TransferMode::Segmented;
-                        Phase::UploadRequestDue { toggle: false }
-                    }
+                if data.is_expedited() {
+                    open.mode = TransferMode::Expedited;
+                    let len = data.data().len();
+                    open.bytes = len as u32;
+                    step.chunk = Chunk::Input(4..4 + len);
+                    return self.close_open(SdoOutcome::Completed, step);
                 }
+                open.mode = TransferMode::Segmented;
+                Phase::UploadRequestDue { toggle: false }
             }
+            // Block upload initiate response (scs 6, ss 0).
             (
                 Phase::UploadInitiated {
                     block: Some(blksize),
                 },
-                SdoResponse::BlockUploadInitiate {
-                    crc_supported,
-                    size,
-                    ..
-                },
-            ) => {
+                6,
+            ) if command & 0b1 == 0 => {
+                let (crc_supported, size) = frame.view().sized_block_initiate();
                 open.size = size;
                 open.crc_checked &= crc_supported;
                 Phase::BlockUploadStartDue { blksize }
             }
-            (
-                Phase::UploadSegmentDue { toggle },
-                SdoResponse::UploadSegment {
-                    toggle: t,
-                    data,
-                    last,
-                },
-            ) => {
-                if t != toggle {
+            // Upload segment response (scs 0): `t`, `n`, `c`, data in
+            // bytes 1–7.
+            (Phase::UploadSegmentDue { toggle }, 0) => {
+                if (command & TOGGLE != 0) != toggle {
                     return self.close_open(SdoOutcome::Broken(BrokenReason::WrongToggle), step);
                 }
-                open.bytes += data.as_slice().len() as u32;
-                step.chunk = Chunk::Input(1..1 + data.as_slice().len());
+                let last = command & LAST != 0;
+                let len = SEGMENT_MAX - usize::from(segment_unused(command));
+                open.bytes += len as u32;
+                step.chunk = Chunk::Input(1..1 + len);
                 if open.too_much() || (last && !open.size_ok()) {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
@@ -982,33 +939,30 @@ impl SdoTracker {
                 }
                 Phase::UploadRequestDue { toggle: !toggle }
             }
-            (
-                Phase::BlockDownloadInitiated,
-                SdoResponse::BlockDownloadInitiate {
-                    crc_supported,
-                    blksize,
-                    ..
-                },
-            ) => {
-                open.crc_checked &= crc_supported;
+            // Block download initiate response (scs 5, ss 0): `blksize`
+            // in byte 4.
+            (Phase::BlockDownloadInitiated, 5) if command & 0b11 == 0 => {
+                open.crc_checked &= command & CRC_SUPPORTED != 0;
+                let blksize = frame.byte(field::INITIATE_BLKSIZE);
                 if !(1..=BLKSIZE_MAX).contains(&blksize) {
                     return self
                         .close_open(SdoOutcome::Broken(BrokenReason::InvalidBlockSize), step);
                 }
                 Phase::BlockDownloadSub(SubBlock::new(blksize, 0))
             }
-            (
-                Phase::BlockDownloadAckDue(sub),
-                SdoResponse::BlockDownloadAck { ackseq, blksize },
-            ) => match Self::acknowledge(sub, ackseq, blksize) {
-                Ok(Some(next)) => Phase::BlockDownloadSub(next),
-                Ok(None) => Phase::BlockDownloadEndDue,
-                Err(reason) => return self.close_open(SdoOutcome::Broken(reason), step),
-            },
-            (Phase::BlockDownloadEndSent, SdoResponse::BlockDownloadEnd) => {
+            (Phase::BlockDownloadAckDue(sub), 5) if command & 0b11 == 2 => {
+                let (ackseq, blksize) = frame.view().block_ack();
+                match Self::acknowledge(sub, ackseq, blksize) {
+                    Ok(Some(next)) => Phase::BlockDownloadSub(next),
+                    Ok(None) => Phase::BlockDownloadEndDue,
+                    Err(reason) => return self.close_open(SdoOutcome::Broken(reason), step),
+                }
+            }
+            (Phase::BlockDownloadEndSent, 5) if command & 0b11 == 1 => {
                 return self.close_open(SdoOutcome::Completed, step);
             }
-            (Phase::BlockUploadEndDue, SdoResponse::BlockUploadEnd { unused, crc }) => {
+            (Phase::BlockUploadEndDue, 6) if command & 0b1 == 1 => {
+                let (unused, crc) = frame.view().block_end();
                 let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
                 self.release = open.held;
                 open.bytes += len as u32;
@@ -1022,6 +976,47 @@ impl SdoTracker {
             }
         };
         open.phase = next;
+    }
+
+    /// A response on an idle channel, other than an abort: it answers no
+    /// request, and is a transfer of its own that starts and ends broken.
+    #[cold]
+    #[inline(never)]
+    fn stray(&mut self, frame: Frame<'_>, time: Option<Timestamp>, position: u64, step: &mut Step) {
+        let Ok(response) = SdoResponse::parse(frame.bytes) else {
+            return;
+        };
+        let (direction, multiplexer) = stray(&response);
+        step.started = true;
+        let stray = Open {
+            direction,
+            multiplexer,
+            mode: match response {
+                SdoResponse::UploadSegment { .. } | SdoResponse::DownloadSegment { .. } => {
+                    TransferMode::Segmented
+                }
+                SdoResponse::InitiateUpload { data, .. } if data.is_expedited() => {
+                    TransferMode::Expedited
+                }
+                SdoResponse::InitiateUpload { .. } | SdoResponse::InitiateDownload { .. } => {
+                    TransferMode::Segmented
+                }
+                _ => TransferMode::Block,
+            },
+            size: None,
+            bytes: 0,
+            frames: 1,
+            start_position: position,
+            started_at: time,
+            last_at: time,
+            phase: Phase::DownloadInitiated,
+            asked_at: None,
+            crc_checked: false,
+            crc: BlockCrc::new(),
+            held: [0; SEGMENT_MAX],
+            fault: None,
+        };
+        step.ended = Some(stray.end(SdoOutcome::Broken(BrokenReason::UnexpectedResponse)));
     }
 
     /// A segment inside a sub-block, from whichever side sends the data.
@@ -1097,6 +1092,7 @@ impl SdoTracker {
 
     /// Close the open transfer where it stands (nothing when none is open),
     /// read where it lies: the open transfer is not copied out first.
+    #[inline(always)]
     fn close_open(&mut self, outcome: SdoOutcome, step: &mut Step) {
         if let Some(open) = &self.open {
             let outcome = match (outcome, open.fault) {
@@ -1110,6 +1106,56 @@ impl SdoTracker {
 }
 
 const ABORT_BYTE: u8 = 4 << 5;
+
+/// A request or response that can be read: 8 bytes or more, a command
+/// specifier CiA 301 defines for its sender (CiA 301 §7.2.4.3; what
+/// [`SdoRequest::parse`] and [`SdoResponse::parse`] accept). The tracker
+/// reads its fields from the bytes as the transfer's phase needs them.
+#[derive(Clone, Copy)]
+struct Frame<'a> {
+    bytes: &'a [u8; SDO_LEN],
+}
+
+impl<'a> Frame<'a> {
+    /// The frame `data` that `sender` sent, or `None` when neither parser
+    /// would read it.
+    #[inline]
+    fn read(sender: SdoParty, data: &'a [u8]) -> Option<Self> {
+        let bytes = data.first_chunk::<SDO_LEN>()?;
+        let command = bytes[field::COMMAND];
+        let readable = match (sender, command >> 5) {
+            (_, 7) => false,
+            // scs 5, sub-command 3: no block download response.
+            (SdoParty::Server, 5) => command & 0b11 != 0b11,
+            _ => true,
+        };
+        readable.then_some(Frame { bytes })
+    }
+
+    /// The command byte.
+    #[inline]
+    fn command(self) -> u8 {
+        self.bytes[field::COMMAND]
+    }
+
+    /// The byte at `at`.
+    #[inline]
+    fn byte(self, at: usize) -> u8 {
+        self.bytes[at]
+    }
+
+    /// The view over the bytes, for the fields every service shares.
+    #[inline]
+    fn view(self) -> SdoFrame<&'a [u8]> {
+        SdoFrame::new_unchecked(&self.bytes[..])
+    }
+
+    /// The abort code, bytes 4–7 (CiA 301 §7.2.4.3.17).
+    #[inline]
+    fn abort_code(self) -> SdoAbortCode {
+        SdoAbortCode::new(u32::from_le_bytes(self.view().data_field()))
+    }
+}
 
 /// The direction and multiplexer a response that answers no request
 /// implies.
@@ -1148,6 +1194,9 @@ pub(crate) struct Step {
     pub(crate) ended: Option<SdoTransfer>,
     /// [`SdoEvent::started`].
     pub(crate) started: bool,
+    /// The frame was read as a segment inside a block (not as the request
+    /// or response its bits also spell).
+    block_segment: bool,
 }
 
 impl Step {
@@ -1159,6 +1208,53 @@ impl Step {
             latency: None,
             ended: None,
             started: false,
+            block_segment: false,
         }
     }
+
+    /// The frame `data` that `sender` sent, as the tracker read it when it
+    /// wrote this step: the event's [`message`](SdoEvent::message).
+    #[inline]
+    pub(crate) fn message(&self, sender: SdoParty, data: &[u8]) -> Result<SdoMessage, Error> {
+        message(sender, self.block_segment, data)
+    }
+
+    /// Whether the tracker read the frame as a segment inside a block.
+    #[inline]
+    #[cfg_attr(not(feature = "decoder"), allow(dead_code))]
+    pub(crate) const fn block_segment(&self) -> bool {
+        self.block_segment
+    }
+}
+
+/// The frame `data` that `sender` sent, read as the tracker read it: a
+/// segment inside a block when `block_segment`, else the request or
+/// response it spells ([`SdoEvent::message`]).
+#[inline]
+pub(crate) fn message(
+    sender: SdoParty,
+    block_segment: bool,
+    data: &[u8],
+) -> Result<SdoMessage, Error> {
+    if block_segment {
+        return SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment);
+    }
+    match sender {
+        SdoParty::Client => SdoRequest::read(data).map(SdoMessage::Request),
+        SdoParty::Server => SdoResponse::read(data).map(SdoMessage::Response),
+    }
+}
+
+/// The multiplexer and code of the frame `data`, when the tracker read it
+/// as an abort (the [`message`] would be [`SdoRequest::Abort`] or
+/// [`SdoResponse::Abort`]), read from its bytes without the message.
+#[inline]
+#[cfg_attr(not(feature = "decoder"), allow(dead_code))]
+pub(crate) fn abort(block_segment: bool, data: &[u8]) -> Option<(ObjectAddress, SdoAbortCode)> {
+    let bytes = data.first_chunk::<SDO_LEN>()?;
+    if block_segment || bytes[field::COMMAND] >> 5 != 4 {
+        return None;
+    }
+    let frame = Frame { bytes };
+    Some((frame.view().multiplexer(), frame.abort_code()))
 }

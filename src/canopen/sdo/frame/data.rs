@@ -75,7 +75,8 @@ impl SdoInitiateData {
     }
 
     /// Read bits `e`, `s`, `n` of `command` and bytes 4–7.
-    pub(super) fn read(command: u8, data: [u8; 4]) -> Self {
+    #[inline]
+    pub(in crate::canopen::sdo) fn read(command: u8, data: [u8; 4]) -> Self {
         let expedited = command & 0b10 != 0;
         let size_indicated = command & 0b01 != 0;
         let n = (command >> 2) & 0b11;

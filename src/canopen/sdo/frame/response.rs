@@ -95,6 +95,14 @@ impl SdoResponse {
     /// command specifier 7 and for sub-command 3 of scs 5.
     #[inline]
     pub fn parse(data: &[u8]) -> Result<Self> {
+        Self::read(data)
+    }
+
+    /// [`parse`](Self::parse), always in line: the tracker's message
+    /// ([`SdoMessage`](super::super::SdoMessage)) is made from the frame's
+    /// bytes where it is read, each field written where it is kept.
+    #[inline(always)]
+    pub(in crate::canopen::sdo) fn read(data: &[u8]) -> Result<Self> {
         let frame = SdoFrame::new_checked(data)?;
         let command = frame.command();
         let multiplexer = frame.multiplexer();
