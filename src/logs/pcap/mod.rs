@@ -560,19 +560,43 @@ impl<R: Read> PcapReader<R> {
         Some((frame, timestamp))
     }
 
-    /// The record of a frame of a pcap file (which names no interface),
-    /// numbered next.
+    /// The record of a frame read by a fast path, numbered next: on the
+    /// pcapng section's interface `interface`, named by
+    /// [`iface_of`](Self::iface_of) as the general path names it, or of a
+    /// pcap file (`None`), which names no interface.
     #[inline(always)]
-    fn fast_event(&mut self, frame: CanFrame, timestamp: Timestamp) -> LogRecord<'static> {
+    fn fast_event(
+        &mut self,
+        frame: CanFrame,
+        timestamp: Timestamp,
+        interface: Option<usize>,
+    ) -> LogRecord<'_> {
         self.number = self.number.saturating_add(1);
         LogRecord {
             position: Position::Record(self.number),
             event: LogEvent::Frame(LogFrame {
                 frame,
                 timestamp: Some(timestamp),
-                iface: None,
+                iface: interface.and_then(|id| self.iface_of(id, None)),
                 direction: None,
             }),
+        }
+    }
+
+    /// The bus a packet on `interface` names: the pcapng interface's name,
+    /// unless it is `any` (`tcpdump -i any`: every bus in one file, told
+    /// apart by the cooked header's interface index, `ifindex`); `None`
+    /// when neither says.
+    #[inline(always)]
+    fn iface_of(&self, interface: usize, ifindex: Option<u16>) -> Option<Iface<'_>> {
+        let name = self
+            .interfaces
+            .get(interface)
+            .and_then(|i| i.name.as_deref());
+        match (name, ifindex) {
+            (Some(name), _) if name != ANY => Some(Iface::Name(name)),
+            (_, Some(index)) => Some(Iface::Channel(index)),
+            (name, None) => name.map(Iface::Name),
         }
     }
 
@@ -644,34 +668,6 @@ impl<R: Read> PcapReader<R> {
         let frame = socketcan::fd_data(packet)?;
         self.input.consume(EPB_LEN + socketcan::CANFD_MTU);
         Some((frame, timestamp, id))
-    }
-
-    /// The record of a frame of a pcapng file read by a fast path, on the
-    /// section's interface `id`, numbered next: named as the general path
-    /// names a packet of link type 227 (the interface's name, `any`
-    /// included, when it has one).
-    #[inline(always)]
-    fn fast_block_event(
-        &mut self,
-        frame: CanFrame,
-        timestamp: Timestamp,
-        id: usize,
-    ) -> LogRecord<'_> {
-        self.number = self.number.saturating_add(1);
-        let iface = self
-            .interfaces
-            .get(id)
-            .and_then(|i| i.name.as_deref())
-            .map(Iface::Name);
-        LogRecord {
-            position: Position::Record(self.number),
-            event: LogEvent::Frame(LogFrame {
-                frame,
-                timestamp: Some(timestamp),
-                iface,
-                direction: None,
-            }),
-        }
     }
 
     /// Read one pcapng block.
@@ -979,18 +975,18 @@ impl<R: Read> ReadLog for PcapReader<R> {
             match self.layout {
                 Layout::Pcap { .. } => {
                     if let Some((frame, timestamp)) = self.next_classic() {
-                        return Some(Ok(self.fast_event(frame, timestamp)));
+                        return Some(Ok(self.fast_event(frame, timestamp, None)));
                     }
                     if let Some((frame, timestamp)) = self.next_fd() {
-                        return Some(Ok(self.fast_event(frame, timestamp)));
+                        return Some(Ok(self.fast_event(frame, timestamp, None)));
                     }
                 }
                 Layout::Pcapng { .. } => {
                     if let Some((frame, timestamp, id)) = self.next_block_classic() {
-                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                        return Some(Ok(self.fast_event(frame, timestamp, Some(id))));
                     }
                     if let Some((frame, timestamp, id)) = self.next_block_fd() {
-                        return Some(Ok(self.fast_block_event(frame, timestamp, id)));
+                        return Some(Ok(self.fast_event(frame, timestamp, Some(id))));
                     }
                 }
             }
@@ -1050,18 +1046,10 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 }
             };
             self.input.consume(packet.len);
-            let name = self
-                .interfaces
-                .get(packet.interface)
-                .and_then(|i| i.name.as_deref());
-            let iface = match (name, ifindex.and_then(|i| u16::try_from(i).ok())) {
-                // The pcapng interface names the bus.
-                (Some(name), _) if name != ANY => Some(Iface::Name(name)),
-                // `tcpdump -i any`: every bus in one file, told apart by
-                // the cooked header's interface index.
-                (_, Some(index)) => Some(Iface::Channel(index)),
-                (name, None) => name.map(Iface::Name),
-            };
+            let iface = self.iface_of(
+                packet.interface,
+                ifindex.and_then(|i| u16::try_from(i).ok()),
+            );
             return Some(Ok(LogRecord {
                 position: Position::Record(self.number),
                 event: LogEvent::Frame(LogFrame {
