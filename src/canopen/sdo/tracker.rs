@@ -1258,3 +1258,33 @@ pub(crate) fn abort(block_segment: bool, data: &[u8]) -> Option<(ObjectAddress, 
     let frame = Frame { bytes };
     Some((frame.view().multiplexer(), frame.abort_code()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`Frame::read`] says which command bytes can be read on its own
+    /// (the tracker follows the bytes, not a parsed message): for every
+    /// command byte from either side, of 8 bytes and of 7, it reads a
+    /// frame exactly when the side's parser does.
+    #[test]
+    fn a_frame_is_read_where_the_parsers_read_one() {
+        for command in 0..=u8::MAX {
+            for len in [SDO_LEN - 1, SDO_LEN] {
+                let mut data = [0x5Au8; SDO_LEN];
+                data[field::COMMAND] = command;
+                let data = &data[..len];
+                assert_eq!(
+                    Frame::read(SdoParty::Client, data).is_some(),
+                    SdoRequest::parse(data).is_ok(),
+                    "client command {command:#04x}, {len} bytes"
+                );
+                assert_eq!(
+                    Frame::read(SdoParty::Server, data).is_some(),
+                    SdoResponse::parse(data).is_ok(),
+                    "server command {command:#04x}, {len} bytes"
+                );
+            }
+        }
+    }
+}
