@@ -833,8 +833,8 @@ impl SdoTracker {
                 new.fault = Some(BrokenReason::InvalidBlockSize);
             }
             Phase::DownloadInitiated if new.mode == TransferMode::Expedited => {
-                // The expedited data: 4 − `n` bytes when `s` says so, else 4.
-                let len = new.size.map_or(4, |n| n.clamp(1, 4)) as usize;
+                let data = SdoInitiateData::read(frame.command(), frame.view().data_field());
+                let len = data.data().len();
                 new.bytes = len as u32;
                 step.chunk = Chunk::Input(4..4 + len);
             }
