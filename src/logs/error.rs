@@ -198,8 +198,8 @@ pub enum BinaryError {
         len: u64,
     },
     /// A chain of MF4 blocks (data groups, channel groups, channels, data
-    /// lists) leads back to a block it has passed, or is longer than the
-    /// file could hold (docs/formats.md#mf4).
+    /// lists and the data blocks they name) leads back to a block it has
+    /// passed, or is longer than the file could hold (docs/formats.md#mf4).
     LinkLoop,
     /// An MF4 record starts with a record id that no channel group of its
     /// data group has (docs/formats.md#mf4): the rest of the data group cannot

@@ -33,7 +33,8 @@ enum Blocks {
     /// The data link leads to one block (DT, SD, DZ) or to none.
     One(Option<u64>),
     /// A data list: the data links of the current DL from `index`, then
-    /// the DL that `next` leads to.
+    /// the DL that `next` leads to; `chain` holds the DL blocks and the
+    /// data blocks passed.
     List {
         links: Vec<u64>,
         index: usize,
@@ -46,10 +47,10 @@ enum Blocks {
 #[derive(Debug)]
 pub(super) struct DataStream {
     blocks: Blocks,
-    /// Bytes read and not yet consumed from `pos`.
+    /// Bytes read: consumed up to `pos`, the rest not yet.
     buf: Vec<u8>,
     pos: usize,
-    /// The stream offset of `buf[pos]`.
+    /// The stream offset of `buf[pos]` (`buf[0]` is at `offset - pos`).
     offset: u64,
     /// The part of a DT or SD block not yet read: from, to.
     chunk: Option<(u64, u64)>,
@@ -131,6 +132,20 @@ impl DataStream {
         self.buf.get(self.pos..).unwrap_or_default()
     }
 
+    /// Go back to the stream offset `to`, behind the next byte, when the
+    /// bytes from there are still held (a VLSD offset that goes back into
+    /// the block just read: read again without inflating it again);
+    /// `false` when they are not.
+    pub(super) fn rewind(&mut self, to: u64) -> bool {
+        let back = self.offset.saturating_sub(to);
+        if back > self.pos as u64 {
+            return false;
+        }
+        self.pos -= back as usize;
+        self.offset -= back;
+        true
+    }
+
     /// Consume `n` available bytes.
     pub(super) fn consume(&mut self, n: usize) {
         let n = n.min(self.buf.len() - self.pos);
@@ -167,8 +182,11 @@ impl DataStream {
             if n == 0 {
                 return Ok(true);
             }
-            // Skip inside a DT without reading it.
+            // Skip inside a DT without reading it (what was held is behind
+            // the new offset: let go of it).
             if let Some((from, to)) = self.chunk {
+                self.buf.clear();
+                self.pos = 0;
                 let step = (to - from).min(n);
                 self.chunk = Some((from + step, to));
                 self.offset += step;
@@ -242,6 +260,11 @@ impl DataStream {
                 if let Some(&link) = links.get(*index) {
                     *index += 1;
                     if link != 0 {
+                        // The list's data blocks are links of its chain: a
+                        // block named twice would be read twice, a list
+                        // could repeat a block without end
+                        // (docs/formats.md#mf4).
+                        chain.visit(link, source.len)?;
                         return Ok(Some(link));
                     }
                     // Data links end at the first nil.

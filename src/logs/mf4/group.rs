@@ -589,8 +589,8 @@ impl GroupReader {
         };
         let restart = signal
             .stream
-            .as_ref()
-            .map_or(true, |stream| stream.offset() > offset);
+            .as_mut()
+            .map_or(true, |stream| !stream.rewind(offset));
         if restart {
             signal.stream = Some(DataStream::new(source, signal.link, self.budget.clone())?);
         }

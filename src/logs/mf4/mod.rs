@@ -65,8 +65,9 @@
 //!   frame whose VLSD data is not there, or whose identifier or length
 //!   cannot be, is one error and the reading goes on. These errors are
 //!   [skipped](crate::logs::LogError::is_skipped) ones. A damaged block
-//!   (a link out of the file or to the wrong block, a chain that loops, a
-//!   DZ block that does not inflate, zip types 2 to 5 — zstd and lz4, which
+//!   (a link out of the file or to the wrong block, a chain that loops —
+//!   a data list that names one data block twice loops too —, a DZ block
+//!   that does not inflate, zip types 2 to 5 — zstd and lz4, which
 //!   asammdf also writes) ends the reading with one [`Error::Binary`] of
 //!   [`LogFormat::Mf4`].
 //!

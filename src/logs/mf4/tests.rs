@@ -146,6 +146,13 @@ pub(crate) fn record(seconds: f64, id: u32, data: &[u8], tx: bool) -> Vec<u8> {
 /// A CAN group of `top` (`CAN_DataFrame`, …) with record id `record_id`
 /// and the record of [`record`]; BusChannel virtual (always 3).
 pub(crate) fn can_group(file: &mut Builder, top: &str, record_id: u64) -> u64 {
+    can_group_with(file, top, record_id, 0)
+}
+
+/// [`can_group`], its `DataBytes` VLSD when `signal_data` is a link (to
+/// an SD, DZ or DL block): the record's 8 data bytes are then the offset
+/// of the frame's data in the signal data.
+fn can_group_with(file: &mut Builder, top: &str, record_id: u64, signal_data: u64) -> u64 {
     let member = |file: &mut Builder, name: &str, byte: u32, bits: u32| {
         file.channel(&format!("{top}.{name}"), 0, 0, 0, 0, byte, bits, 0, 0)
     };
@@ -154,7 +161,9 @@ pub(crate) fn can_group(file: &mut Builder, top: &str, record_id: u64) -> u64 {
     let length = member(file, "DataLength", 13, 8);
     let dir = member(file, "Dir", 14, 8);
     let error = member(file, "ErrorType", 15, 8);
-    let data = file.channel(&format!("{top}.DataBytes"), 0, 0, 10, 0, 16, 64, 0, 0);
+    let vlsd = u8::from(signal_data != 0);
+    let data = file.channel(&format!("{top}.DataBytes"), vlsd, 0, 10, 0, 16, 64, 0, 0);
+    file.link(data, 5, signal_data);
     let three = file.conversion(1, &[3.0, 0.0]);
     let bus = file.channel(&format!("{top}.BusChannel"), 6, 0, 0, 0, 0, 0, 0, three);
     let members = file.chain(&[bus, id, dlc, length, dir, error, data]);
@@ -592,6 +601,20 @@ fn loops_end_with_one_error() {
     let last = events.last().unwrap().as_ref().unwrap_err();
     assert_eq!(reason(last), BinaryError::LinkLoop);
     assert!(!last.is_skipped());
+    // A data list that names its first data block again, in place of the
+    // second: the records of the first block, then the loop (read again,
+    // such a list could repeat a block without end).
+    let mut bytes = file(0, &[("CAN_DataFrame", 0)], &two_frames(), Storage::List);
+    let at = find(&bytes, b"DL");
+    let first = bytes[at + 32..at + 40].to_vec();
+    bytes[at + 40..at + 48].copy_from_slice(&first);
+    let events = read_all(&bytes).unwrap();
+    let [Ok((1, frame)), Err(last)] = &events[..] else {
+        panic!("{events:?}");
+    };
+    assert_eq!(frame.frame.id().raw(), 0x081);
+    assert_eq!(reason(last), BinaryError::LinkLoop);
+    assert!(!last.is_skipped());
 }
 
 #[test]
@@ -625,6 +648,78 @@ fn a_dz_block_that_claims_gigabytes() {
         reason(events[0].as_ref().unwrap_err()),
         BinaryError::UnsupportedCompression { method: 2 }
     );
+}
+
+#[test]
+fn a_dz_block_holds_more_records_than_the_file_has_bytes() {
+    // 20 000 records of one frame, deflated: every one is read, although
+    // the file is far shorter than their number (the fuzz target bounds
+    // events by the bytes read and inflated, not by the file's length).
+    let data: Vec<u8> = (0..20_000)
+        .flat_map(|_| record(0.25, 0x081, &[1, 2, 3], false))
+        .collect();
+    let bytes = file(0, &[("CAN_DataFrame", 0)], &data, Storage::Dz);
+    assert!(bytes.len() < 20_000 / 4, "{} bytes", bytes.len());
+    let events = read_all(&bytes).unwrap();
+    assert_eq!(events.len(), 20_000);
+    assert!(events
+        .iter()
+        .all(|e| matches!(e, Ok((_, frame)) if frame.frame.data() == [1, 2, 3])));
+}
+
+#[test]
+fn vlsd_offsets_that_go_back_read_the_same_data() {
+    // Signal data of two entries, deflated; records that point at them
+    // out of order, back to the first again and again.
+    let mut signal = Vec::new();
+    for bytes in [&[1u8, 2, 3][..], &[7, 8]] {
+        signal.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+        signal.extend_from_slice(bytes);
+    }
+    let mut encoder = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+    std::io::Write::write_all(&mut encoder, &signal).unwrap();
+    let compressed = encoder.finish().unwrap();
+    let mut file = Builder::new(411, true);
+    let mut hd = 1_700_000_000_000_000_000u64.to_le_bytes().to_vec();
+    hd.resize(32, 0);
+    let hd = file.block(b"HD", &[0, 0, 0, 0, 0, 0], &hd);
+    let mut dz = b"SD".to_vec();
+    dz.extend_from_slice(&[0; 6]);
+    dz.extend_from_slice(&(signal.len() as u64).to_le_bytes());
+    dz.extend_from_slice(&(compressed.len() as u64).to_le_bytes());
+    dz.extend_from_slice(&compressed);
+    let sd = file.block(b"DZ", &[], &dz);
+    let cg = can_group_with(&mut file, "CAN_DataFrame", 0, sd);
+    let offsets = [0u64, 7, 0, 0, 7, 0];
+    let mut data = Vec::new();
+    for (i, offset) in offsets.iter().enumerate() {
+        let length = if *offset == 0 { 3 } else { 2 };
+        let mut record = record(i as f64, 0x100, &[0; 8], false);
+        record[13] = length;
+        record[16..24].copy_from_slice(&offset.to_le_bytes());
+        data.extend(record);
+    }
+    let dt = file.block(b"DT", &[], &data);
+    let mut dg = vec![0u8];
+    dg.resize(8, 0);
+    let dg = file.block(b"DG", &[0, cg, dt, 0], &dg);
+    file.link(hd, 0, dg);
+
+    let mut reader = Mf4Reader::new(Cursor::new(file.bytes.clone())).unwrap();
+    let opened = reader.bytes_read();
+    let mut read = Vec::new();
+    while let Some(event) = reader.next_event() {
+        read.push(event.unwrap().event.frame().unwrap().frame.data().to_vec());
+    }
+    let (one, two) = (&[1u8, 2, 3][..], &[7u8, 8][..]);
+    assert_eq!(read, [one, two, one, one, two, one]);
+    // Each going back found the entry among the bytes held: the records
+    // and the DZ block were read once, not the DZ block again for every
+    // record that goes back (reading a block reads its 24-byte header;
+    // the DZ block's is read when its stream starts too, and its zip
+    // header is 24 bytes more).
+    let once = (24 + data.len()) + (3 * 24 + compressed.len());
+    assert_eq!(reader.bytes_read() - opened, once as u64);
 }
 
 #[test]
