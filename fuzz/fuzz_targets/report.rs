@@ -75,10 +75,7 @@ fuzz_target!(|input: &[u8]| {
             node.node
         );
         assert_eq!(marks(MarkKind::EmcyReset), node.resets);
-        assert_eq!(
-            marks(MarkKind::BootUp),
-            node.heartbeat.boot_ups.count()
-        );
+        assert_eq!(marks(MarkKind::BootUp), node.heartbeat.boot_ups.count());
         assert_eq!(
             marks(MarkKind::ToggleError),
             node.guarding.toggle_errors.count()
