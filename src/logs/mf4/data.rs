@@ -68,6 +68,18 @@ impl Drop for DataStream {
     }
 }
 
+/// What [`DataStream::read_more`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum More {
+    /// Bytes were added to the buffer, or (when skipping) a DT block's
+    /// part to read was set.
+    Read,
+    /// A DZ block of this many bytes was passed over.
+    Skipped(u64),
+    /// The stream has ended.
+    End,
+}
+
 /// What a DZ block's header says (ASAM MDF 4.1 §5.26).
 struct Dz {
     org_len: u64,
@@ -161,7 +173,7 @@ impl DataStream {
         need: usize,
     ) -> Result<bool, LogError> {
         while self.buf.len() - self.pos < need {
-            if !self.read_more(source)? {
+            if self.read_more(source, 0)? == More::End {
                 return Ok(false);
             }
         }
@@ -195,14 +207,32 @@ impl DataStream {
                     return Ok(true);
                 }
             }
-            if !self.read_more(source)? {
-                return Ok(false);
+            match self.read_more(source, n)? {
+                More::End => return Ok(false),
+                More::Read => {}
+                More::Skipped(len) => {
+                    // A whole DZ block passed over, not inflated.
+                    self.buf.clear();
+                    self.pos = 0;
+                    self.offset += len;
+                    n -= len;
+                    if n == 0 {
+                        return Ok(true);
+                    }
+                }
             }
         }
     }
 
-    /// Read the next chunk or block into the buffer; `false` at the end.
-    fn read_more<R: Read + Seek>(&mut self, source: &mut Source<R>) -> Result<bool, LogError> {
+    /// Read the next chunk or block into the buffer. When the caller
+    /// skips `skippable` bytes (more than 0), a DZ block of at most as
+    /// many is passed over without inflating it, and a DT block is only
+    /// made the part to read (the caller skips inside it).
+    fn read_more<R: Read + Seek>(
+        &mut self,
+        source: &mut Source<R>,
+        skippable: u64,
+    ) -> Result<More, LogError> {
         loop {
             if let Some((from, to)) = self.chunk {
                 if from < to {
@@ -217,21 +247,24 @@ impl DataStream {
                         continue;
                     }
                     self.chunk = Some((from + got as u64, to));
-                    return Ok(true);
+                    return Ok(More::Read);
                 }
                 self.chunk = None;
             }
             let Some(link) = self.next_block(source)? else {
-                return Ok(false);
+                return Ok(More::End);
             };
             let (id, len, links) = source.header(link, "##DT|##SD|##DV|##DZ")?;
             if &id == b"##DZ" {
                 let dz = dz_header(source, link, len, links)?;
-                if dz.org_len > 0 {
-                    self.inflate(source, link, &dz)?;
-                    return Ok(true);
+                if dz.org_len == 0 {
+                    continue;
                 }
-                continue;
+                if dz.org_len <= skippable {
+                    return Ok(More::Skipped(dz.org_len));
+                }
+                self.inflate(source, link, &dz)?;
+                return Ok(More::Read);
             }
             let from = link + HEADER_LEN + 8 * links;
             let mut to = link.saturating_add(len);
@@ -241,6 +274,10 @@ impl DataStream {
                 to = source.len;
             }
             self.chunk = Some((from, to.min(source.len)));
+            if skippable > 0 {
+                // The caller skips inside the DT without reading it.
+                return Ok(More::Read);
+            }
         }
     }
 

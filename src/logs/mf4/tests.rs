@@ -667,35 +667,45 @@ fn a_dz_block_holds_more_records_than_the_file_has_bytes() {
         .all(|e| matches!(e, Ok((_, frame)) if frame.frame.data() == [1, 2, 3])));
 }
 
-#[test]
-fn vlsd_offsets_that_go_back_read_the_same_data() {
-    // Signal data of two entries, deflated; records that point at them
-    // out of order, back to the first again and again.
-    let mut signal = Vec::new();
-    for bytes in [&[1u8, 2, 3][..], &[7, 8]] {
-        signal.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
-        signal.extend_from_slice(bytes);
+/// Signal data entries (a u32 length, the bytes) in one block.
+fn entries(data: &[&[u8]]) -> Vec<u8> {
+    let mut out = Vec::new();
+    for bytes in data {
+        out.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+        out.extend_from_slice(bytes);
     }
+    out
+}
+
+/// A DZ block of `plain` (an SD block deflated); `compressed` replaces the
+/// deflated bytes when given.
+fn dz_block(file: &mut Builder, plain: &[u8], compressed: Option<&[u8]>) -> u64 {
     let mut encoder = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
-    std::io::Write::write_all(&mut encoder, &signal).unwrap();
-    let compressed = encoder.finish().unwrap();
+    std::io::Write::write_all(&mut encoder, plain).unwrap();
+    let deflated = encoder.finish().unwrap();
+    let compressed = compressed.unwrap_or(&deflated);
+    let mut dz = b"SD".to_vec();
+    dz.extend_from_slice(&[0; 6]);
+    dz.extend_from_slice(&(plain.len() as u64).to_le_bytes());
+    dz.extend_from_slice(&(compressed.len() as u64).to_le_bytes());
+    dz.extend_from_slice(compressed);
+    file.block(b"DZ", &[], &dz)
+}
+
+/// A file of one CAN group whose `DataBytes` are VLSD in the signal data
+/// `signal` leads to (built by `signal` on the file), one frame (id 0x100)
+/// for each of `frames`: the offset of its data and their length.
+fn vlsd_file(signal: impl FnOnce(&mut Builder) -> u64, frames: &[(u64, u8)]) -> Vec<u8> {
     let mut file = Builder::new(411, true);
     let mut hd = 1_700_000_000_000_000_000u64.to_le_bytes().to_vec();
     hd.resize(32, 0);
     let hd = file.block(b"HD", &[0, 0, 0, 0, 0, 0], &hd);
-    let mut dz = b"SD".to_vec();
-    dz.extend_from_slice(&[0; 6]);
-    dz.extend_from_slice(&(signal.len() as u64).to_le_bytes());
-    dz.extend_from_slice(&(compressed.len() as u64).to_le_bytes());
-    dz.extend_from_slice(&compressed);
-    let sd = file.block(b"DZ", &[], &dz);
+    let sd = signal(&mut file);
     let cg = can_group_with(&mut file, "CAN_DataFrame", 0, sd);
-    let offsets = [0u64, 7, 0, 0, 7, 0];
     let mut data = Vec::new();
-    for (i, offset) in offsets.iter().enumerate() {
-        let length = if *offset == 0 { 3 } else { 2 };
+    for (i, (offset, length)) in frames.iter().enumerate() {
         let mut record = record(i as f64, 0x100, &[0; 8], false);
-        record[13] = length;
+        record[13] = *length;
         record[16..24].copy_from_slice(&offset.to_le_bytes());
         data.extend(record);
     }
@@ -704,22 +714,81 @@ fn vlsd_offsets_that_go_back_read_the_same_data() {
     dg.resize(8, 0);
     let dg = file.block(b"DG", &[0, cg, dt, 0], &dg);
     file.link(hd, 0, dg);
+    file.bytes
+}
 
-    let mut reader = Mf4Reader::new(Cursor::new(file.bytes.clone())).unwrap();
+/// Every frame's data; the bytes read after the file was opened.
+fn vlsd_read(bytes: &[u8]) -> (Vec<Vec<u8>>, u64) {
+    let mut reader = Mf4Reader::new(Cursor::new(bytes.to_vec())).unwrap();
     let opened = reader.bytes_read();
     let mut read = Vec::new();
     while let Some(event) = reader.next_event() {
         read.push(event.unwrap().event.frame().unwrap().frame.data().to_vec());
     }
+    (read, reader.bytes_read() - opened)
+}
+
+#[test]
+fn vlsd_offsets_that_go_back_read_the_same_data() {
+    // Signal data of two entries, deflated; records that point at them
+    // out of order, back to the first again and again.
     let (one, two) = (&[1u8, 2, 3][..], &[7u8, 8][..]);
+    let signal = entries(&[one, two]);
+    let frames = [(0, 3), (7, 2), (0, 3), (0, 3), (7, 2), (0, 3)];
+    let bytes = vlsd_file(|file| dz_block(file, &signal, None), &frames);
+    let (read, data_read) = vlsd_read(&bytes);
     assert_eq!(read, [one, two, one, one, two, one]);
     // Each going back found the entry among the bytes held: the records
     // and the DZ block were read once, not the DZ block again for every
     // record that goes back (reading a block reads its 24-byte header;
     // the DZ block's is read when its stream starts too, and its zip
     // header is 24 bytes more).
-    let once = (24 + data.len()) + (3 * 24 + compressed.len());
-    assert_eq!(reader.bytes_read() - opened, once as u64);
+    let records = frames.len() * RECORD_LEN as usize;
+    let dz = find(&bytes, b"DZ");
+    let compressed = u64::from_le_bytes(bytes[dz + 40..dz + 48].try_into().unwrap());
+    let once = (24 + records) as u64 + (3 * 24 + compressed);
+    assert_eq!(data_read, once);
+}
+
+#[test]
+fn vlsd_data_skipped_over_is_not_inflated() {
+    // Signal data in a data list of two DZ blocks; the frames' data all
+    // lie in the second. The first is passed over by its header's
+    // length: its deflated bytes (here not deflate at all) are never
+    // inflated, also when a frame goes back to an entry of the second.
+    let first = entries(&[&[1, 2, 3], &[4, 5]]);
+    let second = entries(&[&[7, 8], &[9]]);
+    let at = first.len() as u64;
+    let frames = [(at, 2), (at + 6, 1), (at, 2)];
+    let bytes = vlsd_file(
+        |file| {
+            let a = dz_block(file, &first, Some(&[0xFF; 16]));
+            let b = dz_block(file, &second, None);
+            let mut dl = vec![0u8; 8];
+            dl[4..8].copy_from_slice(&2u32.to_le_bytes());
+            file.block(b"DL", &[0, a, b], &dl)
+        },
+        &frames,
+    );
+    let (read, _) = vlsd_read(&bytes);
+    assert_eq!(read, [&[7u8, 8][..], &[9], &[7, 8]]);
+    // A frame whose data lie in the first block inflates it: damaged.
+    let bytes = vlsd_file(
+        |file| {
+            let a = dz_block(file, &first, Some(&[0xFF; 16]));
+            let b = dz_block(file, &second, None);
+            let mut dl = vec![0u8; 8];
+            dl[4..8].copy_from_slice(&2u32.to_le_bytes());
+            file.block(b"DL", &[0, a, b], &dl)
+        },
+        &[(at, 2), (0, 3)],
+    );
+    let events = read_all(&bytes).unwrap();
+    let [Ok((1, frame)), Err(damaged)] = &events[..] else {
+        panic!("{events:?}");
+    };
+    assert_eq!(frame.frame.data(), [7, 8]);
+    assert_eq!(reason(damaged), BinaryError::Decompression);
 }
 
 #[test]
