@@ -759,31 +759,22 @@ fn vlsd_data_skipped_over_is_not_inflated() {
     let first = entries(&[&[1, 2, 3], &[4, 5]]);
     let second = entries(&[&[7, 8], &[9]]);
     let at = first.len() as u64;
-    let frames = [(at, 2), (at + 6, 1), (at, 2)];
-    let bytes = vlsd_file(
-        |file| {
-            let a = dz_block(file, &first, Some(&[0xFF; 16]));
-            let b = dz_block(file, &second, None);
-            let mut dl = vec![0u8; 8];
-            dl[4..8].copy_from_slice(&2u32.to_le_bytes());
-            file.block(b"DL", &[0, a, b], &dl)
-        },
-        &frames,
-    );
-    let (read, _) = vlsd_read(&bytes);
+    let two_blocks = |frames: &[(u64, u8)]| {
+        vlsd_file(
+            |file| {
+                let a = dz_block(file, &first, Some(&[0xFF; 16]));
+                let b = dz_block(file, &second, None);
+                let mut dl = vec![0u8; 8];
+                dl[4..8].copy_from_slice(&2u32.to_le_bytes());
+                file.block(b"DL", &[0, a, b], &dl)
+            },
+            frames,
+        )
+    };
+    let (read, _) = vlsd_read(&two_blocks(&[(at, 2), (at + 6, 1), (at, 2)]));
     assert_eq!(read, [&[7u8, 8][..], &[9], &[7, 8]]);
     // A frame whose data lie in the first block inflates it: damaged.
-    let bytes = vlsd_file(
-        |file| {
-            let a = dz_block(file, &first, Some(&[0xFF; 16]));
-            let b = dz_block(file, &second, None);
-            let mut dl = vec![0u8; 8];
-            dl[4..8].copy_from_slice(&2u32.to_le_bytes());
-            file.block(b"DL", &[0, a, b], &dl)
-        },
-        &[(at, 2), (0, 3)],
-    );
-    let events = read_all(&bytes).unwrap();
+    let events = read_all(&two_blocks(&[(at, 2), (0, 3)])).unwrap();
     let [Ok((1, frame)), Err(damaged)] = &events[..] else {
         panic!("{events:?}");
     };
