@@ -69,7 +69,9 @@
 //!   a data list that names one data block twice loops too —, a DZ block
 //!   that does not inflate, zip types 2 to 5 — zstd and lz4, which
 //!   asammdf also writes) ends the reading with one [`Error::Binary`] of
-//!   [`LogFormat::Mf4`].
+//!   [`LogFormat::Mf4`]. A DZ block of signal data that no frame's data
+//!   lie in is passed over by its header, not inflated (so not checked,
+//!   as the bytes of a DT block that no frame reads).
 //!
 //! # Memory
 //!
