@@ -273,7 +273,9 @@ impl DataStream {
                 // (docs/formats.md#mf4).
                 to = source.len;
             }
-            self.chunk = Some((from, to.min(source.len)));
+            // Empty when the data would start past the end of the file
+            // (links that the file cuts).
+            self.chunk = Some((from, to.min(source.len).max(from)));
             if skippable > 0 {
                 // The caller skips inside the DT without reading it.
                 return Ok(More::Read);

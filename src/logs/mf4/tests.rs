@@ -783,6 +783,41 @@ fn vlsd_data_skipped_over_is_not_inflated() {
 }
 
 #[test]
+fn vlsd_data_past_a_block_cut_by_the_end_of_the_file_is_missing() {
+    // Signal data in a data list: a DZ block, then a DT block at the end
+    // of the file whose links (two, says its header) lie past it. A frame
+    // whose data would lie in the DT has none; skipping to it passes the
+    // DZ block and an empty DT.
+    let first = entries(&[&[1, 2, 3]]);
+    let at = first.len() as u64;
+    let mut list = 0;
+    let mut bytes = vlsd_file(
+        |file| {
+            let dz = dz_block(file, &first, None);
+            let mut dl = vec![0u8; 8];
+            dl[4..8].copy_from_slice(&2u32.to_le_bytes());
+            list = file.block(b"DL", &[0, dz, 0], &dl);
+            list
+        },
+        &[(0, 3), (at + 5, 2)],
+    );
+    // The DL's second data link: the DT appended here.
+    let dt = bytes.len() as u64;
+    let link = list as usize + 24 + 2 * 8;
+    bytes[link..link + 8].copy_from_slice(&dt.to_le_bytes());
+    bytes.extend_from_slice(b"##DT\0\0\0\0");
+    bytes.extend_from_slice(&40u64.to_le_bytes());
+    bytes.extend_from_slice(&2u64.to_le_bytes());
+    let events = read_all(&bytes).unwrap();
+    let [Ok((1, frame)), Err(missing)] = &events[..] else {
+        panic!("{events:?}");
+    };
+    assert_eq!(frame.frame.data(), [1, 2, 3]);
+    assert_eq!(reason(missing), BinaryError::MissingVlsd { offset: at + 5 });
+    assert!(missing.is_skipped());
+}
+
+#[test]
 fn streams_read_as_files() {
     let bytes = file(0, &[("CAN_DataFrame", 0)], &two_frames(), Storage::Dz);
     let mut from_stream = Mf4Reader::from_stream(&bytes[..]).unwrap();
