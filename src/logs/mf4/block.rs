@@ -250,9 +250,10 @@ pub(super) fn binary(offset: u64, reason: BinaryError) -> Error {
     }
 }
 
-/// Follows a chain of blocks (`next` links) and says when it loops: a
-/// chain never holds the same block twice (checked exactly for its first
-/// 65 536 blocks), nor more blocks than the file has room for.
+/// Follows a chain of blocks (`next` links; a data list's chain also
+/// takes the data blocks it names) and says when it loops: a chain never
+/// holds the same block twice (checked exactly for its first 65 536
+/// blocks), nor more blocks than the file has room for.
 #[derive(Debug, Default)]
 pub(super) struct Chain {
     seen: HashSet<u64>,
