@@ -2,7 +2,7 @@
 """Write tests/fixtures/cia402/python_canopen.json: what python-canopen's CiA 402
 profile (canopen/profiles/p402.py) makes of statuswords and which controlwords
 it writes to move a drive between states. tests/cia402.rs checks the crate's
-state machine (src/canopen/cia402.rs, docs/canopen.md#cia402) against it.
+state machine (codec/src/canopen/cia402.rs, docs/canopen.md#cia402) against it.
 
 Everything is read from python-canopen itself, not retyped:
 

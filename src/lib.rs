@@ -17,6 +17,12 @@
 //!
 //! ## Layout
 //!
+//! The protocols themselves — [`can`], [`canopen`], [`profiles`], [`servo`]
+//! and their error type [`CodecError`] — are the `no_std` crate
+//! `motionwire-codec`, re-exported here: the compiler holds the layers
+//! apart, so nothing in them can reach the log readers, the decoder or the
+//! report built on them. Everything else is this crate's.
+//!
 //! - [`can`]: the one CAN frame vocabulary every other part speaks —
 //!   identifiers, [`can::CanFrame`] (data, remote, CAN FD, error frames;
 //!   owned or borrowed), error-frame classes, and [`can::LogFrame`], a frame
@@ -170,92 +176,42 @@
 #![deny(clippy::must_use_candidate)]
 #![deny(clippy::return_self_not_must_use)]
 
-pub mod can;
-pub mod canopen;
+/// The codec layer's error: a frame, field or value of a protocol that
+/// could not be decoded or built (`motionwire-codec`'s `Error`).
+pub use motionwire_codec::Error as CodecError;
+pub use motionwire_codec::{can, canopen, profiles, servo, What};
+
 #[cfg(feature = "decoder")]
 pub mod decoder;
-#[cfg(feature = "defmt")]
-mod defmt_impls;
 #[cfg(feature = "eds")]
 pub mod eds;
-mod error;
+#[cfg(feature = "std")]
+mod iface;
 pub mod logs;
-mod names;
-pub mod profiles;
 #[cfg(feature = "report")]
 pub mod report;
-pub mod servo;
 #[cfg(feature = "decoder")]
 pub mod summary;
 
-pub use error::What;
-
 use logs::{BinaryError, LogFormat, SyntaxError};
 
-/// What went wrong while decoding or constructing a value: the crate's one
-/// error type, which every fallible decoder and checked constructor
-/// returns.
+/// What went wrong while decoding, reading or constructing a value: the
+/// umbrella over the layers' own errors, which converts from each.
 ///
-/// Each variant says *what* was being decoded (a typed [`What`], so that a
-/// program can match on it), what was *expected* and what was *found*, so
-/// that a message such as
-/// `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
-/// to a person without further context (STYLE.md, "errors carry context").
+/// A protocol's frame, field or value ([`Error::Codec`]: what was decoded,
+/// what was expected, what was found, e.g. `servo command frame: buffer of
+/// 7 bytes where 10 are needed`) and a log line or file that does not
+/// follow its format ([`Error::Syntax`], [`Error::Binary`]). Each shows to a
+/// person without further context.
 ///
-/// It is the umbrella users match on. An error that belongs to one layer is
-/// that layer's own type, declared in the layer and carried by a variant
-/// here ([`Error::PdoEntry`] carries a [`canopen::PdoEntryError`]). The enum
-/// is declared at the crate root, above every layer, so that the layers
-/// point one way: no layer, and not the base module of what errors name,
-/// imports a protocol it does not build on (STYLE.md rule 15).
-///
-/// The enum is `#[non_exhaustive]`: later protocol layers add variants.
+/// The enum is `#[non_exhaustive]`: later layers add variants.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A buffer is shorter than the frame or field that must be read from it.
-    #[error("{what}: buffer of {found} bytes where {expected} are needed")]
-    Length {
-        /// The frame or field that was being read, e.g. [`What::EmcyFrame`].
-        what: What,
-        /// The number of bytes the frame needs.
-        expected: usize,
-        /// The number of bytes that were given.
-        found: usize,
-    },
-    /// A number lies outside the range its field allows.
-    #[error("{what}: {found} is outside {min}..={max}")]
-    OutOfRange {
-        /// The field, e.g. [`What::NodeId`].
-        what: What,
-        /// The value that was given.
-        found: u32,
-        /// The smallest valid value.
-        min: u32,
-        /// The largest valid value.
-        max: u32,
-    },
-    /// A value is in range for its type but is not one of the values the
-    /// protocol defines (e.g. an NMT state byte of `0x12`).
-    #[error("{what}: {found:#x} is not one of {expected}")]
-    InvalidValue {
-        /// The field, e.g. [`What::NmtState`].
-        what: What,
-        /// The value that was given.
-        found: u32,
-        /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
-        expected: &'static str,
-    },
-    /// A text is not written in the form its value needs (e.g. `"E5x"` for a
-    /// servo E-code, which is `E` followed by decimal digits). Text cannot be
-    /// kept without a heap, so the message says what form was expected.
-    #[error("{what}: text is not of the form {expected}")]
-    Malformed {
-        /// The value that was being read from text, e.g. [`What::ServoECode`].
-        what: What,
-        /// The form the text must have, in words.
-        expected: &'static str,
-    },
+    /// A frame, field or value of a protocol that could not be decoded or
+    /// built: the codec layer's own error.
+    #[error(transparent)]
+    Codec(#[from] CodecError),
     /// A line of a text log does not follow its format (docs/formats.md); the
     /// reason says what was expected at `column` and what was found there,
     /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
@@ -269,11 +225,12 @@ pub enum Error {
         /// What was expected there and what was found.
         reason: SyntaxError,
     },
-    /// A binary log (pcap, pcapng, BLF; docs/formats.md#pcap,
-    /// docs/formats.md#blf) is damaged at `offset` (bytes from the start of the
-    /// file, or of the decompressed container for BLF objects): the records
-    /// before it were read, the rest of the file cannot be, e.g. `pcap file,
-    /// byte 4120: record of 16 bytes cut off after 9`.
+    /// A binary log (pcap, pcapng, BLF, MF4; docs/formats.md#pcap,
+    /// docs/formats.md#blf, docs/formats.md#mf4) is damaged at `offset`
+    /// (bytes from the start of the file, or of the decompressed container
+    /// for BLF objects): the records before it were read, the rest of the
+    /// file cannot be, e.g. `pcap file, byte 4120: record of 16 bytes cut
+    /// off after 9`.
     #[error("{format} file, byte {offset}: {reason}")]
     Binary {
         /// The log format the file was read as.
@@ -283,20 +240,17 @@ pub enum Error {
         /// What is wrong there.
         reason: BinaryError,
     },
-    /// A PDO mapping entry cannot be read from, or written into, a payload
-    /// (docs/canopen.md#signals), e.g. `PDO entry 6064sub0 (32 bits) at bit 24:
-    /// expected a payload of at least 7 bytes, found 4`.
-    #[error(transparent)]
-    PdoEntry(#[from] canopen::PdoEntryError),
+}
+
+impl From<canopen::PdoEntryError> for Error {
+    fn from(error: canopen::PdoEntryError) -> Self {
+        Error::Codec(CodecError::PdoEntry(error))
+    }
 }
 
 /// The crate's result type.
 pub type Result<T, E = Error> = core::result::Result<T, E>;
 
-#[cfg(test)]
-mod display_tests;
-#[cfg(all(test, feature = "serde"))]
-mod serde_tests;
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

@@ -8,7 +8,7 @@ use motionwire::servo::{
     ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord,
     ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 /// A feedback frame with the given status and error words, an incremental

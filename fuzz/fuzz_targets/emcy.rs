@@ -21,7 +21,7 @@ use motionwire::canopen::{
     CobFunction, Emcy, EmcyFrame, ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister,
     KernelError, NodeId, SdoAbortCode, Specificity, EMCY_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {

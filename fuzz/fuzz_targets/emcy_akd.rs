@@ -18,7 +18,7 @@ use motionwire::canopen::{Emcy, EmcyFrame, EMCY_LEN};
 use motionwire::profiles::akd::{
     AkdEmcy, AkdManufacturer, AkdManufacturerField, AxisId, FeedbackId, AKD_MANUFACTURER_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 const FEEDBACK_EXPECTED: &str = "0 (none), 1..=5 (FB1..FB5)";

@@ -22,7 +22,7 @@ use motionwire::profiles::baumer::{
     is_reserved_code, matching_sources, source_by_name, source_for_injection, sources_for_code,
     BaumerEmcy, DiagnosticSource, InjectionCode, InjectionKind, DIAGNOSTIC_SOURCES,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {

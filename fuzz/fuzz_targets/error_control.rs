@@ -60,7 +60,7 @@ use motionwire::canopen::{
     HeartbeatConsumer, HeartbeatEvent, HeartbeatProducer, LifeGuard, LifeGuardExpiry, MonitorState,
     NmtState, NodeGuardingMaster, NodeId,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire_fuzz::Reader;
 
 /// The consumer's capacity.

@@ -24,7 +24,7 @@ use motionwire::canopen::{
     ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer, GuardAnswerFrame,
     Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {

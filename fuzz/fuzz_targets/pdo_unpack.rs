@@ -21,7 +21,7 @@ use motionwire::canopen::{
     DataType, MappingEntry, PdoEntryError, PdoEntryReason, PdoMapping, Value, ValueKind,
     MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire_fuzz::Reader;
 
 fn data_type_for(seed: u64, entry: MappingEntry) -> Option<DataType> {

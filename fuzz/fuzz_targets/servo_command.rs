@@ -16,7 +16,7 @@ use motionwire::servo::{
     Command, CommandFrame, ParameterTable, RegulatorMode, ServoControlWord, ServoEnable,
     COMMAND_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {

@@ -22,7 +22,7 @@ use motionwire::servo::{
     ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageCode, ServoErrorWord,
     ServoFault, ServoStatusWord, FEEDBACK_LEN,
 };
-use motionwire::Error;
+use motionwire::CodecError as Error;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {

@@ -53,7 +53,7 @@ impl BusName {
             (BusName::Unnamed, None) => true,
             (BusName::Channel(a), Some(Iface::Channel(b))) => *a == b,
             (BusName::Name(a), Some(Iface::Name(b))) => {
-                crate::can::same_name(a.as_bytes(), b.as_bytes())
+                crate::iface::same_name(a.as_bytes(), b.as_bytes())
             }
             _ => false,
         }

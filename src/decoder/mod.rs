@@ -60,7 +60,6 @@ pub(crate) use sdo::SdoSeen;
 pub use sdo::{EndedTransfer, SdoStep};
 
 use crate::can::{Iface, LogFrame};
-use crate::canopen::sdo::tracker::Step;
 use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
@@ -68,7 +67,7 @@ use crate::canopen::{
 };
 use crate::eds::{Eds, EdsError};
 use crate::profiles::{NodeProfiles, Profile};
-use crate::Error;
+use crate::CodecError;
 
 pub(crate) use bus::Buses;
 
@@ -355,7 +354,7 @@ pub struct Decoder {
     /// [`Decoder::new`]), not for every SDO frame.
     names: Box<[NodeNames; 128]>,
     /// The signals of the last PDO (reused: no allocation per frame).
-    signals: Vec<Result<Signal, Error>>,
+    signals: Vec<Result<Signal, CodecError>>,
     next_map: u32,
     /// This session among every decoder made by the program: what makes
     /// a [`BusKey`] this session's.
@@ -575,10 +574,9 @@ impl Decoder {
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
-        let mut fed = Step::new();
-        state
+        let fed = state
             .sdo
-            .feed(sender, bytes, frame.timestamp, position, cap, &mut fed);
+            .feed(sender, bytes, frame.timestamp, position, cap);
         let value = match &fed.ended {
             Some(transfer)
                 if transfer.outcome == SdoOutcome::Completed
@@ -596,7 +594,7 @@ impl Decoder {
         let step = SdoSeen {
             node,
             sender,
-            block_segment: fed.block_segment(),
+            block_segment: fed.block_segment,
             data: bytes,
             latency: fed.latency,
             started: fed.started,

@@ -11,7 +11,7 @@ use crate::canopen::{
     object_data_type, object_name, DataType, MappingEntry, NodeId, PdoCobId, PdoDirection,
     PdoLayout, PdoMapping, Signal, TypeLookup,
 };
-use crate::Error;
+use crate::CodecError;
 
 /// A PDO's mapping as the decoder applies it to the frames on its COB-ID:
 /// the owner, the PDO, its layout and the name of each signal
@@ -103,7 +103,7 @@ pub struct PdoReading<'d> {
     /// (docs/canopen.md#signals: a PDO shorter than its mapping). Empty when
     /// the decoder does not unpack signals
     /// ([`DecoderConfig::signals`](super::DecoderConfig::signals)).
-    pub signals: &'d [Result<Signal, Error>],
+    pub signals: &'d [Result<Signal, CodecError>],
 }
 
 impl<'d> PdoReading<'d> {
@@ -118,7 +118,7 @@ impl<'d> PdoReading<'d> {
 
     /// Return why the signals end before the mapping does, if they do.
     #[must_use]
-    pub fn error(&self) -> Option<&'d Error> {
+    pub fn error(&self) -> Option<&'d CodecError> {
         self.signals.iter().find_map(|s| s.as_ref().err())
     }
 }

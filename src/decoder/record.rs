@@ -535,7 +535,7 @@ mod tests {
         let whole: Vec<_> = map.layout().unpack(&[0x37, 0x02, 1, 0, 0, 0, 9]).collect();
         let error = map.layout().unpack(&[]).next().unwrap();
         assert!(error.is_err());
-        let render = |signals: &[crate::Result<Signal>]| {
+        let render = |signals: &[Result<Signal, crate::CodecError>]| {
             let mut out = b"{\"line\":1".to_vec();
             let mut obj = Object::after_first(&mut out);
             pdo_json(&mut obj, &PdoReading { map: &map, signals }, None);

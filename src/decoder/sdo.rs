@@ -7,7 +7,6 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
-use crate::canopen::sdo::tracker::{self, Step};
 use crate::canopen::sdo::{
     SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
     TransferDirection, TransferMode,
@@ -15,7 +14,7 @@ use crate::canopen::sdo::{
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
 use super::ObjectNames;
-use crate::Error;
+use crate::CodecError;
 
 /// One SDO frame as its channel's tracker read it (`sdo` in
 /// docs/output.md#sdo), and the transfer it ends with that transfer's data
@@ -34,7 +33,7 @@ pub struct SdoStep<'d> {
     pub sender: SdoParty,
     /// The frame read in its transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier).
-    pub message: Result<SdoMessage, Error>,
+    pub message: Result<SdoMessage, CodecError>,
     /// The frame's data bytes.
     pub data: &'d [u8],
     /// The request → response latency this frame closes
@@ -176,7 +175,7 @@ impl<'d> SdoSeen<'_, 'd> {
         let mut step = SdoStep {
             node: self.node,
             sender: self.sender,
-            message: tracker::message(self.sender, self.block_segment, self.data),
+            message: SdoMessage::read(self.sender, self.block_segment, self.data),
             data: self.data,
             latency: self.latency,
             started: self.started,
@@ -211,7 +210,7 @@ impl<'d> SdoSeen<'_, 'd> {
     /// or [`SdoResponse::Abort`](crate::canopen::sdo::SdoResponse::Abort)), without the message.
     #[inline]
     pub(crate) fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
-        tracker::abort(self.block_segment, self.data)
+        SdoMessage::read_abort(self.block_segment, self.data)
     }
 }
 
@@ -241,6 +240,21 @@ impl EndedTransfer<'_> {
     }
 }
 
+/// What one frame is in its transfer, as the channel's tracker followed
+/// it ([`SdoEvent`](crate::canopen::sdo::SdoEvent) without the borrows),
+/// kept while the decoder learns from the transfer it ends.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Fed {
+    /// [`SdoEvent::latency`](crate::canopen::sdo::SdoEvent::latency).
+    pub(crate) latency: Option<Duration>,
+    /// [`SdoEvent::started`](crate::canopen::sdo::SdoEvent::started).
+    pub(crate) started: bool,
+    /// [`SdoEvent::ended`](crate::canopen::sdo::SdoEvent::ended).
+    pub(crate) ended: Option<SdoTransfer>,
+    /// [`SdoEvent::is_block_segment`](crate::canopen::sdo::SdoEvent::is_block_segment).
+    pub(crate) block_segment: bool,
+}
+
 /// A channel: its tracker and the data of its open transfer.
 #[derive(Debug, Default)]
 pub(crate) struct SdoChannel {
@@ -250,9 +264,8 @@ pub(crate) struct SdoChannel {
 }
 
 impl SdoChannel {
-    /// Feed one frame (`position`, time), what it is in its transfer
-    /// written to `step` (made with [`Step::new`]); keep at most `cap` data
-    /// bytes of a transfer.
+    /// Feed one frame (`position`, time) and return what it is in its
+    /// transfer; keep at most `cap` data bytes of a transfer.
     #[inline]
     pub(crate) fn feed(
         &mut self,
@@ -261,22 +274,27 @@ impl SdoChannel {
         ts: Option<Timestamp>,
         position: u64,
         cap: usize,
-        step: &mut Step,
-    ) {
-        self.tracker.feed_step(sender, bytes, ts, position, step);
-        let chunk = self.tracker.chunk(step, bytes);
-        let Some(ended) = &step.ended else {
+    ) -> Fed {
+        let event = self.tracker.feed(sender, bytes, ts, position);
+        let fed = Fed {
+            latency: event.latency,
+            started: event.started,
+            ended: event.ended,
+            block_segment: event.is_block_segment(),
+        };
+        let chunk = event.chunk;
+        let Some(ended) = &fed.ended else {
             // Most frames: no transfer ends here (a segment request, a
             // segment, an initiate answered later).
-            if step.started {
+            if fed.started {
                 self.data.clear();
             }
             push(&mut self.data, chunk, cap);
-            return;
+            return fed;
         };
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
-        let chunk_to_new = step.started && ended.start_position != position;
+        let chunk_to_new = fed.started && ended.start_position != position;
         if !chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
@@ -285,6 +303,7 @@ impl SdoChannel {
         if chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
+        fed
     }
 
     /// The data of the transfer that ended last.

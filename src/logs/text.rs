@@ -366,7 +366,7 @@ impl Names {
         if self
             .names
             .get(self.last)
-            .is_some_and(|n| crate::can::same_name(n.as_bytes(), name))
+            .is_some_and(|n| crate::iface::same_name(n.as_bytes(), name))
         {
             return;
         }

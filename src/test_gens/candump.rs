@@ -184,12 +184,16 @@ impl Build {
         iface: &'a str,
         id: CanId,
         data: &[u8],
-    ) -> crate::Result<LogFrame<'a>> {
+    ) -> Result<LogFrame<'a>, crate::CodecError> {
         Ok(LogFrame::new(CanFrame::new(id, data)?).with_iface(Iface::Name(iface)))
     }
 
     /// A remote request on `iface`.
-    pub(crate) fn new_remote(iface: &str, id: CanId, dlc: u8) -> crate::Result<LogFrame<'_>> {
+    pub(crate) fn new_remote(
+        iface: &str,
+        id: CanId,
+        dlc: u8,
+    ) -> Result<LogFrame<'_>, crate::CodecError> {
         Ok(LogFrame::new(CanFrame::new_remote(id, dlc)?).with_iface(Iface::Name(iface)))
     }
 
@@ -199,7 +203,7 @@ impl Build {
         id: CanId,
         flags: FdFlags,
         data: &[u8],
-    ) -> crate::Result<LogFrame<'a>> {
+    ) -> Result<LogFrame<'a>, crate::CodecError> {
         Ok(LogFrame::new(CanFrame::new_fd(id, flags, data)?).with_iface(Iface::Name(iface)))
     }
 
@@ -208,7 +212,7 @@ impl Build {
         iface: &'a str,
         classes: u32,
         data: &[u8],
-    ) -> crate::Result<LogFrame<'a>> {
+    ) -> Result<LogFrame<'a>, crate::CodecError> {
         Ok(LogFrame::new(CanFrame::new_error(classes, data)?).with_iface(Iface::Name(iface)))
     }
 }

@@ -186,7 +186,7 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
     if !words.classic_bytes(len, data) {
         words.classic_bytes_spelt(len, data)?;
     }
-    let frame = CanFrame::from_checked_parts(id, FrameType::Data, bytes, len as u8);
+    let frame = CanFrame::from_array(id, FrameType::Data, bytes, len as u8);
     Some((frame, direction))
 }
 

@@ -532,9 +532,7 @@ fn fd_frame(
     // The length is one CAN FD has (64 at most), or at most 8 for a data
     // frame (more without FDF is `fd_without_edl`): what `CanFrame::new_fd`
     // and `CanFrame::new` accept; `data` holds zeros after it.
-    Some(CanFrame::from_checked_parts(
-        id, frame_type, *data, len as u8,
-    ))
+    Some(CanFrame::from_array(id, frame_type, *data, len as u8))
 }
 
 /// An `ErrorFrame` line's frame: all the line says is that an error
@@ -543,9 +541,8 @@ fn fd_frame(
 fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static> {
     // The class bits are an extended identifier and 8 bytes an error
     // frame's data: the parts are valid as they are.
-    let id = CanId::new_unchecked(ErrorClasses::BUS_ERROR.bits(), true);
-    let frame =
-        CanFrame::from_checked_parts(id, FrameType::Error, [0; FD_MAX_LEN], CLASSIC_MAX_LEN as u8);
+    let id = CanId::masked(ErrorClasses::BUS_ERROR.bits(), true);
+    let frame = CanFrame::from_array(id, FrameType::Error, [0; FD_MAX_LEN], CLASSIC_MAX_LEN as u8);
     LogFrame::new(frame)
         .with_timestamp(timestamp)
         .with_iface(iface)

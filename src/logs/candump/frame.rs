@@ -52,7 +52,7 @@ impl<'a> Parsed<'a> {
     #[inline(always)]
     fn into_log_frame_named(self, iface: &'a str) -> LogFrame<'a> {
         LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, self.data, self.len),
+            frame: CanFrame::from_array(self.id, self.kind, self.data, self.len),
             timestamp: self.timestamp,
             iface: Some(Iface::Name(iface)),
             direction: self.direction,
@@ -133,7 +133,7 @@ impl Head<'_> {
         iface: &'n str,
     ) -> LogFrame<'n> {
         LogFrame {
-            frame: CanFrame::from_checked_parts(self.id, self.kind, *data, self.len),
+            frame: CanFrame::from_array(self.id, self.kind, *data, self.len),
             timestamp: self.timestamp,
             iface: Some(Iface::Name(iface)),
             direction: self.direction,

@@ -1,7 +1,7 @@
 use super::*;
 use crate::can::LogFrame;
-use crate::error::What;
 use crate::test_gens::candump::{Build, FrameExt};
+use crate::What;
 
 /// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000
 /// as candump -l logs it.
@@ -1367,7 +1367,7 @@ fn constructors_check_their_values() {
     // The frame's limits are the crate's frame constructors' (can::CanFrame).
     assert_eq!(
         Build::new_data("can0", std_id(1), &[0; 9]),
-        Err(Error::OutOfRange {
+        Err(crate::CodecError::OutOfRange {
             what: What::CanFrameDataLength,
             found: 9,
             min: 0,
@@ -1376,7 +1376,7 @@ fn constructors_check_their_values() {
     );
     assert_eq!(
         Build::new_fd("can0", std_id(1), FdFlags::EMPTY, &[0; 65]),
-        Err(Error::OutOfRange {
+        Err(crate::CodecError::OutOfRange {
             what: What::CanFrameDataLength,
             found: 65,
             min: 0,
@@ -1385,7 +1385,7 @@ fn constructors_check_their_values() {
     );
     assert_eq!(
         Build::new_remote("can0", std_id(1), 9),
-        Err(Error::OutOfRange {
+        Err(crate::CodecError::OutOfRange {
             what: What::CanRemoteRequestLength,
             found: 9,
             min: 0,

@@ -110,19 +110,15 @@ pub(super) fn decode(packet: &[u8], layout: FrameLayout) -> Result<Payload, Bina
         });
     }
     let id = if word & EFF_FLAG != 0 {
-        CanId::new_unchecked(word & EFF_MASK, true)
+        CanId::masked(word & EFF_MASK, true)
     } else {
-        CanId::new_unchecked(word & SFF_MASK, false)
+        CanId::masked(word & SFF_MASK, false)
     };
     let (id, frame_type, data_len) = if fd {
         let flags = FdFlags::new(flags & 0x0F).unwrap_or_default();
         (id, FrameType::Fd(flags), len)
     } else if word & ERR_FLAG != 0 {
-        (
-            CanId::new_unchecked(word & EFF_MASK, true),
-            FrameType::Error,
-            len,
-        )
+        (CanId::masked(word & EFF_MASK, true), FrameType::Error, len)
     } else if word & RTR_FLAG != 0 {
         (id, FrameType::Remote { dlc: len }, 0)
     } else {
@@ -139,7 +135,7 @@ pub(super) fn decode(packet: &[u8], layout: FrameLayout) -> Result<Payload, Bina
     // Checked above: the identifier is masked to its kind, an error frame's
     // is extended, the length is at most the kind's (a remote request's
     // DLC at most 8, with no data).
-    Ok(Payload::Frame(CanFrame::from_checked_parts(
+    Ok(Payload::Frame(CanFrame::from_array(
         id, frame_type, bytes, data_len,
     )))
 }
@@ -164,9 +160,9 @@ pub(super) fn classic_data(packet: &[u8; CAN_MTU]) -> Option<CanFrame> {
         return None;
     }
     let id = if word & EFF_FLAG != 0 {
-        CanId::new_unchecked(word & EFF_MASK, true)
+        CanId::masked(word & EFF_MASK, true)
     } else {
-        CanId::new_unchecked(word & SFF_MASK, false)
+        CanId::masked(word & SFF_MASK, false)
     };
     // The 8 bytes after the header with those past the length cleared:
     // `len` is 0..=8, so the shift is 0..=64 (64: no byte kept).
@@ -178,12 +174,7 @@ pub(super) fn classic_data(packet: &[u8; CAN_MTU]) -> Option<CanFrame> {
     }
     // As in `decode`: the identifier masked to its kind, the length at
     // most 8, the bytes past it zero.
-    Some(CanFrame::from_checked_parts(
-        id,
-        FrameType::Data,
-        bytes,
-        len,
-    ))
+    Some(CanFrame::from_array(id, FrameType::Data, bytes, len))
 }
 
 /// [`decode`] of a `LINKTYPE_CAN_SOCKETCAN` packet of exactly
@@ -201,21 +192,16 @@ pub(super) fn fd_data(packet: &[u8; CANFD_MTU]) -> Option<CanFrame> {
     }
     let word = u32::from_be_bytes([i0, i1, i2, i3]);
     let id = if word & EFF_FLAG != 0 {
-        CanId::new_unchecked(word & EFF_MASK, true)
+        CanId::masked(word & EFF_MASK, true)
     } else {
-        CanId::new_unchecked(word & SFF_MASK, false)
+        CanId::masked(word & SFF_MASK, false)
     };
     let flags = FdFlags::new(flags & 0x0F).unwrap_or_default();
     let mut bytes = [0; FD_MAX_LEN];
     if let (Some(head), Some(data)) = (bytes.get_mut(..n), data.get(..n)) {
         head.copy_from_slice(data);
     }
-    Some(CanFrame::from_checked_parts(
-        id,
-        FrameType::Fd(flags),
-        bytes,
-        len,
-    ))
+    Some(CanFrame::from_array(id, FrameType::Fd(flags), bytes, len))
 }
 
 fn too_short(needed: usize, found: usize) -> BinaryError {

@@ -211,6 +211,7 @@ fn frame(id: CanId, kind: FrameType, bytes: &[u8; FD_MAX_LEN], len: u8) -> Resul
         FrameType::Remote { .. } => CanFrame::new_remote(id, len),
         _ => CanFrame::with_type(id, kind, bytes.get(..usize::from(len)).unwrap_or_default()),
     }
+    .map_err(Error::from)
 }
 
 /// The error frame a PEAK error frame row reads as (see the module's
@@ -231,8 +232,8 @@ pub(super) fn error_frame(
     data[6] = tx_errors;
     data[7] = rx_errors;
     // The classes fit 29 bits; the frame has the 8 bytes Linux gives it.
-    CanFrame::from_checked_parts(
-        CanId::new_unchecked(ERROR_FRAME_CLASSES.bits(), true),
+    CanFrame::from_array(
+        CanId::masked(ERROR_FRAME_CLASSES.bits(), true),
         FrameType::Error,
         data,
         8,
@@ -454,7 +455,7 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
                     found,
                 })
             })?;
-        (raw, CanId::new_unchecked(0, false))
+        (raw, CanId::masked(0, false))
     } else {
         (0, identifier(&mut tokens)?)
     };
