@@ -29,7 +29,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use motionwire::can::{CanFrame, CanId, Iface, LogFrame, Timestamp};
+use motionwire::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::{CanOpenMessage, MessageKind, NodeId};
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::profiles::Profile;
@@ -299,15 +299,15 @@ fn session(c: &mut Criterion) {
         });
         group.bench_function("summary", |b| {
             b.iter(|| {
-                let mut decoder = Decoder::new(config().signals(false));
-                let mut summarizer =
-                    Summarizer::new().heartbeat_timeout(std::time::Duration::from_millis(100));
+                let mut summarizer = Summarizer::new(
+                    config()
+                        .signals(false)
+                        .heartbeat_timeout(std::time::Duration::from_millis(100)),
+                );
                 for (i, f) in black_box(frames).iter().enumerate() {
-                    let line = i as u64 + 1;
-                    let decoded = decoder.decode(line, f);
-                    summarizer.add_frame(line, f, &decoded);
+                    summarizer.add(i as u64 + 1, &LogEvent::Frame(*f));
                 }
-                summarizer.finish(&mut decoder).nodes.len()
+                summarizer.finish().nodes.len()
             })
         });
         group.finish();

@@ -430,22 +430,20 @@ fn an_output_folder_that_is_not_there_is_said_first() {
 /// up to the summary's counts.
 #[test]
 fn every_00xx_code_is_a_reset_mark() {
-    use motionwire::decoder::{Decoder, DecoderConfig};
+    use motionwire::can::LogEvent;
+    use motionwire::decoder::DecoderConfig;
     use motionwire::report::{MarkKind, Recorder};
 
     let log = b"(1.000000) can0 083#0B00000000000000\n\
                 (1.100000) can0 083#0573010000000000\n\
                 (1.200000) can0 083#0000000000000000\n";
-    let mut decoder = Decoder::new(DecoderConfig::new());
-    let mut recorder = Recorder::new();
+    let mut recorder = Recorder::new(DecoderConfig::new());
     for (i, text) in log.split(|&b| b == b'\n').enumerate() {
         if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-            let line = i as u64 + 1;
-            let decoded = decoder.decode(line, &frame);
-            recorder.add_frame(line, &frame, &decoded);
+            recorder.add(i as u64 + 1, &LogEvent::Frame(frame));
         }
     }
-    let recording = recorder.finish(&mut decoder);
+    let recording = recorder.finish();
     let node = &recording.summary.nodes[0];
     assert_eq!((node.emcy, node.resets), (3, 2));
     let marks = |kind| {
@@ -462,7 +460,7 @@ fn every_00xx_code_is_a_reset_mark() {
 /// marks that add up to the summary's counts (the fuzz target `report`
 /// checks the same on longer runs).
 fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCaseError> {
-    use motionwire::decoder::{Decoder, DecoderConfig};
+    use motionwire::decoder::DecoderConfig;
     use motionwire::logs::{self, ReadLog};
     use motionwire::report::{MarkKind, Recorder, Report};
     use proptest::prelude::*;
@@ -470,14 +468,14 @@ fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCase
     let Ok(mut log) = logs::read(std::io::Cursor::new(bytes)) else {
         return Ok(());
     };
-    let mut decoder = Decoder::new(DecoderConfig::new());
-    let mut recorder = Recorder::new().heartbeat_timeout(std::time::Duration::from_millis(50));
+    let mut recorder =
+        Recorder::new(DecoderConfig::new().heartbeat_timeout(std::time::Duration::from_millis(50)));
     while let Some(next) = log.next_event() {
         if let Ok(record) = next {
-            recorder.add(record.position.number(), &record.event, &mut decoder);
+            recorder.add(record.position.number(), &record.event);
         }
     }
-    let recording = recorder.finish(&mut decoder);
+    let recording = recorder.finish();
     for node in &recording.summary.nodes {
         let marks = |kind| {
             recording

@@ -20,7 +20,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{Iface, LogFrame, Timestamp};
+use motionwire::can::{Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::profiles::Profile;
@@ -36,8 +36,13 @@ fuzz_target!(|input: &[u8]| {
         .node_profile(NodeId::new(5).unwrap(), Profile::Baumer)
         .sdo_data_cap(CAP);
     let mut decoder = Decoder::new(config.clone());
-    let mut lean = Decoder::new(config.signals(false));
-    let mut summarizer = Summarizer::new().heartbeat_timeout(core::time::Duration::from_millis(50));
+    let config = config
+        .signals(false)
+        .heartbeat_timeout(core::time::Duration::from_millis(50));
+    // The summary's two ways in agree: frames read where the summary needs
+    // them, and read whole.
+    let mut summarizer = Summarizer::new(config.clone());
+    let mut whole = Summarizer::new(config);
     let (mut started, mut ended) = (0u64, 0u64);
     let mut frames = 0u64;
     for TrafficFrame {
@@ -87,8 +92,9 @@ fuzz_target!(|input: &[u8]| {
             let _ = reading.to_string();
         }
 
-        let decoded = lean.decode(line, &log);
-        summarizer.add_frame(line, &log, &decoded);
+        let event = LogEvent::Frame(log);
+        summarizer.add(line, &event);
+        let _ = whole.add_with(line, &event, |_| {});
     }
     let open = decoder.finish();
     assert_eq!(
@@ -97,7 +103,8 @@ fuzz_target!(|input: &[u8]| {
         "every transfer ends once"
     );
 
-    let summary = summarizer.finish(&mut lean);
+    let summary = summarizer.finish();
+    assert_eq!(summary, whole.finish(), "both ways in give one summary");
     let counted: u64 = summary.buses.iter().map(|b| b.frames).sum();
     assert_eq!(counted, frames);
     let _ = summary.to_string();

@@ -19,9 +19,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{Iface, LogFrame, Timestamp};
+use motionwire::can::{Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
-use motionwire::decoder::{Decoder, DecoderConfig};
+use motionwire::decoder::DecoderConfig;
 use motionwire::profiles::Profile;
 use motionwire::report::{MarkKind, Recorder, Report};
 use motionwire_fuzz::{traffic, TrafficFrame};
@@ -33,14 +33,13 @@ fuzz_target!(|input: &[u8]| {
         return;
     };
     let untimed = flags & 1 != 0;
-    let config = DecoderConfig::new()
+    let mut config = DecoderConfig::new()
         .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
         .sdo_data_cap(64);
-    let mut decoder = Decoder::new(config);
-    let mut recorder = Recorder::new();
     if flags & 2 != 0 {
-        recorder = recorder.heartbeat_timeout(core::time::Duration::from_millis(50));
+        config = config.heartbeat_timeout(core::time::Duration::from_millis(50));
     }
+    let mut recorder = Recorder::new(config);
     for TrafficFrame {
         line,
         ms,
@@ -55,10 +54,9 @@ fuzz_target!(|input: &[u8]| {
                 ms,
             )));
         }
-        let decoded = decoder.decode(line, &log);
-        recorder.add_frame(line, &log, &decoded);
+        recorder.add(line, &LogEvent::Frame(log));
     }
-    let recording = recorder.finish(&mut decoder);
+    let recording = recorder.finish();
     if untimed {
         assert!(!recording.timeline.is_timed(), "drawn by line");
     }

@@ -230,21 +230,19 @@ fn summary<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let source = Source::extract(source)?;
     let options = source::options(format)?;
-    let config = config(profiles, eds)?.signals(false);
+    let mut config = config(profiles, eds)?.signals(false);
+    if let Some(ms) = heartbeat_ms {
+        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    }
     let (records, skipped) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
         let mut log = source.open(options, &name)?;
-        let mut decoder = Decoder::new(config);
-        let mut summarizer = Summarizer::new();
-        if let Some(ms) = heartbeat_ms {
-            summarizer = summarizer.heartbeat_timeout(Duration::from_millis(ms));
-        }
+        let mut summarizer = Summarizer::new(config);
         let skipped = log.visit(Summarize {
             summarizer: &mut summarizer,
-            decoder: &mut decoder,
             name: &name,
         })?;
-        let summary = summarizer.finish(&mut decoder);
+        let summary = summarizer.finish();
         let records: Vec<String> = summary
             .records()
             .map(|record| serde_json::to_string(&record).expect("a summary serializes"))
@@ -276,7 +274,6 @@ fn summary<'py>(
 /// The summary's loop over a log, compiled for its format's reader.
 struct Summarize<'a> {
     summarizer: &'a mut Summarizer,
-    decoder: &'a mut Decoder,
     name: &'a str,
 }
 
@@ -288,10 +285,7 @@ impl motionwire::logs::LogVisitor for Summarize<'_> {
         let mut skipped = 0;
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => {
-                    self.summarizer
-                        .add(record.position.number(), &record.event, self.decoder)
-                }
+                Ok(record) => self.summarizer.add(record.position.number(), &record.event),
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));

@@ -139,10 +139,9 @@ impl<T> Buses<T> {
         &mut self.buses[at].1
     }
 
-    /// Return the bus at `at` with what is kept of it.
-    pub(crate) fn entry_mut(&mut self, at: usize) -> (&BusName, &mut T) {
-        let (name, value) = &mut self.buses[at];
-        (name, value)
+    /// Return the name of the bus at `at`.
+    pub(crate) fn name(&self, at: usize) -> &BusName {
+        &self.buses[at].0
     }
 
     pub(crate) fn get(&self, at: usize) -> &T {
@@ -155,9 +154,5 @@ impl<T> Buses<T> {
 
     pub(crate) fn iter_mut(&mut self) -> impl Iterator<Item = (&BusName, &mut T)> {
         self.buses.iter_mut().map(|(n, v)| (&*n, v))
-    }
-
-    pub(crate) fn into_vec(self) -> Vec<(BusName, T)> {
-        self.buses
     }
 }

@@ -49,7 +49,7 @@ mod sdo;
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 pub use bus::BusName;
 pub use cia402::Cia402Reading;
@@ -101,6 +101,7 @@ pub struct DecoderConfig {
     descriptions: Vec<Description>,
     sdo_data_cap: usize,
     signals: bool,
+    heartbeat: Option<Duration>,
 }
 
 impl Default for DecoderConfig {
@@ -119,6 +120,7 @@ impl DecoderConfig {
             descriptions: Vec::new(),
             sdo_data_cap: SDO_DATA_CAP,
             signals: true,
+            heartbeat: None,
         }
     }
 
@@ -205,6 +207,24 @@ impl DecoderConfig {
     pub fn signals(mut self, signals: bool) -> Self {
         self.signals = signals;
         self
+    }
+
+    /// Return the configuration whose [summary](crate::summary) monitors
+    /// every node's heartbeats with the consumer time `time` (object
+    /// 1016h; `--heartbeat-ms`): each gap longer than it is a timeout
+    /// (docs/summary.md#heartbeat). Without it, heartbeat gaps are not
+    /// asked for.
+    #[must_use]
+    pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
+        self.heartbeat = Some(time);
+        self
+    }
+
+    /// Return the heartbeat consumer time the summary checks gaps against,
+    /// if one was given ([`heartbeat_timeout`](Self::heartbeat_timeout)).
+    #[must_use]
+    pub fn heartbeat(&self) -> Option<Duration> {
+        self.heartbeat
     }
 }
 
@@ -356,22 +376,6 @@ pub struct Decoder {
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, CodecError>>,
     next_map: u32,
-    /// This session among every decoder made by the program: what makes
-    /// a [`BusKey`] this session's.
-    session: usize,
-}
-
-/// The sessions made so far ([`Decoder::session`]).
-static SESSIONS: AtomicUsize = AtomicUsize::new(0);
-
-/// A bus as one decoder session keeps it: the session and the bus's place
-/// in it, which never changes (buses are only added). The summary keeps
-/// the last key it saw with its own place for that bus, and finds its bus
-/// again without comparing the frame's interface name a second time.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct BusKey {
-    session: usize,
-    at: usize,
 }
 
 impl Decoder {
@@ -390,7 +394,6 @@ impl Decoder {
             names,
             signals: Vec::with_capacity(64),
             next_map: 0,
-            session: SESSIONS.fetch_add(1, Ordering::Relaxed),
         }
     }
 
@@ -438,15 +441,16 @@ impl Decoder {
     /// [`decode`](Self::decode) for a data frame that
     /// [`MessageKind::classify`] makes an SDO frame of `node`: the SDO step
     /// and the CiA 402 reading, without the rest of a [`Decoded`] (what the
-    /// [summary](crate::summary) reads, `Summarizer::add_frame_from`).
-    /// The key of the frame's bus, the step and the reading go to `then`.
+    /// [summary](crate::summary) reads, `Summarizer::add`).
+    /// The place of the frame's bus ([`bus`](Self::bus)), the step and the
+    /// reading go to `then`.
     #[inline(always)]
     pub(crate) fn sdo_frame<'d, R>(
         &'d mut self,
         position: u64,
         frame: &'d LogFrame<'d>,
         node: NodeId,
-        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(usize, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let sender = if frame.frame.id().raw() < u32::from(cob_id::SDO_RX_BASE) {
             SdoParty::Server
@@ -474,20 +478,16 @@ impl Decoder {
     /// The CiA 402 reading of a data frame that [`MessageKind::classify`]
     /// makes a PDO, as [`pdo_frame`](Self::pdo_frame) gives it, without
     /// the PDO's reading where the session does not unpack signals: what
-    /// the [summary](crate::summary) reads (`Summarizer::add_frame_from`).
-    /// With the reading, the key of the frame's bus.
+    /// the [summary](crate::summary) reads (`Summarizer::add`).
+    /// With the reading, the place of the frame's bus ([`bus`](Self::bus)).
     #[inline]
-    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> (BusKey, Option<Cia402Reading>) {
+    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> (usize, Option<Cia402Reading>) {
         let can = &frame.frame;
         let at = self.bus(frame.iface);
-        let key = BusKey {
-            session: self.session,
-            at,
-        };
         let cob_id = can.id().raw() as u16;
         if self.config.signals {
             return (
-                key,
+                at,
                 self.pdo_at(at, cob_id, can.data())
                     .and_then(|(_, cia402)| cia402),
             );
@@ -497,7 +497,7 @@ impl Decoder {
             .get_mut(at)
             .mapping(cob_id)
             .and_then(|(map, state)| statusword_reading(map, state, can.data()));
-        (key, reading)
+        (at, reading)
     }
 
     /// [`decode`](Self::decode) for a data frame that
@@ -512,10 +512,12 @@ impl Decoder {
         self.pdo(frame.iface, can.id().raw() as u16, can.data())
     }
 
-    /// The index of the bus of `iface`; a new bus starts with the nodes'
-    /// descriptions.
-    #[inline]
-    fn bus(&mut self, iface: Option<Iface<'_>>) -> usize {
+    /// The place of the bus of `iface` in the session's one table of
+    /// buses, which never changes (buses are only added, in the order the
+    /// log shows them): the summary keeps what it learns of a bus at the
+    /// same place. A new bus starts with the nodes' descriptions.
+    #[inline(always)]
+    pub(crate) fn bus(&mut self, iface: Option<Iface<'_>>) -> usize {
         let (at, made) = self.buses.find_or_insert(iface, |_| BusState::new());
         if made {
             self.describe(at);
@@ -564,13 +566,9 @@ impl Decoder {
         node: NodeId,
         sender: SdoParty,
         position: u64,
-        then: impl FnOnce(BusKey, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
+        then: impl FnOnce(usize, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
-        let key = BusKey {
-            session: self.session,
-            at,
-        };
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
@@ -603,7 +601,7 @@ impl Decoder {
             buses: &self.buses,
             at,
         };
-        then(key, &step, cia402)
+        then(at, &step, cia402)
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,
@@ -793,6 +791,11 @@ impl Decoder {
             .and_then(|b| b.nodes[usize::from(node.get())].as_ref())
             .is_some_and(|n| n.drive)
             || self.config.profiles.of(Some(node)).is_drive()
+    }
+
+    /// Return the name of the bus at `at` ([`bus`](Self::bus)).
+    pub(crate) fn bus_name(&self, at: usize) -> &BusName {
+        self.buses.name(at)
     }
 
     /// End of the input: take every transfer left open, which ends here

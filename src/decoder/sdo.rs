@@ -13,7 +13,7 @@ use crate::canopen::sdo::{
 };
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
-use super::ObjectNames;
+use super::{BusName, ObjectNames};
 use crate::CodecError;
 
 /// One SDO frame as its channel's tracker read it (`sdo` in
@@ -203,6 +203,12 @@ impl<'d> SdoSeen<'_, 'd> {
             .expect("made by the decoder")
             .sdo
             .finished()
+    }
+
+    /// Return the name of the frame's bus.
+    #[inline]
+    pub(crate) fn bus_name(&self) -> &'d BusName {
+        self.buses.name(self.at)
     }
 
     /// Return the multiplexer and code of the frame when it is an abort

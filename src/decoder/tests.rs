@@ -7,14 +7,12 @@
 use proptest::prelude::*;
 
 use super::*;
-use crate::can::{CanFrame, CanId, Timestamp};
+use crate::can::{CanFrame, CanId, LogEvent, Timestamp};
 use crate::summary::Summarizer;
 
 fn at(ms: u64, id: u32, data: &[u8]) -> LogFrame<'static> {
     LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
-        .with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(
-            ms,
-        )))
+        .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)))
         .with_iface(Iface::Name("can0"))
 }
 
@@ -303,14 +301,17 @@ proptest! {
     ) {
         let config = DecoderConfig::new().node_profile(node(3), Profile::Akd).sdo_data_cap(16);
         let mut decoder = Decoder::new(config.clone());
-        let mut lean = Decoder::new(config.signals(false));
-        let mut summarizer = Summarizer::new().heartbeat_timeout(core::time::Duration::from_millis(20));
+        let config = config.signals(false).heartbeat_timeout(Duration::from_millis(20));
+        // The summary's two ways in: the frames read where the summary
+        // needs them, and read whole (what the report reads).
+        let mut summarizer = Summarizer::new(config.clone());
+        let mut whole = Summarizer::new(config);
         let (mut started, mut ended, mut ms) = (0u64, 0u64, 0u64);
         for (i, (frame, bus, step)) in frames.iter().enumerate() {
             ms += step;
             let line = i as u64 + 1;
             let log = LogFrame::new(*frame)
-                .with_timestamp(Timestamp::from_duration(core::time::Duration::from_millis(ms)))
+                .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)))
                 .with_iface(Iface::Channel(u16::from(*bus)));
             let decoded = decoder.decode(line, &log);
             let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
@@ -333,11 +334,13 @@ proptest! {
                     prop_assert!(end.data.len() <= 16);
                 }
             }
-            let decoded = lean.decode(line, &log);
-            summarizer.add_frame(line, &log, &decoded);
+            let event = LogEvent::Frame(log);
+            summarizer.add(line, &event);
+            let _ = whole.add_with(line, &event, |_| {});
         }
         prop_assert_eq!(started, ended + decoder.finish().len() as u64);
-        let summary = summarizer.finish(&mut lean);
+        let summary = summarizer.finish();
+        prop_assert_eq!(&summary, &whole.finish());
         prop_assert_eq!(summary.buses.iter().map(|b| b.frames).sum::<u64>(), frames.len() as u64);
         let _ = summary.to_string();
         serde_json::to_string(&summary).unwrap();

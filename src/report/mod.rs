@@ -8,28 +8,27 @@
 //! embedded `decode --summary --json` records (docs/report.md#contract).
 //!
 //! A [`Recorder`] is fed every frame and bus event of a recording, as a
-//! [`Summarizer`] is (it holds one); [`Recorder::finish`] returns the
+//! [`Summarizer`] is (it holds one, which holds the decoder); [`Recorder::finish`] returns the
 //! [`Recording`]: the [`Summary`] and its [`Timeline`], kept in bounded
 //! memory whatever the log's size (an EMCY storm becomes clusters, signals
 //! are reduced to minima and maxima per bucket; docs/report.md#bounded). A
 //! [`Report`] gathers the recordings of the logs and writes the page.
 //!
 //! ```
-//! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::can::LogEvent;
+//! use motionwire::decoder::DecoderConfig;
 //! use motionwire::report::{MarkKind, Recorder, Report};
 //!
 //! let log = b"(1700000000.000000) can0 703#00\n\
 //!             (1700000000.100000) can0 083#1081110000000000\n\
 //!             (1700000000.200000) can0 703#05\n";
-//! let mut decoder = Decoder::new(DecoderConfig::new());
-//! let mut recorder = Recorder::new();
+//! let mut recorder = Recorder::new(DecoderConfig::new());
 //! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
 //!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-//!         let decoded = decoder.decode(line as u64 + 1, &frame);
-//!         recorder.add_frame(line as u64 + 1, &frame, &decoded);
+//!         recorder.add(line as u64 + 1, &LogEvent::Frame(frame));
 //!     }
 //! }
-//! let recording = recorder.finish(&mut decoder);
+//! let recording = recorder.finish();
 //! let node = recording.summary.nodes[0].node;
 //! let bus = &recording.summary.nodes[0].bus;
 //! assert_eq!(recording.timeline.mark_count(bus, Some(node), MarkKind::Emcy), 1);
@@ -50,13 +49,11 @@ mod html;
 mod series;
 mod svg;
 
-use core::time::Duration;
-
 pub use html::{Report, ReportInput};
 
-use crate::can::{BusStatus, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
-use crate::decoder::{BusName, Decoded, Decoder};
+use crate::decoder::{BusName, DecoderConfig};
 use crate::summary::{FileSpan, Summarizer, Summary, SummaryEvent, SummaryEventKind};
 
 use series::{
@@ -256,30 +253,20 @@ pub struct Recorder {
 
 impl Default for Recorder {
     fn default() -> Self {
-        Recorder::new()
+        Recorder::new(DecoderConfig::new())
     }
 }
 
 impl Recorder {
-    /// Start a recording without heartbeat timeouts.
+    /// Start a recording read by a decoder of `config`: its profiles,
+    /// EDS files and heartbeat consumer time
+    /// ([`DecoderConfig::heartbeat_timeout`]; `--heartbeat-ms`). The
+    /// drives' charts need the PDO signals unpacked
+    /// ([`DecoderConfig::signals`], the default).
     #[must_use]
-    pub fn new() -> Self {
-        Recorder::with_summarizer(Summarizer::new())
-    }
-
-    /// Return the recorder checking heartbeats against the consumer time
-    /// `time` ([`Summarizer::heartbeat_timeout`]; `--heartbeat-ms`).
-    #[must_use]
-    pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
-        self.summarizer = self.summarizer.heartbeat_timeout(time);
-        self
-    }
-
-    /// Start a recording whose summary is built by `summarizer`.
-    #[must_use]
-    pub fn with_summarizer(summarizer: Summarizer) -> Self {
+    pub fn new(config: DecoderConfig) -> Self {
         Recorder {
-            summarizer,
+            summarizer: Summarizer::new(config),
             buses: Vec::new(),
             last_bus: 0,
             timed: None,
@@ -290,21 +277,14 @@ impl Recorder {
         }
     }
 
-    /// Add one log entry read at `position` (docs/formats.md#positions): a
-    /// frame is read by `decoder` first.
-    pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
+    /// Add one log entry read at `position` (docs/formats.md#positions),
+    /// as [`Summarizer::add`] does: the summary, the timeline's marks and
+    /// the drives' signals learn from it.
+    pub fn add(&mut self, position: u64, event: &LogEvent<'_>) {
         match event {
-            LogEvent::Frame(frame) => {
-                let decoded = decoder.decode(position, frame);
-                self.add_frame(position, frame, &decoded);
-            }
-            LogEvent::Status(status) => self.add_status(status),
+            LogEvent::Frame(frame) => self.add_frame(position, frame, event),
+            LogEvent::Status(_) => self.summarizer.add(position, event),
         }
-    }
-
-    /// Count a log entry that is not a frame ([`Summarizer::add_status`]).
-    pub fn add_status(&mut self, status: &BusStatus<'_>) {
-        self.summarizer.add_status(status);
     }
 
     #[inline]
@@ -325,10 +305,8 @@ impl Recorder {
         at
     }
 
-    /// Add one frame, read at `position`, with what the decoder made of it
-    /// (decoded with signals, for the drives' charts:
-    /// [`DecoderConfig::signals`](crate::decoder::DecoderConfig::signals)).
-    pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
+    /// Add the frame `log` of the log entry `event`, read at `position`.
+    fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, event: &LogEvent<'_>) {
         let timed = *self.timed.get_or_insert(log.timestamp.is_some());
         match log.timestamp {
             Some(ts) => self.last_t = micros(ts),
@@ -347,10 +325,10 @@ impl Recorder {
         } = self;
         let rows = &mut buses[b];
         rows.row.rate.add(RateBucket { at, frames: 1 });
-        summarizer.add_frame_with(position, log, decoded, |event| {
+        let decoded = summarizer.add_with(position, event, |event| {
             record(rows, timed, at, &event);
         });
-        if let Some(pdo) = decoded.pdo {
+        if let Some(pdo) = decoded.and_then(|decoded| decoded.pdo) {
             if pdo.signals.is_empty() {
                 return;
             }
@@ -390,7 +368,7 @@ impl Recorder {
     /// Close the recording ([`Summarizer::finish`]): its summary and its
     /// timeline.
     #[must_use]
-    pub fn finish(self, decoder: &mut Decoder) -> Recording {
+    pub fn finish(self) -> Recording {
         let Recorder {
             summarizer,
             mut buses,
@@ -406,7 +384,7 @@ impl Recorder {
             t: last_t,
             line: last.line,
         };
-        let summary = summarizer.finish_with(decoder, |event| {
+        let summary = summarizer.finish_with(|event| {
             let at = match buses.iter().position(|b| &b.name == event.bus) {
                 Some(at) => at,
                 None => {

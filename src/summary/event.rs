@@ -1,6 +1,6 @@
 //! What the summary records, as it records it: one [`SummaryEvent`] per
 //! fact a frame adds to the post-mortem (docs/summary.md), handed to the
-//! caller of [`Summarizer::add_frame_with`](super::Summarizer::add_frame_with)
+//! caller of [`Summarizer::add_with`](super::Summarizer::add_with)
 //! and [`Summarizer::finish_with`](super::Summarizer::finish_with). The
 //! report's timeline (docs/report.md#timeline) is drawn from them, so that
 //! its marks are exactly the summary's facts.

@@ -18,7 +18,7 @@ pub type ListedIter<'a, T> =
 /// entries between are counted, not kept, so that a summary's memory and
 /// size do not grow with the events of a long log (71 356 SDO aborts in a
 /// boot-heavy log of a million frames). Every event is still handed to the
-/// caller of [`Summarizer::add_frame_with`](super::Summarizer::add_frame_with)
+/// caller of [`Summarizer::add_with`](super::Summarizer::add_with)
 /// as a [`SummaryEvent`](super::SummaryEvent), and every frame is in
 /// `decode --json`.
 ///

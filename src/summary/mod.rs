@@ -6,28 +6,28 @@
 //! makes of each frame: SDO statistics (docs/summary.md#sdo) and each drive's
 //! CiA 402 timeline (docs/summary.md#cia402).
 //!
-//! A [`Summarizer`] is fed every frame with its [`Decoded`] reading and
-//! every bus event, in log order; [`Summarizer::finish`] returns the typed
-//! [`Summary`]. `Display` writes the text summary; with `serde`,
+//! A [`Summarizer`] is fed every log entry, frames and bus events, in log
+//! order; it reads the frames with its own [`Decoder`], so that the settings
+//! of the session are one [`DecoderConfig`]. [`Summarizer::finish`] returns
+//! the typed [`Summary`]. `Display` writes the text summary; with `serde`,
 //! `Serialize` writes exactly the records of `motionwire decode --summary
 //! --json` (one JSON value per record, [`Summary::records`]).
 //!
 //! ```
-//! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::can::LogEvent;
+//! use motionwire::decoder::DecoderConfig;
 //! use motionwire::summary::Summarizer;
 //!
 //! let log = b"(1700000000.000000) can0 703#00\n\
 //!             (1700000000.100000) can0 083#1081110000000000\n\
 //!             (1700000000.200000) can0 703#05\n";
-//! let mut decoder = Decoder::new(DecoderConfig::new().signals(false));
-//! let mut summarizer = Summarizer::new();
+//! let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
 //! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
 //!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-//!         let decoded = decoder.decode(line as u64 + 1, &frame);
-//!         summarizer.add_frame(line as u64 + 1, &frame, &decoded);
+//!         summarizer.add(line as u64 + 1, &LogEvent::Frame(frame));
 //!     }
 //! }
-//! let summary = summarizer.finish(&mut decoder);
+//! let summary = summarizer.finish();
 //! let node = &summary.nodes[0];
 //! assert_eq!(node.node.get(), 3);
 //! assert_eq!(node.heartbeat.boot_ups.head(), [1]);
@@ -57,10 +57,10 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorCode, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusKey, BusName, Buses, Cia402Reading, Decoded, Decoder, SdoSeen};
+use crate::decoder::{BusName, Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use sdo::SdoFrameFacts;
 
-/// No SDO frame, for [`Summarizer::add_classified`].
+/// No SDO frame, for [`add_classified`].
 const NO_SDO: Option<&SdoSeen<'static, 'static>> = None;
 
 /// An EMCY the summary points at: where it was seen and its code
@@ -405,14 +405,23 @@ impl BusState {
     }
 }
 
-/// Builds the [`Summary`] of a log, frame by frame (see the
-/// [module](self) documentation).
+/// Builds the [`Summary`] of a log, entry by entry (see the
+/// [module](self) documentation): the session's one way in.
+///
+/// It owns the [`Decoder`] that reads each frame, so that what the summary
+/// learns from a frame is what the decoder read of it, once, and so that
+/// both keep the buses in one table. [`add`](Self::add) feeds one log
+/// entry; [`add_with`](Self::add_with) also hands back what the decoder
+/// made of a frame and every fact the summary adds (what the report
+/// draws); [`finish`](Self::finish) ends the input — the transfers left
+/// open end there — and returns the [`Summary`].
 #[derive(Debug)]
 pub struct Summarizer {
-    buses: Buses<BusState>,
-    /// The bus of the last frame read by a decoder: the decoder's key for
-    /// it and its place here.
-    link: Option<(BusKey, usize)>,
+    decoder: Decoder,
+    /// What the summary keeps of each bus, at the bus's place in the
+    /// decoder's table ([`Decoder::bus`]), with the bus's name (copied
+    /// once, when the bus is first seen).
+    buses: Vec<(BusName, BusState)>,
     heartbeat: Option<Duration>,
     last_time: Option<Duration>,
     untimed: u64,
@@ -420,111 +429,99 @@ pub struct Summarizer {
 
 impl Default for Summarizer {
     fn default() -> Self {
-        Summarizer::new()
+        Summarizer::new(DecoderConfig::new())
     }
 }
 
 impl Summarizer {
-    /// Start a summary without heartbeat timeouts.
+    /// Start a summary read by a decoder of `config`, whose settings are
+    /// the summary's too ([`DecoderConfig::heartbeat_timeout`]).
     #[must_use]
-    pub fn new() -> Self {
+    pub fn new(config: DecoderConfig) -> Self {
         Summarizer {
-            buses: Buses::default(),
-            link: None,
-            heartbeat: None,
+            heartbeat: config.heartbeat(),
+            decoder: Decoder::new(config),
+            buses: Vec::new(),
             last_time: None,
             untimed: 0,
         }
     }
 
-    /// Return the summarizer monitoring every node's heartbeats with the
-    /// consumer time `time` (object 1016h; `--heartbeat-ms`): each gap
-    /// longer than it is a timeout (docs/summary.md#heartbeat).
+    /// Return the decoder that reads the frames: its configuration, the
+    /// names of each node's objects, the mappings it has learned.
     #[must_use]
-    pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
-        self.heartbeat = Some(time);
-        self
+    pub fn decoder(&self) -> &Decoder {
+        &self.decoder
     }
 
-    #[inline]
-    fn bus(&mut self, iface: Option<crate::can::Iface<'_>>) -> &mut BusState {
-        let heartbeat = self.heartbeat;
-        let (at, _) = self
-            .buses
-            .find_or_insert(iface, |_| BusState::new(heartbeat));
-        self.buses.get_mut(at)
+    /// What the summary keeps of the bus at `at` in the decoder's table,
+    /// with its name, made on first sight (the decoder adds buses in
+    /// order, so the bus at `at` is new exactly when `at` is the length):
+    /// `name` is asked for then only.
+    #[inline(always)]
+    fn bus_state(
+        buses: &mut Vec<(BusName, BusState)>,
+        heartbeat: Option<Duration>,
+        at: usize,
+        name: impl FnOnce() -> BusName,
+    ) -> (&BusName, &mut BusState) {
+        if at >= buses.len() {
+            Self::new_bus(buses, heartbeat, name());
+        }
+        let (name, bus) = &mut buses[at];
+        (name, bus)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn new_bus(buses: &mut Vec<(BusName, BusState)>, heartbeat: Option<Duration>, name: BusName) {
+        buses.push((name, BusState::new(heartbeat)));
     }
 
     /// Add one log entry read at `position` (`line` in
-    /// docs/formats.md#positions): a frame is read by `decoder` first; a bus
-    /// event is counted.
-    ///
-    /// The same summary as [`Decoder::decode`] then
-    /// [`add_frame`](Self::add_frame), for less work: only the frames that
-    /// teach the decoder something (SDO and PDO frames) go through it.
+    /// docs/formats.md#positions): a frame is read by the decoder where the
+    /// decoder keeps state (SDO and PDO data frames), and summarized; a bus
+    /// event is counted (`status_events` in docs/summary.md#bus).
     #[inline]
-    pub fn add(&mut self, position: u64, event: &LogEvent<'_>, decoder: &mut Decoder) {
+    pub fn add(&mut self, position: u64, event: &LogEvent<'_>) {
         match event {
-            LogEvent::Frame(frame) => self.add_frame_from(position, frame, decoder),
+            LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
         }
     }
 
-    /// Add one frame, read at `position`, reading it with `decoder` only
-    /// where the decoder keeps state (see [`add`](Self::add)).
-    #[inline]
-    pub fn add_frame_from(&mut self, position: u64, log: &LogFrame<'_>, decoder: &mut Decoder) {
-        // What `Decoder::decode` does with the frame, without the parts of
-        // a `Decoded` the summary does not read: it keeps state for SDO and
-        // PDO data frames only, and learns nothing from the others.
-        let (kind, node) = MessageKind::classify(&log.frame);
-        match (kind, node) {
-            (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                decoder.sdo_frame(position, log, n, |key, seen, cia402| {
-                    let at = self.bus_of(key, log);
-                    self.add_classified(at, position, log, kind, node, Some(seen), cia402, |_| {});
-                });
-            }
-            (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
-                let (key, cia402) = decoder.pdo_cia402(log);
-                let at = self.bus_of(key, log);
-                self.add_classified(at, position, log, kind, node, NO_SDO, cia402, |_| {});
-            }
-            _ => {
-                let at = self.find_bus(log);
-                self.add_classified(at, position, log, kind, node, NO_SDO, None, |_| {});
-            }
-        }
-    }
-
-    /// Count a log entry that is not a frame (a TRC status row; `status_events`
-    /// in docs/summary.md#bus).
-    pub fn add_status(&mut self, status: &BusStatus<'_>) {
-        let bus = self.bus(status.iface);
-        bus.status_events += 1;
-        bus.saw(status.timestamp);
-    }
-
-    /// Add one frame, read at `position`, with what the decoder made of it.
-    #[inline]
-    pub fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, decoded: &Decoded<'_>) {
-        self.add_frame_with(position, log, decoded, |_| {});
-    }
-
-    /// Add one frame, as [`add_frame`](Self::add_frame) does, and hand
-    /// `on_event` each fact it adds to the summary, in order
-    /// ([`SummaryEvent`]): what the report draws (docs/report.md#timeline).
-    #[inline]
-    pub fn add_frame_with(
-        &mut self,
+    /// Add one log entry, as [`add`](Self::add) does, reading every frame
+    /// whole; hand `on_event` each fact the entry adds to the summary, in
+    /// order ([`SummaryEvent`]: what the report draws,
+    /// docs/report.md#timeline), and return what the decoder made of a
+    /// frame (`None` for a bus event).
+    pub fn add_with<'s>(
+        &'s mut self,
         position: u64,
-        log: &LogFrame<'_>,
-        decoded: &Decoded<'_>,
+        event: &'s LogEvent<'s>,
         on_event: impl FnMut(SummaryEvent<'_>),
-    ) {
-        let at = self.find_bus(log);
-        self.add_classified(
-            at,
+    ) -> Option<Decoded<'s>> {
+        let log = match event {
+            LogEvent::Frame(frame) => frame,
+            LogEvent::Status(status) => {
+                self.add_status(status);
+                return None;
+            }
+        };
+        let Summarizer {
+            decoder,
+            buses,
+            heartbeat,
+            last_time,
+            untimed,
+        } = self;
+        let at = decoder.bus(log.iface);
+        let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+        let decoded = decoder.decode(position, log);
+        add_classified(
+            bus,
+            name,
+            (last_time, untimed),
             position,
             log,
             decoded.kind,
@@ -533,264 +530,323 @@ impl Summarizer {
             decoded.cia402,
             on_event,
         );
+        Some(decoded)
     }
 
-    /// The place of the bus of `log`, made on first sight.
-    #[inline(always)]
-    fn find_bus(&mut self, log: &LogFrame<'_>) -> usize {
-        let heartbeat = self.heartbeat;
-        self.buses
-            .find_or_insert(log.iface, |_| BusState::new(heartbeat))
-            .0
-    }
-
-    /// The place of the bus of `log`, which a decoder found as `key`: the
-    /// place kept with the last key when it is the same, without a
-    /// comparison of the interface's name.
-    #[inline(always)]
-    fn bus_of(&mut self, key: BusKey, log: &LogFrame<'_>) -> usize {
-        match self.link {
-            Some((last, at)) if last == key => at,
+    /// A frame, for [`add`](Self::add): the decoder reads the SDO and PDO
+    /// data frames it keeps state for (the other kinds teach it nothing),
+    /// and the summary reads what the decoder read, where it was read.
+    #[inline]
+    fn add_frame(&mut self, position: u64, log: &LogFrame<'_>) {
+        let (kind, node) = MessageKind::classify(&log.frame);
+        let Summarizer {
+            decoder,
+            buses,
+            heartbeat,
+            last_time,
+            untimed,
+        } = self;
+        let times = (last_time, untimed);
+        match (kind, node) {
+            (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
+                decoder.sdo_frame(position, log, n, |at, seen, cia402| {
+                    let (name, bus) =
+                        Self::bus_state(buses, *heartbeat, at, || seen.bus_name().clone());
+                    add_classified(
+                        bus,
+                        name,
+                        times,
+                        position,
+                        log,
+                        kind,
+                        node,
+                        Some(seen),
+                        cia402,
+                        |_| {},
+                    );
+                });
+            }
+            (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
+                let (at, cia402) = decoder.pdo_cia402(log);
+                let (name, bus) =
+                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+                add_classified(
+                    bus,
+                    name,
+                    times,
+                    position,
+                    log,
+                    kind,
+                    node,
+                    NO_SDO,
+                    cia402,
+                    |_| {},
+                );
+            }
             _ => {
-                let at = self.find_bus(log);
-                self.link = Some((key, at));
-                at
+                let at = decoder.bus(log.iface);
+                let (name, bus) =
+                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+                add_classified(
+                    bus,
+                    name,
+                    times,
+                    position,
+                    log,
+                    kind,
+                    node,
+                    NO_SDO,
+                    None,
+                    |_| {},
+                );
             }
         }
     }
 
-    /// Add one frame of `kind` and `node` seen on the bus at `at`, with its
-    /// SDO step and CiA 402 reading where the decoder gave one, handing
-    /// `on_event` each fact.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn add_classified(
-        &mut self,
-        at: usize,
-        position: u64,
-        log: &LogFrame<'_>,
-        kind: MessageKind,
-        node: Option<NodeId>,
-        sdo: Option<&impl SdoFrameFacts>,
-        cia402: Option<Cia402Reading>,
-        mut on_event: impl FnMut(SummaryEvent<'_>),
-    ) {
-        let now = log.timestamp.map(Timestamp::as_duration);
-        match now {
-            Some(_) => self.last_time = now,
-            None => self.untimed += 1,
-        }
-        let (name, bus) = self.buses.entry_mut(at);
-        let event = |node, kind| SummaryEvent {
-            bus: name,
-            node,
-            line: position,
-            ts: log.timestamp,
-            kind,
-        };
-        bus.frames += 1;
-        bus.saw(log.timestamp);
-        if kind == MessageKind::ErrorFrame {
-            bus.error_frames += 1;
-            let (mut bus_off, mut error_passive) = (false, false);
-            if let Ok(error) = ErrorFrame::from_frame(&log.frame) {
-                bus_off = error.is_bus_off();
-                error_passive = error.is_error_passive();
-                if bus_off {
-                    bus.bus_off.push(position);
-                }
-                if error_passive {
-                    bus.error_passive.push(position);
-                }
+    /// Count a log entry that is not a frame (a TRC status row).
+    fn add_status(&mut self, status: &BusStatus<'_>) {
+        let at = self.decoder.bus(status.iface);
+        let decoder = &self.decoder;
+        let (_, bus) = Self::bus_state(&mut self.buses, self.heartbeat, at, || {
+            decoder.bus_name(at).clone()
+        });
+        bus.status_events += 1;
+        bus.saw(status.timestamp);
+    }
+}
+
+/// Add one frame of `kind` and `node` seen on `bus` (named `name`), with
+/// its SDO step and CiA 402 reading where the decoder gave one, handing
+/// `on_event` each fact; `times` are the summarizer's last time and count
+/// of frames without one.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn add_classified(
+    bus: &mut BusState,
+    name: &BusName,
+    times: (&mut Option<Duration>, &mut u64),
+    position: u64,
+    log: &LogFrame<'_>,
+    kind: MessageKind,
+    node: Option<NodeId>,
+    sdo: Option<&impl SdoFrameFacts>,
+    cia402: Option<Cia402Reading>,
+    mut on_event: impl FnMut(SummaryEvent<'_>),
+) {
+    let now = log.timestamp.map(Timestamp::as_duration);
+    match now {
+        Some(_) => *times.0 = now,
+        None => *times.1 += 1,
+    }
+    let event = |node, kind| SummaryEvent {
+        bus: name,
+        node,
+        line: position,
+        ts: log.timestamp,
+        kind,
+    };
+    bus.frames += 1;
+    bus.saw(log.timestamp);
+    if kind == MessageKind::ErrorFrame {
+        bus.error_frames += 1;
+        let (mut bus_off, mut error_passive) = (false, false);
+        if let Ok(error) = ErrorFrame::from_frame(&log.frame) {
+            bus_off = error.is_bus_off();
+            error_passive = error.is_error_passive();
+            if bus_off {
+                bus.bus_off.push(position);
             }
-            on_event(event(
-                None,
-                SummaryEventKind::ErrorFrame {
-                    bus_off,
-                    error_passive,
-                },
-            ));
-            return;
-        }
-        let Some(node) = node else { return };
-        let BusState {
-            nodes,
-            storage,
-            consumer,
-            ..
-        } = bus;
-        let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
-        state.frames.by_kind[kind.index()] += 1;
-        if let Some(step) = sdo {
-            let added = state.sdo.add(step, position);
-            if added.abort {
-                if let Some(abort) = state.sdo.last_abort() {
-                    on_event(SummaryEvent {
-                        bus: name,
-                        node: Some(node),
-                        line: position,
-                        ts: log.timestamp,
-                        kind: SummaryEventKind::SdoAbort(abort),
-                    });
-                }
-            }
-            if let (true, Some(ended)) = (added.ended, step.ended()) {
-                on_event(sdo_ended(name, node, ended));
+            if error_passive {
+                bus.error_passive.push(position);
             }
         }
-        if let Some(reading) = cia402 {
-            // A PDO's drive is the node that owns it, which the log may
-            // have moved to another node's COB-ID.
-            let drive =
-                nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
-            let last_error = drive.last_error;
-            if let Some((transition, fault)) =
-                drive
-                    .cia402
-                    .observe(position, log.timestamp, reading, last_error)
-            {
-                on_event(event(
-                    Some(reading.node),
-                    SummaryEventKind::Cia402 { transition, fault },
-                ));
-            }
-            return;
-        }
-        // What `CanOpenMessage::decode` reads of the three kinds the
-        // summary follows, read here without the rest of the message: an
-        // EMCY of at least 8 bytes (not a remote request), a heartbeat's
-        // first byte, a guard request.
-        let frame = &log.frame;
-        match kind {
-            MessageKind::Emcy => {
-                if frame.is_rtr() {
-                    return;
-                }
-                let Ok(emcy) = Emcy::parse(frame.data()) else {
-                    return;
-                };
-                state.emcy += 1;
-                state.last_register = Some(emcy.register);
-                let seen = EmcySeen {
+        on_event(event(
+            None,
+            SummaryEventKind::ErrorFrame {
+                bus_off,
+                error_passive,
+            },
+        ));
+        return;
+    }
+    let Some(node) = node else { return };
+    let BusState {
+        nodes,
+        storage,
+        consumer,
+        ..
+    } = bus;
+    let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
+    state.frames.by_kind[kind.index()] += 1;
+    if let Some(step) = sdo {
+        let added = state.sdo.add(step, position);
+        if added.abort {
+            if let Some(abort) = state.sdo.last_abort() {
+                on_event(SummaryEvent {
+                    bus: name,
+                    node: Some(node),
                     line: position,
                     ts: log.timestamp,
-                    code: emcy.code,
-                };
-                on_event(event(
-                    Some(node),
-                    SummaryEventKind::Emcy {
-                        code: emcy.code,
-                        register: emcy.register,
-                    },
-                ));
-                if emcy.is_reset() {
-                    state.resets += 1;
-                } else {
-                    state.last_error = Some(seen);
-                    if state.first_error.is_none() {
-                        state.first_error = Some(seen);
-                    }
-                }
-                match storage.receive(node, emcy) {
-                    SlotUpdate::RootCause => state.active_error = Some(seen),
-                    SlotUpdate::Reset { .. } => state.active_error = None,
-                    SlotUpdate::FollowUp { .. } => {}
-                }
+                    kind: SummaryEventKind::SdoAbort(abort),
+                });
             }
-            MessageKind::GuardRequest => {
-                state.guard_request_pending = true;
-                // A missing answer is not part of the summary's contract.
-                let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
-            }
-            MessageKind::Heartbeat => {
-                let Some(&byte) = frame.data().first() else {
-                    return;
-                };
-                let byte = NmtStateByte::new(byte);
-                if state.guard_request_pending {
-                    state.guard_request_pending = false;
-                    state.guarding_summary.answers += 1;
-                    // Counted as an answer, not as a heartbeat.
-                    state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
-                    state.frames.guard_answers += 1;
-                    on_event(event(
-                        Some(node),
-                        SummaryEventKind::Nmt {
-                            state: byte,
-                            guard_answer: true,
-                        },
-                    ));
-                    if let Some(answer) = byte.guard_answer() {
-                        let events = state
-                            .guarding
-                            .on_answer(now.unwrap_or(Duration::ZERO), answer);
-                        if events
-                            .into_iter()
-                            .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
-                        {
-                            state.guarding_summary.toggle_errors.push(position);
-                            on_event(event(Some(node), SummaryEventKind::ToggleError));
-                        }
-                    }
-                } else {
-                    state.heartbeats += 1;
-                    state.last_state = Some(byte);
-                    on_event(event(
-                        Some(node),
-                        SummaryEventKind::Nmt {
-                            state: byte,
-                            guard_answer: false,
-                        },
-                    ));
-                    if byte.state_raw() == 0 {
-                        state.boot_ups.push(position);
-                        state.guarding.on_boot_up();
-                        on_event(event(Some(node), SummaryEventKind::BootUp));
-                    }
-                    if let (Some(consumer), Some(now), Some(nmt)) =
-                        (consumer.as_mut(), now, byte.state())
-                    {
-                        for event in consumer.on_heartbeat(now, node, nmt) {
-                            match event {
-                                HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                                    state.open_gap =
-                                        Some((state.last_heartbeat_line, last_heartbeat));
-                                }
-                                HeartbeatEvent::Recovered { at, .. }
-                                | HeartbeatEvent::RemoteReset { at, .. } => {
-                                    if let Some((after_line, last)) = state.open_gap.take() {
-                                        let gap = HeartbeatGap {
-                                            after_line,
-                                            gap: at.saturating_sub(last),
-                                        };
-                                        state.timeouts.push(gap);
-                                        on_event(SummaryEvent {
-                                            bus: name,
-                                            node: Some(node),
-                                            line: after_line,
-                                            ts: Some(Timestamp::from_duration(last)),
-                                            kind: SummaryEventKind::HeartbeatTimeout(gap),
-                                        });
-                                    }
-                                }
-                                HeartbeatEvent::CapacityExceeded { .. } => {}
-                            }
-                        }
-                    }
-                    state.last_heartbeat_line = position;
-                }
-            }
-            _ => {}
+        }
+        if let (true, Some(ended)) = (added.ended, step.ended()) {
+            on_event(sdo_ended(name, node, ended));
         }
     }
+    if let Some(reading) = cia402 {
+        // A PDO's drive is the node that owns it, which the log may
+        // have moved to another node's COB-ID.
+        let drive = nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
+        let last_error = drive.last_error;
+        if let Some((transition, fault)) =
+            drive
+                .cia402
+                .observe(position, log.timestamp, reading, last_error)
+        {
+            on_event(event(
+                Some(reading.node),
+                SummaryEventKind::Cia402 { transition, fault },
+            ));
+        }
+        return;
+    }
+    // What `CanOpenMessage::decode` reads of the three kinds the
+    // summary follows, read here without the rest of the message: an
+    // EMCY of at least 8 bytes (not a remote request), a heartbeat's
+    // first byte, a guard request.
+    let frame = &log.frame;
+    match kind {
+        MessageKind::Emcy => {
+            if frame.is_rtr() {
+                return;
+            }
+            let Ok(emcy) = Emcy::parse(frame.data()) else {
+                return;
+            };
+            state.emcy += 1;
+            state.last_register = Some(emcy.register);
+            let seen = EmcySeen {
+                line: position,
+                ts: log.timestamp,
+                code: emcy.code,
+            };
+            on_event(event(
+                Some(node),
+                SummaryEventKind::Emcy {
+                    code: emcy.code,
+                    register: emcy.register,
+                },
+            ));
+            if emcy.is_reset() {
+                state.resets += 1;
+            } else {
+                state.last_error = Some(seen);
+                if state.first_error.is_none() {
+                    state.first_error = Some(seen);
+                }
+            }
+            match storage.receive(node, emcy) {
+                SlotUpdate::RootCause => state.active_error = Some(seen),
+                SlotUpdate::Reset { .. } => state.active_error = None,
+                SlotUpdate::FollowUp { .. } => {}
+            }
+        }
+        MessageKind::GuardRequest => {
+            state.guard_request_pending = true;
+            // A missing answer is not part of the summary's contract.
+            let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
+        }
+        MessageKind::Heartbeat => {
+            let Some(&byte) = frame.data().first() else {
+                return;
+            };
+            let byte = NmtStateByte::new(byte);
+            if state.guard_request_pending {
+                state.guard_request_pending = false;
+                state.guarding_summary.answers += 1;
+                // Counted as an answer, not as a heartbeat.
+                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
+                state.frames.guard_answers += 1;
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: true,
+                    },
+                ));
+                if let Some(answer) = byte.guard_answer() {
+                    let events = state
+                        .guarding
+                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
+                    if events
+                        .into_iter()
+                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+                    {
+                        state.guarding_summary.toggle_errors.push(position);
+                        on_event(event(Some(node), SummaryEventKind::ToggleError));
+                    }
+                }
+            } else {
+                state.heartbeats += 1;
+                state.last_state = Some(byte);
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: false,
+                    },
+                ));
+                if byte.state_raw() == 0 {
+                    state.boot_ups.push(position);
+                    state.guarding.on_boot_up();
+                    on_event(event(Some(node), SummaryEventKind::BootUp));
+                }
+                if let (Some(consumer), Some(now), Some(nmt)) =
+                    (consumer.as_mut(), now, byte.state())
+                {
+                    for event in consumer.on_heartbeat(now, node, nmt) {
+                        match event {
+                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
+                            }
+                            HeartbeatEvent::Recovered { at, .. }
+                            | HeartbeatEvent::RemoteReset { at, .. } => {
+                                if let Some((after_line, last)) = state.open_gap.take() {
+                                    let gap = HeartbeatGap {
+                                        after_line,
+                                        gap: at.saturating_sub(last),
+                                    };
+                                    state.timeouts.push(gap);
+                                    on_event(SummaryEvent {
+                                        bus: name,
+                                        node: Some(node),
+                                        line: after_line,
+                                        ts: Some(Timestamp::from_duration(last)),
+                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                    });
+                                }
+                            }
+                            HeartbeatEvent::CapacityExceeded { .. } => {}
+                        }
+                    }
+                }
+                state.last_heartbeat_line = position;
+            }
+        }
+        _ => {}
+    }
+}
 
+impl Summarizer {
     /// Close the input: transfers left open end (docs/canopen.md#transfers),
     /// heartbeats still missing at the last timestamp are timeouts up to it,
     /// and the nodes that are drives get their CiA 402 timeline
     /// (docs/summary.md#cia402).
     #[must_use]
-    pub fn finish(self, decoder: &mut Decoder) -> Summary {
-        self.finish_with(decoder, |_| {})
+    pub fn finish(self) -> Summary {
+        self.finish_with(|_| {})
     }
 
     /// Close the input, as [`finish`](Self::finish) does, and hand
@@ -798,18 +854,14 @@ impl Summarizer {
     /// transfers left open, the heartbeat gaps still open at the last
     /// timestamp ([`SummaryEvent`]).
     #[must_use]
-    pub fn finish_with(
-        mut self,
-        decoder: &mut Decoder,
-        mut on_event: impl FnMut(SummaryEvent<'_>),
-    ) -> Summary {
-        for open in decoder.finish() {
-            if let Some(state) = self
+    pub fn finish_with(mut self, mut on_event: impl FnMut(SummaryEvent<'_>)) -> Summary {
+        for open in self.decoder.finish() {
+            let state = self
                 .buses
                 .iter_mut()
-                .find(|(name, _)| **name == open.bus)
-                .and_then(|(_, bus)| bus.nodes[open.node.index()].as_mut())
-            {
+                .find(|(name, _)| *name == open.bus)
+                .and_then(|(_, bus)| bus.nodes[open.node.index()].as_mut());
+            if let Some(state) = state {
                 if state.sdo.ended(&open.transfer) {
                     on_event(sdo_ended(&open.bus, open.node, &open.transfer));
                 }
@@ -817,6 +869,7 @@ impl Summarizer {
         }
         if let Some(end) = self.last_time {
             for (name, bus) in self.buses.iter_mut() {
+                let name = &*name;
                 let Some(consumer) = bus.consumer.as_mut() else {
                     continue;
                 };
@@ -855,7 +908,8 @@ impl Summarizer {
             (true, 0) => Some(true),
             (true, _) => Some(false),
         };
-        let mut buses = self.buses.into_vec();
+        let decoder = &self.decoder;
+        let mut buses = self.buses;
         buses.sort_by(|a, b| a.0.cmp(&b.0));
         let mut summary = Summary {
             nodes: Vec::new(),

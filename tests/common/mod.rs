@@ -96,10 +96,11 @@ impl Run {
         let mut out = Vec::new();
         for file in &self.files {
             let mut decoder = Decoder::new(self.config.clone());
-            let mut summarizer = Summarizer::new();
+            let mut config = self.config.clone();
             if let Some(time) = self.heartbeat {
-                summarizer = summarizer.heartbeat_timeout(time);
+                config = config.heartbeat_timeout(time);
             }
+            let mut summarizer = Summarizer::new(config);
             let mut log = logs::open(path(file)).unwrap();
             while let Some(next) = log.next_event() {
                 // Malformed lines and damaged records go to the program's
@@ -107,7 +108,7 @@ impl Run {
                 let Ok(record) = next else { continue };
                 let position = record.position.number();
                 if self.summary {
-                    summarizer.add(position, &record.event, &mut decoder);
+                    summarizer.add(position, &record.event);
                 } else if let Some(frame) = record.event.frame() {
                     let decoded = decoder.decode(position, frame);
                     if several {
@@ -118,7 +119,7 @@ impl Run {
                 }
             }
             if self.summary {
-                let mut summary = summarizer.finish(&mut decoder);
+                let mut summary = summarizer.finish();
                 summary.file = several.then(|| file.clone());
                 for record in summary.records() {
                     serde_json::to_writer(&mut out, &record).unwrap();

@@ -113,10 +113,9 @@ struct Sink<'a> {
     /// channels, PDO mappings, drive states; docs/canopen.md#transfers,
     /// docs/canopen.md#pdo-mappings, docs/canopen.md#cia402).
     decoder: Decoder,
-    /// How the decoder was configured: a new recording starts with it.
+    /// How the decoder was configured (the summary's heartbeat consumer
+    /// time too): a new recording starts with it.
     config: DecoderConfig,
-    /// The summary's heartbeat consumer time, for a new recording.
-    heartbeat: Option<Duration>,
     /// The input's name, when several are read: every record names it.
     file: Option<String>,
     /// Added to every position: the lines of the files before this one,
@@ -148,11 +147,11 @@ impl<'a> Sink<'a> {
             }
             nodes
         });
-        let heartbeat = args
-            .heartbeat_ms
-            .map(|ms| Duration::from_millis(u64::from(ms)));
-        let summary = (args.summary && !page).then(|| new_summarizer(heartbeat));
-        let recorder = page.then(|| Recorder::with_summarizer(new_summarizer(heartbeat)));
+        if let Some(ms) = args.heartbeat_ms {
+            config = config.heartbeat_timeout(Duration::from_millis(u64::from(ms)));
+        }
+        let summary = (args.summary && !page).then(|| Summarizer::new(config.clone()));
+        let recorder = page.then(|| Recorder::new(config.clone()));
         Ok(Sink {
             out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
             json: Vec::with_capacity(JSON_BLOCK + 4096),
@@ -176,7 +175,6 @@ impl<'a> Sink<'a> {
             frames: 0,
             decoder: Decoder::new(config.clone()),
             config,
-            heartbeat,
             file: None,
             offset: 0,
             summary_written: false,
@@ -185,17 +183,8 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
-        self.frames += 1;
-        if let Some(summary) = self.summary.as_mut() {
-            summary.add_frame_from(line, frame, &mut self.decoder);
-            return Ok(());
-        }
         // Every frame teaches the decoder, shown or not.
         let decoded = self.decoder.decode(line, frame);
-        if let Some(recorder) = self.recorder.as_mut() {
-            recorder.add_frame(line, frame, &decoded);
-            return Ok(());
-        }
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
@@ -234,17 +223,20 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
+        if let LogEvent::Frame(_) = event {
+            self.frames += 1;
+        }
+        if let Some(summary) = self.summary.as_mut() {
+            summary.add(line, event);
+            return Ok(());
+        }
+        if let Some(recorder) = self.recorder.as_mut() {
+            recorder.add(line, event);
+            return Ok(());
+        }
         match event {
             LogEvent::Frame(frame) => self.frame(line, frame),
-            LogEvent::Status(status) => {
-                if let Some(summary) = self.summary.as_mut() {
-                    summary.add_status(status);
-                }
-                if let Some(recorder) = self.recorder.as_mut() {
-                    recorder.add_status(status);
-                }
-                Ok(())
-            }
+            LogEvent::Status(_) => Ok(()),
         }
     }
 
@@ -338,10 +330,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
                 // before carries over (docs/output.md#several-files).
                 sink.decoder = Decoder::new(sink.config.clone());
                 if args.summary && !page {
-                    sink.summary = Some(new_summarizer(sink.heartbeat));
+                    sink.summary = Some(Summarizer::new(sink.config.clone()));
                 }
                 if page {
-                    sink.recorder = Some(Recorder::with_summarizer(new_summarizer(sink.heartbeat)));
+                    sink.recorder = Some(Recorder::new(sink.config.clone()));
                 }
             }
         }
@@ -515,20 +507,13 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
 }
 
 /// A summarizer for a new recording.
-fn new_summarizer(heartbeat: Option<Duration>) -> Summarizer {
-    match heartbeat {
-        Some(time) => Summarizer::new().heartbeat_timeout(time),
-        None => Summarizer::new(),
-    }
-}
-
 /// Write the summary of the recording read so far (with `--summary`),
 /// naming its file when several are read apart.
 fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Result<(), Failure> {
     let Some(summarizer) = sink.summary.take() else {
         return Ok(());
     };
-    let mut summary = summarizer.finish(&mut sink.decoder);
+    let mut summary = summarizer.finish();
     summary.file = file;
     say_unchecked_timeouts(&mut sink.err, &summary)?;
     if json {
@@ -570,7 +555,7 @@ fn take_recording(
     let Some(recorder) = sink.recorder.take() else {
         return Ok(());
     };
-    let mut recording = recorder.finish(&mut sink.decoder);
+    let mut recording = recorder.finish();
     recording.summary.file = file;
     recording.files = files;
     say_unchecked_timeouts(&mut sink.err, &recording.summary)?;
