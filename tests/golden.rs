@@ -1,14 +1,26 @@
-//! The program's output is byte for byte what it was before the decoder and
-//! the summary moved into the library (issue 19): every case of
-//! `tests/golden/cases.txt` is run and its exit status, standard error and
-//! standard output compared with the snapshot `scripts/gen_golden.sh` made.
+//! The program's output on every case of `tests/golden/cases.txt` (one
+//! command line a line, the arguments after `motionwire`) is byte for byte
+//! the snapshot `scripts/gen_golden.sh` made: exit status, standard error
+//! and standard output. The output changes only on purpose: then the
+//! script is run again and CHANGELOG.md says what changed.
+//!
+//! Each case's snapshot is named after the case (`common::golden_name`,
+//! the rule of `scripts/gen_golden.sh`), so that adding a case adds one
+//! file and renames none.
 
+use std::collections::BTreeSet;
 use std::io::Read;
 use std::path::Path;
 use std::process::Command;
 
-fn golden(n: usize) -> Vec<u8> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{n:03}.gz"));
+mod common;
+
+use common::golden_name;
+
+fn golden(name: &str) -> Vec<u8> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(name);
     let file = std::fs::File::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut text = Vec::new();
     flate2::read::GzDecoder::new(file)
@@ -33,12 +45,39 @@ fn first_difference(expected: &[u8], found: &[u8]) -> String {
     )
 }
 
+/// Every case names a file of its own, every file is a case's (or the
+/// list of cases): a snapshot nothing compares is an error, not a leftover.
+fn check_files(root: &Path, cases: &[&str]) {
+    let mut names = BTreeSet::new();
+    for case in cases {
+        assert!(
+            names.insert(golden_name(case)),
+            "two cases share the snapshot {}; make the case lines differ",
+            golden_name(case)
+        );
+    }
+    let present: BTreeSet<String> = std::fs::read_dir(root.join("tests/golden"))
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name != "cases.txt")
+        .collect();
+    let missing: Vec<_> = names.difference(&present).collect();
+    let stray: Vec<_> = present.difference(&names).collect();
+    assert!(
+        missing.is_empty() && stray.is_empty(),
+        "tests/golden: snapshots missing {missing:?}, files no case names {stray:?} \
+         (bash scripts/gen_golden.sh makes them)"
+    );
+}
+
 #[test]
 fn output_is_unchanged_on_every_fixture() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let cases = std::fs::read_to_string(root.join("tests/golden/cases.txt")).unwrap();
+    let cases: Vec<&str> = cases.lines().collect();
+    check_files(root, &cases);
     let mut failures = Vec::new();
-    for (i, case) in cases.lines().enumerate() {
+    for case in cases {
         let out = Command::new(env!("CARGO_BIN_EXE_motionwire"))
             .args(case.split_whitespace())
             .current_dir(root)
@@ -49,7 +88,7 @@ fn output_is_unchanged_on_every_fixture() {
         found.extend_from_slice(format!("stderr {}\n", out.stderr.len()).as_bytes());
         found.extend_from_slice(&out.stderr);
         found.extend_from_slice(&out.stdout);
-        let expected = golden(i + 1);
+        let expected = golden(&golden_name(case));
         if found != expected {
             failures.push(format!(
                 "motionwire {case}: {}",

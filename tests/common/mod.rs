@@ -152,3 +152,18 @@ pub fn path(rel: &str) -> String {
         .unwrap()
         .to_owned()
 }
+
+/// The file name of a case's snapshot in `tests/golden/` (the case one line
+/// of `tests/golden/cases.txt`, the arguments after `motionwire`): the
+/// arguments joined by `_`, with the fixtures' directory `tests/fixtures/`
+/// left out and every other `/` written `-`, then `.gz`. `decode --json
+/// tests/fixtures/pcap/sll.pcap` is `decode_--json_pcap-sll.pcap.gz`.
+/// `scripts/gen_golden.sh` and the Python tests name them by the same rule.
+pub fn golden_name(case: &str) -> String {
+    let words: Vec<&str> = case.split_whitespace().collect();
+    let name = words
+        .join("_")
+        .replace("tests/fixtures/", "")
+        .replace('/', "-");
+    format!("{name}.gz")
+}
