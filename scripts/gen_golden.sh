@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The program's output on every fixture log and the sample, as a snapshot
-# that `tests/golden.rs` compares byte for byte: the program's output
+# that `tests/program/golden.rs` compares byte for byte: the program's output
 # changes only on purpose. Each line of tests/golden/cases.txt is one
 # command line (arguments after `motionwire`); its stdout, stderr and exit
 # status are kept gzip-compressed in tests/golden/NAME.gz, NAME the case's

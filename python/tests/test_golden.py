@@ -2,7 +2,8 @@
 docs/python.md#decode): every `decode --summary --json` and `decode --json`
 case of tests/golden/cases.txt — the sample and every fixture, with their
 --heartbeat-ms, --profile and --eds — as the program writes it
-(tests/golden/*.gz, the snapshots tests/golden.rs holds the program to)."""
+(tests/golden/*.gz, the snapshots tests/program/golden.rs holds the program
+to)."""
 
 from __future__ import annotations
 

@@ -5,8 +5,10 @@
 //! (implied), `--summary`, `--heartbeat-ms MS`, `--profile LIST`, `--eds
 //! NODE=FILE` — and builds the library's configuration from them, so that
 //! the tests check the library itself (no `cli` feature) while reading as
-//! the command lines they stand for; `tests/library.rs` checks that the
-//! program writes the same on every fixture.
+//! the command lines they stand for; `tests/library/library.rs` checks that
+//! the program writes the same on every fixture. `tests/program/golden.rs`
+//! and `tests/library/library.rs` find a case's snapshot by
+//! [`golden_name`].
 #![allow(dead_code)]
 
 use std::path::Path;

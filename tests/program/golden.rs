@@ -13,9 +13,7 @@ use std::io::Read;
 use std::path::Path;
 use std::process::Command;
 
-mod common;
-
-use common::golden_name;
+use crate::common::golden_name;
 
 fn golden(name: &str) -> Vec<u8> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -3,15 +3,13 @@
 //! docs/summary.md): read any log with `logs::open`, decode each frame with a
 //! `Decoder`, build the summary with a `Summarizer`, serialize with serde_json.
 //! Compared line for line with the program's output on every fixture and the
-//! sample (the snapshot `tests/golden.rs` checks the program against), with no
-//! `cli` feature.
+//! sample (the snapshot `tests/program/golden.rs` checks the program
+//! against), with no `cli` feature.
 
 use std::io::Read;
 use std::path::Path;
 
-mod common;
-
-use common::{golden_name, Run};
+use crate::common::{golden_name, Run};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
