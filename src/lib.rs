@@ -200,14 +200,14 @@ use logs::{BinaryError, LogFormat, SyntaxError};
 /// program can match on it), what was *expected* and what was *found*, so
 /// that a message such as
 /// `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
-/// to a person without further context (STYLE.md, "errors carry context").
+/// to a person without further context.
 ///
 /// It is the umbrella users match on. An error that belongs to one layer is
 /// that layer's own type, declared in the layer and carried by a variant
 /// here ([`Error::PdoEntry`] carries a [`canopen::PdoEntryError`]). The enum
 /// is declared at the crate root, above every layer, so that the layers
 /// point one way: no layer, and not the base module of what errors name,
-/// imports a protocol it does not build on (STYLE.md rule 15).
+/// imports a protocol it does not build on.
 ///
 /// The enum is `#[non_exhaustive]`: later protocol layers add variants.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]

@@ -3,8 +3,8 @@ use crate::can::LogFrame;
 use crate::error::What;
 use crate::test_gens::candump::{Build, FrameExt};
 
-/// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000
-/// as candump -l logs it.
+/// The log example of docs/formats.md#candump-log: an EMCY of node 1 (code
+/// 0x8110, register 0x11) as candump -l logs it.
 const DOCS_LOG: &str = "(1700000000.000500) can0 081#1081110000000000";
 /// The screen examples of docs/formats.md#candump-screen.
 const DOCS_SCREEN: &str = "  can0  081   [8]  10 81 11 00 00 00 00 00";
