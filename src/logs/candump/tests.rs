@@ -1580,11 +1580,11 @@ fn error_frame_explanation_lines_belong_to_the_frame() {
     assert!(parse_line(b"\tcontroller-problem{rx-error-warning}").is_err());
 }
 
-/// A 150 s fuzz run of `candump_line` (issue 20): a `candump -c` line whose
-/// text without its colour escapes is 512 bytes long fitted the buffer the
-/// escapes are stripped into; the same line with one leading space did not,
-/// was read with its escapes, and reported its error 9 columns further
-/// right instead of 1. Leading white space is no longer copied.
+/// A `candump -c` line whose text without its colour escapes is 512 bytes
+/// long fits the buffer the escapes are stripped into, with or without
+/// leading white space (which is not copied): the line with one leading
+/// space reads as the line without, its error at the same column. The input
+/// is the one a fuzz run of `candump_line` found.
 #[test]
 fn indentation_never_decides_how_a_coloured_line_reads() {
     let input = include_bytes!(concat!(
