@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the Vector ASC fixtures of tests/asc.rs with real writers, and
+"""Write the Vector ASC fixtures of tests/codecs/asc.rs with real writers, and
 beside each a JSON file with what a real reader reads back, frame by frame.
 
 - python_can.asc: python-can's ASCWriter (base hex, absolute times; classic,

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Write the Vector BLF fixtures of tests/blf.rs with python-can's BLFWriter,
-and beside each a JSON file with what python-can's BLFReader reads back.
+"""Write the Vector BLF fixtures of tests/library/blf.rs with python-can's
+BLFWriter, and beside each a JSON file with what python-can's BLFReader reads
+back.
 
 - python_can.blf: compressed (zlib) containers; classic, remote, extended,
   CAN FD with BRS/ESI at 12 and 64 bytes, an error frame, two channels,

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Write tests/fixtures/cia402/python_canopen.json: what python-canopen's CiA 402
 profile (canopen/profiles/p402.py) makes of statuswords and which controlwords
-it writes to move a drive between states. tests/cia402.rs checks the crate's
-state machine (codec/src/canopen/cia402.rs, docs/canopen.md#cia402) against it.
+it writes to move a drive between states. tests/codecs/cia402.rs checks the
+crate's state machine (codec/src/canopen/cia402.rs, docs/canopen.md#cia402)
+against it.
 
 Everything is read from python-canopen itself, not retyped:
 

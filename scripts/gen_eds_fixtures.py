@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Write the expected results of tests/eds.rs with python-canopen as the oracle.
+"""Write the expected results of tests/library/eds.rs with python-canopen as
+the oracle.
 
 For each EDS/DCF under tests/fixtures/eds/ (see the README there), imports the
 file with ``canopen.import_od`` for a node-ID, builds every PDO the way

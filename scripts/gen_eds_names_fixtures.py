@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the EDS-names fixture of tests/eds_names.rs and its truth file.
+"""Write the EDS-names fixture of tests/library/eds_names.rs and its truth file.
 
 docs/canopen.md#signals and docs/canopen.md#object-names: a PDO signal mapped
 from a sub-entry of an ARRAY (object type 0x8) or a RECORD (0x9) is named

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The program's output on every fixture log and the sample, as a snapshot
-# that `tests/golden.rs` compares byte for byte: the decoder and the summary
-# moved from the program into the library (issue 19) and the program's
-# output must not change. Each line of tests/golden/cases.txt is one
+# that `tests/program/golden.rs` compares byte for byte: the program's output
+# changes only on purpose. Each line of tests/golden/cases.txt is one
 # command line (arguments after `motionwire`); its stdout, stderr and exit
-# status are kept gzip-compressed in tests/golden/NNN.gz.
+# status are kept gzip-compressed in tests/golden/NAME.gz, NAME the case's
+# arguments joined by `_`, `tests/fixtures/` left out and every other `/`
+# written `-` (`golden_name` in tests/common/mod.rs, the same rule): adding
+# a case adds one file and renames none.
 #
 # Made with the build of commit c5dd14a (before the move); run it again only
 # when the output is meant to change, and say so in the CHANGELOG.
@@ -67,6 +69,9 @@ done
 n=0
 while read -r line; do
   n=$((n + 1))
+  name=${line//tests\/fixtures\//}
+  name=${name// /_}
+  name=${name//\//-}
   # shellcheck disable=SC2086
   { set +e; "$bin" $line >"$out/stdout" 2>"$out/stderr"; status=$?; set -e; }
   {
@@ -74,7 +79,7 @@ while read -r line; do
     echo "stderr $(wc -c <"$out/stderr")"
     cat "$out/stderr"
     cat "$out/stdout"
-  } | gzip -n -9 >"$out/$(printf '%03d' $n).gz"
+  } | gzip -n -9 >"$out/$name.gz"
 done < "$out/cases.txt"
 rm -f "$out/stdout" "$out/stderr"
 echo "$n cases in $out"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Write the ASAM MDF 4 (MF4) fixtures of tests/mf4.rs with the real writers,
-and beside each a JSON file with what python-can's MF4Reader (asammdf
-underneath) reads back.
+"""Write the ASAM MDF 4 (MF4) fixtures of tests/library/mf4.rs with the real
+writers, and beside each a JSON file with what python-can's MF4Reader
+(asammdf underneath) reads back.
 
 Written here:
 - python_can.mf4: python-can's MF4Writer, compression_level=2 (DZ blocks,

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Write the pcap/pcapng fixtures of tests/pcap.rs and their truth files.
+"""Write the pcap/pcapng fixtures of tests/library/pcap.rs and their truth
+files.
 
 The frames are a candump-style list (identifier word with the Linux flags,
 FD flags, data). From them:

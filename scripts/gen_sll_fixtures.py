@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the Linux "cooked" capture fixtures of tests/pcap.rs
+"""Write the Linux "cooked" capture fixtures of tests/library/pcap.rs
 (docs/formats.md#pcap) with scapy, and beside each what tshark reads from it.
 
 `tcpdump -i any`, and dumpcap/Wireshark on a CAN interface in some setups,

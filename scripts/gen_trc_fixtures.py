@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""PEAK TRC fixtures for tests/trc.rs (docs/formats.md#trc), and what python-can
-reads from them.
+"""PEAK TRC fixtures for tests/codecs/trc.rs (docs/formats.md#trc), and what
+python-can reads from them.
 
 1. python-can's own TRCWriter writes tests/fixtures/trc/python_can_v1_0.trc
    and python_can_v2_1.trc (the only versions it writes; `file_version` set

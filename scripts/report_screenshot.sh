@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Make docs/report.png again: the top of the sample's report, as the README's
 # third command writes it, photographed by headless chromium (Debian's
-# `chromium` package, the browser of tests/report_browser.rs).
+# `chromium` package, the browser of tests/program/report_browser.rs).
 #
 #     scripts/report_screenshot.sh            # writes docs/report.png
 #     scripts/report_screenshot.sh shot.png   # writes shot.png

@@ -1,5 +1,5 @@
-//! `Display` of every type a user prints (issue: "Display on every type a
-//! user prints"), each against the text written out.
+//! `Display` of every type a user prints, each against the text written
+//! out.
 
 use crate::can::{CanFrame, CanId};
 use crate::canopen::{

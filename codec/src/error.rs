@@ -1,12 +1,12 @@
 //! What every error of the crate names, and the checks that build them.
 //!
-//! The crate's one error type, [`Error`], is declared at the crate root,
-//! above every layer, because it carries the layers' own errors (a PDO
-//! entry's error is `canopen::pdo`'s). This module lies below every layer
-//! and imports none of them (STYLE.md rule 15): [`What`], the frame, field
-//! or value an error is about, typed so that a program can match on it;
-//! and the length check every decoder starts with. The errors of log files
-//! are [`crate::logs`]' own.
+//! The crate's one error type, [`Error`], is declared at the crate root, above
+//! every layer, because it carries the layers' own errors (a PDO entry's error
+//! is `canopen::pdo`'s). This module lies below every layer and imports none of
+//! them, so that layers point one way: [`What`], the frame, field or value an
+//! error is about, typed so that a program can match on it; and the length
+//! check every decoder starts with. The errors of log files are
+//! [`crate::logs`]' own.
 
 use crate::{Error, Result};
 

@@ -295,7 +295,7 @@ fn enums_are_their_variant_names() {
 
 #[test]
 fn structs_are_their_fields() {
-    // The AKD EMCY of seed 000: code 0x8130, register 0x11, axis 1.
+    // An AKD EMCY (docs/canopen.md#akd): code 0x8130, register 0x11, axis 1.
     let emcy = Emcy::from_bytes(&[0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0]);
     check_json(
         emcy,

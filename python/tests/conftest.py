@@ -14,16 +14,24 @@ FIXTURES = ROOT / "tests" / "fixtures"
 SAMPLE = ROOT / "samples" / "machine.log"
 
 
-def golden_cases() -> list[tuple[int, list[str]]]:
-    """The program's command lines of tests/golden/cases.txt, numbered from 1."""
+def golden_name(line: str) -> str:
+    """The snapshot's file name for a case of tests/golden/cases.txt: the
+    arguments joined by `_`, `tests/fixtures/` left out and every other `/`
+    written `-` (`golden_name` in tests/common/mod.rs)."""
+    return "_".join(line.split()).replace("tests/fixtures/", "").replace("/", "-") + ".gz"
+
+
+def golden_cases() -> list[tuple[str, list[str]]]:
+    """The program's command lines of tests/golden/cases.txt, each with its
+    snapshot's file name."""
     lines = (ROOT / "tests" / "golden" / "cases.txt").read_text().splitlines()
-    return [(i + 1, shlex.split(line)) for i, line in enumerate(lines)]
+    return [(golden_name(line), shlex.split(line)) for line in lines]
 
 
-def golden_stdout(n: int) -> str:
-    """The program's standard output for case `n` (NNN.gz: status, stderr
+def golden_stdout(name: str) -> str:
+    """The program's standard output in the snapshot `name` (status, stderr
     length, stderr, stdout)."""
-    text = gzip.decompress((ROOT / "tests" / "golden" / f"{n:03}.gz").read_bytes()).decode()
+    text = gzip.decompress((ROOT / "tests" / "golden" / name).read_bytes()).decode()
     _status, rest = text.split("\n", 1)
     length_line, rest = rest.split("\n", 1)
     length = int(length_line.removeprefix("stderr "))

@@ -2,7 +2,8 @@
 docs/python.md#decode): every `decode --summary --json` and `decode --json`
 case of tests/golden/cases.txt — the sample and every fixture, with their
 --heartbeat-ms, --profile and --eds — as the program writes it
-(tests/golden/NNN.gz, the snapshot tests/golden.rs holds the program to)."""
+(tests/golden/*.gz, the snapshots tests/program/golden.rs holds the program
+to)."""
 
 from __future__ import annotations
 
@@ -16,24 +17,24 @@ from conftest import ROOT, decode_options, golden_cases, golden_stdout
 
 SUMMARY_CASES = []
 JSON_CASES = []
-for n, args in golden_cases():
+for name, args in golden_cases():
     if "--json" not in args:
         continue
     options = decode_options(args)
     if options is None:
         continue
-    (SUMMARY_CASES if "--summary" in args else JSON_CASES).append((n, options))
+    (SUMMARY_CASES if "--summary" in args else JSON_CASES).append((name, options))
 
 
 def case_id(case):
-    n, (kwargs, path) = case
-    return f"{n:03}-{path.removeprefix(str(ROOT) + '/')}"
+    name, _options = case
+    return name.removesuffix(".gz")
 
 
 @pytest.mark.parametrize("case", SUMMARY_CASES, ids=case_id)
 def test_summary_is_decode_summary_json(case):
-    n, (kwargs, path) = case
-    expected = [json.loads(line) for line in golden_stdout(n).splitlines()]
+    name, (kwargs, path) = case
+    expected = [json.loads(line) for line in golden_stdout(name).splitlines()]
     with warnings.catch_warnings():
         # Logs with malformed lines: summary warns, as the program does on
         # standard error.
@@ -44,9 +45,9 @@ def test_summary_is_decode_summary_json(case):
 
 @pytest.mark.parametrize("case", JSON_CASES, ids=case_id)
 def test_decode_record_is_decode_json(case):
-    n, (kwargs, path) = case
+    name, (kwargs, path) = case
     kwargs.pop("heartbeat_ms", None)
-    expected = golden_stdout(n).splitlines()
+    expected = golden_stdout(name).splitlines()
     table = motionwire.decode(path, **kwargs)
     assert table.column("record").to_pylist() == expected
 

@@ -538,8 +538,8 @@ pub(crate) fn pdo_value(out: &mut Vec<u8>, value: &crate::canopen::Value) {
 /// over a lane of 16 bits (its high nibble in the low byte, which comes
 /// first), then each lane turned into its two digits by the same few
 /// operations, which the compiler does on eight lanes at once (SSE2 on
-/// x86-64): about 30 instructions for the 16 bytes, against 3 a byte for
-/// a table lookup.
+/// x86-64): fewer instructions than a table lookup a byte (BENCHMARKS.md,
+/// "`--json` on the FD mix, instructions cut").
 #[inline(always)]
 fn hex32(bytes: &[u8; 16]) -> [u8; 32] {
     let mut digits = [0u8; 32];

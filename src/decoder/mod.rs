@@ -461,8 +461,8 @@ impl Decoder {
     }
 
     /// [`sdo_frame`](Self::sdo_frame) for [`decode`](Self::decode), out of
-    /// line: `decode`'s other paths (PDOs, every other kind) stay as small
-    /// as they were before the summary's inlined SDO path.
+    /// line, so that the SDO path the summary inlines does not enlarge
+    /// `decode`'s other paths (PDOs, every other kind).
     #[inline(never)]
     fn sdo_owned<'d>(
         &'d mut self,

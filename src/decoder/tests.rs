@@ -316,8 +316,8 @@ proptest! {
             let decoded = decoder.decode(line, &log);
             let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
             prop_assert_eq!(&json["line"], line);
-            // Issue 21: the record appended to a buffer is the record
-            // written, with and without a file name to escape.
+            // The record appended to a buffer is the record written, with
+            // and without a file name to escape.
             let mut appended = Vec::new();
             decoded.append_json(&mut appended, Some("a \"b\"\u{1}.log"));
             decoded.append_json(&mut appended, None);

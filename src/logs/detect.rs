@@ -281,7 +281,8 @@ mod tests {
                 "     1)      1059.900 DT 0300 Rx 7 00 00 00 00 04 00 00\n",
                 Detected::Format(LogFormat::Trc),
             ),
-            // A comment line alone decides nothing (it used to make TRC).
+            // A comment line alone decides nothing: any text may start
+            // with `;` or `//`.
             (";anything\n", Detected::Empty),
             ("// a comment\n", Detected::Empty),
             (
@@ -350,8 +351,8 @@ mod tests {
         assert_eq!(detect(b"abc\x00", false), Detected::Unrecognised);
     }
 
-    /// One MiB of random bytes (a fixed seed) is no log (issue 20: one line
-    /// starting with `;` made it TRC).
+    /// One MiB of random bytes (a fixed seed) is no log, though some of its
+    /// lines start with `;`.
     #[test]
     fn random_bytes_are_no_log() {
         let mut state = 0x2545_F491_4F6C_DD1Du64;

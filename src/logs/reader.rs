@@ -321,9 +321,9 @@ impl LogReader {
     /// [`LogReader::next_event`](ReadLog::next_event) picks the format's
     /// reader at every call, and the event is written out to memory instead
     /// of staying where the parser put it: in a loop that does little with
-    /// each event, reading a candump log that way takes about a third more
-    /// time (`benches/logs.rs`: 2.84 ms against 2.07 ms for 100 000 lines).
-    /// A visitor's loop is compiled for the format's reader and has no such
+    /// each event, that is a large part of the time (`benches/logs.rs`
+    /// measures both loops; BENCHMARKS.md, "one way to read any log"). A
+    /// visitor's loop is compiled for the format's reader and has no such
     /// cost.
     ///
     /// ```

@@ -1,7 +1,8 @@
 //! Coordinates written with a fixed number of decimals from an integer:
 //! the page has hundreds of thousands of them, and Rust's `{:.2}` formats
-//! a float exactly (Grisu with a Dragon fallback), which took 14 % of the
-//! instructions of a drives log's report (BENCHMARKS.md, "Issue 23").
+//! a float exactly (Grisu with a Dragon fallback), a large share of a
+//! drives log's report (BENCHMARKS.md, "Coordinates written from
+//! integers").
 
 use core::fmt;
 

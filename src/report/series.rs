@@ -165,7 +165,7 @@ impl<T: Item> Series<T> {
     /// Merge the items of one bucket, doubling the width (when `double`)
     /// until they fit the cap. The items are merged in place: no vector
     /// is allocated, so an EMCY storm's rows do not touch fresh memory each
-    /// time they coarsen (BENCHMARKS.md, "Issue 23").
+    /// time they coarsen (BENCHMARKS.md, "`motionwire report`").
     fn coarsen(&mut self, double: bool) {
         if double {
             self.shift += 1;

@@ -5,8 +5,10 @@
 //! (implied), `--summary`, `--heartbeat-ms MS`, `--profile LIST`, `--eds
 //! NODE=FILE` — and builds the library's configuration from them, so that
 //! the tests check the library itself (no `cli` feature) while reading as
-//! the command lines they stand for; `tests/library.rs` checks that the
-//! program writes the same on every fixture.
+//! the command lines they stand for; `tests/library/library.rs` checks that
+//! the program writes the same on every fixture. `tests/program/golden.rs`
+//! and `tests/library/library.rs` find a case's snapshot by
+//! [`golden_name`].
 #![allow(dead_code)]
 
 use std::path::Path;
@@ -152,4 +154,19 @@ pub fn path(rel: &str) -> String {
         .to_str()
         .unwrap()
         .to_owned()
+}
+
+/// The file name of a case's snapshot in `tests/golden/` (the case one line
+/// of `tests/golden/cases.txt`, the arguments after `motionwire`): the
+/// arguments joined by `_`, with the fixtures' directory `tests/fixtures/`
+/// left out and every other `/` written `-`, then `.gz`. `decode --json
+/// tests/fixtures/pcap/sll.pcap` is `decode_--json_pcap-sll.pcap.gz`.
+/// `scripts/gen_golden.sh` and the Python tests name them by the same rule.
+pub fn golden_name(case: &str) -> String {
+    let words: Vec<&str> = case.split_whitespace().collect();
+    let name = words
+        .join("_")
+        .replace("tests/fixtures/", "")
+        .replace('/', "-");
+    format!("{name}.gz")
 }

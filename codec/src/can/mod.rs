@@ -11,10 +11,10 @@
 //!   [`Iface`] and [`Direction`]: what every log reader yields.
 //!
 //! Every reader yields these types and the protocol layers above (CANopen)
-//! decode them; this layer knows nothing of those protocols (STYLE.md
-//! rule 15). With the `embedded-can` feature a [`CanFrame`] is an
-//! `embedded_can::Frame`. A new log source plugs in without touching the
-//! protocols above it (STYLE.md, "one link-layer vocabulary").
+//! decode them; this layer knows nothing of those protocols, so that layers
+//! point one way. With the `embedded-can` feature a [`CanFrame`] is an
+//! `embedded_can::Frame`. Because every layer above reads these types, a
+//! new log source plugs in without touching the protocols above it.
 //!
 //! ```
 //! use motionwire_codec::can::{CanFrame, CanId};

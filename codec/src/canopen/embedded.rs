@@ -6,7 +6,7 @@
 //! [`NmtNodeControl`]). The link layer's half — [`CanFrame`] as an
 //! [`embedded_can::Frame`], [`CanFrame::from_embedded`] and
 //! [`CanFrame::to_embedded`] — lives in [`crate::can`], which knows nothing
-//! of CANopen (STYLE.md rule 15).
+//! of CANopen: layers point one way.
 
 use embedded_can::{Frame, StandardId};
 

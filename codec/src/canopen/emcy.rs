@@ -227,7 +227,7 @@ mod tests {
     use super::*;
     use crate::Error;
 
-    /// An AKD EMCY (seed 000): code 0x8130, register 0x11, axis 1.
+    /// An AKD EMCY (docs/canopen.md#akd): code 0x8130, register 0x11, axis 1.
     static FRAME_BYTES: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
 
     #[test]

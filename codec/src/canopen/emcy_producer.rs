@@ -1,5 +1,6 @@
 //! The EMCY error state machine, producer side (docs/canopen.md#emcy-producer;
-//! seed 000, "Application of the Emergency Object"; CiA 301 §7.2.7.2).
+//! the Kollmorgen AKD CANopen manual, "Application of the Emergency Object";
+//! CiA 301 §7.2.7.2).
 //!
 //! A device tells [`EmcyProducer`] what happens to it as [`EmcyEvent`]s: it was
 //! initialised, an error occurred, one error was reset, all errors were reset.
@@ -26,8 +27,8 @@ use super::{Emcy, ErrorCode, ErrorRegister};
 /// chooses its own `N`).
 pub const DEFAULT_ACTIVE_ERRORS: usize = 8;
 
-/// The two error conditions of the EMCY state machine (seed 000: "The error
-/// conditions error-free and error occurred are distinguished";
+/// The two error conditions of the EMCY state machine (the AKD CANopen manual:
+/// "The error conditions error-free and error occurred are distinguished";
 /// docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -58,8 +59,8 @@ impl fmt::Display for ErrorCondition {
 }
 
 /// A transition of the EMCY state machine, numbered as in
-/// docs/canopen.md#emcy-producer and seed 000 ("Transition 0" … "Transition
-/// 4").
+/// docs/canopen.md#emcy-producer and the AKD CANopen manual ("Transition 0"
+/// … "Transition 4").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -353,8 +354,8 @@ impl ActiveError {
     }
 }
 
-/// The EMCY error state machine of a producer, holding up to `N` active
-/// errors (docs/canopen.md#emcy-producer; seed 000; CiA 301 §7.2.7.2).
+/// The EMCY error state machine of a producer, holding up to `N` active errors
+/// (docs/canopen.md#emcy-producer; the AKD CANopen manual; CiA 301 §7.2.7.2).
 ///
 /// The value is the state: it is `Copy`, and two states compare equal when
 /// they hold the same active errors with the same register contributions
@@ -396,14 +397,14 @@ impl ActiveError {
 ///   nothing (the machine cannot tell which untracked error it was) and
 ///   resetting the last *tracked* error is transition 2, not 4. The register
 ///   a device sends never claims "no error" while an error may be present.
-/// - **Decision:** [`EmcyEvent::Initialised`] is transition 0 from any state
-///   (a re-initialised device starts over, e.g. after an NMT reset): the machine
-///   starts again error-free, without sending anything (seed 000: "No error
-///   signal is generated in this condition").
+/// - **Decision:** [`EmcyEvent::Initialised`] is transition 0 from any state (a
+///   re-initialised device starts over, e.g. after an NMT reset): the machine
+///   starts again error-free, without sending anything (the AKD CANopen manual:
+///   "No error signal is generated in this condition").
 /// - The manufacturer area of a reset EMCY is zero
 ///   (docs/canopen.md#emcy-producer), unless the device passes one with
 ///   [`EmcyEvent::reset_with`]: the AKD keeps its axis id in byte 3 of reset
-///   EMCYs (seed 000, docs/canopen.md#akd).
+///   EMCYs (the AKD CANopen manual, docs/canopen.md#akd).
 ///
 /// ```
 /// use motionwire_codec::canopen::{
@@ -735,7 +736,7 @@ mod tests {
 
     #[test]
     fn transition_1_seed_000_life_guard_error_on_axis_1() {
-        // The AKD frame of seed 000 as used by emcy.rs: 0x8130, register 0x11.
+        // The AKD frame emcy.rs uses: 0x8130, register 0x11.
         let (_, out) = EmcyProducer::<8>::with_capacity()
             .step(EmcyEvent::error(ErrorCode::LIFE_GUARD, AXIS_1));
         assert_eq!(sent(&out), [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00]);

@@ -47,8 +47,8 @@ pub(crate) const fn millis(ms: u32) -> Duration {
 }
 
 /// Which error-control method a node's configuration puts in force
-/// (CiA 301 §7.2.8.1; docs/canopen.md#error-control; seed 004 §11.1: "Only one
-/// of the two monitoring methods can be used").
+/// (CiA 301 §7.2.8.1; docs/canopen.md#error-control): a node uses one of the
+/// two monitoring methods, heartbeat when its producer time is not 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ErrorControlMethod {
@@ -69,7 +69,7 @@ impl ErrorControlMethod {
     ///
     /// The life time factor does not decide between guarding and nothing: a
     /// node with a guard time but factor 0 is still guarded by its master,
-    /// it only does not monitor the master (seed 004 §11.1.1).
+    /// it only does not monitor the master (docs/canopen.md#error-control).
     #[inline]
     #[must_use]
     pub const fn select(producer_heartbeat_time_ms: u16, guard_time_ms: u16) -> Self {
@@ -122,9 +122,10 @@ impl ErrorControlConfig {
         ErrorControlMethod::select(self.producer_heartbeat_time_ms, self.guard_time_ms)
     }
 
-    /// Return the node life time, guard time × life time factor; `None` when either is 0 (seed 004 §11.1.1: "If one of
-    /// the two parameters is 0 … no lifeguarding") or when heartbeat is
-    /// configured (heartbeat wins, docs/canopen.md#error-control).
+    /// Return the node life time, guard time × life time factor; `None` when
+    /// either is 0 (0 in either disables life guarding,
+    /// docs/canopen.md#error-control) or when heartbeat is configured
+    /// (heartbeat wins, docs/canopen.md#error-control).
     #[inline]
     #[must_use]
     pub const fn node_life_time(&self) -> Option<Duration> {
@@ -216,7 +217,7 @@ mod tests {
     use super::*;
 
     /// Which method is in force, as a truth table
-    /// (docs/canopen.md#error-control, seed 004 §11.1).
+    /// (docs/canopen.md#error-control).
     #[test]
     fn method_truth_table() {
         use ErrorControlMethod as M;

@@ -1,6 +1,6 @@
 //! The pre-defined error field, object 1003h (CiA 301 §7.5.2.3;
-//! docs/canopen.md#error-history; seed 000: "The last 10 Emergency error codes
-//! can be read using object 1003").
+//! docs/canopen.md#error-history; the Kollmorgen AKD CANopen manual: "The
+//! last 10 Emergency error codes can be read using object 1003").
 //!
 //! [`ErrorHistory`] holds the last `N` errors a device reported (N = 10 on the
 //! AKD, the default). Sub-index 0 is the number of entries; sub-index 1 the
@@ -17,7 +17,7 @@ use byteorder::{ByteOrder, LittleEndian};
 use super::{Emcy, EmcyOutcome, ErrorCode, SdoAbortCode};
 
 /// The default capacity of an [`ErrorHistory`], 10 entries as on the AKD
-/// (seed 000; docs/canopen.md#error-history).
+/// (the AKD CANopen manual; docs/canopen.md#error-history).
 pub const DEFAULT_ERROR_HISTORY_LEN: usize = 10;
 
 /// One entry of the pre-defined error field 1003h (CiA 301 §7.5.2.3;

@@ -1,5 +1,5 @@
 //! Node guarding and life guarding as pure state machines
-//! (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1).
+//! (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control).
 //!
 //! - [`NodeGuardingMaster`] is the master's side for one node: when to send
 //!   the next guard request (a remote frame on 0x700 + node-ID) and what the
@@ -229,7 +229,7 @@ impl fmt::Display for GuardingEvent {
 pub type GuardingEvents = Events<GuardingEvent, 3>;
 
 /// The node-guarding master's view of one node (CiA 301 §7.2.8.3.2.1;
-/// docs/canopen.md#error-control; seed 004 §11.1.1).
+/// docs/canopen.md#error-control).
 ///
 /// | input at `now` | effect | event |
 /// |---|---|---|
@@ -449,9 +449,8 @@ impl NodeGuardingMaster {
 }
 
 /// What a node does when its life time expires without a guard request
-/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1: "It
-/// transmits an emergency telegram and returns to the 'pre-operational'
-/// state").
+/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control): it sends an EMCY
+/// and returns to pre-operational.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LifeGuardExpiry {
@@ -478,7 +477,7 @@ enum LifeTimer {
 }
 
 /// Life guarding on the node: the node monitors its guarding master
-/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control; seed 004 §11.1.1).
+/// (CiA 301 §7.2.8.3.2.1; docs/canopen.md#error-control).
 ///
 /// Node life time = guard time (100Ch, ms) × life time factor (100Dh); 0 in
 /// either, or a non-zero producer heartbeat time (heartbeat wins), disables

@@ -1,6 +1,6 @@
 //! The heartbeat protocol as pure state machines: the producer's schedule
 //! (object 1017h) and the consumer's monitor (object 1016h)
-//! (CiA 301 §7.2.8.3.2.2; docs/canopen.md#error-control; seed 004 §11.1.2).
+//! (CiA 301 §7.2.8.3.2.2; docs/canopen.md#error-control).
 //!
 //! Time is a [`Duration`] since the caller's epoch on its monotonic clock,
 //! passed with every call; the object dictionary values are milliseconds

@@ -819,8 +819,8 @@ mod tests {
         FrameData::new(raw).unwrap()
     }
 
-    /// The AKD EMCY of seed 000 (docs/canopen.md#emcy): code 0x8130, register
-    /// 0x11, axis 1.
+    /// An AKD EMCY (docs/canopen.md#emcy, docs/canopen.md#akd): code 0x8130,
+    /// register 0x11, axis 1.
     static EMCY_BYTES: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
 
     /// The identifier table of docs/canopen.md#identifiers, one frame per row:

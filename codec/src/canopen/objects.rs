@@ -53,7 +53,7 @@ pub enum ObjectSet {
     /// The CiA 402 drive profile (IEC 61800-7-201), 6000h–67FFh: the objects
     /// of a Kollmorgen AKD or any other CiA 402 drive.
     Drive,
-    /// The encoder objects of the Baumer EAM580 seed (`seeds/003_*.txt`):
+    /// The encoder objects of the Baumer EAM580 (its CANopen manual):
     /// the CiA 406 encoder profile in 6000h–67FFh and the encoder's own
     /// manufacturer-specific objects in 2000h–5FFFh.
     Encoder,
@@ -197,12 +197,12 @@ const fn row(
 ///   CanFestival's DS-406 profile; 6501h is "Singleturn resolution" as the
 ///   Baumer seed and Baumer's own object lists spell it (CiA 406 names the
 ///   rotary meaning of the object).
-/// - **Encoder, 2100h–2300h**: the Baumer EAM580 manual's object list
-///   (`seeds/003_*.txt`): 2100h "Baudrate" and 2300h "Customer EEPROM" as
-///   listed there; 2101h from its section "Changing the node ID" (the
-///   node-ID can be changed in object 2101h); 2116h by the name the list
-///   gives its sub-index 1, "Diagnostic Injection", where the error
-///   injection codes of docs/canopen.md#baumer are written.
+/// - **Encoder, 2100h–2300h**: the object list of the Baumer EAM580 CANopen
+///   manual: 2100h "Baudrate" and 2300h "Customer EEPROM" as
+///   listed there; 2101h from its section "Changing the node ID" (the node-ID
+///   can be changed in object 2101h); 2116h by the name the list gives its
+///   sub-index 1, "Diagnostic Injection", where the error injection codes of
+///   docs/canopen.md#baumer are written.
 pub const OBJECT_NAMES: &[ObjectName] = &[
     // CiA 301 v4.2.0, communication profile area.
     comm(0x1000, "Device type"),
@@ -419,7 +419,7 @@ pub const OBJECT_NAMES: &[ObjectName] = &[
     drive(0x6510, "Drive data"),
     drive(0x67FE, "Version number"),
     drive(0x67FF, "Single device type"),
-    // Baumer EAM580 manual, object list (seeds/003_*.txt).
+    // Baumer EAM580 CANopen manual, object list.
     encoder(0x2100, "Baudrate"),
     encoder(0x2101, "Node ID"),
     encoder(0x2116, "Diagnostic injection"),

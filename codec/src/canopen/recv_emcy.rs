@@ -912,7 +912,7 @@ mod tests {
     /// 0x3210 DC link over-voltage (CiA 402), register generic + voltage.
     const OVER_VOLTAGE: [u8; 8] = [0x10, 0x32, 0x05, 0, 0, 0, 0, 0];
     /// 0x8130 life guard or heartbeat error, register generic + communication,
-    /// AKD axis 1 in byte 3 (seed 000).
+    /// AKD axis 1 in byte 3 (docs/canopen.md#akd).
     const LIFE_GUARD: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0, 0, 0, 0];
     /// 0x8210 PDO not processed due to length error.
     const PDO_LENGTH: [u8; 8] = [0x10, 0x82, 0x11, 0, 0, 0, 0, 0];

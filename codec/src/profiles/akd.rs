@@ -1,5 +1,6 @@
-//! Kollmorgen AKD: the manufacturer-specific field of its EMCY (seed 000,
-//! "Composition of the Emergency Object"; docs/canopen.md#akd).
+//! Kollmorgen AKD: the manufacturer-specific field of its EMCY (the AKD
+//! CANopen manual, "Composition of the Emergency Object";
+//! docs/canopen.md#akd).
 //!
 //! The AKD fills bytes 3–7 of every EMCY (the 5-byte manufacturer field,
 //! [`Emcy::manufacturer`]) like this:
@@ -68,7 +69,7 @@ mod field {
 }
 
 /// The length of the AKD's manufacturer field, 5 bytes (EMCY bytes 3–7;
-/// seed 000; docs/canopen.md#akd).
+/// the AKD CANopen manual; docs/canopen.md#akd).
 pub const AKD_MANUFACTURER_LEN: usize = field::RESERVED.end;
 
 const WHAT: What = What::AkdManufacturerField;
@@ -76,7 +77,7 @@ const AXIS_WHAT: What = What::AkdAxisId;
 const FEEDBACK_WHAT: What = What::AkdFeedbackId;
 
 /// The axis an AKD EMCY reports, bits 0–3 of EMCY byte 3: 1 = axis 1,
-/// 0 = not given (seed 000; docs/canopen.md#akd).
+/// 0 = not given (the AKD CANopen manual; docs/canopen.md#akd).
 ///
 /// ```
 /// use motionwire_codec::profiles::akd::AxisId;
@@ -177,13 +178,12 @@ impl fmt::Display for AxisId {
     }
 }
 
-/// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3
-/// (seed 000; docs/canopen.md#akd): 0 = none (not a feedback fault), 1..=5 =
-/// FB1..FB5. The values 6..=15 are not defined: building one with
-/// [`FeedbackId::try_new`] is an [`Error::InvalidValue`] that names the
-/// nibble, while decoding a received EMCY keeps it as
-/// [`FeedbackId::Unknown`] ([`FeedbackId::from_nibble`]), so that nothing
-/// else the EMCY says is lost.
+/// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3 (the AKD
+/// CANopen manual; docs/canopen.md#akd): 0 = none (not a feedback fault), 1..=5
+/// = FB1..FB5. The values 6..=15 are not defined: building one with
+/// [`FeedbackId::try_new`] is an [`Error::InvalidValue`] that names the nibble,
+/// while decoding a received EMCY keeps it as [`FeedbackId::Unknown`]
+/// ([`FeedbackId::from_nibble`]), so that nothing else the EMCY says is lost.
 ///
 /// ```
 /// use motionwire_codec::profiles::akd::FeedbackId;
@@ -215,13 +215,13 @@ pub enum FeedbackId {
     Fb4,
     /// 5: feedback 5.
     Fb5,
-    /// 6..=15: a value seed 000 does not define, as received.
+    /// 6..=15: a value the AKD CANopen manual does not define, as received.
     Unknown(UndefinedFeedbackId),
 }
 
-/// A feedback nibble seed 000 does not define, 6..=15, kept as received
-/// ([`FeedbackId::Unknown`]; docs/canopen.md#akd). Only the crate makes one, so
-/// it never holds a defined value.
+/// A feedback nibble the AKD CANopen manual does not define, 6..=15, kept as
+/// received ([`FeedbackId::Unknown`]; docs/canopen.md#akd). Only the crate
+/// makes one, so it never holds a defined value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -335,7 +335,7 @@ impl FeedbackId {
         }
     }
 
-    /// Return whether the nibble is one seed 000 defines (0..=5).
+    /// Return whether the nibble is one the AKD CANopen manual defines (0..=5).
     #[inline]
     #[must_use]
     pub const fn is_defined(self) -> bool {
@@ -552,7 +552,8 @@ impl AkdManufacturer {
 }
 
 /// An EMCY from a Kollmorgen AKD: the generic code and register with a typed
-/// manufacturer field (seed 000; docs/canopen.md#emcy, docs/canopen.md#akd).
+/// manufacturer field (the AKD CANopen manual; docs/canopen.md#emcy,
+/// docs/canopen.md#akd).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -568,7 +569,7 @@ pub struct AkdEmcy {
 impl AkdEmcy {
     /// Return the EMCY an AKD sends for an error: its `code`, the `register`
     /// of all active errors, and the `axis` and `feedback` it occurred in
-    /// (seed 000, transitions 1 and 3). Reserved bytes are zero.
+    /// (the AKD CANopen manual, transitions 1 and 3). Reserved bytes are zero.
     #[inline]
     #[must_use]
     pub const fn fault(
@@ -673,11 +674,11 @@ impl From<AkdEmcy> for Emcy {
 mod tests {
     use super::*;
 
-    /// Seed 000, transition 1: a feedback fault (0x7306, incremental sensor
-    /// 2) on axis 1 with FB2; register: generic.
+    /// The AKD CANopen manual, transition 1: a feedback fault (0x7306,
+    /// incremental sensor 2) on axis 1 with FB2; register: generic.
     static FAULT_BYTES: [u8; 8] = [0x06, 0x73, 0x01, 0x21, 0x00, 0x00, 0x00, 0x00];
-    /// Seed 000, transition 2: one error reset, a temperature error remains;
-    /// the reset EMCY still names axis 1 and FB2.
+    /// The AKD CANopen manual, transition 2: one error reset, a temperature
+    /// error remains; the reset EMCY still names axis 1 and FB2.
     static RESET_BYTES: [u8; 8] = [0x00, 0x00, 0x09, 0x21, 0x00, 0x00, 0x00, 0x00];
 
     fn axis(raw: u8) -> AxisId {
@@ -753,7 +754,8 @@ mod tests {
 
     #[test]
     fn last_reset_is_error_free_with_the_axis_id() {
-        // Seed 000, transition 4: register 0x00, axis 1, no feedback fault.
+        // The AKD CANopen manual, transition 4: register 0x00, axis 1, no
+        // feedback fault.
         let reset = AkdEmcy::reset(ErrorRegister::empty(), axis(1), FeedbackId::None);
         assert_eq!(reset.to_bytes(), [0, 0, 0, 0x01, 0, 0, 0, 0]);
         assert_eq!(AkdEmcy::from_bytes(&reset.to_bytes()), reset);

@@ -1,7 +1,6 @@
 //! Baumer EAM580 absolute encoder: its EMCY manufacturer field and its
 //! diagnostic sources (docs/canopen.md#baumer; Baumer EAM580 CANopen manual §8
-//! "Emergency message" and §9.5 "Encoder diagnostic sources",
-//! `seeds/003_*.txt`).
+//! "Emergency message" and §9.5 "Encoder diagnostic sources").
 //!
 //! The encoder sends the alarms object 6503h in bytes 3–4 and the warnings
 //! object 6505h in bytes 5–6 of every EMCY; byte 7 is not used

@@ -1,6 +1,6 @@
 //! Device-specific layouts: how one vendor's device fills the fields that
-//! CANopen leaves to the manufacturer (STYLE.md, "device-specific profiles
-//! apart"; docs/canopen.md#profiles).
+//! CANopen leaves to the manufacturer, kept apart from the generic codecs
+//! (docs/canopen.md#profiles).
 //!
 //! The generic codecs in [`crate::canopen`] decode every device's frames;
 //! a profile gives the manufacturer-specific bytes their meaning for one

@@ -1,6 +1,6 @@
 //! The pure behaviours of the servo ↔ NC interface (docs/servo.md#handshakes;
-//! seed 002): the ServoRDY truth table, the enable handshake on SCW.SE, and the
-//! NC side of the error-clear and zero-pulse handshakes.
+//! the interface manual): the ServoRDY truth table, the enable handshake on
+//! SCW.SE, and the NC side of the error-clear and zero-pulse handshakes.
 //!
 //! Nothing here reads a clock or does I/O; every state is `Copy`. A PLC
 //! calls the handshakes once per NC cycle with the control word it wrote
@@ -36,8 +36,8 @@ use core::marker::PhantomData;
 use super::{ServoControlWord, ServoEnable, ServoErrorWord, ServoStatusWord};
 use crate::{Error, Result};
 
-/// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY
-/// depends on ServoEn (docs/servo.md#servo-ready; seed 002, "Servo ReaDY").
+/// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY depends
+/// on ServoEn (docs/servo.md#servo-ready; the interface manual, "Servo ReaDY").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
@@ -81,11 +81,11 @@ impl ServoReadyMode {
     }
 }
 
-/// Return SSW.ServoRDY for Servo_Ready_Mode `mode`, the drive's status
-/// word (its SSW.ServoEn bit is e) and error word (its summary bit
-/// SEW.ServoErrors, bit 0, is x — the only error bit the seed's table
-/// reads): `!x && (m == 0 || e)` (docs/servo.md#servo-ready; seed 002, ServoRDY
-/// truth table). The other bits of both words do not matter.
+/// Return SSW.ServoRDY for Servo_Ready_Mode `mode`, the drive's status word
+/// (its SSW.ServoEn bit is e) and error word (its summary bit SEW.ServoErrors,
+/// bit 0, is x — the only error bit the interface manual's table reads):
+/// `!x && (m == 0 || e)` (docs/servo.md#servo-ready; the interface manual,
+/// ServoRDY truth table). The other bits of both words do not matter.
 ///
 /// ```
 /// use motionwire_codec::servo::{servo_ready, ServoErrorWord, ServoReadyMode, ServoStatusWord};
@@ -111,7 +111,7 @@ pub const fn servo_ready(
 
 /// Return whether the drive is enabled after a cycle in which SCW.SE went
 /// from `previous` to `current`, given whether it `was_enabled`
-/// (docs/servo.md#handshakes; seed 002, "Servo Enable").
+/// (docs/servo.md#handshakes; the interface manual, "Servo Enable").
 ///
 /// The drive enables only on 0b01 → 0b10 (bit 0 falls and bit 1 rises in
 /// the same cycle). **Decision (docs/servo.md#handshakes):** it stays enabled
@@ -237,16 +237,16 @@ impl HandshakeBits for ZeroPulse {
 
 /// The NC side of the error-clear handshake: ErrorClear=1 → drive clears
 /// its errors and answers ErrClearAck=1 → ErrorClear=0 → drive drops
-/// ErrClearAck (docs/servo.md#handshakes; seed 002, "Error Clear",
+/// ErrClearAck (docs/servo.md#handshakes; the interface manual, "Error Clear",
 /// "ErrClearAck").
 pub type ErrorClearHandshake = Handshake<ErrorClear>;
 
 /// The NC side of the zero-pulse handshake of an incremental encoder:
 /// ZPulseRequest=1 → drive answers ZPulseAck=1 once the first zero pulse is
 /// found, its position in POSW2..3 → ZPulseRequest=0 → drive drops ZPulseAck
-/// (docs/servo.md#handshakes; seed 002, "ZpulseRequest", "ZpulseAck"). Read the
-/// zero-pulse position from the feedback of the cycle that reports
-/// [`HandshakePhase::Acknowledged`].
+/// (docs/servo.md#handshakes; the interface manual, "ZpulseRequest",
+/// "ZpulseAck"). Read the zero-pulse position from the feedback of the cycle
+/// that reports [`HandshakePhase::Acknowledged`].
 pub type ZeroPulseHandshake = Handshake<ZeroPulse>;
 
 /// The NC side of a request/ack handshake (docs/servo.md#handshakes): a pure
@@ -420,7 +420,7 @@ impl<B: HandshakeBits> Handshake<B> {
 mod tests {
     use super::*;
 
-    /// Seed 002, ServoRDY chart, all eight rows:
+    /// The interface manual, ServoRDY chart, all eight rows:
     /// (Servo_Ready_Mode, ServoEn, ServoErrors, ServoRDY).
     #[rustfmt::skip]
     const SERVO_READY_TABLE: [(u8, bool, bool, bool); 8] = [

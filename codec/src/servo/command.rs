@@ -1,5 +1,5 @@
 //! The 10-byte command frame, NC → servo, sent once per NC control cycle
-//! (docs/servo.md#command; seed 002, "1. type message").
+//! (docs/servo.md#command; the interface manual, "1. type message").
 //!
 //! [`CommandFrame`] is a zero-copy view over the bytes; [`Command`] is the
 //! owned, `Copy` value. Both share the offsets in `field`.
@@ -149,7 +149,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> CommandFrame<T> {
     }
 }
 
-/// A command frame, owned (docs/servo.md#command; seed 002).
+/// A command frame, owned (docs/servo.md#command; the interface manual).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

@@ -1,5 +1,5 @@
 //! SCW, the servo control word the NC sends in every command frame
-//! (docs/servo.md#scw; seed 002, "ServoControlWord").
+//! (docs/servo.md#scw; the interface manual, "ServoControlWord").
 //!
 //! [`ServoControlWord`] holds the eight single-bit flags as bitflags; the
 //! multi-bit fields are typed: [`ServoEnable`] (bits 0–1),
@@ -37,7 +37,8 @@ use bitflags::bitflags;
 use crate::{Error, Result};
 
 bitflags! {
-    /// SCW, the servo control word, NC → servo (docs/servo.md#scw; seed 002).
+    /// SCW, the servo control word, NC → servo (docs/servo.md#scw; the
+    /// interface manual).
     ///
     /// Only the single-bit fields are flags. The 2-bit and 3-bit fields are
     /// read and written through [`ServoControlWord::servo_enable`],
@@ -83,7 +84,8 @@ bitflags! {
         /// Bit 12, ExtPRMTBL: high bit of the parameter-table select; see
         /// [`ServoControlWord::parameter_table`].
         const EXT_PRMTBL = 1 << 12;
-        /// Bit 31, PRGDWN: named in the seed's layout, meaning not specified.
+        /// Bit 31, PRGDWN: named in the interface manual's layout, meaning not
+        /// specified.
         const PRGDWN = 1 << 31;
 
         // SE, PRMTBL, ModeSel and the reserved bits are not flags but must
@@ -229,8 +231,9 @@ impl ServoControlWord {
     }
 }
 
-/// The SE field of the control word (bits 0–1), the 2-bit servo enable
-/// request, always within 0..=3 (docs/servo.md#scw; seed 002, "Servo Enable").
+/// The SE field of the control word (bits 0–1), the 2-bit servo enable request,
+/// always within 0..=3 (docs/servo.md#scw; the interface manual, "Servo
+/// Enable").
 ///
 /// The drive enables only on the change 0b01 → 0b10 between two consecutive
 /// cycles; see [`enable_handshake`](crate::servo::enable_handshake).
@@ -327,7 +330,8 @@ impl fmt::Display for ServoEnable {
 }
 
 /// The regulator mode selected by ModeSel, control-word bits 6–7
-/// (docs/servo.md#scw; seed 002, "Mode Select", documented as not used yet).
+/// (docs/servo.md#scw; the interface manual, "Mode Select", documented as not
+/// used yet).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -425,7 +429,7 @@ impl fmt::Display for RegulatorMode {
 }
 
 /// A drive parameter table, always within 1..=8 (docs/servo.md#scw and
-/// docs/servo.md#ssw; seed 002, "PaRaMeterTaBLe Select" and
+/// docs/servo.md#ssw; the interface manual, "PaRaMeterTaBLe Select" and
 /// "ExtendedPaRaMeterTaBLe Select").
 ///
 /// On the wire the table is ExtPRMTBL·4 + PRMTBL + 1: the 2-bit PRMTBL field
@@ -546,8 +550,8 @@ impl fmt::Display for ParameterTable {
 mod tests {
     use super::*;
 
-    /// docs/servo.md#scw / seed 002's bit diagram: every single-bit flag at its
-    /// bit.
+    /// docs/servo.md#scw / the interface manual's bit diagram: every single-bit
+    /// flag at its bit.
     #[test]
     fn flag_bit_positions() {
         let table = [
@@ -594,7 +598,7 @@ mod tests {
         );
     }
 
-    /// Seed 002, "Servo Enable": SE is bits 0–1.
+    /// The interface manual, "Servo Enable": SE is bits 0–1.
     #[test]
     fn servo_enable_field() {
         let table = [
@@ -669,9 +673,9 @@ mod tests {
         );
     }
 
-    /// The Decision in docs/servo.md#scw and seed 002, "ExtendedPaRaMeterTaBLe
-    /// Select": the eight combinations of ExtPRMTBL (bit 12) and PRMTBL (bits
-    /// 5–4).
+    /// The Decision in docs/servo.md#scw and the interface manual,
+    /// "ExtendedPaRaMeterTaBLe Select": the eight combinations of ExtPRMTBL
+    /// (bit 12) and PRMTBL (bits 5–4).
     #[test]
     fn every_parameter_table_combination() {
         // (ExtPRMTBL, PRMTBL, wire bits, table)
@@ -727,7 +731,7 @@ mod tests {
         }
     }
 
-    /// Seed 002, "Mode Select": ModeSel is bits 6–7.
+    /// The interface manual, "Mode Select": ModeSel is bits 6–7.
     #[test]
     fn regulator_mode_field() {
         let table = [

@@ -302,7 +302,7 @@ pub enum ZeroPulseState {
 
 /// A model of the servo drive's side of the interface, to test NC code
 /// against without hardware (docs/servo.md#drive-model, following every
-/// drive-side rule of docs/servo.md#handshakes; seed 002).
+/// drive-side rule of docs/servo.md#handshakes; the interface manual).
 ///
 /// [`Drive::cycle`] is one EtherCAT cycle: it takes the NC's [`Command`] and
 /// returns the drive's [`Feedback`]. It is deterministic and pure: no
@@ -848,8 +848,8 @@ mod tests {
         assert_eq!(drive.cycles(), 1);
     }
 
-    /// docs/servo.md#servo-ready, the seed's eight rows, produced by the model:
-    /// (Servo_Ready_Mode, ServoEn, ServoErrors) → ServoRDY.
+    /// docs/servo.md#servo-ready, the interface manual's eight rows, produced
+    /// by the model: (Servo_Ready_Mode, ServoEn, ServoErrors) → ServoRDY.
     #[test]
     fn servo_ready_truth_table_from_the_model() {
         const ROWS: [(u8, bool, bool, bool); 8] = [

@@ -1,6 +1,7 @@
-//! The NC side of the enable handshake on SCW.SE (docs/servo.md#handshakes;
-//! seed 002, "Servo Enable"): [`EnableHandshake`] and its [`EnablePhase`]. The
-//! drive's side of the same rule is [`enable_handshake`](super::enable_handshake).
+//! The NC side of the enable handshake on SCW.SE (docs/servo.md#handshakes; the
+//! interface manual, "Servo Enable"): [`EnableHandshake`] and its
+//! [`EnablePhase`]. The drive's side of the same rule is
+//! [`enable_handshake`](super::enable_handshake).
 
 use core::fmt;
 
@@ -75,10 +76,10 @@ impl fmt::Display for EnablePhase {
     }
 }
 
-/// The NC side of the enable handshake: SE 0b01, then 0b10 in the next
-/// cycle — the edge on which the drive enables — then 0b10 held while
-/// ServoEn stays up (docs/servo.md#handshakes; seed 002, "Servo Enable"). A
-/// pure state machine stepped once per NC cycle, like
+/// The NC side of the enable handshake: SE 0b01, then 0b10 in the next cycle —
+/// the edge on which the drive enables — then 0b10 held while ServoEn stays up
+/// (docs/servo.md#handshakes; the interface manual, "Servo Enable"). A pure
+/// state machine stepped once per NC cycle, like
 /// [`ErrorClearHandshake`](super::ErrorClearHandshake) and
 /// [`ZeroPulseHandshake`](super::ZeroPulseHandshake): no clock, no I/O, no
 /// heap.

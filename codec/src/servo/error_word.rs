@@ -32,7 +32,8 @@ use bitflags::bitflags;
 use crate::{Error, Result};
 
 bitflags! {
-    /// SEW, the servo error word, servo → NC (docs/servo.md#sew; seed 002).
+    /// SEW, the servo error word, servo → NC (docs/servo.md#sew; the interface
+    /// manual).
     ///
     /// Bit 0 (ServoErrors) summarises the others. The reserved bits 4 and
     /// 25–31 are declared as known to bitflags, so they survive decoding with
@@ -135,8 +136,9 @@ impl ServoErrorWord {
     }
 
     /// Return a copy whose summary bit 0 (ServoErrors) is set exactly when a
-    /// cause bit is set — the word a drive produces (seed 002, "ServoErrors.
-    /// Summarized errors"). Reserved bits are kept and do not count.
+    /// cause bit is set — the word a drive produces (the interface manual,
+    /// "ServoErrors. Summarized errors"). Reserved bits are kept and do not
+    /// count.
     #[must_use]
     pub const fn summarized(self) -> Self {
         if self.has_cause() {
@@ -148,7 +150,7 @@ impl ServoErrorWord {
 }
 
 /// One defined bit of the servo error word, with its docs/servo.md#sew name,
-/// E-code and meaning (seed 002, "ServoErrorWord").
+/// E-code and meaning (the interface manual, "ServoErrorWord").
 ///
 /// The variant names spell the names of docs/servo.md#sew in Rust's case;
 /// [`ServoFault::name`] returns their spelling exactly (e.g. `I2tEndat` →
@@ -455,8 +457,8 @@ impl fmt::Display for ServoFault {
 }
 
 /// An error code the drive shows on its display, `E01`…`E32`, for the
-/// error-word bits that have one (docs/servo.md#sew; seed 002, "Error Code"
-/// columns).
+/// error-word bits that have one (docs/servo.md#sew; the interface manual,
+/// "Error Code" columns).
 ///
 /// Only the sixteen codes of docs/servo.md#sew exist; each maps to exactly one
 /// [`ServoFault`]. Parse one from its number ([`ECode::from_number`]) or from

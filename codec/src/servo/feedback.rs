@@ -1,5 +1,5 @@
 //! The 40-byte feedback frame, servo → NC, sent once per NC control cycle
-//! (docs/servo.md#feedback; seed 002, "1. type message").
+//! (docs/servo.md#feedback; the interface manual, "1. type message").
 //!
 //! [`FeedbackFrame`] is a zero-copy view over the bytes; [`Feedback`] is the
 //! owned, `Copy` value. Both share the offsets in `field`. The actual
@@ -68,7 +68,7 @@ pub const FEEDBACK_LEN: usize = field::EXTRA_DATA.end;
 const WHAT: What = What::ServoFeedbackFrame;
 
 /// The actual position, read according to the status word's Abs/Incr bit
-/// (docs/servo.md#feedback, "ActPos interpretation"; seed 002,
+/// (docs/servo.md#feedback, "ActPos interpretation"; the interface manual,
 /// "ActualPosition").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -299,7 +299,7 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> FeedbackFrame<T> {
     }
 }
 
-/// A feedback frame, owned (docs/servo.md#feedback; seed 002).
+/// A feedback frame, owned (docs/servo.md#feedback; the interface manual).
 ///
 /// `PartialEq` compares the floats by value (NaN ≠ NaN, 0.0 == -0.0); to
 /// test that two values carry the same bits compare

@@ -1,12 +1,12 @@
-//! The multiplexed measurement of the feedback frame: message code and
-//! message data (docs/servo.md#feedback; seed 002, "Message Code", "Message
+//! The multiplexed measurement of the feedback frame: message code and message
+//! data (docs/servo.md#feedback; the interface manual, "Message Code", "Message
 //! Data").
 //!
 //! The drive sends one measurement per cycle; the i32 message code says what
 //! the f32 message data holds. [`Message`] keeps both exactly as received —
-//! codes the seed leaves reserved or does not define at all round-trip
-//! unchanged, and so do the bits of the float (NaN payloads included) — and
-//! [`MessageCode`] says what they mean.
+//! codes the interface manual leaves reserved or does not define at all
+//! round-trip unchanged, and so do the bits of the float (NaN payloads
+//! included) — and [`MessageCode`] says what they mean.
 //!
 //! ```
 //! use motionwire_codec::servo::{Message, MessageCode};
@@ -66,10 +66,10 @@ impl Message {
     }
 }
 
-/// The message code of the feedback frame, read: what the message data
-/// holds (the table of docs/servo.md#feedback; seed 002, "Message Code"). A
-/// code table: each code the seed defines is a variant, every other code is
-/// kept ([`MessageCode::Reserved`], [`MessageCode::Unknown`]).
+/// The message code of the feedback frame, read: what the message data holds
+/// (the table of docs/servo.md#feedback; the interface manual, "Message Code").
+/// A code table: each code the interface manual defines is a variant, every
+/// other code is kept ([`MessageCode::Reserved`], [`MessageCode::Unknown`]).
 ///
 /// Not to be confused with `canopen::MessageKind`, the kind of a CANopen
 /// frame.
@@ -89,8 +89,8 @@ pub enum MessageCode {
     MotorTemperature,
     /// Code 5: motor power, kW (not available on current firmware).
     MotorPower,
-    /// Codes 6–9: reserved by the seed; holds the code (6..=9 when made by
-    /// [`MessageCode::from_code`]).
+    /// Codes 6–9: reserved by the interface manual; holds the code (6..=9 when
+    /// made by [`MessageCode::from_code`]).
     Reserved(u8),
     /// Any other code (negative or above 9): unknown; holds the code.
     Unknown(i32),

@@ -1,5 +1,6 @@
-//! The EtherCAT servo ↔ NC cyclic process data (docs/servo.md; seed 002,
-//! "EtherCat Communication interface V0.18").
+//! The EtherCAT servo ↔ NC cyclic process data (docs/servo.md; the drive
+//! vendor's manual "EtherCat Communication interface V0.18", the interface
+//! manual in this module's docs).
 //!
 //! Once per NC control cycle the NC sends a 10-byte [`Command`] (speed set
 //! point, [`ServoControlWord`], extra data code) and the servo answers with a

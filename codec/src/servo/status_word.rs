@@ -1,5 +1,5 @@
 //! SSW, the servo status word the drive sends in every feedback frame
-//! (docs/servo.md#ssw; seed 002, "ServoStatusWord").
+//! (docs/servo.md#ssw; the interface manual, "ServoStatusWord").
 //!
 //! ```
 //! use motionwire_codec::servo::{EncoderKind, ServoStatusWord};
@@ -21,7 +21,8 @@ use bitflags::bitflags;
 use super::ParameterTable;
 
 bitflags! {
-    /// SSW, the servo status word, servo → NC (docs/servo.md#ssw; seed 002).
+    /// SSW, the servo status word, servo → NC (docs/servo.md#ssw; the interface
+    /// manual).
     ///
     /// The 2-bit PRMTBL field (bits 8–9) is read with
     /// [`ServoStatusWord::parameter_table`], not as flags. All bits are
@@ -60,9 +61,9 @@ bitflags! {
         const N_EQ_NS = 1 << 6;
         /// Bit 7, PulseEnabled: the power stage (IGBT) is switched on.
         const PULSE_ENABLED = 1 << 7;
-        /// Bit 10, NoEncoder: the axis has no encoder (e.g. an inverter).
-        /// (The seed's caption "Errors are deleted yet" for this bit is a
-        /// copy error; docs/servo.md#ssw.)
+        /// Bit 10, NoEncoder: the axis has no encoder (e.g. an inverter). (The
+        /// interface manual's caption "Errors are deleted yet" for this bit is
+        /// a copy error; docs/servo.md#ssw.)
         const NO_ENCODER = 1 << 10;
         /// Bit 11, TempWarning: motor temperature measured in the encoder
         /// above 80 °C.
@@ -194,8 +195,8 @@ impl fmt::Display for EncoderKind {
 mod tests {
     use super::*;
 
-    /// docs/servo.md#ssw / seed 002's bit diagram: every single-bit flag at its
-    /// bit.
+    /// docs/servo.md#ssw / the interface manual's bit diagram: every single-bit
+    /// flag at its bit.
     #[test]
     fn flag_bit_positions() {
         let table = [
@@ -251,8 +252,8 @@ mod tests {
         );
     }
 
-    /// Seed 002, "ExtendedPaRaMeterTaBLe Selected": the eight combinations
-    /// of ExtPRMTBL (bit 12) and PRMTBL (bits 9–8).
+    /// The interface manual, "ExtendedPaRaMeterTaBLe Selected": the eight
+    /// combinations of ExtPRMTBL (bit 12) and PRMTBL (bits 9–8).
     #[test]
     fn every_parameter_table_combination() {
         // (wire bits, table)

@@ -3,7 +3,8 @@
 //! Built with the feature `cli`. The JSON output is a stable contract
 //! (docs/output.md, docs/summary.md, docs/servo.md#cli): names and meanings
 //! change only with a CHANGELOG entry. The program only parses arguments and
-//! renders what the library decodes (STYLE.md, rule 13).
+//! renders what the library decodes: whatever a library user could use
+//! belongs in the library.
 //!
 //! ```text
 //! motionwire decode [--json] [--profile generic|akd|baumer|NODE=PROFILE,…] [--summary]

@@ -192,9 +192,9 @@ fn classic(words: &mut Words<'_>) -> Option<(CanFrame, Direction)> {
 
 /// `ch Rx|Tx id brs esi dlc len data… duration bits flags` after `CANFD`
 /// (no symbolic name), in hex.
-// Out of line: inlined into the line's loop, it made the classic lines'
-// loop 5-6 instructions a frame longer (BENCHMARKS.md, "Issue 21: CAN FD
-// data, candump and ASC").
+// Out of line: inlined into the line's loop, it makes the loop of the
+// classic lines, the common ones, longer (BENCHMARKS.md, "CAN FD data,
+// candump and ASC").
 #[inline(never)]
 fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     let FdHead {
@@ -223,10 +223,9 @@ fn fd(words: &mut Words<'_>) -> Option<(CanFrame, u16, Direction)> {
     Some((frame, channel, direction))
 }
 
-/// The lengths CAN FD data has ([`FD_LENGTHS`]), a bit each: a look-up,
-/// where a search of the list took up to 16 steps (and `contains` on bytes
-/// is a `memchr` call: 146 instructions per line more on the `fd` mix;
-/// BENCHMARKS.md, issue 21, "ASC reader").
+/// The lengths CAN FD data has ([`FD_LENGTHS`]), a bit each: one look-up,
+/// where a search of the list takes up to 16 steps (and `contains` on bytes
+/// is a `memchr` call; BENCHMARKS.md, "ASC reader").
 const FD_LENGTH_BITS: u128 = {
     let mut bits = 0u128;
     let mut i = 0;
@@ -725,7 +724,7 @@ impl<'l> Words<'l> {
     /// a time by [`five_bytes`](Self::five_bytes) while they are, the rest
     /// by [`bytes`](Self::bytes). (A classic line's 8 at most are
     /// [`classic_bytes`](Self::classic_bytes)'s, all from one load;
-    /// BENCHMARKS.md, "Issue 21: the ASC reader, classic lines".)
+    /// BENCHMARKS.md, "the ASC reader, classic lines".)
     #[inline(always)]
     fn fd_bytes(&mut self, out: &mut [u8]) -> Option<()> {
         let mut read = 0;

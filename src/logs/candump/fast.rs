@@ -246,7 +246,7 @@ pub(super) fn decode_fd_data(
         let bad = words.map(non_hex64);
         // Written as four 4-byte pieces, not one 16-byte word built with
         // shifts: so the compiler packs the four words in SSE registers too
-        // (58.1M -> 51.9M instructions, read_log on fd-100k.log).
+        // (BENCHMARKS.md, "CAN FD data, candump and ASC").
         let bytes = words.map(hex_bytes64);
         for (to, b) in dst.chunks_exact_mut(4).zip(bytes) {
             to.copy_from_slice(&b.to_le_bytes());

@@ -3,8 +3,8 @@ use crate::can::LogFrame;
 use crate::test_gens::candump::{Build, FrameExt};
 use crate::What;
 
-/// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000
-/// as candump -l logs it.
+/// The log example of docs/formats.md#candump-log: an EMCY of node 1 (code
+/// 0x8110, register 0x11) as candump -l logs it.
 const DOCS_LOG: &str = "(1700000000.000500) can0 081#1081110000000000";
 /// The screen examples of docs/formats.md#candump-screen.
 const DOCS_SCREEN: &str = "  can0  081   [8]  10 81 11 00 00 00 00 00";
@@ -1580,11 +1580,11 @@ fn error_frame_explanation_lines_belong_to_the_frame() {
     assert!(parse_line(b"\tcontroller-problem{rx-error-warning}").is_err());
 }
 
-/// A 150 s fuzz run of `candump_line` (issue 20): a `candump -c` line whose
-/// text without its colour escapes is 512 bytes long fitted the buffer the
-/// escapes are stripped into; the same line with one leading space did not,
-/// was read with its escapes, and reported its error 9 columns further
-/// right instead of 1. Leading white space is no longer copied.
+/// A `candump -c` line whose text without its colour escapes is 512 bytes
+/// long fits the buffer the escapes are stripped into, with or without
+/// leading white space (which is not copied): the line with one leading
+/// space reads as the line without, its error at the same column. The input
+/// is the one a fuzz run of `candump_line` found.
 #[test]
 fn indentation_never_decides_how_a_coloured_line_reads() {
     let input = include_bytes!(concat!(

@@ -1,6 +1,6 @@
 //! Tests of the CiA 402 drive state machine, as CiA 402 writes it: the
 //! state and command coding tables bit by bit, and each transition 0–16 a
-//! named test (STYLE.md rule 8).
+//! named test, so that each test reads as the row of the standard it checks.
 
 use super::*;
 

@@ -810,7 +810,7 @@ fn plausible_frames() -> impl Strategy<Value = Vec<(bool, Vec<u8>)>> {
     )
 }
 
-/// docs/canopen.md#transfers / issue 12: never more data than the frames
+/// docs/canopen.md#transfers: never more data than the frames
 /// carried, every started transfer ends exactly once, frames counted at most
 /// once.
 fn check_invariants(frames: &[(bool, Vec<u8>)]) -> Result<(), TestCaseError> {

@@ -1,9 +1,9 @@
-//! The SDO transfer tracker as it was written before it followed the
-//! frame's bytes: each frame parsed into an [`SdoRequest`],
-//! [`SdoResponse`] or [`SdoBlockSegment`] first, then followed by its
-//! parsed value. Kept as the reference the tracker is held to, frame by
-//! frame, on arbitrary sequences (`the_tracker_follows_the_reference` in
-//! `tests.rs`); the decisions are the tracker's (docs/canopen.md#transfers).
+//! A reference SDO transfer tracker, written the plain way: each frame
+//! parsed into an [`SdoRequest`], [`SdoResponse`] or [`SdoBlockSegment`]
+//! first, then followed by its parsed value. The tracker, which follows
+//! the frame's bytes, is held to it frame by frame on arbitrary sequences
+//! (`the_tracker_follows_the_reference` in `tests.rs`); the decisions are
+//! the tracker's (docs/canopen.md#transfers).
 
 #![allow(dead_code)]
 

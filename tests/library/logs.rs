@@ -25,9 +25,11 @@ use motionwire::logs::{
 use motionwire::Error;
 use proptest::prelude::*;
 
-/// The allocator of this test binary: the system's, counting the bytes
-/// each thread holds and the most it held, so that a test can see how
-/// much memory reading an input took.
+/// The allocator of the `library` test binary (this module's, used by every
+/// module's tests): the system's, counting the bytes each thread holds and
+/// the most it held, so that a test can see how much memory reading an
+/// input took. The counts are per thread, so the other tests running at
+/// the same time do not change them.
 struct Metered;
 
 thread_local! {

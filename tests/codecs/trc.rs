@@ -105,8 +105,8 @@ macro_rules! fixture {
     ($name:literal, $truth:literal) => {
         (
             $name,
-            &include_bytes!(concat!("fixtures/trc/", $name, ".trc"))[..],
-            include_str!(concat!("fixtures/trc/", $truth, ".json")),
+            &include_bytes!(concat!("../fixtures/trc/", $name, ".trc"))[..],
+            include_str!(concat!("../fixtures/trc/", $truth, ".json")),
         )
     };
 }
@@ -211,22 +211,22 @@ fn handmade_v2_1() {
 fn error_frames_read_as_linux_error_frames() {
     let cases: [(&[u8], [u8; 8], Option<Iface>); 4] = [
         (
-            include_bytes!("fixtures/trc/handmade_v2_0.trc"),
+            include_bytes!("../fixtures/trc/handmade_v2_0.trc"),
             [0, 0, 0x84, 0x02, 0, 0, 0, 0],
             None,
         ),
         (
-            include_bytes!("fixtures/trc/handmade_v2_1.trc"),
+            include_bytes!("../fixtures/trc/handmade_v2_1.trc"),
             [0, 0, 0x84, 0x02, 0, 0, 0, 0],
             Some(Iface::Channel(1)),
         ),
         (
-            include_bytes!("fixtures/trc/handmade_v1_1.trc"),
+            include_bytes!("../fixtures/trc/handmade_v1_1.trc"),
             [0, 0, 0x04, 0x02, 0, 0, 0, 0x05],
             None,
         ),
         (
-            include_bytes!("fixtures/trc/handmade_v1_3.trc"),
+            include_bytes!("../fixtures/trc/handmade_v1_3.trc"),
             [0, 0, 0x02, 0x0A, 0, 0, 0x08, 0x00],
             Some(Iface::Channel(1)),
         ),

@@ -47,7 +47,7 @@ use motionwire::canopen::{
 use serde_json::Value;
 
 fn fixture() -> Value {
-    serde_json::from_str(include_str!("fixtures/cia402/python_canopen.json"))
+    serde_json::from_str(include_str!("../fixtures/cia402/python_canopen.json"))
         .expect("the fixture is JSON")
 }
 

@@ -5,9 +5,7 @@
 //! library (`motionwire::decoder`, `summary`) with the options of the
 //! command lines the tests name (`tests/common`).
 
-mod common;
-
-use common::{decode, path, records};
+use crate::common::{decode, path, records};
 
 use serde_json::{json, Value};
 

@@ -16,8 +16,8 @@ use serde_json::Value;
 
 #[test]
 fn python_can_log_reads_as_python_can_reads_it() {
-    let log = include_bytes!("fixtures/python_can.log");
-    let truth: Value = serde_json::from_str(include_str!("fixtures/python_can.json")).unwrap();
+    let log = include_bytes!("../fixtures/python_can.log");
+    let truth: Value = serde_json::from_str(include_str!("../fixtures/python_can.json")).unwrap();
     let expected = truth["frames"].as_array().unwrap();
 
     let frames: Vec<_> = candump::lines(log)

@@ -12,9 +12,7 @@
 //! 3=tests/fixtures/eds/array_drive.eds tests/fixtures/eds/array_drive.log`
 //! (and `--summary`) would (`tests/common`).
 
-mod common;
-
-use common::{decode, path, records};
+use crate::common::{decode, path, records};
 use serde_json::Value;
 
 const EDS: &str = "3=tests/fixtures/eds/array_drive.eds";

@@ -8,13 +8,11 @@
 //! missing browser fails these tests. Without it (a developer's machine
 //! without chromium) they say they were skipped and why, on standard error.
 
-mod report_common;
-
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use report_common::{check_counts, parse, repo, run, scratch, summary_records};
+use crate::report_common::{check_counts, parse, repo, run, scratch, summary_records};
 
 /// The browser, or `None` (said) when it is not there and not required.
 fn chromium() -> Option<PathBuf> {

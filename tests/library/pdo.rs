@@ -8,9 +8,7 @@
 //! `summary`) with the options of the command lines the tests name
 //! (`tests/common`).
 
-mod common;
-
-use common::{decode, path, records};
+use crate::common::{decode, path, records};
 
 use serde_json::{json, Value};
 

@@ -3,23 +3,22 @@
 //! docs/summary.md): read any log with `logs::open`, decode each frame with a
 //! `Decoder`, build the summary with a `Summarizer`, serialize with serde_json.
 //! Compared line for line with the program's output on every fixture and the
-//! sample (the snapshot `tests/golden.rs` checks the program against), with no
-//! `cli` feature.
+//! sample (the snapshot `tests/program/golden.rs` checks the program
+//! against), with no `cli` feature.
 
 use std::io::Read;
 use std::path::Path;
 
-mod common;
-
-use common::Run;
+use crate::common::{golden_name, Run};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The program's standard output for case `n` of `tests/golden/cases.txt`.
-fn golden_stdout(n: usize) -> String {
-    let file = std::fs::File::open(root().join(format!("tests/golden/{n:03}.gz"))).unwrap();
+/// The program's standard output for `case`, a line of
+/// `tests/golden/cases.txt`.
+fn golden_stdout(case: &str) -> String {
+    let file = std::fs::File::open(root().join("tests/golden").join(golden_name(case))).unwrap();
     let mut text = String::new();
     flate2::read::GzDecoder::new(file)
         .read_to_string(&mut text)
@@ -45,12 +44,12 @@ fn the_library_writes_what_the_program_writes() {
     let cases = std::fs::read_to_string(root().join("tests/golden/cases.txt")).unwrap();
     let mut compared = 0;
     let mut failures = Vec::new();
-    for (i, line) in cases.lines().enumerate() {
+    for line in cases.lines() {
         let args = line.split_whitespace().skip(1);
         let Some(run) = Run::from_args(args).filter(|_| line.contains("--json")) else {
             continue;
         };
-        let expected = golden_stdout(i + 1);
+        let expected = golden_stdout(line);
         let found = run.output();
         compared += 1;
         if found != expected {

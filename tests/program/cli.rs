@@ -790,9 +790,10 @@ fn a_pipe_is_decoded_live() {
     reader.join().unwrap();
 }
 
-/// A log written by python-can's `CanutilsLogWriter` (tests/python_can.rs
-/// checks it frame by frame against python-can's reader) decodes without a
-/// malformed line, its error frame as `error_frame`.
+/// A log written by python-can's `CanutilsLogWriter`
+/// (tests/codecs/python_can.rs checks it frame by frame against python-can's
+/// reader) decodes without a malformed line, its error frame as
+/// `error_frame`.
 #[test]
 fn a_python_can_log_decodes() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/python_can.log");

@@ -3,11 +3,9 @@
 //! summary, the embedded records are exactly `decode --summary --json`'s —
 //! and the sample's faults where the summary puts them.
 
-mod report_common;
-
 use std::io::Write;
 
-use report_common::{check_counts, parse, repo, run, scratch, summary_records, Page};
+use crate::report_common::{check_counts, parse, repo, run, scratch, summary_records, Page};
 use serde_json::Value;
 
 const SAMPLE_ARGS: [&str; 4] = ["--profile", "3=akd,5=baumer", "--heartbeat-ms", "300"];

@@ -61,24 +61,24 @@ fn fixture(name: &str, text: &str, json: &str) -> Fixture {
 fn sample() -> Fixture {
     fixture(
         "sample.eds",
-        include_str!("fixtures/eds/sample.eds"),
-        include_str!("fixtures/eds/sample.eds.json"),
+        include_str!("../fixtures/eds/sample.eds"),
+        include_str!("../fixtures/eds/sample.eds.json"),
     )
 }
 
 fn prbt() -> Fixture {
     fixture(
         "prbt_0_1.dcf",
-        include_str!("fixtures/eds/prbt_0_1.dcf"),
-        include_str!("fixtures/eds/prbt_0_1.dcf.json"),
+        include_str!("../fixtures/eds/prbt_0_1.dcf"),
+        include_str!("../fixtures/eds/prbt_0_1.dcf.json"),
     )
 }
 
 fn cia402_slave() -> Fixture {
     fixture(
         "cia402_slave.eds",
-        include_str!("fixtures/eds/cia402_slave.eds"),
-        include_str!("fixtures/eds/cia402_slave.eds.json"),
+        include_str!("../fixtures/eds/cia402_slave.eds"),
+        include_str!("../fixtures/eds/cia402_slave.eds.json"),
     )
 }
 
@@ -393,7 +393,12 @@ fn sample_eds_keeps_the_entries_python_canopen_drops() {
     // DCF value wins: 3002h DefaultValue 5.2, ParameterValue 5.200000.
     assert_eq!(f.eds.value(0x3002, 0), Some(&EdsValue::Real(5.2)));
     // The node comes from [DeviceComissioning] when none is given.
-    let eds = Eds::parse(include_str!("fixtures/eds/sample.eds"), "sample.eds", None).unwrap();
+    let eds = Eds::parse(
+        include_str!("../fixtures/eds/sample.eds"),
+        "sample.eds",
+        None,
+    )
+    .unwrap();
     assert_eq!(eds.node(), NodeId::new(0x10));
     assert_eq!(eds.value(0x1400, 1), Some(&EdsValue::Unsigned(0x210)));
 }
@@ -406,8 +411,8 @@ fn sample_eds_keeps_the_entries_python_canopen_drops() {
 fn bit_packed_pdos_read_bit_by_bit() {
     let f = fixture(
         "bitfields.eds",
-        include_str!("fixtures/eds/bitfields.eds"),
-        include_str!("fixtures/eds/bitfields.eds.json"),
+        include_str!("../fixtures/eds/bitfields.eds"),
+        include_str!("../fixtures/eds/bitfields.eds.json"),
     );
     let (signals, dropped, differences) = check_pdos(&f);
     assert!(dropped.is_empty(), "{dropped:?}");
