@@ -6,32 +6,23 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::canopen::{NmtStateByte, NodeId};
+use crate::canopen::NodeId;
 use crate::decoder::BusName;
 use crate::summary::{Listed, NodeSummary, Timeouts};
 
+use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
+use super::markup::{device, esc, iface_attr};
 use super::series::At;
 use super::svg::{
     axis_ticks, chart, defs, drawn_bands, drawn_marks, legend, mark_text, marks, node_row, rate,
     Drawn,
 };
-use super::{cia402_state, MarkKind, Recording, RowData};
+use super::{MarkKind, Recording, RowData};
 
-/// The SVG's width: labels, then the plot.
-pub(super) const WIDTH: f64 = 1200.0;
-/// Where the plot begins.
-pub(super) const LEFT: f64 = 170.0;
-/// The plot's default width in pixels: "within a pixel" for clusters
-/// (docs/report.md#clusters) is a pixel of it.
-pub(super) const PLOT: f64 = 1000.0;
-/// The axis's height.
-pub(super) const AXIS: f64 = 26.0;
 /// The most rows of the event table (docs/report.md#tables).
 const EVENT_ROWS: usize = 2000;
 /// The most items of one list of "What went wrong".
 const LIST_ITEMS: usize = 50;
-/// More bands than this on a row: neighbours narrower than a pixel merge.
-pub(super) const EXACT_BANDS: usize = 500;
 /// The most marks a page draws: beyond, neighbours cluster within as many
 /// pixels (a power of two) as keep them to this (docs/report.md#clusters).
 const MARK_BUDGET: usize = 20_000;
@@ -41,19 +32,6 @@ const BAND_BUDGET: usize = 10_000;
 /// Marks and bands have a `<title>` while a page has at most this many
 /// (the script shows the same words from their `data-*`).
 const TITLE_BUDGET: usize = 5_000;
-
-/// How a page draws its marks and bands, to stay small whatever the log
-/// (docs/report.md#size).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Budget {
-    /// `None`: each series as docs/report.md#clusters says; else every
-    /// series clustered within this many pixels.
-    pub(super) radius: Option<f64>,
-    /// Bands narrower than this many pixels merge with their neighbours
-    /// (`None`: only on rows of more than 500).
-    pub(super) band_px: Option<f64>,
-    pub(super) titles: bool,
-}
 
 const STYLE: &str = include_str!("page.css");
 const SCRIPT: &str = include_str!("page.js");
@@ -79,65 +57,6 @@ pub struct Report {
     command: Option<String>,
 }
 
-/// The shared axis: time in microseconds, or lines.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Axis {
-    pub(super) timed: bool,
-    pub(super) start: u64,
-    pub(super) end: u64,
-}
-
-impl Axis {
-    pub(super) fn key(&self, at: At) -> u64 {
-        at.key(self.timed)
-    }
-
-    /// The x of a place, in the default view.
-    pub(super) fn x(&self, at: At) -> f64 {
-        self.x_of(self.key(at))
-    }
-
-    pub(super) fn x_of(&self, key: u64) -> f64 {
-        let span = (self.end - self.start).max(1) as f64;
-        LEFT + (key.saturating_sub(self.start) as f64 / span) * PLOT
-    }
-
-    /// A pixel of the default view, in the axis's unit.
-    pub(super) fn pixel(&self) -> f64 {
-        (self.end - self.start).max(1) as f64 / PLOT
-    }
-
-    /// A place as the page writes it: `+2.003641 s` or `line 613`.
-    pub(super) fn when(&self, at: At) -> String {
-        if self.timed {
-            format!("+{} s", seconds(at.t.saturating_sub(self.start)))
-        } else {
-            format!("line {}", at.line)
-        }
-    }
-}
-
-/// Microseconds as seconds with six decimals.
-pub(super) fn seconds(us: u64) -> String {
-    format!("{}.{:06}", us / 1_000_000, us % 1_000_000)
-}
-
-/// Escape text for HTML text and quoted attributes.
-pub(super) fn esc(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 /// A date and time of the Unix epoch in UTC, `2023-11-14 22:13:20.000526 UTC`
 /// (days to civil date: H. Hinnant's algorithm).
 pub(super) fn utc(us: u64) -> String {
@@ -160,29 +79,6 @@ pub(super) fn utc(us: u64) -> String {
         rem % 60,
         us % 1_000_000
     )
-}
-
-/// A device as the page names it: `can0 node 3`.
-pub(super) fn device(bus: &BusName, node: NodeId) -> String {
-    match bus {
-        BusName::Unnamed => format!("node {}", node.get()),
-        _ => format!("{bus} node {}", node.get()),
-    }
-}
-
-pub(super) fn iface_attr(bus: &BusName) -> String {
-    match bus {
-        BusName::Unnamed => String::new(),
-        bus => esc(&bus.to_string()),
-    }
-}
-
-pub(super) fn nmt_name(state: u8) -> &'static str {
-    NmtStateByte::new(state).state_name()
-}
-
-pub(super) fn cia402_name(state: u8) -> &'static str {
-    cia402_state(state).map_or("unknown", |s| s.name())
 }
 
 /// One line of "What went wrong", with where it sorts.

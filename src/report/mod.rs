@@ -47,6 +47,8 @@
 
 mod fixed;
 mod html;
+mod layout;
+mod markup;
 mod series;
 mod svg;
 
