@@ -38,6 +38,7 @@
 mod cia402;
 mod event;
 mod file;
+mod findings;
 mod json;
 mod listed;
 mod sdo;
@@ -48,6 +49,7 @@ use core::time::Duration;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::FileSpan;
+pub use findings::{Finding, FindingDetail, FindingKind};
 pub use listed::{Listed, ListedIter};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 
