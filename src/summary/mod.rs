@@ -48,7 +48,7 @@ use core::time::Duration;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
-pub use file::FileSpan;
+pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingDetail, FindingKind};
 pub use listed::{Listed, ListedIter};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
