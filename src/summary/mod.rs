@@ -11,6 +11,10 @@
 //! [`Summary`]. `Display` writes the text summary; with `serde`,
 //! `Serialize` writes exactly the records of `motionwire decode --summary
 //! --json` (one JSON value per record, [`Summary::records`]).
+//! [`Summary::findings`] is what went wrong, one [`Finding`] per fault,
+//! first error, restart, timeout, abort or bus error, in time order
+//! (docs/summary.md#findings); [`SeveralFiles`] reads several logs as
+//! recordings of their own or joined (docs/output.md#several-files).
 //!
 //! ```
 //! use motionwire::decoder::{Decoder, DecoderConfig};
