@@ -58,7 +58,8 @@
 //!   signals from the mappings the log teaches, CiA 402 readings, the JSON
 //!   record of `motionwire decode --json` (docs/output.md#json).
 //! - `summary` (feature `decoder`): the post-mortem of a log, one record per
-//!   device and per bus, as typed values, text and JSON (docs/summary.md).
+//!   device and per bus, as typed values, text and JSON (docs/summary.md),
+//!   and what went wrong as a list of findings (docs/summary.md#findings).
 //!
 //! ## Optional features
 //!

@@ -2,7 +2,8 @@
 
 Every format of docs/formats.md (candump, ASC, TRC, BLF, pcap/pcapng, MF4,
 gzip-compressed or not) read into Arrow tables built in Rust, the CANopen
-decoder's columns and JSON records, the post-mortem summary, and
+decoder's columns and JSON records, the post-mortem summary and what went
+wrong, and
 python-can messages. The work is done by the Rust library with the GIL
 released; this module only re-exports it.
 """
@@ -13,6 +14,7 @@ from ._motionwire import (
     Reader,
     __version__,
     decode,
+    findings,
     read_log,
     read_logs,
     summary,
@@ -23,6 +25,7 @@ __all__ = [
     "Message",
     "Reader",
     "decode",
+    "findings",
     "read_log",
     "read_logs",
     "summary",

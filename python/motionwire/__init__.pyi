@@ -153,6 +153,33 @@ def summary(
     them).
     """
 
+def findings(
+    source: Source,
+    *,
+    heartbeat_ms: Optional[int] = None,
+    profiles: Optional[Profiles] = None,
+    eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """What went wrong (docs/summary.md#findings): one row per finding, the
+    list of the report's "What went wrong" (``motionwire report``), in time
+    order: first errors, CiA 402 faults, restarts, heartbeat timeouts over
+    ``heartbeat_ms``, SDO aborts, broken and unanswered SDO transfers,
+    node-guarding toggle errors, bus-off and error-passive frames; where the
+    summary omitted entries of a list, one row says how many.
+
+    Columns: ``line`` (uint64), ``ts`` (float64 seconds, null where the log
+    has no time), ``iface`` (dictionary, null for an unnamed bus), ``node``
+    (uint8, null for a bus's findings), ``kind`` (dictionary:
+    ``first_error``, ``cia402_fault``, ``restarts``, ``heartbeat_timeout``,
+    ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
+    ``bus_off``, ``error_passive``), ``text`` (what it says, without the
+    device).
+
+    Lines skipped as malformed are said with a UserWarning (read_log lists
+    them).
+    """
+
 class Message:
     """A CAN frame with python-can's attribute names: what Reader yields
     when python-can is not installed."""

@@ -14,6 +14,7 @@ use arrow_pyarrow::{IntoPyArrow, Table};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::profiles::{NodeProfiles, Profile};
+use motionwire::report::Recorder;
 use motionwire::summary::Summarizer;
 use pyo3::exceptions::{PyNotImplementedError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -249,6 +250,55 @@ fn summary<'py>(
             .collect();
         Ok((records, skipped))
     })?;
+    warn_skipped(py, &source, skipped)?;
+    let loads = py.import("json")?.getattr("loads")?;
+    let list = PyList::empty(py);
+    for record in records {
+        list.append(loads.call1((record,))?)?;
+    }
+    Ok(list)
+}
+
+/// What went wrong: the summary's findings as a pyarrow.Table, one row per
+/// finding, the list of the report's "What went wrong"
+/// (docs/python.md#findings).
+#[pyfunction]
+#[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None))]
+fn findings<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    heartbeat_ms: Option<u64>,
+    profiles: Option<&Bound<'py, PyAny>>,
+    eds: Option<&Bound<'py, PyDict>>,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    let source = Source::extract(source)?;
+    let options = source::options(format)?;
+    let mut config = config(profiles, eds)?.signals(false);
+    if let Some(ms) = heartbeat_ms {
+        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    }
+    let ((schema, batches), skipped) = py.detach(|| -> Result<_, Failure> {
+        let name = source.name();
+        let mut log = source.open(options, &name)?;
+        let mut recorder = Recorder::new(config);
+        let skipped = log.visit(Record {
+            recorder: &mut recorder,
+            name: &name,
+        })?;
+        let recording = recorder.finish();
+        let table =
+            table::findings(&recording.findings()).map_err(|e| Failure::Value(e.to_string()))?;
+        Ok((table, skipped))
+    })?;
+    warn_skipped(py, &source, skipped)?;
+    let table =
+        Table::try_new(batches, schema).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(table.into_pyarrow(py)?.unbind())
+}
+
+/// Warn that lines or records of `source` were skipped.
+fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
     if skipped > 0 {
         let s = if skipped == 1 { "" } else { "s" };
         let warning = py.get_type::<pyo3::exceptions::PyUserWarning>();
@@ -263,12 +313,34 @@ fn summary<'py>(
             1,
         )?;
     }
-    let loads = py.import("json")?.getattr("loads")?;
-    let list = PyList::empty(py);
-    for record in records {
-        list.append(loads.call1((record,))?)?;
+    Ok(())
+}
+
+/// The recorder's loop over a log, compiled for its format's reader.
+struct Record<'a> {
+    recorder: &'a mut Recorder,
+    name: &'a str,
+}
+
+impl motionwire::logs::LogVisitor for Record<'_> {
+    /// How many lines or records were skipped.
+    type Output = Result<u64, Failure>;
+
+    fn visit<L: motionwire::logs::ReadLog + ?Sized>(self, log: &mut L) -> Result<u64, Failure> {
+        let mut skipped = 0;
+        while let Some(next) = log.next_event() {
+            match next {
+                Ok(record) => self.recorder.add(record.position.number(), &record.event),
+                Err(error) => {
+                    if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
+                        return Err(Failure::log(self.name, error));
+                    }
+                    skipped += 1;
+                }
+            }
+        }
+        Ok(skipped)
     }
-    Ok(list)
 }
 
 /// The summary's loop over a log, compiled for its format's reader.
@@ -306,6 +378,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_logs, m)?)?;
     m.add_function(wrap_pyfunction!(decode, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
+    m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add_class::<reader::Reader>()?;
     m.add_class::<reader::Message>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

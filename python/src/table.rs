@@ -590,3 +590,48 @@ pub fn batches(
     }
     Ok((schema, batches))
 }
+
+/// The table of `findings` (docs/python.md#findings): one row per finding,
+/// in the library's order.
+pub fn findings(
+    findings: &[motionwire::summary::Finding],
+) -> Result<(SchemaRef, Vec<RecordBatch>), ArrowError> {
+    let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
+    let schema = Arc::new(Schema::new(vec![
+        Field::new("line", DataType::UInt64, false),
+        Field::new("ts", DataType::Float64, true),
+        Field::new("iface", dictionary(DataType::Int32), true),
+        Field::new("node", DataType::UInt8, true),
+        Field::new("kind", dictionary(DataType::Int8), false),
+        Field::new("text", DataType::Utf8, false),
+    ]));
+    let ifaces: Vec<Option<String>> = findings
+        .iter()
+        .map(|f| match &f.bus {
+            motionwire::decoder::BusName::Unnamed => None,
+            bus => Some(bus.to_string()),
+        })
+        .collect();
+    let columns: Vec<ArrayRef> = vec![
+        Arc::new(UInt64Array::from_iter_values(
+            findings.iter().map(|f| f.line),
+        )),
+        Arc::new(Float64Array::from_iter(
+            findings.iter().map(|f| f.ts.map(|ts| ts.as_secs_f64())),
+        )),
+        Arc::new(DictionaryArray::<Int32Type>::from_iter(
+            ifaces.iter().map(Option::as_deref),
+        )),
+        Arc::new(UInt8Array::from_iter(
+            findings.iter().map(|f| f.node.map(|n| n.get())),
+        )),
+        Arc::new(DictionaryArray::<Int8Type>::from_iter(
+            findings.iter().map(|f| f.kind.name()),
+        )),
+        Arc::new(StringArray::from_iter_values(
+            findings.iter().map(|f| f.text()),
+        )),
+    ];
+    let batch = RecordBatch::try_new(schema.clone(), columns)?;
+    Ok((schema, vec![batch]))
+}

@@ -46,6 +46,7 @@ mod names;
 mod pdo;
 mod record;
 mod sdo;
+mod servo;
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -58,6 +59,7 @@ pub use names::ObjectNames;
 pub use pdo::{PdoMap, PdoReading};
 pub(crate) use sdo::SdoSeen;
 pub use sdo::{EndedTransfer, SdoStep};
+pub use servo::{CommandRecord, FaultRecord, FeedbackRecord};
 
 use crate::can::{Iface, LogFrame};
 use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};

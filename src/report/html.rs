@@ -6,32 +6,23 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::canopen::{NmtStateByte, NodeId};
+use crate::canopen::NodeId;
 use crate::decoder::BusName;
-use crate::summary::{Listed, NodeSummary, Timeouts};
+use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
 
+use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
+use super::markup::{device, esc, iface_attr};
 use super::series::At;
 use super::svg::{
     axis_ticks, chart, defs, drawn_bands, drawn_marks, legend, mark_text, marks, node_row, rate,
     Drawn,
 };
-use super::{cia402_state, MarkKind, Recording, RowData};
+use super::{MarkKind, Recording, RowData};
 
-/// The SVG's width: labels, then the plot.
-pub(super) const WIDTH: f64 = 1200.0;
-/// Where the plot begins.
-pub(super) const LEFT: f64 = 170.0;
-/// The plot's default width in pixels: "within a pixel" for clusters
-/// (docs/report.md#clusters) is a pixel of it.
-pub(super) const PLOT: f64 = 1000.0;
-/// The axis's height.
-pub(super) const AXIS: f64 = 26.0;
 /// The most rows of the event table (docs/report.md#tables).
 const EVENT_ROWS: usize = 2000;
 /// The most items of one list of "What went wrong".
 const LIST_ITEMS: usize = 50;
-/// More bands than this on a row: neighbours narrower than a pixel merge.
-pub(super) const EXACT_BANDS: usize = 500;
 /// The most marks a page draws: beyond, neighbours cluster within as many
 /// pixels (a power of two) as keep them to this (docs/report.md#clusters).
 const MARK_BUDGET: usize = 20_000;
@@ -41,19 +32,6 @@ const BAND_BUDGET: usize = 10_000;
 /// Marks and bands have a `<title>` while a page has at most this many
 /// (the script shows the same words from their `data-*`).
 const TITLE_BUDGET: usize = 5_000;
-
-/// How a page draws its marks and bands, to stay small whatever the log
-/// (docs/report.md#size).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Budget {
-    /// `None`: each series as docs/report.md#clusters says; else every
-    /// series clustered within this many pixels.
-    pub(super) radius: Option<f64>,
-    /// Bands narrower than this many pixels merge with their neighbours
-    /// (`None`: only on rows of more than 500).
-    pub(super) band_px: Option<f64>,
-    pub(super) titles: bool,
-}
 
 const STYLE: &str = include_str!("page.css");
 const SCRIPT: &str = include_str!("page.js");
@@ -79,65 +57,6 @@ pub struct Report {
     command: Option<String>,
 }
 
-/// The shared axis: time in microseconds, or lines.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Axis {
-    pub(super) timed: bool,
-    pub(super) start: u64,
-    pub(super) end: u64,
-}
-
-impl Axis {
-    pub(super) fn key(&self, at: At) -> u64 {
-        at.key(self.timed)
-    }
-
-    /// The x of a place, in the default view.
-    pub(super) fn x(&self, at: At) -> f64 {
-        self.x_of(self.key(at))
-    }
-
-    pub(super) fn x_of(&self, key: u64) -> f64 {
-        let span = (self.end - self.start).max(1) as f64;
-        LEFT + (key.saturating_sub(self.start) as f64 / span) * PLOT
-    }
-
-    /// A pixel of the default view, in the axis's unit.
-    pub(super) fn pixel(&self) -> f64 {
-        (self.end - self.start).max(1) as f64 / PLOT
-    }
-
-    /// A place as the page writes it: `+2.003641 s` or `line 613`.
-    pub(super) fn when(&self, at: At) -> String {
-        if self.timed {
-            format!("+{} s", seconds(at.t.saturating_sub(self.start)))
-        } else {
-            format!("line {}", at.line)
-        }
-    }
-}
-
-/// Microseconds as seconds with six decimals.
-pub(super) fn seconds(us: u64) -> String {
-    format!("{}.{:06}", us / 1_000_000, us % 1_000_000)
-}
-
-/// Escape text for HTML text and quoted attributes.
-pub(super) fn esc(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 /// A date and time of the Unix epoch in UTC, `2023-11-14 22:13:20.000526 UTC`
 /// (days to civil date: H. Hinnant's algorithm).
 pub(super) fn utc(us: u64) -> String {
@@ -160,38 +79,6 @@ pub(super) fn utc(us: u64) -> String {
         rem % 60,
         us % 1_000_000
     )
-}
-
-/// A device as the page names it: `can0 node 3`.
-pub(super) fn device(bus: &BusName, node: NodeId) -> String {
-    match bus {
-        BusName::Unnamed => format!("node {}", node.get()),
-        _ => format!("{bus} node {}", node.get()),
-    }
-}
-
-pub(super) fn iface_attr(bus: &BusName) -> String {
-    match bus {
-        BusName::Unnamed => String::new(),
-        bus => esc(&bus.to_string()),
-    }
-}
-
-pub(super) fn nmt_name(state: u8) -> &'static str {
-    NmtStateByte::new(state).state_name()
-}
-
-pub(super) fn cia402_name(state: u8) -> &'static str {
-    cia402_state(state).map_or("unknown", |s| s.name())
-}
-
-/// One line of "What went wrong", with where it sorts.
-struct Finding {
-    key: (u64, u64),
-    line: u64,
-    iface: String,
-    node: Option<u8>,
-    text: String,
 }
 
 impl Report {
@@ -439,253 +326,53 @@ impl Report {
         p.push_str("</dl>\n<nav><a href=\"#wrong\">What went wrong</a> · <a href=\"#timeline\">Timeline</a> · <a href=\"#signals\">Signals</a> · <a href=\"#devices\">Devices</a> · <a href=\"#events\">Events</a></nav>\n</header>\n");
     }
 
-    /// The time of a summary line on a row, where a mark of `kind` holds it.
-    fn at_of(rows: Option<&RowData>, kind: MarkKind, line: u64) -> At {
-        let found = rows.and_then(|row| {
-            let items = row.marks[kind as usize].items();
-            items
-                .iter()
-                .find(|m| m.at.line == line)
-                .or_else(|| items.iter().rev().find(|m| m.at.line <= line))
-                .map(|m| m.at)
-        });
-        found.unwrap_or(At { t: 0, line })
-    }
-
     fn findings(&self, p: &mut String, axis: &Axis) {
+        /// One line of "What went wrong", with where it sorts.
+        struct Line {
+            key: (u64, u64),
+            line: u64,
+            finding: Finding,
+            at: At,
+        }
         p.push_str("<main>\n<section id=\"wrong\">\n<h2>What went wrong</h2>\n");
-        let mut faults: Vec<Finding> = Vec::new();
-        let mut restarts: Vec<Finding> = Vec::new();
-        let mut timeouts: Vec<Finding> = Vec::new();
-        let mut aborts: Vec<Finding> = Vec::new();
-        let mut transfers: Vec<Finding> = Vec::new();
-        let mut toggles: Vec<Finding> = Vec::new();
-        let mut bus_errors: Vec<Finding> = Vec::new();
+        let mut sections: [Vec<Line>; 7] = Default::default();
         for r in &self.recordings {
-            let prefix = r
-                .summary
-                .file
-                .as_deref()
-                .map_or_else(String::new, |f| format!("{f}: "));
-            for n in &r.summary.nodes {
-                let rows = r.timeline.rows(&n.bus).and_then(|b| b.node_row(n.node));
-                let who = format!("{prefix}{}", device(&n.bus, n.node));
-                let push = |list: &mut Vec<Finding>, at: At, text: String| {
-                    list.push(Finding {
-                        key: (axis.key(at), at.line),
-                        line: at.line,
-                        iface: iface_attr(&n.bus),
-                        node: Some(n.node.get()),
-                        text: format!("<b>{}</b> {}", esc(&who), text),
-                    });
+            for finding in r.findings() {
+                let at = r.timeline.place(&finding);
+                // A device's finding points at its mark, a bus's at its line.
+                let line = if finding.node.is_some() {
+                    at.line
+                } else {
+                    finding.line
                 };
-                if let Some(first) = n.first_error {
-                    let at = At {
-                        t: first.ts.map_or(0, super::micros),
-                        line: first.line,
-                    };
-                    push(
-                        &mut faults,
-                        at,
-                        format!(
-                            "first error: EMCY {} {} at line {} ({})",
-                            first.code,
-                            esc(first.code.description()),
-                            first.line,
-                            axis.when(at)
-                        ),
-                    );
-                }
-                // Where a summary list omitted entries: how many, at the
-                // last one kept before them (docs/summary.md#lists).
-                let omitted = |list: &mut Vec<Finding>, kind: MarkKind, n: u64, before: u64| {
-                    let at = Self::at_of(rows, kind, before);
-                    push(list, at, omitted_words(kind, n, before));
+                let section = match finding.kind {
+                    FindingKind::FirstError | FindingKind::Cia402Fault => 0,
+                    FindingKind::Restarts => 1,
+                    FindingKind::HeartbeatTimeout => 2,
+                    FindingKind::SdoAbort => 3,
+                    FindingKind::SdoBroken | FindingKind::SdoTimeout => 4,
+                    FindingKind::ToggleError => 5,
+                    FindingKind::BusOff | FindingKind::ErrorPassive => 6,
                 };
-                for item in n
-                    .cia402
-                    .iter()
-                    .filter_map(|c| c.faults.as_ref())
-                    .flat_map(items)
-                {
-                    match item {
-                        Item::Kept(fault) => {
-                            let t = fault.transition;
-                            let at = At {
-                                t: t.ts.map_or(0, super::micros),
-                                line: t.line,
-                            };
-                            push(
-                                &mut faults,
-                                at,
-                                format!("{} ({})", esc(&fault.to_string()), axis.when(at)),
-                            );
-                        }
-                        Item::Omitted(more, last) => {
-                            omitted(
-                                &mut faults,
-                                MarkKind::Cia402Fault,
-                                more,
-                                last.transition.line,
-                            );
-                        }
-                    }
-                }
-                let boots = &n.heartbeat.boot_ups;
-                if boots.count() > 1 {
-                    let at = Self::at_of(rows, MarkKind::BootUp, *boots.get(1).unwrap_or(&0));
-                    let times = boots.count() - 1;
-                    push(
-                        &mut restarts,
-                        at,
-                        format!(
-                            "restarted {times} time{} (boot-ups at lines {})",
-                            if times == 1 { "" } else { "s" },
-                            listed_lines(boots)
-                        ),
-                    );
-                }
-                if let Timeouts::Checked(gaps) = &n.heartbeat.timeouts {
-                    for item in items(gaps) {
-                        match item {
-                            Item::Kept(gap) => {
-                                let at =
-                                    Self::at_of(rows, MarkKind::HeartbeatTimeout, gap.after_line);
-                                push(
-                                    &mut timeouts,
-                                    at,
-                                    format!(
-                                        "no heartbeat for {} ms after line {} ({})",
-                                        gap.gap_ms(),
-                                        gap.after_line,
-                                        axis.when(at)
-                                    ),
-                                );
-                            }
-                            Item::Omitted(more, last) => omitted(
-                                &mut timeouts,
-                                MarkKind::HeartbeatTimeout,
-                                more,
-                                last.after_line,
-                            ),
-                        }
-                    }
-                }
-                for item in items(&n.sdo.aborts) {
-                    match item {
-                        Item::Kept(abort) => {
-                            let at = Self::at_of(rows, MarkKind::SdoAbort, abort.line);
-                            push(
-                                &mut aborts,
-                                at,
-                                format!(
-                                    "line {}: {} ({})",
-                                    abort.line,
-                                    esc(&abort.to_string()),
-                                    axis.when(at)
-                                ),
-                            );
-                        }
-                        Item::Omitted(more, last) => {
-                            omitted(&mut aborts, MarkKind::SdoAbort, more, last.line);
-                        }
-                    }
-                }
-                for (kind, list, what) in [
-                    (
-                        MarkKind::SdoBroken,
-                        &n.sdo.broken,
-                        "broken SDO transfer starting",
-                    ),
-                    (
-                        MarkKind::SdoTimeout,
-                        &n.sdo.timeouts,
-                        "unanswered SDO request",
-                    ),
-                ] {
-                    for item in items(list) {
-                        match item {
-                            Item::Kept(&line) => {
-                                let at = Self::at_of(rows, kind, line);
-                                push(&mut transfers, at, format!("{what} at line {line}"));
-                            }
-                            Item::Omitted(more, &last) => {
-                                omitted(&mut transfers, kind, more, last);
-                            }
-                        }
-                    }
-                }
-                for item in items(&n.guarding.toggle_errors) {
-                    match item {
-                        Item::Kept(&line) => {
-                            let at = Self::at_of(rows, MarkKind::ToggleError, line);
-                            push(
-                                &mut toggles,
-                                at,
-                                format!(
-                                    "node-guarding answer with a wrong toggle at line {line} ({})",
-                                    axis.when(at)
-                                ),
-                            );
-                        }
-                        Item::Omitted(more, &last) => {
-                            omitted(&mut toggles, MarkKind::ToggleError, more, last);
-                        }
-                    }
-                }
-            }
-            for b in &r.summary.buses {
-                let rows = r.timeline.rows(&b.bus).map(|rows| &rows.row);
-                for (kind, list) in [
-                    (MarkKind::BusOff, &b.bus_off),
-                    (MarkKind::ErrorPassive, &b.error_passive),
-                ] {
-                    for item in items(list) {
-                        let (line, text) = match item {
-                            Item::Kept(&line) => {
-                                let at = Self::at_of(rows, kind, line);
-                                (
-                                    line,
-                                    format!("{} at line {line} ({})", kind.words(), axis.when(at)),
-                                )
-                            }
-                            Item::Omitted(more, &last) => (last, omitted_words(kind, more, last)),
-                        };
-                        let at = Self::at_of(rows, kind, line);
-                        bus_errors.push(Finding {
-                            key: (axis.key(at), line),
-                            line,
-                            iface: iface_attr(&b.bus),
-                            node: None,
-                            text: format!(
-                                "<b>{}bus {}</b> {text}",
-                                esc(&prefix),
-                                esc(&b.bus.to_string()),
-                            ),
-                        });
-                    }
-                }
+                sections[section].push(Line {
+                    key: (axis.key(at), line),
+                    line,
+                    finding,
+                    at,
+                });
             }
         }
-        let sections: [(&str, &str, &mut Vec<Finding>); 7] = [
-            (
-                "faults",
-                "Faults and first errors, in time order",
-                &mut faults,
-            ),
-            ("restarts", "Restarts", &mut restarts),
-            ("heartbeat-timeouts", "Heartbeat timeouts", &mut timeouts),
-            ("sdo-aborts", "SDO aborts", &mut aborts),
-            (
-                "sdo-transfers",
-                "Broken and unanswered SDO transfers",
-                &mut transfers,
-            ),
-            ("toggle-errors", "Node-guarding toggle errors", &mut toggles),
-            ("bus-errors", "Bus-off and error-passive", &mut bus_errors),
+        let headings: [(&str, &str); 7] = [
+            ("faults", "Faults and first errors, in time order"),
+            ("restarts", "Restarts"),
+            ("heartbeat-timeouts", "Heartbeat timeouts"),
+            ("sdo-aborts", "SDO aborts"),
+            ("sdo-transfers", "Broken and unanswered SDO transfers"),
+            ("toggle-errors", "Node-guarding toggle errors"),
+            ("bus-errors", "Bus-off and error-passive"),
         ];
         let mut any = false;
-        for (id, heading, list) in sections {
+        for ((id, heading), list) in headings.into_iter().zip(&mut sections) {
             if list.is_empty() {
                 continue;
             }
@@ -695,15 +382,30 @@ impl Report {
                 p,
                 "<h3 id=\"{id}\">{heading}</h3>\n<ul class=\"findings\">\n"
             );
-            for f in list.iter().take(LIST_ITEMS) {
+            for item in list.iter().take(LIST_ITEMS) {
+                let f = &item.finding;
                 let node = f
                     .node
-                    .map_or_else(String::new, |n| format!(" data-node=\"{n}\""));
-                let _ = writeln!(
+                    .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+                let _ = write!(
                     p,
-                    "<li data-line=\"{}\" data-iface=\"{}\"{node}>{}</li>",
-                    f.line, f.iface, f.text
+                    "<li data-line=\"{}\" data-iface=\"{}\"{node}><b>{}</b> {}",
+                    item.line,
+                    iface_attr(&f.bus),
+                    esc(&f.subject()),
+                    esc(&f.text())
                 );
+                // Where a list omitted entries, the timeline still has them;
+                // a finding of one event says when it was.
+                if f.is_omitted() {
+                    p.push_str(", the timeline shows every one");
+                } else if !matches!(
+                    f.kind,
+                    FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
+                ) {
+                    let _ = write!(p, " ({})", axis.when(item.at));
+                }
+                p.push_str("</li>\n");
             }
             if list.len() > LIST_ITEMS {
                 let _ = writeln!(
@@ -975,17 +677,6 @@ fn lines<T: std::fmt::Display>(list: &[T]) -> String {
     out
 }
 
-/// A finding in place of the events a summary list omitted: how many of
-/// `kind`, after the line of the last one it kept (docs/summary.md#lists).
-fn omitted_words(kind: MarkKind, n: u64, before: u64) -> String {
-    format!(
-        "… and {n} more ({}) after line {before}: the summary lists the first {} and the last {} of each kind, the timeline shows every one",
-        kind.words(),
-        Listed::<u64>::FIRST,
-        Listed::<u64>::LAST
-    )
-}
-
 /// The lines of a summary list, with how many it omitted between its
 /// first and its last (docs/summary.md#lists), as the text summary writes
 /// them.
@@ -995,7 +686,7 @@ fn listed_lines<T: std::fmt::Display>(list: &Listed<T>) -> String {
         let _ = match item {
             Item::Kept(l) if out.is_empty() => write!(out, "{l}"),
             Item::Kept(l) => write!(out, ", {l}"),
-            Item::Omitted(more, _) => write!(out, ", … {more} more …"),
+            Item::Omitted(more) => write!(out, ", … {more} more …"),
         };
     }
     out
@@ -1013,15 +704,15 @@ fn listed_lines_or_none(list: &Listed<u64>) -> String {
 /// and the last entry kept before them (docs/summary.md#lists).
 enum Item<'a, T> {
     Kept(&'a T),
-    Omitted(u64, &'a T),
+    Omitted(u64),
 }
 
 /// The entries a summary list keeps, in order, with its omitted ones in
 /// their place.
 fn items<T>(list: &Listed<T>) -> impl Iterator<Item = Item<'_, T>> {
-    let omitted = match (list.omitted(), list.head().last()) {
-        (n @ 1.., Some(last)) => Some(Item::Omitted(n, last)),
-        _ => None,
+    let omitted = match list.omitted() {
+        0 => None,
+        n => Some(Item::Omitted(n)),
     };
     list.head()
         .iter()

@@ -46,6 +46,8 @@
 
 mod fixed;
 mod html;
+mod layout;
+mod markup;
 mod series;
 mod svg;
 
@@ -54,7 +56,9 @@ pub use html::{Report, ReportInput};
 use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
 use crate::decoder::{BusName, DecoderConfig};
-use crate::summary::{FileSpan, Summarizer, Summary, SummaryEvent, SummaryEventKind};
+use crate::summary::{
+    FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent, SummaryEventKind,
+};
 
 use series::{
     At, BandItem, Detail, MarkItem, RateBucket, Series, SignalBucket, BUCKETS, EXACT_MARKS,
@@ -488,6 +492,25 @@ pub(crate) fn cia402_state(index: u8) -> Option<Cia402State> {
     Cia402State::ALL.get(usize::from(index)).copied()
 }
 
+/// The marks that hold a finding whose time the summary does not keep.
+fn mark_kind(finding: &Finding) -> Option<MarkKind> {
+    if finding.timed_by_summary() {
+        return None;
+    }
+    Some(match finding.kind {
+        FindingKind::FirstError => return None,
+        FindingKind::Cia402Fault => MarkKind::Cia402Fault,
+        FindingKind::Restarts => MarkKind::BootUp,
+        FindingKind::HeartbeatTimeout => MarkKind::HeartbeatTimeout,
+        FindingKind::SdoAbort => MarkKind::SdoAbort,
+        FindingKind::SdoBroken => MarkKind::SdoBroken,
+        FindingKind::SdoTimeout => MarkKind::SdoTimeout,
+        FindingKind::ToggleError => MarkKind::ToggleError,
+        FindingKind::BusOff => MarkKind::BusOff,
+        FindingKind::ErrorPassive => MarkKind::ErrorPassive,
+    })
+}
+
 /// A recording's timeline: per bus and device, the marks, state bands,
 /// signals and frame rate the page draws (docs/report.md#timeline), in
 /// bounded memory.
@@ -531,6 +554,57 @@ impl Timeline {
         }
     }
 
+    /// Where a mark of `kind` holds the summary's line `line` on the row
+    /// of `node` on `bus`: the mark at that line, else the cluster of
+    /// marks it lies in (docs/report.md#clusters).
+    fn mark_at(
+        &self,
+        bus: &BusName,
+        node: Option<NodeId>,
+        kind: MarkKind,
+        line: u64,
+    ) -> Option<At> {
+        let items = self.row(bus, node)?.marks[kind.index()].items();
+        items
+            .iter()
+            .find(|m| m.at.line == line)
+            .or_else(|| items.iter().rev().find(|m| m.at.line <= line))
+            .map(|m| m.at)
+    }
+
+    /// Where the page draws a finding: its own time where the summary
+    /// keeps one (time 0 without), else at the mark that holds its line
+    /// (time 0 and its line where no mark does).
+    pub(crate) fn place(&self, finding: &Finding) -> At {
+        let line = finding.line;
+        match mark_kind(finding) {
+            None => At {
+                t: finding.ts.map_or(0, micros),
+                line,
+            },
+            Some(kind) => self
+                .mark_at(&finding.bus, finding.node, kind, line)
+                .unwrap_or(At { t: 0, line }),
+        }
+    }
+
+    /// The time of the mark that holds a finding whose time the summary
+    /// does not keep, to the microsecond, in a recording drawn by time.
+    fn time_of(&self, finding: &Finding) -> Option<Timestamp> {
+        if !self.timed {
+            return None;
+        }
+        let at = self.mark_at(
+            &finding.bus,
+            finding.node,
+            mark_kind(finding)?,
+            finding.line,
+        )?;
+        Some(Timestamp::from_duration(core::time::Duration::from_micros(
+            at.t,
+        )))
+    }
+
     /// Return how many events of `kind` the row of `node` on `bus` (the
     /// bus's own row for `None`) holds: what its marks' `data-count`s add
     /// up to (docs/report.md#marks).
@@ -543,6 +617,18 @@ impl Timeline {
                 .map(|m| m.count)
                 .sum()
         })
+    }
+}
+
+impl Recording {
+    /// Return what went wrong ([`Summary::findings_with`],
+    /// docs/summary.md#findings), each finding at the time of its mark on
+    /// the timeline, to the microsecond: the list the page's "What went
+    /// wrong" shows (docs/report.md#page).
+    #[must_use]
+    pub fn findings(&self) -> Vec<Finding> {
+        self.summary
+            .findings_with(|finding| self.timeline.time_of(finding))
     }
 }
 

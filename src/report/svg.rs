@@ -9,10 +9,8 @@ use crate::canopen::ErrorCode;
 use crate::summary::NodeSummary;
 
 use super::fixed::Fixed;
-use super::html::{
-    cia402_name, device, esc, iface_attr, nmt_name, Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT,
-    WIDTH,
-};
+use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
+use super::markup::{cia402_name, device, esc, iface_attr, nmt_name};
 use super::series::{At, BandItem, Detail, MarkItem, Series};
 use super::{BusRows, MarkKind, RowData, CHARTED};
 

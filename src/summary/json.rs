@@ -20,7 +20,7 @@ use super::{
 };
 
 /// A time as a JSON number with six or nine decimals.
-struct Ts(Timestamp);
+pub(super) struct Ts(pub(super) Timestamp);
 
 impl Serialize for Ts {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -37,7 +37,7 @@ fn ts<M: SerializeMap>(map: &mut M, key: &str, ts: Option<Timestamp>) -> Result<
 
 /// The `iface` of docs/output.md#common-keys: the name, the channel as a
 /// string, or null.
-struct Iface<'a>(&'a BusName);
+pub(super) struct Iface<'a>(pub(super) &'a BusName);
 
 impl Serialize for Iface<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {

@@ -12,6 +12,10 @@
 //! the typed [`Summary`]. `Display` writes the text summary; with `serde`,
 //! `Serialize` writes exactly the records of `motionwire decode --summary
 //! --json` (one JSON value per record, [`Summary::records`]).
+//! [`Summary::findings`] is what went wrong, one [`Finding`] per fault,
+//! first error, restart, timeout, abort or bus error, in time order
+//! (docs/summary.md#findings); [`SeveralFiles`] reads several logs as
+//! recordings of their own or joined (docs/output.md#several-files).
 //!
 //! ```
 //! use motionwire::can::LogEvent;
@@ -38,6 +42,7 @@
 mod cia402;
 mod event;
 mod file;
+mod findings;
 mod json;
 mod listed;
 mod sdo;
@@ -47,7 +52,8 @@ use core::time::Duration;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use event::{SummaryEvent, SummaryEventKind};
-pub use file::FileSpan;
+pub use file::{FileSpan, SeveralFiles};
+pub use findings::{Finding, FindingDetail, FindingKind};
 pub use listed::{Listed, ListedIter};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 

@@ -64,7 +64,7 @@ impl<T: fmt::Display> fmt::Display for Lines<'_, T> {
 /// The lines of a [`Listed`], with the count of those omitted between
 /// its first and its last (docs/summary.md#lists): `1, 2, …, 10, … 30
 /// more …, 41, …, 50`.
-struct ListedLines<'a, T>(&'a Listed<T>);
+pub(super) struct ListedLines<'a, T>(pub(super) &'a Listed<T>);
 
 impl<T: fmt::Display> fmt::Display for ListedLines<'_, T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

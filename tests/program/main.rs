@@ -10,6 +10,7 @@ mod common;
 mod report_common;
 
 mod cli;
+mod findings;
 mod golden;
 mod report;
 mod report_browser;

@@ -16,7 +16,7 @@ use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::report::{Recorder, Report, ReportInput};
-use motionwire::summary::{FileSpan, Summarizer, Summary};
+use motionwire::summary::{FileSpan, SeveralFiles, Summarizer, Summary};
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
 use crate::failure::Failure;
@@ -118,15 +118,15 @@ struct Sink<'a> {
     config: DecoderConfig,
     /// The input's name, when several are read: every record names it.
     file: Option<String>,
-    /// Added to every position: the lines of the files before this one,
-    /// when several files are one recording (`--joined`).
-    offset: u64,
+    /// The files, joined or apart: where a file's lines lie in its
+    /// recording (docs/output.md#several-files).
+    files: SeveralFiles,
     /// A summary was written.
     summary_written: bool,
 }
 
 impl<'a> Sink<'a> {
-    fn new(args: &'a DecodeArgs, page: bool) -> Result<Self, Failure> {
+    fn new(args: &'a DecodeArgs, page: bool, files: SeveralFiles) -> Result<Self, Failure> {
         // The page charts drives' signals (docs/report.md#signals).
         let mut config = DecoderConfig::new()
             .profiles_from(node_profiles(&args.reading.profile))
@@ -176,7 +176,7 @@ impl<'a> Sink<'a> {
             decoder: Decoder::new(config.clone()),
             config,
             file: None,
-            offset: 0,
+            files,
             summary_written: false,
         })
     }
@@ -295,7 +295,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
     }
     let (inputs, twice) = open_inputs(&args.files)?;
     let several = inputs.len() > 1;
-    let mut sink = Sink::new(args, page)?;
+    let mut sink = Sink::new(args, page, SeveralFiles::new(inputs.len(), args.joined))?;
     for name in twice {
         writeln!(
             sink.err,
@@ -318,24 +318,21 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             TimestampBase::Zero => RelativeTimestamps::Zero,
         });
     }
-    // With --joined: where each file's lines lie in the recording.
-    let mut spans: Vec<FileSpan> = Vec::new();
-    let joined = several && args.joined;
-    for (i, input) in inputs.into_iter().enumerate() {
+    for input in inputs {
         let Input { name, path, reader } = input;
+        if sink.files.begin() {
+            // A recording of its own: nothing learned from the file
+            // before carries over (docs/output.md#several-files).
+            sink.decoder = Decoder::new(sink.config.clone());
+            if args.summary && !page {
+                sink.summary = Some(Summarizer::new(sink.config.clone()));
+            }
+            if page {
+                sink.recorder = Some(Recorder::new(sink.config.clone()));
+            }
+        }
         if several {
             sink.file = Some(name.clone());
-            if !joined && i > 0 {
-                // A recording of its own: nothing learned from the file
-                // before carries over (docs/output.md#several-files).
-                sink.decoder = Decoder::new(sink.config.clone());
-                if args.summary && !page {
-                    sink.summary = Some(Summarizer::new(sink.config.clone()));
-                }
-                if page {
-                    sink.recorder = Some(Recorder::new(sink.config.clone()));
-                }
-            }
         }
         // Progress: the file's size, when the bytes read are the file's.
         let size = path
@@ -373,19 +370,13 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
                 last_line: last,
             });
         }
-        if joined {
-            spans.push(FileSpan {
-                file: name,
-                first_line: sink.offset + 1,
-                last_line: sink.offset + last,
-            });
-            sink.offset += last;
-        } else if several {
+        if sink.files.end(&name, last) {
             write_summary(&mut sink, args.json, Some(name.clone()))?;
             take_recording(&mut sink, Some(name), Vec::new())?;
         }
     }
-    if !several || joined {
+    if !several || sink.files.joined() {
+        let spans = sink.files.take_spans();
         write_summary(&mut sink, args.json, None)?;
         if sink.summary_written {
             write_spans(&mut sink, args.json, &spans)?;
@@ -478,7 +469,7 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                 // Read where it lies: the record is not moved.
                 Some(Ok(ref record)) => {
                     number = record.position.number();
-                    sink.event(sink.offset + number, &record.event)?;
+                    sink.event(sink.files.line(number), &record.event)?;
                 }
                 Some(Err(error)) => {
                     number = error.position().map_or(number, Position::number);

@@ -1,15 +1,16 @@
 //! `motionwire servo command|feedback HEX`: one EtherCAT servo ↔ NC frame
-//! (docs/servo.md#cli). The text is the library's (`Command::details`,
-//! `Feedback::details`); this module reads the hex and writes the JSON.
+//! (docs/servo.md#cli). The text and the JSON records are the library's
+//! (`Command::details`, `Feedback::details`, `decoder::CommandRecord`,
+//! `decoder::FeedbackRecord`); this module reads the hex and writes them.
 
 use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
 
-use motionwire::servo::{ActualPosition, Command, Feedback, ServoFault, COMMAND_LEN, FEEDBACK_LEN};
+use motionwire::decoder::{CommandRecord, FeedbackRecord};
+use motionwire::servo::{Command, Feedback, COMMAND_LEN, FEEDBACK_LEN};
 
 use crate::args::ServoArgs;
 use crate::failure::Failure;
-use serde::Serialize;
 
 /// Which frame the hex holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,98 +99,17 @@ pub fn run(frame: Frame, args: &ServoArgs) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The command frame as its JSON object (docs/servo.md#cli-command), keys in
-/// the contract's order.
-#[derive(Serialize)]
-struct CommandJson {
-    speed_setpoint: i32,
-    speed_setpoint_word: i16,
-    control: u32,
-    control_flags: Vec<&'static str>,
-    servo_enable: u8,
-    regulator_mode: &'static str,
-    parameter_table: u8,
-    extra_data_code: i16,
-}
-
-/// Write the command frame as its JSON object (docs/servo.md#cli-command) and a
-/// newline.
+/// Write the command frame as its JSON record (docs/servo.md#cli-command,
+/// the library's [`CommandRecord`]) and a newline.
 pub fn command_json<W: Write>(out: &mut W, c: &Command) -> io::Result<()> {
-    let json = CommandJson {
-        speed_setpoint: c.speed_setpoint,
-        speed_setpoint_word: c.speed_setpoint_word(),
-        control: c.control.bits(),
-        control_flags: c.control.flag_names().collect(),
-        servo_enable: c.control.servo_enable().get(),
-        regulator_mode: c.control.regulator_mode().name(),
-        parameter_table: c.control.parameter_table().get(),
-        extra_data_code: c.extra_data_code,
-    };
-    serde_json::to_writer(&mut *out, &json)?;
+    serde_json::to_writer(&mut *out, &CommandRecord::from(c))?;
     out.write_all(b"\n")
 }
 
-/// One fault of the feedback's error word: `{"bit", "name", "e_code"}`.
-#[derive(Serialize)]
-struct FaultJson {
-    bit: u8,
-    name: &'static str,
-    e_code: Option<String>,
-}
-
-/// The feedback frame as its JSON object (docs/servo.md#cli-feedback), keys in
-/// the contract's order; floats as their `f64` value, a non-finite one as null.
-#[derive(Serialize)]
-struct FeedbackJson {
-    position: i64,
-    encoder: &'static str,
-    incremental_position: Option<i32>,
-    zero_pulse_position: Option<i32>,
-    status: u32,
-    status_flags: Vec<&'static str>,
-    parameter_table: u8,
-    errors: u32,
-    faults: Vec<FaultJson>,
-    message_code: i32,
-    message: &'static str,
-    message_value: f64,
-    extra: [f64; 4],
-}
-
-/// Write the feedback frame as its JSON object (docs/servo.md#cli-feedback) and
-/// a newline.
+/// Write the feedback frame as its JSON record (docs/servo.md#cli-feedback,
+/// the library's [`FeedbackRecord`]) and a newline.
 pub fn feedback_json<W: Write>(out: &mut W, f: &Feedback) -> io::Result<()> {
-    let (incremental_position, zero_pulse_position) = match f.actual_position() {
-        ActualPosition::Absolute(_) => (None, None),
-        ActualPosition::Incremental {
-            position,
-            zero_pulse_position,
-        } => (Some(position), Some(zero_pulse_position)),
-    };
-    let json = FeedbackJson {
-        position: f.position,
-        encoder: f.status.encoder().name(),
-        incremental_position,
-        zero_pulse_position,
-        status: f.status.bits(),
-        status_flags: f.status.flag_names().collect(),
-        parameter_table: f.status.parameter_table().get(),
-        errors: f.errors.bits(),
-        faults: f
-            .errors
-            .faults()
-            .map(|fault: ServoFault| FaultJson {
-                bit: fault.bit(),
-                name: fault.name(),
-                e_code: fault.e_code().map(|code| code.to_string()),
-            })
-            .collect(),
-        message_code: f.message.code,
-        message: f.message.kind().name(),
-        message_value: f64::from(f.message.data),
-        extra: f.extra_data.map(f64::from),
-    };
-    serde_json::to_writer(&mut *out, &json)?;
+    serde_json::to_writer(&mut *out, &FeedbackRecord::from(f))?;
     out.write_all(b"\n")
 }
 

@@ -1,0 +1,146 @@
+//! What went wrong, from the library (docs/summary.md#findings): the
+//! findings of a recording read with the library alone are, one for one,
+//! the items of the page's "What went wrong" that `motionwire report`
+//! writes (docs/report.md#page).
+
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+use motionwire::canopen::NodeId;
+use motionwire::decoder::DecoderConfig;
+use motionwire::logs::ReadLog;
+use motionwire::profiles::{NodeProfiles, Profile};
+use motionwire::report::{Recorder, Recording};
+use motionwire::summary::{Finding, FindingKind};
+
+fn repo(path: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+/// The sample read as `motionwire report --profile 3=akd,5=baumer
+/// --heartbeat-ms 300 samples/machine.log` reads it.
+fn sample_recording() -> Recording {
+    let mut profiles = NodeProfiles::default();
+    profiles.set(NodeId::new(3).unwrap(), Profile::Akd);
+    profiles.set(NodeId::new(5).unwrap(), Profile::Baumer);
+    let mut recorder = Recorder::new(
+        DecoderConfig::new()
+            .profiles_from(profiles)
+            .heartbeat_timeout(Duration::from_millis(300)),
+    );
+    let mut log = motionwire::logs::open(repo("samples/machine.log")).unwrap();
+    while let Some(record) = log.next_event() {
+        let record = record.unwrap();
+        recorder.add(record.position.number(), &record.event);
+    }
+    recorder.finish()
+}
+
+/// The page's findings: each `<li>` of "What went wrong" as its
+/// `data-line`, `data-iface`, `data-node` and text without markup.
+fn page_findings(html: &str) -> Vec<(u64, String, Option<u8>, String)> {
+    let start = html.find("<section id=\"wrong\">").unwrap();
+    let end = start + html[start..].find("</section>").unwrap();
+    let attr = |li: &str, name: &str| -> Option<String> {
+        let at = li.find(&format!("{name}=\""))? + name.len() + 2;
+        Some(li[at..at + li[at..].find('"')?].to_owned())
+    };
+    html[start..end]
+        .split("<li ")
+        .skip(1)
+        .map(|li| {
+            let li = &li[..li.find("</li>").unwrap()];
+            let text = li[li.find('>').unwrap() + 1..]
+                .replace("<b>", "")
+                .replace("</b>", "")
+                .replace("&amp;", "&")
+                .replace("&lt;", "<")
+                .replace("&gt;", ">")
+                .replace("&quot;", "\"")
+                .replace("&#39;", "'");
+            (
+                attr(li, "data-line").unwrap().parse().unwrap(),
+                attr(li, "data-iface").unwrap(),
+                attr(li, "data-node").map(|n| n.parse().unwrap()),
+                text,
+            )
+        })
+        .collect()
+}
+
+/// The section of the page a kind is listed in, in the page's order.
+fn section(kind: FindingKind) -> usize {
+    match kind {
+        FindingKind::FirstError | FindingKind::Cia402Fault => 0,
+        FindingKind::Restarts => 1,
+        FindingKind::HeartbeatTimeout => 2,
+        FindingKind::SdoAbort => 3,
+        FindingKind::SdoBroken | FindingKind::SdoTimeout => 4,
+        FindingKind::ToggleError => 5,
+        _ => 6,
+    }
+}
+
+#[test]
+fn the_samples_findings_are_the_pages() {
+    let recording = sample_recording();
+    let mut findings: Vec<Finding> = recording.findings();
+    assert!(findings.len() >= 5, "{findings:#?}");
+    // In time order, the library's.
+    assert!(findings
+        .windows(2)
+        .all(|w| (w[0].ts, w[0].line) <= (w[1].ts, w[1].line)));
+    // The page lists them by section, each in time order.
+    findings.sort_by_key(|f| section(f.kind));
+
+    let dir = std::env::temp_dir().join(format!("motionwire-findings-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("sample.html");
+    let run = Command::new(env!("CARGO_BIN_EXE_motionwire"))
+        .args([
+            "report",
+            "--profile",
+            "3=akd,5=baumer",
+            "--heartbeat-ms",
+            "300",
+        ])
+        .arg(repo("samples/machine.log"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let page = page_findings(&std::fs::read_to_string(&out).unwrap());
+    assert_eq!(page.len(), findings.len(), "{page:#?}");
+    for (f, (line, iface, node, text)) in findings.iter().zip(&page) {
+        assert_eq!(*line, f.line, "{f}");
+        assert_eq!(*iface, f.bus.to_string(), "{f}");
+        assert_eq!(*node, f.node.map(NodeId::get), "{f}");
+        // The page adds when it was, or that the timeline has every one.
+        assert!(text.starts_with(&f.to_string()), "{text:?} vs {f}");
+        assert!(f.ts.is_some(), "{f}: the sample has timestamps");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_finding_serializes_with_its_text() {
+    let recording = sample_recording();
+    let findings = recording.findings();
+    let first = findings
+        .iter()
+        .find(|f| f.kind == FindingKind::FirstError)
+        .unwrap();
+    let json: serde_json::Value = serde_json::to_value(first).unwrap();
+    assert_eq!(json["kind"], "first_error");
+    assert_eq!(json["iface"], first.bus.to_string());
+    assert_eq!(json["node"], first.node.unwrap().get());
+    assert_eq!(json["line"], first.line);
+    assert_eq!(json["text"], first.text());
+    assert!(json["ts"].is_number());
+}
