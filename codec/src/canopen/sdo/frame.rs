@@ -40,7 +40,7 @@ use core::fmt;
 
 use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::error::What;
-use crate::Error;
+use crate::{FrameError, ValueError};
 
 mod block;
 mod data;
@@ -240,12 +240,12 @@ impl fmt::Display for SdoService {
     }
 }
 
-fn invalid(what: What, found: u8, expected: &'static str) -> Error {
-    Error::InvalidValue {
+fn invalid(what: What, found: u8, expected: &'static str) -> FrameError {
+    FrameError::Content(ValueError {
         what,
         found: u32::from(found),
         expected,
-    }
+    })
 }
 
 /// `n` of a segment: bits 3–1.

@@ -50,7 +50,7 @@ use super::frame::{
 };
 use crate::can::Timestamp;
 use crate::canopen::{ObjectAddress, SdoAbortCode};
-use crate::Error;
+use crate::FrameError;
 
 /// Which way a transfer moves the data (CiA 301 §7.2.4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -318,7 +318,7 @@ impl SdoEvent<'_> {
     /// channel. It is read from the frame's bytes when asked for
     /// ([`SdoMessage::read`]), not while the tracker follows the frame.
     #[inline]
-    pub fn message(&self) -> Result<SdoMessage, Error> {
+    pub fn message(&self) -> Result<SdoMessage, FrameError> {
         SdoMessage::read(self.sender, self.block_segment, self.data)
     }
 
@@ -1226,9 +1226,13 @@ impl SdoMessage {
     /// ([`SdoEvent::is_block_segment`]), else the request or response it
     /// spells ([`SdoEvent::message`]).
     #[inline]
-    pub fn read(sender: SdoParty, block_segment: bool, data: &[u8]) -> Result<SdoMessage, Error> {
+    pub fn read(
+        sender: SdoParty,
+        block_segment: bool,
+        data: &[u8],
+    ) -> Result<SdoMessage, FrameError> {
         if block_segment {
-            return SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment);
+            return Ok(SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment)?);
         }
         match sender {
             SdoParty::Client => SdoRequest::read(data).map(SdoMessage::Request),
