@@ -139,6 +139,14 @@ impl SdoParty {
     }
 }
 
+impl fmt::Display for SdoParty {
+    /// Write the side's name, `client` or `server`, as the program's abort
+    /// text does (docs/output.md#sdo-text: `aborted by the server`).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The service an SDO frame belongs to, as `service` names it
 /// (docs/output.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -108,6 +108,14 @@ impl TransferMode {
     }
 }
 
+impl fmt::Display for TransferMode {
+    /// Write the mode's name, as the program's transfer text does
+    /// (docs/output.md#sdo-text: `segmented, 10 B`).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Why a transfer is broken (docs/canopen.md#transfers).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -215,6 +223,24 @@ impl SdoOutcome {
             SdoOutcome::Aborted { .. } => "abort",
             SdoOutcome::Broken(_) => "broken",
             SdoOutcome::TimedOut => "timeout",
+        }
+    }
+}
+
+impl fmt::Display for SdoOutcome {
+    /// Write the outcome in the words of docs/output.md#sdo-text, without
+    /// the object and the figures the program adds around them:
+    /// `completed`, `aborted by the server: General parameter
+    /// incompatibility reason`, `broken: toggle bit not alternated`,
+    /// `timed out: no answer`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            SdoOutcome::Completed => f.write_str("completed"),
+            SdoOutcome::Aborted { by, code } => {
+                write!(f, "aborted by the {by}: {}", code.description())
+            }
+            SdoOutcome::Broken(reason) => write!(f, "broken: {reason}"),
+            SdoOutcome::TimedOut => f.write_str("timed out: no answer"),
         }
     }
 }
