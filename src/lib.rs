@@ -180,7 +180,10 @@
 /// The codec layer's error: a frame, field or value of a protocol that
 /// could not be decoded or built (`motionwire-codec`'s `Error`).
 pub use motionwire_codec::Error as CodecError;
-pub use motionwire_codec::{can, canopen, profiles, servo, What};
+pub use motionwire_codec::{
+    can, canopen, profiles, servo, FieldError, FrameError, LenError, RangeError, TextError,
+    ValueError, What,
+};
 
 #[cfg(feature = "decoder")]
 pub mod decoder;
@@ -243,9 +246,34 @@ pub enum Error {
     },
 }
 
-impl From<canopen::PdoEntryError> for Error {
-    fn from(error: canopen::PdoEntryError) -> Self {
-        Error::Codec(CodecError::PdoEntry(error))
+/// Each of the codec layer's own errors converts through [`CodecError`],
+/// so that `?` works across the layers.
+macro_rules! from_codec {
+    ($($error:ty),* $(,)?) => {
+        $(
+            impl From<$error> for Error {
+                fn from(error: $error) -> Self {
+                    Error::Codec(CodecError::from(error))
+                }
+            }
+        )*
+    };
+}
+
+from_codec!(
+    LenError,
+    RangeError,
+    ValueError,
+    TextError,
+    FieldError,
+    canopen::PdoEntryError,
+    canopen::PdoPackError,
+    servo::ParseECodeError,
+);
+
+impl<E: Into<CodecError>> From<FrameError<E>> for Error {
+    fn from(error: FrameError<E>) -> Self {
+        Error::Codec(error.into())
     }
 }
 

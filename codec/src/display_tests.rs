@@ -2,6 +2,7 @@
 //! out.
 
 use crate::can::{CanFrame, CanId};
+use crate::canopen::sdo::{BrokenReason, SdoOutcome, SdoParty, TransferMode};
 use crate::canopen::{
     CanOpenMessage, Emcy, ErrorCode, ErrorRegister, GuardAnswer, Heartbeat, NmtCommand,
     NmtNodeControl, NmtState, NodeId, RecvEmcyResult, SdoAbortCode,
@@ -43,6 +44,41 @@ fn canopen_values() {
             SdoAbortCode::new(0x0602_0000).description()
         )
     );
+}
+
+/// docs/output.md#sdo-text: the words of the transfer texts, without the
+/// object and the figures.
+#[test]
+fn sdo_outcomes() {
+    let code = SdoAbortCode::new(0x0604_0043);
+    let cases = [
+        (SdoOutcome::Completed, "completed".to_string()),
+        (
+            SdoOutcome::Aborted {
+                by: SdoParty::Server,
+                code,
+            },
+            format!("aborted by the server: {}", code.description()),
+        ),
+        (
+            SdoOutcome::Broken(BrokenReason::WrongToggle),
+            "broken: toggle bit not alternated".to_string(),
+        ),
+        (SdoOutcome::TimedOut, "timed out: no answer".to_string()),
+    ];
+    for (outcome, text) in cases {
+        assert_eq!(outcome.to_string(), text);
+    }
+    assert_eq!(
+        SdoOutcome::Aborted {
+            by: SdoParty::Server,
+            code
+        }
+        .to_string(),
+        "aborted by the server: General parameter incompatibility reason"
+    );
+    assert_eq!(SdoParty::Client.to_string(), "client");
+    assert_eq!(TransferMode::Segmented.to_string(), "segmented");
 }
 
 #[test]

@@ -131,17 +131,23 @@ pub mod servo;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategies;
 
-pub use error::What;
+pub use error::{FieldError, FrameError, LenError, RangeError, TextError, ValueError, What};
 
-/// What went wrong while decoding or constructing a value: the crate's one
-/// error type, which every fallible decoder and checked constructor
-/// returns.
+/// What went wrong while decoding or constructing a value: the umbrella
+/// over the layers' own errors, which converts from each, so that `?`
+/// works in a function that calls decoders of several kinds.
 ///
-/// Each variant says *what* was being decoded (a typed [`What`], so that a
-/// program can match on it), what was *expected* and what was *found*, so
-/// that a message such as
-/// `servo command frame: buffer of 7 bytes where 10 are needed` can be shown
-/// to a person without further context.
+/// Each function of the crate returns exactly the errors it can produce:
+/// [`canopen::Emcy::parse`] a [`LenError`],
+/// [`canopen::NodeId::try_new`] a [`RangeError`], [`canopen::Heartbeat::parse`]
+/// a [`FrameError`] of a [`LenError`] or a [`ValueError`]. Each says *what*
+/// was being decoded (a typed [`What`], so that a program can match on
+/// it), what was *expected* and what was *found*, so that a message such
+/// as `servo command frame: buffer of 7 bytes where 10 are needed` can be
+/// shown to a person without further context; the umbrella shows the
+/// message of the error it carries, unchanged. Its variants carry the same
+/// types, so that matching on a narrow error and on the umbrella look
+/// alike: `Error::Length(LenError { what, .. })`.
 ///
 /// An error that belongs to one layer is that layer's own type, declared in
 /// the layer and carried by a variant here ([`Error::PdoEntry`] carries a
@@ -154,53 +160,42 @@ pub use error::What;
 #[non_exhaustive]
 pub enum Error {
     /// A buffer is shorter than the frame or field that must be read from it.
-    #[error("{what}: buffer of {found} bytes where {expected} are needed")]
-    Length {
-        /// The frame or field that was being read, e.g. [`What::EmcyFrame`].
-        what: What,
-        /// The number of bytes the frame needs.
-        expected: usize,
-        /// The number of bytes that were given.
-        found: usize,
-    },
+    #[error(transparent)]
+    Length(#[from] LenError),
     /// A number lies outside the range its field allows.
-    #[error("{what}: {found} is outside {min}..={max}")]
-    OutOfRange {
-        /// The field, e.g. [`What::NodeId`].
-        what: What,
-        /// The value that was given.
-        found: u32,
-        /// The smallest valid value.
-        min: u32,
-        /// The largest valid value.
-        max: u32,
-    },
+    #[error(transparent)]
+    OutOfRange(#[from] RangeError),
     /// A value is in range for its type but is not one of the values the
     /// protocol defines (e.g. an NMT state byte of `0x12`).
-    #[error("{what}: {found:#x} is not one of {expected}")]
-    InvalidValue {
-        /// The field, e.g. [`What::NmtState`].
-        what: What,
-        /// The value that was given.
-        found: u32,
-        /// The values that are valid, in words, e.g. `"0x00, 0x04, 0x05, 0x7f"`.
-        expected: &'static str,
-    },
+    #[error(transparent)]
+    InvalidValue(#[from] ValueError),
     /// A text is not written in the form its value needs (e.g. `"E5x"` for a
-    /// servo E-code, which is `E` followed by decimal digits). Text cannot be
-    /// kept without a heap, so the message says what form was expected.
-    #[error("{what}: text is not of the form {expected}")]
-    Malformed {
-        /// The value that was being read from text, e.g. [`What::ServoECode`].
-        what: What,
-        /// The form the text must have, in words.
-        expected: &'static str,
-    },
+    /// servo E-code).
+    #[error(transparent)]
+    Malformed(#[from] TextError),
     /// A PDO mapping entry cannot be read from, or written into, a payload
     /// (docs/canopen.md#signals), e.g. `PDO entry 6064sub0 (32 bits) at bit 24:
     /// expected a payload of at least 7 bytes, found 4`.
     #[error(transparent)]
     PdoEntry(#[from] canopen::PdoEntryError),
+}
+
+impl From<FieldError> for Error {
+    fn from(error: FieldError) -> Self {
+        match error {
+            FieldError::OutOfRange(e) => Error::OutOfRange(e),
+            FieldError::InvalidValue(e) => Error::InvalidValue(e),
+        }
+    }
+}
+
+impl<E: Into<Error>> From<FrameError<E>> for Error {
+    fn from(error: FrameError<E>) -> Self {
+        match error {
+            FrameError::Length(e) => Error::Length(e),
+            FrameError::Content(e) => e.into(),
+        }
+    }
 }
 
 /// The crate's result type.

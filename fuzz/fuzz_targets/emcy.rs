@@ -2,7 +2,7 @@
 //! and the look-ups a decoder applies to the numbers a device sends.
 //!
 //! Arbitrary bytes → `Emcy::parse`. Invariants:
-//! - fewer than 8 bytes is exactly `Error::Length { expected: 8, found }`;
+//! - fewer than 8 bytes is exactly `LenError { expected: 8, found }`;
 //!   8 or more always parse, view and owned value agree, and `to_bytes` /
 //!   `emit` give the first 8 bytes back;
 //! - `ErrorCode::class` follows the range table of docs/canopen.md#emcy-codes,
@@ -21,8 +21,8 @@ use motionwire::canopen::{
     CobFunction, Emcy, EmcyFrame, ErrorClass, ErrorCode, ErrorHistoryEntry, ErrorRegister,
     KernelError, NodeId, SdoAbortCode, Specificity, EMCY_LEN,
 };
-use motionwire::CodecError as Error;
 use motionwire::What;
+use motionwire::{LenError, RangeError};
 
 fuzz_target!(|data: &[u8]| {
     check_numbers(data);
@@ -32,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
         Err(error) => {
             assert_eq!(
                 error,
-                Error::Length {
+                LenError {
                     what: What::EmcyFrame,
                     expected: EMCY_LEN,
                     found: data.len(),
@@ -184,7 +184,7 @@ fn check_numbers(data: &[u8]) {
         }
         None => assert_eq!(
             NodeId::try_new(byte),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::NodeId,
                 found: u32::from(byte),
                 min: 1,

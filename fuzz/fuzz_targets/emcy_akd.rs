@@ -1,11 +1,11 @@
 //! The Kollmorgen AKD EMCY (docs/canopen.md#akd).
 //!
 //! Arbitrary bytes → `AkdEmcy::parse`. Invariants:
-//! - fewer than 8 bytes is exactly the EMCY `Error::Length`;
+//! - fewer than 8 bytes is exactly the EMCY `LenError`;
 //! - with 8 or more, every input decodes and nothing is lost: the fields
 //!   are byte 3's nibbles (a feedback nibble of 6..=15 kept as
 //!   `FeedbackId::Unknown`, the strict `feedback_id()` of the view naming it
-//!   as `Error::InvalidValue`) and the reserved bytes 4–7 as sent, and
+//!   as a `ValueError`) and the reserved bytes 4–7 as sent, and
 //!   re-encoding gives the 8 bytes back;
 //! - the 5-byte manufacturer field on its own (`AkdManufacturer::parse`)
 //!   obeys the same rules with its own length error;
@@ -18,8 +18,8 @@ use motionwire::canopen::{Emcy, EmcyFrame, EMCY_LEN};
 use motionwire::profiles::akd::{
     AkdEmcy, AkdManufacturer, AkdManufacturerField, AxisId, FeedbackId, AKD_MANUFACTURER_LEN,
 };
-use motionwire::CodecError as Error;
 use motionwire::What;
+use motionwire::{FieldError, LenError, RangeError, ValueError};
 
 const FEEDBACK_EXPECTED: &str = "0 (none), 1..=5 (FB1..FB5)";
 
@@ -31,7 +31,7 @@ fuzz_target!(|data: &[u8]| {
     if data.len() < EMCY_LEN {
         assert_eq!(
             result,
-            Err(Error::Length {
+            Err(LenError {
                 what: What::EmcyFrame,
                 expected: EMCY_LEN,
                 found: data.len(),
@@ -70,7 +70,7 @@ fn check_field(data: &[u8]) {
     let Ok(view) = AkdManufacturerField::new_checked(data) else {
         assert_eq!(
             result,
-            Err(Error::Length {
+            Err(LenError {
                 what: What::AkdManufacturerField,
                 expected: AKD_MANUFACTURER_LEN,
                 found: data.len(),
@@ -83,7 +83,10 @@ fn check_field(data: &[u8]) {
     assert_eq!(nibble, data[0] >> 4);
     assert_eq!(view.axis_id().get(), data[0] & 0x0F);
     assert_eq!(view.reserved(), data[1..5]);
-    assert_eq!(view.feedback_id(), FeedbackId::try_new(nibble));
+    assert_eq!(
+        view.feedback_id().map_err(FieldError::InvalidValue),
+        FeedbackId::try_new(nibble)
+    );
     let bytes: [u8; AKD_MANUFACTURER_LEN] = data[..AKD_MANUFACTURER_LEN].try_into().unwrap();
     let field = result.expect("5 bytes always decode");
     assert_eq!(AkdManufacturer::from_bytes(&bytes), field);
@@ -96,7 +99,7 @@ fn check_field(data: &[u8]) {
             assert!(!field.feedback.is_defined());
             assert_eq!(
                 error,
-                Error::InvalidValue {
+                ValueError {
                     what: What::AkdFeedbackId,
                     found: u32::from(nibble),
                     expected: FEEDBACK_EXPECTED,
@@ -123,7 +126,7 @@ fn check_ids(data: &[u8]) {
         }
         Err(error) => assert_eq!(
             error,
-            Error::OutOfRange {
+            RangeError {
                 what: What::AkdAxisId,
                 found: u32::from(raw),
                 min: 0,
@@ -140,20 +143,20 @@ fn check_ids(data: &[u8]) {
         }
         Err(error) if raw <= 15 => assert_eq!(
             error,
-            Error::InvalidValue {
+            FieldError::InvalidValue(ValueError {
                 what: What::AkdFeedbackId,
                 found: u32::from(raw),
                 expected: FEEDBACK_EXPECTED,
-            }
+            })
         ),
         Err(error) => assert_eq!(
             error,
-            Error::OutOfRange {
+            FieldError::OutOfRange(RangeError {
                 what: What::AkdFeedbackId,
                 found: u32::from(raw),
                 min: 0,
                 max: 15,
-            }
+            })
         ),
     }
     assert_eq!(FeedbackId::new(raw), FeedbackId::try_new(raw).ok());

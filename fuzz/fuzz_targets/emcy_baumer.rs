@@ -2,7 +2,7 @@
 //! (docs/canopen.md#baumer).
 //!
 //! Arbitrary bytes → `BaumerEmcy::parse`. Invariants:
-//! - fewer than 8 bytes is exactly the EMCY `Error::Length`; 8 or more
+//! - fewer than 8 bytes is exactly the EMCY `LenError`; 8 or more
 //!   always decode (alarms bytes 3–4, warnings bytes 5–6, unused byte 7,
 //!   unnamed bits retained) and re-encode to the same 8 bytes;
 //! - `matching_sources`: every returned row has the EMCY's code (any 0x00xx
@@ -22,8 +22,8 @@ use motionwire::profiles::baumer::{
     is_reserved_code, matching_sources, source_by_name, source_for_injection, sources_for_code,
     BaumerEmcy, DiagnosticSource, InjectionCode, InjectionKind, DIAGNOSTIC_SOURCES,
 };
-use motionwire::CodecError as Error;
 use motionwire::What;
+use motionwire::{LenError, ValueError};
 
 fuzz_target!(|data: &[u8]| {
     check_injection(data);
@@ -38,7 +38,7 @@ fuzz_target!(|data: &[u8]| {
         Err(error) => {
             assert_eq!(
                 error,
-                Error::Length {
+                LenError {
                     what: What::EmcyFrame,
                     expected: EMCY_LEN,
                     found: data.len(),
@@ -172,7 +172,7 @@ fn check_injection(data: &[u8]) {
         }
         Err(error) => {
             assert!(raw != 0 && !matches!(high, 0x0001 | 0x0004 | 0x0008));
-            assert!(matches!(error, Error::InvalidValue { found, .. } if found == raw));
+            assert!(matches!(error, ValueError { found, .. } if found == raw));
         }
     }
 }

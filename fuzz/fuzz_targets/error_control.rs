@@ -60,7 +60,7 @@ use motionwire::canopen::{
     HeartbeatConsumer, HeartbeatEvent, HeartbeatProducer, LifeGuard, LifeGuardExpiry, MonitorState,
     NmtState, NodeGuardingMaster, NodeId,
 };
-use motionwire::CodecError as Error;
+use motionwire::RangeError;
 use motionwire_fuzz::Reader;
 
 /// The consumer's capacity.
@@ -429,7 +429,7 @@ impl Consumer {
         } else if !self.configured[i] && configured == ENTRIES {
             assert_eq!(
                 result,
-                Err(Error::OutOfRange {
+                Err(RangeError {
                     what: What::HeartbeatConsumerEntries,
                     found: ENTRIES as u32 + 1,
                     min: 0,

@@ -4,9 +4,9 @@
 //! Arbitrary bytes → `Heartbeat::parse`, `GuardAnswer::parse`,
 //! `NmtState::from_byte`, and the object values 1016h / 1017h / 100Ch /
 //! 100Dh read from the same bytes. Invariants:
-//! - an empty slice is exactly the `Error::Length` of each message; any
+//! - an empty slice is exactly the `FrameError::Length` of each message; any
 //!   other first byte decodes iff its bits 0–6 are 0x00, 0x04, 0x05 or 0x7F,
-//!   else exactly `Error::InvalidValue { what: What::NmtState, found: bits 0–6 }`;
+//!   else exactly `FrameError::Content(ValueError { what: What::NmtState, found: bits 0–6 })`;
 //! - the zero-copy views read every field whatever the state bits, and agree
 //!   with the owned values; a decoded message re-encodes to the first byte
 //!   (bit 7 kept: reserved bit of a heartbeat, toggle of an answer);
@@ -24,8 +24,8 @@ use motionwire::canopen::{
     ConsumerEntry, ErrorControlConfig, ErrorControlMethod, GuardAnswer, GuardAnswerFrame,
     Heartbeat, HeartbeatFrame, NmtState, GUARD_ANSWER_LEN, HEARTBEAT_LEN,
 };
-use motionwire::CodecError as Error;
 use motionwire::What;
+use motionwire::{FrameError, LenError, ValueError};
 
 fuzz_target!(|data: &[u8]| {
     check_object_values(data);
@@ -35,19 +35,19 @@ fuzz_target!(|data: &[u8]| {
     let Some(&byte) = data.first() else {
         assert_eq!(
             heartbeat,
-            Err(Error::Length {
+            Err(FrameError::Length(LenError {
                 what: What::HeartbeatMessage,
                 expected: HEARTBEAT_LEN,
                 found: 0,
-            })
+            }))
         );
         assert_eq!(
             answer,
-            Err(Error::Length {
+            Err(FrameError::Length(LenError {
                 what: What::NodeGuardingAnswer,
                 expected: GUARD_ANSWER_LEN,
                 found: 0,
-            })
+            }))
         );
         return;
     };
@@ -59,7 +59,7 @@ fuzz_target!(|data: &[u8]| {
     if let Err(error) = state {
         assert_eq!(
             error,
-            Error::InvalidValue {
+            ValueError {
                 what: What::NmtState,
                 found: u32::from(state_bits),
                 expected: "0x00, 0x04, 0x05, 0x7f",
@@ -78,10 +78,12 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(ga_view.toggle(), bit7);
     assert_eq!(ga_view.state(), state);
 
-    assert_eq!(heartbeat, Heartbeat::from_bytes(&[byte]));
-    assert_eq!(heartbeat, Heartbeat::parse_frame(&hb_view));
-    assert_eq!(answer, GuardAnswer::from_bytes(&[byte]));
-    assert_eq!(answer, GuardAnswer::parse_frame(&ga_view));
+    // With its one byte there, a message's only error is its content's.
+    let content = FrameError::Content;
+    assert_eq!(heartbeat, Heartbeat::from_bytes(&[byte]).map_err(content));
+    assert_eq!(heartbeat, Heartbeat::parse_frame(&hb_view).map_err(content));
+    assert_eq!(answer, GuardAnswer::from_bytes(&[byte]).map_err(content));
+    assert_eq!(answer, GuardAnswer::parse_frame(&ga_view).map_err(content));
 
     match (heartbeat, answer) {
         (Ok(heartbeat), Ok(answer)) => {
@@ -107,8 +109,8 @@ fuzz_target!(|data: &[u8]| {
         }
         (Err(hb_error), Err(ga_error)) => {
             assert!(!defined);
-            assert_eq!(Err::<(), _>(hb_error), state.map(drop));
-            assert_eq!(Err::<(), _>(ga_error), state.map(drop));
+            assert_eq!(Err::<(), _>(hb_error), state.map(drop).map_err(content));
+            assert_eq!(Err::<(), _>(ga_error), state.map(drop).map_err(content));
         }
         (heartbeat, answer) => panic!("the messages disagree: {heartbeat:?} / {answer:?}"),
     }

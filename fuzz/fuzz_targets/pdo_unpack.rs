@@ -21,7 +21,6 @@ use motionwire::canopen::{
     DataType, MappingEntry, PdoEntryError, PdoEntryReason, PdoMapping, Value, ValueKind,
     MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
 };
-use motionwire::CodecError as Error;
 use motionwire_fuzz::Reader;
 
 fn data_type_for(seed: u64, entry: MappingEntry) -> Option<DataType> {
@@ -69,19 +68,19 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(signal.data_type, types(signal.entry));
                 values.push(signal.value);
             }
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoEntryError {
                 reason: PdoEntryReason::Truncated { needed, found },
                 ..
-            })) => {
+            }) => {
                 assert!(needed > found && found == payload.len());
                 truncated = true;
                 all_read = false;
             }
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoEntryError {
                 entry,
                 reason: PdoEntryReason::BadLength { data_type, bits },
                 ..
-            })) => {
+            }) => {
                 assert_eq!(Some(data_type), types(entry));
                 assert_eq!(bits, entry.bits());
                 assert!(ValueKind::for_entry(Some(data_type), bits).is_err());
@@ -95,10 +94,10 @@ fuzz_target!(|data: &[u8]| {
         if let Err(e) = item {
             assert!(matches!(
                 e,
-                Error::PdoEntry(PdoEntryError {
+                PdoEntryError {
                     reason: PdoEntryReason::Truncated { .. },
                     ..
-                })
+                }
             ));
             let _ = e.to_string();
         }

@@ -2,7 +2,7 @@
 //! docs/servo.md#scw).
 //!
 //! Arbitrary bytes → `Command::parse`. Invariants:
-//! - fewer than 10 bytes is exactly `Error::Length { expected: 10, found }`;
+//! - fewer than 10 bytes is exactly `LenError { expected: 10, found }`;
 //!   10 or more always parse;
 //! - the zero-copy view and the owned value agree on every field, and
 //!   `to_bytes` / `emit` give the first 10 bytes back;
@@ -16,7 +16,7 @@ use motionwire::servo::{
     Command, CommandFrame, ParameterTable, RegulatorMode, ServoControlWord, ServoEnable,
     COMMAND_LEN,
 };
-use motionwire::CodecError as Error;
+use motionwire::LenError;
 use motionwire::What;
 
 fuzz_target!(|data: &[u8]| {
@@ -25,7 +25,7 @@ fuzz_target!(|data: &[u8]| {
         Err(error) => {
             assert_eq!(
                 error,
-                Error::Length {
+                LenError {
                     what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: data.len(),

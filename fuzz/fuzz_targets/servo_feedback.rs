@@ -2,7 +2,7 @@
 //! docs/servo.md#ssw, docs/servo.md#sew).
 //!
 //! Arbitrary bytes → `Feedback::parse`. Invariants:
-//! - fewer than 40 bytes is exactly `Error::Length { expected: 40, found }`;
+//! - fewer than 40 bytes is exactly `LenError { expected: 40, found }`;
 //!   40 or more always parse;
 //! - the zero-copy view and the owned value agree on every field (floats
 //!   compared by their bits, so NaN payloads count too), and `to_bytes` /
@@ -18,12 +18,13 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use motionwire::servo::ParseECodeError;
 use motionwire::servo::{
     ActualPosition, ECode, EncoderKind, Feedback, FeedbackFrame, MessageCode, ServoErrorWord,
     ServoFault, ServoStatusWord, FEEDBACK_LEN,
 };
-use motionwire::CodecError as Error;
 use motionwire::What;
+use motionwire::{LenError, ValueError};
 
 fuzz_target!(|data: &[u8]| {
     check_e_code_text(data);
@@ -33,7 +34,7 @@ fuzz_target!(|data: &[u8]| {
         Err(error) => {
             assert_eq!(
                 error,
-                Error::Length {
+                LenError {
                     what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: data.len(),
@@ -189,13 +190,12 @@ fn check_e_code_text(data: &[u8]) {
             assert_eq!(code.to_string().parse::<ECode>(), Ok(code));
             assert_eq!(code.fault().e_code(), Some(code));
         }
-        Err(Error::Malformed { .. }) => {}
-        Err(Error::InvalidValue { found, .. }) => {
+        Err(ParseECodeError::Malformed(_)) => {}
+        Err(ParseECodeError::InvalidValue(ValueError { found, .. })) => {
             let number = u8::try_from(found).expect("at most two digits");
             assert!(number <= 99);
             assert_eq!(ECode::from_number(number), None);
         }
-        Err(other) => panic!("unexpected error from ECode::from_str: {other:?}"),
     }
     for &byte in data.iter().take(4) {
         match ECode::from_number(byte) {

@@ -734,7 +734,11 @@ impl Decoder {
             };
             return Some((reading, cia402));
         }
-        self.signals.extend(map.layout().unpack(data));
+        self.signals.extend(
+            map.layout()
+                .unpack(data)
+                .map(|s| s.map_err(CodecError::from)),
+        );
         let mut cia402 = None;
         if drive {
             let mut reading = Cia402Reading::empty(node);

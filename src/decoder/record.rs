@@ -532,8 +532,17 @@ mod tests {
             None,
             false,
         );
-        let whole: Vec<_> = map.layout().unpack(&[0x37, 0x02, 1, 0, 0, 0, 9]).collect();
-        let error = map.layout().unpack(&[]).next().unwrap();
+        let whole: Vec<_> = map
+            .layout()
+            .unpack(&[0x37, 0x02, 1, 0, 0, 0, 9])
+            .map(|s| s.map_err(crate::CodecError::from))
+            .collect();
+        let error = map
+            .layout()
+            .unpack(&[])
+            .next()
+            .unwrap()
+            .map_err(crate::CodecError::from);
         assert!(error.is_err());
         let render = |signals: &[Result<Signal, crate::CodecError>]| {
             let mut out = b"{\"line\":1".to_vec();

@@ -175,7 +175,8 @@ impl<'d> SdoSeen<'_, 'd> {
         let mut step = SdoStep {
             node: self.node,
             sender: self.sender,
-            message: SdoMessage::read(self.sender, self.block_segment, self.data),
+            message: SdoMessage::read(self.sender, self.block_segment, self.data)
+                .map_err(CodecError::from),
             data: self.data,
             latency: self.latency,
             started: self.started,

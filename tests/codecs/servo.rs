@@ -8,7 +8,7 @@ use motionwire::servo::{
     ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord,
     ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
-use motionwire::CodecError as Error;
+use motionwire::LenError;
 use motionwire::What;
 
 /// A feedback frame with the given status and error words, an incremental
@@ -180,7 +180,7 @@ fn every_short_buffer_is_an_exact_error() {
             }
             Err(e) => assert_eq!(
                 e,
-                Error::Length {
+                LenError {
                     what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: len
@@ -197,7 +197,7 @@ fn every_short_buffer_is_an_exact_error() {
             }
             Err(e) => assert_eq!(
                 e,
-                Error::Length {
+                LenError {
                     what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: len

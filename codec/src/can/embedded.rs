@@ -13,7 +13,7 @@
 use embedded_can::{ExtendedId, Frame, Id, StandardId};
 
 use super::{CanFrame, CanId, FrameType, CLASSIC_MAX_LEN};
-use crate::Result;
+use crate::{RangeError, Result};
 
 impl From<CanId> for Id {
     fn from(id: CanId) -> Self {
@@ -76,8 +76,8 @@ impl CanFrame {
     /// one, a data frame of up to 8 bytes is a classic frame; a frame type
     /// that reports more than 8 data bytes (a driver that also carries
     /// CAN FD) is read as a CAN FD frame without flags. A DLC above 8 on a
-    /// remote frame is an [`Error::OutOfRange`](crate::Error::OutOfRange); nothing panics.
-    pub fn from_embedded<F: Frame>(frame: &F) -> Result<Self> {
+    /// remote frame is a [`RangeError`]; nothing panics.
+    pub fn from_embedded<F: Frame>(frame: &F) -> Result<Self, RangeError> {
         let id = CanId::from(frame.id());
         if frame.is_remote_frame() {
             let dlc = u8::try_from(frame.dlc()).unwrap_or(u8::MAX);
@@ -109,7 +109,6 @@ impl CanFrame {
 mod tests {
     use super::*;
     use crate::strategies::embedded_can::{BadRemote, LongFrame, TestFrame};
-    use crate::Error;
 
     #[test]
     fn ids_convert_both_ways() {
@@ -147,7 +146,7 @@ mod tests {
     #[test]
     fn impossible_remote_dlc_is_an_error() {
         let e = CanFrame::from_embedded(&BadRemote).unwrap_err();
-        assert!(matches!(e, Error::OutOfRange { found: 255, .. }));
+        assert!(matches!(e, RangeError { found: 255, .. }));
     }
 
     mod proptests {

@@ -25,7 +25,7 @@ use crate::error::What;
 use core::fmt;
 
 use super::{CanFrame, FrameType};
-use crate::{Error, Result};
+use crate::{Result, ValueError};
 
 bitflags::bitflags! {
     /// The error classes of an error frame: bits 0–9 of its identifier
@@ -163,11 +163,11 @@ pub struct ErrorFrame {
 }
 
 impl ErrorFrame {
-    /// Read an error frame; any other kind of frame is an
-    /// [`Error::InvalidValue`].
-    pub fn from_frame<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> Result<Self> {
+    /// Read an error frame; any other kind of frame is a
+    /// [`ValueError`].
+    pub fn from_frame<D: AsRef<[u8]>>(frame: &CanFrame<D>) -> Result<Self, ValueError> {
         if frame.frame_type() != FrameType::Error {
-            return Err(Error::InvalidValue {
+            return Err(ValueError {
                 what: What::CanFrameType,
                 found: frame.id().raw(),
                 expected: "an error frame (CAN_ERR_FLAG)",
@@ -385,7 +385,7 @@ mod tests {
         let frame = CanFrame::new(CanId::standard(0x81).unwrap(), &[]).unwrap();
         assert!(matches!(
             ErrorFrame::from_frame(&frame),
-            Err(Error::InvalidValue {
+            Err(ValueError {
                 what: What::CanFrameType,
                 ..
             })

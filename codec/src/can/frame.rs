@@ -7,7 +7,7 @@ use core::fmt;
 use core::hash::{Hash, Hasher};
 
 use super::{CanId, FdFlags};
-use crate::{Error, Result};
+use crate::{FieldError, RangeError, Result, ValueError};
 
 /// The most data bytes of a classic CAN frame, 8 (ISO 11898-1).
 pub const CLASSIC_MAX_LEN: usize = 8;
@@ -72,9 +72,9 @@ impl FrameData {
         len: 0,
     };
 
-    /// Return a copy of `data`, or an [`Error::OutOfRange`] when it is longer
-    /// than 64 bytes.
-    pub fn new(data: &[u8]) -> Result<Self> {
+    /// Return a copy of `data`, or a [`RangeError`] when it is longer than
+    /// 64 bytes.
+    pub fn new(data: &[u8]) -> Result<Self, RangeError> {
         let mut bytes = [0; FD_MAX_LEN];
         match bytes.get_mut(..data.len()) {
             Some(head) => head.copy_from_slice(data),
@@ -142,8 +142,8 @@ impl fmt::Debug for FrameData {
     }
 }
 
-fn too_long(what: What, len: usize, max: usize) -> Error {
-    Error::OutOfRange {
+fn too_long(what: What, len: usize, max: usize) -> RangeError {
+    RangeError {
         what,
         found: u32::try_from(len).unwrap_or(u32::MAX),
         min: 0,
@@ -214,18 +214,26 @@ pub struct CanFrame<D = FrameData> {
 pub type CanFrameRef<'a> = CanFrame<&'a [u8]>;
 
 /// Check `len` data bytes against the kind `frame_type` and the identifier.
-fn check(id: CanId, frame_type: FrameType, len: usize) -> Result<()> {
+fn check(id: CanId, frame_type: FrameType, len: usize) -> Result<(), FieldError> {
+    if frame_type == FrameType::Error && !id.is_extended() {
+        return Err(FieldError::InvalidValue(ValueError {
+            what: What::CanErrorFrameIdentifier,
+            found: id.raw(),
+            expected: "an extended (29-bit) identifier holding the error classes",
+        }));
+    }
+    Ok(check_len(frame_type, len)?)
+}
+
+/// Check `len` data bytes (and a remote request's DLC) against the kind
+/// `frame_type`.
+fn check_len(frame_type: FrameType, len: usize) -> Result<(), RangeError> {
     match frame_type {
         FrameType::Remote { dlc } if usize::from(dlc) > CLASSIC_MAX_LEN => Err(too_long(
             What::CanRemoteRequestLength,
             usize::from(dlc),
             CLASSIC_MAX_LEN,
         )),
-        FrameType::Error if !id.is_extended() => Err(Error::InvalidValue {
-            what: What::CanErrorFrameIdentifier,
-            found: id.raw(),
-            expected: "an extended (29-bit) identifier holding the error classes",
-        }),
         _ if len > frame_type.max_len() => Err(too_long(
             match frame_type {
                 FrameType::Remote { .. } => What::CanRemoteRequestDataLength,
@@ -239,44 +247,54 @@ fn check(id: CanId, frame_type: FrameType, len: usize) -> Result<()> {
 }
 
 impl CanFrame {
-    /// Return a classic data frame; more than 8 bytes is an
-    /// [`Error::OutOfRange`].
-    pub fn new(id: CanId, data: &[u8]) -> Result<Self> {
-        Self::with_type(id, FrameType::Data, data)
+    /// Return a classic data frame; more than 8 bytes is a [`RangeError`].
+    pub fn new(id: CanId, data: &[u8]) -> Result<Self, RangeError> {
+        Self::with_len_checked(id, FrameType::Data, data)
     }
 
-    /// Return a remote request (RTR) asking for `dlc` bytes; above 8 is an
-    /// [`Error::OutOfRange`].
-    pub fn new_remote(id: CanId, dlc: u8) -> Result<Self> {
-        Self::with_type(id, FrameType::Remote { dlc }, &[])
+    /// Return a remote request (RTR) asking for `dlc` bytes; above 8 is a
+    /// [`RangeError`].
+    pub fn new_remote(id: CanId, dlc: u8) -> Result<Self, RangeError> {
+        Self::with_len_checked(id, FrameType::Remote { dlc }, &[])
     }
 
-    /// Return a CAN FD frame with `flags`; more than 64 bytes is an
-    /// [`Error::OutOfRange`]. Any length 0..=64 is kept as given, as Linux
-    /// and candump keep it.
-    pub fn new_fd(id: CanId, flags: FdFlags, data: &[u8]) -> Result<Self> {
-        Self::with_type(id, FrameType::Fd(flags), data)
+    /// Return a CAN FD frame with `flags`; more than 64 bytes is a
+    /// [`RangeError`]. Any length 0..=64 is kept as given, as Linux and
+    /// candump keep it.
+    pub fn new_fd(id: CanId, flags: FdFlags, data: &[u8]) -> Result<Self, RangeError> {
+        Self::with_len_checked(id, FrameType::Fd(flags), data)
     }
 
     /// Return an error frame whose identifier holds the error classes
     /// `classes` (the low 29 bits of Linux `can_id`, without
     /// `CAN_ERR_FLAG`) and whose data holds their details
     /// (docs/formats.md#error-frames). Above `0x1FFFFFFF`, or more than 8
-    /// bytes, is an error.
-    pub fn new_error(classes: u32, data: &[u8]) -> Result<Self> {
-        let id = CanId::extended(classes).ok_or(Error::OutOfRange {
+    /// bytes, is a [`RangeError`].
+    pub fn new_error(classes: u32, data: &[u8]) -> Result<Self, RangeError> {
+        let id = CanId::extended(classes).ok_or(RangeError {
             what: What::CanErrorFrameClasses,
             found: classes,
             min: 0,
             max: CanId::EXTENDED_MAX,
         })?;
-        Self::with_type(id, FrameType::Error, data)
+        // `CanId::extended` made an extended identifier: only the length
+        // is left to check.
+        Self::with_len_checked(id, FrameType::Error, data)
     }
 
     /// Return a frame of kind `frame_type`, with the errors of the
-    /// constructors above.
-    pub fn with_type(id: CanId, frame_type: FrameType, data: &[u8]) -> Result<Self> {
+    /// constructors above: a [`FieldError::OutOfRange`] for a length the
+    /// kind does not allow, a [`FieldError::InvalidValue`] for an error
+    /// frame whose identifier is a standard one.
+    pub fn with_type(id: CanId, frame_type: FrameType, data: &[u8]) -> Result<Self, FieldError> {
         check(id, frame_type, data.len())?;
+        Ok(Self::with_len_checked(id, frame_type, data)?)
+    }
+
+    /// Return a frame of kind `frame_type` after checking its length only:
+    /// the constructors whose kind or identifier needs no other check.
+    fn with_len_checked(id: CanId, frame_type: FrameType, data: &[u8]) -> Result<Self, RangeError> {
+        check_len(frame_type, data.len())?;
         Ok(CanFrame {
             id,
             frame_type,
@@ -364,7 +382,7 @@ impl CanFrame {
 impl<'a> CanFrame<&'a [u8]> {
     /// Return a borrowed frame of kind `frame_type` over `data`, with the
     /// errors of [`CanFrame::with_type`].
-    pub fn new_ref(id: CanId, frame_type: FrameType, data: &'a [u8]) -> Result<Self> {
+    pub fn new_ref(id: CanId, frame_type: FrameType, data: &'a [u8]) -> Result<Self, FieldError> {
         check(id, frame_type, data.len())?;
         Ok(CanFrame {
             id,
@@ -553,7 +571,7 @@ mod tests {
         }
         assert_eq!(
             CanFrame::new(std_id(1), &[0; 9]),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::CanFrameDataLength,
                 found: 9,
                 min: 0,
@@ -571,7 +589,7 @@ mod tests {
         }
         assert_eq!(
             CanFrame::new_remote(std_id(0x705), 9),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::CanRemoteRequestLength,
                 found: 9,
                 min: 0,
@@ -580,12 +598,12 @@ mod tests {
         );
         assert_eq!(
             CanFrameRef::new_ref(std_id(0x705), FrameType::Remote { dlc: 1 }, &[1]),
-            Err(Error::OutOfRange {
+            Err(FieldError::OutOfRange(RangeError {
                 what: What::CanRemoteRequestDataLength,
                 found: 1,
                 min: 0,
                 max: 0
-            })
+            }))
         );
     }
 

@@ -5,7 +5,7 @@ use crate::error::What;
 use core::fmt;
 use core::time::Duration;
 
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 /// When a log recorded a frame: a point on the logger's clock, to the
 /// nanosecond (docs/formats.md#timestamps; `ts` in docs/output.md#common-keys).
@@ -100,13 +100,13 @@ impl Timestamp {
         }
     }
 
-    /// Return the timestamp `secs` + `micros` µs, or an
-    /// [`Error::OutOfRange`] naming `micros` when it is not below 1 000 000.
+    /// Return the timestamp `secs` + `micros` µs, or a
+    /// [`RangeError`] naming `micros` when it is not below 1 000 000.
     #[inline]
-    pub const fn try_new(secs: u64, micros: u32) -> Result<Self> {
+    pub const fn try_new(secs: u64, micros: u32) -> Result<Self, RangeError> {
         match Self::new(secs, micros) {
             Some(ts) => Ok(ts),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::TimestampMicroseconds,
                 found: micros,
                 min: 0,

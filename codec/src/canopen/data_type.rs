@@ -21,7 +21,7 @@
 use core::fmt;
 
 use crate::error::What;
-use crate::{Error, Result};
+use crate::{Result, ValueError};
 
 /// A CiA 301 basic data type, named by its index in the object dictionary
 /// (CiA 301 Table 44, "Object dictionary data types"; docs/canopen.md#signals).
@@ -160,12 +160,12 @@ impl DataType {
         })
     }
 
-    /// Return the data type at `index`, or an [`Error::InvalidValue`] for
+    /// Return the data type at `index`, or a [`ValueError`] for
     /// an index that is no basic type.
-    pub const fn try_from_index(index: u16) -> Result<Self> {
+    pub const fn try_from_index(index: u16) -> Result<Self, ValueError> {
         match Self::from_index(index) {
             Some(data_type) => Ok(data_type),
-            None => Err(Error::InvalidValue {
+            None => Err(ValueError {
                 what: What::DataType,
                 found: index as u32,
                 expected: "0x0001..=0x000D, 0x000F..=0x0016, 0x0018..=0x001B",
@@ -253,9 +253,9 @@ impl DataType {
 }
 
 impl TryFrom<u16> for DataType {
-    type Error = Error;
+    type Error = ValueError;
 
-    fn try_from(index: u16) -> Result<Self> {
+    fn try_from(index: u16) -> Result<Self, ValueError> {
         Self::try_from_index(index)
     }
 }
@@ -481,7 +481,7 @@ mod tests {
             assert_eq!(DataType::from_index(index), None);
             assert_eq!(
                 DataType::try_from(index),
-                Err(Error::InvalidValue {
+                Err(ValueError {
                     what: What::DataType,
                     found: u32::from(index),
                     expected: "0x0001..=0x000D, 0x000F..=0x0016, 0x0018..=0x001B",

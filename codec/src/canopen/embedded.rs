@@ -64,7 +64,7 @@ impl CanOpenMessage {
         let frame = CanFrame::from_embedded(frame).map_err(|error| DecodeError {
             kind: MessageKind::Other,
             node: None,
-            error,
+            error: error.into(),
             partial_emcy: None,
         })?;
         CanOpenMessage::decode(&frame)
@@ -147,7 +147,7 @@ mod tests {
     use super::*;
     use crate::canopen::{ErrorCode, ErrorRegister, NmtCommand, NmtState};
     use crate::strategies::embedded_can::{BadRemote, LongFrame, TestFrame};
-    use crate::Error;
+    use crate::{Error, RangeError};
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()
@@ -194,7 +194,10 @@ mod tests {
     #[test]
     fn impossible_remote_dlc_is_an_error() {
         let e = CanOpenMessage::from_frame(&BadRemote).unwrap_err();
-        assert!(matches!(e.error, Error::OutOfRange { found: 255, .. }));
+        assert!(matches!(
+            e.error,
+            Error::OutOfRange(RangeError { found: 255, .. })
+        ));
     }
 
     mod proptests {

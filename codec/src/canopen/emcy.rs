@@ -31,7 +31,7 @@ use byteorder::{ByteOrder, LittleEndian};
 
 use super::{ErrorCode, ErrorRegister};
 use crate::error::check_len;
-use crate::{Error, Result};
+use crate::{LenError, Result};
 
 mod field {
     use core::ops::Range;
@@ -68,7 +68,7 @@ impl<T: AsRef<[u8]>> EmcyFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`EMCY_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -76,7 +76,7 @@ impl<T: AsRef<[u8]>> EmcyFrame<T> {
 
     /// Check that the buffer holds at least [`EMCY_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), EMCY_LEN)
     }
 
@@ -185,17 +185,17 @@ impl Emcy {
         bytes
     }
 
-    /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is an
-    /// [`Error::Length`] (docs/canopen.md#emcy: a decoder does not guess).
+    /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is a
+    /// [`LenError`] (docs/canopen.md#emcy: a decoder does not guess).
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         // Through the fixed-size array rather than the view over the slice:
         // the compiler then keeps the eight bytes in registers instead of
         // storing the value and reading its manufacturer field back from
         // the stack (benches/decode.rs, `emcy8/owned` against `emcy8/copy`).
         match data.first_chunk::<EMCY_LEN>() {
             Some(bytes) => Ok(Self::from_bytes(bytes)),
-            None => Err(Error::Length {
+            None => Err(LenError {
                 what: WHAT,
                 expected: EMCY_LEN,
                 found: data.len(),
@@ -225,7 +225,6 @@ impl Emcy {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Error;
 
     /// An AKD EMCY (docs/canopen.md#akd): code 0x8130, register 0x11, axis 1.
     static FRAME_BYTES: [u8; 8] = [0x30, 0x81, 0x11, 0x01, 0x00, 0x00, 0x00, 0x00];
@@ -269,7 +268,7 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         for len in 0..EMCY_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::EmcyFrame,
                 expected: 8,
                 found: len,
@@ -309,7 +308,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
             match Emcy::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
-                Err(e) => prop_assert_eq!(e, Error::Length { what: What::EmcyFrame, expected: 8, found: data.len() }),
+                Err(e) => prop_assert_eq!(e, LenError { what: What::EmcyFrame, expected: 8, found: data.len() }),
             }
         }
     }

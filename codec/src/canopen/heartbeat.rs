@@ -46,7 +46,7 @@ use core::time::Duration;
 
 use super::error_control::{millis, Events};
 use super::{Heartbeat, NmtState, NodeId};
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 /// The heartbeat producer's schedule, object 1017h (CiA 301 §7.2.8.3.2.2
 /// and object 1017h; docs/canopen.md#error-control).
@@ -577,11 +577,11 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// at the next heartbeat); a time of 0 removes the entry (CiA 301: "if
     /// the consumer heartbeat time is 0 the entry is not used").
     ///
-    /// When all `N` entries are configured, this is an
-    /// [`Error::OutOfRange`]; a node taken up by
+    /// When all `N` entries are configured, this is a
+    /// [`RangeError`]; a node taken up by
     /// [`HeartbeatConsumer::monitor_unconfigured`] gives its place to a
     /// configured one.
-    pub fn set_entry(&mut self, entry: ConsumerEntry) -> Result<()> {
+    pub fn set_entry(&mut self, entry: ConsumerEntry) -> Result<(), RangeError> {
         if entry.time_ms == 0 {
             self.remove(entry.node);
             return Ok(());
@@ -608,7 +608,7 @@ impl<const N: usize> HeartbeatConsumer<N> {
                 *slot = Some(monitored);
                 Ok(())
             }
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::HeartbeatConsumerEntries,
                 found: u32::try_from(N).unwrap_or(u32::MAX).saturating_add(1),
                 min: 0,
@@ -1088,7 +1088,7 @@ mod tests {
             .unwrap();
         assert_eq!(
             consumer.set_entry(ConsumerEntry::from_millis(n(11), 50)),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::HeartbeatConsumerEntries,
                 found: 3,
                 min: 0,

@@ -54,7 +54,7 @@ use super::{
     NmtState, NodeId, PdoDirection, TimeOfDay, EMCY_LEN, HEARTBEAT_LEN, NMT_NODE_CONTROL_LEN,
 };
 use crate::can::{CanFrame, CanId, ErrorFrame, FrameData};
-use crate::Error;
+use crate::{Error, LenError, ValueError};
 
 /// What a frame is on a CANopen bus: the `kind` of docs/output.md#common-keys.
 ///
@@ -496,11 +496,11 @@ impl CanOpenMessage {
             partial_emcy: None,
         };
         let data = frame.data();
-        let owned = || FrameData::new(data).map_err(fail);
+        let owned = || FrameData::new(data).map_err(|e| fail(e.into()));
         if frame.is_error() {
             return ErrorFrame::from_frame(frame)
                 .map(CanOpenMessage::ErrorFrame)
-                .map_err(fail);
+                .map_err(|e| fail(e.into()));
         }
         if frame.is_rtr() {
             return match function {
@@ -508,11 +508,14 @@ impl CanOpenMessage {
                 // An EMCY has 8 bytes; a request carries none.
                 CobFunction::Emcy(_) => Err(DecodeError {
                     partial_emcy: Some(PartialEmcy::read(&[])),
-                    ..fail(Error::Length {
-                        what: What::EmcyFrame,
-                        expected: EMCY_LEN,
-                        found: 0,
-                    })
+                    ..fail(
+                        LenError {
+                            what: What::EmcyFrame,
+                            expected: EMCY_LEN,
+                            found: 0,
+                        }
+                        .into(),
+                    )
                 }),
                 // A request for an RTR-triggered TPDO (CiA 301 §7.2.2.2) and
                 // requests without a CANopen meaning: kept as they are.
@@ -520,19 +523,22 @@ impl CanOpenMessage {
             };
         }
         Ok(match function {
-            CobFunction::NmtCommand => {
-                CanOpenMessage::NmtNodeControl(NmtNodeControl::parse(data).map_err(fail)?)
-            }
+            CobFunction::NmtCommand => CanOpenMessage::NmtNodeControl(
+                NmtNodeControl::parse(data).map_err(|e| fail(e.into()))?,
+            ),
             CobFunction::Sync => CanOpenMessage::Sync {
                 counter: match *data {
                     [] => None,
                     [counter] => Some(counter),
                     _ => {
-                        return Err(fail(Error::InvalidValue {
-                            what: What::SyncDataLength,
-                            found: data.len() as u32,
-                            expected: "0, or 1 with the SYNC counter",
-                        }))
+                        return Err(fail(
+                            ValueError {
+                                what: What::SyncDataLength,
+                                found: data.len() as u32,
+                                expected: "0, or 1 with the SYNC counter",
+                            }
+                            .into(),
+                        ))
                     }
                 },
             },
@@ -541,11 +547,13 @@ impl CanOpenMessage {
                 Err(error) => {
                     return Err(DecodeError {
                         partial_emcy: Some(PartialEmcy::read(data)),
-                        ..fail(error)
+                        ..fail(error.into())
                     })
                 }
             },
-            CobFunction::Time => CanOpenMessage::Time(TimeOfDay::parse(data).map_err(fail)?),
+            CobFunction::Time => {
+                CanOpenMessage::Time(TimeOfDay::parse(data).map_err(|e| fail(e.into()))?)
+            }
             CobFunction::Pdo {
                 node,
                 number,
@@ -570,11 +578,14 @@ impl CanOpenMessage {
                     byte: NmtStateByte::new(byte),
                 },
                 None => {
-                    return Err(fail(Error::Length {
-                        what: What::HeartbeatMessage,
-                        expected: HEARTBEAT_LEN,
-                        found: 0,
-                    }))
+                    return Err(fail(
+                        LenError {
+                            what: What::HeartbeatMessage,
+                            expected: HEARTBEAT_LEN,
+                            found: 0,
+                        }
+                        .into(),
+                    ))
                 }
             },
             CobFunction::Other => CanOpenMessage::Other(frame.to_owned_frame()),
@@ -1055,51 +1066,51 @@ mod tests {
                 data(0x081, &EMCY_BYTES[..7]),
                 MessageKind::Emcy,
                 Some(1),
-                Error::Length {
+                Error::Length(LenError {
                     what: What::EmcyFrame,
                     expected: 8,
                     found: 7,
-                },
+                }),
             ),
             (
                 data(0x705, &[]),
                 MessageKind::Heartbeat,
                 Some(5),
-                Error::Length {
+                Error::Length(LenError {
                     what: What::HeartbeatMessage,
                     expected: 1,
                     found: 0,
-                },
+                }),
             ),
             (
                 data(0x000, &[0x01]),
                 MessageKind::NmtCommand,
                 None,
-                Error::Length {
+                Error::Length(LenError {
                     what: What::NmtNodeControlMessage,
                     expected: 2,
                     found: 1,
-                },
+                }),
             ),
             (
                 data(0x000, &[0x03, 0x00]),
                 MessageKind::NmtCommand,
                 None,
-                Error::InvalidValue {
+                Error::InvalidValue(ValueError {
                     what: What::NmtCommandSpecifier,
                     found: 3,
                     expected: "0x01, 0x02, 0x80, 0x81, 0x82",
-                },
+                }),
             ),
             (
                 data(0x080, &[1, 2]),
                 MessageKind::Sync,
                 None,
-                Error::InvalidValue {
+                Error::InvalidValue(ValueError {
                     what: What::SyncDataLength,
                     found: 2,
                     expected: "0, or 1 with the SYNC counter",
-                },
+                }),
             ),
         ];
         for (frame, kind, node, error) in cases {
@@ -1121,11 +1132,11 @@ mod tests {
             let e = CanOpenMessage::decode(&data(0x083, &EMCY_BYTES[..len])).unwrap_err();
             assert_eq!(
                 e.error,
-                Error::Length {
+                Error::Length(LenError {
                     what: What::EmcyFrame,
                     expected: 8,
                     found: len
-                }
+                })
             );
             let partial = e.partial_emcy.unwrap();
             assert_eq!(partial.code, (len >= 2).then(|| ErrorCode::new(0x8130)));

@@ -65,8 +65,9 @@ pub use objects::{
 };
 pub use pdo::{
     ByLength, EventTimer, InhibitTime, LayoutSignals, MappingEntry, PdoCobId, PdoCommunication,
-    PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, Signal, Signals, TransmissionKind,
-    TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES, MAX_PDO_BITS,
+    PdoEntryError, PdoEntryReason, PdoLayout, PdoMapping, PdoPackError, Signal, Signals,
+    TransmissionKind, TransmissionType, TypeLookup, CLASSIC_PDO_BITS, MAX_MAPPING_ENTRIES,
+    MAX_PDO_BITS,
 };
 pub use recv_emcy::{
     DeviceSet, EmcyStorage, KernelError, RecvEmcy, RecvEmcyDevOutputs, RecvEmcyOutputs,

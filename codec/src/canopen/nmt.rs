@@ -41,7 +41,7 @@ use crate::error::What;
 use core::fmt;
 
 use crate::error::check_len;
-use crate::{Error, Result};
+use crate::{FrameError, LenError, Result, ValueError};
 
 mod field {
     /// Byte 0: bit 7 (reserved in a heartbeat, toggle in a guarding answer)
@@ -101,7 +101,7 @@ impl NmtState {
         NmtState::PreOperational,
     ];
 
-    /// Return the state coded by `byte`, or an [`Error::InvalidValue`] for
+    /// Return the state coded by `byte`, or a [`ValueError`] for
     /// any byte other than 0x00, 0x04, 0x05 and 0x7F
     /// (docs/canopen.md#error-control: any other value is invalid, reported,
     /// never a panic).
@@ -109,13 +109,13 @@ impl NmtState {
     /// The whole byte is checked: strip a toggle bit first (as
     /// [`GuardAnswerFrame::state`] does).
     #[inline]
-    pub const fn from_byte(byte: u8) -> Result<Self> {
+    pub const fn from_byte(byte: u8) -> Result<Self, ValueError> {
         match byte {
             0x00 => Ok(NmtState::BootUp),
             0x04 => Ok(NmtState::Stopped),
             0x05 => Ok(NmtState::Operational),
             0x7F => Ok(NmtState::PreOperational),
-            found => Err(Error::InvalidValue {
+            found => Err(ValueError {
                 what: What::NmtState,
                 found: found as u32,
                 expected: "0x00, 0x04, 0x05, 0x7f",
@@ -146,9 +146,9 @@ impl NmtState {
 }
 
 impl TryFrom<u8> for NmtState {
-    type Error = Error;
+    type Error = ValueError;
 
-    fn try_from(byte: u8) -> Result<Self> {
+    fn try_from(byte: u8) -> Result<Self, ValueError> {
         Self::from_byte(byte)
     }
 }
@@ -186,7 +186,7 @@ impl<T: AsRef<[u8]>> HeartbeatFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`HEARTBEAT_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -194,7 +194,7 @@ impl<T: AsRef<[u8]>> HeartbeatFrame<T> {
 
     /// Check that the buffer holds at least [`HEARTBEAT_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(HEARTBEAT_WHAT, self.buffer.as_ref(), HEARTBEAT_LEN)
     }
 
@@ -212,10 +212,10 @@ impl<T: AsRef<[u8]>> HeartbeatFrame<T> {
         self.buffer.as_ref()[field::STATE] & field::STATE_MASK
     }
 
-    /// Return the NMT state field (bits 0–6 of byte 0), or an
-    /// [`Error::InvalidValue`] when it codes no defined state.
+    /// Return the NMT state field (bits 0–6 of byte 0), or a
+    /// [`ValueError`] when it codes no defined state.
     #[inline]
-    pub fn state(&self) -> Result<NmtState> {
+    pub fn state(&self) -> Result<NmtState, ValueError> {
         NmtState::from_byte(self.state_raw())
     }
 
@@ -312,9 +312,9 @@ impl Heartbeat {
     }
 
     /// Decode the byte of a heartbeat message; a byte whose bits 0–6 code no
-    /// NMT state is an [`Error::InvalidValue`].
+    /// NMT state is a [`ValueError`].
     #[inline]
-    pub fn from_bytes(bytes: &[u8; HEARTBEAT_LEN]) -> Result<Self> {
+    pub fn from_bytes(bytes: &[u8; HEARTBEAT_LEN]) -> Result<Self, ValueError> {
         Self::parse_frame(&HeartbeatFrame::new_unchecked(bytes))
     }
 
@@ -328,16 +328,16 @@ impl Heartbeat {
     }
 
     /// Decode a heartbeat from a CAN frame's data: an empty slice is an
-    /// [`Error::Length`], an undefined state an [`Error::InvalidValue`].
+    /// [`FrameError::Length`], an undefined state a [`FrameError::Content`].
     /// Bytes after the first are not read (as for every frame of the crate).
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
-        Self::parse_frame(&HeartbeatFrame::new_checked(data)?)
+    pub fn parse(data: &[u8]) -> Result<Self, FrameError> {
+        Ok(Self::parse_frame(&HeartbeatFrame::new_checked(data)?)?)
     }
 
     /// Read the owned value out of a view whose length has been checked.
     #[inline]
-    pub fn parse_frame<T: AsRef<[u8]>>(frame: &HeartbeatFrame<T>) -> Result<Self> {
+    pub fn parse_frame<T: AsRef<[u8]>>(frame: &HeartbeatFrame<T>) -> Result<Self, ValueError> {
         Ok(Heartbeat {
             state: frame.state()?,
             reserved_bit: frame.reserved_bit(),
@@ -371,7 +371,7 @@ impl<T: AsRef<[u8]>> GuardAnswerFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`GUARD_ANSWER_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -379,7 +379,7 @@ impl<T: AsRef<[u8]>> GuardAnswerFrame<T> {
 
     /// Check that the buffer holds at least [`GUARD_ANSWER_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(GUARD_ANSWER_WHAT, self.buffer.as_ref(), GUARD_ANSWER_LEN)
     }
 
@@ -403,10 +403,10 @@ impl<T: AsRef<[u8]>> GuardAnswerFrame<T> {
         self.buffer.as_ref()[field::STATE] & field::STATE_MASK
     }
 
-    /// Return the NMT state field (bits 0–6 of byte 0), or an
-    /// [`Error::InvalidValue`] when it codes no defined state.
+    /// Return the NMT state field (bits 0–6 of byte 0), or a
+    /// [`ValueError`] when it codes no defined state.
     #[inline]
-    pub fn state(&self) -> Result<NmtState> {
+    pub fn state(&self) -> Result<NmtState, ValueError> {
         NmtState::from_byte(self.state_raw())
     }
 }
@@ -453,9 +453,9 @@ impl GuardAnswer {
     }
 
     /// Decode the byte of a node-guarding answer; bits 0–6 that code no NMT
-    /// state are an [`Error::InvalidValue`].
+    /// state are a [`ValueError`].
     #[inline]
-    pub fn from_bytes(bytes: &[u8; GUARD_ANSWER_LEN]) -> Result<Self> {
+    pub fn from_bytes(bytes: &[u8; GUARD_ANSWER_LEN]) -> Result<Self, ValueError> {
         Self::parse_frame(&GuardAnswerFrame::new_unchecked(bytes))
     }
 
@@ -469,16 +469,16 @@ impl GuardAnswer {
     }
 
     /// Decode an answer from a CAN frame's data: an empty slice is an
-    /// [`Error::Length`], an undefined state an [`Error::InvalidValue`].
+    /// [`FrameError::Length`], an undefined state a [`FrameError::Content`].
     /// Bytes after the first are not read.
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
-        Self::parse_frame(&GuardAnswerFrame::new_checked(data)?)
+    pub fn parse(data: &[u8]) -> Result<Self, FrameError> {
+        Ok(Self::parse_frame(&GuardAnswerFrame::new_checked(data)?)?)
     }
 
     /// Read the owned value out of a view whose length has been checked.
     #[inline]
-    pub fn parse_frame<T: AsRef<[u8]>>(frame: &GuardAnswerFrame<T>) -> Result<Self> {
+    pub fn parse_frame<T: AsRef<[u8]>>(frame: &GuardAnswerFrame<T>) -> Result<Self, ValueError> {
         Ok(GuardAnswer {
             toggle: frame.toggle(),
             state: frame.state()?,
@@ -535,7 +535,7 @@ mod tests {
             }
             assert_eq!(
                 NmtState::from_byte(byte),
-                Err(Error::InvalidValue {
+                Err(ValueError {
                     what: What::NmtState,
                     found: u32::from(byte),
                     expected: "0x00, 0x04, 0x05, 0x7f",
@@ -592,13 +592,19 @@ mod tests {
 
     #[test]
     fn heartbeat_invalid_state_reports_bits_0_to_6() {
-        let expected = Error::InvalidValue {
+        let expected = ValueError {
             what: What::NmtState,
             found: 0x12,
             expected: "0x00, 0x04, 0x05, 0x7f",
         };
-        assert_eq!(Heartbeat::parse(&[0x12]), Err(expected));
-        assert_eq!(Heartbeat::parse(&[0x92]), Err(expected));
+        assert_eq!(
+            Heartbeat::parse(&[0x12]),
+            Err(FrameError::Content(expected))
+        );
+        assert_eq!(
+            Heartbeat::parse(&[0x92]),
+            Err(FrameError::Content(expected))
+        );
         // The view still reads the raw fields (docs/output.md#heartbeat: state
         // "invalid").
         let frame = HeartbeatFrame::new_checked(&[0x92u8][..]).unwrap();
@@ -658,19 +664,19 @@ mod tests {
 
     #[test]
     fn every_short_length_is_an_exact_error() {
-        let heartbeat = Error::Length {
+        let heartbeat = LenError {
             what: What::HeartbeatMessage,
             expected: 1,
             found: 0,
         };
-        assert_eq!(Heartbeat::parse(&[]), Err(heartbeat));
+        assert_eq!(Heartbeat::parse(&[]), Err(FrameError::Length(heartbeat)));
         assert_eq!(HeartbeatFrame::new_checked(&[][..]), Err(heartbeat));
-        let answer = Error::Length {
+        let answer = LenError {
             what: What::NodeGuardingAnswer,
             expected: 1,
             found: 0,
         };
-        assert_eq!(GuardAnswer::parse(&[]), Err(answer));
+        assert_eq!(GuardAnswer::parse(&[]), Err(FrameError::Length(answer)));
         assert_eq!(GuardAnswerFrame::new_checked(&[][..]), Err(answer));
     }
 }
@@ -687,7 +693,7 @@ mod proptests {
         fn nmt_state_any_byte_never_panics(byte in any::<u8>()) {
             match NmtState::from_byte(byte) {
                 Ok(state) => prop_assert_eq!(state.to_byte(), byte),
-                Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: What::NmtState, .. }), "{}", e),
+                Err(e) => prop_assert!(matches!(e, ValueError { what: What::NmtState, .. }), "{}", e),
             }
         }
 
@@ -734,11 +740,11 @@ mod proptests {
             ] {
                 match result {
                     Ok(bytes) => prop_assert_eq!(&bytes[..], &data[..1]),
-                    Err(Error::Length { expected, found, .. }) => {
+                    Err(FrameError::Length(LenError { expected, found, .. })) => {
                         prop_assert_eq!((expected, found), (1, 0));
                         prop_assert!(data.is_empty());
                     }
-                    Err(e) => prop_assert!(matches!(e, Error::InvalidValue { what: What::NmtState, .. }), "{}", e),
+                    Err(FrameError::Content(e)) => prop_assert!(matches!(e, ValueError { what: What::NmtState, .. }), "{}", e),
                 }
             }
         }

@@ -33,7 +33,7 @@ use core::fmt;
 
 use super::NodeId;
 use crate::error::check_len;
-use crate::{Error, Result};
+use crate::{FieldError, FrameError, LenError, RangeError, Result, ValueError};
 
 mod field {
     /// Byte 0: command specifier.
@@ -91,17 +91,17 @@ impl NmtCommand {
         NmtCommand::ResetCommunication,
     ];
 
-    /// Return the command coded by `byte`, or an [`Error::InvalidValue`] for
+    /// Return the command coded by `byte`, or a [`ValueError`] for
     /// any byte other than 0x01, 0x02, 0x80, 0x81 and 0x82.
     #[inline]
-    pub const fn from_byte(byte: u8) -> Result<Self> {
+    pub const fn from_byte(byte: u8) -> Result<Self, ValueError> {
         match byte {
             0x01 => Ok(NmtCommand::StartRemoteNode),
             0x02 => Ok(NmtCommand::StopRemoteNode),
             0x80 => Ok(NmtCommand::EnterPreOperational),
             0x81 => Ok(NmtCommand::ResetNode),
             0x82 => Ok(NmtCommand::ResetCommunication),
-            found => Err(Error::InvalidValue {
+            found => Err(ValueError {
                 what: What::NmtCommandSpecifier,
                 found: found as u32,
                 expected: "0x01, 0x02, 0x80, 0x81, 0x82",
@@ -154,9 +154,9 @@ impl NmtCommand {
 }
 
 impl TryFrom<u8> for NmtCommand {
-    type Error = Error;
+    type Error = ValueError;
 
-    fn try_from(byte: u8) -> Result<Self> {
+    fn try_from(byte: u8) -> Result<Self, ValueError> {
         Self::from_byte(byte)
     }
 }
@@ -195,7 +195,7 @@ impl<T: AsRef<[u8]>> NmtNodeControlFrame<T> {
     /// Wrap a buffer, checking that it holds at least
     /// [`NMT_NODE_CONTROL_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -203,7 +203,7 @@ impl<T: AsRef<[u8]>> NmtNodeControlFrame<T> {
 
     /// Check that the buffer holds at least [`NMT_NODE_CONTROL_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), NMT_NODE_CONTROL_LEN)
     }
 
@@ -219,10 +219,10 @@ impl<T: AsRef<[u8]>> NmtNodeControlFrame<T> {
         self.buffer.as_ref()[field::COMMAND]
     }
 
-    /// Return the command specifier field (byte 0), or an
-    /// [`Error::InvalidValue`] when it codes no command.
+    /// Return the command specifier field (byte 0), or a
+    /// [`ValueError`] when it codes no command.
     #[inline]
-    pub fn command(&self) -> Result<NmtCommand> {
+    pub fn command(&self) -> Result<NmtCommand, ValueError> {
         NmtCommand::from_byte(self.command_raw())
     }
 
@@ -233,14 +233,14 @@ impl<T: AsRef<[u8]>> NmtNodeControlFrame<T> {
     }
 
     /// Return the node-ID field (byte 1): `None` when it addresses all nodes
-    /// (0), or an [`Error::OutOfRange`] above 127.
+    /// (0), or a [`RangeError`] above 127.
     #[inline]
-    pub fn node(&self) -> Result<Option<NodeId>> {
+    pub fn node(&self) -> Result<Option<NodeId>, RangeError> {
         match self.node_raw() {
             ALL_NODES => Ok(None),
             raw => match NodeId::new(raw) {
                 Some(node) => Ok(Some(node)),
-                None => Err(Error::OutOfRange {
+                None => Err(RangeError {
                     what: What::NmtNodeControlNodeId,
                     found: u32::from(raw),
                     min: 0,
@@ -285,10 +285,11 @@ impl NmtNodeControl {
         NmtNodeControl { command, node }
     }
 
-    /// Decode the 2 bytes of the message: an undefined command is an
-    /// [`Error::InvalidValue`], a node-ID above 127 an [`Error::OutOfRange`].
+    /// Decode the 2 bytes of the message: an undefined command is a
+    /// [`FieldError::InvalidValue`], a node-ID above 127 a
+    /// [`FieldError::OutOfRange`].
     #[inline]
-    pub fn from_bytes(bytes: &[u8; NMT_NODE_CONTROL_LEN]) -> Result<Self> {
+    pub fn from_bytes(bytes: &[u8; NMT_NODE_CONTROL_LEN]) -> Result<Self, FieldError> {
         Self::parse_frame(&NmtNodeControlFrame::new_unchecked(bytes))
     }
 
@@ -301,17 +302,17 @@ impl NmtNodeControl {
         bytes
     }
 
-    /// Decode the message from a CAN frame's data: fewer than 2 bytes is an
-    /// [`Error::Length`], then as [`NmtNodeControl::from_bytes`]. Bytes after
+    /// Decode the message from a CAN frame's data: fewer than 2 bytes is a
+    /// [`FrameError::Length`], then as [`NmtNodeControl::from_bytes`]. Bytes after
     /// the second are not read.
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
-        Self::parse_frame(&NmtNodeControlFrame::new_checked(data)?)
+    pub fn parse(data: &[u8]) -> Result<Self, FrameError<FieldError>> {
+        Ok(Self::parse_frame(&NmtNodeControlFrame::new_checked(data)?)?)
     }
 
     /// Read the owned value out of a view whose length has been checked.
     #[inline]
-    pub fn parse_frame<T: AsRef<[u8]>>(frame: &NmtNodeControlFrame<T>) -> Result<Self> {
+    pub fn parse_frame<T: AsRef<[u8]>>(frame: &NmtNodeControlFrame<T>) -> Result<Self, FieldError> {
         Ok(NmtNodeControl {
             command: frame.command()?,
             node: frame.node()?,
@@ -373,7 +374,7 @@ mod tests {
             }
             assert_eq!(
                 NmtCommand::from_byte(byte),
-                Err(Error::InvalidValue {
+                Err(ValueError {
                     what: What::NmtCommandSpecifier,
                     found: u32::from(byte),
                     expected: "0x01, 0x02, 0x80, 0x81, 0x82",
@@ -424,12 +425,12 @@ mod tests {
         for raw in 128..=255u8 {
             assert_eq!(
                 NmtNodeControl::parse(&[0x01, raw]),
-                Err(Error::OutOfRange {
+                Err(FrameError::Content(FieldError::OutOfRange(RangeError {
                     what: What::NmtNodeControlNodeId,
                     found: u32::from(raw),
                     min: 0,
                     max: 127,
-                })
+                })))
             );
         }
     }
@@ -437,12 +438,15 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         for len in 0..NMT_NODE_CONTROL_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::NmtNodeControlMessage,
                 expected: 2,
                 found: len,
             };
-            assert_eq!(NmtNodeControl::parse(&FRAME_BYTES[..len]), Err(expected));
+            assert_eq!(
+                NmtNodeControl::parse(&FRAME_BYTES[..len]),
+                Err(FrameError::Length(expected))
+            );
             assert_eq!(
                 NmtNodeControlFrame::new_checked(&FRAME_BYTES[..len]),
                 Err(expected)
@@ -478,8 +482,8 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..4)) {
             match NmtNodeControl::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..2]),
-                Err(Error::Length { found, .. }) => prop_assert_eq!(found, data.len()),
-                Err(_) => prop_assert!(data.len() >= 2),
+                Err(FrameError::Length(LenError { found, .. })) => prop_assert_eq!(found, data.len()),
+                Err(FrameError::Content(_)) => prop_assert!(data.len() >= 2),
             }
         }
     }

@@ -7,7 +7,7 @@
 use crate::error::What;
 use core::fmt;
 
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 /// A CANopen node-ID, always within 1..=127 (CiA 301 §7.3.5;
 /// docs/canopen.md#emcy).
@@ -50,13 +50,13 @@ impl NodeId {
         }
     }
 
-    /// Return the node-ID `raw`, or an [`Error::OutOfRange`] that names the
+    /// Return the node-ID `raw`, or a [`RangeError`] that names the
     /// value when it is outside 1..=127.
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    pub const fn try_new(raw: u8) -> Result<Self, RangeError> {
         match Self::new(raw) {
             Some(id) => Ok(id),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::NodeId,
                 found: raw as u32,
                 min: 1,
@@ -129,9 +129,9 @@ impl NodeId {
 }
 
 impl TryFrom<u8> for NodeId {
-    type Error = Error;
+    type Error = RangeError;
 
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, RangeError> {
         Self::try_new(raw)
     }
 }
@@ -290,7 +290,7 @@ mod tests {
                 Ok(id) => assert_eq!(id.get(), raw),
                 Err(e) => assert_eq!(
                     e,
-                    Error::OutOfRange {
+                    RangeError {
                         what: What::NodeId,
                         found: raw as u32,
                         min: 1,

@@ -77,6 +77,7 @@
 use core::fmt;
 
 use crate::canopen::data_type::{DataType, ValueKind};
+use crate::{LenError, RangeError};
 
 mod bits;
 mod communication;
@@ -106,6 +107,37 @@ pub struct PdoEntryError {
     pub offset: u16,
     /// What is wrong with it.
     pub reason: PdoEntryReason,
+}
+
+/// Why [`PdoMapping::pack`] and [`PdoMapping::pack_with`] cannot write
+/// values into a payload (docs/canopen.md#signals): the buffer is shorter
+/// than the mapping, an entry cannot take its value, or values are left
+/// over. The message is the inner error's, e.g. `PDO payload: buffer of 2
+/// bytes where 4 are needed`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+pub enum PdoPackError {
+    /// The buffer is shorter than [`PdoMapping::byte_len`]
+    /// ([`What::PdoPayload`](crate::What::PdoPayload)).
+    #[error(transparent)]
+    Length(#[from] LenError),
+    /// An entry cannot take its value: of the wrong kind, wider than the
+    /// entry, or missing.
+    #[error(transparent)]
+    PdoEntry(#[from] PdoEntryError),
+    /// More values than entries that are not dummies
+    /// ([`What::PdoValues`](crate::What::PdoValues)).
+    #[error(transparent)]
+    OutOfRange(#[from] RangeError),
+}
+
+impl From<PdoPackError> for crate::Error {
+    fn from(error: PdoPackError) -> Self {
+        match error {
+            PdoPackError::Length(e) => e.into(),
+            PdoPackError::PdoEntry(e) => e.into(),
+            PdoPackError::OutOfRange(e) => e.into(),
+        }
+    }
 }
 
 /// Why a PDO mapping entry cannot be read or written (docs/canopen.md#signals):

@@ -21,7 +21,7 @@ use byteorder::{ByteOrder, LittleEndian};
 use core::fmt;
 
 use crate::error::{check_len, What};
-use crate::Result;
+use crate::{LenError, Result};
 
 mod field {
     use core::ops::Range;
@@ -76,8 +76,8 @@ impl TimeOfDay {
     ///
     /// # Errors
     ///
-    /// [`Error::Length`](crate::Error::Length) for fewer than 6 bytes.
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    /// [`LenError`] for fewer than 6 bytes.
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         check_len(What::TimeOfDay, data, TIME_OF_DAY_LEN)?;
         Ok(TimeOfDay {
             ms: LittleEndian::read_u32(&data[field::MS]) & MS_MASK,

@@ -52,7 +52,7 @@ use core::fmt;
 
 use crate::canopen::{Emcy, EmcyFrame, ErrorCode, ErrorRegister, EMCY_LEN};
 use crate::error::check_len;
-use crate::{Error, Result};
+use crate::{FieldError, LenError, RangeError, Result, ValueError};
 
 mod field {
     use core::ops::Range;
@@ -75,6 +75,15 @@ pub const AKD_MANUFACTURER_LEN: usize = field::RESERVED.end;
 const WHAT: What = What::AkdManufacturerField;
 const AXIS_WHAT: What = What::AkdAxisId;
 const FEEDBACK_WHAT: What = What::AkdFeedbackId;
+
+/// The error of an undefined feedback nibble, 6..=15.
+const fn undefined_feedback(nibble: u8) -> ValueError {
+    ValueError {
+        what: FEEDBACK_WHAT,
+        found: nibble as u32,
+        expected: "0 (none), 1..=5 (FB1..FB5)",
+    }
+}
 
 /// The axis an AKD EMCY reports, bits 0–3 of EMCY byte 3: 1 = axis 1,
 /// 0 = not given (the AKD CANopen manual; docs/canopen.md#akd).
@@ -117,13 +126,13 @@ impl AxisId {
         }
     }
 
-    /// Return the axis id `raw`, or an [`Error::OutOfRange`] when it does
+    /// Return the axis id `raw`, or a [`RangeError`] when it does
     /// not fit in 4 bits (0..=15).
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    pub const fn try_new(raw: u8) -> Result<Self, RangeError> {
         match Self::new(raw) {
             Some(axis) => Ok(axis),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: AXIS_WHAT,
                 found: raw as u32,
                 min: 0,
@@ -154,9 +163,9 @@ impl AxisId {
 }
 
 impl TryFrom<u8> for AxisId {
-    type Error = Error;
+    type Error = RangeError;
 
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, RangeError> {
         Self::try_new(raw)
     }
 }
@@ -178,12 +187,14 @@ impl fmt::Display for AxisId {
     }
 }
 
-/// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3 (the AKD
-/// CANopen manual; docs/canopen.md#akd): 0 = none (not a feedback fault), 1..=5
-/// = FB1..FB5. The values 6..=15 are not defined: building one with
-/// [`FeedbackId::try_new`] is an [`Error::InvalidValue`] that names the nibble,
-/// while decoding a received EMCY keeps it as [`FeedbackId::Unknown`]
-/// ([`FeedbackId::from_nibble`]), so that nothing else the EMCY says is lost.
+/// The feedback device of a feedback fault, bits 4–7 of EMCY byte 3
+/// (the AKD CANopen manual;
+/// docs/canopen.md#akd): 0 = none (not a feedback fault), 1..=5 =
+/// FB1..FB5. The values 6..=15 are not defined: building one with
+/// [`FeedbackId::try_new`] is a [`FieldError::InvalidValue`] that names the
+/// nibble, while decoding a received EMCY keeps it as
+/// [`FeedbackId::Unknown`] ([`FeedbackId::from_nibble`]), so that nothing
+/// else the EMCY says is lost.
 ///
 /// ```
 /// use motionwire_codec::profiles::akd::FeedbackId;
@@ -238,13 +249,13 @@ impl UndefinedFeedbackId {
 }
 
 impl TryFrom<u8> for UndefinedFeedbackId {
-    type Error = Error;
+    type Error = RangeError;
 
     /// Accept 6..=15 only.
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, RangeError> {
         match FeedbackId::from_nibble(raw) {
             FeedbackId::Unknown(undefined) if raw <= 0x0F => Ok(undefined),
-            _ => Err(Error::OutOfRange {
+            _ => Err(RangeError {
                 what: FEEDBACK_WHAT,
                 found: u32::from(raw),
                 min: 6,
@@ -287,24 +298,20 @@ impl FeedbackId {
         }
     }
 
-    /// Return the feedback id whose nibble is `raw`: an
-    /// [`Error::InvalidValue`] for the undefined nibbles 6..=15, an
-    /// [`Error::OutOfRange`] for a number that is no nibble at all.
+    /// Return the feedback id whose nibble is `raw`: a
+    /// [`FieldError::InvalidValue`] for the undefined nibbles 6..=15, a
+    /// [`FieldError::OutOfRange`] for a number that is no nibble at all.
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    pub const fn try_new(raw: u8) -> Result<Self, FieldError> {
         match Self::new(raw) {
             Some(feedback) => Ok(feedback),
-            None if raw <= 0x0F => Err(Error::InvalidValue {
-                what: FEEDBACK_WHAT,
-                found: raw as u32,
-                expected: "0 (none), 1..=5 (FB1..FB5)",
-            }),
-            None => Err(Error::OutOfRange {
+            None if raw <= 0x0F => Err(FieldError::InvalidValue(undefined_feedback(raw))),
+            None => Err(FieldError::OutOfRange(RangeError {
                 what: FEEDBACK_WHAT,
                 found: raw as u32,
                 min: 0,
                 max: 0x0F,
-            }),
+            })),
         }
     }
 
@@ -356,9 +363,9 @@ impl FeedbackId {
 }
 
 impl TryFrom<u8> for FeedbackId {
-    type Error = Error;
+    type Error = FieldError;
 
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, FieldError> {
         Self::try_new(raw)
     }
 }
@@ -405,7 +412,7 @@ impl<T: AsRef<[u8]>> AkdManufacturerField<T> {
     /// Wrap a buffer, checking that it holds at least
     /// [`AKD_MANUFACTURER_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let field = Self::new_unchecked(buffer);
         field.check_len()?;
         Ok(field)
@@ -413,7 +420,7 @@ impl<T: AsRef<[u8]>> AkdManufacturerField<T> {
 
     /// Check that the buffer holds at least [`AKD_MANUFACTURER_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), AKD_MANUFACTURER_LEN)
     }
 
@@ -436,11 +443,12 @@ impl<T: AsRef<[u8]>> AkdManufacturerField<T> {
         self.buffer.as_ref()[field::AXIS_FEEDBACK] >> field::FEEDBACK_SHIFT
     }
 
-    /// Return the feedback id field, or an [`Error::InvalidValue`] naming
-    /// the nibble when it is 6..=15.
+    /// Return the feedback id field, or a [`ValueError`] naming the nibble
+    /// when it is 6..=15.
     #[inline]
-    pub fn feedback_id(&self) -> Result<FeedbackId> {
-        FeedbackId::try_new(self.feedback_nibble())
+    pub fn feedback_id(&self) -> Result<FeedbackId, ValueError> {
+        let nibble = self.feedback_nibble();
+        FeedbackId::new(nibble).ok_or(undefined_feedback(nibble))
     }
 
     /// Return the feedback id field as received: an undefined nibble
@@ -524,11 +532,11 @@ impl AkdManufacturer {
         bytes
     }
 
-    /// Decode the field from a slice: fewer than 5 bytes is an
-    /// [`Error::Length`]; a feedback nibble of 6..=15 is kept as
+    /// Decode the field from a slice: fewer than 5 bytes is a
+    /// [`LenError`]; a feedback nibble of 6..=15 is kept as
     /// [`FeedbackId::Unknown`].
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         Ok(Self::parse_field(&AkdManufacturerField::new_checked(data)?))
     }
 
@@ -637,11 +645,11 @@ impl AkdEmcy {
         self.to_emcy().to_bytes()
     }
 
-    /// Decode an AKD EMCY from a CAN frame's data: fewer than 8 bytes is an
-    /// [`Error::Length`]; a feedback nibble of 6..=15 is kept as
+    /// Decode an AKD EMCY from a CAN frame's data: fewer than 8 bytes is a
+    /// [`LenError`]; a feedback nibble of 6..=15 is kept as
     /// [`FeedbackId::Unknown`].
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         Ok(Self::from_emcy(&Emcy::parse(data)?))
     }
 
@@ -806,14 +814,17 @@ mod tests {
             let field = AkdManufacturerField::new_checked(&bytes[..]).unwrap();
             assert_eq!(field.feedback_nibble(), nibble);
             assert_eq!(field.axis_id(), axis(7));
-            let invalid = Error::InvalidValue {
+            let invalid = ValueError {
                 what: What::AkdFeedbackId,
                 found: u32::from(nibble),
                 expected: "0 (none), 1..=5 (FB1..FB5)",
             };
             assert_eq!(FeedbackId::new(nibble), expected, "{nibble}");
             assert_eq!(field.feedback_id(), expected.ok_or(invalid), "{nibble}");
-            assert_eq!(FeedbackId::try_new(nibble), expected.ok_or(invalid));
+            assert_eq!(
+                FeedbackId::try_new(nibble),
+                expected.ok_or(FieldError::InvalidValue(invalid))
+            );
             // Decoding keeps every nibble: the defined ones as themselves,
             // 6..=15 as unknown, with the axis.
             let decoded = AkdManufacturer::from_bytes(&bytes);
@@ -857,12 +868,12 @@ mod tests {
         assert_eq!(FeedbackId::ALL.map(FeedbackId::get), [0, 1, 2, 3, 4, 5]);
         assert_eq!(
             FeedbackId::try_new(16),
-            Err(Error::OutOfRange {
+            Err(FieldError::OutOfRange(RangeError {
                 what: What::AkdFeedbackId,
                 found: 16,
                 min: 0,
                 max: 15
-            })
+            }))
         );
     }
 
@@ -879,7 +890,7 @@ mod tests {
             assert_eq!(AxisId::new(raw), None);
             assert_eq!(
                 AxisId::try_new(raw),
-                Err(Error::OutOfRange {
+                Err(RangeError {
                     what: What::AkdAxisId,
                     found: u32::from(raw),
                     min: 0,
@@ -895,7 +906,7 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         for len in 0..AKD_MANUFACTURER_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::AkdManufacturerField,
                 expected: 5,
                 found: len,
@@ -910,7 +921,7 @@ mod tests {
             );
         }
         for len in 0..EMCY_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::EmcyFrame,
                 expected: 8,
                 found: len,
@@ -957,11 +968,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
             match AkdEmcy::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
-                Err(Error::Length { found, .. }) => prop_assert_eq!(found, data.len()),
-                Err(Error::InvalidValue { found, .. }) => {
-                    prop_assert_eq!(Some(found), data.get(3).map(|b| u32::from(b >> 4)))
-                }
-                Err(e) => prop_assert!(false, "unexpected error {e}"),
+                Err(e) => prop_assert_eq!(e, LenError { what: What::EmcyFrame, expected: 8, found: data.len() }),
             }
             let _ = AkdManufacturer::parse(&data);
         }

@@ -45,7 +45,7 @@ use bitflags::bitflags;
 use byteorder::{ByteOrder, LittleEndian};
 
 use crate::canopen::{Emcy, ErrorCode, ErrorRegister, EMCY_LEN};
-use crate::{Error, Result};
+use crate::{LenError, Result, ValueError};
 
 bitflags! {
     /// The alarms object 6503h (u16), sent in bytes 3–4 of the encoder's
@@ -315,10 +315,10 @@ impl BaumerEmcy {
         self.to_emcy().to_bytes()
     }
 
-    /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is an
-    /// [`Error::Length`] (docs/canopen.md#emcy).
+    /// Decode an EMCY from a CAN frame's data; fewer than 8 bytes is a
+    /// [`LenError`] (docs/canopen.md#emcy).
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         Ok(Self::from_emcy(&Emcy::parse(data)?))
     }
 
@@ -515,12 +515,12 @@ impl InjectionCode {
     }
 
     /// Return the code `raw` if it is 0x0000_0000 or its high word is
-    /// 0x0001, 0x0004 or 0x0008, else an [`Error::InvalidValue`].
-    pub const fn try_new(raw: u32) -> Result<Self> {
+    /// 0x0001, 0x0004 or 0x0008, else a [`ValueError`].
+    pub const fn try_new(raw: u32) -> Result<Self, ValueError> {
         if raw == 0 || InjectionKind::from_high_word((raw >> 16) as u16).is_some() {
             Ok(InjectionCode(raw))
         } else {
-            Err(Error::InvalidValue {
+            Err(ValueError {
                 what: What::ErrorInjectionCode,
                 found: raw,
                 expected: "0x00000000 or a high word of 0x0001, 0x0004 or 0x0008",
@@ -552,10 +552,10 @@ impl InjectionCode {
 }
 
 impl TryFrom<u32> for InjectionCode {
-    type Error = Error;
+    type Error = ValueError;
 
     /// [`InjectionCode::try_new`].
-    fn try_from(raw: u32) -> Result<Self> {
+    fn try_from(raw: u32) -> Result<Self, ValueError> {
         Self::try_new(raw)
     }
 }
@@ -1783,7 +1783,7 @@ mod tests {
                 }
                 Err(()) => assert_eq!(
                     code,
-                    Err(Error::InvalidValue {
+                    Err(ValueError {
                         what: What::ErrorInjectionCode,
                         found: raw,
                         expected: "0x00000000 or a high word of 0x0001, 0x0004 or 0x0008",
@@ -1880,7 +1880,7 @@ mod tests {
         for len in 0..EMCY_LEN {
             assert_eq!(
                 BaumerEmcy::parse(&FRAME_BYTES[..len]),
-                Err(Error::Length {
+                Err(LenError {
                     what: What::EmcyFrame,
                     expected: 8,
                     found: len,
@@ -1935,7 +1935,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..16)) {
             match BaumerEmcy::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..8]),
-                Err(e) => prop_assert_eq!(e, Error::Length { what: What::EmcyFrame, expected: 8, found: data.len() }),
+                Err(e) => prop_assert_eq!(e, LenError { what: What::EmcyFrame, expected: 8, found: data.len() }),
             }
         }
 

@@ -34,7 +34,7 @@ use core::fmt;
 use core::marker::PhantomData;
 
 use super::{ServoControlWord, ServoEnable, ServoErrorWord, ServoStatusWord};
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 /// The drive parameter Servo_Ready_Mode, which decides whether ServoRDY depends
 /// on ServoEn (docs/servo.md#servo-ready; the interface manual, "Servo ReaDY").
@@ -60,12 +60,12 @@ impl ServoReadyMode {
         }
     }
 
-    /// Return the mode whose parameter value is `raw`, or an
-    /// [`Error::OutOfRange`] above 1.
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    /// Return the mode whose parameter value is `raw`, or a
+    /// [`RangeError`] above 1.
+    pub const fn try_new(raw: u8) -> Result<Self, RangeError> {
         match Self::new(raw) {
             Some(mode) => Ok(mode),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::ServoReadyMode,
                 found: raw as u32,
                 min: 0,
@@ -479,7 +479,7 @@ mod tests {
         for raw in 2..=255u8 {
             assert_eq!(
                 ServoReadyMode::try_new(raw),
-                Err(Error::OutOfRange {
+                Err(RangeError {
                     what: What::ServoReadyMode,
                     found: u32::from(raw),
                     min: 0,

@@ -34,7 +34,7 @@ use core::fmt;
 
 use super::ServoControlWord;
 use crate::error::check_len;
-use crate::Result;
+use crate::{LenError, Result};
 
 mod field {
     use core::ops::Range;
@@ -74,7 +74,7 @@ impl<T: AsRef<[u8]>> CommandFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`COMMAND_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -82,7 +82,7 @@ impl<T: AsRef<[u8]>> CommandFrame<T> {
 
     /// Check that the buffer holds at least [`COMMAND_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), COMMAND_LEN)
     }
 
@@ -215,9 +215,9 @@ impl Command {
     }
 
     /// Decode a command frame from the start of `data`; fewer than 10 bytes
-    /// is an [`Error::Length`](crate::Error::Length).
+    /// is a [`LenError`].
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         Ok(Self::parse_frame(&CommandFrame::new_checked(data)?))
     }
 
@@ -338,7 +338,6 @@ impl fmt::Display for CommandDetails {
 mod tests {
     use super::*;
     use crate::servo::{ParameterTable, RegulatorMode, ServoEnable};
-    use crate::Error;
 
     /// SSP = -2 (0xFFFF_FFFE); SCW = SE 0b10, EMGON, POSLOCK, table 6,
     /// position mode, Brake, ZPulseRequest, ExtPRMTBL, reserved bit 20 and
@@ -427,7 +426,7 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         for len in 0..COMMAND_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::ServoCommandFrame,
                 expected: 10,
                 found: len,
@@ -490,7 +489,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..24)) {
             match Command::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..COMMAND_LEN]),
-                Err(e) => prop_assert_eq!(e, crate::Error::Length {
+                Err(e) => prop_assert_eq!(e, LenError {
                     what: What::ServoCommandFrame,
                     expected: COMMAND_LEN,
                     found: data.len(),

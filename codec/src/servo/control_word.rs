@@ -34,7 +34,7 @@ use core::fmt;
 
 use bitflags::bitflags;
 
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 bitflags! {
     /// SCW, the servo control word, NC → servo (docs/servo.md#scw; the
@@ -281,12 +281,12 @@ impl ServoEnable {
         }
     }
 
-    /// Return the SE value `raw`, or an [`Error::OutOfRange`] when it is above 3.
+    /// Return the SE value `raw`, or a [`RangeError`] when it is above 3.
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    pub const fn try_new(raw: u8) -> Result<Self, RangeError> {
         match Self::new(raw) {
             Some(se) => Ok(se),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::ServoEnable,
                 found: raw as u32,
                 min: 0,
@@ -309,9 +309,9 @@ impl ServoEnable {
 }
 
 impl TryFrom<u8> for ServoEnable {
-    type Error = Error;
+    type Error = RangeError;
 
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, RangeError> {
         Self::try_new(raw)
     }
 }
@@ -377,13 +377,13 @@ impl RegulatorMode {
         }
     }
 
-    /// Return the mode whose ModeSel value is `raw`, or an
-    /// [`Error::OutOfRange`] above 3.
+    /// Return the mode whose ModeSel value is `raw`, or a
+    /// [`RangeError`] above 3.
     #[inline]
-    pub const fn try_new(raw: u8) -> Result<Self> {
+    pub const fn try_new(raw: u8) -> Result<Self, RangeError> {
         match Self::new(raw) {
             Some(mode) => Ok(mode),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::RegulatorMode,
                 found: raw as u32,
                 min: 0,
@@ -414,9 +414,9 @@ impl RegulatorMode {
 }
 
 impl TryFrom<u8> for RegulatorMode {
-    type Error = Error;
+    type Error = RangeError;
 
-    fn try_from(raw: u8) -> Result<Self> {
+    fn try_from(raw: u8) -> Result<Self, RangeError> {
         Self::try_new(raw)
     }
 }
@@ -475,13 +475,13 @@ impl ParameterTable {
         }
     }
 
-    /// Return table `number`, or an [`Error::OutOfRange`] when it is
+    /// Return table `number`, or a [`RangeError`] when it is
     /// outside 1..=8.
     #[inline]
-    pub const fn try_new(number: u8) -> Result<Self> {
+    pub const fn try_new(number: u8) -> Result<Self, RangeError> {
         match Self::new(number) {
             Some(table) => Ok(table),
-            None => Err(Error::OutOfRange {
+            None => Err(RangeError {
                 what: What::ParameterTable,
                 found: number as u32,
                 min: 1,
@@ -526,9 +526,9 @@ impl ParameterTable {
 }
 
 impl TryFrom<u8> for ParameterTable {
-    type Error = Error;
+    type Error = RangeError;
 
-    fn try_from(number: u8) -> Result<Self> {
+    fn try_from(number: u8) -> Result<Self, RangeError> {
         Self::try_new(number)
     }
 }
@@ -627,7 +627,7 @@ mod tests {
                 }
                 Err(e) => assert_eq!(
                     e,
-                    Error::OutOfRange {
+                    RangeError {
                         what: What::ServoEnable,
                         found: u32::from(raw),
                         min: 0,
@@ -719,7 +719,7 @@ mod tests {
                 Ok(t) => assert_eq!(t.get(), raw),
                 Err(e) => assert_eq!(
                     e,
-                    Error::OutOfRange {
+                    RangeError {
                         what: What::ParameterTable,
                         found: u32::from(raw),
                         min: 1,
@@ -755,7 +755,7 @@ mod tests {
         }
         assert_eq!(
             RegulatorMode::try_new(4),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::RegulatorMode,
                 found: 4,
                 min: 0,

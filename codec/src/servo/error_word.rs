@@ -29,7 +29,7 @@ use core::str::FromStr;
 
 use bitflags::bitflags;
 
-use crate::{Error, Result};
+use crate::{Error, Result, TextError, ValueError};
 
 bitflags! {
     /// SEW, the servo error word, servo → NC (docs/servo.md#sew; the interface
@@ -541,12 +541,12 @@ impl ECode {
         None
     }
 
-    /// Return the E-code numbered `number`, or an [`Error::InvalidValue`]
-    /// listing the defined codes.
-    pub const fn try_from_number(number: u8) -> Result<Self> {
+    /// Return the E-code numbered `number`, or a [`ValueError`] listing
+    /// the defined codes.
+    pub const fn try_from_number(number: u8) -> Result<Self, ValueError> {
         match Self::from_number(number) {
             Some(code) => Ok(code),
-            None => Err(Error::InvalidValue {
+            None => Err(ValueError {
                 what: What::ServoECode,
                 found: number as u32,
                 expected: E_CODES_IN_WORDS,
@@ -592,9 +592,9 @@ impl ECode {
 }
 
 impl TryFrom<u8> for ECode {
-    type Error = Error;
+    type Error = ValueError;
 
-    fn try_from(number: u8) -> Result<Self> {
+    fn try_from(number: u8) -> Result<Self, ValueError> {
         Self::try_from_number(number)
     }
 }
@@ -607,29 +607,52 @@ impl fmt::Display for ECode {
 }
 
 impl FromStr for ECode {
-    type Err = Error;
+    type Err = ParseECodeError;
 
     /// Parse `E` (or `e`) followed by one or two decimal digits, e.g. `E05`
-    /// or `E5`. Other text is an [`Error::Malformed`]; a number
-    /// docs/servo.md#sew does not define is an [`Error::InvalidValue`].
-    fn from_str(text: &str) -> Result<Self> {
-        let malformed = Error::Malformed {
+    /// or `E5`. Other text is a [`ParseECodeError::Malformed`]; a number
+    /// docs/servo.md#sew does not define is a
+    /// [`ParseECodeError::InvalidValue`].
+    fn from_str(text: &str) -> Result<Self, ParseECodeError> {
+        let malformed = TextError {
             what: What::ServoECode,
             expected: "E followed by one or two decimal digits, e.g. E05",
         };
         let digits = match text.as_bytes() {
             [b'E' | b'e', digits @ ..] if (1..=2).contains(&digits.len()) => digits,
-            _ => return Err(malformed),
+            _ => return Err(malformed.into()),
         };
         let mut number = 0u8;
         for &digit in digits {
             if !digit.is_ascii_digit() {
-                return Err(malformed);
+                return Err(malformed.into());
             }
             // At most two digits: at most 99, no overflow.
             number = number * 10 + (digit - b'0');
         }
-        Self::try_from_number(number)
+        Ok(Self::try_from_number(number)?)
+    }
+}
+
+/// Why a text is not a servo E-code ([`ECode`]'s `FromStr`): not of the
+/// form `E` and one or two digits, or a number docs/servo.md#sew does not
+/// define. The message is the inner error's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+pub enum ParseECodeError {
+    /// The text is not `E` (or `e`) followed by one or two decimal digits.
+    #[error(transparent)]
+    Malformed(#[from] TextError),
+    /// The number is not one of the defined E-codes.
+    #[error(transparent)]
+    InvalidValue(#[from] ValueError),
+}
+
+impl From<ParseECodeError> for Error {
+    fn from(error: ParseECodeError) -> Self {
+        match error {
+            ParseECodeError::Malformed(e) => Error::Malformed(e),
+            ParseECodeError::InvalidValue(e) => Error::InvalidValue(e),
+        }
     }
 }
 
@@ -748,7 +771,7 @@ mod tests {
             if !defined {
                 assert_eq!(
                     ECode::try_from(number),
-                    Err(Error::InvalidValue {
+                    Err(ValueError {
                         what: What::ServoECode,
                         found: u32::from(number),
                         expected: E_CODES_IN_WORDS
@@ -758,10 +781,10 @@ mod tests {
         }
         assert_eq!("E5".parse::<ECode>(), Ok(ECode::E05));
         assert_eq!(ECode::E32.to_string(), "E32");
-        let malformed = Err(Error::Malformed {
+        let malformed = Err(ParseECodeError::Malformed(TextError {
             what: What::ServoECode,
             expected: "E followed by one or two decimal digits, e.g. E05",
-        });
+        }));
         for text in [
             "", "E", "05", "X05", "E005", "E0x", "E-5", " E05", "E05 ", "Е05",
         ] {
@@ -769,11 +792,11 @@ mod tests {
         }
         assert_eq!(
             "E02".parse::<ECode>(),
-            Err(Error::InvalidValue {
+            Err(ParseECodeError::InvalidValue(ValueError {
                 what: What::ServoECode,
                 found: 2,
                 expected: E_CODES_IN_WORDS
-            })
+            }))
         );
     }
 

@@ -39,7 +39,7 @@ use core::fmt;
 
 use super::{EncoderKind, Message, ServoErrorWord, ServoStatusWord};
 use crate::error::check_len;
-use crate::Result;
+use crate::{LenError, Result};
 
 mod field {
     use core::ops::Range;
@@ -142,7 +142,7 @@ impl<T: AsRef<[u8]>> FeedbackFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`FEEDBACK_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -150,7 +150,7 @@ impl<T: AsRef<[u8]>> FeedbackFrame<T> {
 
     /// Check that the buffer holds at least [`FEEDBACK_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), FEEDBACK_LEN)
     }
 
@@ -353,9 +353,9 @@ impl Feedback {
     }
 
     /// Decode a feedback frame from the start of `data`; fewer than 40 bytes
-    /// is an [`Error::Length`](crate::Error::Length).
+    /// is a [`LenError`].
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         Ok(Self::parse_frame(&FeedbackFrame::new_checked(data)?))
     }
 
@@ -506,7 +506,6 @@ impl fmt::Display for FeedbackDetails {
 mod tests {
     use super::*;
     use crate::servo::{ECode, MessageCode, ServoFault};
-    use crate::Error;
 
     /// An incremental axis, enabled and ready, table 3, that found its zero
     /// pulse: position 100_000 (POSW0..1), zero pulse at -4_096 (POSW2..3);
@@ -657,7 +656,7 @@ mod tests {
     #[test]
     fn every_short_length_is_an_exact_error() {
         for len in 0..FEEDBACK_LEN {
-            let expected = Error::Length {
+            let expected = LenError {
                 what: What::ServoFeedbackFrame,
                 expected: 40,
                 found: len,
@@ -742,7 +741,7 @@ mod proptests {
         fn arbitrary_slices_never_panic(data in proptest::collection::vec(any::<u8>(), 0..64)) {
             match Feedback::parse(&data) {
                 Ok(value) => prop_assert_eq!(&value.to_bytes()[..], &data[..FEEDBACK_LEN]),
-                Err(e) => prop_assert_eq!(e, crate::Error::Length {
+                Err(e) => prop_assert_eq!(e, LenError {
                     what: What::ServoFeedbackFrame,
                     expected: FEEDBACK_LEN,
                     found: data.len(),

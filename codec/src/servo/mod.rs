@@ -69,7 +69,7 @@ pub use drive::{
     ZeroPulseState, TEMP_WARNING_CELSIUS,
 };
 pub use enable::{EnableHandshake, EnablePhase};
-pub use error_word::{ECode, FaultInfo, ServoErrorWord, ServoFault};
+pub use error_word::{ECode, FaultInfo, ParseECodeError, ServoErrorWord, ServoFault};
 pub use feedback::{ActualPosition, Feedback, FeedbackDetails, FeedbackFrame, FEEDBACK_LEN};
 pub use message::{Message, MessageCode};
 pub use status_word::{EncoderKind, ServoStatusWord};

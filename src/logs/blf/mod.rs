@@ -807,7 +807,7 @@ fn frame_of(
     dlc: u8,
     valid: usize,
     stored: &[u8],
-) -> Result<CanFrame, crate::CodecError> {
+) -> Result<CanFrame, crate::RangeError> {
     let mut data = [0u8; FD_MAX_LEN];
     let len = if edl {
         valid

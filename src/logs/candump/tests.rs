@@ -1367,30 +1367,30 @@ fn constructors_check_their_values() {
     // The frame's limits are the crate's frame constructors' (can::CanFrame).
     assert_eq!(
         Build::new_data("can0", std_id(1), &[0; 9]),
-        Err(crate::CodecError::OutOfRange {
+        Err(crate::CodecError::OutOfRange(crate::RangeError {
             what: What::CanFrameDataLength,
             found: 9,
             min: 0,
             max: 8
-        })
+        }))
     );
     assert_eq!(
         Build::new_fd("can0", std_id(1), FdFlags::EMPTY, &[0; 65]),
-        Err(crate::CodecError::OutOfRange {
+        Err(crate::CodecError::OutOfRange(crate::RangeError {
             what: What::CanFrameDataLength,
             found: 65,
             min: 0,
             max: 64
-        })
+        }))
     );
     assert_eq!(
         Build::new_remote("can0", std_id(1), 9),
-        Err(crate::CodecError::OutOfRange {
+        Err(crate::CodecError::OutOfRange(crate::RangeError {
             what: What::CanRemoteRequestLength,
             found: 9,
             min: 0,
             max: 8
-        })
+        }))
     );
 }
 

@@ -208,10 +208,10 @@ fn end(tokens: &mut Tokens<'_>) -> Result<()> {
 /// requested length).
 fn frame(id: CanId, kind: FrameType, bytes: &[u8; FD_MAX_LEN], len: u8) -> Result<CanFrame> {
     match kind {
-        FrameType::Remote { .. } => CanFrame::new_remote(id, len),
-        _ => CanFrame::with_type(id, kind, bytes.get(..usize::from(len)).unwrap_or_default()),
+        FrameType::Remote { .. } => CanFrame::new_remote(id, len).map_err(Error::from),
+        _ => CanFrame::with_type(id, kind, bytes.get(..usize::from(len)).unwrap_or_default())
+            .map_err(Error::from),
     }
-    .map_err(Error::from)
 }
 
 /// The error frame a PEAK error frame row reads as (see the module's

@@ -5,7 +5,7 @@ use super::bits::{decode, decode_aligned, is_aligned};
 use super::mapping::{MappingEntry, PdoMapping, Signal, TypeLookup, MAX_MAPPING_ENTRIES};
 use super::{PdoEntryError, PdoEntryReason};
 use crate::canopen::data_type::{DataType, ValueKind};
-use crate::{Error, Result};
+use crate::Result;
 
 /// One planned entry of a [`PdoLayout`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -106,7 +106,7 @@ impl PdoLayout {
     /// too short for it, its truncation error.
     #[inline]
     #[must_use]
-    pub fn read(&self, position: usize, payload: &[u8]) -> Option<Result<Signal>> {
+    pub fn read(&self, position: usize, payload: &[u8]) -> Option<Result<Signal, PdoEntryError>> {
         let p = self.planned[..self.len].get(position)?;
         if p.entry.is_dummy() {
             return None;
@@ -135,7 +135,7 @@ pub struct LayoutSignals<'a> {
 }
 
 impl Iterator for LayoutSignals<'_> {
-    type Item = Result<Signal>;
+    type Item = Result<Signal, PdoEntryError>;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
@@ -143,12 +143,10 @@ impl Iterator for LayoutSignals<'_> {
             let (p, rest) = self.planned.split_first()?;
             self.planned = rest;
             let end = usize::from(p.offset) + usize::from(p.entry.bits());
-            let error = |reason| {
-                Error::PdoEntry(PdoEntryError {
-                    entry: p.entry,
-                    offset: p.offset,
-                    reason,
-                })
+            let error = |reason| PdoEntryError {
+                entry: p.entry,
+                offset: p.offset,
+                reason,
             };
             if end > self.payload.len() * 8 {
                 self.planned = &[];
@@ -218,7 +216,7 @@ mod proptests {
             }
             let types = |entry: MappingEntry| data_type_for(seed, entry);
             let layout = PdoLayout::new(&mapping, types);
-            let bits = |r: Result<Signal>| r.map(|s| match s.value {
+            let bits = |r: Result<Signal, PdoEntryError>| r.map(|s| match s.value {
                 Value::Real32(x) => (s.entry, s.offset, s.data_type, Value::Unsigned(u64::from(x.to_bits()))),
                 Value::Real64(x) => (s.entry, s.offset, s.data_type, Value::Unsigned(x.to_bits())),
                 v => (s.entry, s.offset, s.data_type, v),

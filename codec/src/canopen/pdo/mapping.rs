@@ -6,11 +6,11 @@
 use core::fmt;
 
 use super::bits::{decode, encode};
-use super::{PdoEntryError, PdoEntryReason};
+use super::{PdoEntryError, PdoEntryReason, PdoPackError};
 use crate::canopen::data_type::{DataType, Value, ValueKind};
 use crate::canopen::ObjectAddress;
 use crate::error::What;
-use crate::{Error, Result};
+use crate::{RangeError, Result};
 
 /// One entry of a PDO mapping parameter, the `u32` object value
 /// `index << 16 | sub-index << 8 | length in bits` (CiA 301 §7.5.2.36, §7.5.2.38;
@@ -181,7 +181,7 @@ impl PdoMapping {
 
     /// Return the mapping of the object values `raw`, in order (sub-index 1
     /// first), or the error of the first that [`PdoMapping::push`] refuses.
-    pub fn from_u32s(raw: &[u32]) -> Result<Self> {
+    pub fn from_u32s(raw: &[u32]) -> Result<Self, RangeError> {
         let mut mapping = PdoMapping::new();
         for &value in raw {
             mapping.push(MappingEntry::from_u32(value))?;
@@ -189,14 +189,14 @@ impl PdoMapping {
         Ok(mapping)
     }
 
-    /// Append `entry`. Refuses, with an [`Error::OutOfRange`], an entry of
+    /// Append `entry`. Refuses, with a [`RangeError`], an entry of
     /// length 0 ([`What::PdoMappingEntryLength`]), a 65th entry
     /// ([`What::PdoMappingEntries`]), and an entry that takes the mapping
     /// past [`MAX_PDO_BITS`] ([`What::PdoMappingBits`]); the mapping is then
     /// unchanged.
-    pub fn push(&mut self, entry: MappingEntry) -> Result<()> {
+    pub fn push(&mut self, entry: MappingEntry) -> Result<(), RangeError> {
         if entry.bits == 0 {
-            return Err(Error::OutOfRange {
+            return Err(RangeError {
                 what: What::PdoMappingEntryLength,
                 found: 0,
                 min: 1,
@@ -205,7 +205,7 @@ impl PdoMapping {
         }
         let len = usize::from(self.len);
         if len == MAX_MAPPING_ENTRIES {
-            return Err(Error::OutOfRange {
+            return Err(RangeError {
                 what: What::PdoMappingEntries,
                 found: MAX_MAPPING_ENTRIES as u32 + 1,
                 min: 0,
@@ -214,7 +214,7 @@ impl PdoMapping {
         }
         let bits = self.bits + u16::from(entry.bits);
         if bits > MAX_PDO_BITS {
-            return Err(Error::OutOfRange {
+            return Err(RangeError {
                 what: What::PdoMappingBits,
                 found: u32::from(bits),
                 min: 0,
@@ -289,7 +289,11 @@ impl PdoMapping {
     /// into `buf`, each entry typed as [`PdoMapping::unpack`] types it, and
     /// return the bytes written ([`PdoMapping::byte_len`]). See
     /// [`PdoMapping::pack_with`] for the errors.
-    pub fn pack<I: IntoIterator<Item = Value>>(&self, values: I, buf: &mut [u8]) -> Result<usize> {
+    pub fn pack<I: IntoIterator<Item = Value>>(
+        &self,
+        values: I,
+        buf: &mut [u8],
+    ) -> Result<usize, PdoPackError> {
         self.pack_with(ByLength, values, buf)
     }
 
@@ -299,9 +303,10 @@ impl PdoMapping {
     /// [`PdoMapping::byte_len`] are left as they were.
     ///
     /// Errors: `buf` shorter than [`PdoMapping::byte_len`]
-    /// ([`Error::Length`] of [`What::PdoPayload`]); a value of the wrong
-    /// kind, one that does not fit its entry's bits, a missing value
-    /// ([`Error::PdoEntry`]); values left over ([`Error::OutOfRange`] of
+    /// ([`PdoPackError::Length`] of [`What::PdoPayload`]); a value of the
+    /// wrong kind, one that does not fit its entry's bits, a missing value
+    /// ([`PdoPackError::PdoEntry`]); values left over
+    /// ([`PdoPackError::OutOfRange`] of
     /// [`What::PdoValues`]). The bytes of `buf` are unspecified after an
     /// error.
     pub fn pack_with<T: TypeLookup, I: IntoIterator<Item = Value>>(
@@ -309,7 +314,7 @@ impl PdoMapping {
         types: T,
         values: I,
         buf: &mut [u8],
-    ) -> Result<usize> {
+    ) -> Result<usize, PdoPackError> {
         let len = self.byte_len();
         crate::error::check_len(What::PdoPayload, buf, len)?;
         buf[..len].fill(0);
@@ -322,12 +327,10 @@ impl PdoMapping {
             if entry.is_dummy() {
                 continue;
             }
-            let error = |reason| {
-                Error::PdoEntry(PdoEntryError {
-                    entry,
-                    offset: at,
-                    reason,
-                })
+            let error = |reason| PdoEntryError {
+                entry,
+                offset: at,
+                reason,
             };
             let value = values
                 .next()
@@ -339,12 +342,12 @@ impl PdoMapping {
         }
         let extra = values.count();
         if extra > 0 {
-            return Err(Error::OutOfRange {
+            return Err(PdoPackError::OutOfRange(RangeError {
                 what: What::PdoValues,
                 found: given.saturating_add(u32::try_from(extra).unwrap_or(u32::MAX)),
                 min: given,
                 max: given,
-            });
+            }));
         }
         Ok(len)
     }
@@ -446,9 +449,9 @@ pub struct Signal {
 /// [`PdoMapping::unpack`] and [`PdoMapping::unpack_with`] return.
 ///
 /// Yields one item per entry that is not a dummy: the [`Signal`], or an
-/// [`Error::PdoEntry`] when the entry's length does not suit its type (the
+/// [`PdoEntryError`] when the entry's length does not suit its type (the
 /// next entries are still read). Where the payload ends before an entry
-/// (dummy or not) it yields one [`Error::PdoEntry`] with
+/// (dummy or not) it yields one [`PdoEntryError`] with
 /// [`PdoEntryReason::Truncated`] and ends. Bytes past the mapping are
 /// ignored.
 #[derive(Debug, Clone)]
@@ -471,7 +474,7 @@ impl<'a, T: TypeLookup> Signals<'a, T> {
 }
 
 impl<T: TypeLookup> Iterator for Signals<'_, T> {
-    type Item = Result<Signal>;
+    type Item = Result<Signal, PdoEntryError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
@@ -480,12 +483,10 @@ impl<T: TypeLookup> Iterator for Signals<'_, T> {
             let offset = self.offset;
             let end = usize::from(offset) + usize::from(entry.bits);
             self.offset += u16::from(entry.bits);
-            let error = |reason| {
-                Error::PdoEntry(PdoEntryError {
-                    entry,
-                    offset,
-                    reason,
-                })
+            let error = |reason| PdoEntryError {
+                entry,
+                offset,
+                reason,
             };
             if end > self.payload.len() * 8 {
                 self.entries = &[];
@@ -526,6 +527,7 @@ mod tests {
 
     use super::*;
     use crate::canopen::data_type::Octets;
+    use crate::LenError;
 
     #[test]
     fn mapping_limits() {
@@ -533,7 +535,7 @@ mod tests {
         assert!(mapping.is_empty());
         assert_eq!(
             mapping.push(MappingEntry::new(0x6041, 0, 0)),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::PdoMappingEntryLength,
                 found: 0,
                 min: 1,
@@ -549,7 +551,7 @@ mod tests {
         assert!(!mapping.fits_classic());
         assert_eq!(
             mapping.push(MappingEntry::new(0x2000, 1, 1)),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::PdoMappingEntries,
                 found: 65,
                 min: 0,
@@ -560,7 +562,7 @@ mod tests {
         assert_eq!(mapping.bit_len(), 510);
         assert_eq!(
             mapping.push(MappingEntry::new(0x2000, 3, 3)),
-            Err(Error::OutOfRange {
+            Err(RangeError {
                 what: What::PdoMappingBits,
                 found: 513,
                 min: 0,
@@ -668,14 +670,14 @@ mod tests {
         let items: Vec<_> = m.unpack_with(&payload, types).collect();
         assert_eq!(
             items[0],
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoEntryError {
                 entry: MappingEntry::from_u32(0x3000_0010),
                 offset: 0,
                 reason: PdoEntryReason::BadLength {
                     data_type: DataType::Real32,
                     bits: 16
                 }
-            }))
+            })
         );
         assert_eq!(
             items[0].unwrap_err().to_string(),
@@ -683,11 +685,11 @@ mod tests {
         );
         assert!(matches!(
             items[1],
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoEntryError {
                 offset: 16,
                 reason: PdoEntryReason::BadLength { bits: 72, .. },
                 ..
-            }))
+            })
         ));
         assert_eq!(items[2].map(|s| s.offset), Ok(88));
     }
@@ -709,14 +711,14 @@ mod tests {
         assert_eq!(items.len(), 2);
         assert_eq!(
             items[1],
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoEntryError {
                 entry: MappingEntry::from_u32(0x0001_0001),
                 offset: 24,
                 reason: PdoEntryReason::Truncated {
                     needed: 4,
                     found: 3
                 }
-            }))
+            })
         );
     }
 
@@ -749,16 +751,16 @@ mod tests {
         let mut buf = [0u8; 2];
         assert_eq!(
             m.pack_with(types, [Value::Signed(1)], &mut buf[..1]),
-            Err(Error::Length {
+            Err(PdoPackError::Length(LenError {
                 what: What::PdoPayload,
                 expected: 2,
                 found: 1
-            })
+            }))
         );
         let entry = MappingEntry::from_u32(0x2001_0008);
         assert_eq!(
             m.pack_with(types, [Value::Signed(1)], &mut buf),
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoPackError::PdoEntry(PdoEntryError {
                 entry,
                 offset: 8,
                 reason: PdoEntryReason::MissingValue
@@ -766,7 +768,7 @@ mod tests {
         );
         assert_eq!(
             m.pack_with(types, [Value::Signed(1), Value::Signed(128)], &mut buf),
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoPackError::PdoEntry(PdoEntryError {
                 entry,
                 offset: 8,
                 reason: PdoEntryReason::ValueTooWide { bits: 8 }
@@ -774,7 +776,7 @@ mod tests {
         );
         assert_eq!(
             m.pack_with(types, [Value::Signed(1), Value::Unsigned(1)], &mut buf),
-            Err(Error::PdoEntry(PdoEntryError {
+            Err(PdoPackError::PdoEntry(PdoEntryError {
                 entry,
                 offset: 8,
                 reason: PdoEntryReason::WrongKind {
@@ -789,12 +791,12 @@ mod tests {
                 [Value::Signed(-128), Value::Signed(127), Value::Signed(0)],
                 &mut buf
             ),
-            Err(Error::OutOfRange {
+            Err(PdoPackError::OutOfRange(RangeError {
                 what: What::PdoValues,
                 found: 3,
                 min: 2,
                 max: 2
-            })
+            }))
         );
         assert_eq!(
             m.pack_with(types, [Value::Signed(-128), Value::Signed(127)], &mut buf),
@@ -810,14 +812,14 @@ mod tests {
         let items: Vec<_> = m.unpack(&[]).collect();
         assert_eq!(
             items,
-            [Err(Error::PdoEntry(PdoEntryError {
+            [Err(PdoEntryError {
                 entry: MappingEntry::from_u32(0x6041_0010),
                 offset: 0,
                 reason: PdoEntryReason::Truncated {
                     needed: 2,
                     found: 0
                 }
-            }))]
+            })]
         );
     }
 
@@ -839,7 +841,7 @@ mod tests {
                 let back: Vec<Value> = mapping
                     .unpack_with(&buf[..len], types)
                     .map(|s| s.map(|s| s.value))
-                    .collect::<Result<_>>()
+                    .collect::<Result<_, _>>()
                     .unwrap();
                 prop_assert_eq!(back.len(), values.len());
                 for (a, b) in back.iter().zip(&values) {
@@ -876,12 +878,12 @@ mod tests {
                             prop_assert!(usize::from(signal.offset) + usize::from(signal.entry.bits()) <= payload.len() * 8);
                             prop_assert!(!signal.entry.is_dummy());
                         }
-                        Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. })) => {
+                        Err(PdoEntryError { reason: PdoEntryReason::Truncated { needed, found }, .. }) => {
                             truncated += 1;
                             prop_assert!(needed > found);
                             prop_assert_eq!(found, payload.len());
                         }
-                        Err(Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::BadLength { .. }, .. })) => {}
+                        Err(PdoEntryError { reason: PdoEntryReason::BadLength { .. }, .. }) => {}
                         Err(other) => prop_assert!(false, "unexpected {:?}", other),
                     }
                 }
@@ -891,7 +893,7 @@ mod tests {
                 // Untyped: every entry reads.
                 for item in mapping.unpack(&payload) {
                     if let Err(e) = item {
-                        let truncated = matches!(e, Error::PdoEntry(PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. }));
+                        let truncated = matches!(e, PdoEntryError { reason: PdoEntryReason::Truncated { .. }, .. });
                         prop_assert!(truncated);
                     }
                 }

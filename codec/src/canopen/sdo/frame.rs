@@ -40,7 +40,7 @@ use core::fmt;
 
 use crate::canopen::{ObjectAddress, SdoAbortCode};
 use crate::error::What;
-use crate::Error;
+use crate::{FrameError, ValueError};
 
 mod block;
 mod data;
@@ -136,6 +136,14 @@ impl SdoParty {
             SdoParty::Client => "request",
             SdoParty::Server => "response",
         }
+    }
+}
+
+impl fmt::Display for SdoParty {
+    /// Write the side's name, `client` or `server`, as the program's abort
+    /// text does (docs/output.md#sdo-text: `aborted by the server`).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -240,12 +248,12 @@ impl fmt::Display for SdoService {
     }
 }
 
-fn invalid(what: What, found: u8, expected: &'static str) -> Error {
-    Error::InvalidValue {
+fn invalid(what: What, found: u8, expected: &'static str) -> FrameError {
+    FrameError::Content(ValueError {
         what,
         found: u32::from(found),
         expected,
-    }
+    })
 }
 
 /// `n` of a segment: bits 3–1.

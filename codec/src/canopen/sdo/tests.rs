@@ -6,6 +6,7 @@ use super::*;
 use crate::can::Timestamp;
 use crate::canopen::{Emcy, ErrorCode, ErrorHistory, ErrorRegister, ObjectAddress, SdoAbortCode};
 use crate::strategies::sdo as gens;
+use crate::{FrameError, LenError};
 use proptest::prelude::*;
 use SdoParty::{Client as Rq, Server as Rs};
 
@@ -191,13 +192,19 @@ fn expedited_without_size_keeps_all_four_bytes() {
 fn every_short_length_is_a_length_error() {
     for len in 0..SDO_LEN {
         let data = [0u8; SDO_LEN];
-        let expected = crate::Error::Length {
+        let expected = LenError {
             what: crate::error::What::SdoFrame,
             expected: SDO_LEN,
             found: len,
         };
-        assert_eq!(SdoRequest::parse(&data[..len]), Err(expected));
-        assert_eq!(SdoResponse::parse(&data[..len]), Err(expected));
+        assert_eq!(
+            SdoRequest::parse(&data[..len]),
+            Err(FrameError::Length(expected))
+        );
+        assert_eq!(
+            SdoResponse::parse(&data[..len]),
+            Err(FrameError::Length(expected))
+        );
         assert_eq!(SdoBlockSegment::parse(&data[..len]), Err(expected));
     }
 }

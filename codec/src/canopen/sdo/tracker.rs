@@ -50,7 +50,7 @@ use super::frame::{
 };
 use crate::can::Timestamp;
 use crate::canopen::{ObjectAddress, SdoAbortCode};
-use crate::Error;
+use crate::FrameError;
 
 /// Which way a transfer moves the data (CiA 301 §7.2.4.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -105,6 +105,14 @@ impl TransferMode {
             TransferMode::Segmented => "segmented",
             TransferMode::Block => "block",
         }
+    }
+}
+
+impl fmt::Display for TransferMode {
+    /// Write the mode's name, as the program's transfer text does
+    /// (docs/output.md#sdo-text: `segmented, 10 B`).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -219,6 +227,24 @@ impl SdoOutcome {
     }
 }
 
+impl fmt::Display for SdoOutcome {
+    /// Write the outcome in the words of docs/output.md#sdo-text, without
+    /// the object and the figures the program adds around them:
+    /// `completed`, `aborted by the server: General parameter
+    /// incompatibility reason`, `broken: toggle bit not alternated`,
+    /// `timed out: no answer`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            SdoOutcome::Completed => f.write_str("completed"),
+            SdoOutcome::Aborted { by, code } => {
+                write!(f, "aborted by the {by}: {}", code.description())
+            }
+            SdoOutcome::Broken(reason) => write!(f, "broken: {reason}"),
+            SdoOutcome::TimedOut => f.write_str("timed out: no answer"),
+        }
+    }
+}
+
 /// A transfer that ended, with what the tracker measured
 /// (docs/canopen.md#transfers; `transfer` in docs/output.md#transfer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -318,7 +344,7 @@ impl SdoEvent<'_> {
     /// channel. It is read from the frame's bytes when asked for
     /// ([`SdoMessage::read`]), not while the tracker follows the frame.
     #[inline]
-    pub fn message(&self) -> Result<SdoMessage, Error> {
+    pub fn message(&self) -> Result<SdoMessage, FrameError> {
         SdoMessage::read(self.sender, self.block_segment, self.data)
     }
 
@@ -1226,9 +1252,13 @@ impl SdoMessage {
     /// ([`SdoEvent::is_block_segment`]), else the request or response it
     /// spells ([`SdoEvent::message`]).
     #[inline]
-    pub fn read(sender: SdoParty, block_segment: bool, data: &[u8]) -> Result<SdoMessage, Error> {
+    pub fn read(
+        sender: SdoParty,
+        block_segment: bool,
+        data: &[u8],
+    ) -> Result<SdoMessage, FrameError> {
         if block_segment {
-            return SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment);
+            return Ok(SdoBlockSegment::parse(data).map(SdoMessage::BlockSegment)?);
         }
         match sender {
             SdoParty::Client => SdoRequest::read(data).map(SdoMessage::Request),

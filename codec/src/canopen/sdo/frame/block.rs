@@ -5,7 +5,7 @@
 use core::fmt;
 
 use super::{field, SdoFields, SdoFrame, SDO_LEN, SEGMENT_MAX};
-use crate::Result;
+use crate::{LenError, Result};
 
 /// The sub-command of a block transfer's control frame, as `subcommand`
 /// names it (docs/output.md#sdo; CiA 301 §7.2.4.3.9–§7.2.4.3.16).
@@ -63,8 +63,8 @@ impl SdoBlockSegment {
     ///
     /// # Errors
     ///
-    /// [`Error::Length`](crate::Error::Length) for fewer than 8 bytes.
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    /// [`LenError`] for fewer than 8 bytes.
+    pub fn parse(data: &[u8]) -> Result<Self, LenError> {
         let frame = SdoFrame::new_checked(data)?;
         let mut bytes = [0; SEGMENT_MAX];
         bytes.copy_from_slice(frame.segment_field());

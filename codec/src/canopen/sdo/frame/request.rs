@@ -9,7 +9,7 @@ use super::{
 };
 use crate::canopen::SdoAbortCode;
 use crate::error::What;
-use crate::Result;
+use crate::{FrameError, Result};
 
 /// An SDO request, client → server (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -96,10 +96,11 @@ impl SdoRequest {
     ///
     /// # Errors
     ///
-    /// [`Error::Length`](crate::Error::Length) for fewer than 8 bytes; [`Error::InvalidValue`](crate::Error::InvalidValue) for
+    /// [`FrameError::Length`](crate::FrameError::Length) for fewer than 8 bytes;
+    /// [`FrameError::Content`](crate::FrameError::Content) for
     /// command specifier 7.
     #[inline]
-    pub fn parse(data: &[u8]) -> Result<Self> {
+    pub fn parse(data: &[u8]) -> Result<Self, FrameError> {
         Self::read(data)
     }
 
@@ -107,7 +108,7 @@ impl SdoRequest {
     /// ([`SdoMessage`](super::super::SdoMessage)) is made from the frame's
     /// bytes where it is read, each field written where it is kept.
     #[inline(always)]
-    pub(in crate::canopen::sdo) fn read(data: &[u8]) -> Result<Self> {
+    pub(in crate::canopen::sdo) fn read(data: &[u8]) -> Result<Self, FrameError> {
         let frame = SdoFrame::new_checked(data)?;
         let command = frame.command();
         let multiplexer = frame.multiplexer();

@@ -8,7 +8,7 @@ use byteorder::{ByteOrder, LittleEndian};
 use super::{crc_bit, field, BlockSubcommand, ObjectAddress, CRC_SUPPORTED, SDO_LEN, WHAT};
 use crate::canopen::SdoAbortCode;
 use crate::error::check_len;
-use crate::Result;
+use crate::{LenError, Result};
 
 /// A zero-copy view over an SDO frame's data (CiA 301 §7.2.4.3;
 /// docs/canopen.md#sdo): the fields every service shares.
@@ -30,7 +30,7 @@ impl<T: AsRef<[u8]>> SdoFrame<T> {
 
     /// Wrap a buffer, checking that it holds at least [`SDO_LEN`] bytes.
     #[inline]
-    pub fn new_checked(buffer: T) -> Result<Self> {
+    pub fn new_checked(buffer: T) -> Result<Self, LenError> {
         let frame = Self::new_unchecked(buffer);
         frame.check_len()?;
         Ok(frame)
@@ -38,7 +38,7 @@ impl<T: AsRef<[u8]>> SdoFrame<T> {
 
     /// Check that the buffer holds at least [`SDO_LEN`] bytes.
     #[inline]
-    pub fn check_len(&self) -> Result<()> {
+    pub fn check_len(&self) -> Result<(), LenError> {
         check_len(WHAT, self.buffer.as_ref(), SDO_LEN)
     }
 

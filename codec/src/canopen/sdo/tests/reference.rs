@@ -16,7 +16,7 @@ use crate::canopen::sdo::{
     SEGMENT_MAX,
 };
 use crate::canopen::ObjectAddress;
-use crate::Error;
+use crate::FrameError;
 
 /// Where an open transfer stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -171,7 +171,7 @@ impl Open {
 /// once.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Event<'a> {
-    pub(super) message: Result<SdoMessage, Error>,
+    pub(super) message: Result<SdoMessage, FrameError>,
     pub(super) chunk: &'a [u8],
     pub(super) latency: Option<Duration>,
     pub(super) ended: Option<SdoTransfer>,
@@ -289,13 +289,13 @@ impl ReferenceTracker {
         time: Option<Timestamp>,
         position: u64,
         step: &mut Step,
-    ) -> Result<SdoMessage, Error> {
+    ) -> Result<SdoMessage, FrameError> {
         if self.expects_block_segment(sender) && data.first() != Some(&ABORT_BYTE) {
             let segment = match SdoBlockSegment::parse(data) {
                 Ok(segment) => segment,
                 Err(e) => {
                     self.malformed(time, step);
-                    return Err(e);
+                    return Err(e.into());
                 }
             };
             if let Some(open) = self.open.as_mut() {
