@@ -244,10 +244,7 @@ fn summary<'py>(
             name: &name,
         })?;
         let summary = summarizer.finish();
-        let records: Vec<String> = summary
-            .records()
-            .map(|record| serde_json::to_string(&record).expect("a summary serializes"))
-            .collect();
+        let records: Vec<String> = summary.records().map(|record| record.to_json()).collect();
         Ok((records, skipped))
     })?;
     warn_skipped(py, &source, skipped)?;

@@ -639,7 +639,7 @@ impl Report {
                     json.push(b',');
                 }
                 first = false;
-                serde_json::to_writer(&mut json, &record).map_err(io::Error::from)?;
+                record.write_json(&mut json)?;
             }
             for span in &r.files {
                 if !first {

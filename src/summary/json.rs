@@ -19,6 +19,64 @@ use super::{
     SummaryRecord, Timeouts,
 };
 
+impl Summary {
+    /// Write the summary as `motionwire decode --summary --json` writes it
+    /// (docs/summary.md): each of its [`records`](Self::records) as one
+    /// JSON object on a line of its own, the keys in the documented order,
+    /// every time with the log's own digits (docs/formats.md#timestamps).
+    ///
+    /// This is the exact JSON. Going through `serde_json::Value`
+    /// (`serde_json::to_value`) is not: without serde_json's
+    /// `preserve_order` feature a `Value` sorts the keys, and it reads a
+    /// time as an `f64`, which rounds `1700000000.000000001`.
+    ///
+    /// ```
+    /// use motionwire::can::LogEvent;
+    /// use motionwire::decoder::DecoderConfig;
+    /// use motionwire::summary::Summarizer;
+    ///
+    /// let mut summarizer = Summarizer::new(DecoderConfig::new());
+    /// for (line, text) in ["(1700000000.000000001) can0 705#05"].iter().enumerate() {
+    ///     let frame = motionwire::logs::candump::parse_line(text.as_bytes())?.unwrap();
+    ///     summarizer.add(line as u64 + 1, &LogEvent::Frame(frame));
+    /// }
+    /// let mut out = Vec::new();
+    /// summarizer.finish().write_json(&mut out)?;
+    /// let text = String::from_utf8(out)?;
+    /// let lines: Vec<&str> = text.lines().collect();
+    /// assert_eq!(lines.len(), 2); // node 5, then the bus
+    /// assert!(lines[0].starts_with(r#"{"type":"node","iface":"can0","node":5,"#));
+    /// assert!(lines[1].contains(r#""first_ts":1700000000.000000001"#));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn write_json(&self, mut out: impl std::io::Write) -> std::io::Result<()> {
+        for record in self.records() {
+            record.write_json(&mut out)?;
+            out.write_all(b"\n")?;
+        }
+        Ok(())
+    }
+}
+
+impl SummaryRecord<'_> {
+    /// Write the record as one JSON object, exactly as
+    /// [`Summary::write_json`] writes it (without the line break).
+    pub fn write_json(&self, out: impl std::io::Write) -> std::io::Result<()> {
+        serde_json::to_writer(out, self).map_err(std::io::Error::from)
+    }
+
+    /// Return the record as one JSON object, exactly as
+    /// [`Summary::write_json`] writes it (without the line break).
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        let mut out = Vec::new();
+        // Writing into a `Vec` cannot fail, and the records serialize:
+        // every key is a string, every value a number, string or list.
+        let _ = self.write_json(&mut out);
+        String::from_utf8(out).unwrap_or_default()
+    }
+}
+
 /// A time as a JSON number with six or nine decimals.
 pub(super) struct Ts(pub(super) Timestamp);
 

@@ -123,10 +123,7 @@ impl Run {
             if self.summary {
                 let mut summary = summarizer.finish();
                 summary.file = several.then(|| file.clone());
-                for record in summary.records() {
-                    serde_json::to_writer(&mut out, &record).unwrap();
-                    out.push(b'\n');
-                }
+                summary.write_json(&mut out).unwrap();
             }
         }
         String::from_utf8(out).unwrap()

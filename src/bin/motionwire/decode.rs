@@ -497,7 +497,6 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
     }
 }
 
-/// A summarizer for a new recording.
 /// Write the summary of the recording read so far (with `--summary`),
 /// naming its file when several are read apart.
 fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Result<(), Failure> {
@@ -508,10 +507,7 @@ fn write_summary(sink: &mut Sink<'_>, json: bool, file: Option<String>) -> Resul
     summary.file = file;
     say_unchecked_timeouts(&mut sink.err, &summary)?;
     if json {
-        for record in summary.records() {
-            serde_json::to_writer(&mut sink.out, &record).map_err(io::Error::from)?;
-            sink.out.write_all(b"\n")?;
-        }
+        summary.write_json(&mut sink.out)?;
     } else {
         write!(sink.out, "{summary}")?;
     }
