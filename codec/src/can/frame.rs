@@ -335,17 +335,27 @@ impl CanFrame {
         bytes: [u8; FD_MAX_LEN],
         len: u8,
     ) -> Self {
-        let (id, frame_type) = match frame_type {
-            FrameType::Remote { dlc } if dlc > CLASSIC_MAX_LEN as u8 => (
+        // One match: the kind's most data bytes, and what the kind cuts.
+        let (id, frame_type, max) = match frame_type {
+            FrameType::Data => (id, frame_type, CLASSIC_MAX_LEN as u8),
+            FrameType::Fd(_) => (id, frame_type, FD_MAX_LEN as u8),
+            FrameType::Remote { dlc } => (
                 id,
                 FrameType::Remote {
-                    dlc: CLASSIC_MAX_LEN as u8,
+                    dlc: if dlc > CLASSIC_MAX_LEN as u8 {
+                        CLASSIC_MAX_LEN as u8
+                    } else {
+                        dlc
+                    },
                 },
+                0,
             ),
-            FrameType::Error => (CanId::masked(id.raw(), true), frame_type),
-            _ => (id, frame_type),
+            FrameType::Error => (
+                CanId::masked(id.raw(), true),
+                frame_type,
+                CLASSIC_MAX_LEN as u8,
+            ),
         };
-        let max = frame_type.max_len() as u8;
         CanFrame {
             id,
             frame_type,
