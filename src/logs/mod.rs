@@ -22,6 +22,7 @@
 //! | `detect.rs` | the format from the first bytes: [`detect`]
 //! (docs/formats.md#detection) | |
 //! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a `std::io::Read`, the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
+//! | `lex/` | the fields, decimal and hex numbers of a text line, a line's syntax error at its column, and the wide-word (SWAR) tricks of the fast paths | |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
 //! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
@@ -58,6 +59,7 @@ mod calendar;
 pub mod candump;
 mod detect;
 mod error;
+mod lex;
 #[cfg(feature = "mf4")]
 pub mod mf4;
 #[cfg(feature = "pcap")]

@@ -1,8 +1,9 @@
 //! The one line layer of the text readers (candump, ASC, TRC;
 //! docs/formats.md#memory): a buffer split into lines at `\n` (16 bytes at a
-//! time), the hex digits every format writes, and — with `std` — whole lines
-//! read from a [`std::io::Read`] a block at a time, with the over-long-line
-//! rule that keeps memory bounded whatever the input.
+//! time) and — with `std` — whole lines read from a [`std::io::Read`] a
+//! block at a time, with the over-long-line rule that keeps memory bounded
+//! whatever the input. The fields and numbers of a line are the lexical
+//! layer's (`lex`).
 //!
 //! A line is the bytes before a `\n`, without it; a last line without one
 //! counts too, nothing after a final `\n` does. A `\r` before the `\n`
@@ -10,6 +11,8 @@
 //! trailing white space. A NUL byte is an ordinary byte of its line, never
 //! a line end: the format's parser reports the line as malformed, with the
 //! column of the NUL, and the reading goes on with the next line.
+
+use crate::logs::lex::swar;
 
 /// The lines of a text buffer, split at `\n` (16 bytes at a time), each
 /// without its `\n`; a last line without one counts too, nothing after a
@@ -70,7 +73,7 @@ pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
         let w = chunk
             .first_chunk::<16>()
             .map_or(0, |c| u128::from_le_bytes(*c));
-        let hits = first_eq(w, b'\n');
+        let hits = swar::first_eq(w, b'\n');
         if hits != 0 {
             return Some(at + (hits.trailing_zeros() / 8) as usize);
         }
@@ -82,57 +85,6 @@ pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
         .position(|&b| b == b'\n')
         .map(|i| at + i)
 }
-
-/// A mask with the high bit set in the lanes (bytes) of `w` holding `b`
-/// (and possibly in later lanes: the first set lane is exact).
-#[inline(always)]
-const fn first_eq(w: u128, b: u8) -> u128 {
-    const ONES: u128 = u128::from_le_bytes([0x01; 16]);
-    const HIGH: u128 = u128::from_le_bytes([0x80; 16]);
-    let x = w ^ (ONES * b as u128);
-    x.wrapping_sub(ONES) & !x & HIGH
-}
-
-/// The hex value of one character, or `None`: the hex digits of every
-/// text format (either case).
-#[inline]
-pub(crate) const fn hex_value(b: u8) -> Option<u8> {
-    match b {
-        b'0'..=b'9' => Some(b - b'0'),
-        b'A'..=b'F' => Some(b - b'A' + 10),
-        b'a'..=b'f' => Some(b - b'a' + 10),
-        _ => None,
-    }
-}
-
-/// `10^(9 - d)`, at index `9 - d`: what a fraction of `d` decimal digits
-/// is multiplied by to give nanoseconds (`POW10_NANOS[9 - d]`), for the text
-/// readers' timestamps.
-pub(crate) const POW10_NANOS: [u32; 10] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-];
-
-/// Hex values by character; 0xF0 marks a character that is no hex digit.
-pub(crate) const HEX_TABLE: [u8; 256] = {
-    let mut table = [0xF0u8; 256];
-    let mut i = 0;
-    while i < 256 {
-        if let Some(v) = hex_value(i as u8) {
-            table[i] = v;
-        }
-        i += 1;
-    }
-    table
-};
 
 /// The longest line a text reader holds (1 MiB). A longer one is not a log
 /// line of any format: it is reported
@@ -632,13 +584,6 @@ mod tests {
 
     proptest! {
         #[test]
-        fn first_eq_finds_the_first_lane(bytes in proptest::array::uniform16(any::<u8>()), b in any::<u8>()) {
-            let first = bytes.iter().position(|&x| x == b).unwrap_or(16);
-            let mask = first_eq(u128::from_le_bytes(bytes), b);
-            prop_assert_eq!((mask.trailing_zeros() / 8) as usize, first);
-        }
-
-        #[test]
         fn find_newline_is_the_first_newline(
             bytes in proptest::collection::vec(prop_oneof![Just(b'\n'), any::<u8>()], 0..80),
         ) {
@@ -733,15 +678,5 @@ mod tests {
         assert_eq!(names.resets, 1);
         assert_eq!(names.retired.len(), MAX_NAMES);
         assert!(names.retired.iter().any(|n| n.as_ptr() == can0));
-    }
-
-    #[test]
-    fn hex_digits_in_either_case() {
-        for (b, v) in [(b'0', 0), (b'9', 9), (b'a', 10), (b'F', 15)] {
-            assert_eq!(hex_value(b), Some(v));
-        }
-        for b in [b'g', b'G', b' ', 0, b'/', b':', b'@', b'`'] {
-            assert_eq!(hex_value(b), None);
-        }
     }
 }

@@ -80,9 +80,13 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
-use crate::logs::text::{hex_value, take_line};
-use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::{Error, Result};
+use crate::logs::lex::{
+    decimal, eq_ignore_case, found, hex, hex_digit, hex_value, starts_with_ignore_case, syntax,
+    trim_end, Tokens,
+};
+use crate::logs::text::take_line;
+use crate::logs::{LogFormat, SyntaxError};
+use crate::Result;
 
 mod fast;
 #[cfg(test)]
@@ -176,7 +180,7 @@ impl AscParser {
     /// [`parse_line`](Self::parse_line) without the fast path, for a line
     /// whose trailing white space is trimmed.
     fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
-        let mut tokens = Tokens::new(line);
+        let mut tokens = Tokens::new(LogFormat::Asc, line);
         let Some((start, first)) = tokens.next_token() else {
             return Ok(None);
         };
@@ -203,6 +207,7 @@ impl AscParser {
             return Ok(None);
         }
         Err(syntax(
+            LogFormat::Asc,
             start + 1,
             SyntaxError::AscLine {
                 found: found(line, start),
@@ -697,116 +702,7 @@ impl fmt::Display for HexId {
     }
 }
 
-// ------------------------------------------------------------ tokens
-
-fn trim_end(line: &[u8]) -> &[u8] {
-    let end = line
-        .iter()
-        .rposition(|&b| !matches!(b, b' ' | b'\t' | b'\r' | b'\n'))
-        .map_or(0, |i| i + 1);
-    line.get(..end).unwrap_or_default()
-}
-
-const fn is_space(b: u8) -> bool {
-    b == b' ' || b == b'\t'
-}
-
-/// The white-space separated fields of a line, with their positions.
-#[derive(Debug, Clone)]
-struct Tokens<'l> {
-    line: &'l [u8],
-    pos: usize,
-}
-
-impl<'l> Tokens<'l> {
-    const fn new(line: &'l [u8]) -> Self {
-        Tokens { line, pos: 0 }
-    }
-
-    #[inline]
-    fn next_token(&mut self) -> Option<(usize, &'l [u8])> {
-        let line = self.line;
-        let mut start = self.pos;
-        while line.get(start).is_some_and(|&b| is_space(b)) {
-            start += 1;
-        }
-        if start >= line.len() {
-            self.pos = start;
-            return None;
-        }
-        let mut end = start + 1;
-        while line.get(end).is_some_and(|&b| !is_space(b)) {
-            end += 1;
-        }
-        self.pos = end;
-        Some((start, line.get(start..end).unwrap_or_default()))
-    }
-
-    fn expect(&mut self, reason: fn(Found) -> SyntaxError) -> Result<(usize, &'l [u8])> {
-        match self.next_token() {
-            Some(token) => Ok(token),
-            None => Err(self.error_at(self.line.len(), reason)),
-        }
-    }
-
-    /// The error `reason` for what stands at byte `at` (0-based).
-    fn error_at(&self, at: usize, reason: fn(Found) -> SyntaxError) -> Error {
-        syntax(at + 1, reason(found(self.line, at)))
-    }
-}
-
-fn found(line: &[u8], at: usize) -> Found {
-    line.get(at).map_or(Found::EndOfLine, |&b| Found::Byte(b))
-}
-
-const fn syntax(column: usize, reason: SyntaxError) -> Error {
-    Error::Syntax {
-        format: LogFormat::Asc,
-        column,
-        reason,
-    }
-}
-
-fn eq_ignore_case(a: &[u8], b: &[u8]) -> bool {
-    a.eq_ignore_ascii_case(b)
-}
-
-fn starts_with_ignore_case(text: &[u8], prefix: &[u8]) -> bool {
-    text.get(..prefix.len())
-        .is_some_and(|head| head.eq_ignore_ascii_case(prefix))
-}
-
-fn decimal(field: &[u8], max: u64) -> Option<u64> {
-    if field.is_empty() || field.len() > 19 || !field.iter().all(u8::is_ascii_digit) {
-        return None;
-    }
-    let value = field
-        .iter()
-        .fold(0u64, |acc, &b| acc * 10 + u64::from(b - b'0'));
-    (value <= max).then_some(value)
-}
-
-/// 1 to 8 hex digits (an identifier, CAN FD flags).
-#[inline(always)]
-fn hex(field: &[u8]) -> Option<u32> {
-    if field.is_empty() || field.len() > 8 {
-        return None;
-    }
-    let mut value = 0u32;
-    for &b in field {
-        value = value << 4 | u32::from(hex_value(b)?);
-    }
-    Some(value)
-}
-
-fn hex_digit(field: &[u8]) -> Option<u8> {
-    match field {
-        [b] => char::from(*b)
-            .to_digit(16)
-            .and_then(|d| u8::try_from(d).ok()),
-        _ => None,
-    }
-}
+// ------------------------------------------------------------ fields
 
 /// A channel number, 1 to 65535.
 fn channel_number(field: &[u8]) -> Option<u16> {

@@ -1,5 +1,6 @@
 use super::*;
 use crate::test_gens::can::any_can_frame as any_frame;
+use crate::Error;
 use proptest::prelude::*;
 
 /// A parser in any state a header can set, partway through a file.

@@ -1,5 +1,7 @@
 use super::*;
+use crate::logs::Found;
 use crate::logs::SyntaxError as K;
+use crate::Error;
 
 fn parse(parser: &mut AscParser, line: &str) -> Result<Option<LogEvent<'static>>> {
     // Leak-free: the lines are 'static literals.

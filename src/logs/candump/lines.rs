@@ -1,6 +1,16 @@
 //! A whole buffer, line by line.
 
-use super::*;
+use core::iter::FusedIterator;
+
+use super::fast::{parse_canonical_log, IfaceHint};
+#[cfg(feature = "std")]
+use super::frame::Head;
+use super::frame::Parsed;
+use super::parse::parse_general;
+use crate::can::{FrameType, LogFrame, Timestamp, FD_MAX_LEN};
+use crate::logs::lex::{is_space, skip_space};
+use crate::logs::text::take_line;
+use crate::Result;
 
 /// Return an iterator over the lines of `buf` that parses each one
 /// (docs/formats.md#candump-log, docs/formats.md#candump-screen): it yields the

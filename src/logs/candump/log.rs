@@ -1,6 +1,12 @@
 //! The log format after the identifier's `#` (docs/formats.md#candump-log).
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::hex::decode_hex;
+use crate::can::{Direction, FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
+use crate::logs::{Found, SyntaxError};
+use crate::{Error, Result};
 
 /// Parse the log format after the identifier's `#` at `start - 1`:
 /// `R[len]`, `#<flags><data>` or `<data>`, then an optional direction.

@@ -123,16 +123,6 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
-use core::fmt;
-use core::iter::FusedIterator;
-
-use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use crate::can::{FrameType, LogFrame};
-use crate::logs::calendar::{days_in_month, days_since_epoch};
-use crate::logs::text::{hex_value, take_line};
-use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::{Error, Result};
-
 mod error;
 mod fast;
 mod frame;
@@ -143,24 +133,20 @@ mod parse;
 #[cfg(feature = "std")]
 mod reader;
 mod screen;
-pub(super) mod swar;
 mod timestamp;
 
-use error::*;
-use fast::*;
-use frame::*;
+use crate::can::{LogFrame, FD_MAX_LEN};
+use crate::Result;
+use fast::{parse_canonical_log, IfaceHint};
+use frame::Parsed;
+use parse::parse_general;
+
 pub use frame::{write_log, write_screen};
-use hex::*;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
-use log::*;
-use parse::*;
 #[cfg(feature = "std")]
 pub use reader::CandumpReader;
-use screen::*;
-use swar::*;
-use timestamp::*;
 
 /// Parse one candump line in either format of docs/formats.md (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the

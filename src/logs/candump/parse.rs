@@ -1,24 +1,16 @@
 //! The general parser: any line shape, byte by byte where the shape varies.
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::log::parse_log_frame;
+use super::screen::{parse_indicators, parse_screen_frame};
+use super::timestamp::parse_timestamp;
 use crate::can::CAN_ERR_FLAG;
-
-#[inline(always)]
-pub(super) const fn is_space(b: u8) -> bool {
-    b == b' ' || b == b'\t'
-}
-
-/// The index of the first byte at or after `at` that is not a space or tab.
-#[inline(always)]
-pub(super) fn skip_space(line: &[u8], mut at: usize) -> usize {
-    while let Some(&b) = line.get(at) {
-        if !is_space(b) {
-            break;
-        }
-        at += 1;
-    }
-    at
-}
+use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
+use crate::logs::lex::swar::{hex_lanes, lanes_before, load16, non_graphic, pack_hex};
+use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
+use crate::logs::{Found, SyntaxError};
+use crate::{Error, Result};
 
 /// Skip one or more spaces or tabs at `at`.
 #[inline(always)]
@@ -32,19 +24,6 @@ pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
             },
         )),
     }
-}
-
-/// Strip trailing line ends, spaces and tabs.
-#[inline(always)]
-pub(super) fn trim_end(mut line: &[u8]) -> &[u8] {
-    while let [rest @ .., last] = line {
-        if is_space(*last) || *last == b'\r' || *last == b'\n' {
-            line = rest;
-        } else {
-            break;
-        }
-    }
-    line
 }
 
 /// Parse one line of any shape, byte by byte where the shape varies.

@@ -2,7 +2,9 @@ use crate::can::LogFrame;
 use crate::test_gens::candump::FrameExt;
 use proptest::prelude::*;
 
+use super::fast::decode_fd_data;
 use super::*;
+use crate::can::FD_MAX_LEN;
 use crate::test_gens::candump::{frame_spec, mutated_line, screen_frame_spec};
 
 fn write_log(frame: &LogFrame<'_>) -> String {

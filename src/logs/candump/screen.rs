@@ -1,6 +1,13 @@
 //! The screen format after the identifier (docs/formats.md#candump-screen).
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::log::trailing;
+use super::parse::need_space;
+use crate::can::{FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::logs::lex::{found, hex_value, is_space, skip_space};
+use crate::logs::{Found, SyntaxError};
+use crate::{Error, Result};
 
 /// The word candump -e writes after an error frame's data (can-utils
 /// `lib.c`, `snprintf_long_canframe`).

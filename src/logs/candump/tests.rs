@@ -1,6 +1,10 @@
 use super::*;
 use crate::can::LogFrame;
+use crate::can::{CanId, Direction, FdFlags, Timestamp};
+use crate::logs::lex::hex_value;
+use crate::logs::{Found, LogFormat, SyntaxError};
 use crate::test_gens::candump::{Build, FrameExt};
+use crate::Error;
 use crate::What;
 
 /// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000

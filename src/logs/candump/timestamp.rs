@@ -3,8 +3,16 @@
 //! fast path, the general form with SWAR, and the byte-by-byte form for the
 //! rest; the tests check that the three agree.
 
-use super::*;
-use crate::logs::text::POW10_NANOS;
+use super::error::error;
+use crate::can::Timestamp;
+use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::lex::found;
+use crate::logs::lex::swar::{
+    decimal16, decimal8, lanes_before, load16, non_digits, HIGH, LOW7, ZERO_CHARS,
+};
+use crate::logs::lex::POW10_NANOS;
+use crate::logs::SyntaxError;
+use crate::{Error, Result};
 
 /// Read the template `candump -l` writes, `(SSSSSSSSSS.UUUUUU) ` (ten digits
 /// of seconds, six of microseconds, a space), from the first 20 bytes of a

@@ -117,6 +117,7 @@
 use core::fmt;
 
 use crate::can::{LogEvent, Timestamp};
+use crate::logs::lex::{is_space, trim_end};
 use crate::Result;
 
 mod header;
@@ -124,7 +125,6 @@ mod lines;
 #[cfg(feature = "std")]
 mod reader;
 mod row;
-mod tokens;
 mod write;
 
 use header::{parse_header, HeaderKey, Layout};
@@ -250,8 +250,8 @@ impl TrcParser {
     /// and reason for anything else.
     #[inline]
     pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
-        let trimmed = tokens::trim_end(line);
-        let Some(first) = trimmed.iter().position(|&b| !tokens::is_space(b)) else {
+        let trimmed = trim_end(line);
+        let Some(first) = trimmed.iter().position(|&b| !is_space(b)) else {
             return Ok(None);
         };
         if trimmed.get(first) == Some(&b';') {
