@@ -26,6 +26,7 @@
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
 //! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
+//! | `bytes.rs` | the integers of a binary record at a byte offset, in the file's byte order | `pcap`, `blf` or `mf4` |
 //! | `calendar.rs` | logged dates as Unix time | |
 //!
 //! Without the standard library, each text format parses lines from a
@@ -55,6 +56,8 @@
 pub mod asc;
 #[cfg(feature = "blf")]
 pub mod blf;
+#[cfg(any(feature = "pcap", feature = "blf", feature = "mf4"))]
+mod bytes;
 mod calendar;
 pub mod candump;
 mod detect;

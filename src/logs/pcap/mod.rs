@@ -101,6 +101,7 @@ use core::time::Duration;
 use std::io::Read;
 
 use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
+use crate::logs::bytes::{u16_at, u32_at};
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
@@ -1113,33 +1114,5 @@ fn too_large(length: u64) -> BinaryError {
 fn bad_length(length: usize) -> BinaryError {
     BinaryError::BadLength {
         length: length as u64,
-    }
-}
-
-/// The `u16` at `at` in `bytes` (0 past the end: callers check lengths).
-fn u16_at(bytes: &[u8], at: usize, big_endian: bool) -> u16 {
-    let b = bytes
-        .get(at..)
-        .and_then(<[u8]>::first_chunk::<2>)
-        .copied()
-        .unwrap_or_default();
-    if big_endian {
-        u16::from_be_bytes(b)
-    } else {
-        u16::from_le_bytes(b)
-    }
-}
-
-/// The `u32` at `at` in `bytes` (0 past the end: callers check lengths).
-fn u32_at(bytes: &[u8], at: usize, big_endian: bool) -> u32 {
-    let b = bytes
-        .get(at..)
-        .and_then(<[u8]>::first_chunk::<4>)
-        .copied()
-        .unwrap_or_default();
-    if big_endian {
-        u32::from_be_bytes(b)
-    } else {
-        u32::from_le_bytes(b)
     }
 }
