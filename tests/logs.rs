@@ -19,10 +19,9 @@ use motionwire::logs::candump::{self, LineState, RelativeTimestamps};
 use motionwire::logs::pcap::PcapReader;
 use motionwire::logs::trc;
 use motionwire::logs::{
-    self, BinaryError, LogError, LogErrorKind, LogFormat, LogReader, Position, ReadLog,
-    ReadOptions, MAX_LINE_LEN, MAX_RECORD_LEN,
+    self, BinaryError, FormatError, LogError, LogErrorKind, LogFormat, LogReader, Position,
+    ReadLog, ReadOptions, MAX_LINE_LEN, MAX_RECORD_LEN,
 };
-use motionwire::Error;
 use proptest::prelude::*;
 
 /// The allocator of this test binary: the system's, counting the bytes
@@ -187,7 +186,7 @@ fn text_items<'a>(
     lines: impl Iterator<
         Item = (
             usize,
-            motionwire::Result<Option<motionwire::can::LogEvent<'a>>>,
+            Result<Option<motionwire::can::LogEvent<'a>>, FormatError>,
         ),
     >,
 ) -> Items {
@@ -313,7 +312,7 @@ fn empty_unrecognised_and_damaged_inputs() {
     assert!(
         matches!(
             error.kind(),
-            LogErrorKind::Damaged(Error::Binary {
+            LogErrorKind::Damaged(FormatError::Binary {
                 format: LogFormat::Blf,
                 reason: BinaryError::BadLength { length: 8 },
                 ..
@@ -482,7 +481,7 @@ fn damage(log: &mut LogReader) -> BinaryError {
     while let Some(next) = log.next_event() {
         if let Err(error) = next {
             match error.kind() {
-                LogErrorKind::Damaged(Error::Binary { reason: r, .. }) => reason = Some(*r),
+                LogErrorKind::Damaged(FormatError::Binary { reason: r, .. }) => reason = Some(*r),
                 other => panic!("{other}"),
             }
         }

@@ -24,7 +24,7 @@
 //! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a `std::io::Read`, the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
 //! | `lex/` | the fields, decimal and hex numbers of a text line, a line's syntax error at its column, and the wide-word (SWAR) tricks of the fast paths | |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
-//! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
+//! | `error.rs` | [`LogFormat`]; [`FormatError`], the layer's own error: [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
 //! | `bytes.rs` | the integers of a binary record at a byte offset, in the file's byte order | `pcap`, `blf` or `mf4` |
 //! | `calendar.rs` | logged dates as Unix time | |
@@ -75,7 +75,7 @@ mod text;
 pub mod trc;
 
 pub use detect::{detect, Detected, DETECT_LEN, DETECT_MAX_UNDECIDED};
-pub use error::{BinaryError, Found, LogFormat, SyntaxError};
+pub use error::{BinaryError, FormatError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
 #[cfg(feature = "logs")]

@@ -365,7 +365,7 @@ pub(crate) trait TextParser: Clone {
         &mut self,
         rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> crate::Result<Option<Self::Line<'t>>>;
+    ) -> Result<Option<Self::Line<'t>>, FormatError>;
 
     /// The record of a line that holds something, at `position`, its
     /// interface name from `names`. (Built where the reader returns it, so
@@ -385,7 +385,7 @@ pub(crate) trait TextParser: Clone {
 }
 
 #[cfg(feature = "std")]
-use crate::logs::{LogError, LogErrorKind, LogRecord, Position};
+use crate::logs::{FormatError, LogError, LogErrorKind, LogRecord, Position};
 
 /// The reader of a text log over the line layer: blocks of whole lines
 /// from a [`std::io::Read`], each line parsed where it lies, positions
@@ -555,7 +555,7 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
 /// the reading goes on.
 #[cfg(feature = "std")]
 #[cold]
-pub(crate) fn malformed(line: u64, error: crate::Error) -> LogError {
+pub(crate) fn malformed(line: u64, error: FormatError) -> LogError {
     LogError::new(Some(Position::Line(line)), LogErrorKind::Malformed(error))
 }
 

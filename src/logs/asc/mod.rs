@@ -51,7 +51,7 @@
 //!   and `TxRq` (transmit request) lines, which announce a frame the log
 //!   shows again when it is on the bus. Chip status lines (`CAN 1
 //!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every
-//!   other line is an [`Error::Syntax`] with its
+//!   other line is an [`FormatError::Syntax`] with its
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
 //! ```
@@ -80,13 +80,14 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
+use crate::logs::error::Result;
 use crate::logs::lex::{
     decimal, eq_ignore_case, found, hex, hex_digit, hex_value, starts_with_ignore_case, syntax,
     trim_end, Tokens,
 };
 use crate::logs::text::take_line;
+use crate::logs::FormatError;
 use crate::logs::{LogFormat, SyntaxError};
-use crate::Result;
 
 mod fast;
 #[cfg(test)]
@@ -156,10 +157,10 @@ impl AscParser {
     ///
     /// # Errors
     ///
-    /// [`Error::Syntax`] with [`LogFormat::Asc`], the 1-based column and
+    /// [`FormatError::Syntax`] with [`LogFormat::Asc`], the 1-based column and
     /// what was expected there.
     #[inline]
-    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
         let line = trim_end(line);
         // The common frame lines in one pass; every other line (and every
         // line the fast path declines) is read by the general parser.
@@ -173,13 +174,13 @@ impl AscParser {
     /// it in place, has declined: the general parser, out of line.
     #[cfg(feature = "std")]
     #[inline(never)]
-    fn parse_other(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+    fn parse_other(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
         self.parse_general(trim_end(line))
     }
 
     /// [`parse_line`](Self::parse_line) without the fast path, for a line
     /// whose trailing white space is trimmed.
-    fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+    fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
         let mut tokens = Tokens::new(LogFormat::Asc, line);
         let Some((start, first)) = tokens.next_token() else {
             return Ok(None);
@@ -248,7 +249,7 @@ impl AscParser {
         start: usize,
         time: &'l [u8],
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         let written = parse_time(time).ok_or_else(|| {
             tokens.error_at(start + bad_time_at(time), |found| SyntaxError::AscTime {
                 found,
@@ -373,7 +374,7 @@ impl AscParser {
         line: &'l [u8],
         timestamp: Timestamp,
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         let (at, channel) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
         let channel = channel_number(channel)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;
@@ -581,7 +582,7 @@ impl<'a> AscLines<'a> {
 }
 
 impl<'a> Iterator for AscLines<'a> {
-    type Item = (usize, Result<Option<LogEvent<'a>>>);
+    type Item = (usize, Result<Option<LogEvent<'a>>, FormatError>);
 
     fn next(&mut self) -> Option<Self::Item> {
         let line = take_line(&mut self.rest)?;

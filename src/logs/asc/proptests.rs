@@ -1,6 +1,6 @@
 use super::*;
+use crate::logs::FormatError;
 use crate::test_gens::can::any_can_frame as any_frame;
-use crate::Error;
 use proptest::prelude::*;
 
 /// A parser in any state a header can set, partway through a file.
@@ -389,7 +389,7 @@ proptest! {
         let mut parser = AscParser::new();
         for line in &lines {
             match parser.parse_line(line) {
-                Err(Error::Syntax { format: LogFormat::Asc, column, .. }) => {
+                Err(FormatError::Syntax { format: LogFormat::Asc, column, .. }) => {
                     prop_assert!(column >= 1 && column <= line.len() + 1);
                 }
                 Err(other) => prop_assert!(false, "{other:?}"),

@@ -5,7 +5,7 @@ use std::io::Read;
 use super::AscParser;
 use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
+use crate::logs::{FormatError, LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of Vector ASC logs (docs/formats.md#asc) from any [`Read`]: whole
 /// lines a block at a time, each read by one [`AscParser`] where it lies, with
@@ -81,7 +81,7 @@ impl TextParser for AscParser {
         &mut self,
         rest: &mut &[u8],
         _names: &mut Names,
-    ) -> crate::Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         // The common frame lines where they lie, the line's end found
         // from where the frame ends; every other line on its own.
         if let Some((event, len)) = self.parse_fast_in_place(rest) {

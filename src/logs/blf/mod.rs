@@ -44,7 +44,7 @@
 //!   up to 7 bytes of padding skipped before the next `LOBJ` (writers pad
 //!   differently); top-level objects are followed by `size % 4` padding
 //!   bytes, as Vector's and python-can's writers write them.
-//! - A damaged file ends the reading with one [`Error::Binary`] after the
+//! - A damaged file ends the reading with one [`FormatError::Binary`] after the
 //!   frames before it; a frame object whose content cannot be read (a
 //!   standard identifier above 0x7FF, a body shorter than its type) is one
 //!   error and the reading goes on with the next object. Its offset is the byte in the file for the header
@@ -75,11 +75,11 @@ use crate::can::{
 };
 use crate::logs::bytes::{u16_le, u32_le, u64_le};
 use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
-use crate::Error;
 
 mod inflate;
 #[cfg(test)]
@@ -113,7 +113,7 @@ enum Object {
     Other,
     /// A frame object whose content cannot be read (e.g. a standard
     /// identifier above 0x7FF); the reading goes on after it.
-    Bad(Error),
+    Bad(FormatError),
 }
 
 /// A reader of Vector BLF files (docs/formats.md#blf): see the
@@ -179,7 +179,7 @@ impl<R: Read> BlfReader<R> {
     ///
     /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
     /// of kind [`LogErrorKind::Damaged`] with an
-    /// [`Error::Binary`] of [`LogFormat::Blf`] when the file does not start
+    /// [`FormatError::Binary`] of [`LogFormat::Blf`] when the file does not start
     /// with `LOGG` ([`BinaryError::BadMagic`]), is cut inside its header, or
     /// its header size is shorter than the header or above
     /// [`MAX_RECORD_LEN`].
@@ -559,7 +559,7 @@ impl<R: Read> BlfReader<R> {
                 Object::Other
             }
             // The object's size is known: report it, go on after it.
-            Err(reason) => Object::Bad(Error::Binary {
+            Err(reason) => Object::Bad(FormatError::Binary {
                 format: LogFormat::Blf,
                 offset: self.stream_base + self.pos as u64,
                 reason,
@@ -884,7 +884,7 @@ fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
     Ok(got)
 }
 
-/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+/// An [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 /// The error when the second thread stopped before giving back the
 /// container at `at` (it does not, unless the system takes it away).
 fn lost_thread(at: u64) -> LogError {
@@ -896,7 +896,7 @@ fn lost_thread(at: u64) -> LogError {
 fn fail(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format: LogFormat::Blf,
             offset,
             reason,

@@ -8,9 +8,10 @@ use super::frame::Head;
 use super::frame::Parsed;
 use super::parse::parse_general;
 use crate::can::{FrameType, LogFrame, Timestamp, FD_MAX_LEN};
+use crate::logs::error::Result;
 use crate::logs::lex::{is_space, skip_space};
 use crate::logs::text::take_line;
-use crate::Result;
+use crate::logs::FormatError;
 
 /// Return an iterator over the lines of `buf` that parses each one
 /// (docs/formats.md#candump-log, docs/formats.md#candump-screen): it yields the
@@ -201,7 +202,7 @@ pub struct CandumpLines<'a> {
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
-    type Item = (usize, Result<Option<LogFrame<'a>>>);
+    type Item = (usize, Result<Option<LogFrame<'a>>, FormatError>);
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {

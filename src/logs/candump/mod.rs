@@ -136,7 +136,8 @@ mod screen;
 mod timestamp;
 
 use crate::can::{LogFrame, FD_MAX_LEN};
-use crate::Result;
+use crate::logs::error::Result;
+use crate::logs::FormatError;
 use fast::{parse_canonical_log, IfaceHint};
 use frame::Parsed;
 use parse::parse_general;
@@ -150,10 +151,10 @@ pub use reader::CandumpReader;
 
 /// Parse one candump line in either format of docs/formats.md (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the
-/// frame for a frame line, and an [`Error::Syntax`] with the column and
+/// frame for a frame line, and an [`FormatError::Syntax`] with the column and
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
 #[inline]
-pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
+pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
     let mut data = [0; FD_MAX_LEN];
     let mut hint = IfaceHint::NONE;
     match parse_canonical_log(line, &mut data, &mut hint) {
@@ -166,14 +167,14 @@ pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
 
 /// Parse one candump line given as text; see [`parse_line`].
 #[inline]
-pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>> {
+pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>, FormatError> {
     parse_line(line.as_bytes())
 }
 
 /// The general parser alone, as the public functions return it: for the
 /// tests that compare it with the fast path.
 #[cfg(test)]
-fn general(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
+fn general(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
     parse_general(line).map(|frame| frame.map(Parsed::into_log_frame))
 }
 

@@ -9,9 +9,9 @@ use super::lines::{is_explanation, next_head};
 use super::{detect_relative_timestamps, parse_line, LineState, RelativeTimestamps};
 use crate::can::LogEvent;
 use crate::can::FD_MAX_LEN;
+use crate::logs::error::Result;
 use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
-use crate::Result;
 
 /// A reader of candump logs and screen output (docs/formats.md#candump-log,
 /// docs/formats.md#candump-screen) from any [`Read`]: whole lines a block at a

@@ -2,9 +2,9 @@ use super::*;
 use crate::can::LogFrame;
 use crate::can::{CanId, Direction, FdFlags, Timestamp};
 use crate::logs::lex::hex_value;
+use crate::logs::FormatError;
 use crate::logs::{Found, LogFormat, SyntaxError};
 use crate::test_gens::candump::{Build, FrameExt};
-use crate::Error;
 use crate::What;
 
 /// The log example of docs/formats.md#candump-log: the AKD EMCY of seed 000
@@ -43,7 +43,7 @@ fn frame(line: &str) -> LogFrame<'_> {
 fn fail(line: &str) -> (usize, SyntaxError) {
     assert_eq!(general(line.as_bytes()), parse_line_str(line));
     match parse_line_str(line) {
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Candump,
             column,
             reason,
@@ -1420,7 +1420,7 @@ fn lines_numbers_every_line() {
     assert_eq!(items[2].1, Ok(None));
     assert_eq!(
         items[3].1,
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Candump,
             column: 27,
             reason: SyntaxError::BadIdentifier {
@@ -1599,14 +1599,14 @@ fn indentation_never_decides_how_a_coloured_line_reads() {
         Some(end) => &input[..=end],
         None => &input[..],
     };
-    let Err(Error::Syntax { column, reason, .. }) = parse_line(line) else {
+    let Err(FormatError::Syntax { column, reason, .. }) = parse_line(line) else {
         panic!("the line is malformed");
     };
     for indent in 1..=3 {
         let mut spaced = vec![b' '; indent];
         spaced.extend_from_slice(line);
         match parse_line(&spaced) {
-            Err(Error::Syntax {
+            Err(FormatError::Syntax {
                 column: shifted,
                 reason: shifted_reason,
                 ..
@@ -1620,7 +1620,9 @@ fn indentation_never_decides_how_a_coloured_line_reads() {
     // Tabs too, and a coloured frame line still reads.
     let mut tabbed = b"\t\t".to_vec();
     tabbed.extend_from_slice(line);
-    assert!(matches!(parse_line(&tabbed), Err(Error::Syntax { column: c, .. }) if c == column + 2));
+    assert!(
+        matches!(parse_line(&tabbed), Err(FormatError::Syntax { column: c, .. }) if c == column + 2)
+    );
     let coloured = b"   \x1b[1;31mcan0  123   [1]  42\x1b[0m";
     let frame = parse_line(coloured).unwrap().unwrap();
     assert_eq!(frame.frame.data(), [0x42]);

@@ -6,8 +6,8 @@
 
 pub(crate) mod swar;
 
+use crate::logs::FormatError;
 use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::Error;
 
 /// The hex value of one character, or `None`: the hex digits of every
 /// text format (either case).
@@ -87,8 +87,8 @@ pub(crate) fn found(line: &[u8], at: usize) -> Found {
 
 /// The error `reason` at the 1-based `column` of a line of `format`.
 #[inline]
-pub(crate) const fn syntax(format: LogFormat, column: usize, reason: SyntaxError) -> Error {
-    Error::Syntax {
+pub(crate) const fn syntax(format: LogFormat, column: usize, reason: SyntaxError) -> FormatError {
+    FormatError::Syntax {
         format,
         column,
         reason,
@@ -104,7 +104,7 @@ pub(crate) fn bad_field(
     field: &[u8],
     bad: usize,
     reason: fn(Found) -> SyntaxError,
-) -> Error {
+) -> FormatError {
     syntax(format, start + bad + 1, reason(found(field, bad)))
 }
 
@@ -168,7 +168,7 @@ impl<'l> Tokens<'l> {
     pub(crate) fn expect(
         &mut self,
         reason: fn(Found) -> SyntaxError,
-    ) -> Result<(usize, &'l [u8]), Error> {
+    ) -> Result<(usize, &'l [u8]), FormatError> {
         match self.next_token() {
             Some(token) => Ok(token),
             None => Err(self.error_at(self.line.len(), reason)),
@@ -176,7 +176,7 @@ impl<'l> Tokens<'l> {
     }
 
     /// The error `reason` for what stands at the 0-based index `at`.
-    pub(crate) fn error_at(&self, at: usize, reason: fn(Found) -> SyntaxError) -> Error {
+    pub(crate) fn error_at(&self, at: usize, reason: fn(Found) -> SyntaxError) -> FormatError {
         syntax(self.format, at + 1, reason(self.found_at(at)))
     }
 }

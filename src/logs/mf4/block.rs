@@ -8,8 +8,8 @@ use std::collections::HashSet;
 use std::io::{self, Read, Seek, SeekFrom};
 
 use crate::logs::bytes::padded;
+use crate::logs::FormatError;
 use crate::logs::{BinaryError, LogError, LogErrorKind, LogFormat, MAX_RECORD_LEN};
-use crate::Error;
 
 /// The block header: id, reserved, length, link count.
 pub(super) const HEADER_LEN: u64 = 24;
@@ -232,9 +232,9 @@ pub(super) fn damaged(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(None, LogErrorKind::Damaged(binary(offset, reason)))
 }
 
-/// An [`Error::Binary`] of the MF4 format.
-pub(super) fn binary(offset: u64, reason: BinaryError) -> Error {
-    Error::Binary {
+/// An [`FormatError::Binary`] of the MF4 format.
+pub(super) fn binary(offset: u64, reason: BinaryError) -> FormatError {
+    FormatError::Binary {
         format: LogFormat::Mf4,
         offset,
         reason,

@@ -49,7 +49,7 @@
 //! frame (`CANXL_XLF`, 0x80, in the length byte) is skipped and counted,
 //! never misread.
 //!
-//! **Damaged or hostile files.** Every error is an [`Error::Binary`] with
+//! **Damaged or hostile files.** Every error is an [`FormatError::Binary`] with
 //! the byte offset of the damaged structure, returned after the frames
 //! before it; [`ReadLog::next_event`] returns `None` afterwards. A length
 //! above [`MAX_RECORD_LEN`] is [`BinaryError::TooLarge`] and is never
@@ -102,11 +102,11 @@ use std::io::Read;
 
 use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
 use crate::logs::bytes::{u16_at, u32_at};
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
-use crate::Error;
 use cooked::Cooked;
 pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
@@ -355,7 +355,7 @@ impl<R: Read> PcapReader<R> {
     ///
     /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
     /// of kind [`LogErrorKind::Damaged`] with an
-    /// [`Error::Binary`] when the magic number is neither pcap's nor
+    /// [`FormatError::Binary`] when the magic number is neither pcap's nor
     /// pcapng's ([`BinaryError::BadMagic`], format [`LogFormat::Pcap`]),
     /// the header is cut off, its version unknown or its snapshot length
     /// above [`MAX_RECORD_LEN`].
@@ -1090,11 +1090,11 @@ impl<R: Read> ReadLog for PcapReader<R> {
     }
 }
 
-/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+/// An [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 fn fail(format: LogFormat, offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format,
             offset,
             reason,

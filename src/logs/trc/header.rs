@@ -5,9 +5,9 @@ use core::time::Duration;
 
 use super::TrcVersion;
 use crate::can::Timestamp;
+use crate::logs::error::Result;
 use crate::logs::lex::{bad_field, decimal_fraction, syntax, trim_end};
 use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::Result;
 
 /// A column of a TRC 2.x row, as a letter of `;$COLUMNS=` names it
 /// (PEAK's TRC format description, version 2.0).

@@ -4,7 +4,8 @@ use core::iter::FusedIterator;
 
 use super::TrcParser;
 use crate::can::LogEvent;
-use crate::Result;
+use crate::logs::error::Result;
+use crate::logs::FormatError;
 
 /// Return an iterator over the lines of `buf` that parses each one with
 /// one [`TrcParser`] (docs/formats.md#trc): it yields the 1-based line number
@@ -62,7 +63,7 @@ impl<'a> TrcLines<'a> {
 }
 
 impl<'a> Iterator for TrcLines<'a> {
-    type Item = (usize, Result<Option<LogEvent<'a>>>);
+    type Item = (usize, Result<Option<LogEvent<'a>>, FormatError>);
 
     fn next(&mut self) -> Option<Self::Item> {
         let line = crate::logs::text::take_line(&mut self.rest)?;

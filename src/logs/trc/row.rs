@@ -9,9 +9,11 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
+use crate::logs::error::Result;
 use crate::logs::lex::{bad_field, decimal, decimal_fraction, hex, hex_byte, syntax, Tokens};
+use crate::logs::FormatError;
 use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::{Error, Result};
+use crate::CodecError;
 
 /// What the file's header said, as a row needs it.
 #[derive(Debug, Clone, Copy)]
@@ -223,12 +225,16 @@ fn end(tokens: &mut Tokens<'_>) -> Result<()> {
 
 /// The frame of `kind` with `len` bytes of `bytes` (a remote request's
 /// requested length).
-fn frame(id: CanId, kind: FrameType, bytes: &[u8; FD_MAX_LEN], len: u8) -> Result<CanFrame> {
+fn frame(
+    id: CanId,
+    kind: FrameType,
+    bytes: &[u8; FD_MAX_LEN],
+    len: u8,
+) -> Result<CanFrame, CodecError> {
     match kind {
         FrameType::Remote { .. } => CanFrame::new_remote(id, len),
         _ => CanFrame::with_type(id, kind, bytes.get(..usize::from(len)).unwrap_or_default()),
     }
-    .map_err(Error::from)
 }
 
 /// The error frame a PEAK error frame row reads as (see the module's
@@ -553,7 +559,7 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
 
 /// A length the frame cannot have (not reached: lengths are checked when
 /// read).
-fn bad_len(at: usize) -> Error {
+fn bad_len(at: usize) -> FormatError {
     syntax(
         LogFormat::Trc,
         at + 1,
