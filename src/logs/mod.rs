@@ -80,9 +80,9 @@ pub use error::{BinaryError, FormatError, Found, LogFormat, SyntaxError};
 pub use error::{LogError, LogErrorKind};
 #[cfg(feature = "logs")]
 pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
-#[cfg(feature = "std")]
-pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};
+#[cfg(feature = "std")]
+pub use record::{ReadLog, Record, Records};
 #[cfg(any(feature = "pcap", feature = "blf"))]
 pub(crate) use skipped::OtherCounts;
 pub use skipped::{OtherRecord, OtherRecords};

@@ -282,15 +282,8 @@ impl<R: std::io::Read> TextInput<R> {
 #[derive(Debug)]
 pub(crate) struct Names {
     names: Vec<Box<str>>,
-    /// The names before the table last started again, kept where they are
-    /// until it starts again once more (see [`ReadLog::generation`]).
-    ///
-    /// [`ReadLog::generation`]: crate::logs::ReadLog::generation
-    retired: Vec<Box<str>>,
     /// The name of the last event.
     last: usize,
-    /// Times the table started again.
-    resets: u64,
     /// The data bytes of the last event, for a parser that writes them here
     /// rather than into its line (candump): the record is built from them
     /// where the caller reads it, so that they are copied once.
@@ -302,9 +295,7 @@ impl Default for Names {
     fn default() -> Self {
         Names {
             names: Vec::new(),
-            retired: Vec::new(),
             last: 0,
-            resets: 0,
             data: [0; crate::can::FD_MAX_LEN],
         }
     }
@@ -333,8 +324,7 @@ impl Names {
             return;
         }
         if self.names.len() == MAX_NAMES {
-            self.retired = core::mem::take(&mut self.names);
-            self.resets += 1;
+            self.names.clear();
         }
         // The parsers take printable ASCII only; the fallback is never taken.
         let text = core::str::from_utf8(name).unwrap_or_default();
@@ -545,10 +535,6 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
     pub(crate) fn drained(&self) -> bool {
         self.pos >= self.tail
     }
-
-    pub(crate) fn generation(&self) -> u64 {
-        self.names.resets
-    }
 }
 
 /// The error for line `line`, malformed as `error` says: reported, and
@@ -661,22 +647,22 @@ mod tests {
         }
     }
 
-    /// The interface names keep their address while the table lasts, and
-    /// the names before a new table stay where they were for one more.
+    /// The names of a log: each kept once, the table started again past
+    /// `MAX_NAMES`.
     #[cfg(feature = "std")]
     #[test]
-    fn names_keep_their_address() {
+    fn names_are_kept_once() {
         let mut names = Names::default();
         names.intern(b"can0");
         let can0 = names.last().as_ptr();
         names.intern(b"can1");
+        assert_eq!(names.last(), "can1");
         names.intern(b"can0");
         assert_eq!(names.last().as_ptr(), can0);
         for i in 0..MAX_NAMES {
             names.intern(format!("x{i}").as_bytes());
         }
-        assert_eq!(names.resets, 1);
-        assert_eq!(names.retired.len(), MAX_NAMES);
-        assert!(names.retired.iter().any(|n| n.as_ptr() == can0));
+        assert!(names.names.len() < MAX_NAMES);
+        assert_eq!(names.last(), format!("x{}", MAX_NAMES - 1));
     }
 }

@@ -45,6 +45,8 @@ impl<R: Read> AscReader<R> {
     }
 }
 
+crate::logs::record::records_of!(AscReader<R: Read>);
+
 impl<R: Read> ReadLog for AscReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Asc
@@ -66,10 +68,6 @@ impl<R: Read> ReadLog for AscReader<R> {
     #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
-    }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
     }
 }
 

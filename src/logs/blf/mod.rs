@@ -591,6 +591,8 @@ impl<R: Read> BlfReader<R> {
     }
 }
 
+crate::logs::record::records_of!(BlfReader<R: Read>);
+
 impl<R: Read> ReadLog for BlfReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Blf

@@ -95,6 +95,8 @@ impl<R: Read> CandumpReader<R> {
     }
 }
 
+crate::logs::record::records_of!(CandumpReader<R: Read>);
+
 impl<R: Read> ReadLog for CandumpReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Candump
@@ -116,10 +118,6 @@ impl<R: Read> ReadLog for CandumpReader<R> {
     #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
-    }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
     }
 }
 

@@ -312,6 +312,8 @@ fn add(counts: &mut Vec<(String, u64)>, name: &str, n: u64) {
     }
 }
 
+crate::logs::record::records_of!(Mf4Reader<R: Read, Seek>);
+
 impl<R: Read + Seek> ReadLog for Mf4Reader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Mf4

@@ -55,9 +55,7 @@
 //! above [`MAX_RECORD_LEN`] is [`BinaryError::TooLarge`] and is never
 //! allocated; memory stays bounded whatever the file claims (the read-ahead
 //! window grows only while the file supplies bytes; a section's interface
-//! descriptions are held up to [`MAX_RECORD_LEN`] bytes, those of the
-//! section before too, so that no interface name of the last section takes
-//! the address of one still cached: [`ReadLog::generation`]).
+//! descriptions are held up to [`MAX_RECORD_LEN`] bytes).
 //!
 //! ```
 //! use motionwire::can::{CanId, Iface, LogEvent};
@@ -329,11 +327,6 @@ pub struct PcapReader<R: Read> {
     /// The packets that hold no CAN frame, by kind.
     other: OtherCounts,
     done: bool,
-    /// The interfaces of the section before, kept where they are until the
-    /// next section starts (see [`ReadLog::generation`]).
-    retired: Vec<Interface>,
-    /// Sections started after the first.
-    sections: u64,
     /// The fast paths are tried first: a pcap file of link type 227 (its
     /// records read by [`next_classic`](Self::next_classic) and
     /// [`next_fd`](Self::next_fd)), or a pcapng file (its enhanced packet
@@ -384,8 +377,6 @@ impl<R: Read> PcapReader<R> {
             number: 0,
             other: OtherCounts::default(),
             done: false,
-            retired: Vec::new(),
-            sections: 0,
             fast: false,
             nanos: false,
         };
@@ -772,10 +763,7 @@ impl<R: Read> PcapReader<R> {
         if major != 1 {
             return Err(self.fail(0, BinaryError::UnsupportedVersion { major, minor }));
         }
-        if !self.interfaces.is_empty() {
-            self.retired = core::mem::take(&mut self.interfaces);
-            self.sections += 1;
-        }
+        self.interfaces.clear();
         self.interface_bytes = 0;
         Ok(())
     }
@@ -963,6 +951,8 @@ impl<R: Read> PcapReader<R> {
     }
 }
 
+crate::logs::record::records_of!(PcapReader<R: Read>);
+
 impl<R: Read> ReadLog for PcapReader<R> {
     fn format(&self) -> LogFormat {
         self.log_format()
@@ -1083,10 +1073,6 @@ impl<R: Read> ReadLog for PcapReader<R> {
     #[inline]
     fn drained(&self) -> bool {
         self.input.drained() && !self.whole_record_buffered()
-    }
-
-    fn generation(&self) -> u64 {
-        self.sections
     }
 }
 

@@ -46,6 +46,8 @@ impl<R: Read> TrcReader<R> {
     }
 }
 
+crate::logs::record::records_of!(TrcReader<R: Read>);
+
 impl<R: Read> ReadLog for TrcReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Trc
@@ -67,10 +69,6 @@ impl<R: Read> ReadLog for TrcReader<R> {
     #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
-    }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
     }
 }
 
