@@ -157,18 +157,16 @@ fn fixtures() -> Vec<(PathBuf, LogFormat)> {
 /// ones.
 fn own_reader(path: &Path, format: LogFormat) -> Items {
     let text = std::fs::read(path).unwrap();
-    let line = |n: usize| Position::Line(n as u64);
     match format {
         LogFormat::Candump => {
             let relative = candump::detect_relative_timestamps(&text, true).unwrap();
             candump::lines_from(&text, LineState::new(relative))
                 .filter_map(|(n, parsed)| match parsed {
                     Ok(None) => None,
-                    Ok(Some(frame)) => Some((
-                        line(n),
-                        format!("{:?}", motionwire::can::LogEvent::Frame(frame)),
-                    )),
-                    Err(e) => Some((line(n), format!("error: {e}"))),
+                    Ok(Some(frame)) => {
+                        Some((n, format!("{:?}", motionwire::can::LogEvent::Frame(frame))))
+                    }
+                    Err(e) => Some((n, format!("error: {e}"))),
                 })
                 .collect()
         }
@@ -185,19 +183,16 @@ fn own_reader(path: &Path, format: LogFormat) -> Items {
 fn text_items<'a>(
     lines: impl Iterator<
         Item = (
-            usize,
+            Position,
             Result<Option<motionwire::can::LogEvent<'a>>, FormatError>,
         ),
     >,
 ) -> Items {
     lines
-        .filter_map(|(n, parsed)| {
-            let position = Position::Line(n as u64);
-            match parsed {
-                Ok(None) => None,
-                Ok(Some(event)) => Some((position, format!("{event:?}"))),
-                Err(e) => Some((position, format!("error: {e}"))),
-            }
+        .filter_map(|(position, parsed)| match parsed {
+            Ok(None) => None,
+            Ok(Some(event)) => Some((position, format!("{event:?}"))),
+            Err(e) => Some((position, format!("error: {e}"))),
         })
         .collect()
 }

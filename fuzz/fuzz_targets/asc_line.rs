@@ -18,6 +18,7 @@ use motionwire::can::{Iface, LogEvent};
 use motionwire::logs::asc::{self, AscParser};
 use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
+use motionwire::logs::Position;
 
 const FD_LENGTHS: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 
@@ -67,7 +68,7 @@ fuzz_target!(|data: &[u8]| {
     let items: Vec<_> = asc::lines(data).collect();
     assert_eq!(items.len(), expected.len());
     for (i, ((number, item), want)) in items.into_iter().zip(expected).enumerate() {
-        assert_eq!(number, i + 1);
+        assert_eq!(number, Position::Line(i as u64 + 1));
         assert_eq!(item, want);
     }
 });

@@ -31,6 +31,7 @@ use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::logs::candump;
 use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
+use motionwire::logs::Position;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);
@@ -183,10 +184,10 @@ fn check_lines(data: &[u8]) {
         .map(|(i, line)| {
             let parsed = candump::parse_line(line);
             if parsed.is_err() && after_error_frame && is_explanation(line) {
-                return (i + 1, Ok(None));
+                return (Position::Line(i as u64 + 1), Ok(None));
             }
             after_error_frame = matches!(&parsed, Ok(Some(f)) if f.frame.is_error());
-            (i + 1, parsed)
+            (Position::Line(i as u64 + 1), parsed)
         })
         .collect();
     let mut by_next = Vec::new();

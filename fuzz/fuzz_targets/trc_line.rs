@@ -20,6 +20,7 @@ use motionwire::can::{Iface, LogEvent, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::logs::trc::{self, TrcParser, TrcVersion};
 use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
+use motionwire::logs::Position;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);
@@ -112,7 +113,8 @@ fn check_lines(data: &[u8]) {
             None => (rest, &[][..]),
         };
         rest = next;
-        expected.push((expected.len() + 1, parser.parse_line(line)));
+        let position = Position::Line(expected.len() as u64 + 1);
+        expected.push((position, parser.parse_line(line)));
     }
     let mut lines = trc::lines(data);
     let items: Vec<_> = lines.by_ref().collect();

@@ -87,7 +87,7 @@ use crate::logs::lex::{
 };
 use crate::logs::text::take_line;
 use crate::logs::FormatError;
-use crate::logs::{LogFormat, SyntaxError};
+use crate::logs::{LogFormat, Position, SyntaxError};
 
 mod fast;
 #[cfg(test)]
@@ -554,8 +554,9 @@ fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static>
         .with_iface(iface)
 }
 
-/// Walk a whole buffer line by line: `(line number, what the line holds)`,
-/// numbered from 1 (`line` in docs/formats.md#positions).
+/// Walk a whole buffer line by line: `(position, what the line holds)`,
+/// the line's [`Position`](crate::logs::Position), numbered from 1
+/// (docs/formats.md#positions).
 #[must_use]
 pub fn lines(buf: &[u8]) -> AscLines<'_> {
     AscLines {
@@ -569,7 +570,7 @@ pub fn lines(buf: &[u8]) -> AscLines<'_> {
 #[derive(Debug, Clone)]
 pub struct AscLines<'a> {
     rest: &'a [u8],
-    line: usize,
+    line: u64,
     parser: AscParser,
 }
 
@@ -582,12 +583,12 @@ impl<'a> AscLines<'a> {
 }
 
 impl<'a> Iterator for AscLines<'a> {
-    type Item = (usize, Result<Option<LogEvent<'a>>, FormatError>);
+    type Item = (Position, Result<Option<LogEvent<'a>>, FormatError>);
 
     fn next(&mut self) -> Option<Self::Item> {
         let line = take_line(&mut self.rest)?;
         self.line += 1;
-        Some((self.line, self.parser.parse_line(line)))
+        Some((Position::Line(self.line), self.parser.parse_line(line)))
     }
 }
 

@@ -3,7 +3,7 @@ use crate::can::LogFrame;
 use crate::can::{CanId, Direction, FdFlags, Timestamp};
 use crate::logs::lex::hex_value;
 use crate::logs::FormatError;
-use crate::logs::{Found, LogFormat, SyntaxError};
+use crate::logs::{Found, LogFormat, Position, SyntaxError};
 use crate::test_gens::candump::{Build, FrameExt};
 use crate::What;
 
@@ -1413,7 +1413,7 @@ const LOG: &str = "(1700000000.000500) can0 081#1081110000000000\r\n\
 fn lines_numbers_every_line() {
     let items: Vec<_> = lines(LOG.as_bytes()).collect();
     assert_eq!(items.len(), 8);
-    let numbers: Vec<usize> = items.iter().map(|(n, _)| *n).collect();
+    let numbers: Vec<u64> = items.iter().map(|(n, _)| n.number()).collect();
     assert_eq!(numbers, [1, 2, 3, 4, 5, 6, 7, 8]);
     assert_eq!(items[0].1, Ok(Some(frame(DOCS_LOG))));
     assert_eq!(items[1].1, Ok(None));
@@ -1455,7 +1455,10 @@ fn lines_fold_matches_next() {
 #[test]
 fn lines_ends_and_remainder() {
     assert_eq!(lines(b"").next(), None);
-    assert_eq!(lines(b"\n").collect::<Vec<_>>(), [(1, Ok(None))]);
+    assert_eq!(
+        lines(b"\n").collect::<Vec<_>>(),
+        [(Position::Line(1), Ok(None))]
+    );
     assert_eq!(lines(b"\n\n").count(), 2);
     let mut it = lines(b"can0 123#11\ncan0 123#22");
     assert_eq!(it.remainder(), b"can0 123#11\ncan0 123#22");

@@ -134,7 +134,7 @@ proptest! {
             check(&bytes, &result)?;
         }
         for (n, item) in lines(&bytes) {
-            prop_assert!(n >= 1);
+            prop_assert!(n.number() >= 1);
             let _ = item;
         }
     }
