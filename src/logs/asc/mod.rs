@@ -51,7 +51,7 @@
 //!   and `TxRq` (transmit request) lines, which announce a frame the log
 //!   shows again when it is on the bus. Chip status lines (`CAN 1
 //!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every
-//!   other line is an [`FormatError::Syntax`] with its
+//!   other line is a [`FormatError::Syntax`] with its
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
 //! ```
@@ -555,7 +555,7 @@ fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static>
 }
 
 /// Walk a whole buffer line by line: `(position, what the line holds)`,
-/// the line's [`Position`](crate::logs::Position), numbered from 1
+/// the line's [`Position`], numbered from 1
 /// (docs/formats.md#positions).
 #[must_use]
 pub fn lines(buf: &[u8]) -> AscLines<'_> {

@@ -886,7 +886,7 @@ fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
     Ok(got)
 }
 
-/// An [`FormatError::Binary`] as the [`LogError`] that ends the reading.
+/// A [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 /// The error when the second thread stopped before giving back the
 /// container at `at` (it does not, unless the system takes it away).
 fn lost_thread(at: u64) -> LogError {

@@ -16,7 +16,7 @@ use crate::logs::{FormatError, Position};
 /// Return an iterator over the lines of `buf` that parses each one
 /// (docs/formats.md#candump-log, docs/formats.md#candump-screen): it yields the
 /// line's [`Position`] (docs/formats.md#positions) and what
-/// [`parse_line`] makes of the line, so that a malformed line is reported
+/// [`parse_line`](super::parse_line) makes of the line, so that a malformed line is reported
 /// with its number and the next line is read on. Lines end at `\n` (a `\r`
 /// before it is ignored); a last line without `\n` is read too.
 ///

@@ -76,7 +76,7 @@
 //!   carry 8 bytes) is read; `-c`'s ANSI colour sequences are ignored.
 //!   `-S` (bytes swapped, joined by a backquote) and `-i` (bytes in binary)
 //!   cannot be read back faithfully: such lines are
-//!   [`SyntaxError::UnsupportedOutput`] errors, never misread.
+//!   [`SyntaxError::UnsupportedOutput`](crate::logs::SyntaxError::UnsupportedOutput) errors, never misread.
 //! - Not accepted (an error with its column): `.` separators between data
 //!   bytes, the `_len8_dlc` suffix and CAN XL frames.
 //! - The screen format shows CAN FD flags only as the BRS/ESI letters of the
@@ -151,7 +151,7 @@ pub use reader::CandumpReader;
 
 /// Parse one candump line in either format of docs/formats.md (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the
-/// frame for a frame line, and an [`FormatError::Syntax`] with the column and
+/// frame for a frame line, and a [`FormatError::Syntax`] with the column and
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
 #[inline]
 pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {

@@ -15,7 +15,7 @@ use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of candump logs and screen output (docs/formats.md#candump-log,
 /// docs/formats.md#candump-screen) from any [`Read`]: whole lines a block at a
-/// time (256 KiB), each parsed where it lies in the block — what [`lines`]
+/// time (256 KiB), each parsed where it lies in the block — what [`lines`](super::lines)
 /// does for a buffer, for an input of any length, with the rules of
 /// docs/formats.md#reported (see [`ReadLog`]).
 ///

@@ -232,7 +232,7 @@ pub(super) fn damaged(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(None, LogErrorKind::Damaged(binary(offset, reason)))
 }
 
-/// An [`FormatError::Binary`] of the MF4 format.
+/// A [`FormatError::Binary`] of the MF4 format.
 pub(super) fn binary(offset: u64, reason: BinaryError) -> FormatError {
     FormatError::Binary {
         format: LogFormat::Mf4,

@@ -49,7 +49,7 @@
 //! frame (`CANXL_XLF`, 0x80, in the length byte) is skipped and counted,
 //! never misread.
 //!
-//! **Damaged or hostile files.** Every error is an [`FormatError::Binary`] with
+//! **Damaged or hostile files.** Every error is a [`FormatError::Binary`] with
 //! the byte offset of the damaged structure, returned after the frames
 //! before it; [`ReadLog::next_event`] returns `None` afterwards. A length
 //! above [`MAX_RECORD_LEN`] is [`BinaryError::TooLarge`] and is never
@@ -1076,7 +1076,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
     }
 }
 
-/// An [`FormatError::Binary`] as the [`LogError`] that ends the reading.
+/// A [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 fn fail(format: LogFormat, offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,

@@ -77,7 +77,7 @@
 //!   `BUSLIGHT`, `BUSHEAVY`, `BUSOFF`) — are [`LogEvent::Status`] with
 //!   their time and bus, whatever else they hold (docs/formats.md#trc: counted,
 //!   not frames, not malformed). python-can skips them.
-//! - Anything else is an [`FormatError::Syntax`](crate::logs::FormatError::Syntax) with its
+//! - Anything else is a [`FormatError::Syntax`] with its
 //!   column: an unknown row type, a data byte that is not two hex digits,
 //!   fewer or more data bytes than the length says, anything after the
 //!   data.
@@ -247,7 +247,7 @@ impl TrcParser {
     /// Parse one line (a trailing `\n` or `\r\n` is allowed). Return
     /// `Ok(None)` for a blank, comment or header line (header keys set the
     /// parser's state), a [`LogEvent::Frame`] or [`LogEvent::Status`] for a
-    /// row, and an [`FormatError::Syntax`](crate::logs::FormatError::Syntax) with the column
+    /// row, and a [`FormatError::Syntax`] with the column
     /// and reason for anything else.
     #[inline]
     pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
