@@ -1125,7 +1125,7 @@ fn candump_decode(log: &[u8], kinds: &mut LogKinds) -> u64 {
         sum = sum.wrapping_add(match result {
             Ok(Some(frame)) => decode_frame(&frame, kinds),
             Ok(None) => 0,
-            Err(_) => line as u64,
+            Err(_) => line.number(),
         });
     });
     sum

@@ -197,7 +197,7 @@ pub mod report;
 #[cfg(feature = "decoder")]
 pub mod summary;
 
-use logs::{BinaryError, LogFormat, SyntaxError};
+use logs::FormatError;
 
 /// What went wrong while decoding, reading or constructing a value: the
 /// umbrella over the layers' own errors, which converts from each.
@@ -205,7 +205,7 @@ use logs::{BinaryError, LogFormat, SyntaxError};
 /// A protocol's frame, field or value ([`Error::Codec`]: what was decoded,
 /// what was expected, what was found, e.g. `servo command frame: buffer of
 /// 7 bytes where 10 are needed`) and a log line or file that does not
-/// follow its format ([`Error::Syntax`], [`Error::Binary`]). Each shows to a
+/// follow its format ([`Error::Format`]). Each shows to a
 /// person without further context.
 ///
 /// The enum is `#[non_exhaustive]`: later layers add variants.
@@ -216,34 +216,11 @@ pub enum Error {
     /// built: the codec layer's own error.
     #[error(transparent)]
     Codec(#[from] CodecError),
-    /// A line of a text log does not follow its format (docs/formats.md); the
-    /// reason says what was expected at `column` and what was found there,
-    /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
-    /// found 0x800`.
-    #[error("{format} line, column {column}: {reason}")]
-    Syntax {
-        /// The log format the line was read as.
-        format: LogFormat,
-        /// The 1-based byte column in the line where the problem starts.
-        column: usize,
-        /// What was expected there and what was found.
-        reason: SyntaxError,
-    },
-    /// A binary log (pcap, pcapng, BLF, MF4; docs/formats.md#pcap,
-    /// docs/formats.md#blf, docs/formats.md#mf4) is damaged at `offset`
-    /// (bytes from the start of the file, or of the decompressed container
-    /// for BLF objects): the records before it were read, the rest of the
-    /// file cannot be, e.g. `pcap file, byte 4120: record of 16 bytes cut
-    /// off after 9`.
-    #[error("{format} file, byte {offset}: {reason}")]
-    Binary {
-        /// The log format the file was read as.
-        format: LogFormat,
-        /// Where the damaged structure starts, in bytes.
-        offset: u64,
-        /// What is wrong there.
-        reason: BinaryError,
-    },
+    /// A line or record of a log that its format's rules reject: the logs
+    /// layer's own error ([`FormatError`]), e.g. `candump line, column 26:
+    /// expected an identifier at most 0x7FF, found 0x800`.
+    #[error(transparent)]
+    Format(#[from] FormatError),
 }
 
 /// Each of the codec layer's own errors converts through [`CodecError`],

@@ -1,6 +1,6 @@
 //! Vector ASC lines (docs/formats.md#asc): arbitrary bytes → `asc::lines` and
 //! `AscParser::parse_line`. Invariants:
-//! - nothing panics; an error is an `Error::Syntax` of the ASC format whose
+//! - nothing panics; an error is an `FormatError::Syntax` of the ASC format whose
 //!   column lies in the line (1-based, at most one past its end), and whose
 //!   message prints;
 //! - a frame keeps the crate's invariants (identifier in range, at most 8
@@ -16,8 +16,9 @@
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent};
 use motionwire::logs::asc::{self, AscParser};
+use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
-use motionwire::Error;
+use motionwire::logs::Position;
 
 const FD_LENGTHS: [usize; 16] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64];
 
@@ -67,14 +68,14 @@ fuzz_target!(|data: &[u8]| {
     let items: Vec<_> = asc::lines(data).collect();
     assert_eq!(items.len(), expected.len());
     for (i, ((number, item), want)) in items.into_iter().zip(expected).enumerate() {
-        assert_eq!(number, i + 1);
+        assert_eq!(number, Position::Line(i as u64 + 1));
         assert_eq!(item, want);
     }
 });
 
-fn check_error(line: &[u8], error: &Error) {
+fn check_error(line: &[u8], error: &FormatError) {
     match error {
-        Error::Syntax {
+        FormatError::Syntax {
             format: LogFormat::Asc,
             column,
             reason,

@@ -3,7 +3,7 @@
 //! objects and containers). Invariants:
 //! - nothing panics, and memory stays bounded (every length is checked
 //!   against `MAX_RECORD_LEN` before anything is allocated);
-//! - every error is an `Error::Binary` of the BLF format (or I/O, never
+//! - every error is an `FormatError::Binary` of the BLF format (or I/O, never
 //!   here) whose message prints; after an error of the file's structure the
 //!   reader ends; at most one error per object;
 //! - record numbers strictly increase; frames keep the crate's invariants
@@ -17,9 +17,9 @@ use std::io::Read;
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent};
 use motionwire::logs::blf::BlfReader;
+use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
 use motionwire::logs::{LogError, LogErrorKind, ReadLog};
-use motionwire::Error;
 
 /// A reader that hands out one byte at a time.
 struct Trickle<'a>(&'a [u8]);
@@ -91,12 +91,12 @@ fn records<R: Read>(reader: R) -> Vec<String> {
 
 fn check(e: &LogError) {
     match e.kind() {
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format: LogFormat::Blf,
             reason,
             ..
         })
-        | LogErrorKind::Malformed(Error::Binary {
+        | LogErrorKind::Malformed(FormatError::Binary {
             format: LogFormat::Blf,
             reason,
             ..

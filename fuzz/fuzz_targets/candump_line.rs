@@ -2,7 +2,7 @@
 //! general path, the line iterator and the two writers.
 //!
 //! Arbitrary bytes → `candump::parse_line` and `candump::lines`. Invariants:
-//! - nothing panics; an error is an `Error::Syntax` of the candump format
+//! - nothing panics; an error is an `FormatError::Syntax` of the candump format
 //!   whose column lies in the line (1-based, at most one past its end) and
 //!   whose message prints;
 //! - a parsed frame keeps the formats' invariants: a non-empty printable
@@ -29,8 +29,9 @@ use libfuzzer_sys::fuzz_target;
 use motionwire::can::FdFlags;
 use motionwire::can::{CanFrame, Iface, LogFrame, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::logs::candump;
+use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
-use motionwire::Error;
+use motionwire::logs::Position;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);
@@ -56,9 +57,9 @@ fuzz_target!(|data: &[u8]| {
     }
 });
 
-fn check_error(line: &[u8], error: Error) {
+fn check_error(line: &[u8], error: FormatError) {
     match error {
-        Error::Syntax {
+        FormatError::Syntax {
             format: LogFormat::Candump,
             column,
             reason,
@@ -153,7 +154,7 @@ fn check_written(frame: &LogFrame) {
 }
 
 /// One more leading space changes nothing but error columns.
-fn check_leading_space(line: &[u8], result: &Result<Option<LogFrame>, Error>) {
+fn check_leading_space(line: &[u8], result: &Result<Option<LogFrame>, FormatError>) {
     let mut spaced = Vec::with_capacity(line.len() + 1);
     spaced.push(b' ');
     spaced.extend_from_slice(line);
@@ -161,8 +162,8 @@ fn check_leading_space(line: &[u8], result: &Result<Option<LogFrame>, Error>) {
     match (result, shifted) {
         (Ok(frame), Ok(shifted)) => assert_eq!(*frame, shifted, "{line:?}"),
         (
-            Err(Error::Syntax { column, reason, .. }),
-            Err(Error::Syntax {
+            Err(FormatError::Syntax { column, reason, .. }),
+            Err(FormatError::Syntax {
                 column: shifted_column,
                 reason: shifted_reason,
                 ..
@@ -183,10 +184,10 @@ fn check_lines(data: &[u8]) {
         .map(|(i, line)| {
             let parsed = candump::parse_line(line);
             if parsed.is_err() && after_error_frame && is_explanation(line) {
-                return (i + 1, Ok(None));
+                return (Position::Line(i as u64 + 1), Ok(None));
             }
             after_error_frame = matches!(&parsed, Ok(Some(f)) if f.frame.is_error());
-            (i + 1, parsed)
+            (Position::Line(i as u64 + 1), parsed)
         })
         .collect();
     let mut by_next = Vec::new();

@@ -6,7 +6,7 @@
 //! - nothing panics, nothing loops for ever (every event is paid for by
 //!   bytes read), and memory stays bounded (every length and count is
 //!   checked before anything is allocated);
-//! - every error is an `Error::Binary` of the MF4 format whose message
+//! - every error is an `FormatError::Binary` of the MF4 format whose message
 //!   prints; after an error that ends the reading the reader ends;
 //! - frames keep the crate's invariants (at most 8 bytes unless CAN FD, a
 //!   remote request without data, a numeric interface);
@@ -18,8 +18,8 @@ use std::io::Cursor;
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent};
 use motionwire::logs::mf4::Mf4Reader;
+use motionwire::logs::FormatError;
 use motionwire::logs::{LogError, LogErrorKind, LogFormat, ReadLog};
-use motionwire::Error;
 
 fn records(data: &[u8]) -> Vec<String> {
     let mut out = Vec::new();
@@ -80,12 +80,12 @@ fn records(data: &[u8]) -> Vec<String> {
 
 fn check(e: &LogError) {
     match e.kind() {
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format: LogFormat::Mf4,
             reason,
             ..
         })
-        | LogErrorKind::Malformed(Error::Binary {
+        | LogErrorKind::Malformed(FormatError::Binary {
             format: LogFormat::Mf4,
             reason,
             ..

@@ -7,7 +7,7 @@
 //! - record numbers start at 1 or more and strictly increase; when the file
 //!   ends cleanly, the frames and the other records add up to the last
 //!   number or more (skipped packets after the last frame);
-//! - at most one error, an `Error::Binary` of the reader's format whose
+//! - at most one error, an `FormatError::Binary` of the reader's format whose
 //!   offset lies within the input and whose message prints; `next_event`
 //!   returns `None` after it and after the end;
 //! - every frame keeps the frame invariants (identifier in range, at most
@@ -24,9 +24,9 @@ use std::io::Read;
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{CanFrame, Timestamp};
 use motionwire::logs::pcap::PcapReader;
+use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
 use motionwire::logs::{LogError, LogErrorKind, ReadLog};
-use motionwire::Error;
 
 struct Chunked<'a> {
     data: &'a [u8],
@@ -45,7 +45,7 @@ impl Read for Chunked<'_> {
 
 type Outcome = (
     Vec<(u64, CanFrame, Option<Timestamp>, Option<String>)>,
-    Option<Error>,
+    Option<FormatError>,
     u64,
 );
 
@@ -105,17 +105,17 @@ fn read_all<R: Read>(input: R, len: usize) -> Outcome {
     (frames, error, other)
 }
 
-/// The `Error::Binary` of a reader's error: a slice never fails to read.
-fn binary(e: LogError) -> Error {
+/// The `FormatError::Binary` of a reader's error: a slice never fails to read.
+fn binary(e: LogError) -> FormatError {
     match e.into_kind() {
         LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
         other => panic!("a slice never fails to read: {other}"),
     }
 }
 
-fn check_error(error: &Error, format: Option<LogFormat>, len: usize) {
+fn check_error(error: &FormatError, format: Option<LogFormat>, len: usize) {
     match *error {
-        Error::Binary {
+        FormatError::Binary {
             format: f, offset, ..
         } => {
             if let Some(format) = format {

@@ -2,7 +2,7 @@
 //! `TrcParser::parse_line` on its first line in every version's state.
 //!
 //! Invariants:
-//! - nothing panics; an error is an `Error::Syntax` of the TRC format whose
+//! - nothing panics; an error is an `FormatError::Syntax` of the TRC format whose
 //!   column lies in the line (1-based, at most one past its end) and whose
 //!   message prints;
 //! - a frame has a timestamp, keeps its type's length limits (8 bytes, 64
@@ -18,8 +18,9 @@
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use motionwire::logs::trc::{self, TrcParser, TrcVersion};
+use motionwire::logs::FormatError;
 use motionwire::logs::LogFormat;
-use motionwire::Error;
+use motionwire::logs::Position;
 
 fuzz_target!(|data: &[u8]| {
     check_lines(data);
@@ -50,9 +51,9 @@ fuzz_target!(|data: &[u8]| {
     }
 });
 
-fn check_error(line: &[u8], error: Error) {
+fn check_error(line: &[u8], error: FormatError) {
     match error {
-        Error::Syntax {
+        FormatError::Syntax {
             format: LogFormat::Trc,
             column,
             reason,
@@ -112,7 +113,8 @@ fn check_lines(data: &[u8]) {
             None => (rest, &[][..]),
         };
         rest = next;
-        expected.push((expected.len() + 1, parser.parse_line(line)));
+        let position = Position::Line(expected.len() as u64 + 1);
+        expected.push((position, parser.parse_line(line)));
     }
     let mut lines = trc::lines(data);
     let items: Vec<_> = lines.by_ref().collect();

@@ -1,12 +1,80 @@
 //! The errors of the log readers' layer (docs/formats.md,
-//! docs/formats.md#reported): which format a log is in ([`LogFormat`]), why a
-//! line of a text log is malformed ([`SyntaxError`], what it [`Found`]) and
-//! why a binary log cannot be read further ([`BinaryError`]). They are the
-//! payloads of the crate's [`Error::Syntax`] and [`Error::Binary`]; the
+//! docs/formats.md#reported): which format a log is in ([`LogFormat`]), a
+//! line or record that its format's rules reject ([`FormatError`]: why a
+//! line of a text log is malformed, [`SyntaxError`], what it [`Found`]; why
+//! a binary log cannot be read further, [`BinaryError`]). The crate's
+//! umbrella [`Error`](crate::Error) converts from [`FormatError`]; the
 //! reading itself fails with a `LogError` that adds where.
 
-#[cfg(any(doc, feature = "std"))]
-use crate::Error;
+/// What the logs layer's functions return: a [`FormatError`] unless said.
+pub(crate) type Result<T, E = FormatError> = core::result::Result<T, E>;
+
+/// A line or record that its format's rules reject (docs/formats.md,
+/// docs/formats.md#reported): the error of every parser of the logs layer
+/// (`candump::parse_line`, `AscParser::parse_line`, `TrcParser::parse_line`,
+/// the binary readers), carried by a `LogError`'s
+/// `LogErrorKind::Malformed` and `LogErrorKind::Damaged`. Each shows to a
+/// person without further context.
+///
+/// ```
+/// use motionwire::logs::{candump, FormatError, Found, LogFormat, SyntaxError};
+///
+/// let error = candump::parse_line(b"(1.0) can0 0X1#00").unwrap_err();
+/// assert_eq!(
+///     error,
+///     FormatError::Syntax {
+///         format: LogFormat::Candump,
+///         column: 13,
+///         reason: SyntaxError::BadIdentifier { found: Found::Byte(b'X') },
+///     }
+/// );
+/// assert_eq!(
+///     error.to_string(),
+///     "candump line, column 13: expected a CAN identifier of 3 or 8 hex digits \
+///      followed by '#' or white space, found 'X'"
+/// );
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, thiserror::Error)]
+#[non_exhaustive]
+pub enum FormatError {
+    /// A line of a text log does not follow its format (docs/formats.md); the
+    /// reason says what was expected at `column` and what was found there,
+    /// e.g. `candump line, column 26: expected an identifier at most 0x7FF,
+    /// found 0x800`.
+    #[error("{format} line, column {column}: {reason}")]
+    Syntax {
+        /// The log format the line was read as.
+        format: LogFormat,
+        /// The 1-based byte column in the line where the problem starts.
+        column: usize,
+        /// What was expected there and what was found.
+        reason: SyntaxError,
+    },
+    /// A binary log (pcap, pcapng, BLF, MF4; docs/formats.md#pcap,
+    /// docs/formats.md#blf, docs/formats.md#mf4) is damaged at `offset`
+    /// (bytes from the start of the file, or of the decompressed container
+    /// for BLF objects), e.g. `pcap file, byte 4120: record of 16 bytes cut
+    /// off after 9`.
+    #[error("{format} file, byte {offset}: {reason}")]
+    Binary {
+        /// The log format the file was read as.
+        format: LogFormat,
+        /// Where the damaged structure starts, in bytes.
+        offset: u64,
+        /// What is wrong there.
+        reason: BinaryError,
+    },
+}
+
+impl FormatError {
+    /// Return the format whose rules the line or record breaks.
+    #[must_use]
+    pub const fn format(&self) -> LogFormat {
+        match *self {
+            FormatError::Syntax { format, .. } | FormatError::Binary { format, .. } => format,
+        }
+    }
+}
 
 /// A log format of docs/formats.md, as an error names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -100,8 +168,8 @@ impl core::fmt::Display for Found {
 }
 
 /// Why a binary log cannot be read further (docs/formats.md#reported,
-/// docs/output.md#stderr): carried by [`Error::Binary`] with the format and the
-/// byte offset.
+/// docs/output.md#stderr): carried by [`FormatError::Binary`] with the
+/// format and the byte offset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum BinaryError {
@@ -289,9 +357,9 @@ impl core::fmt::Display for BinaryError {
     }
 }
 
-/// Why a line of a text log is malformed (docs/formats.md#reported): carried by
-/// [`Error::Syntax`] with the format and the column where the problem
-/// starts. Each reason's message says what was expected and what was found.
+/// Why a line of a text log is malformed (docs/formats.md#reported): carried
+/// by [`FormatError::Syntax`] with the format and the column where the
+/// problem starts. Each reason's message says what was expected and what was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum SyntaxError {
@@ -759,17 +827,18 @@ pub struct LogError {
 #[non_exhaustive]
 pub enum LogErrorKind {
     /// A line of a text log that is no line of its format
-    /// ([`Error::Syntax`]), or a record of a binary log whose content cannot
-    /// be read but whose size is known ([`Error::Binary`], e.g. a BLF frame
-    /// object with a standard identifier above 0x7FF). Only it is skipped.
-    Malformed(Error),
+    /// ([`FormatError::Syntax`]), or a record of a binary log whose content
+    /// cannot be read but whose size is known ([`FormatError::Binary`], e.g.
+    /// a BLF frame object with a standard identifier above 0x7FF). Only it
+    /// is skipped.
+    Malformed(FormatError),
     /// A line longer than [`MAX_LINE_LEN`](crate::logs::MAX_LINE_LEN): not a
     /// log line of any format. It is skipped unread, so memory stays
     /// bounded whatever the input.
     OverlongLine,
-    /// The structure of a binary log is damaged ([`Error::Binary`]): the
-    /// records before it were read, the rest of the file cannot be.
-    Damaged(Error),
+    /// The structure of a binary log is damaged ([`FormatError::Binary`]):
+    /// the records before it were read, the rest of the file cannot be.
+    Damaged(FormatError),
     /// Reading the input failed.
     Io(std::io::Error),
     /// The input is none of the formats of docs/formats.md (said once, when it

@@ -22,9 +22,11 @@
 //! | `detect.rs` | the format from the first bytes: [`detect`]
 //! (docs/formats.md#detection) | |
 //! | `text.rs` | the line layer: [`split_lines`]; with `std`, blocks of whole lines read from a `std::io::Read`, the over-long-line rule (`MAX_LINE_LEN`), CRLF and NUL | reading: `std` |
+//! | `lex/` | the fields, decimal and hex numbers of a text line, a line's syntax error at its column, and the wide-word (SWAR) tricks of the fast paths | |
 //! | `record.rs` | what every reader hands on: [`LogRecord`], [`Position`]; the readers' one trait `ReadLog` | trait: `std` |
-//! | `error.rs` | [`LogFormat`], [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
+//! | `error.rs` | [`LogFormat`]; [`FormatError`], the layer's own error: [`SyntaxError`], [`Found`], [`BinaryError`]; `LogError` | `LogError`: `std` |
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
+//! | `bytes.rs` | the integers of a binary record at a byte offset, in the file's byte order | `pcap`, `blf` or `mf4` |
 //! | `calendar.rs` | logged dates as Unix time | |
 //!
 //! Without the standard library, each text format parses lines from a
@@ -54,10 +56,13 @@
 pub mod asc;
 #[cfg(feature = "blf")]
 pub mod blf;
+#[cfg(any(feature = "pcap", feature = "blf", feature = "mf4"))]
+mod bytes;
 mod calendar;
 pub mod candump;
 mod detect;
 mod error;
+mod lex;
 #[cfg(feature = "mf4")]
 pub mod mf4;
 #[cfg(feature = "pcap")]
@@ -70,14 +75,14 @@ mod text;
 pub mod trc;
 
 pub use detect::{detect, Detected, DETECT_LEN, DETECT_MAX_UNDECIDED};
-pub use error::{BinaryError, Found, LogFormat, SyntaxError};
+pub use error::{BinaryError, FormatError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
 #[cfg(feature = "logs")]
 pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
-#[cfg(feature = "std")]
-pub use record::ReadLog;
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};
+#[cfg(feature = "std")]
+pub use record::{ReadLog, Record, Records};
 #[cfg(any(feature = "pcap", feature = "blf"))]
 pub(crate) use skipped::OtherCounts;
 pub use skipped::{OtherRecord, OtherRecords};

@@ -373,6 +373,8 @@ pub trait LogVisitor {
     fn visit<L: ReadLog + ?Sized>(self, log: &mut L) -> Self::Output;
 }
 
+crate::logs::record::records_of!(LogReader);
+
 impl ReadLog for LogReader {
     fn format(&self) -> LogFormat {
         each!(&self.inner, reader => reader.format())
@@ -402,11 +404,6 @@ impl ReadLog for LogReader {
     #[inline(always)]
     fn drained(&self) -> bool {
         each!(&self.inner, reader => reader.drained())
-    }
-
-    #[inline(always)]
-    fn generation(&self) -> u64 {
-        each!(&self.inner, reader => reader.generation())
     }
 }
 

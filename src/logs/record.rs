@@ -4,7 +4,12 @@
 
 use core::fmt;
 
+#[cfg(feature = "std")]
+use std::sync::Arc;
+
 use crate::can::LogEvent;
+#[cfg(feature = "std")]
+use crate::can::{BusStatus, Iface, LogFrame};
 #[cfg(feature = "std")]
 use crate::logs::{LogError, LogFormat};
 
@@ -80,6 +85,39 @@ pub struct LogRecord<'a> {
 /// hands on its events one at a time, each borrowing what it names from the
 /// reader (a lending iterator: the next call needs the last event gone).
 ///
+/// Two ways through a log, the same events and errors in the same order:
+///
+/// - a `for` loop over the reader (every reader is [`IntoIterator`], by
+///   value or by `&mut`; [`records`](ReadLog::records) in generic code)
+///   yields [`Record`]s that own what they name, as python-can's
+///   `for msg in can.LogReader(path)` does: records can be kept, collected
+///   and sent to other threads;
+/// - [`next_event`](ReadLog::next_event) lends each event without a copy:
+///   the loop of a program that looks at each event once (the CLI, the
+///   report, the Python package) and is done with it.
+///
+/// ```
+/// use motionwire::logs;
+///
+/// let text: &[u8] = b"(1.000000) can0 705#05\n(1.100000) can0 0X1#00\n(1.200000) can1 705#05\n";
+/// let mut frames = Vec::new();
+/// let mut log = logs::read(text)?;
+/// for record in &mut log {
+///     match record {
+///         Ok(record) => frames.push(record),
+///         // A malformed line is reported, and the reading goes on.
+///         Err(error) if error.is_skipped() => continue,
+///         Err(error) => return Err(error),
+///     }
+/// }
+/// assert_eq!(frames.len(), 2);
+/// assert_eq!(frames[1].position, logs::Position::Line(3));
+/// assert_eq!(frames[1].event().iface().unwrap().to_string(), "can1");
+/// # use motionwire::logs::ReadLog;
+/// assert_eq!(log.skipped(), 1);
+/// # Ok::<(), motionwire::logs::LogError>(())
+/// ```
+///
 /// Every reader of [`crate::logs`] implements it, and so does
 /// `logs::LogReader` (with the `logs` feature), which detects the format and
 /// dispatches to them. The rule of docs/formats.md#reported holds for all: an
@@ -141,18 +179,293 @@ pub trait ReadLog {
         false
     }
 
-    /// Return the generation of the names the events borrow (interface
-    /// names: candump's, pcapng's), for callers that cache by address.
-    ///
-    /// Readers keep each name at a stable address: an address names one
-    /// interface for as long as this number stays the same. When it
-    /// changes (a reader drops names it kept: a new pcapng section, a
-    /// candump log with very many interface names), the names of the
-    /// generation before stay where they are until the next change, so a
-    /// caller that checks this number before each call to
-    /// [`next_event`](ReadLog::next_event) and forgets its cache when it
-    /// changed never mistakes one interface for another.
-    fn generation(&self) -> u64 {
-        0
+    /// Return an iterator over the rest of the log's [`Record`]s, each
+    /// owning what it names (see the trait): what `for record in &mut log`
+    /// does.
+    fn records(&mut self) -> Records<&mut Self>
+    where
+        Self: Sized,
+    {
+        Records::new(self)
+    }
+}
+
+#[cfg(feature = "std")]
+impl<L: ReadLog + ?Sized> ReadLog for &mut L {
+    fn format(&self) -> LogFormat {
+        (**self).format()
+    }
+
+    #[inline(always)]
+    fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
+        (**self).next_event()
+    }
+
+    fn other_records(&self) -> u64 {
+        (**self).other_records()
+    }
+
+    fn other_kinds(&self) -> &[crate::logs::OtherRecords] {
+        (**self).other_kinds()
+    }
+
+    fn skipped(&self) -> u64 {
+        (**self).skipped()
+    }
+
+    fn bytes_read(&self) -> u64 {
+        (**self).bytes_read()
+    }
+
+    #[inline(always)]
+    fn drained(&self) -> bool {
+        (**self).drained()
+    }
+}
+
+/// One event of a log, with where it stands, owning what it names: what a
+/// `for` loop over a reader yields ([`Records`]). [`event`](Record::event)
+/// returns the event as the readers' [`LogRecord`] holds it, borrowing the
+/// interface name from the record.
+#[cfg(feature = "std")]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct Record {
+    /// The line or record the event was read from.
+    pub position: Position,
+    /// The event, its interface name (if it has one) in `name`.
+    event: LogEvent<'static>,
+    name: Option<Arc<str>>,
+}
+
+#[cfg(feature = "std")]
+impl Record {
+    /// Return the frame or bus event.
+    #[inline]
+    #[must_use]
+    pub fn event(&self) -> LogEvent<'_> {
+        let name = self.name.as_deref().map(Iface::Name);
+        match self.event {
+            LogEvent::Frame(frame) => {
+                let mut frame: LogFrame<'_> = frame;
+                if name.is_some() {
+                    frame.iface = name;
+                }
+                LogEvent::Frame(frame)
+            }
+            LogEvent::Status(status) => {
+                let mut status: BusStatus<'_> = status;
+                if name.is_some() {
+                    status.iface = name;
+                }
+                LogEvent::Status(status)
+            }
+        }
+    }
+
+    /// Return the record as the readers lend it: [`LogRecord`], borrowing
+    /// from this record.
+    #[inline]
+    #[must_use]
+    pub fn as_log_record(&self) -> LogRecord<'_> {
+        LogRecord {
+            position: self.position,
+            event: self.event(),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl fmt::Display for Record {
+    /// The event as its `Display` writes it.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.event().fmt(f)
+    }
+}
+
+/// The [`Record`]s of a log, read by a [`ReadLog`]: the iterator of a `for`
+/// loop over a reader (`for record in logs::open(path)?`, or
+/// `for record in &mut log` to ask the reader for its counts after the
+/// loop). Each interface name is shared by the records that name it.
+#[cfg(feature = "std")]
+#[derive(Debug)]
+pub struct Records<L> {
+    log: L,
+    /// The interface name of the last record that had one.
+    name: Option<Arc<str>>,
+}
+
+#[cfg(feature = "std")]
+impl<L: ReadLog> Records<L> {
+    /// Return the records of `log`, from where it stands.
+    pub const fn new(log: L) -> Self {
+        Records { log, name: None }
+    }
+
+    /// Return the reader (for its counts: [`ReadLog::skipped`],
+    /// [`ReadLog::other_records`]).
+    pub const fn get_ref(&self) -> &L {
+        &self.log
+    }
+
+    /// Return the reader, mutably.
+    pub fn get_mut(&mut self) -> &mut L {
+        &mut self.log
+    }
+
+    /// Return the reader.
+    pub fn into_inner(self) -> L {
+        self.log
+    }
+}
+
+#[cfg(feature = "std")]
+impl<L: ReadLog> Iterator for Records<L> {
+    type Item = Result<Record, LogError>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        let last = &mut self.name;
+        let next = self.log.next_event()?;
+        Some(next.map(|record| {
+            let (event, name) = detach(record.event);
+            let name = name.map(|name| match last {
+                Some(kept) if crate::iface::same_name(kept.as_bytes(), name.as_bytes()) => {
+                    Arc::clone(kept)
+                }
+                _ => Arc::clone(last.insert(Arc::from(name))),
+            });
+            Record {
+                position: record.position,
+                event,
+                name,
+            }
+        }))
+    }
+}
+
+#[cfg(feature = "std")]
+impl<L: ReadLog> core::iter::FusedIterator for Records<L> {}
+
+/// `IntoIterator` for a reader type, by value and by `&mut`: the
+/// [`Records`] of a `for` loop.
+#[cfg(feature = "std")]
+macro_rules! records_of {
+    ($reader:ident $(<$r:ident: $b:path $(, $bs:path)*>)?) => {
+        impl$(<$r: $b $(+ $bs)*>)? IntoIterator for $reader$(<$r>)?
+        where
+            $reader$(<$r>)?: $crate::logs::ReadLog,
+        {
+            type Item = Result<$crate::logs::Record, $crate::logs::LogError>;
+            type IntoIter = $crate::logs::Records<Self>;
+
+            /// Return the log's [`Record`](crate::logs::Record)s: `for record in log`.
+            fn into_iter(self) -> Self::IntoIter {
+                $crate::logs::Records::new(self)
+            }
+        }
+
+        impl<'a $(, $r: $b $(+ $bs)*)?> IntoIterator for &'a mut $reader$(<$r>)?
+        where
+            $reader$(<$r>)?: $crate::logs::ReadLog,
+        {
+            type Item = Result<$crate::logs::Record, $crate::logs::LogError>;
+            type IntoIter = $crate::logs::Records<Self>;
+
+            /// Return the rest of the log's [`Record`](crate::logs::Record)s,
+            /// the reader kept: `for record in &mut log`.
+            fn into_iter(self) -> Self::IntoIter {
+                $crate::logs::Records::new(self)
+            }
+        }
+    };
+}
+#[cfg(feature = "std")]
+pub(crate) use records_of;
+
+/// `event` without its interface name, which is returned apart, so that
+/// what is left borrows nothing; a channel number stays.
+#[cfg(feature = "std")]
+#[inline(always)]
+fn detach(event: LogEvent<'_>) -> (LogEvent<'static>, Option<&str>) {
+    fn split(iface: Option<Iface<'_>>) -> (Option<Iface<'static>>, Option<&str>) {
+        match iface {
+            Some(Iface::Name(name)) => (None, Some(name)),
+            Some(Iface::Channel(n)) => (Some(Iface::Channel(n)), None),
+            None => (None, None),
+        }
+    }
+    match event {
+        LogEvent::Frame(frame) => {
+            let (iface, name) = split(frame.iface);
+            let frame = LogFrame {
+                frame: frame.frame,
+                timestamp: frame.timestamp,
+                iface,
+                direction: frame.direction,
+            };
+            (LogEvent::Frame(frame), name)
+        }
+        LogEvent::Status(status) => {
+            let (iface, name) = split(status.iface);
+            let status = BusStatus {
+                timestamp: status.timestamp,
+                iface,
+            };
+            (LogEvent::Status(status), name)
+        }
+    }
+}
+
+#[cfg(all(test, feature = "logs"))]
+mod tests {
+    use super::*;
+    use crate::can::Iface;
+
+    /// The `for` loop yields what `next_event` lends, owned, and leaves the
+    /// reader's counts as `next_event` does.
+    #[test]
+    fn records_are_the_lent_events_owned() {
+        let text: &[u8] = b"(1.000000) can0 705#05\n(1.100000) can0 0X1#00\n\
+                            (1.200000) vcan12 081#01\n(1.300000) can0 705#05\n";
+        let mut lent = Vec::new();
+        let mut log = crate::logs::read(text).unwrap();
+        while let Some(next) = log.next_event() {
+            lent.push(next.map(|r| r.event.to_string()).map_err(|e| e.to_string()));
+        }
+        let mut log = crate::logs::read(text).unwrap();
+        let records: Vec<_> = (&mut log).into_iter().collect();
+        assert_eq!(log.skipped(), 1);
+        let owned: Vec<_> = records
+            .iter()
+            .map(|r| r.as_ref().map(Record::to_string).map_err(|e| e.to_string()))
+            .collect();
+        assert_eq!(owned, lent);
+        let kept: Vec<_> = records.into_iter().flatten().collect();
+        assert_eq!(kept[1].position, Position::Line(3));
+        assert_eq!(kept[1].event().iface(), Some(Iface::Name("vcan12")));
+        assert_eq!(
+            kept[2].as_log_record().event.iface(),
+            Some(Iface::Name("can0"))
+        );
+        // Records of one interface share its name.
+        assert!(Arc::ptr_eq(
+            kept[0].name.as_ref().unwrap(),
+            kept[0].clone().name.as_ref().unwrap()
+        ));
+    }
+
+    /// A channel number stays in the event; nothing is shared.
+    #[test]
+    fn channels_stay_in_the_event() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fixtures/blf/python_can.blf"
+        );
+        let records: Vec<_> = crate::logs::open(path).unwrap().into_iter().collect();
+        assert_eq!(records.len(), 39);
+        let first = records[0].as_ref().unwrap();
+        assert_eq!(first.position, Position::Record(1));
+        assert_eq!(first.event().iface(), Some(Iface::Channel(1)));
+        assert!(first.name.is_none());
     }
 }

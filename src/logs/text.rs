@@ -1,8 +1,9 @@
 //! The one line layer of the text readers (candump, ASC, TRC;
 //! docs/formats.md#memory): a buffer split into lines at `\n` (16 bytes at a
-//! time), the hex digits every format writes, and — with `std` — whole lines
-//! read from a [`std::io::Read`] a block at a time, with the over-long-line
-//! rule that keeps memory bounded whatever the input.
+//! time) and — with `std` — whole lines read from a [`std::io::Read`] a
+//! block at a time, with the over-long-line rule that keeps memory bounded
+//! whatever the input. The fields and numbers of a line are the lexical
+//! layer's (`lex`).
 //!
 //! A line is the bytes before a `\n`, without it; a last line without one
 //! counts too, nothing after a final `\n` does. A `\r` before the `\n`
@@ -10,6 +11,8 @@
 //! trailing white space. A NUL byte is an ordinary byte of its line, never
 //! a line end: the format's parser reports the line as malformed, with the
 //! column of the NUL, and the reading goes on with the next line.
+
+use crate::logs::lex::swar;
 
 /// The lines of a text buffer, split at `\n` (16 bytes at a time), each
 /// without its `\n`; a last line without one counts too, nothing after a
@@ -70,7 +73,7 @@ pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
         let w = chunk
             .first_chunk::<16>()
             .map_or(0, |c| u128::from_le_bytes(*c));
-        let hits = first_eq(w, b'\n');
+        let hits = swar::first_eq(w, b'\n');
         if hits != 0 {
             return Some(at + (hits.trailing_zeros() / 8) as usize);
         }
@@ -82,57 +85,6 @@ pub(crate) fn find_newline(buf: &[u8]) -> Option<usize> {
         .position(|&b| b == b'\n')
         .map(|i| at + i)
 }
-
-/// A mask with the high bit set in the lanes (bytes) of `w` holding `b`
-/// (and possibly in later lanes: the first set lane is exact).
-#[inline(always)]
-const fn first_eq(w: u128, b: u8) -> u128 {
-    const ONES: u128 = u128::from_le_bytes([0x01; 16]);
-    const HIGH: u128 = u128::from_le_bytes([0x80; 16]);
-    let x = w ^ (ONES * b as u128);
-    x.wrapping_sub(ONES) & !x & HIGH
-}
-
-/// The hex value of one character, or `None`: the hex digits of every
-/// text format (either case).
-#[inline]
-pub(crate) const fn hex_value(b: u8) -> Option<u8> {
-    match b {
-        b'0'..=b'9' => Some(b - b'0'),
-        b'A'..=b'F' => Some(b - b'A' + 10),
-        b'a'..=b'f' => Some(b - b'a' + 10),
-        _ => None,
-    }
-}
-
-/// `10^(9 - d)`, at index `9 - d`: what a fraction of `d` decimal digits
-/// is multiplied by to give nanoseconds (`POW10_NANOS[9 - d]`), for the text
-/// readers' timestamps.
-pub(crate) const POW10_NANOS: [u32; 10] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-];
-
-/// Hex values by character; 0xF0 marks a character that is no hex digit.
-pub(crate) const HEX_TABLE: [u8; 256] = {
-    let mut table = [0xF0u8; 256];
-    let mut i = 0;
-    while i < 256 {
-        if let Some(v) = hex_value(i as u8) {
-            table[i] = v;
-        }
-        i += 1;
-    }
-    table
-};
 
 /// The longest line a text reader holds (1 MiB). A longer one is not a log
 /// line of any format: it is reported
@@ -330,15 +282,8 @@ impl<R: std::io::Read> TextInput<R> {
 #[derive(Debug)]
 pub(crate) struct Names {
     names: Vec<Box<str>>,
-    /// The names before the table last started again, kept where they are
-    /// until it starts again once more (see [`ReadLog::generation`]).
-    ///
-    /// [`ReadLog::generation`]: crate::logs::ReadLog::generation
-    retired: Vec<Box<str>>,
     /// The name of the last event.
     last: usize,
-    /// Times the table started again.
-    resets: u64,
     /// The data bytes of the last event, for a parser that writes them here
     /// rather than into its line (candump): the record is built from them
     /// where the caller reads it, so that they are copied once.
@@ -350,9 +295,7 @@ impl Default for Names {
     fn default() -> Self {
         Names {
             names: Vec::new(),
-            retired: Vec::new(),
             last: 0,
-            resets: 0,
             data: [0; crate::can::FD_MAX_LEN],
         }
     }
@@ -381,8 +324,7 @@ impl Names {
             return;
         }
         if self.names.len() == MAX_NAMES {
-            self.retired = core::mem::take(&mut self.names);
-            self.resets += 1;
+            self.names.clear();
         }
         // The parsers take printable ASCII only; the fallback is never taken.
         let text = core::str::from_utf8(name).unwrap_or_default();
@@ -413,7 +355,7 @@ pub(crate) trait TextParser: Clone {
         &mut self,
         rest: &mut &'t [u8],
         names: &mut Names,
-    ) -> crate::Result<Option<Self::Line<'t>>>;
+    ) -> Result<Option<Self::Line<'t>>, FormatError>;
 
     /// The record of a line that holds something, at `position`, its
     /// interface name from `names`. (Built where the reader returns it, so
@@ -433,7 +375,7 @@ pub(crate) trait TextParser: Clone {
 }
 
 #[cfg(feature = "std")]
-use crate::logs::{LogError, LogErrorKind, LogRecord, Position};
+use crate::logs::{FormatError, LogError, LogErrorKind, LogRecord, Position};
 
 /// The reader of a text log over the line layer: blocks of whole lines
 /// from a [`std::io::Read`], each line parsed where it lies, positions
@@ -593,17 +535,13 @@ impl<R: std::io::Read, P: TextParser> TextLog<R, P> {
     pub(crate) fn drained(&self) -> bool {
         self.pos >= self.tail
     }
-
-    pub(crate) fn generation(&self) -> u64 {
-        self.names.resets
-    }
 }
 
 /// The error for line `line`, malformed as `error` says: reported, and
 /// the reading goes on.
 #[cfg(feature = "std")]
 #[cold]
-pub(crate) fn malformed(line: u64, error: crate::Error) -> LogError {
+pub(crate) fn malformed(line: u64, error: FormatError) -> LogError {
     LogError::new(Some(Position::Line(line)), LogErrorKind::Malformed(error))
 }
 
@@ -631,13 +569,6 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
-        #[test]
-        fn first_eq_finds_the_first_lane(bytes in proptest::array::uniform16(any::<u8>()), b in any::<u8>()) {
-            let first = bytes.iter().position(|&x| x == b).unwrap_or(16);
-            let mask = first_eq(u128::from_le_bytes(bytes), b);
-            prop_assert_eq!((mask.trailing_zeros() / 8) as usize, first);
-        }
-
         #[test]
         fn find_newline_is_the_first_newline(
             bytes in proptest::collection::vec(prop_oneof![Just(b'\n'), any::<u8>()], 0..80),
@@ -716,32 +647,22 @@ mod tests {
         }
     }
 
-    /// The interface names keep their address while the table lasts, and
-    /// the names before a new table stay where they were for one more.
+    /// The names of a log: each kept once, the table started again past
+    /// `MAX_NAMES`.
     #[cfg(feature = "std")]
     #[test]
-    fn names_keep_their_address() {
+    fn names_are_kept_once() {
         let mut names = Names::default();
         names.intern(b"can0");
         let can0 = names.last().as_ptr();
         names.intern(b"can1");
+        assert_eq!(names.last(), "can1");
         names.intern(b"can0");
         assert_eq!(names.last().as_ptr(), can0);
         for i in 0..MAX_NAMES {
             names.intern(format!("x{i}").as_bytes());
         }
-        assert_eq!(names.resets, 1);
-        assert_eq!(names.retired.len(), MAX_NAMES);
-        assert!(names.retired.iter().any(|n| n.as_ptr() == can0));
-    }
-
-    #[test]
-    fn hex_digits_in_either_case() {
-        for (b, v) in [(b'0', 0), (b'9', 9), (b'a', 10), (b'F', 15)] {
-            assert_eq!(hex_value(b), Some(v));
-        }
-        for b in [b'g', b'G', b' ', 0, b'/', b':', b'@', b'`'] {
-            assert_eq!(hex_value(b), None);
-        }
+        assert!(names.names.len() < MAX_NAMES);
+        assert_eq!(names.last(), format!("x{}", MAX_NAMES - 1));
     }
 }

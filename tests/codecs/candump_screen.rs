@@ -14,8 +14,7 @@
 
 use motionwire::can::{Direction, FdFlags, Iface, LogFrame};
 use motionwire::logs::candump::{self, RelativeTimestamps};
-use motionwire::logs::SyntaxError;
-use motionwire::Error;
+use motionwire::logs::{FormatError, SyntaxError};
 use serde_json::Value;
 
 fn fixture(mode: &str) -> (Vec<u8>, Vec<Value>) {
@@ -136,7 +135,7 @@ fn swapped_and_binary_data_are_reported_as_unsupported() {
                 || (option == b'S' && bytes == 1);
             match parsed {
                 Ok(Some(_)) if faithful => read += 1,
-                Err(Error::Syntax {
+                Err(FormatError::Syntax {
                     reason: SyntaxError::UnsupportedOutput { option: o },
                     ..
                 }) if !faithful && o == option => {}

@@ -19,10 +19,9 @@ use motionwire::logs::candump::{self, LineState, RelativeTimestamps};
 use motionwire::logs::pcap::PcapReader;
 use motionwire::logs::trc;
 use motionwire::logs::{
-    self, BinaryError, LogError, LogErrorKind, LogFormat, LogReader, Position, ReadLog,
-    ReadOptions, MAX_LINE_LEN, MAX_RECORD_LEN,
+    self, BinaryError, FormatError, LogError, LogErrorKind, LogFormat, LogReader, Position,
+    ReadLog, ReadOptions, MAX_LINE_LEN, MAX_RECORD_LEN,
 };
-use motionwire::Error;
 use proptest::prelude::*;
 
 /// The allocator of the `library` test binary (this module's, used by every
@@ -160,18 +159,16 @@ fn fixtures() -> Vec<(PathBuf, LogFormat)> {
 /// ones.
 fn own_reader(path: &Path, format: LogFormat) -> Items {
     let text = std::fs::read(path).unwrap();
-    let line = |n: usize| Position::Line(n as u64);
     match format {
         LogFormat::Candump => {
             let relative = candump::detect_relative_timestamps(&text, true).unwrap();
             candump::lines_from(&text, LineState::new(relative))
                 .filter_map(|(n, parsed)| match parsed {
                     Ok(None) => None,
-                    Ok(Some(frame)) => Some((
-                        line(n),
-                        format!("{:?}", motionwire::can::LogEvent::Frame(frame)),
-                    )),
-                    Err(e) => Some((line(n), format!("error: {e}"))),
+                    Ok(Some(frame)) => {
+                        Some((n, format!("{:?}", motionwire::can::LogEvent::Frame(frame))))
+                    }
+                    Err(e) => Some((n, format!("error: {e}"))),
                 })
                 .collect()
         }
@@ -188,19 +185,16 @@ fn own_reader(path: &Path, format: LogFormat) -> Items {
 fn text_items<'a>(
     lines: impl Iterator<
         Item = (
-            usize,
-            motionwire::Result<Option<motionwire::can::LogEvent<'a>>>,
+            Position,
+            Result<Option<motionwire::can::LogEvent<'a>>, FormatError>,
         ),
     >,
 ) -> Items {
     lines
-        .filter_map(|(n, parsed)| {
-            let position = Position::Line(n as u64);
-            match parsed {
-                Ok(None) => None,
-                Ok(Some(event)) => Some((position, format!("{event:?}"))),
-                Err(e) => Some((position, format!("error: {e}"))),
-            }
+        .filter_map(|(position, parsed)| match parsed {
+            Ok(None) => None,
+            Ok(Some(event)) => Some((position, format!("{event:?}"))),
+            Err(e) => Some((position, format!("error: {e}"))),
         })
         .collect()
 }
@@ -315,7 +309,7 @@ fn empty_unrecognised_and_damaged_inputs() {
     assert!(
         matches!(
             error.kind(),
-            LogErrorKind::Damaged(Error::Binary {
+            LogErrorKind::Damaged(FormatError::Binary {
                 format: LogFormat::Blf,
                 reason: BinaryError::BadLength { length: 8 },
                 ..
@@ -484,7 +478,7 @@ fn damage(log: &mut LogReader) -> BinaryError {
     while let Some(next) = log.next_event() {
         if let Err(error) = next {
             match error.kind() {
-                LogErrorKind::Damaged(Error::Binary { reason: r, .. }) => reason = Some(*r),
+                LogErrorKind::Damaged(FormatError::Binary { reason: r, .. }) => reason = Some(*r),
                 other => panic!("{other}"),
             }
         }

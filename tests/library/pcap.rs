@@ -35,16 +35,15 @@
 
 use motionwire::can::{Iface, LogEvent, LogFrame};
 use motionwire::logs::pcap::PcapReader;
-use motionwire::logs::{BinaryError, LogFormat};
+use motionwire::logs::{BinaryError, FormatError, LogFormat};
 use motionwire::logs::{LogError, LogErrorKind, ReadLog, MAX_RECORD_LEN};
-use motionwire::Error;
 use serde_json::Value;
 
 /// (number, frame) of every record, the error, the other records.
-type Read = (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64);
+type Read = (Vec<(u64, LogFrame<'static>)>, Option<FormatError>, u64);
 
-/// The `Error::Binary` of a reader's error (an I/O error is a test failure).
-fn binary_error(e: LogError) -> Error {
+/// The `FormatError::Binary` of a reader's error (an I/O error is a test failure).
+fn binary_error(e: LogError) -> FormatError {
     match e.into_kind() {
         LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
         other => panic!("{other}"),
@@ -330,8 +329,8 @@ fn a_cut_cooked_packet_is_damage() {
     }
 }
 
-fn binary(format: LogFormat, offset: u64, reason: BinaryError) -> Option<Error> {
-    Some(Error::Binary {
+fn binary(format: LogFormat, offset: u64, reason: BinaryError) -> Option<FormatError> {
+    Some(FormatError::Binary {
         format,
         offset,
         reason,
@@ -395,7 +394,7 @@ fn pcap_cut_inside_a_record() {
         assert_eq!(frames.len(), expected, "cut at {cut}");
         match error {
             None => assert!(boundary, "cut at {cut}"),
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 offset,
                 reason: BinaryError::Truncated { .. },
                 ..

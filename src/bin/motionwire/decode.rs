@@ -596,7 +596,7 @@ fn open_failure(name: &str, path: Option<&Path>, error: LogError) -> Failure {
         LogErrorKind::Io(e) => read_failure(name, path, e),
         LogErrorKind::Damaged(error) | LogErrorKind::Malformed(error) => Failure::Damaged {
             name: name.to_owned(),
-            error,
+            error: error.into(),
         },
         kind => Failure::Log {
             name: name.to_owned(),

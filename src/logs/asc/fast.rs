@@ -21,11 +21,13 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, hex, is_space, AscParser};
+use super::{fd_frame, AscParser};
 use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
-use crate::logs::candump::swar::decimal8;
-use crate::logs::text::{hex_value, HEX_TABLE, POW10_NANOS};
+use crate::logs::lex::swar::decimal8;
+#[cfg(any(feature = "std", test))]
+use crate::logs::lex::trim_end;
+use crate::logs::lex::{hex, hex_value, is_space, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
 /// 12) …
@@ -142,7 +144,7 @@ fn line_after(text: &[u8], end: usize) -> Option<usize> {
     };
     // Trailing white space (a `\r` too), or words the frame does not
     // read after a space.
-    if super::trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
+    if trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
         Some(next)
     } else {
         None

@@ -51,7 +51,7 @@
 //!   and `TxRq` (transmit request) lines, which announce a frame the log
 //!   shows again when it is on the bus. Chip status lines (`CAN 1
 //!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every
-//!   other line is an [`Error::Syntax`] with its
+//!   other line is a [`FormatError::Syntax`] with its
 //!   column; `CANXL` lines are errors (CAN XL is not a frame of this crate).
 //!
 //! ```
@@ -80,9 +80,14 @@ use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN,
 };
-use crate::logs::text::{hex_value, take_line};
-use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::{Error, Result};
+use crate::logs::error::Result;
+use crate::logs::lex::{
+    decimal, eq_ignore_case, found, hex, hex_digit, hex_value, starts_with_ignore_case, syntax,
+    trim_end, Tokens,
+};
+use crate::logs::text::take_line;
+use crate::logs::FormatError;
+use crate::logs::{LogFormat, Position, SyntaxError};
 
 mod fast;
 #[cfg(test)]
@@ -152,10 +157,10 @@ impl AscParser {
     ///
     /// # Errors
     ///
-    /// [`Error::Syntax`] with [`LogFormat::Asc`], the 1-based column and
+    /// [`FormatError::Syntax`] with [`LogFormat::Asc`], the 1-based column and
     /// what was expected there.
     #[inline]
-    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
         let line = trim_end(line);
         // The common frame lines in one pass; every other line (and every
         // line the fast path declines) is read by the general parser.
@@ -169,14 +174,14 @@ impl AscParser {
     /// it in place, has declined: the general parser, out of line.
     #[cfg(feature = "std")]
     #[inline(never)]
-    fn parse_other(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
+    fn parse_other(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
         self.parse_general(trim_end(line))
     }
 
     /// [`parse_line`](Self::parse_line) without the fast path, for a line
     /// whose trailing white space is trimmed.
-    fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
-        let mut tokens = Tokens::new(line);
+    fn parse_general(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
+        let mut tokens = Tokens::new(LogFormat::Asc, line);
         let Some((start, first)) = tokens.next_token() else {
             return Ok(None);
         };
@@ -203,6 +208,7 @@ impl AscParser {
             return Ok(None);
         }
         Err(syntax(
+            LogFormat::Asc,
             start + 1,
             SyntaxError::AscLine {
                 found: found(line, start),
@@ -243,7 +249,7 @@ impl AscParser {
         start: usize,
         time: &'l [u8],
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         let written = parse_time(time).ok_or_else(|| {
             tokens.error_at(start + bad_time_at(time), |found| SyntaxError::AscTime {
                 found,
@@ -368,7 +374,7 @@ impl AscParser {
         line: &'l [u8],
         timestamp: Timestamp,
         mut tokens: Tokens<'l>,
-    ) -> Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         let (at, channel) = tokens.expect(|found| SyntaxError::AscChannel { found })?;
         let channel = channel_number(channel)
             .ok_or_else(|| tokens.error_at(at, |found| SyntaxError::AscChannel { found }))?;
@@ -548,8 +554,9 @@ fn error_frame(timestamp: Timestamp, iface: Iface<'static>) -> LogFrame<'static>
         .with_iface(iface)
 }
 
-/// Walk a whole buffer line by line: `(line number, what the line holds)`,
-/// numbered from 1 (`line` in docs/formats.md#positions).
+/// Walk a whole buffer line by line: `(position, what the line holds)`,
+/// the line's [`Position`], numbered from 1
+/// (docs/formats.md#positions).
 #[must_use]
 pub fn lines(buf: &[u8]) -> AscLines<'_> {
     AscLines {
@@ -563,7 +570,7 @@ pub fn lines(buf: &[u8]) -> AscLines<'_> {
 #[derive(Debug, Clone)]
 pub struct AscLines<'a> {
     rest: &'a [u8],
-    line: usize,
+    line: u64,
     parser: AscParser,
 }
 
@@ -576,12 +583,12 @@ impl<'a> AscLines<'a> {
 }
 
 impl<'a> Iterator for AscLines<'a> {
-    type Item = (usize, Result<Option<LogEvent<'a>>>);
+    type Item = (Position, Result<Option<LogEvent<'a>>, FormatError>);
 
     fn next(&mut self) -> Option<Self::Item> {
         let line = take_line(&mut self.rest)?;
         self.line += 1;
-        Some((self.line, self.parser.parse_line(line)))
+        Some((Position::Line(self.line), self.parser.parse_line(line)))
     }
 }
 
@@ -697,116 +704,7 @@ impl fmt::Display for HexId {
     }
 }
 
-// ------------------------------------------------------------ tokens
-
-fn trim_end(line: &[u8]) -> &[u8] {
-    let end = line
-        .iter()
-        .rposition(|&b| !matches!(b, b' ' | b'\t' | b'\r' | b'\n'))
-        .map_or(0, |i| i + 1);
-    line.get(..end).unwrap_or_default()
-}
-
-const fn is_space(b: u8) -> bool {
-    b == b' ' || b == b'\t'
-}
-
-/// The white-space separated fields of a line, with their positions.
-#[derive(Debug, Clone)]
-struct Tokens<'l> {
-    line: &'l [u8],
-    pos: usize,
-}
-
-impl<'l> Tokens<'l> {
-    const fn new(line: &'l [u8]) -> Self {
-        Tokens { line, pos: 0 }
-    }
-
-    #[inline]
-    fn next_token(&mut self) -> Option<(usize, &'l [u8])> {
-        let line = self.line;
-        let mut start = self.pos;
-        while line.get(start).is_some_and(|&b| is_space(b)) {
-            start += 1;
-        }
-        if start >= line.len() {
-            self.pos = start;
-            return None;
-        }
-        let mut end = start + 1;
-        while line.get(end).is_some_and(|&b| !is_space(b)) {
-            end += 1;
-        }
-        self.pos = end;
-        Some((start, line.get(start..end).unwrap_or_default()))
-    }
-
-    fn expect(&mut self, reason: fn(Found) -> SyntaxError) -> Result<(usize, &'l [u8])> {
-        match self.next_token() {
-            Some(token) => Ok(token),
-            None => Err(self.error_at(self.line.len(), reason)),
-        }
-    }
-
-    /// The error `reason` for what stands at byte `at` (0-based).
-    fn error_at(&self, at: usize, reason: fn(Found) -> SyntaxError) -> Error {
-        syntax(at + 1, reason(found(self.line, at)))
-    }
-}
-
-fn found(line: &[u8], at: usize) -> Found {
-    line.get(at).map_or(Found::EndOfLine, |&b| Found::Byte(b))
-}
-
-const fn syntax(column: usize, reason: SyntaxError) -> Error {
-    Error::Syntax {
-        format: LogFormat::Asc,
-        column,
-        reason,
-    }
-}
-
-fn eq_ignore_case(a: &[u8], b: &[u8]) -> bool {
-    a.eq_ignore_ascii_case(b)
-}
-
-fn starts_with_ignore_case(text: &[u8], prefix: &[u8]) -> bool {
-    text.get(..prefix.len())
-        .is_some_and(|head| head.eq_ignore_ascii_case(prefix))
-}
-
-fn decimal(field: &[u8], max: u64) -> Option<u64> {
-    if field.is_empty() || field.len() > 19 || !field.iter().all(u8::is_ascii_digit) {
-        return None;
-    }
-    let value = field
-        .iter()
-        .fold(0u64, |acc, &b| acc * 10 + u64::from(b - b'0'));
-    (value <= max).then_some(value)
-}
-
-/// 1 to 8 hex digits (an identifier, CAN FD flags).
-#[inline(always)]
-fn hex(field: &[u8]) -> Option<u32> {
-    if field.is_empty() || field.len() > 8 {
-        return None;
-    }
-    let mut value = 0u32;
-    for &b in field {
-        value = value << 4 | u32::from(hex_value(b)?);
-    }
-    Some(value)
-}
-
-fn hex_digit(field: &[u8]) -> Option<u8> {
-    match field {
-        [b] => char::from(*b)
-            .to_digit(16)
-            .and_then(|d| u8::try_from(d).ok()),
-        _ => None,
-    }
-}
+// ------------------------------------------------------------ fields
 
 /// A channel number, 1 to 65535.
 fn channel_number(field: &[u8]) -> Option<u16> {

@@ -1,4 +1,5 @@
 use super::*;
+use crate::logs::FormatError;
 use crate::test_gens::can::any_can_frame as any_frame;
 use proptest::prelude::*;
 
@@ -388,7 +389,7 @@ proptest! {
         let mut parser = AscParser::new();
         for line in &lines {
             match parser.parse_line(line) {
-                Err(Error::Syntax { format: LogFormat::Asc, column, .. }) => {
+                Err(FormatError::Syntax { format: LogFormat::Asc, column, .. }) => {
                     prop_assert!(column >= 1 && column <= line.len() + 1);
                 }
                 Err(other) => prop_assert!(false, "{other:?}"),

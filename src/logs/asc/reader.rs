@@ -5,7 +5,7 @@ use std::io::Read;
 use super::AscParser;
 use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
+use crate::logs::{FormatError, LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of Vector ASC logs (docs/formats.md#asc) from any [`Read`]: whole
 /// lines a block at a time, each read by one [`AscParser`] where it lies, with
@@ -45,6 +45,8 @@ impl<R: Read> AscReader<R> {
     }
 }
 
+crate::logs::record::records_of!(AscReader<R: Read>);
+
 impl<R: Read> ReadLog for AscReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Asc
@@ -67,10 +69,6 @@ impl<R: Read> ReadLog for AscReader<R> {
     fn drained(&self) -> bool {
         self.log.drained()
     }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
-    }
 }
 
 impl TextParser for AscParser {
@@ -81,7 +79,7 @@ impl TextParser for AscParser {
         &mut self,
         rest: &mut &[u8],
         _names: &mut Names,
-    ) -> crate::Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         // The common frame lines where they lie, the line's end found
         // from where the frame ends; every other line on its own.
         if let Some((event, len)) = self.parse_fast_in_place(rest) {

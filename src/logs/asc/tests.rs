@@ -1,4 +1,6 @@
 use super::*;
+use crate::logs::FormatError;
+use crate::logs::Found;
 use crate::logs::SyntaxError as K;
 
 fn parse(parser: &mut AscParser, line: &str) -> Result<Option<LogEvent<'static>>> {
@@ -10,7 +12,7 @@ fn parse(parser: &mut AscParser, line: &str) -> Result<Option<LogEvent<'static>>
 fn err(line: &str) -> (usize, SyntaxError) {
     let mut parser = AscParser::new();
     match parse(&mut parser, line) {
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Asc,
             column,
             reason,
@@ -198,7 +200,7 @@ fn every_error_with_its_column() {
     ];
     for (line, column, reason) in rows {
         assert_eq!(err(line), (*column, *reason), "{line:?}");
-        let message = Error::Syntax {
+        let message = FormatError::Syntax {
             format: LogFormat::Asc,
             column: *column,
             reason: *reason,

@@ -44,7 +44,7 @@
 //!   up to 7 bytes of padding skipped before the next `LOBJ` (writers pad
 //!   differently); top-level objects are followed by `size % 4` padding
 //!   bytes, as Vector's and python-can's writers write them.
-//! - A damaged file ends the reading with one [`Error::Binary`] after the
+//! - A damaged file ends the reading with one [`FormatError::Binary`] after the
 //!   frames before it; a frame object whose content cannot be read (a
 //!   standard identifier above 0x7FF, a body shorter than its type) is one
 //!   error and the reading goes on with the next object. Its offset is the byte in the file for the header
@@ -73,12 +73,13 @@ use crate::can::{
     CanFrame, CanId, Direction, ErrorClasses, FdFlags, Iface, LogEvent, LogFrame, Timestamp,
     CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
+use crate::logs::bytes::{u16_le, u32_le, u64_le};
 use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
-use crate::Error;
 
 mod inflate;
 #[cfg(test)]
@@ -112,7 +113,7 @@ enum Object {
     Other,
     /// A frame object whose content cannot be read (e.g. a standard
     /// identifier above 0x7FF); the reading goes on after it.
-    Bad(Error),
+    Bad(FormatError),
 }
 
 /// A reader of Vector BLF files (docs/formats.md#blf): see the
@@ -178,7 +179,7 @@ impl<R: Read> BlfReader<R> {
     ///
     /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
     /// of kind [`LogErrorKind::Damaged`] with an
-    /// [`Error::Binary`] of [`LogFormat::Blf`] when the file does not start
+    /// [`FormatError::Binary`] of [`LogFormat::Blf`] when the file does not start
     /// with `LOGG` ([`BinaryError::BadMagic`]), is cut inside its header, or
     /// its header size is shorter than the header or above
     /// [`MAX_RECORD_LEN`].
@@ -189,7 +190,7 @@ impl<R: Read> BlfReader<R> {
             return Err(fail(
                 0,
                 BinaryError::BadMagic {
-                    found: u32_at(&head, 0),
+                    found: u32_le(&head, 0),
                 },
             ));
         }
@@ -202,7 +203,7 @@ impl<R: Read> BlfReader<R> {
                 },
             ));
         }
-        let header_len = u32_at(&head, 4) as usize;
+        let header_len = u32_le(&head, 4) as usize;
         if header_len < FILE_HEADER_LEN {
             return Err(fail(
                 4,
@@ -420,12 +421,12 @@ impl<R: Read> BlfReader<R> {
             return Err(fail(
                 at,
                 BinaryError::BadMagic {
-                    found: u32_at(&header, 0),
+                    found: u32_le(&header, 0),
                 },
             ));
         }
-        let size = u32_at(&header, 8) as usize;
-        let kind = u32_at(&header, 12);
+        let size = u32_le(&header, 8) as usize;
+        let kind = u32_le(&header, 12);
         if size < BASE_HEADER_LEN {
             return Err(fail(
                 at + 8,
@@ -476,7 +477,7 @@ impl<R: Read> BlfReader<R> {
             ));
         }
         let method = u16::from_le_bytes([body[0], body[1]]);
-        let uncompressed = u32_at(&body, 8) as usize;
+        let uncompressed = u32_le(&body, 8) as usize;
         if uncompressed > MAX_RECORD_LEN {
             return Err(fail(
                 at + BASE_HEADER_LEN as u64 + 8,
@@ -516,7 +517,7 @@ impl<R: Read> BlfReader<R> {
             if skipped == 7 || !self.fill(5)? {
                 return if skipped == 7 {
                     Err(self.stream_fail(BinaryError::BadMagic {
-                        found: u32_at(&self.stream, self.pos),
+                        found: u32_le(&self.stream, self.pos),
                     }))
                 } else {
                     self.end_of_stream()
@@ -529,10 +530,10 @@ impl<R: Read> BlfReader<R> {
             return Err(self.truncated(BASE_HEADER_LEN));
         }
         let at = self.pos;
-        let header_len = usize::from(u16_at(&self.stream, at + 4));
-        let version = u16_at(&self.stream, at + 6);
-        let size = u32_at(&self.stream, at + 8) as usize;
-        let kind = u32_at(&self.stream, at + 12);
+        let header_len = usize::from(u16_le(&self.stream, at + 4));
+        let version = u16_le(&self.stream, at + 6);
+        let size = u32_le(&self.stream, at + 8) as usize;
+        let kind = u32_le(&self.stream, at + 12);
         if size > MAX_RECORD_LEN {
             return Err(self.stream_fail(BinaryError::TooLarge {
                 length: size as u64,
@@ -558,7 +559,7 @@ impl<R: Read> BlfReader<R> {
                 Object::Other
             }
             // The object's size is known: report it, go on after it.
-            Err(reason) => Object::Bad(Error::Binary {
+            Err(reason) => Object::Bad(FormatError::Binary {
                 format: LogFormat::Blf,
                 offset: self.stream_base + self.pos as u64,
                 reason,
@@ -589,6 +590,8 @@ impl<R: Read> BlfReader<R> {
         fail(self.stream_base + self.pos as u64, reason)
     }
 }
+
+crate::logs::record::records_of!(BlfReader<R: Read>);
 
 impl<R: Read> ReadLog for BlfReader<R> {
     fn format(&self) -> LogFormat {
@@ -673,8 +676,8 @@ fn decode_object(
             length: object.len() as u64,
         });
     }
-    let flags = u32_at(object, BASE_HEADER_LEN);
-    let time = u64_at(object, BASE_HEADER_LEN + 8);
+    let flags = u32_le(object, BASE_HEADER_LEN);
+    let time = u64_le(object, BASE_HEADER_LEN + 8);
     let offset = if flags == 1 {
         // Units of 10 µs.
         core::time::Duration::from_micros(time.saturating_mul(10))
@@ -695,10 +698,10 @@ fn decode_object(
     let (channel, frame, direction) = match kind {
         object::CAN_MESSAGE | object::CAN_MESSAGE2 => {
             need(16)?;
-            let channel = u16_at(body, 0);
+            let channel = u16_le(body, 0);
             let msg_flags = body[2];
             let dlc = body[3];
-            let (id, extended) = id_of(u32_at(body, 4));
+            let (id, extended) = id_of(u32_le(body, 4));
             let id = can_id(id, extended)?;
             let frame = if msg_flags & 0x80 != 0 {
                 CanFrame::new_remote(id, dlc.min(CLASSIC_MAX_LEN as u8))
@@ -710,10 +713,10 @@ fn decode_object(
         }
         object::CAN_FD_MESSAGE => {
             need(84)?;
-            let channel = u16_at(body, 0);
+            let channel = u16_le(body, 0);
             let msg_flags = body[2];
             let dlc = body[3] & 0x0F;
-            let (id, extended) = id_of(u32_at(body, 4));
+            let (id, extended) = id_of(u32_le(body, 4));
             let id = can_id(id, extended)?;
             let fd_flags = body[13];
             let valid = usize::from(body[14]).min(FD_MAX_LEN);
@@ -735,9 +738,9 @@ fn decode_object(
             let channel = u16::from(body[0]);
             let dlc = body[1] & 0x0F;
             let valid = usize::from(body[2]).min(FD_MAX_LEN);
-            let (id, extended) = id_of(u32_at(body, 4));
+            let (id, extended) = id_of(u32_le(body, 4));
             let id = can_id(id, extended)?;
-            let fd_flags = u32_at(body, 12);
+            let fd_flags = u32_le(body, 12);
             let direction = body[34];
             let ext_offset = usize::from(body[35]);
             // The data run up to the extended data (or the object's end).
@@ -763,7 +766,7 @@ fn decode_object(
         _ => {
             // CAN_ERROR_EXT: channel, length, flags, ECC, position, DLC, …
             need(16)?;
-            let channel = u16_at(body, 0);
+            let channel = u16_le(body, 0);
             let ecc = body[8];
             let error_type = match ecc >> 6 {
                 0 => 0x01, // bit error
@@ -850,7 +853,7 @@ fn can_id(raw: u32, extended: bool) -> Result<CanId, BinaryError> {
 /// milliseconds; little-endian `u16`s) at `at`, as UTC; zero when it is no
 /// valid date (python-can does the same).
 fn system_time(head: &[u8], at: usize) -> Timestamp {
-    let field = |i: usize| u64::from(u16_at(head, at + 2 * i));
+    let field = |i: usize| u64::from(u16_le(head, at + 2 * i));
     let (year, month, day) = (field(0), field(1), field(3));
     let (hour, minute, second, millis) = (field(4), field(5), field(6), field(7));
     if !(1970..10_000).contains(&year)
@@ -869,27 +872,6 @@ fn system_time(head: &[u8], at: usize) -> Timestamp {
     Timestamp::new(secs, (millis * 1000) as u32).unwrap_or(Timestamp::ZERO)
 }
 
-fn u16_at(bytes: &[u8], at: usize) -> u16 {
-    bytes
-        .get(at..at + 2)
-        .and_then(|b| b.first_chunk::<2>())
-        .map_or(0, |b| u16::from_le_bytes(*b))
-}
-
-fn u32_at(bytes: &[u8], at: usize) -> u32 {
-    bytes
-        .get(at..at + 4)
-        .and_then(|b| b.first_chunk::<4>())
-        .map_or(0, |b| u32::from_le_bytes(*b))
-}
-
-fn u64_at(bytes: &[u8], at: usize) -> u64 {
-    bytes
-        .get(at..at + 8)
-        .and_then(|b| b.first_chunk::<8>())
-        .map_or(0, |b| u64::from_le_bytes(*b))
-}
-
 /// Read until `buf` is full or the input ends; the bytes read.
 fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
     let mut got = 0;
@@ -904,7 +886,7 @@ fn read_full<R: Read>(reader: &mut R, buf: &mut [u8]) -> io::Result<usize> {
     Ok(got)
 }
 
-/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+/// A [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 /// The error when the second thread stopped before giving back the
 /// container at `at` (it does not, unless the system takes it away).
 fn lost_thread(at: u64) -> LogError {
@@ -916,7 +898,7 @@ fn lost_thread(at: u64) -> LogError {
 fn fail(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format: LogFormat::Blf,
             offset,
             reason,

@@ -1,8 +1,9 @@
 use super::writer::{can_fd_message, can_message, container, file_header, object, Object};
 use super::*;
 use crate::can::FrameType;
+use crate::logs::FormatError;
 
-type ReadAll = (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64);
+type ReadAll = (Vec<(u64, LogFrame<'static>)>, Option<FormatError>, u64);
 
 /// Read `file` whole, with the containers inflated on a second thread and
 /// on the reading thread: the records, errors included, must be the same.
@@ -162,7 +163,7 @@ fn damaged_files() {
             assert!(
                 matches!(
                     error,
-                    Some(Error::Binary {
+                    Some(FormatError::Binary {
                         format: LogFormat::Blf,
                         ..
                     })
@@ -177,7 +178,7 @@ fn damaged_files() {
     );
     assert!(matches!(
         error,
-        Some(Error::Binary {
+        Some(FormatError::Binary {
             reason: BinaryError::BadMagic { .. },
             ..
         })
@@ -191,7 +192,7 @@ fn damaged_files() {
     assert!(
         matches!(
             error,
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 offset: 152,
                 reason: BinaryError::TooLarge { .. },
                 ..
@@ -208,7 +209,7 @@ fn damaged_files() {
     assert!(
         matches!(
             error,
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 reason: BinaryError::TooLarge { .. },
                 ..
             })
@@ -226,7 +227,7 @@ fn damaged_files() {
     assert!(
         matches!(
             error,
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 reason: BinaryError::Decompression,
                 ..
             })
@@ -241,7 +242,7 @@ fn damaged_files() {
     assert!(
         matches!(
             error,
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 reason: BinaryError::Decompression,
                 ..
             })
@@ -257,7 +258,7 @@ fn damaged_files() {
     assert!(
         matches!(
             error,
-            Some(Error::Binary {
+            Some(FormatError::Binary {
                 reason: BinaryError::UnsupportedCompression { method: 5 },
                 ..
             })
@@ -376,8 +377,8 @@ mod proptests {
     }
 }
 
-/// The `Error::Binary` of a reader's error (an I/O error is a test failure).
-fn binary_error(e: LogError) -> Error {
+/// The `FormatError::Binary` of a reader's error (an I/O error is a test failure).
+fn binary_error(e: LogError) -> FormatError {
     match e.into_kind() {
         LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
         other => panic!("{other}"),

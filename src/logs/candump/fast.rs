@@ -1,6 +1,12 @@
 //! The fast path: the `candump -l` line shape in one pass, with SWAR.
 
-use super::*;
+use super::frame::Canonical;
+use super::timestamp::parse_canonical_timestamp;
+use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
+use crate::logs::lex::swar::{
+    hex_bytes64, hex_lanes, lanes_before, load16, non_graphic, non_hex64, pack_hex, ZERO_CHARS,
+};
+use crate::logs::lex::HEX_TABLE;
 
 /// The line shape `candump -l` writes, read in one pass from the start of
 /// `buf`: `(` 10 digits `.` 6 digits `) ` interface (1 to 15 bytes) space,

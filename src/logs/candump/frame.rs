@@ -2,8 +2,10 @@
 //! [`LogFrame`], and the writers of the two text formats
 //! (docs/formats.md#candump-log, docs/formats.md#candump-screen).
 
-use super::*;
+use core::fmt;
+
 use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
+use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 
 /// The frame a line is parsed into, field by field; every parser keeps the
 /// invariants of [`CanFrame`] (lengths, an extended identifier for an error

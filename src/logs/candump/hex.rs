@@ -1,6 +1,7 @@
 //! The one hex decoder of both formats and of the fast path.
 
-use super::*;
+use crate::can::FD_MAX_LEN;
+use crate::logs::lex::swar::{hex_lanes, lanes_before, load16, pack_hex, ZERO_CHARS};
 
 /// Decode the hex digits `line[start..end]` into `out` (whose unused bytes
 /// stay zero); `end - start` is at most `2 * out.len()`. An odd count is
@@ -11,7 +12,7 @@ pub(super) fn decode_hex(
     start: usize,
     end: usize,
     out: &mut [u8; FD_MAX_LEN],
-) -> core::result::Result<(), usize> {
+) -> Result<(), usize> {
     let digits = line.get(start..end).unwrap_or_default();
     let mut chunks = digits.chunks_exact(16);
     let mut outs = out.chunks_exact_mut(8);
@@ -47,5 +48,3 @@ pub(super) fn decode_hex(
     }
     Ok(())
 }
-
-pub(super) use crate::logs::text::HEX_TABLE;

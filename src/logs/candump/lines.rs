@@ -1,28 +1,39 @@
 //! A whole buffer, line by line.
 
-use super::*;
+use core::iter::FusedIterator;
+
+use super::fast::{parse_canonical_log, IfaceHint};
+#[cfg(feature = "std")]
+use super::frame::Head;
+use super::frame::Parsed;
+use super::parse::parse_general;
+use crate::can::{FrameType, LogFrame, Timestamp, FD_MAX_LEN};
+use crate::logs::error::Result;
+use crate::logs::lex::{is_space, skip_space};
+use crate::logs::text::take_line;
+use crate::logs::{FormatError, Position};
 
 /// Return an iterator over the lines of `buf` that parses each one
 /// (docs/formats.md#candump-log, docs/formats.md#candump-screen): it yields the
-/// 1-based line number (docs/formats.md#positions) and what
-/// [`parse_line`] makes of the line, so that a malformed line is reported
+/// line's [`Position`] (docs/formats.md#positions) and what
+/// [`parse_line`](super::parse_line) makes of the line, so that a malformed line is reported
 /// with its number and the next line is read on. Lines end at `\n` (a `\r`
 /// before it is ignored); a last line without `\n` is read too.
 ///
 /// ```
-/// use motionwire::logs::candump;
+/// use motionwire::logs::{candump, Position};
 ///
 /// let log = b"(1.000000) can0 701#05\r\n\n(1.000100) can0 0X1#00\n  can0  705   [1]  remote request\n";
 /// let mut lines = candump::lines(log);
 /// let (n, first) = lines.next().unwrap();
-/// assert_eq!((n, first?.unwrap().frame.data()), (1, &[0x05][..]));
-/// assert_eq!(lines.next().unwrap().0, 2); // blank: Ok(None)
+/// assert_eq!((n, first?.unwrap().frame.data()), (Position::Line(1), &[0x05][..]));
+/// assert_eq!(lines.next().unwrap().0, Position::Line(2)); // blank: Ok(None)
 /// let (n, bad) = lines.next().unwrap();
-/// assert_eq!(n, 3);
+/// assert_eq!(n, Position::Line(3));
 /// assert!(bad.is_err());
 /// assert!(lines.next().unwrap().1?.unwrap().frame.is_rtr());
 /// assert!(lines.next().is_none());
-/// # Ok::<(), motionwire::Error>(())
+/// # Ok::<(), motionwire::logs::FormatError>(())
 /// ```
 ///
 /// After an error frame, the lines that `candump -e` prints to explain it
@@ -181,7 +192,7 @@ pub fn detect_relative_timestamps(buf: &[u8], complete: bool) -> Option<Relative
 #[derive(Debug, Clone)]
 pub struct CandumpLines<'a> {
     rest: &'a [u8],
-    line_number: usize,
+    line_number: u64,
     state: LineState,
     /// The interface names of the last frames, from the buffer, with their
     /// keys: the last frame's, then the one before it that differs.
@@ -191,7 +202,7 @@ pub struct CandumpLines<'a> {
 }
 
 impl<'a> Iterator for CandumpLines<'a> {
-    type Item = (usize, Result<Option<LogFrame<'a>>>);
+    type Item = (Position, Result<Option<LogFrame<'a>>, FormatError>);
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
@@ -203,7 +214,7 @@ impl<'a> Iterator for CandumpLines<'a> {
         let parsed = next_parsed(&mut self.rest, &mut self.state, &mut self.hint, |f| {
             f.into_log_frame_after(recent)
         });
-        Some((self.line_number, parsed))
+        Some((Position::Line(self.line_number), parsed))
     }
 }
 

@@ -1,6 +1,13 @@
 //! The log format after the identifier's `#` (docs/formats.md#candump-log).
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::hex::decode_hex;
+use crate::can::{Direction, FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::logs::error::Result;
+use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
+use crate::logs::FormatError;
+use crate::logs::{Found, SyntaxError};
 
 /// Parse the log format after the identifier's `#` at `start - 1`:
 /// `R[len]`, `#<flags><data>` or `<data>`, then an optional direction.
@@ -95,7 +102,7 @@ pub(super) fn parse_log_data(
 
 #[cold]
 #[inline(never)]
-pub(super) fn data_too_long(line: &[u8], start: usize, end: usize, max: usize) -> Error {
+pub(super) fn data_too_long(line: &[u8], start: usize, end: usize, max: usize) -> FormatError {
     let digits = line.get(start..end).unwrap_or_default();
     match digits.iter().position(|b| hex_value(*b).is_none()) {
         Some(i) => bad_data(line, start + i),
@@ -113,7 +120,7 @@ pub(super) fn data_too_long(line: &[u8], start: usize, end: usize, max: usize) -
 /// means the frame ended and something else follows.
 #[cold]
 #[inline(never)]
-pub(super) fn bad_data(line: &[u8], at: usize) -> Error {
+pub(super) fn bad_data(line: &[u8], at: usize) -> FormatError {
     match line.get(at) {
         Some(&b) if is_space(b) => {
             // After the data only a direction letter may stand; point past it
@@ -134,7 +141,7 @@ pub(super) fn bad_data(line: &[u8], at: usize) -> Error {
 }
 
 #[cold]
-pub(super) fn trailing(line: &[u8], at: usize) -> Error {
+pub(super) fn trailing(line: &[u8], at: usize) -> FormatError {
     error(
         at,
         SyntaxError::TrailingGarbage {

@@ -76,7 +76,7 @@
 //!   carry 8 bytes) is read; `-c`'s ANSI colour sequences are ignored.
 //!   `-S` (bytes swapped, joined by a backquote) and `-i` (bytes in binary)
 //!   cannot be read back faithfully: such lines are
-//!   [`SyntaxError::UnsupportedOutput`] errors, never misread.
+//!   [`SyntaxError::UnsupportedOutput`](crate::logs::SyntaxError::UnsupportedOutput) errors, never misread.
 //! - Not accepted (an error with its column): `.` separators between data
 //!   bytes, the `_len8_dlc` suffix and CAN XL frames.
 //! - The screen format shows CAN FD flags only as the BRS/ESI letters of the
@@ -123,16 +123,6 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
-use core::fmt;
-use core::iter::FusedIterator;
-
-use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
-use crate::can::{FrameType, LogFrame};
-use crate::logs::calendar::{days_in_month, days_since_epoch};
-use crate::logs::text::{hex_value, take_line};
-use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::{Error, Result};
-
 mod error;
 mod fast;
 mod frame;
@@ -143,31 +133,28 @@ mod parse;
 #[cfg(feature = "std")]
 mod reader;
 mod screen;
-pub(super) mod swar;
 mod timestamp;
 
-use error::*;
-use fast::*;
-use frame::*;
+use crate::can::{LogFrame, FD_MAX_LEN};
+use crate::logs::error::Result;
+use crate::logs::FormatError;
+use fast::{parse_canonical_log, IfaceHint};
+use frame::Parsed;
+use parse::parse_general;
+
 pub use frame::{write_log, write_screen};
-use hex::*;
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
-use log::*;
-use parse::*;
 #[cfg(feature = "std")]
 pub use reader::CandumpReader;
-use screen::*;
-use swar::*;
-use timestamp::*;
 
 /// Parse one candump line in either format of docs/formats.md (see the module's
 /// table and decisions). Return `Ok(None)` for a blank or comment line, the
-/// frame for a frame line, and an [`Error::Syntax`] with the column and
+/// frame for a frame line, and a [`FormatError::Syntax`] with the column and
 /// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
 #[inline]
-pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
+pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
     let mut data = [0; FD_MAX_LEN];
     let mut hint = IfaceHint::NONE;
     match parse_canonical_log(line, &mut data, &mut hint) {
@@ -180,14 +167,14 @@ pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
 
 /// Parse one candump line given as text; see [`parse_line`].
 #[inline]
-pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>> {
+pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>, FormatError> {
     parse_line(line.as_bytes())
 }
 
 /// The general parser alone, as the public functions return it: for the
 /// tests that compare it with the fast path.
 #[cfg(test)]
-fn general(line: &[u8]) -> Result<Option<LogFrame<'_>>> {
+fn general(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
     parse_general(line).map(|frame| frame.map(Parsed::into_log_frame))
 }
 

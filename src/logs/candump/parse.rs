@@ -1,24 +1,17 @@
 //! The general parser: any line shape, byte by byte where the shape varies.
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::log::parse_log_frame;
+use super::screen::{parse_indicators, parse_screen_frame};
+use super::timestamp::parse_timestamp;
 use crate::can::CAN_ERR_FLAG;
-
-#[inline(always)]
-pub(super) const fn is_space(b: u8) -> bool {
-    b == b' ' || b == b'\t'
-}
-
-/// The index of the first byte at or after `at` that is not a space or tab.
-#[inline(always)]
-pub(super) fn skip_space(line: &[u8], mut at: usize) -> usize {
-    while let Some(&b) = line.get(at) {
-        if !is_space(b) {
-            break;
-        }
-        at += 1;
-    }
-    at
-}
+use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
+use crate::logs::error::Result;
+use crate::logs::lex::swar::{hex_lanes, lanes_before, load16, non_graphic, pack_hex};
+use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
+use crate::logs::FormatError;
+use crate::logs::{Found, SyntaxError};
 
 /// Skip one or more spaces or tabs at `at`.
 #[inline(always)]
@@ -32,19 +25,6 @@ pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
             },
         )),
     }
-}
-
-/// Strip trailing line ends, spaces and tabs.
-#[inline(always)]
-pub(super) fn trim_end(mut line: &[u8]) -> &[u8] {
-    while let [rest @ .., last] = line {
-        if is_space(*last) || *last == b'\r' || *last == b'\n' {
-            line = rest;
-        } else {
-            break;
-        }
-    }
-    line
 }
 
 /// Parse one line of any shape, byte by byte where the shape varies.
@@ -131,11 +111,11 @@ fn parse_coloured(line: &[u8]) -> Result<Option<Parsed<'_>>> {
             Ok(Some(Parsed { iface, ..frame }))
         }
         Ok(None) => Ok(None),
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format,
             column,
             reason,
-        }) => Err(Error::Syntax {
+        }) => Err(FormatError::Syntax {
             format,
             column: to_line(column),
             reason,
@@ -281,7 +261,7 @@ pub(super) fn scan_iface(line: &[u8], start: usize) -> Result<usize> {
 /// the interface should be, or nothing after the interface.
 #[cold]
 #[inline(never)]
-pub(super) fn missing_frame(line: &[u8], start: usize, end: usize) -> Error {
+pub(super) fn missing_frame(line: &[u8], start: usize, end: usize) -> FormatError {
     if line.get(start..end).unwrap_or_default().contains(&b'#') {
         error(start, SyntaxError::MissingInterface)
     } else {
@@ -326,13 +306,13 @@ pub(super) fn parse_id(line: &[u8], start: usize) -> Result<(CanId, FrameType, u
 }
 
 #[cold]
-pub(super) fn out_of_range(start: usize, id: u32, max: u32) -> Error {
+pub(super) fn out_of_range(start: usize, id: u32, max: u32) -> FormatError {
     error(start, SyntaxError::IdentifierOutOfRange { id, max })
 }
 
 #[cold]
 #[inline(never)]
-pub(super) fn bad_id(line: &[u8], start: usize) -> Error {
+pub(super) fn bad_id(line: &[u8], start: usize) -> FormatError {
     let rest = line.get(start..).unwrap_or_default();
     let digits = rest.iter().take_while(|b| hex_value(**b).is_some()).count();
     let end = start + digits;

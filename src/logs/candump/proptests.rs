@@ -2,7 +2,10 @@ use crate::can::LogFrame;
 use crate::test_gens::candump::FrameExt;
 use proptest::prelude::*;
 
+use super::fast::decode_fd_data;
 use super::*;
+use crate::can::FD_MAX_LEN;
+use crate::logs::Position;
 use crate::test_gens::candump::{frame_spec, mutated_line, screen_frame_spec};
 
 fn write_log(frame: &LogFrame<'_>) -> String {
@@ -54,7 +57,7 @@ proptest! {
             prop_assert_eq!(parse_line_str(&line), Ok(Some(frame)));
             let buf = format!("{line}{line}");
             let items: Vec<_> = lines(buf.as_bytes()).collect();
-            prop_assert_eq!(items, vec![(1, Ok(Some(frame))), (2, Ok(Some(frame)))]);
+            prop_assert_eq!(items, vec![(Position::Line(1), Ok(Some(frame))), (Position::Line(2), Ok(Some(frame)))]);
         }
     }
 
@@ -151,7 +154,7 @@ proptest! {
         prop_assert_eq!(&by_fold, &items);
         let mut after_error_frame = false;
         for ((n, item), (number, (line, _))) in items.into_iter().zip((1..).zip(&log)) {
-            prop_assert_eq!(n, number);
+            prop_assert_eq!(n, Position::Line(number));
             let alone = parse_line(line);
             let expected = match alone {
                 Err(_) if after_error_frame && lines::is_explanation(line) => Ok(None),
@@ -174,7 +177,7 @@ proptest! {
         log in proptest::collection::vec(log_line(), 1..40),
         chunk in 1usize..200,
     ) {
-        use crate::logs::{Position, ReadLog};
+        use crate::logs::ReadLog;
 
         /// An input that hands out at most `chunk` bytes a read.
         struct Chunks<'a>(&'a [u8], usize);
@@ -194,7 +197,7 @@ proptest! {
         }
         let mut expected = Vec::new();
         for (n, item) in lines(&buf) {
-            let position = Some(Position::Line(n as u64));
+            let position = Some(n);
             match item {
                 Ok(Some(frame)) => expected.push((position, Some(frame.to_string()))),
                 Ok(None) => {}

@@ -3,15 +3,19 @@
 
 use std::io::Read;
 
+use super::fast::IfaceHint;
+use super::frame::Head;
 use super::lines::{is_explanation, next_head};
-use super::*;
+use super::{detect_relative_timestamps, parse_line, LineState, RelativeTimestamps};
 use crate::can::LogEvent;
+use crate::can::FD_MAX_LEN;
+use crate::logs::error::Result;
 use crate::logs::text::{Names, TextLog, TextParser};
 use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of candump logs and screen output (docs/formats.md#candump-log,
 /// docs/formats.md#candump-screen) from any [`Read`]: whole lines a block at a
-/// time (256 KiB), each parsed where it lies in the block — what [`lines`]
+/// time (256 KiB), each parsed where it lies in the block — what [`lines`](super::lines)
 /// does for a buffer, for an input of any length, with the rules of
 /// docs/formats.md#reported (see [`ReadLog`]).
 ///
@@ -91,6 +95,8 @@ impl<R: Read> CandumpReader<R> {
     }
 }
 
+crate::logs::record::records_of!(CandumpReader<R: Read>);
+
 impl<R: Read> ReadLog for CandumpReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Candump
@@ -112,10 +118,6 @@ impl<R: Read> ReadLog for CandumpReader<R> {
     #[inline]
     fn drained(&self) -> bool {
         self.log.drained()
-    }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
     }
 }
 

@@ -1,6 +1,14 @@
 //! The screen format after the identifier (docs/formats.md#candump-screen).
 
-use super::*;
+use super::error::error;
+use super::frame::Parsed;
+use super::log::trailing;
+use super::parse::need_space;
+use crate::can::{FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
+use crate::logs::error::Result;
+use crate::logs::lex::{found, hex_value, is_space, skip_space};
+use crate::logs::FormatError;
+use crate::logs::{Found, SyntaxError};
 
 /// The word candump -e writes after an error frame's data (can-utils
 /// `lib.c`, `snprintf_long_canframe`).
@@ -26,7 +34,7 @@ pub(super) fn parse_indicators(line: &[u8], at: usize) -> Result<(FdFlags, usize
 }
 
 #[cold]
-pub(super) fn bad_indicators(line: &[u8], at: usize) -> Error {
+pub(super) fn bad_indicators(line: &[u8], at: usize) -> FormatError {
     error(
         at,
         SyntaxError::BadFdIndicators {
@@ -202,7 +210,7 @@ fn parse_ascii(line: &[u8], open: usize, frame: &Parsed<'_>) -> Result<()> {
 /// back faithfully and say so (docs/formats.md#candump-screen); anything else
 /// is a bad digit.
 #[cold]
-fn unsupported_or_bad_hex(line: &[u8], at: usize) -> Error {
+fn unsupported_or_bad_hex(line: &[u8], at: usize) -> FormatError {
     let rest = line.get(at..).unwrap_or_default();
     let token_len = rest.iter().position(|&b| is_space(b)).unwrap_or(rest.len());
     let token = rest.get(..token_len).unwrap_or_default();
@@ -228,7 +236,7 @@ fn unsupported_or_bad_hex(line: &[u8], at: usize) -> Error {
 }
 
 #[cold]
-pub(super) fn bad_hex(line: &[u8], at: usize) -> Error {
+pub(super) fn bad_hex(line: &[u8], at: usize) -> FormatError {
     error(
         at,
         SyntaxError::BadHexDigit {
@@ -238,6 +246,6 @@ pub(super) fn bad_hex(line: &[u8], at: usize) -> Error {
 }
 
 #[cold]
-pub(super) fn mismatch(open: usize, declared: usize, found: usize) -> Error {
+pub(super) fn mismatch(open: usize, declared: usize, found: usize) -> FormatError {
     error(open, SyntaxError::LengthMismatch { declared, found })
 }

@@ -1,5 +1,9 @@
 use super::*;
 use crate::can::LogFrame;
+use crate::can::{CanId, Direction, FdFlags, Timestamp};
+use crate::logs::lex::hex_value;
+use crate::logs::FormatError;
+use crate::logs::{Found, LogFormat, Position, SyntaxError};
 use crate::test_gens::candump::{Build, FrameExt};
 use crate::What;
 
@@ -39,7 +43,7 @@ fn frame(line: &str) -> LogFrame<'_> {
 fn fail(line: &str) -> (usize, SyntaxError) {
     assert_eq!(general(line.as_bytes()), parse_line_str(line));
     match parse_line_str(line) {
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Candump,
             column,
             reason,
@@ -1409,14 +1413,14 @@ const LOG: &str = "(1700000000.000500) can0 081#1081110000000000\r\n\
 fn lines_numbers_every_line() {
     let items: Vec<_> = lines(LOG.as_bytes()).collect();
     assert_eq!(items.len(), 8);
-    let numbers: Vec<usize> = items.iter().map(|(n, _)| *n).collect();
+    let numbers: Vec<u64> = items.iter().map(|(n, _)| n.number()).collect();
     assert_eq!(numbers, [1, 2, 3, 4, 5, 6, 7, 8]);
     assert_eq!(items[0].1, Ok(Some(frame(DOCS_LOG))));
     assert_eq!(items[1].1, Ok(None));
     assert_eq!(items[2].1, Ok(None));
     assert_eq!(
         items[3].1,
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Candump,
             column: 27,
             reason: SyntaxError::BadIdentifier {
@@ -1451,7 +1455,10 @@ fn lines_fold_matches_next() {
 #[test]
 fn lines_ends_and_remainder() {
     assert_eq!(lines(b"").next(), None);
-    assert_eq!(lines(b"\n").collect::<Vec<_>>(), [(1, Ok(None))]);
+    assert_eq!(
+        lines(b"\n").collect::<Vec<_>>(),
+        [(Position::Line(1), Ok(None))]
+    );
     assert_eq!(lines(b"\n\n").count(), 2);
     let mut it = lines(b"can0 123#11\ncan0 123#22");
     assert_eq!(it.remainder(), b"can0 123#11\ncan0 123#22");
@@ -1595,14 +1602,14 @@ fn indentation_never_decides_how_a_coloured_line_reads() {
         Some(end) => &input[..=end],
         None => &input[..],
     };
-    let Err(Error::Syntax { column, reason, .. }) = parse_line(line) else {
+    let Err(FormatError::Syntax { column, reason, .. }) = parse_line(line) else {
         panic!("the line is malformed");
     };
     for indent in 1..=3 {
         let mut spaced = vec![b' '; indent];
         spaced.extend_from_slice(line);
         match parse_line(&spaced) {
-            Err(Error::Syntax {
+            Err(FormatError::Syntax {
                 column: shifted,
                 reason: shifted_reason,
                 ..
@@ -1616,7 +1623,9 @@ fn indentation_never_decides_how_a_coloured_line_reads() {
     // Tabs too, and a coloured frame line still reads.
     let mut tabbed = b"\t\t".to_vec();
     tabbed.extend_from_slice(line);
-    assert!(matches!(parse_line(&tabbed), Err(Error::Syntax { column: c, .. }) if c == column + 2));
+    assert!(
+        matches!(parse_line(&tabbed), Err(FormatError::Syntax { column: c, .. }) if c == column + 2)
+    );
     let coloured = b"   \x1b[1;31mcan0  123   [1]  42\x1b[0m";
     let frame = parse_line(coloured).unwrap().unwrap();
     assert_eq!(frame.frame.data(), [0x42]);

@@ -3,8 +3,17 @@
 //! fast path, the general form with SWAR, and the byte-by-byte form for the
 //! rest; the tests check that the three agree.
 
-use super::*;
-use crate::logs::text::POW10_NANOS;
+use super::error::error;
+use crate::can::Timestamp;
+use crate::logs::calendar::{days_in_month, days_since_epoch};
+use crate::logs::error::Result;
+use crate::logs::lex::found;
+use crate::logs::lex::swar::{
+    decimal16, decimal8, lanes_before, load16, non_digits, HIGH, LOW7, ZERO_CHARS,
+};
+use crate::logs::lex::POW10_NANOS;
+use crate::logs::FormatError;
+use crate::logs::SyntaxError;
 
 /// Read the template `candump -l` writes, `(SSSSSSSSSS.UUUUUU) ` (ten digits
 /// of seconds, six of microseconds, a space), from the first 20 bytes of a
@@ -110,7 +119,7 @@ pub(super) fn parse_timestamp(line: &[u8], open: usize) -> Result<(Timestamp, us
 pub(super) const POW10: [u32; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
 
 #[cold]
-pub(super) fn bad_timestamp(line: &[u8], at: usize) -> Error {
+pub(super) fn bad_timestamp(line: &[u8], at: usize) -> FormatError {
     error(
         at,
         SyntaxError::BadTimestamp {

@@ -7,8 +7,9 @@
 use std::collections::HashSet;
 use std::io::{self, Read, Seek, SeekFrom};
 
+use crate::logs::bytes::padded;
+use crate::logs::FormatError;
 use crate::logs::{BinaryError, LogError, LogErrorKind, LogFormat, MAX_RECORD_LEN};
-use crate::Error;
 
 /// The block header: id, reserved, length, link count.
 pub(super) const HEADER_LEN: u64 = 24;
@@ -47,33 +48,23 @@ impl Block {
 
     /// Return the little-endian u16 at `at` of the data.
     pub(super) fn u16(&self, at: usize) -> u16 {
-        u16::from_le_bytes(le(&self.data, at))
+        u16::from_le_bytes(padded(&self.data, at))
     }
 
     /// Return the little-endian u32 at `at` of the data.
     pub(super) fn u32(&self, at: usize) -> u32 {
-        u32::from_le_bytes(le(&self.data, at))
+        u32::from_le_bytes(padded(&self.data, at))
     }
 
     /// Return the little-endian u64 at `at` of the data.
     pub(super) fn u64(&self, at: usize) -> u64 {
-        u64::from_le_bytes(le(&self.data, at))
+        u64::from_le_bytes(padded(&self.data, at))
     }
 
     /// Return the little-endian f64 at `at` of the data.
     pub(super) fn f64(&self, at: usize) -> f64 {
-        f64::from_le_bytes(le(&self.data, at))
+        f64::from_le_bytes(padded(&self.data, at))
     }
-}
-
-/// `N` bytes at `at`, zeros where `bytes` is shorter.
-pub(super) fn le<const N: usize>(bytes: &[u8], at: usize) -> [u8; N] {
-    let mut out = [0; N];
-    if let Some(src) = bytes.get(at..) {
-        let n = src.len().min(N);
-        out[..n].copy_from_slice(&src[..n]);
-    }
-    out
 }
 
 /// The file, read at any offset, with its length and the bytes read so far.
@@ -151,7 +142,7 @@ impl<R: Read + Seek> Source<R> {
                 },
             ));
         }
-        let id: [u8; 4] = le(&head, 0);
+        let id: [u8; 4] = padded(&head, 0);
         let wanted = ids
             .split('|')
             .any(|wanted| wanted.as_bytes() == id.as_slice());
@@ -164,8 +155,8 @@ impl<R: Read + Seek> Source<R> {
                 },
             ));
         }
-        let len = u64::from_le_bytes(le(&head, 8));
-        let links = u64::from_le_bytes(le(&head, 16));
+        let len = u64::from_le_bytes(padded(&head, 8));
+        let links = u64::from_le_bytes(padded(&head, 16));
         if len < HEADER_LEN || links > (len - HEADER_LEN) / 8 {
             return Err(damaged(at + 8, BinaryError::BadLength { length: len }));
         }
@@ -208,7 +199,7 @@ impl<R: Read + Seek> Source<R> {
         let data = bytes.split_off(links_len);
         let links = bytes
             .chunks_exact(8)
-            .map(|link| u64::from_le_bytes(le(link, 0)))
+            .map(|link| u64::from_le_bytes(padded(link, 0)))
             .collect();
         Ok(Block { at, links, data })
     }
@@ -241,9 +232,9 @@ pub(super) fn damaged(offset: u64, reason: BinaryError) -> LogError {
     LogError::new(None, LogErrorKind::Damaged(binary(offset, reason)))
 }
 
-/// An [`Error::Binary`] of the MF4 format.
-pub(super) fn binary(offset: u64, reason: BinaryError) -> Error {
-    Error::Binary {
+/// A [`FormatError::Binary`] of the MF4 format.
+pub(super) fn binary(offset: u64, reason: BinaryError) -> FormatError {
+    FormatError::Binary {
         format: LogFormat::Mf4,
         offset,
         reason,

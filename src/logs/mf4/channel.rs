@@ -12,7 +12,7 @@ mod data_type {
     pub(super) const FLOAT_BE: u8 = 5;
 }
 
-use crate::logs::mf4::block::le;
+use crate::logs::bytes::padded;
 
 /// Where a channel's value comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -167,7 +167,7 @@ impl Channel {
             }
             let word = match rest.first_chunk::<8>() {
                 Some(word) => u64::from_le_bytes(*word),
-                None => u64::from_le_bytes(le(rest, 0)),
+                None => u64::from_le_bytes(padded(rest, 0)),
             };
             let value = if bits == 0 {
                 0

@@ -13,7 +13,8 @@ use std::io::{Read, Seek};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use crate::logs::mf4::block::{damaged, le, Chain, Source, HEADER_LEN};
+use crate::logs::bytes::padded;
+use crate::logs::mf4::block::{damaged, Chain, Source, HEADER_LEN};
 use crate::logs::{BinaryError, LogError, MAX_RECORD_LEN};
 
 /// The bytes of a DT block read at once.
@@ -439,9 +440,9 @@ fn dz_header<R: Read + Seek>(
         ));
     }
     let zip_type = head[2];
-    let parameter = u32::from_le_bytes(le(&head, 4));
-    let org_len = u64::from_le_bytes(le(&head, 8));
-    let data_len = u64::from_le_bytes(le(&head, 16));
+    let parameter = u32::from_le_bytes(padded(&head, 4));
+    let org_len = u64::from_le_bytes(padded(&head, 8));
+    let data_len = u64::from_le_bytes(padded(&head, 16));
     if zip_type > 1 {
         // zstd, lz4 (asammdf's types 2 to 5): not read (docs/formats.md#mf4).
         return Err(damaged(

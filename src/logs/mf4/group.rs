@@ -18,7 +18,8 @@ use crate::can::{
     CanFrame, CanId, Direction, ErrorClasses, FdFlags, Iface, LogFrame, Timestamp, CLASSIC_MAX_LEN,
     FD_MAX_LEN,
 };
-use crate::logs::mf4::block::{binary, le, Source};
+use crate::logs::bytes::padded;
+use crate::logs::mf4::block::{binary, Source};
 use crate::logs::mf4::data::{Budget, DataStream};
 use crate::logs::mf4::layout::{CanGroup, DataBytes, DataGroup, FrameKind, Kind};
 use crate::logs::{BinaryError, LogError, LogErrorKind, Position, MAX_RECORD_LEN};
@@ -369,14 +370,14 @@ impl GroupReader {
         let slot = if id_len == 0 {
             self.slots.first().copied()
         } else {
-            let id = u64::from_le_bytes(le(self.stream.available(), 0)) & mask(id_len);
+            let id = u64::from_le_bytes(padded(self.stream.available(), 0)) & mask(id_len);
             match self.slots.binary_search_by_key(&id, |slot| slot.id) {
                 Ok(i) => self.slots.get(i).copied(),
                 Err(_) => None,
             }
         };
         let Some(slot) = slot else {
-            let id = u64::from_le_bytes(le(self.stream.available(), 0)) & mask(id_len);
+            let id = u64::from_le_bytes(padded(self.stream.available(), 0)) & mask(id_len);
             self.records += 1;
             return Err(self.skipped(BinaryError::UnknownRecordId { id }));
         };
@@ -386,7 +387,7 @@ impl GroupReader {
                 if !self.stream.fill(source, id_len + 4)? {
                     return self.cut(id_len + 4);
                 }
-                let len = u32::from_le_bytes(le(self.stream.available(), id_len));
+                let len = u32::from_le_bytes(padded(self.stream.available(), id_len));
                 4 + u64::from(len)
             }
         };
@@ -599,7 +600,7 @@ impl GroupReader {
         };
         let mut found = None;
         if stream.skip(source, offset - stream.offset())? && stream.fill(source, 4)? {
-            let len = u32::from_le_bytes(le(stream.available(), 0)) as usize;
+            let len = u32::from_le_bytes(padded(stream.available(), 0)) as usize;
             if len <= MAX_RECORD_LEN && stream.fill(source, 4 + len)? {
                 let mut bytes = [0u8; FD_MAX_LEN];
                 let copy = len.min(FD_MAX_LEN);

@@ -5,6 +5,7 @@
 
 use std::io::{Read, Seek};
 
+use crate::logs::bytes::padded;
 use crate::logs::mf4::block::{damaged, Block, Chain, Source};
 use crate::logs::mf4::channel::{Channel, Conversion, Location};
 use crate::logs::{BinaryError, LogError};
@@ -170,7 +171,7 @@ pub(super) fn read<R: Read + Seek>(source: &mut Source<R>) -> Result<Layout, Log
         return Err(damaged(
             0,
             BinaryError::BadMagic {
-                found: u32::from_le_bytes(super::block::le(&id, 0)),
+                found: u32::from_le_bytes(padded(&id, 0)),
             },
         ));
     }
@@ -183,7 +184,7 @@ pub(super) fn read<R: Read + Seek>(source: &mut Source<R>) -> Result<Layout, Log
             },
         ));
     }
-    let version = u16::from_le_bytes(super::block::le(&id, 28));
+    let version = u16::from_le_bytes(padded(&id, 28));
     if !(400..500).contains(&version) {
         return Err(damaged(
             28,

@@ -68,7 +68,7 @@
 //!   (a link out of the file or to the wrong block, a chain that loops —
 //!   a data list that names one data block twice loops too —, a DZ block
 //!   that does not inflate, zip types 2 to 5 — zstd and lz4, which
-//!   asammdf also writes) ends the reading with one [`Error::Binary`] of
+//!   asammdf also writes) ends the reading with one [`FormatError::Binary`] of
 //!   [`LogFormat::Mf4`]. A DZ block of signal data that no frame's data
 //!   lie in is passed over by its header, not inflated (so not checked,
 //!   as the bytes of a DT block that no frame reads).
@@ -108,12 +108,12 @@ use std::io::{self, SeekFrom};
 use std::io::{Cursor, Read, Seek};
 
 use crate::can::{LogEvent, Timestamp};
+#[cfg(doc)]
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogFormat, LogRecord, OtherRecord, OtherRecords, Position, ReadLog,
     MAX_RECORD_LEN,
 };
-#[cfg(doc)]
-use crate::Error;
 
 mod block;
 mod channel;
@@ -176,7 +176,7 @@ impl<R: Read + Seek> Mf4Reader<R> {
     /// A [`LogError`] of kind [`LogErrorKind::Io`](crate::logs::LogErrorKind::Io)
     /// when reading fails, and of kind
     /// [`LogErrorKind::Damaged`](crate::logs::LogErrorKind::Damaged) with an
-    /// [`Error::Binary`] of [`LogFormat::Mf4`] when the file does not start
+    /// [`FormatError::Binary`] of [`LogFormat::Mf4`] when the file does not start
     /// with `MDF     ` or `UnFinMF ` ([`BinaryError::BadMagic`]), its version
     /// is not 4.x ([`BinaryError::UnsupportedVersion`]), or a metadata block
     /// is damaged (out of the file, of the wrong kind, in a loop, cut).
@@ -311,6 +311,8 @@ fn add(counts: &mut Vec<(String, u64)>, name: &str, n: u64) {
         None => counts.push((name.to_owned(), n)),
     }
 }
+
+crate::logs::record::records_of!(Mf4Reader<R: Read, Seek>);
 
 impl<R: Read + Seek> ReadLog for Mf4Reader<R> {
     fn format(&self) -> LogFormat {

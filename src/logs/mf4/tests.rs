@@ -9,10 +9,10 @@ use proptest::prelude::*;
 
 use super::Mf4Reader;
 use crate::can::{Direction, Iface, LogEvent, LogFrame};
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, OtherRecord, OtherRecords, Position, ReadLog,
 };
-use crate::Error;
 
 /// An MDF 4 file built block by block, links patched in afterwards.
 pub(crate) struct Builder {
@@ -283,8 +283,8 @@ fn read_all(bytes: &[u8]) -> Result<Vec<Event>, LogError> {
 
 fn reason(error: &LogError) -> BinaryError {
     match error.kind() {
-        LogErrorKind::Damaged(Error::Binary { reason, .. })
-        | LogErrorKind::Malformed(Error::Binary { reason, .. }) => *reason,
+        LogErrorKind::Damaged(FormatError::Binary { reason, .. })
+        | LogErrorKind::Malformed(FormatError::Binary { reason, .. }) => *reason,
         other => panic!("not a binary error: {other:?}"),
     }
 }

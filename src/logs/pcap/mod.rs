@@ -49,15 +49,13 @@
 //! frame (`CANXL_XLF`, 0x80, in the length byte) is skipped and counted,
 //! never misread.
 //!
-//! **Damaged or hostile files.** Every error is an [`Error::Binary`] with
+//! **Damaged or hostile files.** Every error is a [`FormatError::Binary`] with
 //! the byte offset of the damaged structure, returned after the frames
 //! before it; [`ReadLog::next_event`] returns `None` afterwards. A length
 //! above [`MAX_RECORD_LEN`] is [`BinaryError::TooLarge`] and is never
 //! allocated; memory stays bounded whatever the file claims (the read-ahead
 //! window grows only while the file supplies bytes; a section's interface
-//! descriptions are held up to [`MAX_RECORD_LEN`] bytes, those of the
-//! section before too, so that no interface name of the last section takes
-//! the address of one still cached: [`ReadLog::generation`]).
+//! descriptions are held up to [`MAX_RECORD_LEN`] bytes).
 //!
 //! ```
 //! use motionwire::can::{CanId, Iface, LogEvent};
@@ -101,11 +99,12 @@ use core::time::Duration;
 use std::io::Read;
 
 use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
+use crate::logs::bytes::{u16_at, u32_at};
+use crate::logs::FormatError;
 use crate::logs::{
     BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
     OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
 };
-use crate::Error;
 use cooked::Cooked;
 pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
@@ -328,11 +327,6 @@ pub struct PcapReader<R: Read> {
     /// The packets that hold no CAN frame, by kind.
     other: OtherCounts,
     done: bool,
-    /// The interfaces of the section before, kept where they are until the
-    /// next section starts (see [`ReadLog::generation`]).
-    retired: Vec<Interface>,
-    /// Sections started after the first.
-    sections: u64,
     /// The fast paths are tried first: a pcap file of link type 227 (its
     /// records read by [`next_classic`](Self::next_classic) and
     /// [`next_fd`](Self::next_fd)), or a pcapng file (its enhanced packet
@@ -354,7 +348,7 @@ impl<R: Read> PcapReader<R> {
     ///
     /// A [`LogError`] of kind [`LogErrorKind::Io`] when reading fails, and
     /// of kind [`LogErrorKind::Damaged`] with an
-    /// [`Error::Binary`] when the magic number is neither pcap's nor
+    /// [`FormatError::Binary`] when the magic number is neither pcap's nor
     /// pcapng's ([`BinaryError::BadMagic`], format [`LogFormat::Pcap`]),
     /// the header is cut off, its version unknown or its snapshot length
     /// above [`MAX_RECORD_LEN`].
@@ -383,8 +377,6 @@ impl<R: Read> PcapReader<R> {
             number: 0,
             other: OtherCounts::default(),
             done: false,
-            retired: Vec::new(),
-            sections: 0,
             fast: false,
             nanos: false,
         };
@@ -771,10 +763,7 @@ impl<R: Read> PcapReader<R> {
         if major != 1 {
             return Err(self.fail(0, BinaryError::UnsupportedVersion { major, minor }));
         }
-        if !self.interfaces.is_empty() {
-            self.retired = core::mem::take(&mut self.interfaces);
-            self.sections += 1;
-        }
+        self.interfaces.clear();
         self.interface_bytes = 0;
         Ok(())
     }
@@ -962,6 +951,8 @@ impl<R: Read> PcapReader<R> {
     }
 }
 
+crate::logs::record::records_of!(PcapReader<R: Read>);
+
 impl<R: Read> ReadLog for PcapReader<R> {
     fn format(&self) -> LogFormat {
         self.log_format()
@@ -1083,17 +1074,13 @@ impl<R: Read> ReadLog for PcapReader<R> {
     fn drained(&self) -> bool {
         self.input.drained() && !self.whole_record_buffered()
     }
-
-    fn generation(&self) -> u64 {
-        self.sections
-    }
 }
 
-/// An [`Error::Binary`] as the [`LogError`] that ends the reading.
+/// A [`FormatError::Binary`] as the [`LogError`] that ends the reading.
 fn fail(format: LogFormat, offset: u64, reason: BinaryError) -> LogError {
     LogError::new(
         None,
-        LogErrorKind::Damaged(Error::Binary {
+        LogErrorKind::Damaged(FormatError::Binary {
             format,
             offset,
             reason,
@@ -1113,33 +1100,5 @@ fn too_large(length: u64) -> BinaryError {
 fn bad_length(length: usize) -> BinaryError {
     BinaryError::BadLength {
         length: length as u64,
-    }
-}
-
-/// The `u16` at `at` in `bytes` (0 past the end: callers check lengths).
-fn u16_at(bytes: &[u8], at: usize, big_endian: bool) -> u16 {
-    let b = bytes
-        .get(at..)
-        .and_then(<[u8]>::first_chunk::<2>)
-        .copied()
-        .unwrap_or_default();
-    if big_endian {
-        u16::from_be_bytes(b)
-    } else {
-        u16::from_le_bytes(b)
-    }
-}
-
-/// The `u32` at `at` in `bytes` (0 past the end: callers check lengths).
-fn u32_at(bytes: &[u8], at: usize, big_endian: bool) -> u32 {
-    let b = bytes
-        .get(at..)
-        .and_then(<[u8]>::first_chunk::<4>)
-        .copied()
-        .unwrap_or_default();
-    if big_endian {
-        u32::from_be_bytes(b)
-    } else {
-        u32::from_le_bytes(b)
     }
 }

@@ -9,6 +9,7 @@ use proptest::prelude::*;
 use super::writer::{self, Interface, Pcapng};
 use super::*;
 use crate::can::CanFrame;
+use crate::logs::FormatError;
 use crate::test_gens::can::any_can_frame;
 
 /// A reader that hands out at most `step` bytes per call.
@@ -74,7 +75,7 @@ fn outcome_of<R: Read>(input: R, general: bool) -> Outcome {
             Err(e) => {
                 assert!(error.is_none(), "one error at most");
                 match e.kind() {
-                    LogErrorKind::Damaged(Error::Binary { format, .. }) => {
+                    LogErrorKind::Damaged(FormatError::Binary { format, .. }) => {
                         assert_eq!(*format, reader.format());
                     }
                     other => panic!("{other:?}"),

@@ -4,6 +4,7 @@
 use super::writer::{self, Interface, Pcapng};
 use super::*;
 use crate::can::{CanFrame, CanId, FdFlags};
+use crate::logs::FormatError;
 
 fn frame_705() -> CanFrame {
     CanFrame::new(CanId::standard(0x705).unwrap(), &[5]).unwrap()
@@ -19,7 +20,7 @@ fn can0(tsresol: Option<u8>, tsoffset: Option<i64>) -> Interface {
 }
 
 /// Every record as (number, frame, timestamp, iface), then the error.
-fn read_all(bytes: &[u8]) -> (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64) {
+fn read_all(bytes: &[u8]) -> (Vec<(u64, LogFrame<'static>)>, Option<FormatError>, u64) {
     let mut reader = match PcapReader::new(bytes) {
         Ok(r) => r,
         Err(e) => return (Vec::new(), Some(binary_error(e)), 0),
@@ -54,8 +55,8 @@ fn read_all(bytes: &[u8]) -> (Vec<(u64, LogFrame<'static>)>, Option<Error>, u64)
     (out, error, reader.other_records())
 }
 
-fn binary(format: LogFormat, offset: u64, reason: BinaryError) -> Option<Error> {
-    Some(Error::Binary {
+fn binary(format: LogFormat, offset: u64, reason: BinaryError) -> Option<FormatError> {
+    Some(FormatError::Binary {
         format,
         offset,
         reason,
@@ -144,7 +145,7 @@ fn unknown_interface_and_negative_time() {
     let (_, error, _) = read_all(&w.bytes);
     assert!(matches!(
         error,
-        Some(Error::Binary {
+        Some(FormatError::Binary {
             reason: BinaryError::TimestampOutOfRange,
             ..
         })
@@ -247,7 +248,7 @@ fn fd_frames_of_every_flag() {
 
 #[test]
 fn messages_of_the_new_reasons() {
-    let e = Error::Binary {
+    let e = FormatError::Binary {
         format: LogFormat::Pcapng,
         offset: 28,
         reason: BinaryError::UnknownInterface { id: 1, count: 1 },
@@ -285,8 +286,8 @@ fn a_packet_of_another_link_type_is_counted_not_decoded() {
     assert_eq!((frames.len(), error, other), (0, None, 1));
 }
 
-/// The `Error::Binary` of a reader's error (an I/O error is a test failure).
-fn binary_error(e: LogError) -> Error {
+/// The `FormatError::Binary` of a reader's error (an I/O error is a test failure).
+fn binary_error(e: LogError) -> FormatError {
     match e.into_kind() {
         LogErrorKind::Damaged(e) | LogErrorKind::Malformed(e) => e,
         other => panic!("{other}"),

@@ -3,11 +3,11 @@
 
 use core::time::Duration;
 
-use super::tokens::{bad_field, decimal_fraction, syntax, trim_end};
 use super::TrcVersion;
 use crate::can::Timestamp;
-use crate::logs::{Found, SyntaxError};
-use crate::Result;
+use crate::logs::error::Result;
+use crate::logs::lex::{bad_field, decimal_fraction, syntax, trim_end};
+use crate::logs::{Found, LogFormat, SyntaxError};
 
 /// A column of a TRC 2.x row, as a letter of `;$COLUMNS=` names it
 /// (PEAK's TRC format description, version 2.0).
@@ -162,7 +162,11 @@ fn version(value: &[u8], start: usize) -> Result<HeaderKey> {
         .map(HeaderKey::Version)
         .ok_or_else(|| {
             let found = text.first().map_or(Found::EndOfLine, |&b| Found::Byte(b));
-            syntax(start + skip + 1, SyntaxError::TrcFileVersion { found })
+            syntax(
+                LogFormat::Trc,
+                start + skip + 1,
+                SyntaxError::TrcFileVersion { found },
+            )
         })
 }
 
@@ -184,7 +188,11 @@ fn start_time(value: &[u8], start: usize) -> Result<HeaderKey> {
         .unwrap_or(value.len());
     let text = value.get(skip..).unwrap_or_default();
     let at = start + skip;
-    let bad = |i: usize| bad_field(at, text, i, |found| SyntaxError::TrcStartTime { found });
+    let bad = |i: usize| {
+        bad_field(LogFormat::Trc, at, text, i, |found| {
+            SyntaxError::TrcStartTime { found }
+        })
+    };
     let (days, fraction) = decimal_fraction(text, 7, START_FRACTION_DIGITS, false).map_err(bad)?;
     let Some(unix_days) = days.checked_sub(UNIX_EPOCH_DAY) else {
         return Err(bad(0));
@@ -206,7 +214,11 @@ fn start_time(value: &[u8], start: usize) -> Result<HeaderKey> {
 /// `N,O,T,B,I,d,R,L,D`: distinct letters; O, T, I and L or l present; D,
 /// when present, last (it takes the rest of the row).
 fn columns(value: &[u8], start: usize) -> Result<HeaderKey> {
-    let bad = |i: usize| bad_field(start, value, i, |found| SyntaxError::TrcColumns { found });
+    let bad = |i: usize| {
+        bad_field(LogFormat::Trc, start, value, i, |found| {
+            SyntaxError::TrcColumns { found }
+        })
+    };
     let mut layout = Layout {
         columns: [Column::Number; MAX_COLUMNS],
         len: 0,

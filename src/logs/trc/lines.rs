@@ -4,18 +4,19 @@ use core::iter::FusedIterator;
 
 use super::TrcParser;
 use crate::can::LogEvent;
-use crate::Result;
+use crate::logs::error::Result;
+use crate::logs::{FormatError, Position};
 
 /// Return an iterator over the lines of `buf` that parses each one with
-/// one [`TrcParser`] (docs/formats.md#trc): it yields the 1-based line number
-/// (docs/formats.md#positions) and what [`TrcParser::parse_line`] makes of the
+/// one [`TrcParser`] (docs/formats.md#trc): it yields the line's
+/// [`Position`] (docs/formats.md#positions) and what [`TrcParser::parse_line`] makes of the
 /// line, so that a malformed line is reported with its number and the next one
 /// is read on. Lines end at `\n` (a `\r` before it is ignored); a last line
 /// without `\n` is read too.
 ///
 /// ```
 /// use motionwire::can::LogEvent;
-/// use motionwire::logs::trc;
+/// use motionwire::logs::{trc, Position};
 ///
 /// let log = b";$FILEVERSION=1.1\r\n;$STARTTIME=44548.6028595139\r\n\
 ///             1)  17535.4  Tx  00000100  2  00 01\r\n\
@@ -23,11 +24,11 @@ use crate::Result;
 ///             3)  17541.0  Rx  0800  0\r\n";
 /// let items: Vec<_> = trc::lines(log).collect();
 /// assert_eq!(items.len(), 5);
-/// assert_eq!(items[0], (1, Ok(None)));
+/// assert_eq!(items[0], (Position::Line(1), Ok(None)));
 /// let Ok(Some(LogEvent::Frame(frame))) = items[2].1 else { panic!() };
 /// assert_eq!(frame.frame.data(), [0x00, 0x01]);
 /// assert!(matches!(items[3].1, Ok(Some(LogEvent::Status(_)))));
-/// assert_eq!(items[4].0, 5);
+/// assert_eq!(items[4].0, Position::Line(5));
 /// assert!(items[4].1.is_err()); // 0x800 is no standard identifier
 /// ```
 #[must_use]
@@ -43,7 +44,7 @@ pub fn lines(buf: &[u8]) -> TrcLines<'_> {
 #[derive(Debug, Clone)]
 pub struct TrcLines<'a> {
     rest: &'a [u8],
-    line_number: usize,
+    line_number: u64,
     parser: TrcParser,
 }
 
@@ -62,12 +63,15 @@ impl<'a> TrcLines<'a> {
 }
 
 impl<'a> Iterator for TrcLines<'a> {
-    type Item = (usize, Result<Option<LogEvent<'a>>>);
+    type Item = (Position, Result<Option<LogEvent<'a>>, FormatError>);
 
     fn next(&mut self) -> Option<Self::Item> {
         let line = crate::logs::text::take_line(&mut self.rest)?;
         self.line_number += 1;
-        Some((self.line_number, self.parser.parse_line(line)))
+        Some((
+            Position::Line(self.line_number),
+            self.parser.parse_line(line),
+        ))
     }
 }
 

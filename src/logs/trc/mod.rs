@@ -77,7 +77,7 @@
 //!   `BUSLIGHT`, `BUSHEAVY`, `BUSOFF`) — are [`LogEvent::Status`] with
 //!   their time and bus, whatever else they hold (docs/formats.md#trc: counted,
 //!   not frames, not malformed). python-can skips them.
-//! - Anything else is an [`Error::Syntax`](crate::Error::Syntax) with its
+//! - Anything else is a [`FormatError::Syntax`] with its
 //!   column: an unknown row type, a data byte that is not two hex digits,
 //!   fewer or more data bytes than the length says, anything after the
 //!   data.
@@ -117,14 +117,15 @@
 use core::fmt;
 
 use crate::can::{LogEvent, Timestamp};
-use crate::Result;
+use crate::logs::error::Result;
+use crate::logs::lex::{is_space, trim_end};
+use crate::logs::FormatError;
 
 mod header;
 mod lines;
 #[cfg(feature = "std")]
 mod reader;
 mod row;
-mod tokens;
 mod write;
 
 use header::{parse_header, HeaderKey, Layout};
@@ -246,12 +247,12 @@ impl TrcParser {
     /// Parse one line (a trailing `\n` or `\r\n` is allowed). Return
     /// `Ok(None)` for a blank, comment or header line (header keys set the
     /// parser's state), a [`LogEvent::Frame`] or [`LogEvent::Status`] for a
-    /// row, and an [`Error::Syntax`](crate::Error::Syntax) with the column
+    /// row, and a [`FormatError::Syntax`] with the column
     /// and reason for anything else.
     #[inline]
-    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>> {
-        let trimmed = tokens::trim_end(line);
-        let Some(first) = trimmed.iter().position(|&b| !tokens::is_space(b)) else {
+    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
+        let trimmed = trim_end(line);
+        let Some(first) = trimmed.iter().position(|&b| !is_space(b)) else {
             return Ok(None);
         };
         if trimmed.get(first) == Some(&b';') {

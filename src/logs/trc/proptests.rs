@@ -6,9 +6,9 @@ use proptest::prelude::*;
 use super::row::{FD_LENGTHS, PROT_LOCATION, PROT_TX, PROT_TYPES};
 use super::*;
 use crate::can::{CanFrame, Direction, FdFlags, Iface, LogFrame};
+use crate::logs::FormatError;
 use crate::logs::LogFormat;
 use crate::test_gens::can::can_id;
-use crate::Error;
 
 /// Every state a header can put the parser in, with and without columns.
 fn parsers() -> Vec<TrcParser> {
@@ -36,7 +36,7 @@ fn check(line: &[u8], result: &Result<Option<LogEvent<'_>>>) -> Result<(), TestC
             prop_assert!(!matches!(f.iface, Some(Iface::Name(_))));
         }
         Ok(Some(LogEvent::Status(_)) | None) => {}
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Trc,
             column,
             reason,
@@ -134,7 +134,7 @@ proptest! {
             check(&bytes, &result)?;
         }
         for (n, item) in lines(&bytes) {
-            prop_assert!(n >= 1);
+            prop_assert!(n.number() >= 1);
             let _ = item;
         }
     }

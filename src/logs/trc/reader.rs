@@ -5,7 +5,7 @@ use std::io::Read;
 use super::TrcParser;
 use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
-use crate::logs::{LogError, LogFormat, LogRecord, Position, ReadLog};
+use crate::logs::{FormatError, LogError, LogFormat, LogRecord, Position, ReadLog};
 
 /// A reader of PEAK TRC logs (docs/formats.md#trc) from any [`Read`]: whole
 /// lines a block at a time, each read by one [`TrcParser`] where it lies, with
@@ -46,6 +46,8 @@ impl<R: Read> TrcReader<R> {
     }
 }
 
+crate::logs::record::records_of!(TrcReader<R: Read>);
+
 impl<R: Read> ReadLog for TrcReader<R> {
     fn format(&self) -> LogFormat {
         LogFormat::Trc
@@ -68,10 +70,6 @@ impl<R: Read> ReadLog for TrcReader<R> {
     fn drained(&self) -> bool {
         self.log.drained()
     }
-
-    fn generation(&self) -> u64 {
-        self.log.generation()
-    }
 }
 
 impl TextParser for TrcParser {
@@ -82,7 +80,7 @@ impl TextParser for TrcParser {
         &mut self,
         rest: &mut &[u8],
         _names: &mut Names,
-    ) -> crate::Result<Option<LogEvent<'static>>> {
+    ) -> Result<Option<LogEvent<'static>>, FormatError> {
         self.parse_line(take_line(rest).unwrap_or_default())
     }
 

@@ -4,14 +4,16 @@
 use core::time::Duration;
 
 use super::header::{Column, Layout};
-use super::tokens::{bad_field, decimal, decimal_fraction, hex, hex_byte, syntax, Tokens};
 use super::TrcVersion;
 use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN,
 };
-use crate::logs::{Found, SyntaxError};
-use crate::{Error, Result};
+use crate::logs::error::Result;
+use crate::logs::lex::{bad_field, decimal, decimal_fraction, hex, hex_byte, syntax, Tokens};
+use crate::logs::FormatError;
+use crate::logs::{Found, LogFormat, SyntaxError};
+use crate::CodecError;
 
 /// What the file's header said, as a row needs it.
 #[derive(Debug, Clone, Copy)]
@@ -79,7 +81,7 @@ fn number(tokens: &mut Tokens<'_>, v1: bool) -> Result<()> {
         .or(digits.is_empty().then_some(digits.len()));
     match bad {
         None => Ok(()),
-        Some(i) => Err(bad_field(start, field, i, |found| {
+        Some(i) => Err(bad_field(LogFormat::Trc, start, field, i, |found| {
             SyntaxError::TrcMessageNumber { found }
         })),
     }
@@ -89,8 +91,8 @@ fn number(tokens: &mut Tokens<'_>, v1: bool) -> Result<()> {
 fn offset(tokens: &mut Tokens<'_>, ctx: &Context) -> Result<Timestamp> {
     let (start, field) = tokens.expect(|found| SyntaxError::TrcTimeOffset { found })?;
     let bad = |i: usize| {
-        bad_field(start, field, i, |found| SyntaxError::TrcTimeOffset {
-            found,
+        bad_field(LogFormat::Trc, start, field, i, |found| {
+            SyntaxError::TrcTimeOffset { found }
         })
     };
     let (millis, nanos) = decimal_fraction(field, 15, 6, true).map_err(bad)?;
@@ -108,7 +110,11 @@ fn bus(tokens: &mut Tokens<'_>) -> Result<Option<Iface<'static>>> {
     decimal(field, u64::from(u16::MAX))
         .and_then(|b| u16::try_from(b).ok())
         .map(|b| Some(Iface::Channel(b)))
-        .ok_or_else(|| bad_field(start, field, 0, |found| SyntaxError::TrcBus { found }))
+        .ok_or_else(|| {
+            bad_field(LogFormat::Trc, start, field, 0, |found| {
+                SyntaxError::TrcBus { found }
+            })
+        })
 }
 
 /// `Rx`, `Tx`, or `-` for none.
@@ -124,8 +130,11 @@ fn direction_of(field: &[u8]) -> Option<Option<Direction>> {
 /// The direction column.
 fn direction(tokens: &mut Tokens<'_>) -> Result<Option<Direction>> {
     let (start, field) = tokens.expect(|found| SyntaxError::TrcDirection { found })?;
-    direction_of(field)
-        .ok_or_else(|| bad_field(start, field, 0, |found| SyntaxError::TrcDirection { found }))
+    direction_of(field).ok_or_else(|| {
+        bad_field(LogFormat::Trc, start, field, 0, |found| {
+            SyntaxError::TrcDirection { found }
+        })
+    })
 }
 
 /// The identifier: up to 4 hex digits standard, more extended (PEAK writes
@@ -137,7 +146,7 @@ fn identifier(tokens: &mut Tokens<'_>) -> Result<CanId> {
             .iter()
             .position(|b| !b.is_ascii_hexdigit())
             .unwrap_or(8);
-        return Err(bad_field(start, field, bad, |found| {
+        return Err(bad_field(LogFormat::Trc, start, field, bad, |found| {
             SyntaxError::TrcIdentifier { found }
         }));
     };
@@ -147,6 +156,7 @@ fn identifier(tokens: &mut Tokens<'_>) -> Result<CanId> {
         (CanId::standard(raw), CanId::STANDARD_MAX)
     };
     id.ok_or(syntax(
+        LogFormat::Trc,
         start + 1,
         SyntaxError::IdentifierOutOfRange { id: raw, max },
     ))
@@ -164,7 +174,11 @@ fn length(tokens: &mut Tokens<'_>, kind: Kind, dlc: bool) -> Result<u8> {
         (false, true) => decimal(field, FD_MAX_LEN as u64).map(|l| l as u8),
         (_, false) => decimal(field, CLASSIC_MAX_LEN as u64).map(|l| l as u8),
     };
-    value.ok_or_else(|| bad_field(start, field, 0, |found| SyntaxError::TrcLength { found }))
+    value.ok_or_else(|| {
+        bad_field(LogFormat::Trc, start, field, 0, |found| {
+            SyntaxError::TrcLength { found }
+        })
+    })
 }
 
 /// The data bytes: up to `buf.len()` of two hex digits each, to the end of
@@ -178,10 +192,15 @@ fn data(tokens: &mut Tokens<'_>, buf: &mut [u8]) -> Result<usize> {
                 .position(|b| !b.is_ascii_hexdigit())
                 .unwrap_or(field.len().min(2));
             let found = tokens.found_at(start + bad);
-            return Err(syntax(start + bad + 1, SyntaxError::TrcDataByte { found }));
+            return Err(syntax(
+                LogFormat::Trc,
+                start + bad + 1,
+                SyntaxError::TrcDataByte { found },
+            ));
         };
         let Some(slot) = buf.get_mut(n) else {
             return Err(syntax(
+                LogFormat::Trc,
                 start + 1,
                 SyntaxError::TrcTrailing {
                     found: Found::Byte(field.first().copied().unwrap_or(b' ')),
@@ -198,7 +217,7 @@ fn data(tokens: &mut Tokens<'_>, buf: &mut [u8]) -> Result<usize> {
 fn end(tokens: &mut Tokens<'_>) -> Result<()> {
     match tokens.next_token() {
         None => Ok(()),
-        Some((start, field)) => Err(bad_field(start, field, 0, |found| {
+        Some((start, field)) => Err(bad_field(LogFormat::Trc, start, field, 0, |found| {
             SyntaxError::TrcTrailing { found }
         })),
     }
@@ -206,11 +225,16 @@ fn end(tokens: &mut Tokens<'_>) -> Result<()> {
 
 /// The frame of `kind` with `len` bytes of `bytes` (a remote request's
 /// requested length).
-fn frame(id: CanId, kind: FrameType, bytes: &[u8; FD_MAX_LEN], len: u8) -> Result<CanFrame> {
+fn frame(
+    id: CanId,
+    kind: FrameType,
+    bytes: &[u8; FD_MAX_LEN],
+    len: u8,
+) -> Result<CanFrame, CodecError> {
     match kind {
-        FrameType::Remote { .. } => CanFrame::new_remote(id, len).map_err(Error::from),
+        FrameType::Remote { .. } => CanFrame::new_remote(id, len).map_err(CodecError::from),
         _ => CanFrame::with_type(id, kind, bytes.get(..usize::from(len)).unwrap_or_default())
-            .map_err(Error::from),
+            .map_err(CodecError::from),
     }
 }
 
@@ -257,7 +281,7 @@ fn kind_v2(field: &[u8]) -> Option<Kind> {
 
 /// A 2.x row, its columns in the order of `;$COLUMNS=`.
 fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
-    let mut tokens = Tokens::new(line);
+    let mut tokens = Tokens::new(LogFormat::Trc, line);
     let mut ts = None;
     let mut kind = None;
     let mut iface = None;
@@ -273,7 +297,9 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
             (Column::Type, _) => {
                 let (start, field) = tokens.expect(|found| SyntaxError::TrcRowType { found })?;
                 kind = Some(kind_v2(field).ok_or_else(|| {
-                    bad_field(start, field, 0, |found| SyntaxError::TrcRowType { found })
+                    bad_field(LogFormat::Trc, start, field, 0, |found| {
+                        SyntaxError::TrcRowType { found }
+                    })
                 })?);
             }
             (Column::Bus, _) => iface = bus(&mut tokens)?,
@@ -295,7 +321,7 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
             (Column::Data, _) => count = data(&mut tokens, &mut bytes)?,
             (Column::Dlc | Column::Length, None) => {
                 let (start, field) = tokens.expect(|found| SyntaxError::TrcRowType { found })?;
-                return Err(bad_field(start, field, 0, |found| {
+                return Err(bad_field(LogFormat::Trc, start, field, 0, |found| {
                     SyntaxError::TrcRowType { found }
                 }));
             }
@@ -311,6 +337,7 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     let (Some(Kind::Frame(frame_type)), Some(id), Some(len)) = (kind, id, len) else {
         // A layout without the type column: every complete layout has it.
         return Err(syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::TrcRowType {
                 found: Found::EndOfLine,
@@ -319,6 +346,7 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     };
     if !matches!(frame_type, FrameType::Remote { .. }) && count != usize::from(len) {
         return Err(syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::LengthMismatch {
                 declared: usize::from(len),
@@ -328,6 +356,7 @@ fn parse_v2(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     }
     let frame = frame(id, frame_type, &bytes, len).map_err(|_| {
         syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::TrcLength {
                 found: Found::EndOfLine,
@@ -386,6 +415,7 @@ fn error_row_v2(
     end(tokens)?;
     if let Some(declared) = declared.filter(|&d| usize::from(d) != count) {
         return Err(syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::LengthMismatch {
                 declared: usize::from(declared),
@@ -396,6 +426,7 @@ fn error_row_v2(
     let [kind, direction_byte, position, rx_errors, tx_errors, ..] = bytes;
     if count != 5 {
         return Err(syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::TrcErrorFrame {
                 expected: 5,
@@ -415,7 +446,7 @@ fn error_row_v2(
 /// identifier, [reserved (1.3)], DLC, data or `RTR`.
 fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     let version = ctx.version;
-    let mut tokens = Tokens::new(line);
+    let mut tokens = Tokens::new(LogFormat::Trc, line);
     number(&mut tokens, true)?;
     let ts = Some(offset(&mut tokens, ctx)?);
     let iface = if version.has_bus_column() {
@@ -433,7 +464,7 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
             b"Warng" => kind = Kind::Status,
             b"Error" => kind = Kind::Error,
             _ => {
-                return Err(bad_field(start, field, 0, |found| {
+                return Err(bad_field(LogFormat::Trc, start, field, 0, |found| {
                     SyntaxError::TrcRowType { found }
                 }))
             }
@@ -451,8 +482,8 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
         let raw = hex(field)
             .and_then(|v| u8::try_from(v).ok())
             .ok_or_else(|| {
-                bad_field(start, field, 0, |found| SyntaxError::TrcIdentifier {
-                    found,
+                bad_field(LogFormat::Trc, start, field, 0, |found| {
+                    SyntaxError::TrcIdentifier { found }
                 })
             })?;
         (raw, CanId::masked(0, false))
@@ -489,6 +520,7 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
     let count = data(&mut tokens, &mut bytes[..CLASSIC_MAX_LEN])?;
     if count != usize::from(len) {
         return Err(syntax(
+            LogFormat::Trc,
             tokens.end_column(),
             SyntaxError::LengthMismatch {
                 declared: usize::from(len),
@@ -500,6 +532,7 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
         let [direction_byte, position, rx_errors, tx_errors, ..] = bytes;
         if count != 4 {
             return Err(syntax(
+                LogFormat::Trc,
                 tokens.end_column(),
                 SyntaxError::TrcErrorFrame {
                     expected: 4,
@@ -527,8 +560,9 @@ fn parse_v1(line: &[u8], ctx: &Context) -> Result<LogEvent<'static>> {
 
 /// A length the frame cannot have (not reached: lengths are checked when
 /// read).
-fn bad_len(at: usize) -> Error {
+fn bad_len(at: usize) -> FormatError {
     syntax(
+        LogFormat::Trc,
         at + 1,
         SyntaxError::TrcLength {
             found: Found::EndOfLine,

@@ -3,8 +3,8 @@
 
 use super::*;
 use crate::can::{CanFrame, CanId, Direction, FdFlags, FrameType, Iface, LogFrame};
+use crate::logs::FormatError;
 use crate::logs::{Found, LogFormat, SyntaxError};
-use crate::Error;
 
 fn parser(header: &[&str]) -> TrcParser {
     let mut parser = TrcParser::new();
@@ -23,7 +23,7 @@ fn frame<'l>(parser: &mut TrcParser, line: &'l str) -> LogFrame<'l> {
 
 fn error(parser: &mut TrcParser, line: &str) -> (usize, SyntaxError) {
     match parser.parse_line(line.as_bytes()) {
-        Err(Error::Syntax {
+        Err(FormatError::Syntax {
             format: LogFormat::Trc,
             column,
             reason,

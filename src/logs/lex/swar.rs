@@ -1,17 +1,18 @@
-//! The SWAR tricks of the fast path: wide-word arithmetic over the 16
-//! bytes of a `u128` ("SIMD within a register"): each byte is one lane,
-//! byte 0 (the first character) the least significant.
+//! The SWAR tricks of the text readers (the line splitter, candump's and
+//! ASC's fast paths): wide-word arithmetic over the 16 bytes of a `u128`
+//! ("SIMD within a register"): each byte is one lane, byte 0 (the first
+//! character) the least significant.
 
 /// `b` in every lane.
-pub(super) const fn splat(b: u8) -> u128 {
+pub(crate) const fn splat(b: u8) -> u128 {
     u128::from_le_bytes([b; 16])
 }
 
-pub(super) const LOW7: u128 = splat(0x7F);
-pub(super) const HIGH: u128 = splat(0x80);
-pub(super) const ONES: u128 = splat(0x01);
-pub(super) const NIBBLES: u128 = splat(0x0F);
-pub(super) const ZERO_CHARS: u128 = splat(b'0');
+pub(crate) const LOW7: u128 = splat(0x7F);
+pub(crate) const HIGH: u128 = splat(0x80);
+pub(crate) const ONES: u128 = splat(0x01);
+pub(crate) const NIBBLES: u128 = splat(0x0F);
+pub(crate) const ZERO_CHARS: u128 = splat(b'0');
 
 /// The high bit of every lane whose byte is at least `c` (for `c` in
 /// 1..=0x80), for lanes below 0x80 only; no carry crosses lanes.
@@ -20,11 +21,19 @@ const fn ge(low7: u128, c: u8) -> u128 {
     low7.wrapping_add(splat(0x80 - c)) & HIGH
 }
 
+/// A mask with the high bit set in the lanes of `w` holding `b` (and
+/// possibly in later lanes: the first set lane is exact).
+#[inline(always)]
+pub(crate) const fn first_eq(w: u128, b: u8) -> u128 {
+    let x = w ^ (ONES * b as u128);
+    x.wrapping_sub(ONES) & !x & HIGH
+}
+
 /// Split 16 characters into their hex values (one per lane, valid where
 /// the character is a hex digit) and a mask with the high bit of every
 /// lane that is not a hex digit.
 #[inline(always)]
-pub(super) const fn hex_lanes(w: u128) -> (u128, u128) {
+pub(crate) const fn hex_lanes(w: u128) -> (u128, u128) {
     let x = w & LOW7;
     let digit = ge(x, b'0') & !ge(x, b'9' + 1);
     let l = x | splat(0x20);
@@ -38,14 +47,14 @@ pub(super) const fn hex_lanes(w: u128) -> (u128, u128) {
 /// A mask with the high bit of every lane that is not a decimal digit;
 /// `d` is the characters XOR `'0'`.
 #[inline(always)]
-pub(super) const fn non_digits(d: u128) -> u128 {
+pub(crate) const fn non_digits(d: u128) -> u128 {
     ((d & LOW7).wrapping_add(splat(0x76)) | d) & HIGH
 }
 
 /// A mask with the high bit of every lane that is not printable ASCII
 /// (0x21..=0x7E).
 #[inline(always)]
-pub(super) const fn non_graphic(w: u128) -> u128 {
+pub(crate) const fn non_graphic(w: u128) -> u128 {
     let x = w & LOW7;
     (!(ge(x, 0x21) & !ge(x, 0x7F)) | w) & HIGH
 }
@@ -54,7 +63,7 @@ pub(super) const fn non_graphic(w: u128) -> u128 {
 /// into 8 bytes, first byte least significant: each half of the word apart,
 /// so that no shift crosses the two 64-bit registers it is made of.
 #[inline(always)]
-pub(super) const fn pack_hex(values: u128) -> u64 {
+pub(crate) const fn pack_hex(values: u128) -> u64 {
     pack_hex64(values as u64) as u64 | (pack_hex64((values >> 64) as u64) as u64) << 32
 }
 
@@ -75,7 +84,7 @@ const fn pack_hex64(values: u64) -> u32 {
 /// Convert 8 decimal digit values (one per lane, first the most
 /// significant) to their number.
 #[inline(always)]
-pub(in crate::logs) const fn decimal8(d: u64) -> u64 {
+pub(crate) const fn decimal8(d: u64) -> u64 {
     let x = (d.wrapping_mul(10) + (d >> 8)) & 0x00FF_00FF_00FF_00FF;
     let x = (x.wrapping_mul(100) + (x >> 16)) & 0x0000_FFFF_0000_FFFF;
     (x.wrapping_mul(10_000) + (x >> 32)) & 0xFFFF_FFFF
@@ -84,21 +93,21 @@ pub(in crate::logs) const fn decimal8(d: u64) -> u64 {
 /// Convert 16 decimal digit values (one per lane, first the most
 /// significant) to their number.
 #[inline(always)]
-pub(super) const fn decimal16(d: u128) -> u64 {
+pub(crate) const fn decimal16(d: u128) -> u64 {
     decimal8(d as u64) * 100_000_000 + decimal8((d >> 64) as u64)
 }
 
 /// The number of lanes before the first lane flagged in `mask` (16 when
 /// none is).
 #[inline(always)]
-pub(super) const fn lanes_before(mask: u128) -> usize {
+pub(crate) const fn lanes_before(mask: u128) -> usize {
     (mask.trailing_zeros() / 8) as usize
 }
 
 /// The 16 bytes of `line` from `at` as a word; bytes past the end read as
 /// 0x00, which is no hex digit, decimal digit, printable or white space.
 #[inline(always)]
-pub(super) fn load16(line: &[u8], at: usize) -> u128 {
+pub(crate) fn load16(line: &[u8], at: usize) -> u128 {
     match line.get(at..).and_then(|s| s.first_chunk::<16>()) {
         Some(chunk) => u128::from_le_bytes(*chunk),
         None => load16_short(line, at),
@@ -107,7 +116,7 @@ pub(super) fn load16(line: &[u8], at: usize) -> u128 {
 
 #[cold]
 #[inline(never)]
-pub(super) fn load16_short(line: &[u8], at: usize) -> u128 {
+pub(crate) fn load16_short(line: &[u8], at: usize) -> u128 {
     let mut buf = [0u8; 16];
     if let Some(rest) = line.get(at..) {
         for (d, s) in buf.iter_mut().zip(rest) {
@@ -132,7 +141,7 @@ const fn ge64(low7: u64, c: u8) -> u64 {
 /// loop, which has no use for 16-byte lanes): the high bit of every lane
 /// that is not a hex digit.
 #[inline(always)]
-pub(super) const fn non_hex64(w: u64) -> u64 {
+pub(crate) const fn non_hex64(w: u64) -> u64 {
     let x = w & splat64(0x7F);
     // `x ^ '0'` is a digit's value, 10 and more for any other lane (below
     // 0x80, so adding 0x76 carries out of no lane).
@@ -146,7 +155,7 @@ pub(super) const fn non_hex64(w: u64) -> u64 {
 /// the first byte), the first byte least significant; meaningful where all
 /// 8 lanes are hex digits ([`non_hex64`] is 0).
 #[inline(always)]
-pub(super) const fn hex_bytes64(w: u64) -> u32 {
+pub(crate) const fn hex_bytes64(w: u64) -> u32 {
     // '0'..'9' → 0..9; 'A'..'F' and 'a'..'f' → 1..6 + 9.
     let v = (w & splat64(0x0F)) + ((w >> 6) & splat64(0x01)) * 9;
     // Lane 2k: its value times 16 or the value of lane 2k + 1 (both below
@@ -193,6 +202,13 @@ mod tests {
     }
 
     proptest! {
+        #[test]
+        fn first_eq_finds_the_first_lane(bytes in proptest::array::uniform16(any::<u8>()), b in any::<u8>()) {
+            let first = bytes.iter().position(|&x| x == b).unwrap_or(16);
+            let mask = first_eq(u128::from_le_bytes(bytes), b);
+            prop_assert_eq!((mask.trailing_zeros() / 8) as usize, first);
+        }
+
         #[test]
         fn hex_lanes_is_hex_digit_by_digit(w in word()) {
             let (values, bad) = hex_lanes(w);
