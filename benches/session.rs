@@ -32,6 +32,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use motionwire::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::{CanOpenMessage, MessageKind, NodeId};
 use motionwire::decoder::{Decoder, DecoderConfig};
+use motionwire::logs::Position;
 use motionwire::profiles::Profile;
 use motionwire::summary::Summarizer;
 
@@ -277,7 +278,7 @@ fn session(c: &mut Criterion) {
                 let mut decoder = Decoder::new(config());
                 let mut seen = 0usize;
                 for (i, f) in black_box(frames).iter().enumerate() {
-                    let d = decoder.decode(i as u64 + 1, f);
+                    let d = decoder.decode(Position::Line(i as u64 + 1), f);
                     seen += usize::from(d.sdo.is_some()) + usize::from(d.pdo.is_some());
                 }
                 seen
@@ -290,7 +291,7 @@ fn session(c: &mut Criterion) {
                 out.clear();
                 for (i, f) in black_box(frames).iter().enumerate() {
                     decoder
-                        .decode(i as u64 + 1, f)
+                        .decode(Position::Line(i as u64 + 1), f)
                         .write_json(&mut out)
                         .unwrap();
                 }
@@ -305,7 +306,10 @@ fn session(c: &mut Criterion) {
                         .heartbeat_timeout(std::time::Duration::from_millis(100)),
                 );
                 for (i, f) in black_box(frames).iter().enumerate() {
-                    summarizer.add(i as u64 + 1, &LogEvent::Frame(*f));
+                    summarizer.add(
+                        motionwire::logs::Position::Line(i as u64 + 1),
+                        &LogEvent::Frame(*f),
+                    );
                 }
                 summarizer.finish().nodes.len()
             })

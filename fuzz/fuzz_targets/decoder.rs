@@ -23,6 +23,7 @@ use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::{Decoder, DecoderConfig};
+use motionwire::logs::Position;
 use motionwire::profiles::Profile;
 use motionwire::summary::Summarizer;
 use motionwire_fuzz::{traffic, TrafficFrame};
@@ -60,7 +61,7 @@ fuzz_target!(|input: &[u8]| {
             .with_iface(Iface::Name(iface));
         frames += 1;
 
-        let decoded = decoder.decode(line, &log);
+        let decoded = decoder.decode(Position::Line(line), &log);
         let json = decoded.to_json();
         let value: serde_json::Value = serde_json::from_str(&json).expect("a valid JSON record");
         assert_eq!(value["line"], line);
@@ -93,8 +94,8 @@ fuzz_target!(|input: &[u8]| {
         }
 
         let event = LogEvent::Frame(log);
-        summarizer.add(line, &event);
-        let _ = whole.add_with(line, &event, |_| {});
+        summarizer.add(Position::Line(line), &event);
+        let _ = whole.add_with(Position::Line(line), &event, |_| {});
     }
     let open = decoder.finish();
     assert_eq!(

@@ -22,6 +22,7 @@ use libfuzzer_sys::fuzz_target;
 use motionwire::can::{Iface, LogEvent, LogFrame, Timestamp};
 use motionwire::canopen::NodeId;
 use motionwire::decoder::DecoderConfig;
+use motionwire::logs::Position;
 use motionwire::profiles::Profile;
 use motionwire::report::{MarkKind, Recorder, Report};
 use motionwire_fuzz::{traffic, TrafficFrame};
@@ -54,7 +55,7 @@ fuzz_target!(|input: &[u8]| {
                 ms,
             )));
         }
-        recorder.add(line, &LogEvent::Frame(log));
+        recorder.add(Position::Line(line), &LogEvent::Frame(log));
     }
     let recording = recorder.finish();
     if untimed {

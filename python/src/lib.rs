@@ -327,7 +327,7 @@ impl motionwire::logs::LogVisitor for Record<'_> {
         let mut skipped = 0;
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => self.recorder.add(record.position.number(), &record.event),
+                Ok(record) => self.recorder.add(record.position, &record.event),
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));
@@ -354,7 +354,7 @@ impl motionwire::logs::LogVisitor for Summarize<'_> {
         let mut skipped = 0;
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => self.summarizer.add(record.position.number(), &record.event),
+                Ok(record) => self.summarizer.add(record.position, &record.event),
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));

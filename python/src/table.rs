@@ -17,7 +17,7 @@ use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
 use motionwire::can::{FdFlags, Iface, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::Decoder;
-use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, ReadLog};
+use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, ReadLog};
 use serde_json::{json, Value};
 
 use crate::error::Failure;
@@ -258,9 +258,9 @@ impl Columns {
 
     /// Add a frame, decoded by `decoder` for `decode`'s columns.
     #[inline]
-    fn push(&mut self, line: u64, frame: &LogFrame<'_>, decoder: Option<&mut Decoder>) {
+    fn push(&mut self, position: Position, frame: &LogFrame<'_>, decoder: Option<&mut Decoder>) {
         let can = &frame.frame;
-        self.line.push(line);
+        self.line.push(position.number());
         self.ts_valid
             .push(&mut self.ts, frame.timestamp.map(|ts| ts.as_secs_f64()));
         let iface = frame.iface.map(|iface| self.ifaces.key(iface));
@@ -281,7 +281,7 @@ impl Columns {
         self.data.extend_from_slice(can.data());
         self.data_offsets.push(offset(self.data.len()));
         if let (Some(d), Some(decoder)) = (self.decoded.as_deref_mut(), decoder) {
-            let decoded = decoder.decode(line, frame);
+            let decoded = decoder.decode(position, frame);
             d.kind.push(decoded.kind.index() as i8);
             d.node_valid
                 .push(&mut d.node, decoded.node.map(|node| node.get()));
@@ -467,7 +467,7 @@ impl LogVisitor for Fill<'_> {
             match next {
                 Ok(record) => {
                     if let LogEvent::Frame(frame) = &record.event {
-                        columns.push(record.position.number(), frame, decoder.as_deref_mut());
+                        columns.push(record.position, frame, decoder.as_deref_mut());
                     }
                 }
                 Err(error) => columns.skip(error, name, file)?,

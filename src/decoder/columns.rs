@@ -16,20 +16,21 @@ use super::Decoded;
 /// use motionwire::can::{CanFrame, CanId, LogFrame};
 /// use motionwire::canopen::ErrorCode;
 /// use motionwire::decoder::{Decoder, DecoderConfig};
+/// use motionwire::logs::Position;
 ///
 /// let mut decoder = Decoder::new(DecoderConfig::new());
 /// let frame = |id: u32, data: &[u8]| {
 ///     LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
 /// };
 /// let emcy = frame(0x083, &[0x05, 0x73, 0x01, 0x11, 0, 0, 0, 0]);
-/// let columns = decoder.decode(1, &emcy).columns();
+/// let columns = decoder.decode(Position::Line(1), &emcy).columns();
 /// assert_eq!(columns.code, Some(ErrorCode::new(0x7305)));
 /// assert_eq!(columns.register.map(|r| r.bits()), Some(1));
 /// assert_eq!(columns.description, Some("Incremental sensor 1 fault"));
 /// assert_eq!(columns.state, None);
 ///
 /// let boot_up = frame(0x705, &[0x00]);
-/// assert_eq!(decoder.decode(2, &boot_up).columns().state, Some("boot_up"));
+/// assert_eq!(decoder.decode(Position::Line(2), &boot_up).columns().state, Some("boot_up"));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct FrameColumns {

@@ -16,6 +16,7 @@
 //! use motionwire::can::{CanFrame, CanId, LogFrame};
 //! use motionwire::canopen::NodeId;
 //! use motionwire::decoder::{Decoder, DecoderConfig};
+//! use motionwire::logs::Position;
 //! use motionwire::profiles::Profile;
 //!
 //! let drive = NodeId::new(3).unwrap();
@@ -26,10 +27,10 @@
 //!
 //! // An expedited SDO read of the statusword, request and response:
 //! let request = frame(0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]);
-//! let step = decoder.decode(1, &request).sdo.unwrap();
+//! let step = decoder.decode(Position::Line(1), &request).sdo.unwrap();
 //! assert_eq!(step.to_string(), "request initiate upload 6041h.00 Statusword");
 //! let response = frame(0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]);
-//! let decoded = decoder.decode(2, &response);
+//! let decoded = decoder.decode(Position::Line(2), &response);
 //! assert_eq!(decoded.sdo.unwrap().to_string(), "read 6041h.00 = 0x0237 (expedited, 2 B)");
 //! assert_eq!(decoded.cia402.unwrap().to_string(), "operation_enabled");
 //!
@@ -68,6 +69,7 @@ use crate::canopen::{
     PdoDirection, Signal, Value,
 };
 use crate::eds::{Eds, EdsError};
+use crate::logs::Position;
 use crate::profiles::{NodeProfiles, Profile};
 use crate::CodecError;
 
@@ -263,9 +265,9 @@ impl Names for Description {
 /// decoder and the frame until the next frame.
 #[derive(Debug, Clone, Copy)]
 pub struct Decoded<'d> {
-    /// Where the log has the frame: its line or record number (`line`
-    /// in docs/formats.md#positions).
-    pub position: u64,
+    /// Where the log has the frame: its line or record (`line` in
+    /// docs/formats.md#positions).
+    pub position: Position,
     /// The frame as the log recorded it.
     pub log: &'d LogFrame<'d>,
     /// The frame's kind, from its identifier (`kind` in
@@ -405,11 +407,11 @@ impl Decoder {
         &self.config
     }
 
-    /// Read one frame, logged at `position` (the line or record number a
+    /// Read one frame, logged at `position` (the line or record a
     /// transfer's `start_line` names, docs/formats.md#positions), in the
     /// context of the frames before it; the session learns from it (SDO
     /// transfers, PDO mappings, drive states).
-    pub fn decode<'d>(&'d mut self, position: u64, frame: &'d LogFrame<'d>) -> Decoded<'d> {
+    pub fn decode<'d>(&'d mut self, position: Position, frame: &'d LogFrame<'d>) -> Decoded<'d> {
         let can = &frame.frame;
         let (kind, node) = MessageKind::classify(can);
         let profile = self.config.profiles.of(node);
@@ -425,7 +427,7 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) = self.sdo_owned(position, frame, node);
+                let (step, cia402) = self.sdo_owned(position.number(), frame, node);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }

@@ -129,7 +129,7 @@ impl Decoded<'_> {
                 out.extend_from_slice(b",\"line\":");
             }
         }
-        json::uint(out, self.position);
+        json::uint(out, self.position.number());
         match log.timestamp {
             Some(ts) => {
                 out.extend_from_slice(b",\"ts\":");

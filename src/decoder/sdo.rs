@@ -86,10 +86,11 @@ impl<'d> SdoStep<'d> {
     /// ```
     /// use motionwire::can::{CanFrame, CanId, LogFrame};
     /// use motionwire::decoder::{Decoder, DecoderConfig};
+    /// use motionwire::logs::Position;
     ///
     /// let mut decoder = Decoder::new(DecoderConfig::new());
     /// let cut = LogFrame::new(CanFrame::new(CanId::standard(0x603).unwrap(), &[0x40, 0x00, 0x10]).unwrap());
-    /// let step = decoder.decode(1, &cut).sdo.unwrap();
+    /// let step = decoder.decode(Position::Line(1), &cut).sdo.unwrap();
     /// assert!(step.message.is_err());
     /// assert_eq!((step.index(), step.multiplexer()), (Some(0x1000), None));
     /// assert_eq!(

@@ -8,6 +8,7 @@ use proptest::prelude::*;
 
 use super::*;
 use crate::can::{CanFrame, CanId, LogEvent, Timestamp};
+use crate::logs::Position;
 use crate::summary::Summarizer;
 
 fn at(ms: u64, id: u32, data: &[u8]) -> LogFrame<'static> {
@@ -33,10 +34,10 @@ const TPDO1_MAPPING: [[u8; 8]; 4] = [
 fn map_tpdo1(decoder: &mut Decoder) {
     for (i, request) in TPDO1_MAPPING.iter().enumerate() {
         let line = 2 * i as u64 + 1;
-        decoder.decode(line, &at(line, 0x603, request));
+        decoder.decode(Position::Line(line), &at(line, 0x603, request));
         let answer = [0x60, request[1], request[2], request[3], 0, 0, 0, 0];
         let frame = at(line + 1, 0x583, &answer);
-        let decoded = decoder.decode(line + 1, &frame);
+        let decoded = decoder.decode(Position::Line(line + 1), &frame);
         let ended = decoded.sdo.unwrap().ended.unwrap();
         assert_eq!(ended.transfer.outcome, SdoOutcome::Completed);
     }
@@ -46,9 +47,12 @@ fn map_tpdo1(decoder: &mut Decoder) {
 fn a_mapping_written_by_sdo_names_the_pdo_signals() {
     let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
     let frame = at(20, 0x183, &[0x37, 0x02, 0xA0, 0x86, 0x01, 0x00]);
-    assert!(decoder.decode(9, &frame).pdo.is_none(), "no mapping yet");
+    assert!(
+        decoder.decode(Position::Line(9), &frame).pdo.is_none(),
+        "no mapping yet"
+    );
     map_tpdo1(&mut decoder);
-    let decoded = decoder.decode(9, &frame);
+    let decoded = decoder.decode(Position::Line(9), &frame);
     let pdo = decoded.pdo.unwrap();
     assert_eq!(pdo.map.node(), node(3));
     assert_eq!(pdo.map.number(), 1);
@@ -82,7 +86,7 @@ fn a_short_pdo_has_the_signals_that_fit_and_an_error() {
     let mut decoder = Decoder::new(DecoderConfig::new());
     map_tpdo1(&mut decoder);
     let frame = at(20, 0x183, &[0x37, 0x02, 0xA0]);
-    let decoded = decoder.decode(9, &frame);
+    let decoded = decoder.decode(Position::Line(9), &frame);
     let pdo = decoded.pdo.unwrap();
     assert_eq!(pdo.named().count(), 1);
     assert_eq!(
@@ -102,7 +106,7 @@ fn without_signals_only_a_drives_statusword_is_read() {
     let mut decoder = Decoder::new(config);
     map_tpdo1(&mut decoder);
     let frame = at(20, 0x183, &[0x08, 0x00, 0, 0, 0, 0]);
-    let decoded = decoder.decode(9, &frame);
+    let decoded = decoder.decode(Position::Line(9), &frame);
     assert!(decoded.pdo.unwrap().signals.is_empty());
     assert_eq!(
         decoded.cia402.unwrap().state,
@@ -114,7 +118,7 @@ fn without_signals_only_a_drives_statusword_is_read() {
 fn sdo_steps_and_transfers_read_as_a_person_says_them() {
     let mut decoder = Decoder::new(DecoderConfig::new());
     let frame = at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]);
-    let request = decoder.decode(1, &frame);
+    let request = decoder.decode(Position::Line(1), &frame);
     let step = request.sdo.unwrap();
     assert!(step.started);
     assert_eq!(step.object(), Some("Manufacturer device name"));
@@ -123,10 +127,16 @@ fn sdo_steps_and_transfers_read_as_a_person_says_them() {
         "request initiate upload 1008h.00 Manufacturer device name"
     );
     // A segmented upload of "AKD" (3 bytes).
-    decoder.decode(2, &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]));
-    decoder.decode(3, &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(2),
+        &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]),
+    );
+    decoder.decode(
+        Position::Line(3),
+        &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]),
+    );
     let frame = at(4, 0x585, &[0x09, b'A', b'K', b'D', 0, 0, 0, 0]);
-    let last = decoder.decode(4, &frame);
+    let last = decoder.decode(Position::Line(4), &frame);
     let ended = last.sdo.unwrap().ended.unwrap();
     assert_eq!(ended.data, b"AKD");
     assert!(!ended.truncated());
@@ -136,9 +146,12 @@ fn sdo_steps_and_transfers_read_as_a_person_says_them() {
         "read 1008h.00 \"AKD\" (segmented, 3 B, 4.0 ms)"
     );
     // An abort by the server.
-    decoder.decode(5, &at(10, 0x605, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(5),
+        &at(10, 0x605, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+    );
     let frame = at(11, 0x585, &[0x80, 0x41, 0x60, 0x00, 0x00, 0x00, 0x02, 0x06]);
-    let abort = decoder.decode(6, &frame);
+    let abort = decoder.decode(Position::Line(6), &frame);
     let text = abort.sdo.unwrap().to_string();
     assert!(
         text.starts_with("abort 6041h.00: Object does not exist"),
@@ -198,7 +211,7 @@ fn a_short_sdo_frame_says_as_much_as_it_holds() {
     ];
     for (i, (id, data, text, json)) in rows.into_iter().enumerate() {
         let frame = at(i as u64, id, data);
-        let decoded = decoder.decode(i as u64 + 1, &frame);
+        let decoded = decoder.decode(Position::Line(i as u64 + 1), &frame);
         let step = decoded.sdo.unwrap();
         assert_eq!(step.to_string(), text);
         let mut out = Vec::new();
@@ -211,11 +224,20 @@ fn a_short_sdo_frame_says_as_much_as_it_holds() {
 #[test]
 fn the_sdo_data_cap_keeps_the_first_bytes() {
     let mut decoder = Decoder::new(DecoderConfig::new().sdo_data_cap(2));
-    decoder.decode(1, &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]));
-    decoder.decode(2, &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]));
-    decoder.decode(3, &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(1),
+        &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]),
+    );
+    decoder.decode(
+        Position::Line(2),
+        &at(1, 0x585, &[0x41, 0x08, 0x10, 0x00, 3, 0, 0, 0]),
+    );
+    decoder.decode(
+        Position::Line(3),
+        &at(2, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]),
+    );
     let frame = at(4, 0x585, &[0x09, b'A', b'K', b'D', 0, 0, 0, 0]);
-    let last = decoder.decode(4, &frame);
+    let last = decoder.decode(Position::Line(4), &frame);
     let ended = last.sdo.unwrap().ended.unwrap();
     assert_eq!(ended.data, b"AK");
     assert!(ended.truncated());
@@ -225,10 +247,13 @@ fn the_sdo_data_cap_keeps_the_first_bytes() {
 fn an_upload_of_the_device_type_makes_a_drive() {
     let mut decoder = Decoder::new(DecoderConfig::new());
     let bus = BusName::Name("can0".to_owned());
-    decoder.decode(1, &at(0, 0x607, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(1),
+        &at(0, 0x607, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),
+    );
     assert!(!decoder.is_drive(&bus, node(7)));
     decoder.decode(
-        2,
+        Position::Line(2),
         &at(1, 0x587, &[0x43, 0x00, 0x10, 0x00, 0x92, 0x01, 0x02, 0x00]),
     );
     assert!(decoder.is_drive(&bus, node(7)));
@@ -237,16 +262,22 @@ fn an_upload_of_the_device_type_makes_a_drive() {
         "another bus"
     );
     // Now an SDO read of its statusword is a CiA 402 reading.
-    decoder.decode(3, &at(2, 0x607, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(3),
+        &at(2, 0x607, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+    );
     let frame = at(3, 0x587, &[0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0]);
-    let decoded = decoder.decode(4, &frame);
+    let decoded = decoder.decode(Position::Line(4), &frame);
     assert_eq!(decoded.cia402.unwrap().to_string(), "switch_on_disabled");
 }
 
 #[test]
 fn a_transfer_the_input_ends_in_is_handed_over_by_finish() {
     let mut decoder = Decoder::new(DecoderConfig::new());
-    decoder.decode(7, &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(7),
+        &at(0, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]),
+    );
     let open = decoder.finish();
     assert_eq!(open.len(), 1);
     assert_eq!(open[0].node, node(5));
@@ -268,7 +299,7 @@ fn an_eds_names_the_pdos_it_configures_from_the_first_frame() {
     let mut decoder = Decoder::new(config);
     // TPDO1 as the EDS maps it, before any SDO configuration in the log.
     let frame = at(0, 0x183, &[0x37, 0x02, 0x01, 0, 0, 0, 0, 0]);
-    let decoded = decoder.decode(1, &frame);
+    let decoded = decoder.decode(Position::Line(1), &frame);
     let pdo = decoded.pdo.expect("the EDS's mapping");
     assert_eq!(pdo.map.names()[..2], ["Statusword", "Digital input 1"]);
     let (name, signal) = pdo.named().nth(1).unwrap();
@@ -313,7 +344,7 @@ proptest! {
             let log = LogFrame::new(*frame)
                 .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)))
                 .with_iface(Iface::Channel(u16::from(*bus)));
-            let decoded = decoder.decode(line, &log);
+            let decoded = decoder.decode(Position::Line(line), &log);
             let json: serde_json::Value = serde_json::from_str(&decoded.to_json()).unwrap();
             prop_assert_eq!(&json["line"], line);
             // The record appended to a buffer is the record written, with
@@ -335,8 +366,8 @@ proptest! {
                 }
             }
             let event = LogEvent::Frame(log);
-            summarizer.add(line, &event);
-            let _ = whole.add_with(line, &event, |_| {});
+            summarizer.add(Position::Line(line), &event);
+            let _ = whole.add_with(Position::Line(line), &event, |_| {});
         }
         prop_assert_eq!(started, ended + decoder.finish().len() as u64);
         let summary = summarizer.finish();
@@ -355,8 +386,14 @@ proptest! {
 fn the_objects_left_out_of_learn_teach_nothing() {
     let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
     // The bus and both nodes made by a frame each.
-    decoder.decode(1, &at(1, 0x603, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
-    decoder.decode(2, &at(2, 0x605, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]));
+    decoder.decode(
+        Position::Line(1),
+        &at(1, 0x603, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),
+    );
+    decoder.decode(
+        Position::Line(2),
+        &at(2, 0x605, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),
+    );
     let mut left_out = 0;
     for index in (0..=u16::MAX).filter(|&index| !teaches(index)) {
         left_out += 1;

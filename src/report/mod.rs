@@ -17,6 +17,7 @@
 //! ```
 //! use motionwire::can::LogEvent;
 //! use motionwire::decoder::DecoderConfig;
+//! use motionwire::logs::Position;
 //! use motionwire::report::{MarkKind, Recorder, Report};
 //!
 //! let log = b"(1700000000.000000) can0 703#00\n\
@@ -25,7 +26,7 @@
 //! let mut recorder = Recorder::new(DecoderConfig::new());
 //! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
 //!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-//!         recorder.add(line as u64 + 1, &LogEvent::Frame(frame));
+//!         recorder.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
 //!     }
 //! }
 //! let recording = recorder.finish();
@@ -56,6 +57,7 @@ pub use html::{Report, ReportInput};
 use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
 use crate::decoder::{BusName, DecoderConfig};
+use crate::logs::Position;
 use crate::summary::{
     FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent, SummaryEventKind,
 };
@@ -284,7 +286,7 @@ impl Recorder {
     /// Add one log entry read at `position` (docs/formats.md#positions),
     /// as [`Summarizer::add`] does: the summary, the timeline's marks and
     /// the drives' signals learn from it.
-    pub fn add(&mut self, position: u64, event: &LogEvent<'_>) {
+    pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame, event),
             LogEvent::Status(_) => self.summarizer.add(position, event),
@@ -310,7 +312,7 @@ impl Recorder {
     }
 
     /// Add the frame `log` of the log entry `event`, read at `position`.
-    fn add_frame(&mut self, position: u64, log: &LogFrame<'_>, event: &LogEvent<'_>) {
+    fn add_frame(&mut self, position: Position, log: &LogFrame<'_>, event: &LogEvent<'_>) {
         let timed = *self.timed.get_or_insert(log.timestamp.is_some());
         match log.timestamp {
             Some(ts) => self.last_t = micros(ts),
@@ -319,7 +321,7 @@ impl Recorder {
         }
         let at = At {
             t: self.last_t,
-            line: position,
+            line: position.number(),
         };
         self.first.get_or_insert(at);
         self.last = at;

@@ -2,6 +2,7 @@
 //! file's lines lie in it: the `{"type": "file", …}` records that follow
 //! the summary (docs/output.md#several-files).
 
+use crate::logs::Position;
 use core::fmt;
 
 /// One file of a recording read from several files, and the lines it holds
@@ -57,15 +58,16 @@ impl serde::Serialize for FileSpan {
 /// [`spans`](Self::spans).
 ///
 /// ```
+/// use motionwire::logs::Position;
 /// use motionwire::summary::{FileSpan, SeveralFiles};
 ///
 /// // Two rotated logs of one bus, joined: 2000 and 500 lines.
 /// let mut files = SeveralFiles::new(2, true);
 /// assert!(!files.begin());
-/// assert_eq!(files.line(2000), 2000);
+/// assert_eq!(files.line(Position::Line(2000)), Position::Line(2000));
 /// assert!(!files.end("a.log", 2000));
 /// assert!(!files.begin()); // the same recording goes on
-/// assert_eq!(files.line(1), 2001);
+/// assert_eq!(files.line(Position::Line(1)), Position::Line(2001));
 /// assert!(!files.end("b.log", 500));
 /// assert_eq!(
 ///     files.spans()[1],
@@ -77,7 +79,7 @@ impl serde::Serialize for FileSpan {
 /// assert!(!files.begin());
 /// assert!(files.end("a.log", 2000));
 /// assert!(files.begin()); // a fresh decoder and summarizer
-/// assert_eq!(files.line(1), 1);
+/// assert_eq!(files.line(Position::Line(1)), Position::Line(1));
 /// assert!(files.end("b.log", 500));
 /// assert!(files.spans().is_empty());
 /// ```
@@ -127,12 +129,16 @@ impl SeveralFiles {
         self.several() && !self.joined && self.begun > 1
     }
 
-    /// Return the line of the recording that is the position `position`
+    /// Return the position in the recording of the position `position`
     /// of the current file (docs/formats.md#positions): numbered on from
-    /// the files before it when joined, the file's own else.
+    /// the lines or records of the files before it when joined, the
+    /// file's own else.
     #[must_use]
-    pub fn line(&self, position: u64) -> u64 {
-        self.offset + position
+    pub fn line(&self, position: Position) -> Position {
+        match position {
+            Position::Line(n) => Position::Line(self.offset + n),
+            Position::Record(n) => Position::Record(self.offset + n),
+        }
     }
 
     /// End the current file, named `name`, whose last line or record is

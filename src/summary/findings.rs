@@ -304,6 +304,7 @@ impl Summary {
     /// ```
     /// use motionwire::can::LogEvent;
     /// use motionwire::decoder::DecoderConfig;
+    /// use motionwire::logs::Position;
     /// use motionwire::summary::{FindingKind, Summarizer};
     ///
     /// let log = b"(1700000000.000000) can0 703#00\n\
@@ -312,7 +313,7 @@ impl Summary {
     /// let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
     /// for (line, text) in log.split(|&b| b == b'\n').enumerate() {
     ///     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-    ///         summarizer.add(line as u64 + 1, &LogEvent::Frame(frame));
+    ///         summarizer.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
     ///     }
     /// }
     /// let summary = summarizer.finish();

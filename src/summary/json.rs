@@ -33,12 +33,13 @@ impl Summary {
     /// ```
     /// use motionwire::can::LogEvent;
     /// use motionwire::decoder::DecoderConfig;
+    /// use motionwire::logs::Position;
     /// use motionwire::summary::Summarizer;
     ///
     /// let mut summarizer = Summarizer::new(DecoderConfig::new());
     /// for (line, text) in ["(1700000000.000000001) can0 705#05"].iter().enumerate() {
     ///     let frame = motionwire::logs::candump::parse_line(text.as_bytes())?.unwrap();
-    ///     summarizer.add(line as u64 + 1, &LogEvent::Frame(frame));
+    ///     summarizer.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
     /// }
     /// let mut out = Vec::new();
     /// summarizer.finish().write_json(&mut out)?;

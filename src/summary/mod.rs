@@ -20,6 +20,7 @@
 //! ```
 //! use motionwire::can::LogEvent;
 //! use motionwire::decoder::DecoderConfig;
+//! use motionwire::logs::Position;
 //! use motionwire::summary::Summarizer;
 //!
 //! let log = b"(1700000000.000000) can0 703#00\n\
@@ -28,7 +29,7 @@
 //! let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
 //! for (line, text) in log.split(|&b| b == b'\n').enumerate() {
 //!     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-//!         summarizer.add(line as u64 + 1, &LogEvent::Frame(frame));
+//!         summarizer.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
 //!     }
 //! }
 //! let summary = summarizer.finish();
@@ -64,6 +65,7 @@ use crate::canopen::{
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
 use crate::decoder::{BusName, Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
+use crate::logs::Position;
 use sdo::SdoFrameFacts;
 
 /// No SDO frame, for [`add_classified`].
@@ -489,7 +491,8 @@ impl Summarizer {
     /// decoder keeps state (SDO and PDO data frames), and summarized; a bus
     /// event is counted (`status_events` in docs/summary.md#bus).
     #[inline]
-    pub fn add(&mut self, position: u64, event: &LogEvent<'_>) {
+    pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
+        let position = position.number();
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
@@ -503,7 +506,7 @@ impl Summarizer {
     /// frame (`None` for a bus event).
     pub fn add_with<'s>(
         &'s mut self,
-        position: u64,
+        position: Position,
         event: &'s LogEvent<'s>,
         on_event: impl FnMut(SummaryEvent<'_>),
     ) -> Option<Decoded<'s>> {
@@ -528,7 +531,7 @@ impl Summarizer {
             bus,
             name,
             (last_time, untimed),
-            position,
+            position.number(),
             log,
             decoded.kind,
             decoded.node,

@@ -6,6 +6,7 @@ use super::*;
 use crate::can::{CanFrame, CanId, Iface};
 use crate::canopen::Cia402State;
 use crate::decoder::DecoderConfig;
+use crate::logs::Position;
 use crate::profiles::Profile;
 
 /// Summarize `frames` (time in ms, identifier, data), line numbers from 1,
@@ -25,7 +26,7 @@ fn summarize(frames: &[(Option<u64>, u32, &[u8])], heartbeat: Option<Duration>) 
         if let Some(ms) = ms {
             log = log.with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)));
         }
-        summarizer.add(i as u64 + 1, &LogEvent::Frame(log));
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(log));
     }
     summarizer.finish()
 }
@@ -195,9 +196,9 @@ fn times_keep_their_digits_in_json() {
     let mut summarizer = Summarizer::default();
     let log = LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[5]).unwrap())
         .with_timestamp(Timestamp::new(1_700_000_000, 500).unwrap());
-    summarizer.add(1, &LogEvent::Frame(log));
+    summarizer.add(Position::Line(1), &LogEvent::Frame(log));
     let log = log.with_timestamp(Timestamp::from_nanos(1_700_000_001, 1).unwrap());
-    summarizer.add(2, &LogEvent::Frame(log));
+    summarizer.add(Position::Line(2), &LogEvent::Frame(log));
     let summary = summarizer.finish();
     let bus = serde_json::to_string(&summary.records().last().unwrap()).unwrap();
     assert_eq!(
@@ -216,7 +217,7 @@ fn a_node_is_one_per_bus() {
     for (line, iface) in [(1, "can1"), (2, "can0"), (3, "can1")] {
         let log = LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[5]).unwrap())
             .with_iface(Iface::Name(iface));
-        summarizer.add(line, &LogEvent::Frame(log));
+        summarizer.add(Position::Line(line), &LogEvent::Frame(log));
     }
     let summary = summarizer.finish();
     let buses: Vec<_> = summary
@@ -344,7 +345,7 @@ fn adding_is_decoding_then_adding_on_every_log() {
             };
             while let Some(record) = log.next_event() {
                 let Ok(record) = record else { continue };
-                let position = record.position.number();
+                let position = record.position;
                 by_add.add(position, &record.event);
                 let decoded = by_decode.add_with(position, &record.event, |_| {});
                 frames += u64::from(decoded.is_some());
@@ -378,11 +379,11 @@ fn frames_of_buses_in_turns_count_each_on_its_bus() {
     };
     let mut summarizer = Summarizer::default();
     // can1's first frame is an EMCY: the bus is found before any SDO frame.
-    summarizer.add(1, &frame("can1", 0x085, 0x10));
-    summarizer.add(2, &frame("can0", 0x602, 0x40));
-    summarizer.add(3, &frame("can1", 0x605, 0x40));
-    summarizer.add(4, &frame("can0", 0x602, 0x40));
-    summarizer.add(5, &frame("can1", 0x605, 0x40));
+    summarizer.add(Position::Line(1), &frame("can1", 0x085, 0x10));
+    summarizer.add(Position::Line(2), &frame("can0", 0x602, 0x40));
+    summarizer.add(Position::Line(3), &frame("can1", 0x605, 0x40));
+    summarizer.add(Position::Line(4), &frame("can0", 0x602, 0x40));
+    summarizer.add(Position::Line(5), &frame("can1", 0x605, 0x40));
     let summary = summarizer.finish();
     let frames: Vec<(String, u64)> = summary
         .buses

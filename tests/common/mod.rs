@@ -108,7 +108,7 @@ impl Run {
                 // Malformed lines and damaged records go to the program's
                 // standard error; the records are what is compared.
                 let Ok(record) = next else { continue };
-                let position = record.position.number();
+                let position = record.position;
                 if self.summary {
                     summarizer.add(position, &record.event);
                 } else if let Some(frame) = record.event.frame() {

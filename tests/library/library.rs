@@ -91,7 +91,7 @@ fn columns_hold_what_the_record_holds() {
             let Some(frame) = record.event.frame() else {
                 continue;
             };
-            let decoded = decoder.decode(record.position.number(), frame);
+            let decoded = decoder.decode(record.position, frame);
             let json: Value = serde_json::from_str(&decoded.to_json()).unwrap();
             let columns = decoded.columns();
             let keys = [

@@ -32,7 +32,7 @@ fn sample_recording() -> Recording {
     let mut log = motionwire::logs::open(repo("samples/machine.log")).unwrap();
     while let Some(record) = log.next_event() {
         let record = record.unwrap();
-        recorder.add(record.position.number(), &record.event);
+        recorder.add(record.position, &record.event);
     }
     recorder.finish()
 }

@@ -438,7 +438,10 @@ fn every_00xx_code_is_a_reset_mark() {
     let mut recorder = Recorder::new(DecoderConfig::new());
     for (i, text) in log.split(|&b| b == b'\n').enumerate() {
         if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-            recorder.add(i as u64 + 1, &LogEvent::Frame(frame));
+            recorder.add(
+                motionwire::logs::Position::Line(i as u64 + 1),
+                &LogEvent::Frame(frame),
+            );
         }
     }
     let recording = recorder.finish();
@@ -470,7 +473,7 @@ fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCase
         Recorder::new(DecoderConfig::new().heartbeat_timeout(std::time::Duration::from_millis(50)));
     while let Some(next) = log.next_event() {
         if let Ok(record) = next {
-            recorder.add(record.position.number(), &record.event);
+            recorder.add(record.position, &record.event);
         }
     }
     let recording = recorder.finish();

@@ -182,9 +182,9 @@ impl<'a> Sink<'a> {
     }
 
     #[inline]
-    fn frame(&mut self, line: u64, frame: &LogFrame<'_>) -> io::Result<()> {
+    fn frame(&mut self, position: Position, frame: &LogFrame<'_>) -> io::Result<()> {
         // Every frame teaches the decoder, shown or not.
-        let decoded = self.decoder.decode(line, frame);
+        let decoded = self.decoder.decode(position, frame);
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
@@ -209,7 +209,7 @@ impl<'a> Sink<'a> {
             return Ok(());
         }
         let record = Record {
-            line,
+            line: position.number(),
             log: frame,
             decoded: &decoded,
             message: decoded.message(),
@@ -222,20 +222,20 @@ impl<'a> Sink<'a> {
     }
 
     #[inline]
-    fn event(&mut self, line: u64, event: &LogEvent<'_>) -> io::Result<()> {
+    fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
         if let LogEvent::Frame(_) = event {
             self.frames += 1;
         }
         if let Some(summary) = self.summary.as_mut() {
-            summary.add(line, event);
+            summary.add(position, event);
             return Ok(());
         }
         if let Some(recorder) = self.recorder.as_mut() {
-            recorder.add(line, event);
+            recorder.add(position, event);
             return Ok(());
         }
         match event {
-            LogEvent::Frame(frame) => self.frame(line, frame),
+            LogEvent::Frame(frame) => self.frame(position, frame),
             LogEvent::Status(_) => Ok(()),
         }
     }
@@ -469,7 +469,7 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
                 // Read where it lies: the record is not moved.
                 Some(Ok(ref record)) => {
                     number = record.position.number();
-                    sink.event(sink.files.line(number), &record.event)?;
+                    sink.event(sink.files.line(record.position), &record.event)?;
                 }
                 Some(Err(error)) => {
                     number = error.position().map_or(number, Position::number);
