@@ -11,7 +11,7 @@
 //! Run with `cargo run --example servo_cycle`.
 
 use motionwire::servo::{
-    enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, EnableHandshake,
+    drive_enabled, servo_ready, ActualPosition, Command, CommandFrame, EnableHandshake,
     EnablePhase, ErrorClearHandshake, Feedback, HandshakePhase, Message, MessageCode,
     ParameterTable, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
     ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
@@ -103,7 +103,7 @@ impl SimulatedDrive {
         // Enable only on the SE edge 0b01 → 0b10, never with an error.
         let has_error = self.errors.contains(ServoErrorWord::SERVO_ERRORS);
         self.enabled =
-            enable_handshake(self.previous_se, scw.servo_enable(), self.enabled) && !has_error;
+            drive_enabled(self.previous_se, scw.servo_enable(), self.enabled) && !has_error;
         self.previous_se = scw.servo_enable();
 
         // Speed follows the reference on a ramp while enabled and not in the

@@ -40,7 +40,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::servo::{
-    enable_handshake, servo_ready, EnableHandshake, EnablePhase, ErrorClear, Handshake,
+    drive_enabled, servo_ready, EnableHandshake, EnablePhase, ErrorClear, Handshake,
     HandshakeBits, HandshakePhase, ServoControlWord, ServoEnable, ServoErrorWord, ServoReadyMode,
     ServoStatusWord, ZeroPulse,
 };
@@ -78,7 +78,7 @@ fuzz_target!(|data: &[u8]| {
         } else {
             ServoEnable::new(se & 0b11).expect("two bits")
         };
-        let now_enabled = enable_handshake(previous_se, current_se, enabled);
+        let now_enabled = drive_enabled(previous_se, current_se, enabled);
         if now_enabled {
             assert_eq!(current_se, ServoEnable::ENABLE);
             assert!(enabled || previous_se == ServoEnable::ARM);
@@ -157,7 +157,7 @@ fn enable_step_checked(
     let on_the_wire = last_command.servo_enable();
     if written.servo_enable() == ServoEnable::ENABLE {
         assert!(
-            enable_handshake(on_the_wire, ServoEnable::ENABLE, would_enable),
+            drive_enabled(on_the_wire, ServoEnable::ENABLE, would_enable),
             "0b10 after {on_the_wire} without an edge"
         );
     }

@@ -3,10 +3,10 @@
 //! scripted feedback, and every command the NC sends is checked byte for byte.
 
 use motionwire::servo::{
-    enable_handshake, servo_ready, ActualPosition, Command, CommandFrame, ECode,
-    ErrorClearHandshake, Feedback, FeedbackFrame, HandshakePhase, Message, MessageCode,
-    ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord,
-    ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
+    drive_enabled, servo_ready, ActualPosition, Command, CommandFrame, ECode, ErrorClearHandshake,
+    Feedback, FeedbackFrame, HandshakePhase, Message, MessageCode, ServoControlWord, ServoEnable,
+    ServoErrorWord, ServoFault, ServoReadyMode, ServoStatusWord, ZeroPulseHandshake, COMMAND_LEN,
+    FEEDBACK_LEN,
 };
 use motionwire::LenError;
 use motionwire::What;
@@ -122,7 +122,7 @@ fn zero_pulse_through_frames() {
 }
 
 /// docs/servo.md#handshakes: a drive that reacts to the NC's SE field with
-/// `enable_handshake` and reports ServoRDY by the truth table, driven by the
+/// `drive_enabled` and reports ServoRDY by the truth table, driven by the
 /// NC's command bytes; the feedback's first status byte is checked.
 #[test]
 fn enable_through_frames() {
@@ -148,7 +148,7 @@ fn enable_through_frames() {
             let received = CommandFrame::new_checked(&image[..])
                 .unwrap()
                 .control_word();
-            enabled = enable_handshake(previous, received.servo_enable(), enabled);
+            enabled = drive_enabled(previous, received.servo_enable(), enabled);
             previous = received.servo_enable();
             let status = ServoStatusWord::empty().with_flag(ServoStatusWord::SERVO_EN, enabled);
             let ready = servo_ready(mode, status, ServoErrorWord::empty());

@@ -109,9 +109,11 @@ pub const fn servo_ready(
     !error && (matches!(mode, ServoReadyMode::ErrorFree) || enabled)
 }
 
-/// Return whether the drive is enabled after a cycle in which SCW.SE went
-/// from `previous` to `current`, given whether it `was_enabled`
-/// (docs/servo.md#handshakes; the interface manual, "Servo Enable").
+/// The drive's side of the enable handshake: return whether the drive is
+/// enabled after a cycle in which SCW.SE went from `previous` to `current`,
+/// given whether it `was_enabled` (docs/servo.md#handshakes; the interface
+/// manual, "Servo Enable"). The NC's side is
+/// [`EnableHandshake`](super::EnableHandshake).
 ///
 /// The drive enables only on 0b01 → 0b10 (bit 0 falls and bit 1 rises in
 /// the same cycle). **Decision (docs/servo.md#handshakes):** it stays enabled
@@ -120,20 +122,16 @@ pub const fn servo_ready(
 /// occur; such input yields "disabled", the safe answer.
 ///
 /// ```
-/// use motionwire_codec::servo::{enable_handshake, ServoEnable};
+/// use motionwire_codec::servo::{drive_enabled, ServoEnable};
 ///
-/// let on = enable_handshake(ServoEnable::ARM, ServoEnable::ENABLE, false);
+/// let on = drive_enabled(ServoEnable::ARM, ServoEnable::ENABLE, false);
 /// assert!(on);
-/// assert!(enable_handshake(ServoEnable::ENABLE, ServoEnable::ENABLE, on));
-/// assert!(!enable_handshake(ServoEnable::DISABLED, ServoEnable::ENABLE, false));
-/// assert!(!enable_handshake(ServoEnable::ENABLE, ServoEnable::BOTH, true));
+/// assert!(drive_enabled(ServoEnable::ENABLE, ServoEnable::ENABLE, on));
+/// assert!(!drive_enabled(ServoEnable::DISABLED, ServoEnable::ENABLE, false));
+/// assert!(!drive_enabled(ServoEnable::ENABLE, ServoEnable::BOTH, true));
 /// ```
 #[must_use]
-pub const fn enable_handshake(
-    previous: ServoEnable,
-    current: ServoEnable,
-    was_enabled: bool,
-) -> bool {
+pub const fn drive_enabled(previous: ServoEnable, current: ServoEnable, was_enabled: bool) -> bool {
     match (previous.get(), current.get()) {
         (0b01, 0b10) => true,
         (0b10, 0b10) => was_enabled,
@@ -518,7 +516,7 @@ mod tests {
             let p = ServoEnable::try_new(previous).unwrap();
             let c = ServoEnable::try_new(current).unwrap();
             assert_eq!(
-                enable_handshake(p, c, was_enabled),
+                drive_enabled(p, c, was_enabled),
                 enabled,
                 "{p} -> {c}, was enabled: {was_enabled}"
             );
@@ -549,7 +547,7 @@ mod tests {
         let mut previous = Se::DISABLED;
         let mut enabled = false;
         for (i, (se, expected)) in cycles.into_iter().enumerate() {
-            enabled = enable_handshake(previous, se, enabled);
+            enabled = drive_enabled(previous, se, enabled);
             assert_eq!(enabled, expected, "cycle {i}: {previous} -> {se}");
             previous = se;
         }
@@ -852,7 +850,7 @@ mod proptests {
             let mut previous = ServoEnable::DISABLED;
             let mut enabled = false;
             for (now, &se) in ses.iter().enumerate() {
-                enabled = enable_handshake(previous, se, enabled);
+                enabled = drive_enabled(previous, se, enabled);
                 previous = se;
                 // Model: walk back over the run of 0b10 ending now.
                 let run_start = ses[..=now].iter().rposition(|&s| s != ServoEnable::ENABLE);

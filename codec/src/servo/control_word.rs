@@ -236,7 +236,7 @@ impl ServoControlWord {
 /// Enable").
 ///
 /// The drive enables only on the change 0b01 → 0b10 between two consecutive
-/// cycles; see [`enable_handshake`](crate::servo::enable_handshake).
+/// cycles; see [`drive_enabled`](crate::servo::drive_enabled).
 ///
 /// ```
 /// use motionwire_codec::servo::ServoEnable;

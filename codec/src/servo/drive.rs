@@ -5,7 +5,7 @@ use core::fmt;
 use core::num::NonZeroU32;
 
 use super::{
-    enable_handshake, servo_ready, ActualPosition, Command, EncoderKind, Feedback, Message,
+    drive_enabled, servo_ready, ActualPosition, Command, EncoderKind, Feedback, Message,
     MessageCode, ServoControlWord, ServoEnable, ServoErrorWord, ServoFault, ServoReadyMode,
     ServoStatusWord,
 };
@@ -553,7 +553,7 @@ impl Drive {
     ///    after [`DriveConfig::error_clear_delay`] cycles the latched errors
     ///    are cleared and ErrClearAck rises; ErrorClear = 0 drops it.
     /// 2. Errors whose cause persists are set again.
-    /// 3. Enable: [`enable_handshake`] on the previous and this cycle's SE;
+    /// 3. Enable: [`drive_enabled`] on the previous and this cycle's SE;
     ///    with [`DriveConfig::disable_on_fault`], any error disables.
     /// 4. Motion: while enabled, the applied speed (set point, emergency
     ///    feed, or 0 under POSLOCK) times the speed scale moves the axis,
@@ -587,7 +587,7 @@ impl Drive {
         // 3. Enable (docs/servo.md#handshakes).
         let se = scw.servo_enable();
         let faulted = self.config.disable_on_fault && !errors.is_empty();
-        self.enabled = enable_handshake(self.previous_se, se, self.enabled) && !faulted;
+        self.enabled = drive_enabled(self.previous_se, se, self.enabled) && !faulted;
         self.previous_se = se;
 
         // 4. Motion.

@@ -1,7 +1,7 @@
 //! The NC side of the enable handshake on SCW.SE (docs/servo.md#handshakes; the
 //! interface manual, "Servo Enable"): [`EnableHandshake`] and its
 //! [`EnablePhase`]. The drive's side of the same rule is
-//! [`enable_handshake`](super::enable_handshake).
+//! [`drive_enabled`](super::drive_enabled).
 
 use core::fmt;
 
@@ -299,7 +299,7 @@ impl EnableHandshake {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::servo::enable_handshake;
+    use crate::servo::drive_enabled;
 
     use EnablePhase::*;
 
@@ -430,7 +430,7 @@ mod tests {
         let mut trace = Vec::new();
         for _ in 0..5 {
             (hs, scw) = hs.step(scw, servo_en(drive_on));
-            drive_on = enable_handshake(drive_se, scw.servo_enable(), drive_on);
+            drive_on = drive_enabled(drive_se, scw.servo_enable(), drive_on);
             drive_se = scw.servo_enable();
             trace.push((hs.phase(), scw.servo_enable(), drive_on));
         }
@@ -596,7 +596,7 @@ mod proptests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::servo::enable_handshake;
+    use crate::servo::drive_enabled;
     use crate::strategies::servo::{servo_enable, status_word};
 
     /// One cycle: the NC's wish (0 start, 1 cancel, else nothing), whether
@@ -631,7 +631,7 @@ mod proptests {
                 prop_assert_eq!(out.servo_enable(), next.phase().servo_enable());
                 prop_assert_ne!(out.servo_enable(), ServoEnable::BOTH);
                 if out.servo_enable() == ServoEnable::ENABLE {
-                    prop_assert!(enable_handshake(on_the_wire, ServoEnable::ENABLE, would_enable));
+                    prop_assert!(drive_enabled(on_the_wire, ServoEnable::ENABLE, would_enable));
                 }
                 let (from, to) = (before.phase(), next.phase());
                 if from == to {
@@ -649,7 +649,7 @@ mod proptests {
                 }
                 hs = next;
                 let now = if obey { out } else { written.with_servo_enable(other) };
-                would_enable = enable_handshake(on_the_wire, now.servo_enable(), would_enable);
+                would_enable = drive_enabled(on_the_wire, now.servo_enable(), would_enable);
                 written = now;
             }
         }
@@ -691,7 +691,7 @@ mod proptests {
                 let status = ServoStatusWord::empty().with_flag(ServoStatusWord::SERVO_EN, delivered);
                 (hs, scw) = hs.step(scw, status);
                 // The drive's cycle.
-                on = enable_handshake(previous_se, scw.servo_enable(), on) && !fault;
+                on = drive_enabled(previous_se, scw.servo_enable(), on) && !fault;
                 previous_se = scw.servo_enable();
                 if hs.is_enabled() {
                     prop_assert!(delivered, "Enabled only on the drive's ServoEn");

@@ -11,7 +11,7 @@
 //!
 //! The behaviours of docs/servo.md#handshakes are pure functions and state
 //! machines:
-//! [`servo_ready`] (the ServoRDY truth table), [`enable_handshake`] (SE
+//! [`servo_ready`] (the ServoRDY truth table), [`drive_enabled`] (SE
 //! 0b01 → 0b10, the drive's rule), and the NC side of the three
 //! handshakes: [`EnableHandshake`] and the two request/ack handshakes,
 //! [`ErrorClearHandshake`] and [`ZeroPulseHandshake`].
@@ -59,7 +59,7 @@ mod message;
 mod status_word;
 
 pub use behaviour::{
-    enable_handshake, servo_ready, ErrorClear, ErrorClearHandshake, Handshake, HandshakeBits,
+    drive_enabled, servo_ready, ErrorClear, ErrorClearHandshake, Handshake, HandshakeBits,
     HandshakePhase, ServoReadyMode, ZeroPulse, ZeroPulseHandshake,
 };
 pub use command::{Command, CommandDetails, CommandFrame, COMMAND_LEN};
