@@ -14,7 +14,7 @@ use crate::canopen::sdo::{
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
 use super::{BusName, ObjectNames};
-use crate::CodecError;
+use crate::FrameError;
 
 /// One SDO frame as its channel's tracker read it (`sdo` in
 /// docs/output.md#sdo), and the transfer it ends with that transfer's data
@@ -33,7 +33,7 @@ pub struct SdoStep<'d> {
     pub sender: SdoParty,
     /// The frame read in its transfer's context, or why it could not be
     /// read (a short frame, an undefined command specifier).
-    pub message: Result<SdoMessage, CodecError>,
+    pub message: Result<SdoMessage, FrameError>,
     /// The frame's data bytes.
     pub data: &'d [u8],
     /// The request → response latency this frame closes
@@ -176,8 +176,7 @@ impl<'d> SdoSeen<'_, 'd> {
         let mut step = SdoStep {
             node: self.node,
             sender: self.sender,
-            message: SdoMessage::read(self.sender, self.block_segment, self.data)
-                .map_err(CodecError::from),
+            message: SdoMessage::read(self.sender, self.block_segment, self.data),
             data: self.data,
             latency: self.latency,
             started: self.started,
