@@ -314,6 +314,9 @@ pub struct OpenTransfer {
     /// The transfer, with outcome [`SdoOutcome::Broken`] or
     /// [`SdoOutcome::TimedOut`].
     pub transfer: SdoTransfer,
+    /// The name of the transfer's object, where known (`object` in
+    /// docs/canopen.md#object-names, as [`EndedTransfer::object`]).
+    pub object: Option<String>,
 }
 
 /// What the decoder knows of one node.
@@ -874,10 +877,15 @@ impl Decoder {
             for (i, node) in state.nodes.iter_mut().enumerate() {
                 let Some(node) = node else { continue };
                 if let Some(transfer) = node.sdo.finish() {
+                    let object = self.names[i]
+                        .get(&self.config)
+                        .name(transfer.multiplexer.index)
+                        .map(str::to_owned);
                     open.push(OpenTransfer {
                         bus: bus.clone(),
                         node: NodeId::new(i as u8).expect("1..=127"),
                         transfer,
+                        object,
                     });
                 }
             }

@@ -39,6 +39,7 @@ fn map_tpdo1(decoder: &mut Decoder) {
         let decoded = decoder.decode(line + 1, &frame);
         let ended = decoded.sdo.unwrap().ended.unwrap();
         assert_eq!(ended.transfer.outcome, SdoOutcome::Completed);
+        assert_eq!(ended.object(), Some("TPDO mapping parameter"));
     }
 }
 
@@ -253,6 +254,7 @@ fn a_transfer_the_input_ends_in_is_handed_over_by_finish() {
     assert_eq!(open[0].bus, BusName::Name("can0".to_owned()));
     assert_eq!(open[0].transfer.start_position, 7);
     assert_eq!(open[0].transfer.outcome, SdoOutcome::TimedOut);
+    assert_eq!(open[0].object.as_deref(), Some("Manufacturer device name"));
     assert!(decoder.finish().is_empty(), "handed over once");
 }
 
