@@ -205,11 +205,7 @@ impl<'d> PdoReading<'d> {
 impl fmt::Display for PdoReading<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let map = self.map;
-        let t = match map.direction {
-            PdoDirection::Transmit => 'T',
-            PdoDirection::Receive => 'R',
-        };
-        write!(f, "{t}PDO{}", map.number)?;
+        write!(f, "{}{}", map.direction, map.number)?;
         for (i, signal) in self.signals.iter().enumerate() {
             match signal {
                 Ok(signal) => {

@@ -8,8 +8,7 @@ use core::time::Duration;
 
 use crate::can::Timestamp;
 use crate::canopen::sdo::{
-    SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
-    TransferDirection, TransferMode,
+    SdoFrame, SdoMessage, SdoParty, SdoService, SdoTracker, SdoTransfer, TransferMode,
 };
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
@@ -386,42 +385,12 @@ fn ms(d: Duration) -> f64 {
 impl fmt::Display for EndedTransfer<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let transfer = &self.transfer;
-        let verb = match transfer.direction {
-            TransferDirection::Upload => "read",
-            TransferDirection::Download => "write",
+        let value = DataText {
+            data: self.data,
+            expedited: transfer.mode == TransferMode::Expedited,
+            truncated: self.truncated(),
         };
-        match transfer.outcome {
-            SdoOutcome::Completed => {
-                write!(f, "{verb} {} ", transfer.multiplexer)?;
-                let value = DataText {
-                    data: self.data,
-                    expedited: transfer.mode == TransferMode::Expedited,
-                    truncated: self.truncated(),
-                };
-                write!(f, "{value} ({}, {} B", transfer.mode.name(), transfer.bytes)?;
-            }
-            SdoOutcome::Aborted { code, by } => write!(
-                f,
-                "abort {}: {} ({verb} aborted by the {}",
-                transfer.multiplexer,
-                code.description(),
-                by.name()
-            )?,
-            SdoOutcome::Broken(reason) => write!(
-                f,
-                "{verb} {} broken: {reason} ({} B",
-                transfer.multiplexer, transfer.bytes
-            )?,
-            SdoOutcome::TimedOut => write!(
-                f,
-                "{verb} {} timed out: no answer (line {}",
-                transfer.multiplexer, transfer.start_position
-            )?,
-        }
-        if let Some(d) = transfer.duration {
-            write!(f, ", {:.1} ms", ms(d))?;
-        }
-        f.write_str(")")
+        transfer.fmt_with_data(f, Some(&value))
     }
 }
 
