@@ -106,7 +106,7 @@ fn print_step<const N: usize>(what: &str, outcome: &EmcyOutcome, producer: &Emcy
     };
     let flags: Vec<&str> = producer.error_register().names().collect();
     let note = match (outcome.ignored(), outcome.overflow()) {
-        (Some(reason), _) => format!("  [{reason:?}]"),
+        (Some(reason), _) => format!("  [{reason}]"),
         (None, Some(code)) => format!("  [overflow: {code} not tracked]"),
         (None, None) => String::new(),
     };

@@ -57,7 +57,7 @@ pub use bus::BusName;
 pub use cia402::Cia402Reading;
 pub use columns::FrameColumns;
 pub use names::ObjectNames;
-pub use pdo::{PdoMap, PdoReading};
+pub use pdo::{PdoMap, PdoOrigin, PdoReading};
 pub(crate) use sdo::SdoSeen;
 pub use sdo::{EndedTransfer, SdoStep};
 pub use servo::{CommandRecord, FaultRecord, FeedbackRecord};
@@ -316,6 +316,9 @@ pub struct OpenTransfer {
     /// The transfer, with outcome [`SdoOutcome::Broken`] or
     /// [`SdoOutcome::TimedOut`].
     pub transfer: SdoTransfer,
+    /// The name of the transfer's object, where known (`object` in
+    /// docs/canopen.md#object-names, as [`EndedTransfer::object`]).
+    pub object: Option<String>,
 }
 
 /// What the decoder knows of one node.
@@ -427,7 +430,7 @@ impl Decoder {
         };
         match (kind, node) {
             (MessageKind::Sdo, Some(node)) if !can.is_rtr() => {
-                let (step, cia402) = self.sdo_owned(position.number(), frame, node);
+                let (step, cia402) = self.sdo_owned(position, frame, node);
                 decoded.sdo = Some(step);
                 decoded.cia402 = cia402;
             }
@@ -451,7 +454,7 @@ impl Decoder {
     #[inline(always)]
     pub(crate) fn sdo_frame<'d, R>(
         &'d mut self,
-        position: u64,
+        position: Position,
         frame: &'d LogFrame<'d>,
         node: NodeId,
         then: impl FnOnce(usize, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
@@ -470,7 +473,7 @@ impl Decoder {
     #[inline(never)]
     fn sdo_owned<'d>(
         &'d mut self,
-        position: u64,
+        position: Position,
         frame: &'d LogFrame<'d>,
         node: NodeId,
     ) -> (SdoStep<'d>, Option<Cia402Reading>) {
@@ -541,7 +544,7 @@ impl Decoder {
             state.drive |= is_drive;
             for pdo in &description.pdos {
                 let params = state.pdos.entry((pdo.transmit, pdo.number)).or_default();
-                params.cob_id = Some(pdo.cob_id);
+                params.cob_id = Some((pdo.cob_id, PdoOrigin::Eds));
                 params.count = Some(pdo.entries.len() as u8);
                 for (slot, entry) in params.entries.iter_mut().zip(&pdo.entries) {
                     *slot = Some(*entry);
@@ -550,7 +553,7 @@ impl Decoder {
             let mut keys: Vec<_> = state.pdos.keys().copied().collect();
             keys.sort_unstable();
             for key in keys {
-                self.activate(at, node, key);
+                self.activate(at, node, key, PdoOrigin::Eds);
             }
         }
     }
@@ -569,7 +572,7 @@ impl Decoder {
         frame: &'d LogFrame<'d>,
         node: NodeId,
         sender: SdoParty,
-        position: u64,
+        position: Position,
         then: impl FnOnce(usize, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
         let at = self.bus(frame.iface);
@@ -578,7 +581,7 @@ impl Decoder {
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
         let fed = state
             .sdo
-            .feed(sender, bytes, frame.timestamp, position, cap);
+            .feed(sender, bytes, frame.timestamp, position.number(), cap);
         let value = match &fed.ended {
             Some(transfer)
                 if transfer.outcome == SdoOutcome::Completed
@@ -589,7 +592,7 @@ impl Decoder {
             _ => None,
         };
         let cia402 = match (&fed.ended, value) {
-            (Some(transfer), Some(value)) => self.learn(at, node, transfer, value),
+            (Some(transfer), Some(value)) => self.learn(at, node, position, transfer, value),
             _ => None,
         };
         let names = self.names[usize::from(node.get())].get(&self.config);
@@ -609,17 +612,19 @@ impl Decoder {
     }
 
     /// What a completed transfer teaches (docs/canopen.md#pdo-mappings,
-    /// docs/canopen.md#cia402).
+    /// docs/canopen.md#cia402); `position` is the frame that completed it.
     fn learn(
         &mut self,
         at: usize,
         node: NodeId,
+        position: Position,
         transfer: &SdoTransfer,
         value: u32,
     ) -> Option<Cia402Reading> {
         let m = transfer.multiplexer;
         let profiles = &self.config.profiles;
         if let Some((key, communication)) = pdo::pdo_parameter(m.index) {
+            let origin = PdoOrigin::Sdo { position };
             let params = self
                 .buses
                 .get_mut(at)
@@ -628,13 +633,13 @@ impl Decoder {
                 .entry(key)
                 .or_default();
             match (communication, m.sub_index) {
-                (true, 1) => params.cob_id = Some(PdoCobId::from_u32(value)),
+                (true, 1) => params.cob_id = Some((PdoCobId::from_u32(value), origin)),
                 (true, _) => return None,
                 (false, 0) => params.count = Some(value as u8),
                 (false, sub @ 1..=64) => params.entries[usize::from(sub) - 1] = Some(value),
                 (false, _) => return None,
             }
-            self.activate(at, node, key);
+            self.activate(at, node, key, origin);
             return None;
         }
         let state = self.buses.get_mut(at).node(node, profiles);
@@ -658,8 +663,8 @@ impl Decoder {
     }
 
     /// Put a PDO's mapping in force on its COB-ID, or take it out of force,
-    /// after its parameters changed.
-    fn activate(&mut self, at: usize, node: NodeId, key: (bool, u16)) {
+    /// after its parameters changed (the change came from `origin`).
+    fn activate(&mut self, at: usize, node: NodeId, key: (bool, u16), origin: PdoOrigin) {
         let profile = self.config.profiles.of(Some(node));
         let description = self.config.descriptions.iter().find(|d| d.node == node);
         let bus = self.buses.get_mut(at);
@@ -677,9 +682,10 @@ impl Decoder {
         if let Some(old) = params.active.take() {
             bus.by_cob[usize::from(old)] = 0;
         }
-        let Some((cob_id, mapping)) = pdo::in_force(params, node, direction, number) else {
+        let Some(force) = pdo::in_force(params, node, direction, number) else {
             return;
         };
+        let cob_id = force.raw();
         // A node whose device type says CiA 402 reads with the drive
         // profile's names and types, whatever its profile
         // (docs/canopen.md#signals).
@@ -692,7 +698,9 @@ impl Decoder {
         };
         let id = self.next_map;
         self.next_map = self.next_map.wrapping_add(1);
-        let map = pdo::build_map(id, node, direction, number, &mapping, names, set, drive);
+        let map = pdo::build_map(
+            id, node, direction, number, &force, origin, names, set, drive,
+        );
         let slot = &mut bus.by_cob[usize::from(cob_id)];
         if *slot != 0 {
             bus.maps[usize::from(*slot) - 1] = map;
@@ -801,6 +809,63 @@ impl Decoder {
             || self.config.profiles.of(Some(node)).is_drive()
     }
 
+    /// Return the PDO mappings in force for `node` on `bus`, as the log
+    /// has set them so far (docs/canopen.md#pdo-mappings): its TPDOs, then
+    /// its RPDOs, each by number. A bus on which no SDO or PDO frame has
+    /// been decoded yet has none (an EDS/DCF sets a node's PDOs when the
+    /// bus's first such frame comes).
+    ///
+    /// ```
+    /// use motionwire::can::{CanFrame, CanId, LogFrame};
+    /// use motionwire::canopen::{NodeId, PdoDirection};
+    /// use motionwire::decoder::{BusName, Decoder, DecoderConfig, PdoOrigin};
+    /// use motionwire::logs::Position;
+    /// use motionwire::profiles::Profile;
+    ///
+    /// let node = NodeId::new(3).unwrap();
+    /// let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node, Profile::Akd));
+    /// // Map the statusword (6041h, 16 bits) into TPDO1 of node 3: entry 1,
+    /// // then the count, each an expedited SDO write and its answer.
+    /// let writes: [(u32, [u8; 8]); 4] = [
+    ///     (0x603, [0x23, 0x00, 0x1A, 0x01, 0x10, 0x00, 0x41, 0x60]),
+    ///     (0x583, [0x60, 0x00, 0x1A, 0x01, 0, 0, 0, 0]),
+    ///     (0x603, [0x2F, 0x00, 0x1A, 0x00, 0x01, 0, 0, 0]),
+    ///     (0x583, [0x60, 0x00, 0x1A, 0x00, 0, 0, 0, 0]),
+    /// ];
+    /// for (line, (id, data)) in (1..).zip(writes) {
+    ///     let frame = LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), &data).unwrap());
+    ///     decoder.decode(Position::Line(line), &frame);
+    /// }
+    /// let bus = BusName::of(None);
+    /// let maps: Vec<_> = decoder.mappings(&bus, node).collect();
+    /// assert_eq!(maps.len(), 1);
+    /// let tpdo1 = maps[0];
+    /// assert_eq!((tpdo1.direction(), tpdo1.number()), (PdoDirection::Transmit, 1));
+    /// assert_eq!(tpdo1.can_id().raw(), 0x183);
+    /// assert_eq!(tpdo1.names(), ["Statusword"]);
+    /// // In force from the answer to the count's write, on the pre-defined
+    /// // COB-ID.
+    /// assert_eq!(tpdo1.origin(), PdoOrigin::Sdo { position: Position::Line(4) });
+    /// assert_eq!(tpdo1.cob_id_origin(), PdoOrigin::PredefinedConnectionSet);
+    /// ```
+    pub fn mappings(&self, bus: &BusName, node: NodeId) -> impl Iterator<Item = &PdoMap> + '_ {
+        let mut maps: Vec<&PdoMap> = self.buses.find(bus).map_or_else(Vec::new, |b| {
+            // In force: the map its COB-ID's slot points to (a map taken
+            // out of force, or moved, keeps its place in `maps`).
+            b.maps
+                .iter()
+                .enumerate()
+                .filter(|&(i, map)| {
+                    map.node() == node
+                        && usize::from(b.by_cob[map.can_id().raw() as usize]) == i + 1
+                })
+                .map(|(_, map)| map)
+                .collect()
+        });
+        maps.sort_unstable_by_key(|m| (m.direction() == PdoDirection::Receive, m.number()));
+        maps.into_iter()
+    }
+
     /// Return the name of the bus at `at` ([`bus`](Self::bus)).
     pub(crate) fn bus_name(&self, at: usize) -> &BusName {
         self.buses.name(at)
@@ -815,10 +880,15 @@ impl Decoder {
             for (i, node) in state.nodes.iter_mut().enumerate() {
                 let Some(node) = node else { continue };
                 if let Some(transfer) = node.sdo.finish() {
+                    let object = self.names[i]
+                        .get(&self.config)
+                        .name(transfer.multiplexer.index)
+                        .map(str::to_owned);
                     open.push(OpenTransfer {
                         bus: bus.clone(),
                         node: NodeId::new(i as u8).expect("1..=127"),
                         transfer,
+                        object,
                     });
                 }
             }

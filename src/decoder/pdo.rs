@@ -7,21 +7,69 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::fmt;
 
+use crate::can::CanId;
 use crate::canopen::{
     object_data_type, object_name, DataType, MappingEntry, NodeId, PdoCobId, PdoDirection,
     PdoLayout, PdoMapping, Signal, TypeLookup,
 };
+use crate::logs::Position;
 use crate::CodecError;
 
+/// Where a PDO's parameters come from, as the decoder learns them
+/// (docs/canopen.md#pdo-mappings, the three sources in their order).
+///
+/// [`PdoMap::origin`] says what put a mapping in force as it is (an SDO
+/// transfer or the EDS/DCF: only those give a mapping);
+/// [`PdoMap::cob_id_origin`] where its COB-ID comes from (any of the three).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PdoOrigin {
+    /// 1: a completed SDO transfer in the log, to or from the PDO's
+    /// communication or mapping parameter, changed the PDO from that frame on.
+    Sdo {
+        /// Where the log has the frame that completed the transfer (its line
+        /// or record, docs/formats.md#positions: the `line` of the
+        /// record that carries the `transfer`, docs/output.md#transfer).
+        position: Position,
+    },
+    /// 2: the node's EDS or DCF (`--eds NODE=FILE`,
+    /// [`DecoderConfig::eds`](super::DecoderConfig::eds)), which sets the
+    /// node's PDOs at the start of each bus.
+    Eds,
+    /// 3: the pre-defined connection set, for the COB-ID of PDOs 1–4 when no
+    /// COB-ID is known (TPDO1–4 at 0x180/0x280/0x380/0x480 + node, RPDO1–4
+    /// at 0x200/0x300/0x400/0x500 + node). It gives only the identifier.
+    PredefinedConnectionSet,
+}
+
+impl fmt::Display for PdoOrigin {
+    /// Write the source as a person reads it: `SDO transfer at line 102`,
+    /// `EDS`, `pre-defined connection set`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PdoOrigin::Sdo { position } => {
+                write!(f, "SDO transfer at {} {position}", position.unit())
+            }
+            PdoOrigin::Eds => f.write_str("EDS"),
+            PdoOrigin::PredefinedConnectionSet => f.write_str("pre-defined connection set"),
+        }
+    }
+}
+
 /// A PDO's mapping as the decoder applies it to the frames on its COB-ID:
-/// the owner, the PDO, its layout and the name of each signal
-/// (docs/canopen.md#signals).
+/// the owner, the PDO, its COB-ID, where it comes from, its layout and the
+/// name of each signal (docs/canopen.md#pdo-mappings,
+/// docs/canopen.md#signals). [`Decoder::mappings`](super::Decoder::mappings)
+/// lists those in force.
 #[derive(Debug)]
 pub struct PdoMap {
     id: u32,
     node: NodeId,
     direction: PdoDirection,
     number: u16,
+    cob_id: PdoCobId,
+    can_id: CanId,
+    origin: PdoOrigin,
+    cob_id_origin: PdoOrigin,
     layout: PdoLayout,
     names: Vec<Cow<'static, str>>,
     /// Each name as a JSON object key, escaped once, with the comma before
@@ -59,6 +107,40 @@ impl PdoMap {
     #[must_use]
     pub fn number(&self) -> u16 {
         self.number
+    }
+
+    /// Return the COB-ID entry in force (sub 1 of the communication
+    /// parameter, docs/canopen.md#pdo-mappings): as configured, with its
+    /// flags, or the pre-defined connection set's identifier with no flag
+    /// set ([`cob_id_origin`](Self::cob_id_origin) says which). It is valid
+    /// and 11-bit: a PDO is in force on no other.
+    #[must_use]
+    pub fn cob_id(&self) -> PdoCobId {
+        self.cob_id
+    }
+
+    /// Return the identifier of the frames the mapping reads: the
+    /// [`cob_id`](Self::cob_id)'s, 11-bit.
+    #[must_use]
+    pub fn can_id(&self) -> CanId {
+        self.can_id
+    }
+
+    /// Return what put the mapping in force as it is: the completed SDO
+    /// transfer that changed one of the PDO's parameters last, or the node's
+    /// EDS/DCF at the start of the bus (docs/canopen.md#pdo-mappings; never
+    /// [`PdoOrigin::PredefinedConnectionSet`], which gives no mapping).
+    #[must_use]
+    pub fn origin(&self) -> PdoOrigin {
+        self.origin
+    }
+
+    /// Return where the COB-ID comes from: the SDO transfer that set it, the
+    /// EDS/DCF, or the pre-defined connection set when neither gave one
+    /// (docs/canopen.md#pdo-mappings).
+    #[must_use]
+    pub fn cob_id_origin(&self) -> PdoOrigin {
+        self.cob_id_origin
     }
 
     /// Return the mapping with each entry's offset and kind worked out.
@@ -126,11 +208,7 @@ impl<'d> PdoReading<'d> {
 impl fmt::Display for PdoReading<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let map = self.map;
-        let t = match map.direction {
-            PdoDirection::Transmit => 'T',
-            PdoDirection::Receive => 'R',
-        };
-        write!(f, "{t}PDO{}", map.number)?;
+        write!(f, "{}{}", map.direction, map.number)?;
         for (i, signal) in self.signals.iter().enumerate() {
             match signal {
                 Ok(signal) => {
@@ -148,8 +226,9 @@ impl fmt::Display for PdoReading<'_> {
 /// §7.5.2.35–§7.5.2.38).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PdoParams {
-    /// Sub 1 of the communication parameter, when known.
-    pub(crate) cob_id: Option<PdoCobId>,
+    /// Sub 1 of the communication parameter and where it comes from, when
+    /// known.
+    pub(crate) cob_id: Option<(PdoCobId, PdoOrigin)>,
     /// Sub 0 of the mapping parameter, when known.
     pub(crate) count: Option<u8>,
     /// Subs 1..=64 of the mapping parameter.
@@ -189,6 +268,26 @@ pub(crate) trait Names {
     fn data_type(&self, index: u16, sub: u8) -> Option<DataType>;
 }
 
+/// The COB-ID a PDO is active on, as configured or pre-defined, and its
+/// mapping, or `None` when it is not in force (CiA 301 §7.3.5, §7.5.2.35).
+pub(crate) struct InForce {
+    /// The COB-ID entry.
+    pub(crate) cob_id: PdoCobId,
+    /// Its identifier, 11-bit.
+    pub(crate) can_id: CanId,
+    /// Where the COB-ID comes from.
+    pub(crate) cob_id_origin: PdoOrigin,
+    /// The mapping.
+    pub(crate) mapping: PdoMapping,
+}
+
+impl InForce {
+    /// The identifier as an index into the decoder's table of COB-IDs.
+    pub(crate) fn raw(&self) -> u16 {
+        self.can_id.raw() as u16
+    }
+}
+
 /// The COB-ID a PDO is active on and its mapping, or `None` when it is
 /// not in force (CiA 301 §7.3.5, §7.5.2.35).
 pub(crate) fn in_force(
@@ -196,13 +295,23 @@ pub(crate) fn in_force(
     node: NodeId,
     direction: PdoDirection,
     number: u16,
-) -> Option<(u16, PdoMapping)> {
+) -> Option<InForce> {
     // The COB-ID: as configured, else the pre-defined connection set for
     // PDOs 1–4 (CiA 301 §7.3.5).
     let cob_id = match params.cob_id {
-        Some(cob) if !cob.is_valid() || cob.is_extended() => None,
-        Some(cob) => cob.can_id().and_then(|id| id.standard_raw()),
-        None => node.pdo_cob_id(direction, number),
+        Some((cob, _)) if !cob.is_valid() || cob.is_extended() => None,
+        Some((cob, origin)) => cob
+            .can_id()
+            .filter(|id| id.standard_raw().is_some())
+            .map(|id| (cob, id, origin)),
+        None => node.pdo_cob_id(direction, number).and_then(|raw| {
+            let id = CanId::standard(u32::from(raw))?;
+            Some((
+                PdoCobId::from_u32(u32::from(raw)),
+                id,
+                PdoOrigin::PredefinedConnectionSet,
+            ))
+        }),
     };
     let mapping = params.count.filter(|&n| n > 0).and_then(|n| {
         let raw: Option<Vec<u32>> = params.entries[..usize::from(n).min(64)]
@@ -211,7 +320,13 @@ pub(crate) fn in_force(
             .collect();
         PdoMapping::from_u32s(&raw?).ok()
     });
-    Some((cob_id?, mapping?))
+    let (cob_id, can_id, cob_id_origin) = cob_id?;
+    Some(InForce {
+        cob_id,
+        can_id,
+        cob_id_origin,
+        mapping: mapping?,
+    })
 }
 
 /// Build the map of a mapping in force: names and types from the node's
@@ -222,11 +337,13 @@ pub(crate) fn build_map(
     node: NodeId,
     direction: PdoDirection,
     number: u16,
-    mapping: &PdoMapping,
+    force: &InForce,
+    origin: PdoOrigin,
     description: Option<&dyn Names>,
     set: Option<crate::canopen::ObjectSet>,
     drive: bool,
 ) -> PdoMap {
+    let mapping = &force.mapping;
     let signals = || mapping.entries().iter().filter(|e| !e.is_dummy());
     let names: Vec<Cow<'static, str>> = signals()
         .map(|e| {
@@ -266,6 +383,10 @@ pub(crate) fn build_map(
         node,
         direction,
         number,
+        cob_id: force.cob_id,
+        can_id: force.can_id,
+        origin,
+        cob_id_origin: force.cob_id_origin,
         layout,
         names,
         keys,

@@ -522,12 +522,21 @@ mod tests {
     fn the_signals_object_opens_at_the_first_signal_written() {
         let mapping = PdoMapping::from_u32s(&[0x6041_0010, 0x6064_0020, 0x2000_0008]).unwrap();
         let node = NodeId::new(3).unwrap();
+        let force = super::super::pdo::InForce {
+            cob_id: crate::canopen::PdoCobId::from_u32(0x183),
+            can_id: crate::can::CanId::standard(0x183).unwrap(),
+            cob_id_origin: super::super::PdoOrigin::PredefinedConnectionSet,
+            mapping,
+        };
         let map = super::super::pdo::build_map(
             1,
             node,
             PdoDirection::Transmit,
             1,
-            &mapping,
+            &force,
+            super::super::PdoOrigin::Sdo {
+                position: crate::logs::Position::Line(1),
+            },
             None,
             None,
             false,

@@ -8,8 +8,7 @@ use core::time::Duration;
 
 use crate::can::Timestamp;
 use crate::canopen::sdo::{
-    SdoFrame, SdoMessage, SdoOutcome, SdoParty, SdoService, SdoTracker, SdoTransfer,
-    TransferDirection, TransferMode,
+    SdoFrame, SdoMessage, SdoParty, SdoService, SdoTracker, SdoTransfer, TransferMode,
 };
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
@@ -189,6 +188,7 @@ impl<'d> SdoSeen<'_, 'd> {
             step.ended = Some(EndedTransfer {
                 transfer,
                 data: self.finished(),
+                names: self.names,
             });
         }
         step
@@ -227,7 +227,24 @@ impl<'d> SdoSeen<'_, 'd> {
 /// `Display` writes the transfer as a person reads it: `read 1008h.00
 /// "AKD-P00306" (segmented, 10 B, 2.1 ms)`, `write 1A00h.00 = 0x00 …`,
 /// `abort 1A00h.00: … (write aborted by the server, 0.4 ms)`, `read 6041h.00
-/// timed out: no answer (line 12)`.
+/// timed out: no answer (line 12)`. The object's name is not in it
+/// (docs/output.md#sdo-text); [`object`](Self::object) gives it.
+///
+/// ```
+/// use motionwire::can::{CanFrame, CanId, LogFrame};
+/// use motionwire::decoder::{Decoder, DecoderConfig};
+/// use motionwire::logs::Position;
+///
+/// let mut decoder = Decoder::new(DecoderConfig::new());
+/// let frame = |id: u32, data: &[u8]| {
+///     LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+/// };
+/// decoder.decode(Position::Line(1), &frame(0x605, &[0x2B, 0x17, 0x10, 0x00, 0x64, 0x00, 0, 0]));
+/// let answer = frame(0x585, &[0x60, 0x17, 0x10, 0x00, 0, 0, 0, 0]);
+/// let ended = decoder.decode(Position::Line(2), &answer).sdo.unwrap().ended.unwrap();
+/// assert_eq!(ended.to_string(), "write 1017h.00 = 0x0064 (expedited, 2 B)");
+/// assert_eq!(ended.object(), Some("Producer heartbeat time"));
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct EndedTransfer<'d> {
     /// The transfer: object, direction, mode, size, frames, outcome, start
@@ -236,9 +253,21 @@ pub struct EndedTransfer<'d> {
     /// Its data bytes, the first ones up to the decoder's cap
     /// ([`DecoderConfig::sdo_data_cap`](super::DecoderConfig::sdo_data_cap)).
     pub data: &'d [u8],
+    /// Where the node's objects get their names (`object` in
+    /// docs/canopen.md#object-names), as [`SdoStep::names`].
+    pub names: ObjectNames<'d>,
 }
 
-impl EndedTransfer<'_> {
+impl<'d> EndedTransfer<'d> {
+    /// Return the name of the transfer's object, where known (`object` in
+    /// docs/canopen.md#object-names: the node's EDS first, then the
+    /// communication objects and the profile's), as [`SdoStep::object`]
+    /// names it for a frame.
+    #[must_use]
+    pub fn object(&self) -> Option<&'d str> {
+        self.names.name(self.transfer.multiplexer.index)
+    }
+
     /// Return whether the transfer moved more bytes than [`data`](Self::data)
     /// holds.
     #[must_use]
@@ -357,42 +386,12 @@ fn ms(d: Duration) -> f64 {
 impl fmt::Display for EndedTransfer<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let transfer = &self.transfer;
-        let verb = match transfer.direction {
-            TransferDirection::Upload => "read",
-            TransferDirection::Download => "write",
+        let value = DataText {
+            data: self.data,
+            expedited: transfer.mode == TransferMode::Expedited,
+            truncated: self.truncated(),
         };
-        match transfer.outcome {
-            SdoOutcome::Completed => {
-                write!(f, "{verb} {} ", transfer.multiplexer)?;
-                let value = DataText {
-                    data: self.data,
-                    expedited: transfer.mode == TransferMode::Expedited,
-                    truncated: self.truncated(),
-                };
-                write!(f, "{value} ({}, {} B", transfer.mode.name(), transfer.bytes)?;
-            }
-            SdoOutcome::Aborted { code, by } => write!(
-                f,
-                "abort {}: {} ({verb} aborted by the {}",
-                transfer.multiplexer,
-                code.description(),
-                by.name()
-            )?,
-            SdoOutcome::Broken(reason) => write!(
-                f,
-                "{verb} {} broken: {reason} ({} B",
-                transfer.multiplexer, transfer.bytes
-            )?,
-            SdoOutcome::TimedOut => write!(
-                f,
-                "{verb} {} timed out: no answer (line {}",
-                transfer.multiplexer, transfer.start_position
-            )?,
-        }
-        if let Some(d) = transfer.duration {
-            write!(f, ", {:.1} ms", ms(d))?;
-        }
-        f.write_str(")")
+        transfer.fmt_with_data(f, Some(&value))
     }
 }
 

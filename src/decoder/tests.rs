@@ -40,6 +40,7 @@ fn map_tpdo1(decoder: &mut Decoder) {
         let decoded = decoder.decode(Position::Line(line + 1), &frame);
         let ended = decoded.sdo.unwrap().ended.unwrap();
         assert_eq!(ended.transfer.outcome, SdoOutcome::Completed);
+        assert_eq!(ended.object(), Some("TPDO mapping parameter"));
     }
 }
 
@@ -284,6 +285,7 @@ fn a_transfer_the_input_ends_in_is_handed_over_by_finish() {
     assert_eq!(open[0].bus, BusName::Name("can0".to_owned()));
     assert_eq!(open[0].transfer.start_position, 7);
     assert_eq!(open[0].transfer.outcome, SdoOutcome::TimedOut);
+    assert_eq!(open[0].object.as_deref(), Some("Manufacturer device name"));
     assert!(decoder.finish().is_empty(), "handed over once");
 }
 
@@ -306,6 +308,134 @@ fn an_eds_names_the_pdos_it_configures_from_the_first_frame() {
     assert_eq!((name, signal.value), ("Digital input 1", Value::Bool(true)));
     // Its device type says CiA 402: a drive.
     assert!(decoder.is_drive(&BusName::Name("can0".to_owned()), node(3)));
+}
+
+#[test]
+fn an_eds_mapping_is_listed_with_its_origin() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/eds/bitfields.eds"
+    );
+    let config = DecoderConfig::new().eds_file(node(3), path).unwrap();
+    let mut decoder = Decoder::new(config);
+    let can0 = BusName::Name("can0".to_owned());
+    assert_eq!(decoder.mappings(&can0, node(3)).count(), 0, "no bus yet");
+    decoder.decode(
+        Position::Line(1),
+        &at(0, 0x183, &[0x37, 0x02, 0x01, 0, 0, 0, 0, 0]),
+    );
+    let maps: Vec<_> = decoder.mappings(&can0, node(3)).collect();
+    let tpdo1 = maps.first().expect("the EDS's TPDO1");
+    assert_eq!(
+        (tpdo1.direction(), tpdo1.number()),
+        (PdoDirection::Transmit, 1)
+    );
+    assert_eq!(tpdo1.origin(), PdoOrigin::Eds);
+    assert_eq!(tpdo1.cob_id_origin(), PdoOrigin::Eds);
+    assert_eq!(tpdo1.can_id().raw(), 0x183);
+    assert!(tpdo1.cob_id().is_valid());
+    assert_eq!(decoder.mappings(&can0, node(4)).count(), 0);
+}
+
+#[test]
+fn mappings_are_listed_tpdos_then_rpdos_where_they_are_in_force() {
+    let mut decoder = Decoder::new(DecoderConfig::new().node_profile(node(3), Profile::Akd));
+    // RPDO2 first: the controlword.
+    let rpdo2 = [
+        [0x23, 0x01, 0x16, 0x01, 0x10, 0x00, 0x40, 0x60],
+        [0x2F, 0x01, 0x16, 0x00, 0x01, 0, 0, 0],
+    ];
+    for (i, request) in rpdo2.iter().enumerate() {
+        let line = 100 + 2 * i as u64;
+        decoder.decode(Position::Line(line), &at(line, 0x603, request));
+        let answer = [0x60, request[1], request[2], request[3], 0, 0, 0, 0];
+        decoder.decode(Position::Line(line + 1), &at(line + 1, 0x583, &answer));
+    }
+    map_tpdo1(&mut decoder);
+    let can0 = BusName::Name("can0".to_owned());
+    let listed: Vec<_> = decoder
+        .mappings(&can0, node(3))
+        .map(|m| (m.direction(), m.number(), m.can_id().raw(), m.origin()))
+        .collect();
+    assert_eq!(
+        listed,
+        [
+            (
+                PdoDirection::Transmit,
+                1,
+                0x183,
+                PdoOrigin::Sdo {
+                    position: Position::Line(8)
+                }
+            ),
+            (
+                PdoDirection::Receive,
+                2,
+                0x303,
+                PdoOrigin::Sdo {
+                    position: Position::Line(103)
+                }
+            ),
+        ]
+    );
+    // TPDO1 moved to 0x190 (valid, 11-bit): listed there, no longer on 0x183.
+    decoder.decode(
+        Position::Line(20),
+        &at(20, 0x603, &[0x23, 0x00, 0x18, 0x01, 0x90, 0x01, 0, 0]),
+    );
+    decoder.decode(
+        Position::Line(21),
+        &at(21, 0x583, &[0x60, 0x00, 0x18, 0x01, 0, 0, 0, 0]),
+    );
+    let tpdo1 = decoder.mappings(&can0, node(3)).next().unwrap();
+    assert_eq!(tpdo1.can_id().raw(), 0x190);
+    assert_eq!(tpdo1.cob_id().to_u32(), 0x190);
+    assert_eq!(
+        tpdo1.origin(),
+        PdoOrigin::Sdo {
+            position: Position::Line(21)
+        }
+    );
+    assert_eq!(
+        tpdo1.cob_id_origin(),
+        PdoOrigin::Sdo {
+            position: Position::Line(21)
+        }
+    );
+    assert!(decoder
+        .decode(Position::Line(22), &at(22, 0x183, &[0x37, 0x02]))
+        .pdo
+        .is_none());
+    // Made not valid (bit 31): out of force, not listed.
+    decoder.decode(
+        Position::Line(30),
+        &at(30, 0x603, &[0x23, 0x00, 0x18, 0x01, 0x90, 0x01, 0, 0x80]),
+    );
+    decoder.decode(
+        Position::Line(31),
+        &at(31, 0x583, &[0x60, 0x00, 0x18, 0x01, 0, 0, 0, 0]),
+    );
+    let left: Vec<_> = decoder
+        .mappings(&can0, node(3))
+        .map(|m| (m.direction(), m.number()))
+        .collect();
+    assert_eq!(left, [(PdoDirection::Receive, 2)]);
+}
+
+#[test]
+fn a_pdo_origin_reads_as_a_person_says_it() {
+    assert_eq!(
+        PdoOrigin::Sdo {
+            position: Position::Line(102)
+        }
+        .to_string(),
+        "SDO transfer at line 102"
+    );
+    assert_eq!(PdoOrigin::Eds.to_string(), "EDS");
+    assert_eq!(
+        PdoOrigin::PredefinedConnectionSet.to_string(),
+        "pre-defined connection set"
+    );
 }
 
 /// A frame on a CANopen identifier that the session does something with,
@@ -417,7 +547,7 @@ fn the_objects_left_out_of_learn_teach_nothing() {
                 duration: None,
             };
             // 0x0002_0192: a device type that says CiA 402.
-            let reading = decoder.learn(0, node(n), &transfer, 0x0002_0192);
+            let reading = decoder.learn(0, node(n), Position::Line(2), &transfer, 0x0002_0192);
             assert!(reading.is_none(), "{index:04X}h.{sub} on node {n}");
         }
     }

@@ -492,7 +492,6 @@ impl Summarizer {
     /// event is counted (`status_events` in docs/summary.md#bus).
     #[inline]
     pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
-        let position = position.number();
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
@@ -546,7 +545,8 @@ impl Summarizer {
     /// data frames it keeps state for (the other kinds teach it nothing),
     /// and the summary reads what the decoder read, where it was read.
     #[inline]
-    fn add_frame(&mut self, position: u64, log: &LogFrame<'_>) {
+    fn add_frame(&mut self, at_position: Position, log: &LogFrame<'_>) {
+        let position = at_position.number();
         let (kind, node) = MessageKind::classify(&log.frame);
         let Summarizer {
             decoder,
@@ -558,7 +558,7 @@ impl Summarizer {
         let times = (last_time, untimed);
         match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
-                decoder.sdo_frame(position, log, n, |at, seen, cia402| {
+                decoder.sdo_frame(at_position, log, n, |at, seen, cia402| {
                     let (name, bus) =
                         Self::bus_state(buses, *heartbeat, at, || seen.bus_name().clone());
                     add_classified(

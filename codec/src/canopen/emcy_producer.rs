@@ -219,6 +219,49 @@ impl EmcyEvent {
     }
 }
 
+impl fmt::Display for EmcyEvent {
+    /// Format the event in words: `initialised`, `error occurred: 0x4310
+    /// Excess device temperature` (with `, register …` when the caller gives
+    /// the bits and `, manufacturer …` when the field is not all zero, as
+    /// [`Emcy`] writes them), `error reset: 0x4310 …`, `all errors reset`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            EmcyEvent::Initialised => f.write_str("initialised"),
+            EmcyEvent::ErrorOccurred {
+                code,
+                register,
+                manufacturer,
+            } => {
+                write!(f, "error occurred: {code} {}", code.description())?;
+                if let Some(register) = register {
+                    write!(f, ", register {register}")?;
+                }
+                write_manufacturer(f, Some(manufacturer))
+            }
+            EmcyEvent::ErrorReset { code, manufacturer } => {
+                write!(f, "error reset: {code} {}", code.description())?;
+                write_manufacturer(f, manufacturer)
+            }
+            EmcyEvent::AllErrorsReset => f.write_str("all errors reset"),
+        }
+    }
+}
+
+/// `, manufacturer 0100000000` for a field that is not all zero, as [`Emcy`]
+/// writes its bytes.
+fn write_manufacturer(f: &mut fmt::Formatter<'_>, field: Option<[u8; 5]>) -> fmt::Result {
+    match field {
+        Some(bytes) if bytes != [0; 5] => {
+            f.write_str(", manufacturer ")?;
+            for byte in bytes {
+                write!(f, "{byte:02x}")?;
+            }
+            Ok(())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Why an event caused no transition and sent nothing (the Decisions of
 /// docs/canopen.md#emcy-producer).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -234,6 +277,26 @@ pub enum IgnoredEvent {
     /// An "error occurred" event carried a reset code (0x00xx), which names
     /// no error (**Decision**, see [`EmcyProducer`]).
     ResetCodeIsNotAnError,
+}
+
+impl IgnoredEvent {
+    /// Return the reason in words, e.g. `"the error is already active"`.
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            IgnoredEvent::AlreadyActive => "the error is already active",
+            IgnoredEvent::NotActive => "the error is not active",
+            IgnoredEvent::AlreadyErrorFree => "already error-free",
+            IgnoredEvent::ResetCodeIsNotAnError => "a reset code (0x00xx) names no error",
+        }
+    }
+}
+
+impl fmt::Display for IgnoredEvent {
+    /// Format the reason as its [`IgnoredEvent::description`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.description())
+    }
 }
 
 /// What one step of the EMCY state machine produced
@@ -321,6 +384,28 @@ impl EmcyOutcome {
 
     const fn sent(transition: EmcyTransition, emcy: Emcy) -> Self {
         EmcyOutcome::Sent { transition, emcy }
+    }
+}
+
+impl fmt::Display for EmcyOutcome {
+    /// Format the outcome as the transition and what it sends:
+    /// `transition 0: nothing sent`, `transition 1: send EMCY 0x4310 …` (the
+    /// [`Emcy`] as it writes itself), the same with `(overflow: 0x4310 not
+    /// tracked)` for an error that could not be tracked, `ignored: the error
+    /// is already active`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            EmcyOutcome::Initialised => {
+                write!(f, "{}: nothing sent", EmcyTransition::Initialised)
+            }
+            EmcyOutcome::Sent { transition, emcy } => write!(f, "{transition}: send {emcy}"),
+            EmcyOutcome::SentUntracked { transition, emcy } => write!(
+                f,
+                "{transition}: send {emcy} (overflow: {} not tracked)",
+                emcy.code
+            ),
+            EmcyOutcome::Ignored(reason) => write!(f, "ignored: {reason}"),
+        }
     }
 }
 
@@ -815,6 +900,84 @@ mod tests {
         assert_eq!(EmcyTransition::from_number(5), None);
         assert_eq!(ErrorFree.to_string(), "error-free");
         assert_eq!(ErrorOccurred.to_string(), "error-occurred");
+    }
+
+    #[test]
+    fn events_read_as_a_person_says_them() {
+        let table = [
+            (EmcyEvent::Initialised, "initialised"),
+            (
+                EmcyEvent::error(OVER_TEMPERATURE, [0; 5]),
+                "error occurred: 0x4210 Excess device temperature",
+            ),
+            (
+                EmcyEvent::error_with_register(
+                    OVER_TEMPERATURE,
+                    ErrorRegister::TEMPERATURE,
+                    AXIS_1,
+                ),
+                "error occurred: 0x4210 Excess device temperature, register 0x08 [temperature], \
+                 manufacturer 0100000000",
+            ),
+            (
+                EmcyEvent::reset(OVER_TEMPERATURE),
+                "error reset: 0x4210 Excess device temperature",
+            ),
+            (
+                EmcyEvent::reset_with(OVER_TEMPERATURE, AXIS_1),
+                "error reset: 0x4210 Excess device temperature, manufacturer 0100000000",
+            ),
+            (EmcyEvent::AllErrorsReset, "all errors reset"),
+        ];
+        for (event, text) in table {
+            assert_eq!(event.to_string(), text, "{event:?}");
+        }
+    }
+
+    #[test]
+    fn ignored_events_read_as_a_person_says_them() {
+        let table = [
+            (IgnoredEvent::AlreadyActive, "the error is already active"),
+            (IgnoredEvent::NotActive, "the error is not active"),
+            (IgnoredEvent::AlreadyErrorFree, "already error-free"),
+            (
+                IgnoredEvent::ResetCodeIsNotAnError,
+                "a reset code (0x00xx) names no error",
+            ),
+        ];
+        for (reason, text) in table {
+            assert_eq!(reason.to_string(), text);
+        }
+    }
+
+    #[test]
+    fn outcomes_read_as_a_person_says_them() {
+        let mut producer = EmcyProducer::<1>::with_capacity();
+        assert_eq!(
+            producer.apply(EmcyEvent::Initialised).to_string(),
+            "transition 0: nothing sent"
+        );
+        assert_eq!(
+            producer
+                .apply(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1))
+                .to_string(),
+            "transition 1: send EMCY 0x4210 Excess device temperature, \
+             register 0x09 [generic|temperature], manufacturer 0100000000"
+        );
+        assert_eq!(
+            producer
+                .apply(EmcyEvent::error(CAN_OVERRUN, [0; 5]))
+                .to_string(),
+            "transition 3: send EMCY 0x8110 CAN overrun (objects lost), \
+             register 0x19 [generic|temperature|communication], manufacturer 0000000000 \
+             (overflow: 0x8110 not tracked)"
+        );
+        assert_eq!(
+            producer
+                .apply(EmcyEvent::error(OVER_TEMPERATURE, AXIS_1))
+                .to_string(),
+            "ignored: the error is already active"
+        );
     }
 
     #[test]

@@ -465,6 +465,23 @@ pub struct LifeGuardExpiry {
     pub new_state: NmtState,
 }
 
+impl fmt::Display for LifeGuardExpiry {
+    /// Format the expiry as what the node does, times in µs on the caller's
+    /// clock as [`GuardingEvent`] writes them: `life time expired at 1500000
+    /// µs after the guard request at 1000000 µs: send EMCY 0x8130 …, go
+    /// pre_operational` (the [`Emcy`] as it writes itself).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "life time expired at {} µs after the guard request at {} µs: send {}, go {}",
+            self.deadline.as_micros(),
+            self.last_request.as_micros(),
+            self.emcy,
+            self.new_state
+        )
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 enum LifeTimer {
@@ -612,6 +629,22 @@ impl LifeGuard {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_life_guard_expiry_reads_as_a_person_says_it() {
+        let expiry = LifeGuardExpiry {
+            last_request: Duration::from_millis(1000),
+            deadline: Duration::from_millis(1500),
+            emcy: LifeGuard::EMCY,
+            new_state: PreOperational,
+        };
+        assert_eq!(
+            expiry.to_string(),
+            "life time expired at 1500000 µs after the guard request at 1000000 µs: \
+             send EMCY 0x8130 Life guard error or heartbeat error, register 0x11 \
+             [generic|communication], manufacturer 0000000000, go pre_operational"
+        );
+    }
     use NmtState::{BootUp, Operational, PreOperational, Stopped};
 
     /// A time in microseconds.

@@ -251,6 +251,27 @@ pub enum MonitorState {
     },
 }
 
+impl fmt::Display for MonitorState {
+    /// Format the state in the words of [`HeartbeatEvent`]'s text, times in
+    /// µs on the caller's clock: `waiting for a heartbeat`, `active:
+    /// operational at 1000000 µs`, `timed out after the heartbeat at 1000000
+    /// µs`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            MonitorState::Waiting => f.write_str("waiting for a heartbeat"),
+            MonitorState::Active {
+                last_heartbeat,
+                state,
+            } => write!(f, "active: {state} at {} µs", last_heartbeat.as_micros()),
+            MonitorState::TimedOut { last_heartbeat } => write!(
+                f,
+                "timed out after the heartbeat at {} µs",
+                last_heartbeat.as_micros()
+            ),
+        }
+    }
+}
+
 /// What the heartbeat consumer reports (CiA 301 §7.2.8.3.2.2;
 /// docs/canopen.md#error-control).
 ///
@@ -750,6 +771,28 @@ impl<const N: usize> HeartbeatConsumer<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn monitor_states_read_as_a_person_says_them() {
+        let at = Duration::from_millis(1000);
+        let table = [
+            (MonitorState::Waiting, "waiting for a heartbeat"),
+            (
+                MonitorState::Active {
+                    last_heartbeat: at,
+                    state: Operational,
+                },
+                "active: operational at 1000000 µs",
+            ),
+            (
+                MonitorState::TimedOut { last_heartbeat: at },
+                "timed out after the heartbeat at 1000000 µs",
+            ),
+        ];
+        for (state, text) in table {
+            assert_eq!(state.to_string(), text);
+        }
+    }
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()

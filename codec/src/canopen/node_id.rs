@@ -177,6 +177,26 @@ pub enum PdoDirection {
     Receive,
 }
 
+impl PdoDirection {
+    /// Return the kind of PDO seen from its device, as the program writes it
+    /// before the PDO's number (`TPDO1 Statusword=567`, docs/output.md#text):
+    /// `"TPDO"` or `"RPDO"`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            PdoDirection::Transmit => "TPDO",
+            PdoDirection::Receive => "RPDO",
+        }
+    }
+}
+
+impl fmt::Display for PdoDirection {
+    /// Format the direction as its [`PdoDirection::name`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The function an 11-bit CAN identifier has in the CANopen pre-defined
 /// connection set (CiA 301 Table 72).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -276,6 +296,12 @@ impl CobFunction {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pdo_directions_are_named_as_the_program_writes_them() {
+        assert_eq!(PdoDirection::Transmit.to_string(), "TPDO");
+        assert_eq!(PdoDirection::Receive.to_string(), "RPDO");
+    }
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()

@@ -439,6 +439,25 @@ pub enum SlotUpdate {
     },
 }
 
+impl fmt::Display for SlotUpdate {
+    /// Format what happened to the slot in words, with the [`Emcy`] it
+    /// keeps or cleared as that writes itself: `stored as the root cause`,
+    /// `not stored, the root cause stays EMCY 0x7305 …`, `reset, cleared
+    /// EMCY 0x7305 …`, `reset, no error to clear`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SlotUpdate::RootCause => f.write_str("stored as the root cause"),
+            SlotUpdate::FollowUp { root_cause } => {
+                write!(f, "not stored, the root cause stays {root_cause}")
+            }
+            SlotUpdate::Reset {
+                cleared: Some(cleared),
+            } => write!(f, "reset, cleared {cleared}"),
+            SlotUpdate::Reset { cleared: None } => f.write_str("reset, no error to clear"),
+        }
+    }
+}
+
 /// The EMCY slots of all 127 devices and the set of devices that exist: the
 /// "lower level software" under CiA 405's `RECV_EMCY` and `RECV_EMCY_DEV`
 /// (docs/canopen.md#recv-emcy; CiA 405, recommendations for `RECV_EMCY_DEV` and
@@ -901,6 +920,33 @@ impl RecvEmcy {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slot_updates_read_as_a_person_says_them() {
+        let error = Emcy::from_bytes(&[0x05, 0x73, 0x01, 0x01, 0, 0, 0, 0]);
+        let table = [
+            (SlotUpdate::RootCause, "stored as the root cause"),
+            (
+                SlotUpdate::FollowUp { root_cause: error },
+                "not stored, the root cause stays EMCY 0x7305 Incremental sensor 1 fault, \
+                 register 0x01 [generic], manufacturer 0100000000",
+            ),
+            (
+                SlotUpdate::Reset {
+                    cleared: Some(error),
+                },
+                "reset, cleared EMCY 0x7305 Incremental sensor 1 fault, \
+                 register 0x01 [generic], manufacturer 0100000000",
+            ),
+            (
+                SlotUpdate::Reset { cleared: None },
+                "reset, no error to clear",
+            ),
+        ];
+        for (update, text) in table {
+            assert_eq!(update.to_string(), text);
+        }
+    }
 
     fn n(raw: u8) -> NodeId {
         NodeId::new(raw).unwrap()

@@ -174,6 +174,26 @@ impl Cia402DriveEvent {
         Cia402DriveEvent::Fault,
         Cia402DriveEvent::FaultReactionComplete,
     ];
+
+    /// Return the event's name in lower-case words, as
+    /// [`Cia402Command::name`] writes a command's, e.g. `"quick_stop_complete"`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Cia402DriveEvent::PowerOn => "power_on",
+            Cia402DriveEvent::InitializationComplete => "initialization_complete",
+            Cia402DriveEvent::QuickStopComplete => "quick_stop_complete",
+            Cia402DriveEvent::Fault => "fault",
+            Cia402DriveEvent::FaultReactionComplete => "fault_reaction_complete",
+        }
+    }
+}
+
+impl fmt::Display for Cia402DriveEvent {
+    /// Format the event as its [`Cia402DriveEvent::name`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// A transition of the CiA 402 drive state machine, named by its number in

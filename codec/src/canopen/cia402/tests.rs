@@ -494,6 +494,17 @@ fn names_and_display() {
     }
     assert_eq!(S::from_name("Fault"), None);
     assert_eq!(C::from_name("halt"), None);
+    let names = [
+        "power_on",
+        "initialization_complete",
+        "quick_stop_complete",
+        "fault",
+        "fault_reaction_complete",
+    ];
+    assert_eq!(Cia402DriveEvent::ALL.map(Cia402DriveEvent::name), names);
+    for event in Cia402DriveEvent::ALL {
+        assert_eq!(event.to_string(), event.name());
+    }
 }
 
 #[test]

@@ -277,6 +277,68 @@ pub struct SdoTransfer {
     pub duration: Option<Duration>,
 }
 
+impl SdoTransfer {
+    /// Write the transfer as its `Display` does, with `data` — the
+    /// transfer's data in words, which the tracker does not keep — after the
+    /// object of a completed transfer: the text of docs/output.md#sdo-text,
+    /// `read 1008h.00 "AKD-P00306" (segmented, 10 B, 4.6 ms)`, that a session
+    /// keeping the data writes. `None` writes no data, as `Display`.
+    ///
+    /// # Errors
+    ///
+    /// The formatter's.
+    pub fn fmt_with_data(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        data: Option<&dyn fmt::Display>,
+    ) -> fmt::Result {
+        let verb = match self.direction {
+            TransferDirection::Upload => "read",
+            TransferDirection::Download => "write",
+        };
+        let object = self.multiplexer;
+        match self.outcome {
+            SdoOutcome::Completed => {
+                write!(f, "{verb} {object} ")?;
+                if let Some(data) = data {
+                    write!(f, "{data} ")?;
+                }
+                write!(f, "({}, {} B", self.mode, self.bytes)?;
+            }
+            SdoOutcome::Aborted { code, by } => write!(
+                f,
+                "abort {object}: {} ({verb} aborted by the {by}",
+                code.description()
+            )?,
+            SdoOutcome::Broken(reason) => {
+                write!(f, "{verb} {object} broken: {reason} ({} B", self.bytes)?;
+            }
+            SdoOutcome::TimedOut => write!(
+                f,
+                "{verb} {object} timed out: no answer (line {}",
+                self.start_position
+            )?,
+        }
+        if let Some(d) = self.duration {
+            write!(f, ", {:.1} ms", d.as_nanos() as f64 / 1e6)?;
+        }
+        f.write_str(")")
+    }
+}
+
+impl fmt::Display for SdoTransfer {
+    /// Write the transfer in the words of docs/output.md#sdo-text, without
+    /// its data (which the tracker does not keep; see
+    /// [`fmt_with_data`](Self::fmt_with_data)): `read 1008h.00 (segmented, 10
+    /// B, 4.6 ms)`, `abort 1A00h.00: General parameter incompatibility reason
+    /// (write aborted by the server, 2.0 ms)`, `write 2100h.00 broken: toggle
+    /// bit not alternated (7 B, 4.0 ms)`, `read 1000h.00 timed out: no answer
+    /// (line 6, 0.0 ms)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.fmt_with_data(f, None)
+    }
+}
+
 /// A frame read by its service, as the tracker saw it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SdoMessage {
@@ -1284,6 +1346,79 @@ impl SdoMessage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The transfers of docs/output.md#sdo-text, without their data.
+    #[test]
+    fn transfers_read_as_the_program_writes_them() {
+        let transfer = |direction, index, outcome, bytes, start_position, ms: u64| SdoTransfer {
+            direction,
+            multiplexer: ObjectAddress::new(index, 0),
+            mode: TransferMode::Segmented,
+            indicated_size: None,
+            bytes,
+            frames: 2,
+            outcome,
+            start_position,
+            started_at: None,
+            duration: Some(Duration::from_micros(ms)),
+        };
+        let table = [
+            (
+                transfer(
+                    TransferDirection::Upload,
+                    0x1008,
+                    SdoOutcome::Completed,
+                    10,
+                    1,
+                    4600,
+                ),
+                "read 1008h.00 (segmented, 10 B, 4.6 ms)",
+            ),
+            (
+                transfer(
+                    TransferDirection::Download,
+                    0x1A00,
+                    SdoOutcome::Aborted {
+                        by: SdoParty::Server,
+                        code: SdoAbortCode::new(0x0604_0043),
+                    },
+                    1,
+                    94,
+                    2019,
+                ),
+                "abort 1A00h.00: General parameter incompatibility reason \
+                 (write aborted by the server, 2.0 ms)",
+            ),
+            (
+                transfer(
+                    TransferDirection::Download,
+                    0x2100,
+                    SdoOutcome::Broken(BrokenReason::WrongToggle),
+                    7,
+                    1,
+                    4000,
+                ),
+                "write 2100h.00 broken: toggle bit not alternated (7 B, 4.0 ms)",
+            ),
+            (
+                transfer(
+                    TransferDirection::Upload,
+                    0x1000,
+                    SdoOutcome::TimedOut,
+                    0,
+                    6,
+                    0,
+                ),
+                "read 1000h.00 timed out: no answer (line 6, 0.0 ms)",
+            ),
+        ];
+        for (transfer, text) in table {
+            assert_eq!(transfer.to_string(), text);
+        }
+        let mut untimed = table[0].0;
+        untimed.duration = None;
+        assert_eq!(untimed.to_string(), "read 1008h.00 (segmented, 10 B)");
+    }
 
     /// [`Frame::read`] says which command bytes can be read on its own
     /// (the tracker follows the bytes, not a parsed message): for every
