@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Report import cycles between the source files of a crate.
 
-A file imports another when one of its `use` declarations names an item
-that the other file *defines*: an item re-exported by a parent module
-(`pub use child::Item;`) is followed to the child that defines it, so a
-module's facade is not a cycle, and neither is a `mod child;` declaration.
+A file imports another when one of its own `use` declarations names an
+item that the other file *defines*: an item re-exported by a parent module
+(`pub use child::Item;`) is followed to the child that defines it, and a
+re-export itself (`pub use`, `pub(crate) use`) is the module's facade, not
+an import of the file's code; neither is a `mod child;` declaration. Items
+named by a path in code (`child::Item::new()`) without a `use` are not
+seen.
 Test modules (`#[cfg(test)] mod tests { … }` to the end of a file, and
 files named `tests.rs`, `proptests.rs` or under `tests/`) are left out:
 they may import what they test.
@@ -78,6 +81,10 @@ class Crate:
                     self.files[tuple(rel)] = strip_tests(open(p, encoding="utf-8").read())
         self.defined = {m: set(ITEM.findall(t)) for m, t in self.files.items()}
         self.uses = {m: [expand(u) for u in USE.findall(t)] for m, t in self.files.items()}
+        # The imports the file's own code uses: a re-export (`pub use`,
+        # `pub(crate) use`) is the module's facade, not a use of the item.
+        private = re.compile(r"^\s*use\s+([^;]+);", re.M)
+        self.imports = {m: [expand(u) for u in private.findall(t)] for m, t in self.files.items()}
 
     def absolute(self, module, path):
         if not path:
@@ -119,7 +126,7 @@ class Crate:
 
     def edges(self):
         graph = defaultdict(set)
-        for module, trees in self.uses.items():
+        for module, trees in self.imports.items():
             for tree in trees:
                 for path in tree:
                     target = self.absolute(module, path)
