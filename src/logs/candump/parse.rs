@@ -3,7 +3,7 @@
 use super::error::error;
 use super::frame::Parsed;
 use super::log::parse_log_frame;
-use super::screen::{parse_indicators, parse_screen_frame};
+use super::screen::{need_space, parse_indicators, parse_screen_frame};
 use super::timestamp::parse_timestamp;
 use crate::can::CAN_ERR_FLAG;
 use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
@@ -12,20 +12,6 @@ use crate::logs::lex::swar::{hex_lanes, lanes_before, load16, non_graphic, pack_
 use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
 use crate::logs::FormatError;
 use crate::logs::{Found, SyntaxError};
-
-/// Skip one or more spaces or tabs at `at`.
-#[inline(always)]
-pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
-    match line.get(at) {
-        Some(&b) if is_space(b) => Ok(skip_space(line, at + 1)),
-        _ => Err(error(
-            at,
-            SyntaxError::MissingWhiteSpace {
-                found: found(line, at),
-            },
-        )),
-    }
-}
 
 /// Parse one line of any shape, byte by byte where the shape varies.
 #[inline(never)]
