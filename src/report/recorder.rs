@@ -188,7 +188,7 @@ fn micros(ts: Timestamp) -> u64 {
     u64::try_from(ts.as_micros()).unwrap_or(u64::MAX)
 }
 
-/// Builds a [`Recording`], frame by frame (see the [module](self)
+/// Builds a [`Recording`], frame by frame (see the [module](super)
 /// documentation).
 #[derive(Debug)]
 pub struct Recorder {

@@ -64,5 +64,8 @@ pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, Sum
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 pub use summarizer::Summarizer;
 
+#[cfg(doc)]
+use crate::decoder::{Decoder, DecoderConfig};
+
 #[cfg(test)]
 mod tests;

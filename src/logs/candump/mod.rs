@@ -135,7 +135,7 @@ mod reader;
 mod screen;
 mod timestamp;
 
-#[cfg(test)]
+#[cfg(any(test, doc))]
 use crate::can::LogFrame;
 #[cfg(test)]
 use crate::logs::error::Result;
