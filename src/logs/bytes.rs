@@ -79,7 +79,8 @@ pub(crate) fn u32_at(bytes: &[u8], at: usize, big_endian: bool) -> u32 {
     }
 }
 
-#[cfg(all(test, feature = "pcap", feature = "blf", feature = "mf4"))]
+#[cfg(all(feature = "pcap", feature = "blf", feature = "mf4"))]
+#[cfg(test)]
 mod tests {
     use super::*;
 

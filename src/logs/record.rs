@@ -416,7 +416,8 @@ fn detach(event: LogEvent<'_>) -> (LogEvent<'static>, Option<&str>) {
     }
 }
 
-#[cfg(all(test, feature = "logs"))]
+#[cfg(feature = "logs")]
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::can::Iface;

@@ -12,12 +12,12 @@ use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
 
 use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
 use super::markup::{device, esc, iface_attr};
+use super::recorder::{MarkKind, Recording, RowData};
 use super::series::At;
 use super::svg::{
     axis_ticks, chart, defs, drawn_bands, drawn_marks, legend, mark_text, marks, node_row, rate,
     Drawn,
 };
-use super::{MarkKind, Recording, RowData};
 
 /// The most rows of the event table (docs/report.md#tables).
 const EVENT_ROWS: usize = 2000;

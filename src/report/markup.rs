@@ -5,7 +5,7 @@
 use crate::canopen::{NmtStateByte, NodeId};
 use crate::decoder::BusName;
 
-use super::cia402_state;
+use super::recorder::cia402_state;
 
 /// Escape text for HTML text and quoted attributes.
 pub(super) fn esc(text: &str) -> String {

@@ -11,8 +11,8 @@ use crate::summary::NodeSummary;
 use super::fixed::Fixed;
 use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
 use super::markup::{cia402_name, device, esc, iface_attr, nmt_name};
+use super::recorder::{BusRows, MarkKind, RowData, CHARTED};
 use super::series::{At, BandItem, Detail, MarkItem, Series};
-use super::{BusRows, MarkKind, RowData, CHARTED};
 
 /// A mark as drawn: one event, or a cluster of neighbours.
 #[derive(Debug, Clone, Copy)]

@@ -3,9 +3,9 @@
 use core::time::Duration;
 
 use super::*;
-use crate::can::{CanFrame, CanId, Iface};
-use crate::canopen::Cia402State;
-use crate::decoder::DecoderConfig;
+use crate::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
+use crate::canopen::{Cia402State, NodeId};
+use crate::decoder::{BusName, DecoderConfig};
 use crate::logs::Position;
 use crate::profiles::Profile;
 

@@ -21,7 +21,7 @@
 //! parser reads it or says where it goes wrong. The property tests in
 //! `proptests.rs` hold the two to that.
 
-use super::{fd_frame, AscParser};
+use super::parser::{fd_frame, AscParser};
 use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
 use crate::logs::lex::swar::decimal8;

@@ -1,5 +1,7 @@
 use super::*;
-use crate::logs::FormatError;
+use crate::can::{CanFrame, ErrorClasses};
+use crate::logs::lex::trim_end;
+use crate::logs::{FormatError, LogFormat};
 use crate::test_gens::can::any_can_frame as any_frame;
 use proptest::prelude::*;
 

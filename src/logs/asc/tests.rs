@@ -1,7 +1,9 @@
 use super::*;
+use crate::can::{CanFrame, CanId, ErrorClasses};
 use crate::logs::FormatError;
 use crate::logs::Found;
 use crate::logs::SyntaxError as K;
+use crate::logs::{LogFormat, SyntaxError};
 
 fn parse(parser: &mut AscParser, line: &str) -> Result<Option<LogEvent<'static>>> {
     // Leak-free: the lines are 'static literals.

@@ -135,41 +135,24 @@ mod reader;
 mod screen;
 mod timestamp;
 
-use crate::can::{LogFrame, FD_MAX_LEN};
+#[cfg(any(test, doc))]
+use crate::can::LogFrame;
+#[cfg(test)]
 use crate::logs::error::Result;
+#[cfg(test)]
 use crate::logs::FormatError;
-use fast::{parse_canonical_log, IfaceHint};
+#[cfg(test)]
 use frame::Parsed;
+#[cfg(test)]
 use parse::parse_general;
 
 pub use frame::{write_log, write_screen};
 pub use lines::{
     detect_relative_timestamps, lines, lines_from, CandumpLines, LineState, RelativeTimestamps,
 };
+pub use parse::{parse_line, parse_line_str};
 #[cfg(feature = "std")]
 pub use reader::CandumpReader;
-
-/// Parse one candump line in either format of docs/formats.md (see the module's
-/// table and decisions). Return `Ok(None)` for a blank or comment line, the
-/// frame for a frame line, and a [`FormatError::Syntax`] with the column and
-/// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
-#[inline]
-pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
-    let mut data = [0; FD_MAX_LEN];
-    let mut hint = IfaceHint::NONE;
-    match parse_canonical_log(line, &mut data, &mut hint) {
-        Some((frame, used)) if used == line.len() => {
-            Ok(Some(frame.with_data(data).into_log_frame()))
-        }
-        _ => parse_general(line).map(|frame| frame.map(Parsed::into_log_frame)),
-    }
-}
-
-/// Parse one candump line given as text; see [`parse_line`].
-#[inline]
-pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>, FormatError> {
-    parse_line(line.as_bytes())
-}
 
 /// The general parser alone, as the public functions return it: for the
 /// tests that compare it with the fast path.

@@ -1,30 +1,39 @@
 //! The general parser: any line shape, byte by byte where the shape varies.
 
 use super::error::error;
+use super::fast::{parse_canonical_log, IfaceHint};
 use super::frame::Parsed;
 use super::log::parse_log_frame;
-use super::screen::{parse_indicators, parse_screen_frame};
+use super::screen::{need_space, parse_indicators, parse_screen_frame};
 use super::timestamp::parse_timestamp;
 use crate::can::CAN_ERR_FLAG;
-use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
+use crate::can::{CanId, Direction, FdFlags, FrameType, LogFrame, FD_MAX_LEN};
 use crate::logs::error::Result;
 use crate::logs::lex::swar::{hex_lanes, lanes_before, load16, non_graphic, pack_hex};
 use crate::logs::lex::{found, hex_value, is_space, skip_space, trim_end};
 use crate::logs::FormatError;
 use crate::logs::{Found, SyntaxError};
 
-/// Skip one or more spaces or tabs at `at`.
-#[inline(always)]
-pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
-    match line.get(at) {
-        Some(&b) if is_space(b) => Ok(skip_space(line, at + 1)),
-        _ => Err(error(
-            at,
-            SyntaxError::MissingWhiteSpace {
-                found: found(line, at),
-            },
-        )),
+/// Parse one candump line in either format of docs/formats.md (see the module's
+/// table and decisions). Return `Ok(None)` for a blank or comment line, the
+/// frame for a frame line, and a [`FormatError::Syntax`] with the column and
+/// reason for anything else. A trailing line end (`\n`, `\r\n`) is allowed.
+#[inline]
+pub fn parse_line(line: &[u8]) -> Result<Option<LogFrame<'_>>, FormatError> {
+    let mut data = [0; FD_MAX_LEN];
+    let mut hint = IfaceHint::NONE;
+    match parse_canonical_log(line, &mut data, &mut hint) {
+        Some((frame, used)) if used == line.len() => {
+            Ok(Some(frame.with_data(data).into_log_frame()))
+        }
+        _ => parse_general(line).map(|frame| frame.map(Parsed::into_log_frame)),
     }
+}
+
+/// Parse one candump line given as text; see [`parse_line`].
+#[inline]
+pub fn parse_line_str(line: &str) -> Result<Option<LogFrame<'_>>, FormatError> {
+    parse_line(line.as_bytes())
 }
 
 /// Parse one line of any shape, byte by byte where the shape varies.

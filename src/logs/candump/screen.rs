@@ -3,12 +3,25 @@
 use super::error::error;
 use super::frame::Parsed;
 use super::log::trailing;
-use super::parse::need_space;
 use crate::can::{FdFlags, FrameType, CLASSIC_MAX_LEN, FD_MAX_LEN};
 use crate::logs::error::Result;
 use crate::logs::lex::{found, hex_value, is_space, skip_space};
 use crate::logs::FormatError;
 use crate::logs::{Found, SyntaxError};
+
+/// Skip one or more spaces or tabs at `at`.
+#[inline(always)]
+pub(super) fn need_space(line: &[u8], at: usize) -> Result<usize> {
+    match line.get(at) {
+        Some(&b) if is_space(b) => Ok(skip_space(line, at + 1)),
+        _ => Err(error(
+            at,
+            SyntaxError::MissingWhiteSpace {
+                found: found(line, at),
+            },
+        )),
+    }
+}
 
 /// The word candump -e writes after an error frame's data (can-utils
 /// `lib.c`, `snprintf_long_canframe`).

@@ -24,8 +24,8 @@
 
 use crate::logs::BinaryError;
 
+use super::not_can::NotCan;
 use super::socketcan::FrameLayout;
-use super::NotCan;
 
 /// `LINKTYPE_LINUX_SLL`: Linux cooked capture, version 1
 /// (docs/formats.md#pcap).

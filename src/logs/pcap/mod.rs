@@ -87,6 +87,7 @@
 
 mod cooked;
 mod input;
+mod not_can;
 #[cfg(test)]
 mod proptests;
 mod socketcan;
@@ -102,45 +103,14 @@ use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
 use crate::logs::bytes::{u16_at, u32_at};
 use crate::logs::FormatError;
 use crate::logs::{
-    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecord,
-    OtherRecords, Position, ReadLog, MAX_RECORD_LEN,
+    BinaryError, LogError, LogErrorKind, LogFormat, LogRecord, OtherCounts, OtherRecords, Position,
+    ReadLog, MAX_RECORD_LEN,
 };
 use cooked::Cooked;
 pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
 use input::Input;
+use not_can::NotCan;
 use socketcan::{FrameLayout, Payload};
-
-/// A packet that holds no CAN frame, as the reading loop hands it on: the
-/// kinds of [`OtherRecord`] a pcap has, `Copy` so that the loop's results
-/// carry nothing to drop; made an [`OtherRecord`] where it is counted.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum NotCan {
-    /// [`OtherRecord::LinkType`].
-    LinkType(u16),
-    /// [`OtherRecord::CookedProtocol`].
-    CookedProtocol { link_type: u16, protocol: u16 },
-    /// [`OtherRecord::CanXl`].
-    CanXl,
-    /// [`OtherRecord::SystemdJournal`].
-    SystemdJournal,
-}
-
-impl From<NotCan> for OtherRecord {
-    fn from(kind: NotCan) -> Self {
-        match kind {
-            NotCan::LinkType(link_type) => OtherRecord::LinkType(link_type),
-            NotCan::CookedProtocol {
-                link_type,
-                protocol,
-            } => OtherRecord::CookedProtocol {
-                link_type,
-                protocol,
-            },
-            NotCan::CanXl => OtherRecord::CanXl,
-            NotCan::SystemdJournal => OtherRecord::SystemdJournal,
-        }
-    }
-}
 
 /// `LINKTYPE_CAN_SOCKETCAN`: SocketCAN frames (docs/formats.md#pcap).
 pub const LINKTYPE_CAN_SOCKETCAN: u16 = 227;

@@ -1,9 +1,9 @@
 //! The header keys: `;$FILEVERSION=`, `;$STARTTIME=`, `;$COLUMNS=`
 //! (docs/formats.md#trc).
 
+use core::fmt;
 use core::time::Duration;
 
-use super::TrcVersion;
 use crate::can::Timestamp;
 use crate::logs::error::Result;
 use crate::logs::lex::{bad_field, decimal_fraction, syntax, trim_end};
@@ -249,4 +249,75 @@ fn columns(value: &[u8], start: usize) -> Result<HeaderKey> {
         return Err(bad(value.len()));
     }
     Ok(HeaderKey::Columns(layout))
+}
+
+/// A version of the TRC format, as `;$FILEVERSION=` names it
+/// (docs/formats.md#trc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub enum TrcVersion {
+    /// 1.0 (PCAN-View 1, PCAN-Trace; the version of a file without
+    /// `;$FILEVERSION=`): number, offset, identifier, DLC, data.
+    #[default]
+    V1_0,
+    /// 1.1 (PCAN-View 3, PCAN-Explorer 4): adds the type column.
+    V1_1,
+    /// 1.2: adds the bus column.
+    V1_2,
+    /// 1.3: adds the reserved column.
+    V1_3,
+    /// 2.0 (PCAN-View 4, PCAN-Explorer 6): CAN FD; columns as `;$COLUMNS=`
+    /// orders them.
+    V2_0,
+    /// 2.1: as 2.0, with bus and reserved columns.
+    V2_1,
+}
+
+impl TrcVersion {
+    /// Every version, oldest first.
+    pub const ALL: [TrcVersion; 6] = [
+        TrcVersion::V1_0,
+        TrcVersion::V1_1,
+        TrcVersion::V1_2,
+        TrcVersion::V1_3,
+        TrcVersion::V2_0,
+        TrcVersion::V2_1,
+    ];
+
+    /// Return the version as `;$FILEVERSION=` writes it, e.g. `2.1`.
+    #[must_use]
+    pub const fn text(self) -> &'static str {
+        match self {
+            TrcVersion::V1_0 => "1.0",
+            TrcVersion::V1_1 => "1.1",
+            TrcVersion::V1_2 => "1.2",
+            TrcVersion::V1_3 => "1.3",
+            TrcVersion::V2_0 => "2.0",
+            TrcVersion::V2_1 => "2.1",
+        }
+    }
+
+    /// Return whether the rows' columns are those of `;$COLUMNS=` (2.x).
+    #[must_use]
+    pub const fn has_columns_header(self) -> bool {
+        matches!(self, TrcVersion::V2_0 | TrcVersion::V2_1)
+    }
+
+    /// Return whether a 1.x row has the bus column (1.2, 1.3).
+    pub(super) const fn has_bus_column(self) -> bool {
+        matches!(self, TrcVersion::V1_2 | TrcVersion::V1_3)
+    }
+
+    /// The columns of a 2.x file without `;$COLUMNS=`.
+    pub(super) const fn default_layout(self) -> Layout {
+        match self {
+            TrcVersion::V2_0 => Layout::V2_0,
+            _ => Layout::V2_1,
+        }
+    }
+}
+
+impl fmt::Display for TrcVersion {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.text())
+    }
 }

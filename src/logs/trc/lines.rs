@@ -2,7 +2,7 @@
 
 use core::iter::FusedIterator;
 
-use super::TrcParser;
+use super::parser::TrcParser;
 use crate::can::LogEvent;
 use crate::logs::error::Result;
 use crate::logs::{FormatError, Position};

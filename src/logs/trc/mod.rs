@@ -114,164 +114,26 @@
 //! # Ok::<(), motionwire::Error>(())
 //! ```
 
-use core::fmt;
-
-use crate::can::{LogEvent, Timestamp};
-use crate::logs::error::Result;
-use crate::logs::lex::{is_space, trim_end};
-use crate::logs::FormatError;
-
 mod header;
 mod lines;
+mod parser;
 #[cfg(feature = "std")]
 mod reader;
 mod row;
 mod write;
 
-use header::{parse_header, HeaderKey, Layout};
+pub use header::TrcVersion;
 pub use lines::{lines, TrcLines};
+pub use parser::TrcParser;
 #[cfg(feature = "std")]
 pub use reader::TrcReader;
 pub use row::ERROR_FRAME_CLASSES;
-use row::{parse_row, Context};
 pub use write::{write_header, write_line};
 
 #[cfg(doc)]
-use crate::can::{FdFlags, FrameType, Iface};
-
-/// A version of the TRC format, as `;$FILEVERSION=` names it
-/// (docs/formats.md#trc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-pub enum TrcVersion {
-    /// 1.0 (PCAN-View 1, PCAN-Trace; the version of a file without
-    /// `;$FILEVERSION=`): number, offset, identifier, DLC, data.
-    #[default]
-    V1_0,
-    /// 1.1 (PCAN-View 3, PCAN-Explorer 4): adds the type column.
-    V1_1,
-    /// 1.2: adds the bus column.
-    V1_2,
-    /// 1.3: adds the reserved column.
-    V1_3,
-    /// 2.0 (PCAN-View 4, PCAN-Explorer 6): CAN FD; columns as `;$COLUMNS=`
-    /// orders them.
-    V2_0,
-    /// 2.1: as 2.0, with bus and reserved columns.
-    V2_1,
-}
-
-impl TrcVersion {
-    /// Every version, oldest first.
-    pub const ALL: [TrcVersion; 6] = [
-        TrcVersion::V1_0,
-        TrcVersion::V1_1,
-        TrcVersion::V1_2,
-        TrcVersion::V1_3,
-        TrcVersion::V2_0,
-        TrcVersion::V2_1,
-    ];
-
-    /// Return the version as `;$FILEVERSION=` writes it, e.g. `2.1`.
-    #[must_use]
-    pub const fn text(self) -> &'static str {
-        match self {
-            TrcVersion::V1_0 => "1.0",
-            TrcVersion::V1_1 => "1.1",
-            TrcVersion::V1_2 => "1.2",
-            TrcVersion::V1_3 => "1.3",
-            TrcVersion::V2_0 => "2.0",
-            TrcVersion::V2_1 => "2.1",
-        }
-    }
-
-    /// Return whether the rows' columns are those of `;$COLUMNS=` (2.x).
-    #[must_use]
-    pub const fn has_columns_header(self) -> bool {
-        matches!(self, TrcVersion::V2_0 | TrcVersion::V2_1)
-    }
-
-    /// Return whether a 1.x row has the bus column (1.2, 1.3).
-    const fn has_bus_column(self) -> bool {
-        matches!(self, TrcVersion::V1_2 | TrcVersion::V1_3)
-    }
-
-    /// The columns of a 2.x file without `;$COLUMNS=`.
-    const fn default_layout(self) -> Layout {
-        match self {
-            TrcVersion::V2_0 => Layout::V2_0,
-            _ => Layout::V2_1,
-        }
-    }
-}
-
-impl fmt::Display for TrcVersion {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.text())
-    }
-}
-
-/// A reader of TRC lines: the state the header sets (file version, start
-/// time, column order) and the rows read in it (docs/formats.md#trc; see the
-/// module's decisions).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct TrcParser {
-    version: TrcVersion,
-    start: Option<Timestamp>,
-    layout: Option<Layout>,
-}
-
-impl TrcParser {
-    /// Return a parser for a file that has not said anything yet: version
-    /// 1.0, no start time.
-    #[must_use]
-    pub const fn new() -> Self {
-        TrcParser {
-            version: TrcVersion::V1_0,
-            start: None,
-            layout: None,
-        }
-    }
-
-    /// Return the version `;$FILEVERSION=` set (1.0 until it does).
-    #[must_use]
-    pub const fn version(&self) -> TrcVersion {
-        self.version
-    }
-
-    /// Return the start time `;$STARTTIME=` set.
-    #[must_use]
-    pub const fn start_time(&self) -> Option<Timestamp> {
-        self.start
-    }
-
-    /// Parse one line (a trailing `\n` or `\r\n` is allowed). Return
-    /// `Ok(None)` for a blank, comment or header line (header keys set the
-    /// parser's state), a [`LogEvent::Frame`] or [`LogEvent::Status`] for a
-    /// row, and a [`FormatError::Syntax`] with the column
-    /// and reason for anything else.
-    #[inline]
-    pub fn parse_line(&mut self, line: &[u8]) -> Result<Option<LogEvent<'static>>, FormatError> {
-        let trimmed = trim_end(line);
-        let Some(first) = trimmed.iter().position(|&b| !is_space(b)) else {
-            return Ok(None);
-        };
-        if trimmed.get(first) == Some(&b';') {
-            match parse_header(trimmed, first)? {
-                Some(HeaderKey::Version(version)) => self.version = version,
-                Some(HeaderKey::StartTime(start)) => self.start = Some(start),
-                Some(HeaderKey::Columns(layout)) => self.layout = Some(layout),
-                None => {}
-            }
-            return Ok(None);
-        }
-        let ctx = Context {
-            version: self.version,
-            start: self.start.unwrap_or(Timestamp::ZERO),
-            layout: self.layout.unwrap_or_else(|| self.version.default_layout()),
-        };
-        parse_row(trimmed, &ctx).map(Some)
-    }
-}
+use crate::can::{FdFlags, FrameType, Iface, LogEvent, Timestamp};
+#[cfg(doc)]
+use crate::logs::FormatError;
 
 #[cfg(test)]
 mod proptests;

@@ -5,7 +5,8 @@ use proptest::prelude::*;
 
 use super::row::{FD_LENGTHS, PROT_LOCATION, PROT_TX, PROT_TYPES};
 use super::*;
-use crate::can::{CanFrame, Direction, FdFlags, Iface, LogFrame};
+use crate::can::{CanFrame, Direction, FdFlags, Iface, LogEvent, LogFrame, Timestamp};
+use crate::logs::error::Result;
 use crate::logs::FormatError;
 use crate::logs::LogFormat;
 use crate::test_gens::can::can_id;

@@ -2,7 +2,7 @@
 
 use std::io::Read;
 
-use super::TrcParser;
+use super::parser::TrcParser;
 use crate::can::LogEvent;
 use crate::logs::text::{take_line, Names, TextLog, TextParser};
 use crate::logs::{FormatError, LogError, LogFormat, LogRecord, Position, ReadLog};

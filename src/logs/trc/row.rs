@@ -3,8 +3,7 @@
 
 use core::time::Duration;
 
-use super::header::{Column, Layout};
-use super::TrcVersion;
+use super::header::{Column, Layout, TrcVersion};
 use crate::can::{
     BusStatus, CanFrame, CanId, Direction, ErrorClasses, FdFlags, FrameType, Iface, LogEvent,
     LogFrame, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN,

@@ -1,8 +1,11 @@
 //! Unit tests: the header keys, each version's rows from PEAK's format
 //! description, and every kind of malformed line.
 
+use super::header::Layout;
 use super::*;
-use crate::can::{CanFrame, CanId, Direction, FdFlags, FrameType, Iface, LogFrame};
+use crate::can::{
+    CanFrame, CanId, Direction, FdFlags, FrameType, Iface, LogEvent, LogFrame, Timestamp,
+};
 use crate::logs::FormatError;
 use crate::logs::{Found, LogFormat, SyntaxError};
 

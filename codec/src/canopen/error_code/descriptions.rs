@@ -23,7 +23,7 @@
 
 use core::fmt;
 
-use super::{ErrorClass, ErrorCode};
+use super::code::{ErrorClass, ErrorCode};
 
 /// The document a description comes from (docs/canopen.md#emcy-codes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

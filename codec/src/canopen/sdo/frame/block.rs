@@ -1,47 +1,10 @@
-//! What only block transfers have: the sub-command of a control frame,
-//! the segments inside a block, and the transfer's CRC (CiA 301
-//! §7.2.4.3.9–§7.2.4.3.16; docs/canopen.md#sdo).
+//! What only block transfers have: the segments inside a block and the
+//! transfer's CRC (CiA 301 §7.2.4.3.9–§7.2.4.3.16; docs/canopen.md#sdo);
+//! the sub-command of a control frame is in `party.rs`, with the services.
 
-use core::fmt;
-
-use super::{field, SdoFields, SdoFrame, SDO_LEN, SEGMENT_MAX};
+use super::layout::{field, SDO_LEN, SEGMENT_MAX};
+use super::view::{SdoFields, SdoFrame};
 use crate::{LenError, Result};
-
-/// The sub-command of a block transfer's control frame, as `subcommand`
-/// names it (docs/output.md#sdo; CiA 301 §7.2.4.3.9–§7.2.4.3.16).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum BlockSubcommand {
-    /// Initiate the block transfer.
-    Initiate,
-    /// Start the upload (block upload request, cs 3).
-    Start,
-    /// End the block transfer.
-    End,
-    /// Confirm a sub-block (`ackseq`, next `blksize`).
-    Ack,
-}
-
-impl BlockSubcommand {
-    /// Return the name `subcommand` writes (docs/output.md#sdo).
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            BlockSubcommand::Initiate => "initiate",
-            BlockSubcommand::Start => "start",
-            BlockSubcommand::End => "end",
-            BlockSubcommand::Ack => "ack",
-        }
-    }
-}
-
-impl fmt::Display for BlockSubcommand {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
 
 /// A segment inside a block (CiA 301 §7.2.4.3.11, §7.2.4.3.14): bit 7 `c`,
 /// bits 6–0 the sequence number, bytes 1–7 data.

@@ -4,7 +4,7 @@
 
 use byteorder::{ByteOrder, LittleEndian};
 
-use super::SEGMENT_MAX;
+use super::layout::SEGMENT_MAX;
 
 /// What an initiate download request or initiate upload response says
 /// about the data (bits `e`, `s`, `n` and bytes 4–7, CiA 301 §7.2.4.3.3,

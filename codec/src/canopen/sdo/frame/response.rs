@@ -2,11 +2,14 @@
 //! value, read with [`SdoResponse::parse`] and written with
 //! [`SdoResponse::to_bytes`] (CiA 301 §7.2.4.3; docs/canopen.md#sdo).
 
-use super::{
-    abort_of, crc_bit, field, initiate_fields, invalid, segment_command, segment_unused,
-    BlockSubcommand, ObjectAddress, SdoFields, SdoFrame, SdoInitiateData, SdoParty, SdoSegmentData,
-    SdoService, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
+use super::common::{abort_of, initiate_fields, segment_command};
+use super::data::{SdoInitiateData, SdoSegmentData};
+use super::layout::{
+    crc_bit, field, invalid, segment_unused, CRC_SUPPORTED, LAST, SDO_LEN, TOGGLE,
 };
+use super::party::{BlockSubcommand, SdoParty, SdoService};
+use super::view::{SdoFields, SdoFrame};
+use crate::canopen::ObjectAddress;
 use crate::canopen::SdoAbortCode;
 use crate::error::What;
 use crate::{FrameError, Result};

@@ -5,7 +5,9 @@
 
 use byteorder::{ByteOrder, LittleEndian};
 
-use super::{crc_bit, field, BlockSubcommand, ObjectAddress, CRC_SUPPORTED, SDO_LEN, WHAT};
+use super::layout::{crc_bit, field, CRC_SUPPORTED, SDO_LEN, WHAT};
+use super::party::BlockSubcommand;
+use crate::canopen::ObjectAddress;
 use crate::canopen::SdoAbortCode;
 use crate::error::check_len;
 use crate::{LenError, Result};

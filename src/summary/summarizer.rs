@@ -1,0 +1,709 @@
+//! The [`Summarizer`]: what builds a [`Summary`] from a log, entry by entry.
+
+use core::time::Duration;
+
+use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
+use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
+use crate::canopen::{
+    Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
+    MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
+};
+use crate::decoder::{BusName, Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
+use crate::logs::Position;
+
+use super::emcy::EmcySeen;
+use super::event::{SummaryEvent, SummaryEventKind};
+use super::heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
+use super::listed::Listed;
+use super::record::{BusSummary, FrameCounts, NodeSummary, Summary};
+use super::sdo::SdoFrameFacts;
+use super::{cia402, sdo};
+
+/// No SDO frame, for [`add_classified`].
+const NO_SDO: Option<&SdoSeen<'static, 'static>> = None;
+
+/// What the summarizer keeps of one node while the log is read.
+#[derive(Debug)]
+struct NodeState {
+    node: NodeId,
+    frames: FrameCounts,
+    emcy: u64,
+    resets: u64,
+    first_error: Option<EmcySeen>,
+    active_error: Option<EmcySeen>,
+    last_error: Option<EmcySeen>,
+    last_register: Option<ErrorRegister>,
+    heartbeats: u64,
+    last_state: Option<NmtStateByte>,
+    boot_ups: Listed<u64>,
+    /// The line of the last heartbeat (not guarding answer) seen.
+    last_heartbeat_line: u64,
+    /// A timeout reported by the consumer and not yet closed by a
+    /// heartbeat: the line and time of the heartbeat before it.
+    open_gap: Option<(u64, Duration)>,
+    timeouts: Listed<HeartbeatGap>,
+    /// A guard request (RTR) was seen and not yet answered: the next data
+    /// frame on 0x700 + node is its answer.
+    guard_request_pending: bool,
+    guarding: NodeGuardingMaster,
+    guarding_summary: GuardingSummary,
+    sdo: sdo::SdoStats,
+    cia402: cia402::TimelineBuilder,
+}
+
+impl NodeState {
+    fn new(node: NodeId) -> Self {
+        NodeState {
+            node,
+            frames: FrameCounts::default(),
+            emcy: 0,
+            resets: 0,
+            first_error: None,
+            active_error: None,
+            last_error: None,
+            last_register: None,
+            heartbeats: 0,
+            last_state: None,
+            boot_ups: Listed::new(),
+            last_heartbeat_line: 0,
+            open_gap: None,
+            timeouts: Listed::new(),
+            guard_request_pending: false,
+            // A log rarely shows the guard time (100Ch): observe toggles only.
+            guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
+            guarding_summary: GuardingSummary::default(),
+            sdo: sdo::SdoStats::default(),
+            cia402: cia402::TimelineBuilder::default(),
+        }
+    }
+}
+
+/// What the summarizer keeps of one interface.
+#[derive(Debug)]
+struct BusState {
+    nodes: Vec<Option<NodeState>>,
+    storage: EmcyStorage,
+    consumer: Option<HeartbeatConsumer>,
+    frames: u64,
+    error_frames: u64,
+    bus_off: Listed<u64>,
+    error_passive: Listed<u64>,
+    status_events: u64,
+    first_ts: Option<Timestamp>,
+    last_ts: Option<Timestamp>,
+}
+
+impl BusState {
+    fn new(heartbeat: Option<Duration>) -> Self {
+        let consumer = heartbeat.map(|time| {
+            let mut consumer = HeartbeatConsumer::new();
+            consumer.monitor_unconfigured(time);
+            consumer
+        });
+        BusState {
+            nodes: (0..127).map(|_| None).collect(),
+            storage: EmcyStorage::new(),
+            consumer,
+            frames: 0,
+            error_frames: 0,
+            bus_off: Listed::new(),
+            error_passive: Listed::new(),
+            status_events: 0,
+            first_ts: None,
+            last_ts: None,
+        }
+    }
+
+    /// Widen the bus's time span to `ts` (inputs are mostly in time order:
+    /// one comparison per frame).
+    #[inline]
+    fn saw(&mut self, ts: Option<Timestamp>) {
+        let Some(ts) = ts else { return };
+        match self.last_ts {
+            Some(last) if ts >= last => self.last_ts = Some(ts),
+            Some(_) => {
+                if self.first_ts.map_or(true, |first| ts < first) {
+                    self.first_ts = Some(ts);
+                }
+            }
+            None => {
+                self.first_ts = Some(ts);
+                self.last_ts = Some(ts);
+            }
+        }
+    }
+}
+
+/// Builds the [`Summary`] of a log, entry by entry (see the
+/// [module](super) documentation): the session's one way in.
+///
+/// It owns the [`Decoder`] that reads each frame, so that what the summary
+/// learns from a frame is what the decoder read of it, once, and so that
+/// both keep the buses in one table. [`add`](Self::add) feeds one log
+/// entry; [`add_with`](Self::add_with) also hands back what the decoder
+/// made of a frame and every fact the summary adds (what the report
+/// draws); [`finish`](Self::finish) ends the input — the transfers left
+/// open end there — and returns the [`Summary`].
+#[derive(Debug)]
+pub struct Summarizer {
+    decoder: Decoder,
+    /// What the summary keeps of each bus, at the bus's place in the
+    /// decoder's table ([`Decoder::bus`]), with the bus's name (copied
+    /// once, when the bus is first seen).
+    buses: Vec<(BusName, BusState)>,
+    heartbeat: Option<Duration>,
+    last_time: Option<Duration>,
+    untimed: u64,
+}
+
+impl Default for Summarizer {
+    fn default() -> Self {
+        Summarizer::new(DecoderConfig::new())
+    }
+}
+
+impl Summarizer {
+    /// Start a summary read by a decoder of `config`, whose settings are
+    /// the summary's too ([`DecoderConfig::heartbeat_timeout`]).
+    #[must_use]
+    pub fn new(config: DecoderConfig) -> Self {
+        Summarizer {
+            heartbeat: config.heartbeat(),
+            decoder: Decoder::new(config),
+            buses: Vec::new(),
+            last_time: None,
+            untimed: 0,
+        }
+    }
+
+    /// Return the decoder that reads the frames: its configuration, the
+    /// names of each node's objects, the mappings it has learned.
+    #[must_use]
+    pub fn decoder(&self) -> &Decoder {
+        &self.decoder
+    }
+
+    /// What the summary keeps of the bus at `at` in the decoder's table,
+    /// with its name, made on first sight (the decoder adds buses in
+    /// order, so the bus at `at` is new exactly when `at` is the length):
+    /// `name` is asked for then only.
+    #[inline(always)]
+    fn bus_state(
+        buses: &mut Vec<(BusName, BusState)>,
+        heartbeat: Option<Duration>,
+        at: usize,
+        name: impl FnOnce() -> BusName,
+    ) -> (&BusName, &mut BusState) {
+        if at >= buses.len() {
+            Self::new_bus(buses, heartbeat, name());
+        }
+        let (name, bus) = &mut buses[at];
+        (name, bus)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn new_bus(buses: &mut Vec<(BusName, BusState)>, heartbeat: Option<Duration>, name: BusName) {
+        buses.push((name, BusState::new(heartbeat)));
+    }
+
+    /// Add one log entry read at `position` (`line` in
+    /// docs/formats.md#positions): a frame is read by the decoder where the
+    /// decoder keeps state (SDO and PDO data frames), and summarized; a bus
+    /// event is counted (`status_events` in docs/summary.md#bus).
+    #[inline]
+    pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
+        match event {
+            LogEvent::Frame(frame) => self.add_frame(position, frame),
+            LogEvent::Status(status) => self.add_status(status),
+        }
+    }
+
+    /// Add one log entry, as [`add`](Self::add) does, reading every frame
+    /// whole; hand `on_event` each fact the entry adds to the summary, in
+    /// order ([`SummaryEvent`]: what the report draws,
+    /// docs/report.md#timeline), and return what the decoder made of a
+    /// frame (`None` for a bus event).
+    pub fn add_with<'s>(
+        &'s mut self,
+        position: Position,
+        event: &'s LogEvent<'s>,
+        on_event: impl FnMut(SummaryEvent<'_>),
+    ) -> Option<Decoded<'s>> {
+        let log = match event {
+            LogEvent::Frame(frame) => frame,
+            LogEvent::Status(status) => {
+                self.add_status(status);
+                return None;
+            }
+        };
+        let Summarizer {
+            decoder,
+            buses,
+            heartbeat,
+            last_time,
+            untimed,
+        } = self;
+        let at = decoder.bus(log.iface);
+        let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+        let decoded = decoder.decode(position, log);
+        add_classified(
+            bus,
+            name,
+            (last_time, untimed),
+            position.number(),
+            log,
+            decoded.kind,
+            decoded.node,
+            decoded.sdo.as_ref(),
+            decoded.cia402,
+            on_event,
+        );
+        Some(decoded)
+    }
+
+    /// A frame, for [`add`](Self::add): the decoder reads the SDO and PDO
+    /// data frames it keeps state for (the other kinds teach it nothing),
+    /// and the summary reads what the decoder read, where it was read.
+    #[inline]
+    fn add_frame(&mut self, at_position: Position, log: &LogFrame<'_>) {
+        let position = at_position.number();
+        let (kind, node) = MessageKind::classify(&log.frame);
+        let Summarizer {
+            decoder,
+            buses,
+            heartbeat,
+            last_time,
+            untimed,
+        } = self;
+        let times = (last_time, untimed);
+        match (kind, node) {
+            (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
+                decoder.sdo_frame(at_position, log, n, |at, seen, cia402| {
+                    let (name, bus) =
+                        Self::bus_state(buses, *heartbeat, at, || seen.bus_name().clone());
+                    add_classified(
+                        bus,
+                        name,
+                        times,
+                        position,
+                        log,
+                        kind,
+                        node,
+                        Some(seen),
+                        cia402,
+                        |_| {},
+                    );
+                });
+            }
+            (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
+                let (at, cia402) = decoder.pdo_cia402(log);
+                let (name, bus) =
+                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+                add_classified(
+                    bus,
+                    name,
+                    times,
+                    position,
+                    log,
+                    kind,
+                    node,
+                    NO_SDO,
+                    cia402,
+                    |_| {},
+                );
+            }
+            _ => {
+                let at = decoder.bus(log.iface);
+                let (name, bus) =
+                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+                add_classified(
+                    bus,
+                    name,
+                    times,
+                    position,
+                    log,
+                    kind,
+                    node,
+                    NO_SDO,
+                    None,
+                    |_| {},
+                );
+            }
+        }
+    }
+
+    /// Count a log entry that is not a frame (a TRC status row).
+    fn add_status(&mut self, status: &BusStatus<'_>) {
+        let at = self.decoder.bus(status.iface);
+        let decoder = &self.decoder;
+        let (_, bus) = Self::bus_state(&mut self.buses, self.heartbeat, at, || {
+            decoder.bus_name(at).clone()
+        });
+        bus.status_events += 1;
+        bus.saw(status.timestamp);
+    }
+}
+
+/// Add one frame of `kind` and `node` seen on `bus` (named `name`), with
+/// its SDO step and CiA 402 reading where the decoder gave one, handing
+/// `on_event` each fact; `times` are the summarizer's last time and count
+/// of frames without one.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn add_classified(
+    bus: &mut BusState,
+    name: &BusName,
+    times: (&mut Option<Duration>, &mut u64),
+    position: u64,
+    log: &LogFrame<'_>,
+    kind: MessageKind,
+    node: Option<NodeId>,
+    sdo: Option<&impl SdoFrameFacts>,
+    cia402: Option<Cia402Reading>,
+    mut on_event: impl FnMut(SummaryEvent<'_>),
+) {
+    let now = log.timestamp.map(Timestamp::as_duration);
+    match now {
+        Some(_) => *times.0 = now,
+        None => *times.1 += 1,
+    }
+    let event = |node, kind| SummaryEvent {
+        bus: name,
+        node,
+        line: position,
+        ts: log.timestamp,
+        kind,
+    };
+    bus.frames += 1;
+    bus.saw(log.timestamp);
+    if kind == MessageKind::ErrorFrame {
+        bus.error_frames += 1;
+        let (mut bus_off, mut error_passive) = (false, false);
+        if let Ok(error) = ErrorFrame::from_frame(&log.frame) {
+            bus_off = error.is_bus_off();
+            error_passive = error.is_error_passive();
+            if bus_off {
+                bus.bus_off.push(position);
+            }
+            if error_passive {
+                bus.error_passive.push(position);
+            }
+        }
+        on_event(event(
+            None,
+            SummaryEventKind::ErrorFrame {
+                bus_off,
+                error_passive,
+            },
+        ));
+        return;
+    }
+    let Some(node) = node else { return };
+    let BusState {
+        nodes,
+        storage,
+        consumer,
+        ..
+    } = bus;
+    let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
+    state.frames.by_kind[kind.index()] += 1;
+    if let Some(step) = sdo {
+        let added = state.sdo.add(step, position);
+        if added.abort {
+            if let Some(abort) = state.sdo.last_abort() {
+                on_event(SummaryEvent {
+                    bus: name,
+                    node: Some(node),
+                    line: position,
+                    ts: log.timestamp,
+                    kind: SummaryEventKind::SdoAbort(abort),
+                });
+            }
+        }
+        if let (true, Some(ended)) = (added.ended, step.ended()) {
+            on_event(sdo_ended(name, node, ended));
+        }
+    }
+    if let Some(reading) = cia402 {
+        // A PDO's drive is the node that owns it, which the log may
+        // have moved to another node's COB-ID.
+        let drive = nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
+        let last_error = drive.last_error;
+        if let Some((transition, fault)) =
+            drive
+                .cia402
+                .observe(position, log.timestamp, reading, last_error)
+        {
+            on_event(event(
+                Some(reading.node),
+                SummaryEventKind::Cia402 { transition, fault },
+            ));
+        }
+        return;
+    }
+    // What `CanOpenMessage::decode` reads of the three kinds the
+    // summary follows, read here without the rest of the message: an
+    // EMCY of at least 8 bytes (not a remote request), a heartbeat's
+    // first byte, a guard request.
+    let frame = &log.frame;
+    match kind {
+        MessageKind::Emcy => {
+            if frame.is_rtr() {
+                return;
+            }
+            let Ok(emcy) = Emcy::parse(frame.data()) else {
+                return;
+            };
+            state.emcy += 1;
+            state.last_register = Some(emcy.register);
+            let seen = EmcySeen {
+                line: position,
+                ts: log.timestamp,
+                code: emcy.code,
+            };
+            on_event(event(
+                Some(node),
+                SummaryEventKind::Emcy {
+                    code: emcy.code,
+                    register: emcy.register,
+                },
+            ));
+            if emcy.is_reset() {
+                state.resets += 1;
+            } else {
+                state.last_error = Some(seen);
+                if state.first_error.is_none() {
+                    state.first_error = Some(seen);
+                }
+            }
+            match storage.receive(node, emcy) {
+                SlotUpdate::RootCause => state.active_error = Some(seen),
+                SlotUpdate::Reset { .. } => state.active_error = None,
+                SlotUpdate::FollowUp { .. } => {}
+            }
+        }
+        MessageKind::GuardRequest => {
+            state.guard_request_pending = true;
+            // A missing answer is not part of the summary's contract.
+            let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
+        }
+        MessageKind::Heartbeat => {
+            let Some(&byte) = frame.data().first() else {
+                return;
+            };
+            let byte = NmtStateByte::new(byte);
+            if state.guard_request_pending {
+                state.guard_request_pending = false;
+                state.guarding_summary.answers += 1;
+                // Counted as an answer, not as a heartbeat.
+                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
+                state.frames.guard_answers += 1;
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: true,
+                    },
+                ));
+                if let Some(answer) = byte.guard_answer() {
+                    let events = state
+                        .guarding
+                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
+                    if events
+                        .into_iter()
+                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+                    {
+                        state.guarding_summary.toggle_errors.push(position);
+                        on_event(event(Some(node), SummaryEventKind::ToggleError));
+                    }
+                }
+            } else {
+                state.heartbeats += 1;
+                state.last_state = Some(byte);
+                on_event(event(
+                    Some(node),
+                    SummaryEventKind::Nmt {
+                        state: byte,
+                        guard_answer: false,
+                    },
+                ));
+                if byte.state_raw() == 0 {
+                    state.boot_ups.push(position);
+                    state.guarding.on_boot_up();
+                    on_event(event(Some(node), SummaryEventKind::BootUp));
+                }
+                if let (Some(consumer), Some(now), Some(nmt)) =
+                    (consumer.as_mut(), now, byte.state())
+                {
+                    for event in consumer.on_heartbeat(now, node, nmt) {
+                        match event {
+                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
+                            }
+                            HeartbeatEvent::Recovered { at, .. }
+                            | HeartbeatEvent::RemoteReset { at, .. } => {
+                                if let Some((after_line, last)) = state.open_gap.take() {
+                                    let gap = HeartbeatGap {
+                                        after_line,
+                                        gap: at.saturating_sub(last),
+                                    };
+                                    state.timeouts.push(gap);
+                                    on_event(SummaryEvent {
+                                        bus: name,
+                                        node: Some(node),
+                                        line: after_line,
+                                        ts: Some(Timestamp::from_duration(last)),
+                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                    });
+                                }
+                            }
+                            HeartbeatEvent::CapacityExceeded { .. } => {}
+                        }
+                    }
+                }
+                state.last_heartbeat_line = position;
+            }
+        }
+        _ => {}
+    }
+}
+
+impl Summarizer {
+    /// Close the input: transfers left open end (docs/canopen.md#transfers),
+    /// heartbeats still missing at the last timestamp are timeouts up to it,
+    /// and the nodes that are drives get their CiA 402 timeline
+    /// (docs/summary.md#cia402).
+    #[must_use]
+    pub fn finish(self) -> Summary {
+        self.finish_with(|_| {})
+    }
+
+    /// Close the input, as [`finish`](Self::finish) does, and hand
+    /// `on_event` the facts that only the end of the input shows: the
+    /// transfers left open, the heartbeat gaps still open at the last
+    /// timestamp ([`SummaryEvent`]).
+    #[must_use]
+    pub fn finish_with(mut self, mut on_event: impl FnMut(SummaryEvent<'_>)) -> Summary {
+        for open in self.decoder.finish() {
+            let state = self
+                .buses
+                .iter_mut()
+                .find(|(name, _)| *name == open.bus)
+                .and_then(|(_, bus)| bus.nodes[open.node.index()].as_mut());
+            if let Some(state) = state {
+                if state.sdo.ended(&open.transfer) {
+                    on_event(sdo_ended(&open.bus, open.node, &open.transfer));
+                }
+            }
+        }
+        if let Some(end) = self.last_time {
+            for (name, bus) in self.buses.iter_mut() {
+                let name = &*name;
+                let Some(consumer) = bus.consumer.as_mut() else {
+                    continue;
+                };
+                for event in consumer.poll(end) {
+                    if let HeartbeatEvent::Timeout {
+                        node,
+                        last_heartbeat,
+                        ..
+                    } = event
+                    {
+                        if let Some(state) = bus.nodes[node.index()].as_mut() {
+                            state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
+                        }
+                    }
+                }
+                for state in bus.nodes.iter_mut().flatten() {
+                    if let Some((after_line, last)) = state.open_gap.take() {
+                        let gap = HeartbeatGap {
+                            after_line,
+                            gap: end.saturating_sub(last),
+                        };
+                        state.timeouts.push(gap);
+                        on_event(SummaryEvent {
+                            bus: name,
+                            node: Some(state.node),
+                            line: after_line,
+                            ts: Some(Timestamp::from_duration(last)),
+                            kind: SummaryEventKind::HeartbeatTimeout(gap),
+                        });
+                    }
+                }
+            }
+        }
+        let checked = match (self.heartbeat.is_some(), self.untimed) {
+            (false, _) => None,
+            (true, 0) => Some(true),
+            (true, _) => Some(false),
+        };
+        let decoder = &self.decoder;
+        let mut buses = self.buses;
+        buses.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut summary = Summary {
+            nodes: Vec::new(),
+            buses: Vec::new(),
+            file: None,
+            checked,
+        };
+        for (name, bus) in buses {
+            let mut nodes = Vec::new();
+            for state in bus.nodes.into_iter().flatten() {
+                nodes.push(state.node);
+                let drive = decoder.is_drive(&name, state.node) || !state.cia402.is_empty();
+                summary.nodes.push(NodeSummary {
+                    bus: name.clone(),
+                    node: state.node,
+                    frames: state.frames,
+                    emcy: state.emcy,
+                    first_error: state.first_error,
+                    active_error: state.active_error,
+                    resets: state.resets,
+                    last_register: state.last_register,
+                    heartbeat: HeartbeatSummary {
+                        count: state.heartbeats,
+                        last_state: state.last_state,
+                        boot_ups: state.boot_ups,
+                        timeouts: match checked {
+                            None => Timeouts::NotAsked,
+                            Some(false) => Timeouts::NotChecked,
+                            Some(true) => Timeouts::Checked(state.timeouts),
+                        },
+                    },
+                    guarding: state.guarding_summary,
+                    sdo: state.sdo.finish(),
+                    cia402: drive.then(|| state.cia402.finish()),
+                });
+            }
+            summary.buses.push(BusSummary {
+                bus: name,
+                frames: bus.frames,
+                error_frames: bus.error_frames,
+                bus_off: bus.bus_off,
+                error_passive: bus.error_passive,
+                status_events: bus.status_events,
+                first_ts: bus.first_ts,
+                last_ts: bus.last_ts,
+                nodes,
+            });
+        }
+        summary
+    }
+}
+
+/// The event of an SDO transfer that ended broken or unanswered, at its
+/// start line (`sdo.broken`, `sdo.timeouts` in docs/summary.md#sdo).
+fn sdo_ended<'s>(bus: &'s BusName, node: NodeId, transfer: &'s SdoTransfer) -> SummaryEvent<'s> {
+    let kind = match transfer.outcome {
+        SdoOutcome::TimedOut => SummaryEventKind::SdoTimeout(transfer),
+        _ => SummaryEventKind::SdoBroken(transfer),
+    };
+    SummaryEvent {
+        bus,
+        node: Some(node),
+        line: transfer.start_position,
+        ts: transfer.started_at,
+        kind,
+    }
+}
