@@ -617,7 +617,9 @@ pub fn findings(
             findings.iter().map(|f| f.line),
         )),
         Arc::new(Float64Array::from_iter(
-            findings.iter().map(|f| f.ts.map(|ts| ts.as_secs_f64())),
+            findings
+                .iter()
+                .map(|f| f.timestamp.map(|ts| ts.as_secs_f64())),
         )),
         Arc::new(DictionaryArray::<Int32Type>::from_iter(
             ifaces.iter().map(Option::as_deref),

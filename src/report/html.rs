@@ -535,8 +535,8 @@ impl Report {
                     listed_lines_or_none(&b.bus_off),
                     listed_lines_or_none(&b.error_passive),
                     b.status_events,
-                    ts(b.first_ts),
-                    ts(b.last_ts),
+                    ts(b.first_timestamp),
+                    ts(b.last_timestamp),
                     lines(&nodes)
                 );
             }

@@ -374,7 +374,7 @@ impl Recorder {
 /// Record one fact of the summary on its row.
 fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
     let at = At {
-        t: event.ts.map_or(now.t, micros),
+        t: event.timestamp.map_or(now.t, micros),
         line: event.line,
     };
     let row = match event.node {
@@ -529,7 +529,7 @@ impl Timeline {
         let line = finding.line;
         match mark_kind(finding) {
             None => At {
-                t: finding.ts.map_or(0, micros),
+                t: finding.timestamp.map_or(0, micros),
                 line,
             },
             Some(kind) => self

@@ -14,7 +14,7 @@ pub struct Cia402Transition {
     /// The line of the frame that first showed the new state.
     pub line: u64,
     /// Its time, where the log has one.
-    pub ts: Option<Timestamp>,
+    pub timestamp: Option<Timestamp>,
     /// The state before (`None` for the first state observed).
     pub from: Option<Cia402State>,
     /// The new state.
@@ -89,7 +89,12 @@ impl TimelineBuilder {
         if from == Some(to) {
             return None;
         }
-        let transition = Cia402Transition { line, ts, from, to };
+        let transition = Cia402Transition {
+            line,
+            timestamp: ts,
+            from,
+            to,
+        };
         // The first statusword makes the faults known: none so far.
         let faults = timeline.faults.get_or_insert_with(Listed::new);
         let mut fault = None;

@@ -10,7 +10,7 @@ pub struct EmcySeen {
     /// The line (or record number) it was read on.
     pub line: u64,
     /// Its time, where the log has one.
-    pub ts: Option<Timestamp>,
+    pub timestamp: Option<Timestamp>,
     /// Its error code.
     pub code: ErrorCode,
 }

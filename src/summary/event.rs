@@ -27,7 +27,7 @@ pub struct SummaryEvent<'s> {
     /// its start).
     pub line: u64,
     /// The time of that line, where the log has one.
-    pub ts: Option<Timestamp>,
+    pub timestamp: Option<Timestamp>,
     /// What happened.
     pub kind: SummaryEventKind<'s>,
 }

@@ -156,7 +156,7 @@ pub struct Finding {
     /// The time of that line: the summary's own where it keeps one (an
     /// EMCY's, a CiA 402 transition's), else what the caller of
     /// [`Summary::findings_with`] gives; `None` where neither knows.
-    pub ts: Option<Timestamp>,
+    pub timestamp: Option<Timestamp>,
     /// What kind of trouble.
     pub kind: FindingKind,
     /// What the summary says of it.
@@ -288,7 +288,7 @@ impl serde::Serialize for Finding {
         map.serialize_entry("iface", &Iface(&self.bus))?;
         map.serialize_entry("node", &self.node.map(NodeId::get))?;
         map.serialize_entry("line", &self.line)?;
-        map.serialize_entry("ts", &self.ts.map(Ts))?;
+        map.serialize_entry("ts", &self.timestamp.map(Ts))?;
         map.serialize_entry("kind", self.kind.name())?;
         map.serialize_entry("text", &self.text())?;
         map.end()
@@ -361,7 +361,7 @@ impl Summary {
                     bus: n.bus.clone(),
                     node: Some(n.node),
                     line,
-                    ts,
+                    timestamp: ts,
                     kind,
                     detail,
                 });
@@ -371,7 +371,7 @@ impl Summary {
                     FindingKind::FirstError,
                     first.line,
                     FindingDetail::Emcy(first),
-                    first.ts,
+                    first.timestamp,
                 );
             }
             if let Some(faults) = n.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
@@ -380,7 +380,10 @@ impl Summary {
                     |fault| fault.transition.line,
                     |line, fault| {
                         let (detail, ts) = match fault {
-                            Ok(fault) => (FindingDetail::Cia402Fault(*fault), fault.transition.ts),
+                            Ok(fault) => (
+                                FindingDetail::Cia402Fault(*fault),
+                                fault.transition.timestamp,
+                            ),
                             Err(n) => (FindingDetail::Omitted(n), None),
                         };
                         push(FindingKind::Cia402Fault, line, detail, ts);
@@ -438,7 +441,7 @@ impl Summary {
                         bus: b.bus.clone(),
                         node: None,
                         line,
-                        ts: None,
+                        timestamp: None,
                         kind,
                         detail,
                     });
@@ -447,11 +450,11 @@ impl Summary {
         }
         for finding in &mut list {
             if !finding.timed_by_summary() {
-                finding.ts = time_of(finding);
+                finding.timestamp = time_of(finding);
             }
         }
-        if list.iter().all(|f| f.ts.is_some()) {
-            list.sort_by_key(|f| (f.ts, f.line));
+        if list.iter().all(|f| f.timestamp.is_some()) {
+            list.sort_by_key(|f| (f.timestamp, f.line));
         } else {
             list.sort_by_key(|f| f.line);
         }

@@ -140,7 +140,7 @@ impl Serialize for EmcySeen {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(4))?;
         map.serialize_entry("line", &self.line)?;
-        ts(&mut map, "ts", self.ts)?;
+        ts(&mut map, "ts", self.timestamp)?;
         map.serialize_entry("code", &self.code.get())?;
         map.serialize_entry("description", self.code.description())?;
         map.end()
@@ -279,7 +279,7 @@ impl Serialize for super::Cia402Transition {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(4))?;
         map.serialize_entry("line", &self.line)?;
-        ts(&mut map, "ts", self.ts)?;
+        ts(&mut map, "ts", self.timestamp)?;
         map.serialize_entry("from", &self.from.map(|s| s.name()))?;
         map.serialize_entry("to", self.to.name())?;
         map.end()
@@ -330,8 +330,8 @@ fn bus_entries<M: SerializeMap>(b: &BusSummary, map: &mut M) -> Result<(), M::Er
     map.serialize_entry("error_passive", &b.error_passive)?;
     map.serialize_entry("error_passive_count", &b.error_passive.count())?;
     map.serialize_entry("status_events", &b.status_events)?;
-    ts(map, "first_ts", b.first_ts)?;
-    ts(map, "last_ts", b.last_ts)?;
+    ts(map, "first_ts", b.first_timestamp)?;
+    ts(map, "last_ts", b.last_timestamp)?;
     let nodes: Vec<u8> = b.nodes.iter().map(|n| n.get()).collect();
     map.serialize_entry("nodes", &nodes)
 }

@@ -100,9 +100,9 @@ pub struct BusSummary {
     /// Log entries that are not frames (a TRC status row).
     pub status_events: u64,
     /// The earliest time seen on it.
-    pub first_ts: Option<Timestamp>,
+    pub first_timestamp: Option<Timestamp>,
     /// The latest time seen on it.
-    pub last_ts: Option<Timestamp>,
+    pub last_timestamp: Option<Timestamp>,
     /// The node-IDs seen on it, in order.
     pub nodes: Vec<NodeId>,
 }

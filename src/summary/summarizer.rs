@@ -372,7 +372,7 @@ fn add_classified(
         bus: name,
         node,
         line: position,
-        ts: log.timestamp,
+        timestamp: log.timestamp,
         kind,
     };
     bus.frames += 1;
@@ -416,7 +416,7 @@ fn add_classified(
                     bus: name,
                     node: Some(node),
                     line: position,
-                    ts: log.timestamp,
+                    timestamp: log.timestamp,
                     kind: SummaryEventKind::SdoAbort(abort),
                 });
             }
@@ -459,7 +459,7 @@ fn add_classified(
             state.last_register = Some(emcy.register);
             let seen = EmcySeen {
                 line: position,
-                ts: log.timestamp,
+                timestamp: log.timestamp,
                 code: emcy.code,
             };
             on_event(event(
@@ -553,7 +553,7 @@ fn add_classified(
                                         bus: name,
                                         node: Some(node),
                                         line: after_line,
-                                        ts: Some(Timestamp::from_duration(last)),
+                                        timestamp: Some(Timestamp::from_duration(last)),
                                         kind: SummaryEventKind::HeartbeatTimeout(gap),
                                     });
                                 }
@@ -626,7 +626,7 @@ impl Summarizer {
                             bus: name,
                             node: Some(state.node),
                             line: after_line,
-                            ts: Some(Timestamp::from_duration(last)),
+                            timestamp: Some(Timestamp::from_duration(last)),
                             kind: SummaryEventKind::HeartbeatTimeout(gap),
                         });
                     }
@@ -683,8 +683,8 @@ impl Summarizer {
                 bus_off: bus.bus_off,
                 error_passive: bus.error_passive,
                 status_events: bus.status_events,
-                first_ts: bus.first_ts,
-                last_ts: bus.last_ts,
+                first_timestamp: bus.first_ts,
+                last_timestamp: bus.last_ts,
                 nodes,
             });
         }
@@ -703,7 +703,7 @@ fn sdo_ended<'s>(bus: &'s BusName, node: NodeId, transfer: &'s SdoTransfer) -> S
         bus,
         node: Some(node),
         line: transfer.start_position,
-        ts: transfer.started_at,
+        timestamp: transfer.started_at,
         kind,
     }
 }

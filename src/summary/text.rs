@@ -228,7 +228,7 @@ impl fmt::Display for BusSummary {
         if self.status_events > 0 {
             write!(f, ", status events {}", self.status_events)?;
         }
-        if let (Some(first), Some(last)) = (self.first_ts, self.last_ts) {
+        if let (Some(first), Some(last)) = (self.first_timestamp, self.last_timestamp) {
             write!(f, ", from {} to {}", Seconds(first), Seconds(last))?;
         }
         if !self.nodes.is_empty() {
@@ -341,7 +341,7 @@ impl fmt::Display for Cia402Fault {
         )?;
         if let Some(emcy) = self.emcy_before {
             let code = emcy.code;
-            match (t.ts, emcy.ts) {
+            match (t.timestamp, emcy.timestamp) {
                 (Some(at), Some(then)) => {
                     let gap = at.duration_since(then).unwrap_or_default();
                     write!(

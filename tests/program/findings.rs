@@ -90,7 +90,7 @@ fn the_samples_findings_are_the_pages() {
     // In time order, the library's.
     assert!(findings
         .windows(2)
-        .all(|w| (w[0].ts, w[0].line) <= (w[1].ts, w[1].line)));
+        .all(|w| (w[0].timestamp, w[0].line) <= (w[1].timestamp, w[1].line)));
     // The page lists them by section, each in time order.
     findings.sort_by_key(|f| section(f.kind));
 
@@ -123,7 +123,7 @@ fn the_samples_findings_are_the_pages() {
         assert_eq!(*node, f.node.map(NodeId::get), "{f}");
         // The page adds when it was, or that the timeline has every one.
         assert!(text.starts_with(&f.to_string()), "{text:?} vs {f}");
-        assert!(f.ts.is_some(), "{f}: the sample has timestamps");
+        assert!(f.timestamp.is_some(), "{f}: the sample has timestamps");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
