@@ -239,8 +239,8 @@ fn summary<'py>(
         let name = source.name();
         let mut log = source.open(options, &name)?;
         let mut summarizer = Summarizer::new(config);
-        let skipped = log.visit(Summarize {
-            summarizer: &mut summarizer,
+        let skipped = log.visit(Feed {
+            feed: |position, event: &motionwire::can::LogEvent<'_>| summarizer.add(position, event),
             name: &name,
         })?;
         let summary = summarizer.finish();
@@ -279,8 +279,8 @@ fn findings<'py>(
         let name = source.name();
         let mut log = source.open(options, &name)?;
         let mut recorder = Recorder::new(config);
-        let skipped = log.visit(Record {
-            recorder: &mut recorder,
+        let skipped = log.visit(Feed {
+            feed: |position, event: &motionwire::can::LogEvent<'_>| recorder.add(position, event),
             name: &name,
         })?;
         let recording = recorder.finish();
@@ -313,48 +313,26 @@ fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
     Ok(())
 }
 
-/// The recorder's loop over a log, compiled for its format's reader.
-struct Record<'a> {
-    recorder: &'a mut Recorder,
+/// The loop of `summary` and `findings` over a log, compiled for its
+/// format's reader: every entry fed to `feed` (a `Summarizer`'s or a
+/// `Recorder`'s `add`), the malformed lines and damaged records counted, a
+/// read error the end.
+struct Feed<'a, F> {
+    feed: F,
     name: &'a str,
 }
 
-impl motionwire::logs::LogVisitor for Record<'_> {
+impl<F: FnMut(motionwire::logs::Position, &motionwire::can::LogEvent<'_>)>
+    motionwire::logs::LogVisitor for Feed<'_, F>
+{
     /// How many lines or records were skipped.
     type Output = Result<u64, Failure>;
 
-    fn visit<L: motionwire::logs::ReadLog + ?Sized>(self, log: &mut L) -> Result<u64, Failure> {
+    fn visit<L: motionwire::logs::ReadLog + ?Sized>(mut self, log: &mut L) -> Result<u64, Failure> {
         let mut skipped = 0;
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => self.recorder.add(record.position, &record.event),
-                Err(error) => {
-                    if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
-                        return Err(Failure::log(self.name, error));
-                    }
-                    skipped += 1;
-                }
-            }
-        }
-        Ok(skipped)
-    }
-}
-
-/// The summary's loop over a log, compiled for its format's reader.
-struct Summarize<'a> {
-    summarizer: &'a mut Summarizer,
-    name: &'a str,
-}
-
-impl motionwire::logs::LogVisitor for Summarize<'_> {
-    /// How many lines or records were skipped.
-    type Output = Result<u64, Failure>;
-
-    fn visit<L: motionwire::logs::ReadLog + ?Sized>(self, log: &mut L) -> Result<u64, Failure> {
-        let mut skipped = 0;
-        while let Some(next) = log.next_event() {
-            match next {
-                Ok(record) => self.summarizer.add(record.position, &record.event),
+                Ok(record) => (self.feed)(record.position, &record.event),
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));
