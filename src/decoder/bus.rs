@@ -5,6 +5,7 @@
 use core::fmt;
 
 use crate::can::Iface;
+use crate::canopen::NodeId;
 
 /// An interface as the decoder and the summary keep it: owned, because
 /// what they learn outlives the log's buffer. Ordered as the summary lists
@@ -67,6 +68,41 @@ impl BusName {
             BusName::Unnamed => None,
             BusName::Channel(n) => Some(Iface::Channel(*n)),
             BusName::Name(name) => Some(Iface::Name(name)),
+        }
+    }
+}
+
+impl BusName {
+    /// Return the device `node` on this bus as the summary's findings and
+    /// the report name it: `can0 node 3`, or `node 3` on a log that names
+    /// no interface.
+    ///
+    /// ```
+    /// use motionwire::canopen::NodeId;
+    /// use motionwire::decoder::BusName;
+    ///
+    /// let node = NodeId::new(3).unwrap();
+    /// assert_eq!(BusName::Name("can0".into()).device(node).to_string(), "can0 node 3");
+    /// assert_eq!(BusName::Unnamed.device(node).to_string(), "node 3");
+    /// ```
+    #[must_use]
+    pub fn device(&self, node: NodeId) -> Device<'_> {
+        Device { bus: self, node }
+    }
+}
+
+/// A device, named by its bus and node-ID ([`BusName::device`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Device<'a> {
+    bus: &'a BusName,
+    node: NodeId,
+}
+
+impl fmt::Display for Device<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.bus {
+            BusName::Unnamed => write!(f, "node {}", self.node.get()),
+            bus => write!(f, "{bus} node {}", self.node.get()),
         }
     }
 }

@@ -53,7 +53,7 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::time::Duration;
 
-pub use bus::BusName;
+pub use bus::{BusName, Device};
 pub use cia402::Cia402Reading;
 pub use columns::FrameColumns;
 pub use names::ObjectNames;

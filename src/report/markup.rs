@@ -23,12 +23,9 @@ pub(super) fn esc(text: &str) -> String {
     out
 }
 
-/// A device as the page names it: `can0 node 3`.
+/// A device as the page names it: `can0 node 3` ([`BusName::device`]).
 pub(super) fn device(bus: &BusName, node: NodeId) -> String {
-    match bus {
-        BusName::Unnamed => format!("node {}", node.get()),
-        _ => format!("{bus} node {}", node.get()),
-    }
+    bus.device(node).to_string()
 }
 
 pub(super) fn iface_attr(bus: &BusName) -> String {

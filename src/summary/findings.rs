@@ -260,10 +260,9 @@ impl fmt::Display for Subject<'_> {
         if let Some(file) = &finding.file {
             write!(f, "{file}: ")?;
         }
-        match (finding.node, &finding.bus) {
-            (Some(node), BusName::Unnamed) => write!(f, "node {}", node.get()),
-            (Some(node), bus) => write!(f, "{bus} node {}", node.get()),
-            (None, bus) => write!(f, "bus {bus}"),
+        match finding.node {
+            Some(node) => write!(f, "{}", finding.bus.device(node)),
+            None => write!(f, "bus {}", finding.bus),
         }
     }
 }
