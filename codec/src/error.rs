@@ -99,6 +99,28 @@ pub enum What {
     TimeOfDay,
     /// The timestamp microseconds.
     TimestampMicroseconds,
+    /// The CoE header.
+    CoeHeader,
+    /// The CoE SDO message.
+    CoeSdo,
+    /// An EtherCAT datagram.
+    EthercatDatagram,
+    /// The EtherCAT frame (its header's length).
+    EthercatFrame,
+    /// The EtherCAT header.
+    EthercatHeader,
+    /// The Ethernet frame.
+    EthernetFrame,
+    /// The IPv4 header.
+    Ipv4Header,
+    /// The mailbox error message.
+    MailboxError,
+    /// The mailbox header.
+    MailboxHeader,
+    /// The mailbox message (its header's length).
+    MailboxMessage,
+    /// The UDP header.
+    UdpHeader,
 }
 
 impl What {
@@ -144,6 +166,17 @@ impl What {
             What::SyncDataLength => "SYNC data length",
             What::TimeOfDay => "TIME frame (TIME_OF_DAY)",
             What::TimestampMicroseconds => "timestamp microseconds",
+            What::CoeHeader => "CoE header",
+            What::CoeSdo => "CoE SDO message",
+            What::EthercatDatagram => "EtherCAT datagram",
+            What::EthercatFrame => "EtherCAT frame",
+            What::EthercatHeader => "EtherCAT header",
+            What::EthernetFrame => "Ethernet frame",
+            What::Ipv4Header => "IPv4 header",
+            What::MailboxError => "mailbox error message",
+            What::MailboxHeader => "mailbox header",
+            What::MailboxMessage => "mailbox message",
+            What::UdpHeader => "UDP header",
         }
     }
 }

@@ -125,6 +125,7 @@ pub mod canopen;
 #[cfg(feature = "defmt")]
 mod defmt_impls;
 mod error;
+pub mod ethercat;
 mod names;
 pub mod profiles;
 pub mod servo;
