@@ -65,6 +65,12 @@ done
   echo "decode tests/fixtures/pcap/sll_mixed.pcapng"
   echo "decode --json tests/fixtures/pcap/sll.pcap"
   echo "decode --summary --json tests/fixtures/pcap/sll2.pcapng"
+  # EtherCAT captures (docs/ethercat.md): the three outputs and the summary's
+  # note.
+  echo "decode tests/data/ethercat/twincat-akd-startup.pcapng"
+  echo "decode --json tests/data/ethercat/replay-ek1914-segmented-upload.pcapng"
+  echo "decode --csv tests/data/ethercat/soem-single-lan9252.pcapng"
+  echo "decode --summary tests/data/ethercat/soem-akd-sdo.pcapng"
 } > "$out/cases.txt"
 n=0
 while read -r line; do

@@ -189,6 +189,7 @@ pub use motionwire_codec::{
 pub mod decoder;
 #[cfg(feature = "eds")]
 pub mod eds;
+pub mod ethercat;
 #[cfg(feature = "std")]
 mod iface;
 pub mod logs;

@@ -150,7 +150,7 @@ def test_skipped_lines_are_in_the_metadata():
 def test_records_without_a_frame_are_said():
     table = motionwire.read_log(FIXTURES / "pcap" / "multi.pcapng")
     other = json.loads(table.schema.metadata[b"motionwire.other"])
-    assert other == ["1 packet of link type 1 (Ethernet) skipped: not CAN"]
+    assert other == ["1 packet of EtherType 0x0806 (ARP) skipped: neither CAN nor EtherCAT"]
     # An MF4 file's group without CAN frames, by its name (asammdf wrote it).
     table = motionwire.read_log(FIXTURES / "mf4" / "asammdf_signals.mf4")
     assert table.num_rows == 40

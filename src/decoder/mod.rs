@@ -42,7 +42,7 @@
 mod bus;
 mod cia402;
 mod columns;
-mod json;
+pub(crate) mod json;
 mod names;
 mod pdo;
 mod record;

@@ -232,6 +232,11 @@ pub enum BinaryError {
         /// The bytes the packet holds.
         found: u64,
     },
+    /// An Ethernet packet (link type 1) is shorter than a header it
+    /// announces: Ethernet, an 802.1Q tag, IPv4 or UDP
+    /// (docs/ethercat.md#reading). The packet is skipped, the capture read
+    /// on.
+    EthernetTooShort(crate::LenError),
     /// A SocketCAN packet declares more data than its frame kind carries:
     /// 8 bytes for a classic or error frame, 64 for CAN FD
     /// (docs/formats.md#pcap).
@@ -315,6 +320,7 @@ impl core::fmt::Display for BinaryError {
                 f,
                 "expected a SocketCAN packet of at least {needed} bytes, found {found}"
             ),
+            BinaryError::EthernetTooShort(error) => error.fmt(f),
             BinaryError::CanDataTooLong { len, max } => write!(
                 f,
                 "expected a CAN data length of at most {max}, found {len}"

@@ -9,7 +9,9 @@ use std::sync::Arc;
 
 use crate::can::LogEvent;
 #[cfg(feature = "std")]
-use crate::can::{BusStatus, Iface, LogFrame};
+use crate::can::{BusStatus, EthercatPacket, Iface, LogFrame};
+#[cfg(feature = "std")]
+use crate::ethercat::EthercatLink;
 #[cfg(feature = "std")]
 use crate::logs::{LogError, LogFormat};
 
@@ -232,9 +234,11 @@ impl<L: ReadLog + ?Sized> ReadLog for &mut L {
 pub struct Record {
     /// The line or record the event was read from.
     pub position: Position,
-    /// The event, its interface name (if it has one) in `name`.
+    /// The event, its interface name (if it has one) in `name`, an
+    /// EtherCAT packet's bytes in `payload`.
     event: LogEvent<'static>,
     name: Option<Arc<str>>,
+    payload: Option<Arc<[u8]>>,
 }
 
 #[cfg(feature = "std")]
@@ -258,6 +262,14 @@ impl Record {
                     status.iface = name;
                 }
                 LogEvent::Status(status)
+            }
+            LogEvent::Ethercat(packet) => {
+                let mut packet: EthercatPacket<'_> = packet;
+                if name.is_some() {
+                    packet.iface = name;
+                }
+                packet.link.payload = self.payload.as_deref().unwrap_or_default();
+                LogEvent::Ethercat(packet)
             }
         }
     }
@@ -327,6 +339,10 @@ impl<L: ReadLog> Iterator for Records<L> {
         let last = &mut self.name;
         let next = self.log.next_event()?;
         Some(next.map(|record| {
+            let payload = match record.event {
+                LogEvent::Ethercat(packet) => Some(Arc::from(packet.link.payload)),
+                _ => None,
+            };
             let (event, name) = detach(record.event);
             let name = name.map(|name| match last {
                 Some(kept) if crate::iface::same_name(kept.as_bytes(), name.as_bytes()) => {
@@ -338,6 +354,7 @@ impl<L: ReadLog> Iterator for Records<L> {
                 position: record.position,
                 event,
                 name,
+                payload,
             }
         }))
     }
@@ -412,6 +429,22 @@ fn detach(event: LogEvent<'_>) -> (LogEvent<'static>, Option<&str>) {
                 iface,
             };
             (LogEvent::Status(status), name)
+        }
+        LogEvent::Ethercat(packet) => {
+            let (iface, name) = split(packet.iface);
+            // The bytes are the record's own.
+            let link = EthercatLink {
+                destination: packet.link.destination,
+                source: packet.link.source,
+                encapsulation: packet.link.encapsulation,
+                payload: &[],
+            };
+            let packet = EthercatPacket {
+                timestamp: packet.timestamp,
+                iface,
+                link,
+            };
+            (LogEvent::Ethercat(packet), name)
         }
     }
 }

@@ -23,6 +23,9 @@ pub enum OtherRecord {
         /// The protocol type, an Ethernet type or Linux's `ETH_P_*`.
         protocol: u16,
     },
+    /// An Ethernet packet that carries no EtherCAT, by its EtherType (the
+    /// inner one behind an 802.1Q tag; docs/ethercat.md#reading).
+    EtherType(u16),
     /// A CAN XL frame, which [`CanFrame`](crate::can::CanFrame) cannot
     /// hold: counted, never misread.
     CanXl,
@@ -61,10 +64,29 @@ impl OtherRecord {
         })
     }
 
+    /// Return the name of an EtherType, where it is a common one on a
+    /// machine's network (IEEE's EtherType list).
+    #[must_use]
+    pub const fn ether_type_name(ether_type: u16) -> Option<&'static str> {
+        Some(match ether_type {
+            0x0800 => "IPv4",
+            0x0806 => "ARP",
+            0x86DD => "IPv6",
+            0x88A4 => "EtherCAT",
+            0x88AB => "Ethernet POWERLINK",
+            0x88CC => "LLDP",
+            0x88F7 => "PTP",
+            0x8892 => "PROFINET",
+            _ => return None,
+        })
+    }
+
     /// The noun for one record of this kind.
     const fn noun(&self) -> &'static str {
         match self {
-            OtherRecord::LinkType(_) | OtherRecord::CookedProtocol { .. } => "packet",
+            OtherRecord::LinkType(_)
+            | OtherRecord::CookedProtocol { .. }
+            | OtherRecord::EtherType(_) => "packet",
             OtherRecord::CanXl => "CAN XL frame",
             OtherRecord::SystemdJournal => "systemd journal export block",
             OtherRecord::BlfObject(_) => "BLF object",
@@ -127,6 +149,12 @@ impl fmt::Display for OtherRecords {
                 write!(f, " with protocol {protocol:#06x}")?;
             }
             OtherRecord::BlfObject(t) => write!(f, " of type {t}")?,
+            OtherRecord::EtherType(t) => {
+                write!(f, " of EtherType {t:#06x}")?;
+                if let Some(name) = OtherRecord::ether_type_name(*t) {
+                    write!(f, " ({name})")?;
+                }
+            }
             // The name is the file's: control characters are escaped, so
             // that it cannot break the line it is said on.
             #[cfg(feature = "mf4")]
@@ -135,6 +163,7 @@ impl fmt::Display for OtherRecords {
         }
         f.write_str(match self.kind {
             OtherRecord::CanXl => " skipped: not read",
+            OtherRecord::EtherType(_) => " skipped: neither CAN nor EtherCAT",
             _ => " skipped: not CAN",
         })
     }

@@ -237,7 +237,7 @@ impl Recorder {
     pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame, event),
-            LogEvent::Status(_) => self.summarizer.add(position, event),
+            LogEvent::Status(_) | LogEvent::Ethercat(_) => self.summarizer.add(position, event),
         }
     }
 

@@ -154,6 +154,9 @@ pub struct Summarizer {
     heartbeat: Option<Duration>,
     last_time: Option<Duration>,
     untimed: u64,
+    /// EtherCAT packets added, which the summary does not cover yet
+    /// (docs/ethercat.md#summary).
+    ethercat_packets: u64,
 }
 
 impl Default for Summarizer {
@@ -173,7 +176,16 @@ impl Summarizer {
             buses: Vec::new(),
             last_time: None,
             untimed: 0,
+            ethercat_packets: 0,
         }
+    }
+
+    /// Return how many EtherCAT packets were added: the summary covers CAN
+    /// logs; an EtherCAT capture's packets are counted here, not
+    /// summarized (docs/ethercat.md#summary), so that a caller can say so.
+    #[must_use]
+    pub const fn ethercat_packets(&self) -> u64 {
+        self.ethercat_packets
     }
 
     /// Return the decoder that reads the frames: its configuration, the
@@ -216,6 +228,7 @@ impl Summarizer {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
+            LogEvent::Ethercat(_) => self.ethercat_packets += 1,
         }
     }
 
@@ -236,6 +249,10 @@ impl Summarizer {
                 self.add_status(status);
                 return None;
             }
+            LogEvent::Ethercat(_) => {
+                self.ethercat_packets += 1;
+                return None;
+            }
         };
         let Summarizer {
             decoder,
@@ -243,6 +260,7 @@ impl Summarizer {
             heartbeat,
             last_time,
             untimed,
+            ..
         } = self;
         let at = decoder.bus(log.iface);
         let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
@@ -275,6 +293,7 @@ impl Summarizer {
             heartbeat,
             last_time,
             untimed,
+            ..
         } = self;
         let times = (last_time, untimed);
         match (kind, node) {

@@ -45,6 +45,7 @@ fn read(text: &[u8]) -> (Vec<LogFrame<'_>>, usize) {
         match event.unwrap_or_else(|e| panic!("line {line}: {e}")) {
             Some(LogEvent::Frame(frame)) => frames.push(frame),
             Some(LogEvent::Status(_)) => status += 1,
+            Some(LogEvent::Ethercat(_)) => panic!("line {line}: an ASC line is no EtherCAT packet"),
             None => {}
         }
     }

@@ -50,6 +50,9 @@ fn check(name: &str, log: &[u8], truth: &str, expected: Expected) {
             Some(LogEvent::Frame(frame)) if frame.frame.is_error() => errors.push(frame),
             Some(LogEvent::Frame(frame)) => frames.push(frame),
             Some(LogEvent::Status(_)) => statuses += 1,
+            Some(LogEvent::Ethercat(_)) => {
+                panic!("{name} line {line}: a TRC line is no EtherCAT packet")
+            }
             None => {}
         }
     }

@@ -16,6 +16,8 @@ mod blf;
 mod eds;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod eds_names;
+#[cfg(feature = "logs")]
+mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
 #[cfg(feature = "logs")]

@@ -267,7 +267,7 @@ fn linux_cooked_captures_read_as_tshark_reads_them() {
         ("sll2_two_buses.pcap", vec![(ip(276), 1)]),
         (
             "sll_mixed.pcapng",
-            vec![(OtherRecord::LinkType(1), 2), (ip(276), 1)],
+            vec![(OtherRecord::EtherType(0x9000), 2), (ip(276), 1)],
         ),
     ] {
         let bytes = fixture(name);

@@ -1170,9 +1170,10 @@ fn pcap_and_pcapng_captures() {
         let skipped = truth["packets"].as_array().unwrap().len() - can.len();
         let err = stderr(&out);
         if skipped > 0 {
-            // docs/formats.md#pcap: once, naming the link type.
+            // docs/formats.md#pcap, docs/ethercat.md#reading: an Ethernet
+            // packet without EtherCAT, once, naming its EtherType (ARP).
             assert_eq!(
-                err.matches("packet of link type 1 (Ethernet) skipped: not CAN")
+                err.matches("packet of EtherType 0x0806 (ARP) skipped: neither CAN nor EtherCAT")
                     .count(),
                 1,
                 "{err}"

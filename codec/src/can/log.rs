@@ -4,6 +4,7 @@
 use core::fmt;
 
 use super::{CanFrame, Direction, Timestamp};
+use crate::ethercat::EthercatLink;
 
 /// Where a log says a frame was seen: an interface name (candump,
 /// pcapng's interface description) or a channel number (Vector ASC and
@@ -135,6 +136,9 @@ pub enum LogEvent<'a> {
     Frame(LogFrame<'a>),
     /// A bus status event.
     Status(BusStatus<'a>),
+    /// An Ethernet packet that carries EtherCAT (docs/ethercat.md#reading):
+    /// a capture of an EtherCAT master's port.
+    Ethercat(EthercatPacket<'a>),
 }
 
 impl<'a> LogEvent<'a> {
@@ -144,7 +148,7 @@ impl<'a> LogEvent<'a> {
     pub const fn frame(&self) -> Option<&LogFrame<'a>> {
         match self {
             LogEvent::Frame(frame) => Some(frame),
-            LogEvent::Status(_) => None,
+            LogEvent::Status(_) | LogEvent::Ethercat(_) => None,
         }
     }
 
@@ -155,6 +159,7 @@ impl<'a> LogEvent<'a> {
         match self {
             LogEvent::Frame(frame) => frame.timestamp,
             LogEvent::Status(status) => status.timestamp,
+            LogEvent::Ethercat(packet) => packet.timestamp,
         }
     }
 
@@ -165,6 +170,7 @@ impl<'a> LogEvent<'a> {
         match self {
             LogEvent::Frame(frame) => frame.iface,
             LogEvent::Status(status) => status.iface,
+            LogEvent::Ethercat(packet) => packet.iface,
         }
     }
 }
@@ -188,6 +194,21 @@ pub struct BusStatus<'a> {
     pub iface: Option<Iface<'a>>,
 }
 
+/// An Ethernet packet of a capture that carries EtherCAT: when and where
+/// it was captured, and what [`EthercatLink`] found in it (the source MAC,
+/// the encapsulation, the bytes from the EtherCAT header on). The session
+/// of motionwire's `ethercat` module reads its datagrams
+/// (docs/ethercat.md#reading).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct EthercatPacket<'a> {
+    /// When the packet was captured.
+    pub timestamp: Option<Timestamp>,
+    /// The interface it was captured on.
+    pub iface: Option<Iface<'a>>,
+    /// The packet, unwrapped to its EtherCAT payload.
+    pub link: EthercatLink<'a>,
+}
+
 impl fmt::Display for LogEvent<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -200,6 +221,20 @@ impl fmt::Display for LogEvent<'_> {
                     write!(f, "{iface} ")?;
                 }
                 f.write_str("bus status event")
+            }
+            LogEvent::Ethercat(packet) => {
+                if let Some(ts) = packet.timestamp {
+                    write!(f, "({ts}) ")?;
+                }
+                if let Some(iface) = packet.iface {
+                    write!(f, "{iface} ")?;
+                }
+                write!(
+                    f,
+                    "EtherCAT from {} ({} bytes)",
+                    packet.link.source,
+                    packet.link.payload.len()
+                )
             }
         }
     }

@@ -47,5 +47,5 @@ pub use frame::{
     FD_MAX_LEN,
 };
 pub use id::CanId;
-pub use log::{BusStatus, Iface, LogEvent, LogFrame};
+pub use log::{BusStatus, EthercatPacket, Iface, LogEvent, LogFrame};
 pub use timestamp::{Seconds, Timestamp, SECONDS_LEN};

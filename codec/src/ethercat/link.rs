@@ -78,8 +78,9 @@ pub enum Encapsulation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct EthercatLink<'a> {
     /// The destination MAC (EtherCAT masters send to broadcast or to
-    /// themselves; slaves do not look at it).
-    pub destination: Mac,
+    /// themselves; slaves do not look at it); `None` in a Linux cooked
+    /// capture, whose header records only the source.
+    pub destination: Option<Mac>,
     /// The source MAC: the master's, with [`Mac::RETURNED_BIT`] set once
     /// the frame has passed a slave.
     pub source: Mac,
@@ -154,7 +155,7 @@ impl<'a> Link<'a> {
             _ => return Ok(Link::Other { source, ether_type }),
         };
         Ok(Link::Ethercat(EthercatLink {
-            destination,
+            destination: Some(destination),
             source,
             encapsulation,
             payload,

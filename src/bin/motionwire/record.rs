@@ -225,3 +225,38 @@ fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
     }
     out.write_all(&buf[..2 * n])
 }
+
+/// Write an EtherCAT datagram's record as one CSV row under
+/// [`CSV_HEADER`] (docs/ethercat.md#records): `line` is the packet, `data`
+/// the datagram's data, `kind` `ecat_datagram`, and `description` its
+/// fields in words (`#1 idx 0x41 adp 0x0000 ado 0x0130 len 6 wkc 1
+/// returned …`); the CAN columns are empty.
+pub fn write_datagram_csv<W: Write>(
+    out: &mut W,
+    record: &motionwire::ethercat::DatagramRecord<'_, '_>,
+    file: Option<&str>,
+) -> io::Result<()> {
+    let packet = record.packet;
+    let mut digits = itoa::Buffer::new();
+    if let Some(file) = file {
+        csv_field(out, file)?;
+        out.write_all(b",")?;
+    }
+    out.write_all(digits.format(packet.position.number()).as_bytes())?;
+    out.write_all(b",")?;
+    if let Some(ts) = packet.timestamp {
+        let mut buf = [0; SECONDS_LEN];
+        out.write_all(ts.format_seconds(&mut buf))?;
+    }
+    out.write_all(b",")?;
+    match packet.iface {
+        Some(Iface::Name(name)) => csv_field(out, name)?,
+        Some(Iface::Channel(channel)) => write!(out, "{channel}")?,
+        None => {}
+    }
+    out.write_all(b",,,,,")?;
+    hex_digits(out, record.datagram.data())?;
+    write!(out, ",{},,,", motionwire::ethercat::DATAGRAM_KIND)?;
+    csv_field(out, &record.fields().to_string())?;
+    out.write_all(b"\r\n")
+}

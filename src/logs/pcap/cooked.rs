@@ -75,6 +75,15 @@ pub(super) enum Cooked {
         /// file); `None` for SLL, which does not record it.
         ifindex: Option<u32>,
     },
+    /// A packet of an Ethernet interface (protocol 0x0600 or above, an
+    /// EtherType) after the header at `at`: EtherCAT when the protocol is
+    /// 0x88A4 (docs/ethercat.md#reading), else counted.
+    Ethernet {
+        /// Where the packet's payload starts: after the header.
+        at: usize,
+        /// The protocol, an EtherType.
+        protocol: u16,
+    },
     /// No CAN or CAN FD frame: counted as this kind.
     Other(NotCan),
 }
@@ -115,6 +124,10 @@ pub(super) fn split(link_type: u16, packet: &[u8]) -> Result<Cooked, BinaryError
             ifindex,
         },
         ETH_P_CANXL => Cooked::Other(NotCan::CanXl),
+        crate::ethercat::ETHERTYPE_ETHERCAT => Cooked::Ethernet {
+            at: header_len,
+            protocol,
+        },
         protocol => Cooked::Other(NotCan::CookedProtocol {
             link_type,
             protocol,

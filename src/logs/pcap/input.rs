@@ -100,6 +100,18 @@ impl<R: Read> Input<R> {
         self.offset = self.offset.saturating_add(n as u64);
     }
 
+    /// Return `len` bytes from `back` bytes before the position: a part of
+    /// a record just consumed, which stays in the buffer until the next
+    /// read.
+    pub(super) fn behind(&self, back: usize, len: usize) -> &[u8] {
+        let Some(from) = self.start.checked_sub(back) else {
+            return &[];
+        };
+        self.buf
+            .get(from..from.saturating_add(len))
+            .unwrap_or_default()
+    }
+
     /// Return the offset of the position in the file.
     pub(super) fn offset(&self) -> u64 {
         self.offset

@@ -23,8 +23,13 @@
 //! 16-byte header) and 276 ([`LINKTYPE_LINUX_SLL2`], 20-byte header) with
 //! protocol 0x000C (CAN) or 0x000D (CAN FD), whose SocketCAN frame follows
 //! in the capturing machine's byte order, read little-endian as tshark
-//! reads it (the decision in docs/formats.md#pcap). Packets of any other link
-//! type or protocol, and CAN XL frames, take their number and are counted by
+//! reads it (the decision in docs/formats.md#pcap). Packets of link type 1
+//! ([`LINKTYPE_ETHERNET`]) and cooked packets of protocol 0x88A4 are an
+//! EtherCAT master's port: a packet that carries EtherCAT is a
+//! [`LogEvent::Ethercat`], an Ethernet packet of another EtherType is
+//! counted by it, and one shorter than its headers is a skipped
+//! [`BinaryError::EthernetTooShort`] (docs/ethercat.md#reading). Packets of
+//! any other link type or protocol, and CAN XL frames, take their number and are counted by
 //! kind in [`ReadLog::other_records`] and [`ReadLog::other_kinds`]: the caller
 //! reports them once, naming the link type (docs/formats.md#pcap).
 //!
@@ -86,6 +91,7 @@
 //! ```
 
 mod cooked;
+mod ethernet;
 mod input;
 mod not_can;
 #[cfg(test)]
@@ -99,7 +105,7 @@ mod writer;
 use core::time::Duration;
 use std::io::Read;
 
-use crate::can::{CanFrame, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{CanFrame, EthercatPacket, Iface, LogEvent, LogFrame, Timestamp};
 use crate::logs::bytes::{u16_at, u32_at};
 use crate::logs::FormatError;
 use crate::logs::{
@@ -108,6 +114,8 @@ use crate::logs::{
 };
 use cooked::Cooked;
 pub use cooked::{LINKTYPE_LINUX_SLL, LINKTYPE_LINUX_SLL2};
+use ethernet::Ethernet;
+pub use ethernet::LINKTYPE_ETHERNET;
 use input::Input;
 use not_can::NotCan;
 use socketcan::{FrameLayout, Payload};
@@ -305,6 +313,8 @@ pub struct PcapReader<R: Read> {
     /// [`next_block_fd`](Self::next_block_fd)). Cleared, every record takes
     /// the general path (the property tests compare the two).
     fast: bool,
+    /// Ethernet packets shorter than a header they announce, skipped.
+    skipped: u64,
     /// A pcap file's times are in nanoseconds (its interface's resolution,
     /// kept apart for [`record_time`](Self::record_time)).
     nanos: bool,
@@ -348,6 +358,7 @@ impl<R: Read> PcapReader<R> {
             other: OtherCounts::default(),
             done: false,
             fast: false,
+            skipped: 0,
             nanos: false,
         };
         match first {
@@ -929,7 +940,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
     }
 
     fn next_event(&mut self) -> Option<Result<LogRecord<'_>, LogError>> {
-        loop {
+        let (found, packet) = loop {
             if self.done {
                 return None;
             }
@@ -968,6 +979,48 @@ impl<R: Read> ReadLog for PcapReader<R> {
                 .bytes()
                 .get(packet.data.clone())
                 .unwrap_or_default();
+            // An Ethernet port's packet: EtherCAT, or counted by kind.
+            let ethernet = match packet.link_type {
+                Some(LINKTYPE_ETHERNET) => Some(ethernet::split(data)),
+                Some(link_type @ (LINKTYPE_LINUX_SLL | LINKTYPE_LINUX_SLL2)) => {
+                    match cooked::split(link_type, data) {
+                        Ok(Cooked::Ethernet { at, protocol }) => {
+                            ethernet::cooked(link_type, data, protocol, at).map(Ok)
+                        }
+                        _ => None,
+                    }
+                }
+                _ => None,
+            };
+            match ethernet {
+                None => {}
+                Some(Ok(Ethernet::Other(kind))) => {
+                    self.input.consume(packet.len);
+                    self.other.add(kind.into());
+                    continue;
+                }
+                Some(Ok(found @ Ethernet::Ethercat { .. })) => {
+                    // Made an event after the loop, which can lend the
+                    // bytes.
+                    self.input.consume(packet.len);
+                    break (found, packet);
+                }
+                Some(Err(reason)) => {
+                    // A damaged packet whose size is known: skipped, the
+                    // capture read on.
+                    self.input.consume(packet.len);
+                    let error = LogError::new(
+                        Some(Position::Record(self.number)),
+                        LogErrorKind::Malformed(FormatError::Binary {
+                            format: self.log_format(),
+                            offset: self.input.offset() - (packet.len - packet.data.start) as u64,
+                            reason,
+                        }),
+                    );
+                    self.skipped = self.skipped.saturating_add(1);
+                    return Some(Err(error));
+                }
+            }
             // The SocketCAN frame's offset in the packet, and how it is
             // laid out; or the kind of packet that holds none.
             let framed = match packet.link_type {
@@ -980,6 +1033,10 @@ impl<R: Read> ReadLog for PcapReader<R> {
                             ifindex,
                         }) => Ok((at, layout, ifindex)),
                         Ok(Cooked::Other(kind)) => Err(Ok(kind)),
+                        Ok(Cooked::Ethernet { protocol, .. }) => Err(Ok(NotCan::CookedProtocol {
+                            link_type,
+                            protocol,
+                        })),
                         Err(reason) => Err(Err((0, reason))),
                     }
                 }
@@ -1020,7 +1077,26 @@ impl<R: Read> ReadLog for PcapReader<R> {
                     direction: None,
                 }),
             }));
-        }
+        };
+        let Ethernet::Ethercat { at, ifindex, .. } = found else {
+            return None;
+        };
+        let payload = self
+            .input
+            .behind(packet.len - packet.data.start - at, packet.data.len() - at);
+        let link = found.link(payload)?;
+        let iface = self.iface_of(
+            packet.interface,
+            ifindex.and_then(|i| u16::try_from(i).ok()),
+        );
+        Some(Ok(LogRecord {
+            position: Position::Record(self.number),
+            event: LogEvent::Ethercat(EthercatPacket {
+                timestamp: packet.timestamp,
+                iface,
+                link,
+            }),
+        }))
     }
 
     fn other_records(&self) -> u64 {
@@ -1032,8 +1108,8 @@ impl<R: Read> ReadLog for PcapReader<R> {
     }
 
     fn skipped(&self) -> u64 {
-        // Every error of a capture ends it.
-        0
+        // Every other error of a capture ends it.
+        self.skipped
     }
 
     fn bytes_read(&self) -> u64 {

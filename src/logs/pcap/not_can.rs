@@ -16,6 +16,8 @@ pub(super) enum NotCan {
     CanXl,
     /// [`OtherRecord::SystemdJournal`].
     SystemdJournal,
+    /// [`OtherRecord::EtherType`].
+    EtherType(u16),
 }
 
 impl From<NotCan> for OtherRecord {
@@ -31,6 +33,7 @@ impl From<NotCan> for OtherRecord {
             },
             NotCan::CanXl => OtherRecord::CanXl,
             NotCan::SystemdJournal => OtherRecord::SystemdJournal,
+            NotCan::EtherType(ether_type) => OtherRecord::EtherType(ether_type),
         }
     }
 }

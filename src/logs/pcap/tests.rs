@@ -281,9 +281,49 @@ fn messages_of_the_new_reasons() {
 
 #[test]
 fn a_packet_of_another_link_type_is_counted_not_decoded() {
-    let f = writer::pcap(&[(Timestamp::ZERO, vec![0xFF; 3])], 1, false, false);
+    let f = writer::pcap(&[(Timestamp::ZERO, vec![0xFF; 3])], 105, false, false);
     let (frames, error, other) = read_all(&f);
     assert_eq!((frames.len(), error, other), (0, None, 1));
+}
+
+/// An Ethernet port's capture (docs/ethercat.md#reading): EtherCAT is an
+/// event, another EtherType is counted, a packet shorter than its
+/// Ethernet header is skipped with its number and the capture read on.
+#[test]
+fn ethernet_packets_are_ethercat_counted_or_skipped() {
+    let mut ethercat = vec![0xff; 6];
+    ethercat.extend([0x10; 6]);
+    ethercat.extend([0x88, 0xa4, 0x0e, 0x10]);
+    ethercat.extend([7, 1, 0, 0, 0x30, 0x01, 2, 0, 0, 0, 8, 0, 0, 0]);
+    let mut arp = vec![0xff; 12];
+    arp.extend([0x08, 0x06, 0, 1]);
+    let packets = [
+        (Timestamp::ZERO, vec![0xff; 9]),
+        (Timestamp::ZERO, arp),
+        (Timestamp::ZERO, ethercat.clone()),
+    ];
+    let f = writer::pcap(&packets, u32::from(LINKTYPE_ETHERNET), false, false);
+    let mut reader = PcapReader::new(&f[..]).unwrap();
+    let short = reader.next_event().unwrap().unwrap_err();
+    assert!(short.is_skipped());
+    assert_eq!(short.position(), Some(Position::Record(1)));
+    assert_eq!(
+        short.to_string(),
+        "record 1: pcap file, byte 40: Ethernet frame: buffer of 9 bytes where 14 are needed"
+    );
+    let record = reader.next_event().unwrap().unwrap();
+    assert_eq!(record.position, Position::Record(3));
+    let LogEvent::Ethercat(packet) = record.event else {
+        panic!("{}", record.event)
+    };
+    assert_eq!(packet.link.payload, &ethercat[14..]);
+    assert_eq!(packet.link.source.to_string(), "10:10:10:10:10:10");
+    assert!(reader.next_event().is_none());
+    assert_eq!(reader.skipped(), 1);
+    assert_eq!(
+        reader.other_kinds()[0].to_string(),
+        "1 packet of EtherType 0x0806 (ARP) skipped: neither CAN nor EtherCAT"
+    );
 }
 
 /// The `FormatError::Binary` of a reader's error (an I/O error is a test failure).

@@ -37,6 +37,7 @@ fn check(line: &[u8], result: &Result<Option<LogEvent<'_>>>) -> Result<(), TestC
             prop_assert!(!matches!(f.iface, Some(Iface::Name(_))));
         }
         Ok(Some(LogEvent::Status(_)) | None) => {}
+        Ok(Some(LogEvent::Ethercat(_))) => prop_assert!(false, "a TRC line is no EtherCAT packet"),
         Err(FormatError::Syntax {
             format: LogFormat::Trc,
             column,

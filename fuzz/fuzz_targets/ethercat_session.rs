@@ -1,0 +1,98 @@
+//! The EtherCAT session and its records (docs/ethercat.md#direction,
+//! docs/ethercat.md#records): `motionwire::ethercat::{Session,
+//! DatagramRecord}`.
+//!
+//! Arbitrary bytes → packets: each starts with a length byte and a flags
+//! byte (bit 0: the returned bit of the source MAC, bits 1–2: one of four
+//! interfaces, bit 3: another master), then its EtherCAT payload. Invariants:
+//! - nothing panics; a damaged packet is an error naming its position;
+//! - a returned copy pairs only with an earlier sent packet;
+//! - the counts add up: every packet is sent, returned, returned without
+//!   its sent copy, of another frame type, or damaged; the frames lost are
+//!   at most the frames sent, and after `finish` every sent frame is either
+//!   returned or lost;
+//! - every datagram's record is one line of valid JSON with the keys of
+//!   docs/ethercat.md#records, and its text prints.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use motionwire::can::{EthercatPacket, Iface, Timestamp};
+use motionwire::ethercat::{
+    DatagramRecord, Encapsulation, EthercatLink, FrameCopy, Mac, Session,
+};
+use motionwire::logs::Position;
+
+const NAMES: [&str; 4] = ["eth0", "eth1", "eth2", "eth3"];
+
+fuzz_target!(|data: &[u8]| {
+    let mut session = Session::new();
+    let mut rest = data;
+    let mut number = 0u64;
+    let mut headers_damaged = 0u64;
+    let mut json = Vec::new();
+    while let [len, flags, tail @ ..] = rest {
+        let len = usize::from(*len).min(tail.len());
+        let (payload, after) = tail.split_at(len);
+        rest = after;
+        number += 1;
+        let mut source = [if flags & 8 != 0 { 0x20 } else { 0x10 }; 6];
+        if flags & 1 != 0 {
+            source[0] |= Mac::RETURNED_BIT;
+        }
+        let packet = EthercatPacket {
+            timestamp: Timestamp::new(number, 0),
+            iface: Some(Iface::Name(NAMES[usize::from((flags >> 1) & 3)])),
+            link: EthercatLink {
+                destination: None,
+                source: Mac(source),
+                encapsulation: Encapsulation::Ethernet,
+                payload,
+            },
+        };
+        let position = Position::Record(number);
+        let read = match session.read(position, &packet) {
+            Ok(read) => read,
+            Err(damaged) => {
+                assert_eq!(damaged.position, position);
+                let _ = damaged.to_string();
+                headers_damaged += 1;
+                continue;
+            }
+        };
+        if let FrameCopy::Returned { sent } = read.copy {
+            assert!(sent < position);
+        }
+        for (at, datagram) in read.datagrams().enumerate() {
+            let Ok(datagram) = datagram else {
+                session.count_damaged();
+                break;
+            };
+            let record = DatagramRecord {
+                packet: &read,
+                number: at + 1,
+                datagram,
+            };
+            json.clear();
+            record.append_json(&mut json, Some("f\"ile"));
+            assert_eq!(json.last(), Some(&b'\n'));
+            let value: serde_json::Value = serde_json::from_slice(&json).unwrap();
+            assert_eq!(value["packet"], number);
+            assert_eq!(value["kind"], "ecat_datagram");
+            assert_eq!(value["returned"], read.copy.returned());
+            assert_eq!(value["data"].as_str().unwrap().len(), datagram.data().len() * 2);
+            let mut text = Vec::new();
+            record.write_text(&mut text, None).unwrap();
+            assert_eq!(text.iter().filter(|&&b| b == b'\n').count(), 1);
+        }
+    }
+    let counts = session.counts();
+    assert_eq!(counts.packets, number);
+    assert_eq!(
+        counts.sent + counts.returned + counts.returned_unpaired + counts.other_frame_types
+            + headers_damaged,
+        number
+    );
+    assert!(counts.lost <= counts.sent);
+    let end = session.finish();
+    assert_eq!(end.sent, end.returned + end.lost);
+});
