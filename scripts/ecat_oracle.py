@@ -27,12 +27,16 @@ Deterministic: rows in frame order, datagrams in wire order, no
 timestamps; re-running rewrites identical files for the same tshark
 version (the README of the fixtures names the version used).
 
-Usage: scripts/ecat_oracle.py [--check] [CAPTURE.pcapng ...]
-  --check  compare with the files on disk instead of writing; exit 1 on
-           a difference.
+Usage: scripts/ecat_oracle.py [--check] [--verify] [CAPTURE.pcapng ...]
+  --check   compare with the files on disk instead of writing; exit 1 on
+            a difference.
+  --verify  also parse each capture without tshark (pcapng blocks,
+            Ethernet, EtherCAT header, datagrams) and compare every cell
+            of the datagram rows with tshark's; exit 1 on a difference.
 """
 
 import os
+import struct
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -176,6 +180,70 @@ def dissect(path):
         raise SystemExit("tshark failed on %s" % path)
 
 
+def raw_datagrams(path):
+    """The datagram rows, parsed from the pcapng bytes without tshark."""
+    buf = open(path, "rb").read()
+    pos, number, order = 0, 0, "<"
+    while pos + 12 <= len(buf):
+        btype = struct.unpack_from("<I", buf, pos)[0]
+        if btype == 0x0A0D0D0A:
+            bom = struct.unpack_from("<I", buf, pos + 8)[0]
+            order = "<" if bom == 0x1A2B3C4D else ">"
+        btype, blen = struct.unpack_from(order + "II", buf, pos)
+        pkt = None
+        if btype == 6:  # enhanced packet block
+            caplen = struct.unpack_from(order + "I", buf, pos + 20)[0]
+            pkt = buf[pos + 28:pos + 28 + caplen]
+        elif btype == 3:  # simple packet block
+            pkt = buf[pos + 12:pos + blen - 4]
+        pos += blen
+        if pkt is None:
+            continue
+        number += 1
+        off, ethertype = 14, struct.unpack_from(">H", pkt, 12)[0]
+        if ethertype == 0x8100:
+            off, ethertype = 18, struct.unpack_from(">H", pkt, 16)[0]
+        if ethertype != 0x88A4:
+            continue
+        off += 2  # EtherCAT header
+        src = ":".join("%02x" % b for b in pkt[6:12])
+        dg = 0
+        while off + 12 <= len(pkt):
+            cmd, idx, a1, a2, ln, irq = struct.unpack_from("<BBHHHH", pkt, off)
+            length = ln & 0x7FF
+            data = pkt[off + 10:off + 10 + length]
+            wkc = struct.unpack_from("<H", pkt, off + 10 + length)[0]
+            dg += 1
+            row = {"frame": str(number), "dg": str(dg), "eth_src": src,
+                   "cmd": "0x%02x" % cmd, "idx": "0x%02x" % idx,
+                   "len": str(length), "wkc": str(wkc), "irq": "0x%04x" % irq,
+                   "data": data.hex()}
+            if cmd in (10, 11, 12):
+                row["lad"] = "0x%08x" % (a1 | a2 << 16)
+            else:
+                row["adp"], row["ado"] = "0x%04x" % a1, "0x%04x" % a2
+            yield row
+            off += 12 + length
+            if not ln & 0x8000:
+                break
+
+
+def verify(path, dgs):
+    """Count the cells where tshark's rows and the raw parse differ."""
+    raw = list(raw_datagrams(path))
+    bad = abs(len(raw) - len(dgs))
+    for a, b in zip(dgs, raw):
+        for c in DG_COLS:
+            if (a.get(c) or "") != (b.get(c) or ""):
+                bad += 1
+                if bad <= 5:
+                    sys.stderr.write("verify %s frame %s dg %s %s: tshark %r"
+                                     " raw %r\n" % (os.path.basename(path),
+                                                    a["frame"], a["dg"], c,
+                                                    a.get(c), b.get(c)))
+    return bad
+
+
 def table(cols, rows):
     lines = ["\t".join(cols)]
     for r in rows:
@@ -185,7 +253,8 @@ def table(cols, rows):
 
 def main(argv):
     check = "--check" in argv
-    files = [a for a in argv if a != "--check"]
+    do_verify = "--verify" in argv
+    files = [a for a in argv if a not in ("--check", "--verify")]
     if not files:
         files = sorted(os.path.join(DATA, f) for f in os.listdir(DATA)
                        if f.endswith(".pcapng"))
@@ -195,6 +264,12 @@ def main(argv):
         dgs, mbxs = [], []
         for kind, row in dissect(path):
             (dgs if kind == "dg" else mbxs).append(row)
+        if do_verify:
+            diffs = verify(path, dgs)
+            bad += 1 if diffs else 0
+            sys.stderr.write("%s: raw parse %s\n" % (
+                os.path.basename(path),
+                "agrees" if not diffs else "differs in %d cells" % diffs))
         base = path[:-len(".pcapng")] if path.endswith(".pcapng") else path
         outs = {base + ".tshark.tsv": table(DG_COLS, dgs),
                 base + ".coe.tsv": table(MB_COLS, mbxs)}
