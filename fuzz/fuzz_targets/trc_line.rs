@@ -45,6 +45,7 @@ fuzz_target!(|data: &[u8]| {
             Ok(Some(LogEvent::Status(status))) => {
                 assert!(!matches!(status.iface, Some(Iface::Name(_))));
             }
+            Ok(Some(LogEvent::Ethercat(_))) => panic!("a TRC line is no EtherCAT packet"),
             Ok(None) => {}
             Err(error) => check_error(line, error),
         }

@@ -103,6 +103,7 @@ impl Run {
                 config = config.heartbeat_timeout(time);
             }
             let mut summarizer = Summarizer::new(config);
+            let mut ethercat = motionwire::ethercat::Session::new();
             let mut log = logs::open(path(file)).unwrap();
             while let Some(next) = log.next_event() {
                 // Malformed lines and damaged records go to the program's
@@ -117,6 +118,20 @@ impl Run {
                         decoded.write_json_in(&mut out, file).unwrap();
                     } else {
                         decoded.write_json(&mut out).unwrap();
+                    }
+                } else if let motionwire::can::LogEvent::Ethercat(packet) = &record.event {
+                    // docs/ethercat.md#records: a record per datagram.
+                    let Ok(packet) = ethercat.read(position, packet) else {
+                        continue;
+                    };
+                    for (at, datagram) in packet.datagrams().enumerate() {
+                        let Ok(datagram) = datagram else { break };
+                        let record = motionwire::ethercat::DatagramRecord {
+                            packet: &packet,
+                            number: at + 1,
+                            datagram,
+                        };
+                        record.append_json(&mut out, several.then_some(file.as_str()));
                     }
                 }
             }

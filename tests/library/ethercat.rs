@@ -9,14 +9,16 @@ use motionwire::can::LogEvent;
 use motionwire::ethercat::{Addressing, Session};
 use motionwire::logs::{self, ReadLog};
 
-/// The fixtures, each with tshark's dissection beside it.
-const CAPTURES: [&str; 6] = [
+/// The fixtures, each with tshark's dissection beside it: six real
+/// captures and one written by scripts/ecat_pcapng.py.
+const CAPTURES: [&str; 7] = [
     "twincat-akd-startup",
     "soem-akd-sdo",
     "soem-single-lan9252",
     "replay-dc",
     "replay-ek1914-el3004-configure",
     "replay-ek1914-segmented-upload",
+    "synthetic_akd_fault",
 ];
 
 /// Read `name`'s capture and write one row per datagram in the columns of
