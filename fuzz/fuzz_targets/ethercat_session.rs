@@ -12,13 +12,16 @@
 //!   at most the frames sent, and after `finish` every sent frame is either
 //!   returned or lost;
 //! - every datagram's record is one line of valid JSON with the keys of
-//!   docs/ethercat.md#records, and its text prints.
+//!   docs/ethercat.md#records, and its text prints;
+//! - what a datagram tells of the slaves comes from returned copies only,
+//!   and every meaning's record is one line of JSON of its kind, its text
+//!   one line.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{EthercatPacket, Iface, Timestamp};
 use motionwire::ethercat::{
-    DatagramRecord, Encapsulation, EthercatLink, FrameCopy, Mac, Session,
+    DatagramRecord, Encapsulation, EthercatLink, FrameCopy, Mac, MeaningRecord, Session,
 };
 use motionwire::logs::Position;
 
@@ -83,6 +86,26 @@ fuzz_target!(|data: &[u8]| {
             let mut text = Vec::new();
             record.write_text(&mut text, None).unwrap();
             assert_eq!(text.iter().filter(|&&b| b == b'\n').count(), 1);
+            let mut meanings = Vec::new();
+            session.meanings(&read, at, &datagram, |m| meanings.push(m));
+            if !read.copy.returned() {
+                assert!(meanings.is_empty(), "a sent copy proves nothing");
+            }
+            for meaning in meanings {
+                let record = MeaningRecord {
+                    packet: &read,
+                    number: at + 1,
+                    meaning,
+                };
+                json.clear();
+                record.append_json(&mut json, None);
+                let value: serde_json::Value = serde_json::from_slice(&json).unwrap();
+                assert_eq!(value["kind"], record.kind());
+                assert_eq!(value["packet"], number);
+                let mut text = Vec::new();
+                record.write_text(&mut text, datagram.command().name(), None).unwrap();
+                assert_eq!(text.iter().filter(|&&b| b == b'\n').count(), 1);
+            }
         }
     }
     let counts = session.counts();

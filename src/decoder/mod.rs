@@ -45,7 +45,7 @@ mod columns;
 pub(crate) mod json;
 mod names;
 mod pdo;
-mod record;
+pub(crate) mod record;
 mod sdo;
 mod servo;
 

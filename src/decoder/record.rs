@@ -270,7 +270,7 @@ impl Decoded<'_> {
 }
 
 /// The EMCY keys of docs/output.md#emcy, with the profile's keys.
-fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
+pub(crate) fn emcy_json(obj: &mut Object<'_>, emcy: &Emcy, profile: Profile) {
     obj.uint("code", u64::from(emcy.code.get()));
     obj.name("class", emcy.code.class().name());
     obj.name("description", emcy.code.description());

@@ -6,10 +6,14 @@
 pub use motionwire_codec::ethercat::*;
 
 #[cfg(feature = "std")]
+mod network;
+#[cfg(feature = "std")]
 mod session;
+#[cfg(feature = "std")]
+pub use network::{AlRegister, Meaning, SiiField, SlaveRef};
 #[cfg(feature = "std")]
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
 #[cfg(feature = "decoder")]
 mod record;
 #[cfg(feature = "decoder")]
-pub use record::{DatagramRecord, Fields, DATAGRAM_KIND};
+pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND};

@@ -5,8 +5,13 @@ use core::fmt;
 use std::io::{self, Write};
 
 use crate::can::Iface;
-use crate::decoder::json;
-use crate::ethercat::{Addressing, Datagram, Packet};
+use crate::canopen::Emcy;
+use crate::decoder::json::{self, Object};
+use crate::decoder::record::emcy_json;
+use crate::ethercat::{
+    Addressing, AlRegister, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType,
+    Meaning, Packet, SiiField, SlaveRef, COE_HEADER_LEN,
+};
 
 /// The kind of a datagram's record (`"kind": "ecat_datagram"`).
 pub const DATAGRAM_KIND: &str = "ecat_datagram";
@@ -153,5 +158,419 @@ impl fmt::Display for Fields<'_, '_, '_> {
             }
         }
         Ok(())
+    }
+}
+
+/// Write the keys every record of a packet starts with: `file` (when
+/// given), `packet`, `datagram`, `ts`, `iface`.
+fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&str>) {
+    match file {
+        None => out.extend_from_slice(b"{\"packet\":"),
+        Some(file) => {
+            out.extend_from_slice(b"{\"file\":");
+            json::string(out, file);
+            out.extend_from_slice(b",\"packet\":");
+        }
+    }
+    json::uint(out, packet.position.number());
+    out.extend_from_slice(b",\"datagram\":");
+    json::uint(out, number as u64);
+    out.extend_from_slice(b",\"ts\":");
+    match packet.timestamp {
+        Some(ts) => json::timestamp(out, ts),
+        None => out.extend_from_slice(b"null"),
+    }
+    out.extend_from_slice(b",\"iface\":");
+    match packet.iface {
+        Some(Iface::Name(name)) => json::string(out, name),
+        Some(Iface::Channel(channel)) => json::uint(out, u64::from(channel)),
+        None => out.extend_from_slice(b"null"),
+    }
+}
+
+/// What a datagram told of a slave, as `decode` writes it: one record per
+/// [`Meaning`] (docs/ethercat.md#meanings), after the datagram's own.
+#[derive(Debug, Clone, Copy)]
+pub struct MeaningRecord<'p, 'a> {
+    /// The packet the datagram is in.
+    pub packet: &'p Packet<'a>,
+    /// The datagram's place in its frame, from 1.
+    pub number: usize,
+    /// What it told.
+    pub meaning: Meaning<'a>,
+}
+
+impl MeaningRecord<'_, '_> {
+    /// Return the record's kind: `station`, `al_state`, `sii`, `coe_sdo`,
+    /// `coe_emcy` or `mailbox` (docs/ethercat.md#meanings).
+    #[must_use]
+    pub fn kind(&self) -> &'static str {
+        match self.meaning {
+            Meaning::StationAddress { .. } => "station",
+            Meaning::AlState { .. } | Meaning::BroadcastAlStatus { .. } => "al_state",
+            Meaning::Sii { .. } => "sii",
+            Meaning::Mailbox { header, body, .. } => match coe(header.mailbox_type, body) {
+                Some((CoeService::Emergency, _)) => "coe_emcy",
+                Some((CoeService::SdoRequest | CoeService::SdoResponse, _)) => "coe_sdo",
+                _ => "mailbox",
+            },
+        }
+    }
+
+    /// Append the record as one JSON object and a newline to `out`, with
+    /// `"file": file` first when given (docs/ethercat.md#meanings).
+    pub fn append_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
+        prefix(out, self.packet, self.number, file);
+        let mut obj = Object::after_first(out);
+        obj.name("kind", self.kind());
+        match self.meaning {
+            Meaning::StationAddress { slave } => slave_json(&mut obj, slave),
+            Meaning::AlState {
+                slave,
+                register,
+                status,
+                code,
+            } => {
+                slave_json(&mut obj, slave);
+                obj.bool("broadcast", false);
+                obj.name("register", register.name());
+                al_json(&mut obj, status, code);
+                obj.null("answered");
+            }
+            Meaning::BroadcastAlStatus { status, answered } => {
+                slave_json(&mut obj, SlaveRef::default());
+                obj.bool("broadcast", true);
+                obj.name("register", AlRegister::Status.name());
+                al_json(&mut obj, Some(status), None);
+                obj.uint("answered", u64::from(answered));
+            }
+            Meaning::Sii { slave, word, value } => {
+                slave_json(&mut obj, slave);
+                obj.uint("word", u64::from(word));
+                obj.uint("value", u64::from(value));
+                match SiiField::at(word) {
+                    Some(field) => obj.name("field", field.name()),
+                    None => obj.null("field"),
+                }
+            }
+            Meaning::Mailbox {
+                slave,
+                written,
+                accepted,
+                guessed,
+                header,
+                body,
+                profile,
+            } => {
+                slave_json(&mut obj, slave);
+                obj.name("direction", if written { "write" } else { "read" });
+                obj.bool("accepted", accepted);
+                obj.bool("guessed", guessed);
+                obj.name("type", header.mailbox_type.name());
+                obj.uint("length", u64::from(header.length));
+                obj.uint("address", u64::from(header.address));
+                obj.uint("channel", u64::from(header.channel));
+                obj.uint("priority", u64::from(header.priority));
+                obj.uint("counter", u64::from(header.counter));
+                mailbox_json(&mut obj, header.mailbox_type, body, profile);
+            }
+        }
+        obj.end();
+        out.push(b'\n');
+    }
+
+    /// Write the record as one line of `decode`'s text output: packet,
+    /// time, interface, the command of its datagram, kind, then what it
+    /// says in words.
+    ///
+    /// # Errors
+    ///
+    /// Writing to `out` failed.
+    pub fn write_text<W: Write>(
+        &self,
+        out: &mut W,
+        command: &str,
+        file: Option<&str>,
+    ) -> io::Result<()> {
+        if let Some(file) = file {
+            write!(out, "{file}:")?;
+        }
+        write!(out, "{:>7}  ", self.packet.position.number())?;
+        match self.packet.timestamp {
+            Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
+            None => write!(out, "{:>17}  ", "-")?,
+        }
+        match self.packet.iface {
+            Some(Iface::Name(name)) => write!(out, "{name:<6} ")?,
+            Some(Iface::Channel(channel)) => write!(out, "{channel:<6} ")?,
+            None => write!(out, "{:<6} ", "-")?,
+        }
+        writeln!(out, "{command:>8}  {:<13}  {}", self.kind(), Words(self))
+    }
+}
+
+/// A meaning in words, as the text output writes it.
+struct Words<'r, 'p, 'a>(&'r MeaningRecord<'p, 'a>);
+
+impl fmt::Display for Words<'_, '_, '_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let slave = |f: &mut fmt::Formatter<'_>, slave: SlaveRef| -> fmt::Result {
+            match (slave.station, slave.position) {
+                (Some(s), Some(p)) => write!(f, "slave {s:#06x} ({s}) at {p}"),
+                (Some(s), None) => write!(f, "slave {s:#06x} ({s})"),
+                (None, Some(p)) => write!(f, "slave at {p}"),
+                (None, None) => f.write_str("every slave"),
+            }
+        };
+        match self.0.meaning {
+            Meaning::StationAddress { slave: s } => {
+                slave(f, s)?;
+                f.write_str(" given its station address")
+            }
+            Meaning::AlState {
+                slave: s,
+                register,
+                status,
+                code,
+            } => {
+                slave(f, s)?;
+                match (register, status) {
+                    (AlRegister::Control, Some(st)) => {
+                        write!(f, " requested {}", state_words(st))?;
+                        if st.error() {
+                            f.write_str(" (error acknowledged)")?;
+                        }
+                    }
+                    (_, Some(st)) => {
+                        write!(f, " in {}", state_words(st))?;
+                        if st.error() {
+                            f.write_str(" with error")?;
+                        }
+                    }
+                    (_, None) => f.write_str(" AL status code")?,
+                }
+                if let Some(code) = code {
+                    write!(f, " code {code}")?;
+                }
+                Ok(())
+            }
+            Meaning::BroadcastAlStatus { status, answered } => write!(
+                f,
+                "broadcast: {} from {answered} slave{}{}",
+                state_words(status),
+                if answered == 1 { "" } else { "s" },
+                if status.error() { ", error" } else { "" }
+            ),
+            Meaning::Sii {
+                slave: s,
+                word,
+                value,
+            } => {
+                slave(f, s)?;
+                write!(f, " SII word {word:#06x} = {value:#010x}")?;
+                if let Some(field) = SiiField::at(word) {
+                    write!(f, " ({})", field.name())?;
+                }
+                Ok(())
+            }
+            Meaning::Mailbox {
+                slave: s,
+                written,
+                accepted,
+                guessed,
+                header,
+                body,
+                ..
+            } => {
+                slave(f, s)?;
+                write!(
+                    f,
+                    " mailbox {} {} {} bytes counter {}",
+                    if written { "write" } else { "read" },
+                    header.mailbox_type,
+                    header.length,
+                    header.counter
+                )?;
+                if !accepted {
+                    f.write_str(" not accepted")?;
+                }
+                if guessed {
+                    f.write_str(" (area guessed)")?;
+                }
+                match coe(header.mailbox_type, body) {
+                    Some((CoeService::Emergency, rest)) => match Emcy::parse(rest) {
+                        Ok(emcy) => write!(
+                            f,
+                            ": emergency {:#06x} {}  register {:#04x}",
+                            emcy.code.get(),
+                            emcy.code.description(),
+                            emcy.register.bits()
+                        ),
+                        Err(e) => write!(f, ": emergency, {e}"),
+                    },
+                    Some((service @ (CoeService::SdoRequest | CoeService::SdoResponse), rest)) => {
+                        write!(f, ": {service}")?;
+                        if let Ok(sdo) = CoeSdo::parse(rest) {
+                            write!(f, " command {:#04x}", sdo.command())?;
+                            let segment = sdo.specifier() == 0;
+                            if let Some((index, sub)) = sdo.multiplexer().filter(|_| !segment) {
+                                write!(f, " {index:04X}sub{sub}")?;
+                            }
+                            if sdo.complete_access() {
+                                f.write_str(" complete access")?;
+                            }
+                            if let Some(abort) = sdo.abort_code() {
+                                write!(f, " abort {abort}")?;
+                            }
+                        }
+                        Ok(())
+                    }
+                    Some((service, _)) => write!(f, ": {service}"),
+                    None if header.mailbox_type == MailboxType::Error => {
+                        match MailboxError::parse(body) {
+                            Ok(error) => write!(f, ": {error}"),
+                            Err(e) => write!(f, ": {e}"),
+                        }
+                    }
+                    None => Ok(()),
+                }
+            }
+        }
+    }
+}
+
+/// `op`, or the bits when they name no one state (`0x0a`).
+fn state_words(status: crate::ethercat::AlStatus) -> String {
+    match status.state() {
+        Some(state) => state.name().to_owned(),
+        None => format!("states {:#04x}", status.state_bits()),
+    }
+}
+
+/// A CoE message's service and the bytes after its header.
+fn coe(mailbox_type: MailboxType, body: &[u8]) -> Option<(CoeService, &[u8])> {
+    if mailbox_type != MailboxType::Coe {
+        return None;
+    }
+    let header = CoeHeader::parse(body).ok()?;
+    Some((header.service, &body[COE_HEADER_LEN..]))
+}
+
+/// `slave` and `position`, null where not known.
+fn slave_json(obj: &mut Object<'_>, slave: SlaveRef) {
+    match slave.station {
+        Some(s) => obj.uint("slave", u64::from(s)),
+        None => obj.null("slave"),
+    }
+    match slave.position {
+        Some(p) => obj.uint("position", u64::from(p)),
+        None => obj.null("position"),
+    }
+}
+
+/// `state`, `state_bits`, `error`, `code`, `code_text`.
+fn al_json(
+    obj: &mut Object<'_>,
+    status: Option<crate::ethercat::AlStatus>,
+    code: Option<crate::ethercat::AlStatusCode>,
+) {
+    match status {
+        Some(status) => {
+            match status.state() {
+                Some(state) => obj.name("state", state.name()),
+                None => obj.null("state"),
+            }
+            obj.uint("state_bits", u64::from(status.state_bits()));
+            obj.bool("error", status.error());
+        }
+        None => {
+            obj.null("state");
+            obj.null("state_bits");
+            obj.null("error");
+        }
+    }
+    match code {
+        Some(code) => {
+            obj.uint("code", u64::from(code.0));
+            match code.text() {
+                Some(text) => obj.name("code_text", text),
+                None => obj.null("code_text"),
+            }
+        }
+        None => {
+            obj.null("code");
+            obj.null("code_text");
+        }
+    }
+}
+
+/// The keys of what a mailbox message holds: CoE emergency (the EMCY keys
+/// of docs/output.md#emcy), CoE SDO, another CoE service, a mailbox error.
+fn mailbox_json(
+    obj: &mut Object<'_>,
+    mailbox_type: MailboxType,
+    body: &[u8],
+    profile: crate::profiles::Profile,
+) {
+    match coe(mailbox_type, body) {
+        Some((CoeService::Emergency, rest)) => {
+            obj.name("service", CoeService::Emergency.name());
+            match Emcy::parse(rest) {
+                Ok(emcy) => emcy_json(obj, &emcy, profile),
+                Err(e) => obj.display("error", &e),
+            }
+        }
+        Some((service @ (CoeService::SdoRequest | CoeService::SdoResponse), rest)) => {
+            obj.name("service", service.name());
+            match CoeSdo::parse(rest) {
+                Ok(sdo) => {
+                    obj.uint("command", u64::from(sdo.command()));
+                    // A segment (command specifier 0, either way) has no
+                    // index: its bytes after the command are data.
+                    let segment = sdo.specifier() == 0;
+                    match sdo.multiplexer().filter(|_| !segment) {
+                        Some((index, sub)) => {
+                            obj.uint("index", u64::from(index));
+                            obj.uint("subindex", u64::from(sub));
+                        }
+                        None => {
+                            obj.null("index");
+                            obj.null("subindex");
+                        }
+                    }
+                    obj.bool("complete_access", sdo.complete_access());
+                    match sdo.abort_code() {
+                        Some(abort) => {
+                            obj.uint("abort_code", u64::from(abort.get()));
+                            obj.display("abort", &abort);
+                        }
+                        None => {
+                            obj.null("abort_code");
+                            obj.null("abort");
+                        }
+                    }
+                    let data = if segment {
+                        sdo.segment_data()
+                    } else {
+                        sdo.initiate_data()
+                    };
+                    let out = obj.key("data");
+                    json::hex_string(out, data);
+                }
+                Err(e) => obj.display("error", &e),
+            }
+        }
+        Some((service, _)) => obj.name("service", service.name()),
+        None if mailbox_type == MailboxType::Error => match MailboxError::parse(body) {
+            Ok(error) => {
+                obj.uint("error_code", u64::from(error.detail));
+                match error.text() {
+                    Some(text) => obj.name("error_text", text),
+                    None => obj.null("error_text"),
+                }
+            }
+            Err(e) => obj.display("error", &e),
+        },
+        None => {}
     }
 }

@@ -5,7 +5,9 @@
 use std::collections::VecDeque;
 
 use crate::can::{EthercatPacket, Iface, Timestamp};
-use crate::ethercat::{Datagrams, EthercatFrame, FrameType, Mac};
+use crate::ethercat::{Datagram, Datagrams, EthercatFrame, FrameType, Mac};
+
+use super::network::{Meaning, Network};
 use crate::logs::Position;
 use crate::LenError;
 
@@ -42,7 +44,7 @@ impl FrameCopy {
 
 /// One EtherCAT packet as the session read it: its position and time,
 /// which copy it is, and its frame.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Packet<'a> {
     /// The packet's number in the capture.
     pub position: Position,
@@ -56,6 +58,12 @@ pub struct Packet<'a> {
     pub copy: FrameCopy,
     /// The EtherCAT frame.
     pub frame: EthercatFrame<'a>,
+    /// The session's index of the interface.
+    port: usize,
+    /// A returned copy's: the ADP of each datagram of its sent copy, when
+    /// the frame holds a position-addressed datagram (whose returned ADP
+    /// the slaves counted on).
+    sent_adps: Vec<u16>,
 }
 
 impl<'a> Packet<'a> {
@@ -64,14 +72,29 @@ impl<'a> Packet<'a> {
     pub fn datagrams(&self) -> Datagrams<'a> {
         self.frame.datagrams()
     }
+
+    /// Return the ADP the datagram at `at` (from 0) had when it was sent:
+    /// its own for a sent copy, the sent copy's for a paired returned one
+    /// (`None` for a returned copy without it, or a frame without
+    /// position-addressed datagrams).
+    #[must_use]
+    pub fn sent_adp(&self, at: usize, datagram: &Datagram<'_>) -> Option<u16> {
+        match self.copy {
+            FrameCopy::Sent => Some(datagram.adp()),
+            FrameCopy::Returned { .. } => self.sent_adps.get(at).copied(),
+            FrameCopy::ReturnedUnpaired => None,
+        }
+    }
 }
 
 /// A sent frame waiting for its returned copy.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Pending {
     position: Position,
     source: Mac,
     signature: u64,
+    /// Every datagram's ADP, when one is position-addressed.
+    adps: Vec<u16>,
 }
 
 /// What the session keeps per interface.
@@ -80,6 +103,8 @@ struct Port {
     /// The interface's name (`None`: unnamed).
     name: Option<String>,
     pending: VecDeque<Pending>,
+    /// The slaves the port's traffic shows.
+    network: Network,
 }
 
 /// The counts a session keeps, per capture (docs/ethercat.md#direction).
@@ -198,27 +223,48 @@ impl Session {
             }
         };
         let source = packet.link.source;
-        let copy = if frame.frame_type() == FrameType::Datagrams {
-            let port = self.port(packet.iface);
-            self.pair(port, position, source, signature(&frame))
+        let port = self.port(packet.iface);
+        let (copy, sent_adps) = if frame.frame_type() == FrameType::Datagrams {
+            self.pair(port, position, source, &frame)
         } else {
             // No slave processes it: told by the bit alone, never waited
             // for.
             self.counts.other_frame_types += 1;
-            if source.returned_bit() {
+            let copy = if source.returned_bit() {
                 FrameCopy::ReturnedUnpaired
             } else {
                 FrameCopy::Sent
-            }
+            };
+            (copy, Vec::new())
         };
         Ok(Packet {
             position,
             timestamp: packet.timestamp,
             iface: packet.iface,
-            source: packet.link.source,
+            source,
             copy,
             frame,
+            port,
+            sent_adps,
         })
+    }
+
+    /// Hand `on_meaning` what the datagram at `at` (from 0) of `packet`
+    /// tells of the slaves (docs/ethercat.md#slaves): station addresses,
+    /// AL states, SII words, mailbox messages. Call it for every datagram
+    /// of every packet, in order: the session learns the slaves from them.
+    pub fn meanings<'a>(
+        &mut self,
+        packet: &Packet<'a>,
+        at: usize,
+        datagram: &Datagram<'a>,
+        on_meaning: impl FnMut(Meaning<'a>),
+    ) {
+        let sent_adp = packet.sent_adp(at, datagram);
+        if let Some(port) = self.ports.get_mut(packet.port) {
+            port.network
+                .datagram(packet.copy, datagram, sent_adp, on_meaning);
+        }
     }
 
     /// Count a packet whose datagrams the caller found damaged.
@@ -259,6 +305,7 @@ impl Session {
                 self.ports.push(Port {
                     name: iface.map(|i| i.to_string()),
                     pending: VecDeque::new(),
+                    network: Network::default(),
                 });
                 self.ports.len() - 1
             }
@@ -269,7 +316,14 @@ impl Session {
 
     /// Tell which copy a packet is, pairing a returned copy with the
     /// waiting sent frame of the same master and the same datagrams.
-    fn pair(&mut self, port: usize, position: Position, source: Mac, signature: u64) -> FrameCopy {
+    fn pair(
+        &mut self,
+        port: usize,
+        position: Position,
+        source: Mac,
+        frame: &EthercatFrame<'_>,
+    ) -> (FrameCopy, Vec<u16>) {
+        let signature = signature(frame);
         let pending = &mut self.ports[port].pending;
         if source.returned_bit() {
             let master = source.without_returned_bit();
@@ -278,30 +332,46 @@ impl Session {
                 .position(|p| p.signature == signature && p.source == master);
             let Some(at) = found else {
                 self.counts.returned_unpaired += 1;
-                return FrameCopy::ReturnedUnpaired;
+                return (FrameCopy::ReturnedUnpaired, Vec::new());
             };
-            let sent = pending[at].position;
             // The frames sent before it are not coming back: a ring
             // returns frames in the order they were sent.
             for _ in 0..at {
                 pending.pop_front();
                 self.counts.lost += 1;
             }
-            pending.pop_front();
+            let sent = pending.pop_front().expect("found at the front");
             self.counts.returned += 1;
-            return FrameCopy::Returned { sent };
+            return (
+                FrameCopy::Returned {
+                    sent: sent.position,
+                },
+                sent.adps,
+            );
         }
         if pending.len() == PAIRING_WINDOW {
             pending.pop_front();
             self.counts.lost += 1;
         }
+        // A returned position-addressed datagram has another ADP: keep the
+        // sent ones (start-up frames only; a cyclic frame keeps none).
+        let positioned = frame
+            .datagrams()
+            .flatten()
+            .any(|d| d.command().addressing() == crate::ethercat::Addressing::Position);
+        let adps = if positioned {
+            frame.datagrams().flatten().map(|d| d.adp()).collect()
+        } else {
+            Vec::new()
+        };
         pending.push_back(Pending {
             position,
             source,
             signature,
+            adps,
         });
         self.counts.sent += 1;
-        FrameCopy::Sent
+        (FrameCopy::Sent, Vec::new())
     }
 }
 

@@ -132,6 +132,16 @@ impl Run {
                             datagram,
                         };
                         record.append_json(&mut out, several.then_some(file.as_str()));
+                        let mut meanings = Vec::new();
+                        ethercat.meanings(&packet, at, &datagram, |m| meanings.push(m));
+                        for meaning in meanings {
+                            let record = motionwire::ethercat::MeaningRecord {
+                                packet: &packet,
+                                number: at + 1,
+                                meaning,
+                            };
+                            record.append_json(&mut out, several.then_some(file.as_str()));
+                        }
                     }
                 }
             }

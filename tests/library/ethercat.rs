@@ -6,7 +6,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use motionwire::can::LogEvent;
-use motionwire::ethercat::{Addressing, Session};
+use motionwire::ethercat::{
+    Addressing, CoeHeader, CoeSdo, CoeService, MailboxType, Meaning, Session,
+};
 use motionwire::logs::{self, ReadLog};
 
 /// The fixtures, each with tshark's dissection beside it: six real
@@ -117,4 +119,117 @@ fn sent_and_returned_copies_pair_up() {
         );
         eprintln!("{name}: {counts:?}");
     }
+}
+
+/// Read `name`'s capture and write one row per mailbox message the
+/// session finds, in the columns of its `.coe.tsv` that tshark's
+/// `ecat_mailbox` dissector fills on the returned copies: frame,
+/// datagram, mailbox length, type and counter, CoE service, SDO index and
+/// sub-index.
+fn mailbox_rows(name: &str) -> Vec<String> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/ethercat")
+        .join(format!("{name}.pcapng"));
+    let mut log = logs::open(&path).unwrap();
+    let mut session = Session::new();
+    let mut rows = Vec::new();
+    while let Some(record) = log.next_event() {
+        let record = record.unwrap();
+        let LogEvent::Ethercat(packet) = record.event else {
+            continue;
+        };
+        let packet = session.read(record.position, &packet).unwrap();
+        for (at, datagram) in packet.datagrams().enumerate() {
+            let datagram = datagram.unwrap();
+            session.meanings(&packet, at, &datagram, |meaning| {
+                let Meaning::Mailbox { header, body, .. } = meaning else {
+                    return;
+                };
+                let mut row = format!(
+                    "{}\t{}\t{}\t{}\t{}",
+                    record.position,
+                    at + 1,
+                    header.length,
+                    header.mailbox_type.bits(),
+                    header.counter
+                );
+                if header.mailbox_type == MailboxType::Coe {
+                    let coe = CoeHeader::parse(body).unwrap();
+                    write!(row, "\t{}", coe.service.bits()).unwrap();
+                    let sdo = matches!(
+                        coe.service,
+                        CoeService::SdoRequest | CoeService::SdoResponse
+                    );
+                    match CoeSdo::parse(&body[2..])
+                        .ok()
+                        .filter(|s| sdo && s.specifier() != 0)
+                    {
+                        Some(sdo) => {
+                            let (index, sub) = sdo.multiplexer().unwrap();
+                            write!(row, "\t{index:#06x}\t{sub:#04x}").unwrap();
+                        }
+                        None => row.push_str("\t\t"),
+                    }
+                } else {
+                    row.push_str("\t\t\t");
+                }
+                rows.push(row);
+            });
+        }
+    }
+    rows
+}
+
+/// tshark's mailbox rows of the copies that prove a message was delivered
+/// (docs/ethercat.md#mailbox): returned (the source MAC's bit 0x02), and a
+/// read with a working counter of at least 1.
+fn tshark_mailbox_rows(name: &str) -> Vec<String> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/ethercat")
+        .join(format!("{name}.coe.tsv"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split('\t').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let [frame, dg, src, cmd, wkc, len, kind, cnt, coe, idx, sub] = [
+        "frame", "dg", "eth_src", "dg_cmd", "dg_wkc", "mbx_len", "mbx_type", "mbx_cnt", "coe_type",
+        "sdo_idx", "sdo_sub",
+    ]
+    .map(column);
+    lines
+        .map(|line| line.split('\t').collect::<Vec<_>>())
+        .filter(|f| {
+            let returned = u8::from_str_radix(&f[src][..2], 16).unwrap() & 2 != 0;
+            let read = f[cmd] == "0x04";
+            returned && (!read || f[wkc] != "0")
+        })
+        .map(|f| {
+            let coe_type = if f[kind] == "3" { f[coe] } else { "" };
+            let sdo = matches!(coe_type, "2" | "3");
+            format!(
+                "{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}",
+                f[frame],
+                f[dg],
+                f[len],
+                f[kind],
+                f[cnt],
+                coe_type,
+                if sdo { f[idx] } else { "" },
+                if sdo { f[sub] } else { "" }
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn every_mailbox_message_reads_as_tshark_reads_it() {
+    let mut messages = 0;
+    for name in CAPTURES {
+        let ours = mailbox_rows(name);
+        let theirs = tshark_mailbox_rows(name);
+        assert_eq!(ours, theirs, "{name}");
+        messages += ours.len();
+    }
+    // The six real captures and the synthetic one: 128 messages delivered.
+    assert_eq!(messages, 128);
 }

@@ -13,7 +13,7 @@ use std::time::Duration;
 use motionwire::can::{EthercatPacket, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::{Decoder, DecoderConfig};
-use motionwire::ethercat::{DatagramRecord, Session};
+use motionwire::ethercat::{DatagramRecord, MeaningRecord, Session};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::report::{Recorder, Report, ReportInput};
@@ -259,6 +259,10 @@ impl<'a> Sink<'a> {
                     );
                 }
             };
+            // Every datagram teaches the session, shown or not.
+            let mut meanings = Vec::new();
+            self.ethercat
+                .meanings(&packet, at, &datagram, |m| meanings.push(m));
             if !shown {
                 continue;
             }
@@ -278,6 +282,24 @@ impl<'a> Sink<'a> {
                 Output::Text => record.write_text(&mut self.out, self.file.as_deref())?,
                 Output::Csv => {
                     crate::record::write_datagram_csv(&mut self.out, &record, self.file.as_deref())?
+                }
+            }
+            for meaning in meanings {
+                let record = MeaningRecord {
+                    packet: &packet,
+                    number: at + 1,
+                    meaning,
+                };
+                match self.output {
+                    Output::Json => record.append_json(&mut self.json, self.file.as_deref()),
+                    Output::Text => record.write_text(
+                        &mut self.out,
+                        datagram.command().name(),
+                        self.file.as_deref(),
+                    )?,
+                    // One table of frames (docs/ethercat.md#records): the
+                    // datagram's row holds the bytes.
+                    Output::Csv => {}
                 }
             }
         }

@@ -1,0 +1,492 @@
+//! What a port's traffic tells of its slaves (docs/ethercat.md#slaves):
+//! station addresses, AL states, SII words, sync managers and the mailbox
+//! messages they carry. Read from the copies that prove a datagram was
+//! delivered: a write's or a read's returned copy with a working counter of
+//! at least 1.
+
+use crate::ethercat::register::{self, covered};
+use crate::ethercat::{
+    Addressing, AlStatus, AlStatusCode, Command, Datagram, FrameCopy, MailboxHeader, MailboxType,
+    MAILBOX_HEADER_LEN,
+};
+use crate::profiles::Profile;
+
+/// The sync managers a slave has at most (ESC datasheet: 16; the
+/// configuration the tests see uses 4).
+const SYNC_MANAGERS: usize = 16;
+/// A sync manager's configuration registers.
+const SYNC_MANAGER_LEN: u16 = 8;
+/// A mailbox area is at 0x1000 or above (the ESC's process memory).
+const PROCESS_MEMORY: u16 = 0x1000;
+/// The SII control word's read command (bit 8) and busy flag (bit 15).
+const SII_READ: u16 = 0x0100;
+/// The SII control word's busy flag.
+const SII_BUSY: u16 = 0x8000;
+/// Kollmorgen's EtherCAT vendor id.
+const AKD_VENDOR: u32 = 0x0000_006A;
+/// The AKD's product code (`AKD` in ASCII).
+const AKD_PRODUCT: u32 = 0x0041_4B44;
+
+/// Which slave a meaning is about: its configured station address and its
+/// position, as far as the capture has shown them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SlaveRef {
+    /// The configured station address (register 0x0010).
+    pub station: Option<u16>,
+    /// The position on the ring, from 0.
+    pub position: Option<u16>,
+}
+
+/// Which register an AL state meaning was read from or written to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum AlRegister {
+    /// AL control 0x0120: the state the master requests (bit 4: error
+    /// acknowledge).
+    Control,
+    /// AL status 0x0130: the state the slave is in (bit 4: error).
+    Status,
+    /// AL status code 0x0134 read alone.
+    StatusCode,
+}
+
+impl AlRegister {
+    /// Return the register's name as the records write it: `al_control`,
+    /// `al_status`, `al_status_code`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            AlRegister::Control => "al_control",
+            AlRegister::Status => "al_status",
+            AlRegister::StatusCode => "al_status_code",
+        }
+    }
+}
+
+/// A slave's identity words of its SII (ETG.2010 table 2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SiiField {
+    /// Words 0x08–0x09: the vendor id.
+    Vendor,
+    /// Words 0x0A–0x0B: the product code.
+    Product,
+    /// Words 0x0C–0x0D: the revision.
+    Revision,
+    /// Words 0x0E–0x0F: the serial number.
+    Serial,
+}
+
+impl SiiField {
+    /// Return the field the double word at `word` is, if it is one.
+    #[must_use]
+    pub const fn at(word: u32) -> Option<Self> {
+        Some(match word {
+            0x08 => SiiField::Vendor,
+            0x0A => SiiField::Product,
+            0x0C => SiiField::Revision,
+            0x0E => SiiField::Serial,
+            _ => return None,
+        })
+    }
+
+    /// Return the field's name: `vendor`, `product`, `revision`, `serial`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            SiiField::Vendor => "vendor",
+            SiiField::Product => "product",
+            SiiField::Revision => "revision",
+            SiiField::Serial => "serial",
+        }
+    }
+}
+
+/// Something a datagram tells of the slaves (docs/ethercat.md#slaves).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Meaning<'a> {
+    /// The master gave the slave at a position its station address
+    /// (APWR 0x0010).
+    StationAddress {
+        /// The slave, with both.
+        slave: SlaveRef,
+    },
+    /// An AL register of one slave, read or written.
+    AlState {
+        /// The slave.
+        slave: SlaveRef,
+        /// The register.
+        register: AlRegister,
+        /// AL control or status as written or read (`None` for the code
+        /// read alone).
+        status: Option<AlStatus>,
+        /// The AL status code, where the datagram covers 0x0134.
+        code: Option<AlStatusCode>,
+    },
+    /// A broadcast read of AL status: the OR of every slave's state, and
+    /// how many slaves answered. Never one slave's.
+    BroadcastAlStatus {
+        /// The ORed status.
+        status: AlStatus,
+        /// The working counter: the slaves that answered.
+        answered: u16,
+    },
+    /// A double word of a slave's SII read (4 bytes at a word address).
+    Sii {
+        /// The slave.
+        slave: SlaveRef,
+        /// The word address.
+        word: u32,
+        /// The value, little-endian.
+        value: u32,
+    },
+    /// A mailbox message written to a slave or read from it.
+    Mailbox {
+        /// The slave.
+        slave: SlaveRef,
+        /// Written by the master (`true`) or read from the slave.
+        written: bool,
+        /// Whether the slave took it: a write whose returned copy has
+        /// working counter 0 was not accepted (the master repeats it).
+        accepted: bool,
+        /// Whether the area was guessed (no sync-manager configuration
+        /// seen for the slave; docs/ethercat.md#mailbox).
+        guessed: bool,
+        /// The header.
+        header: MailboxHeader,
+        /// The message's body (after the header), as far as the datagram
+        /// holds it.
+        body: &'a [u8],
+        /// The profile that reads the slave's CoE emergencies: the AKD's
+        /// for a slave whose SII says Kollmorgen (vendor 0x6A) AKD (product
+        /// 0x414B44), else CiA 301's (docs/ethercat.md#coe).
+        profile: Profile,
+    },
+}
+
+/// One sync manager's configuration as written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct SyncManager {
+    start: u16,
+    len: u16,
+    control: u8,
+}
+
+impl SyncManager {
+    /// Mode bits 0–1 = 0b10: a mailbox.
+    const fn mailbox(self) -> bool {
+        self.control & 0x03 == 0x02
+    }
+
+    /// Direction bits 2–3 = 0b01: written by the master.
+    const fn written_by_master(self) -> bool {
+        (self.control >> 2) & 0x03 == 0x01
+    }
+}
+
+/// What the port's traffic has shown of one slave.
+#[derive(Debug, Clone, Default)]
+struct Slave {
+    station: Option<u16>,
+    position: Option<u16>,
+    /// The word address of the last SII read command.
+    sii_address: Option<u32>,
+    sync_managers: [Option<SyncManager>; SYNC_MANAGERS],
+    vendor: Option<u32>,
+    product: Option<u32>,
+}
+
+impl Slave {
+    fn reference(&self) -> SlaveRef {
+        SlaveRef {
+            station: self.station,
+            position: self.position,
+        }
+    }
+
+    /// The mailbox area written (`true`) or read at `ado`, if a configured
+    /// sync manager starts there.
+    fn mailbox_at(&self, ado: u16) -> Option<(bool, u16)> {
+        self.sync_managers
+            .iter()
+            .flatten()
+            .find(|sm| sm.mailbox() && sm.start == ado)
+            .map(|sm| (sm.written_by_master(), sm.len))
+    }
+
+    fn has_mailbox(&self) -> bool {
+        self.sync_managers.iter().flatten().any(|sm| sm.mailbox())
+    }
+
+    /// The profile its identity names.
+    fn profile(&self) -> Profile {
+        match (self.vendor, self.product) {
+            (Some(AKD_VENDOR), Some(AKD_PRODUCT)) => Profile::Akd,
+            _ => Profile::Generic,
+        }
+    }
+}
+
+/// The slaves of one port.
+#[derive(Debug, Default)]
+pub(super) struct Network {
+    slaves: Vec<Slave>,
+}
+
+impl Network {
+    /// Read one datagram of a copy; `sent_adp` is the ADP it was sent with
+    /// (a position-addressed datagram's position is its negation).
+    pub(super) fn datagram<'a>(
+        &mut self,
+        copy: FrameCopy,
+        datagram: &Datagram<'a>,
+        sent_adp: Option<u16>,
+        mut on: impl FnMut(Meaning<'a>),
+    ) {
+        // Only a copy that came back proves what the slaves did.
+        if !copy.returned() {
+            return;
+        }
+        let command = datagram.command();
+        let wkc = datagram.working_counter();
+        let ado = datagram.ado();
+        let data = datagram.data();
+        if command == Command::Brd {
+            if let (Some(bytes), true) = (covered(ado, data, register::AL_STATUS, 2), wkc >= 1) {
+                on(Meaning::BroadcastAlStatus {
+                    status: AlStatus(u16::from_le_bytes([bytes[0], bytes[1]])),
+                    answered: wkc,
+                });
+            }
+            return;
+        }
+        if wkc == 0 && !is_mailbox_write(command) {
+            return;
+        }
+        let slave = match command.addressing() {
+            Addressing::Position => match sent_adp {
+                Some(adp) => self.at_position(0u16.wrapping_sub(adp)),
+                None => return,
+            },
+            Addressing::Station => self.at_station(datagram.adp()),
+            _ => return,
+        };
+        // A register is taken from a copy that proves it was delivered;
+        // a mailbox write is recorded either way (refused when not).
+        let delivered = wkc >= 1;
+        let writes = command.writes() && delivered;
+        let reads = command.reads() && delivered;
+        // Station address: written by position.
+        if writes && command.addressing() == Addressing::Position {
+            if let Some(bytes) = covered(ado, data, register::STATION_ADDRESS, 2) {
+                let station = u16::from_le_bytes([bytes[0], bytes[1]]);
+                let at = self.assign(slave, station);
+                on(Meaning::StationAddress {
+                    slave: self.slaves[at].reference(),
+                });
+            }
+        }
+        let reference = self.slaves[slave].reference();
+        if writes {
+            if let Some(bytes) = covered(ado, data, register::AL_CONTROL, 2) {
+                on(Meaning::AlState {
+                    slave: reference,
+                    register: AlRegister::Control,
+                    status: Some(AlStatus(u16::from_le_bytes([bytes[0], bytes[1]]))),
+                    code: None,
+                });
+            }
+            self.sync_manager_writes(slave, ado, data);
+            // The SII command: read, with the word address.
+            if let (Some(control), Some(address)) = (
+                covered(ado, data, register::SII_CONTROL, 2),
+                covered(ado, data, register::SII_ADDRESS, 4),
+            ) {
+                if u16::from_le_bytes([control[0], control[1]]) & SII_READ != 0 {
+                    self.slaves[slave].sii_address = Some(u32::from_le_bytes([
+                        address[0], address[1], address[2], address[3],
+                    ]));
+                }
+            }
+        }
+        if reads && !writes {
+            let status = covered(ado, data, register::AL_STATUS, 2)
+                .map(|b| AlStatus(u16::from_le_bytes([b[0], b[1]])));
+            let code = covered(ado, data, register::AL_STATUS_CODE, 2)
+                .map(|b| AlStatusCode(u16::from_le_bytes([b[0], b[1]])));
+            if status.is_some() || code.is_some() {
+                on(Meaning::AlState {
+                    slave: reference,
+                    register: if status.is_some() {
+                        AlRegister::Status
+                    } else {
+                        AlRegister::StatusCode
+                    },
+                    status,
+                    code,
+                });
+            }
+            self.sii_read(slave, ado, data, &mut on);
+        }
+        if command.addressing() == Addressing::Station
+            && (command == Command::Fpwr || command == Command::Fprd)
+        {
+            if let Some(meaning) = self.mailbox(slave, command == Command::Fpwr, datagram) {
+                on(meaning);
+            }
+        }
+    }
+
+    /// The slave at `position`, added when new.
+    fn at_position(&mut self, position: u16) -> usize {
+        match self
+            .slaves
+            .iter()
+            .position(|s| s.position == Some(position))
+        {
+            Some(at) => at,
+            None => {
+                self.slaves.push(Slave {
+                    position: Some(position),
+                    ..Slave::default()
+                });
+                self.slaves.len() - 1
+            }
+        }
+    }
+
+    /// The slave of station address `station`, added when new.
+    fn at_station(&mut self, station: u16) -> usize {
+        match self.slaves.iter().position(|s| s.station == Some(station)) {
+            Some(at) => at,
+            None => {
+                self.slaves.push(Slave {
+                    station: Some(station),
+                    ..Slave::default()
+                });
+                self.slaves.len() - 1
+            }
+        }
+    }
+
+    /// Give the slave at `at` (known by position) the station address
+    /// `station`: a slave known by that station alone is the same one,
+    /// and another that had it loses it. Return the slave's index.
+    fn assign(&mut self, at: usize, station: u16) -> usize {
+        for (i, other) in self.slaves.iter_mut().enumerate() {
+            if i != at && other.station == Some(station) {
+                other.station = None;
+            }
+        }
+        self.slaves[at].station = Some(station);
+        at
+    }
+
+    /// Keep the sync-manager configuration a write covers.
+    fn sync_manager_writes(&mut self, slave: usize, ado: u16, data: &[u8]) {
+        for n in 0..SYNC_MANAGERS as u16 {
+            let base = register::SYNC_MANAGER_BASE + n * SYNC_MANAGER_LEN;
+            if let Some(b) = covered(ado, data, base, 8) {
+                self.slaves[slave].sync_managers[usize::from(n)] = Some(SyncManager {
+                    start: u16::from_le_bytes([b[0], b[1]]),
+                    len: u16::from_le_bytes([b[2], b[3]]),
+                    control: b[4],
+                });
+            }
+        }
+    }
+
+    /// The SII double words a read of the data register gives, with the
+    /// interface idle (and, when the read covers it, the address read
+    /// back): 4 bytes, or 8 (two double words) as TwinCAT reads them.
+    fn sii_read<'a>(
+        &mut self,
+        slave: usize,
+        ado: u16,
+        data: &[u8],
+        on: &mut impl FnMut(Meaning<'a>),
+    ) {
+        let Some(value) = covered(ado, data, register::SII_DATA, 4) else {
+            return;
+        };
+        let control =
+            covered(ado, data, register::SII_CONTROL, 2).map(|b| u16::from_le_bytes([b[0], b[1]]));
+        if control.is_some_and(|c| c & SII_BUSY != 0) {
+            return;
+        }
+        let word = match covered(ado, data, register::SII_ADDRESS, 4) {
+            Some(b) => u32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+            None => match self.slaves[slave].sii_address {
+                Some(word) => word,
+                None => return,
+            },
+        };
+        let second = covered(ado, data, register::SII_DATA + 4, 4);
+        for (word, bytes) in [(Some(word), Some(value)), (word.checked_add(2), second)] {
+            let (Some(word), Some(b)) = (word, bytes) else {
+                continue;
+            };
+            let value = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            let known = &mut self.slaves[slave];
+            match SiiField::at(word) {
+                Some(SiiField::Vendor) => known.vendor = Some(value),
+                Some(SiiField::Product) => known.product = Some(value),
+                _ => {}
+            }
+            on(Meaning::Sii {
+                slave: known.reference(),
+                word,
+                value,
+            });
+        }
+    }
+
+    /// A mailbox message, where an FPWR or FPRD starts at a mailbox area
+    /// (or, with no sync manager seen, looks like one).
+    fn mailbox<'a>(
+        &mut self,
+        slave: usize,
+        written: bool,
+        datagram: &Datagram<'a>,
+    ) -> Option<Meaning<'a>> {
+        let data = datagram.data();
+        let ado = datagram.ado();
+        let wkc = datagram.working_counter();
+        if data.len() < MAILBOX_HEADER_LEN {
+            // A probe, or the area's last byte.
+            return None;
+        }
+        let header = MailboxHeader::parse(data).ok()?;
+        let room = data.len() - MAILBOX_HEADER_LEN;
+        let plausible = header.length > 0
+            && usize::from(header.length) <= room
+            && !matches!(header.mailbox_type, MailboxType::Reserved(_));
+        let known = &self.slaves[slave];
+        let guessed = match known.mailbox_at(ado) {
+            Some((master_writes, _)) if master_writes == written => false,
+            Some(_) => return None,
+            None if !known.has_mailbox() && ado >= PROCESS_MEMORY && plausible && wkc >= 1 => true,
+            None => return None,
+        };
+        if !written && wkc == 0 {
+            // Read from an empty mailbox: no message.
+            return None;
+        }
+        if !plausible && !guessed && header.length == 0 {
+            return None;
+        }
+        let end = (MAILBOX_HEADER_LEN + usize::from(header.length)).min(data.len());
+        Some(Meaning::Mailbox {
+            slave: known.reference(),
+            written,
+            accepted: wkc >= 1,
+            guessed,
+            header,
+            body: &data[MAILBOX_HEADER_LEN..end],
+            profile: known.profile(),
+        })
+    }
+}
+
+/// A write that may carry a mailbox message, recorded even when refused.
+const fn is_mailbox_write(command: Command) -> bool {
+    matches!(command, Command::Fpwr)
+}
