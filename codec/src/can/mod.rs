@@ -43,8 +43,8 @@ mod timestamp;
 pub use error_frame::{ControllerStatus, ErrorClasses, ErrorFrame};
 pub use flags::{Direction, FdFlags};
 pub use frame::{
-    CanFrame, CanFrameRef, FrameData, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN, FD_LENGTHS,
-    FD_MAX_LEN,
+    CanFrame, CanFrameRef, FrameData, FrameHeader, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN,
+    FD_LENGTHS, FD_MAX_LEN,
 };
 pub use id::CanId;
 pub use log::{BusStatus, Iface, LogEvent, LogFrame};
