@@ -63,7 +63,7 @@ pub use sdo::{EndedTransfer, SdoStep};
 pub use servo::{CommandRecord, FaultRecord, FeedbackRecord};
 
 use crate::can::{Iface, LogFrame};
-use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
+use crate::canopen::sdo::{SdoEvent, SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
     PdoDirection, Signal, Value,
@@ -579,10 +579,11 @@ impl Decoder {
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
-        let fed = state
+        let mut event = SdoEvent::new(sender, bytes);
+        state
             .sdo
-            .feed(sender, bytes, frame.timestamp, position.number(), cap);
-        let value = match &fed.ended {
+            .feed(&mut event, frame.timestamp, position.number(), cap);
+        let value = match &event.ended {
             Some(transfer)
                 if transfer.outcome == SdoOutcome::Completed
                     && teaches(transfer.multiplexer.index) =>
@@ -591,19 +592,15 @@ impl Decoder {
             }
             _ => None,
         };
-        let cia402 = match (&fed.ended, value) {
+        let cia402 = match (&event.ended, value) {
             (Some(transfer), Some(value)) => self.learn(at, node, position, transfer, value),
             _ => None,
         };
         let names = self.names[usize::from(node.get())].get(&self.config);
         let step = SdoSeen {
             node,
-            sender,
-            block_segment: fed.block_segment,
+            event: &event,
             data: bytes,
-            latency: fed.latency,
-            started: fed.started,
-            ended: fed.ended.as_ref(),
             names,
             buses: &self.buses,
             at,
