@@ -722,7 +722,7 @@ impl Decoder {
     }
 
     /// [`pdo`](Self::pdo) on the bus at `at`.
-    #[inline]
+    #[inline(always)]
     fn pdo_at(
         &mut self,
         at: usize,
