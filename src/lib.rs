@@ -189,8 +189,6 @@ pub use motionwire_codec::{
 pub mod decoder;
 #[cfg(feature = "eds")]
 pub mod eds;
-#[cfg(feature = "std")]
-mod iface;
 pub mod logs;
 #[cfg(feature = "report")]
 pub mod report;

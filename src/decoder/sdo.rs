@@ -6,13 +6,13 @@
 use core::fmt;
 use core::time::Duration;
 
-use crate::can::Timestamp;
+use crate::can::{BusName, Timestamp};
 use crate::canopen::sdo::{
     SdoEvent, SdoFrame, SdoMessage, SdoParty, SdoService, SdoTracker, SdoTransfer, TransferMode,
 };
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
-use super::{BusName, ObjectNames};
+use super::ObjectNames;
 use crate::FrameError;
 
 /// One SDO frame as its channel's tracker read it (`sdo` in

@@ -2,9 +2,9 @@
 //! and what it returns, the [`Recording`]: the [`Summary`] and its
 //! [`Timeline`] (docs/report.md#bounded).
 
-use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
-use crate::decoder::{BusName, DecoderConfig};
+use crate::decoder::DecoderConfig;
 use crate::logs::Position;
 use crate::summary::{
     FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent, SummaryEventKind,

@@ -2,13 +2,13 @@
 
 use core::time::Duration;
 
-use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
 use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
     Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusName, Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
+use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
 use super::emcy::EmcySeen;

@@ -29,6 +29,8 @@
 //! # Ok::<(), motionwire_codec::Error>(())
 //! ```
 
+#[cfg(feature = "alloc")]
+mod bus_name;
 #[cfg(feature = "embedded-can")]
 mod embedded;
 mod error_frame;
@@ -40,6 +42,8 @@ mod log;
 mod serde_impls;
 mod timestamp;
 
+#[cfg(feature = "alloc")]
+pub use bus_name::BusName;
 pub use error_frame::{ControllerStatus, ErrorClasses, ErrorFrame};
 pub use flags::{Direction, FdFlags};
 pub use frame::{
