@@ -190,8 +190,6 @@ pub mod decoder;
 #[cfg(feature = "eds")]
 pub mod eds;
 pub mod ethercat;
-#[cfg(feature = "std")]
-mod iface;
 pub mod logs;
 #[cfg(feature = "report")]
 pub mod report;

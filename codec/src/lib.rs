@@ -120,6 +120,9 @@
 #![deny(clippy::must_use_candidate)]
 #![deny(clippy::return_self_not_must_use)]
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 pub mod can;
 pub mod canopen;
 #[cfg(feature = "defmt")]

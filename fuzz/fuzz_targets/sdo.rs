@@ -18,7 +18,9 @@
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::Timestamp;
-use motionwire::canopen::sdo::{SdoBlockSegment, SdoParty, SdoRequest, SdoResponse, SdoTracker};
+use motionwire::canopen::sdo::{
+    SdoBlockSegment, SdoEvent, SdoParty, SdoRequest, SdoResponse, SdoTracker,
+};
 
 fuzz_target!(|input: &[u8]| {
     let mut tracker = SdoTracker::new();
@@ -53,9 +55,10 @@ fuzz_target!(|input: &[u8]| {
 
         carried += data.len().saturating_sub(1) as u64;
         let time = Timestamp::new(u64::from(ms / 1000), ms % 1000 * 1000);
-        let event = tracker.feed(direction, data, time, line);
-        assert!(event.chunk.len() <= 7);
-        handed_out += event.chunk.len() as u64;
+        let mut event = SdoEvent::new(direction, data);
+        tracker.feed(&mut event, time, line);
+        assert!(event.chunk().len() <= 7);
+        handed_out += event.chunk().len() as u64;
         assert!(handed_out <= carried, "{handed_out} bytes out of {carried}");
         if let Some(t) = event.ended {
             let own = event.started && t.start_position == line;

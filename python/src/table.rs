@@ -619,7 +619,7 @@ pub fn findings(
     let ifaces: Vec<Option<String>> = findings
         .iter()
         .map(|f| match &f.bus {
-            motionwire::decoder::BusName::Unnamed => None,
+            motionwire::can::BusName::Unnamed => None,
             bus => Some(bus.to_string()),
         })
         .collect();

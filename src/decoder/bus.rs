@@ -1,101 +1,37 @@
-//! Which bus a frame was seen on, kept beyond the log's buffer
-//! (docs/formats.md#interfaces: a node's identity is its interface and its
-//! node-ID).
+//! The buses a session has seen, each found again by a frame's interface,
+//! and a device named by its bus (docs/formats.md#interfaces: a node's
+//! identity is its interface and its node-ID).
 
 use core::fmt;
 
-use crate::can::Iface;
+use crate::can::{BusName, Iface};
 use crate::canopen::NodeId;
 
-/// An interface as the decoder and the summary keep it: owned, because
-/// what they learn outlives the log's buffer. Ordered as the summary lists
-/// buses: frames without an interface first, then channels, then names.
-///
-/// `Display` writes the name, the channel number, or `-` for a log that
-/// names no interface (the text summary's column).
+/// A device, named by its bus and node-ID as the summary's findings and
+/// the report name it: `can0 node 3`, or `node 3` on a log that names no
+/// interface.
 ///
 /// ```
-/// use motionwire::can::Iface;
-/// use motionwire::decoder::BusName;
+/// use motionwire::can::BusName;
+/// use motionwire::canopen::NodeId;
+/// use motionwire::decoder::Device;
 ///
-/// let can0 = BusName::of(Some(Iface::Name("can0")));
-/// assert!(can0.is(Some(Iface::Name("can0"))));
-/// assert!(!can0.is(Some(Iface::Channel(1))));
-/// assert_eq!(can0.to_string(), "can0");
-/// assert_eq!(BusName::of(None).to_string(), "-");
-/// assert!(BusName::of(None) < BusName::Channel(1));
+/// let node = NodeId::new(3).unwrap();
+/// assert_eq!(Device::new(&BusName::Name("can0".into()), node).to_string(), "can0 node 3");
+/// assert_eq!(Device::new(&BusName::Unnamed, node).to_string(), "node 3");
 /// ```
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum BusName {
-    /// The log names no interface (pcap, TRC without a bus column).
-    Unnamed,
-    /// A channel number (Vector ASC and BLF, PEAK TRC).
-    Channel(u16),
-    /// An interface name (candump, pcapng).
-    Name(String),
-}
-
-impl BusName {
-    /// Return the bus of a frame's interface.
-    #[must_use]
-    pub fn of(iface: Option<Iface<'_>>) -> Self {
-        match iface {
-            None => BusName::Unnamed,
-            Some(Iface::Channel(n)) => BusName::Channel(n),
-            Some(Iface::Name(name)) => BusName::Name(name.to_owned()),
-        }
-    }
-
-    /// Return whether a frame seen on `iface` is on this bus.
-    #[inline]
-    #[must_use]
-    pub fn is(&self, iface: Option<Iface<'_>>) -> bool {
-        match (self, iface) {
-            (BusName::Unnamed, None) => true,
-            (BusName::Channel(a), Some(Iface::Channel(b))) => *a == b,
-            (BusName::Name(a), Some(Iface::Name(b))) => {
-                crate::iface::same_name(a.as_bytes(), b.as_bytes())
-            }
-            _ => false,
-        }
-    }
-
-    /// Return the interface as `iface` holds it (docs/output.md#common-keys):
-    /// the name, the channel as decimal text, or `None`.
-    #[must_use]
-    pub fn iface(&self) -> Option<Iface<'_>> {
-        match self {
-            BusName::Unnamed => None,
-            BusName::Channel(n) => Some(Iface::Channel(*n)),
-            BusName::Name(name) => Some(Iface::Name(name)),
-        }
-    }
-}
-
-impl BusName {
-    /// Return the device `node` on this bus as the summary's findings and
-    /// the report name it: `can0 node 3`, or `node 3` on a log that names
-    /// no interface.
-    ///
-    /// ```
-    /// use motionwire::canopen::NodeId;
-    /// use motionwire::decoder::BusName;
-    ///
-    /// let node = NodeId::new(3).unwrap();
-    /// assert_eq!(BusName::Name("can0".into()).device(node).to_string(), "can0 node 3");
-    /// assert_eq!(BusName::Unnamed.device(node).to_string(), "node 3");
-    /// ```
-    #[must_use]
-    pub fn device(&self, node: NodeId) -> Device<'_> {
-        Device { bus: self, node }
-    }
-}
-
-/// A device, named by its bus and node-ID ([`BusName::device`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Device<'a> {
     bus: &'a BusName,
     node: NodeId,
+}
+
+impl<'a> Device<'a> {
+    /// Return the device `node` on the bus `bus`.
+    #[must_use]
+    pub fn new(bus: &'a BusName, node: NodeId) -> Self {
+        Device { bus, node }
+    }
 }
 
 impl fmt::Display for Device<'_> {
@@ -103,16 +39,6 @@ impl fmt::Display for Device<'_> {
         match self.bus {
             BusName::Unnamed => write!(f, "node {}", self.node.get()),
             bus => write!(f, "{bus} node {}", self.node.get()),
-        }
-    }
-}
-
-impl fmt::Display for BusName {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            BusName::Unnamed => f.write_str("-"),
-            BusName::Channel(n) => write!(f, "{n}"),
-            BusName::Name(name) => f.write_str(name),
         }
     }
 }

@@ -53,7 +53,12 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::time::Duration;
 
-pub use bus::{BusName, Device};
+pub use bus::Device;
+
+/// The owned form of a frame's interface, which sits beside it in
+/// [`can`](crate::can) as [`can::BusName`](crate::can::BusName).
+#[deprecated(note = "use `motionwire::can::BusName`, the same type")]
+pub type BusName = crate::can::BusName;
 pub use cia402::Cia402Reading;
 pub use columns::FrameColumns;
 pub use names::ObjectNames;
@@ -63,7 +68,7 @@ pub use sdo::{EndedTransfer, SdoStep};
 pub use servo::{CommandRecord, FaultRecord, FeedbackRecord};
 
 use crate::can::{Iface, LogFrame};
-use crate::canopen::sdo::{SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
+use crate::canopen::sdo::{SdoEvent, SdoOutcome, SdoParty, SdoTransfer, TransferDirection};
 use crate::canopen::{
     cob_id, CanOpenMessage, DataType, DecodeError, MessageKind, ModeOfOperation, NodeId, PdoCobId,
     PdoDirection, Signal, Value,
@@ -310,7 +315,7 @@ impl Decoded<'_> {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct OpenTransfer {
     /// The bus.
-    pub bus: BusName,
+    pub bus: crate::can::BusName,
     /// The node whose SDO server the transfer reached.
     pub node: NodeId,
     /// The transfer, with outcome [`SdoOutcome::Broken`] or
@@ -579,10 +584,11 @@ impl Decoder {
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
-        let fed = state
+        let mut event = SdoEvent::new(sender, bytes);
+        state
             .sdo
-            .feed(sender, bytes, frame.timestamp, position.number(), cap);
-        let value = match &fed.ended {
+            .feed(&mut event, frame.timestamp, position.number(), cap);
+        let value = match &event.ended {
             Some(transfer)
                 if transfer.outcome == SdoOutcome::Completed
                     && teaches(transfer.multiplexer.index) =>
@@ -591,19 +597,15 @@ impl Decoder {
             }
             _ => None,
         };
-        let cia402 = match (&fed.ended, value) {
+        let cia402 = match (&event.ended, value) {
             (Some(transfer), Some(value)) => self.learn(at, node, position, transfer, value),
             _ => None,
         };
         let names = self.names[usize::from(node.get())].get(&self.config);
         let step = SdoSeen {
             node,
-            sender,
-            block_segment: fed.block_segment,
+            event: &event,
             data: bytes,
-            latency: fed.latency,
-            started: fed.started,
-            ended: fed.ended.as_ref(),
             names,
             buses: &self.buses,
             at,
@@ -725,7 +727,7 @@ impl Decoder {
     }
 
     /// [`pdo`](Self::pdo) on the bus at `at`.
-    #[inline]
+    #[inline(always)]
     fn pdo_at(
         &mut self,
         at: usize,
@@ -801,7 +803,7 @@ impl Decoder {
     /// EDS's device type or an SDO upload of 1000h in the log says so
     /// (docs/canopen.md#cia402).
     #[must_use]
-    pub fn is_drive(&self, bus: &BusName, node: NodeId) -> bool {
+    pub fn is_drive(&self, bus: &crate::can::BusName, node: NodeId) -> bool {
         self.buses
             .find(bus)
             .and_then(|b| b.nodes[usize::from(node.get())].as_ref())
@@ -818,7 +820,8 @@ impl Decoder {
     /// ```
     /// use motionwire::can::{CanFrame, CanId, LogFrame};
     /// use motionwire::canopen::{NodeId, PdoDirection};
-    /// use motionwire::decoder::{BusName, Decoder, DecoderConfig, PdoOrigin};
+    /// use motionwire::can::BusName;
+    /// use motionwire::decoder::{Decoder, DecoderConfig, PdoOrigin};
     /// use motionwire::logs::Position;
     /// use motionwire::profiles::Profile;
     ///
@@ -848,7 +851,11 @@ impl Decoder {
     /// assert_eq!(tpdo1.origin(), PdoOrigin::Sdo { position: Position::Line(4) });
     /// assert_eq!(tpdo1.cob_id_origin(), PdoOrigin::PredefinedConnectionSet);
     /// ```
-    pub fn mappings(&self, bus: &BusName, node: NodeId) -> impl Iterator<Item = &PdoMap> + '_ {
+    pub fn mappings(
+        &self,
+        bus: &crate::can::BusName,
+        node: NodeId,
+    ) -> impl Iterator<Item = &PdoMap> + '_ {
         let mut maps: Vec<&PdoMap> = self.buses.find(bus).map_or_else(Vec::new, |b| {
             // In force: the map its COB-ID's slot points to (a map taken
             // out of force, or moved, keeps its place in `maps`).
@@ -867,7 +874,7 @@ impl Decoder {
     }
 
     /// Return the name of the bus at `at` ([`bus`](Self::bus)).
-    pub(crate) fn bus_name(&self, at: usize) -> &BusName {
+    pub(crate) fn bus_name(&self, at: usize) -> &crate::can::BusName {
         self.buses.name(at)
     }
 

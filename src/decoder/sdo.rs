@@ -6,13 +6,13 @@
 use core::fmt;
 use core::time::Duration;
 
-use crate::can::Timestamp;
+use crate::can::{BusName, Timestamp};
 use crate::canopen::sdo::{
-    SdoFrame, SdoMessage, SdoParty, SdoService, SdoTracker, SdoTransfer, TransferMode,
+    SdoEvent, SdoFrame, SdoMessage, SdoParty, SdoService, SdoTracker, SdoTransfer, TransferMode,
 };
 use crate::canopen::{NodeId, ObjectAddress, SdoAbortCode};
 
-use super::{BusName, ObjectNames};
+use super::ObjectNames;
 use crate::FrameError;
 
 /// One SDO frame as its channel's tracker read it (`sdo` in
@@ -140,24 +140,19 @@ impl<'d> SdoStep<'d> {
 /// without its message, which is read from the frame's bytes where it is
 /// wanted ([`step`](Self::step) for [`Decoder::decode`](super::Decoder::decode);
 /// the summary reads only whether the frame is an abort,
-/// [`abort`](Self::abort)).
+/// [`abort`](Self::abort)). The tracker's event is read where the decoder
+/// keeps it, not copied.
 #[derive(Clone, Copy)]
 pub(crate) struct SdoSeen<'s, 'd> {
     /// [`SdoStep::node`].
     pub(crate) node: NodeId,
-    /// [`SdoStep::sender`].
-    pub(crate) sender: SdoParty,
-    /// The tracker read the frame as a segment inside a block.
-    pub(crate) block_segment: bool,
-    /// [`SdoStep::data`].
+    /// What the channel's tracker made of the frame: [`SdoStep::sender`],
+    /// [`SdoStep::data`], [`SdoStep::latency`], [`SdoStep::started`] and
+    /// the transfer of [`SdoStep::ended`], whose data is looked up only for
+    /// the step ([`finished`](Self::finished)).
+    pub(crate) event: &'s SdoEvent<'d>,
+    /// The frame's data, as the event holds it.
     pub(crate) data: &'d [u8],
-    /// [`SdoStep::latency`].
-    pub(crate) latency: Option<Duration>,
-    /// [`SdoStep::started`].
-    pub(crate) started: bool,
-    /// The transfer of [`SdoStep::ended`], where the tracker's step left it;
-    /// its data is looked up only for the step ([`finished`](Self::finished)).
-    pub(crate) ended: Option<&'s SdoTransfer>,
     /// [`SdoStep::names`].
     pub(crate) names: ObjectNames<'d>,
     /// The decoder's buses and this frame's bus, where the node's channel
@@ -172,19 +167,20 @@ impl<'d> SdoSeen<'_, 'd> {
     /// tracker read them.
     #[inline]
     pub(crate) fn step(&self) -> SdoStep<'d> {
+        let event = self.event;
         let mut step = SdoStep {
             node: self.node,
-            sender: self.sender,
-            message: SdoMessage::read(self.sender, self.block_segment, self.data),
+            sender: event.sender(),
+            message: event.message(),
             data: self.data,
-            latency: self.latency,
-            started: self.started,
+            latency: event.latency,
+            started: event.started,
             ended: None,
             names: self.names,
         };
         // Most frames end no transfer: the step is not made with a copy of
         // an empty one.
-        if let Some(&transfer) = self.ended {
+        if let Some(transfer) = event.ended {
             step.ended = Some(EndedTransfer {
                 transfer,
                 data: self.finished(),
@@ -217,7 +213,7 @@ impl<'d> SdoSeen<'_, 'd> {
     /// or [`SdoResponse::Abort`](crate::canopen::sdo::SdoResponse::Abort)), without the message.
     #[inline]
     pub(crate) fn abort(&self) -> Option<(ObjectAddress, SdoAbortCode)> {
-        SdoMessage::read_abort(self.block_segment, self.data)
+        self.event.abort()
     }
 }
 
@@ -276,21 +272,6 @@ impl<'d> EndedTransfer<'d> {
     }
 }
 
-/// What one frame is in its transfer, as the channel's tracker followed
-/// it ([`SdoEvent`](crate::canopen::sdo::SdoEvent) without the borrows),
-/// kept while the decoder learns from the transfer it ends.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Fed {
-    /// [`SdoEvent::latency`](crate::canopen::sdo::SdoEvent::latency).
-    pub(crate) latency: Option<Duration>,
-    /// [`SdoEvent::started`](crate::canopen::sdo::SdoEvent::started).
-    pub(crate) started: bool,
-    /// [`SdoEvent::ended`](crate::canopen::sdo::SdoEvent::ended).
-    pub(crate) ended: Option<SdoTransfer>,
-    /// [`SdoEvent::is_block_segment`](crate::canopen::sdo::SdoEvent::is_block_segment).
-    pub(crate) block_segment: bool,
-}
-
 /// A channel: its tracker and the data of its open transfer.
 #[derive(Debug, Default)]
 pub(crate) struct SdoChannel {
@@ -300,37 +281,31 @@ pub(crate) struct SdoChannel {
 }
 
 impl SdoChannel {
-    /// Feed one frame (`position`, time) and return what it is in its
-    /// transfer; keep at most `cap` data bytes of a transfer.
+    /// Feed one frame, `event` (`position`, time): what it is in its
+    /// transfer is written into `event`; keep at most `cap` data bytes of
+    /// a transfer.
     #[inline]
     pub(crate) fn feed(
         &mut self,
-        sender: SdoParty,
-        bytes: &[u8],
+        event: &mut SdoEvent<'_>,
         ts: Option<Timestamp>,
         position: u64,
         cap: usize,
-    ) -> Fed {
-        let event = self.tracker.feed(sender, bytes, ts, position);
-        let fed = Fed {
-            latency: event.latency,
-            started: event.started,
-            ended: event.ended,
-            block_segment: event.is_block_segment(),
-        };
-        let chunk = event.chunk;
-        let Some(ended) = &fed.ended else {
+    ) {
+        self.tracker.feed(event, ts, position);
+        let chunk = event.chunk();
+        let Some(ended) = &event.ended else {
             // Most frames: no transfer ends here (a segment request, a
             // segment, an initiate answered later).
-            if fed.started {
+            if event.started {
                 self.data.clear();
             }
             push(&mut self.data, chunk, cap);
-            return fed;
+            return;
         };
         // The chunk belongs to the transfer that ends here unless this
         // frame also starts a new one (a new initiate after a timeout).
-        let chunk_to_new = fed.started && ended.start_position != position;
+        let chunk_to_new = event.started && ended.start_position != position;
         if !chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
@@ -339,7 +314,6 @@ impl SdoChannel {
         if chunk_to_new {
             push(&mut self.data, chunk, cap);
         }
-        fed
     }
 
     /// The data of the transfer that ended last.

@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 
 use super::*;
-use crate::can::{CanFrame, CanId, LogEvent, Timestamp};
+use crate::can::{BusName, CanFrame, CanId, LogEvent, Timestamp};
 use crate::logs::Position;
 use crate::summary::Summarizer;
 

@@ -345,9 +345,7 @@ impl<L: ReadLog> Iterator for Records<L> {
             };
             let (event, name) = detach(record.event);
             let name = name.map(|name| match last {
-                Some(kept) if crate::iface::same_name(kept.as_bytes(), name.as_bytes()) => {
-                    Arc::clone(kept)
-                }
+                Some(kept) if Iface::Name(kept).is_name(name.as_bytes()) => Arc::clone(kept),
                 _ => Arc::clone(last.insert(Arc::from(name))),
             });
             Record {

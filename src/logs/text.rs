@@ -12,6 +12,8 @@
 //! a line end: the format's parser reports the line as malformed, with the
 //! column of the NUL, and the reading goes on with the next line.
 
+#[cfg(feature = "std")]
+use crate::can::Iface;
 use crate::logs::lex::swar;
 
 /// The lines of a text buffer, split at `\n` (16 bytes at a time), each
@@ -309,7 +311,7 @@ impl Names {
         if self
             .names
             .get(self.last)
-            .is_some_and(|n| crate::iface::same_name(n.as_bytes(), name))
+            .is_some_and(|n| Iface::Name(n).is_name(name))
         {
             return;
         }

@@ -6,8 +6,8 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
+use crate::can::BusName;
 use crate::canopen::NodeId;
-use crate::decoder::BusName;
 use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
 
 use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};

@@ -2,8 +2,9 @@
 //! (`svg.rs`): escaping, and the names of devices and states
 //! (docs/report.md#contract).
 
+use crate::can::BusName;
 use crate::canopen::{NmtStateByte, NodeId};
-use crate::decoder::BusName;
+use crate::decoder::Device;
 
 use super::recorder::cia402_state;
 
@@ -23,9 +24,9 @@ pub(super) fn esc(text: &str) -> String {
     out
 }
 
-/// A device as the page names it: `can0 node 3` ([`BusName::device`]).
+/// A device as the page names it: `can0 node 3` ([`Device`]).
 pub(super) fn device(bus: &BusName, node: NodeId) -> String {
-    bus.device(node).to_string()
+    Device::new(bus, node).to_string()
 }
 
 pub(super) fn iface_attr(bus: &BusName) -> String {

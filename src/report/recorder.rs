@@ -2,9 +2,9 @@
 //! and what it returns, the [`Recording`]: the [`Summary`] and its
 //! [`Timeline`] (docs/report.md#bounded).
 
-use crate::can::{Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
-use crate::decoder::{BusName, DecoderConfig};
+use crate::decoder::DecoderConfig;
 use crate::logs::Position;
 use crate::summary::{
     FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent, SummaryEventKind,
@@ -193,8 +193,12 @@ fn micros(ts: Timestamp) -> u64 {
 #[derive(Debug)]
 pub struct Recorder {
     summarizer: Summarizer,
+    /// Each bus's rows, in the order of the buses' first frames.
     buses: Vec<BusRows>,
-    last_bus: usize,
+    /// The place in `buses` of each bus of the decoder's table, at the
+    /// bus's place there ([`Summarizer::bus_at`]); `None` for a bus that
+    /// no frame has been seen on yet (only status events).
+    rows_of: Vec<Option<usize>>,
     /// Whether the recording is drawn by time: its first frame has one.
     timed: Option<bool>,
     /// The last time seen, in microseconds: frames without one are drawn there.
@@ -222,7 +226,7 @@ impl Recorder {
         Recorder {
             summarizer: Summarizer::new(config),
             buses: Vec::new(),
-            last_bus: 0,
+            rows_of: Vec::new(),
             timed: None,
             last_t: 0,
             untimed: 0,
@@ -241,22 +245,30 @@ impl Recorder {
         }
     }
 
+    /// The place in `buses` of the rows of the bus of `iface`, found by
+    /// the bus's place in the decoder's table, made on the bus's first
+    /// frame.
     #[inline]
     fn bus(&mut self, iface: Option<Iface<'_>>, timed: bool) -> usize {
-        if let Some(bus) = self.buses.get(self.last_bus) {
-            if bus.name.is(iface) {
-                return self.last_bus;
-            }
+        let at = self.summarizer.bus_at(iface);
+        if let Some(&Some(rows)) = self.rows_of.get(at) {
+            return rows;
         }
-        let at = match self.buses.iter().position(|b| b.name.is(iface)) {
-            Some(at) => at,
-            None => {
-                self.buses.push(BusRows::new(BusName::of(iface), timed));
-                self.buses.len() - 1
-            }
-        };
-        self.last_bus = at;
-        at
+        self.new_rows(at, timed)
+    }
+
+    /// Rows for the bus at `at` in the decoder's table, on its first frame.
+    #[cold]
+    #[inline(never)]
+    fn new_rows(&mut self, at: usize, timed: bool) -> usize {
+        if self.rows_of.len() <= at {
+            self.rows_of.resize(at + 1, None);
+        }
+        let name = self.summarizer.decoder().bus_name(at).clone();
+        self.buses.push(BusRows::new(name, timed));
+        let rows = self.buses.len() - 1;
+        self.rows_of[at] = Some(rows);
+        rows
     }
 
     /// Add the frame `log` of the log entry `event`, read at `position`.
@@ -593,4 +605,56 @@ pub struct Recording {
     /// The files of a recording read from several (docs/output.md#several-files):
     /// their records follow the summary's in the embedded JSON.
     pub files: Vec<FileSpan>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::can::{BusStatus, CanFrame, CanId};
+
+    /// The rows are found by the bus's place in the decoder's table, but
+    /// kept in the order of the buses' first frames: a bus that a status
+    /// event named first (so that the decoder's table holds it first) comes
+    /// after the bus of the first frame, and a bus named by status events
+    /// only has no rows.
+    #[test]
+    fn rows_follow_the_first_frames_not_the_decoders_table() {
+        let emcy = |iface| {
+            let frame = CanFrame::new(
+                CanId::standard(0x083).unwrap(),
+                &[0, 0x10, 1, 0, 0, 0, 0, 0],
+            )
+            .unwrap();
+            LogEvent::Frame(LogFrame::new(frame).with_iface(iface))
+        };
+        let status = |iface| {
+            LogEvent::Status(BusStatus {
+                timestamp: None,
+                iface: Some(iface),
+            })
+        };
+        let (can0, can1, can2) = (
+            Iface::Name("can0"),
+            Iface::Name("can1"),
+            Iface::Name("can2"),
+        );
+        let mut recorder = Recorder::new(DecoderConfig::new());
+        let events = [
+            status(can1),
+            status(can2),
+            emcy(can0),
+            emcy(can1),
+            emcy(can0),
+            status(can1),
+        ];
+        for (i, event) in events.iter().enumerate() {
+            recorder.add(Position::Line(i as u64 + 1), event);
+        }
+        let timeline = recorder.finish().timeline;
+        let names: Vec<_> = timeline.buses.iter().map(|b| b.name.to_string()).collect();
+        assert_eq!(names, ["can0", "can1"]);
+        let node = NodeId::new(3);
+        let emcys = |bus| timeline.mark_count(&BusName::of(Some(bus)), node, MarkKind::Emcy);
+        assert_eq!((emcys(can0), emcys(can1), emcys(can2)), (2, 1, 0));
+    }
 }

@@ -7,10 +7,9 @@
 
 use core::time::Duration;
 
-use crate::can::Timestamp;
+use crate::can::{BusName, Timestamp};
 use crate::canopen::sdo::SdoTransfer;
 use crate::canopen::{ErrorCode, ErrorRegister, NmtStateByte, NodeId};
-use crate::decoder::BusName;
 
 use super::{Cia402Fault, Cia402Transition, HeartbeatGap, SdoAbort};
 

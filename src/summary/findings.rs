@@ -6,9 +6,9 @@
 
 use core::fmt;
 
-use crate::can::Timestamp;
+use crate::can::{BusName, Timestamp};
 use crate::canopen::NodeId;
-use crate::decoder::BusName;
+use crate::decoder::Device;
 
 use super::json::{Iface, Ts};
 use super::text::ListedLines;
@@ -261,7 +261,7 @@ impl fmt::Display for Subject<'_> {
             write!(f, "{file}: ")?;
         }
         match finding.node {
-            Some(node) => write!(f, "{}", finding.bus.device(node)),
+            Some(node) => write!(f, "{}", Device::new(&finding.bus, node)),
             None => write!(f, "bus {}", finding.bus),
         }
     }

@@ -9,8 +9,7 @@
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 
-use crate::can::Timestamp;
-use crate::decoder::BusName;
+use crate::can::{BusName, Timestamp};
 
 use super::text::ms;
 use super::{

@@ -1,9 +1,8 @@
 //! What a summary is made of: a [`Summary`] of [`NodeSummary`] and
 //! [`BusSummary`] records, read in order as [`SummaryRecord`]s.
 
-use crate::can::Timestamp;
+use crate::can::{BusName, Timestamp};
 use crate::canopen::{ErrorRegister, MessageKind, NodeId};
-use crate::decoder::BusName;
 
 use super::cia402::Cia402Timeline;
 use super::emcy::EmcySeen;

@@ -135,17 +135,17 @@ impl SdoFrameFacts for SdoStep<'_> {
 impl SdoFrameFacts for SdoSeen<'_, '_> {
     #[inline]
     fn sender(&self) -> SdoParty {
-        self.sender
+        self.event.sender()
     }
 
     #[inline]
     fn started(&self) -> bool {
-        self.started
+        self.event.started
     }
 
     #[inline]
     fn latency(&self) -> Option<Duration> {
-        self.latency
+        self.event.latency
     }
 
     #[inline]
@@ -155,7 +155,7 @@ impl SdoFrameFacts for SdoSeen<'_, '_> {
 
     #[inline]
     fn ended(&self) -> Option<&SdoTransfer> {
-        self.ended
+        self.event.ended.as_ref()
     }
 
     #[inline]

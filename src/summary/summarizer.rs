@@ -2,13 +2,13 @@
 
 use core::time::Duration;
 
-use crate::can::{BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, BusStatus, ErrorFrame, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
     Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
-use crate::decoder::{BusName, Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
+use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
 use super::emcy::EmcySeen;
@@ -193,6 +193,17 @@ impl Summarizer {
     #[must_use]
     pub fn decoder(&self) -> &Decoder {
         &self.decoder
+    }
+
+    /// Return the place of the bus of `iface` in the decoder's table of
+    /// buses ([`Decoder::bus`]), made on first sight: where the report
+    /// keeps its rows of the bus, as the summary keeps its buses. A bus
+    /// made here is the one the next [`add_with`](Self::add_with) of a
+    /// frame on `iface` finds, so the summary's table follows the
+    /// decoder's in order.
+    #[inline]
+    pub(crate) fn bus_at(&mut self, iface: Option<Iface<'_>>) -> usize {
+        self.decoder.bus(iface)
     }
 
     /// What the summary keeps of the bus at `at` in the decoder's table,

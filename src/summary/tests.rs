@@ -3,9 +3,9 @@
 use core::time::Duration;
 
 use super::*;
-use crate::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId};
-use crate::decoder::{BusName, DecoderConfig};
+use crate::decoder::DecoderConfig;
 use crate::logs::Position;
 use crate::profiles::Profile;
 

@@ -246,6 +246,143 @@ fn check_len(frame_type: FrameType, len: usize) -> Result<(), RangeError> {
     }
 }
 
+/// A frame without its data: the identifier, the kind and the number of
+/// data bytes, held to the invariants of [`CanFrame`] (ISO 11898-1: at most
+/// 8 bytes in a classic data or error frame, 64 in a CAN FD frame, none in
+/// a remote request, whose requested length is 0..=8; an error frame's
+/// identifier an extended one). With a data array it is a frame
+/// ([`CanFrame::from_header`]); a parser makes it where it has read the
+/// parts, with the constructor of the kind it read.
+///
+/// Its constructors cannot fail: what lies beyond the kind's limits is cut
+/// to them. A parser that knows a length is within them (as it knows after
+/// reading at most 16 hex digits) makes a header whose cut the compiler
+/// leaves out.
+///
+/// ```
+/// use motionwire_codec::can::{CanId, FdFlags, FrameHeader, FrameType};
+///
+/// let id = CanId::standard(0x705).unwrap();
+/// assert_eq!(FrameHeader::data(id, 3).len(), 3);
+/// assert_eq!(FrameHeader::data(id, 12).len(), 8);
+/// assert_eq!(FrameHeader::remote(id, 9).frame_type(), FrameType::Remote { dlc: 8 });
+/// assert_eq!(FrameHeader::fd(id, FdFlags::BRS, 12).len(), 12);
+/// assert!(FrameHeader::error(id, 8).id().is_extended());
+/// assert_eq!(FrameHeader::new(id, FrameType::Data, 3), FrameHeader::data(id, 3));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FrameHeader {
+    id: CanId,
+    frame_type: FrameType,
+    len: u8,
+}
+
+impl FrameHeader {
+    /// Return the header of a frame of kind `frame_type` with `len` data
+    /// bytes, cut as the kind's own constructor cuts it
+    /// ([`data`](Self::data), [`remote`](Self::remote), [`fd`](Self::fd),
+    /// [`error`](Self::error)).
+    #[inline]
+    #[must_use]
+    pub const fn new(id: CanId, frame_type: FrameType, len: u8) -> Self {
+        match frame_type {
+            FrameType::Data => Self::data(id, len),
+            FrameType::Remote { dlc } => Self::remote(id, dlc),
+            FrameType::Fd(flags) => Self::fd(id, flags, len),
+            FrameType::Error => Self::error(id, len),
+        }
+    }
+
+    /// Return the header of a classic data frame with `len` data bytes,
+    /// cut to 8.
+    #[inline]
+    #[must_use]
+    pub const fn data(id: CanId, len: u8) -> Self {
+        FrameHeader {
+            id,
+            frame_type: FrameType::Data,
+            len: cut(len, CLASSIC_MAX_LEN),
+        }
+    }
+
+    /// Return the header of a remote request asking for `dlc` bytes, cut
+    /// to 8; it has no data.
+    #[inline]
+    #[must_use]
+    pub const fn remote(id: CanId, dlc: u8) -> Self {
+        FrameHeader {
+            id,
+            frame_type: FrameType::Remote {
+                dlc: cut(dlc, CLASSIC_MAX_LEN),
+            },
+            len: 0,
+        }
+    }
+
+    /// Return the header of a CAN FD frame with `flags` and `len` data
+    /// bytes, cut to 64.
+    #[inline]
+    #[must_use]
+    pub const fn fd(id: CanId, flags: FdFlags, len: u8) -> Self {
+        FrameHeader {
+            id,
+            frame_type: FrameType::Fd(flags),
+            len: cut(len, FD_MAX_LEN),
+        }
+    }
+
+    /// Return the header of an error frame whose identifier holds the error
+    /// classes (read as an extended identifier: its low 29 bits) and with
+    /// `len` data bytes, cut to 8.
+    #[inline]
+    #[must_use]
+    pub const fn error(classes: CanId, len: u8) -> Self {
+        FrameHeader {
+            id: CanId::masked(classes.raw(), true),
+            frame_type: FrameType::Error,
+            len: cut(len, CLASSIC_MAX_LEN),
+        }
+    }
+
+    /// Return the identifier.
+    #[inline]
+    #[must_use]
+    pub const fn id(&self) -> CanId {
+        self.id
+    }
+
+    /// Return the kind of frame.
+    #[inline]
+    #[must_use]
+    pub const fn frame_type(&self) -> FrameType {
+        self.frame_type
+    }
+
+    /// Return the number of data bytes.
+    #[inline]
+    #[must_use]
+    pub const fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    /// Return whether the frame has no data bytes.
+    #[inline]
+    #[must_use]
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+/// `value`, or `max` when it is larger.
+#[inline]
+const fn cut(value: u8, max: usize) -> u8 {
+    if value as usize > max {
+        max as u8
+    } else {
+        value
+    }
+}
+
 impl CanFrame {
     /// Return a classic data frame; more than 8 bytes is a [`RangeError`].
     pub fn new(id: CanId, data: &[u8]) -> Result<Self, RangeError> {
@@ -307,13 +444,15 @@ impl CanFrame {
     /// and checked the parts already, and the data into an array, which is
     /// moved, not copied again.
     ///
-    /// It cannot fail and cannot make an invalid frame: what lies beyond
-    /// the kind's limits is cut to them — `len` to the kind's
-    /// [`max_len`](FrameType::max_len), a remote request's `dlc` to 8 — and
-    /// an error frame's identifier is read as an extended one. A parser
-    /// that rejects such parts first (every reader of motionwire does) never
+    /// It cannot fail and cannot make an invalid frame: the parts are cut
+    /// as [`FrameHeader::new`] cuts them — `len` to the kind's
+    /// [`max_len`](FrameType::max_len), a remote request's `dlc` to 8, an
+    /// error frame's identifier read as an extended one. A parser that
+    /// rejects such parts first (every reader of motionwire does) never
     /// sees a cut. The bytes past `len` are not data: comparisons and
-    /// [`data`](Self::data) ignore them.
+    /// [`data`](Self::data) ignore them. A parser that knows the kind where
+    /// it reads it makes the header there with the kind's own constructor
+    /// and calls [`from_header`](Self::from_header).
     ///
     /// ```
     /// use motionwire_codec::can::{CanFrame, CanId, FrameType};
@@ -335,33 +474,34 @@ impl CanFrame {
         bytes: [u8; FD_MAX_LEN],
         len: u8,
     ) -> Self {
-        // One match: the kind's most data bytes, and what the kind cuts.
-        let (id, frame_type, max) = match frame_type {
-            FrameType::Data => (id, frame_type, CLASSIC_MAX_LEN as u8),
-            FrameType::Fd(_) => (id, frame_type, FD_MAX_LEN as u8),
-            FrameType::Remote { dlc } => (
-                id,
-                FrameType::Remote {
-                    dlc: if dlc > CLASSIC_MAX_LEN as u8 {
-                        CLASSIC_MAX_LEN as u8
-                    } else {
-                        dlc
-                    },
-                },
-                0,
-            ),
-            FrameType::Error => (
-                CanId::masked(id.raw(), true),
-                frame_type,
-                CLASSIC_MAX_LEN as u8,
-            ),
-        };
+        Self::from_header(FrameHeader::new(id, frame_type, len), bytes)
+    }
+
+    /// Return the frame `header` whose data is the first
+    /// [`header.len()`](FrameHeader::len) bytes of `bytes`: nothing is left
+    /// to check, the header holds a valid frame's parts. The bytes past the
+    /// length are not data, as for [`from_array`](Self::from_array).
+    ///
+    /// ```
+    /// use motionwire_codec::can::{CanFrame, CanId, FrameHeader};
+    ///
+    /// let id = CanId::standard(0x181).unwrap();
+    /// let mut bytes = [0; 64];
+    /// bytes[..2].copy_from_slice(&[0x37, 0x06]);
+    /// let frame = CanFrame::from_header(FrameHeader::data(id, 2), bytes);
+    /// assert_eq!(frame, CanFrame::new(id, &[0x37, 0x06])?);
+    /// assert_eq!(frame.header(), FrameHeader::data(id, 2));
+    /// # Ok::<(), motionwire_codec::Error>(())
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn from_header(header: FrameHeader, bytes: [u8; FD_MAX_LEN]) -> Self {
         CanFrame {
-            id,
-            frame_type,
+            id: header.id,
+            frame_type: header.frame_type,
             data: FrameData {
                 bytes,
-                len: if len > max { max } else { len },
+                len: header.len,
             },
         }
     }
@@ -483,6 +623,19 @@ impl<D: AsRef<[u8]>> CanFrame<D> {
             },
             // At most 8.
             FrameType::Data | FrameType::Error => len as u8,
+        }
+    }
+
+    /// Return the frame without its data: identifier, kind and data
+    /// length.
+    #[inline]
+    #[must_use]
+    pub fn header(&self) -> FrameHeader {
+        FrameHeader {
+            id: self.id,
+            frame_type: self.frame_type,
+            // At most 64: every constructor checks or cuts the length.
+            len: self.data().len() as u8,
         }
     }
 
@@ -664,6 +817,55 @@ mod tests {
         assert!(CanFrame::new_error(0x004, &[0; 9]).is_err());
     }
 
+    /// Each kind's header cuts what lies beyond the kind's limits, and
+    /// nothing within them.
+    #[test]
+    fn headers_cut_to_the_kinds_limits() {
+        let id = std_id(0x705);
+        let ext = CanId::extended(0x0000_0705).unwrap();
+        let cases = [
+            // (header, identifier, kind, data length)
+            (FrameHeader::data(id, 8), id, FrameType::Data, 8),
+            (FrameHeader::data(id, 9), id, FrameType::Data, 8),
+            (FrameHeader::data(id, 255), id, FrameType::Data, 8),
+            (
+                FrameHeader::remote(id, 8),
+                id,
+                FrameType::Remote { dlc: 8 },
+                0,
+            ),
+            (
+                FrameHeader::remote(id, 15),
+                id,
+                FrameType::Remote { dlc: 8 },
+                0,
+            ),
+            (
+                FrameHeader::fd(id, FdFlags::BRS, 64),
+                id,
+                FrameType::Fd(FdFlags::BRS),
+                64,
+            ),
+            (
+                FrameHeader::fd(id, FdFlags::BRS, 65),
+                id,
+                FrameType::Fd(FdFlags::BRS),
+                64,
+            ),
+            (FrameHeader::error(ext, 8), ext, FrameType::Error, 8),
+            (FrameHeader::error(ext, 9), ext, FrameType::Error, 8),
+            // A standard identifier's bits read as an extended one.
+            (FrameHeader::error(id, 0), ext, FrameType::Error, 0),
+        ];
+        for (header, id, frame_type, len) in cases {
+            assert_eq!(
+                (header.id(), header.frame_type(), header.len()),
+                (id, frame_type, len)
+            );
+            assert_eq!(FrameHeader::new(id, frame_type, len as u8), header);
+        }
+    }
+
     #[test]
     fn display_as_candump_log() {
         let fd = CanFrame::new_fd(
@@ -734,6 +936,28 @@ mod proptests {
                 prop_assert_eq!(owned, borrowed);
                 prop_assert_eq!(borrowed.to_owned_frame(), owned);
                 prop_assert_eq!((owned.id(), owned.frame_type(), owned.data()), (id, frame_type, &data[..]));
+            }
+        }
+
+        /// A header made of any parts is a valid frame's: the frame made
+        /// from it is one the checked constructor accepts, it gives its
+        /// header back, and valid parts are kept as given.
+        #[test]
+        fn headers_make_only_valid_frames(
+            id in can_id(),
+            frame_type in any_frame_type(),
+            len in any::<u8>(),
+        ) {
+            let bytes = [0xA5; FD_MAX_LEN];
+            let header = FrameHeader::new(id, frame_type, len);
+            let frame = CanFrame::from_header(header, bytes);
+            let checked = CanFrame::with_type(frame.id(), frame.frame_type(), frame.data());
+            prop_assert_eq!(checked.ok(), Some(frame));
+            prop_assert_eq!(frame.header(), header);
+            prop_assert_eq!(CanFrame::from_array(id, frame_type, bytes, len), frame);
+            let given = vec![0xA5; usize::from(len)];
+            if let Ok(valid) = CanFrame::with_type(id, frame_type, &given) {
+                prop_assert_eq!(valid, frame);
             }
         }
 

@@ -27,6 +27,38 @@ pub enum Iface<'a> {
     Channel(u16),
 }
 
+impl Iface<'_> {
+    /// Return whether this is the interface named `name` (the bytes of a
+    /// name as a log holds them): never for a channel. Names are a few
+    /// bytes (`can0`, `vcan1`), compared in line rather than by a call to
+    /// `memcmp`, which costs more than the compare: names of 4 to 8 bytes
+    /// as two overlapping 4-byte words.
+    ///
+    /// ```
+    /// use motionwire_codec::can::Iface;
+    ///
+    /// assert!(Iface::Name("can0").is_name(b"can0"));
+    /// assert!(!Iface::Name("can0").is_name(b"can1"));
+    /// assert!(!Iface::Channel(0).is_name(b"0"));
+    /// ```
+    #[inline(always)]
+    #[must_use]
+    pub fn is_name(&self, name: &[u8]) -> bool {
+        let Iface::Name(own) = self else {
+            return false;
+        };
+        let (a, b) = (own.as_bytes(), name);
+        if a.len() != b.len() {
+            return false;
+        }
+        let word = |s: &[u8], at: usize| s.get(at..at + 4).map(|w| [w[0], w[1], w[2], w[3]]);
+        match a.len() {
+            n @ 4..=8 => word(a, 0) == word(b, 0) && word(a, n - 4) == word(b, n - 4),
+            _ => a == b,
+        }
+    }
+}
+
 impl fmt::Display for Iface<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -29,6 +29,8 @@
 //! # Ok::<(), motionwire_codec::Error>(())
 //! ```
 
+#[cfg(feature = "alloc")]
+mod bus_name;
 #[cfg(feature = "embedded-can")]
 mod embedded;
 mod error_frame;
@@ -40,11 +42,13 @@ mod log;
 mod serde_impls;
 mod timestamp;
 
+#[cfg(feature = "alloc")]
+pub use bus_name::BusName;
 pub use error_frame::{ControllerStatus, ErrorClasses, ErrorFrame};
 pub use flags::{Direction, FdFlags};
 pub use frame::{
-    CanFrame, CanFrameRef, FrameData, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN, FD_LENGTHS,
-    FD_MAX_LEN,
+    CanFrame, CanFrameRef, FrameData, FrameHeader, FrameType, CAN_ERR_FLAG, CLASSIC_MAX_LEN,
+    FD_LENGTHS, FD_MAX_LEN,
 };
 pub use id::CanId;
 pub use log::{BusStatus, EthercatPacket, Iface, LogEvent, LogFrame};

@@ -2,7 +2,7 @@
 
 use super::frame::Canonical;
 use super::timestamp::parse_canonical_timestamp;
-use crate::can::{CanId, Direction, FdFlags, FrameType, FD_MAX_LEN};
+use crate::can::{CanId, Direction, FdFlags, FrameHeader, FD_MAX_LEN};
 use crate::logs::lex::swar::{
     hex_bytes64, hex_lanes, lanes_before, load16, non_graphic, non_hex64, pack_hex, ZERO_CHARS,
 };
@@ -77,10 +77,12 @@ pub(super) fn parse_canonical_log<'a>(
         }
     };
 
-    let (kind, len, end) = match buf.get(body) {
+    // Each arm makes the header of the kind it read: its lengths are
+    // within the kind's limits, so no cut is left in the code.
+    let (header, end) = match buf.get(body) {
         Some(b'R' | b'r') => match buf.get(body + 1) {
-            Some(&d @ b'0'..=b'8') => (FrameType::Remote { dlc: d - b'0' }, 0, body + 2),
-            _ => (FrameType::Remote { dlc: 0 }, 0, body + 1),
+            Some(&d @ b'0'..=b'8') => (FrameHeader::remote(id, d - b'0'), body + 2),
+            _ => (FrameHeader::remote(id, 0), body + 1),
         },
         Some(b'#') => {
             let flags = HEX_TABLE[usize::from(*buf.get(body + 1)?)];
@@ -88,7 +90,7 @@ pub(super) fn parse_canonical_log<'a>(
                 return None;
             }
             let (len, end) = decode_fd_data(buf, body + 2, data)?;
-            (FrameType::Fd(FdFlags::new(flags)?), len, end)
+            (FrameHeader::fd(id, FdFlags::new(flags)?, len), end)
         }
         _ => {
             // Classic data: at most 16 hex digits, so one word holds them
@@ -102,7 +104,7 @@ pub(super) fn parse_canonical_log<'a>(
             if let Some(first) = data.first_chunk_mut::<8>() {
                 *first = packed.to_le_bytes();
             }
-            (FrameType::Data, (digits / 2) as u8, body + digits)
+            (FrameHeader::data(id, (digits / 2) as u8), body + digits)
         }
     };
 
@@ -133,10 +135,8 @@ pub(super) fn parse_canonical_log<'a>(
         iface_key,
         #[cfg(feature = "std")]
         same_iface,
-        id,
-        kind,
+        header,
         direction,
-        len,
     };
     Some((frame, used))
 }

@@ -4,7 +4,7 @@
 
 use core::fmt;
 
-use crate::can::{CanFrame, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
+use crate::can::{CanFrame, FrameHeader, FrameType, Iface, LogFrame, CAN_ERR_FLAG};
 use crate::can::{CanId, Direction, FdFlags, Timestamp, CLASSIC_MAX_LEN, FD_MAX_LEN};
 
 /// The frame a line is parsed into, field by field; every parser keeps the
@@ -79,11 +79,10 @@ pub(crate) struct Canonical<'a> {
     /// reader only.
     #[cfg(feature = "std")]
     pub(super) same_iface: bool,
-    pub(super) id: CanId,
-    pub(super) kind: FrameType,
+    /// The identifier, kind and data length, made by the kind's own
+    /// constructor where the line's shape told the kind.
+    pub(super) header: FrameHeader,
     pub(super) direction: Option<Direction>,
-    /// Data length (0 for a remote request).
-    pub(super) len: u8,
 }
 
 impl<'a> Canonical<'a> {
@@ -95,10 +94,11 @@ impl<'a> Canonical<'a> {
             relative: false,
             iface: self.iface,
             iface_key: self.iface_key,
-            id: self.id,
-            kind: self.kind,
+            id: self.header.id(),
+            kind: self.header.frame_type(),
             direction: self.direction,
-            len: self.len,
+            // At most 64: a header's length.
+            len: self.header.len() as u8,
             data,
         }
     }
@@ -117,11 +117,9 @@ pub(crate) struct Head<'a> {
     /// fast path too (`lines::next_head` forgets the hint on any other
     /// line): the reader's `Names` already holds it as its last name.
     pub(super) same_iface: bool,
-    pub(super) id: CanId,
-    pub(super) kind: FrameType,
+    /// As [`Canonical::header`].
+    pub(super) header: FrameHeader,
     pub(super) direction: Option<Direction>,
-    /// Data length (0 for a remote request).
-    pub(super) len: u8,
 }
 
 #[cfg(feature = "std")]
@@ -135,7 +133,7 @@ impl Head<'_> {
         iface: &'n str,
     ) -> LogFrame<'n> {
         LogFrame {
-            frame: CanFrame::from_array(self.id, self.kind, *data, self.len),
+            frame: CanFrame::from_header(self.header, *data),
             timestamp: self.timestamp,
             iface: Some(Iface::Name(iface)),
             direction: self.direction,
@@ -152,10 +150,8 @@ impl<'a> Canonical<'a> {
             timestamp: Some(self.timestamp),
             iface: self.iface,
             same_iface: self.same_iface,
-            id: self.id,
-            kind: self.kind,
+            header: self.header,
             direction: self.direction,
-            len: self.len,
         }
     }
 }
@@ -170,10 +166,8 @@ impl<'a> Parsed<'a> {
             timestamp: self.timestamp,
             iface: self.iface,
             same_iface: false,
-            id: self.id,
-            kind: self.kind,
+            header: FrameHeader::new(self.id, self.kind, self.len),
             direction: self.direction,
-            len: self.len,
         }
     }
 }

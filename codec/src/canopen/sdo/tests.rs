@@ -319,6 +319,20 @@ fn ts(ms: u32) -> Option<Timestamp> {
     Timestamp::new(u64::from(ms / 1000), (ms % 1000) * 1000)
 }
 
+/// Feed the frame `data` that `sender` sent to `tracker`, and return its
+/// event.
+fn feed<'a>(
+    tracker: &mut SdoTracker,
+    sender: SdoParty,
+    data: &'a [u8],
+    time: Option<Timestamp>,
+    position: u64,
+) -> SdoEvent<'a> {
+    let mut event = SdoEvent::new(sender, data);
+    tracker.feed(&mut event, time, position);
+    event
+}
+
 /// Feed `frames` (direction, bytes, time in ms) as lines 1, 2, …, then end
 /// the input.
 fn run(frames: &[(SdoParty, [u8; 8], u32)]) -> Run {
@@ -326,8 +340,8 @@ fn run(frames: &[(SdoParty, [u8; 8], u32)]) -> Run {
     let mut out = Run::default();
     for (i, (direction, bytes, ms)) in frames.iter().enumerate() {
         let line = i as u64 + 1;
-        let event = tracker.feed(*direction, bytes, ts(*ms), line);
-        out.data.extend_from_slice(event.chunk);
+        let event = feed(&mut tracker, *direction, bytes, ts(*ms), line);
+        out.data.extend_from_slice(event.chunk());
         out.services.push(
             event
                 .message()
@@ -566,8 +580,8 @@ fn an_abort_or_a_segment_on_an_idle_channel_starts_nothing() {
 #[test]
 fn an_unreadable_frame_breaks_the_open_transfer() {
     let mut tracker = SdoTracker::new();
-    assert!(tracker.feed(Rq, &up(0x1000, 0), None, 1).started);
-    let short = tracker.feed(Rs, &[0x43, 0x00, 0x10], None, 2);
+    assert!(feed(&mut tracker, Rq, &up(0x1000, 0), None, 1).started);
+    let short = feed(&mut tracker, Rs, &[0x43, 0x00, 0x10], None, 2);
     assert!(short.message().is_err());
     let t = short.ended.unwrap();
     assert_eq!(
@@ -575,11 +589,17 @@ fn an_unreadable_frame_breaks_the_open_transfer() {
         (SdoOutcome::Broken(BrokenReason::MalformedFrame), 2)
     );
     // On an idle channel it belongs to no transfer.
-    let stray = tracker.feed(Rs, &[0xE0, 0, 0, 0, 0, 0, 0, 0], None, 3);
+    let stray = feed(&mut tracker, Rs, &[0xE0, 0, 0, 0, 0, 0, 0, 0], None, 3);
     assert!(stray.message().is_err() && stray.ended.is_none() && !stray.started);
     // Without times, no latency.
-    tracker.feed(Rq, &up(0x1000, 0), None, 4);
-    let event = tracker.feed(Rs, &[0x4F, 0x00, 0x10, 0x00, 1, 0, 0, 0], None, 5);
+    feed(&mut tracker, Rq, &up(0x1000, 0), None, 4);
+    let event = feed(
+        &mut tracker,
+        Rs,
+        &[0x4F, 0x00, 0x10, 0x00, 1, 0, 0, 0],
+        None,
+        5,
+    );
     assert_eq!(event.ended.map(|t| t.outcome), Some(SdoOutcome::Completed));
     assert_eq!(event.latency, None);
 }
@@ -829,9 +849,9 @@ fn check_invariants(frames: &[(bool, Vec<u8>)]) -> Result<(), TestCaseError> {
     let mut started = 0u64;
     for (i, (request, bytes)) in frames.iter().enumerate() {
         let direction = if *request { Rq } else { Rs };
-        let event = tracker.feed(direction, bytes, ts(i as u32), i as u64);
-        handed_out += event.chunk.len() as u64;
-        if !event.chunk.is_empty() {
+        let event = feed(&mut tracker, direction, bytes, ts(i as u32), i as u64);
+        handed_out += event.chunk().len() as u64;
+        if !event.chunk().is_empty() {
             data_frames += 1;
         }
         if let Some(t) = event.ended {
@@ -1024,10 +1044,10 @@ fn served_answers_are_transfers() {
     let mut h = history();
     let mut tracker = SdoTracker::new();
     let request = read(0x1003, 1).to_bytes();
-    tracker.feed(Rq, &request, None, 1);
+    feed(&mut tracker, Rq, &request, None, 1);
     let answer = serve_error_objects(&request, &mut h, ErrorRegister::GENERIC).unwrap();
-    let event = tracker.feed(Rs, &answer, None, 2);
-    assert_eq!(event.chunk, [0x10, 0x42, 0, 0]);
+    let event = feed(&mut tracker, Rs, &answer, None, 2);
+    assert_eq!(event.chunk(), [0x10, 0x42, 0, 0]);
     assert_eq!(event.ended.map(|t| t.outcome), Some(SdoOutcome::Completed));
 }
 
@@ -1075,10 +1095,10 @@ fn follows_the_reference(frames: &[(bool, Vec<u8>, u32)]) -> Result<(), TestCase
             tracker.expects_block_segment(direction),
             reference.expects_block_segment(direction)
         );
-        let event = tracker.feed(direction, bytes, time, i as u64 + 1);
+        let event = feed(&mut tracker, direction, bytes, time, i as u64 + 1);
         let event = reference::Event {
             message: event.message(),
-            chunk: event.chunk,
+            chunk: event.chunk(),
             latency: event.latency,
             ended: event.ended,
             started: event.started,

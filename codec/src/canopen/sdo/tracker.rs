@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use motionwire_codec::can::Timestamp;
-//! use motionwire_codec::canopen::sdo::{SdoOutcome, SdoParty::*, SdoTracker, TransferDirection};
+//! use motionwire_codec::canopen::sdo::{SdoEvent, SdoOutcome, SdoParty::*, SdoTracker, TransferDirection};
 //!
 //! let mut tracker = SdoTracker::new();
 //! let at = |ms: u32| Timestamp::new(0, ms * 1000);
@@ -26,8 +26,9 @@
 //!     (Client, [0x70, 0, 0, 0, 0, 0, 0, 0], 4),
 //!     (Server, [0x19, b'3', b'0', b'6', 0, 0, 0, 0], 5),
 //! ].into_iter().enumerate() {
-//!     let event = tracker.feed(sender, &bytes, at(ms), line as u64 + 1);
-//!     name.extend_from_slice(event.chunk);
+//!     let mut event = SdoEvent::new(sender, &bytes);
+//!     tracker.feed(&mut event, at(ms), line as u64 + 1);
+//!     name.extend_from_slice(event.chunk());
 //!     if let Some(transfer) = event.ended {
 //!         assert_eq!(transfer.direction, TransferDirection::Upload);
 //!         assert_eq!(transfer.multiplexer.index, 0x1008);
@@ -373,13 +374,12 @@ impl SdoMessage {
 }
 
 /// What the tracker made of one frame.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// It borrows the frame's data only, not the tracker: a caller keeps it
+/// while it feeds or changes other state (the decoder learns from the
+/// transfer it ends), and reads [`chunk`](Self::chunk) from it.
+#[derive(Clone, Copy)]
 pub struct SdoEvent<'a> {
-    /// The data bytes this frame delivers to the transfer (the expedited
-    /// data, a segment's data, a block segment's data; the last block
-    /// segment's bytes are held back until the end frame says how many of
-    /// them are data, and come out with it).
-    pub chunk: &'a [u8],
     /// The time from the client frame that expected this answer to this
     /// frame, when this is a server frame answering one and both have a
     /// time (docs/canopen.md#transfers).
@@ -397,9 +397,48 @@ pub struct SdoEvent<'a> {
     data: &'a [u8],
     /// The tracker read the frame as a segment inside a block.
     block_segment: bool,
+    /// Where [`chunk`](Self::chunk) lies.
+    chunk: Chunk,
+    /// The held segment's bytes, when the chunk is [`Chunk::Held`].
+    held: [u8; SEGMENT_MAX],
 }
 
-impl SdoEvent<'_> {
+impl<'a> SdoEvent<'a> {
+    /// Return the event of the frame `data` that `sender` sent, before a
+    /// tracker has followed it ([`SdoTracker::feed`]): no chunk, no
+    /// latency, no transfer started or ended.
+    #[inline]
+    #[must_use]
+    pub const fn new(sender: SdoParty, data: &'a [u8]) -> Self {
+        SdoEvent {
+            latency: None,
+            ended: None,
+            started: false,
+            sender,
+            data,
+            block_segment: false,
+            chunk: Chunk::None,
+            held: [0; SEGMENT_MAX],
+        }
+    }
+
+    /// Return the data bytes this frame delivers to the transfer (the
+    /// expedited data, a segment's data, a block segment's data; the last
+    /// block segment's bytes are held back until the end frame says how
+    /// many of them are data, and come out with it).
+    #[inline]
+    #[must_use]
+    pub fn chunk(&self) -> &[u8] {
+        match self.chunk {
+            Chunk::None => &[],
+            Chunk::Input(start, end) => self
+                .data
+                .get(usize::from(start)..usize::from(end))
+                .unwrap_or(&[]),
+            Chunk::Held(len) => self.held.get(..usize::from(len)).unwrap_or(&[]),
+        }
+    }
+
     /// Return the frame read in the transfer's context, or why it could
     /// not be read (a short frame, an undefined command specifier): such a
     /// frame breaks the open transfer, and belongs to none on an idle
@@ -419,6 +458,13 @@ impl SdoEvent<'_> {
         SdoMessage::read_abort(self.block_segment, self.data)
     }
 
+    /// Return who sent the frame.
+    #[inline]
+    #[must_use]
+    pub const fn sender(&self) -> SdoParty {
+        self.sender
+    }
+
     /// Return whether the tracker read the frame as a segment inside a
     /// block (rather than as the request or response its bits also
     /// spell): what [`SdoMessage::read`] needs to read it again.
@@ -426,6 +472,34 @@ impl SdoEvent<'_> {
     #[must_use]
     pub const fn is_block_segment(&self) -> bool {
         self.block_segment
+    }
+}
+
+/// Two events are equal when they say the same of the same frame: the
+/// chunk's bytes are compared, not where they lie.
+impl PartialEq for SdoEvent<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.latency == other.latency
+            && self.ended == other.ended
+            && self.started == other.started
+            && self.sender == other.sender
+            && self.data == other.data
+            && self.block_segment == other.block_segment
+            && self.chunk() == other.chunk()
+    }
+}
+
+impl fmt::Debug for SdoEvent<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SdoEvent")
+            .field("chunk", &self.chunk())
+            .field("latency", &self.latency)
+            .field("ended", &self.ended)
+            .field("started", &self.started)
+            .field("sender", &self.sender)
+            .field("data", &self.data)
+            .field("block_segment", &self.block_segment)
+            .finish()
     }
 }
 
@@ -604,18 +678,13 @@ impl Open {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SdoTracker {
     open: Option<Open>,
-    /// Bytes of the held segment to hand out with the current event.
-    release: [u8; SEGMENT_MAX],
 }
 
 impl SdoTracker {
     /// Return a tracker with no open transfer.
     #[must_use]
     pub const fn new() -> Self {
-        SdoTracker {
-            open: None,
-            release: [0; SEGMENT_MAX],
-        }
+        SdoTracker { open: None }
     }
 
     /// Return whether a transfer is open.
@@ -635,34 +704,19 @@ impl SdoTracker {
         }
     }
 
-    /// Feed one frame of the channel: the side that sent it, its data, its time
-    /// (if the log has one) and a position the caller uses to find the
-    /// frame again (a line number), which comes back as a transfer's
-    /// `start_position`.
+    /// Feed one frame of the channel, `event` ([`SdoEvent::new`]: the side
+    /// that sent it and its data), with its time (if the log has one) and a
+    /// position the caller uses to find the frame again (a line number),
+    /// which comes back as a transfer's `start_position`; what the frame is
+    /// in its transfer is written into `event`.
+    ///
+    /// The event is written where the caller keeps it, not returned: a
+    /// caller that reads it there (the decoder, the summary) makes no copy
+    /// of it, the ended transfer included.
     #[inline]
-    pub fn feed<'a>(
-        &'a mut self,
-        sender: SdoParty,
-        data: &'a [u8],
-        time: Option<Timestamp>,
-        position: u64,
-    ) -> SdoEvent<'a> {
-        let mut step = Step::new();
-        self.step(sender, data, time, position, &mut step);
-        let chunk = match step.chunk {
-            Chunk::None => &[],
-            Chunk::Input(range) => data.get(range).unwrap_or(&[]),
-            Chunk::Held(len) => &self.release[..usize::from(len).min(SEGMENT_MAX)],
-        };
-        SdoEvent {
-            chunk,
-            latency: step.latency,
-            ended: step.ended,
-            started: step.started,
-            sender,
-            data,
-            block_segment: step.block_segment,
-        }
+    pub fn feed(&mut self, event: &mut SdoEvent<'_>, time: Option<Timestamp>, position: u64) {
+        let (sender, data) = (event.sender, event.data);
+        self.step(sender, data, time, position, event);
     }
 
     /// End the input: the open transfer, if any, timed out (when the server
@@ -679,7 +733,7 @@ impl SdoTracker {
     /// Follow one frame. The tracker follows the frame's bytes — its
     /// command specifier first, then only the fields the transfer's phase
     /// reads — and makes no message: the event's message is read from the
-    /// bytes where it is wanted ([`Step::message`]), not built here and
+    /// bytes where it is wanted ([`SdoEvent::message`]), not built here and
     /// handed back through every caller.
     fn step(
         &mut self,
@@ -687,7 +741,7 @@ impl SdoTracker {
         data: &[u8],
         time: Option<Timestamp>,
         position: u64,
-        step: &mut Step,
+        step: &mut SdoEvent<'_>,
     ) {
         if self.expects_block_segment(sender) && data.first() != Some(&ABORT_BYTE) {
             step.block_segment = true;
@@ -705,7 +759,12 @@ impl SdoTracker {
     /// A frame the transfer's state makes a block segment.
     #[cold]
     #[inline(never)]
-    fn block_segment_frame(&mut self, data: &[u8], time: Option<Timestamp>, step: &mut Step) {
+    fn block_segment_frame(
+        &mut self,
+        data: &[u8],
+        time: Option<Timestamp>,
+        step: &mut SdoEvent<'_>,
+    ) {
         let Ok(segment) = SdoBlockSegment::parse(data) else {
             return self.malformed(time, step);
         };
@@ -719,7 +778,7 @@ impl SdoTracker {
     /// A frame that cannot be read breaks the open transfer.
     #[cold]
     #[inline(never)]
-    fn malformed(&mut self, time: Option<Timestamp>, step: &mut Step) {
+    fn malformed(&mut self, time: Option<Timestamp>, step: &mut SdoEvent<'_>) {
         if let Some(open) = self.open.as_mut() {
             open.frames += 1;
             open.last_at = time.or(open.last_at);
@@ -816,7 +875,7 @@ impl SdoTracker {
         frame: Frame<'_>,
         time: Option<Timestamp>,
         position: u64,
-        step: &mut Step,
+        step: &mut SdoEvent<'_>,
     ) {
         let Some(open) = self.open.as_mut() else {
             self.begin(frame, time, position, step);
@@ -868,7 +927,7 @@ impl SdoTracker {
                 let last = command & LAST != 0;
                 let len = SEGMENT_MAX - usize::from(segment_unused(command));
                 open.bytes += len as u32;
-                step.chunk = Chunk::Input(1..1 + len);
+                step.chunk = Chunk::Input(1, (1 + len) as u8);
                 if open.too_much() || (last && !open.size_ok()) {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
@@ -886,7 +945,7 @@ impl SdoTracker {
             (Phase::BlockDownloadEndDue, 6) => {
                 let (unused, crc) = frame.view().block_end();
                 let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
-                self.release = open.held;
+                step.held = open.held;
                 open.bytes += len as u32;
                 open.crc.update(&open.held[..len]);
                 step.chunk = Chunk::Held(len as u8);
@@ -915,7 +974,13 @@ impl SdoTracker {
 
     /// Open a transfer at an initiate request on an idle channel.
     #[inline(always)]
-    fn begin(&mut self, frame: Frame<'_>, time: Option<Timestamp>, position: u64, step: &mut Step) {
+    fn begin(
+        &mut self,
+        frame: Frame<'_>,
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut SdoEvent<'_>,
+    ) {
         // Made where it is kept, not moved there.
         self.open = Self::start(frame, time, position);
         let Some(new) = self.open.as_mut() else {
@@ -932,7 +997,7 @@ impl SdoTracker {
                 let data = SdoInitiateData::read(frame.command(), frame.view().data_field());
                 let len = data.data().len();
                 new.bytes = len as u32;
-                step.chunk = Chunk::Input(4..4 + len);
+                step.chunk = Chunk::Input(4, (4 + len) as u8);
             }
             _ => {}
         }
@@ -943,7 +1008,7 @@ impl SdoTracker {
         frame: Frame<'_>,
         time: Option<Timestamp>,
         position: u64,
-        step: &mut Step,
+        step: &mut SdoEvent<'_>,
     ) {
         let command = frame.command();
         let Some(open) = self.open.as_mut() else {
@@ -999,7 +1064,7 @@ impl SdoTracker {
                     open.mode = TransferMode::Expedited;
                     let len = data.data().len();
                     open.bytes = len as u32;
-                    step.chunk = Chunk::Input(4..4 + len);
+                    step.chunk = Chunk::Input(4, (4 + len) as u8);
                     return self.close_open(SdoOutcome::Completed, step);
                 }
                 open.mode = TransferMode::Segmented;
@@ -1026,7 +1091,7 @@ impl SdoTracker {
                 let last = command & LAST != 0;
                 let len = SEGMENT_MAX - usize::from(segment_unused(command));
                 open.bytes += len as u32;
-                step.chunk = Chunk::Input(1..1 + len);
+                step.chunk = Chunk::Input(1, (1 + len) as u8);
                 if open.too_much() || (last && !open.size_ok()) {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
@@ -1060,7 +1125,7 @@ impl SdoTracker {
             (Phase::BlockUploadEndDue, 6) if command & 0b1 == 1 => {
                 let (unused, crc) = frame.view().block_end();
                 let len = SEGMENT_MAX - usize::from(unused).min(SEGMENT_MAX);
-                self.release = open.held;
+                step.held = open.held;
                 open.bytes += len as u32;
                 open.crc.update(&open.held[..len]);
                 step.chunk = Chunk::Held(len as u8);
@@ -1078,7 +1143,13 @@ impl SdoTracker {
     /// request, and is a transfer of its own that starts and ends broken.
     #[cold]
     #[inline(never)]
-    fn stray(&mut self, frame: Frame<'_>, time: Option<Timestamp>, position: u64, step: &mut Step) {
+    fn stray(
+        &mut self,
+        frame: Frame<'_>,
+        time: Option<Timestamp>,
+        position: u64,
+        step: &mut SdoEvent<'_>,
+    ) {
         let Ok(response) = SdoResponse::parse(frame.bytes) else {
             return;
         };
@@ -1120,7 +1191,7 @@ impl SdoTracker {
         &mut self,
         segment: &SdoBlockSegment,
         time: Option<Timestamp>,
-        step: &mut Step,
+        step: &mut SdoEvent<'_>,
     ) {
         let Some(mut open) = self.open else { return };
         let (Phase::BlockDownloadSub(mut sub) | Phase::BlockUploadSub(mut sub)) = open.phase else {
@@ -1139,7 +1210,7 @@ impl SdoTracker {
             } else {
                 open.bytes += SEGMENT_MAX as u32;
                 open.crc.update(&segment.data);
-                step.chunk = Chunk::Input(1..1 + SEGMENT_MAX);
+                step.chunk = Chunk::Input(1, (1 + SEGMENT_MAX) as u8);
                 if open.too_much() {
                     open.fault = Some(BrokenReason::SizeMismatch);
                 }
@@ -1189,7 +1260,7 @@ impl SdoTracker {
     /// Close the open transfer where it stands (nothing when none is open),
     /// read where it lies: the open transfer is not copied out first.
     #[inline(always)]
-    fn close_open(&mut self, outcome: SdoOutcome, step: &mut Step) {
+    fn close_open(&mut self, outcome: SdoOutcome, step: &mut SdoEvent<'_>) {
         if let Some(open) = &self.open {
             let outcome = match (outcome, open.fault) {
                 (SdoOutcome::Completed, Some(fault)) => SdoOutcome::Broken(fault),
@@ -1273,39 +1344,13 @@ fn stray(response: &SdoResponse) -> (TransferDirection, ObjectAddress) {
     }
 }
 
-/// Where an event's chunk lies.
+/// Where an event's chunk lies: nowhere, bytes `start..end` of the
+/// frame's data (at most 8), or the first bytes of the held segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Chunk {
     None,
-    Input(core::ops::Range<usize>),
+    Input(u8, u8),
     Held(u8),
-}
-
-/// What one frame is in its transfer, as the tracker's step writes it: an
-/// [`SdoEvent`] with its chunk as where it lies.
-struct Step {
-    chunk: Chunk,
-    /// [`SdoEvent::latency`].
-    latency: Option<Duration>,
-    /// [`SdoEvent::ended`].
-    ended: Option<SdoTransfer>,
-    /// [`SdoEvent::started`].
-    started: bool,
-    /// [`SdoEvent::is_block_segment`].
-    block_segment: bool,
-}
-
-impl Step {
-    /// Nothing yet: no chunk, no latency, no transfer started or ended.
-    #[inline]
-    const fn new() -> Self {
-        Step {
-            chunk: Chunk::None,
-            latency: None,
-            ended: None,
-            started: false,
-            block_segment: false,
-        }
-    }
 }
 
 impl SdoMessage {
