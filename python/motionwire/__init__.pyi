@@ -115,7 +115,8 @@ def decode(
     (docs/python.md#decode):
 
     - ``kind`` (dictionary string): ``emcy``, ``heartbeat``,
-      ``guard_request``, ``nmt_command``, ``sync``, ``time``, ``pdo``,
+      ``guard_request``, ``guard_answer``, ``nmt_command``, ``sync``,
+      ``time``, ``pdo``,
       ``sdo``, ``error_frame``, ``other`` (docs/canopen.md#identifiers).
     - ``node`` (uint8, null for kinds without one).
     - ``code`` (uint16), ``register`` (uint8), ``description`` (dictionary

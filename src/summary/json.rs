@@ -149,7 +149,7 @@ impl Serialize for EmcySeen {
 
 impl Serialize for FrameCounts {
     /// `{kind: count}` for every kind, in the order of
-    /// docs/summary.md#frames, with `guard_answer` after `guard_request`.
+    /// docs/summary.md#frames.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         for (key, n) in self.iter() {

@@ -11,41 +11,35 @@ use super::heartbeat::{GuardingSummary, HeartbeatSummary};
 use super::listed::Listed;
 use super::sdo::SdoSummary;
 
-/// The frames of a node by kind (`frames` in docs/summary.md#frames), with the
-/// node-guarding answers apart from the heartbeats: both are data frames
-/// on 0x700 + node, told apart by the guard request before an answer
-/// (docs/summary.md#frames).
+/// The frames of a node by kind (`frames` in docs/summary.md#frames): the
+/// node-guarding answers ([`MessageKind::GuardAnswer`]) apart from the
+/// heartbeats, as the decoder tells them (docs/output.md#heartbeat).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct FrameCounts {
     pub(super) by_kind: [u64; MessageKind::ALL.len()],
-    pub(super) guard_answers: u64,
 }
 
 impl FrameCounts {
-    /// Return the count of frames of `kind`; for
-    /// [`MessageKind::Heartbeat`], the heartbeats and boot-ups without the
-    /// node-guarding answers ([`guard_answers`](Self::guard_answers)).
+    /// Return the count of frames of `kind`.
     #[must_use]
     pub fn get(&self, kind: MessageKind) -> u64 {
         self.by_kind[kind.index()]
     }
 
     /// Return the count of node-guarding answers: the data frames on
-    /// 0x700 + node that answer a guard request.
+    /// 0x700 + node that answer a guard request
+    /// ([`get`](Self::get)`(MessageKind::GuardAnswer)`).
     #[must_use]
     pub fn guard_answers(&self) -> u64 {
-        self.guard_answers
+        self.get(MessageKind::GuardAnswer)
     }
 
-    /// Return every count under its key in the summary, in order: the kinds
-    /// of [`MessageKind::ALL`] by name, with `guard_answer` after
-    /// `guard_request`.
+    /// Return every count under its key in the summary, in the order of
+    /// [`MessageKind::ALL`], by name.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, u64)> + '_ {
-        MessageKind::ALL.into_iter().flat_map(move |kind| {
-            let answers =
-                (kind == MessageKind::GuardRequest).then_some(("guard_answer", self.guard_answers));
-            core::iter::once((kind.name(), self.by_kind[kind.index()])).chain(answers)
-        })
+        MessageKind::ALL
+            .into_iter()
+            .map(move |kind| (kind.name(), self.by_kind[kind.index()]))
     }
 }
 

@@ -401,3 +401,99 @@ fn frames_of_buses_in_turns_count_each_on_its_bus() {
     assert_eq!(requests("can0", 5), None);
     assert_eq!(requests("can1", 2), None);
 }
+
+/// docs/summary.md#emcy: a boot-up is the device's re-initialisation, after
+/// which the EMCY state machine starts error-free (transition 0, CiA 301):
+/// the active error before it is gone, and the first error after it is the
+/// new root cause, not a follow-up of the old one.
+#[test]
+fn a_boot_up_clears_the_active_error_until_a_new_emcy() {
+    let hot: &[u8] = &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0];
+    let current: &[u8] = &[0x10, 0x23, 0x03, 0, 0, 0, 0, 0];
+    let before = summarize(&[(Some(0), 0x705, &[0x05]), (Some(1), 0x085, hot)], None);
+    assert_eq!(before.nodes[0].active_error.unwrap().line, 2);
+
+    let rebooted = summarize(
+        &[
+            (Some(0), 0x705, &[0x05]),
+            (Some(1), 0x085, hot),
+            (Some(2), 0x705, &[0x00]),
+        ],
+        None,
+    );
+    let five = &rebooted.nodes[0];
+    assert_eq!(five.active_error, None);
+    assert_eq!(five.last_register, None, "no EMCY since the boot-up");
+    assert_eq!(five.first_error.unwrap().line, 2, "the first error stays");
+
+    let again = summarize(
+        &[
+            (Some(0), 0x705, &[0x05]),
+            (Some(1), 0x085, hot),
+            (Some(2), 0x705, &[0x00]),
+            (Some(3), 0x085, current),
+            (Some(4), 0x085, hot),
+        ],
+        None,
+    );
+    let five = &again.nodes[0];
+    assert_eq!(five.active_error.unwrap().code.get(), 0x2310);
+    assert_eq!(five.active_error.unwrap().line, 4);
+}
+
+/// docs/summary.md#emcy: an EMCY with an error code and the error register
+/// at 0 says no error is present (CiA 301: bit 0 is set in any error
+/// situation): it is counted, and is a first error, but not the active
+/// error (the Baumer encoder's battery warning, 0xFF00, is sent so).
+#[test]
+fn an_emcy_that_reports_no_error_is_not_the_active_error() {
+    let battery: &[u8] = &[0x00, 0xFF, 0x00, 0, 0, 0x10, 0, 0];
+    let passive: &[u8] = &[0x20, 0x81, 0x10, 0, 0, 0x10, 0, 0];
+    let summary = summarize(
+        &[(Some(0), 0x085, battery), (Some(1), 0x085, passive)],
+        None,
+    );
+    let five = &summary.nodes[0];
+    assert_eq!(five.emcy, 2);
+    assert_eq!(five.first_error.unwrap().code.get(), 0xFF00);
+    assert_eq!(
+        five.active_error.unwrap().code.get(),
+        0x8120,
+        "the warning did not take the slot"
+    );
+    let alone = summarize(&[(Some(0), 0x085, battery)], None);
+    assert_eq!(alone.nodes[0].active_error, None);
+}
+
+/// docs/summary.md#heartbeat: the node's last state is the last frame's
+/// that tells it, a heartbeat or a node-guarding answer; the answers are
+/// counted as `guard_answer`, not as heartbeats.
+#[test]
+fn the_last_state_comes_from_the_last_frame_that_tells_it() {
+    let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
+    let data = |id: u32, data: &'static [u8]| {
+        LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+    };
+    let request = LogFrame::new(CanFrame::new_remote(CanId::standard(0x70A).unwrap(), 1).unwrap());
+    let frames = [
+        data(0x70A, &[0x00]),
+        request,
+        data(0x70A, &[0x7F]),
+        request,
+        data(0x70A, &[0x85]),
+    ];
+    for (i, frame) in frames.into_iter().enumerate() {
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(frame));
+    }
+    let summary = summarizer.finish();
+    let ten = &summary.nodes[0];
+    assert_eq!(
+        ten.heartbeat.last_state.and_then(|b| b.state()),
+        Some(crate::canopen::NmtState::Operational)
+    );
+    assert_eq!(ten.heartbeat.count, 1, "the boot-up only");
+    assert_eq!(ten.frames.get(crate::canopen::MessageKind::Heartbeat), 1);
+    assert_eq!(ten.frames.guard_answers(), 2);
+    assert_eq!(ten.guarding.answers, 2);
+    assert!(ten.to_string().contains("last state operational"), "{ten}");
+}

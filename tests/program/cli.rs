@@ -342,6 +342,60 @@ fn summary_keys_on_a_crafted_log() {
         n10["guarding"],
         json!({"answers": 5, "toggle_errors": [14, 19], "toggle_error_count": 2})
     );
+    // The last frame that tells node 10's state is the answer on line 19.
+    assert_eq!(n10["heartbeat"]["last_state"], "operational");
+}
+
+/// docs/output.md#heartbeat: a node-guarding answer is its own kind in every
+/// form, with its state and toggle, and `--only` keeps it.
+#[test]
+fn a_guarding_answer_is_its_own_kind() {
+    let path = temp_file("guarding.log", SUMMARY_LOG);
+    let path = path.to_str().unwrap();
+    let out = run(&["decode", "--json", "--only", "guard_answer", path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let lines: Vec<_> = recs.iter().map(|r| r["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [10, 12, 14, 16, 19]);
+    assert_eq!(
+        (&recs[1]["kind"], &recs[1]["state"], &recs[1]["toggle"]),
+        (&json!("guard_answer"), &json!("operational"), &json!(true))
+    );
+    // The boot-up between the answers stays a heartbeat.
+    let out = run(
+        &[
+            "decode",
+            "--json",
+            "--only",
+            "heartbeat",
+            "--node",
+            "10",
+            path,
+        ],
+        "",
+    );
+    let lines: Vec<_> = records(&out)
+        .iter()
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [17]);
+    let text = stdout(&run(&["decode", "--only", "guard_answer", path], ""));
+    let second = text.lines().nth(1).unwrap();
+    assert!(
+        second.contains("70A  guard_answer   node  10  operational, toggle 1"),
+        "{second}"
+    );
+    let csv = stdout(&run(
+        &["decode", "--csv", "--only", "guard_answer", path],
+        "",
+    ));
+    assert!(
+        csv.lines()
+            .nth(2)
+            .unwrap()
+            .contains(",85,guard_answer,10,,"),
+        "{csv}"
+    );
 }
 
 #[test]
@@ -580,6 +634,11 @@ fn sample_log_summary_matches_its_ground_truth() {
         }
         assert_eq!(
             rec["heartbeat"]["boot_ups"], t["boot_up_lines"],
+            "node {node}"
+        );
+        // The last frame that tells the state: node 10's guarding answers.
+        assert_eq!(
+            rec["heartbeat"]["last_state"], t["last_state"],
             "node {node}"
         );
         let sdo = &t["sdo"];
@@ -1521,7 +1580,7 @@ fn help_and_messages_speak_plainly() {
     let text = stdout(&help);
     for needle in [
         "candump, asc, trc, pcap, pcapng, blf, mf4",
-        "emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo, error_frame, other",
+        "emcy, heartbeat, guard_request, guard_answer, nmt_command, sync,\n          time, pdo, sdo, error_frame, other",
         "Exit status:",
         "docs/output.md",
         "line  ts                 iface  id        kind           node      detail",

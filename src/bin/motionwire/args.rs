@@ -104,8 +104,8 @@ Text output, one line per frame:
   ts      seconds (absolute Unix time, or since the recording started), - without one
   iface   interface name or channel number, - without one
   id      CAN identifier in hex (8 digits for an extended one)
-  kind    emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo,
-          error_frame, other
+  kind    emcy, heartbeat, guard_request, guard_answer, nmt_command, sync,
+          time, pdo, sdo, error_frame, other
   node    the node-ID the identifier names, blank for kinds without one
   detail  what the frame says: an EMCY in words, a heartbeat's state, an SDO
           step or the transfer it ends, a PDO's signals, an error frame's
