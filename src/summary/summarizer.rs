@@ -529,23 +529,7 @@ fn add_classified(
             let byte = NmtStateByte::new(byte);
             state.heartbeats += 1;
             state.last_state = Some(byte);
-            on_event(event(
-                Some(node),
-                SummaryEventKind::Nmt {
-                    state: byte,
-                    guard_answer: false,
-                },
-            ));
-            if byte.state_raw() == 0 {
-                state.boot_ups.push(position);
-                state.guarding.on_boot_up();
-                // A device that re-initialises starts error-free (the
-                // EMCY state machine's transition 0, CiA 301).
-                storage.boot_up(node);
-                state.active_error = None;
-                state.last_register = None;
-                on_event(event(Some(node), SummaryEventKind::BootUp));
-            }
+            // The gap this heartbeat closes comes first: it lies before it.
             if let (Some(consumer), Some(now), Some(nmt)) = (consumer.as_mut(), now, byte.state()) {
                 for event in consumer.on_heartbeat(now, node, nmt) {
                     match event {
@@ -572,6 +556,23 @@ fn add_classified(
                         HeartbeatEvent::CapacityExceeded { .. } => {}
                     }
                 }
+            }
+            on_event(event(
+                Some(node),
+                SummaryEventKind::Nmt {
+                    state: byte,
+                    guard_answer: false,
+                },
+            ));
+            if byte.state_raw() == 0 {
+                state.boot_ups.push(position);
+                state.guarding.on_boot_up();
+                // A device that re-initialises starts error-free (the
+                // EMCY state machine's transition 0, CiA 301).
+                storage.boot_up(node);
+                state.active_error = None;
+                state.last_register = None;
+                on_event(event(Some(node), SummaryEventKind::BootUp));
             }
             state.last_heartbeat_line = position;
         }

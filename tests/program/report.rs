@@ -138,6 +138,27 @@ fn the_samples_faults_are_where_the_summary_says() {
     assert!(page
         .html
         .contains("no heartbeat for 3386.93 ms after line 1559"));
+    // Silent past the consumer time (300 ms), its state is unknown up to
+    // the boot-up that ends the gap: no band says `operational` there.
+    let nmt: Vec<(&str, u64, f64)> = five
+        .kind("nmt_state")
+        .iter()
+        .map(|b| {
+            (
+                b.get("data-state").unwrap(),
+                b.num("data-line"),
+                b.get("x").unwrap().parse().unwrap(),
+            )
+        })
+        .collect();
+    let silent = nmt.iter().position(|b| b.0 == "unknown").unwrap();
+    assert_eq!(nmt[silent].1, 1559);
+    assert_eq!((nmt[silent + 1].0, nmt[silent + 1].1), ("boot_up", 2681));
+    assert_eq!(nmt[silent - 1].0, "operational");
+    let x_gap = gaps[0].get("x").unwrap().parse::<f64>().unwrap();
+    let consumer_px = 300_000.0 / span as f64 * 1000.0;
+    assert!((nmt[silent].2 - (x_gap + consumer_px)).abs() < 0.01);
+    assert_eq!(nmt.iter().filter(|b| b.0 == "unknown").count(), 1);
 
     // Node 10: the guarding toggle error.
     let ten = page.node("can0", 10);
@@ -313,6 +334,72 @@ fn a_log_without_timestamps_is_drawn_by_line() {
         &page,
         &summary_records(&["--heartbeat-ms", "100", log.to_str().unwrap()]),
     );
+}
+
+/// docs/report.md#bands: a device silent past the heartbeat consumer time
+/// is drawn as `unknown` from then to its next heartbeat or to the end;
+/// without `--heartbeat-ms` nothing is checked, and its last state lasts.
+#[test]
+fn a_silent_device_is_drawn_as_unknown() {
+    let dir = scratch("silent");
+    let log = dir.join("silent.log");
+    std::fs::write(
+        &log,
+        "(10.000000) can0 705#05
+(10.100000) can0 705#05
+(10.900000) can0 705#7F
+         (11.000000) can0 705#7F
+(11.100000) can0 080#
+(13.000000) can0 080#
+",
+    )
+    .unwrap();
+    let page_of = |args: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut all = vec!["report"];
+        all.extend_from_slice(args);
+        all.extend([log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let r = run(&all);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        parse(&std::fs::read_to_string(&out).unwrap())
+    };
+    let page = page_of(&["--heartbeat-ms", "200"], "checked.html");
+    let row = page.node("can0", 5);
+    let states: Vec<(&str, u64)> = row
+        .kind("nmt_state")
+        .iter()
+        .map(|b| (b.get("data-state").unwrap(), b.num("data-line")))
+        .collect();
+    // 600 ms of silence after line 2 (unknown from 10.3 s), then
+    // pre-operational from line 3; silent again after line 4 to the end.
+    assert_eq!(
+        states,
+        [
+            ("operational", 1),
+            ("unknown", 2),
+            ("pre_operational", 3),
+            ("unknown", 4)
+        ]
+    );
+    let unknown = row.kind("nmt_state")[1];
+    let x: f64 = unknown.get("x").unwrap().parse().unwrap();
+    let width: f64 = unknown.get("width").unwrap().parse().unwrap();
+    // The axis spans 3 s: 10.3 s to 10.9 s is 200 px to 400 px of 1 000.
+    assert!((x - (170.0 + 100.0)).abs() < 0.01, "{x}");
+    assert!((width - 200.0).abs() < 0.01, "{width}");
+    check_counts(
+        &page,
+        &summary_records(&["--heartbeat-ms", "200", log.to_str().unwrap()]),
+    );
+
+    let unchecked = page_of(&[], "unchecked.html");
+    let states: Vec<&str> = unchecked
+        .node("can0", 5)
+        .kind("nmt_state")
+        .iter()
+        .map(|b| b.get("data-state").unwrap())
+        .collect();
+    assert_eq!(states, ["operational", "pre_operational"]);
 }
 
 #[test]
