@@ -1376,8 +1376,21 @@ fn blf_files() {
     std::fs::create_dir_all(&dir).unwrap();
     let cut = dir.join("cut.blf");
     std::fs::write(&cut, &whole[..whole.len() - 40]).unwrap();
+    // Its one container cut: nothing could be read (docs/output.md#exit-status).
+    let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("nothing could be read as a blf log: 1 damaged record and no frame"),
+        "{}",
+        stderr(&out)
+    );
+    // A file of many containers cut in its last: the frames before it.
+    let many = std::fs::read(format!("{fixtures}python_can_many.blf")).unwrap();
+    std::fs::write(&cut, &many[..many.len() - 40]).unwrap();
     let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
     assert_eq!(out.status.code(), Some(1));
+    assert!(!records(&out).is_empty());
     assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
 }
 
@@ -1605,4 +1618,122 @@ fn help_and_messages_speak_plainly() {
         "{}",
         stderr(&eds)
     );
+}
+
+/// A candump log of `frames` heartbeats of node 5, a millisecond apart.
+fn candump_heartbeats(frames: usize) -> String {
+    (0..frames)
+        .map(|i| format!("(1700000000.{i:06}) can0 705#05\n"))
+        .collect()
+}
+
+/// docs/output.md#stderr: a log of which nothing could be read — every
+/// line malformed, as a candump log read with `--format trc` — says its
+/// first 100 malformed lines and then one line, and is exit status 2; the
+/// page is not written.
+#[test]
+fn a_log_of_which_nothing_could_be_read_says_so_in_one_line() {
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/samples/machine.log");
+    let generated = temp_file("heartbeats.log", &candump_heartbeats(250));
+    for (path, lines) in [(sample, 3765), (generated.to_str().unwrap(), 250)] {
+        let out = run(&["decode", "--format", "trc", path], "");
+        assert_eq!(out.status.code(), Some(2), "{path}");
+        assert!(out.stdout.is_empty());
+        let err = stderr(&out);
+        let said: Vec<&str> = err.lines().collect();
+        assert_eq!(said.len(), 101, "{err}");
+        for (i, line) in said[..100].iter().enumerate() {
+            assert!(
+                line.starts_with(&format!("{path}:{}: trc line", i + 1)),
+                "{line}"
+            );
+        }
+        assert_eq!(
+            said[100],
+            format!(
+                "motionwire: {path}: nothing could be read as a trc log: {lines} malformed lines \
+                 and no frame; the first 100 are said above (--verbose says each)"
+            )
+        );
+        let verbose = run(&["decode", "--verbose", "--format", "trc", path], "");
+        assert_eq!(verbose.status.code(), Some(2));
+        assert_eq!(stderr(&verbose).lines().count(), lines + 1);
+    }
+    // A few malformed lines: each said, and the one line without the rest.
+    let out = run(&["decode", "--format", "trc", "-"], &candump_heartbeats(3));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).ends_with(
+            "motionwire: <stdin>: nothing could be read as a trc log: 3 malformed lines and no frame\n"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    // The page is not written.
+    let page = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests/nothing.html");
+    let _ = std::fs::remove_file(&page);
+    let out = run(
+        &[
+            "report",
+            "--format",
+            "trc",
+            sample,
+            "-o",
+            page.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(stderr(&out).lines().count(), 101);
+    assert!(!page.exists());
+    // An empty log is not a log of which nothing could be read.
+    let out = run(&["decode", "--format", "trc", "-"], "");
+    assert_eq!(out.status.code(), Some(0));
+}
+
+/// docs/output.md#stderr: per file, the first 100 malformed lines are said
+/// one by one and the rest counted in one line; `--verbose` says all.
+#[test]
+fn malformed_lines_are_said_up_to_100_per_file() {
+    let mut text = candump_heartbeats(2);
+    for i in 0..150 {
+        text.push_str(&format!("not a frame {i}\n"));
+    }
+    let a = temp_file("bounded_a.log", &text);
+    let b = temp_file("bounded_b.log", &text);
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = run(&["decode", "--json", a, b], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(records(&out).len(), 4, "the frames are written");
+    let err = stderr(&out);
+    let said: Vec<&str> = err.lines().collect();
+    // 100 + 1 per file, then the run's count.
+    assert_eq!(said.len(), 2 * 101 + 1, "{err}");
+    assert!(
+        said[99].starts_with(&format!("{a}:102: candump line")),
+        "{}",
+        said[99]
+    );
+    assert_eq!(
+        said[100],
+        format!(
+            "{a}: 150 malformed lines in all; the first 100 are said above (--verbose says each)"
+        )
+    );
+    assert!(
+        said[101].starts_with(&format!("{b}:3: candump line")),
+        "{}",
+        said[101]
+    );
+    assert_eq!(said[202], "motionwire: 300 malformed lines skipped");
+
+    let out = run(&["decode", "--verbose", "--json", a, b], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(stderr(&out).lines().count(), 2 * 150 + 1);
+
+    // At most 100: nothing more than before.
+    let few = temp_file("bounded_few.log", &(candump_heartbeats(1) + "junk\n"));
+    let out = run(&["decode", few.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(stderr(&out).lines().count(), 2);
 }

@@ -119,7 +119,12 @@ Exit status:
   1  some lines were malformed or some records damaged: each said on standard
      error with its position, then a count; the rest was decoded
   2  the command could not do its job: bad arguments, a file that cannot be
-     read, an input in no known log format, a damaged binary header";
+     read, an input in no known log format, a damaged binary header, an input
+     of which nothing could be read (every line malformed: is --format right?)
+
+Complaints are bounded: the first 100 malformed lines or damaged records of
+each file are said one by one, the rest counted in one line (--verbose says
+every one).";
 
 /// The arguments of `motionwire decode`.
 #[derive(Debug, Args)]
@@ -195,6 +200,11 @@ pub struct ReadingArgs {
     /// changes them (docs/canopen.md#pdo-mappings).
     #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
     pub eds: Vec<(NodeId, PathBuf)>,
+    /// Say every malformed line and damaged record on standard error; without
+    /// it, the first 100 of each file are said one by one and the rest
+    /// counted in one line (docs/output.md#stderr).
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// One `--profile` item: for every node, or for one node.
