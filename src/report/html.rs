@@ -346,7 +346,9 @@ impl Report {
                     finding.line
                 };
                 let section = match finding.kind {
-                    FindingKind::FirstError | FindingKind::Cia402Fault => 0,
+                    FindingKind::FirstError
+                    | FindingKind::FirstWarning
+                    | FindingKind::Cia402Fault => 0,
                     FindingKind::Restarts => 1,
                     FindingKind::HeartbeatTimeout => 2,
                     FindingKind::SdoAbort => 3,

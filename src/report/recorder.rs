@@ -481,7 +481,7 @@ fn mark_kind(finding: &Finding) -> Option<MarkKind> {
         return None;
     }
     Some(match finding.kind {
-        FindingKind::FirstError => return None,
+        FindingKind::FirstError | FindingKind::FirstWarning => return None,
         FindingKind::Cia402Fault => MarkKind::Cia402Fault,
         FindingKind::Restarts => MarkKind::BootUp,
         FindingKind::HeartbeatTimeout => MarkKind::HeartbeatTimeout,

@@ -128,6 +128,7 @@ impl Serialize for SummaryRecord<'_> {
             map.serialize_entry("file", file)?;
         }
         match self.item {
+            SummaryItem::Verdict(verdict) => super::verdict::verdict_entries(verdict, &mut map)?,
             SummaryItem::Node(node) => node_entries(node, &mut map)?,
             SummaryItem::Bus(bus) => bus_entries(bus, &mut map)?,
         }

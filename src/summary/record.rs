@@ -4,12 +4,14 @@
 use crate::can::Timestamp;
 use crate::canopen::{ErrorRegister, MessageKind, NodeId};
 use crate::decoder::BusName;
+use crate::profiles::Profile;
 
 use super::cia402::Cia402Timeline;
 use super::emcy::EmcySeen;
 use super::heartbeat::{GuardingSummary, HeartbeatSummary};
 use super::listed::Listed;
 use super::sdo::SdoSummary;
+use super::verdict::Verdict;
 
 /// The frames of a node by kind (`frames` in docs/summary.md#frames): the
 /// node-guarding answers ([`MessageKind::GuardAnswer`]) apart from the
@@ -51,12 +53,20 @@ pub struct NodeSummary {
     pub bus: BusName,
     /// The node-ID.
     pub node: NodeId,
+    /// Its profile: how its EMCYs' manufacturer bytes read (`--profile`,
+    /// docs/canopen.md#profiles).
+    pub profile: Profile,
     /// Its frames by kind.
     pub frames: FrameCounts,
     /// EMCYs seen, resets included.
     pub emcy: u64,
     /// Its first error EMCY.
     pub first_error: Option<EmcySeen>,
+    /// Its first error EMCY that reports an error present: with its error
+    /// register set ([`Emcy::reports_no_error`](crate::canopen::Emcy::reports_no_error)
+    /// false; docs/summary.md#severity). The same as
+    /// [`first_error`](Self::first_error) unless that one is a warning.
+    pub first_error_with_register: Option<EmcySeen>,
     /// The error in its RECV_EMCY_DEV slot at the end of the input: the
     /// root cause under the rule of docs/canopen.md#recv-emcy, `None` after a
     /// reset.
@@ -116,6 +126,8 @@ pub struct Summary {
     /// Whether heartbeat timeouts were checked: `None` when not asked,
     /// `Some(false)` when frames without a time made it impossible.
     pub(super) checked: Option<bool>,
+    /// The verdict on its findings ([`Verdict::of`]).
+    pub(super) verdict: Option<Verdict>,
 }
 
 /// One record of the summary, as `decode --summary` writes them: the
@@ -132,6 +144,8 @@ pub struct SummaryRecord<'s> {
 /// What a [`SummaryRecord`] is about.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SummaryItem<'s> {
+    /// What stopped the machine and its first cause (docs/summary.md#verdict).
+    Verdict(&'s Verdict),
     /// A device.
     Node(&'s NodeSummary),
     /// A bus.
@@ -139,14 +153,23 @@ pub enum SummaryItem<'s> {
 }
 
 impl Summary {
-    /// Return the records in output order: every node, then every bus.
+    /// Return the records in output order: the verdict when something
+    /// stopped (docs/summary.md#verdict), every node, then every bus.
     pub fn records(&self) -> impl Iterator<Item = SummaryRecord<'_>> + '_ {
         let file = self.file.as_deref();
-        self.nodes
+        self.verdict
             .iter()
-            .map(SummaryItem::Node)
+            .map(SummaryItem::Verdict)
+            .chain(self.nodes.iter().map(SummaryItem::Node))
             .chain(self.buses.iter().map(SummaryItem::Bus))
             .map(move |item| SummaryRecord { file, item })
+    }
+
+    /// Return what stopped the machine and its first cause, when something
+    /// stopped (docs/summary.md#verdict).
+    #[must_use]
+    pub fn verdict(&self) -> Option<&Verdict> {
+        self.verdict.as_ref()
     }
 
     /// Return whether heartbeat timeouts were asked for but could not be

@@ -30,6 +30,7 @@ struct NodeState {
     emcy: u64,
     resets: u64,
     first_error: Option<EmcySeen>,
+    first_error_with_register: Option<EmcySeen>,
     active_error: Option<EmcySeen>,
     last_error: Option<EmcySeen>,
     last_register: Option<ErrorRegister>,
@@ -56,6 +57,7 @@ impl NodeState {
             emcy: 0,
             resets: 0,
             first_error: None,
+            first_error_with_register: None,
             active_error: None,
             last_error: None,
             last_register: None,
@@ -464,6 +466,8 @@ fn add_classified(
                 line: position,
                 timestamp: log.timestamp,
                 code: emcy.code,
+                register: emcy.register,
+                manufacturer: emcy.manufacturer,
             };
             on_event(event(
                 Some(node),
@@ -483,6 +487,9 @@ fn add_classified(
             // An EMCY that reports no error present (a warning) leaves the
             // node error-free: it is not the node's active error.
             if !emcy.reports_no_error() {
+                if !emcy.is_reset() && state.first_error_with_register.is_none() {
+                    state.first_error_with_register = Some(seen);
+                }
                 match storage.receive(node, emcy) {
                     SlotUpdate::RootCause => state.active_error = Some(seen),
                     SlotUpdate::Reset { .. } => state.active_error = None,
@@ -657,6 +664,7 @@ impl Summarizer {
             buses: Vec::new(),
             file: None,
             checked,
+            verdict: None,
         };
         for (name, bus) in buses {
             let mut nodes = Vec::new();
@@ -666,9 +674,11 @@ impl Summarizer {
                 summary.nodes.push(NodeSummary {
                     bus: name.clone(),
                     node: state.node,
+                    profile: decoder.config().profiles().of(Some(state.node)),
                     frames: state.frames,
                     emcy: state.emcy,
                     first_error: state.first_error,
+                    first_error_with_register: state.first_error_with_register,
                     active_error: state.active_error,
                     resets: state.resets,
                     last_register: state.last_register,
@@ -699,6 +709,7 @@ impl Summarizer {
                 nodes,
             });
         }
+        summary.verdict = super::Verdict::of(&summary);
         summary
     }
 }

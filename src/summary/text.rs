@@ -29,6 +29,7 @@ impl fmt::Display for SummaryRecord<'_> {
             write!(f, "{file}: ")?;
         }
         match self.item {
+            SummaryItem::Verdict(verdict) => fmt::Display::fmt(verdict, f),
             SummaryItem::Node(node) => fmt::Display::fmt(node, f),
             SummaryItem::Bus(bus) => fmt::Display::fmt(bus, f),
         }

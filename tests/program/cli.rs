@@ -54,8 +54,16 @@ fn node_records(out: &Output) -> Vec<Value> {
         .filter(|r| r["type"] == "node")
         .cloned()
         .collect();
-    // Node records come first, then one bus record per interface.
-    assert!(all[nodes.len()..].iter().all(|r| r["type"] == "bus"));
+    // The verdict when something stopped, then the node records, then one
+    // bus record per interface.
+    let verdicts = usize::from(all.first().is_some_and(|r| r["type"] == "verdict"));
+    assert!(all[..verdicts + nodes.len()]
+        .iter()
+        .skip(verdicts)
+        .all(|r| r["type"] == "node"));
+    assert!(all[verdicts + nodes.len()..]
+        .iter()
+        .all(|r| r["type"] == "bus"));
     nodes
 }
 
@@ -405,8 +413,10 @@ fn summary_timeout_runs_to_the_end_of_the_input_and_needs_the_option() {
         &["decode", "--summary", "--json", "--heartbeat-ms", "1000"],
         log,
     ));
+    // The lost node stops: the verdict first.
+    assert_eq!(recs[0]["stop"]["kind"], "heartbeat_timeout");
     assert_eq!(
-        recs[0]["heartbeat"]["timeouts"],
+        recs[1]["heartbeat"]["timeouts"],
         json!([{"after_line": 2, "gap_ms": 2500.0}])
     );
     let recs = records(&run(&["decode", "--summary", "--json"], log));
@@ -1047,7 +1057,12 @@ fn summary_nodes_per_interface_and_bus_records() {
                (100.500000) can1 705#05\n";
     let out = run(&["decode", "--summary", "--json"], log);
     assert!(out.status.success(), "{}", stderr(&out));
-    let recs = records(&out);
+    let all = records(&out);
+    // can1's bus-off stops (docs/summary.md#verdict): the verdict first.
+    assert_eq!(all[0]["type"], "verdict");
+    assert_eq!(all[0]["stop"]["iface"], "can1");
+    assert_eq!(all[0]["stop"]["kind"], "bus_off");
+    let recs = &all[1..];
     let keys: Vec<(String, String, u64)> = recs
         .iter()
         .map(|r| {
@@ -1736,4 +1751,64 @@ fn malformed_lines_are_said_up_to_100_per_file() {
     let out = run(&["decode", few.to_str().unwrap()], "");
     assert_eq!(out.status.code(), Some(1));
     assert_eq!(stderr(&out).lines().count(), 2);
+}
+
+/// docs/summary.md#verdict: the text summary and the JSON summary start with
+/// the verdict; on the sample, drive 3's last fault after the EMCY on its
+/// feedback 2, first caused by its first error.
+#[test]
+fn the_summary_starts_with_its_verdict() {
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/samples/machine.log");
+    let args = [
+        "decode",
+        "--summary",
+        "--profile",
+        "3=akd,5=baumer",
+        "--heartbeat-ms",
+        "300",
+    ];
+    let mut text = args.to_vec();
+    text.push(sample);
+    let out = run(&text, "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let lines: Vec<String> = stdout(&out).lines().take(2).map(str::to_owned).collect();
+    assert_eq!(
+        lines,
+        [
+            "verdict   stop: can0 node 3 went operation_enabled → fault at line 3239 (+8.820 s), \
+             16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
+            "          first cause: can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 \
+             fault at line 613 (+2.003 s)",
+        ]
+    );
+    let mut json = args.to_vec();
+    json.extend(["--json", sample]);
+    let recs = records(&run(&json, ""));
+    let verdict = &recs[0];
+    assert_eq!(verdict["type"], "verdict");
+    assert_eq!(
+        verdict["stop"],
+        json!({"iface": "can0", "node": 3, "line": 3239, "ts": 1700000008.820694,
+               "kind": "cia402_fault", "severity": "fault",
+               "text": "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 \
+                        Incremental sensor 1 fault (line 3231)",
+               "cause": {"line": 3231, "ts": 1700000008.804608, "code": 0x7305,
+                         "description": "Incremental sensor 1 fault"}})
+    );
+    assert_eq!(verdict["first_cause"]["line"], 613);
+    assert_eq!(verdict["first_cause"]["severity"], "error");
+    assert_eq!(
+        verdict["text"],
+        format!(
+            "stop: {}; first cause: {}",
+            lines[0].strip_prefix("verdict   stop: ").unwrap(),
+            lines[1].strip_prefix("          first cause: ").unwrap()
+        )
+    );
+    // Nothing stopped in a log of heartbeats: no verdict.
+    let calm = run(
+        &["decode", "--summary", "--json", "-"],
+        "(1.0) can0 705#05\n",
+    );
+    assert_eq!(records(&calm)[0]["type"], "node");
 }
