@@ -165,8 +165,32 @@ fn the_samples_faults_are_where_the_summary_says() {
     assert_eq!(ten.lines("toggle_error"), [1104]);
     assert!(page.html.contains("wrong toggle at line 1104"));
 
-    // Faults come first: before the timeline.
+    // The verdict leads "What went wrong" (docs/report.md#page): the
+    // stop with its wall-clock time, and the first cause.
     let wrong = page.html.find("id=\"wrong\"").unwrap();
+    let verdict = page.html[wrong..].find("<div class=\"verdict\"").unwrap() + wrong;
+    assert!(verdict < wrong + page.html[wrong..].find("<ul").unwrap());
+    let block = &page.html[verdict..verdict + page.html[verdict..].find("</div>").unwrap()];
+    assert!(
+        block.starts_with(
+            "<div class=\"verdict\" data-kind=\"verdict\" data-line=\"3239\" \
+             data-iface=\"can0\" data-node=\"3\" data-severity=\"fault\">"
+        ),
+        "{block}"
+    );
+    assert!(
+        block.contains(
+            "<b>Stop at 2023-11-14 22:13:28.820694 UTC:</b> can0 node 3 went operation_enabled \
+             → fault at line 3239 (+8.820 s), 16.1 ms after EMCY 0x7305 Incremental sensor 1 \
+             fault on axis 1, feedback 2 (line 3231)"
+        ),
+        "{block}"
+    );
+    assert!(
+        block.contains("<b>First cause:</b> can0 node 3 first error: EMCY 0x7305"),
+        "{block}"
+    );
+    // Faults come first: before the timeline.
     let timeline = page.html.find("id=\"timeline\"").unwrap();
     assert!(wrong < timeline);
 }
