@@ -401,7 +401,7 @@ impl Report {
             }
         }
         let headings: [(&str, &str); 7] = [
-            ("faults", "Faults and first errors, in time order"),
+            ("faults", "Faults, first errors and first warnings, in time order"),
             ("restarts", "Restarts"),
             ("heartbeat-timeouts", "Heartbeat timeouts"),
             ("sdo-aborts", "SDO aborts"),
