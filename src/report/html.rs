@@ -401,7 +401,10 @@ impl Report {
             }
         }
         let headings: [(&str, &str); 7] = [
-            ("faults", "Faults, first errors and first warnings, in time order"),
+            (
+                "faults",
+                "Faults, first errors and first warnings, in time order",
+            ),
             ("restarts", "Restarts"),
             ("heartbeat-timeouts", "Heartbeat timeouts"),
             ("sdo-aborts", "SDO aborts"),

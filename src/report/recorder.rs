@@ -359,6 +359,8 @@ impl Recorder {
                 for row in bus.nodes.iter_mut().flatten() {
                     row.marks[MarkKind::HeartbeatTimeout.index()] =
                         Series::new(EXACT_MARKS, BUCKETS, timed);
+                    // Nor is a silence drawn as if it were checked.
+                    row.nmt.retain(|band| band.state != SILENT);
                 }
             }
         }

@@ -658,3 +658,59 @@ proptest::proptest! {
         page_of_any_log(bytes)?;
     }
 }
+
+/// docs/report.md#bands: when frames without a time make the summary's
+/// heartbeat timeouts unchecked (`null`), no silence is drawn either.
+#[test]
+fn an_unchecked_silence_is_not_drawn() {
+    use motionwire::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
+    use motionwire::decoder::DecoderConfig;
+    use motionwire::logs::Position;
+    use motionwire::report::{Recorder, Report};
+    use std::time::Duration;
+
+    let page = |untimed: bool| {
+        let mut recorder =
+            Recorder::new(DecoderConfig::new().heartbeat_timeout(Duration::from_millis(200)));
+        let frame = |ms: Option<u64>| {
+            let log =
+                LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05]).unwrap())
+                    .with_iface(Iface::Name("can0"));
+            match ms {
+                Some(ms) => log.with_timestamp(Timestamp::from_duration(Duration::from_millis(ms))),
+                None => log,
+            }
+        };
+        let mut times = vec![Some(0), Some(100), Some(1000)];
+        if untimed {
+            times.push(None);
+        }
+        for (line, ms) in (1..).zip(times) {
+            recorder.add(Position::Line(line), &LogEvent::Frame(frame(ms)));
+        }
+        let recording = recorder.finish();
+        assert_eq!(recording.summary.timeouts_not_checked(), untimed);
+        let mut report = Report::new();
+        report.add_recording(recording);
+        let mut html = Vec::new();
+        report.write_html(&mut html).unwrap();
+        parse(&String::from_utf8(html).unwrap())
+    };
+    let states = |page: &Page| -> Vec<String> {
+        page.node("can0", 5)
+            .kind("nmt_state")
+            .iter()
+            .map(|b| b.get("data-state").unwrap().to_owned())
+            .collect()
+    };
+    assert_eq!(
+        states(&page(false)),
+        ["operational", "unknown", "operational"]
+    );
+    let unchecked = page(true);
+    assert!(!states(&unchecked).iter().any(|s| s == "unknown"));
+    assert!(unchecked
+        .node("can0", 5)
+        .kind("heartbeat_timeout")
+        .is_empty());
+}
