@@ -382,33 +382,21 @@ impl Summary {
                     detail,
                 });
             };
-            if let Some(first) = n.first_error {
-                let warning = Severity::of_emcy(&first.emcy(), n.profile) == Severity::Warning;
-                if warning {
-                    push(
-                        FindingKind::FirstWarning,
-                        first.line,
-                        FindingDetail::Emcy(first),
-                        first.timestamp,
-                    );
-                }
-                // The first error that is one: after a warning, the first
-                // EMCY with its error register set, unless the profile
-                // calls it a warning too.
-                let error = if warning {
-                    n.first_error_with_register
-                        .filter(|e| Severity::of_emcy(&e.emcy(), n.profile) != Severity::Warning)
-                } else {
-                    Some(first)
-                };
-                if let Some(error) = error {
-                    push(
-                        FindingKind::FirstError,
-                        error.line,
-                        FindingDetail::Emcy(error),
-                        error.timestamp,
-                    );
-                }
+            if let Some(warning) = n.first_warning() {
+                push(
+                    FindingKind::FirstWarning,
+                    warning.line,
+                    FindingDetail::Emcy(warning),
+                    warning.timestamp,
+                );
+            }
+            if let Some(error) = n.first_error_reported() {
+                push(
+                    FindingKind::FirstError,
+                    error.line,
+                    FindingDetail::Emcy(error),
+                    error.timestamp,
+                );
             }
             if let Some(faults) = n.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
                 each(

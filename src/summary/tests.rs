@@ -466,8 +466,24 @@ fn an_emcy_that_reports_no_error_is_not_the_active_error() {
         0x8120,
         "the warning did not take the slot"
     );
+    // The text says which is which.
+    assert!(
+        five.to_string().contains(
+            "first warning: 0xFF00 Device specific (line 1), \
+             first error: 0x8120 CAN in error passive mode (line 2)"
+        ),
+        "{five}"
+    );
+    assert_eq!(five.first_warning().map(|e| e.line), Some(1));
+    assert_eq!(five.first_error_reported().map(|e| e.line), Some(2));
     let alone = summarize(&[(Some(0), 0x085, battery)], None);
     assert_eq!(alone.nodes[0].active_error, None);
+    assert_eq!(alone.nodes[0].first_error_reported(), None);
+    assert!(
+        alone.nodes[0].to_string().contains("first error: none"),
+        "{}",
+        alone.nodes[0]
+    );
 }
 
 /// docs/summary.md#heartbeat: the node's last state is the last frame's

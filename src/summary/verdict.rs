@@ -119,6 +119,33 @@ impl fmt::Display for Severity {
     }
 }
 
+impl NodeSummary {
+    /// Return the node's first EMCY when it is a warning
+    /// ([`Severity::of_emcy`] with the node's profile;
+    /// docs/summary.md#severity): its [`first_error`](Self::first_error),
+    /// or `None` when that one is an error.
+    #[must_use]
+    pub fn first_warning(&self) -> Option<EmcySeen> {
+        self.first_error
+            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) == Severity::Warning)
+    }
+
+    /// Return the node's first EMCY that reports an error: its
+    /// [`first_error`](Self::first_error), or, when that one is a warning,
+    /// its first EMCY with the error register set
+    /// ([`first_error_with_register`](Self::first_error_with_register))
+    /// unless the profile calls that one a warning too
+    /// (docs/summary.md#severity).
+    #[must_use]
+    pub fn first_error_reported(&self) -> Option<EmcySeen> {
+        if self.first_warning().is_none() {
+            return self.first_error;
+        }
+        self.first_error_with_register
+            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) != Severity::Warning)
+    }
+}
+
 /// How long before a drive's CiA 402 fault its EMCY may come to be its
 /// cause (docs/summary.md#causes): one second. A drive sends the EMCY when
 /// it detects the error and shows the fault in its statusword at the next
