@@ -177,8 +177,9 @@ def findings(
     ``first_error``, ``first_warning``, ``cia402_fault``, ``restarts``,
     ``heartbeat_timeout``,
     ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
-    ``bus_off``, ``error_passive``), ``text`` (what it says, without the
-    device).
+    ``bus_off``, ``error_passive``), ``severity`` (dictionary: ``fault``,
+    ``error``, ``warning``, ``notice``; docs/summary.md#severity), ``text``
+    (what it says, without the device).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
     them).

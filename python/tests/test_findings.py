@@ -21,6 +21,7 @@ FINDINGS_SCHEMA = [
     ("iface", pa.dictionary(pa.int32(), pa.string()), True),
     ("node", pa.uint8(), True),
     ("kind", pa.dictionary(pa.int8(), pa.string()), False),
+    ("severity", pa.dictionary(pa.int8(), pa.string()), False),
     ("text", pa.string(), False),
 ]
 
@@ -149,6 +150,19 @@ def test_bad_arguments():
         motionwire.findings(SAMPLE, profiles={3: "nope"})
     with pytest.raises(TypeError):
         motionwire.findings(SAMPLE, 300)
+
+
+def test_severities():
+    """docs/summary.md#severity: the Baumer encoder's battery EMCY is a
+    warning, the drive's faults are faults."""
+    table = motionwire.findings(SAMPLE, **SAMPLE_ARGS)
+    found = {(r["line"], r["kind"]): r["severity"] for r in rows(table)}
+    assert found[(393, "first_warning")] == "warning"
+    assert found[(972, "first_error")] == "error"
+    assert found[(3239, "cia402_fault")] == "fault"
+    assert found[(1559, "heartbeat_timeout")] == "error"
+    assert found[(95, "sdo_abort")] == "notice"
+    assert found[(1104, "toggle_error")] == "warning"
 
 
 def test_the_docs_example():
