@@ -111,7 +111,7 @@ impl Serialize for Iface<'_> {
 impl Serialize for Summary {
     /// The records in output order, as a sequence.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut seq = serializer.serialize_seq(Some(self.nodes.len() + self.buses.len()))?;
+        let mut seq = serializer.serialize_seq(Some(self.records().count()))?;
         for record in self.records() {
             seq.serialize_element(&record)?;
         }
@@ -120,8 +120,8 @@ impl Serialize for Summary {
 }
 
 impl Serialize for SummaryRecord<'_> {
-    /// The node or bus record, with `"file"` first when the summary names
-    /// its file.
+    /// The verdict, node or bus record, with `"file"` first when the
+    /// summary names its file.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         if let Some(file) = self.file {
