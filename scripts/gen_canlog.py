@@ -851,7 +851,8 @@ RULES = {
     "line": "1-based line number in the log (= pcap packet number)",
     "frames": "frames per kind (docs/output.md#common-keys); node = CAN id & 0x7F for emcy, heartbeat, guard_request, pdo, sdo; a guarding answer (see guarding) counts as guard_answer, not heartbeat",
     "emcy": "error = code outside 0x0000-0x00FF, reset = code 0x0000-0x00FF (docs/canopen.md#emcy-codes)",
-    "slot_at_end": "RECV_EMCY_DEV (docs/canopen.md#recv-emcy): an error EMCY is stored only while the slot holds no error; a reset always overwrites; null = no EMCY ever received",
+    "slot_at_end": "RECV_EMCY_DEV (docs/canopen.md#recv-emcy): an error EMCY is stored only while the slot holds no error; a reset always overwrites; an EMCY with an error code and error register 0 reports no error (a warning) and is not stored; a boot-up empties the slot (EMCY state machine transition 0; state no_error with the boot-up's line and boot_up true); null = no EMCY ever received",
+    "last_state": "the NMT state of the last data frame on 0x700+node (heartbeat, boot-up or guarding answer), bit 7 masked off; null = none",
     "boot_up_lines": "data frames on 0x700+node whose byte is 0x00",
     "heartbeat_gaps": f"consecutive data frames on 0x700+node (heartbeats, boot-ups, guarding answers) more than {GAP_MS} ms apart; gap_ms = difference of the log timestamps",
     "sdo": "requests = data frames on 0x600+node; transfers = requests whose command specifier (byte 0 bits 7-5) is 1 or 2 (initiate download, initiate upload; the log has no block transfers); aborts = SDO frames whose byte 0 is 0x80, with the multiplexer of bytes 1-3 and the code of bytes 4-7",
@@ -877,6 +878,7 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
                 "emcy": {"count": 0, "errors": 0, "resets": 0, "first_error": None, "slot_at_end": None,
                          "last": None},
                 "boot_up_lines": [],
+                "last_state": None,
                 "heartbeat_gaps": [],
                 "_last_hb": None,
                 "guarding": None,
@@ -906,7 +908,9 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
                 if em["first_error"] is None:
                     em["first_error"] = rec
                 slot = em["slot_at_end"]
-                if slot is None or slot["state"] == "no_error":
+                if rec["register"] == 0:
+                    pass
+                elif slot is None or slot["state"] == "no_error":
                     em["slot_at_end"] = {"state": "error", **rec}
         elif kind == "sdo":
             sdo = e["sdo"]
@@ -930,8 +934,11 @@ def compute_truth(frames: list[tuple], seed: int, fmt: str, iface: str) -> dict:
             e["guarding"]["requests"] += 1
         elif kind == "heartbeat":
             byte = data[0] if data else 0
+            e["last_state"] = STATE_NAMES.get(byte & 0x7F, "invalid")
             if byte == 0x00:
                 e["boot_up_lines"].append(line)
+                if e["emcy"]["slot_at_end"] is not None:
+                    e["emcy"]["slot_at_end"] = {"state": "no_error", "line": line, "boot_up": True}
                 if e["_g"] is not None:
                     e["_g"]["expected"] = 0
             elif e["_g"] is not None and e["_g"]["pending"] is not None:

@@ -115,7 +115,8 @@ def decode(
     (docs/python.md#decode):
 
     - ``kind`` (dictionary string): ``emcy``, ``heartbeat``,
-      ``guard_request``, ``nmt_command``, ``sync``, ``time``, ``pdo``,
+      ``guard_request``, ``guard_answer``, ``nmt_command``, ``sync``,
+      ``time``, ``pdo``,
       ``sdo``, ``error_frame``, ``other`` (docs/canopen.md#identifiers).
     - ``node`` (uint8, null for kinds without one).
     - ``code`` (uint16), ``register`` (uint8), ``description`` (dictionary
@@ -142,7 +143,9 @@ def summary(
     format: Optional[Format] = None,
 ) -> list[dict[str, Any]]:
     """The post-mortem of a log: exactly the records of ``motionwire decode
-    --summary --json`` (docs/summary.md), one dict per node and per bus:
+    --summary --json`` (docs/summary.md): the verdict when something
+    stopped (``type`` ``verdict``, docs/summary.md#verdict), then one dict
+    per node and per bus:
     frame counts, first and active error with the CiA 405 root cause,
     heartbeat boot-ups and gaps over ``heartbeat_ms``, node-guarding toggle
     errors, SDO requests, transfers, aborts and latencies, each drive's CiA
@@ -163,7 +166,7 @@ def findings(
 ) -> pyarrow.Table:
     """What went wrong (docs/summary.md#findings): one row per finding, the
     list of the report's "What went wrong" (``motionwire report``), in time
-    order: first errors, CiA 402 faults, restarts, heartbeat timeouts over
+    order: first errors and warnings, CiA 402 faults, restarts, heartbeat timeouts over
     ``heartbeat_ms``, SDO aborts, broken and unanswered SDO transfers,
     node-guarding toggle errors, bus-off and error-passive frames; where the
     summary omitted entries of a list, one row says how many.
@@ -171,10 +174,12 @@ def findings(
     Columns: ``line`` (uint64), ``ts`` (float64 seconds, null where the log
     has no time), ``iface`` (dictionary, null for an unnamed bus), ``node``
     (uint8, null for a bus's findings), ``kind`` (dictionary:
-    ``first_error``, ``cia402_fault``, ``restarts``, ``heartbeat_timeout``,
+    ``first_error``, ``first_warning``, ``cia402_fault``, ``restarts``,
+    ``heartbeat_timeout``,
     ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
-    ``bus_off``, ``error_passive``), ``text`` (what it says, without the
-    device).
+    ``bus_off``, ``error_passive``), ``severity`` (dictionary: ``fault``,
+    ``error``, ``warning``, ``notice``; docs/summary.md#severity), ``text``
+    (what it says, without the device).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
     them).

@@ -614,6 +614,7 @@ pub fn findings(
         Field::new("iface", dictionary(DataType::Int32), true),
         Field::new("node", DataType::UInt8, true),
         Field::new("kind", dictionary(DataType::Int8), false),
+        Field::new("severity", dictionary(DataType::Int8), false),
         Field::new("text", DataType::Utf8, false),
     ]));
     let ifaces: Vec<Option<String>> = findings
@@ -640,6 +641,9 @@ pub fn findings(
         )),
         Arc::new(DictionaryArray::<Int8Type>::from_iter(
             findings.iter().map(|f| f.kind.name()),
+        )),
+        Arc::new(DictionaryArray::<Int8Type>::from_iter(
+            findings.iter().map(|f| f.severity.name()),
         )),
         Arc::new(StringArray::from_iter_values(
             findings.iter().map(|f| f.text()),

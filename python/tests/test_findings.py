@@ -21,6 +21,7 @@ FINDINGS_SCHEMA = [
     ("iface", pa.dictionary(pa.int32(), pa.string()), True),
     ("node", pa.uint8(), True),
     ("kind", pa.dictionary(pa.int8(), pa.string()), False),
+    ("severity", pa.dictionary(pa.int8(), pa.string()), False),
     ("text", pa.string(), False),
 ]
 
@@ -30,9 +31,12 @@ SAMPLE_ARGS = dict(heartbeat_ms=300, profiles={3: "akd", 5: "baumer"})
 # 3=akd,5=baumer --heartbeat-ms 300 samples/machine.log` lists it, section
 # by section: (line, iface, node, kind, the item's text without its time).
 REPORT = [
-    (393, "can0", 5, "first_error", "can0 node 5 first error: EMCY 0xFF00 Device specific at line 393"),
+    # The Baumer encoder's battery EMCY is a warning (docs/summary.md#severity);
+    # its first error is the first EMCY with its error register set.
+    (393, "can0", 5, "first_warning", "can0 node 5 first warning: EMCY 0xFF00 Device specific at line 393"),
     (613, "can0", 3, "first_error", "can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault at line 613"),
     (620, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault (line 613)"),
+    (972, "can0", 5, "first_error", "can0 node 5 first error: EMCY 0x8120 CAN in error passive mode at line 972"),
     (1291, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 1291, 15.0 ms after EMCY 0x4310 Excess drive temperature (line 1284)"),
     (2415, "can0", 10, "first_error", "can0 node 10 first error: EMCY 0x8130 Life guard error or heartbeat error at line 2415"),
     (3239, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 Incremental sensor 1 fault (line 3231)"),
@@ -42,7 +46,7 @@ REPORT = [
     (3518, "can0", 3, "sdo_abort", "can0 node 3 line 3518: server aborted 1003h.07 (Pre-defined error field): 0x08000024: No data available"),
     (1104, "can0", 10, "toggle_error", "can0 node 10 node-guarding answer with a wrong toggle at line 1104"),
 ]
-SECTIONS = ["first_error cia402_fault", "restarts", "heartbeat_timeout", "sdo_abort",
+SECTIONS = ["first_error first_warning cia402_fault", "restarts", "heartbeat_timeout", "sdo_abort",
             "sdo_broken sdo_timeout", "toggle_error", "bus_off error_passive"]
 
 
@@ -148,8 +152,21 @@ def test_bad_arguments():
         motionwire.findings(SAMPLE, 300)
 
 
+def test_severities():
+    """docs/summary.md#severity: the Baumer encoder's battery EMCY is a
+    warning, the drive's faults are faults."""
+    table = motionwire.findings(SAMPLE, **SAMPLE_ARGS)
+    found = {(r["line"], r["kind"]): r["severity"] for r in rows(table)}
+    assert found[(393, "first_warning")] == "warning"
+    assert found[(972, "first_error")] == "error"
+    assert found[(3239, "cia402_fault")] == "fault"
+    assert found[(1559, "heartbeat_timeout")] == "error"
+    assert found[(95, "sdo_abort")] == "notice"
+    assert found[(1104, "toggle_error")] == "warning"
+
+
 def test_the_docs_example():
     """docs/python.md#findings, as written there."""
     t = motionwire.findings(SAMPLE, **SAMPLE_ARGS)
-    assert t.column("kind").to_pylist()[:3] == ["sdo_abort", "first_error", "first_error"]
+    assert t.column("kind").to_pylist()[:3] == ["sdo_abort", "first_warning", "first_error"]
     assert t.column("text")[2].as_py() == "first error: EMCY 0x7305 Incremental sensor 1 fault at line 613"

@@ -333,6 +333,10 @@ struct NodeState {
     pdos: HashMap<(bool, u16), PdoParams>,
     drive: bool,
     cia402: DriveState,
+    /// A guard request (RTR on 0x700 + node) was seen and not yet
+    /// answered: the next data frame on that identifier is its answer
+    /// (docs/output.md#heartbeat).
+    guard_request_pending: bool,
 }
 
 /// What the decoder knows of one interface.
@@ -445,9 +449,42 @@ impl Decoder {
                     decoded.cia402 = cia402;
                 }
             }
+            (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(node)) => {
+                decoded.kind = self.error_control_frame(frame, kind, node).1;
+            }
             _ => {}
         }
         decoded
+    }
+
+    /// [`decode`](Self::decode) for a frame that [`MessageKind::classify`]
+    /// makes a heartbeat or a guard request of `node` (`kind`): the place
+    /// of its bus ([`bus`](Self::bus)) and its kind in the context of the
+    /// log — a data frame is a [`MessageKind::GuardAnswer`] when it is the
+    /// first one after a guard request to the node, else a heartbeat
+    /// (docs/output.md#heartbeat). What the [summary](crate::summary) reads
+    /// (`Summarizer::add`).
+    #[inline]
+    pub(crate) fn error_control_frame(
+        &mut self,
+        frame: &LogFrame<'_>,
+        kind: MessageKind,
+        node: NodeId,
+    ) -> (usize, MessageKind) {
+        let at = self.bus(frame.iface);
+        let state = self.buses.get_mut(at).node(node, &self.config.profiles);
+        let kind = match kind {
+            MessageKind::GuardRequest => {
+                state.guard_request_pending = true;
+                kind
+            }
+            MessageKind::Heartbeat if state.guard_request_pending => {
+                state.guard_request_pending = false;
+                MessageKind::GuardAnswer
+            }
+            _ => kind,
+        };
+        (at, kind)
     }
 
     /// [`decode`](Self::decode) for a data frame that

@@ -559,3 +559,47 @@ fn the_objects_left_out_of_learn_teach_nothing() {
         assert_eq!(state.drive, drive, "node {n}");
     }
 }
+
+/// A guard request (RTR on 0x700 + node) at `ms`.
+fn guard_request(ms: u64, id: u32) -> LogFrame<'static> {
+    LogFrame::new(CanFrame::new_remote(CanId::standard(id).unwrap(), 1).unwrap())
+        .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)))
+        .with_iface(Iface::Name("can0"))
+}
+
+/// docs/output.md#heartbeat: the first data frame on 0x700 + node after a
+/// guard request is a `guard_answer`, every other one a `heartbeat`; a
+/// request to another node, or on another bus, answers nothing.
+#[test]
+fn the_first_data_frame_after_a_guard_request_is_its_answer() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let on_can1 = at(7, 0x70A, &[0x05]).with_iface(Iface::Name("can1"));
+    let frames = [
+        (at(0, 0x70A, &[0x00]), MessageKind::Heartbeat),
+        (guard_request(1, 0x70A), MessageKind::GuardRequest),
+        (at(2, 0x70A, &[0x7F]), MessageKind::GuardAnswer),
+        (at(3, 0x70A, &[0x05]), MessageKind::Heartbeat),
+        (guard_request(4, 0x70B), MessageKind::GuardRequest),
+        (at(5, 0x70A, &[0x85]), MessageKind::Heartbeat),
+        (guard_request(6, 0x70A), MessageKind::GuardRequest),
+        (on_can1, MessageKind::Heartbeat),
+        (at(8, 0x70A, &[0x85]), MessageKind::GuardAnswer),
+    ];
+    for (i, (frame, kind)) in frames.iter().enumerate() {
+        let decoded = decoder.decode(Position::Line(i as u64 + 1), frame);
+        assert_eq!(decoded.kind, *kind, "line {}", i + 1);
+    }
+    // The answer keeps the heartbeat's keys: its state and toggle.
+    let answer = at(9, 0x70A, &[0x85]);
+    decoder.decode(Position::Line(10), &guard_request(9, 0x70A));
+    let decoded = decoder.decode(Position::Line(11), &answer);
+    let mut json = Vec::new();
+    decoded.append_json(&mut json, None);
+    let json = String::from_utf8(json).unwrap();
+    assert!(
+        json.contains(
+            r#""kind":"guard_answer","node":10,"state":"operational","state_raw":5,"toggle":true}"#
+        ),
+        "{json}"
+    );
+}

@@ -326,6 +326,41 @@ impl Report {
         p.push_str("</dl>\n<nav><a href=\"#wrong\">What went wrong</a> · <a href=\"#timeline\">Timeline</a> · <a href=\"#signals\">Signals</a> · <a href=\"#devices\">Devices</a> · <a href=\"#events\">Events</a></nav>\n</header>\n");
     }
 
+    /// Each recording's verdict, first (docs/report.md#page): the stop and
+    /// its first cause as the text summary says them, with the stop's wall
+    /// clock time where the log gives a Unix time.
+    fn verdicts(&self, p: &mut String) {
+        for r in &self.recordings {
+            let Some(v) = r.summary.verdict() else {
+                continue;
+            };
+            let file = r
+                .summary
+                .file
+                .as_deref()
+                .map_or_else(String::new, |f| format!("{}: ", esc(f)));
+            let wall = v
+                .stop
+                .timestamp
+                .map(|ts| u64::try_from(ts.as_micros()).unwrap_or(u64::MAX))
+                .filter(|&us| us >= 1_000_000_000_000_000)
+                .map_or_else(String::new, |us| format!(" at {}", utc(us)));
+            let node = v
+                .stop
+                .node
+                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let _ = write!(
+                p,
+                "<div class=\"verdict\" data-kind=\"verdict\" data-line=\"{}\" data-iface=\"{}\"{node} data-severity=\"{}\">\n<p><b>{file}Stop{wall}:</b> {}</p>\n<p><b>First cause:</b> {}</p>\n</div>\n",
+                v.stop.line,
+                iface_attr(&v.stop.bus),
+                v.stop.severity,
+                esc(&v.stop_text()),
+                esc(&v.first_cause_text()),
+            );
+        }
+    }
+
     fn findings(&self, p: &mut String, axis: &Axis) {
         /// One line of "What went wrong", with where it sorts.
         struct Line {
@@ -335,6 +370,7 @@ impl Report {
             at: At,
         }
         p.push_str("<main>\n<section id=\"wrong\">\n<h2>What went wrong</h2>\n");
+        self.verdicts(p);
         let mut sections: [Vec<Line>; 7] = Default::default();
         for r in &self.recordings {
             for finding in r.findings() {
@@ -346,7 +382,9 @@ impl Report {
                     finding.line
                 };
                 let section = match finding.kind {
-                    FindingKind::FirstError | FindingKind::Cia402Fault => 0,
+                    FindingKind::FirstError
+                    | FindingKind::FirstWarning
+                    | FindingKind::Cia402Fault => 0,
                     FindingKind::Restarts => 1,
                     FindingKind::HeartbeatTimeout => 2,
                     FindingKind::SdoAbort => 3,
@@ -363,7 +401,10 @@ impl Report {
             }
         }
         let headings: [(&str, &str); 7] = [
-            ("faults", "Faults and first errors, in time order"),
+            (
+                "faults",
+                "Faults, first errors and first warnings, in time order",
+            ),
             ("restarts", "Restarts"),
             ("heartbeat-timeouts", "Heartbeat timeouts"),
             ("sdo-aborts", "SDO aborts"),

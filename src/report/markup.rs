@@ -6,7 +6,7 @@ use crate::can::BusName;
 use crate::canopen::{NmtStateByte, NodeId};
 use crate::decoder::Device;
 
-use super::recorder::cia402_state;
+use super::recorder::{cia402_state, SILENT};
 
 /// Escape text for HTML text and quoted attributes.
 pub(super) fn esc(text: &str) -> String {
@@ -37,6 +37,9 @@ pub(super) fn iface_attr(bus: &BusName) -> String {
 }
 
 pub(super) fn nmt_name(state: u8) -> &'static str {
+    if state == SILENT {
+        return "unknown";
+    }
     NmtStateByte::new(state).state_name()
 }
 

@@ -120,6 +120,8 @@ pub(crate) struct RowData {
     pub(crate) marks: [Series<MarkItem>; 12],
     pub(crate) nmt: Series<BandItem>,
     nmt_state: Option<u8>,
+    /// Where the last NMT band begins.
+    nmt_since: At,
     pub(crate) cia402: Series<BandItem>,
     /// Per entry of [`CHARTED`]: its values, once seen.
     pub(crate) signals: [Option<Series<SignalBucket>>; 2],
@@ -132,6 +134,7 @@ impl RowData {
             marks: core::array::from_fn(|_| Series::new(EXACT_MARKS, BUCKETS, timed)),
             nmt: Series::new(BUCKETS, BUCKETS, timed),
             nmt_state: None,
+            nmt_since: At::default(),
             cia402: Series::new(BUCKETS, BUCKETS, timed),
             signals: [None, None],
             rate: Series::new(0, SIGNAL_BUCKETS, timed),
@@ -291,8 +294,9 @@ impl Recorder {
         } = self;
         let rows = &mut buses[b];
         rows.row.rate.add(RateBucket { at, frames: 1 });
+        let heartbeat = summarizer.decoder().config().heartbeat();
         let decoded = summarizer.add_with(position, event, |event| {
-            record(rows, timed, at, &event);
+            record(rows, timed, heartbeat, at, &event);
         });
         if let Some(pdo) = decoded.and_then(|decoded| decoded.pdo) {
             if pdo.signals.is_empty() {
@@ -350,6 +354,7 @@ impl Recorder {
             t: last_t,
             line: last.line,
         };
+        let heartbeat = summarizer.decoder().config().heartbeat();
         let summary = summarizer.finish_with(|event| {
             let at = match buses.iter().position(|b| &b.name == event.bus) {
                 Some(at) => at,
@@ -358,7 +363,7 @@ impl Recorder {
                     buses.len() - 1
                 }
             };
-            record(&mut buses[at], timed, end, &event);
+            record(&mut buses[at], timed, heartbeat, end, &event);
         });
         if summary.timeouts_not_checked() {
             // The summary says null: nothing is drawn as if checked.
@@ -366,6 +371,8 @@ impl Recorder {
                 for row in bus.nodes.iter_mut().flatten() {
                     row.marks[MarkKind::HeartbeatTimeout.index()] =
                         Series::new(EXACT_MARKS, BUCKETS, timed);
+                    // Nor is a silence drawn as if it were checked.
+                    row.nmt.retain(|band| band.state != SILENT);
                 }
             }
         }
@@ -383,8 +390,20 @@ impl Recorder {
     }
 }
 
-/// Record one fact of the summary on its row.
-fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
+/// The NMT band of a device silent past its heartbeat consumer time
+/// (`data-state="unknown"`, docs/report.md#bands): not a state byte's value,
+/// whose bit 7 a band never keeps.
+pub(crate) const SILENT: u8 = 0x80;
+
+/// Record one fact of the summary on its row; `heartbeat` is the consumer
+/// time the summary's heartbeat timeouts are checked against.
+fn record(
+    rows: &mut BusRows,
+    timed: bool,
+    heartbeat: Option<core::time::Duration>,
+    now: At,
+    event: &SummaryEvent<'_>,
+) {
     let at = At {
         t: event.timestamp.map_or(now.t, micros),
         line: event.line,
@@ -412,6 +431,7 @@ fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
             let state = state.state_raw();
             if row.nmt_state != Some(state) {
                 row.nmt_state = Some(state);
+                row.nmt_since = at;
                 RowData::band(&mut row.nmt, at, state);
             }
         }
@@ -423,6 +443,21 @@ fn record(rows: &mut BusRows, timed: bool, now: At, event: &SummaryEvent<'_>) {
                 line: at.line,
             };
             row.mark(MarkKind::HeartbeatTimeout, at, end, Detail::Gap(us));
+            // Past the consumer time nothing tells the node's state: the
+            // band says so up to the heartbeat that ends the gap (handed
+            // over after this event) or to the end.
+            let time = heartbeat.map_or(0, |time| {
+                u64::try_from(time.as_micros()).unwrap_or(u64::MAX)
+            });
+            let silent = At {
+                t: at.t.saturating_add(time.min(us)),
+                line: at.line,
+            };
+            if timed && silent.t >= row.nmt_since.t && row.nmt_state != Some(SILENT) {
+                row.nmt_state = Some(SILENT);
+                row.nmt_since = silent;
+                RowData::band(&mut row.nmt, silent, SILENT);
+            }
         }
         SummaryEventKind::ToggleError => row.mark(MarkKind::ToggleError, at, at, Detail::None),
         SummaryEventKind::SdoAbort(_) => row.mark(MarkKind::SdoAbort, at, at, Detail::None),
@@ -460,7 +495,7 @@ fn mark_kind(finding: &Finding) -> Option<MarkKind> {
         return None;
     }
     Some(match finding.kind {
-        FindingKind::FirstError => return None,
+        FindingKind::FirstError | FindingKind::FirstWarning => return None,
         FindingKind::Cia402Fault => MarkKind::Cia402Fault,
         FindingKind::Restarts => MarkKind::BootUp,
         FindingKind::HeartbeatTimeout => MarkKind::HeartbeatTimeout,

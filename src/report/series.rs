@@ -100,6 +100,12 @@ impl<T: Item> Series<T> {
         self.items.len()
     }
 
+    /// Keep only the items (or buckets) for which `keep` holds.
+    pub(crate) fn retain(&mut self, keep: impl FnMut(&T) -> bool) {
+        self.items.retain(keep);
+        self.last_bucket = self.items.last().map_or(u64::MAX, |last| self.key(last));
+    }
+
     #[inline]
     fn key(&self, item: &T) -> u64 {
         item.at().key(self.timed) >> self.shift

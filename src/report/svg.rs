@@ -11,7 +11,7 @@ use crate::summary::NodeSummary;
 use super::fixed::Fixed;
 use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
 use super::markup::{cia402_name, device, esc, iface_attr, nmt_name};
-use super::recorder::{BusRows, MarkKind, RowData, CHARTED};
+use super::recorder::{BusRows, MarkKind, RowData, CHARTED, SILENT};
 use super::series::{At, BandItem, Detail, MarkItem, Series};
 
 /// A mark as drawn: one event, or a cluster of neighbours.
@@ -351,6 +351,12 @@ pub(super) fn bands(
                     axis.when(b.at),
                     name(b.last_state)
                 )
+            } else if kind == "nmt_state" && b.state == SILENT {
+                format!(
+                    "state unknown: no heartbeat within the consumer time after line {} ({})",
+                    b.at.line,
+                    axis.when(b.at)
+                )
             } else {
                 format!("{state} from line {} ({})", b.at.line, axis.when(b.at))
             };
@@ -469,6 +475,7 @@ pub(super) fn legend(p: &mut String) {
             "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-{state}\" width=\"16\" height=\"12\"/></svg> NMT {state}</li>"
         );
     }
+    p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-unknown\" width=\"16\" height=\"12\"/></svg> NMT unknown: silent past the heartbeat consumer time</li>\n");
     for state in crate::canopen::Cia402State::ALL {
         let _ = writeln!(
             p,

@@ -55,7 +55,8 @@ pub enum SummaryEventKind<'s> {
     BootUp,
     /// A heartbeat gap longer than the consumer time
     /// (`heartbeat.timeouts`): reported when the gap closes, at the next
-    /// heartbeat or at the end of the input.
+    /// heartbeat (before that heartbeat's own events) or at the end of the
+    /// input.
     HeartbeatTimeout(HeartbeatGap),
     /// A node-guarding answer with a wrong toggle (`guarding.toggle_errors`).
     ToggleError,

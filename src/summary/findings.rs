@@ -12,7 +12,8 @@ use crate::decoder::Device;
 
 use super::json::{Iface, Ts};
 use super::text::ListedLines;
-use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Summary, Timeouts};
+use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity, Summary, Timeouts};
+use crate::profiles::Profile;
 
 /// What a [`Finding`] is about: the summary list it comes from
 /// (docs/summary.md#findings).
@@ -21,8 +22,14 @@ use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Summary, Time
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum FindingKind {
-    /// A device's first error EMCY (`first_error`, docs/summary.md#emcy).
+    /// A device's first error EMCY (`first_error`, docs/summary.md#emcy),
+    /// or, when that one is a warning, its first EMCY that reports an error
+    /// (docs/summary.md#severity).
     FirstError,
+    /// A device's first error EMCY when it is a warning (`first_error`,
+    /// docs/summary.md#severity): the EMCY reports no error present, or
+    /// the device's profile calls it a warning.
+    FirstWarning,
     /// A drive entering a CiA 402 fault state (`cia402.faults`).
     Cia402Fault,
     /// A device that booted more than once (`heartbeat.boot_ups`).
@@ -46,8 +53,9 @@ pub enum FindingKind {
 impl FindingKind {
     /// Every kind, in the order a device's findings are listed before
     /// they are sorted by time (docs/summary.md#findings).
-    pub const ALL: [FindingKind; 10] = [
+    pub const ALL: [FindingKind; 11] = [
         FindingKind::FirstError,
+        FindingKind::FirstWarning,
         FindingKind::Cia402Fault,
         FindingKind::Restarts,
         FindingKind::HeartbeatTimeout,
@@ -65,6 +73,7 @@ impl FindingKind {
     pub const fn name(self) -> &'static str {
         match self {
             FindingKind::FirstError => "first_error",
+            FindingKind::FirstWarning => "first_warning",
             FindingKind::Cia402Fault => "cia402_fault",
             FindingKind::Restarts => "restarts",
             FindingKind::HeartbeatTimeout => "heartbeat_timeout",
@@ -83,6 +92,7 @@ impl FindingKind {
     pub const fn words(self) -> &'static str {
         match self {
             FindingKind::FirstError => "first error",
+            FindingKind::FirstWarning => "first warning",
             FindingKind::Cia402Fault => "CiA 402 fault",
             FindingKind::Restarts => "restart",
             FindingKind::HeartbeatTimeout => "heartbeat timeout",
@@ -110,7 +120,8 @@ impl fmt::Display for FindingKind {
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum FindingDetail {
-    /// The first error EMCY ([`FindingKind::FirstError`]).
+    /// The first error EMCY ([`FindingKind::FirstError`],
+    /// [`FindingKind::FirstWarning`]).
     Emcy(EmcySeen),
     /// The fault ([`FindingKind::Cia402Fault`]).
     Cia402Fault(Cia402Fault),
@@ -136,9 +147,10 @@ pub enum FindingDetail {
 /// `Display` writes the sentence a person reads, the device or bus first:
 /// `can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault at
 /// line 613`. With `serde`, `Serialize` writes `{"file"?, "iface", "node",
-/// "line", "ts", "kind", "text"}` ([`text`](Self::text) for `text`).
+/// "line", "ts", "kind", "severity", "text"}` ([`text`](Self::text) for
+/// `text`).
 ///
-/// `#[non_exhaustive]`: later fields (a severity, a verdict) are added.
+/// `#[non_exhaustive]`: later fields are added.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Finding {
@@ -159,6 +171,8 @@ pub struct Finding {
     pub timestamp: Option<Timestamp>,
     /// What kind of trouble.
     pub kind: FindingKind,
+    /// How bad it is ([`Severity::of_finding`], docs/summary.md#severity).
+    pub severity: Severity,
     /// What the summary says of it.
     pub detail: FindingDetail,
 }
@@ -208,7 +222,8 @@ impl fmt::Display for Text<'_> {
         match &finding.detail {
             FindingDetail::Emcy(first) => write!(
                 f,
-                "first error: EMCY {} {} at line {}",
+                "{}: EMCY {} {} at line {}",
+                finding.kind.words(),
                 first.code,
                 first.code.description(),
                 first.line
@@ -275,7 +290,7 @@ impl fmt::Display for Finding {
 }
 
 impl serde::Serialize for Finding {
-    /// `{"file"?, "iface", "node", "line", "ts", "kind", "text"}`: `file`
+    /// `{"file"?, "iface", "node", "line", "ts", "kind", "severity", "text"}`: `file`
     /// only when the summary names one, `iface` as in every record
     /// (docs/output.md#common-keys), `ts` with the log's resolution.
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -289,6 +304,7 @@ impl serde::Serialize for Finding {
         map.serialize_entry("line", &self.line)?;
         map.serialize_entry("ts", &self.timestamp.map(Ts))?;
         map.serialize_entry("kind", self.kind.name())?;
+        map.serialize_entry("severity", self.severity.name())?;
         map.serialize_entry("text", &self.text())?;
         map.end()
     }
@@ -328,7 +344,7 @@ impl Summary {
     /// let json = serde_json::to_string(&findings[0])?;
     /// assert_eq!(
     ///     json,
-    ///     r#"{"iface":"can0","node":3,"line":2,"ts":1700000000.100000,"kind":"first_error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
+    ///     r#"{"iface":"can0","node":3,"line":2,"ts":1700000000.100000,"kind":"first_error","severity":"error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
     /// );
     /// # Ok::<(), serde_json::Error>(())
     /// ```
@@ -362,15 +378,24 @@ impl Summary {
                     line,
                     timestamp: ts,
                     kind,
+                    severity: Severity::of_finding(kind, &detail, n.profile),
                     detail,
                 });
             };
-            if let Some(first) = n.first_error {
+            if let Some(warning) = n.first_warning() {
+                push(
+                    FindingKind::FirstWarning,
+                    warning.line,
+                    FindingDetail::Emcy(warning),
+                    warning.timestamp,
+                );
+            }
+            if let Some(error) = n.first_error_reported() {
                 push(
                     FindingKind::FirstError,
-                    first.line,
-                    FindingDetail::Emcy(first),
-                    first.timestamp,
+                    error.line,
+                    FindingDetail::Emcy(error),
+                    error.timestamp,
                 );
             }
             if let Some(faults) = n.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
@@ -442,6 +467,7 @@ impl Summary {
                         line,
                         timestamp: None,
                         kind,
+                        severity: Severity::of_finding(kind, &detail, Profile::Generic),
                         detail,
                     });
                 });

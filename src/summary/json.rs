@@ -110,7 +110,7 @@ impl Serialize for Iface<'_> {
 impl Serialize for Summary {
     /// The records in output order, as a sequence.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut seq = serializer.serialize_seq(Some(self.nodes.len() + self.buses.len()))?;
+        let mut seq = serializer.serialize_seq(Some(self.records().count()))?;
         for record in self.records() {
             seq.serialize_element(&record)?;
         }
@@ -119,14 +119,15 @@ impl Serialize for Summary {
 }
 
 impl Serialize for SummaryRecord<'_> {
-    /// The node or bus record, with `"file"` first when the summary names
-    /// its file.
+    /// The verdict, node or bus record, with `"file"` first when the
+    /// summary names its file.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         if let Some(file) = self.file {
             map.serialize_entry("file", file)?;
         }
         match self.item {
+            SummaryItem::Verdict(verdict) => super::verdict::verdict_entries(verdict, &mut map)?,
             SummaryItem::Node(node) => node_entries(node, &mut map)?,
             SummaryItem::Bus(bus) => bus_entries(bus, &mut map)?,
         }
@@ -148,7 +149,7 @@ impl Serialize for EmcySeen {
 
 impl Serialize for FrameCounts {
     /// `{kind: count}` for every kind, in the order of
-    /// docs/summary.md#frames, with `guard_answer` after `guard_request`.
+    /// docs/summary.md#frames.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         for (key, n) in self.iter() {

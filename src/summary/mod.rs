@@ -52,6 +52,7 @@ mod record;
 mod sdo;
 mod summarizer;
 mod text;
+mod verdict;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::EmcySeen;
@@ -63,6 +64,7 @@ pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
 pub use summarizer::Summarizer;
+pub use verdict::{Severity, Verdict, CAUSE_WINDOW};
 
 #[cfg(doc)]
 use crate::decoder::{Decoder, DecoderConfig};

@@ -3,48 +3,44 @@
 
 use crate::can::{BusName, Timestamp};
 use crate::canopen::{ErrorRegister, MessageKind, NodeId};
+use crate::profiles::Profile;
 
 use super::cia402::Cia402Timeline;
 use super::emcy::EmcySeen;
 use super::heartbeat::{GuardingSummary, HeartbeatSummary};
 use super::listed::Listed;
 use super::sdo::SdoSummary;
+use super::verdict::Verdict;
 
-/// The frames of a node by kind (`frames` in docs/summary.md#frames), with the
-/// node-guarding answers apart from the heartbeats: both are data frames
-/// on 0x700 + node, told apart by the guard request before an answer
-/// (docs/summary.md#frames).
+/// The frames of a node by kind (`frames` in docs/summary.md#frames): the
+/// node-guarding answers ([`MessageKind::GuardAnswer`]) apart from the
+/// heartbeats, as the decoder tells them (docs/output.md#heartbeat).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct FrameCounts {
     pub(super) by_kind: [u64; MessageKind::ALL.len()],
-    pub(super) guard_answers: u64,
 }
 
 impl FrameCounts {
-    /// Return the count of frames of `kind`; for
-    /// [`MessageKind::Heartbeat`], the heartbeats and boot-ups without the
-    /// node-guarding answers ([`guard_answers`](Self::guard_answers)).
+    /// Return the count of frames of `kind`.
     #[must_use]
     pub fn get(&self, kind: MessageKind) -> u64 {
         self.by_kind[kind.index()]
     }
 
     /// Return the count of node-guarding answers: the data frames on
-    /// 0x700 + node that answer a guard request.
+    /// 0x700 + node that answer a guard request
+    /// ([`get`](Self::get)`(MessageKind::GuardAnswer)`).
     #[must_use]
     pub fn guard_answers(&self) -> u64 {
-        self.guard_answers
+        self.get(MessageKind::GuardAnswer)
     }
 
-    /// Return every count under its key in the summary, in order: the kinds
-    /// of [`MessageKind::ALL`] by name, with `guard_answer` after
-    /// `guard_request`.
+    /// Return every count under its key in the summary, in the order of
+    /// [`MessageKind::ALL`], by name.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, u64)> + '_ {
-        MessageKind::ALL.into_iter().flat_map(move |kind| {
-            let answers =
-                (kind == MessageKind::GuardRequest).then_some(("guard_answer", self.guard_answers));
-            core::iter::once((kind.name(), self.by_kind[kind.index()])).chain(answers)
-        })
+        MessageKind::ALL
+            .into_iter()
+            .map(move |kind| (kind.name(), self.by_kind[kind.index()]))
     }
 }
 
@@ -56,12 +52,20 @@ pub struct NodeSummary {
     pub bus: BusName,
     /// The node-ID.
     pub node: NodeId,
+    /// Its profile: how its EMCYs' manufacturer bytes read (`--profile`,
+    /// docs/canopen.md#profiles).
+    pub profile: Profile,
     /// Its frames by kind.
     pub frames: FrameCounts,
     /// EMCYs seen, resets included.
     pub emcy: u64,
     /// Its first error EMCY.
     pub first_error: Option<EmcySeen>,
+    /// Its first error EMCY that reports an error present: with its error
+    /// register set ([`Emcy::reports_no_error`](crate::canopen::Emcy::reports_no_error)
+    /// false; docs/summary.md#severity). The same as
+    /// [`first_error`](Self::first_error) unless that one is a warning.
+    pub first_error_with_register: Option<EmcySeen>,
     /// The error in its RECV_EMCY_DEV slot at the end of the input: the
     /// root cause under the rule of docs/canopen.md#recv-emcy, `None` after a
     /// reset.
@@ -121,6 +125,8 @@ pub struct Summary {
     /// Whether heartbeat timeouts were checked: `None` when not asked,
     /// `Some(false)` when frames without a time made it impossible.
     pub(super) checked: Option<bool>,
+    /// The verdict on its findings ([`Verdict::of`]).
+    pub(super) verdict: Option<Verdict>,
 }
 
 /// One record of the summary, as `decode --summary` writes them: the
@@ -137,6 +143,8 @@ pub struct SummaryRecord<'s> {
 /// What a [`SummaryRecord`] is about.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SummaryItem<'s> {
+    /// What stopped the machine and its first cause (docs/summary.md#verdict).
+    Verdict(&'s Verdict),
     /// A device.
     Node(&'s NodeSummary),
     /// A bus.
@@ -144,14 +152,23 @@ pub enum SummaryItem<'s> {
 }
 
 impl Summary {
-    /// Return the records in output order: every node, then every bus.
+    /// Return the records in output order: the verdict when something
+    /// stopped (docs/summary.md#verdict), every node, then every bus.
     pub fn records(&self) -> impl Iterator<Item = SummaryRecord<'_>> + '_ {
         let file = self.file.as_deref();
-        self.nodes
+        self.verdict
             .iter()
-            .map(SummaryItem::Node)
+            .map(SummaryItem::Verdict)
+            .chain(self.nodes.iter().map(SummaryItem::Node))
             .chain(self.buses.iter().map(SummaryItem::Bus))
             .map(move |item| SummaryRecord { file, item })
+    }
+
+    /// Return what stopped the machine and its first cause, when something
+    /// stopped (docs/summary.md#verdict).
+    #[must_use]
+    pub fn verdict(&self) -> Option<&Verdict> {
+        self.verdict.as_ref()
     }
 
     /// Return whether heartbeat timeouts were asked for but could not be

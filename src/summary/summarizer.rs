@@ -30,6 +30,7 @@ struct NodeState {
     emcy: u64,
     resets: u64,
     first_error: Option<EmcySeen>,
+    first_error_with_register: Option<EmcySeen>,
     active_error: Option<EmcySeen>,
     last_error: Option<EmcySeen>,
     last_register: Option<ErrorRegister>,
@@ -42,9 +43,6 @@ struct NodeState {
     /// heartbeat: the line and time of the heartbeat before it.
     open_gap: Option<(u64, Duration)>,
     timeouts: Listed<HeartbeatGap>,
-    /// A guard request (RTR) was seen and not yet answered: the next data
-    /// frame on 0x700 + node is its answer.
-    guard_request_pending: bool,
     guarding: NodeGuardingMaster,
     guarding_summary: GuardingSummary,
     sdo: sdo::SdoStats,
@@ -59,6 +57,7 @@ impl NodeState {
             emcy: 0,
             resets: 0,
             first_error: None,
+            first_error_with_register: None,
             active_error: None,
             last_error: None,
             last_register: None,
@@ -68,7 +67,6 @@ impl NodeState {
             last_heartbeat_line: 0,
             open_gap: None,
             timeouts: Listed::new(),
-            guard_request_pending: false,
             // A log rarely shows the guard time (100Ch): observe toggles only.
             guarding: NodeGuardingMaster::observer(node, Duration::ZERO),
             guarding_summary: GuardingSummary::default(),
@@ -344,7 +342,14 @@ impl Summarizer {
                 );
             }
             _ => {
-                let at = decoder.bus(log.iface);
+                // A data frame on 0x700 + node is a guarding answer or a
+                // heartbeat by the frames before it: the decoder tells.
+                let (at, kind) = match (kind, node) {
+                    (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
+                        decoder.error_control_frame(log, kind, n)
+                    }
+                    _ => (decoder.bus(log.iface), kind),
+                };
                 let (name, bus) =
                     Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
                 add_classified(
@@ -491,6 +496,8 @@ fn add_classified(
                 line: position,
                 timestamp: log.timestamp,
                 code: emcy.code,
+                register: emcy.register,
+                manufacturer: emcy.manufacturer,
             };
             on_event(event(
                 Some(node),
@@ -507,93 +514,104 @@ fn add_classified(
                     state.first_error = Some(seen);
                 }
             }
-            match storage.receive(node, emcy) {
-                SlotUpdate::RootCause => state.active_error = Some(seen),
-                SlotUpdate::Reset { .. } => state.active_error = None,
-                SlotUpdate::FollowUp { .. } => {}
+            // An EMCY that reports no error present (a warning) leaves the
+            // node error-free: it is not the node's active error.
+            if !emcy.reports_no_error() {
+                if !emcy.is_reset() && state.first_error_with_register.is_none() {
+                    state.first_error_with_register = Some(seen);
+                }
+                match storage.receive(node, emcy) {
+                    SlotUpdate::RootCause => state.active_error = Some(seen),
+                    SlotUpdate::Reset { .. } => state.active_error = None,
+                    SlotUpdate::FollowUp { .. } => {}
+                }
             }
         }
         MessageKind::GuardRequest => {
-            state.guard_request_pending = true;
             // A missing answer is not part of the summary's contract.
             let _ = state.guarding.on_request(now.unwrap_or(Duration::ZERO));
+        }
+        MessageKind::GuardAnswer => {
+            let Some(&byte) = frame.data().first() else {
+                return;
+            };
+            let byte = NmtStateByte::new(byte);
+            state.guarding_summary.answers += 1;
+            // The node's last NMT state is the last frame's that tells it.
+            state.last_state = Some(byte);
+            on_event(event(
+                Some(node),
+                SummaryEventKind::Nmt {
+                    state: byte,
+                    guard_answer: true,
+                },
+            ));
+            if let Some(answer) = byte.guard_answer() {
+                let events = state
+                    .guarding
+                    .on_answer(now.unwrap_or(Duration::ZERO), answer);
+                if events
+                    .into_iter()
+                    .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
+                {
+                    state.guarding_summary.toggle_errors.push(position);
+                    on_event(event(Some(node), SummaryEventKind::ToggleError));
+                }
+            }
         }
         MessageKind::Heartbeat => {
             let Some(&byte) = frame.data().first() else {
                 return;
             };
             let byte = NmtStateByte::new(byte);
-            if state.guard_request_pending {
-                state.guard_request_pending = false;
-                state.guarding_summary.answers += 1;
-                // Counted as an answer, not as a heartbeat.
-                state.frames.by_kind[MessageKind::Heartbeat.index()] -= 1;
-                state.frames.guard_answers += 1;
-                on_event(event(
-                    Some(node),
-                    SummaryEventKind::Nmt {
-                        state: byte,
-                        guard_answer: true,
-                    },
-                ));
-                if let Some(answer) = byte.guard_answer() {
-                    let events = state
-                        .guarding
-                        .on_answer(now.unwrap_or(Duration::ZERO), answer);
-                    if events
-                        .into_iter()
-                        .any(|e| matches!(e, GuardingEvent::WrongToggle { .. }))
-                    {
-                        state.guarding_summary.toggle_errors.push(position);
-                        on_event(event(Some(node), SummaryEventKind::ToggleError));
-                    }
-                }
-            } else {
-                state.heartbeats += 1;
-                state.last_state = Some(byte);
-                on_event(event(
-                    Some(node),
-                    SummaryEventKind::Nmt {
-                        state: byte,
-                        guard_answer: false,
-                    },
-                ));
-                if byte.state_raw() == 0 {
-                    state.boot_ups.push(position);
-                    state.guarding.on_boot_up();
-                    on_event(event(Some(node), SummaryEventKind::BootUp));
-                }
-                if let (Some(consumer), Some(now), Some(nmt)) =
-                    (consumer.as_mut(), now, byte.state())
-                {
-                    for event in consumer.on_heartbeat(now, node, nmt) {
-                        match event {
-                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
-                            }
-                            HeartbeatEvent::Recovered { at, .. }
-                            | HeartbeatEvent::RemoteReset { at, .. } => {
-                                if let Some((after_line, last)) = state.open_gap.take() {
-                                    let gap = HeartbeatGap {
-                                        after_line,
-                                        gap: at.saturating_sub(last),
-                                    };
-                                    state.timeouts.push(gap);
-                                    on_event(SummaryEvent {
-                                        bus: name,
-                                        node: Some(node),
-                                        line: after_line,
-                                        timestamp: Some(Timestamp::from_duration(last)),
-                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
-                                    });
-                                }
-                            }
-                            HeartbeatEvent::CapacityExceeded { .. } => {}
+            state.heartbeats += 1;
+            state.last_state = Some(byte);
+            // The gap this heartbeat closes comes first: it lies before it.
+            if let (Some(consumer), Some(now), Some(nmt)) = (consumer.as_mut(), now, byte.state()) {
+                for event in consumer.on_heartbeat(now, node, nmt) {
+                    match event {
+                        HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                            state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
                         }
+                        HeartbeatEvent::Recovered { at, .. }
+                        | HeartbeatEvent::RemoteReset { at, .. } => {
+                            if let Some((after_line, last)) = state.open_gap.take() {
+                                let gap = HeartbeatGap {
+                                    after_line,
+                                    gap: at.saturating_sub(last),
+                                };
+                                state.timeouts.push(gap);
+                                on_event(SummaryEvent {
+                                    bus: name,
+                                    node: Some(node),
+                                    line: after_line,
+                                    timestamp: Some(Timestamp::from_duration(last)),
+                                    kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                });
+                            }
+                        }
+                        HeartbeatEvent::CapacityExceeded { .. } => {}
                     }
                 }
-                state.last_heartbeat_line = position;
             }
+            on_event(event(
+                Some(node),
+                SummaryEventKind::Nmt {
+                    state: byte,
+                    guard_answer: false,
+                },
+            ));
+            if byte.state_raw() == 0 {
+                state.boot_ups.push(position);
+                state.guarding.on_boot_up();
+                // A device that re-initialises starts error-free (the
+                // EMCY state machine's transition 0, CiA 301).
+                storage.boot_up(node);
+                state.active_error = None;
+                state.last_register = None;
+                on_event(event(Some(node), SummaryEventKind::BootUp));
+            }
+            state.last_heartbeat_line = position;
         }
         _ => {}
     }
@@ -676,6 +694,7 @@ impl Summarizer {
             buses: Vec::new(),
             file: None,
             checked,
+            verdict: None,
         };
         for (name, bus) in buses {
             let mut nodes = Vec::new();
@@ -685,9 +704,11 @@ impl Summarizer {
                 summary.nodes.push(NodeSummary {
                     bus: name.clone(),
                     node: state.node,
+                    profile: decoder.config().profiles().of(Some(state.node)),
                     frames: state.frames,
                     emcy: state.emcy,
                     first_error: state.first_error,
+                    first_error_with_register: state.first_error_with_register,
                     active_error: state.active_error,
                     resets: state.resets,
                     last_register: state.last_register,
@@ -718,6 +739,7 @@ impl Summarizer {
                 nodes,
             });
         }
+        summary.verdict = super::Verdict::of(&summary);
         summary
     }
 }

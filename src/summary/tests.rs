@@ -130,9 +130,12 @@ fn a_drives_fault_names_the_emcy_before_it() {
         "{text}"
     );
     let json = serde_json::to_value(&summary).unwrap();
-    assert_eq!(json[0]["cia402"]["faults"], serde_json::json!([5]));
-    assert_eq!(json[0]["cia402"]["last_state"], "fault");
-    assert_eq!(json[0]["sdo"]["latency_ms"]["count"], 2);
+    // The verdict first, then node 3.
+    assert_eq!(json[0]["type"], "verdict");
+    assert_eq!(json[0]["stop"]["cause"]["line"], 3);
+    assert_eq!(json[1]["cia402"]["faults"], serde_json::json!([5]));
+    assert_eq!(json[1]["cia402"]["last_state"], "fault");
+    assert_eq!(json[1]["sdo"]["latency_ms"]["count"], 2);
 }
 
 /// The decision in docs/summary.md#cia402: a drive whose statusword was never
@@ -266,10 +269,11 @@ fn long_lists_keep_their_first_and_last_entries_and_count_them_all() {
     assert_eq!(drive.last_state(), Some(Cia402State::Fault));
 
     let json = serde_json::to_value(&summary).unwrap();
-    let node5 = &json[1];
+    assert_eq!(json[0]["type"], "verdict", "the drive's last fault stops");
+    let node5 = &json[2];
     assert_eq!(node5["heartbeat"]["boot_up_count"], 30);
     assert_eq!(node5["heartbeat"]["boot_ups"], serde_json::json!(expected));
-    let cia402 = &json[0]["cia402"];
+    let cia402 = &json[1]["cia402"];
     assert_eq!(cia402["transition_count"], 40);
     assert_eq!(cia402["transitions"].as_array().unwrap().len(), 20);
     assert_eq!(cia402["fault_count"], 20);
@@ -286,7 +290,8 @@ fn long_lists_keep_their_first_and_last_entries_and_count_them_all() {
     assert!(text.contains("CiA 402, 40 states in turn:"), "{text}");
     assert!(text.contains("… 28 more …"), "{text}");
     // Faults: the first 10 and the last 10 are kept; none omitted.
-    assert_eq!(text.matches("→ fault at line").count(), 20, "{text}");
+    let drive = summary.nodes[0].to_string();
+    assert_eq!(drive.matches("→ fault at line").count(), 20, "{drive}");
 }
 
 /// Every log of the repository (`samples/`, `tests/fixtures/`), for the
@@ -400,4 +405,332 @@ fn frames_of_buses_in_turns_count_each_on_its_bus() {
     assert_eq!(requests("can1", 5), Some(2));
     assert_eq!(requests("can0", 5), None);
     assert_eq!(requests("can1", 2), None);
+}
+
+/// docs/summary.md#emcy: a boot-up is the device's re-initialisation, after
+/// which the EMCY state machine starts error-free (transition 0, CiA 301):
+/// the active error before it is gone, and the first error after it is the
+/// new root cause, not a follow-up of the old one.
+#[test]
+fn a_boot_up_clears_the_active_error_until_a_new_emcy() {
+    let hot: &[u8] = &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0];
+    let current: &[u8] = &[0x10, 0x23, 0x03, 0, 0, 0, 0, 0];
+    let before = summarize(&[(Some(0), 0x705, &[0x05]), (Some(1), 0x085, hot)], None);
+    assert_eq!(before.nodes[0].active_error.unwrap().line, 2);
+
+    let rebooted = summarize(
+        &[
+            (Some(0), 0x705, &[0x05]),
+            (Some(1), 0x085, hot),
+            (Some(2), 0x705, &[0x00]),
+        ],
+        None,
+    );
+    let five = &rebooted.nodes[0];
+    assert_eq!(five.active_error, None);
+    assert_eq!(five.last_register, None, "no EMCY since the boot-up");
+    assert_eq!(five.first_error.unwrap().line, 2, "the first error stays");
+
+    let again = summarize(
+        &[
+            (Some(0), 0x705, &[0x05]),
+            (Some(1), 0x085, hot),
+            (Some(2), 0x705, &[0x00]),
+            (Some(3), 0x085, current),
+            (Some(4), 0x085, hot),
+        ],
+        None,
+    );
+    let five = &again.nodes[0];
+    assert_eq!(five.active_error.unwrap().code.get(), 0x2310);
+    assert_eq!(five.active_error.unwrap().line, 4);
+}
+
+/// docs/summary.md#emcy: an EMCY with an error code and the error register
+/// at 0 says no error is present (CiA 301: bit 0 is set in any error
+/// situation): it is counted, and is a first error, but not the active
+/// error (the Baumer encoder's battery warning, 0xFF00, is sent so).
+#[test]
+fn an_emcy_that_reports_no_error_is_not_the_active_error() {
+    let battery: &[u8] = &[0x00, 0xFF, 0x00, 0, 0, 0x10, 0, 0];
+    let passive: &[u8] = &[0x20, 0x81, 0x10, 0, 0, 0x10, 0, 0];
+    let summary = summarize(
+        &[(Some(0), 0x085, battery), (Some(1), 0x085, passive)],
+        None,
+    );
+    let five = &summary.nodes[0];
+    assert_eq!(five.emcy, 2);
+    assert_eq!(five.first_error.unwrap().code.get(), 0xFF00);
+    assert_eq!(
+        five.active_error.unwrap().code.get(),
+        0x8120,
+        "the warning did not take the slot"
+    );
+    // The text says which is which.
+    assert!(
+        five.to_string().contains(
+            "first warning: 0xFF00 Device specific (line 1), \
+             first error: 0x8120 CAN in error passive mode (line 2)"
+        ),
+        "{five}"
+    );
+    assert_eq!(five.first_warning().map(|e| e.line), Some(1));
+    assert_eq!(five.first_error_reported().map(|e| e.line), Some(2));
+    let alone = summarize(&[(Some(0), 0x085, battery)], None);
+    assert_eq!(alone.nodes[0].active_error, None);
+    assert_eq!(alone.nodes[0].first_error_reported(), None);
+    assert!(
+        alone.nodes[0].to_string().contains("first error: none"),
+        "{}",
+        alone.nodes[0]
+    );
+}
+
+/// docs/summary.md#heartbeat: the node's last state is the last frame's
+/// that tells it, a heartbeat or a node-guarding answer; the answers are
+/// counted as `guard_answer`, not as heartbeats.
+#[test]
+fn the_last_state_comes_from_the_last_frame_that_tells_it() {
+    let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
+    let data = |id: u32, data: &'static [u8]| {
+        LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+    };
+    let request = LogFrame::new(CanFrame::new_remote(CanId::standard(0x70A).unwrap(), 1).unwrap());
+    let frames = [
+        data(0x70A, &[0x00]),
+        request,
+        data(0x70A, &[0x7F]),
+        request,
+        data(0x70A, &[0x85]),
+    ];
+    for (i, frame) in frames.into_iter().enumerate() {
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(frame));
+    }
+    let summary = summarizer.finish();
+    let ten = &summary.nodes[0];
+    assert_eq!(
+        ten.heartbeat.last_state.and_then(|b| b.state()),
+        Some(crate::canopen::NmtState::Operational)
+    );
+    assert_eq!(ten.heartbeat.count, 1, "the boot-up only");
+    assert_eq!(ten.frames.get(crate::canopen::MessageKind::Heartbeat), 1);
+    assert_eq!(ten.frames.guard_answers(), 2);
+    assert_eq!(ten.guarding.answers, 2);
+    assert!(ten.to_string().contains("last state operational"), "{ten}");
+}
+
+/// Node 3 (akd) reads its statusword by SDO: operation enabled at line 2,
+/// then the frames of `between` (at their times), then fault at `fault_ms`.
+fn drive_faulting(between: &[(Option<u64>, u32, &'static [u8])], fault_ms: u64) -> Summary {
+    let mut frames: Vec<(Option<u64>, u32, &[u8])> = vec![
+        (Some(0), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (Some(1), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+    ];
+    frames.extend_from_slice(between);
+    frames.push((
+        Some(fault_ms - 1),
+        0x603,
+        &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0],
+    ));
+    frames.push((
+        Some(fault_ms),
+        0x583,
+        &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0],
+    ));
+    summarize(&frames, Some(Duration::from_millis(300)))
+}
+
+/// docs/summary.md#severity: each kind of finding has its severity; an
+/// EMCY's comes from its error register and the node's profile.
+#[test]
+fn severities_follow_the_table() {
+    use crate::canopen::{Emcy, ErrorCode, ErrorRegister};
+    let emcy = |code, register, manufacturer| {
+        Emcy::new(
+            ErrorCode::new(code),
+            ErrorRegister::from_bits_retain(register),
+            manufacturer,
+        )
+    };
+    let cases = [
+        // An error register set: an error, whatever the profile.
+        (
+            emcy(0x7305, 0x01, [0x21, 0, 0, 0, 0]),
+            Profile::Akd,
+            Severity::Error,
+        ),
+        (emcy(0x4200, 0x09, [0; 5]), Profile::Baumer, Severity::Error),
+        (
+            emcy(0x8120, 0x10, [0; 5]),
+            Profile::Generic,
+            Severity::Error,
+        ),
+        // The register at 0: no error present, a warning.
+        (
+            emcy(0xFF00, 0x00, [0, 0, 0x10, 0, 0]),
+            Profile::Generic,
+            Severity::Warning,
+        ),
+        // Baumer's table: 0xFF00 with 6505h bit 4 is the battery warning.
+        (
+            emcy(0xFF00, 0x00, [0, 0, 0x10, 0, 0]),
+            Profile::Baumer,
+            Severity::Warning,
+        ),
+        (
+            emcy(0x6100, 0x00, [0, 0, 0x04, 0, 0]),
+            Profile::Baumer,
+            Severity::Warning,
+        ),
+        // A reset is a notice.
+        (
+            emcy(0x0000, 0x00, [0; 5]),
+            Profile::Generic,
+            Severity::Notice,
+        ),
+    ];
+    for (emcy, profile, severity) in cases {
+        assert_eq!(
+            Severity::of_emcy(&emcy, profile),
+            severity,
+            "{emcy:?} {profile}"
+        );
+    }
+    for (kind, severity) in [
+        (FindingKind::Cia402Fault, Severity::Fault),
+        (FindingKind::BusOff, Severity::Fault),
+        (FindingKind::HeartbeatTimeout, Severity::Error),
+        (FindingKind::Restarts, Severity::Warning),
+        (FindingKind::SdoBroken, Severity::Warning),
+        (FindingKind::SdoTimeout, Severity::Warning),
+        (FindingKind::ToggleError, Severity::Warning),
+        (FindingKind::ErrorPassive, Severity::Warning),
+        (FindingKind::SdoAbort, Severity::Notice),
+    ] {
+        assert_eq!(
+            Severity::of_finding(kind, &FindingDetail::Line, Profile::Generic),
+            severity,
+            "{kind}"
+        );
+    }
+}
+
+/// docs/summary.md#causes: the drive's last error EMCY is the cause of its
+/// fault when it came at most a second before; an older one, or a log
+/// without times, links nothing.
+#[test]
+fn an_emcy_causes_a_fault_within_the_window() {
+    let sensor: &[u8] = &[0x05, 0x73, 0x01, 0x21, 0, 0, 0, 0];
+    let near = drive_faulting(&[(Some(10), 0x083, sensor)], 27);
+    let verdict = near.verdict().expect("a fault stops");
+    assert_eq!(verdict.stop.kind, FindingKind::Cia402Fault);
+    assert_eq!(verdict.stop.line, 5);
+    assert_eq!(verdict.cause.unwrap().line, 3);
+    assert_eq!(
+        verdict.stop_text(),
+        "can0 node 3 went operation_enabled → fault at line 5 (+0.027 s), 17.0 ms after \
+         EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3)"
+    );
+    // Exactly the window is in it; a microsecond more is not.
+    let edge = drive_faulting(&[(Some(10), 0x083, sensor)], 1010);
+    assert!(edge.verdict().unwrap().cause.is_some());
+    let far = drive_faulting(&[(Some(10), 0x083, sensor)], 1011);
+    let verdict = far.verdict().unwrap();
+    assert_eq!(verdict.cause, None);
+    assert!(
+        verdict.stop_text().ends_with("fault at line 5 (+1.011 s)"),
+        "{}",
+        verdict.stop_text()
+    );
+    // The summary's own sentence still names the EMCY before the fault.
+    assert!(far.nodes[0].to_string().contains("after EMCY 0x7305"));
+}
+
+/// docs/summary.md#verdict: the stop is the last fault, heartbeat timeout
+/// or bus-off; the first cause the earliest fault or error of its device
+/// at or before it — a warning is never one.
+#[test]
+fn the_stop_is_the_last_and_the_first_cause_the_earliest_error_of_its_device() {
+    let sensor: &[u8] = &[0x05, 0x73, 0x01, 0x21, 0, 0, 0, 0];
+    let warning: &[u8] = &[0x00, 0xFF, 0x00, 0, 0, 0x10, 0, 0];
+    let summary = drive_faulting(
+        &[
+            // Node 3's warning, then its error; node 4's earlier error.
+            (Some(2), 0x084, &[0x10, 0x81, 0x11, 0, 0, 0, 0, 0]),
+            (Some(5), 0x083, warning),
+            (Some(10), 0x083, sensor),
+        ],
+        27,
+    );
+    let verdict = summary.verdict().unwrap();
+    assert_eq!(
+        (verdict.stop.node.unwrap().get(), verdict.stop.line),
+        (3, 7)
+    );
+    // Node 3's first EMCY is a warning, a finding of its own; its first
+    // error, the sensor fault, is the first cause.
+    let first = &verdict.first_cause;
+    assert_eq!((first.node.unwrap().get(), first.line), (3, 5));
+    assert_eq!(
+        (first.kind, first.severity),
+        (FindingKind::FirstError, Severity::Error)
+    );
+    let warnings: Vec<_> = summary
+        .findings()
+        .into_iter()
+        .filter(|f| f.kind == FindingKind::FirstWarning)
+        .map(|f| (f.line, f.severity, f.text()))
+        .collect();
+    assert_eq!(
+        warnings,
+        [(
+            4,
+            Severity::Warning,
+            "first warning: EMCY 0xFF00 Device specific at line 4".to_owned()
+        )]
+    );
+    // A warning alone is no cause: the first cause is the fault itself.
+    let warned_first = drive_faulting(&[(Some(5), 0x083, warning)], 27);
+    let verdict = warned_first.verdict().unwrap();
+    assert_eq!(verdict.first_cause, verdict.stop);
+    assert_eq!(
+        verdict.first_cause_text(),
+        "the stop itself: no fault or error before it on its device"
+    );
+    // A later heartbeat timeout of another node is the stop.
+    let frames: &[(Option<u64>, u32, &[u8])] = &[
+        (Some(0), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (Some(1), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+        (Some(10), 0x083, sensor),
+        (Some(26), 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (Some(27), 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0]),
+        (Some(100), 0x705, &[0x05]),
+        (Some(2000), 0x080, &[]),
+    ];
+    let lost = summarize(frames, Some(Duration::from_millis(300)));
+    let verdict = lost.verdict().unwrap();
+    assert_eq!(verdict.stop.kind, FindingKind::HeartbeatTimeout);
+    assert_eq!(
+        (verdict.stop.node.unwrap().get(), verdict.stop.line),
+        (5, 6)
+    );
+    assert_eq!(
+        verdict.first_cause, verdict.stop,
+        "node 5 had nothing before"
+    );
+    let text = lost.to_string();
+    assert!(
+        text.starts_with(
+            "verdict   stop: can0 node 5 no heartbeat for 1900 ms after line 6\n          \
+             first cause: the stop itself"
+        ),
+        "{text}"
+    );
+    // Nothing stopped: no verdict, no record.
+    let calm = summarize(
+        &[(Some(0), 0x705, &[0x05]), (Some(100), 0x705, &[0x05])],
+        None,
+    );
+    assert!(calm.verdict().is_none());
+    assert_eq!(calm.records().count(), 2);
 }

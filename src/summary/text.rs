@@ -29,6 +29,7 @@ impl fmt::Display for SummaryRecord<'_> {
             write!(f, "{file}: ")?;
         }
         match self.item {
+            SummaryItem::Verdict(verdict) => fmt::Display::fmt(verdict, f),
             SummaryItem::Node(node) => fmt::Display::fmt(node, f),
             SummaryItem::Bus(bus) => fmt::Display::fmt(bus, f),
         }
@@ -139,7 +140,14 @@ impl fmt::Display for NodeSummary {
         }
         writeln!(f)?;
         write!(f, "          emcy {} (resets {})", self.emcy, self.resets)?;
-        seen(f, "first error", self.first_error)?;
+        // A first EMCY that is a warning is said as one, and the first
+        // error after it (docs/summary.md#severity).
+        if let Some(warning) = self.first_warning() {
+            seen(f, "first warning", Some(warning))?;
+            seen(f, "first error", self.first_error_reported())?;
+        } else {
+            seen(f, "first error", self.first_error)?;
+        }
         seen(f, "active error", self.active_error)?;
         if let Some(register) = self.last_register.filter(|r| r.bits() != 0) {
             if self.active_error.is_none() {

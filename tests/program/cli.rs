@@ -54,8 +54,16 @@ fn node_records(out: &Output) -> Vec<Value> {
         .filter(|r| r["type"] == "node")
         .cloned()
         .collect();
-    // Node records come first, then one bus record per interface.
-    assert!(all[nodes.len()..].iter().all(|r| r["type"] == "bus"));
+    // The verdict when something stopped, then the node records, then one
+    // bus record per interface.
+    let verdicts = usize::from(all.first().is_some_and(|r| r["type"] == "verdict"));
+    assert!(all[..verdicts + nodes.len()]
+        .iter()
+        .skip(verdicts)
+        .all(|r| r["type"] == "node"));
+    assert!(all[verdicts + nodes.len()..]
+        .iter()
+        .all(|r| r["type"] == "bus"));
     nodes
 }
 
@@ -342,6 +350,60 @@ fn summary_keys_on_a_crafted_log() {
         n10["guarding"],
         json!({"answers": 5, "toggle_errors": [14, 19], "toggle_error_count": 2})
     );
+    // The last frame that tells node 10's state is the answer on line 19.
+    assert_eq!(n10["heartbeat"]["last_state"], "operational");
+}
+
+/// docs/output.md#heartbeat: a node-guarding answer is its own kind in every
+/// form, with its state and toggle, and `--only` keeps it.
+#[test]
+fn a_guarding_answer_is_its_own_kind() {
+    let path = temp_file("guarding.log", SUMMARY_LOG);
+    let path = path.to_str().unwrap();
+    let out = run(&["decode", "--json", "--only", "guard_answer", path], "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let recs = records(&out);
+    let lines: Vec<_> = recs.iter().map(|r| r["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [10, 12, 14, 16, 19]);
+    assert_eq!(
+        (&recs[1]["kind"], &recs[1]["state"], &recs[1]["toggle"]),
+        (&json!("guard_answer"), &json!("operational"), &json!(true))
+    );
+    // The boot-up between the answers stays a heartbeat.
+    let out = run(
+        &[
+            "decode",
+            "--json",
+            "--only",
+            "heartbeat",
+            "--node",
+            "10",
+            path,
+        ],
+        "",
+    );
+    let lines: Vec<_> = records(&out)
+        .iter()
+        .map(|r| r["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [17]);
+    let text = stdout(&run(&["decode", "--only", "guard_answer", path], ""));
+    let second = text.lines().nth(1).unwrap();
+    assert!(
+        second.contains("70A  guard_answer   node  10  operational, toggle 1"),
+        "{second}"
+    );
+    let csv = stdout(&run(
+        &["decode", "--csv", "--only", "guard_answer", path],
+        "",
+    ));
+    assert!(
+        csv.lines()
+            .nth(2)
+            .unwrap()
+            .contains(",85,guard_answer,10,,"),
+        "{csv}"
+    );
 }
 
 #[test]
@@ -351,8 +413,10 @@ fn summary_timeout_runs_to_the_end_of_the_input_and_needs_the_option() {
         &["decode", "--summary", "--json", "--heartbeat-ms", "1000"],
         log,
     ));
+    // The lost node stops: the verdict first.
+    assert_eq!(recs[0]["stop"]["kind"], "heartbeat_timeout");
     assert_eq!(
-        recs[0]["heartbeat"]["timeouts"],
+        recs[1]["heartbeat"]["timeouts"],
         json!([{"after_line": 2, "gap_ms": 2500.0}])
     );
     let recs = records(&run(&["decode", "--summary", "--json"], log));
@@ -580,6 +644,11 @@ fn sample_log_summary_matches_its_ground_truth() {
         }
         assert_eq!(
             rec["heartbeat"]["boot_ups"], t["boot_up_lines"],
+            "node {node}"
+        );
+        // The last frame that tells the state: node 10's guarding answers.
+        assert_eq!(
+            rec["heartbeat"]["last_state"], t["last_state"],
             "node {node}"
         );
         let sdo = &t["sdo"];
@@ -988,7 +1057,12 @@ fn summary_nodes_per_interface_and_bus_records() {
                (100.500000) can1 705#05\n";
     let out = run(&["decode", "--summary", "--json"], log);
     assert!(out.status.success(), "{}", stderr(&out));
-    let recs = records(&out);
+    let all = records(&out);
+    // can1's bus-off stops (docs/summary.md#verdict): the verdict first.
+    assert_eq!(all[0]["type"], "verdict");
+    assert_eq!(all[0]["stop"]["iface"], "can1");
+    assert_eq!(all[0]["stop"]["kind"], "bus_off");
+    let recs = &all[1..];
     let keys: Vec<(String, String, u64)> = recs
         .iter()
         .map(|r| {
@@ -1318,8 +1392,21 @@ fn blf_files() {
     std::fs::create_dir_all(&dir).unwrap();
     let cut = dir.join("cut.blf");
     std::fs::write(&cut, &whole[..whole.len() - 40]).unwrap();
+    // Its one container cut: nothing could be read (docs/output.md#exit-status).
+    let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("nothing could be read as a blf log: 1 damaged record and no frame"),
+        "{}",
+        stderr(&out)
+    );
+    // A file of many containers cut in its last: the frames before it.
+    let many = std::fs::read(format!("{fixtures}python_can_many.blf")).unwrap();
+    std::fs::write(&cut, &many[..many.len() - 40]).unwrap();
     let out = run(&["decode", "--json", cut.to_str().unwrap()], "");
     assert_eq!(out.status.code(), Some(1));
+    assert!(!records(&out).is_empty());
     assert!(stderr(&out).contains("blf file, byte "), "{}", stderr(&out));
 }
 
@@ -1522,7 +1609,7 @@ fn help_and_messages_speak_plainly() {
     let text = stdout(&help);
     for needle in [
         "candump, asc, trc, pcap, pcapng, blf, mf4",
-        "emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo, error_frame, other",
+        "emcy, heartbeat, guard_request, guard_answer, nmt_command, sync,\n          time, pdo, sdo, error_frame, other",
         "Exit status:",
         "docs/output.md",
         "line  ts                 iface  id        kind           node      detail",
@@ -1547,4 +1634,182 @@ fn help_and_messages_speak_plainly() {
         "{}",
         stderr(&eds)
     );
+}
+
+/// A candump log of `frames` heartbeats of node 5, a millisecond apart.
+fn candump_heartbeats(frames: usize) -> String {
+    (0..frames)
+        .map(|i| format!("(1700000000.{i:06}) can0 705#05\n"))
+        .collect()
+}
+
+/// docs/output.md#stderr: a log of which nothing could be read — every
+/// line malformed, as a candump log read with `--format trc` — says its
+/// first 100 malformed lines and then one line, and is exit status 2; the
+/// page is not written.
+#[test]
+fn a_log_of_which_nothing_could_be_read_says_so_in_one_line() {
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/samples/machine.log");
+    let generated = temp_file("heartbeats.log", &candump_heartbeats(250));
+    for (path, lines) in [(sample, 3765), (generated.to_str().unwrap(), 250)] {
+        let out = run(&["decode", "--format", "trc", path], "");
+        assert_eq!(out.status.code(), Some(2), "{path}");
+        assert!(out.stdout.is_empty());
+        let err = stderr(&out);
+        let said: Vec<&str> = err.lines().collect();
+        assert_eq!(said.len(), 101, "{err}");
+        for (i, line) in said[..100].iter().enumerate() {
+            assert!(
+                line.starts_with(&format!("{path}:{}: trc line", i + 1)),
+                "{line}"
+            );
+        }
+        assert_eq!(
+            said[100],
+            format!(
+                "motionwire: {path}: nothing could be read as a trc log: {lines} malformed lines \
+                 and no frame; the first 100 are said above (--verbose says each)"
+            )
+        );
+        let verbose = run(&["decode", "--verbose", "--format", "trc", path], "");
+        assert_eq!(verbose.status.code(), Some(2));
+        assert_eq!(stderr(&verbose).lines().count(), lines + 1);
+    }
+    // A few malformed lines: each said, and the one line without the rest.
+    let out = run(&["decode", "--format", "trc", "-"], &candump_heartbeats(3));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).ends_with(
+            "motionwire: <stdin>: nothing could be read as a trc log: 3 malformed lines and no frame\n"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    // The page is not written.
+    let page = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests/nothing.html");
+    let _ = std::fs::remove_file(&page);
+    let out = run(
+        &[
+            "report",
+            "--format",
+            "trc",
+            sample,
+            "-o",
+            page.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(stderr(&out).lines().count(), 101);
+    assert!(!page.exists());
+    // An empty log is not a log of which nothing could be read.
+    let out = run(&["decode", "--format", "trc", "-"], "");
+    assert_eq!(out.status.code(), Some(0));
+}
+
+/// docs/output.md#stderr: per file, the first 100 malformed lines are said
+/// one by one and the rest counted in one line; `--verbose` says all.
+#[test]
+fn malformed_lines_are_said_up_to_100_per_file() {
+    let mut text = candump_heartbeats(2);
+    for i in 0..150 {
+        text.push_str(&format!("not a frame {i}\n"));
+    }
+    let a = temp_file("bounded_a.log", &text);
+    let b = temp_file("bounded_b.log", &text);
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = run(&["decode", "--json", a, b], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(records(&out).len(), 4, "the frames are written");
+    let err = stderr(&out);
+    let said: Vec<&str> = err.lines().collect();
+    // 100 + 1 per file, then the run's count.
+    assert_eq!(said.len(), 2 * 101 + 1, "{err}");
+    assert!(
+        said[99].starts_with(&format!("{a}:102: candump line")),
+        "{}",
+        said[99]
+    );
+    assert_eq!(
+        said[100],
+        format!(
+            "{a}: 150 malformed lines in all; the first 100 are said above (--verbose says each)"
+        )
+    );
+    assert!(
+        said[101].starts_with(&format!("{b}:3: candump line")),
+        "{}",
+        said[101]
+    );
+    assert_eq!(said[202], "motionwire: 300 malformed lines skipped");
+
+    let out = run(&["decode", "--verbose", "--json", a, b], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(stderr(&out).lines().count(), 2 * 150 + 1);
+
+    // At most 100: nothing more than before.
+    let few = temp_file("bounded_few.log", &(candump_heartbeats(1) + "junk\n"));
+    let out = run(&["decode", few.to_str().unwrap()], "");
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(stderr(&out).lines().count(), 2);
+}
+
+/// docs/summary.md#verdict: the text summary and the JSON summary start with
+/// the verdict; on the sample, drive 3's last fault after the EMCY on its
+/// feedback 2, first caused by its first error.
+#[test]
+fn the_summary_starts_with_its_verdict() {
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/samples/machine.log");
+    let args = [
+        "decode",
+        "--summary",
+        "--profile",
+        "3=akd,5=baumer",
+        "--heartbeat-ms",
+        "300",
+    ];
+    let mut text = args.to_vec();
+    text.push(sample);
+    let out = run(&text, "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let lines: Vec<String> = stdout(&out).lines().take(2).map(str::to_owned).collect();
+    assert_eq!(
+        lines,
+        [
+            "verdict   stop: can0 node 3 went operation_enabled → fault at line 3239 (+8.820 s), \
+             16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
+            "          first cause: can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 \
+             fault at line 613 (+2.003 s)",
+        ]
+    );
+    let mut json = args.to_vec();
+    json.extend(["--json", sample]);
+    let recs = records(&run(&json, ""));
+    let verdict = &recs[0];
+    assert_eq!(verdict["type"], "verdict");
+    assert_eq!(
+        verdict["stop"],
+        json!({"iface": "can0", "node": 3, "line": 3239, "ts": 1700000008.820694,
+               "kind": "cia402_fault", "severity": "fault",
+               "text": "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 \
+                        Incremental sensor 1 fault (line 3231)",
+               "cause": {"line": 3231, "ts": 1700000008.804608, "code": 0x7305,
+                         "description": "Incremental sensor 1 fault"}})
+    );
+    assert_eq!(verdict["first_cause"]["line"], 613);
+    assert_eq!(verdict["first_cause"]["severity"], "error");
+    assert_eq!(
+        verdict["text"],
+        format!(
+            "stop: {}; first cause: {}",
+            lines[0].strip_prefix("verdict   stop: ").unwrap(),
+            lines[1].strip_prefix("          first cause: ").unwrap()
+        )
+    );
+    // Nothing stopped in a log of heartbeats: no verdict.
+    let calm = run(
+        &["decode", "--summary", "--json", "-"],
+        "(1.0) can0 705#05\n",
+    );
+    assert_eq!(records(&calm)[0]["type"], "node");
 }

@@ -12,7 +12,7 @@ use motionwire::decoder::DecoderConfig;
 use motionwire::logs::ReadLog;
 use motionwire::profiles::{NodeProfiles, Profile};
 use motionwire::report::{Recorder, Recording};
-use motionwire::summary::{Finding, FindingKind};
+use motionwire::summary::{Finding, FindingKind, Severity};
 
 fn repo(path: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -72,7 +72,7 @@ fn page_findings(html: &str) -> Vec<(u64, String, Option<u8>, String)> {
 /// The section of the page a kind is listed in, in the page's order.
 fn section(kind: FindingKind) -> usize {
     match kind {
-        FindingKind::FirstError | FindingKind::Cia402Fault => 0,
+        FindingKind::FirstError | FindingKind::FirstWarning | FindingKind::Cia402Fault => 0,
         FindingKind::Restarts => 1,
         FindingKind::HeartbeatTimeout => 2,
         FindingKind::SdoAbort => 3,
@@ -143,4 +143,56 @@ fn a_finding_serializes_with_its_text() {
     assert_eq!(json["line"], first.line);
     assert_eq!(json["text"], first.text());
     assert!(json["ts"].is_number());
+}
+
+/// docs/summary.md#verdict on the sample read with `--profile
+/// 3=akd,5=baumer --heartbeat-ms 300`: the stop is drive 3's last fault,
+/// after the EMCY on its feedback 2; the first cause its first error; the
+/// Baumer encoder's battery EMCY is a warning, not an error.
+#[test]
+fn the_samples_verdict() {
+    let recording = sample_recording();
+    let verdict = recording.summary.verdict().expect("the sample stops");
+    let stop = &verdict.stop;
+    assert_eq!(
+        (
+            stop.kind,
+            stop.node.map(NodeId::get),
+            stop.line,
+            stop.severity
+        ),
+        (FindingKind::Cia402Fault, Some(3), 3239, Severity::Fault)
+    );
+    let cause = verdict.cause.expect("the EMCY 16.1 ms before");
+    assert_eq!((cause.line, cause.code.get()), (3231, 0x7305));
+    assert_eq!(
+        verdict.stop_text(),
+        "can0 node 3 went operation_enabled → fault at line 3239 (+8.820 s), 16.1 ms after \
+         EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)"
+    );
+    let first = &verdict.first_cause;
+    assert_eq!(
+        (
+            first.kind,
+            first.node.map(NodeId::get),
+            first.line,
+            first.severity
+        ),
+        (FindingKind::FirstError, Some(3), 613, Severity::Error)
+    );
+
+    let five: Vec<(FindingKind, u64, Severity)> = recording
+        .findings()
+        .iter()
+        .filter(|f| f.node.map(NodeId::get) == Some(5))
+        .filter(|f| matches!(f.kind, FindingKind::FirstError | FindingKind::FirstWarning))
+        .map(|f| (f.kind, f.line, f.severity))
+        .collect();
+    assert_eq!(
+        five,
+        [
+            (FindingKind::FirstWarning, 393, Severity::Warning),
+            (FindingKind::FirstError, 972, Severity::Error),
+        ]
+    );
 }

@@ -138,14 +138,59 @@ fn the_samples_faults_are_where_the_summary_says() {
     assert!(page
         .html
         .contains("no heartbeat for 3386.93 ms after line 1559"));
+    // Silent past the consumer time (300 ms), its state is unknown up to
+    // the boot-up that ends the gap: no band says `operational` there.
+    let nmt: Vec<(&str, u64, f64)> = five
+        .kind("nmt_state")
+        .iter()
+        .map(|b| {
+            (
+                b.get("data-state").unwrap(),
+                b.num("data-line"),
+                b.get("x").unwrap().parse().unwrap(),
+            )
+        })
+        .collect();
+    let silent = nmt.iter().position(|b| b.0 == "unknown").unwrap();
+    assert_eq!(nmt[silent].1, 1559);
+    assert_eq!((nmt[silent + 1].0, nmt[silent + 1].1), ("boot_up", 2681));
+    assert_eq!(nmt[silent - 1].0, "operational");
+    let x_gap = gaps[0].get("x").unwrap().parse::<f64>().unwrap();
+    let consumer_px = 300_000.0 / span as f64 * 1000.0;
+    assert!((nmt[silent].2 - (x_gap + consumer_px)).abs() < 0.01);
+    assert_eq!(nmt.iter().filter(|b| b.0 == "unknown").count(), 1);
 
     // Node 10: the guarding toggle error.
     let ten = page.node("can0", 10);
     assert_eq!(ten.lines("toggle_error"), [1104]);
     assert!(page.html.contains("wrong toggle at line 1104"));
 
-    // Faults come first: before the timeline.
+    // The verdict leads "What went wrong" (docs/report.md#page): the
+    // stop with its wall-clock time, and the first cause.
     let wrong = page.html.find("id=\"wrong\"").unwrap();
+    let verdict = page.html[wrong..].find("<div class=\"verdict\"").unwrap() + wrong;
+    assert!(verdict < wrong + page.html[wrong..].find("<ul").unwrap());
+    let block = &page.html[verdict..verdict + page.html[verdict..].find("</div>").unwrap()];
+    assert!(
+        block.starts_with(
+            "<div class=\"verdict\" data-kind=\"verdict\" data-line=\"3239\" \
+             data-iface=\"can0\" data-node=\"3\" data-severity=\"fault\">"
+        ),
+        "{block}"
+    );
+    assert!(
+        block.contains(
+            "<b>Stop at 2023-11-14 22:13:28.820694 UTC:</b> can0 node 3 went operation_enabled \
+             → fault at line 3239 (+8.820 s), 16.1 ms after EMCY 0x7305 Incremental sensor 1 \
+             fault on axis 1, feedback 2 (line 3231)"
+        ),
+        "{block}"
+    );
+    assert!(
+        block.contains("<b>First cause:</b> can0 node 3 first error: EMCY 0x7305"),
+        "{block}"
+    );
+    // Faults come first: before the timeline.
     let timeline = page.html.find("id=\"timeline\"").unwrap();
     assert!(wrong < timeline);
 }
@@ -245,10 +290,12 @@ fn long_lists_are_counted_in_full_and_listed_first_and_last() {
     // Every mark is drawn and counted; every list is its first 10 and
     // last 10 (check_counts).
     check_counts(&page, &records);
-    let node = &records[0];
+    // The last bus-off stops (docs/summary.md#verdict): the verdict first.
+    assert_eq!(records[0]["stop"]["kind"], "bus_off");
+    let node = &records[1];
     assert_eq!(node["heartbeat"]["boot_up_count"], 30);
     assert_eq!(node["sdo"]["abort_count"], 25);
-    assert_eq!(records[1]["bus_off_count"], 24);
+    assert_eq!(records[2]["bus_off_count"], 24);
     let row = page.node("can0", 5);
     assert_eq!(row.count("boot_up"), 30);
     assert_eq!(row.count("sdo_abort"), 25);
@@ -313,6 +360,72 @@ fn a_log_without_timestamps_is_drawn_by_line() {
         &page,
         &summary_records(&["--heartbeat-ms", "100", log.to_str().unwrap()]),
     );
+}
+
+/// docs/report.md#bands: a device silent past the heartbeat consumer time
+/// is drawn as `unknown` from then to its next heartbeat or to the end;
+/// without `--heartbeat-ms` nothing is checked, and its last state lasts.
+#[test]
+fn a_silent_device_is_drawn_as_unknown() {
+    let dir = scratch("silent");
+    let log = dir.join("silent.log");
+    std::fs::write(
+        &log,
+        "(10.000000) can0 705#05
+(10.100000) can0 705#05
+(10.900000) can0 705#7F
+         (11.000000) can0 705#7F
+(11.100000) can0 080#
+(13.000000) can0 080#
+",
+    )
+    .unwrap();
+    let page_of = |args: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut all = vec!["report"];
+        all.extend_from_slice(args);
+        all.extend([log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let r = run(&all);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        parse(&std::fs::read_to_string(&out).unwrap())
+    };
+    let page = page_of(&["--heartbeat-ms", "200"], "checked.html");
+    let row = page.node("can0", 5);
+    let states: Vec<(&str, u64)> = row
+        .kind("nmt_state")
+        .iter()
+        .map(|b| (b.get("data-state").unwrap(), b.num("data-line")))
+        .collect();
+    // 600 ms of silence after line 2 (unknown from 10.3 s), then
+    // pre-operational from line 3; silent again after line 4 to the end.
+    assert_eq!(
+        states,
+        [
+            ("operational", 1),
+            ("unknown", 2),
+            ("pre_operational", 3),
+            ("unknown", 4)
+        ]
+    );
+    let unknown = row.kind("nmt_state")[1];
+    let x: f64 = unknown.get("x").unwrap().parse().unwrap();
+    let width: f64 = unknown.get("width").unwrap().parse().unwrap();
+    // The axis spans 3 s: 10.3 s to 10.9 s is 200 px to 400 px of 1 000.
+    assert!((x - (170.0 + 100.0)).abs() < 0.01, "{x}");
+    assert!((width - 200.0).abs() < 0.01, "{width}");
+    check_counts(
+        &page,
+        &summary_records(&["--heartbeat-ms", "200", log.to_str().unwrap()]),
+    );
+
+    let unchecked = page_of(&[], "unchecked.html");
+    let states: Vec<&str> = unchecked
+        .node("can0", 5)
+        .kind("nmt_state")
+        .iter()
+        .map(|b| b.get("data-state").unwrap())
+        .collect();
+    assert_eq!(states, ["operational", "pre_operational"]);
 }
 
 #[test]
@@ -490,7 +603,7 @@ fn page_of_any_log(bytes: Vec<u8>) -> Result<(), proptest::test_runner::TestCase
         prop_assert_eq!(marks(MarkKind::EmcyReset), node.resets);
         prop_assert_eq!(marks(MarkKind::BootUp), node.heartbeat.boot_ups.count());
     }
-    let records = recording.summary.nodes.len() + recording.summary.buses.len();
+    let records = recording.summary.records().count();
     let mut report = Report::new();
     report.add_recording(recording);
     let mut page = Vec::new();
@@ -544,4 +657,60 @@ proptest::proptest! {
     fn any_candump_traffic_makes_a_whole_page(bytes in candump_like()) {
         page_of_any_log(bytes)?;
     }
+}
+
+/// docs/report.md#bands: when frames without a time make the summary's
+/// heartbeat timeouts unchecked (`null`), no silence is drawn either.
+#[test]
+fn an_unchecked_silence_is_not_drawn() {
+    use motionwire::can::{CanFrame, CanId, Iface, LogEvent, LogFrame, Timestamp};
+    use motionwire::decoder::DecoderConfig;
+    use motionwire::logs::Position;
+    use motionwire::report::{Recorder, Report};
+    use std::time::Duration;
+
+    let page = |untimed: bool| {
+        let mut recorder =
+            Recorder::new(DecoderConfig::new().heartbeat_timeout(Duration::from_millis(200)));
+        let frame = |ms: Option<u64>| {
+            let log =
+                LogFrame::new(CanFrame::new(CanId::standard(0x705).unwrap(), &[0x05]).unwrap())
+                    .with_iface(Iface::Name("can0"));
+            match ms {
+                Some(ms) => log.with_timestamp(Timestamp::from_duration(Duration::from_millis(ms))),
+                None => log,
+            }
+        };
+        let mut times = vec![Some(0), Some(100), Some(1000)];
+        if untimed {
+            times.push(None);
+        }
+        for (line, ms) in (1..).zip(times) {
+            recorder.add(Position::Line(line), &LogEvent::Frame(frame(ms)));
+        }
+        let recording = recorder.finish();
+        assert_eq!(recording.summary.timeouts_not_checked(), untimed);
+        let mut report = Report::new();
+        report.add_recording(recording);
+        let mut html = Vec::new();
+        report.write_html(&mut html).unwrap();
+        parse(&String::from_utf8(html).unwrap())
+    };
+    let states = |page: &Page| -> Vec<String> {
+        page.node("can0", 5)
+            .kind("nmt_state")
+            .iter()
+            .map(|b| b.get("data-state").unwrap().to_owned())
+            .collect()
+    };
+    assert_eq!(
+        states(&page(false)),
+        ["operational", "unknown", "operational"]
+    );
+    let unchecked = page(true);
+    assert!(!states(&unchecked).iter().any(|s| s == "unknown"));
+    assert!(unchecked
+        .node("can0", 5)
+        .kind("heartbeat_timeout")
+        .is_empty());
 }

@@ -169,6 +169,30 @@ impl Emcy {
         self.code.is_reset()
     }
 
+    /// Return whether this EMCY names an error code but reports no error
+    /// present: a code that is not a reset with an empty error register.
+    /// Bit 0 of the error register (1001h) is set in every error
+    /// situation (CiA 301 §7.5.2.2), and the EMCY state machine sends a
+    /// code other than 0x0000 only with it set (docs/canopen.md#emcy-producer);
+    /// a device that sends a code with the register at 0 says it is still
+    /// error-free — a warning, as the Baumer EAM580 sends its sources
+    /// signalled in 6505h (docs/canopen.md#profiles).
+    ///
+    /// ```
+    /// use motionwire_codec::canopen::{Emcy, ErrorCode, ErrorRegister};
+    ///
+    /// let battery = Emcy::new(ErrorCode::new(0xFF00), ErrorRegister::empty(), [0, 0, 0x10, 0, 0]);
+    /// assert!(battery.reports_no_error());
+    /// let hot = Emcy::new(ErrorCode::new(0x4200), ErrorRegister::from_bits_retain(0x09), [0; 5]);
+    /// assert!(!hot.reports_no_error());
+    /// assert!(!Emcy::reset(ErrorRegister::empty()).reports_no_error());
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn reports_no_error(&self) -> bool {
+        !self.is_reset() && self.register.is_empty()
+    }
+
     /// Decode the 8 bytes of an EMCY.
     #[inline]
     #[must_use]

@@ -63,8 +63,8 @@ use crate::{Error, LenError, ValueError};
 ///
 /// let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
 /// assert_eq!(names, [
-///     "emcy", "heartbeat", "guard_request", "nmt_command", "sync", "time",
-///     "pdo", "sdo", "error_frame", "other",
+///     "emcy", "heartbeat", "guard_request", "guard_answer", "nmt_command",
+///     "sync", "time", "pdo", "sdo", "error_frame", "other",
 /// ]);
 /// assert_eq!(MessageKind::GuardRequest.to_string(), "guard_request");
 /// ```
@@ -75,12 +75,18 @@ use crate::{Error, LenError, ValueError};
 pub enum MessageKind {
     /// 0x081–0x0FF: an EMCY (CiA 301 §7.2.7).
     Emcy,
-    /// 0x701–0x77F, data frame: heartbeat, boot-up or node-guarding answer
-    /// (CiA 301 §7.2.8.3.2).
+    /// 0x701–0x77F, data frame: heartbeat or boot-up (CiA 301 §7.2.8.3.2).
     Heartbeat,
     /// 0x701–0x77F, remote request: node-guarding request
     /// (CiA 301 §7.2.8.3.2.1).
     GuardRequest,
+    /// 0x701–0x77F, data frame answering a guard request: node-guarding
+    /// answer (CiA 301 §7.2.8.3.2.1). It shares its identifier with the
+    /// heartbeat, so only the frames before it tell it: the first data frame
+    /// on the node's identifier after a guard request
+    /// (docs/output.md#heartbeat). [`MessageKind::classify`] reads one frame
+    /// and never returns it; the decoder session does.
+    GuardAnswer,
     /// 0x000: NMT node control (CiA 301 §7.2.8.3.1).
     NmtCommand,
     /// 0x080: SYNC (CiA 301 §7.2.5).
@@ -99,10 +105,11 @@ pub enum MessageKind {
 
 impl MessageKind {
     /// Every kind, in the order the summary lists them.
-    pub const ALL: [MessageKind; 10] = [
+    pub const ALL: [MessageKind; 11] = [
         MessageKind::Emcy,
         MessageKind::Heartbeat,
         MessageKind::GuardRequest,
+        MessageKind::GuardAnswer,
         MessageKind::NmtCommand,
         MessageKind::Sync,
         MessageKind::Time,
@@ -119,6 +126,7 @@ impl MessageKind {
             MessageKind::Emcy => "emcy",
             MessageKind::Heartbeat => "heartbeat",
             MessageKind::GuardRequest => "guard_request",
+            MessageKind::GuardAnswer => "guard_answer",
             MessageKind::NmtCommand => "nmt_command",
             MessageKind::Sync => "sync",
             MessageKind::Time => "time",

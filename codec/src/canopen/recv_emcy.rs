@@ -585,6 +585,30 @@ impl EmcyStorage {
         }
     }
 
+    /// Take in a boot-up message of `node` (heartbeat state 0): the device
+    /// has re-initialised, and a device starts error-free (transition 0
+    /// of the EMCY state machine, CiA 301; docs/canopen.md#recv-emcy), so
+    /// its slot returns to "no error" until a new EMCY says otherwise.
+    /// Return the error the boot-up cleared; `None` when the slot held
+    /// "no error".
+    ///
+    /// ```
+    /// use motionwire_codec::canopen::{Emcy, EmcyStorage, ErrorCode, ErrorRegister, NodeId};
+    ///
+    /// let node = NodeId::new(5).unwrap();
+    /// let mut storage = EmcyStorage::new();
+    /// let hot = Emcy::new(ErrorCode::new(0x4200), ErrorRegister::GENERIC, [0; 5]);
+    /// storage.receive(node, hot);
+    /// assert_eq!(storage.boot_up(node), Some(hot));
+    /// assert_eq!(storage.root_cause(node), None);
+    /// assert_eq!(storage.boot_up(node), None);
+    /// ```
+    pub fn boot_up(&mut self, node: NodeId) -> Option<Emcy> {
+        let held = core::mem::replace(&mut self.slots[node.index()], NO_ERROR);
+        self.in_error.remove(node);
+        (!held.is_reset()).then_some(held)
+    }
+
     /// Return the slot of `node` as it is, configured or not: its root-cause
     /// error, or the last reset EMCY it received (with the register and
     /// manufacturer bytes the device sent), or the all-zero "no error" when

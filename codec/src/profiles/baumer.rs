@@ -328,6 +328,27 @@ impl BaumerEmcy {
     pub fn sources(&self) -> impl Iterator<Item = &'static DiagnosticSource> + Clone {
         matching(self.code, self.manufacturer)
     }
+
+    /// Return whether the encoder's own table makes this EMCY a warning:
+    /// it matches at least one diagnostic source, and every source it
+    /// matches is a warning ([`DiagnosticSource::is_warning`]; Baumer
+    /// EAM580 manual §9.5).
+    ///
+    /// ```
+    /// use motionwire_codec::profiles::baumer::BaumerEmcy;
+    ///
+    /// // 0xFF00 with 6505h bit 4: the battery monitoring warning.
+    /// let battery = BaumerEmcy::from_bytes(&[0x00, 0xFF, 0x00, 0x00, 0x00, 0x10, 0x00, 0x00]);
+    /// assert!(battery.is_warning());
+    /// // 0x4200 with 1001h bits 0 and 3: temperature out of range, an error.
+    /// let hot = BaumerEmcy::from_bytes(&[0x00, 0x42, 0x09, 0x00, 0x00, 0x00, 0x00, 0x00]);
+    /// assert!(!hot.is_warning());
+    /// ```
+    #[must_use]
+    pub fn is_warning(&self) -> bool {
+        let mut sources = self.sources().peekable();
+        sources.peek().is_some() && sources.all(DiagnosticSource::is_warning)
+    }
 }
 
 impl From<Emcy> for BaumerEmcy {
@@ -677,6 +698,17 @@ impl DiagnosticSource {
     #[must_use]
     pub const fn signalling(&self) -> Signalling {
         self.signalling
+    }
+
+    /// Return whether the source is a warning: the manual's table signals
+    /// it in the warnings (6505h) only, not in the error register (1001h)
+    /// nor in the alarms (6503h) (Baumer EAM580 manual §9.5: the battery
+    /// monitoring warning 0xFF00, the watchdog reset reason 0x6100, …).
+    #[inline]
+    #[must_use]
+    pub const fn is_warning(&self) -> bool {
+        let s = self.signalling;
+        s.register.is_empty() && s.alarms.is_empty() && !s.warnings.is_empty()
     }
 
     /// Return when the signalling is reset; `None` where the table gives

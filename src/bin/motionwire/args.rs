@@ -104,8 +104,8 @@ Text output, one line per frame:
   ts      seconds (absolute Unix time, or since the recording started), - without one
   iface   interface name or channel number, - without one
   id      CAN identifier in hex (8 digits for an extended one)
-  kind    emcy, heartbeat, guard_request, nmt_command, sync, time, pdo, sdo,
-          error_frame, other
+  kind    emcy, heartbeat, guard_request, guard_answer, nmt_command, sync,
+          time, pdo, sdo, error_frame, other
   node    the node-ID the identifier names, blank for kinds without one
   detail  what the frame says: an EMCY in words, a heartbeat's state, an SDO
           step or the transfer it ends, a PDO's signals, an error frame's
@@ -119,7 +119,12 @@ Exit status:
   1  some lines were malformed or some records damaged: each said on standard
      error with its position, then a count; the rest was decoded
   2  the command could not do its job: bad arguments, a file that cannot be
-     read, an input in no known log format, a damaged binary header";
+     read, an input in no known log format, a damaged binary header, an input
+     of which nothing could be read (every line malformed: is --format right?)
+
+Complaints are bounded: the first 100 malformed lines or damaged records of
+each file are said one by one, the rest counted in one line (--verbose says
+every one).";
 
 /// The arguments of `motionwire decode`.
 #[derive(Debug, Args)]
@@ -195,6 +200,11 @@ pub struct ReadingArgs {
     /// changes them (docs/canopen.md#pdo-mappings).
     #[arg(long, value_name = "NODE=FILE", value_parser = parse_eds_choice)]
     pub eds: Vec<(NodeId, PathBuf)>,
+    /// Say every malformed line and damaged record on standard error; without
+    /// it, the first 100 of each file are said one by one and the rest
+    /// counted in one line (docs/output.md#stderr).
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// One `--profile` item: for every node, or for one node.

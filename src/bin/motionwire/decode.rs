@@ -74,6 +74,11 @@ fn stdin_input() -> Input {
     }
 }
 
+/// How many malformed lines and damaged records of one file are said one by
+/// one on standard error without `--verbose`; the rest are counted in one
+/// line (docs/output.md#stderr).
+pub const COMPLAINTS_PER_FILE: u64 = 100;
+
 /// How many bytes of JSON records are built before they are written out.
 const JSON_BLOCK: usize = 1 << 16;
 
@@ -106,6 +111,14 @@ struct Sink<'a> {
     skipped: u64,
     /// Damaged records of binary logs reported.
     damaged: u64,
+    /// The malformed lines and damaged records of the file being read.
+    file_skipped: u64,
+    file_damaged: u64,
+    /// Say every complaint, not only the first [`COMPLAINTS_PER_FILE`] of
+    /// each file.
+    verbose: bool,
+    /// Log entries read (frames and bus events), from every input.
+    entries: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
     /// Frames read so far, from every input.
@@ -177,6 +190,10 @@ impl<'a> Sink<'a> {
             ids: &args.id,
             skipped: 0,
             damaged: 0,
+            file_skipped: 0,
+            file_damaged: 0,
+            verbose: args.reading.verbose,
+            entries: 0,
             progress_shown: false,
             frames: 0,
             decoder: Decoder::new(config.clone()),
@@ -308,6 +325,7 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
+        self.entries += 1;
         if let LogEvent::Frame(_) | LogEvent::Ethercat(_) = event {
             self.frames += 1;
         }
@@ -331,8 +349,50 @@ impl<'a> Sink<'a> {
     #[cold]
     fn malformed(&mut self, name: &str, line: u64, why: &dyn std::fmt::Display) -> io::Result<()> {
         self.skipped += 1;
+        self.file_skipped += 1;
+        if !self.says_complaint() {
+            return Ok(());
+        }
         self.clear_progress()?;
         writeln!(self.err, "{name}:{line}: {why}")
+    }
+
+    /// Whether the file's complaint just counted is said one by one: the
+    /// first [`COMPLAINTS_PER_FILE`] of a file, or all with `--verbose`.
+    fn says_complaint(&self) -> bool {
+        self.verbose || self.file_skipped + self.file_damaged <= COMPLAINTS_PER_FILE
+    }
+
+    /// The file's complaints not said one by one.
+    fn unsaid(&self) -> u64 {
+        if self.verbose {
+            return 0;
+        }
+        (self.file_skipped + self.file_damaged).saturating_sub(COMPLAINTS_PER_FILE)
+    }
+
+    /// The file's malformed lines and damaged records, in words.
+    fn file_complaints(&self) -> String {
+        let plural = |n: u64| if n == 1 { "" } else { "s" };
+        let lines = (self.file_skipped > 0).then(|| {
+            format!(
+                "{} malformed line{}",
+                self.file_skipped,
+                plural(self.file_skipped)
+            )
+        });
+        let records = (self.file_damaged > 0).then(|| {
+            format!(
+                "{} damaged record{}",
+                self.file_damaged,
+                plural(self.file_damaged)
+            )
+        });
+        lines
+            .into_iter()
+            .chain(records)
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// Write out the JSON records built so far.
@@ -439,6 +499,9 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
         sink.input.clone_from(&name);
+        let entries_before = sink.entries;
+        sink.file_skipped = 0;
+        sink.file_damaged = 0;
         let last = log.visit(ReadAll {
             sink: &mut sink,
             progress: &mut progress,
@@ -446,6 +509,24 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             path: path.as_deref(),
         })?;
         sink.clear_progress()?;
+        if sink.file_skipped + sink.file_damaged > 0 && sink.entries == entries_before {
+            // Nothing read but complaints: the input is not what it was
+            // read as (`--format trc` on a candump log), said in one line.
+            sink.flush()?;
+            return Err(Failure::NothingRead {
+                name,
+                format: format.name(),
+                complaints: sink.file_complaints(),
+                partly: sink.unsaid() > 0,
+            });
+        }
+        if sink.unsaid() > 0 {
+            writeln!(
+                sink.err,
+                "{name}: {} in all; the first {COMPLAINTS_PER_FILE} are said above (--verbose says each)",
+                sink.file_complaints()
+            )?;
+        }
         if sink.frames == before {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
@@ -680,8 +761,11 @@ fn report(
         (_, LogErrorKind::Io(e)) => return Err(read_failure(name, path, e)),
         (_, kind) => {
             sink.damaged += 1;
-            sink.clear_progress()?;
-            writeln!(sink.err, "{name}: {kind}")?;
+            sink.file_damaged += 1;
+            if sink.says_complaint() {
+                sink.clear_progress()?;
+                writeln!(sink.err, "{name}: {kind}")?;
+            }
         }
     }
     Ok(())

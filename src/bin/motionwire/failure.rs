@@ -35,6 +35,32 @@ pub enum Failure {
         /// What is wrong, and where.
         error: motionwire::Error,
     },
+    /// A log of which nothing could be read: every line or record of it
+    /// was malformed or damaged, and said (the first
+    /// [`COMPLAINTS_PER_FILE`](crate::decode::COMPLAINTS_PER_FILE) of them,
+    /// docs/output.md#stderr).
+    #[error(
+        "{name}: nothing could be read as a {format} log: {complaints} and no frame{}",
+        if *partly {
+            format!(
+                "; the first {} are said above (--verbose says each)",
+                crate::decode::COMPLAINTS_PER_FILE
+            )
+        } else {
+            String::new()
+        }
+    )]
+    NothingRead {
+        /// The input's name.
+        name: String,
+        /// The format it was read as (`--format`, or as detected).
+        format: &'static str,
+        /// How many lines were malformed and records damaged, in words.
+        complaints: String,
+        /// Only the first [`COMPLAINTS_PER_FILE`](crate::decode::COMPLAINTS_PER_FILE)
+        /// of them were said one by one.
+        partly: bool,
+    },
     /// Writing the output failed.
     #[error("writing the output: {0}")]
     Io(#[from] io::Error),
