@@ -6,7 +6,7 @@
 
 use crate::ethercat::register::{self, covered};
 use crate::ethercat::{
-    Addressing, AlStatus, AlStatusCode, Command, Datagram, FrameCopy, MailboxHeader, MailboxType,
+    Addressing, AlStatus, AlStatusCode, Command, Datagram, MailboxHeader, MailboxType,
     MAILBOX_HEADER_LEN,
 };
 use crate::profiles::Profile;
@@ -232,17 +232,18 @@ pub(super) struct Network {
 }
 
 impl Network {
-    /// Read one datagram of a copy; `sent_adp` is the ADP it was sent with
-    /// (a position-addressed datagram's position is its negation).
+    /// Read one datagram of a copy, `returned` when it came back through
+    /// the slaves; `sent_adp` is the ADP it was sent with (a
+    /// position-addressed datagram's position is its negation).
     pub(super) fn datagram<'a>(
         &mut self,
-        copy: FrameCopy,
+        returned: bool,
         datagram: &Datagram<'a>,
         sent_adp: Option<u16>,
         mut on: impl FnMut(Meaning<'a>),
     ) {
         // Only a copy that came back proves what the slaves did.
-        if !copy.returned() {
+        if !returned {
             return;
         }
         let command = datagram.command();

@@ -263,7 +263,7 @@ impl Session {
         let sent_adp = packet.sent_adp(at, datagram);
         if let Some(port) = self.ports.get_mut(packet.port) {
             port.network
-                .datagram(packet.copy, datagram, sent_adp, on_meaning);
+                .datagram(packet.copy.returned(), datagram, sent_adp, on_meaning);
         }
     }
 

@@ -1,19 +1,20 @@
-//! What went wrong, as a list (docs/summary.md#findings): the summary's
-//! faults, first errors, restarts, heartbeat timeouts, SDO aborts, broken
-//! and unanswered transfers, toggle errors and bus errors, one [`Finding`]
-//! each, in time order. The report's "What went wrong" and the Python
-//! package's `findings` are this list.
+//! What went wrong, one [`Finding`] per fact (docs/summary.md#findings):
+//! the summary's faults, first errors and warnings, restarts, heartbeat
+//! timeouts, SDO aborts, broken and unanswered transfers, toggle errors and
+//! bus errors, each with its [`Severity`] (docs/summary.md#severity).
+//! `Summary::findings` lists them in time order; the report's "What went
+//! wrong" and the Python package's `findings` are that list.
 
 use core::fmt;
 
 use crate::can::{BusName, Timestamp};
 use crate::canopen::NodeId;
 use crate::decoder::Device;
-
-use super::json::{Iface, Ts};
-use super::text::ListedLines;
-use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity, Summary, Timeouts};
 use crate::profiles::Profile;
+
+use super::listed::ListedLines;
+use super::values::{Iface, Ts};
+use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity};
 
 /// What a [`Finding`] is about: the summary list it comes from
 /// (docs/summary.md#findings).
@@ -154,7 +155,7 @@ pub enum FindingDetail {
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Finding {
-    /// The file the summary is of, when it names one ([`Summary::file`]).
+    /// The file the summary is of, when it names one ([`Summary::file`](super::Summary::file)).
     pub file: Option<String>,
     /// The bus.
     pub bus: BusName,
@@ -167,7 +168,7 @@ pub struct Finding {
     pub line: u64,
     /// The time of that line: the summary's own where it keeps one (an
     /// EMCY's, a CiA 402 transition's), else what the caller of
-    /// [`Summary::findings_with`] gives; `None` where neither knows.
+    /// [`Summary::findings_with`](super::Summary::findings_with) gives; `None` where neither knows.
     pub timestamp: Option<Timestamp>,
     /// What kind of trouble.
     pub kind: FindingKind,
@@ -310,212 +311,28 @@ impl serde::Serialize for Finding {
     }
 }
 
-impl Summary {
-    /// Return what went wrong (docs/summary.md#findings), with the times
-    /// the summary keeps: an EMCY's and a CiA 402 transition's; every other
-    /// finding's `ts` is `None` ([`findings_with`](Self::findings_with)
-    /// gives them), so the list is in line order.
-    ///
-    /// ```
-    /// use motionwire::can::LogEvent;
-    /// use motionwire::decoder::DecoderConfig;
-    /// use motionwire::logs::Position;
-    /// use motionwire::summary::{FindingKind, Summarizer};
-    ///
-    /// let log = b"(1700000000.000000) can0 703#00\n\
-    ///             (1700000000.100000) can0 083#1081110000000000\n\
-    ///             (1700000000.200000) can0 703#00\n";
-    /// let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
-    /// for (line, text) in log.split(|&b| b == b'\n').enumerate() {
-    ///     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
-    ///         summarizer.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
-    ///     }
-    /// }
-    /// let summary = summarizer.finish();
-    /// let findings = summary.findings();
-    /// let kinds: Vec<_> = findings.iter().map(|f| f.kind).collect();
-    /// assert_eq!(kinds, [FindingKind::FirstError, FindingKind::Restarts]);
-    /// assert_eq!(
-    ///     findings[0].to_string(),
-    ///     "can0 node 3 first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"
-    /// );
-    /// assert_eq!(findings[1].text(), "restarted 1 time (boot-ups at lines 1, 3)");
-    /// assert_eq!(findings[1].line, 3);
-    /// let json = serde_json::to_string(&findings[0])?;
-    /// assert_eq!(
-    ///     json,
-    ///     r#"{"iface":"can0","node":3,"line":2,"ts":1700000000.100000,"kind":"first_error","severity":"error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
-    /// );
-    /// # Ok::<(), serde_json::Error>(())
-    /// ```
+impl Severity {
+    /// Return the severity of a finding of `kind` saying `detail`, of a
+    /// node read with `profile` (docs/summary.md#severity).
     #[must_use]
-    pub fn findings(&self) -> Vec<Finding> {
-        self.findings_with(|_| None)
-    }
-
-    /// Return what went wrong, in time order, as
-    /// [`findings`](Self::findings) does, with `time_of` giving the time
-    /// of each finding whose time the summary does not keep (a boot-up's,
-    /// an abort's, …): the report's timeline places them where its marks
-    /// are (`report::Recording::findings`).
-    ///
-    /// The order: by time, then by line, when every finding has a time;
-    /// else by line (a log without timestamps, a caller without times).
-    /// Findings at the same place stay in the order of
-    /// [`FindingKind::ALL`], devices before buses.
-    #[must_use]
-    pub fn findings_with(
-        &self,
-        mut time_of: impl FnMut(&Finding) -> Option<Timestamp>,
-    ) -> Vec<Finding> {
-        let mut list = Vec::new();
-        for n in &self.nodes {
-            let mut push = |kind, line, detail, ts| {
-                list.push(Finding {
-                    file: self.file.clone(),
-                    bus: n.bus.clone(),
-                    node: Some(n.node),
-                    line,
-                    timestamp: ts,
-                    kind,
-                    severity: Severity::of_finding(kind, &detail, n.profile),
-                    detail,
-                });
-            };
-            if let Some(warning) = n.first_warning() {
-                push(
-                    FindingKind::FirstWarning,
-                    warning.line,
-                    FindingDetail::Emcy(warning),
-                    warning.timestamp,
-                );
+    pub fn of_finding(kind: FindingKind, detail: &FindingDetail, profile: Profile) -> Severity {
+        match (kind, detail) {
+            (FindingKind::FirstError, FindingDetail::Emcy(seen)) => {
+                Severity::of_emcy(&seen.emcy(), profile)
             }
-            if let Some(error) = n.first_error_reported() {
-                push(
-                    FindingKind::FirstError,
-                    error.line,
-                    FindingDetail::Emcy(error),
-                    error.timestamp,
-                );
-            }
-            if let Some(faults) = n.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
-                each(
-                    faults,
-                    |fault| fault.transition.line,
-                    |line, fault| {
-                        let (detail, ts) = match fault {
-                            Ok(fault) => (
-                                FindingDetail::Cia402Fault(*fault),
-                                fault.transition.timestamp,
-                            ),
-                            Err(n) => (FindingDetail::Omitted(n), None),
-                        };
-                        push(FindingKind::Cia402Fault, line, detail, ts);
-                    },
-                );
-            }
-            let boots = &n.heartbeat.boot_ups;
-            if boots.count() > 1 {
-                let line = *boots.get(1).unwrap_or(&0);
-                push(
-                    FindingKind::Restarts,
-                    line,
-                    FindingDetail::BootUps(boots.clone()),
-                    None,
-                );
-            }
-            if let Timeouts::Checked(gaps) = &n.heartbeat.timeouts {
-                each(
-                    gaps,
-                    |gap| gap.after_line,
-                    |line, gap| {
-                        let detail = gap.map_or_else(FindingDetail::Omitted, |gap| {
-                            FindingDetail::HeartbeatGap(*gap)
-                        });
-                        push(FindingKind::HeartbeatTimeout, line, detail, None);
-                    },
-                );
-            }
-            each(
-                &n.sdo.aborts,
-                |abort| abort.line,
-                |line, abort| {
-                    let detail = abort.map_or_else(FindingDetail::Omitted, |abort| {
-                        FindingDetail::SdoAbort(abort.clone())
-                    });
-                    push(FindingKind::SdoAbort, line, detail, None);
-                },
-            );
-            for (kind, lines) in [
-                (FindingKind::SdoBroken, &n.sdo.broken),
-                (FindingKind::SdoTimeout, &n.sdo.timeouts),
-                (FindingKind::ToggleError, &n.guarding.toggle_errors),
-            ] {
-                each_line(lines, |line, detail| push(kind, line, detail, None));
-            }
+            (FindingKind::FirstError, _) => Severity::Error,
+            (FindingKind::FirstWarning, _) => Severity::Warning,
+            (FindingKind::Cia402Fault | FindingKind::BusOff, _) => Severity::Fault,
+            (FindingKind::HeartbeatTimeout, _) => Severity::Error,
+            (FindingKind::SdoAbort, _) => Severity::Notice,
+            (
+                FindingKind::Restarts
+                | FindingKind::SdoBroken
+                | FindingKind::SdoTimeout
+                | FindingKind::ToggleError
+                | FindingKind::ErrorPassive,
+                _,
+            ) => Severity::Warning,
         }
-        for b in &self.buses {
-            for (kind, lines) in [
-                (FindingKind::BusOff, &b.bus_off),
-                (FindingKind::ErrorPassive, &b.error_passive),
-            ] {
-                each_line(lines, |line, detail| {
-                    list.push(Finding {
-                        file: self.file.clone(),
-                        bus: b.bus.clone(),
-                        node: None,
-                        line,
-                        timestamp: None,
-                        kind,
-                        severity: Severity::of_finding(kind, &detail, Profile::Generic),
-                        detail,
-                    });
-                });
-            }
-        }
-        for finding in &mut list {
-            if !finding.timed_by_summary() {
-                finding.timestamp = time_of(finding);
-            }
-        }
-        if list.iter().all(|f| f.timestamp.is_some()) {
-            list.sort_by_key(|f| (f.timestamp, f.line));
-        } else {
-            list.sort_by_key(|f| f.line);
-        }
-        list
     }
-}
-
-/// Hand `found` each entry a summary list keeps, in order, as `Ok` at its
-/// line, and in their place the entries it omitted as `Err(count)` at the
-/// line of the last entry kept before them (docs/summary.md#lists).
-fn each<T>(
-    list: &Listed<T>,
-    line: impl Fn(&T) -> u64,
-    mut found: impl FnMut(u64, Result<&T, u64>),
-) {
-    for entry in list.head() {
-        found(line(entry), Ok(entry));
-    }
-    if let (n @ 1.., Some(last)) = (list.omitted(), list.head().last()) {
-        found(line(last), Err(n));
-    }
-    for entry in list.tail() {
-        found(line(entry), Ok(entry));
-    }
-}
-
-/// [`each`] for a list of lines.
-fn each_line(list: &Listed<u64>, mut found: impl FnMut(u64, FindingDetail)) {
-    each(
-        list,
-        |&line| line,
-        |line, entry| {
-            found(
-                line,
-                entry.map_or_else(FindingDetail::Omitted, |_| FindingDetail::Line),
-            );
-        },
-    );
 }

@@ -6,12 +6,13 @@
 //! (docs/formats.md#timestamps): with `serde_json` they are raw numbers; other
 //! serializers see serde_json's raw-value token.
 
-use serde::ser::{Error as _, SerializeMap, SerializeSeq};
+use serde::ser::{SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 
-use crate::can::{BusName, Timestamp};
+use crate::can::Timestamp;
 
 use super::text::ms;
+use super::values::{Iface, Ts};
 use super::{
     BusSummary, Cia402Timeline, EmcySeen, FrameCounts, GuardingSummary, HeartbeatGap,
     HeartbeatSummary, Listed, NodeSummary, SdoAbort, SdoSummary, Summary, SummaryItem,
@@ -77,34 +78,8 @@ impl SummaryRecord<'_> {
     }
 }
 
-/// A time as a JSON number with six or nine decimals.
-pub(super) struct Ts(pub(super) Timestamp);
-
-impl Serialize for Ts {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let text = self.0.seconds().to_string();
-        serde_json::value::RawValue::from_string(text)
-            .map_err(S::Error::custom)?
-            .serialize(serializer)
-    }
-}
-
 fn ts<M: SerializeMap>(map: &mut M, key: &str, ts: Option<Timestamp>) -> Result<(), M::Error> {
     map.serialize_entry(key, &ts.map(Ts))
-}
-
-/// The `iface` of docs/output.md#common-keys: the name, the channel as a
-/// string, or null.
-pub(super) struct Iface<'a>(pub(super) &'a BusName);
-
-impl Serialize for Iface<'_> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        match self.0 {
-            BusName::Unnamed => serializer.serialize_none(),
-            BusName::Channel(n) => serializer.collect_str(n),
-            BusName::Name(name) => serializer.serialize_str(name),
-        }
-    }
 }
 
 impl Serialize for Summary {

@@ -1,6 +1,7 @@
 //! The summary's lists (aborts, boot-ups, timeouts, …): the first and the
 //! last entries of each, and how many there were (docs/summary.md#lists).
 
+use core::fmt;
 use core::iter::Chain;
 use core::slice;
 use std::vec::Vec;
@@ -185,6 +186,48 @@ impl<T: serde::Serialize> serde::Serialize for Listed<T> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_seq(self.iter())
     }
+}
+
+/// The lines of a [`Listed`], with the count of those omitted between
+/// its first and its last (docs/summary.md#lists): `1, 2, …, 10, … 30
+/// more …, 41, …, 50`.
+pub(super) struct ListedLines<'a, T>(pub(super) &'a Listed<T>);
+
+impl<T: fmt::Display> fmt::Display for ListedLines<'_, T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        each(
+            self.0,
+            f,
+            |entry, f, i| {
+                if i > 0 {
+                    f.write_str(", ")?;
+                }
+                write!(f, "{entry}")
+            },
+            |omitted, f| write!(f, ", … {omitted} more …"),
+        )
+    }
+}
+
+/// Write the entries of `listed` in order with `entry` (given its index
+/// among those kept), and `more` where entries were omitted.
+pub(super) fn each<T>(
+    listed: &Listed<T>,
+    f: &mut fmt::Formatter<'_>,
+    mut entry: impl FnMut(&T, &mut fmt::Formatter<'_>, usize) -> fmt::Result,
+    more: impl FnOnce(u64, &mut fmt::Formatter<'_>) -> fmt::Result,
+) -> fmt::Result {
+    let head = listed.head();
+    for (i, e) in head.iter().enumerate() {
+        entry(e, f, i)?;
+    }
+    if listed.omitted() > 0 {
+        more(listed.omitted(), f)?;
+    }
+    for (i, e) in listed.tail().enumerate() {
+        entry(e, f, head.len() + i)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -50,9 +50,12 @@ mod json;
 mod listed;
 mod record;
 mod sdo;
+mod severity;
 mod summarizer;
 mod text;
+mod values;
 mod verdict;
+mod wrong;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::EmcySeen;
@@ -63,8 +66,9 @@ pub use heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
+pub use severity::Severity;
 pub use summarizer::Summarizer;
-pub use verdict::{Severity, Verdict, CAUSE_WINDOW};
+pub use verdict::{Verdict, CAUSE_WINDOW};
 
 #[cfg(doc)]
 use crate::decoder::{Decoder, DecoderConfig};

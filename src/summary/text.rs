@@ -6,9 +6,10 @@ use core::fmt;
 use crate::can::Timestamp;
 use crate::canopen::Cia402State;
 
+use super::listed::{each, ListedLines};
 use super::{
-    BusSummary, Cia402Fault, Cia402Timeline, EmcySeen, Listed, NodeSummary, SdoAbort, SdoSummary,
-    Summary, SummaryItem, SummaryRecord, Timeouts,
+    BusSummary, Cia402Fault, Cia402Timeline, EmcySeen, NodeSummary, SdoAbort, SdoSummary, Summary,
+    SummaryItem, SummaryRecord, Timeouts,
 };
 
 impl fmt::Display for Summary {
@@ -60,48 +61,6 @@ impl<T: fmt::Display> fmt::Display for Lines<'_, T> {
         }
         Ok(())
     }
-}
-
-/// The lines of a [`Listed`], with the count of those omitted between
-/// its first and its last (docs/summary.md#lists): `1, 2, …, 10, … 30
-/// more …, 41, …, 50`.
-pub(super) struct ListedLines<'a, T>(pub(super) &'a Listed<T>);
-
-impl<T: fmt::Display> fmt::Display for ListedLines<'_, T> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        each(
-            self.0,
-            f,
-            |entry, f, i| {
-                if i > 0 {
-                    f.write_str(", ")?;
-                }
-                write!(f, "{entry}")
-            },
-            |omitted, f| write!(f, ", … {omitted} more …"),
-        )
-    }
-}
-
-/// Write the entries of `listed` in order with `entry` (given its index
-/// among those kept), and `more` where entries were omitted.
-fn each<T>(
-    listed: &Listed<T>,
-    f: &mut fmt::Formatter<'_>,
-    mut entry: impl FnMut(&T, &mut fmt::Formatter<'_>, usize) -> fmt::Result,
-    more: impl FnOnce(u64, &mut fmt::Formatter<'_>) -> fmt::Result,
-) -> fmt::Result {
-    let head = listed.head();
-    for (i, e) in head.iter().enumerate() {
-        entry(e, f, i)?;
-    }
-    if listed.omitted() > 0 {
-        more(listed.omitted(), f)?;
-    }
-    for (i, e) in listed.tail().enumerate() {
-        entry(e, f, head.len() + i)?;
-    }
-    Ok(())
 }
 
 /// A time as seconds with six decimals and no padding (`0.052000`,

@@ -1,150 +1,18 @@
-//! The verdict of a post-mortem (docs/summary.md#verdict): how bad each
-//! finding is ([`Severity`]), the causal link the log supports between a
-//! drive's EMCY and its CiA 402 fault ([`CAUSE_WINDOW`]), and on top of the
-//! list the stop and its first cause ([`Verdict`]).
+//! The verdict of a post-mortem (docs/summary.md#verdict): the causal link
+//! the log supports between a drive's EMCY and its CiA 402 fault
+//! ([`CAUSE_WINDOW`]), and on top of the findings the stop and its first
+//! cause ([`Verdict`], made by [`Verdict::of`]).
 
 use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
-use crate::canopen::Emcy;
 use crate::profiles::akd::AkdManufacturerField;
 use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
 
-use super::json::Iface;
-use super::{Cia402Fault, EmcySeen, Finding, FindingDetail, FindingKind, NodeSummary, Summary};
-
-/// How bad a finding is (docs/summary.md#severity), the worst first:
-/// `Fault < Error < Warning < Notice`.
-///
-/// ```
-/// use motionwire::canopen::{Emcy, ErrorCode, ErrorRegister};
-/// use motionwire::profiles::Profile;
-/// use motionwire::summary::Severity;
-///
-/// let battery = Emcy::new(ErrorCode::new(0xFF00), ErrorRegister::empty(), [0, 0, 0x10, 0, 0]);
-/// assert_eq!(Severity::of_emcy(&battery, Profile::Baumer), Severity::Warning);
-/// let sensor = Emcy::new(ErrorCode::new(0x7305), ErrorRegister::GENERIC, [0x21, 0, 0, 0, 0]);
-/// assert_eq!(Severity::of_emcy(&sensor, Profile::Akd), Severity::Error);
-/// assert!(Severity::Fault < Severity::Error);
-/// assert_eq!(Severity::Warning.to_string(), "warning");
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Severity {
-    /// A device stopped doing its job: a CiA 402 drive entered a fault
-    /// state (CiA 402), a controller went bus-off (ISO 11898-1).
-    Fault,
-    /// A device reports an error (an EMCY whose error register is set,
-    /// CiA 301), or was lost (a heartbeat timeout, CiA 301's heartbeat
-    /// event).
-    Error,
-    /// Something went wrong and did not stop anything: an EMCY that reports
-    /// no error present, or that the device's profile calls a warning; a
-    /// restart; a guarding toggle error; a broken or unanswered SDO
-    /// transfer; error-passive.
-    Warning,
-    /// Worth knowing: an SDO abort (a server refusing a request is part of
-    /// the protocol).
-    Notice,
-}
-
-impl Severity {
-    /// Return the name JSON writes: `fault`, `error`, `warning`, `notice`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Severity::Fault => "fault",
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-            Severity::Notice => "notice",
-        }
-    }
-
-    /// Return whether it is a fault or an error: what a first cause can be.
-    #[must_use]
-    pub const fn is_fault_or_error(self) -> bool {
-        matches!(self, Severity::Fault | Severity::Error)
-    }
-
-    /// Return the severity of an EMCY of a node read with `profile`
-    /// (docs/summary.md#severity): a reset is a notice; an EMCY the
-    /// profile's own table calls a warning (a Baumer diagnostic source
-    /// signalled in 6505h only, [`BaumerEmcy::is_warning`]) or that
-    /// reports no error present (error register 0,
-    /// [`Emcy::reports_no_error`]) is a warning; any other is an error.
-    #[must_use]
-    pub fn of_emcy(emcy: &Emcy, profile: Profile) -> Severity {
-        if emcy.is_reset() {
-            return Severity::Notice;
-        }
-        if profile == Profile::Baumer && BaumerEmcy::from_emcy(emcy).is_warning() {
-            return Severity::Warning;
-        }
-        if emcy.reports_no_error() {
-            return Severity::Warning;
-        }
-        Severity::Error
-    }
-
-    /// Return the severity of a finding of `kind` saying `detail`, of a
-    /// node read with `profile` (docs/summary.md#severity).
-    #[must_use]
-    pub fn of_finding(kind: FindingKind, detail: &FindingDetail, profile: Profile) -> Severity {
-        match (kind, detail) {
-            (FindingKind::FirstError, FindingDetail::Emcy(seen)) => {
-                Severity::of_emcy(&seen.emcy(), profile)
-            }
-            (FindingKind::FirstError, _) => Severity::Error,
-            (FindingKind::FirstWarning, _) => Severity::Warning,
-            (FindingKind::Cia402Fault | FindingKind::BusOff, _) => Severity::Fault,
-            (FindingKind::HeartbeatTimeout, _) => Severity::Error,
-            (FindingKind::SdoAbort, _) => Severity::Notice,
-            (
-                FindingKind::Restarts
-                | FindingKind::SdoBroken
-                | FindingKind::SdoTimeout
-                | FindingKind::ToggleError
-                | FindingKind::ErrorPassive,
-                _,
-            ) => Severity::Warning,
-        }
-    }
-}
-
-impl fmt::Display for Severity {
-    /// The [`name`](Self::name).
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl NodeSummary {
-    /// Return the node's first EMCY when it is a warning
-    /// ([`Severity::of_emcy`] with the node's profile;
-    /// docs/summary.md#severity): its [`first_error`](Self::first_error),
-    /// or `None` when that one is an error.
-    #[must_use]
-    pub fn first_warning(&self) -> Option<EmcySeen> {
-        self.first_error
-            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) == Severity::Warning)
-    }
-
-    /// Return the node's first EMCY that reports an error: its
-    /// [`first_error`](Self::first_error), or, when that one is a warning,
-    /// its first EMCY with the error register set
-    /// ([`first_error_with_register`](Self::first_error_with_register))
-    /// unless the profile calls that one a warning too
-    /// (docs/summary.md#severity).
-    #[must_use]
-    pub fn first_error_reported(&self) -> Option<EmcySeen> {
-        if self.first_warning().is_none() {
-            return self.first_error;
-        }
-        self.first_error_with_register
-            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) != Severity::Warning)
-    }
-}
+use super::values::{Iface, Ts};
+use super::{Cia402Fault, EmcySeen, Finding, FindingDetail};
 
 /// How long before a drive's CiA 402 fault its EMCY may come to be its
 /// cause (docs/summary.md#causes): one second. A drive sends the EMCY when
@@ -198,47 +66,6 @@ pub struct Verdict {
 }
 
 impl Verdict {
-    /// Return the verdict on `summary`'s findings ([`Summary::findings`]),
-    /// or `None` when nothing stopped: no fault, no heartbeat timeout, no
-    /// bus-off.
-    #[must_use]
-    pub fn of(summary: &Summary) -> Option<Verdict> {
-        let findings = summary.findings();
-        let at = findings.iter().rposition(|f| {
-            !f.is_omitted()
-                && matches!(
-                    f.kind,
-                    FindingKind::Cia402Fault | FindingKind::HeartbeatTimeout | FindingKind::BusOff
-                )
-        })?;
-        let stop = &findings[at];
-        let first_cause = findings[..=at]
-            .iter()
-            .find(|f| {
-                !f.is_omitted()
-                    && f.severity.is_fault_or_error()
-                    && f.bus == stop.bus
-                    && (stop.node.is_none() || f.node == stop.node)
-            })
-            .unwrap_or(stop);
-        let cause = match &stop.detail {
-            FindingDetail::Cia402Fault(fault) => fault.cause(),
-            _ => None,
-        };
-        let profile = stop
-            .node
-            .and_then(|node| summary.node(&stop.bus, node))
-            .map_or(Profile::Generic, |n: &NodeSummary| n.profile);
-        let start = summary.buses.iter().filter_map(|b| b.first_timestamp).min();
-        Some(Verdict {
-            stop: stop.clone(),
-            cause,
-            profile,
-            first_cause: first_cause.clone(),
-            start,
-        })
-    }
-
     /// Return the stop in one sentence, its device first: `can0 node 3
     /// went operation_enabled → fault at line 3239 (+8.820 s), 16.1 ms
     /// after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2
@@ -387,7 +214,7 @@ impl serde::Serialize for FindingJson<'_> {
         map.serialize_entry("iface", &Iface(&finding.bus))?;
         map.serialize_entry("node", &finding.node.map(|n| n.get()))?;
         map.serialize_entry("line", &finding.line)?;
-        map.serialize_entry("ts", &finding.timestamp.map(super::json::Ts))?;
+        map.serialize_entry("ts", &finding.timestamp.map(Ts))?;
         map.serialize_entry("kind", finding.kind.name())?;
         map.serialize_entry("severity", finding.severity.name())?;
         map.serialize_entry("text", &finding.text())?;

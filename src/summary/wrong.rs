@@ -1,0 +1,292 @@
+//! What went wrong, from a summary: its findings in time order
+//! (docs/summary.md#findings), each device's first warning and first error
+//! (docs/summary.md#severity), and the verdict on them
+//! (docs/summary.md#verdict).
+
+use crate::can::Timestamp;
+use crate::profiles::Profile;
+
+use super::{
+    EmcySeen, Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, Summary,
+    Timeouts, Verdict,
+};
+
+impl Summary {
+    /// Return what went wrong (docs/summary.md#findings), with the times
+    /// the summary keeps: an EMCY's and a CiA 402 transition's; every other
+    /// finding's `ts` is `None` ([`findings_with`](Self::findings_with)
+    /// gives them), so the list is in line order.
+    ///
+    /// ```
+    /// use motionwire::can::LogEvent;
+    /// use motionwire::decoder::DecoderConfig;
+    /// use motionwire::logs::Position;
+    /// use motionwire::summary::{FindingKind, Summarizer};
+    ///
+    /// let log = b"(1700000000.000000) can0 703#00\n\
+    ///             (1700000000.100000) can0 083#1081110000000000\n\
+    ///             (1700000000.200000) can0 703#00\n";
+    /// let mut summarizer = Summarizer::new(DecoderConfig::new().signals(false));
+    /// for (line, text) in log.split(|&b| b == b'\n').enumerate() {
+    ///     if let Ok(Some(frame)) = motionwire::logs::candump::parse_line(text) {
+    ///         summarizer.add(Position::Line(line as u64 + 1), &LogEvent::Frame(frame));
+    ///     }
+    /// }
+    /// let summary = summarizer.finish();
+    /// let findings = summary.findings();
+    /// let kinds: Vec<_> = findings.iter().map(|f| f.kind).collect();
+    /// assert_eq!(kinds, [FindingKind::FirstError, FindingKind::Restarts]);
+    /// assert_eq!(
+    ///     findings[0].to_string(),
+    ///     "can0 node 3 first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"
+    /// );
+    /// assert_eq!(findings[1].text(), "restarted 1 time (boot-ups at lines 1, 3)");
+    /// assert_eq!(findings[1].line, 3);
+    /// let json = serde_json::to_string(&findings[0])?;
+    /// assert_eq!(
+    ///     json,
+    ///     r#"{"iface":"can0","node":3,"line":2,"ts":1700000000.100000,"kind":"first_error","severity":"error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
+    /// );
+    /// # Ok::<(), serde_json::Error>(())
+    /// ```
+    #[must_use]
+    pub fn findings(&self) -> Vec<Finding> {
+        self.findings_with(|_| None)
+    }
+
+    /// Return what went wrong, in time order, as
+    /// [`findings`](Self::findings) does, with `time_of` giving the time
+    /// of each finding whose time the summary does not keep (a boot-up's,
+    /// an abort's, …): the report's timeline places them where its marks
+    /// are (`report::Recording::findings`).
+    ///
+    /// The order: by time, then by line, when every finding has a time;
+    /// else by line (a log without timestamps, a caller without times).
+    /// Findings at the same place stay in the order of
+    /// [`FindingKind::ALL`], devices before buses.
+    #[must_use]
+    pub fn findings_with(
+        &self,
+        mut time_of: impl FnMut(&Finding) -> Option<Timestamp>,
+    ) -> Vec<Finding> {
+        let mut list = Vec::new();
+        for n in &self.nodes {
+            let mut push = |kind, line, detail, ts| {
+                list.push(Finding {
+                    file: self.file.clone(),
+                    bus: n.bus.clone(),
+                    node: Some(n.node),
+                    line,
+                    timestamp: ts,
+                    kind,
+                    severity: Severity::of_finding(kind, &detail, n.profile),
+                    detail,
+                });
+            };
+            if let Some(warning) = n.first_warning() {
+                push(
+                    FindingKind::FirstWarning,
+                    warning.line,
+                    FindingDetail::Emcy(warning),
+                    warning.timestamp,
+                );
+            }
+            if let Some(error) = n.first_error_reported() {
+                push(
+                    FindingKind::FirstError,
+                    error.line,
+                    FindingDetail::Emcy(error),
+                    error.timestamp,
+                );
+            }
+            if let Some(faults) = n.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
+                each(
+                    faults,
+                    |fault| fault.transition.line,
+                    |line, fault| {
+                        let (detail, ts) = match fault {
+                            Ok(fault) => (
+                                FindingDetail::Cia402Fault(*fault),
+                                fault.transition.timestamp,
+                            ),
+                            Err(n) => (FindingDetail::Omitted(n), None),
+                        };
+                        push(FindingKind::Cia402Fault, line, detail, ts);
+                    },
+                );
+            }
+            let boots = &n.heartbeat.boot_ups;
+            if boots.count() > 1 {
+                let line = *boots.get(1).unwrap_or(&0);
+                push(
+                    FindingKind::Restarts,
+                    line,
+                    FindingDetail::BootUps(boots.clone()),
+                    None,
+                );
+            }
+            if let Timeouts::Checked(gaps) = &n.heartbeat.timeouts {
+                each(
+                    gaps,
+                    |gap| gap.after_line,
+                    |line, gap| {
+                        let detail = gap.map_or_else(FindingDetail::Omitted, |gap| {
+                            FindingDetail::HeartbeatGap(*gap)
+                        });
+                        push(FindingKind::HeartbeatTimeout, line, detail, None);
+                    },
+                );
+            }
+            each(
+                &n.sdo.aborts,
+                |abort| abort.line,
+                |line, abort| {
+                    let detail = abort.map_or_else(FindingDetail::Omitted, |abort| {
+                        FindingDetail::SdoAbort(abort.clone())
+                    });
+                    push(FindingKind::SdoAbort, line, detail, None);
+                },
+            );
+            for (kind, lines) in [
+                (FindingKind::SdoBroken, &n.sdo.broken),
+                (FindingKind::SdoTimeout, &n.sdo.timeouts),
+                (FindingKind::ToggleError, &n.guarding.toggle_errors),
+            ] {
+                each_line(lines, |line, detail| push(kind, line, detail, None));
+            }
+        }
+        for b in &self.buses {
+            for (kind, lines) in [
+                (FindingKind::BusOff, &b.bus_off),
+                (FindingKind::ErrorPassive, &b.error_passive),
+            ] {
+                each_line(lines, |line, detail| {
+                    list.push(Finding {
+                        file: self.file.clone(),
+                        bus: b.bus.clone(),
+                        node: None,
+                        line,
+                        timestamp: None,
+                        kind,
+                        severity: Severity::of_finding(kind, &detail, Profile::Generic),
+                        detail,
+                    });
+                });
+            }
+        }
+        for finding in &mut list {
+            if !finding.timed_by_summary() {
+                finding.timestamp = time_of(finding);
+            }
+        }
+        if list.iter().all(|f| f.timestamp.is_some()) {
+            list.sort_by_key(|f| (f.timestamp, f.line));
+        } else {
+            list.sort_by_key(|f| f.line);
+        }
+        list
+    }
+}
+
+/// Hand `found` each entry a summary list keeps, in order, as `Ok` at its
+/// line, and in their place the entries it omitted as `Err(count)` at the
+/// line of the last entry kept before them (docs/summary.md#lists).
+fn each<T>(
+    list: &Listed<T>,
+    line: impl Fn(&T) -> u64,
+    mut found: impl FnMut(u64, Result<&T, u64>),
+) {
+    for entry in list.head() {
+        found(line(entry), Ok(entry));
+    }
+    if let (n @ 1.., Some(last)) = (list.omitted(), list.head().last()) {
+        found(line(last), Err(n));
+    }
+    for entry in list.tail() {
+        found(line(entry), Ok(entry));
+    }
+}
+
+/// [`each`] for a list of lines.
+fn each_line(list: &Listed<u64>, mut found: impl FnMut(u64, FindingDetail)) {
+    each(
+        list,
+        |&line| line,
+        |line, entry| {
+            found(
+                line,
+                entry.map_or_else(FindingDetail::Omitted, |_| FindingDetail::Line),
+            );
+        },
+    );
+}
+
+impl NodeSummary {
+    /// Return the node's first EMCY when it is a warning
+    /// ([`Severity::of_emcy`] with the node's profile;
+    /// docs/summary.md#severity): its [`first_error`](Self::first_error),
+    /// or `None` when that one is an error.
+    #[must_use]
+    pub fn first_warning(&self) -> Option<EmcySeen> {
+        self.first_error
+            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) == Severity::Warning)
+    }
+
+    /// Return the node's first EMCY that reports an error: its
+    /// [`first_error`](Self::first_error), or, when that one is a warning,
+    /// its first EMCY with the error register set
+    /// ([`first_error_with_register`](Self::first_error_with_register))
+    /// unless the profile calls that one a warning too
+    /// (docs/summary.md#severity).
+    #[must_use]
+    pub fn first_error_reported(&self) -> Option<EmcySeen> {
+        if self.first_warning().is_none() {
+            return self.first_error;
+        }
+        self.first_error_with_register
+            .filter(|e| Severity::of_emcy(&e.emcy(), self.profile) != Severity::Warning)
+    }
+}
+
+impl Verdict {
+    /// Return the verdict on `summary`'s findings ([`Summary::findings`]),
+    /// or `None` when nothing stopped: no fault, no heartbeat timeout, no
+    /// bus-off.
+    #[must_use]
+    pub fn of(summary: &Summary) -> Option<Verdict> {
+        let findings = summary.findings();
+        let at = findings.iter().rposition(|f| {
+            !f.is_omitted()
+                && matches!(
+                    f.kind,
+                    FindingKind::Cia402Fault | FindingKind::HeartbeatTimeout | FindingKind::BusOff
+                )
+        })?;
+        let stop = &findings[at];
+        let first_cause = findings[..=at]
+            .iter()
+            .find(|f| {
+                !f.is_omitted()
+                    && f.severity.is_fault_or_error()
+                    && f.bus == stop.bus
+                    && (stop.node.is_none() || f.node == stop.node)
+            })
+            .unwrap_or(stop);
+        let cause = match &stop.detail {
+            FindingDetail::Cia402Fault(fault) => fault.cause(),
+            _ => None,
+        };
+        let profile = stop
+            .node
+            .and_then(|node| summary.node(&stop.bus, node))
+            .map_or(Profile::Generic, |n: &NodeSummary| n.profile);
+        let start = summary.buses.iter().filter_map(|b| b.first_timestamp).min();
+        Some(Verdict {
+            stop: stop.clone(),
+            cause,
+            profile,
+            first_cause: first_cause.clone(),
+            start,
+        })
+    }
+}
