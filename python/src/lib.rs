@@ -21,6 +21,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
 mod error;
+mod ethercat;
 mod reader;
 mod source;
 mod table;
