@@ -19,7 +19,7 @@ use motionwire::ethercat::{
 };
 use motionwire::logs::Position;
 
-use crate::table::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
+use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
 
 /// The key of the `cmd` dictionary for commands 15–255, all named
 /// `reserved` by the library; commands 0–14 are their own keys.

@@ -2,7 +2,8 @@
 //! Python object per frame. A log's frames go into plain vectors and bit
 //! buffers that become Arrow arrays without a copy; strings that repeat (the
 //! interface, the kind, an EMCY's description, a heartbeat's state) are
-//! dictionary-encoded.
+//! dictionary-encoded. An EtherCAT capture's datagrams are built beside
+//! them (`ethercat`); the table holds one or the other (`batches`).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -12,77 +13,18 @@ use arrow_array::{
     ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int8Array,
     RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
 };
-use arrow_buffer::{BooleanBufferBuilder, Buffer, NullBufferBuilder, OffsetBuffer, ScalarBuffer};
+use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
-use motionwire::can::{FdFlags, Iface, LogEvent, LogFrame};
+use motionwire::can::{FdFlags, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::Decoder;
 use motionwire::ethercat::Counts;
 use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, ReadLog};
-use serde_json::{json, Value};
+use serde_json::Value;
 
+use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
 use crate::error::Failure;
 use crate::ethercat::{self, EthercatColumns, EthercatFinished};
-
-/// The most rows one record batch holds.
-pub const BATCH_ROWS: usize = 1 << 20;
-/// The most bytes of `data` or `record` one batch holds (Arrow's 32-bit
-/// offsets reach 2 GiB).
-pub const BATCH_BYTES: usize = 1 << 30;
-/// How many skipped lines the schema metadata lists (docs/python.md#metadata: the first 1 000).
-pub const SKIPPED_LISTED: usize = 1000;
-
-/// The dictionary of an interface column: each interface's name (`can0`)
-/// or channel number (`1`) once, and the key of each.
-#[derive(Default)]
-pub struct Ifaces {
-    pub values: Vec<String>,
-    by_name: HashMap<String, i32>,
-    by_channel: HashMap<u16, i32>,
-    /// The key of the last name looked up: most logs have one interface or
-    /// alternate between few.
-    last: Option<i32>,
-}
-
-impl Ifaces {
-    pub fn key(&mut self, iface: Iface<'_>) -> i32 {
-        match iface {
-            Iface::Name(name) => {
-                if let Some(key) = self.last {
-                    if self.values[key as usize] == name {
-                        return key;
-                    }
-                }
-                let key = match self.by_name.get(name) {
-                    Some(&key) => key,
-                    None => self.add(name.to_owned()),
-                };
-                self.last = Some(key);
-                key
-            }
-            Iface::Channel(channel) => match self.by_channel.get(&channel) {
-                Some(&key) => key,
-                None => {
-                    let key = self.add(channel.to_string());
-                    self.by_channel.insert(channel, key);
-                    key
-                }
-            },
-        }
-    }
-
-    /// The key of `name`, added when new (a name and a channel that print
-    /// alike are one value).
-    fn add(&mut self, name: String) -> i32 {
-        if let Some(&key) = self.by_name.get(&name) {
-            return key;
-        }
-        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
-        self.by_name.insert(name.clone(), key);
-        self.values.push(name);
-        key
-    }
-}
 
 /// The dictionary of a column of the library's names (`&'static str`: an
 /// EMCY code's description, a heartbeat's state).
@@ -108,56 +50,6 @@ impl StaticNames {
     }
 }
 
-/// What was skipped while a log was read (docs/formats.md#reported): the
-/// schema metadata `motionwire.skipped` (the first [`SKIPPED_LISTED`]),
-/// `motionwire.skipped_count` and `motionwire.other`.
-#[derive(Default)]
-pub struct Skipped {
-    pub count: u64,
-    pub listed: Vec<Value>,
-    pub other: Vec<Value>,
-}
-
-impl Skipped {
-    pub fn add(&mut self, file: Option<&str>, line: Option<u64>, reason: String) {
-        self.count += 1;
-        if self.listed.len() < SKIPPED_LISTED {
-            self.listed.push(match file {
-                Some(file) => json!({"file": file, "line": line, "reason": reason}),
-                None => json!({"line": line, "reason": reason}),
-            });
-        }
-    }
-
-    /// Add what `other` skipped to this one, for a table of several logs.
-    pub fn extend(&mut self, other: Skipped) {
-        self.count += other.count;
-        let room = SKIPPED_LISTED.saturating_sub(self.listed.len());
-        self.listed.extend(other.listed.into_iter().take(room));
-        self.other.extend(other.other);
-    }
-
-    /// The schema metadata.
-    pub fn metadata(&self) -> HashMap<String, String> {
-        let mut metadata = HashMap::new();
-        metadata.insert(
-            "motionwire.skipped".to_owned(),
-            Value::Array(self.listed.clone()).to_string(),
-        );
-        metadata.insert(
-            "motionwire.skipped_count".to_owned(),
-            self.count.to_string(),
-        );
-        if !self.other.is_empty() {
-            metadata.insert(
-                "motionwire.other".to_owned(),
-                Value::Array(self.other.clone()).to_string(),
-            );
-        }
-        metadata
-    }
-}
-
 /// The columns `decode` adds (docs/python.md#decode).
 #[derive(Default)]
 struct DecodedColumns {
@@ -176,40 +68,6 @@ struct DecodedColumns {
     record: Vec<u8>,
     descriptions: StaticNames,
     states: StaticNames,
-}
-
-/// Which values of a nullable column are there: a [`NullBufferBuilder`]
-/// with a [`Default`], that pushes the value and its validity together.
-pub struct Validity(pub NullBufferBuilder);
-
-impl Default for Validity {
-    fn default() -> Self {
-        Validity(NullBufferBuilder::new(0))
-    }
-}
-
-impl Validity {
-    #[inline]
-    pub fn push<T: Default>(&mut self, values: &mut Vec<T>, value: Option<T>) {
-        match value {
-            Some(value) => {
-                values.push(value);
-                self.0.append_non_null();
-            }
-            None => {
-                values.push(T::default());
-                self.0.append_null();
-            }
-        }
-    }
-}
-
-/// One record batch's columns, the interface still as keys (its dictionary
-/// is the log's, complete only at the end).
-pub struct Chunk {
-    /// The columns in schema order without `file` and `iface`.
-    pub columns: Vec<ArrayRef>,
-    pub iface: Int32Array,
 }
 
 /// The frames of one log, column by column.
@@ -428,18 +286,6 @@ impl Columns {
             decoded: self.decoded.is_some(),
         }
     }
-}
-
-/// An offset of a binary or string column (the batch ends before 2 GiB).
-#[inline]
-pub fn offset(len: usize) -> i32 {
-    i32::try_from(len).expect("a batch holds less than 2 GiB")
-}
-
-/// The offsets of a finished batch, and a fresh start for the next.
-pub fn offsets(offsets: &mut Vec<i32>) -> OffsetBuffer<i32> {
-    let taken = std::mem::replace(offsets, vec![0]);
-    OffsetBuffer::new(ScalarBuffer::from(taken))
 }
 
 /// The columns of a log read in full.
