@@ -9,7 +9,6 @@ from __future__ import annotations
 import csv
 import json
 import os
-import shutil
 import struct
 import subprocess
 import warnings
@@ -144,16 +143,15 @@ def test_columns_are_the_records_keys(path):
 
 def program() -> str | None:
     """The program built by cargo (CI builds it for the Rust tests before
-    the Python ones): MOTIONWIRE_BIN, else the target directory's."""
+    the Python ones): MOTIONWIRE_BIN, else the newest of the target
+    directory's release and debug builds."""
     if os.environ.get("MOTIONWIRE_BIN"):
         return os.environ["MOTIONWIRE_BIN"]
     targets = [Path(os.environ["CARGO_TARGET_DIR"])] if os.environ.get("CARGO_TARGET_DIR") else []
     targets.append(ROOT / "target")
-    for target in targets:
-        for profile in ("release", "debug"):
-            if (target / profile / "motionwire").is_file():
-                return str(target / profile / "motionwire")
-    return shutil.which("motionwire")
+    built = [t / profile / "motionwire" for t in targets for profile in ("release", "debug")]
+    built = [path for path in built if path.is_file()]
+    return str(max(built, key=lambda path: path.stat().st_mtime)) if built else None
 
 
 @pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
