@@ -7,6 +7,7 @@ on every capture of tests/data/ethercat."""
 from __future__ import annotations
 
 import csv
+import gzip
 import json
 import os
 import struct
@@ -82,6 +83,17 @@ def test_schema(path):
     # decode is read_log and the record.
     assert decoded.drop_columns(["record"]).equals(table)
     assert table.column("kind").unique().to_pylist() == ["ecat_datagram"]
+
+
+def test_sources():
+    """A capture as bytes, gzip-compressed, or read as pcapng by name: the
+    same table (docs/python.md#sources)."""
+    path = ETHERCAT / "soem-single-lan9252.pcapng"
+    table = motionwire.read_log(path)
+    data = path.read_bytes()
+    assert motionwire.read_log(data).equals(table)
+    assert motionwire.read_log(gzip.compress(data)).equals(table)
+    assert motionwire.read_log(str(path), format="pcapng").equals(table)
 
 
 def test_first_rows_of_twincat():
