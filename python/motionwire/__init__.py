@@ -1,10 +1,10 @@
 """motionwire: CAN logs and CANopen decoding for Python (docs/python.md).
 
 Every format of docs/formats.md (candump, ASC, TRC, BLF, pcap/pcapng, MF4,
-gzip-compressed or not) read into Arrow tables built in Rust, the CANopen
-decoder's columns and JSON records, the post-mortem summary and what went
-wrong, and
-python-can messages. The work is done by the Rust library with the GIL
+gzip-compressed or not) read into Arrow tables built in Rust, EtherCAT
+captures datagram by datagram, the CANopen decoder's columns and JSON
+records, the post-mortem summary and what went wrong, and python-can
+messages. The work is done by the Rust library with the GIL
 released; this module only re-exports it.
 """
 

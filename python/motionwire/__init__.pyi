@@ -2,7 +2,8 @@
 
 Every format of docs/formats.md — candump log and screen output, Vector ASC
 and BLF, PEAK TRC, pcap and pcapng, ASAM MDF 4 — gzip-compressed or not,
-found from the content. Tables are built column by column in Rust and handed
+found from the content; EtherCAT captures (pcap, pcapng) datagram by
+datagram (docs/python.md#ethercat). Tables are built column by column in Rust and handed
 to pyarrow without a copy; pandas (`table.to_pandas()`), polars
 (`polars.from_arrow(table)`) and DuckDB (`duckdb.sql("… from table")`) read
 them as they are. The GIL is released while a log is read.
@@ -78,6 +79,35 @@ def read_log(source: Source, format: Optional[Format] = None) -> pyarrow.Table:
     had records without a CAN frame, ``b"motionwire.other"`` (what was
     passed over, as the program says it).
 
+    An EtherCAT capture (docs/python.md#ethercat) gives one row per
+    datagram instead, with the keys of ``motionwire decode --json``'s
+    ``ecat_datagram`` record as columns, in that order:
+
+    - ``packet`` (uint64): the capture's packet number, from 1.
+    - ``datagram`` (uint16): the datagram's place in its frame, from 1.
+    - ``ts`` (float64 seconds, null where the capture has no time),
+      ``iface`` (dictionary string, null where none): as for CAN frames.
+    - ``kind`` (dictionary string): ``ecat_datagram``.
+    - ``cmd`` (dictionary string): ``NOP``, ``APRD``, … ``FRMW``, or
+      ``reserved``.
+    - ``index`` (uint8).
+    - ``adp``, ``ado`` (uint16): slave and register address; null for
+      LRD, LWR and LRW.
+    - ``logical`` (uint32): the logical address of LRD, LWR and LRW; null
+      for the others.
+    - ``length``, ``irq``, ``wkc`` (uint16): the data's length, the IRQ
+      field, the working counter.
+    - ``returned`` (bool): the copy that came back through the slaves
+      (paired with its sent copy or not), as the library's session tells.
+    - ``data`` (binary).
+
+    Its metadata adds ``b"motionwire.ethercat"``: the session's counts as
+    a JSON object (``packets``, ``sent``, ``returned``,
+    ``returned_unpaired``, ``lost``, ``other_frame_types``, ``damaged``).
+    A table holds CAN frames or EtherCAT datagrams, not both: the CAN
+    frames where the input has any, the EtherCAT packets then counted in
+    ``b"motionwire.other"``.
+
     Raises LogError for an input that is no log; OSError for a path that
     cannot be opened.
     """
@@ -93,6 +123,9 @@ def read_logs(
     path as given, ``<bytes N>`` for the N-th source given as bytes) before
     the columns of read_log, each log's rows in the order of ``sources``.
     Each log is read on its own: nothing carries over from one to the next.
+    EtherCAT captures give read_log's datagram columns after ``file`` when
+    no log of the table has a CAN frame; else their packets are counted in
+    ``b"motionwire.other"``.
 
     The way to take a fleet's logs to pandas, polars or DuckDB, and on to
     Parquet (``pyarrow.parquet.write_table``). The skipped lines of every log
@@ -132,6 +165,10 @@ def decode(
     ``profiles``: ``"akd"`` for every node, or ``{3: "akd", 5: "baumer"}``
     (``--profile``; the key None sets the default). ``eds``: ``{node:
     path}``, an EDS or DCF file describing that node (``--eds``).
+
+    An EtherCAT capture gives read_log's datagram columns and ``record``
+    (string): the datagram's ``ecat_datagram`` record, the line
+    ``motionwire decode --json`` writes (docs/ethercat.md#records).
     """
 
 def summary(
@@ -153,7 +190,9 @@ def summary(
     kind, and the count key after it counts them all (docs/summary.md#lists).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
-    them).
+    them). The summary does not cover EtherCAT yet: a capture's EtherCAT
+    packets are said with a UserWarning (``829 EtherCAT packets read: the
+    summary does not cover EtherCAT yet``), as the program says them.
     """
 
 def findings(
@@ -182,7 +221,8 @@ def findings(
     (what it says, without the device).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
-    them).
+    them); so are a capture's EtherCAT packets, which the findings do not
+    cover yet.
     """
 
 class Message:

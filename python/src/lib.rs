@@ -20,7 +20,9 @@ use pyo3::exceptions::{PyNotImplementedError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
+mod columns;
 mod error;
+mod ethercat;
 mod reader;
 mod source;
 mod table;
@@ -235,19 +237,21 @@ fn summary<'py>(
     if let Some(ms) = heartbeat_ms {
         config = config.heartbeat_timeout(Duration::from_millis(ms));
     }
-    let (records, skipped) = py.detach(|| -> Result<_, Failure> {
+    let (records, fed, ethercat) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
         let mut log = source.open(options, &name)?;
         let mut summarizer = Summarizer::new(config);
-        let skipped = log.visit(Feed {
+        let fed = log.visit(Feed {
             feed: |position, event: &motionwire::can::LogEvent<'_>| summarizer.add(position, event),
             name: &name,
         })?;
+        let ethercat = summarizer.ethercat_packets();
         let summary = summarizer.finish();
         let records: Vec<String> = summary.records().map(|record| record.to_json()).collect();
-        Ok((records, skipped))
+        Ok((records, fed, ethercat))
     })?;
-    warn_skipped(py, &source, skipped)?;
+    warn_skipped(py, &source, fed.skipped)?;
+    warn_ethercat(py, &source, ethercat, "the summary does not")?;
     let loads = py.import("json")?.getattr("loads")?;
     let list = PyList::empty(py);
     for record in records {
@@ -275,20 +279,21 @@ fn findings<'py>(
     if let Some(ms) = heartbeat_ms {
         config = config.heartbeat_timeout(Duration::from_millis(ms));
     }
-    let ((schema, batches), skipped) = py.detach(|| -> Result<_, Failure> {
+    let ((schema, batches), fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
         let mut log = source.open(options, &name)?;
         let mut recorder = Recorder::new(config);
-        let skipped = log.visit(Feed {
+        let fed = log.visit(Feed {
             feed: |position, event: &motionwire::can::LogEvent<'_>| recorder.add(position, event),
             name: &name,
         })?;
         let recording = recorder.finish();
         let table =
             table::findings(&recording.findings()).map_err(|e| Failure::Value(e.to_string()))?;
-        Ok((table, skipped))
+        Ok((table, fed))
     })?;
-    warn_skipped(py, &source, skipped)?;
+    warn_skipped(py, &source, fed.skipped)?;
+    warn_ethercat(py, &source, fed.ethercat, "the findings do not")?;
     let table =
         Table::try_new(batches, schema).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(table.into_pyarrow(py)?.unbind())
@@ -298,25 +303,51 @@ fn findings<'py>(
 fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
     if skipped > 0 {
         let s = if skipped == 1 { "" } else { "s" };
-        let warning = py.get_type::<pyo3::exceptions::PyUserWarning>();
-        PyErr::warn(
+        warn(
             py,
-            &warning,
-            &std::ffi::CString::new(format!(
+            format!(
                 "{}: {skipped} malformed line{s} or damaged record{s} skipped (read_log lists them)",
                 source.name()
-            ))
-            .unwrap_or_default(),
-            1,
+            ),
         )?;
     }
     Ok(())
 }
 
+/// Warn that `packets` EtherCAT packets of `source` were read and left
+/// out: the summary and the findings cover CAN logs, as the program says
+/// on standard error (docs/ethercat.md#summary). `what` is `the summary
+/// does not` or `the findings do not`.
+fn warn_ethercat(py: Python<'_>, source: &Source, packets: u64, what: &str) -> PyResult<()> {
+    if packets > 0 {
+        let s = if packets == 1 { "" } else { "s" };
+        warn(
+            py,
+            format!(
+                "{}: {packets} EtherCAT packet{s} read: {what} cover EtherCAT yet \
+                 (decode shows every datagram)",
+                source.name()
+            ),
+        )?;
+    }
+    Ok(())
+}
+
+/// Raise `message` as a `UserWarning` at the caller's line.
+fn warn(py: Python<'_>, message: String) -> PyResult<()> {
+    let warning = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    PyErr::warn(
+        py,
+        &warning,
+        &std::ffi::CString::new(message).unwrap_or_default(),
+        1,
+    )
+}
+
 /// The loop of `summary` and `findings` over a log, compiled for its
 /// format's reader: every entry fed to `feed` (a `Summarizer`'s or a
-/// `Recorder`'s `add`), the malformed lines and damaged records counted, a
-/// read error the end.
+/// `Recorder`'s `add`), the malformed lines and damaged records and the
+/// EtherCAT packets counted, a read error the end.
 struct Feed<'a, F> {
     feed: F,
     name: &'a str,
@@ -325,24 +356,37 @@ struct Feed<'a, F> {
 impl<F: FnMut(motionwire::logs::Position, &motionwire::can::LogEvent<'_>)>
     motionwire::logs::LogVisitor for Feed<'_, F>
 {
-    /// How many lines or records were skipped.
-    type Output = Result<u64, Failure>;
+    type Output = Result<Fed, Failure>;
 
-    fn visit<L: motionwire::logs::ReadLog + ?Sized>(mut self, log: &mut L) -> Result<u64, Failure> {
-        let mut skipped = 0;
+    fn visit<L: motionwire::logs::ReadLog + ?Sized>(mut self, log: &mut L) -> Result<Fed, Failure> {
+        let mut fed = Fed::default();
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => (self.feed)(record.position, &record.event),
+                Ok(record) => {
+                    if let motionwire::can::LogEvent::Ethercat(_) = record.event {
+                        fed.ethercat += 1;
+                    }
+                    (self.feed)(record.position, &record.event);
+                }
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));
                     }
-                    skipped += 1;
+                    fed.skipped += 1;
                 }
             }
         }
-        Ok(skipped)
+        Ok(fed)
     }
+}
+
+/// What [`Feed`] counted.
+#[derive(Default)]
+struct Fed {
+    /// Lines or records skipped.
+    skipped: u64,
+    /// EtherCAT packets: the summary and the findings do not cover them.
+    ethercat: u64,
 }
 
 /// The module `motionwire._motionwire`, re-exported by `motionwire`.

@@ -78,7 +78,7 @@ impl State {
                         return;
                     }
                     self.skipped_count += 1;
-                    if self.skipped.len() < crate::table::SKIPPED_LISTED {
+                    if self.skipped.len() < crate::columns::SKIPPED_LISTED {
                         self.skipped.push((
                             error.position().map(|p| p.number()),
                             error.kind().to_string(),

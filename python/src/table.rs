@@ -2,7 +2,8 @@
 //! Python object per frame. A log's frames go into plain vectors and bit
 //! buffers that become Arrow arrays without a copy; strings that repeat (the
 //! interface, the kind, an EMCY's description, a heartbeat's state) are
-//! dictionary-encoded.
+//! dictionary-encoded. An EtherCAT capture's datagrams are built beside
+//! them (`ethercat`); the table holds one or the other (`batches`).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -12,75 +13,18 @@ use arrow_array::{
     ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int8Array,
     RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
 };
-use arrow_buffer::{BooleanBufferBuilder, Buffer, NullBufferBuilder, OffsetBuffer, ScalarBuffer};
+use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
-use motionwire::can::{FdFlags, Iface, LogEvent, LogFrame};
+use motionwire::can::{FdFlags, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::Decoder;
+use motionwire::ethercat::Counts;
 use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, ReadLog};
-use serde_json::{json, Value};
+use serde_json::Value;
 
+use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
 use crate::error::Failure;
-
-/// The most rows one record batch holds.
-const BATCH_ROWS: usize = 1 << 20;
-/// The most bytes of `data` or `record` one batch holds (Arrow's 32-bit
-/// offsets reach 2 GiB).
-const BATCH_BYTES: usize = 1 << 30;
-/// How many skipped lines the schema metadata lists (docs/python.md#metadata: the first 1 000).
-pub const SKIPPED_LISTED: usize = 1000;
-
-/// The dictionary of an interface column: each interface's name (`can0`)
-/// or channel number (`1`) once, and the key of each.
-#[derive(Default)]
-pub struct Ifaces {
-    values: Vec<String>,
-    by_name: HashMap<String, i32>,
-    by_channel: HashMap<u16, i32>,
-    /// The key of the last name looked up: most logs have one interface or
-    /// alternate between few.
-    last: Option<i32>,
-}
-
-impl Ifaces {
-    fn key(&mut self, iface: Iface<'_>) -> i32 {
-        match iface {
-            Iface::Name(name) => {
-                if let Some(key) = self.last {
-                    if self.values[key as usize] == name {
-                        return key;
-                    }
-                }
-                let key = match self.by_name.get(name) {
-                    Some(&key) => key,
-                    None => self.add(name.to_owned()),
-                };
-                self.last = Some(key);
-                key
-            }
-            Iface::Channel(channel) => match self.by_channel.get(&channel) {
-                Some(&key) => key,
-                None => {
-                    let key = self.add(channel.to_string());
-                    self.by_channel.insert(channel, key);
-                    key
-                }
-            },
-        }
-    }
-
-    /// The key of `name`, added when new (a name and a channel that print
-    /// alike are one value).
-    fn add(&mut self, name: String) -> i32 {
-        if let Some(&key) = self.by_name.get(&name) {
-            return key;
-        }
-        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
-        self.by_name.insert(name.clone(), key);
-        self.values.push(name);
-        key
-    }
-}
+use crate::ethercat::{self, EthercatColumns, EthercatFinished};
 
 /// The dictionary of a column of the library's names (`&'static str`: an
 /// EMCY code's description, a heartbeat's state).
@@ -106,56 +50,6 @@ impl StaticNames {
     }
 }
 
-/// What was skipped while a log was read (docs/formats.md#reported): the
-/// schema metadata `motionwire.skipped` (the first [`SKIPPED_LISTED`]),
-/// `motionwire.skipped_count` and `motionwire.other`.
-#[derive(Default)]
-pub struct Skipped {
-    pub count: u64,
-    pub listed: Vec<Value>,
-    pub other: Vec<Value>,
-}
-
-impl Skipped {
-    fn add(&mut self, file: Option<&str>, line: Option<u64>, reason: String) {
-        self.count += 1;
-        if self.listed.len() < SKIPPED_LISTED {
-            self.listed.push(match file {
-                Some(file) => json!({"file": file, "line": line, "reason": reason}),
-                None => json!({"line": line, "reason": reason}),
-            });
-        }
-    }
-
-    /// Add what `other` skipped to this one, for a table of several logs.
-    pub fn extend(&mut self, other: Skipped) {
-        self.count += other.count;
-        let room = SKIPPED_LISTED.saturating_sub(self.listed.len());
-        self.listed.extend(other.listed.into_iter().take(room));
-        self.other.extend(other.other);
-    }
-
-    /// The schema metadata.
-    pub fn metadata(&self) -> HashMap<String, String> {
-        let mut metadata = HashMap::new();
-        metadata.insert(
-            "motionwire.skipped".to_owned(),
-            Value::Array(self.listed.clone()).to_string(),
-        );
-        metadata.insert(
-            "motionwire.skipped_count".to_owned(),
-            self.count.to_string(),
-        );
-        if !self.other.is_empty() {
-            metadata.insert(
-                "motionwire.other".to_owned(),
-                Value::Array(self.other.clone()).to_string(),
-            );
-        }
-        metadata
-    }
-}
-
 /// The columns `decode` adds (docs/python.md#decode).
 #[derive(Default)]
 struct DecodedColumns {
@@ -176,40 +70,6 @@ struct DecodedColumns {
     states: StaticNames,
 }
 
-/// Which values of a nullable column are there: a [`NullBufferBuilder`]
-/// with a [`Default`], that pushes the value and its validity together.
-struct Validity(NullBufferBuilder);
-
-impl Default for Validity {
-    fn default() -> Self {
-        Validity(NullBufferBuilder::new(0))
-    }
-}
-
-impl Validity {
-    #[inline]
-    fn push<T: Default>(&mut self, values: &mut Vec<T>, value: Option<T>) {
-        match value {
-            Some(value) => {
-                values.push(value);
-                self.0.append_non_null();
-            }
-            None => {
-                values.push(T::default());
-                self.0.append_null();
-            }
-        }
-    }
-}
-
-/// One record batch's columns, the interface still as keys (its dictionary
-/// is the log's, complete only at the end).
-pub struct Chunk {
-    /// The columns in schema order without `file` and `iface`.
-    columns: Vec<ArrayRef>,
-    iface: Int32Array,
-}
-
 /// The frames of one log, column by column.
 pub struct Columns {
     line: Vec<u64>,
@@ -226,6 +86,10 @@ pub struct Columns {
     decoded: Option<Box<DecodedColumns>>,
     chunks: Vec<Chunk>,
     ifaces: Ifaces,
+    /// CAN frames added.
+    frames: u64,
+    /// The datagrams of the log's EtherCAT packets.
+    ethercat: EthercatColumns,
     pub skipped: Skipped,
     pub format: Option<LogFormat>,
 }
@@ -247,6 +111,8 @@ impl Columns {
             decoded: decoded.then(Box::default),
             chunks: Vec::new(),
             ifaces: Ifaces::default(),
+            frames: 0,
+            ethercat: EthercatColumns::new(decoded),
             skipped: Skipped::default(),
             format: None,
         };
@@ -260,6 +126,7 @@ impl Columns {
     #[inline]
     fn push(&mut self, position: Position, frame: &LogFrame<'_>, decoder: Option<&mut Decoder>) {
         let can = &frame.frame;
+        self.frames += 1;
         self.line.push(position.number());
         self.ts_valid
             .push(&mut self.ts, frame.timestamp.map(|ts| ts.as_secs_f64()));
@@ -412,6 +279,8 @@ impl Columns {
         Finished {
             chunks: self.chunks,
             ifaces: self.ifaces.values,
+            frames: self.frames,
+            ethercat: self.ethercat.finish(),
             skipped: self.skipped,
             format: self.format,
             decoded: self.decoded.is_some(),
@@ -419,22 +288,12 @@ impl Columns {
     }
 }
 
-/// An offset of a binary or string column (the batch ends before 2 GiB).
-#[inline]
-fn offset(len: usize) -> i32 {
-    i32::try_from(len).expect("a batch holds less than 2 GiB")
-}
-
-/// The offsets of a finished batch, and a fresh start for the next.
-fn offsets(offsets: &mut Vec<i32>) -> OffsetBuffer<i32> {
-    let taken = std::mem::replace(offsets, vec![0]);
-    OffsetBuffer::new(ScalarBuffer::from(taken))
-}
-
 /// The columns of a log read in full.
 pub struct Finished {
     chunks: Vec<Chunk>,
     ifaces: Vec<String>,
+    frames: u64,
+    ethercat: EthercatFinished,
     pub skipped: Skipped,
     pub format: Option<LogFormat>,
     decoded: bool,
@@ -463,26 +322,21 @@ impl LogVisitor for Fill<'_> {
             file,
         } = self;
         columns.format = Some(log.format());
-        let mut ethercat: u64 = 0;
         while let Some(next) = log.next_event() {
             match next {
                 Ok(record) => match &record.event {
                     LogEvent::Frame(frame) => {
                         columns.push(record.position, frame, decoder.as_deref_mut());
                     }
-                    LogEvent::Ethercat(_) => ethercat += 1,
+                    LogEvent::Ethercat(packet) => {
+                        columns
+                            .ethercat
+                            .push(record.position, packet, &mut columns.skipped, file)
+                    }
                     LogEvent::Status(_) => {}
                 },
                 Err(error) => columns.skip(error, name, file)?,
             }
-        }
-        if ethercat > 0 {
-            // Counted, not dropped: the table's columns are a CAN frame's
-            // (docs/ethercat.md#python).
-            columns.skipped.other.push(Value::from(format!(
-                "{ethercat} EtherCAT packet{} skipped: not read by the Python package yet",
-                if ethercat == 1 { "" } else { "s" }
-            )));
         }
         // Records that hold no frame, said once per kind as the program
         // says them (docs/formats.md#pcap, docs/formats.md#blf,
@@ -494,13 +348,35 @@ impl LogVisitor for Fill<'_> {
     }
 }
 
+/// What a table's rows are: CAN frames (docs/python.md#columns) or the
+/// datagrams of an EtherCAT capture (docs/python.md#ethercat).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rows {
+    Can,
+    Ethercat,
+}
+
+impl Rows {
+    /// Where the `iface` column sits among a row's columns (after `file`).
+    fn iface_at(self) -> usize {
+        match self {
+            Rows::Can => 2,
+            Rows::Ethercat => ethercat::IFACE_AT,
+        }
+    }
+}
+
 /// The schema of `read_log` (with `file` first for `read_logs`) or of
-/// `decode`.
-pub fn schema(decoded: bool, file: bool, metadata: HashMap<String, String>) -> Schema {
+/// `decode`, for CAN frames or EtherCAT datagrams.
+pub fn schema(rows: Rows, decoded: bool, file: bool, metadata: HashMap<String, String>) -> Schema {
     let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let mut fields = Vec::new();
     if file {
         fields.push(Field::new("file", dictionary(DataType::Int32), false));
+    }
+    if rows == Rows::Ethercat {
+        fields.extend(ethercat::fields(decoded));
+        return Schema::new(fields).with_metadata(metadata);
     }
     fields.extend([
         Field::new("line", DataType::UInt64, false),
@@ -532,32 +408,52 @@ pub fn schema(decoded: bool, file: bool, metadata: HashMap<String, String>) -> S
 
 /// The record batches of one log (`file` = `None`) or of several, each
 /// with its name.
+///
+/// A table holds one kind of row (docs/ethercat.md#python): CAN frames
+/// when any log has one, else the datagrams of the EtherCAT packets when
+/// any log has one. The EtherCAT packets of a table of CAN frames are
+/// counted in `motionwire.other`, not dropped.
 pub fn batches(
     logs: Vec<Finished>,
     files: Option<&[String]>,
 ) -> Result<(SchemaRef, Vec<RecordBatch>), ArrowError> {
     let decoded = logs.first().is_some_and(|log| log.decoded);
-    // One interface dictionary for the whole table: each log's keys mapped
-    // onto it.
-    let mut ifaces = Ifaces::default();
-    let maps: Vec<Vec<i32>> = logs
-        .iter()
-        .map(|log| {
-            log.ifaces
-                .iter()
-                .map(|name| ifaces.add(name.clone()))
-                .collect()
-        })
-        .collect();
+    let any_frames = logs.iter().any(|log| log.frames > 0);
+    let any_packets = logs.iter().any(|log| log.ethercat.counts.packets > 0);
+    let rows = if !any_frames && any_packets {
+        Rows::Ethercat
+    } else {
+        Rows::Can
+    };
     let mut skipped = Skipped::default();
     let mut format = None;
-    for log in &logs {
+    let mut counts = Counts::default();
+    let mut parts = Vec::with_capacity(logs.len());
+    for mut log in logs {
         format = format.or(log.format);
-    }
-    let mut parts = Vec::new();
-    for (i, log) in logs.into_iter().enumerate() {
+        let packets = log.ethercat.counts.packets;
+        ethercat::add_counts(&mut counts, &log.ethercat.counts);
+        if rows == Rows::Can && packets > 0 {
+            let why = if log.frames > 0 {
+                "the capture holds CAN frames too, and a table holds CAN frames or EtherCAT \
+                 datagrams, not both"
+            } else {
+                "other logs of the table hold CAN frames, and a table holds CAN frames or \
+                 EtherCAT datagrams, not both"
+            };
+            log.skipped.other.insert(
+                0,
+                Value::from(format!(
+                    "{packets} EtherCAT packet{} skipped: {why}",
+                    if packets == 1 { "" } else { "s" }
+                )),
+            );
+        }
         skipped.extend(log.skipped);
-        parts.push((i, log.chunks));
+        parts.push(match rows {
+            Rows::Can => (log.chunks, log.ifaces),
+            Rows::Ethercat => (log.ethercat.chunks, log.ethercat.ifaces),
+        });
     }
     let mut metadata = skipped.metadata();
     if files.is_none() {
@@ -565,15 +461,28 @@ pub fn batches(
             metadata.insert("motionwire.format".to_owned(), format.name().to_owned());
         }
     }
-    let schema = Arc::new(schema(decoded, files.is_some(), metadata));
+    if any_packets {
+        metadata.insert(
+            "motionwire.ethercat".to_owned(),
+            ethercat::counts_json(&counts),
+        );
+    }
+    let schema = Arc::new(schema(rows, decoded, files.is_some(), metadata));
+    // One interface dictionary for the whole table: each log's keys mapped
+    // onto it.
+    let mut ifaces = Ifaces::default();
+    let maps: Vec<Vec<i32>> = parts
+        .iter()
+        .map(|(_, names)| names.iter().map(|name| ifaces.add(name.clone())).collect())
+        .collect();
     let iface_values: ArrayRef = Arc::new(StringArray::from_iter_values(ifaces.values.iter()));
     let file_values: Option<ArrayRef> =
         files.map(|files| Arc::new(StringArray::from_iter_values(files.iter())) as ArrayRef);
     let mut batches = Vec::new();
-    for (i, chunks) in parts {
+    for (i, (chunks, _)) in parts.into_iter().enumerate() {
         let map = &maps[i];
         for chunk in chunks {
-            let rows = chunk.iface.len();
+            let rows_in = chunk.iface.len();
             let keys = if map.iter().enumerate().all(|(k, &g)| k as i32 == g) {
                 chunk.iface
             } else {
@@ -585,12 +494,12 @@ pub fn batches(
             if let Some(values) = &file_values {
                 let key = i32::try_from(i).unwrap_or(i32::MAX);
                 columns.push(Arc::new(DictionaryArray::<Int32Type>::try_new(
-                    Int32Array::from(vec![key; rows]),
+                    Int32Array::from(vec![key; rows_in]),
                     values.clone(),
                 )?) as ArrayRef);
             }
             let mut rest = chunk.columns.into_iter();
-            columns.extend(rest.by_ref().take(2));
+            columns.extend(rest.by_ref().take(rows.iface_at()));
             columns.push(Arc::new(DictionaryArray::<Int32Type>::try_new(
                 keys,
                 iface_values.clone(),

@@ -298,17 +298,18 @@ def test_parquet(tmp_path: Path):
 
 
 def fixtures_of_every_kind():
+    """Every fixture of every format, and the EtherCAT captures."""
     return sorted(
         p
         for p in FIXTURES.rglob("*")
         if p.is_file() and p.suffix in (".log", ".txt", ".asc", ".trc", ".blf", ".pcap", ".pcapng", ".mf4")
-    )
+    ) + sorted((ROOT / "tests" / "data" / "ethercat").glob("*.pcapng"))
 
 
-@pytest.mark.parametrize("path", fixtures_of_every_kind(), ids=lambda p: str(p.relative_to(FIXTURES)))
+@pytest.mark.parametrize("path", fixtures_of_every_kind(), ids=lambda p: str(p.relative_to(ROOT)))
 def test_bad_input_never_crashes(path):
-    """Truncated and damaged copies of every fixture: a table, or LogError;
-    never a crash, a panic or another exception."""
+    """Truncated and damaged copies of every fixture and EtherCAT capture:
+    a table, or LogError; never a crash, a panic or another exception."""
     data = path.read_bytes()
     rng = random.Random(path.name)
     inputs = [data[:n] for n in sorted({0, 1, 7, 64, 100, len(data) // 3, len(data) // 2, len(data) - 1})]

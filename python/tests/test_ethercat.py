@@ -1,0 +1,382 @@
+"""EtherCAT captures in Python (docs/python.md#ethercat,
+docs/ethercat.md#python): one row per datagram with the keys of the
+program's `ecat_datagram` record as columns, held to the program's
+`decode --json` and to tshark's dissection (tests/data/ethercat/*.tshark.tsv)
+on every capture of tests/data/ethercat."""
+
+from __future__ import annotations
+
+import csv
+import gzip
+import json
+import os
+import struct
+import subprocess
+import warnings
+from pathlib import Path
+
+import pyarrow as pa
+import pytest
+
+import motionwire
+from conftest import FIXTURES, ROOT, golden_stdout
+
+ETHERCAT = ROOT / "tests" / "data" / "ethercat"
+CAPTURES = sorted(ETHERCAT.glob("*.pcapng"))
+
+DICTIONARY = pa.dictionary(pa.int32(), pa.string())
+NAMES = pa.dictionary(pa.int8(), pa.string())
+READ_LOG_SCHEMA = [
+    ("packet", pa.uint64(), False),
+    ("datagram", pa.uint16(), False),
+    ("ts", pa.float64(), True),
+    ("iface", DICTIONARY, True),
+    ("kind", NAMES, False),
+    ("cmd", NAMES, False),
+    ("index", pa.uint8(), False),
+    ("adp", pa.uint16(), True),
+    ("ado", pa.uint16(), True),
+    ("logical", pa.uint32(), True),
+    ("length", pa.uint16(), False),
+    ("irq", pa.uint16(), False),
+    ("wkc", pa.uint16(), False),
+    ("returned", pa.bool_(), False),
+    ("data", pa.binary(), False),
+]
+DECODE_SCHEMA = READ_LOG_SCHEMA + [("record", pa.string(), False)]
+
+#: ETG.1000.4's command names by command byte, as tshark's `ecat.cmd`
+#: numbers them.
+COMMANDS = [
+    "NOP", "APRD", "APWR", "APRW", "FPRD", "FPWR", "FPRW", "BRD", "BWR", "BRW",
+    "LRD", "LWR", "LRW", "ARMW", "FRMW",
+]
+
+
+def fields(schema):
+    return [(f.name, f.type, f.nullable) for f in schema]
+
+
+def capture_id(path: Path) -> str:
+    return path.stem
+
+
+def test_every_capture_is_here():
+    assert [p.stem for p in CAPTURES] == [
+        "replay-dc",
+        "replay-ek1914-el3004-configure",
+        "replay-ek1914-segmented-upload",
+        "soem-akd-sdo",
+        "soem-single-lan9252",
+        "synthetic_akd_fault",
+        "twincat-akd-startup",
+    ]
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_schema(path):
+    table = motionwire.read_log(path)
+    assert fields(table.schema) == READ_LOG_SCHEMA
+    assert table.schema.metadata[b"motionwire.format"] == b"pcapng"
+    decoded = motionwire.decode(path)
+    assert fields(decoded.schema) == DECODE_SCHEMA
+    # decode is read_log and the record.
+    assert decoded.drop_columns(["record"]).equals(table)
+    assert table.column("kind").unique().to_pylist() == ["ecat_datagram"]
+
+
+def test_sources():
+    """A capture as bytes, gzip-compressed, or read as pcapng by name: the
+    same table (docs/python.md#sources)."""
+    path = ETHERCAT / "soem-single-lan9252.pcapng"
+    table = motionwire.read_log(path)
+    data = path.read_bytes()
+    assert motionwire.read_log(data).equals(table)
+    assert motionwire.read_log(gzip.compress(data)).equals(table)
+    assert motionwire.read_log(str(path), format="pcapng").equals(table)
+
+
+def test_first_rows_of_twincat():
+    """docs/ethercat.md's example record, as a row: the APWR of station
+    address 0x03E9 as it came back, ADP counted on to 1."""
+    table = motionwire.read_log(ETHERCAT / "twincat-akd-startup.pcapng")
+    assert table.num_rows == 511
+    rows = table.to_pylist()
+    row = next(r for r in rows if r["packet"] == 305)
+    assert row == {
+        "packet": 305,
+        "datagram": 1,
+        "ts": 1655654779.674105,
+        "iface": "\\Device\\NPF_{0D792EC2-0E89-4AB6-BE39-3F41EC42AEA3}",
+        "kind": "ecat_datagram",
+        "cmd": "APWR",
+        "index": 160,
+        "adp": 1,
+        "ado": 16,
+        "logical": None,
+        "length": 2,
+        "irq": 0,
+        "wkc": 1,
+        "returned": True,
+        "data": b"\xe9\x03",
+    }
+    # Packets 18, 21, 26 come back from another NIC and were never seen
+    # sent: returned all the same (docs/ethercat.md#direction).
+    assert [r["returned"] for r in rows if r["packet"] in (18, 21, 26)] == [True] * 3
+
+
+def record_columns(record: dict) -> dict:
+    """A row as the JSON record gives it: the data from hex, the address
+    keys the record leaves out null."""
+    row = {key: record.get(key) for key, _, _ in READ_LOG_SCHEMA}
+    row["data"] = bytes.fromhex(record["data"])
+    return row
+
+
+def assert_rows_are_records(table, records):
+    assert table.num_rows == len(records)
+    for row, record in zip(table.to_pylist(), records):
+        expected = record_columns(record)
+        # ts: a float keeps about a microsecond of a Unix time; the record
+        # keeps the capture's digits (docs/python.md#columns).
+        assert abs(row.pop("ts") - expected.pop("ts")) < 1e-6, record
+        assert row == expected, record
+        assert list(record) == [key for key, _, _ in READ_LOG_SCHEMA if key in record]
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_columns_are_the_records_keys(path):
+    """Every column holds its key of the record decode --json writes for
+    the datagram, in the record's order."""
+    table = motionwire.decode(path)
+    records = [json.loads(r) for r in table.column("record").to_pylist()]
+    assert_rows_are_records(table.drop_columns(["record"]), records)
+
+
+def program() -> str | None:
+    """The program built by cargo (CI builds it for the Rust tests before
+    the Python ones): MOTIONWIRE_BIN, else the newest of the target
+    directory's release and debug builds."""
+    if os.environ.get("MOTIONWIRE_BIN"):
+        return os.environ["MOTIONWIRE_BIN"]
+    targets = [Path(os.environ["CARGO_TARGET_DIR"])] if os.environ.get("CARGO_TARGET_DIR") else []
+    targets.append(ROOT / "target")
+    built = [t / profile / "motionwire" for t in targets for profile in ("release", "debug")]
+    built = [path for path in built if path.is_file()]
+    return str(max(built, key=lambda path: path.stat().st_mtime)) if built else None
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_rows_are_the_programs_decode_json(path):
+    """The rows against the program itself: `motionwire decode --json` of
+    every capture, key by key."""
+    binary = program()
+    if binary is None:
+        pytest.skip("the program is not built (cargo build --features cli; or MOTIONWIRE_BIN)")
+    out = subprocess.run([binary, "decode", "--json", str(path)], capture_output=True, text=True)
+    assert out.returncode in (0, 1), out.stderr
+    lines = out.stdout.splitlines()
+    table = motionwire.decode(path)
+    assert table.column("record").to_pylist() == lines
+    assert_rows_are_records(table.drop_columns(["record"]), [json.loads(line) for line in lines])
+
+
+def tshark_rows(path: Path) -> list[dict]:
+    with open(path.with_suffix(".tshark.tsv"), newline="") as f:
+        return list(csv.DictReader(f, delimiter="\t"))
+
+
+def hex_or_none(cell: str) -> int | None:
+    return int(cell, 16) if cell else None
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_rows_are_tsharks_dissection(path):
+    """tshark's ecat dissector as the oracle (scripts/ecat_oracle.py):
+    frame, datagram, command, index, ADP/ADO or logical address, length,
+    working counter, IRQ and data of every datagram; returned is the
+    source MAC's bit 0x02 (docs/ethercat.md#direction: every frame with
+    the bit set is a returned copy, paired or not)."""
+    expected = tshark_rows(path)
+    table = motionwire.read_log(path)
+    assert table.num_rows == len(expected)
+    for row, tshark in zip(table.to_pylist(), expected):
+        where = (tshark["frame"], tshark["dg"])
+        assert row["packet"] == int(tshark["frame"]), where
+        assert row["datagram"] == int(tshark["dg"]), where
+        assert row["cmd"] == COMMANDS[int(tshark["cmd"], 16)], where
+        assert row["index"] == int(tshark["idx"], 16), where
+        assert row["adp"] == hex_or_none(tshark["adp"]), where
+        assert row["ado"] == hex_or_none(tshark["ado"]), where
+        assert row["logical"] == hex_or_none(tshark["lad"]), where
+        assert row["length"] == int(tshark["len"]), where
+        assert row["wkc"] == int(tshark["wkc"]), where
+        assert row["irq"] == int(tshark["irq"], 16), where
+        assert row["data"].hex() == tshark["data"], where
+        assert row["returned"] == bool(int(tshark["eth_src"][:2], 16) & 0x02), where
+
+
+def test_lost_and_unpaired_frames_are_counted():
+    """The session's counts (docs/python.md#ethercat): SOEM's BRD of packet
+    809 never came back; TwinCAT's three frames from the host's other NIC
+    have no sent copy."""
+    soem = motionwire.read_log(ETHERCAT / "soem-akd-sdo.pcapng").schema.metadata
+    assert json.loads(soem[b"motionwire.ethercat"]) == {
+        "packets": 829,
+        "sent": 415,
+        "returned": 414,
+        "returned_unpaired": 0,
+        "lost": 1,
+        "other_frame_types": 0,
+        "damaged": 0,
+    }
+    assert json.loads(soem[b"motionwire.other"]) == [
+        "1 packet of EtherType 0x0806 (ARP) skipped: neither CAN nor EtherCAT"
+    ]
+    twincat = motionwire.read_log(ETHERCAT / "twincat-akd-startup.pcapng").schema.metadata
+    assert json.loads(twincat[b"motionwire.ethercat"]) == {
+        "packets": 478,
+        "sent": 237,
+        "returned": 237,
+        "returned_unpaired": 3,
+        "lost": 0,
+        # A frame of reserved type 7 (tests/data/ethercat/README.md).
+        "other_frame_types": 1,
+        "damaged": 0,
+    }
+
+
+def test_pandas_dtypes():
+    """to_pandas of a capture with logical and addressed datagrams: the
+    integers keep their width, the names are categories; adp/ado/logical
+    hold nulls and come as float64 with NaN, as pandas makes every
+    nullable integer column, or as nullable integers with
+    types_mapper=pd.ArrowDtype."""
+    pd = pytest.importorskip("pandas")
+    table = motionwire.read_log(ETHERCAT / "replay-dc.pcapng")
+    frame = table.to_pandas()
+    assert {name: str(dtype) for name, dtype in frame.dtypes.items()} == {
+        "packet": "uint64",
+        "datagram": "uint16",
+        "ts": "float64",
+        "iface": "category",
+        "kind": "category",
+        "cmd": "category",
+        "index": "uint8",
+        "adp": "float64",
+        "ado": "float64",
+        "logical": "float64",
+        "length": "uint16",
+        "irq": "uint16",
+        "wkc": "uint16",
+        "returned": "bool",
+        "data": "object",
+    }
+    lrw = frame[frame["cmd"] == "LRW"]
+    assert len(lrw) == 514 and lrw["adp"].isna().all() and lrw["logical"].notna().all()
+    assert frame["logical"].isna().sum() == len(frame) - 514
+    assert isinstance(frame["data"].iloc[0], bytes)
+    arrow = table.to_pandas(types_mapper=pd.ArrowDtype)
+    assert str(arrow["adp"].dtype) == "uint16[pyarrow]"
+    assert arrow["logical"].dropna().astype(int).tolist() == frame["logical"].dropna().astype(int).tolist()
+
+
+# ---------------------------------------------------------------------------
+# Captures built here: damaged packets, CAN and EtherCAT together
+
+def datagram(cmd: int, index: int, address: int, data: bytes, wkc: int, more: bool,
+             length: int | None = None) -> bytes:
+    length_word = (len(data) if length is None else length) | (0x8000 if more else 0)
+    return struct.pack("<BBIHH", cmd, index, address, length_word, 0) + data + struct.pack("<H", wkc)
+
+
+def ethernet(source: bytes, payload: bytes) -> bytes:
+    header = struct.pack("<H", len(payload) | 0x1000)
+    return b"\xff" * 6 + source + b"\x88\xa4" + header + payload
+
+
+def pcap(packets: list[bytes]) -> bytes:
+    out = struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 1)
+    for n, packet in enumerate(packets):
+        out += struct.pack("<IIII", 1_700_000_000, n * 1000, len(packet), len(packet)) + packet
+    return out
+
+
+def test_damaged_packets_are_skipped_rows():
+    """A datagram whose length runs past the frame: the datagrams before it
+    are rows, the packet is listed as skipped with the program's reason
+    (docs/ethercat.md#damaged-packets); so is an EtherCAT header that
+    announces more than the packet holds."""
+    master = b"\x01\x01\x01\x01\x01\x01"
+    whole = datagram(7, 1, 0x0130_0000, b"\x00\x00", 0, more=True)
+    cut = datagram(4, 2, 0x0130_1001, b"\x00\x00", 0, more=False, length=40)
+    header_past = b"\xff" * 6 + master + b"\x88\xa4" + struct.pack("<H", 0x07FF | 0x1000) + whole
+    table = motionwire.read_log(pcap([ethernet(master, whole + cut), header_past]))
+    assert fields(table.schema) == READ_LOG_SCHEMA
+    assert [(r["packet"], r["datagram"], r["cmd"]) for r in table.to_pylist()] == [(1, 1, "BRD")]
+    metadata = table.schema.metadata
+    assert metadata[b"motionwire.skipped_count"] == b"2"
+    skipped = json.loads(metadata[b"motionwire.skipped"])
+    assert [s["line"] for s in skipped] == [1, 2]
+    assert skipped[0]["reason"].startswith("datagram 2: EtherCAT datagram: buffer of ")
+    assert "EtherCAT" in skipped[1]["reason"]
+    assert json.loads(metadata[b"motionwire.ethercat"])["damaged"] == 2
+
+
+def test_can_and_ethercat_in_one_capture():
+    """A capture of CAN and EtherCAT interfaces (here two pcapng sections):
+    the table holds the CAN frames and counts the EtherCAT packets
+    (docs/ethercat.md#python), whichever comes first."""
+    can = (FIXTURES / "pcap" / "can.pcapng").read_bytes()
+    ecat = (ETHERCAT / "soem-akd-sdo.pcapng").read_bytes()
+    alone = motionwire.read_log(can)
+    # The CAN packets are the first 1 or come after the capture's 830.
+    for data, before in ((can + ecat, 0), (ecat + can, 830)):
+        table = motionwire.read_log(data)
+        assert table.schema.names[:3] == ["line", "ts", "iface"]
+        assert table.drop_columns(["line"]).equals(alone.drop_columns(["line"]))
+        lines = alone.column("line").to_pylist()
+        assert table.column("line").to_pylist() == [line + before for line in lines]
+        other = json.loads(table.schema.metadata[b"motionwire.other"])
+        assert other[0] == (
+            "829 EtherCAT packets skipped: the capture holds CAN frames too, and a table "
+            "holds CAN frames or EtherCAT datagrams, not both"
+        )
+        assert json.loads(table.schema.metadata[b"motionwire.ethercat"])["packets"] == 829
+        assert motionwire.decode(data).num_rows == alone.num_rows
+
+
+def test_read_logs_of_captures():
+    """read_logs: EtherCAT captures alone give a table of datagrams with
+    its file column; with a CAN log among them, the CAN frames, the
+    captures' packets counted."""
+    paths = [ETHERCAT / "soem-akd-sdo.pcapng", ETHERCAT / "twincat-akd-startup.pcapng"]
+    table = motionwire.read_logs(paths)
+    assert fields(table.schema) == [("file", DICTIONARY, False)] + READ_LOG_SCHEMA
+    assert table.num_rows == 829 + 511
+    assert table.slice(0, 829).drop_columns(["file"]).to_pylist() == motionwire.read_log(paths[0]).to_pylist()
+    assert json.loads(table.schema.metadata[b"motionwire.ethercat"])["packets"] == 829 + 478
+    mixed = motionwire.read_logs([FIXTURES / "pcap" / "can.pcapng", paths[0]])
+    assert mixed.schema.names[:3] == ["file", "line", "ts"]
+    assert mixed.num_rows == motionwire.read_log(FIXTURES / "pcap" / "can.pcapng").num_rows
+    assert json.loads(mixed.schema.metadata[b"motionwire.other"])[0].startswith(
+        "829 EtherCAT packets skipped: other logs of the table hold CAN frames"
+    )
+
+
+def test_summary_and_findings_say_what_they_leave_out():
+    """summary and findings cover CAN records; an EtherCAT capture's
+    packets are said with a warning, as the program says them on standard
+    error."""
+    path = ETHERCAT / "soem-akd-sdo.pcapng"
+    with pytest.warns(UserWarning, match="829 EtherCAT packets read: the summary does not cover EtherCAT yet"):
+        records = motionwire.summary(path)
+    # The program's `decode --summary` writes no record either.
+    assert golden_stdout("decode_--summary_tests-data-ethercat-soem-akd-sdo.pcapng.gz") == ""
+    assert records == []
+    with pytest.warns(UserWarning, match="829 EtherCAT packets read: the findings do not cover EtherCAT yet"):
+        assert motionwire.findings(path).num_rows == 0
+    # A CAN log: no such warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        motionwire.summary(FIXTURES / "pcap" / "can.pcapng")
