@@ -81,13 +81,15 @@ def test_the_samples_findings_are_the_reports():
 
 
 def program() -> Path | None:
-    """The program, where a cargo build left it."""
+    """The program, where a cargo build left it: MOTIONWIRE_BIN, else the
+    newest of the target directory's release and debug builds (an older
+    release build beside a fresh debug one is stale)."""
+    if os.environ.get("MOTIONWIRE_BIN"):
+        return Path(os.environ["MOTIONWIRE_BIN"])
     target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
-    for profile in ("release", "debug"):
-        exe = target / profile / "motionwire"
-        if exe.exists():
-            return exe
-    return None
+    built = [target / profile / "motionwire" for profile in ("release", "debug")]
+    built = [exe for exe in built if exe.is_file()]
+    return max(built, key=lambda exe: exe.stat().st_mtime) if built else None
 
 
 def test_the_page_lists_the_same(tmp_path):

@@ -48,6 +48,10 @@ def test_decode_record_is_decode_json(case):
     name, (kwargs, path) = case
     kwargs.pop("heartbeat_ms", None)
     expected = golden_stdout(name).splitlines()
+    if "ethercat" in name:
+        # A table of datagrams: the records of what they tell of the slaves
+        # (docs/ethercat.md#meanings) are not its rows.
+        expected = [line for line in expected if '"kind":"ecat_datagram"' in line]
     table = motionwire.decode(path, **kwargs)
     assert table.column("record").to_pylist() == expected
 
