@@ -2,7 +2,7 @@
 
 use core::time::Duration;
 
-use crate::can::{BusName, BusStatus, ErrorFrame, Iface, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
 use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
     Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
@@ -199,8 +199,9 @@ impl Summarizer {
     /// made here is the one the next [`add_with`](Self::add_with) of a
     /// frame on `iface` finds, so the summary's table follows the
     /// decoder's in order.
+    #[cfg(feature = "report")]
     #[inline]
-    pub(crate) fn bus_at(&mut self, iface: Option<Iface<'_>>) -> usize {
+    pub(crate) fn bus_at(&mut self, iface: Option<crate::can::Iface<'_>>) -> usize {
         self.decoder.bus(iface)
     }
 

@@ -255,9 +255,9 @@ fn check_len(frame_type: FrameType, len: usize) -> Result<(), RangeError> {
 /// parts, with the constructor of the kind it read.
 ///
 /// Its constructors cannot fail: what lies beyond the kind's limits is cut
-/// to them. A parser that knows a length is within them (as it knows after
-/// reading at most 16 hex digits) makes a header whose cut the compiler
-/// leaves out.
+/// to them. A parser that knows the kind where it reads it makes the header
+/// with that kind's constructor: no match on the kind is left to make,
+/// only that kind's cut.
 ///
 /// ```
 /// use motionwire_codec::can::{CanId, FdFlags, FrameHeader, FrameType};

@@ -77,8 +77,8 @@ pub(super) fn parse_canonical_log<'a>(
         }
     };
 
-    // Each arm makes the header of the kind it read: its lengths are
-    // within the kind's limits, so no cut is left in the code.
+    // Each arm makes the header with the constructor of the kind it read:
+    // no match on the kind is left for the frame, only the kind's cut.
     let (header, end) = match buf.get(body) {
         Some(b'R' | b'r') => match buf.get(body + 1) {
             Some(&d @ b'0'..=b'8') => (FrameHeader::remote(id, d - b'0'), body + 2),
