@@ -65,12 +65,13 @@ done
   echo "decode tests/fixtures/pcap/sll_mixed.pcapng"
   echo "decode --json tests/fixtures/pcap/sll.pcap"
   echo "decode --summary --json tests/fixtures/pcap/sll2.pcapng"
-  # EtherCAT captures (docs/ethercat.md): the three outputs and the summary's
-  # note.
+  # EtherCAT captures (docs/ethercat.md): the three outputs and the summary.
   echo "decode tests/data/ethercat/twincat-akd-startup.pcapng"
   echo "decode --json tests/data/ethercat/replay-ek1914-segmented-upload.pcapng"
   echo "decode --csv tests/data/ethercat/soem-single-lan9252.pcapng"
   echo "decode --summary tests/data/ethercat/soem-akd-sdo.pcapng"
+  echo "decode --summary tests/data/ethercat/synthetic_akd_fault.pcapng"
+  echo "decode --summary --json tests/data/ethercat/synthetic_akd_fault.pcapng"
 } > "$out/cases.txt"
 n=0
 while read -r line; do

@@ -13,13 +13,16 @@
 //!   returned or lost;
 //! - every datagram's record is one line of valid JSON with the keys of
 //!   docs/ethercat.md#records, and its text prints;
+//! - the summary of the same packets (`Summarizer`) counts them as the
+//!   session does, and every record is one JSON object with its `type`;
 //! - what a datagram tells of the slaves comes from returned copies only,
 //!   and every meaning's record is one line of JSON of its kind, its text
 //!   one line.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::can::{EthercatPacket, Iface, Timestamp};
+use motionwire::can::{EthercatPacket, Iface, LogEvent, Timestamp};
+use motionwire::summary::Summarizer;
 use motionwire::ethercat::{
     DatagramRecord, Encapsulation, EthercatLink, FrameCopy, Mac, MeaningRecord, Session,
 };
@@ -29,6 +32,7 @@ const NAMES: [&str; 4] = ["eth0", "eth1", "eth2", "eth3"];
 
 fuzz_target!(|data: &[u8]| {
     let mut session = Session::new();
+    let mut summarizer = Summarizer::default();
     let mut rest = data;
     let mut number = 0u64;
     let mut headers_damaged = 0u64;
@@ -53,6 +57,7 @@ fuzz_target!(|data: &[u8]| {
             },
         };
         let position = Position::Record(number);
+        summarizer.add(position, &LogEvent::Ethercat(packet));
         let read = match session.read(position, &packet) {
             Ok(read) => read,
             Err(damaged) => {
@@ -118,4 +123,18 @@ fuzz_target!(|data: &[u8]| {
     assert!(counts.lost <= counts.sent);
     let end = session.finish();
     assert_eq!(end.sent, end.returned + end.lost);
+    // The summary of the same packets: the same counts, and every record
+    // one JSON object of its type.
+    let summary = summarizer.finish();
+    if let Some(port) = summary.ethercat.ports.first() {
+        if summary.ethercat.ports.len() == 1 {
+            assert_eq!(port.counts.sent, end.sent);
+            assert_eq!(port.counts.lost, end.lost);
+        }
+    }
+    for record in summary.records() {
+        let value: serde_json::Value = serde_json::from_str(&record.to_json()).unwrap();
+        assert!(value["type"].is_string());
+        let _ = record.to_string();
+    }
 });

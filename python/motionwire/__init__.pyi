@@ -190,9 +190,8 @@ def summary(
     kind, and the count key after it counts them all (docs/summary.md#lists).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
-    them). The summary does not cover EtherCAT yet: a capture's EtherCAT
-    packets are said with a UserWarning (``829 EtherCAT packets read: the
-    summary does not cover EtherCAT yet``), as the program says them.
+    them). An EtherCAT capture gives one record per interface, slave and
+    cyclic stream (docs/ethercat.md#summary).
     """
 
 def findings(

@@ -237,7 +237,7 @@ fn summary<'py>(
     if let Some(ms) = heartbeat_ms {
         config = config.heartbeat_timeout(Duration::from_millis(ms));
     }
-    let (records, fed, ethercat) = py.detach(|| -> Result<_, Failure> {
+    let (records, fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
         let mut log = source.open(options, &name)?;
         let mut summarizer = Summarizer::new(config);
@@ -245,13 +245,11 @@ fn summary<'py>(
             feed: |position, event: &motionwire::can::LogEvent<'_>| summarizer.add(position, event),
             name: &name,
         })?;
-        let ethercat = summarizer.ethercat_packets();
         let summary = summarizer.finish();
         let records: Vec<String> = summary.records().map(|record| record.to_json()).collect();
-        Ok((records, fed, ethercat))
+        Ok((records, fed))
     })?;
     warn_skipped(py, &source, fed.skipped)?;
-    warn_ethercat(py, &source, ethercat, "the summary does not")?;
     let loads = py.import("json")?.getattr("loads")?;
     let list = PyList::empty(py);
     for record in records {
@@ -315,9 +313,8 @@ fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
 }
 
 /// Warn that `packets` EtherCAT packets of `source` were read and left
-/// out: the summary and the findings cover CAN logs, as the program says
-/// on standard error (docs/ethercat.md#summary). `what` is `the summary
-/// does not` or `the findings do not`.
+/// out: the findings cover CAN logs (docs/ethercat.md#python). `what` is
+/// `the findings do not`.
 fn warn_ethercat(py: Python<'_>, source: &Source, packets: u64, what: &str) -> PyResult<()> {
     if packets > 0 {
         let s = if packets == 1 { "" } else { "s" };

@@ -105,6 +105,9 @@ impl Serialize for SummaryRecord<'_> {
             SummaryItem::Verdict(verdict) => super::verdict::verdict_entries(verdict, &mut map)?,
             SummaryItem::Node(node) => node_entries(node, &mut map)?,
             SummaryItem::Bus(bus) => bus_entries(bus, &mut map)?,
+            SummaryItem::EthercatPort(port) => super::ethercat::port_entries(port, &mut map)?,
+            SummaryItem::Slave(slave) => super::ethercat::slave_entries(slave, &mut map)?,
+            SummaryItem::Stream(stream) => super::ethercat::stream_entries(stream, &mut map)?,
         }
         map.end()
     }

@@ -42,6 +42,7 @@
 
 mod cia402;
 mod emcy;
+mod ethercat;
 mod event;
 mod file;
 mod findings;
@@ -59,6 +60,10 @@ mod wrong;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::EmcySeen;
+pub use ethercat::{
+    device_name, AlChange, CoeEmergency, EthercatSummary, PortSummary, SlaveSummary, StreamSummary,
+    MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS, STATUS_STREAM_MIN,
+};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingDetail, FindingKind};

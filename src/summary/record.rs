@@ -7,6 +7,7 @@ use crate::profiles::Profile;
 
 use super::cia402::Cia402Timeline;
 use super::emcy::EmcySeen;
+use super::ethercat::{EthercatSummary, PortSummary, SlaveSummary, StreamSummary};
 use super::heartbeat::{GuardingSummary, HeartbeatSummary};
 use super::listed::Listed;
 use super::sdo::SdoSummary;
@@ -127,6 +128,9 @@ pub struct Summary {
     pub(super) checked: Option<bool>,
     /// The verdict on its findings ([`Verdict::of`]).
     pub(super) verdict: Option<Verdict>,
+    /// The EtherCAT captures' part: interfaces, slaves, cyclic streams
+    /// (docs/ethercat.md#summary).
+    pub ethercat: EthercatSummary,
 }
 
 /// One record of the summary, as `decode --summary` writes them: the
@@ -149,6 +153,12 @@ pub enum SummaryItem<'s> {
     Node(&'s NodeSummary),
     /// A bus.
     Bus(&'s BusSummary),
+    /// An interface of an EtherCAT capture (docs/ethercat.md#summary).
+    EthercatPort(&'s PortSummary),
+    /// An EtherCAT slave.
+    Slave(&'s SlaveSummary),
+    /// A cyclic EtherCAT datagram stream.
+    Stream(&'s StreamSummary),
 }
 
 impl Summary {
@@ -161,6 +171,9 @@ impl Summary {
             .map(SummaryItem::Verdict)
             .chain(self.nodes.iter().map(SummaryItem::Node))
             .chain(self.buses.iter().map(SummaryItem::Bus))
+            .chain(self.ethercat.ports.iter().map(SummaryItem::EthercatPort))
+            .chain(self.ethercat.slaves.iter().map(SummaryItem::Slave))
+            .chain(self.ethercat.streams.iter().map(SummaryItem::Stream))
             .map(move |item| SummaryRecord { file, item })
     }
 

@@ -2,7 +2,7 @@
 
 use core::time::Duration;
 
-use crate::can::{BusName, BusStatus, ErrorFrame, LogEvent, LogFrame, Timestamp};
+use crate::can::{BusName, BusStatus, ErrorFrame, EthercatPacket, LogEvent, LogFrame, Timestamp};
 use crate::canopen::sdo::{SdoOutcome, SdoTransfer};
 use crate::canopen::{
     Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
@@ -12,6 +12,7 @@ use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
 use super::emcy::EmcySeen;
+use super::ethercat::EthercatSummarizer;
 use super::event::{SummaryEvent, SummaryEventKind};
 use super::heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 use super::listed::Listed;
@@ -152,9 +153,10 @@ pub struct Summarizer {
     heartbeat: Option<Duration>,
     last_time: Option<Duration>,
     untimed: u64,
-    /// EtherCAT packets added, which the summary does not cover yet
-    /// (docs/ethercat.md#summary).
+    /// EtherCAT packets added (docs/ethercat.md#summary).
     ethercat_packets: u64,
+    /// Their summary, from the first packet on.
+    ethercat: Option<EthercatSummarizer>,
 }
 
 impl Default for Summarizer {
@@ -175,12 +177,22 @@ impl Summarizer {
             last_time: None,
             untimed: 0,
             ethercat_packets: 0,
+            ethercat: None,
         }
     }
 
-    /// Return how many EtherCAT packets were added: the summary covers CAN
-    /// logs; an EtherCAT capture's packets are counted here, not
-    /// summarized (docs/ethercat.md#summary), so that a caller can say so.
+    /// An EtherCAT packet: read by the EtherCAT part of the summary.
+    #[cold]
+    #[inline(never)]
+    fn add_ethercat(&mut self, position: Position, packet: &EthercatPacket<'_>) {
+        self.ethercat_packets += 1;
+        self.ethercat
+            .get_or_insert_with(EthercatSummarizer::default)
+            .add(position, packet);
+    }
+
+    /// Return how many EtherCAT packets were added: the summary's
+    /// [`Summary::ethercat`] part is made of them (docs/ethercat.md#summary).
     #[must_use]
     pub const fn ethercat_packets(&self) -> u64 {
         self.ethercat_packets
@@ -238,7 +250,7 @@ impl Summarizer {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
-            LogEvent::Ethercat(_) => self.ethercat_packets += 1,
+            LogEvent::Ethercat(packet) => self.add_ethercat(position, packet),
         }
     }
 
@@ -259,8 +271,8 @@ impl Summarizer {
                 self.add_status(status);
                 return None;
             }
-            LogEvent::Ethercat(_) => {
-                self.ethercat_packets += 1;
+            LogEvent::Ethercat(packet) => {
+                self.add_ethercat(position, packet);
                 return None;
             }
         };
@@ -696,6 +708,10 @@ impl Summarizer {
             file: None,
             checked,
             verdict: None,
+            ethercat: self
+                .ethercat
+                .map(EthercatSummarizer::finish)
+                .unwrap_or_default(),
         };
         for (name, bus) in buses {
             let mut nodes = Vec::new();

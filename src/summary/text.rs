@@ -33,6 +33,9 @@ impl fmt::Display for SummaryRecord<'_> {
             SummaryItem::Verdict(verdict) => fmt::Display::fmt(verdict, f),
             SummaryItem::Node(node) => fmt::Display::fmt(node, f),
             SummaryItem::Bus(bus) => fmt::Display::fmt(bus, f),
+            SummaryItem::EthercatPort(port) => fmt::Display::fmt(port, f),
+            SummaryItem::Slave(slave) => fmt::Display::fmt(slave, f),
+            SummaryItem::Stream(stream) => fmt::Display::fmt(stream, f),
         }
     }
 }

@@ -233,3 +233,120 @@ fn every_mailbox_message_reads_as_tshark_reads_it() {
     // The six real captures and the synthetic one: 128 messages delivered.
     assert_eq!(messages, 128);
 }
+
+/// The summary of a capture (docs/ethercat.md#summary).
+fn summary(name: &str) -> motionwire::summary::Summary {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/ethercat")
+        .join(format!("{name}.pcapng"));
+    let mut log = logs::open(&path).unwrap();
+    let mut summarizer = motionwire::summary::Summarizer::default();
+    while let Some(record) = log.next_event() {
+        let record = record.unwrap();
+        summarizer.add(record.position, &record.event);
+    }
+    summarizer.finish()
+}
+
+/// Issue 35's case: an AKD sends CoE EMCY 0x7305 on its feedback 2, leaves
+/// OP for SAFEOP with AL status code 0x001B, and the cyclic LRW's working
+/// counter falls from 3 to 1 (scripts/ecat_pcapng.py wrote the capture).
+/// The summary says exactly that, in time order.
+#[test]
+fn the_akd_fault_is_summarized_in_time_order() {
+    let summary = summary("synthetic_akd_fault");
+    let port = &summary.ethercat.ports[0];
+    assert_eq!(
+        (port.counts.sent, port.counts.returned, port.counts.lost),
+        (279, 279, 0)
+    );
+    let [coupler, akd] = &summary.ethercat.slaves[..] else {
+        panic!("two slaves: {:?}", summary.ethercat.slaves)
+    };
+    assert_eq!((coupler.station, coupler.position), (Some(0x1000), Some(0)));
+    assert_eq!(
+        coupler.al_last.unwrap().status.state(),
+        Some(motionwire::ethercat::AlState::Op)
+    );
+    assert_eq!((akd.station, akd.position), (Some(0x1001), Some(1)));
+    assert_eq!((akd.vendor, akd.product), (Some(0x6A), Some(0x0041_4B44)));
+    let emcy = &akd.emergencies[0];
+    assert_eq!(emcy.emcy.code.get(), 0x7305);
+    let last = akd.al_last.unwrap();
+    assert_eq!(
+        last.status.state(),
+        Some(motionwire::ethercat::AlState::SafeOp)
+    );
+    assert!(last.status.error());
+    assert_eq!(last.code.map(|c| c.0), Some(0x001B));
+    assert!(emcy.packet < last.packet, "the EMCY comes first");
+    let lrw = summary
+        .ethercat
+        .streams
+        .iter()
+        .find(|s| s.command == motionwire::ethercat::Command::Lrw)
+        .unwrap();
+    assert_eq!(
+        (lrw.sent, lrw.wkc_usual, lrw.wkc_mismatches),
+        (200, Some(3), 50)
+    );
+    let (first, _, wkc) = lrw.first_mismatch.unwrap();
+    assert!(
+        first > last.packet && wkc == 1,
+        "then the working counter falls"
+    );
+    assert!(lrw.resolved());
+    assert_eq!(lrw.cycle_median_ns, Some(1_000_000));
+    // The text says it in that order.
+    let text = summary.to_string();
+    let akd_line = text.lines().find(|l| l.contains("Kollmorgen AKD")).unwrap();
+    assert!(
+        akd_line.contains(
+            "op; EMCY 0x7305 Incremental sensor 1 fault (axis 1, feedback 2) (packet 456); \
+         safeop with error 0x001b Sync manager watchdog (packet 458)"
+        ),
+        "{akd_line}"
+    );
+    assert!(
+        text.contains("working counter 3, 50 mismatches from packet"),
+        "{text}"
+    );
+}
+
+/// The real captures: every slave named by its SII, streams as counted by
+/// hand (tests/data/ethercat/README.md).
+#[test]
+fn real_captures_name_their_slaves_and_streams() {
+    let dc = summary("replay-dc");
+    let names: Vec<_> = dc
+        .ethercat
+        .slaves
+        .iter()
+        .map(|s| motionwire::summary::device_name(s.vendor.unwrap(), s.product.unwrap()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            Some("Beckhoff EK1100"),
+            Some("Beckhoff EL2828"),
+            Some("Beckhoff EL2889")
+        ]
+    );
+    let lrw = dc
+        .ethercat
+        .streams
+        .iter()
+        .find(|s| s.command == motionwire::ethercat::Command::Lrw)
+        .unwrap();
+    assert_eq!(
+        (lrw.returned, lrw.wkc_usual, lrw.wkc_mismatches),
+        (257, Some(4), 0)
+    );
+    // TwinCAT's clock: most intervals of its ARMW burst are 0, and the
+    // summary says the cycle cannot be read from them.
+    let twincat = summary("twincat-akd-startup");
+    let armw = &twincat.ethercat.streams[0];
+    assert_eq!(armw.command, motionwire::ethercat::Command::Armw);
+    assert!(!armw.resolved());
+    assert_eq!(twincat.ethercat.slaves[0].station, Some(1001));
+}

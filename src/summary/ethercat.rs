@@ -1,0 +1,1011 @@
+//! The post-mortem of an EtherCAT capture (docs/ethercat.md#summary): a
+//! record per interface (frames sent, returned, lost), per slave (identity,
+//! the AL state timeline with its status codes, CoE emergencies, SDO and
+//! mailbox counts) and per cyclic datagram stream (cycle time, jitter,
+//! working-counter mismatches), read from what `ethercat::Session` tells.
+
+use core::fmt;
+
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
+
+use crate::can::{BusName, EthercatPacket, Timestamp};
+use crate::canopen::Emcy;
+use crate::ethercat::{
+    AlRegister, AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Counts, Datagram,
+    FrameCopy, MailboxType, Meaning, Session, SlaveRef, COE_HEADER_LEN,
+};
+use crate::logs::Position;
+use crate::profiles::Profile;
+
+use super::values::{Iface, Ts};
+
+/// The AL state changes a slave record keeps; more are counted.
+pub const MAX_AL_CHANGES: usize = 256;
+/// The CoE emergencies a slave record keeps; more are counted.
+pub const MAX_EMERGENCIES: usize = 256;
+/// The datagram streams of an interface that are followed; a capture with
+/// more distinct (command, address) pairs counts the rest.
+pub const MAX_STREAMS: usize = 256;
+/// A stream of FPRD or BRD status reads is cyclic, and reported, from this
+/// many returned frames on (LRD, LWR, LRW, ARMW and FRMW always are).
+pub const STATUS_STREAM_MIN: u64 = 100;
+
+/// An AL state as a slave reported it, or as the master requested it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AlChange {
+    /// The packet.
+    pub packet: u64,
+    /// When.
+    pub timestamp: Option<Timestamp>,
+    /// Requested by AL control (`true`) or reported by AL status.
+    pub requested: bool,
+    /// The status or control word.
+    pub status: AlStatus,
+    /// The AL status code, when read with it.
+    pub code: Option<AlStatusCode>,
+}
+
+/// A CoE emergency a slave sent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CoeEmergency {
+    /// The packet it was read in.
+    pub packet: u64,
+    /// When.
+    pub timestamp: Option<Timestamp>,
+    /// The EMCY.
+    pub emcy: Emcy,
+    /// The profile that reads it.
+    pub profile: Profile,
+}
+
+/// What a capture showed of one slave (`type: "slave"`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SlaveSummary {
+    /// The interface.
+    pub iface: BusName,
+    /// The configured station address.
+    pub station: Option<u16>,
+    /// The position on the ring.
+    pub position: Option<u16>,
+    /// SII vendor id.
+    pub vendor: Option<u32>,
+    /// SII product code.
+    pub product: Option<u32>,
+    /// SII revision.
+    pub revision: Option<u32>,
+    /// SII serial number.
+    pub serial: Option<u32>,
+    /// Every change of AL status or request, in order (at most
+    /// [`MAX_AL_CHANGES`]).
+    pub al_changes: Vec<AlChange>,
+    /// AL changes past the limit.
+    pub al_changes_dropped: u64,
+    /// The last AL status read.
+    pub al_last: Option<AlChange>,
+    /// CoE emergencies (at most [`MAX_EMERGENCIES`]).
+    pub emergencies: Vec<CoeEmergency>,
+    /// Emergencies past the limit.
+    pub emergencies_dropped: u64,
+    /// CoE SDO requests written.
+    pub sdo_requests: u64,
+    /// CoE SDO responses read.
+    pub sdo_responses: u64,
+    /// SDO aborts, from either side.
+    pub sdo_aborts: u64,
+    /// Mailbox messages written and accepted.
+    pub mailbox_written: u64,
+    /// Mailbox messages read.
+    pub mailbox_read: u64,
+    /// Mailbox writes the slave did not accept.
+    pub mailbox_refused: u64,
+    /// Mailbox messages found in a guessed area.
+    pub mailbox_guessed: u64,
+}
+
+/// A cyclic datagram stream (`type: "stream"`): one command at one address
+/// (docs/ethercat.md#cycle-health).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StreamSummary {
+    /// The interface.
+    pub iface: BusName,
+    /// The command.
+    pub command: Command,
+    /// The address word (logical, or ADP and ADO).
+    pub address: u32,
+    /// Frames sent with it.
+    pub sent: u64,
+    /// Returned copies read.
+    pub returned: u64,
+    /// Intervals between sent frames measured (both times known).
+    pub intervals: u64,
+    /// Intervals of zero: the capture's clock could not tell the frames
+    /// apart.
+    pub zero_intervals: u64,
+    /// The median interval, ns (from a histogram: two significant digits).
+    pub cycle_median_ns: Option<u64>,
+    /// The 99th percentile, ns (two significant digits).
+    pub cycle_p99_ns: Option<u64>,
+    /// The longest interval, ns.
+    pub cycle_max_ns: Option<u64>,
+    /// The standard deviation of the intervals, ns: the jitter.
+    pub jitter_ns: Option<u64>,
+    /// The working counter the stream has most often.
+    pub wkc_usual: Option<u16>,
+    /// Returned copies with another working counter.
+    pub wkc_mismatches: u64,
+    /// The first of them.
+    pub first_mismatch: Option<(u64, Option<Timestamp>, u16)>,
+}
+
+impl SlaveSummary {
+    /// A slave of `iface` that nothing is known of yet.
+    #[must_use]
+    pub fn new(iface: BusName) -> Self {
+        SlaveSummary {
+            iface,
+            station: None,
+            position: None,
+            vendor: None,
+            product: None,
+            revision: None,
+            serial: None,
+            al_changes: Vec::new(),
+            al_changes_dropped: 0,
+            al_last: None,
+            emergencies: Vec::new(),
+            emergencies_dropped: 0,
+            sdo_requests: 0,
+            sdo_responses: 0,
+            sdo_aborts: 0,
+            mailbox_written: 0,
+            mailbox_read: 0,
+            mailbox_refused: 0,
+            mailbox_guessed: 0,
+        }
+    }
+}
+
+impl StreamSummary {
+    /// Return whether the capture's clock resolves the cycle: fewer than
+    /// half the intervals are 0 (docs/ethercat.md#cycle-health; TwinCAT's
+    /// captures are often coarser).
+    #[must_use]
+    pub const fn resolved(&self) -> bool {
+        self.intervals > 0 && self.zero_intervals * 2 < self.intervals
+    }
+}
+
+/// What a capture's interface showed (`type: "ethercat"`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PortSummary {
+    /// The interface.
+    pub iface: BusName,
+    /// The session's counts for the whole capture.
+    pub counts: Counts,
+    /// Streams not followed past [`MAX_STREAMS`], by frames.
+    pub streams_dropped: u64,
+}
+
+/// The EtherCAT part of a summary.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct EthercatSummary {
+    /// One per interface with EtherCAT.
+    pub ports: Vec<PortSummary>,
+    /// One per slave seen, by interface and first sight.
+    pub slaves: Vec<SlaveSummary>,
+    /// One per cyclic stream.
+    pub streams: Vec<StreamSummary>,
+}
+
+/// A log-scale histogram of intervals: two significant digits from 1 ns to
+/// 10^10 ns, constant memory.
+#[derive(Debug, Clone)]
+struct Histogram {
+    /// `[decade][mantissa 10..=99]`.
+    counts: Box<[[u32; 90]; 11]>,
+    total: u64,
+}
+
+impl Histogram {
+    fn new() -> Self {
+        Histogram {
+            counts: Box::new([[0; 90]; 11]),
+            total: 0,
+        }
+    }
+
+    fn add(&mut self, ns: u64) {
+        let (decade, mantissa) = split(ns);
+        if let Some(cell) = self
+            .counts
+            .get_mut(decade)
+            .and_then(|d| d.get_mut(mantissa))
+        {
+            *cell = cell.saturating_add(1);
+            self.total += 1;
+        }
+    }
+
+    /// The value below which `fraction` of the intervals lie.
+    fn quantile(&self, fraction: f64) -> Option<u64> {
+        if self.total == 0 {
+            return None;
+        }
+        let rank = ((self.total as f64) * fraction).ceil().max(1.0) as u64;
+        let mut seen = 0u64;
+        for (decade, row) in self.counts.iter().enumerate() {
+            for (mantissa, count) in row.iter().enumerate() {
+                seen += u64::from(*count);
+                if seen >= rank {
+                    return Some(join(decade, mantissa));
+                }
+            }
+        }
+        None
+    }
+}
+
+/// `ns` as a decade and a two-digit mantissa (0 counts as 1 ns's bucket's
+/// floor, 10).
+fn split(ns: u64) -> (usize, usize) {
+    let mut value = ns.max(10);
+    let mut decade = 0;
+    while value >= 100 {
+        value /= 10;
+        decade += 1;
+    }
+    (decade, (value - 10) as usize)
+}
+
+/// The lower bound of a bucket.
+fn join(decade: usize, mantissa: usize) -> u64 {
+    (mantissa as u64 + 10) * 10u64.pow(decade as u32)
+}
+
+/// A stream as it is being read.
+#[derive(Debug, Clone)]
+struct Stream {
+    command: Command,
+    address: u32,
+    sent: u64,
+    returned: u64,
+    last_sent: Option<Timestamp>,
+    histogram: Histogram,
+    zero: u64,
+    max: u64,
+    /// Welford's running mean and sum of squares, ns.
+    mean: f64,
+    m2: f64,
+    intervals: u64,
+    /// Working counters seen, with how often and where first.
+    wkcs: Vec<(u16, u64, u64, Option<Timestamp>)>,
+}
+
+/// A port as it is being read.
+#[derive(Debug)]
+struct Port {
+    name: BusName,
+    slaves: Vec<SlaveSummary>,
+    streams: Vec<Stream>,
+    streams_dropped: u64,
+}
+
+/// Reads a capture's EtherCAT packets for the summary.
+#[derive(Debug, Default)]
+pub(crate) struct EthercatSummarizer {
+    session: Session,
+    ports: Vec<Port>,
+}
+
+impl EthercatSummarizer {
+    /// Read one packet: its datagrams, what they tell, its streams.
+    pub(crate) fn add(&mut self, position: Position, event: &EthercatPacket<'_>) {
+        let Ok(packet) = self.session.read(position, event) else {
+            return;
+        };
+        let name = BusName::of(packet.iface);
+        let port = match self.ports.iter().position(|p| p.name == name) {
+            Some(at) => at,
+            None => {
+                self.ports.push(Port {
+                    name,
+                    slaves: Vec::new(),
+                    streams: Vec::new(),
+                    streams_dropped: 0,
+                });
+                self.ports.len() - 1
+            }
+        };
+        let number = position.number();
+        for (at, datagram) in packet.datagrams().enumerate() {
+            let Ok(datagram) = datagram else {
+                self.session.count_damaged();
+                break;
+            };
+            let port = &mut self.ports[port];
+            let mut meanings = Vec::new();
+            self.session
+                .meanings(&packet, at, &datagram, |m| meanings.push(m));
+            for meaning in meanings {
+                port.meaning(number, packet.timestamp, meaning);
+            }
+            let sent_adp = packet.sent_adp(at, &datagram);
+            port.stream(packet.copy, packet.timestamp, number, &datagram, sent_adp);
+        }
+    }
+
+    /// The summary of what was read.
+    pub(crate) fn finish(mut self) -> EthercatSummary {
+        let counts = self.session.finish();
+        let mut summary = EthercatSummary::default();
+        let single = self.ports.len() == 1;
+        for port in self.ports {
+            summary.ports.push(PortSummary {
+                iface: port.name.clone(),
+                // The session counts the capture: one port takes them all.
+                counts: if single { counts } else { Counts::default() },
+                streams_dropped: port.streams_dropped,
+            });
+            summary.slaves.extend(port.slaves);
+            for stream in port.streams {
+                let cyclic = matches!(
+                    stream.command,
+                    Command::Lrd | Command::Lwr | Command::Lrw | Command::Armw | Command::Frmw
+                ) || stream.returned >= STATUS_STREAM_MIN;
+                if cyclic {
+                    summary.streams.push(stream.finish(port.name.clone()));
+                }
+            }
+        }
+        summary
+    }
+}
+
+impl Stream {
+    fn finish(self, iface: BusName) -> StreamSummary {
+        let usual = self
+            .wkcs
+            .iter()
+            .max_by_key(|(wkc, count, ..)| (*count, u16::MAX - wkc))
+            .map(|w| w.0);
+        let mismatches = self
+            .wkcs
+            .iter()
+            .filter(|w| Some(w.0) != usual)
+            .map(|w| w.1)
+            .sum();
+        let first_mismatch = self
+            .wkcs
+            .iter()
+            .filter(|w| Some(w.0) != usual)
+            .min_by_key(|w| w.2)
+            .map(|w| (w.2, w.3, w.0));
+        let jitter = (self.intervals > 1)
+            .then(|| (self.m2 / (self.intervals - 1) as f64).sqrt().round() as u64);
+        StreamSummary {
+            iface,
+            command: self.command,
+            address: self.address,
+            sent: self.sent,
+            returned: self.returned,
+            intervals: self.intervals,
+            zero_intervals: self.zero,
+            cycle_median_ns: self.histogram.quantile(0.5),
+            cycle_p99_ns: self.histogram.quantile(0.99),
+            cycle_max_ns: (self.intervals > 0).then_some(self.max),
+            jitter_ns: jitter,
+            wkc_usual: usual,
+            wkc_mismatches: mismatches,
+            first_mismatch,
+        }
+    }
+}
+
+impl Port {
+    fn slave(&mut self, slave: SlaveRef) -> Option<&mut SlaveSummary> {
+        if slave.station.is_none() && slave.position.is_none() {
+            return None;
+        }
+        let at = self.slaves.iter().position(|s| {
+            (slave.station.is_some() && s.station == slave.station)
+                || (slave.station.is_none()
+                    && slave.position.is_some()
+                    && s.position == slave.position)
+                || (s.station.is_none() && s.position.is_some() && s.position == slave.position)
+        });
+        let at = match at {
+            Some(at) => at,
+            None => {
+                self.slaves.push(SlaveSummary::new(self.name.clone()));
+                self.slaves.len() - 1
+            }
+        };
+        let found = &mut self.slaves[at];
+        if slave.station.is_some() {
+            found.station = slave.station;
+        }
+        if slave.position.is_some() {
+            found.position = slave.position;
+        }
+        Some(found)
+    }
+
+    fn meaning(&mut self, packet: u64, timestamp: Option<Timestamp>, meaning: Meaning<'_>) {
+        match meaning {
+            Meaning::StationAddress { slave } => {
+                self.slave(slave);
+            }
+            Meaning::BroadcastAlStatus { .. } => {}
+            Meaning::AlState {
+                slave,
+                register,
+                status,
+                code,
+            } => {
+                let Some(s) = self.slave(slave) else { return };
+                let requested = register == AlRegister::Control;
+                let status = match (status, s.al_last) {
+                    (Some(status), _) => status,
+                    // The code read alone completes the last status read.
+                    (None, Some(last)) if code.is_some() => {
+                        let change = AlChange { code, ..last };
+                        if let Some(kept) = s.al_changes.last_mut() {
+                            if !kept.requested && kept.status == last.status && kept.code.is_none()
+                            {
+                                kept.code = code;
+                            }
+                        }
+                        s.al_last = Some(change);
+                        return;
+                    }
+                    (None, _) => return,
+                };
+                let change = AlChange {
+                    packet,
+                    timestamp,
+                    requested,
+                    status,
+                    code,
+                };
+                let last_same = s
+                    .al_changes
+                    .iter()
+                    .rev()
+                    .find(|c| c.requested == requested)
+                    .is_some_and(|c| c.status == status && (code.is_none() || c.code == code));
+                if !last_same {
+                    if s.al_changes.len() < MAX_AL_CHANGES {
+                        s.al_changes.push(change);
+                    } else {
+                        s.al_changes_dropped += 1;
+                    }
+                }
+                if !requested {
+                    s.al_last = Some(change);
+                }
+            }
+            Meaning::Sii { slave, word, value } => {
+                let Some(s) = self.slave(slave) else { return };
+                match word {
+                    0x08 => s.vendor = Some(value),
+                    0x0A => s.product = Some(value),
+                    0x0C => s.revision = Some(value),
+                    0x0E => s.serial = Some(value),
+                    _ => {}
+                }
+            }
+            Meaning::Mailbox {
+                slave,
+                written,
+                accepted,
+                guessed,
+                header,
+                body,
+                profile,
+            } => {
+                let Some(s) = self.slave(slave) else { return };
+                if guessed {
+                    s.mailbox_guessed += 1;
+                }
+                if written && !accepted {
+                    s.mailbox_refused += 1;
+                    return;
+                }
+                if written {
+                    s.mailbox_written += 1;
+                } else {
+                    s.mailbox_read += 1;
+                }
+                if header.mailbox_type != MailboxType::Coe {
+                    return;
+                }
+                let Ok(coe) = CoeHeader::parse(body) else {
+                    return;
+                };
+                let rest = &body[COE_HEADER_LEN..];
+                match coe.service {
+                    CoeService::Emergency => {
+                        if let Ok(emcy) = Emcy::parse(rest) {
+                            if s.emergencies.len() < MAX_EMERGENCIES {
+                                s.emergencies.push(CoeEmergency {
+                                    packet,
+                                    timestamp,
+                                    emcy,
+                                    profile,
+                                });
+                            } else {
+                                s.emergencies_dropped += 1;
+                            }
+                        }
+                    }
+                    CoeService::SdoRequest | CoeService::SdoResponse => {
+                        if coe.service == CoeService::SdoRequest {
+                            s.sdo_requests += 1;
+                        } else {
+                            s.sdo_responses += 1;
+                        }
+                        if CoeSdo::parse(rest)
+                            .ok()
+                            .and_then(|sdo| sdo.abort_code())
+                            .is_some()
+                        {
+                            s.sdo_aborts += 1;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    fn stream(
+        &mut self,
+        copy: FrameCopy,
+        timestamp: Option<Timestamp>,
+        packet: u64,
+        datagram: &Datagram<'_>,
+        sent_adp: Option<u16>,
+    ) {
+        let command = datagram.command();
+        if !matches!(
+            command,
+            Command::Lrd
+                | Command::Lwr
+                | Command::Lrw
+                | Command::Armw
+                | Command::Frmw
+                | Command::Brd
+                | Command::Fprd
+        ) {
+            return;
+        }
+        let address = match command {
+            // A returned BRD's ADP is counted on: the register names it.
+            Command::Brd => u32::from(datagram.ado()) << 16,
+            // So is an ARMW's: the sent copy's names the slave.
+            Command::Armw => match sent_adp {
+                Some(adp) => (u32::from(datagram.ado()) << 16) | u32::from(adp),
+                None => return,
+            },
+            _ => datagram.address(),
+        };
+        let at = match self
+            .streams
+            .iter()
+            .position(|s| s.command == command && s.address == address)
+        {
+            Some(at) => at,
+            None if self.streams.len() < MAX_STREAMS => {
+                self.streams.push(Stream {
+                    command,
+                    address,
+                    sent: 0,
+                    returned: 0,
+                    last_sent: None,
+                    histogram: Histogram::new(),
+                    zero: 0,
+                    max: 0,
+                    mean: 0.0,
+                    m2: 0.0,
+                    intervals: 0,
+                    wkcs: Vec::new(),
+                });
+                self.streams.len() - 1
+            }
+            None => {
+                self.streams_dropped += 1;
+                return;
+            }
+        };
+        let stream = &mut self.streams[at];
+        match copy {
+            FrameCopy::Sent => {
+                stream.sent += 1;
+                if let (Some(now), Some(before)) = (timestamp, stream.last_sent) {
+                    let ns = now
+                        .as_duration()
+                        .saturating_sub(before.as_duration())
+                        .as_nanos();
+                    let ns = u64::try_from(ns).unwrap_or(u64::MAX);
+                    stream.intervals += 1;
+                    if ns == 0 {
+                        stream.zero += 1;
+                    }
+                    stream.max = stream.max.max(ns);
+                    stream.histogram.add(ns);
+                    let x = ns as f64;
+                    let delta = x - stream.mean;
+                    stream.mean += delta / stream.intervals as f64;
+                    stream.m2 += delta * (x - stream.mean);
+                }
+                if timestamp.is_some() {
+                    stream.last_sent = timestamp;
+                }
+            }
+            FrameCopy::Returned { .. } | FrameCopy::ReturnedUnpaired => {
+                stream.returned += 1;
+                let wkc = datagram.working_counter();
+                if let Some(w) = stream.wkcs.iter_mut().find(|w| w.0 == wkc) {
+                    w.1 += 1;
+                } else if stream.wkcs.len() < 64 {
+                    stream.wkcs.push((wkc, 1, packet, timestamp));
+                }
+            }
+        }
+    }
+}
+
+/// The name of a device a capture's SII identifies, where it is one of the
+/// devices of the fixtures and the seeds (docs/ethercat.md#summary): the
+/// vendor's name and the product's.
+#[must_use]
+pub fn device_name(vendor: u32, product: u32) -> Option<&'static str> {
+    Some(match (vendor, product) {
+        (0x02, 0x044C_2C52) => "Beckhoff EK1100",
+        (0x02, 0x077A_2C52) => "Beckhoff EK1914",
+        (0x02, 0x0B0C_3052) => "Beckhoff EL2828",
+        (0x02, 0x0B49_3052) => "Beckhoff EL2889",
+        (0x02, 0x0BBC_3052) => "Beckhoff EL3004",
+        (0x6A, 0x0041_4B44) => "Kollmorgen AKD",
+        (0x09, 0x9252) => "Microchip LAN9252",
+        _ => return None,
+    })
+}
+
+fn opt_ts<M: SerializeMap>(map: &mut M, key: &str, ts: Option<Timestamp>) -> Result<(), M::Error> {
+    map.serialize_entry(key, &ts.map(Ts))
+}
+
+fn state_name(status: AlStatus) -> Option<&'static str> {
+    status.state().map(|s| s.name())
+}
+
+/// One AL change as JSON: `{"packet", "ts", "requested", "state",
+/// "state_bits", "error", "code", "code_text"}`.
+struct ChangeJson<'a>(&'a AlChange);
+
+impl Serialize for ChangeJson<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let c = self.0;
+        let mut map = serializer.serialize_map(Some(8))?;
+        map.serialize_entry("packet", &c.packet)?;
+        opt_ts(&mut map, "ts", c.timestamp)?;
+        map.serialize_entry("requested", &c.requested)?;
+        map.serialize_entry("state", &state_name(c.status))?;
+        map.serialize_entry("state_bits", &c.status.state_bits())?;
+        map.serialize_entry("error", &c.status.error())?;
+        map.serialize_entry("code", &c.code.map(|c| c.0))?;
+        map.serialize_entry("code_text", &c.code.and_then(AlStatusCode::text))?;
+        map.end()
+    }
+}
+
+/// One CoE emergency as JSON: `{"packet", "ts", "code", "description",
+/// "register"}`, with `axis` and `feedback` for an AKD.
+struct EmergencyJson<'a>(&'a CoeEmergency);
+
+impl Serialize for EmergencyJson<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let e = self.0;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("packet", &e.packet)?;
+        opt_ts(&mut map, "ts", e.timestamp)?;
+        map.serialize_entry("code", &e.emcy.code.get())?;
+        map.serialize_entry("description", e.emcy.code.description())?;
+        map.serialize_entry("register", &e.emcy.register.bits())?;
+        if let Some((axis, feedback)) = akd(e) {
+            map.serialize_entry("axis", &axis)?;
+            map.serialize_entry("feedback", &feedback)?;
+        }
+        map.end()
+    }
+}
+
+/// An AKD emergency's axis and feedback (docs/canopen.md#akd).
+fn akd(e: &CoeEmergency) -> Option<(u8, Option<u8>)> {
+    if e.profile != Profile::Akd {
+        return None;
+    }
+    let field = crate::profiles::akd::AkdManufacturerField::new_unchecked(&e.emcy.manufacturer[..]);
+    Some((
+        field.axis_id().get(),
+        field.feedback_id().ok().and_then(|f| f.number()),
+    ))
+}
+
+/// The entries of a `type: "ethercat"` record.
+pub(super) fn port_entries<M: SerializeMap>(
+    port: &PortSummary,
+    map: &mut M,
+) -> Result<(), M::Error> {
+    let c = &port.counts;
+    map.serialize_entry("type", "ethercat")?;
+    map.serialize_entry("iface", &Iface(&port.iface))?;
+    map.serialize_entry("packets", &c.packets)?;
+    map.serialize_entry("sent", &c.sent)?;
+    map.serialize_entry("returned", &c.returned)?;
+    map.serialize_entry("returned_unpaired", &c.returned_unpaired)?;
+    map.serialize_entry("lost", &c.lost)?;
+    map.serialize_entry("other_frame_types", &c.other_frame_types)?;
+    map.serialize_entry("damaged", &c.damaged)?;
+    map.serialize_entry("streams_not_followed", &port.streams_dropped)
+}
+
+/// The entries of a `type: "slave"` record.
+pub(super) fn slave_entries<M: SerializeMap>(
+    s: &SlaveSummary,
+    map: &mut M,
+) -> Result<(), M::Error> {
+    map.serialize_entry("type", "slave")?;
+    map.serialize_entry("iface", &Iface(&s.iface))?;
+    map.serialize_entry("slave", &s.station)?;
+    map.serialize_entry("position", &s.position)?;
+    map.serialize_entry("vendor", &s.vendor)?;
+    map.serialize_entry("product", &s.product)?;
+    map.serialize_entry("revision", &s.revision)?;
+    map.serialize_entry("serial", &s.serial)?;
+    let name = s.vendor.zip(s.product).and_then(|(v, p)| device_name(v, p));
+    map.serialize_entry("name", &name)?;
+    match &s.al_last {
+        Some(last) => {
+            map.serialize_entry("al_state", &state_name(last.status))?;
+            map.serialize_entry("al_error", &last.status.error())?;
+            map.serialize_entry("al_code", &last.code.map(|c| c.0))?;
+            map.serialize_entry("al_code_text", &last.code.and_then(AlStatusCode::text))?;
+        }
+        None => {
+            map.serialize_entry("al_state", &None::<&str>)?;
+            map.serialize_entry("al_error", &None::<bool>)?;
+            map.serialize_entry("al_code", &None::<u16>)?;
+            map.serialize_entry("al_code_text", &None::<&str>)?;
+        }
+    }
+    let changes: Vec<_> = s.al_changes.iter().map(ChangeJson).collect();
+    map.serialize_entry("al_timeline", &changes)?;
+    map.serialize_entry("al_timeline_dropped", &s.al_changes_dropped)?;
+    map.serialize_entry(
+        "emcy_count",
+        &(s.emergencies.len() as u64 + s.emergencies_dropped),
+    )?;
+    let emergencies: Vec<_> = s.emergencies.iter().map(EmergencyJson).collect();
+    map.serialize_entry("emcy", &emergencies)?;
+    map.serialize_entry("sdo_requests", &s.sdo_requests)?;
+    map.serialize_entry("sdo_responses", &s.sdo_responses)?;
+    map.serialize_entry("sdo_aborts", &s.sdo_aborts)?;
+    map.serialize_entry("mailbox_written", &s.mailbox_written)?;
+    map.serialize_entry("mailbox_read", &s.mailbox_read)?;
+    map.serialize_entry("mailbox_refused", &s.mailbox_refused)?;
+    map.serialize_entry("mailbox_guessed", &s.mailbox_guessed)
+}
+
+/// The entries of a `type: "stream"` record.
+pub(super) fn stream_entries<M: SerializeMap>(
+    s: &StreamSummary,
+    map: &mut M,
+) -> Result<(), M::Error> {
+    map.serialize_entry("type", "stream")?;
+    map.serialize_entry("iface", &Iface(&s.iface))?;
+    map.serialize_entry("cmd", s.command.name())?;
+    if matches!(s.command, Command::Lrd | Command::Lwr | Command::Lrw) {
+        map.serialize_entry("logical", &s.address)?;
+    } else {
+        map.serialize_entry("adp", &(s.address & 0xFFFF))?;
+        map.serialize_entry("ado", &(s.address >> 16))?;
+    }
+    map.serialize_entry("sent", &s.sent)?;
+    map.serialize_entry("returned", &s.returned)?;
+    map.serialize_entry("intervals", &s.intervals)?;
+    map.serialize_entry("resolved", &s.resolved())?;
+    let us = |ns: Option<u64>| ns.map(|ns| ns as f64 / 1000.0);
+    map.serialize_entry("cycle_median_us", &us(s.cycle_median_ns))?;
+    map.serialize_entry("cycle_p99_us", &us(s.cycle_p99_ns))?;
+    map.serialize_entry("cycle_max_us", &us(s.cycle_max_ns))?;
+    map.serialize_entry("jitter_us", &us(s.jitter_ns))?;
+    map.serialize_entry("wkc_usual", &s.wkc_usual)?;
+    map.serialize_entry("wkc_mismatches", &s.wkc_mismatches)?;
+    match s.first_mismatch {
+        Some((packet, ts, wkc)) => {
+            map.serialize_entry("first_mismatch_packet", &packet)?;
+            opt_ts(map, "first_mismatch_ts", ts)?;
+            map.serialize_entry("first_mismatch_wkc", &wkc)?;
+        }
+        None => {
+            map.serialize_entry("first_mismatch_packet", &None::<u64>)?;
+            map.serialize_entry("first_mismatch_ts", &None::<f64>)?;
+            map.serialize_entry("first_mismatch_wkc", &None::<u16>)?;
+        }
+    }
+    Ok(())
+}
+
+/// A slave in words: `slave 0x1001 (4097) at 1`.
+fn slave_words(
+    f: &mut fmt::Formatter<'_>,
+    station: Option<u16>,
+    position: Option<u16>,
+) -> fmt::Result {
+    match (station, position) {
+        (Some(s), Some(p)) => write!(f, "slave {s:#06x} ({s}) at {p}"),
+        (Some(s), None) => write!(f, "slave {s:#06x} ({s})"),
+        (None, Some(p)) => write!(f, "slave at {p}"),
+        (None, None) => f.write_str("slave"),
+    }
+}
+
+impl fmt::Display for PortSummary {
+    /// `ethercat  eth0: 558 packets, 279 frames sent, 279 returned, 0 lost`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = &self.counts;
+        write!(
+            f,
+            "ethercat  {}: {} packets, {} frames sent, {} returned, {} lost",
+            self.iface, c.packets, c.sent, c.returned, c.lost
+        )?;
+        if c.returned_unpaired > 0 {
+            write!(
+                f,
+                ", {} returned without their sent copy",
+                c.returned_unpaired
+            )?;
+        }
+        if c.other_frame_types > 0 {
+            write!(f, ", {} of another EtherCAT type", c.other_frame_types)?;
+        }
+        if c.damaged > 0 {
+            write!(f, ", {} damaged", c.damaged)?;
+        }
+        writeln!(f)
+    }
+}
+
+impl fmt::Display for SlaveSummary {
+    /// The slave, what it is, its AL states and emergencies in time order.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} ", self.iface)?;
+        slave_words(f, self.station, self.position)?;
+        if let Some((v, p)) = self.vendor.zip(self.product) {
+            match device_name(v, p) {
+                Some(name) => write!(f, " {name}")?,
+                None => write!(f, " vendor {v:#x} product {p:#x}")?,
+            }
+        }
+        if let Some(rev) = self.revision {
+            write!(f, " rev {rev:#x}")?;
+        }
+        f.write_str(":")?;
+        // AL states and emergencies, merged in time (packet) order.
+        let mut states = self.al_changes.iter().filter(|c| !c.requested).peekable();
+        let mut emcys = self.emergencies.iter().peekable();
+        let mut first = true;
+        loop {
+            let take_state = match (states.peek(), emcys.peek()) {
+                (Some(s), Some(e)) => s.packet <= e.packet,
+                (Some(_), None) => true,
+                (None, Some(_)) => false,
+                (None, None) => break,
+            };
+            f.write_str(if first { " " } else { "; " })?;
+            first = false;
+            if take_state {
+                let Some(c) = states.next() else { break };
+                match c.status.state() {
+                    Some(state) => write!(f, "{state}")?,
+                    None => write!(f, "states {:#04x}", c.status.state_bits())?,
+                }
+                if c.status.error() {
+                    f.write_str(" with error")?;
+                    match c.code {
+                        Some(code) => write!(f, " {code}")?,
+                        None => f.write_str(", code not read")?,
+                    }
+                    write!(f, " (packet {})", c.packet)?;
+                }
+            } else {
+                let Some(e) = emcys.next() else { break };
+                write!(
+                    f,
+                    "EMCY {:#06x} {}",
+                    e.emcy.code.get(),
+                    e.emcy.code.description()
+                )?;
+                if let Some((axis, feedback)) = akd(e) {
+                    write!(f, " (axis {axis}")?;
+                    if let Some(fb) = feedback {
+                        write!(f, ", feedback {fb}")?;
+                    }
+                    f.write_str(")")?;
+                }
+                write!(f, " (packet {})", e.packet)?;
+            }
+        }
+        if first {
+            f.write_str(" no AL status read")?;
+        }
+        if self.sdo_requests + self.sdo_responses > 0 {
+            write!(
+                f,
+                "; SDO {} requests, {} responses, {} aborts",
+                self.sdo_requests, self.sdo_responses, self.sdo_aborts
+            )?;
+        }
+        if self.mailbox_refused > 0 {
+            write!(f, "; {} mailbox writes not accepted", self.mailbox_refused)?;
+        }
+        writeln!(f)
+    }
+}
+
+impl fmt::Display for StreamSummary {
+    /// `stream eth0 LRW logical 0x00000000: 200 frames, cycle median
+    /// 1000.0 µs, p99 1000.0 µs, max 1000.0 µs, jitter 0.0 µs; working
+    /// counter 3, 50 mismatches from packet 460 (1)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "stream {} {}", self.iface, self.command.name())?;
+        if matches!(self.command, Command::Lrd | Command::Lwr | Command::Lrw) {
+            write!(f, " logical {:#010x}", self.address)?;
+        } else {
+            write!(
+                f,
+                " adp {:#06x} ado {:#06x}",
+                self.address & 0xFFFF,
+                self.address >> 16
+            )?;
+        }
+        write!(f, ": {} frames", self.sent)?;
+        let us = |ns: u64| ns as f64 / 1000.0;
+        if self.resolved() {
+            if let (Some(median), Some(p99), Some(max)) =
+                (self.cycle_median_ns, self.cycle_p99_ns, self.cycle_max_ns)
+            {
+                write!(
+                    f,
+                    ", cycle median {:.1} µs, p99 {:.1} µs, max {:.1} µs",
+                    us(median),
+                    us(p99),
+                    us(max)
+                )?;
+            }
+            if let Some(jitter) = self.jitter_ns {
+                write!(f, ", jitter {:.1} µs", us(jitter))?;
+            }
+        } else if self.intervals > 0 {
+            write!(
+                f,
+                ", cycle not resolved ({} of {} intervals are 0 in the capture's clock)",
+                self.zero_intervals, self.intervals
+            )?;
+        }
+        if let Some(usual) = self.wkc_usual {
+            write!(f, "; working counter {usual}")?;
+            if let Some((packet, _, wkc)) = self.first_mismatch {
+                write!(
+                    f,
+                    ", {} mismatches from packet {packet} ({wkc})",
+                    self.wkc_mismatches
+                )?;
+            }
+        }
+        writeln!(f)
+    }
+}
