@@ -10,7 +10,7 @@ mod network;
 #[cfg(feature = "std")]
 mod session;
 #[cfg(feature = "std")]
-pub use network::{AlRegister, Meaning, SiiField, SlaveRef};
+pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
 #[cfg(feature = "std")]
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
 #[cfg(feature = "decoder")]

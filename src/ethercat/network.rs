@@ -27,6 +27,9 @@ const AKD_VENDOR: u32 = 0x0000_006A;
 /// The AKD's product code (`AKD` in ASCII).
 const AKD_PRODUCT: u32 = 0x0041_4B44;
 
+/// The error counters' registers: 0x0300 to 0x0313.
+pub const ERROR_COUNTERS_LEN: usize = 0x14;
+
 /// Which slave a meaning is about: its configured station address and its
 /// position, as far as the capture has shown them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -137,6 +140,26 @@ pub enum Meaning<'a> {
         word: u32,
         /// The value, little-endian.
         value: u32,
+    },
+    /// The DL status register 0x0110 of one slave as read: the low byte
+    /// (PDI, watchdog, physical link per port in bits 4–7) and the high
+    /// byte (loop closed and communication per port, two bits each), each
+    /// where the read covers it (TwinCAT reads 0x0111 alone).
+    DlStatus {
+        /// The slave.
+        slave: SlaveRef,
+        /// Byte 0x0110.
+        low: Option<u8>,
+        /// Byte 0x0111.
+        high: Option<u8>,
+    },
+    /// The error counters 0x0300–0x0313 of one slave as read, each byte
+    /// where the read covers it (docs/ethercat.md#error-counters).
+    ErrorCounters {
+        /// The slave.
+        slave: SlaveRef,
+        /// Bytes 0x0300 to 0x0313.
+        bytes: [Option<u8>; ERROR_COUNTERS_LEN],
     },
     /// A mailbox message written to a slave or read from it.
     Mailbox {
@@ -326,6 +349,25 @@ impl Network {
                 });
             }
             self.sii_read(slave, ado, data, &mut on);
+            let low = covered(ado, data, register::DL_STATUS, 1).map(|b| b[0]);
+            let high = covered(ado, data, register::DL_STATUS + 1, 1).map(|b| b[0]);
+            if low.is_some() || high.is_some() {
+                on(Meaning::DlStatus {
+                    slave: reference,
+                    low,
+                    high,
+                });
+            }
+            let mut bytes = [None; ERROR_COUNTERS_LEN];
+            for (i, byte) in bytes.iter_mut().enumerate() {
+                *byte = covered(ado, data, register::RX_ERROR_COUNTERS + i as u16, 1).map(|b| b[0]);
+            }
+            if bytes.iter().any(Option::is_some) {
+                on(Meaning::ErrorCounters {
+                    slave: reference,
+                    bytes,
+                });
+            }
         }
         if command.addressing() == Addressing::Station
             && (command == Command::Fpwr || command == Command::Fprd)

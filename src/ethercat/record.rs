@@ -8,6 +8,7 @@ use crate::can::Iface;
 use crate::canopen::Emcy;
 use crate::decoder::json::{self, Object};
 use crate::decoder::record::emcy_json;
+use crate::ethercat::register;
 use crate::ethercat::{
     Addressing, AlRegister, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType,
     Meaning, Packet, SiiField, SlaveRef, COE_HEADER_LEN,
@@ -209,6 +210,8 @@ impl MeaningRecord<'_, '_> {
             Meaning::StationAddress { .. } => "station",
             Meaning::AlState { .. } | Meaning::BroadcastAlStatus { .. } => "al_state",
             Meaning::Sii { .. } => "sii",
+            Meaning::DlStatus { .. } => "dl_status",
+            Meaning::ErrorCounters { .. } => "error_counters",
             Meaning::Mailbox { header, body, .. } => match coe(header.mailbox_type, body) {
                 Some((CoeService::Emergency, _)) => "coe_emcy",
                 Some((CoeService::SdoRequest | CoeService::SdoResponse, _)) => "coe_sdo",
@@ -243,6 +246,14 @@ impl MeaningRecord<'_, '_> {
                 obj.name("register", AlRegister::Status.name());
                 al_json(&mut obj, Some(status), None);
                 obj.uint("answered", u64::from(answered));
+            }
+            Meaning::DlStatus { slave, low, high } => {
+                slave_json(&mut obj, slave);
+                dl_status_json(&mut obj, low, high);
+            }
+            Meaning::ErrorCounters { slave, bytes } => {
+                slave_json(&mut obj, slave);
+                error_counters_json(&mut obj, &bytes);
             }
             Meaning::Sii { slave, word, value } => {
                 slave_json(&mut obj, slave);
@@ -361,6 +372,38 @@ impl fmt::Display for Words<'_, '_, '_> {
                 if answered == 1 { "" } else { "s" },
                 if status.error() { ", error" } else { "" }
             ),
+            Meaning::DlStatus {
+                slave: s,
+                low,
+                high,
+            } => {
+                slave(f, s)?;
+                f.write_str(" DL status")?;
+                if let Some(low) = low {
+                    write!(f, " link on ports {}", ports(low >> 4, 1))?;
+                }
+                if let Some(high) = high {
+                    write!(
+                        f,
+                        " loop closed on ports {} communication on ports {}",
+                        ports(high, 2),
+                        ports(high >> 1, 2)
+                    )?;
+                }
+                Ok(())
+            }
+            Meaning::ErrorCounters { slave: s, bytes } => {
+                slave(f, s)?;
+                f.write_str(" error counters")?;
+                let mut any = false;
+                for (at, value) in bytes.iter().enumerate() {
+                    if let (Some(name), Some(value)) = (register::error_counter_name(at), value) {
+                        write!(f, "{} {name} {value}", if any { "," } else { "" })?;
+                        any = true;
+                    }
+                }
+                Ok(())
+            }
             Meaning::Sii {
                 slave: s,
                 word,
@@ -573,4 +616,90 @@ fn mailbox_json(
         },
         None => {}
     }
+}
+
+/// The ports (0–3) whose bit is set in `bits`, every `step` bits:
+/// `0 2`, or `none`.
+fn ports(bits: u8, step: u32) -> String {
+    let set: Vec<String> = (0..4u32)
+        .filter(|p| bits >> (p * step) & 1 != 0)
+        .map(|p| p.to_string())
+        .collect();
+    if set.is_empty() {
+        "none".to_owned()
+    } else {
+        set.join(" ")
+    }
+}
+
+/// Four flags of `byte`, every `step` bits from `shift`, as a JSON list.
+fn flags(out: &mut Vec<u8>, byte: u8, shift: u32, step: u32) {
+    out.push(b'[');
+    for p in 0..4u32 {
+        if p > 0 {
+            out.push(b',');
+        }
+        let set = byte >> (shift + p * step) & 1 != 0;
+        out.extend_from_slice(if set { b"true" } else { b"false" });
+    }
+    out.push(b']');
+}
+
+/// `pdi_operational`, `links`, `loops_closed`, `communication`: null where
+/// the read does not cover the byte.
+fn dl_status_json(obj: &mut Object<'_>, low: Option<u8>, high: Option<u8>) {
+    match low {
+        Some(low) => {
+            obj.bool("pdi_operational", low & 1 != 0);
+            flags(obj.key("links"), low, 4, 1);
+        }
+        None => {
+            obj.null("pdi_operational");
+            obj.null("links");
+        }
+    }
+    match high {
+        Some(high) => {
+            flags(obj.key("loops_closed"), high, 0, 2);
+            flags(obj.key("communication"), high, 1, 2);
+        }
+        None => {
+            obj.null("loops_closed");
+            obj.null("communication");
+        }
+    }
+}
+
+/// A list of four counters at `at`, null where not read.
+fn counters(out: &mut Vec<u8>, bytes: &[Option<u8>], at: usize, step: usize) {
+    out.push(b'[');
+    for p in 0..4 {
+        if p > 0 {
+            out.push(b',');
+        }
+        match bytes.get(at + p * step).copied().flatten() {
+            Some(value) => json::uint(out, u64::from(value)),
+            None => out.extend_from_slice(b"null"),
+        }
+    }
+    out.push(b']');
+}
+
+/// The error counters: per port lists and the single ones, null where not
+/// read.
+fn error_counters_json(obj: &mut Object<'_>, bytes: &[Option<u8>]) {
+    counters(obj.key("invalid_frames"), bytes, 0x00, 2);
+    counters(obj.key("rx_errors"), bytes, 0x01, 2);
+    counters(obj.key("forwarded_errors"), bytes, 0x08, 1);
+    for (key, at) in [
+        ("processing_unit_errors", 0x0C),
+        ("pdi_errors", 0x0D),
+        ("pdi_error_code", 0x0E),
+    ] {
+        match bytes.get(at).copied().flatten() {
+            Some(value) => obj.uint(key, u64::from(value)),
+            None => obj.null(key),
+        }
+    }
+    counters(obj.key("lost_links"), bytes, 0x10, 1);
 }

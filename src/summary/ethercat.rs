@@ -13,7 +13,7 @@ use crate::can::{BusName, EthercatPacket, Timestamp};
 use crate::canopen::Emcy;
 use crate::ethercat::{
     AlRegister, AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Counts, Datagram,
-    FrameCopy, MailboxType, Meaning, Session, SlaveRef, COE_HEADER_LEN,
+    FrameCopy, MailboxType, Meaning, Session, SlaveRef, COE_HEADER_LEN, ERROR_COUNTERS_LEN,
 };
 use crate::logs::Position;
 use crate::profiles::Profile;
@@ -101,6 +101,44 @@ pub struct SlaveSummary {
     pub mailbox_refused: u64,
     /// Mailbox messages found in a guessed area.
     pub mailbox_guessed: u64,
+    /// The DL status as last read (0x0110 low, 0x0111 high byte).
+    pub dl_last: (Option<u8>, Option<u8>),
+    /// Every change of DL status after the first read (at most
+    /// [`MAX_AL_CHANGES`]).
+    pub dl_changes: Vec<DlChange>,
+    /// The error counters as last read (0x0300–0x0313).
+    pub counters_last: [Option<u8>; ERROR_COUNTERS_LEN],
+    /// Every rise of an error counter (a fall is a reset: not kept; at most
+    /// [`MAX_AL_CHANGES`]).
+    pub counter_rises: Vec<CounterRise>,
+}
+
+/// A change of a slave's DL status.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DlChange {
+    /// The packet.
+    pub packet: u64,
+    /// When.
+    pub timestamp: Option<Timestamp>,
+    /// The bytes before (low, high; as far as read).
+    pub from: (Option<u8>, Option<u8>),
+    /// The bytes after.
+    pub to: (Option<u8>, Option<u8>),
+}
+
+/// A rise of one error counter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CounterRise {
+    /// The packet.
+    pub packet: u64,
+    /// When.
+    pub timestamp: Option<Timestamp>,
+    /// The counter's register, 0x0300–0x0313.
+    pub register: u16,
+    /// Its value before.
+    pub from: u8,
+    /// Its value after.
+    pub to: u8,
 }
 
 /// A cyclic datagram stream (`type: "stream"`): one command at one address
@@ -162,6 +200,10 @@ impl SlaveSummary {
             mailbox_read: 0,
             mailbox_refused: 0,
             mailbox_guessed: 0,
+            dl_last: (None, None),
+            dl_changes: Vec::new(),
+            counters_last: [None; ERROR_COUNTERS_LEN],
+            counter_rises: Vec::new(),
         }
     }
 }
@@ -437,6 +479,43 @@ impl Port {
                 self.slave(slave);
             }
             Meaning::BroadcastAlStatus { .. } => {}
+            Meaning::DlStatus { slave, low, high } => {
+                let Some(s) = self.slave(slave) else { return };
+                let before = s.dl_last;
+                let after = (low.or(before.0), high.or(before.1));
+                let changed = (low.is_some() && before.0.is_some() && low != before.0)
+                    || (high.is_some() && before.1.is_some() && high != before.1);
+                if changed && s.dl_changes.len() < MAX_AL_CHANGES {
+                    s.dl_changes.push(DlChange {
+                        packet,
+                        timestamp,
+                        from: before,
+                        to: after,
+                    });
+                }
+                s.dl_last = after;
+            }
+            Meaning::ErrorCounters { slave, bytes } => {
+                let Some(s) = self.slave(slave) else { return };
+                for (at, value) in bytes.iter().enumerate() {
+                    let Some(value) = *value else { continue };
+                    if let Some(before) = s.counters_last[at] {
+                        if value > before
+                            && crate::ethercat::register::error_counter_name(at).is_some()
+                            && s.counter_rises.len() < MAX_AL_CHANGES
+                        {
+                            s.counter_rises.push(CounterRise {
+                                packet,
+                                timestamp,
+                                register: 0x0300 + at as u16,
+                                from: before,
+                                to: value,
+                            });
+                        }
+                    }
+                    s.counters_last[at] = Some(value);
+                }
+            }
             Meaning::AlState {
                 slave,
                 register,
@@ -796,7 +875,57 @@ pub(super) fn slave_entries<M: SerializeMap>(
     map.serialize_entry("mailbox_written", &s.mailbox_written)?;
     map.serialize_entry("mailbox_read", &s.mailbox_read)?;
     map.serialize_entry("mailbox_refused", &s.mailbox_refused)?;
-    map.serialize_entry("mailbox_guessed", &s.mailbox_guessed)
+    map.serialize_entry("mailbox_guessed", &s.mailbox_guessed)?;
+    let dl: Vec<_> = s.dl_changes.iter().map(DlJson).collect();
+    map.serialize_entry("dl_status_changes", &dl)?;
+    let rises: Vec<_> = s.counter_rises.iter().map(RiseJson).collect();
+    map.serialize_entry("error_counter_rises", &rises)
+}
+
+/// A DL status change as JSON: `{"packet", "ts", "links",
+/// "loops_closed"}`, each list of four ports (null where not read).
+struct DlJson<'a>(&'a DlChange);
+
+impl Serialize for DlJson<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let c = self.0;
+        let bits = |byte: Option<u8>, shift: u32, step: u32| {
+            byte.map(|b| {
+                (0..4u32)
+                    .map(|p| b >> (shift + p * step) & 1 != 0)
+                    .collect::<Vec<_>>()
+            })
+        };
+        let mut map = serializer.serialize_map(Some(6))?;
+        map.serialize_entry("packet", &c.packet)?;
+        opt_ts(&mut map, "ts", c.timestamp)?;
+        map.serialize_entry("links_before", &bits(c.from.0, 4, 1))?;
+        map.serialize_entry("links", &bits(c.to.0, 4, 1))?;
+        map.serialize_entry("loops_closed_before", &bits(c.from.1, 0, 2))?;
+        map.serialize_entry("loops_closed", &bits(c.to.1, 0, 2))?;
+        map.end()
+    }
+}
+
+/// An error counter's rise as JSON: `{"packet", "ts", "register", "name",
+/// "from", "to"}`.
+struct RiseJson<'a>(&'a CounterRise);
+
+impl Serialize for RiseJson<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let r = self.0;
+        let mut map = serializer.serialize_map(Some(6))?;
+        map.serialize_entry("packet", &r.packet)?;
+        opt_ts(&mut map, "ts", r.timestamp)?;
+        map.serialize_entry("register", &r.register)?;
+        map.serialize_entry(
+            "name",
+            &crate::ethercat::register::error_counter_name(usize::from(r.register - 0x0300)),
+        )?;
+        map.serialize_entry("from", &r.from)?;
+        map.serialize_entry("to", &r.to)?;
+        map.end()
+    }
 }
 
 /// The entries of a `type: "stream"` record.
@@ -951,6 +1080,35 @@ impl fmt::Display for SlaveSummary {
         }
         if self.mailbox_refused > 0 {
             write!(f, "; {} mailbox writes not accepted", self.mailbox_refused)?;
+        }
+        if !self.dl_changes.is_empty() {
+            let first = &self.dl_changes[0];
+            match self.dl_changes.len() {
+                1 => write!(f, "; DL status changed at packet {}", first.packet)?,
+                n => write!(
+                    f,
+                    "; DL status changed {n} times, first at packet {}",
+                    first.packet
+                )?,
+            }
+        }
+        for rise in self.counter_rises.iter().take(4) {
+            write!(
+                f,
+                "; {} {} → {} (packet {})",
+                crate::ethercat::register::error_counter_name(usize::from(rise.register - 0x0300))
+                    .unwrap_or("counter"),
+                rise.from,
+                rise.to,
+                rise.packet
+            )?;
+        }
+        if self.counter_rises.len() > 4 {
+            write!(
+                f,
+                "; {} more error counter rises",
+                self.counter_rises.len() - 4
+            )?;
         }
         writeln!(f)
     }

@@ -350,3 +350,84 @@ fn real_captures_name_their_slaves_and_streams() {
     assert!(!armw.resolved());
     assert_eq!(twincat.ethercat.slaves[0].station, Some(1001));
 }
+
+/// An FPRD of `len` bytes at `ado` of station 0x1001, sent and returned
+/// with `data`: the two packets' EtherCAT payloads.
+fn fprd(index: u8, ado: u16, data: &[u8]) -> [Vec<u8>; 2] {
+    use motionwire::ethercat::{Command, DatagramRepr};
+    let copy = |data: &[u8], wkc: u16| {
+        let repr = DatagramRepr {
+            command: Command::Fprd,
+            index,
+            address: (u32::from(ado) << 16) | 0x1001,
+            circulating: false,
+            more_follows: false,
+            irq: 0,
+            data,
+            working_counter: wkc,
+        };
+        let mut payload = ((repr.buffer_len() as u16) | 0x1000).to_le_bytes().to_vec();
+        let at = payload.len();
+        payload.resize(at + repr.buffer_len(), 0);
+        repr.emit(&mut payload[at..]).unwrap();
+        payload
+    };
+    [copy(&vec![0; data.len()], 0), copy(data, 1)]
+}
+
+/// Error counters that rise and a DL status that changes are said per
+/// slave, with their packets; a counter that falls was reset, not an event
+/// (docs/ethercat.md#summary).
+#[test]
+fn error_counters_rising_and_a_link_lost_are_summarized() {
+    use motionwire::can::{EthercatPacket, LogEvent};
+    use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
+    let mut counters = [0u8; 20];
+    let mut reads = Vec::new();
+    // Counters 0, then RX errors on port 1 at 5, then reset to 0.
+    reads.push(fprd(1, 0x0300, &counters));
+    counters[3] = 5;
+    reads.push(fprd(2, 0x0300, &counters));
+    counters[3] = 0;
+    reads.push(fprd(3, 0x0300, &counters));
+    // DL status: links on ports 0 and 1, then port 1's link lost.
+    reads.push(fprd(4, 0x0110, &[0x31, 0x5a]));
+    reads.push(fprd(5, 0x0110, &[0x11, 0x5e]));
+    let mut summarizer = motionwire::summary::Summarizer::default();
+    let mut number = 0;
+    for [sent, returned] in &reads {
+        for (payload, source) in [
+            (sent, [0x10; 6]),
+            (returned, [0x12, 0x10, 0x10, 0x10, 0x10, 0x10]),
+        ] {
+            number += 1;
+            let packet = EthercatPacket {
+                timestamp: None,
+                iface: None,
+                link: EthercatLink {
+                    destination: None,
+                    source: Mac(source),
+                    encapsulation: Encapsulation::Ethernet,
+                    payload,
+                },
+            };
+            summarizer.add(logs::Position::Record(number), &LogEvent::Ethercat(packet));
+        }
+    }
+    let summary = summarizer.finish();
+    let slave = &summary.ethercat.slaves[0];
+    assert_eq!(slave.station, Some(0x1001));
+    assert_eq!(slave.counter_rises.len(), 1, "the reset is no event");
+    let rise = slave.counter_rises[0];
+    assert_eq!(
+        (rise.register, rise.from, rise.to, rise.packet),
+        (0x0303, 0, 5, 4)
+    );
+    assert_eq!(slave.dl_changes.len(), 1);
+    assert_eq!(slave.dl_changes[0].packet, 10);
+    let text = summary.to_string();
+    assert!(text.contains("RX errors port 1 0 → 5 (packet 4)"), "{text}");
+    assert!(text.contains("DL status changed at packet 10"), "{text}");
+    let json: Vec<String> = summary.records().map(|r| r.to_json()).collect();
+    assert!(json.iter().any(|r| r.contains(r#""error_counter_rises":[{"packet":4,"ts":null,"register":771,"name":"RX errors port 1","from":0,"to":5}]"#)), "{json:?}");
+}

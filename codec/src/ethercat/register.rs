@@ -60,3 +60,31 @@ pub fn covered(ado: u16, data: &[u8], register: u16, len: usize) -> Option<&[u8]
     let start = usize::from(register.checked_sub(ado)?);
     data.get(start..start.checked_add(len)?)
 }
+
+/// The name of the error counter at `offset` from 0x0300 (Beckhoff's ESC
+/// datasheet, section II, 0x0300–0x0313), `None` for a reserved byte.
+#[must_use]
+pub const fn error_counter_name(offset: usize) -> Option<&'static str> {
+    Some(match offset {
+        0x00 => "invalid frames port 0",
+        0x01 => "RX errors port 0",
+        0x02 => "invalid frames port 1",
+        0x03 => "RX errors port 1",
+        0x04 => "invalid frames port 2",
+        0x05 => "RX errors port 2",
+        0x06 => "invalid frames port 3",
+        0x07 => "RX errors port 3",
+        0x08 => "forwarded errors port 0",
+        0x09 => "forwarded errors port 1",
+        0x0A => "forwarded errors port 2",
+        0x0B => "forwarded errors port 3",
+        0x0C => "processing unit errors",
+        0x0D => "PDI errors",
+        0x0E => "PDI error code",
+        0x10 => "lost links port 0",
+        0x11 => "lost links port 1",
+        0x12 => "lost links port 2",
+        0x13 => "lost links port 3",
+        _ => return None,
+    })
+}
