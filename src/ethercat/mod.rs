@@ -16,4 +16,4 @@ pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WIN
 #[cfg(feature = "decoder")]
 mod record;
 #[cfg(feature = "decoder")]
-pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND};
+pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND, RECORD_KINDS};

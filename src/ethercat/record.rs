@@ -17,6 +17,21 @@ use crate::ethercat::{
 /// The kind of a datagram's record (`"kind": "ecat_datagram"`).
 pub const DATAGRAM_KIND: &str = "ecat_datagram";
 
+/// Every kind of record `decode` writes for an EtherCAT capture, in the
+/// order docs/ethercat.md lists them: the datagram's, then what it tells
+/// ([`MeaningRecord::kind`]).
+pub const RECORD_KINDS: [&str; 9] = [
+    DATAGRAM_KIND,
+    "station",
+    "al_state",
+    "sii",
+    "dl_status",
+    "error_counters",
+    "mailbox",
+    "coe_sdo",
+    "coe_emcy",
+];
+
 /// One datagram of a packet, numbered in its frame from 1: the record
 /// `motionwire decode` writes for it (docs/ethercat.md#records).
 ///
@@ -217,6 +232,21 @@ impl MeaningRecord<'_, '_> {
                 Some((CoeService::SdoRequest | CoeService::SdoResponse, _)) => "coe_sdo",
                 _ => "mailbox",
             },
+        }
+    }
+
+    /// Return the slave the record is about (station and position as far
+    /// as known; neither for a broadcast read).
+    #[must_use]
+    pub fn slave(&self) -> SlaveRef {
+        match self.meaning {
+            Meaning::StationAddress { slave }
+            | Meaning::AlState { slave, .. }
+            | Meaning::Sii { slave, .. }
+            | Meaning::DlStatus { slave, .. }
+            | Meaning::ErrorCounters { slave, .. }
+            | Meaning::Mailbox { slave, .. } => slave,
+            Meaning::BroadcastAlStatus { .. } => SlaveRef::default(),
         }
     }
 

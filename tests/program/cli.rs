@@ -1813,3 +1813,41 @@ fn the_summary_starts_with_its_verdict() {
     );
     assert_eq!(records(&calm)[0]["type"], "node");
 }
+
+/// docs/ethercat.md#filters: `--only` takes EtherCAT kinds beside CAN
+/// ones, `--slave` keeps one slave's records, and the CAN filters keep no
+/// EtherCAT record.
+#[test]
+fn ethercat_records_are_filtered_by_kind_and_slave() {
+    let capture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/ethercat/synthetic_akd_fault.pcapng"
+    );
+    let kinds = |out: &Output| {
+        let mut kinds: Vec<String> = records(out)
+            .iter()
+            .map(|r| r["kind"].as_str().unwrap().to_owned())
+            .collect();
+        kinds.dedup();
+        kinds
+    };
+    let out = run(&["decode", "--json", "--only", "coe_emcy", capture], "");
+    assert_eq!(kinds(&out), ["coe_emcy"]);
+    assert_eq!(records(&out)[0]["code"], 0x7305);
+    let out = run(&["decode", "--json", "--only", "al_state", "--slave", "0x1001", capture], "");
+    let all = records(&out);
+    assert!(all.iter().all(|r| r["kind"] == "al_state" && r["slave"] == 0x1001));
+    assert_eq!(all.last().unwrap()["code"], 0x001B);
+    // FPxx datagrams name their slave; the cyclic LRW names none.
+    let out = run(&["decode", "--json", "--only", "ecat_datagram", "--slave", "4096", capture], "");
+    let all = records(&out);
+    assert!(!all.is_empty());
+    assert!(all.iter().all(|r| r["cmd"].as_str().unwrap().starts_with("FP") && r["adp"] == 0x1000));
+    for filter in [["--only", "emcy"], ["--node", "3"], ["--id", "0x080"]] {
+        let out = run(&["decode", "--json", filter[0], filter[1], capture], "");
+        assert_eq!(stdout(&out), "", "{filter:?}");
+    }
+    let out = run(&["decode", "--only", "al_status", capture], "");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("\"al_status\" is not a kind; one of emcy,"));
+}

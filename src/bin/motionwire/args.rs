@@ -64,7 +64,7 @@ pub struct ReportArgs {
     /// Accepted as `decode --summary` accepts it; the page, like the
     /// summary, counts every frame.
     #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
-    pub only: Vec<MessageKind>,
+    pub only: Vec<Kind>,
     /// Accepted as `decode --summary` accepts it; the page counts every frame.
     #[arg(long, value_delimiter = ',', value_name = "NODE[,NODE]", value_parser = parse_node)]
     pub node: Vec<NodeId>,
@@ -87,6 +87,7 @@ impl ReportArgs {
             joined: self.joined,
             heartbeat_ms: self.heartbeat_ms,
             only: self.only.clone(),
+            slave: Vec::new(),
             node: self.node.clone(),
             id: self.id.clone(),
             files: self.files.clone(),
@@ -155,7 +156,12 @@ pub struct DecodeArgs {
     /// Keep only frames of these kinds (comma-separated) in the per-frame
     /// output; the summary always counts every frame.
     #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind, help = kind_help())]
-    pub only: Vec<MessageKind>,
+    pub only: Vec<Kind>,
+    /// Keep only the EtherCAT records of these slaves, by station address
+    /// (comma-separated, decimal or `0x` hex; docs/ethercat.md#filters);
+    /// the summary counts every packet.
+    #[arg(long, value_delimiter = ',', value_name = "STATION[,STATION]", value_parser = parse_station)]
+    pub slave: Vec<u16>,
     /// Keep only frames that carry one of these node-IDs (comma-separated;
     /// an NMT command's target is not one); the summary counts every frame.
     #[arg(long, value_delimiter = ',', value_name = "NODE[,NODE]", value_parser = parse_node)]
@@ -360,11 +366,10 @@ fn format_help() -> String {
 
 /// `--only`'s help, with the kind names.
 fn kind_help() -> String {
-    let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
     format!(
-        "Keep only frames of these kinds (comma-separated) in the per-frame output: {}; the \
-         summary always counts every frame",
-        names.join(", ")
+        "Keep only frames and records of these kinds (comma-separated) in the per-frame output: \
+         {}; the summary always counts every frame",
+        kind_names().join(", ")
     )
 }
 
@@ -375,9 +380,40 @@ fn parse_format(text: &str) -> Result<LogFormat, String> {
     })
 }
 
-fn parse_kind(text: &str) -> Result<MessageKind, String> {
-    MessageKind::from_name(text).ok_or_else(|| {
-        let names: Vec<_> = MessageKind::ALL.iter().map(|k| k.name()).collect();
-        format!("{text:?} is not a kind; one of {}", names.join(", "))
-    })
+/// A kind of record `--only` keeps: a CAN frame's, or an EtherCAT record's
+/// (docs/ethercat.md#filters).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A CAN frame's kind.
+    Can(MessageKind),
+    /// An EtherCAT record's kind, one of `ethercat::RECORD_KINDS`.
+    Ethercat(&'static str),
+}
+
+/// Every kind's name, CAN's then EtherCAT's.
+fn kind_names() -> Vec<&'static str> {
+    MessageKind::ALL
+        .iter()
+        .map(|k| k.name())
+        .chain(motionwire::ethercat::RECORD_KINDS)
+        .collect()
+}
+
+fn parse_kind(text: &str) -> Result<Kind, String> {
+    if let Some(kind) = MessageKind::from_name(text) {
+        return Ok(Kind::Can(kind));
+    }
+    motionwire::ethercat::RECORD_KINDS
+        .iter()
+        .find(|k| **k == text)
+        .map(|k| Kind::Ethercat(k))
+        .ok_or_else(|| format!("{text:?} is not a kind; one of {}", kind_names().join(", ")))
+}
+
+fn parse_station(text: &str) -> Result<u16, String> {
+    let parsed = match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u16::from_str_radix(hex, 16),
+        None => text.parse(),
+    };
+    parsed.map_err(|_| format!("{text:?} is not a station address (0 to 65535, decimal or 0x hex)"))
 }

@@ -13,15 +13,37 @@ use std::time::Duration;
 use motionwire::can::{EthercatPacket, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::{Decoder, DecoderConfig};
-use motionwire::ethercat::{DatagramRecord, MeaningRecord, Session};
+use motionwire::ethercat::{Addressing, DatagramRecord, MeaningRecord, Session, DATAGRAM_KIND};
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::report::{Recorder, Report, ReportInput};
 use motionwire::summary::{FileSpan, SeveralFiles, Summarizer, Summary};
 
-use crate::args::{node_profiles, DecodeArgs, IdRange, TimestampBase};
+use crate::args::{node_profiles, DecodeArgs, IdRange, Kind, TimestampBase};
 use crate::failure::Failure;
 use crate::record::{Record, CSV_HEADER};
+
+/// Which EtherCAT records `decode` writes (docs/ethercat.md#filters).
+struct EthercatFilter {
+    /// The kinds `--only` names; `None`: every kind.
+    kinds: Option<Vec<&'static str>>,
+    /// The stations `--slave` names; empty: every slave.
+    slaves: Vec<u16>,
+    /// A CAN filter (`--node`, `--id`) is set: no EtherCAT record.
+    none: bool,
+}
+
+impl EthercatFilter {
+    /// Whether a record of `kind` about `station` is written.
+    fn shows(&self, kind: &str, station: Option<u16>) -> bool {
+        !self.none
+            && self
+                .kinds
+                .as_ref()
+                .map_or(true, |kinds| kinds.contains(&kind))
+            && (self.slaves.is_empty() || station.is_some_and(|s| self.slaves.contains(&s)))
+    }
+}
 
 /// An input as given on the command line.
 struct Input {
@@ -106,6 +128,8 @@ struct Sink<'a> {
     report: Option<Report>,
     output: Output,
     kinds: [bool; MessageKind::ALL.len()],
+    /// Which EtherCAT records are written (docs/ethercat.md#filters).
+    ethercat_shown: EthercatFilter,
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
     skipped: u64,
@@ -156,8 +180,24 @@ impl<'a> Sink<'a> {
             })?;
         }
         let mut kinds = [args.only.is_empty(); MessageKind::ALL.len()];
+        let mut ethercat_kinds = Vec::new();
         for kind in &args.only {
-            kinds[kind.index()] = true;
+            match kind {
+                Kind::Can(kind) => kinds[kind.index()] = true,
+                Kind::Ethercat(kind) => ethercat_kinds.push(*kind),
+            }
+        }
+        // docs/ethercat.md#filters: `--only` of CAN kinds alone, `--node`
+        // and `--id` select CAN frames, which no EtherCAT record is;
+        // `--slave` selects EtherCAT records, which no CAN frame is.
+        let can_filtered = !args.node.is_empty() || !args.id.is_empty();
+        let ethercat_shown = EthercatFilter {
+            kinds: (!args.only.is_empty()).then_some(ethercat_kinds),
+            slaves: args.slave.clone(),
+            none: can_filtered,
+        };
+        if !args.slave.is_empty() {
+            kinds = [false; MessageKind::ALL.len()];
         }
         let nodes = (!args.node.is_empty()).then(|| {
             let mut nodes = [false; 128];
@@ -186,6 +226,7 @@ impl<'a> Sink<'a> {
                 Output::Text
             },
             kinds,
+            ethercat_shown,
             nodes,
             ids: &args.id,
             skipped: 0,
@@ -258,8 +299,6 @@ impl<'a> Sink<'a> {
                 return writeln!(self.err, "{}:{}: {}", self.input, position, damaged.error);
             }
         };
-        // The CAN filters select CAN frames: a datagram is none.
-        let shown = self.kinds.iter().all(|&k| k) && self.nodes.is_none() && self.ids.is_empty();
         for (at, datagram) in packet.datagrams().enumerate() {
             let datagram = match datagram {
                 Ok(datagram) => datagram,
@@ -280,25 +319,28 @@ impl<'a> Sink<'a> {
             let mut meanings = Vec::new();
             self.ethercat
                 .meanings(&packet, at, &datagram, |m| meanings.push(m));
-            if !shown {
-                continue;
-            }
             let record = DatagramRecord {
                 packet: &packet,
                 number: at + 1,
                 datagram,
             };
-            match self.output {
-                Output::Json => {
-                    record.append_json(&mut self.json, self.file.as_deref());
-                    if self.json.len() >= JSON_BLOCK {
-                        self.out.write_all(&self.json)?;
-                        self.json.clear();
+            let station =
+                (datagram.command().addressing() == Addressing::Station).then(|| datagram.adp());
+            if self.ethercat_shown.shows(DATAGRAM_KIND, station) {
+                match self.output {
+                    Output::Json => {
+                        record.append_json(&mut self.json, self.file.as_deref());
+                        if self.json.len() >= JSON_BLOCK {
+                            self.out.write_all(&self.json)?;
+                            self.json.clear();
+                        }
                     }
-                }
-                Output::Text => record.write_text(&mut self.out, self.file.as_deref())?,
-                Output::Csv => {
-                    crate::record::write_datagram_csv(&mut self.out, &record, self.file.as_deref())?
+                    Output::Text => record.write_text(&mut self.out, self.file.as_deref())?,
+                    Output::Csv => crate::record::write_datagram_csv(
+                        &mut self.out,
+                        &record,
+                        self.file.as_deref(),
+                    )?,
                 }
             }
             for meaning in meanings {
@@ -307,6 +349,12 @@ impl<'a> Sink<'a> {
                     number: at + 1,
                     meaning,
                 };
+                if !self
+                    .ethercat_shown
+                    .shows(record.kind(), record.slave().station)
+                {
+                    continue;
+                }
                 match self.output {
                     Output::Json => record.append_json(&mut self.json, self.file.as_deref()),
                     Output::Text => record.write_text(
