@@ -93,6 +93,15 @@ pub struct SlaveSummary {
     pub sdo_responses: u64,
     /// SDO aborts, from either side.
     pub sdo_aborts: u64,
+    /// SDO transfers that ended with their last confirmation.
+    pub sdo_ok: u64,
+    /// The aborts, each with its object (the first [`MAX_EMERGENCIES`]).
+    pub sdo_abort_list: Vec<CoeSdoAbort>,
+    /// The median time from a transfer's request to its last confirmation,
+    /// ns (two significant digits).
+    pub sdo_latency_median_ns: Option<u64>,
+    /// The longest, ns.
+    pub sdo_latency_max_ns: Option<u64>,
     /// Mailbox messages written and accepted.
     pub mailbox_written: u64,
     /// Mailbox messages read.
@@ -111,6 +120,35 @@ pub struct SlaveSummary {
     /// Every rise of an error counter (a fall is a reset: not kept; at most
     /// [`MAX_AL_CHANGES`]).
     pub counter_rises: Vec<CounterRise>,
+}
+
+/// A CoE SDO abort, from either side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CoeSdoAbort {
+    /// The packet of the abort.
+    pub packet: u64,
+    /// When.
+    pub timestamp: Option<Timestamp>,
+    /// The object, as the abort names it.
+    pub index: u16,
+    /// Its sub-index.
+    pub subindex: u8,
+    /// The abort code.
+    pub code: crate::canopen::SdoAbortCode,
+    /// Whether the slave sent it (read from its mailbox, whatever the
+    /// service) rather than the master.
+    pub from_slave: bool,
+}
+
+/// A CoE SDO transfer waiting for its last confirmation.
+#[derive(Debug, Clone, Copy)]
+struct OpenSdo {
+    timestamp: Option<Timestamp>,
+    upload: bool,
+    /// Segments follow the initiate exchange.
+    segmented: bool,
+    /// The master sent the last download segment.
+    last_sent: bool,
 }
 
 /// A change of a slave's DL status.
@@ -196,6 +234,10 @@ impl SlaveSummary {
             sdo_requests: 0,
             sdo_responses: 0,
             sdo_aborts: 0,
+            sdo_ok: 0,
+            sdo_abort_list: Vec::new(),
+            sdo_latency_median_ns: None,
+            sdo_latency_max_ns: None,
             mailbox_written: 0,
             mailbox_read: 0,
             mailbox_refused: 0,
@@ -247,6 +289,8 @@ struct Histogram {
     /// `[decade][mantissa 10..=99]`.
     counts: Box<[[u32; 90]; 11]>,
     total: u64,
+    /// The largest value added.
+    max: Option<u64>,
 }
 
 impl Histogram {
@@ -254,10 +298,12 @@ impl Histogram {
         Histogram {
             counts: Box::new([[0; 90]; 11]),
             total: 0,
+            max: None,
         }
     }
 
     fn add(&mut self, ns: u64) {
+        self.max = Some(self.max.map_or(ns, |m| m.max(ns)));
         let (decade, mantissa) = split(ns);
         if let Some(cell) = self
             .counts
@@ -329,6 +375,8 @@ struct Stream {
 struct Port {
     name: BusName,
     slaves: Vec<SlaveSummary>,
+    /// Per slave (same index): the open SDO transfer and the latencies.
+    sdo: Vec<(Option<OpenSdo>, Histogram)>,
     streams: Vec<Stream>,
     streams_dropped: u64,
 }
@@ -353,6 +401,7 @@ impl EthercatSummarizer {
                 self.ports.push(Port {
                     name,
                     slaves: Vec::new(),
+                    sdo: Vec::new(),
                     streams: Vec::new(),
                     streams_dropped: 0,
                 });
@@ -389,7 +438,11 @@ impl EthercatSummarizer {
                 counts: if single { counts } else { Counts::default() },
                 streams_dropped: port.streams_dropped,
             });
-            summary.slaves.extend(port.slaves);
+            for (mut slave, (_, latencies)) in port.slaves.into_iter().zip(port.sdo) {
+                slave.sdo_latency_median_ns = latencies.quantile(0.5);
+                slave.sdo_latency_max_ns = latencies.max;
+                summary.slaves.push(slave);
+            }
             for stream in port.streams {
                 let cyclic = matches!(
                     stream.command,
@@ -446,6 +499,12 @@ impl Stream {
 
 impl Port {
     fn slave(&mut self, slave: SlaveRef) -> Option<&mut SlaveSummary> {
+        let at = self.slave_at(slave)?;
+        Some(&mut self.slaves[at])
+    }
+
+    /// The index of `slave`'s summary, added when new.
+    fn slave_at(&mut self, slave: SlaveRef) -> Option<usize> {
         if slave.station.is_none() && slave.position.is_none() {
             return None;
         }
@@ -460,6 +519,7 @@ impl Port {
             Some(at) => at,
             None => {
                 self.slaves.push(SlaveSummary::new(self.name.clone()));
+                self.sdo.push((None, Histogram::new()));
                 self.slaves.len() - 1
             }
         };
@@ -470,7 +530,7 @@ impl Port {
         if slave.position.is_some() {
             found.position = slave.position;
         }
-        Some(found)
+        Some(at)
     }
 
     fn meaning(&mut self, packet: u64, timestamp: Option<Timestamp>, meaning: Meaning<'_>) {
@@ -619,20 +679,118 @@ impl Port {
                         }
                     }
                     CoeService::SdoRequest | CoeService::SdoResponse => {
-                        if coe.service == CoeService::SdoRequest {
+                        let request = coe.service == CoeService::SdoRequest;
+                        if request {
                             s.sdo_requests += 1;
                         } else {
                             s.sdo_responses += 1;
                         }
-                        if CoeSdo::parse(rest)
-                            .ok()
-                            .and_then(|sdo| sdo.abort_code())
-                            .is_some()
-                        {
-                            s.sdo_aborts += 1;
+                        if let Ok(sdo) = CoeSdo::parse(rest) {
+                            self.sdo_step(slave, request, written, &sdo, packet, timestamp);
                         }
                     }
                     _ => {}
+                }
+            }
+        }
+    }
+
+    /// Follow a slave's CoE SDO transfer by its messages (ETG.1000.6
+    /// §5.6.2): an initiate request opens it; an expedited or whole
+    /// initiate response, the last segment's, or the download segment
+    /// response after the last segment ends it; an abort from either side
+    /// ends it too (docs/ethercat.md#summary).
+    fn sdo_step(
+        &mut self,
+        slave: SlaveRef,
+        request: bool,
+        written: bool,
+        sdo: &CoeSdo<'_>,
+        packet: u64,
+        timestamp: Option<Timestamp>,
+    ) {
+        let Some(at) = self.slave_at(slave) else {
+            return;
+        };
+        let command = sdo.command();
+        let data = sdo.initiate_data();
+        let (open, latencies) = &mut self.sdo[at];
+        let summary = &mut self.slaves[at];
+        if let Some(code) = sdo.abort_code() {
+            summary.sdo_aborts += 1;
+            let (index, subindex) = sdo.multiplexer().unwrap_or((0, 0));
+            if summary.sdo_abort_list.len() < MAX_EMERGENCIES {
+                summary.sdo_abort_list.push(CoeSdoAbort {
+                    packet,
+                    timestamp,
+                    index,
+                    subindex,
+                    code,
+                    // A slave's abort is read from its mailbox, in a
+                    // response or, as real slaves send it, in a message of
+                    // the request service.
+                    from_slave: !written,
+                });
+            }
+            *open = None;
+            return;
+        }
+        let mut done = false;
+        match (request, sdo.specifier()) {
+            // Initiate download: expedited, or with its size and as much
+            // data as the message holds.
+            (true, 1) => {
+                let expedited = command & 0x02 != 0;
+                let size = data
+                    .get(..4)
+                    .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+                let held = data.len().saturating_sub(4);
+                *open = Some(OpenSdo {
+                    timestamp,
+                    upload: false,
+                    segmented: !expedited && size.is_some_and(|size| size as usize > held),
+                    last_sent: false,
+                });
+            }
+            (true, 2) => {
+                *open = Some(OpenSdo {
+                    timestamp,
+                    upload: true,
+                    segmented: false,
+                    last_sent: false,
+                });
+            }
+            (true, 0) => {
+                if let Some(o) = open.as_mut() {
+                    o.last_sent = command & 0x01 != 0;
+                }
+            }
+            (false, 3) => done = open.is_some_and(|o| !o.upload && !o.segmented),
+            (false, 1) => done = open.is_some_and(|o| !o.upload && o.last_sent),
+            (false, 2) => {
+                let expedited = command & 0x02 != 0;
+                let size = data
+                    .get(..4)
+                    .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+                let held = data.len().saturating_sub(4);
+                let whole = expedited || size.is_some_and(|size| size as usize <= held);
+                if let Some(o) = open.as_mut() {
+                    o.segmented = !whole;
+                }
+                done = open.is_some_and(|o| o.upload) && whole;
+            }
+            (false, 0) => done = open.is_some_and(|o| o.upload) && command & 0x01 != 0,
+            _ => {}
+        }
+        if done {
+            if let Some(o) = open.take() {
+                summary.sdo_ok += 1;
+                if let (Some(start), Some(end)) = (o.timestamp, timestamp) {
+                    let ns = end
+                        .as_duration()
+                        .saturating_sub(start.as_duration())
+                        .as_nanos();
+                    latencies.add(u64::try_from(ns).unwrap_or(u64::MAX));
                 }
             }
         }
@@ -872,6 +1030,12 @@ pub(super) fn slave_entries<M: SerializeMap>(
     map.serialize_entry("sdo_requests", &s.sdo_requests)?;
     map.serialize_entry("sdo_responses", &s.sdo_responses)?;
     map.serialize_entry("sdo_aborts", &s.sdo_aborts)?;
+    map.serialize_entry("sdo_ok", &s.sdo_ok)?;
+    let aborts: Vec<_> = s.sdo_abort_list.iter().map(AbortJson).collect();
+    map.serialize_entry("sdo_abort_list", &aborts)?;
+    let ms = |ns: Option<u64>| ns.map(|ns| ns as f64 / 1e6);
+    map.serialize_entry("sdo_latency_median_ms", &ms(s.sdo_latency_median_ns))?;
+    map.serialize_entry("sdo_latency_max_ms", &ms(s.sdo_latency_max_ns))?;
     map.serialize_entry("mailbox_written", &s.mailbox_written)?;
     map.serialize_entry("mailbox_read", &s.mailbox_read)?;
     map.serialize_entry("mailbox_refused", &s.mailbox_refused)?;
@@ -880,6 +1044,25 @@ pub(super) fn slave_entries<M: SerializeMap>(
     map.serialize_entry("dl_status_changes", &dl)?;
     let rises: Vec<_> = s.counter_rises.iter().map(RiseJson).collect();
     map.serialize_entry("error_counter_rises", &rises)
+}
+
+/// An SDO abort as JSON: `{"packet", "ts", "index", "subindex",
+/// "abort_code", "abort", "from_slave"}`.
+struct AbortJson<'a>(&'a CoeSdoAbort);
+
+impl Serialize for AbortJson<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let a = self.0;
+        let mut map = serializer.serialize_map(Some(7))?;
+        map.serialize_entry("packet", &a.packet)?;
+        opt_ts(&mut map, "ts", a.timestamp)?;
+        map.serialize_entry("index", &a.index)?;
+        map.serialize_entry("subindex", &a.subindex)?;
+        map.serialize_entry("abort_code", &a.code.get())?;
+        map.serialize_entry("abort", &a.code.to_string())?;
+        map.serialize_entry("from_slave", &a.from_slave)?;
+        map.end()
+    }
 }
 
 /// A DL status change as JSON: `{"packet", "ts", "links",
@@ -1074,9 +1257,25 @@ impl fmt::Display for SlaveSummary {
         if self.sdo_requests + self.sdo_responses > 0 {
             write!(
                 f,
-                "; SDO {} requests, {} responses, {} aborts",
-                self.sdo_requests, self.sdo_responses, self.sdo_aborts
+                "; SDO {} requests, {} responses, {} transfers ended, {} aborts",
+                self.sdo_requests, self.sdo_responses, self.sdo_ok, self.sdo_aborts
             )?;
+            if let (Some(median), Some(max)) = (self.sdo_latency_median_ns, self.sdo_latency_max_ns)
+            {
+                write!(
+                    f,
+                    ", latency median {:.2} ms, max {:.2} ms",
+                    median as f64 / 1e6,
+                    max as f64 / 1e6
+                )?;
+            }
+            for abort in self.sdo_abort_list.iter().take(3) {
+                write!(
+                    f,
+                    "; SDO abort {:04X}sub{} {} (packet {})",
+                    abort.index, abort.subindex, abort.code, abort.packet
+                )?;
+            }
         }
         if self.mailbox_refused > 0 {
             write!(f, "; {} mailbox writes not accepted", self.mailbox_refused)?;

@@ -61,8 +61,9 @@ mod wrong;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::EmcySeen;
 pub use ethercat::{
-    device_name, AlChange, CoeEmergency, CounterRise, DlChange, EthercatSummary, PortSummary,
-    SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS, STATUS_STREAM_MIN,
+    device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DlChange, EthercatSummary,
+    PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS,
+    STATUS_STREAM_MIN,
 };
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};

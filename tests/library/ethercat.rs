@@ -431,3 +431,132 @@ fn error_counters_rising_and_a_link_lost_are_summarized() {
     let json: Vec<String> = summary.records().map(|r| r.to_json()).collect();
     assert!(json.iter().any(|r| r.contains(r#""error_counter_rises":[{"packet":4,"ts":null,"register":771,"name":"RX errors port 1","from":0,"to":5}]"#)), "{json:?}");
 }
+
+/// A mailbox message of `body` (CoE header and SDO) at `ado`: written by
+/// an FPWR, or read by an FPRD, of station 0x1001, sent and returned.
+fn mailbox(index: u8, written: bool, ado: u16, counter: u8, body: &[u8]) -> [Vec<u8>; 2] {
+    use motionwire::ethercat::{Command, DatagramRepr, MailboxHeader, MailboxType};
+    let mut message = vec![0; 6];
+    MailboxHeader {
+        length: body.len() as u16,
+        address: 0,
+        channel: 0,
+        priority: 0,
+        mailbox_type: MailboxType::Coe,
+        counter,
+    }
+    .emit(&mut message)
+    .unwrap();
+    message.extend(body);
+    let copy = |data: &[u8], wkc: u16| {
+        let repr = DatagramRepr {
+            command: if written {
+                Command::Fpwr
+            } else {
+                Command::Fprd
+            },
+            index,
+            address: (u32::from(ado) << 16) | 0x1001,
+            circulating: false,
+            more_follows: false,
+            irq: 0,
+            data,
+            working_counter: wkc,
+        };
+        let mut payload = ((repr.buffer_len() as u16) | 0x1000).to_le_bytes().to_vec();
+        let at = payload.len();
+        payload.resize(at + repr.buffer_len(), 0);
+        repr.emit(&mut payload[at..]).unwrap();
+        payload
+    };
+    let sent = if written {
+        message.clone()
+    } else {
+        vec![0; message.len()]
+    };
+    [copy(&sent, 0), copy(&message, 1)]
+}
+
+/// CoE SDO transfers followed per slave (docs/ethercat.md#summary): an
+/// expedited upload that ends, then one the slave aborts in a message of
+/// the request service, as real slaves do; the abort names its object and
+/// code, and that the slave sent it.
+#[test]
+fn coe_sdo_transfers_and_a_slave_abort_are_summarized() {
+    use motionwire::can::{EthercatPacket, LogEvent, Timestamp};
+    use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
+    let messages = [
+        // Upload 0x1018:01: request, then the expedited response.
+        mailbox(
+            1,
+            true,
+            0x1000,
+            1,
+            &[0x00, 0x20, 0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0],
+        ),
+        mailbox(
+            2,
+            false,
+            0x1080,
+            1,
+            &[0x00, 0x30, 0x4f, 0x18, 0x10, 0x01, 0x6a, 0, 0, 0],
+        ),
+        // Upload 0x6041:07: the slave aborts, "object does not exist".
+        mailbox(
+            3,
+            true,
+            0x1000,
+            2,
+            &[0x00, 0x20, 0x40, 0x41, 0x60, 0x07, 0, 0, 0, 0],
+        ),
+        mailbox(
+            4,
+            false,
+            0x1080,
+            2,
+            &[0x00, 0x20, 0x80, 0x41, 0x60, 0x07, 0x00, 0x00, 0x02, 0x06],
+        ),
+    ];
+    let mut summarizer = motionwire::summary::Summarizer::default();
+    let mut number = 0u64;
+    for [sent, returned] in &messages {
+        for (payload, source) in [
+            (sent, [0x10; 6]),
+            (returned, [0x12, 0x10, 0x10, 0x10, 0x10, 0x10]),
+        ] {
+            number += 1;
+            let packet = EthercatPacket {
+                timestamp: Timestamp::new(1_700_000_000, number as u32 * 500),
+                iface: None,
+                link: EthercatLink {
+                    destination: None,
+                    source: Mac(source),
+                    encapsulation: Encapsulation::Ethernet,
+                    payload,
+                },
+            };
+            summarizer.add(logs::Position::Record(number), &LogEvent::Ethercat(packet));
+        }
+    }
+    let summary = summarizer.finish();
+    let slave = &summary.ethercat.slaves[0];
+    assert_eq!(
+        slave.mailbox_guessed, 4,
+        "no sync manager seen: the areas are guessed"
+    );
+    assert_eq!(
+        (slave.sdo_requests, slave.sdo_ok, slave.sdo_aborts),
+        (3, 1, 1)
+    );
+    // Request at packet 2, response at packet 4: 1 ms.
+    assert_eq!(slave.sdo_latency_max_ns, Some(1_000_000));
+    let abort = slave.sdo_abort_list[0];
+    assert_eq!(
+        (abort.index, abort.subindex, abort.code.get()),
+        (0x6041, 7, 0x0602_0000)
+    );
+    assert!(abort.from_slave);
+    assert_eq!(abort.packet, 8);
+    let text = summary.to_string();
+    assert!(text.contains("SDO abort 6041sub7 0x06020000"), "{text}");
+}

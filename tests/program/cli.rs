@@ -1834,15 +1834,35 @@ fn ethercat_records_are_filtered_by_kind_and_slave() {
     let out = run(&["decode", "--json", "--only", "coe_emcy", capture], "");
     assert_eq!(kinds(&out), ["coe_emcy"]);
     assert_eq!(records(&out)[0]["code"], 0x7305);
-    let out = run(&["decode", "--json", "--only", "al_state", "--slave", "0x1001", capture], "");
+    let out = run(
+        &[
+            "decode", "--json", "--only", "al_state", "--slave", "0x1001", capture,
+        ],
+        "",
+    );
     let all = records(&out);
-    assert!(all.iter().all(|r| r["kind"] == "al_state" && r["slave"] == 0x1001));
+    assert!(all
+        .iter()
+        .all(|r| r["kind"] == "al_state" && r["slave"] == 0x1001));
     assert_eq!(all.last().unwrap()["code"], 0x001B);
     // FPxx datagrams name their slave; the cyclic LRW names none.
-    let out = run(&["decode", "--json", "--only", "ecat_datagram", "--slave", "4096", capture], "");
+    let out = run(
+        &[
+            "decode",
+            "--json",
+            "--only",
+            "ecat_datagram",
+            "--slave",
+            "4096",
+            capture,
+        ],
+        "",
+    );
     let all = records(&out);
     assert!(!all.is_empty());
-    assert!(all.iter().all(|r| r["cmd"].as_str().unwrap().starts_with("FP") && r["adp"] == 0x1000));
+    assert!(all
+        .iter()
+        .all(|r| r["cmd"].as_str().unwrap().starts_with("FP") && r["adp"] == 0x1000));
     for filter in [["--only", "emcy"], ["--node", "3"], ["--id", "0x080"]] {
         let out = run(&["decode", "--json", filter[0], filter[1], capture], "");
         assert_eq!(stdout(&out), "", "{filter:?}");
