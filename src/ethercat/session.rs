@@ -108,7 +108,7 @@ struct Port {
 }
 
 /// The counts a session keeps, per capture (docs/ethercat.md#direction).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub struct Counts {
     /// EtherCAT packets read.
     pub packets: u64,
@@ -126,6 +126,12 @@ pub struct Counts {
     pub other_frame_types: u64,
     /// Packets whose EtherCAT header or a datagram is damaged.
     pub damaged: u64,
+    /// Packets whose time is earlier than the packet's before them (a
+    /// merged capture; docs/ethercat.md#reading): read in the capture's
+    /// order all the same.
+    pub time_reversals: u64,
+    /// The first of them, and how far back it went.
+    pub first_reversal: Option<(Position, core::time::Duration)>,
 }
 
 /// A packet whose EtherCAT header or datagram is damaged: where, and why
@@ -191,6 +197,8 @@ pub struct Session {
     /// The port of the last packet, tried first.
     last_port: usize,
     counts: Counts,
+    /// The last packet's time.
+    last_time: Option<Timestamp>,
 }
 
 impl Session {
@@ -215,6 +223,16 @@ impl Session {
         packet: &EthercatPacket<'a>,
     ) -> Result<Packet<'a>, DamagedPacket> {
         self.counts.packets += 1;
+        if let Some(now) = packet.timestamp {
+            if let Some(before) = self.last_time.filter(|before| now < *before) {
+                self.counts.time_reversals += 1;
+                if self.counts.first_reversal.is_none() {
+                    let back = before.as_duration().saturating_sub(now.as_duration());
+                    self.counts.first_reversal = Some((position, back));
+                }
+            }
+            self.last_time = Some(now);
+        }
         let frame = match EthercatFrame::parse(packet.link.payload) {
             Ok(frame) => frame,
             Err(error) => {

@@ -986,6 +986,7 @@ pub(super) fn port_entries<M: SerializeMap>(
     map.serialize_entry("lost", &c.lost)?;
     map.serialize_entry("other_frame_types", &c.other_frame_types)?;
     map.serialize_entry("damaged", &c.damaged)?;
+    map.serialize_entry("time_reversals", &c.time_reversals)?;
     map.serialize_entry("streams_not_followed", &port.streams_dropped)
 }
 

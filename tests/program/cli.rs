@@ -1871,3 +1871,43 @@ fn ethercat_records_are_filtered_by_kind_and_slave() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("\"al_status\" is not a kind; one of emcy,"));
 }
+
+/// docs/ethercat.md#reading: a capture whose times go back is read in its
+/// order, and said once.
+#[test]
+fn ethercat_time_that_goes_back_is_said_once() {
+    // pcap, microseconds, link type 1; three BRD frames as sent, at 2 s,
+    // 1 s, then 0.5 s.
+    let mut file = Vec::new();
+    for word in [0xA1B2_C3D4u32, 0x0004_0002, 0, 0, 65_535, 1] {
+        file.extend(word.to_le_bytes());
+    }
+    let mut frame = vec![0xff; 6];
+    frame.extend([0x10; 6]);
+    frame.extend([0x88, 0xa4, 0x0e, 0x10]);
+    frame.extend([7, 1, 0, 0, 0x30, 0x01, 2, 0, 0, 0, 0, 0, 0, 0]);
+    for secs in [2u32, 1, 0] {
+        for word in [
+            secs,
+            500_000 * u32::from(secs == 0),
+            frame.len() as u32,
+            frame.len() as u32,
+        ] {
+            file.extend(word.to_le_bytes());
+        }
+        file.extend(&frame);
+    }
+    let path =
+        std::env::temp_dir().join(format!("motionwire-reversal-{}.pcap", std::process::id()));
+    std::fs::write(&path, &file).unwrap();
+    let out = run(&["decode", path.to_str().unwrap()], "");
+    std::fs::remove_file(&path).ok();
+    assert_eq!(out.status.code(), Some(0));
+    let err = stderr(&out);
+    assert_eq!(
+        err.matches("EtherCAT packets are earlier than the packet before (the first, packet 2, by 1.000000 s): read in the capture's order").count(),
+        1,
+        "{err}"
+    );
+    assert_eq!(stdout(&out).lines().count(), 3, "every packet read");
+}

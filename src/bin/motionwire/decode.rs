@@ -518,6 +518,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             // A recording of its own: nothing learned from the file
             // before carries over (docs/output.md#several-files).
             sink.decoder = Decoder::new(sink.config.clone());
+            sink.ethercat = Session::new();
             if args.summary && !page {
                 sink.summary = Some(Summarizer::new(sink.config.clone()));
             }
@@ -550,6 +551,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         let entries_before = sink.entries;
         sink.file_skipped = 0;
         sink.file_damaged = 0;
+        let reversals_before = sink.ethercat.counts().time_reversals;
         let last = log.visit(ReadAll {
             sink: &mut sink,
             progress: &mut progress,
@@ -557,6 +559,21 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             path: path.as_deref(),
         })?;
         sink.clear_progress()?;
+        let counts = sink.ethercat.counts();
+        if let (true, Some((at, back))) = (
+            counts.time_reversals > reversals_before,
+            counts.first_reversal,
+        ) {
+            // docs/ethercat.md#reading: said once, read in the capture's
+            // order all the same.
+            writeln!(
+                sink.err,
+                "{name}: {} EtherCAT packet{} earlier than the packet before (the first, packet {at}, by {:.6} s): read in the capture's order",
+                counts.time_reversals - reversals_before,
+                if counts.time_reversals - reversals_before == 1 { " is" } else { "s are" },
+                back.as_secs_f64()
+            )?;
+        }
         if sink.file_skipped + sink.file_damaged > 0 && sink.entries == entries_before {
             // Nothing read but complaints: the input is not what it was
             // read as (`--format trc` on a candump log), said in one line.
