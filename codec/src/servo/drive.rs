@@ -445,7 +445,7 @@ impl Drive {
     /// Return the error word the next feedback reports if nothing changes:
     /// the latched errors with the summary bit (docs/servo.md#sew).
     #[must_use]
-    pub const fn errors(&self) -> ServoErrorWord {
+    pub fn errors(&self) -> ServoErrorWord {
         with_summary(self.latched.union(self.persistent_causes()))
     }
 
@@ -532,7 +532,7 @@ impl Drive {
 
     /// The error bits whose cause is still present: they are set again in
     /// every cycle, clear or not.
-    const fn persistent_causes(&self) -> ServoErrorWord {
+    fn persistent_causes(&self) -> ServoErrorWord {
         let mut causes = ServoErrorWord::empty();
         if self.encoder_lost {
             causes = causes.union(ServoErrorWord::ENCODER_ERR);
