@@ -33,13 +33,13 @@ SAMPLE_ARGS = dict(heartbeat_ms=300, profiles={3: "akd", 5: "baumer"})
 REPORT = [
     # The Baumer encoder's battery EMCY is a warning (docs/summary.md#severity);
     # its first error is the first EMCY with its error register set.
-    (393, "can0", 5, "first_warning", "can0 node 5 first warning: EMCY 0xFF00 Device specific at line 393"),
-    (613, "can0", 3, "first_error", "can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault at line 613"),
-    (620, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault (line 613)"),
-    (972, "can0", 5, "first_error", "can0 node 5 first error: EMCY 0x8120 CAN in error passive mode at line 972"),
-    (1291, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 1291, 15.0 ms after EMCY 0x4310 Excess drive temperature (line 1284)"),
+    (393, "can0", 5, "first_warning", "can0 node 5 first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 393"),
+    (613, "can0", 3, "first_error", "can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 1 at line 613"),
+    (620, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 1 (line 613)"),
+    (972, "can0", 5, "first_error", "can0 node 5 first error: EMCY 0x8120 CAN in error passive mode (source: CAN controller bus passive, an error) at line 972"),
+    (1291, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 1291, 15.0 ms after EMCY 0x4310 Excess drive temperature on axis 1 (line 1284)"),
     (2415, "can0", 10, "first_error", "can0 node 10 first error: EMCY 0x8130 Life guard error or heartbeat error at line 2415"),
-    (3239, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 Incremental sensor 1 fault (line 3231)"),
+    (3239, "can0", 3, "cia402_fault", "can0 node 3 went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)"),
     (2681, "can0", 5, "restarts", "can0 node 5 restarted 1 time (boot-ups at lines 15, 2681)"),
     (1559, "can0", 5, "heartbeat_timeout", "can0 node 5 no heartbeat for 3386.93 ms after line 1559"),
     (95, "can0", 3, "sdo_abort", "can0 node 3 line 95: server aborted 1A00h.00 (TPDO mapping parameter): 0x06040043: General parameter incompatibility reason"),
@@ -171,4 +171,4 @@ def test_the_docs_example():
     """docs/python.md#findings, as written there."""
     t = motionwire.findings(SAMPLE, **SAMPLE_ARGS)
     assert t.column("kind").to_pylist()[:3] == ["sdo_abort", "first_warning", "first_error"]
-    assert t.column("text")[2].as_py() == "first error: EMCY 0x7305 Incremental sensor 1 fault at line 613"
+    assert t.column("text")[2].as_py() == "first error: EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 1 at line 613"

@@ -8,6 +8,7 @@ use std::io::{self, Write};
 
 use crate::can::BusName;
 use crate::canopen::NodeId;
+use crate::profiles::Profile;
 use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
 
 use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
@@ -495,7 +496,15 @@ impl Report {
                         MarkKind::BusOff,
                         MarkKind::ErrorPassive,
                     ] {
-                        marks(&mut body, axis, budget, &data.row, kind, None);
+                        marks(
+                            &mut body,
+                            axis,
+                            budget,
+                            &data.row,
+                            kind,
+                            None,
+                            Profile::Generic,
+                        );
                     }
                 }
                 body.push_str("</g>\n</g>\n");
@@ -593,6 +602,7 @@ impl Report {
             mark: Drawn,
             bus: &'a BusName,
             node: Option<NodeId>,
+            profile: Profile,
         }
         let mut all: Vec<Row<'_>> = Vec::new();
         for r in &self.recordings {
@@ -602,15 +612,16 @@ impl Report {
                 .as_deref()
                 .map_or_else(String::new, |f| format!("{f}: "));
             for bus in &r.timeline.buses {
-                let mut rows: Vec<(Option<NodeId>, &RowData)> = vec![(None, &bus.row)];
+                let mut rows: Vec<(Option<NodeId>, Profile, &RowData)> =
+                    vec![(None, Profile::Generic, &bus.row)];
                 for n in &r.summary.nodes {
                     if n.bus == bus.name {
                         if let Some(row) = bus.node_row(n.node) {
-                            rows.push((Some(n.node), row));
+                            rows.push((Some(n.node), n.profile, row));
                         }
                     }
                 }
-                for (node, row) in rows {
+                for (node, profile, row) in rows {
                     let who = match node {
                         Some(node) => format!("{prefix}{}", device(&bus.name, node)),
                         None => format!("{prefix}bus {}", bus.name),
@@ -624,6 +635,7 @@ impl Report {
                                 mark,
                                 bus: &bus.name,
                                 node,
+                                profile,
                             });
                         }
                     }
@@ -661,7 +673,7 @@ impl Report {
                 esc(&row.who),
                 row.kind.words(),
                 m.count,
-                esc(&mark_text(row.kind, &m, axis))
+                esc(&mark_text(row.kind, &m, axis, row.profile))
             );
         }
         p.push_str("</tbody>\n</table>\n</section>\n</main>\n");
@@ -773,7 +785,15 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
     let seen = |s: Option<crate::summary::EmcySeen>| {
         s.map_or_else(
             || "none".to_owned(),
-            |s| format!("{} {} (line {})", s.code, esc(s.code.description()), s.line),
+            |s| {
+                format!(
+                    "{} {}{} (line {})",
+                    s.code,
+                    esc(s.code.description()),
+                    esc(&s.reading(n.profile).to_string()),
+                    s.line
+                )
+            },
         )
     };
     let hb = &n.heartbeat;

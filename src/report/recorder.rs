@@ -413,7 +413,11 @@ fn record(
         None => &mut rows.row,
     };
     match event.kind {
-        SummaryEventKind::Emcy { code, register } => {
+        SummaryEventKind::Emcy {
+            code,
+            register,
+            manufacturer,
+        } => {
             // A reset is any 00xxh code, as the summary counts `resets`
             // (docs/canopen.md#emcy-codes).
             let kind = if code.is_reset() {
@@ -424,6 +428,7 @@ fn record(
             let detail = Detail::Emcy {
                 code: code.get(),
                 register: register.bits(),
+                manufacturer,
             };
             row.mark(kind, at, at, detail);
         }

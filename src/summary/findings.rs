@@ -176,12 +176,17 @@ pub struct Finding {
     pub severity: Severity,
     /// What the summary says of it.
     pub detail: FindingDetail,
+    /// The device's profile (`--profile`): what its EMCYs' manufacturer
+    /// bytes say in the text ([`ProfileReading`](super::ProfileReading),
+    /// docs/summary.md#profiles); [`Profile::Generic`] for a bus.
+    pub profile: Profile,
 }
 
 impl Finding {
     /// Return what the finding says without its device: `first error:
-    /// EMCY 0x7305 Incremental sensor 1 fault at line 613`
-    /// (docs/summary.md#findings).
+    /// EMCY 0x7305 Incremental sensor 1 fault at line 613`, with what the
+    /// device's profile reads in an EMCY (`… fault on axis 1, feedback 1
+    /// at line 613`; docs/summary.md#findings).
     #[must_use]
     pub fn text(&self) -> String {
         Text(self).to_string()
@@ -223,13 +228,14 @@ impl fmt::Display for Text<'_> {
         match &finding.detail {
             FindingDetail::Emcy(first) => write!(
                 f,
-                "{}: EMCY {} {} at line {}",
+                "{}: EMCY {} {}{} at line {}",
                 finding.kind.words(),
                 first.code,
                 first.code.description(),
+                first.reading(finding.profile),
                 first.line
             ),
-            FindingDetail::Cia402Fault(fault) => write!(f, "{fault}"),
+            FindingDetail::Cia402Fault(fault) => write!(f, "{}", fault.sentence(finding.profile)),
             FindingDetail::BootUps(boots) => {
                 let times = boots.count().saturating_sub(1);
                 write!(

@@ -58,7 +58,7 @@ mod verdict;
 mod wrong;
 
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
-pub use emcy::EmcySeen;
+pub use emcy::{EmcySeen, ProfileReading};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingDetail, FindingKind};

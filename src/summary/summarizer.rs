@@ -505,6 +505,7 @@ fn add_classified(
                 SummaryEventKind::Emcy {
                     code: emcy.code,
                     register: emcy.register,
+                    manufacturer: emcy.manufacturer,
                 },
             ));
             if emcy.is_reset() {

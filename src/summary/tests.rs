@@ -734,3 +734,53 @@ fn the_stop_is_the_last_and_the_first_cause_the_earliest_error_of_its_device() {
     assert!(calm.verdict().is_none());
     assert_eq!(calm.records().count(), 2);
 }
+
+/// docs/summary.md#profiles: a finding says what its device's profile
+/// reads in its EMCY — an AKD's axis and feedback, a Baumer encoder's
+/// diagnostic source and its class —, and nothing for a generic node.
+#[test]
+fn findings_say_what_the_profile_reads() {
+    let mut config = DecoderConfig::new()
+        .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+        .node_profile(NodeId::new(5).unwrap(), Profile::Baumer)
+        .signals(false);
+    config = config.heartbeat_timeout(Duration::from_millis(300));
+    let frames: &[(u64, u32, &[u8])] = &[
+        (0, 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (1, 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+        // AKD: 0x7305 on axis 2, feedback 3.
+        (10, 0x083, &[0x05, 0x73, 0x01, 0x32, 0, 0, 0, 0]),
+        (26, 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (27, 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0]),
+        // Baumer: the battery warning, then temperature out of range.
+        (30, 0x085, &[0x00, 0xFF, 0x00, 0, 0, 0x10, 0, 0]),
+        (40, 0x085, &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0]),
+        // A generic node: the same bytes say nothing more.
+        (50, 0x086, &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0]),
+    ];
+    let mut summarizer = Summarizer::new(config);
+    for (i, &(ms, id, data)) in frames.iter().enumerate() {
+        let log = LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+            .with_iface(Iface::Name("can0"))
+            .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)));
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(log));
+    }
+    let summary = summarizer.finish();
+    let texts: Vec<String> = summary.findings().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        texts,
+        [
+            "can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3 at line 3",
+            "can0 node 3 went operation_enabled → fault at line 5, 17.0 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3 (line 3)",
+            "can0 node 5 first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 6",
+            "can0 node 5 first error: EMCY 0x4200 Device temperature (source: Temperature monitoring, an error) at line 7",
+            "can0 node 6 first error: EMCY 0x4200 Device temperature at line 8",
+        ]
+    );
+    let verdict = summary.verdict().unwrap();
+    assert!(verdict
+        .first_cause_text()
+        .contains("fault on axis 2, feedback 3 at line 3"));
+    let json = serde_json::to_string(&summary.findings()[2]).unwrap();
+    assert!(json.contains(r#""text":"first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 6""#), "{json}");
+}

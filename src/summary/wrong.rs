@@ -81,6 +81,7 @@ impl Summary {
                     kind,
                     severity: Severity::of_finding(kind, &detail, n.profile),
                     detail,
+                    profile: n.profile,
                 });
             };
             if let Some(warning) = n.first_warning() {
@@ -170,6 +171,7 @@ impl Summary {
                         kind,
                         severity: Severity::of_finding(kind, &detail, Profile::Generic),
                         detail,
+                        profile: Profile::Generic,
                     });
                 });
             }

@@ -714,3 +714,67 @@ fn an_unchecked_silence_is_not_drawn() {
         .kind("heartbeat_timeout")
         .is_empty());
 }
+
+/// docs/summary.md#profiles: what `--profile` reads in an EMCY reaches the
+/// page — the findings' text, the marks' details and the Events table —,
+/// on the sample and on a generated log of an AKD drive and a Baumer
+/// encoder.
+#[test]
+fn profiles_reach_the_findings_the_marks_and_the_events() {
+    let page = sample_page(&scratch("profiles"));
+    let html = &page.html;
+    let wrong = &html[html.find("id=\"wrong\"").unwrap()..html.find("id=\"timeline\"").unwrap()];
+    for text in [
+        "first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 393",
+        "first error: EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 1 at line 613",
+        "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
+        "first error: EMCY 0x8120 CAN in error passive mode (source: CAN controller bus passive, an error) at line 972",
+    ] {
+        assert!(wrong.contains(text), "{text}");
+    }
+    let events = &html[html.find("id=\"events\"").unwrap()..];
+    assert!(events.contains(
+        "<td>EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (register 0x01) (line 3231"
+    ));
+    assert!(events.contains(
+        "<td>EMCY 0x4200 Device temperature (source: Temperature monitoring, an error) (register 0x09)"
+    ));
+    let timeline =
+        &html[html.find("id=\"timeline\"").unwrap()..html.find("id=\"signals\"").unwrap()];
+    assert!(timeline.contains(
+        "<title>EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) (register 0x00) (line 393"
+    ));
+
+    // A generated log: an AKD's EMCY on axis 2, feedback 3, and a Baumer
+    // encoder's battery warning; without --profile the page says neither.
+    let dir = scratch("profiles-generated");
+    let log = dir.join("profiles.log");
+    std::fs::write(
+        &log,
+        "(1700000000.000000) can0 083#0573013200000000\n\
+         (1700000000.100000) can0 085#00FF000000100000\n\
+         (1700000000.200000) can0 703#05\n",
+    )
+    .unwrap();
+    let page_of = |args: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut all = vec!["report"];
+        all.extend_from_slice(args);
+        all.extend([log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let r = run(&all);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let with = page_of(&["--profile", "3=akd,5=baumer"], "with.html");
+    let without = page_of(&[], "without.html");
+    let akd = "EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3";
+    let baumer = "EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning)";
+    // The finding, the mark's title and the event row; the Devices table
+    // names the first error too.
+    assert_eq!(with.matches(akd).count(), 3, "{akd}");
+    assert_eq!(with.matches(baumer).count(), 3, "{baumer}");
+    assert!(
+        with.contains("<td>0x7305 Incremental sensor 1 fault on axis 2, feedback 3 (line 1)</td>")
+    );
+    assert!(!without.contains("on axis") && !without.contains("(source:"));
+}
