@@ -4,8 +4,10 @@
 
 use core::time::Duration;
 
+use crate::can::Timestamp;
 use crate::canopen::NmtStateByte;
 
+use super::causes::BusErrorSeen;
 use super::listed::Listed;
 
 /// A heartbeat gap longer than the consumer time (`heartbeat.timeouts`
@@ -16,6 +18,16 @@ pub struct HeartbeatGap {
     pub after_line: u64,
     /// The gap: up to the next heartbeat, or to the last time of the input.
     pub gap: Duration,
+    /// The time of the heartbeat before the gap.
+    pub since: Timestamp,
+    /// When the next heartbeat was due: [`since`](Self::since) plus the
+    /// consumer time (`--heartbeat-ms`).
+    pub due: Timestamp,
+    /// The bus-off or error-passive error frame on the node's bus that the
+    /// log supports as the cause of the loss: the earliest at most a
+    /// second before the heartbeat was due, and not after
+    /// (docs/summary.md#causes).
+    pub cause: Option<BusErrorSeen>,
 }
 
 impl HeartbeatGap {

@@ -40,6 +40,7 @@
 //! assert!(summary.to_string().contains("active error: 0x8110 CAN overrun (objects lost) (line 2)"));
 //! ```
 
+mod causes;
 mod cia402;
 mod emcy;
 mod event;
@@ -57,11 +58,12 @@ mod values;
 mod verdict;
 mod wrong;
 
+pub use causes::{BusErrorSeen, LOST_HEARTBEAT};
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::{EmcySeen, ProfileReading};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
-pub use findings::{Finding, FindingDetail, FindingKind};
+pub use findings::{Finding, FindingCause, FindingDetail, FindingKind};
 pub use heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
