@@ -7,11 +7,11 @@ use std::fmt::Write as _;
 use std::io::{self, Write};
 
 use crate::can::BusName;
-use crate::canopen::NodeId;
+use crate::canopen::{ErrorCode, NodeId};
 use crate::profiles::Profile;
-use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
+use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Severity, Timeouts};
 
-use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
+use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, UNIX_FROM, WIDTH};
 use super::markup::{device, esc, iface_attr};
 use super::recorder::{MarkKind, Recording, RowData};
 use super::series::At;
@@ -22,8 +22,10 @@ use super::svg::{
 
 /// The most rows of the event table (docs/report.md#tables).
 const EVENT_ROWS: usize = 2000;
-/// The most items of one list of "What went wrong".
-const LIST_ITEMS: usize = 50;
+/// The groups of "What went wrong" shown open: the rest are one click
+/// away, so that the verdict and the worst findings fit the first screen
+/// whatever the log (docs/report.md#page).
+const GROUPS_SHOWN: usize = 6;
 /// The most marks a page draws: beyond, neighbours cluster within as many
 /// pixels (a power of two) as keep them to this (docs/report.md#clusters).
 const MARK_BUDGET: usize = 20_000;
@@ -292,7 +294,7 @@ impl Report {
             esc(&buses.join(", "))
         );
         if axis.timed {
-            let start = if axis.start >= 1_000_000_000_000_000 {
+            let start = if axis.start >= UNIX_FROM {
                 utc(axis.start)
             } else {
                 format!("{} s (the log's own clock)", seconds(axis.start))
@@ -340,11 +342,19 @@ impl Report {
                 .file
                 .as_deref()
                 .map_or_else(String::new, |f| format!("{}: ", esc(f)));
+            // Where the summary keeps no time (a heartbeat timeout, a
+            // bus-off), the stop's mark on the timeline has it.
             let wall = v
                 .stop
                 .timestamp
                 .map(|ts| u64::try_from(ts.as_micros()).unwrap_or(u64::MAX))
-                .filter(|&us| us >= 1_000_000_000_000_000)
+                .or_else(|| {
+                    r.timeline
+                        .is_timed()
+                        .then(|| r.timeline.place(&v.stop).t)
+                        .filter(|&t| t > 0)
+                })
+                .filter(|&us| us >= UNIX_FROM)
                 .map_or_else(String::new, |us| format!(" at {}", utc(us)));
             let node = v
                 .stop
@@ -362,18 +372,28 @@ impl Report {
         }
     }
 
+    /// "What went wrong" (docs/report.md#page): the verdicts, then the
+    /// findings grouped by device and kind, the worst groups first, each
+    /// group's first and last finding shown and the rest in a `details`;
+    /// the first [`GROUPS_SHOWN`] groups open, the others one click away.
     fn findings(&self, p: &mut String, axis: &Axis) {
-        /// One line of "What went wrong", with where it sorts.
+        /// One finding, with where it sorts and where its mark is.
         struct Line {
             key: (u64, u64),
             line: u64,
             finding: Finding,
             at: At,
         }
+        /// The findings of one device (or bus) of one kind.
+        struct Group {
+            severity: Severity,
+            lines: Vec<Line>,
+        }
         p.push_str("<main>\n<section id=\"wrong\">\n<h2>What went wrong</h2>\n");
         self.verdicts(p);
-        let mut sections: [Vec<Line>; 7] = Default::default();
+        let mut groups: Vec<Group> = Vec::new();
         for r in &self.recordings {
+            let mut of_recording: Vec<Group> = Vec::new();
             for finding in r.findings() {
                 let at = r.timeline.place(&finding);
                 // A device's finding points at its mark, a bus's at its line.
@@ -382,86 +402,155 @@ impl Report {
                 } else {
                     finding.line
                 };
-                let section = match finding.kind {
-                    FindingKind::FirstError
-                    | FindingKind::FirstWarning
-                    | FindingKind::Cia402Fault => 0,
-                    FindingKind::Restarts => 1,
-                    FindingKind::HeartbeatTimeout => 2,
-                    FindingKind::SdoAbort => 3,
-                    FindingKind::SdoBroken | FindingKind::SdoTimeout => 4,
-                    FindingKind::ToggleError => 5,
-                    FindingKind::BusOff | FindingKind::ErrorPassive => 6,
-                };
-                sections[section].push(Line {
+                let place = of_recording.iter().position(|g| {
+                    let f = &g.lines[0].finding;
+                    f.bus == finding.bus
+                        && f.node == finding.node
+                        && group_kind(f.kind) == group_kind(finding.kind)
+                });
+                let item = Line {
                     key: (axis.key(at), line),
                     line,
                     finding,
                     at,
-                });
+                };
+                match place.map(|i| &mut of_recording[i]) {
+                    Some(g) => {
+                        g.severity = g.severity.min(item.finding.severity);
+                        g.lines.push(item);
+                    }
+                    None => of_recording.push(Group {
+                        severity: item.finding.severity,
+                        lines: vec![item],
+                    }),
+                }
             }
+            groups.extend(of_recording);
         }
-        let headings: [(&str, &str); 7] = [
-            (
-                "faults",
-                "Faults, first errors and first warnings, in time order",
-            ),
-            ("restarts", "Restarts"),
-            ("heartbeat-timeouts", "Heartbeat timeouts"),
-            ("sdo-aborts", "SDO aborts"),
-            ("sdo-transfers", "Broken and unanswered SDO transfers"),
-            ("toggle-errors", "Node-guarding toggle errors"),
-            ("bus-errors", "Bus-off and error-passive"),
-        ];
-        let mut any = false;
-        for ((id, heading), list) in headings.into_iter().zip(&mut sections) {
-            if list.is_empty() {
-                continue;
-            }
-            any = true;
-            list.sort_by_key(|f| f.key);
+        for g in &mut groups {
+            g.lines.sort_by_key(|l| l.key);
+        }
+        groups.sort_by_key(|g| (g.severity, g.lines[0].key));
+        let findings: usize = groups.iter().map(|g| g.lines.len()).sum();
+        if groups.is_empty() {
+            p.push_str(&self.nothing_wrong());
+            p.push_str("</section>\n");
+            return;
+        }
+        let _ = writeln!(
+            p,
+            "<p class=\"help\">{findings} finding{} in {} group{}, by device and kind, the worst first; each group shows its first and last, the rest one click away. Click one for its mark on the timeline.</p>",
+            if findings == 1 { "" } else { "s" },
+            groups.len(),
+            if groups.len() == 1 { "" } else { "s" },
+        );
+        let item = |p: &mut String, l: &Line| {
+            let f = &l.finding;
+            let node = f
+                .node
+                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
             let _ = write!(
                 p,
-                "<h3 id=\"{id}\">{heading}</h3>\n<ul class=\"findings\">\n"
+                "<li data-line=\"{}\" data-iface=\"{}\"{node}><b>{}</b> {}",
+                l.line,
+                iface_attr(&f.bus),
+                esc(&f.subject()),
+                esc(&f.text())
             );
-            for item in list.iter().take(LIST_ITEMS) {
-                let f = &item.finding;
-                let node = f
-                    .node
-                    .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            // Where a list omitted entries, the timeline still has them;
+            // a finding of one event says when it was.
+            if f.is_omitted() {
+                p.push_str(", the timeline shows every one");
+            } else if !matches!(
+                f.kind,
+                FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
+            ) {
+                let _ = write!(p, " ({})", axis.when_utc(l.at));
+            }
+            p.push_str("</li>\n");
+        };
+        let group = |p: &mut String, g: &Group| {
+            let f = &g.lines[0].finding;
+            let node = f
+                .node
+                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let count = g.lines.len();
+            let _ = write!(
+                p,
+                "<li class=\"group\" data-iface=\"{}\"{node} data-kind=\"{}\" data-severity=\"{}\" data-count=\"{count}\"><span class=\"sev sev-{}\">{}</span> ",
+                iface_attr(&f.bus),
+                group_kind(f.kind),
+                g.severity,
+                g.severity,
+                g.severity,
+            );
+            if count == 1 {
+                p.push_str("<ul class=\"findings one\">\n");
+                item(p, &g.lines[0]);
+                p.push_str("</ul></li>\n");
+                return;
+            }
+            let _ = writeln!(
+                p,
+                "<b>{}</b> {}: {count}, the first and the last",
+                esc(&f.subject()),
+                group_words(f.kind)
+            );
+            p.push_str("<ul class=\"findings\">\n");
+            item(p, &g.lines[0]);
+            if count > 2 {
                 let _ = write!(
                     p,
-                    "<li data-line=\"{}\" data-iface=\"{}\"{node}><b>{}</b> {}",
-                    item.line,
-                    iface_attr(&f.bus),
-                    esc(&f.subject()),
-                    esc(&f.text())
+                    "<li class=\"rest\"><details><summary>{} more between them</summary><ul class=\"findings\">\n",
+                    count - 2
                 );
-                // Where a list omitted entries, the timeline still has them;
-                // a finding of one event says when it was.
-                if f.is_omitted() {
-                    p.push_str(", the timeline shows every one");
-                } else if !matches!(
-                    f.kind,
-                    FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
-                ) {
-                    let _ = write!(p, " ({})", axis.when(item.at));
+                for l in &g.lines[1..count - 1] {
+                    item(p, l);
                 }
-                p.push_str("</li>\n");
+                p.push_str("</ul></details></li>\n");
             }
-            if list.len() > LIST_ITEMS {
-                let _ = writeln!(
-                    p,
-                    "<li class=\"more\">… and {} more (the timeline and the event table show every one)</li>",
-                    list.len() - LIST_ITEMS
-                );
-            }
-            p.push_str("</ul>\n");
+            item(p, &g.lines[count - 1]);
+            p.push_str("</ul></li>\n");
+        };
+        p.push_str("<ul class=\"groups\">\n");
+        for g in groups.iter().take(GROUPS_SHOWN) {
+            group(p, g);
         }
-        if !any {
-            p.push_str("<p>No fault, error EMCY, restart, heartbeat timeout, SDO abort or bus error in this log.</p>\n");
+        p.push_str("</ul>\n");
+        if groups.len() > GROUPS_SHOWN {
+            let rest = &groups[GROUPS_SHOWN..];
+            let _ = write!(
+                p,
+                "<details class=\"more-groups\"><summary>{} more groups ({} findings)</summary>\n<ul class=\"groups\">\n",
+                rest.len(),
+                rest.iter().map(|g| g.lines.len()).sum::<usize>()
+            );
+            for g in rest {
+                group(p, g);
+            }
+            p.push_str("</ul>\n</details>\n");
         }
         p.push_str("</section>\n");
+    }
+
+    /// What "What went wrong" says when there is nothing to list: that the
+    /// log is empty, that it has no CANopen device, or that nothing went
+    /// wrong.
+    fn nothing_wrong(&self) -> String {
+        let frames: u64 = self
+            .recordings
+            .iter()
+            .flat_map(|r| r.summary.buses.iter())
+            .map(|b| b.frames)
+            .sum();
+        let devices: usize = self.recordings.iter().map(|r| r.summary.nodes.len()).sum();
+        if frames == 0 {
+            "<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong> no frame was read, so nothing can be said of the machine.</p>\n".to_owned()
+        } else if devices == 0 {
+            format!("<p class=\"empty\" data-kind=\"no_device\"><strong>No CANopen device in this log:</strong> {frames} frame{} read, none of them from or to a CANopen node (no EMCY, heartbeat, node guarding, PDO or SDO of a node-ID).</p>\n", if frames == 1 { "" } else { "s" })
+        } else {
+            "<p>No fault, error EMCY, restart, heartbeat timeout, SDO abort or bus error in this log.</p>\n".to_owned()
+        }
     }
 
     fn timeline(&self, p: &mut String, axis: &Axis, budget: &Budget) {
@@ -603,6 +692,9 @@ impl Report {
             bus: &'a BusName,
             node: Option<NodeId>,
             profile: Profile,
+            /// Set on a row that stands for every EMCY of one code of its
+            /// device.
+            code: Option<u16>,
         }
         let mut all: Vec<Row<'_>> = Vec::new();
         for r in &self.recordings {
@@ -627,7 +719,36 @@ impl Report {
                         None => format!("{prefix}bus {}", bus.name),
                     };
                     for kind in MarkKind::ALL {
-                        for mark in drawn_marks(axis, &row.marks[kind as usize], budget.radius) {
+                        let marks = drawn_marks(axis, &row.marks[kind as usize], budget.radius);
+                        let emcy = matches!(kind, MarkKind::Emcy | MarkKind::EmcyReset);
+                        if emcy && marks.iter().any(|m| m.count > 1) {
+                            // A cluster would hide the codes in it: the
+                            // row's EMCYs of this kind one row per code.
+                            let reset = kind == MarkKind::EmcyReset;
+                            for (&code, run) in &row.codes {
+                                if ErrorCode::new(code).is_reset() != reset {
+                                    continue;
+                                }
+                                let mark = Drawn {
+                                    at: run.first,
+                                    end: run.last,
+                                    count: run.count,
+                                    detail: run.detail,
+                                };
+                                all.push(Row {
+                                    key: (axis.key(mark.at), mark.at.line),
+                                    who: who.clone(),
+                                    kind,
+                                    mark,
+                                    bus: &bus.name,
+                                    node,
+                                    profile,
+                                    code: Some(code),
+                                });
+                            }
+                            continue;
+                        }
+                        for mark in marks {
                             all.push(Row {
                                 key: (axis.key(mark.at), mark.at.line),
                                 who: who.clone(),
@@ -636,6 +757,7 @@ impl Report {
                                 bus: &bus.name,
                                 node,
                                 profile,
+                                code: None,
                             });
                         }
                     }
@@ -652,7 +774,13 @@ impl Report {
             } else {
                 String::new()
             },
-            if axis.timed { "time" } else { "" },
+            if axis.is_unix() {
+                "time</th><th>UTC"
+            } else if axis.timed {
+                "time"
+            } else {
+                ""
+            },
         );
         for row in all.iter().take(EVENT_ROWS) {
             let m = row.mark;
@@ -664,16 +792,40 @@ impl Report {
             let node = row
                 .node
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let mut what = mark_text(row.kind, &m, axis, row.profile);
+            let mut code = String::new();
+            if let (Some(c), true) = (row.code, m.count > 1) {
+                let words = format!("{} {}s, ", m.count, row.kind.words());
+                what = what.replacen(
+                    &words,
+                    &format!(
+                        "{} {}s of code {}, ",
+                        m.count,
+                        row.kind.words(),
+                        ErrorCode::new(c)
+                    ),
+                    1,
+                );
+            }
+            if let Some(c) = row.code {
+                let _ = write!(code, " data-code=\"{c}\"");
+            }
+            let when = if axis.is_unix() {
+                format!("{}</td><td>{}", axis.when(m.at), utc(m.at.t))
+            } else if axis.timed {
+                axis.when(m.at)
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 p,
-                "<tr data-line=\"{}\" data-iface=\"{}\"{node}><td>{lines}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr data-line=\"{}\" data-iface=\"{}\"{node}{code}><td>{lines}</td><td>{when}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 m.at.line,
                 iface_attr(row.bus),
-                if axis.timed { axis.when(m.at) } else { String::new() },
                 esc(&row.who),
                 row.kind.words(),
                 m.count,
-                esc(&mark_text(row.kind, &m, axis, row.profile))
+                esc(&what)
             );
         }
         p.push_str("</tbody>\n</table>\n</section>\n</main>\n");
@@ -880,4 +1032,29 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
         esc(&sdo),
         esc(&cia402)
     );
+}
+
+/// The group a finding of `kind` is in: a device's first error and first
+/// warning are one group, its first EMCYs.
+fn group_kind(kind: FindingKind) -> &'static str {
+    match kind {
+        FindingKind::FirstWarning => FindingKind::FirstError.name(),
+        kind => kind.name(),
+    }
+}
+
+/// A group's kind in words, plural.
+fn group_words(kind: FindingKind) -> &'static str {
+    match kind {
+        FindingKind::FirstError | FindingKind::FirstWarning => "first warning and first error",
+        FindingKind::Cia402Fault => "CiA 402 faults",
+        FindingKind::Restarts => "restarts",
+        FindingKind::HeartbeatTimeout => "heartbeat timeouts",
+        FindingKind::SdoAbort => "SDO aborts",
+        FindingKind::SdoBroken => "broken SDO transfers",
+        FindingKind::SdoTimeout => "unanswered SDO requests",
+        FindingKind::ToggleError => "guarding toggle errors",
+        FindingKind::BusOff => "bus-offs",
+        FindingKind::ErrorPassive => "error-passives",
+    }
 }
