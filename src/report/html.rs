@@ -119,13 +119,13 @@ impl Report {
         &self.recordings
     }
 
-    /// The shared axis: by time when every recording is, else by line.
-    fn axis(&self) -> Axis {
-        let timed =
-            !self.recordings.is_empty() && self.recordings.iter().all(|r| r.timeline.is_timed());
+    /// The axis of `recordings` drawn on one: by time when every one of
+    /// them is, else by line; from the first place to the last.
+    fn span_axis(recordings: &[Recording]) -> Axis {
+        let timed = !recordings.is_empty() && recordings.iter().all(|r| r.timeline.is_timed());
         let mut start = u64::MAX;
         let mut end = 0;
-        for r in &self.recordings {
+        for r in recordings {
             if let Some((first, last)) = r.timeline.span() {
                 start = start.min(first.key(timed));
                 end = end.max(last.key(timed));
@@ -142,16 +142,28 @@ impl Report {
         Axis { timed, start, end }
     }
 
-    /// Every row drawn: its recording's end and data.
-    fn all_rows(&self) -> Vec<(At, &RowData)> {
+    /// The page's axis, `<body>`'s: the one recording's, or with several
+    /// read apart the first's (each has its own, [`axis_of`](Self::axis_of)).
+    fn axis(&self) -> Axis {
+        Self::span_axis(&self.recordings[..self.recordings.len().min(1)])
+    }
+
+    /// The axis a recording is drawn on: its own (docs/report.md#several).
+    fn axis_of(r: &Recording) -> Axis {
+        Self::span_axis(std::slice::from_ref(r))
+    }
+
+    /// Every row drawn: its recording's axis, end and data.
+    fn all_rows(&self) -> Vec<(Axis, At, &RowData)> {
         let mut rows = Vec::new();
         for r in &self.recordings {
+            let axis = Self::axis_of(r);
             let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
             for bus in &r.timeline.buses {
-                rows.push((end, &bus.row));
+                rows.push((axis, end, &bus.row));
                 for n in r.summary.nodes.iter().filter(|n| n.bus == bus.name) {
                     if let Some(row) = bus.node_row(n.node) {
-                        rows.push((end, row));
+                        rows.push((axis, end, row));
                     }
                 }
             }
@@ -161,19 +173,19 @@ impl Report {
 
     /// How many marks and bands the page would draw, and how to keep them
     /// within the budgets (docs/report.md#size).
-    fn budget(&self, axis: &Axis) -> Budget {
+    fn budget(&self) -> Budget {
         let rows = self.all_rows();
         let count_marks = |radius: Option<f64>| -> usize {
             rows.iter()
-                .flat_map(|(_, row)| row.marks.iter())
-                .filter(|s| s.len() > 0)
-                .map(|s| drawn_marks(axis, s, radius).len())
+                .flat_map(|(axis, _, row)| row.marks.iter().map(move |s| (axis, s)))
+                .filter(|(_, s)| s.len() > 0)
+                .map(|(axis, s)| drawn_marks(axis, s, radius).len())
                 .sum()
         };
         let count_bands = |px: Option<f64>| -> usize {
             rows.iter()
-                .flat_map(|(end, row)| [(end, &row.nmt), (end, &row.cia402)])
-                .map(|(end, s)| drawn_bands(axis, s, *end, px).len())
+                .flat_map(|(axis, end, row)| [(axis, end, &row.nmt), (axis, end, &row.cia402)])
+                .map(|(axis, end, s)| drawn_bands(axis, s, *end, px).len())
                 .sum()
         };
         let mut radius = None;
@@ -216,22 +228,22 @@ impl Report {
     /// Writing to `out` failed.
     pub fn write_html(&self, out: &mut impl Write) -> io::Result<()> {
         let axis = self.axis();
-        let budget = self.budget(&axis);
+        let budget = self.budget();
         let mut page = String::with_capacity(1 << 16);
         self.head(&mut page, &axis);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.findings(&mut page, &axis);
+        self.findings(&mut page);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.timeline(&mut page, &axis, &budget);
+        self.timeline(&mut page, &budget);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.signals(&mut page, &axis, &budget);
+        self.signals(&mut page, &budget);
         self.tables(&mut page);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.events(&mut page, &axis, &budget);
+        self.events(&mut page, &budget);
         out.write_all(page.as_bytes())?;
         out.write_all(b"<script type=\"application/json\" id=\"motionwire-summary\">")?;
         self.summary_json(out)?;
@@ -293,7 +305,22 @@ impl Report {
             buses.len(),
             esc(&buses.join(", "))
         );
-        if axis.timed {
+        if self.recordings.len() > 1 {
+            // Read apart, each recording has its own axis.
+            for r in &self.recordings {
+                let _ = writeln!(
+                    p,
+                    "<dt>time</dt><dd>{}: {}{}</dd>",
+                    esc(r.summary.file.as_deref().unwrap_or("")),
+                    esc(&axis_words(&Self::axis_of(r))),
+                    if r.timeline.is_timed() {
+                        ""
+                    } else {
+                        " (no timestamps: drawn by line)"
+                    }
+                );
+            }
+        } else if axis.timed {
             let start = if axis.start >= UNIX_FROM {
                 utc(axis.start)
             } else {
@@ -376,10 +403,12 @@ impl Report {
     /// findings grouped by device and kind, the worst groups first, each
     /// group's first and last finding shown and the rest in a `details`;
     /// the first [`GROUPS_SHOWN`] groups open, the others one click away.
-    fn findings(&self, p: &mut String, axis: &Axis) {
-        /// One finding, with where it sorts and where its mark is.
+    fn findings(&self, p: &mut String) {
+        /// One finding, with where it sorts, where its mark is and the
+        /// axis of its recording.
         struct Line {
-            key: (u64, u64),
+            key: (usize, u64, u64),
+            axis: Axis,
             line: u64,
             finding: Finding,
             at: At,
@@ -392,7 +421,8 @@ impl Report {
         p.push_str("<main>\n<section id=\"wrong\">\n<h2>What went wrong</h2>\n");
         self.verdicts(p);
         let mut groups: Vec<Group> = Vec::new();
-        for r in &self.recordings {
+        for (i, r) in self.recordings.iter().enumerate() {
+            let axis = Self::axis_of(r);
             let mut of_recording: Vec<Group> = Vec::new();
             for finding in r.findings() {
                 let at = r.timeline.place(&finding);
@@ -409,7 +439,8 @@ impl Report {
                         && group_kind(f.kind) == group_kind(finding.kind)
                 });
                 let item = Line {
-                    key: (axis.key(at), line),
+                    key: (i, axis.key(at), line),
+                    axis,
                     line,
                     finding,
                     at,
@@ -465,7 +496,7 @@ impl Report {
                 f.kind,
                 FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
             ) {
-                let _ = write!(p, " ({})", axis.when_utc(l.at));
+                let _ = write!(p, " ({})", l.axis.when_utc(l.at));
             }
             p.push_str("</li>\n");
         };
@@ -553,15 +584,56 @@ impl Report {
         }
     }
 
-    fn timeline(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    fn timeline(&self, p: &mut String, budget: &Budget) {
+        let several = self.recordings.len() > 1;
         p.push_str("<section id=\"timeline\">\n<h2>Timeline</h2>\n");
-        p.push_str("<p class=\"help\">One axis for every row. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom, click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        if several {
+            p.push_str("<p class=\"help\">One timeline per recording, each on its own axis: the logs were read apart. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom (every timeline at once), click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        } else {
+            p.push_str("<p class=\"help\">One axis for every row. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom, click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        }
         p.push_str("<div class=\"tools js\"><button type=\"button\" data-zoom=\"in\">zoom in</button> <button type=\"button\" data-zoom=\"out\">zoom out</button> <button type=\"button\" data-zoom=\"reset\">whole log</button> <output id=\"details\"></output></div>\n");
+        let groups: Vec<&[Recording]> = if several {
+            self.recordings.chunks(1).collect()
+        } else {
+            vec![&self.recordings[..]]
+        };
+        for (i, recordings) in groups.into_iter().enumerate() {
+            let axis = Self::span_axis(recordings);
+            let file = recordings
+                .first()
+                .and_then(|r| r.summary.file.as_deref())
+                .map_or_else(String::new, |f| format!(" data-file=\"{}\"", esc(f)));
+            if several {
+                let name = recordings[0].summary.file.as_deref().unwrap_or("");
+                let _ = writeln!(
+                    p,
+                    "<h3 class=\"recording\"{file}>{}: {}</h3>",
+                    esc(name),
+                    axis_words(&axis)
+                );
+            }
+            self.timeline_svg(p, recordings, &axis, budget, i == 0, &file);
+        }
+        legend(p);
+        p.push_str("</section>\n");
+    }
+
+    /// One timeline: the rows of `recordings` on `axis`; the first writes
+    /// the shapes the others use.
+    fn timeline_svg(
+        &self,
+        p: &mut String,
+        recordings: &[Recording],
+        axis: &Axis,
+        budget: &Budget,
+        first: bool,
+        file_attr: &str,
+    ) {
         // Rows: per recording, per bus, the bus row then its devices.
-        let mut rows: Vec<(String, f64)> = Vec::new();
         let mut body = String::new();
         let mut y = AXIS + 4.0;
-        for r in &self.recordings {
+        for r in recordings {
             let file = r
                 .summary
                 .file
@@ -597,7 +669,6 @@ impl Report {
                     }
                 }
                 body.push_str("</g>\n</g>\n");
-                rows.push((String::new(), y));
                 y += h + 4.0;
                 for n in r.summary.nodes.iter().filter(|n| n.bus == b.bus) {
                     let row = data.and_then(|d| d.node_row(n.node));
@@ -609,17 +680,19 @@ impl Report {
         let height = y + 4.0;
         let _ = writeln!(
             p,
-            "<svg class=\"tl\" id=\"timeline-svg\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">"
+            "<svg class=\"tl\"{} viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}{file_attr}>",
+            if first { " id=\"timeline-svg\"" } else { "" },
+            axis.attrs()
         );
-        defs(p);
+        if first {
+            defs(p);
+        }
         axis_ticks(p, axis, height);
         p.push_str(&body);
         p.push_str("</svg>\n");
-        legend(p);
-        p.push_str("</section>\n");
     }
 
-    fn signals(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    fn signals(&self, p: &mut String, budget: &Budget) {
         p.push_str("<section id=\"signals\">\n<h2>Drive signals</h2>\n");
         let mut any = false;
         for r in &self.recordings {
@@ -633,7 +706,12 @@ impl Report {
                 }
                 any = true;
                 let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
-                chart(p, axis, budget, n, row, end);
+                let axis = if self.recordings.len() > 1 {
+                    Self::axis_of(r)
+                } else {
+                    self.axis()
+                };
+                chart(p, &axis, budget, n, row, end);
             }
         }
         if !any {
@@ -683,9 +761,10 @@ impl Report {
         p.push_str("</tbody>\n</table>\n</section>\n");
     }
 
-    fn events(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    fn events(&self, p: &mut String, budget: &Budget) {
         struct Row<'a> {
-            key: (u64, u64),
+            key: (usize, u64, u64),
+            axis: Axis,
             who: String,
             kind: MarkKind,
             mark: Drawn,
@@ -697,7 +776,16 @@ impl Report {
             code: Option<u16>,
         }
         let mut all: Vec<Row<'_>> = Vec::new();
-        for r in &self.recordings {
+        let (mut timed, mut unix) = (false, false);
+        for (i, r) in self.recordings.iter().enumerate() {
+            let axis = if self.recordings.len() > 1 {
+                Self::axis_of(r)
+            } else {
+                self.axis()
+            };
+            let axis = &axis;
+            timed |= axis.timed;
+            unix |= axis.is_unix();
             let prefix = r
                 .summary
                 .file
@@ -736,7 +824,8 @@ impl Report {
                                     detail: run.detail,
                                 };
                                 all.push(Row {
-                                    key: (axis.key(mark.at), mark.at.line),
+                                    key: (i, axis.key(mark.at), mark.at.line),
+                                    axis: *axis,
                                     who: who.clone(),
                                     kind,
                                     mark,
@@ -750,7 +839,8 @@ impl Report {
                         }
                         for mark in marks {
                             all.push(Row {
-                                key: (axis.key(mark.at), mark.at.line),
+                                key: (i, axis.key(mark.at), mark.at.line),
+                                axis: *axis,
                                 who: who.clone(),
                                 kind,
                                 mark,
@@ -768,15 +858,15 @@ impl Report {
         let _ = write!(
             p,
             "<section id=\"events\">\n<h2>Events</h2>\n<p class=\"help\">Every mark of the timeline in {} order, with its line{}.</p>\n<table class=\"events\">\n<thead><tr><th>line</th><th>{}</th><th>device</th><th>event</th><th>count</th><th>what</th></tr></thead>\n<tbody>\n",
-            if axis.timed { "time" } else { "line" },
+            if timed { "time" } else { "line" },
             if all.len() > EVENT_ROWS {
                 format!("; the first {EVENT_ROWS} of {}", all.len())
             } else {
                 String::new()
             },
-            if axis.is_unix() {
+            if unix {
                 "time</th><th>UTC"
-            } else if axis.timed {
+            } else if timed {
                 "time"
             } else {
                 ""
@@ -792,6 +882,7 @@ impl Report {
             let node = row
                 .node
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let axis = &row.axis;
             let mut what = mark_text(row.kind, &m, axis, row.profile);
             let mut code = String::new();
             if let (Some(c), true) = (row.code, m.count > 1) {
@@ -810,12 +901,11 @@ impl Report {
             if let Some(c) = row.code {
                 let _ = write!(code, " data-code=\"{c}\"");
             }
-            let when = if axis.is_unix() {
-                format!("{}</td><td>{}", axis.when(m.at), utc(m.at.t))
-            } else if axis.timed {
-                axis.when(m.at)
-            } else {
-                String::new()
+            let when = match (unix, axis.is_unix(), timed) {
+                (true, true, _) => format!("{}</td><td>{}", axis.when(m.at), utc(m.at.t)),
+                (true, false, _) => format!("{}</td><td>", axis.when(m.at)),
+                (false, _, true) => axis.when(m.at),
+                (false, _, false) => String::new(),
             };
             let _ = writeln!(
                 p,
@@ -1057,4 +1147,18 @@ fn group_words(kind: FindingKind) -> &'static str {
         FindingKind::BusOff => "bus-offs",
         FindingKind::ErrorPassive => "error-passives",
     }
+}
+
+/// What an axis spans, in words: `from 2023-11-14 22:13:20.000526 UTC, for
+/// 9.991137 s`, `lines 1 to 40`.
+fn axis_words(axis: &Axis) -> String {
+    if !axis.timed {
+        return format!("lines {} to {}", axis.start, axis.end);
+    }
+    let start = if axis.is_unix() {
+        utc(axis.start)
+    } else {
+        format!("{} s (the log's own clock)", seconds(axis.start))
+    };
+    format!("from {start}, for {} s", seconds(axis.end - axis.start))
 }

@@ -74,6 +74,17 @@ impl Axis {
         }
     }
 
+    /// Its `data-axis`, `data-start` and `data-span` attributes, with a
+    /// space before (docs/report.md#contract).
+    pub(super) fn attrs(&self) -> String {
+        format!(
+            " data-axis=\"{}\" data-start=\"{}\" data-span=\"{}\"",
+            if self.timed { "time" } else { "line" },
+            self.start,
+            self.end - self.start
+        )
+    }
+
     /// A place as the page writes it: `+2.003641 s` or `line 613`.
     pub(super) fn when(&self, at: At) -> String {
         if self.timed {

@@ -592,11 +592,12 @@ pub(super) fn chart(
     let height = y;
     let _ = write!(
         p,
-        "<h3>{}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {}\" data-node=\"{}\" data-iface=\"{}\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
+        "<h3>{}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {}\" data-node=\"{}\" data-iface=\"{}\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}>\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
         esc(&device(&n.bus, n.node)),
         esc(&device(&n.bus, n.node)),
         n.node.get(),
-        iface_attr(&n.bus)
+        iface_attr(&n.bus),
+        axis.attrs()
     );
     axis_ticks(p, axis, height);
     p.push_str(&body);

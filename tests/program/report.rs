@@ -916,3 +916,71 @@ fn an_empty_log_and_a_log_without_devices_say_so() {
     assert!(none.contains("<strong>No CANopen device in this log:</strong> 2 frames read"));
     assert!(!none.contains("No fault"));
 }
+
+/// docs/report.md#several: logs read apart give one timeline per
+/// recording, each on its own axis; `--joined`, one.
+#[test]
+fn logs_read_apart_have_an_axis_each() {
+    let dir = scratch("axes");
+    let a = dir.join("a.log");
+    let b = dir.join("b.log");
+    std::fs::write(
+        &a,
+        "(1700000000.000000) can0 705#05\n(1700000001.000000) can0 085#1081110000000000\n(1700000002.000000) can0 705#05\n",
+    )
+    .unwrap();
+    // Two years later, a recording of its own.
+    std::fs::write(
+        &b,
+        "(1760000000.000000) can0 706#05\n(1760000000.500000) can0 086#1081110000000000\n",
+    )
+    .unwrap();
+    let page_of = |joined: bool| {
+        let out = dir.join(format!("axes-{joined}.html"));
+        let mut args = vec!["report"];
+        if joined {
+            args.push("--joined");
+        }
+        args.extend([
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let r = run(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let apart = page_of(false);
+    let page = parse(&apart);
+    let svgs: Vec<(u64, u64)> = page
+        .elements
+        .iter()
+        .filter(|e| e.tag == "svg" && e.get("aria-label") == Some("timeline"))
+        .map(|e| (e.num("data-start"), e.num("data-span")))
+        .collect();
+    assert_eq!(
+        svgs,
+        [
+            (1_700_000_000_000_000, 2_000_000),
+            (1_760_000_000_000_000, 500_000)
+        ]
+    );
+    assert_eq!(apart.matches("<h3 class=\"recording\"").count(), 2);
+    // Each EMCY at its own recording's time, never at +60000000 s.
+    assert!(apart.contains("(+1.000000 s, 2023-11-14 22:13:21.000000 UTC)"));
+    assert!(apart.contains("(+0.500000 s, 2025-10-09 08:53:20.500000 UTC)"));
+    assert!(!apart.contains("+60000000"));
+    check_counts(
+        &page,
+        &summary_records(&[a.to_str().unwrap(), b.to_str().unwrap()]),
+    );
+
+    let joined = parse(&page_of(true));
+    let svgs = joined
+        .elements
+        .iter()
+        .filter(|e| e.tag == "svg" && e.get("aria-label") == Some("timeline"))
+        .count();
+    assert_eq!(svgs, 1);
+}
