@@ -530,9 +530,9 @@ impl Report {
             p.push_str("<ul class=\"findings\">\n");
             item(p, &g.lines[0]);
             if count > 2 {
-                let _ = write!(
+                let _ = writeln!(
                     p,
-                    "<li class=\"rest\"><details><summary>{} more between them</summary><ul class=\"findings\">\n",
+                    "<li class=\"rest\"><details><summary>{} more between them</summary><ul class=\"findings\">",
                     count - 2
                 );
                 for l in &g.lines[1..count - 1] {

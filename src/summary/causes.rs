@@ -6,43 +6,19 @@
 //! node's EMCY 0x8130 "Life guard error or heartbeat error"
 //! ([`Summary::lost_before`]).
 
-use core::fmt;
 use core::time::Duration;
 use std::collections::VecDeque;
 
-use crate::can::{BusName, Timestamp};
+use crate::can::BusName;
 use crate::canopen::{ErrorCode, NodeId};
 
+use super::heartbeat::BusErrorSeen;
 use super::{EmcySeen, HeartbeatGap, Summary, Timeouts, CAUSE_WINDOW};
 
 /// The EMCY code a heartbeat consumer sends when it misses a heartbeat,
 /// or a node when its life guarding fails: 0x8130 "Life guard error or
 /// heartbeat error" (CiA 301, docs/canopen.md#error-control).
 pub const LOST_HEARTBEAT: ErrorCode = ErrorCode::new(0x8130);
-
-/// A bus-off or error-passive error frame the summary links to a heartbeat
-/// timeout (docs/summary.md#causes).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BusErrorSeen {
-    /// Its line.
-    pub line: u64,
-    /// Its time.
-    pub timestamp: Timestamp,
-    /// Whether it says bus-off (else error-passive).
-    pub bus_off: bool,
-}
-
-impl fmt::Display for BusErrorSeen {
-    /// `bus-off at line 38`, `error-passive at line 38`.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let what = if self.bus_off {
-            "bus-off"
-        } else {
-            "error-passive"
-        };
-        write!(f, "{what} at line {}", self.line)
-    }
-}
 
 /// The most bus-off and error-passive frames a bus keeps from its last
 /// second: a storm keeps its first ones, which are the earliest causes.
@@ -117,10 +93,9 @@ impl Summary {
             for gap in gaps.iter() {
                 let end = gap.since.checked_add(gap.gap).unwrap_or(gap.since);
                 let late = gap.due.checked_add(CAUSE_WINDOW).unwrap_or(gap.due);
-                if gap.since < t && t <= end && t <= late {
-                    if best.map_or(true, |(_, b)| gap.since < b.since) {
-                        best = Some((other.node, *gap));
-                    }
+                let earliest = best.map_or(true, |(_, b)| gap.since < b.since);
+                if gap.since < t && t <= end && t <= late && earliest {
+                    best = Some((other.node, *gap));
                 }
             }
         }

@@ -58,13 +58,13 @@ mod values;
 mod verdict;
 mod wrong;
 
-pub use causes::{BusErrorSeen, LOST_HEARTBEAT};
+pub use causes::LOST_HEARTBEAT;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::{EmcySeen, ProfileReading};
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingCause, FindingDetail, FindingKind};
-pub use heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
+pub use heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};

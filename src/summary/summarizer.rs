@@ -11,10 +11,10 @@ use crate::canopen::{
 use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
-use super::causes::{in_window, BusErrorSeen, RecentBusErrors};
+use super::causes::{in_window, RecentBusErrors};
 use super::emcy::EmcySeen;
 use super::event::{SummaryEvent, SummaryEventKind};
-use super::heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
+use super::heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 use super::listed::Listed;
 use super::record::{BusSummary, FrameCounts, NodeSummary, Summary};
 use super::sdo::SdoFrameFacts;

@@ -305,7 +305,7 @@ impl fmt::Display for Cia402Fault {
 
 impl Cia402Fault {
     /// Return the fault's sentence with what the drive's `profile` reads
-    /// in the EMCY before it ([`ProfileReading`],
+    /// in the EMCY before it ([`ProfileReading`](super::ProfileReading),
     /// docs/summary.md#profiles): `went operation_enabled → fault at line
     /// 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis
     /// 1, feedback 2 (line 613)`; `Display` is the sentence of a generic
