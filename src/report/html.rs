@@ -9,7 +9,9 @@ use std::io::{self, Write};
 use crate::can::BusName;
 use crate::canopen::{ErrorCode, NodeId};
 use crate::profiles::Profile;
-use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Severity, Timeouts};
+use crate::summary::{
+    Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, Timeouts,
+};
 
 use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, UNIX_FROM, WIDTH};
 use super::markup::{device, esc, iface_attr};
@@ -462,7 +464,11 @@ impl Report {
             g.lines.sort_by_key(|l| l.key);
         }
         groups.sort_by_key(|g| (g.severity, g.lines[0].key));
-        let findings: usize = groups.iter().map(|g| g.lines.len()).sum();
+        let findings: u64 = groups
+            .iter()
+            .flat_map(|g| g.lines.iter())
+            .map(|l| events_of(&l.finding))
+            .sum();
         if groups.is_empty() {
             p.push_str(&self.nothing_wrong());
             p.push_str("</section>\n");
@@ -506,9 +512,12 @@ impl Report {
                 .node
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
             let count = g.lines.len();
+            // How many events: a finding that stands for entries a summary
+            // list omitted counts them (docs/summary.md#lists).
+            let events: u64 = g.lines.iter().map(|l| events_of(&l.finding)).sum();
             let _ = write!(
                 p,
-                "<li class=\"group\" data-iface=\"{}\"{node} data-kind=\"{}\" data-severity=\"{}\" data-count=\"{count}\"><span class=\"sev sev-{}\">{}</span> ",
+                "<li class=\"group\" data-iface=\"{}\"{node} data-kind=\"{}\" data-severity=\"{}\" data-count=\"{events}\"><span class=\"sev sev-{}\">{}</span> ",
                 iface_attr(&f.bus),
                 group_kind(f.kind),
                 g.severity,
@@ -523,7 +532,7 @@ impl Report {
             }
             let _ = writeln!(
                 p,
-                "<b>{}</b> {}: {count}, the first and the last",
+                "<b>{}</b> {}: {events}, the first and the last",
                 esc(&f.subject()),
                 group_words(f.kind)
             );
@@ -533,7 +542,7 @@ impl Report {
                 let _ = writeln!(
                     p,
                     "<li class=\"rest\"><details><summary>{} more between them</summary><ul class=\"findings\">",
-                    count - 2
+                    events.saturating_sub(2)
                 );
                 for l in &g.lines[1..count - 1] {
                     item(p, l);
@@ -554,7 +563,10 @@ impl Report {
                 p,
                 "<details class=\"more-groups\"><summary>{} more groups ({} findings)</summary>\n<ul class=\"groups\">\n",
                 rest.len(),
-                rest.iter().map(|g| g.lines.len()).sum::<usize>()
+                rest.iter()
+                    .flat_map(|g| g.lines.iter())
+                    .map(|l| events_of(&l.finding))
+                    .sum::<u64>()
             );
             for g in rest {
                 group(p, g);
@@ -1161,4 +1173,13 @@ fn axis_words(axis: &Axis) -> String {
         format!("{} s (the log's own clock)", seconds(axis.start))
     };
     format!("from {start}, for {} s", seconds(axis.end - axis.start))
+}
+
+/// How many events a finding stands for: one, or the entries a summary
+/// list omitted where it stands for them.
+fn events_of(finding: &Finding) -> u64 {
+    match finding.detail {
+        FindingDetail::Omitted(n) => n,
+        _ => 1,
+    }
 }
