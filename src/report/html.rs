@@ -488,9 +488,12 @@ impl Report {
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
             let _ = write!(
                 p,
-                "<li data-line=\"{}\" data-iface=\"{}\"{node}><b>{}</b> {}",
+                "<li data-line=\"{}\" data-iface=\"{}\"{node}{}><b>{}</b> {}",
                 l.line,
                 iface_attr(&f.bus),
+                f.file
+                    .as_deref()
+                    .map_or_else(String::new, |file| format!(" data-file=\"{}\"", esc(file))),
                 esc(&f.subject()),
                 esc(&f.text())
             );

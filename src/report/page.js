@@ -188,9 +188,12 @@
   function show(item) {
     var line = item.getAttribute("data-line");
     var node = item.getAttribute("data-node");
+    // Logs read apart: the row of the finding's own file.
+    var file = item.hasAttribute("data-file")
+      ? "[data-file=\"" + CSS.escape(item.getAttribute("data-file")) + "\"]" : "";
     var row = node === null
-      ? document.querySelector("g[data-row=\"bus\"][data-iface=\"" + item.getAttribute("data-iface") + "\"]")
-      : document.querySelector("g[data-row=\"node\"][data-iface=\"" + item.getAttribute("data-iface") + "\"][data-node=\"" + node + "\"]");
+      ? document.querySelector("g[data-row=\"bus\"][data-iface=\"" + item.getAttribute("data-iface") + "\"]" + file)
+      : document.querySelector("g[data-row=\"node\"][data-iface=\"" + item.getAttribute("data-iface") + "\"][data-node=\"" + node + "\"]" + file);
     var scope = row || document;
     var el = scope.querySelector("[data-kind][data-line=\"" + line + "\"]:not([data-kind$=\"_state\"])") ||
       scope.querySelector("[data-line=\"" + line + "\"]");
