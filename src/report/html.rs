@@ -778,9 +778,11 @@ impl Report {
 
     fn events(&self, p: &mut String, budget: &Budget) {
         struct Row<'a> {
-            key: (usize, u64, u64),
+            /// The recording, the place, the line and the row's number:
+            /// rows at one place stay in the order they were made.
+            key: (usize, u64, u64, usize),
             axis: Axis,
-            who: String,
+            who: usize,
             kind: MarkKind,
             mark: Drawn,
             bus: &'a BusName,
@@ -791,6 +793,18 @@ impl Report {
             code: Option<u16>,
         }
         let mut all: Vec<Row<'_>> = Vec::new();
+        let mut total = 0usize;
+        // Only the first rows are written: whenever many are kept, the
+        // first of them are, so that a storm of distinct codes stays small.
+        let keep_first = |all: &mut Vec<Row<'_>>| {
+            if all.len() >= 4 * EVENT_ROWS {
+                all.select_nth_unstable_by_key(EVENT_ROWS, |r| r.key);
+                all.truncate(EVENT_ROWS);
+            }
+        };
+        // The devices' and buses' names, once each: a storm of distinct
+        // codes is many rows of few devices.
+        let mut names: Vec<String> = Vec::new();
         let (mut timed, mut unix) = (false, false);
         for (i, r) in self.recordings.iter().enumerate() {
             let axis = if self.recordings.len() > 1 {
@@ -817,10 +831,11 @@ impl Report {
                     }
                 }
                 for (node, profile, row) in rows {
-                    let who = match node {
+                    names.push(match node {
                         Some(node) => format!("{prefix}{}", device(&bus.name, node)),
                         None => format!("{prefix}bus {}", bus.name),
-                    };
+                    });
+                    let who = names.len() - 1;
                     for kind in MarkKind::ALL {
                         let marks = drawn_marks(axis, &row.marks[kind as usize], budget.radius);
                         let emcy = matches!(kind, MarkKind::Emcy | MarkKind::EmcyReset);
@@ -838,10 +853,12 @@ impl Report {
                                     count: run.count,
                                     detail: run.detail,
                                 };
+                                total += 1;
+                                keep_first(&mut all);
                                 all.push(Row {
-                                    key: (i, axis.key(mark.at), mark.at.line),
+                                    key: (i, axis.key(mark.at), mark.at.line, total),
                                     axis: *axis,
-                                    who: who.clone(),
+                                    who,
                                     kind,
                                     mark,
                                     bus: &bus.name,
@@ -853,10 +870,12 @@ impl Report {
                             continue;
                         }
                         for mark in marks {
+                            total += 1;
+                            keep_first(&mut all);
                             all.push(Row {
-                                key: (i, axis.key(mark.at), mark.at.line),
+                                key: (i, axis.key(mark.at), mark.at.line, total),
                                 axis: *axis,
-                                who: who.clone(),
+                                who,
                                 kind,
                                 mark,
                                 bus: &bus.name,
@@ -869,13 +888,17 @@ impl Report {
                 }
             }
         }
+        if all.len() > EVENT_ROWS {
+            all.select_nth_unstable_by_key(EVENT_ROWS, |r| r.key);
+            all.truncate(EVENT_ROWS);
+        }
         all.sort_by_key(|r| r.key);
         let _ = write!(
             p,
             "<section id=\"events\">\n<h2>Events</h2>\n<p class=\"help\">Every mark of the timeline in {} order, with its line{}.</p>\n<table class=\"events\">\n<thead><tr><th>line</th><th>{}</th><th>device</th><th>event</th><th>count</th><th>what</th></tr></thead>\n<tbody>\n",
             if timed { "time" } else { "line" },
-            if all.len() > EVENT_ROWS {
-                format!("; the first {EVENT_ROWS} of {}", all.len())
+            if total > EVENT_ROWS {
+                format!("; the first {EVENT_ROWS} of {total}")
             } else {
                 String::new()
             },
@@ -927,7 +950,7 @@ impl Report {
                 "<tr data-line=\"{}\" data-iface=\"{}\"{node}{code}><td>{lines}</td><td>{when}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 m.at.line,
                 iface_attr(row.bus),
-                esc(&row.who),
+                esc(&names[row.who]),
                 row.kind.words(),
                 m.count,
                 esc(&what)
