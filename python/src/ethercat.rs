@@ -313,11 +313,14 @@ pub fn counts_json(counts: &Counts) -> String {
         lost,
         other_frame_types,
         damaged,
+        time_reversals,
+        ..
     } = counts;
     format!(
         "{{\"packets\":{packets},\"sent\":{sent},\"returned\":{returned},\
          \"returned_unpaired\":{returned_unpaired},\"lost\":{lost},\
-         \"other_frame_types\":{other_frame_types},\"damaged\":{damaged}}}"
+         \"other_frame_types\":{other_frame_types},\"damaged\":{damaged},\
+         \"time_reversals\":{time_reversals}}}"
     )
 }
 
@@ -330,4 +333,8 @@ pub fn add_counts(sum: &mut Counts, counts: &Counts) {
     sum.lost += counts.lost;
     sum.other_frame_types += counts.other_frame_types;
     sum.damaged += counts.damaged;
+    sum.time_reversals += counts.time_reversals;
+    if sum.first_reversal.is_none() {
+        sum.first_reversal = counts.first_reversal;
+    }
 }

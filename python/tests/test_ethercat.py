@@ -231,6 +231,7 @@ def test_lost_and_unpaired_frames_are_counted():
         "lost": 1,
         "other_frame_types": 0,
         "damaged": 0,
+        "time_reversals": 0,
     }
     assert json.loads(soem[b"motionwire.other"]) == [
         "1 packet of EtherType 0x0806 (ARP) skipped: neither CAN nor EtherCAT"
@@ -245,6 +246,7 @@ def test_lost_and_unpaired_frames_are_counted():
         # A frame of reserved type 7 (tests/data/ethercat/README.md).
         "other_frame_types": 1,
         "damaged": 0,
+        "time_reversals": 0,
     }
 
 

@@ -109,6 +109,7 @@ struct Port {
 
 /// The counts a session keeps, per capture (docs/ethercat.md#direction).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub struct Counts {
     /// EtherCAT packets read.
     pub packets: u64,

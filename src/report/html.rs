@@ -7,10 +7,13 @@ use std::fmt::Write as _;
 use std::io::{self, Write};
 
 use crate::can::BusName;
-use crate::canopen::NodeId;
-use crate::summary::{Finding, FindingKind, Listed, NodeSummary, Timeouts};
+use crate::canopen::{ErrorCode, NodeId};
+use crate::profiles::Profile;
+use crate::summary::{
+    Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, Timeouts,
+};
 
-use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, WIDTH};
+use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, UNIX_FROM, WIDTH};
 use super::markup::{device, esc, iface_attr};
 use super::recorder::{MarkKind, Recording, RowData};
 use super::series::At;
@@ -21,8 +24,10 @@ use super::svg::{
 
 /// The most rows of the event table (docs/report.md#tables).
 const EVENT_ROWS: usize = 2000;
-/// The most items of one list of "What went wrong".
-const LIST_ITEMS: usize = 50;
+/// The groups of "What went wrong" shown open: the rest are one click
+/// away, so that the verdict and the worst findings fit the first screen
+/// whatever the log (docs/report.md#page).
+const GROUPS_SHOWN: usize = 6;
 /// The most marks a page draws: beyond, neighbours cluster within as many
 /// pixels (a power of two) as keep them to this (docs/report.md#clusters).
 const MARK_BUDGET: usize = 20_000;
@@ -116,13 +121,13 @@ impl Report {
         &self.recordings
     }
 
-    /// The shared axis: by time when every recording is, else by line.
-    fn axis(&self) -> Axis {
-        let timed =
-            !self.recordings.is_empty() && self.recordings.iter().all(|r| r.timeline.is_timed());
+    /// The axis of `recordings` drawn on one: by time when every one of
+    /// them is, else by line; from the first place to the last.
+    fn span_axis(recordings: &[Recording]) -> Axis {
+        let timed = !recordings.is_empty() && recordings.iter().all(|r| r.timeline.is_timed());
         let mut start = u64::MAX;
         let mut end = 0;
-        for r in &self.recordings {
+        for r in recordings {
             if let Some((first, last)) = r.timeline.span() {
                 start = start.min(first.key(timed));
                 end = end.max(last.key(timed));
@@ -139,16 +144,28 @@ impl Report {
         Axis { timed, start, end }
     }
 
-    /// Every row drawn: its recording's end and data.
-    fn all_rows(&self) -> Vec<(At, &RowData)> {
+    /// The page's axis, `<body>`'s: the one recording's, or with several
+    /// read apart the first's (each has its own, [`axis_of`](Self::axis_of)).
+    fn axis(&self) -> Axis {
+        Self::span_axis(&self.recordings[..self.recordings.len().min(1)])
+    }
+
+    /// The axis a recording is drawn on: its own (docs/report.md#several).
+    fn axis_of(r: &Recording) -> Axis {
+        Self::span_axis(std::slice::from_ref(r))
+    }
+
+    /// Every row drawn: its recording's axis, end and data.
+    fn all_rows(&self) -> Vec<(Axis, At, &RowData)> {
         let mut rows = Vec::new();
         for r in &self.recordings {
+            let axis = Self::axis_of(r);
             let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
             for bus in &r.timeline.buses {
-                rows.push((end, &bus.row));
+                rows.push((axis, end, &bus.row));
                 for n in r.summary.nodes.iter().filter(|n| n.bus == bus.name) {
                     if let Some(row) = bus.node_row(n.node) {
-                        rows.push((end, row));
+                        rows.push((axis, end, row));
                     }
                 }
             }
@@ -158,19 +175,19 @@ impl Report {
 
     /// How many marks and bands the page would draw, and how to keep them
     /// within the budgets (docs/report.md#size).
-    fn budget(&self, axis: &Axis) -> Budget {
+    fn budget(&self) -> Budget {
         let rows = self.all_rows();
         let count_marks = |radius: Option<f64>| -> usize {
             rows.iter()
-                .flat_map(|(_, row)| row.marks.iter())
-                .filter(|s| s.len() > 0)
-                .map(|s| drawn_marks(axis, s, radius).len())
+                .flat_map(|(axis, _, row)| row.marks.iter().map(move |s| (axis, s)))
+                .filter(|(_, s)| s.len() > 0)
+                .map(|(axis, s)| drawn_marks(axis, s, radius).len())
                 .sum()
         };
         let count_bands = |px: Option<f64>| -> usize {
             rows.iter()
-                .flat_map(|(end, row)| [(end, &row.nmt), (end, &row.cia402)])
-                .map(|(end, s)| drawn_bands(axis, s, *end, px).len())
+                .flat_map(|(axis, end, row)| [(axis, end, &row.nmt), (axis, end, &row.cia402)])
+                .map(|(axis, end, s)| drawn_bands(axis, s, *end, px).len())
                 .sum()
         };
         let mut radius = None;
@@ -213,22 +230,22 @@ impl Report {
     /// Writing to `out` failed.
     pub fn write_html(&self, out: &mut impl Write) -> io::Result<()> {
         let axis = self.axis();
-        let budget = self.budget(&axis);
+        let budget = self.budget();
         let mut page = String::with_capacity(1 << 16);
         self.head(&mut page, &axis);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.findings(&mut page, &axis);
+        self.findings(&mut page);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.timeline(&mut page, &axis, &budget);
+        self.timeline(&mut page, &budget);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.signals(&mut page, &axis, &budget);
+        self.signals(&mut page, &budget);
         self.tables(&mut page);
         out.write_all(page.as_bytes())?;
         page.clear();
-        self.events(&mut page, &axis, &budget);
+        self.events(&mut page, &budget);
         out.write_all(page.as_bytes())?;
         out.write_all(b"<script type=\"application/json\" id=\"motionwire-summary\">")?;
         self.summary_json(out)?;
@@ -290,8 +307,23 @@ impl Report {
             buses.len(),
             esc(&buses.join(", "))
         );
-        if axis.timed {
-            let start = if axis.start >= 1_000_000_000_000_000 {
+        if self.recordings.len() > 1 {
+            // Read apart, each recording has its own axis.
+            for r in &self.recordings {
+                let _ = writeln!(
+                    p,
+                    "<dt>time</dt><dd>{}: {}{}</dd>",
+                    esc(r.summary.file.as_deref().unwrap_or("")),
+                    esc(&axis_words(&Self::axis_of(r))),
+                    if r.timeline.is_timed() {
+                        ""
+                    } else {
+                        " (no timestamps: drawn by line)"
+                    }
+                );
+            }
+        } else if axis.timed {
+            let start = if axis.start >= UNIX_FROM {
                 utc(axis.start)
             } else {
                 format!("{} s (the log's own clock)", seconds(axis.start))
@@ -339,11 +371,19 @@ impl Report {
                 .file
                 .as_deref()
                 .map_or_else(String::new, |f| format!("{}: ", esc(f)));
+            // Where the summary keeps no time (a heartbeat timeout, a
+            // bus-off), the stop's mark on the timeline has it.
             let wall = v
                 .stop
                 .timestamp
                 .map(|ts| u64::try_from(ts.as_micros()).unwrap_or(u64::MAX))
-                .filter(|&us| us >= 1_000_000_000_000_000)
+                .or_else(|| {
+                    r.timeline
+                        .is_timed()
+                        .then(|| r.timeline.place(&v.stop).t)
+                        .filter(|&t| t > 0)
+                })
+                .filter(|&us| us >= UNIX_FROM)
                 .map_or_else(String::new, |us| format!(" at {}", utc(us)));
             let node = v
                 .stop
@@ -361,18 +401,31 @@ impl Report {
         }
     }
 
-    fn findings(&self, p: &mut String, axis: &Axis) {
-        /// One line of "What went wrong", with where it sorts.
+    /// "What went wrong" (docs/report.md#page): the verdicts, then the
+    /// findings grouped by device and kind, the worst groups first, each
+    /// group's first and last finding shown and the rest in a `details`;
+    /// the first [`GROUPS_SHOWN`] groups open, the others one click away.
+    fn findings(&self, p: &mut String) {
+        /// One finding, with where it sorts, where its mark is and the
+        /// axis of its recording.
         struct Line {
-            key: (u64, u64),
+            key: (usize, u64, u64),
+            axis: Axis,
             line: u64,
             finding: Finding,
             at: At,
         }
+        /// The findings of one device (or bus) of one kind.
+        struct Group {
+            severity: Severity,
+            lines: Vec<Line>,
+        }
         p.push_str("<main>\n<section id=\"wrong\">\n<h2>What went wrong</h2>\n");
         self.verdicts(p);
-        let mut sections: [Vec<Line>; 7] = Default::default();
-        for r in &self.recordings {
+        let mut groups: Vec<Group> = Vec::new();
+        for (i, r) in self.recordings.iter().enumerate() {
+            let axis = Self::axis_of(r);
+            let mut of_recording: Vec<Group> = Vec::new();
             for finding in r.findings() {
                 let at = r.timeline.place(&finding);
                 // A device's finding points at its mark, a bus's at its line.
@@ -381,97 +434,221 @@ impl Report {
                 } else {
                     finding.line
                 };
-                let section = match finding.kind {
-                    FindingKind::FirstError
-                    | FindingKind::FirstWarning
-                    | FindingKind::Cia402Fault => 0,
-                    FindingKind::Restarts => 1,
-                    FindingKind::HeartbeatTimeout => 2,
-                    FindingKind::SdoAbort => 3,
-                    FindingKind::SdoBroken | FindingKind::SdoTimeout => 4,
-                    FindingKind::ToggleError => 5,
-                    FindingKind::BusOff | FindingKind::ErrorPassive => 6,
-                };
-                sections[section].push(Line {
-                    key: (axis.key(at), line),
+                let place = of_recording.iter().position(|g| {
+                    let f = &g.lines[0].finding;
+                    f.bus == finding.bus
+                        && f.node == finding.node
+                        && group_kind(f.kind) == group_kind(finding.kind)
+                });
+                let item = Line {
+                    key: (i, axis.key(at), line),
+                    axis,
                     line,
                     finding,
                     at,
-                });
+                };
+                match place.map(|i| &mut of_recording[i]) {
+                    Some(g) => {
+                        g.severity = g.severity.min(item.finding.severity);
+                        g.lines.push(item);
+                    }
+                    None => of_recording.push(Group {
+                        severity: item.finding.severity,
+                        lines: vec![item],
+                    }),
+                }
             }
+            groups.extend(of_recording);
         }
-        let headings: [(&str, &str); 7] = [
-            (
-                "faults",
-                "Faults, first errors and first warnings, in time order",
-            ),
-            ("restarts", "Restarts"),
-            ("heartbeat-timeouts", "Heartbeat timeouts"),
-            ("sdo-aborts", "SDO aborts"),
-            ("sdo-transfers", "Broken and unanswered SDO transfers"),
-            ("toggle-errors", "Node-guarding toggle errors"),
-            ("bus-errors", "Bus-off and error-passive"),
-        ];
-        let mut any = false;
-        for ((id, heading), list) in headings.into_iter().zip(&mut sections) {
-            if list.is_empty() {
-                continue;
-            }
-            any = true;
-            list.sort_by_key(|f| f.key);
+        for g in &mut groups {
+            g.lines.sort_by_key(|l| l.key);
+        }
+        groups.sort_by_key(|g| (g.severity, g.lines[0].key));
+        let findings: u64 = groups
+            .iter()
+            .flat_map(|g| g.lines.iter())
+            .map(|l| events_of(&l.finding))
+            .sum();
+        if groups.is_empty() {
+            p.push_str(&self.nothing_wrong());
+            p.push_str("</section>\n");
+            return;
+        }
+        let _ = writeln!(
+            p,
+            "<p class=\"help\">{findings} finding{} in {} group{}, by device and kind, the worst first; each group shows its first and last, the rest one click away. Click one for its mark on the timeline.</p>",
+            if findings == 1 { "" } else { "s" },
+            groups.len(),
+            if groups.len() == 1 { "" } else { "s" },
+        );
+        let item = |p: &mut String, l: &Line| {
+            let f = &l.finding;
+            let node = f
+                .node
+                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
             let _ = write!(
                 p,
-                "<h3 id=\"{id}\">{heading}</h3>\n<ul class=\"findings\">\n"
+                "<li data-line=\"{}\" data-iface=\"{}\"{node}{}><b>{}</b> {}",
+                l.line,
+                iface_attr(&f.bus),
+                f.file
+                    .as_deref()
+                    .map_or_else(String::new, |file| format!(" data-file=\"{}\"", esc(file))),
+                esc(&f.subject()),
+                esc(&f.text())
             );
-            for item in list.iter().take(LIST_ITEMS) {
-                let f = &item.finding;
-                let node = f
-                    .node
-                    .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
-                let _ = write!(
-                    p,
-                    "<li data-line=\"{}\" data-iface=\"{}\"{node}><b>{}</b> {}",
-                    item.line,
-                    iface_attr(&f.bus),
-                    esc(&f.subject()),
-                    esc(&f.text())
-                );
-                // Where a list omitted entries, the timeline still has them;
-                // a finding of one event says when it was.
-                if f.is_omitted() {
-                    p.push_str(", the timeline shows every one");
-                } else if !matches!(
-                    f.kind,
-                    FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
-                ) {
-                    let _ = write!(p, " ({})", axis.when(item.at));
-                }
-                p.push_str("</li>\n");
+            // Where a list omitted entries, the timeline still has them;
+            // a finding of one event says when it was.
+            if f.is_omitted() {
+                p.push_str(", the timeline shows every one");
+            } else if !matches!(
+                f.kind,
+                FindingKind::Restarts | FindingKind::SdoBroken | FindingKind::SdoTimeout
+            ) {
+                let _ = write!(p, " ({})", l.axis.when_utc(l.at));
             }
-            if list.len() > LIST_ITEMS {
+            p.push_str("</li>\n");
+        };
+        let group = |p: &mut String, g: &Group| {
+            let f = &g.lines[0].finding;
+            let node = f
+                .node
+                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let count = g.lines.len();
+            // How many events: a finding that stands for entries a summary
+            // list omitted counts them (docs/summary.md#lists).
+            let events: u64 = g.lines.iter().map(|l| events_of(&l.finding)).sum();
+            let _ = write!(
+                p,
+                "<li class=\"group\" data-iface=\"{}\"{node} data-kind=\"{}\" data-severity=\"{}\" data-count=\"{events}\"><span class=\"sev sev-{}\">{}</span> ",
+                iface_attr(&f.bus),
+                group_kind(f.kind),
+                g.severity,
+                g.severity,
+                g.severity,
+            );
+            if count == 1 {
+                p.push_str("<ul class=\"findings one\">\n");
+                item(p, &g.lines[0]);
+                p.push_str("</ul></li>\n");
+                return;
+            }
+            let _ = writeln!(
+                p,
+                "<b>{}</b> {}: {events}, the first and the last",
+                esc(&f.subject()),
+                group_words(f.kind)
+            );
+            p.push_str("<ul class=\"findings\">\n");
+            item(p, &g.lines[0]);
+            if count > 2 {
                 let _ = writeln!(
                     p,
-                    "<li class=\"more\">… and {} more (the timeline and the event table show every one)</li>",
-                    list.len() - LIST_ITEMS
+                    "<li class=\"rest\"><details><summary>{} more between them</summary><ul class=\"findings\">",
+                    events.saturating_sub(2)
                 );
+                for l in &g.lines[1..count - 1] {
+                    item(p, l);
+                }
+                p.push_str("</ul></details></li>\n");
             }
-            p.push_str("</ul>\n");
+            item(p, &g.lines[count - 1]);
+            p.push_str("</ul></li>\n");
+        };
+        p.push_str("<ul class=\"groups\">\n");
+        for g in groups.iter().take(GROUPS_SHOWN) {
+            group(p, g);
         }
-        if !any {
-            p.push_str("<p>No fault, error EMCY, restart, heartbeat timeout, SDO abort or bus error in this log.</p>\n");
+        p.push_str("</ul>\n");
+        if groups.len() > GROUPS_SHOWN {
+            let rest = &groups[GROUPS_SHOWN..];
+            let _ = write!(
+                p,
+                "<details class=\"more-groups\"><summary>{} more groups ({} findings)</summary>\n<ul class=\"groups\">\n",
+                rest.len(),
+                rest.iter()
+                    .flat_map(|g| g.lines.iter())
+                    .map(|l| events_of(&l.finding))
+                    .sum::<u64>()
+            );
+            for g in rest {
+                group(p, g);
+            }
+            p.push_str("</ul>\n</details>\n");
         }
         p.push_str("</section>\n");
     }
 
-    fn timeline(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    /// What "What went wrong" says when there is nothing to list: that the
+    /// log is empty, that it has no CANopen device, or that nothing went
+    /// wrong.
+    fn nothing_wrong(&self) -> String {
+        let frames: u64 = self
+            .recordings
+            .iter()
+            .flat_map(|r| r.summary.buses.iter())
+            .map(|b| b.frames)
+            .sum();
+        let devices: usize = self.recordings.iter().map(|r| r.summary.nodes.len()).sum();
+        if frames == 0 {
+            "<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong> no frame was read, so nothing can be said of the machine.</p>\n".to_owned()
+        } else if devices == 0 {
+            format!("<p class=\"empty\" data-kind=\"no_device\"><strong>No CANopen device in this log:</strong> {frames} frame{} read, none of them from or to a CANopen node (no EMCY, heartbeat, node guarding, PDO or SDO of a node-ID).</p>\n", if frames == 1 { "" } else { "s" })
+        } else {
+            "<p>No fault, error EMCY, restart, heartbeat timeout, SDO abort or bus error in this log.</p>\n".to_owned()
+        }
+    }
+
+    fn timeline(&self, p: &mut String, budget: &Budget) {
+        let several = self.recordings.len() > 1;
         p.push_str("<section id=\"timeline\">\n<h2>Timeline</h2>\n");
-        p.push_str("<p class=\"help\">One axis for every row. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom, click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        if several {
+            p.push_str("<p class=\"help\">One timeline per recording, each on its own axis: the logs were read apart. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom (every timeline at once), click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        } else {
+            p.push_str("<p class=\"help\">One axis for every row. <span class=\"js\">Drag to pan, Ctrl + wheel or the buttons to zoom, click a mark for its details.</span> Hover a mark or band for what it is.</p>\n");
+        }
         p.push_str("<div class=\"tools js\"><button type=\"button\" data-zoom=\"in\">zoom in</button> <button type=\"button\" data-zoom=\"out\">zoom out</button> <button type=\"button\" data-zoom=\"reset\">whole log</button> <output id=\"details\"></output></div>\n");
+        let groups: Vec<&[Recording]> = if several {
+            self.recordings.chunks(1).collect()
+        } else {
+            vec![&self.recordings[..]]
+        };
+        for (i, recordings) in groups.into_iter().enumerate() {
+            let axis = Self::span_axis(recordings);
+            let file = recordings
+                .first()
+                .and_then(|r| r.summary.file.as_deref())
+                .map_or_else(String::new, |f| format!(" data-file=\"{}\"", esc(f)));
+            if several {
+                let name = recordings[0].summary.file.as_deref().unwrap_or("");
+                let _ = writeln!(
+                    p,
+                    "<h3 class=\"recording\"{file}>{}: {}</h3>",
+                    esc(name),
+                    axis_words(&axis)
+                );
+            }
+            self.timeline_svg(p, recordings, &axis, budget, i == 0, &file);
+        }
+        legend(p);
+        p.push_str("</section>\n");
+    }
+
+    /// One timeline: the rows of `recordings` on `axis`; the first writes
+    /// the shapes the others use.
+    fn timeline_svg(
+        &self,
+        p: &mut String,
+        recordings: &[Recording],
+        axis: &Axis,
+        budget: &Budget,
+        first: bool,
+        file_attr: &str,
+    ) {
         // Rows: per recording, per bus, the bus row then its devices.
-        let mut rows: Vec<(String, f64)> = Vec::new();
         let mut body = String::new();
         let mut y = AXIS + 4.0;
-        for r in &self.recordings {
+        for r in recordings {
             let file = r
                 .summary
                 .file
@@ -495,11 +672,18 @@ impl Report {
                         MarkKind::BusOff,
                         MarkKind::ErrorPassive,
                     ] {
-                        marks(&mut body, axis, budget, &data.row, kind, None);
+                        marks(
+                            &mut body,
+                            axis,
+                            budget,
+                            &data.row,
+                            kind,
+                            None,
+                            Profile::Generic,
+                        );
                     }
                 }
                 body.push_str("</g>\n</g>\n");
-                rows.push((String::new(), y));
                 y += h + 4.0;
                 for n in r.summary.nodes.iter().filter(|n| n.bus == b.bus) {
                     let row = data.and_then(|d| d.node_row(n.node));
@@ -511,17 +695,19 @@ impl Report {
         let height = y + 4.0;
         let _ = writeln!(
             p,
-            "<svg class=\"tl\" id=\"timeline-svg\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">"
+            "<svg class=\"tl\"{} viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"timeline\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}{file_attr}>",
+            if first { " id=\"timeline-svg\"" } else { "" },
+            axis.attrs()
         );
-        defs(p);
+        if first {
+            defs(p);
+        }
         axis_ticks(p, axis, height);
         p.push_str(&body);
         p.push_str("</svg>\n");
-        legend(p);
-        p.push_str("</section>\n");
     }
 
-    fn signals(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    fn signals(&self, p: &mut String, budget: &Budget) {
         p.push_str("<section id=\"signals\">\n<h2>Drive signals</h2>\n");
         let mut any = false;
         for r in &self.recordings {
@@ -535,7 +721,12 @@ impl Report {
                 }
                 any = true;
                 let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
-                chart(p, axis, budget, n, row, end);
+                let axis = if self.recordings.len() > 1 {
+                    Self::axis_of(r)
+                } else {
+                    self.axis()
+                };
+                chart(p, &axis, budget, n, row, end);
             }
         }
         if !any {
@@ -585,62 +776,139 @@ impl Report {
         p.push_str("</tbody>\n</table>\n</section>\n");
     }
 
-    fn events(&self, p: &mut String, axis: &Axis, budget: &Budget) {
+    fn events(&self, p: &mut String, budget: &Budget) {
         struct Row<'a> {
-            key: (u64, u64),
-            who: String,
+            /// The recording, the place, the line and the row's number:
+            /// rows at one place stay in the order they were made.
+            key: (usize, u64, u64, usize),
+            axis: Axis,
+            who: usize,
             kind: MarkKind,
             mark: Drawn,
             bus: &'a BusName,
             node: Option<NodeId>,
+            profile: Profile,
+            /// Set on a row that stands for every EMCY of one code of its
+            /// device.
+            code: Option<u16>,
         }
         let mut all: Vec<Row<'_>> = Vec::new();
-        for r in &self.recordings {
+        let mut total = 0usize;
+        // Only the first rows are written: whenever many are kept, the
+        // first of them are, so that a storm of distinct codes stays small.
+        let keep_first = |all: &mut Vec<Row<'_>>| {
+            if all.len() >= 4 * EVENT_ROWS {
+                all.select_nth_unstable_by_key(EVENT_ROWS, |r| r.key);
+                all.truncate(EVENT_ROWS);
+            }
+        };
+        // The devices' and buses' names, once each: a storm of distinct
+        // codes is many rows of few devices.
+        let mut names: Vec<String> = Vec::new();
+        let (mut timed, mut unix) = (false, false);
+        for (i, r) in self.recordings.iter().enumerate() {
+            let axis = if self.recordings.len() > 1 {
+                Self::axis_of(r)
+            } else {
+                self.axis()
+            };
+            let axis = &axis;
+            timed |= axis.timed;
+            unix |= axis.is_unix();
             let prefix = r
                 .summary
                 .file
                 .as_deref()
                 .map_or_else(String::new, |f| format!("{f}: "));
             for bus in &r.timeline.buses {
-                let mut rows: Vec<(Option<NodeId>, &RowData)> = vec![(None, &bus.row)];
+                let mut rows: Vec<(Option<NodeId>, Profile, &RowData)> =
+                    vec![(None, Profile::Generic, &bus.row)];
                 for n in &r.summary.nodes {
                     if n.bus == bus.name {
                         if let Some(row) = bus.node_row(n.node) {
-                            rows.push((Some(n.node), row));
+                            rows.push((Some(n.node), n.profile, row));
                         }
                     }
                 }
-                for (node, row) in rows {
-                    let who = match node {
+                for (node, profile, row) in rows {
+                    names.push(match node {
                         Some(node) => format!("{prefix}{}", device(&bus.name, node)),
                         None => format!("{prefix}bus {}", bus.name),
-                    };
+                    });
+                    let who = names.len() - 1;
                     for kind in MarkKind::ALL {
-                        for mark in drawn_marks(axis, &row.marks[kind as usize], budget.radius) {
+                        let marks = drawn_marks(axis, &row.marks[kind as usize], budget.radius);
+                        let emcy = matches!(kind, MarkKind::Emcy | MarkKind::EmcyReset);
+                        if emcy && marks.iter().any(|m| m.count > 1) {
+                            // A cluster would hide the codes in it: the
+                            // row's EMCYs of this kind one row per code.
+                            let reset = kind == MarkKind::EmcyReset;
+                            for (&code, run) in &row.codes {
+                                if ErrorCode::new(code).is_reset() != reset {
+                                    continue;
+                                }
+                                let mark = Drawn {
+                                    at: run.first,
+                                    end: run.last,
+                                    count: run.count,
+                                    detail: run.detail,
+                                };
+                                total += 1;
+                                keep_first(&mut all);
+                                all.push(Row {
+                                    key: (i, axis.key(mark.at), mark.at.line, total),
+                                    axis: *axis,
+                                    who,
+                                    kind,
+                                    mark,
+                                    bus: &bus.name,
+                                    node,
+                                    profile,
+                                    code: Some(code),
+                                });
+                            }
+                            continue;
+                        }
+                        for mark in marks {
+                            total += 1;
+                            keep_first(&mut all);
                             all.push(Row {
-                                key: (axis.key(mark.at), mark.at.line),
-                                who: who.clone(),
+                                key: (i, axis.key(mark.at), mark.at.line, total),
+                                axis: *axis,
+                                who,
                                 kind,
                                 mark,
                                 bus: &bus.name,
                                 node,
+                                profile,
+                                code: None,
                             });
                         }
                     }
                 }
             }
         }
+        if all.len() > EVENT_ROWS {
+            all.select_nth_unstable_by_key(EVENT_ROWS, |r| r.key);
+            all.truncate(EVENT_ROWS);
+        }
         all.sort_by_key(|r| r.key);
         let _ = write!(
             p,
             "<section id=\"events\">\n<h2>Events</h2>\n<p class=\"help\">Every mark of the timeline in {} order, with its line{}.</p>\n<table class=\"events\">\n<thead><tr><th>line</th><th>{}</th><th>device</th><th>event</th><th>count</th><th>what</th></tr></thead>\n<tbody>\n",
-            if axis.timed { "time" } else { "line" },
-            if all.len() > EVENT_ROWS {
-                format!("; the first {EVENT_ROWS} of {}", all.len())
+            if timed { "time" } else { "line" },
+            if total > EVENT_ROWS {
+                format!("; the first {EVENT_ROWS} of {total}")
             } else {
                 String::new()
             },
-            if axis.timed { "time" } else { "" },
+            if unix {
+                "time</th><th>UTC"
+            } else if timed {
+                "time"
+            } else {
+                ""
+            },
         );
         for row in all.iter().take(EVENT_ROWS) {
             let m = row.mark;
@@ -652,16 +920,40 @@ impl Report {
             let node = row
                 .node
                 .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
+            let axis = &row.axis;
+            let mut what = mark_text(row.kind, &m, axis, row.profile);
+            let mut code = String::new();
+            if let (Some(c), true) = (row.code, m.count > 1) {
+                let words = format!("{} {}s, ", m.count, row.kind.words());
+                what = what.replacen(
+                    &words,
+                    &format!(
+                        "{} {}s of code {}, ",
+                        m.count,
+                        row.kind.words(),
+                        ErrorCode::new(c)
+                    ),
+                    1,
+                );
+            }
+            if let Some(c) = row.code {
+                let _ = write!(code, " data-code=\"{c}\"");
+            }
+            let when = match (unix, axis.is_unix(), timed) {
+                (true, true, _) => format!("{}</td><td>{}", axis.when(m.at), utc(m.at.t)),
+                (true, false, _) => format!("{}</td><td>", axis.when(m.at)),
+                (false, _, true) => axis.when(m.at),
+                (false, _, false) => String::new(),
+            };
             let _ = writeln!(
                 p,
-                "<tr data-line=\"{}\" data-iface=\"{}\"{node}><td>{lines}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr data-line=\"{}\" data-iface=\"{}\"{node}{code}><td>{lines}</td><td>{when}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 m.at.line,
                 iface_attr(row.bus),
-                if axis.timed { axis.when(m.at) } else { String::new() },
-                esc(&row.who),
+                esc(&names[row.who]),
                 row.kind.words(),
                 m.count,
-                esc(&mark_text(row.kind, &m, axis))
+                esc(&what)
             );
         }
         p.push_str("</tbody>\n</table>\n</section>\n</main>\n");
@@ -773,7 +1065,15 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
     let seen = |s: Option<crate::summary::EmcySeen>| {
         s.map_or_else(
             || "none".to_owned(),
-            |s| format!("{} {} (line {})", s.code, esc(s.code.description()), s.line),
+            |s| {
+                format!(
+                    "{} {}{} (line {})",
+                    s.code,
+                    esc(s.code.description()),
+                    esc(&s.reading(n.profile).to_string()),
+                    s.line
+                )
+            },
         )
     };
     let hb = &n.heartbeat;
@@ -860,4 +1160,52 @@ fn node_table_row(p: &mut String, prefix: &str, n: &NodeSummary) {
         esc(&sdo),
         esc(&cia402)
     );
+}
+
+/// The group a finding of `kind` is in: a device's first error and first
+/// warning are one group, its first EMCYs.
+fn group_kind(kind: FindingKind) -> &'static str {
+    match kind {
+        FindingKind::FirstWarning => FindingKind::FirstError.name(),
+        kind => kind.name(),
+    }
+}
+
+/// A group's kind in words, plural.
+fn group_words(kind: FindingKind) -> &'static str {
+    match kind {
+        FindingKind::FirstError | FindingKind::FirstWarning => "first warning and first error",
+        FindingKind::Cia402Fault => "CiA 402 faults",
+        FindingKind::Restarts => "restarts",
+        FindingKind::HeartbeatTimeout => "heartbeat timeouts",
+        FindingKind::SdoAbort => "SDO aborts",
+        FindingKind::SdoBroken => "broken SDO transfers",
+        FindingKind::SdoTimeout => "unanswered SDO requests",
+        FindingKind::ToggleError => "guarding toggle errors",
+        FindingKind::BusOff => "bus-offs",
+        FindingKind::ErrorPassive => "error-passives",
+    }
+}
+
+/// What an axis spans, in words: `from 2023-11-14 22:13:20.000526 UTC, for
+/// 9.991137 s`, `lines 1 to 40`.
+fn axis_words(axis: &Axis) -> String {
+    if !axis.timed {
+        return format!("lines {} to {}", axis.start, axis.end);
+    }
+    let start = if axis.is_unix() {
+        utc(axis.start)
+    } else {
+        format!("{} s (the log's own clock)", seconds(axis.start))
+    };
+    format!("from {start}, for {} s", seconds(axis.end - axis.start))
+}
+
+/// How many events a finding stands for: one, or the entries a summary
+/// list omitted where it stands for them.
+fn events_of(finding: &Finding) -> u64 {
+    match finding.detail {
+        FindingDetail::Omitted(n) => n,
+        _ => 1,
+    }
 }

@@ -58,6 +58,33 @@ impl Axis {
         (self.end - self.start).max(1) as f64 / PLOT
     }
 
+    /// Whether the axis counts Unix time (microseconds since 1970, from
+    /// 2001 on): then a place has a wall-clock time.
+    pub(super) fn is_unix(&self) -> bool {
+        self.timed && self.start >= UNIX_FROM
+    }
+
+    /// A place with its wall-clock time where the log gives one:
+    /// `+2.003641 s, 2023-11-14 22:13:22.003641 UTC` (docs/report.md#page).
+    pub(super) fn when_utc(&self, at: At) -> String {
+        if self.is_unix() {
+            format!("{}, {}", self.when(at), super::html::utc(at.t))
+        } else {
+            self.when(at)
+        }
+    }
+
+    /// Its `data-axis`, `data-start` and `data-span` attributes, with a
+    /// space before (docs/report.md#contract).
+    pub(super) fn attrs(&self) -> String {
+        format!(
+            " data-axis=\"{}\" data-start=\"{}\" data-span=\"{}\"",
+            if self.timed { "time" } else { "line" },
+            self.start,
+            self.end - self.start
+        )
+    }
+
     /// A place as the page writes it: `+2.003641 s` or `line 613`.
     pub(super) fn when(&self, at: At) -> String {
         if self.timed {
@@ -67,6 +94,10 @@ impl Axis {
         }
     }
 }
+
+/// The first microsecond the page reads as a Unix time (2001-09-09): a
+/// log's own clock from its start counts far less.
+pub(super) const UNIX_FROM: u64 = 1_000_000_000_000_000;
 
 /// Microseconds as seconds with six decimals.
 pub(super) fn seconds(us: u64) -> String {

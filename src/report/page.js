@@ -1,4 +1,4 @@
-// motionwire report: zoom, pan and details on the shared axis
+// motionwire report: zoom, pan and details on the shared view
 // (docs/report.md#script). The page reads in full without it: the SVG is
 // drawn by the program, every mark and band has its title.
 (function () {
@@ -6,9 +6,9 @@
   var root = document.documentElement;
   root.classList.add("scripted");
   var body = document.body;
-  var timed = body.getAttribute("data-axis") === "time";
-  var start = Number(body.getAttribute("data-start"));
-  var span = Number(body.getAttribute("data-span")) || 1;
+  var timedBody = body.getAttribute("data-axis") === "time";
+  var startBody = Number(body.getAttribute("data-start"));
+  var spanBody = Number(body.getAttribute("data-span")) || 1;
   var svgs = Array.prototype.slice.call(document.querySelectorAll("svg.tl"));
   var LEFT = 170, PLOT = 1000;
   if (svgs.length) {
@@ -40,14 +40,20 @@
     return (u < 1.5 ? 1 : u < 3.5 ? 2 : u < 7.5 ? 5 : 10) * pow;
   }
 
+  // Each timeline and chart has its own axis (several logs read apart:
+  // one per recording, docs/report.md#several); the view, a part of the
+  // plot, is shared.
   function axes() {
-    var units = timed ? span / 1e6 : span;
-    var a = v0 / PLOT * units, b = v1 / PLOT * units;
-    var step = nice(Math.max((b - a) / 8, timed ? 1e-6 : 1));
-    var decimals = step >= 1 ? 0 : Math.min(6, Math.ceil(-Math.log10(step)));
     svgs.forEach(function (svg) {
       var g = svg.querySelector("g.axis");
       if (!g) { return; }
+      var timed = svg.hasAttribute("data-axis") ? svg.getAttribute("data-axis") === "time" : timedBody;
+      var start = svg.hasAttribute("data-start") ? Number(svg.getAttribute("data-start")) : startBody;
+      var span = Number(svg.getAttribute("data-span")) || spanBody;
+      var units = timed ? span / 1e6 : span;
+      var a = v0 / PLOT * units, b = v1 / PLOT * units;
+      var step = nice(Math.max((b - a) / 8, timed ? 1e-6 : 1));
+      var decimals = step >= 1 ? 0 : Math.min(6, Math.ceil(-Math.log10(step)));
       var height = svg.viewBox.baseVal.height;
       g.querySelectorAll("line.grid, text.tick").forEach(function (el) { el.remove(); });
       for (var v = Math.ceil(a / step) * step; v <= b + step * 1e-9; v += step) {
@@ -182,9 +188,12 @@
   function show(item) {
     var line = item.getAttribute("data-line");
     var node = item.getAttribute("data-node");
+    // Logs read apart: the row of the finding's own file.
+    var file = item.hasAttribute("data-file")
+      ? "[data-file=\"" + CSS.escape(item.getAttribute("data-file")) + "\"]" : "";
     var row = node === null
-      ? document.querySelector("g[data-row=\"bus\"][data-iface=\"" + item.getAttribute("data-iface") + "\"]")
-      : document.querySelector("g[data-row=\"node\"][data-iface=\"" + item.getAttribute("data-iface") + "\"][data-node=\"" + node + "\"]");
+      ? document.querySelector("g[data-row=\"bus\"][data-iface=\"" + item.getAttribute("data-iface") + "\"]" + file)
+      : document.querySelector("g[data-row=\"node\"][data-iface=\"" + item.getAttribute("data-iface") + "\"][data-node=\"" + node + "\"]" + file);
     var scope = row || document;
     var el = scope.querySelector("[data-kind][data-line=\"" + line + "\"]:not([data-kind$=\"_state\"])") ||
       scope.querySelector("[data-line=\"" + line + "\"]");

@@ -2,6 +2,8 @@
 //! and what it returns, the [`Recording`]: the [`Summary`] and its
 //! [`Timeline`] (docs/report.md#bounded).
 
+use std::collections::BTreeMap;
+
 use crate::can::{BusName, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
 use crate::decoder::DecoderConfig;
@@ -126,6 +128,19 @@ pub(crate) struct RowData {
     /// Per entry of [`CHARTED`]: its values, once seen.
     pub(crate) signals: [Option<Series<SignalBucket>>; 2],
     pub(crate) rate: Series<RateBucket>,
+    /// Its EMCYs by code: how many, the first and the last
+    /// (docs/report.md#events: a cluster never hides a code).
+    pub(crate) codes: BTreeMap<u16, CodeRun>,
+}
+
+/// A row's EMCYs of one code: how many, the first (with its register and
+/// manufacturer bytes) and the last.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CodeRun {
+    pub(crate) count: u64,
+    pub(crate) first: At,
+    pub(crate) last: At,
+    pub(crate) detail: Detail,
 }
 
 impl RowData {
@@ -138,6 +153,7 @@ impl RowData {
             cia402: Series::new(BUCKETS, BUCKETS, timed),
             signals: [None, None],
             rate: Series::new(0, SIGNAL_BUCKETS, timed),
+            codes: BTreeMap::new(),
         }
     }
 
@@ -413,7 +429,11 @@ fn record(
         None => &mut rows.row,
     };
     match event.kind {
-        SummaryEventKind::Emcy { code, register } => {
+        SummaryEventKind::Emcy {
+            code,
+            register,
+            manufacturer,
+        } => {
             // A reset is any 00xxh code, as the summary counts `resets`
             // (docs/canopen.md#emcy-codes).
             let kind = if code.is_reset() {
@@ -424,8 +444,23 @@ fn record(
             let detail = Detail::Emcy {
                 code: code.get(),
                 register: register.bits(),
+                manufacturer,
             };
             row.mark(kind, at, at, detail);
+            let run = row.codes.entry(code.get()).or_insert(CodeRun {
+                count: 0,
+                first: at,
+                last: at,
+                detail,
+            });
+            run.count += 1;
+            if at.key(timed) < run.first.key(timed) {
+                run.first = at;
+                run.detail = detail;
+            }
+            if at.key(timed) >= run.last.key(timed) {
+                run.last = at;
+            }
         }
         SummaryEventKind::Nmt { state, .. } => {
             let state = state.state_raw();

@@ -215,10 +215,12 @@ pub(crate) struct MarkItem {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Detail {
     None,
-    /// An EMCY's code and error register.
+    /// An EMCY's code, error register and manufacturer bytes (which the
+    /// node's profile reads, docs/summary.md#profiles).
     Emcy {
         code: u16,
         register: u8,
+        manufacturer: [u8; 5],
     },
     /// A heartbeat gap, in microseconds.
     Gap(u64),

@@ -5,8 +5,9 @@
 
 use std::fmt::Write as _;
 
-use crate::canopen::ErrorCode;
-use crate::summary::NodeSummary;
+use crate::canopen::{Emcy, ErrorCode, ErrorRegister};
+use crate::profiles::Profile;
+use crate::summary::{NodeSummary, ProfileReading};
 
 use super::fixed::Fixed;
 use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
@@ -120,8 +121,10 @@ pub(super) fn drawn_bands(
     merged
 }
 
-/// What a mark says, in words: its title and its event-table cell.
-pub(super) fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis) -> String {
+/// What a mark says, in words: its title and its event-table cell; an
+/// EMCY's with what the device's `profile` reads in it
+/// (docs/summary.md#profiles).
+pub(super) fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis, profile: Profile) -> String {
     let mut text = String::new();
     if m.count > 1 {
         let _ = write!(
@@ -136,13 +139,23 @@ pub(super) fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis) -> String {
         );
     }
     match m.detail {
-        Detail::Emcy { code, register } => {
+        Detail::Emcy {
+            code,
+            register,
+            manufacturer,
+        } => {
             let code = ErrorCode::new(code);
+            let emcy = Emcy::new(
+                code,
+                ErrorRegister::from_bits_retain(register),
+                manufacturer,
+            );
             let _ = write!(
                 text,
-                "{} {code} {} (register 0x{register:02X})",
+                "{} {code} {}{} (register 0x{register:02X})",
                 kind.words(),
-                code.description()
+                code.description(),
+                ProfileReading::of(&emcy, profile)
             );
         }
         Detail::Gap(us) => {
@@ -173,6 +186,7 @@ pub(super) fn marks(
     row: &RowData,
     kind: MarkKind,
     lane: Option<f64>,
+    profile: Profile,
 ) {
     let series = &row.marks[kind as usize];
     if series.len() == 0 {
@@ -217,7 +231,7 @@ pub(super) fn marks(
             let _ = writeln!(
                 p,
                 "><title>{}</title></{element}>",
-                esc(&mark_text(kind, &m, axis))
+                esc(&mark_text(kind, &m, axis, profile))
             );
         } else {
             p.push_str("/>\n");
@@ -308,7 +322,7 @@ pub(super) fn node_row(
             } else {
                 lane
             };
-            marks(p, axis, budget, row, kind, Some(at));
+            marks(p, axis, budget, row, kind, Some(at), n.profile);
         }
     }
     p.push_str("</g>\n</g>\n");
@@ -578,11 +592,12 @@ pub(super) fn chart(
     let height = y;
     let _ = write!(
         p,
-        "<h3>{}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {}\" data-node=\"{}\" data-iface=\"{}\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\">\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
+        "<h3>{}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {}\" data-node=\"{}\" data-iface=\"{}\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}>\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
         esc(&device(&n.bus, n.node)),
         esc(&device(&n.bus, n.node)),
         n.node.get(),
-        iface_attr(&n.bus)
+        iface_attr(&n.bus),
+        axis.attrs()
     );
     axis_ticks(p, axis, height);
     p.push_str(&body);

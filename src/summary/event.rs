@@ -42,6 +42,9 @@ pub enum SummaryEventKind<'s> {
         code: ErrorCode,
         /// Its error register.
         register: ErrorRegister,
+        /// Its manufacturer-specific bytes 3–7, which the node's profile
+        /// reads (docs/summary.md#profiles).
+        manufacturer: [u8; 5],
     },
     /// A heartbeat or a node-guarding answer, with the NMT state it
     /// reports (docs/summary.md#heartbeat, docs/summary.md#guarding).

@@ -14,7 +14,7 @@ use crate::profiles::Profile;
 
 use super::listed::ListedLines;
 use super::values::{Iface, Ts};
-use super::{Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity};
+use super::{BusErrorSeen, Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity};
 
 /// What a [`Finding`] is about: the summary list it comes from
 /// (docs/summary.md#findings).
@@ -142,6 +142,29 @@ pub enum FindingDetail {
     Omitted(u64),
 }
 
+/// What the log supports as the cause of a [`Finding`]
+/// (docs/summary.md#causes).
+///
+/// `#[non_exhaustive]`: later links add variants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FindingCause {
+    /// The drive's EMCY that caused its CiA 402 fault
+    /// ([`Cia402Fault::cause`]).
+    Emcy(EmcySeen),
+    /// The bus-off or error-passive frame before a heartbeat timeout on
+    /// the same bus ([`HeartbeatGap::cause`]).
+    BusError(BusErrorSeen),
+    /// Another node's heartbeat timeout before an EMCY 0x8130 "Life guard
+    /// error or heartbeat error" ([`Summary::lost_before`](super::Summary::lost_before)).
+    HeartbeatTimeout {
+        /// The node that was lost.
+        node: NodeId,
+        /// Its gap.
+        gap: HeartbeatGap,
+    },
+}
+
 /// One thing that went wrong (docs/summary.md#findings): where, when, what
 /// kind, and what the summary says of it.
 ///
@@ -176,12 +199,19 @@ pub struct Finding {
     pub severity: Severity,
     /// What the summary says of it.
     pub detail: FindingDetail,
+    /// The device's profile (`--profile`): what its EMCYs' manufacturer
+    /// bytes say in the text ([`ProfileReading`](super::ProfileReading),
+    /// docs/summary.md#profiles); [`Profile::Generic`] for a bus.
+    pub profile: Profile,
+    /// What the log supports as its cause (docs/summary.md#causes).
+    pub cause: Option<FindingCause>,
 }
 
 impl Finding {
     /// Return what the finding says without its device: `first error:
-    /// EMCY 0x7305 Incremental sensor 1 fault at line 613`
-    /// (docs/summary.md#findings).
+    /// EMCY 0x7305 Incremental sensor 1 fault at line 613`, with what the
+    /// device's profile reads in an EMCY (`… fault on axis 1, feedback 1
+    /// at line 613`; docs/summary.md#findings).
     #[must_use]
     pub fn text(&self) -> String {
         Text(self).to_string()
@@ -221,15 +251,27 @@ impl fmt::Display for Text<'_> {
         let finding = self.0;
         let line = finding.line;
         match &finding.detail {
-            FindingDetail::Emcy(first) => write!(
-                f,
-                "{}: EMCY {} {} at line {}",
-                finding.kind.words(),
-                first.code,
-                first.code.description(),
-                first.line
-            ),
-            FindingDetail::Cia402Fault(fault) => write!(f, "{fault}"),
+            FindingDetail::Emcy(first) => {
+                write!(
+                    f,
+                    "{}: EMCY {} {}{} at line {}",
+                    finding.kind.words(),
+                    first.code,
+                    first.code.description(),
+                    first.reading(finding.profile),
+                    first.line
+                )?;
+                if let Some(FindingCause::HeartbeatTimeout { node, gap }) = finding.cause {
+                    write!(
+                        f,
+                        ", caused by node {}'s heartbeat timeout after line {}",
+                        node.get(),
+                        gap.after_line
+                    )?;
+                }
+                Ok(())
+            }
+            FindingDetail::Cia402Fault(fault) => write!(f, "{}", fault.sentence(finding.profile)),
             FindingDetail::BootUps(boots) => {
                 let times = boots.count().saturating_sub(1);
                 write!(
@@ -239,12 +281,18 @@ impl fmt::Display for Text<'_> {
                     ListedLines(boots)
                 )
             }
-            FindingDetail::HeartbeatGap(gap) => write!(
-                f,
-                "no heartbeat for {} ms after line {}",
-                gap.gap_ms(),
-                gap.after_line
-            ),
+            FindingDetail::HeartbeatGap(gap) => {
+                write!(
+                    f,
+                    "no heartbeat for {} ms after line {}",
+                    gap.gap_ms(),
+                    gap.after_line
+                )?;
+                if let Some(cause) = gap.cause {
+                    write!(f, ", caused by {cause}")?;
+                }
+                Ok(())
+            }
             FindingDetail::SdoAbort(abort) => write!(f, "line {}: {abort}", abort.line),
             FindingDetail::Line => match finding.kind {
                 FindingKind::SdoBroken => {

@@ -2,11 +2,37 @@
 //! them: [`HeartbeatSummary`], [`GuardingSummary`], with their
 //! [`HeartbeatGap`]s and [`Timeouts`].
 
+use core::fmt;
 use core::time::Duration;
 
+use crate::can::Timestamp;
 use crate::canopen::NmtStateByte;
 
 use super::listed::Listed;
+
+/// A bus-off or error-passive error frame the summary links to a heartbeat
+/// timeout (docs/summary.md#causes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BusErrorSeen {
+    /// Its line.
+    pub line: u64,
+    /// Its time.
+    pub timestamp: Timestamp,
+    /// Whether it says bus-off (else error-passive).
+    pub bus_off: bool,
+}
+
+impl fmt::Display for BusErrorSeen {
+    /// `bus-off at line 38`, `error-passive at line 38`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let what = if self.bus_off {
+            "bus-off"
+        } else {
+            "error-passive"
+        };
+        write!(f, "{what} at line {}", self.line)
+    }
+}
 
 /// A heartbeat gap longer than the consumer time (`heartbeat.timeouts`
 /// in docs/summary.md#heartbeat).
@@ -16,6 +42,16 @@ pub struct HeartbeatGap {
     pub after_line: u64,
     /// The gap: up to the next heartbeat, or to the last time of the input.
     pub gap: Duration,
+    /// The time of the heartbeat before the gap.
+    pub since: Timestamp,
+    /// When the next heartbeat was due: [`since`](Self::since) plus the
+    /// consumer time (`--heartbeat-ms`).
+    pub due: Timestamp,
+    /// The bus-off or error-passive error frame on the node's bus that the
+    /// log supports as the cause of the loss: the earliest at most a
+    /// second before the heartbeat was due, and not after
+    /// (docs/summary.md#causes).
+    pub cause: Option<BusErrorSeen>,
 }
 
 impl HeartbeatGap {

@@ -40,6 +40,7 @@
 //! assert!(summary.to_string().contains("active error: 0x8110 CAN overrun (objects lost) (line 2)"));
 //! ```
 
+mod causes;
 mod cia402;
 mod emcy;
 mod ethercat;
@@ -58,8 +59,9 @@ mod values;
 mod verdict;
 mod wrong;
 
+pub use causes::LOST_HEARTBEAT;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
-pub use emcy::EmcySeen;
+pub use emcy::{EmcySeen, ProfileReading};
 pub use ethercat::{
     device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DlChange, EthercatSummary,
     PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS,
@@ -67,8 +69,8 @@ pub use ethercat::{
 };
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
-pub use findings::{Finding, FindingDetail, FindingKind};
-pub use heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
+pub use findings::{Finding, FindingCause, FindingDetail, FindingKind};
+pub use heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};

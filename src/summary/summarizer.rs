@@ -11,10 +11,11 @@ use crate::canopen::{
 use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
+use super::causes::{in_window, RecentBusErrors};
 use super::emcy::EmcySeen;
 use super::ethercat::EthercatSummarizer;
 use super::event::{SummaryEvent, SummaryEventKind};
-use super::heartbeat::{GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
+use super::heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};
 use super::listed::Listed;
 use super::record::{BusSummary, FrameCounts, NodeSummary, Summary};
 use super::sdo::SdoFrameFacts;
@@ -40,6 +41,12 @@ struct NodeState {
     boot_ups: Listed<u64>,
     /// The line of the last heartbeat (not guarding answer) seen.
     last_heartbeat_line: u64,
+    /// When its next heartbeat is due: the last one's time plus the
+    /// consumer time (with `--heartbeat-ms` and times).
+    heartbeat_due: Option<Duration>,
+    /// The earliest bus-off or error-passive frame of the bus in the
+    /// window of that heartbeat (docs/summary.md#causes).
+    gap_cause: Option<BusErrorSeen>,
     /// A timeout reported by the consumer and not yet closed by a
     /// heartbeat: the line and time of the heartbeat before it.
     open_gap: Option<(u64, Duration)>,
@@ -66,6 +73,8 @@ impl NodeState {
             last_state: None,
             boot_ups: Listed::new(),
             last_heartbeat_line: 0,
+            heartbeat_due: None,
+            gap_cause: None,
             open_gap: None,
             timeouts: Listed::new(),
             // A log rarely shows the guard time (100Ch): observe toggles only.
@@ -83,6 +92,10 @@ struct BusState {
     nodes: Vec<Option<NodeState>>,
     storage: EmcyStorage,
     consumer: Option<HeartbeatConsumer>,
+    /// The heartbeat consumer time.
+    heartbeat: Option<Duration>,
+    /// Its bus-off and error-passive frames of the last second.
+    recent_errors: RecentBusErrors,
     frames: u64,
     error_frames: u64,
     bus_off: Listed<u64>,
@@ -103,6 +116,8 @@ impl BusState {
             nodes: (0..127).map(|_| None).collect(),
             storage: EmcyStorage::new(),
             consumer,
+            heartbeat,
+            recent_errors: RecentBusErrors::default(),
             frames: 0,
             error_frames: 0,
             bus_off: Listed::new(),
@@ -111,6 +126,23 @@ impl BusState {
             first_ts: None,
             last_ts: None,
         }
+    }
+
+    /// Note a bus-off or error-passive frame: it is the cause of the loss
+    /// of each node whose next heartbeat is due at most a second after it
+    /// and that has none yet (docs/summary.md#causes).
+    fn bus_error(&mut self, seen: BusErrorSeen) {
+        if self.heartbeat.is_none() {
+            return;
+        }
+        let t = seen.timestamp.as_duration();
+        for state in self.nodes.iter_mut().flatten() {
+            if state.gap_cause.is_none() && state.heartbeat_due.is_some_and(|due| in_window(t, due))
+            {
+                state.gap_cause = Some(seen);
+            }
+        }
+        self.recent_errors.push(seen);
     }
 
     /// Widen the bus's time span to `ts` (inputs are mostly in time order:
@@ -437,6 +469,13 @@ fn add_classified(
             if error_passive {
                 bus.error_passive.push(position);
             }
+            if let (true, Some(ts)) = (bus_off || error_passive, log.timestamp) {
+                bus.bus_error(BusErrorSeen {
+                    line: position,
+                    timestamp: ts,
+                    bus_off,
+                });
+            }
         }
         on_event(event(
             None,
@@ -452,6 +491,8 @@ fn add_classified(
         nodes,
         storage,
         consumer,
+        heartbeat,
+        recent_errors,
         ..
     } = bus;
     let state = nodes[node.index()].get_or_insert_with(|| NodeState::new(node));
@@ -517,6 +558,7 @@ fn add_classified(
                 SummaryEventKind::Emcy {
                     code: emcy.code,
                     register: emcy.register,
+                    manufacturer: emcy.manufacturer,
                 },
             ));
             if emcy.is_reset() {
@@ -592,6 +634,11 @@ fn add_classified(
                                 let gap = HeartbeatGap {
                                     after_line,
                                     gap: at.saturating_sub(last),
+                                    since: Timestamp::from_duration(last),
+                                    due: Timestamp::from_duration(
+                                        last + heartbeat.unwrap_or_default(),
+                                    ),
+                                    cause: state.gap_cause,
                                 };
                                 state.timeouts.push(gap);
                                 on_event(SummaryEvent {
@@ -625,6 +672,11 @@ fn add_classified(
                 on_event(event(Some(node), SummaryEventKind::BootUp));
             }
             state.last_heartbeat_line = position;
+            if let (Some(time), Some(now)) = (*heartbeat, now) {
+                let due = now + time;
+                state.heartbeat_due = Some(due);
+                state.gap_cause = recent_errors.earliest_for(due);
+            }
         }
         _ => {}
     }
@@ -681,6 +733,9 @@ impl Summarizer {
                         let gap = HeartbeatGap {
                             after_line,
                             gap: end.saturating_sub(last),
+                            since: Timestamp::from_duration(last),
+                            due: Timestamp::from_duration(last + bus.heartbeat.unwrap_or_default()),
+                            cause: state.gap_cause,
                         };
                         state.timeouts.push(gap);
                         on_event(SummaryEvent {

@@ -78,11 +78,17 @@ fn heartbeat_gaps_are_timeouts_only_when_every_frame_has_a_time() {
         Timeouts::Checked(Listed::from_iter([
             HeartbeatGap {
                 after_line: 2,
-                gap: Duration::from_millis(300)
+                gap: Duration::from_millis(300),
+                since: Timestamp::from_duration(Duration::from_millis(100)),
+                due: Timestamp::from_duration(Duration::from_millis(300)),
+                cause: None,
             },
             HeartbeatGap {
                 after_line: 4,
-                gap: Duration::from_millis(250)
+                gap: Duration::from_millis(250),
+                since: Timestamp::from_duration(Duration::from_millis(450)),
+                due: Timestamp::from_duration(Duration::from_millis(650)),
+                cause: None,
             },
         ]))
     );
@@ -733,4 +739,219 @@ fn the_stop_is_the_last_and_the_first_cause_the_earliest_error_of_its_device() {
     );
     assert!(calm.verdict().is_none());
     assert_eq!(calm.records().count(), 2);
+}
+
+/// docs/summary.md#profiles: a finding says what its device's profile
+/// reads in its EMCY — an AKD's axis and feedback, a Baumer encoder's
+/// diagnostic source and its class —, and nothing for a generic node.
+#[test]
+fn findings_say_what_the_profile_reads() {
+    let mut config = DecoderConfig::new()
+        .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+        .node_profile(NodeId::new(5).unwrap(), Profile::Baumer)
+        .signals(false);
+    config = config.heartbeat_timeout(Duration::from_millis(300));
+    let frames: &[(u64, u32, &[u8])] = &[
+        (0, 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (1, 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]),
+        // AKD: 0x7305 on axis 2, feedback 3.
+        (10, 0x083, &[0x05, 0x73, 0x01, 0x32, 0, 0, 0, 0]),
+        (26, 0x603, &[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]),
+        (27, 0x583, &[0x4B, 0x41, 0x60, 0x00, 0x08, 0x02, 0, 0]),
+        // Baumer: the battery warning, then temperature out of range.
+        (30, 0x085, &[0x00, 0xFF, 0x00, 0, 0, 0x10, 0, 0]),
+        (40, 0x085, &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0]),
+        // A generic node: the same bytes say nothing more.
+        (50, 0x086, &[0x00, 0x42, 0x09, 0, 0, 0, 0, 0]),
+    ];
+    let mut summarizer = Summarizer::new(config);
+    for (i, &(ms, id, data)) in frames.iter().enumerate() {
+        let log = LogFrame::new(CanFrame::new(CanId::standard(id).unwrap(), data).unwrap())
+            .with_iface(Iface::Name("can0"))
+            .with_timestamp(Timestamp::from_duration(Duration::from_millis(ms)));
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(log));
+    }
+    let summary = summarizer.finish();
+    let texts: Vec<String> = summary.findings().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        texts,
+        [
+            "can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3 at line 3",
+            "can0 node 3 went operation_enabled → fault at line 5, 17.0 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3 (line 3)",
+            "can0 node 5 first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 6",
+            "can0 node 5 first error: EMCY 0x4200 Device temperature (source: Temperature monitoring, an error) at line 7",
+            "can0 node 6 first error: EMCY 0x4200 Device temperature at line 8",
+        ]
+    );
+    let verdict = summary.verdict().unwrap();
+    assert!(verdict
+        .first_cause_text()
+        .contains("fault on axis 2, feedback 3 at line 3"));
+    let json = serde_json::to_string(&summary.findings()[2]).unwrap();
+    assert!(json.contains(r#""text":"first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 6""#), "{json}");
+}
+
+/// Summarize a candump log with a heartbeat consumer time of 300 ms; node
+/// 3 is an AKD drive.
+fn summarize_log(log: &str) -> Summary {
+    let config = DecoderConfig::new()
+        .node_profile(NodeId::new(3).unwrap(), Profile::Akd)
+        .signals(false)
+        .heartbeat_timeout(Duration::from_millis(300));
+    let mut summarizer = Summarizer::new(config);
+    for (i, line) in log.lines().enumerate() {
+        let frame = crate::logs::candump::parse_line(line.trim().as_bytes())
+            .unwrap()
+            .unwrap();
+        summarizer.add(Position::Line(i as u64 + 1), &LogEvent::Frame(frame));
+    }
+    summarizer.finish()
+}
+
+/// docs/summary.md#causes: a bus-off or error-passive frame at most a
+/// second before a heartbeat was due, and not after, causes its loss; the
+/// loss is the stop and the bus-off its first cause.
+#[test]
+fn a_bus_error_causes_the_heartbeat_timeouts_after_it() {
+    let log = "(10.000000) can0 705#05
+               (10.000100) can0 706#05
+               (10.100000) can0 705#05
+               (10.100100) can0 706#05
+               (10.150000) can0 20000040#0000000000000000
+               (11.500000) can0 705#05
+               (11.500100) can0 706#05";
+    let summary = summarize_log(log);
+    let texts: Vec<String> = summary.findings().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        texts,
+        [
+            "can0 node 5 no heartbeat for 1400 ms after line 3, caused by bus-off at line 5",
+            "can0 node 6 no heartbeat for 1400 ms after line 4, caused by bus-off at line 5",
+            "bus can0 bus-off at line 5",
+        ]
+    );
+    let gap = match &summary.nodes[0].heartbeat.timeouts {
+        Timeouts::Checked(gaps) => *gaps.head().first().unwrap(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(gap.cause.map(|c| (c.line, c.bus_off)), Some((5, true)));
+    assert_eq!(
+        gap.due,
+        Timestamp::from_duration(Duration::from_millis(10_400))
+    );
+    let verdict = summary.verdict().unwrap();
+    assert_eq!(
+        (verdict.stop.kind, verdict.stop.node.map(NodeId::get)),
+        (FindingKind::HeartbeatTimeout, Some(6))
+    );
+    assert_eq!(
+        (verdict.first_cause.kind, verdict.first_cause.line),
+        (FindingKind::BusOff, 5)
+    );
+    assert_eq!(verdict.first_cause_text(), "bus can0 bus-off at line 5");
+
+    // Error-passive links too (a warning, so it is no first cause).
+    let passive = log.replace("20000040#0000000000000000", "20000004#0010000000000000");
+    let summary = summarize_log(&passive);
+    let first = &summary.findings()[0];
+    assert!(
+        first.text().ends_with("caused by error-passive at line 5"),
+        "{}",
+        first.text()
+    );
+    let verdict = summary.verdict().unwrap();
+    assert_eq!(verdict.first_cause, verdict.stop);
+
+    // The window: a bus-off more than a second before the heartbeat was
+    // due, or after it, causes nothing.
+    for (at, linked) in [
+        ("10.399999", true),
+        ("10.400000", true),
+        ("10.400001", false),
+        ("9.399999", false),
+        ("9.400000", true),
+    ] {
+        let mut lines: Vec<String> = log.lines().map(|l| l.trim().to_owned()).collect();
+        lines.retain(|l| !l.contains("2000004"));
+        let error = format!("({at}) can0 20000040#0000000000000000");
+        let place = lines
+            .iter()
+            .position(|l| {
+                l[1..l.find(')').unwrap()].parse::<f64>().unwrap() > at.parse::<f64>().unwrap()
+            })
+            .unwrap_or(lines.len());
+        lines.insert(place, error);
+        let summary = summarize_log(&lines.join("\n"));
+        let Timeouts::Checked(gaps) = &summary.nodes[0].heartbeat.timeouts else {
+            panic!()
+        };
+        assert_eq!(
+            gaps.iter().any(|g| g.cause.is_some()),
+            linked,
+            "bus-off at {at}: {gaps:?}"
+        );
+    }
+}
+
+/// docs/summary.md#causes: a heartbeat timeout before another node's EMCY
+/// 0x8130 (within the gap, at most a second after the heartbeat was due)
+/// causes it; a drive's fault after that EMCY traces back to the lost
+/// node.
+#[test]
+fn a_lost_heartbeat_causes_another_nodes_emcy_8130() {
+    let log = "(0.000000) can0 603#4041600000000000
+               (0.001000) can0 583#4B41600037020000
+               (0.010000) can0 705#05
+               (0.110000) can0 705#05
+               (0.600000) can0 083#3081110100000000
+               (0.615000) can0 603#4041600000000000
+               (0.616000) can0 583#4B41600008020000
+               (2.000000) can0 705#05";
+    let summary = summarize_log(log);
+    let texts: Vec<String> = summary.findings().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        texts,
+        [
+            "can0 node 5 no heartbeat for 1890 ms after line 4",
+            "can0 node 3 first error: EMCY 0x8130 Life guard error or heartbeat error on axis 1 at line 5, caused by node 5's heartbeat timeout after line 4",
+            "can0 node 3 went operation_enabled → fault at line 7, 16.0 ms after EMCY 0x8130 Life guard error or heartbeat error on axis 1 (line 5)",
+        ]
+    );
+    let (node, gap) = summary
+        .lost_before(
+            &summary.nodes[0].bus,
+            NodeId::new(3).unwrap(),
+            &summary.nodes[0].first_error.unwrap(),
+        )
+        .unwrap();
+    assert_eq!((node.get(), gap.after_line), (5, 4));
+    let verdict = summary.verdict().unwrap();
+    assert_eq!(verdict.stop.kind, FindingKind::Cia402Fault);
+    assert_eq!(
+        (
+            verdict.first_cause.kind,
+            verdict.first_cause.node.map(NodeId::get)
+        ),
+        (FindingKind::HeartbeatTimeout, Some(5))
+    );
+    assert!(verdict
+        .to_string()
+        .contains("first cause: can0 node 5 no heartbeat for 1890 ms after line 4"));
+
+    // The window: the EMCY 1.3 s after the heartbeat was due (0.41 s) is
+    // not linked; before the heartbeat before the gap neither.
+    for (at, linked) in [("1.410000", true), ("1.410001", false), ("0.100000", false)] {
+        let moved = log.replace("(0.600000) can0 083", &format!("({at}) can0 083"));
+        let mut lines: Vec<&str> = moved.lines().map(str::trim).collect();
+        lines.sort_by(|a, b| {
+            let t = |l: &str| l[1..l.find(')').unwrap()].parse::<f64>().unwrap();
+            t(a).total_cmp(&t(b))
+        });
+        let summary = summarize_log(&lines.join("\n"));
+        let three = summary
+            .node(&summary.nodes[0].bus, NodeId::new(3).unwrap())
+            .unwrap();
+        let found = summary.lost_before(&three.bus, three.node, &three.first_error.unwrap());
+        assert_eq!(found.is_some(), linked, "EMCY at {at}");
+    }
 }

@@ -5,6 +5,7 @@ use core::fmt;
 
 use crate::can::Timestamp;
 use crate::canopen::Cia402State;
+use crate::profiles::Profile;
 
 use super::listed::{each, ListedLines};
 use super::{
@@ -301,7 +302,30 @@ impl fmt::Display for Cia402Fault {
     /// `went operation_enabled → fault at line 620, 17.1 ms after EMCY
     /// 0x7305 Incremental sensor 1 fault (line 613)` (docs/summary.md#text).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let t = self.transition;
+        write!(f, "{}", self.sentence(Profile::Generic))
+    }
+}
+
+impl Cia402Fault {
+    /// Return the fault's sentence with what the drive's `profile` reads
+    /// in the EMCY before it ([`ProfileReading`](super::ProfileReading),
+    /// docs/summary.md#profiles): `went operation_enabled → fault at line
+    /// 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis
+    /// 1, feedback 2 (line 613)`; `Display` is the sentence of a generic
+    /// node.
+    #[must_use]
+    pub fn sentence(&self, profile: Profile) -> impl fmt::Display + '_ {
+        FaultSentence(self, profile)
+    }
+}
+
+/// [`Cia402Fault::sentence`].
+struct FaultSentence<'a>(&'a Cia402Fault, Profile);
+
+impl fmt::Display for FaultSentence<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let FaultSentence(fault, profile) = *self;
+        let t = fault.transition;
         write!(
             f,
             "went {} → {} at line {}",
@@ -309,14 +333,15 @@ impl fmt::Display for Cia402Fault {
             t.to.name(),
             t.line
         )?;
-        if let Some(emcy) = self.emcy_before {
+        if let Some(emcy) = fault.emcy_before {
             let code = emcy.code;
+            let reading = emcy.reading(profile);
             match (t.timestamp, emcy.timestamp) {
                 (Some(at), Some(then)) => {
                     let gap = at.duration_since(then).unwrap_or_default();
                     write!(
                         f,
-                        ", {:.1} ms after EMCY {code} {} (line {})",
+                        ", {:.1} ms after EMCY {code} {}{reading} (line {})",
                         gap.as_secs_f64() * 1000.0,
                         code.description(),
                         emcy.line
@@ -324,7 +349,7 @@ impl fmt::Display for Cia402Fault {
                 }
                 _ => write!(
                     f,
-                    ", after EMCY {code} {} (line {})",
+                    ", after EMCY {code} {}{reading} (line {})",
                     code.description(),
                     emcy.line
                 )?,

@@ -7,8 +7,6 @@ use core::fmt;
 use core::time::Duration;
 
 use crate::can::Timestamp;
-use crate::profiles::akd::AkdManufacturerField;
-use crate::profiles::baumer::BaumerEmcy;
 use crate::profiles::Profile;
 
 use super::values::{Iface, Ts};
@@ -108,41 +106,6 @@ impl fmt::Display for Since {
     }
 }
 
-/// What a node's profile adds to an EMCY in a sentence: ` on axis 1,
-/// feedback 2` (AKD, docs/canopen.md#akd), ` (battery monitoring warning)`
-/// (Baumer's diagnostic sources, docs/canopen.md#baumer); nothing for a
-/// generic node.
-struct ProfileWords<'a>(&'a EmcySeen, Profile);
-
-impl fmt::Display for ProfileWords<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let ProfileWords(seen, profile) = *self;
-        match profile {
-            Profile::Generic => Ok(()),
-            Profile::Akd => {
-                let field = AkdManufacturerField::new_unchecked(&seen.manufacturer[..]);
-                let axis = field.axis_id();
-                let feedback = field.feedback_id().ok().and_then(|fb| fb.number());
-                match (axis.is_given(), feedback) {
-                    (true, Some(fb)) => write!(f, " on axis {}, feedback {fb}", axis.get()),
-                    (false, Some(fb)) => write!(f, " on feedback {fb}"),
-                    (true, None) => write!(f, " on axis {}", axis.get()),
-                    (false, None) => Ok(()),
-                }
-            }
-            Profile::Baumer => {
-                let emcy = BaumerEmcy::from_emcy(&seen.emcy());
-                let mut names: Vec<&str> = emcy.sources().map(|s| s.source()).collect();
-                names.dedup();
-                if names.is_empty() {
-                    return Ok(());
-                }
-                write!(f, " ({})", names.join(", "))
-            }
-        }
-    }
-}
-
 /// The stop's sentence ([`Verdict::stop_text`]).
 struct StopText<'a>(&'a Verdict);
 
@@ -173,7 +136,7 @@ impl fmt::Display for StopText<'_> {
                     gap.as_secs_f64() * 1000.0,
                     cause.code,
                     cause.code.description(),
-                    ProfileWords(&cause, v.profile),
+                    cause.reading(v.profile),
                     cause.line
                 )
             }

@@ -7,8 +7,8 @@ use crate::can::Timestamp;
 use crate::profiles::Profile;
 
 use super::{
-    EmcySeen, Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, Summary,
-    Timeouts, Verdict,
+    EmcySeen, Finding, FindingCause, FindingDetail, FindingKind, Listed, NodeSummary, Severity,
+    Summary, Timeouts, Verdict,
 };
 
 impl Summary {
@@ -71,7 +71,15 @@ impl Summary {
     ) -> Vec<Finding> {
         let mut list = Vec::new();
         for n in &self.nodes {
-            let mut push = |kind, line, detail, ts| {
+            let mut push = |kind, line, detail: FindingDetail, ts| {
+                let cause = match &detail {
+                    FindingDetail::Emcy(seen) => self
+                        .lost_before(&n.bus, n.node, seen)
+                        .map(|(node, gap)| FindingCause::HeartbeatTimeout { node, gap }),
+                    FindingDetail::Cia402Fault(fault) => fault.cause().map(FindingCause::Emcy),
+                    FindingDetail::HeartbeatGap(gap) => gap.cause.map(FindingCause::BusError),
+                    _ => None,
+                };
                 list.push(Finding {
                     file: self.file.clone(),
                     bus: n.bus.clone(),
@@ -81,6 +89,8 @@ impl Summary {
                     kind,
                     severity: Severity::of_finding(kind, &detail, n.profile),
                     detail,
+                    profile: n.profile,
+                    cause,
                 });
             };
             if let Some(warning) = n.first_warning() {
@@ -170,6 +180,8 @@ impl Summary {
                         kind,
                         severity: Severity::of_finding(kind, &detail, Profile::Generic),
                         detail,
+                        profile: Profile::Generic,
+                        cause: None,
                     });
                 });
             }
@@ -262,16 +274,24 @@ impl Verdict {
                     FindingKind::Cia402Fault | FindingKind::HeartbeatTimeout | FindingKind::BusOff
                 )
         })?;
+        // A bus-off that caused heartbeat timeouts is not the end: the
+        // loss of the devices it silenced is, the last of them.
+        let at = if findings[at].kind == FindingKind::BusOff {
+            (0..findings.len())
+                .filter(|&j| {
+                    findings[j].kind == FindingKind::HeartbeatTimeout
+                        && linked(summary, &findings, j) == Some(at)
+                })
+                .max_by_key(|&j| match &findings[j].detail {
+                    FindingDetail::HeartbeatGap(gap) => (gap.due, j),
+                    _ => (gap_none(), j),
+                })
+                .unwrap_or(at)
+        } else {
+            at
+        };
         let stop = &findings[at];
-        let first_cause = findings[..=at]
-            .iter()
-            .find(|f| {
-                !f.is_omitted()
-                    && f.severity.is_fault_or_error()
-                    && f.bus == stop.bus
-                    && (stop.node.is_none() || f.node == stop.node)
-            })
-            .unwrap_or(stop);
+        let first_cause = &findings[first_cause(summary, &findings, at)];
         let cause = match &stop.detail {
             FindingDetail::Cia402Fault(fault) => fault.cause(),
             _ => None,
@@ -289,4 +309,83 @@ impl Verdict {
             start,
         })
     }
+}
+
+/// The finding that finding `i`'s cause is (docs/summary.md#causes): for a
+/// fault, the heartbeat timeout that caused its EMCY 0x8130; for an EMCY
+/// 0x8130, the heartbeat timeout before it; for a heartbeat timeout, the
+/// bus-off before it. An error-passive is a warning: never a first cause.
+fn linked(summary: &Summary, findings: &[Finding], i: usize) -> Option<usize> {
+    let f = &findings[i];
+    let lost = |node, gap: super::HeartbeatGap| {
+        findings.iter().position(|g| {
+            g.kind == FindingKind::HeartbeatTimeout
+                && g.bus == f.bus
+                && g.node == Some(node)
+                && g.line == gap.after_line
+                && !g.is_omitted()
+        })
+    };
+    match f.cause? {
+        FindingCause::Emcy(emcy) => {
+            let (node, gap) = summary.lost_before(&f.bus, f.node?, &emcy)?;
+            lost(node, gap)
+        }
+        FindingCause::HeartbeatTimeout { node, gap } => lost(node, gap),
+        FindingCause::BusError(error) if error.bus_off => findings.iter().position(|g| {
+            g.kind == FindingKind::BusOff
+                && g.bus == f.bus
+                && g.node.is_none()
+                && g.line == error.line
+                && !g.is_omitted()
+        }),
+        _ => None,
+    }
+}
+
+/// The first cause of the stop at `at` (docs/summary.md#verdict): follow
+/// the links back from the stop as far as the log supports them, to the
+/// root; its first cause is the earliest fault or error finding of the
+/// root's device (of any device of its bus, for a bus-off) at or before
+/// it, leaving out the links followed and what the root caused; and from
+/// there on, its own links.
+fn first_cause(summary: &Summary, findings: &[Finding], at: usize) -> usize {
+    let mut root = at;
+    let mut chain = vec![at];
+    // A link always leads to another kind of finding: fault, EMCY 0x8130,
+    // heartbeat timeout, bus-off; a few steps reach the end.
+    for _ in 0..6 {
+        if let Some(i) = linked(summary, findings, root).filter(|i| !chain.contains(i)) {
+            chain.push(i);
+            root = i;
+            continue;
+        }
+        let r = &findings[root];
+        let first = findings[..=root]
+            .iter()
+            .enumerate()
+            .find(|&(i, f)| {
+                !f.is_omitted()
+                    && f.severity.is_fault_or_error()
+                    && f.bus == r.bus
+                    && (r.node.is_none() || f.node == r.node)
+                    && (i == root
+                        || (!chain.contains(&i) && linked(summary, findings, i) != Some(root)))
+            })
+            .map_or(root, |(i, _)| i);
+        match linked(summary, findings, first).filter(|i| !chain.contains(i)) {
+            Some(i) => {
+                chain.push(first);
+                chain.push(i);
+                root = i;
+            }
+            None => return first,
+        }
+    }
+    root
+}
+
+/// The earliest time, for a gap without one.
+fn gap_none() -> Timestamp {
+    Timestamp::from_duration(core::time::Duration::ZERO)
 }

@@ -1779,7 +1779,7 @@ fn the_summary_starts_with_its_verdict() {
             "verdict   stop: can0 node 3 went operation_enabled → fault at line 3239 (+8.820 s), \
              16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
             "          first cause: can0 node 3 first error: EMCY 0x7305 Incremental sensor 1 \
-             fault at line 613 (+2.003 s)",
+             fault on axis 1, feedback 1 at line 613 (+2.003 s)",
         ]
     );
     let mut json = args.to_vec();
@@ -1792,7 +1792,7 @@ fn the_summary_starts_with_its_verdict() {
         json!({"iface": "can0", "node": 3, "line": 3239, "ts": 1700000008.820694,
                "kind": "cia402_fault", "severity": "fault",
                "text": "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 \
-                        Incremental sensor 1 fault (line 3231)",
+                        Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
                "cause": {"line": 3231, "ts": 1700000008.804608, "code": 0x7305,
                          "description": "Incremental sensor 1 fault"}})
     );
@@ -1910,4 +1910,74 @@ fn ethercat_time_that_goes_back_is_said_once() {
         "{err}"
     );
     assert_eq!(stdout(&out).lines().count(), 3, "every packet read");
+}
+
+/// docs/summary.md#causes: a bus-off before heartbeat timeouts on its bus
+/// causes them — the verdict's stop is the last loss, its first cause the
+/// bus-off —, and a heartbeat timeout before another node's EMCY 0x8130
+/// causes that EMCY.
+#[test]
+fn the_verdict_follows_bus_off_and_lost_heartbeats() {
+    let log = "(10.000000) can0 705#05\n\
+               (10.000100) can0 706#05\n\
+               (10.100000) can0 705#05\n\
+               (10.100100) can0 706#05\n\
+               (10.150000) can0 20000040#0000000000000000\n\
+               (10.600000) can0 08A#3081110000000000\n\
+               (11.500000) can0 705#05\n\
+               (11.500100) can0 706#05\n";
+    let out = run(
+        &["decode", "--summary", "--json", "--heartbeat-ms", "300"],
+        log,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let all = records(&out);
+    let verdict = &all[0];
+    assert_eq!(verdict["type"], "verdict");
+    assert_eq!(
+        (&verdict["stop"]["kind"], &verdict["stop"]["node"]),
+        (&json!("heartbeat_timeout"), &json!(6))
+    );
+    assert_eq!(
+        verdict["stop"]["text"],
+        "no heartbeat for 1400 ms after line 4, caused by bus-off at line 5"
+    );
+    assert_eq!(
+        verdict["first_cause"],
+        json!({"iface": "can0", "node": null, "line": 5, "ts": null, "kind": "bus_off",
+               "severity": "fault", "text": "bus-off at line 5"})
+    );
+    let text = stdout(&run(&["decode", "--summary", "--heartbeat-ms", "300"], log));
+    assert!(
+        text.starts_with(
+            "verdict   stop: can0 node 6 no heartbeat for 1400 ms after line 4, caused by \
+             bus-off at line 5\n          first cause: bus can0 bus-off at line 5\n"
+        ),
+        "{text}"
+    );
+    // Node 10's EMCY 0x8130, 0.2 s after node 5's heartbeat was due.
+    let ten = all
+        .iter()
+        .find(|r| r["type"] == "node" && r["node"] == 10)
+        .unwrap();
+    assert_eq!(ten["first_error"]["code"], 0x8130);
+    let dir = std::env::temp_dir().join(format!("motionwire-causes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = dir.join("causes.html");
+    let out = run(
+        &[
+            "report",
+            "--heartbeat-ms",
+            "300",
+            "-o",
+            page.to_str().unwrap(),
+        ],
+        log,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let page = std::fs::read_to_string(page).unwrap();
+    assert!(page.contains(
+        "first error: EMCY 0x8130 Life guard error or heartbeat error at line 6, caused by \
+         node 5&#39;s heartbeat timeout after line 3"
+    ));
 }

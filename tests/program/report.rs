@@ -5,7 +5,9 @@
 
 use std::io::Write;
 
-use crate::report_common::{check_counts, parse, repo, run, scratch, summary_records, Page};
+use crate::report_common::{
+    check_counts, parse, repo, run, scratch, summary_records, Element, Page,
+};
 use serde_json::Value;
 
 const SAMPLE_ARGS: [&str; 4] = ["--profile", "3=akd,5=baumer", "--heartbeat-ms", "300"];
@@ -713,4 +715,272 @@ fn an_unchecked_silence_is_not_drawn() {
         .node("can0", 5)
         .kind("heartbeat_timeout")
         .is_empty());
+}
+
+/// docs/summary.md#profiles: what `--profile` reads in an EMCY reaches the
+/// page — the findings' text, the marks' details and the Events table —,
+/// on the sample and on a generated log of an AKD drive and a Baumer
+/// encoder.
+#[test]
+fn profiles_reach_the_findings_the_marks_and_the_events() {
+    let page = sample_page(&scratch("profiles"));
+    let html = &page.html;
+    let wrong = &html[html.find("id=\"wrong\"").unwrap()..html.find("id=\"timeline\"").unwrap()];
+    for text in [
+        "first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 393",
+        "first error: EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 1 at line 613",
+        "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
+        "first error: EMCY 0x8120 CAN in error passive mode (source: CAN controller bus passive, an error) at line 972",
+    ] {
+        assert!(wrong.contains(text), "{text}");
+    }
+    let events = &html[html.find("id=\"events\"").unwrap()..];
+    assert!(events.contains(
+        "<td>EMCY 0x7305 Incremental sensor 1 fault on axis 1, feedback 2 (register 0x01) (line 3231"
+    ));
+    assert!(events.contains(
+        "<td>EMCY 0x4200 Device temperature (source: Temperature monitoring, an error) (register 0x09)"
+    ));
+    let timeline =
+        &html[html.find("id=\"timeline\"").unwrap()..html.find("id=\"signals\"").unwrap()];
+    assert!(timeline.contains(
+        "<title>EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) (register 0x00) (line 393"
+    ));
+
+    // A generated log: an AKD's EMCY on axis 2, feedback 3, and a Baumer
+    // encoder's battery warning; without --profile the page says neither.
+    let dir = scratch("profiles-generated");
+    let log = dir.join("profiles.log");
+    std::fs::write(
+        &log,
+        "(1700000000.000000) can0 083#0573013200000000\n\
+         (1700000000.100000) can0 085#00FF000000100000\n\
+         (1700000000.200000) can0 703#05\n",
+    )
+    .unwrap();
+    let page_of = |args: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut all = vec!["report"];
+        all.extend_from_slice(args);
+        all.extend([log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let r = run(&all);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let with = page_of(&["--profile", "3=akd,5=baumer"], "with.html");
+    let without = page_of(&[], "without.html");
+    let akd = "EMCY 0x7305 Incremental sensor 1 fault on axis 2, feedback 3";
+    let baumer = "EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning)";
+    // The finding, the mark's title and the event row; the Devices table
+    // names the first error too.
+    assert_eq!(with.matches(akd).count(), 3, "{akd}");
+    assert_eq!(with.matches(baumer).count(), 3, "{baumer}");
+    assert!(
+        with.contains("<td>0x7305 Incremental sensor 1 fault on axis 2, feedback 3 (line 1)</td>")
+    );
+    assert!(!without.contains("on axis") && !without.contains("(source:"));
+}
+
+/// docs/report.md#page: "What went wrong" groups the findings by device
+/// and kind, the worst first, each group's first and last shown and the
+/// rest in a `details`; the verdict above them; every finding with its
+/// wall-clock time beside the relative one.
+#[test]
+fn findings_are_grouped_by_device_and_kind_under_the_verdict() {
+    let page = sample_page(&scratch("groups"));
+    let html = &page.html;
+    let wrong = &html[html.find("id=\"wrong\"").unwrap()..html.find("id=\"timeline\"").unwrap()];
+    let verdict = wrong.find("<div class=\"verdict\"").unwrap();
+    let groups: Vec<&Element> = page
+        .elements
+        .iter()
+        .filter(|e| e.get("class") == Some("group"))
+        .collect();
+    assert!(verdict < wrong.find("<li class=\"group\"").unwrap());
+    let kinds: Vec<(&str, &str, &str, u64)> = groups
+        .iter()
+        .map(|g| {
+            (
+                g.get("data-node").unwrap_or(""),
+                g.get("data-kind").unwrap(),
+                g.get("data-severity").unwrap(),
+                g.num("data-count"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("3", "cia402_fault", "fault", 3),
+            ("5", "first_error", "error", 2),
+            ("3", "first_error", "error", 1),
+            ("5", "heartbeat_timeout", "error", 1),
+            ("10", "first_error", "error", 1),
+            ("10", "toggle_error", "warning", 1),
+            ("5", "restarts", "warning", 1),
+            ("3", "sdo_abort", "notice", 2),
+        ]
+    );
+    // The first six open, the other two one click away.
+    let more = wrong
+        .find("<details class=\"more-groups\"><summary>2 more groups (3 findings)</summary>")
+        .unwrap();
+    assert!(wrong[more..].contains("data-kind=\"restarts\""));
+    // Node 3's faults: the first and the last shown, the middle one in a
+    // details.
+    let faults = &wrong[wrong.find("data-kind=\"cia402_fault\"").unwrap()..];
+    let faults = &faults[..faults.find("</ul></li>").unwrap()];
+    let first = faults.find("data-line=\"620\"").unwrap();
+    let rest = faults
+        .find("<details><summary>1 more between them</summary>")
+        .unwrap();
+    let middle = faults.find("data-line=\"1291\"").unwrap();
+    let last = faults.find("data-line=\"3239\"").unwrap();
+    assert!(first < rest && rest < middle && middle < last);
+    // Wall-clock time beside the relative one, as the log gives it
+    // (line 3239: 1700000008.820694).
+    assert!(faults.contains("(+8.820168 s, 2023-11-14 22:13:28.820694 UTC)"));
+    let events = &html[html.find("id=\"events\"").unwrap()..];
+    assert!(events.contains("<th>time</th><th>UTC</th>"));
+    assert!(events.contains("<td>+8.820168 s</td><td>2023-11-14 22:13:28.820694 UTC</td>"));
+}
+
+/// docs/report.md#page: the Events table never hides a distinct code
+/// behind a merged row — a row whose EMCYs are clustered lists them one
+/// row per code.
+#[test]
+fn the_events_table_lists_a_clustered_rows_emcys_by_code() {
+    let dir = scratch("codes");
+    let log = dir.join("codes.log");
+    let mut text = String::new();
+    // 900 EMCYs of node 5, 1 ms apart: 0x8120 and 0x4200 in turn, and one
+    // 0x3210 among them.
+    for i in 0..900u64 {
+        let code = match i {
+            450 => "1032",
+            i if i % 2 == 0 => "2081",
+            _ => "0042",
+        };
+        text.push_str(&format!(
+            "(1700000000.{:06}) can0 085#{code}110000000000\n",
+            i * 1000
+        ));
+    }
+    // A heartbeat 10 s on: a pixel is 10 ms, and the EMCYs cluster.
+    text.push_str("(1700000010.000000) can0 705#05\n");
+    std::fs::write(&log, text).unwrap();
+    let out = dir.join("codes.html");
+    let r = run(&["report", log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let html = std::fs::read_to_string(&out).unwrap();
+    let page = parse(&html);
+    assert!(page
+        .node("can0", 5)
+        .kind("emcy")
+        .iter()
+        .any(|m| m.num("data-count") > 1));
+    let rows: Vec<(u64, u64)> = page
+        .elements
+        .iter()
+        .filter(|e| e.tag == "tr" && e.get("data-code").is_some())
+        .map(|e| (e.num("data-code"), e.num("data-line")))
+        .collect();
+    assert_eq!(rows, [(0x8120, 1), (0x4200, 2), (0x3210, 451)]);
+    assert!(html.contains("449 EMCYs of code 0x8120, lines 1 to 899"));
+    assert!(html.contains("450 EMCYs of code 0x4200, lines 2 to 900"));
+    assert!(html.contains("<td>EMCY 0x3210 DC link over-voltage (register 0x11) (line 451"));
+}
+
+/// docs/report.md#page: an empty log, and a log with no CANopen device,
+/// say exactly that.
+#[test]
+fn an_empty_log_and_a_log_without_devices_say_so() {
+    let dir = scratch("empty");
+    let page_of = |text: &str, name: &str| {
+        let log = dir.join(format!("{name}.log"));
+        std::fs::write(&log, text).unwrap();
+        let out = dir.join(format!("{name}.html"));
+        let r = run(&["report", log.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let empty = page_of("", "empty");
+    assert!(
+        empty.contains("<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong>")
+    );
+    assert!(!empty.contains("No fault"));
+    let none = page_of(
+        "(1700000000.000000) can0 12345678#0102\n(1700000000.100000) can0 7E5#04\n",
+        "none",
+    );
+    assert!(none.contains("<strong>No CANopen device in this log:</strong> 2 frames read"));
+    assert!(!none.contains("No fault"));
+}
+
+/// docs/report.md#several: logs read apart give one timeline per
+/// recording, each on its own axis; `--joined`, one.
+#[test]
+fn logs_read_apart_have_an_axis_each() {
+    let dir = scratch("axes");
+    let a = dir.join("a.log");
+    let b = dir.join("b.log");
+    std::fs::write(
+        &a,
+        "(1700000000.000000) can0 705#05\n(1700000001.000000) can0 085#1081110000000000\n(1700000002.000000) can0 705#05\n",
+    )
+    .unwrap();
+    // Two years later, a recording of its own.
+    std::fs::write(
+        &b,
+        "(1760000000.000000) can0 706#05\n(1760000000.500000) can0 086#1081110000000000\n",
+    )
+    .unwrap();
+    let page_of = |joined: bool| {
+        let out = dir.join(format!("axes-{joined}.html"));
+        let mut args = vec!["report"];
+        if joined {
+            args.push("--joined");
+        }
+        args.extend([
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let r = run(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let apart = page_of(false);
+    let page = parse(&apart);
+    let svgs: Vec<(u64, u64)> = page
+        .elements
+        .iter()
+        .filter(|e| e.tag == "svg" && e.get("aria-label") == Some("timeline"))
+        .map(|e| (e.num("data-start"), e.num("data-span")))
+        .collect();
+    assert_eq!(
+        svgs,
+        [
+            (1_700_000_000_000_000, 2_000_000),
+            (1_760_000_000_000_000, 500_000)
+        ]
+    );
+    assert_eq!(apart.matches("<h3 class=\"recording\"").count(), 2);
+    // Each EMCY at its own recording's time, never at +60000000 s.
+    assert!(apart.contains("(+1.000000 s, 2023-11-14 22:13:21.000000 UTC)"));
+    assert!(apart.contains("(+0.500000 s, 2025-10-09 08:53:20.500000 UTC)"));
+    assert!(!apart.contains("+60000000"));
+    check_counts(
+        &page,
+        &summary_records(&[a.to_str().unwrap(), b.to_str().unwrap()]),
+    );
+
+    let joined = parse(&page_of(true));
+    let svgs = joined
+        .elements
+        .iter()
+        .filter(|e| e.tag == "svg" && e.get("aria-label") == Some("timeline"))
+        .count();
+    assert_eq!(svgs, 1);
 }

@@ -38,7 +38,10 @@ fn chromium() -> Option<PathBuf> {
 /// Run headless chromium on a page with `args`; its standard output and
 /// error.
 fn browse(browser: &Path, page: &Path, args: &[&str]) -> (String, String) {
-    let profile = scratch(&format!("profile-{}", args.len()));
+    // A profile per page and use: browsers of tests run at once never
+    // share one.
+    let name = page.file_stem().unwrap_or_default().to_string_lossy();
+    let profile = scratch(&format!("profile-{name}-{}", args.len()));
     let out = Command::new(browser)
         .args([
             "--headless",
@@ -233,4 +236,98 @@ fn a_screenshot_is_not_blank() {
     colours.sort_unstable();
     colours.dedup();
     assert!(colours.len() > 20, "{} colours", colours.len());
+}
+
+/// A large log of many devices and many distinct EMCY codes: 100 000
+/// frames from 32 nodes — heartbeats, PDOs and 30 000 EMCYs of 4 000
+/// codes —, each node lost once (its heartbeat stops for 2 s).
+fn large_log(path: &Path) {
+    use std::fmt::Write as _;
+    let mut log = String::with_capacity(100_000 * 40);
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for i in 0..100_000u64 {
+        let us = 1_700_000_000_000_000 + i * 200;
+        let (secs, micros) = (us / 1_000_000, us % 1_000_000);
+        let node = 1 + (i % 32);
+        let r = next();
+        // Node n is silent from 2n/3 s for 2 s: one heartbeat timeout each.
+        let t = i * 200;
+        let silent = t >= node * 600_000 && t < node * 600_000 + 2_000_000;
+        let _ = match r % 10 {
+            0..=2 => writeln!(
+                log,
+                "({secs}.{micros:06}) can0 {:03X}#{:04X}{:02X}0000000000",
+                0x80 + node,
+                ((0x1000 + (r >> 8) % 4000) as u16).swap_bytes(),
+                1u8
+            ),
+            3 if !silent => writeln!(log, "({secs}.{micros:06}) can0 {:03X}#05", 0x700 + node),
+            _ => writeln!(
+                log,
+                "({secs}.{micros:06}) can0 {:03X}#{:016X}",
+                0x180 + node,
+                r
+            ),
+        };
+    }
+    std::fs::write(path, log).unwrap();
+}
+
+/// docs/report.md#page: a large log's page shows the verdict and the
+/// grouped findings within the first screen (1400 × 1000): the timeline's
+/// first band is drawn in the screenshot, below the verdict.
+#[test]
+fn a_large_logs_verdict_and_findings_fit_the_first_screen() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("browser-large");
+    let log = dir.join("large.log");
+    large_log(&log);
+    let page = dir.join("large.html");
+    let r = run(&[
+        "report",
+        "--heartbeat-ms",
+        "300",
+        log.to_str().unwrap(),
+        "-o",
+        page.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let html = std::fs::read_to_string(&page).unwrap();
+    let groups = html.matches("<li class=\"group\"").count();
+    assert!(groups > 32, "{groups} groups");
+    let shot = dir.join("shot.png");
+    let (_, log) = browse(
+        &browser,
+        &page,
+        &[
+            "--hide-scrollbars",
+            "--window-size=1400,1000",
+            &format!("--screenshot={}", shot.display()),
+        ],
+    );
+    let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
+    assert!(console.is_empty(), "console messages: {console:#?}");
+    let (width, height, channels, pixels) = png_pixels(&std::fs::read(&shot).unwrap());
+    assert_eq!((width, height), (1400, 1000));
+    // The first pixel row with a run of a colour: the verdict's background
+    // (#fdf3ee), the timeline's `operational` band (#009E73).
+    let first_row = |rgb: [u8; 3]| {
+        (0..height as usize).find(|&y| {
+            let row = &pixels[y * width as usize * channels..(y + 1) * width as usize * channels];
+            row.chunks(channels).filter(|p| p[..3] == rgb).count() >= 20
+        })
+    };
+    let verdict = first_row([0xfd, 0xf3, 0xee]).expect("the verdict is on the first screen");
+    let timeline = first_row([0x00, 0x9e, 0x73]).expect("the timeline begins on the first screen");
+    assert!(
+        verdict < timeline,
+        "verdict at {verdict}, timeline at {timeline}"
+    );
+    assert!(timeline < 1000, "timeline at {timeline}");
 }
