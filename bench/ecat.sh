@@ -10,10 +10,14 @@
 #              decode --json F >/dev/null
 #              decode F >/dev/null         (the text records)
 #              cat F >/dev/null            (the read from the page cache)
-#              cat F | cat >/dev/null      (the same bytes through a pipe)
+#              cat F | cat >/dev/null      (the capture's bytes through a pipe)
+#              decode --json F | cat >/dev/null
+#              cat J | cat >/dev/null      (J: decode --json's output, kept
+#                                           in a file: the same bytes piped)
 #              tshark -T fields            (the peer: the fields below)
 #            the goals: tshark / --summary ≥ 50×, tshark / --json ≥ 10×,
-#            --json ≤ 1.5 × cat (either cat, both printed)
+#            --json within 1.5× of cat piping the same bytes: read both
+#            ways, --json / cat F and --json | cat / cat J | cat
 #   memory   peak resident memory (/usr/bin/time -f %M) of decode --summary,
 #            --json and text at 100 000 and 1 000 000 datagrams
 #
@@ -54,13 +58,16 @@ inputs() {
     if [[ ! -s $base.pcapng ]]; then
         python3 bench/gen_ecat.py "$mix" --datagrams "$DATAGRAMS" -o "$base.pcapng"
     fi
+    if [[ ! -s $base.json ]]; then
+        "$MOTIONWIRE" decode --json "$base.pcapng" >"$base.json" 2>/dev/null
+    fi
     if [[ ! -s $base-100k.pcapng ]]; then
         python3 bench/gen_ecat.py "$mix" --datagrams 100000 -o "$base-100k.pcapng"
     fi
 }
 
 time_mix() {
-    local mix=$1 f=$BENCH_DIR/$1.pcapng
+    local mix=$1 f=$BENCH_DIR/$1.pcapng j=$BENCH_DIR/$1.json
     local before=()
     if [[ -n $MOTIONWIRE_BEFORE ]]; then
         before=(-n "before: decode --summary" "$MOTIONWIRE_BEFORE decode --summary $f >/dev/null 2>&1"
@@ -73,6 +80,8 @@ time_mix() {
         -n "decode" "$MOTIONWIRE decode $f >/dev/null 2>&1" \
         -n "cat F >/dev/null" "cat $f >/dev/null" \
         -n "cat F | cat >/dev/null" "cat $f | cat >/dev/null" \
+        -n "decode --json | cat" "$MOTIONWIRE decode --json $f 2>/dev/null | cat >/dev/null" \
+        -n "cat J | cat >/dev/null" "cat $j | cat >/dev/null" \
         -n "tshark -T fields" "${TSHARK[*]} -r $f >/dev/null 2>&1" \
         "${before[@]}"
 }
@@ -110,23 +119,29 @@ mixes = [m for m in ("cyclic", "fault", "sdo")
          if os.path.exists(os.path.join(results, m + "-time.json"))]
 def ms(r):
     return f"{r['mean']*1e3:.1f} ± {r['stddev']*1e3:.1f}"
-print("| mix | size | `--summary` | `--json` | text | `cat` | `cat \\| cat` | tshark | tshark ÷ `--summary` (≥ 50×) "
-      "| tshark ÷ `--json` (≥ 10×) | `--json` ÷ `cat` (≤ 1.5×) | `--json` ÷ `cat \\| cat` | load |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("Times in ms (mean ± σ), tshark in s; F the capture, J its JSON.")
+print()
+print("| mix | F, J | `--summary` | `--json` | text | `cat F` | `cat F \\| cat` | `--json \\| cat` | `cat J \\| cat` "
+      "| tshark | tshark ÷ `--summary` (≥ 50×) | tshark ÷ `--json` (≥ 10×) | `--json` ÷ `cat F \\| cat` (≤ 1.5×) "
+      "| `--json \\| cat` ÷ `cat J \\| cat` (≤ 1.5×) | load |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 befores = []
 for mix in mixes:
     runs = {r["command"]: r for r in json.load(open(os.path.join(results, mix + "-time.json")))["results"]}
     load = open(os.path.join(results, mix + "-time.load")).read().split()[0]
-    path = os.path.join(inputs, mix + ".pcapng")
-    size = f"{os.path.getsize(path)/1e6:.0f} MB" if os.path.exists(path) else "?"
+    def size(ext):
+        path = os.path.join(inputs, mix + ext)
+        return f"{os.path.getsize(path)/1e6:.0f}" if os.path.exists(path) else "?"
     s, j, t = runs["decode --summary"], runs["decode --json"], runs["decode"]
     c, cc, ts = runs["cat F >/dev/null"], runs["cat F | cat >/dev/null"], runs["tshark -T fields"]
+    jc, cj = runs["decode --json | cat"], runs["cat J | cat >/dev/null"]
     def goal(ratio, target, above):
         met = ratio >= target if above else ratio <= target
         return f"**{ratio:.1f}×** {'met' if met else 'missed'}"
-    print(f"| {mix} | {size} | {ms(s)} | {ms(j)} | {ms(t)} | {ms(c)} | {ms(cc)} | {ts['mean']:.2f} s "
+    print(f"| {mix} | {size('.pcapng')}, {size('.json')} MB | {ms(s)} | {ms(j)} | {ms(t)} | {ms(c)} | {ms(cc)} "
+          f"| {ms(jc)} | {ms(cj)} | {ts['mean']:.2f} ± {ts['stddev']:.2f} "
           f"| {goal(ts['mean']/s['mean'], 50, True)} | {goal(ts['mean']/j['mean'], 10, True)} "
-          f"| {goal(j['mean']/c['mean'], 1.5, False)} | {goal(j['mean']/cc['mean'], 1.5, False)} | {load} |")
+          f"| {goal(j['mean']/cc['mean'], 1.5, False)} | {goal(jc['mean']/cj['mean'], 1.5, False)} | {load} |")
     for name in ("before: decode --summary", "before: decode --json"):
         if name in runs:
             now = runs[name.removeprefix("before: ")]
