@@ -431,7 +431,7 @@ pub(crate) fn int(out: &mut Vec<u8>, v: i64) {
 /// nine when it is not a whole number of microseconds (`ts` in
 /// docs/output.md#common-keys; docs/formats.md#timestamps: exact to the
 /// format's resolution, no float rounding). A time of today's ten digits
-/// of seconds and whole microseconds is written in one piece.
+/// of seconds is written in one piece, microseconds or nanoseconds.
 #[inline]
 pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
     let secs = ts.secs();
@@ -451,6 +451,27 @@ pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
         }
         text[10] = b'.';
         if let Some(head) = text.first_chunk::<17>() {
+            out.extend_from_slice(head);
+        }
+        return;
+    }
+    if (1_000_000_000..10_000_000_000).contains(&secs) {
+        // Nine decimals (a capture in nanoseconds): the first, then eight.
+        let top = (secs / 100_000_000) as u32;
+        let mut text = [0u8; 24];
+        text[0] = b'0' + (top / 10) as u8;
+        text[1] = b'0' + (top % 10) as u8;
+        let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
+        let fraction = digits8(nanos % 100_000_000).to_le_bytes();
+        if let Some(a) = text.get_mut(2..10) {
+            a.copy_from_slice(&rest);
+        }
+        text[10] = b'.';
+        text[11] = b'0' + (nanos / 100_000_000) as u8;
+        if let Some(b) = text.get_mut(12..20) {
+            b.copy_from_slice(&fraction);
+        }
+        if let Some(head) = text.first_chunk::<20>() {
             out.extend_from_slice(head);
         }
         return;
