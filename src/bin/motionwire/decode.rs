@@ -276,11 +276,9 @@ impl<'a> Sink<'a> {
                     );
                 }
             };
-            // Every datagram teaches the session, shown or not.
-            let mut meanings = Vec::new();
-            self.ethercat
-                .meanings(&packet, at, &datagram, |m| meanings.push(m));
             if !shown {
+                // Every datagram teaches the session, shown or not.
+                self.ethercat.meanings(&packet, at, &datagram, |_| {});
                 continue;
             }
             let record = DatagramRecord {
@@ -301,24 +299,28 @@ impl<'a> Sink<'a> {
                     crate::record::write_datagram_csv(&mut self.out, &record, self.file.as_deref())?
                 }
             }
-            for meaning in meanings {
+            // What the datagram tells, after its record: written as the
+            // session hands it over.
+            let (output, file) = (self.output, self.file.as_deref());
+            let (json, out) = (&mut self.json, &mut self.out);
+            let mut written = Ok(());
+            self.ethercat.meanings(&packet, at, &datagram, |meaning| {
                 let record = MeaningRecord {
                     packet: &packet,
                     number: at + 1,
                     meaning,
                 };
-                match self.output {
-                    Output::Json => record.append_json(&mut self.json, self.file.as_deref()),
-                    Output::Text => record.write_text(
-                        &mut self.out,
-                        datagram.command().name(),
-                        self.file.as_deref(),
-                    )?,
+                match output {
+                    Output::Json => record.append_json(json, file),
+                    Output::Text if written.is_ok() => {
+                        written = record.write_text(out, datagram.command().name(), file);
+                    }
                     // One table of frames (docs/ethercat.md#records): the
                     // datagram's row holds the bytes.
-                    Output::Csv => {}
+                    Output::Text | Output::Csv => {}
                 }
-            }
+            });
+            written?;
         }
         Ok(())
     }
