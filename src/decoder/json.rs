@@ -327,11 +327,27 @@ fn load16(bytes: &[u8]) -> Option<(u64, u64)> {
     }
 }
 
-/// Write the inside of a JSON string with RFC 8259 escaping.
+/// Write the inside of a JSON string with RFC 8259 escaping: the bytes
+/// between characters to escape skipped 8 at a time, to the first that
+/// needs it (a Windows interface name, `\Device\NPF_{…}`, has two
+/// backslashes in 50 bytes, and every record of its capture names it).
 fn escaped(out: &mut Vec<u8>, value: &str) {
     let bytes = value.as_bytes();
     let mut start = 0;
-    for (i, &b) in bytes.iter().enumerate() {
+    let mut i = 0;
+    loop {
+        if let Some(word) = bytes.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
+            let mask = escape_mask(u64::from_le_bytes(*word));
+            if mask == 0 {
+                i += 8;
+                continue;
+            }
+            i += (mask.trailing_zeros() / 8) as usize;
+        }
+        let Some(&b) = bytes.get(i) else {
+            break;
+        };
+        i += 1;
         let escape: &[u8] = match b {
             b'"' => b"\\\"",
             b'\\' => b"\\\\",
@@ -339,18 +355,18 @@ fn escaped(out: &mut Vec<u8>, value: &str) {
             b'\r' => b"\\r",
             b'\t' => b"\\t",
             0x00..=0x1F => {
-                out.extend_from_slice(&bytes[start..i]);
+                out.extend_from_slice(&bytes[start..i - 1]);
                 out.extend_from_slice(b"\\u00");
                 out.push(HEX_DIGITS[usize::from(b >> 4)]);
                 out.push(HEX_DIGITS[usize::from(b & 0xF)]);
-                start = i + 1;
+                start = i;
                 continue;
             }
             _ => continue,
         };
-        out.extend_from_slice(&bytes[start..i]);
+        out.extend_from_slice(&bytes[start..i - 1]);
         out.extend_from_slice(escape);
-        start = i + 1;
+        start = i;
     }
     out.extend_from_slice(&bytes[start..]);
 }
@@ -497,6 +513,23 @@ const fn word_needs_escaping(w: u64) -> bool {
     has_zero(w & (0xE0 * ONES))
         || has_zero(w ^ (b'"' as u64 * ONES))
         || has_zero(w ^ (b'\\' as u64 * ONES))
+}
+
+/// The high bit of the first byte of `w` (in memory order) that needs
+/// escaping in a JSON string, and maybe of later ones (a borrow can mark
+/// the byte after one); 0 when none does.
+#[inline(always)]
+const fn escape_mask(w: u64) -> u64 {
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    /// The high bit of the first zero byte of `w` (exact: a borrow only
+    /// runs past a zero byte, and a byte above 0x80 is masked off by
+    /// `!w`), and maybe of later bytes.
+    const fn zeros(w: u64) -> u64 {
+        w.wrapping_sub(ONES) & !w & HIGH
+    }
+    // A byte below 0x20: its bits 5-7 are 0 (bytes of 0x80 and more are
+    // not below 0x20, and `& 0xE0` keeps their high bit).
+    zeros(w & (0xE0 * ONES)) | zeros(w ^ (b'"' as u64 * ONES)) | zeros(w ^ (b'\\' as u64 * ONES))
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259): 8 bytes at a
@@ -799,6 +832,13 @@ mod tests {
                 proptest::prop_assert_eq!(render(|o| key.write(o)), plain);
             }
         }
+    }
+
+    #[test]
+    fn long_strings_are_escaped_between_words() {
+        let name = "\\Device\\NPF_{DCEDC919-0A20-47A2-9788-FC57D0169EDB}\"\n\u{1f}é12345678\\";
+        let s = render(|o| string(o, name));
+        assert_eq!(s, serde_json::to_string(name).unwrap());
     }
 
     #[test]
