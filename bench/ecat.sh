@@ -24,8 +24,8 @@
 # Every command runs BENCH_RUNS times after one warm-up, tshark included
 # (a second each). The load average is recorded before each step: compare
 # the ratios within a session, not times across runs. With
-# MOTIONWIRE_BEFORE set to another build (e.g. main's), its --summary and
-# --json run in the same session.
+# MOTIONWIRE_BEFORE set to another build (e.g. main's), its --summary,
+# --json and text run in the same session.
 #
 # Usage: bench/ecat.sh [MIX...]        (default: cyclic fault sdo)
 #        bench/ecat.sh table           print the table from the results
@@ -71,7 +71,8 @@ time_mix() {
     local before=()
     if [[ -n $MOTIONWIRE_BEFORE ]]; then
         before=(-n "before: decode --summary" "$MOTIONWIRE_BEFORE decode --summary $f >/dev/null 2>&1"
-            -n "before: decode --json" "$MOTIONWIRE_BEFORE decode --json $f >/dev/null 2>&1")
+            -n "before: decode --json" "$MOTIONWIRE_BEFORE decode --json $f >/dev/null 2>&1"
+            -n "before: decode" "$MOTIONWIRE_BEFORE decode $f >/dev/null 2>&1")
     fi
     load "$mix-time"
     hyperfine --warmup 1 --runs "$RUNS" --export-json "$RESULTS/$mix-time.json" \
@@ -142,7 +143,7 @@ for mix in mixes:
           f"| {ms(jc)} | {ms(cj)} | {ts['mean']:.2f} ± {ts['stddev']:.2f} "
           f"| {goal(ts['mean']/s['mean'], 50, True)} | {goal(ts['mean']/j['mean'], 10, True)} "
           f"| {goal(j['mean']/cc['mean'], 1.5, False)} | {goal(jc['mean']/cj['mean'], 1.5, False)} | {load} |")
-    for name in ("before: decode --summary", "before: decode --json"):
+    for name in ("before: decode --summary", "before: decode --json", "before: decode"):
         if name in runs:
             now = runs[name.removeprefix("before: ")]
             befores.append(f"| {mix} | `{name.removeprefix('before: ')}` | {ms(runs[name])} ms | {ms(now)} ms "
