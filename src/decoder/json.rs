@@ -44,12 +44,30 @@ impl<'w> Object<'w> {
     #[inline(always)]
     pub(crate) fn key(&mut self, key: &'static str) -> &mut Vec<u8> {
         debug_assert!(key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
+        let name = key.as_bytes();
+        let len = name.len();
+        if !self.first && len <= 12 {
+            // `,"key":` in one write of 16 bytes cut to its length (the
+            // key is a constant: the bytes are too).
+            let mut text = [0u8; 16];
+            text[0] = b',';
+            text[1] = b'"';
+            if let Some(at) = text.get_mut(2..2 + len) {
+                at.copy_from_slice(name);
+            }
+            text[2 + len] = b'"';
+            text[3 + len] = b':';
+            let end = self.out.len() + 4 + len;
+            self.out.extend_from_slice(&text);
+            self.out.truncate(end);
+            return self.out;
+        }
         if !self.first {
             self.out.push(b',');
         }
         self.first = false;
         self.out.push(b'"');
-        self.out.extend_from_slice(key.as_bytes());
+        self.out.extend_from_slice(name);
         self.out.extend_from_slice(b"\":");
         self.out
     }
