@@ -44,12 +44,30 @@ impl<'w> Object<'w> {
     #[inline(always)]
     pub(crate) fn key(&mut self, key: &'static str) -> &mut Vec<u8> {
         debug_assert!(key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
+        let name = key.as_bytes();
+        let len = name.len();
+        if !self.first && len <= 12 {
+            // `,"key":` in one write of 16 bytes cut to its length (the
+            // key is a constant: the bytes are too).
+            let mut text = [0u8; 16];
+            text[0] = b',';
+            text[1] = b'"';
+            if let Some(at) = text.get_mut(2..2 + len) {
+                at.copy_from_slice(name);
+            }
+            text[2 + len] = b'"';
+            text[3 + len] = b':';
+            let end = self.out.len() + 4 + len;
+            self.out.extend_from_slice(&text);
+            self.out.truncate(end);
+            return self.out;
+        }
         if !self.first {
             self.out.push(b',');
         }
         self.first = false;
         self.out.push(b'"');
-        self.out.extend_from_slice(key.as_bytes());
+        self.out.extend_from_slice(name);
         self.out.extend_from_slice(b"\":");
         self.out
     }
@@ -327,11 +345,27 @@ fn load16(bytes: &[u8]) -> Option<(u64, u64)> {
     }
 }
 
-/// Write the inside of a JSON string with RFC 8259 escaping.
+/// Write the inside of a JSON string with RFC 8259 escaping: the bytes
+/// between characters to escape skipped 8 at a time, to the first that
+/// needs it (a Windows interface name, `\Device\NPF_{…}`, has two
+/// backslashes in 50 bytes, and every record of its capture names it).
 fn escaped(out: &mut Vec<u8>, value: &str) {
     let bytes = value.as_bytes();
     let mut start = 0;
-    for (i, &b) in bytes.iter().enumerate() {
+    let mut i = 0;
+    loop {
+        if let Some(word) = bytes.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
+            let mask = escape_mask(u64::from_le_bytes(*word));
+            if mask == 0 {
+                i += 8;
+                continue;
+            }
+            i += (mask.trailing_zeros() / 8) as usize;
+        }
+        let Some(&b) = bytes.get(i) else {
+            break;
+        };
+        i += 1;
         let escape: &[u8] = match b {
             b'"' => b"\\\"",
             b'\\' => b"\\\\",
@@ -339,18 +373,18 @@ fn escaped(out: &mut Vec<u8>, value: &str) {
             b'\r' => b"\\r",
             b'\t' => b"\\t",
             0x00..=0x1F => {
-                out.extend_from_slice(&bytes[start..i]);
+                out.extend_from_slice(&bytes[start..i - 1]);
                 out.extend_from_slice(b"\\u00");
                 out.push(HEX_DIGITS[usize::from(b >> 4)]);
                 out.push(HEX_DIGITS[usize::from(b & 0xF)]);
-                start = i + 1;
+                start = i;
                 continue;
             }
             _ => continue,
         };
-        out.extend_from_slice(&bytes[start..i]);
+        out.extend_from_slice(&bytes[start..i - 1]);
         out.extend_from_slice(escape);
-        start = i + 1;
+        start = i;
     }
     out.extend_from_slice(&bytes[start..]);
 }
@@ -431,7 +465,7 @@ pub(crate) fn int(out: &mut Vec<u8>, v: i64) {
 /// nine when it is not a whole number of microseconds (`ts` in
 /// docs/output.md#common-keys; docs/formats.md#timestamps: exact to the
 /// format's resolution, no float rounding). A time of today's ten digits
-/// of seconds and whole microseconds is written in one piece.
+/// of seconds is written in one piece, microseconds or nanoseconds.
 #[inline]
 pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
     let secs = ts.secs();
@@ -451,6 +485,27 @@ pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
         }
         text[10] = b'.';
         if let Some(head) = text.first_chunk::<17>() {
+            out.extend_from_slice(head);
+        }
+        return;
+    }
+    if (1_000_000_000..10_000_000_000).contains(&secs) {
+        // Nine decimals (a capture in nanoseconds): the first, then eight.
+        let top = (secs / 100_000_000) as u32;
+        let mut text = [0u8; 24];
+        text[0] = b'0' + (top / 10) as u8;
+        text[1] = b'0' + (top % 10) as u8;
+        let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
+        let fraction = digits8(nanos % 100_000_000).to_le_bytes();
+        if let Some(a) = text.get_mut(2..10) {
+            a.copy_from_slice(&rest);
+        }
+        text[10] = b'.';
+        text[11] = b'0' + (nanos / 100_000_000) as u8;
+        if let Some(b) = text.get_mut(12..20) {
+            b.copy_from_slice(&fraction);
+        }
+        if let Some(head) = text.first_chunk::<20>() {
             out.extend_from_slice(head);
         }
         return;
@@ -476,6 +531,23 @@ const fn word_needs_escaping(w: u64) -> bool {
     has_zero(w & (0xE0 * ONES))
         || has_zero(w ^ (b'"' as u64 * ONES))
         || has_zero(w ^ (b'\\' as u64 * ONES))
+}
+
+/// The high bit of the first byte of `w` (in memory order) that needs
+/// escaping in a JSON string, and maybe of later ones (a borrow can mark
+/// the byte after one); 0 when none does.
+#[inline(always)]
+const fn escape_mask(w: u64) -> u64 {
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    /// The high bit of the first zero byte of `w` (exact: a borrow only
+    /// runs past a zero byte, and a byte above 0x80 is masked off by
+    /// `!w`), and maybe of later bytes.
+    const fn zeros(w: u64) -> u64 {
+        w.wrapping_sub(ONES) & !w & HIGH
+    }
+    // A byte below 0x20: its bits 5-7 are 0 (bytes of 0x80 and more are
+    // not below 0x20, and `& 0xE0` keeps their high bit).
+    zeros(w & (0xE0 * ONES)) | zeros(w ^ (b'"' as u64 * ONES)) | zeros(w ^ (b'\\' as u64 * ONES))
 }
 
 /// Whether a text needs escaping in a JSON string (RFC 8259): 8 bytes at a
@@ -778,6 +850,13 @@ mod tests {
                 proptest::prop_assert_eq!(render(|o| key.write(o)), plain);
             }
         }
+    }
+
+    #[test]
+    fn long_strings_are_escaped_between_words() {
+        let name = "\\Device\\NPF_{DCEDC919-0A20-47A2-9788-FC57D0169EDB}\"\n\u{1f}é12345678\\";
+        let s = render(|o| string(o, name));
+        assert_eq!(s, serde_json::to_string(name).unwrap());
     }
 
     #[test]

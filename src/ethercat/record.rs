@@ -169,8 +169,17 @@ impl fmt::Display for Fields<'_, '_, '_> {
         })?;
         if !d.data().is_empty() {
             f.write_str(" data ")?;
-            for byte in d.data() {
-                write!(f, "{byte:02x}")?;
+            // Lowercase hex, 32 bytes a write: a mailbox datagram holds
+            // a kilobyte.
+            const HEX: &[u8; 16] = b"0123456789abcdef";
+            let mut text = [0u8; 64];
+            for chunk in d.data().chunks(32) {
+                for (pair, &byte) in text.chunks_exact_mut(2).zip(chunk) {
+                    pair[0] = HEX[usize::from(byte >> 4)];
+                    pair[1] = HEX[usize::from(byte & 0x0f)];
+                }
+                let digits = text.get(..2 * chunk.len()).unwrap_or_default();
+                f.write_str(core::str::from_utf8(digits).map_err(|_| fmt::Error)?)?;
             }
         }
         Ok(())

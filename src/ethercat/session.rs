@@ -312,7 +312,7 @@ impl Session {
     fn port(&mut self, iface: Option<Iface<'_>>) -> usize {
         let is = |port: &Port| match (iface, &port.name) {
             (None, None) => true,
-            (Some(iface), Some(name)) => iface.to_string() == *name,
+            (Some(iface), Some(name)) => named(iface, name),
             _ => false,
         };
         if self.ports.get(self.last_port).is_some_and(is) {
@@ -394,6 +394,28 @@ impl Session {
     }
 }
 
+/// Return whether `name` is `iface` written out (its `Display`), without
+/// allocating: the port is looked up for every packet.
+fn named(iface: Iface<'_>, name: &str) -> bool {
+    match iface {
+        Iface::Name(_) => iface.is_name(name.as_bytes()),
+        Iface::Channel(channel) => {
+            let mut digits = [0u8; 5];
+            let mut at = digits.len();
+            let mut rest = channel;
+            loop {
+                at -= 1;
+                digits[at] = b'0' + (rest % 10) as u8;
+                rest /= 10;
+                if rest == 0 {
+                    break;
+                }
+            }
+            digits.get(at..) == Some(name.as_bytes())
+        }
+    }
+}
+
 /// A frame's datagrams' commands and indices in order, hashed (FNV-1a):
 /// what a returned copy keeps of its sent one.
 fn signature(frame: &EthercatFrame<'_>) -> u64 {
@@ -413,4 +435,30 @@ fn signature(frame: &EthercatFrame<'_>) -> u64 {
         }
     }
     hash
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `named` as the interface's text compared.
+    #[test]
+    fn named_as_the_display() {
+        let names = [
+            "", "0", "1", "01", "9", "10", "65535", "65536", "eth0", "enp2s0", "x",
+        ];
+        let ifaces = [0, 1, 9, 10, 99, 100, 12345, 65535]
+            .map(Iface::Channel)
+            .into_iter()
+            .chain(names.map(Iface::Name));
+        for iface in ifaces {
+            for name in names.iter().copied().chain([iface.to_string().as_str()]) {
+                assert_eq!(
+                    named(iface, name),
+                    iface.to_string() == name,
+                    "{iface:?} {name:?}"
+                );
+            }
+        }
+    }
 }

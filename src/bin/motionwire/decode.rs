@@ -315,10 +315,6 @@ impl<'a> Sink<'a> {
                     );
                 }
             };
-            // Every datagram teaches the session, shown or not.
-            let mut meanings = Vec::new();
-            self.ethercat
-                .meanings(&packet, at, &datagram, |m| meanings.push(m));
             let record = DatagramRecord {
                 packet: &packet,
                 number: at + 1,
@@ -343,30 +339,32 @@ impl<'a> Sink<'a> {
                     )?,
                 }
             }
-            for meaning in meanings {
+            // What the datagram tells, after its record: written as the
+            // session hands it over.
+            let (output, file) = (self.output, self.file.as_deref());
+            let (json, out) = (&mut self.json, &mut self.out);
+            let shown = &self.ethercat_shown;
+            let mut written = Ok(());
+            self.ethercat.meanings(&packet, at, &datagram, |meaning| {
                 let record = MeaningRecord {
                     packet: &packet,
                     number: at + 1,
                     meaning,
                 };
-                if !self
-                    .ethercat_shown
-                    .shows(record.kind(), record.slave().station)
-                {
-                    continue;
+                if !shown.shows(record.kind(), record.slave().station) {
+                    return;
                 }
-                match self.output {
-                    Output::Json => record.append_json(&mut self.json, self.file.as_deref()),
-                    Output::Text => record.write_text(
-                        &mut self.out,
-                        datagram.command().name(),
-                        self.file.as_deref(),
-                    )?,
+                match output {
+                    Output::Json => record.append_json(json, file),
+                    Output::Text if written.is_ok() => {
+                        written = record.write_text(out, datagram.command().name(), file);
+                    }
                     // One table of frames (docs/ethercat.md#records): the
                     // datagram's row holds the bytes.
-                    Output::Csv => {}
+                    Output::Text | Output::Csv => {}
                 }
-            }
+            });
+            written?;
         }
         Ok(())
     }
