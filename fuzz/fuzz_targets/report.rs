@@ -81,7 +81,15 @@ fuzz_target!(|input: &[u8]| {
         );
         assert_eq!(marks(MarkKind::SdoAbort), node.sdo.aborts.count());
     }
-    let records = recording.summary.nodes.len() + recording.summary.buses.len();
+    // Every record of the summary: the verdict when something stopped,
+    // the nodes, the buses (docs/summary.md#verdict).
+    let records = recording.summary.records().count();
+    assert_eq!(
+        records,
+        usize::from(recording.summary.verdict().is_some())
+            + recording.summary.nodes.len()
+            + recording.summary.buses.len()
+    );
 
     let mut report = Report::new();
     report.add_recording(recording);
