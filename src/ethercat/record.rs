@@ -397,7 +397,7 @@ impl fmt::Display for Words<'_, '_, '_> {
                             f.write_str(" with error")?;
                         }
                     }
-                    (_, None) => f.write_str(" AL status code")?,
+                    (_, None) => f.write_str(" AL status")?,
                 }
                 if let Some(code) = code {
                     write!(f, " code {code}")?;
