@@ -114,19 +114,7 @@ impl DatagramRecord<'_, '_> {
     ///
     /// Writing to `out` failed.
     pub fn write_text<W: Write>(&self, out: &mut W, file: Option<&str>) -> io::Result<()> {
-        if let Some(file) = file {
-            write!(out, "{file}:")?;
-        }
-        write!(out, "{:>7}  ", self.packet.position.number())?;
-        match self.packet.timestamp {
-            Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
-            None => write!(out, "{:>17}  ", "-")?,
-        }
-        match self.packet.iface {
-            Some(Iface::Name(name)) => write!(out, "{name:<6} ")?,
-            Some(Iface::Channel(channel)) => write!(out, "{channel:<6} ")?,
-            None => write!(out, "{:<6} ", "-")?,
-        }
+        text_prefix(out, self.packet, file)?;
         writeln!(
             out,
             "{:>8}  {DATAGRAM_KIND:<13}  {}",
@@ -342,19 +330,7 @@ impl MeaningRecord<'_, '_> {
         command: &str,
         file: Option<&str>,
     ) -> io::Result<()> {
-        if let Some(file) = file {
-            write!(out, "{file}:")?;
-        }
-        write!(out, "{:>7}  ", self.packet.position.number())?;
-        match self.packet.timestamp {
-            Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
-            None => write!(out, "{:>17}  ", "-")?,
-        }
-        match self.packet.iface {
-            Some(Iface::Name(name)) => write!(out, "{name:<6} ")?,
-            Some(Iface::Channel(channel)) => write!(out, "{channel:<6} ")?,
-            None => write!(out, "{:<6} ", "-")?,
-        }
+        text_prefix(out, self.packet, file)?;
         writeln!(out, "{command:>8}  {:<13}  {}", self.kind(), Words(self))
     }
 }
@@ -364,14 +340,7 @@ struct Words<'r, 'p, 'a>(&'r MeaningRecord<'p, 'a>);
 
 impl fmt::Display for Words<'_, '_, '_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let slave = |f: &mut fmt::Formatter<'_>, slave: SlaveRef| -> fmt::Result {
-            match (slave.station, slave.position) {
-                (Some(s), Some(p)) => write!(f, "slave {s:#06x} ({s}) at {p}"),
-                (Some(s), None) => write!(f, "slave {s:#06x} ({s})"),
-                (None, Some(p)) => write!(f, "slave at {p}"),
-                (None, None) => f.write_str("every slave"),
-            }
-        };
+        let slave = |f: &mut fmt::Formatter<'_>, slave: SlaveRef| write!(f, "{slave}");
         match self.0.meaning {
             Meaning::StationAddress { slave: s } => {
                 slave(f, s)?;
@@ -741,4 +710,23 @@ fn error_counters_json(obj: &mut Object<'_>, bytes: &[Option<u8>]) {
         }
     }
     counters(obj.key("lost_links"), bytes, 0x10, 1);
+}
+
+/// The columns every text line of a packet starts with: `FILE:` when
+/// given, the packet, the time and the interface, as the CAN frames' lines
+/// have them (docs/output.md#text).
+fn text_prefix<W: Write>(out: &mut W, packet: &Packet<'_>, file: Option<&str>) -> io::Result<()> {
+    if let Some(file) = file {
+        write!(out, "{file}:")?;
+    }
+    write!(out, "{:>7}  ", packet.position.number())?;
+    match packet.timestamp {
+        Some(ts) => write!(out, "{:>10}.{:06}  ", ts.secs(), ts.micros())?,
+        None => write!(out, "{:>17}  ", "-")?,
+    }
+    match packet.iface {
+        Some(Iface::Name(name)) => write!(out, "{name:<6} "),
+        Some(Iface::Channel(channel)) => write!(out, "{channel:<6} "),
+        None => write!(out, "{:<6} ", "-"),
+    }
 }

@@ -1152,20 +1152,6 @@ pub(super) fn stream_entries<M: SerializeMap>(
     Ok(())
 }
 
-/// A slave in words: `slave 0x1001 (4097) at 1`.
-fn slave_words(
-    f: &mut fmt::Formatter<'_>,
-    station: Option<u16>,
-    position: Option<u16>,
-) -> fmt::Result {
-    match (station, position) {
-        (Some(s), Some(p)) => write!(f, "slave {s:#06x} ({s}) at {p}"),
-        (Some(s), None) => write!(f, "slave {s:#06x} ({s})"),
-        (None, Some(p)) => write!(f, "slave at {p}"),
-        (None, None) => f.write_str("slave"),
-    }
-}
-
 impl fmt::Display for PortSummary {
     /// `ethercat  eth0: 558 packets, 279 frames sent, 279 returned, 0 lost`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -1196,7 +1182,14 @@ impl fmt::Display for SlaveSummary {
     /// The slave, what it is, its AL states and emergencies in time order.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} ", self.iface)?;
-        slave_words(f, self.station, self.position)?;
+        write!(
+            f,
+            "{}",
+            SlaveRef {
+                station: self.station,
+                position: self.position,
+            }
+        )?;
         if let Some((v, p)) = self.vendor.zip(self.product) {
             match device_name(v, p) {
                 Some(name) => write!(f, " {name}")?,

@@ -351,13 +351,20 @@ fn real_captures_name_their_slaves_and_streams() {
     assert_eq!(twincat.ethercat.slaves[0].station, Some(1001));
 }
 
-/// An FPRD of `len` bytes at `ado` of station 0x1001, sent and returned
-/// with `data`: the two packets' EtherCAT payloads.
-fn fprd(index: u8, ado: u16, data: &[u8]) -> [Vec<u8>; 2] {
-    use motionwire::ethercat::{Command, DatagramRepr};
+/// A datagram of `command` at `ado` of station 0x1001 as sent (with
+/// `sent` data, working counter 0) and as returned (with `returned` data,
+/// working counter 1): the two packets' EtherCAT payloads.
+fn copies(
+    command: motionwire::ethercat::Command,
+    index: u8,
+    ado: u16,
+    sent: &[u8],
+    returned: &[u8],
+) -> [Vec<u8>; 2] {
+    use motionwire::ethercat::DatagramRepr;
     let copy = |data: &[u8], wkc: u16| {
         let repr = DatagramRepr {
-            command: Command::Fprd,
+            command,
             index,
             address: (u32::from(ado) << 16) | 0x1001,
             circulating: false,
@@ -372,37 +379,27 @@ fn fprd(index: u8, ado: u16, data: &[u8]) -> [Vec<u8>; 2] {
         repr.emit(&mut payload[at..]).unwrap();
         payload
     };
-    [copy(&vec![0; data.len()], 0), copy(data, 1)]
+    [copy(sent, 0), copy(returned, 1)]
 }
 
-/// Error counters that rise and a DL status that changes are said per
-/// slave, with their packets; a counter that falls was reset, not an event
-/// (docs/ethercat.md#summary).
-#[test]
-fn error_counters_rising_and_a_link_lost_are_summarized() {
-    use motionwire::can::{EthercatPacket, LogEvent};
+/// The summary of `frames`, each sent by an ethercrab master (source MAC
+/// 10:10:…) and returned (12:10:…), numbered from 1; with `timed`, packet
+/// N at 1 700 000 000 s + N × 0.5 ms.
+fn summarize(frames: &[[Vec<u8>; 2]], timed: bool) -> motionwire::summary::Summary {
+    use motionwire::can::{EthercatPacket, LogEvent, Timestamp};
     use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
-    let mut counters = [0u8; 20];
-    let mut reads = Vec::new();
-    // Counters 0, then RX errors on port 1 at 5, then reset to 0.
-    reads.push(fprd(1, 0x0300, &counters));
-    counters[3] = 5;
-    reads.push(fprd(2, 0x0300, &counters));
-    counters[3] = 0;
-    reads.push(fprd(3, 0x0300, &counters));
-    // DL status: links on ports 0 and 1, then port 1's link lost.
-    reads.push(fprd(4, 0x0110, &[0x31, 0x5a]));
-    reads.push(fprd(5, 0x0110, &[0x11, 0x5e]));
     let mut summarizer = motionwire::summary::Summarizer::default();
-    let mut number = 0;
-    for [sent, returned] in &reads {
+    let mut number = 0u64;
+    for [sent, returned] in frames {
         for (payload, source) in [
             (sent, [0x10; 6]),
             (returned, [0x12, 0x10, 0x10, 0x10, 0x10, 0x10]),
         ] {
             number += 1;
             let packet = EthercatPacket {
-                timestamp: None,
+                timestamp: timed
+                    .then(|| Timestamp::new(1_700_000_000, number as u32 * 500))
+                    .flatten(),
                 iface: None,
                 link: EthercatLink {
                     destination: None,
@@ -414,7 +411,32 @@ fn error_counters_rising_and_a_link_lost_are_summarized() {
             summarizer.add(logs::Position::Record(number), &LogEvent::Ethercat(packet));
         }
     }
-    let summary = summarizer.finish();
+    summarizer.finish()
+}
+
+/// An FPRD at `ado` of station 0x1001 that reads `data`.
+fn fprd(index: u8, ado: u16, data: &[u8]) -> [Vec<u8>; 2] {
+    let sent = vec![0; data.len()];
+    copies(motionwire::ethercat::Command::Fprd, index, ado, &sent, data)
+}
+
+/// Error counters that rise and a DL status that changes are said per
+/// slave, with their packets; a counter that falls was reset, not an event
+/// (docs/ethercat.md#summary).
+#[test]
+fn error_counters_rising_and_a_link_lost_are_summarized() {
+    let mut counters = [0u8; 20];
+    let mut reads = Vec::new();
+    // Counters 0, then RX errors on port 1 at 5, then reset to 0.
+    reads.push(fprd(1, 0x0300, &counters));
+    counters[3] = 5;
+    reads.push(fprd(2, 0x0300, &counters));
+    counters[3] = 0;
+    reads.push(fprd(3, 0x0300, &counters));
+    // DL status: links on ports 0 and 1, then port 1's link lost.
+    reads.push(fprd(4, 0x0110, &[0x31, 0x5a]));
+    reads.push(fprd(5, 0x0110, &[0x11, 0x5e]));
+    let summary = summarize(&reads, false);
     let slave = &summary.ethercat.slaves[0];
     assert_eq!(slave.station, Some(0x1001));
     assert_eq!(slave.counter_rises.len(), 1, "the reset is no event");
@@ -435,7 +457,7 @@ fn error_counters_rising_and_a_link_lost_are_summarized() {
 /// A mailbox message of `body` (CoE header and SDO) at `ado`: written by
 /// an FPWR, or read by an FPRD, of station 0x1001, sent and returned.
 fn mailbox(index: u8, written: bool, ado: u16, counter: u8, body: &[u8]) -> [Vec<u8>; 2] {
-    use motionwire::ethercat::{Command, DatagramRepr, MailboxHeader, MailboxType};
+    use motionwire::ethercat::{Command, MailboxHeader, MailboxType};
     let mut message = vec![0; 6];
     MailboxHeader {
         length: body.len() as u16,
@@ -448,33 +470,11 @@ fn mailbox(index: u8, written: bool, ado: u16, counter: u8, body: &[u8]) -> [Vec
     .emit(&mut message)
     .unwrap();
     message.extend(body);
-    let copy = |data: &[u8], wkc: u16| {
-        let repr = DatagramRepr {
-            command: if written {
-                Command::Fpwr
-            } else {
-                Command::Fprd
-            },
-            index,
-            address: (u32::from(ado) << 16) | 0x1001,
-            circulating: false,
-            more_follows: false,
-            irq: 0,
-            data,
-            working_counter: wkc,
-        };
-        let mut payload = ((repr.buffer_len() as u16) | 0x1000).to_le_bytes().to_vec();
-        let at = payload.len();
-        payload.resize(at + repr.buffer_len(), 0);
-        repr.emit(&mut payload[at..]).unwrap();
-        payload
-    };
-    let sent = if written {
-        message.clone()
+    if written {
+        copies(Command::Fpwr, index, ado, &message, &message)
     } else {
-        vec![0; message.len()]
-    };
-    [copy(&sent, 0), copy(&message, 1)]
+        copies(Command::Fprd, index, ado, &vec![0; message.len()], &message)
+    }
 }
 
 /// CoE SDO transfers followed per slave (docs/ethercat.md#summary): an
@@ -483,8 +483,6 @@ fn mailbox(index: u8, written: bool, ado: u16, counter: u8, body: &[u8]) -> [Vec
 /// code, and that the slave sent it.
 #[test]
 fn coe_sdo_transfers_and_a_slave_abort_are_summarized() {
-    use motionwire::can::{EthercatPacket, LogEvent, Timestamp};
-    use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
     let messages = [
         // Upload 0x1018:01: request, then the expedited response.
         mailbox(
@@ -517,28 +515,7 @@ fn coe_sdo_transfers_and_a_slave_abort_are_summarized() {
             &[0x00, 0x20, 0x80, 0x41, 0x60, 0x07, 0x00, 0x00, 0x02, 0x06],
         ),
     ];
-    let mut summarizer = motionwire::summary::Summarizer::default();
-    let mut number = 0u64;
-    for [sent, returned] in &messages {
-        for (payload, source) in [
-            (sent, [0x10; 6]),
-            (returned, [0x12, 0x10, 0x10, 0x10, 0x10, 0x10]),
-        ] {
-            number += 1;
-            let packet = EthercatPacket {
-                timestamp: Timestamp::new(1_700_000_000, number as u32 * 500),
-                iface: None,
-                link: EthercatLink {
-                    destination: None,
-                    source: Mac(source),
-                    encapsulation: Encapsulation::Ethernet,
-                    payload,
-                },
-            };
-            summarizer.add(logs::Position::Record(number), &LogEvent::Ethercat(packet));
-        }
-    }
-    let summary = summarizer.finish();
+    let summary = summarize(&messages, true);
     let slave = &summary.ethercat.slaves[0];
     assert_eq!(
         slave.mailbox_guessed, 4,
