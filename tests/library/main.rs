@@ -16,7 +16,7 @@ mod blf;
 mod eds;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod eds_names;
-#[cfg(feature = "logs")]
+#[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
