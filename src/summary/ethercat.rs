@@ -430,12 +430,13 @@ impl EthercatSummarizer {
     pub(crate) fn finish(mut self) -> EthercatSummary {
         let counts = self.session.finish();
         let mut summary = EthercatSummary::default();
-        let single = self.ports.len() == 1;
-        for port in self.ports {
+        for (at, port) in self.ports.into_iter().enumerate() {
             summary.ports.push(PortSummary {
                 iface: port.name.clone(),
-                // The session counts the capture: one port takes them all.
-                counts: if single { counts } else { Counts::default() },
+                // The session counts the whole capture: the first
+                // interface's record carries the counts
+                // (docs/ethercat.md#summary).
+                counts: if at == 0 { counts } else { Counts::default() },
                 streams_dropped: port.streams_dropped,
             });
             for (mut slave, (_, latencies)) in port.slaves.into_iter().zip(port.sdo) {
