@@ -791,8 +791,8 @@ fn findings_say_what_the_profile_reads() {
     assert!(json.contains(r#""text":"first warning: EMCY 0xFF00 Device specific (source: Battery monitoring warning, a warning) at line 6""#), "{json}");
 }
 
-/// Summarize a candump log with a heartbeat consumer time of 300 ms; node
-/// 3 is an AKD drive.
+/// Summarize a candump log with heartbeat timeouts checked; node 3 is an
+/// AKD drive.
 fn summarize_log(log: &str) -> Summary {
     let config = DecoderConfig::new()
         .node_profile(NodeId::new(3).unwrap(), Profile::Akd)

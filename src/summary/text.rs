@@ -299,8 +299,8 @@ impl fmt::Display for Cia402Timeline {
 }
 
 impl fmt::Display for Cia402Fault {
-    /// `went operation_enabled → fault at line 620, 17.1 ms after EMCY
-    /// 0x7305 Incremental sensor 1 fault (line 613)` (docs/summary.md#text).
+    /// `went operation_enabled → fault at line L, T ms after EMCY CODE
+    /// DESCRIPTION (line M)` (docs/summary.md#text).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.sentence(Profile::Generic))
     }
@@ -310,9 +310,8 @@ impl Cia402Fault {
     /// Return the fault's sentence with what the drive's `profile` reads
     /// in the EMCY before it ([`ProfileReading`](super::ProfileReading),
     /// docs/summary.md#profiles): `went operation_enabled → fault at line
-    /// 620, 17.1 ms after EMCY 0x7305 Incremental sensor 1 fault on axis
-    /// 1, feedback 2 (line 613)`; `Display` is the sentence of a generic
-    /// node.
+    /// L, T ms after EMCY CODE DESCRIPTION on axis A, feedback F (line
+    /// M)` for an AKD; `Display` is the sentence of a generic node.
     #[must_use]
     pub fn sentence(&self, profile: Profile) -> impl fmt::Display + '_ {
         FaultSentence(self, profile)

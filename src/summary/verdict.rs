@@ -15,7 +15,7 @@ use super::{Cia402Fault, EmcySeen, Finding, FindingDetail};
 /// How long before a drive's CiA 402 fault its EMCY may come to be its
 /// cause (docs/summary.md#causes): one second. A drive sends the EMCY when
 /// it detects the error and shows the fault in its statusword at the next
-/// PDO, a few cycles later (15–17 ms on `samples/machine.log`); a second
+/// PDO, a few cycles later; a second
 /// leaves room for event-driven TPDOs with long inhibit times, and no more.
 pub const CAUSE_WINDOW: Duration = Duration::from_secs(1);
 
