@@ -15,9 +15,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use motionwire::ethercat::{
-    CoeHeader, CoeSdo, Datagram, DatagramRepr, EthercatFrame, Link, MailboxError, MailboxHeader,
-};
+use motionwire::ethercat::{CoeHeader, CoeSdo, Datagram, DatagramRepr, EthercatFrame, Link, MailboxError, MailboxHeader};
 use motionwire::LenError;
 
 fn check(error: &LenError) {

@@ -23,9 +23,8 @@
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{EthercatPacket, Iface, LogEvent, Timestamp};
 use motionwire::summary::Summarizer;
-use motionwire::ethercat::{
-    DatagramRecord, Encapsulation, EthercatLink, FrameCopy, Mac, MeaningRecord, Session,
-};
+use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
+use motionwire::decoder::ethercat::{DatagramRecord, FrameCopy, MeaningRecord, Session};
 use motionwire::logs::Position;
 
 const NAMES: [&str; 4] = ["eth0", "eth1", "eth2", "eth3"];

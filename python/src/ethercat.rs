@@ -14,9 +14,8 @@ use arrow_array::{
 use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{DataType, Field};
 use motionwire::can::EthercatPacket;
-use motionwire::ethercat::{
-    Addressing, Command, Counts, Datagram, DatagramRecord, Packet, Session, DATAGRAM_KIND,
-};
+use motionwire::decoder::ethercat::{Counts, DatagramRecord, Packet, Session, DATAGRAM_KIND};
+use motionwire::ethercat::{Addressing, Command, Datagram};
 use motionwire::logs::Position;
 
 use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};

@@ -17,8 +17,8 @@ use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
 use motionwire::can::{FdFlags, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
+use motionwire::decoder::ethercat::Counts;
 use motionwire::decoder::Decoder;
-use motionwire::ethercat::Counts;
 use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, ReadLog};
 use serde_json::Value;
 

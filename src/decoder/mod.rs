@@ -42,6 +42,7 @@
 mod bus;
 mod cia402;
 mod columns;
+pub mod ethercat;
 pub(crate) mod json;
 mod names;
 mod pdo;

@@ -11,9 +11,12 @@ use serde::{Serialize, Serializer};
 
 use crate::can::{BusName, EthercatPacket, Timestamp};
 use crate::canopen::Emcy;
+use crate::decoder::ethercat::{
+    AlRegister, Counts, FrameCopy, Meaning, Session, SlaveRef, ERROR_COUNTERS_LEN,
+};
 use crate::ethercat::{
-    AlRegister, AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Counts, Datagram,
-    FrameCopy, MailboxType, Meaning, Session, SlaveRef, COE_HEADER_LEN, ERROR_COUNTERS_LEN,
+    AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, MailboxType,
+    COE_HEADER_LEN,
 };
 use crate::logs::Position;
 use crate::profiles::Profile;

@@ -103,7 +103,7 @@ impl Run {
                 config = config.heartbeat_timeout(time);
             }
             let mut summarizer = Summarizer::new(config);
-            let mut ethercat = motionwire::ethercat::Session::new();
+            let mut ethercat = motionwire::decoder::ethercat::Session::new();
             let mut log = logs::open(path(file)).unwrap();
             while let Some(next) = log.next_event() {
                 // Malformed lines and damaged records go to the program's
@@ -126,7 +126,7 @@ impl Run {
                     };
                     for (at, datagram) in packet.datagrams().enumerate() {
                         let Ok(datagram) = datagram else { break };
-                        let record = motionwire::ethercat::DatagramRecord {
+                        let record = motionwire::decoder::ethercat::DatagramRecord {
                             packet: &packet,
                             number: at + 1,
                             datagram,
@@ -135,7 +135,7 @@ impl Run {
                         let mut meanings = Vec::new();
                         ethercat.meanings(&packet, at, &datagram, |m| meanings.push(m));
                         for meaning in meanings {
-                            let record = motionwire::ethercat::MeaningRecord {
+                            let record = motionwire::decoder::ethercat::MeaningRecord {
                                 packet: &packet,
                                 number: at + 1,
                                 meaning,

@@ -6,9 +6,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use motionwire::can::LogEvent;
-use motionwire::ethercat::{
-    Addressing, CoeHeader, CoeSdo, CoeService, MailboxType, Meaning, Session,
-};
+use motionwire::decoder::ethercat::{Meaning, Session};
+use motionwire::ethercat::{Addressing, CoeHeader, CoeSdo, CoeService, MailboxType};
 use motionwire::logs::{self, ReadLog};
 
 /// The fixtures, each with tshark's dissection beside it: six real

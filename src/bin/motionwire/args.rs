@@ -395,7 +395,7 @@ fn kind_names() -> Vec<&'static str> {
     MessageKind::ALL
         .iter()
         .map(|k| k.name())
-        .chain(motionwire::ethercat::RECORD_KINDS)
+        .chain(motionwire::decoder::ethercat::RECORD_KINDS)
         .collect()
 }
 
@@ -403,7 +403,7 @@ fn parse_kind(text: &str) -> Result<Kind, String> {
     if let Some(kind) = MessageKind::from_name(text) {
         return Ok(Kind::Can(kind));
     }
-    motionwire::ethercat::RECORD_KINDS
+    motionwire::decoder::ethercat::RECORD_KINDS
         .iter()
         .find(|k| **k == text)
         .map(|k| Kind::Ethercat(k))

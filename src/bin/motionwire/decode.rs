@@ -12,8 +12,9 @@ use std::time::Duration;
 
 use motionwire::can::{EthercatPacket, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
+use motionwire::decoder::ethercat::{DatagramRecord, MeaningRecord, Session, DATAGRAM_KIND};
 use motionwire::decoder::{Decoder, DecoderConfig};
-use motionwire::ethercat::{Addressing, DatagramRecord, MeaningRecord, Session, DATAGRAM_KIND};
+use motionwire::ethercat::Addressing;
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
 use motionwire::report::{Recorder, Report, ReportInput};

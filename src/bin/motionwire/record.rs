@@ -233,7 +233,7 @@ fn hex_digits<W: Write>(out: &mut W, bytes: &[u8]) -> io::Result<()> {
 /// returned …`); the CAN columns are empty.
 pub fn write_datagram_csv<W: Write>(
     out: &mut W,
-    record: &motionwire::ethercat::DatagramRecord<'_, '_>,
+    record: &motionwire::decoder::ethercat::DatagramRecord<'_, '_>,
     file: Option<&str>,
 ) -> io::Result<()> {
     let packet = record.packet;
@@ -256,7 +256,7 @@ pub fn write_datagram_csv<W: Write>(
     }
     out.write_all(b",,,,,")?;
     hex_digits(out, record.datagram.data())?;
-    write!(out, ",{},,,", motionwire::ethercat::DATAGRAM_KIND)?;
+    write!(out, ",{},,,", motionwire::decoder::ethercat::DATAGRAM_KIND)?;
     csv_field(out, &record.fields().to_string())?;
     out.write_all(b"\r\n")
 }

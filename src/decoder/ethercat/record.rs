@@ -6,12 +6,12 @@ use std::io::{self, Write};
 
 use crate::can::Iface;
 use crate::canopen::Emcy;
+use crate::decoder::ethercat::{AlRegister, Meaning, Packet, SiiField, SlaveRef};
 use crate::decoder::json::{self, Object};
 use crate::decoder::record::emcy_json;
 use crate::ethercat::register;
 use crate::ethercat::{
-    Addressing, AlRegister, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType,
-    Meaning, Packet, SiiField, SlaveRef, COE_HEADER_LEN,
+    Addressing, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType, COE_HEADER_LEN,
 };
 
 /// The kind of a datagram's record (`"kind": "ecat_datagram"`).

@@ -152,7 +152,8 @@ pub struct DamagedPacket {
 ///
 /// ```
 /// use motionwire::can::{EthercatPacket, LogEvent};
-/// use motionwire::ethercat::{Command, Session};
+/// use motionwire::ethercat::{Command};
+/// use motionwire::decoder::ethercat::Session;
 /// use motionwire::logs::Position;
 /// use motionwire::ethercat::{DatagramRepr, Encapsulation, EthercatLink, Mac};
 ///
@@ -187,7 +188,7 @@ pub struct DamagedPacket {
 /// let first = session.read(Position::Record(1), &packet([0x10; 6], sent))?;
 /// assert!(!first.copy.returned());
 /// let second = session.read(Position::Record(2), &packet([0x12, 0x10, 0x10, 0x10, 0x10, 0x10], returned))?;
-/// assert_eq!(second.copy, motionwire::ethercat::FrameCopy::Returned { sent: Position::Record(1) });
+/// assert_eq!(second.copy, motionwire::decoder::ethercat::FrameCopy::Returned { sent: Position::Record(1) });
 /// assert_eq!(second.datagrams().next().unwrap()?.working_counter(), 2);
 /// assert_eq!(session.finish().lost, 0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -1,0 +1,13 @@
+//! The EtherCAT side of the decoder session (docs/ethercat.md): which copy
+//! of a frame each packet of a capture is ([`Session`]), what each datagram
+//! tells of the slaves ([`Meaning`]), and the records `decode` writes of
+//! them ([`DatagramRecord`], [`MeaningRecord`]). Built on the wire views of
+//! [`crate::ethercat`].
+
+mod network;
+mod record;
+mod session;
+
+pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
+pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND, RECORD_KINDS};
+pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
