@@ -3,20 +3,18 @@
 
 use core::fmt;
 
-use crate::canopen::{Cia402Command, Cia402State, ModeOfOperation, NodeId};
+use crate::canopen::{Cia402Command, Cia402State, ModeOfOperation, Signal, Value};
 
 /// What one frame tells of a drive's CiA 402 state machine (`cia402`
-/// in docs/output.md#cia402): each part where the frame carries it.
+/// in docs/output.md#cia402): each part where the frame carries it. The
+/// drive is the record's: the node that owns the PDO or whose SDO server
+/// the transfer reached on CAN, the slave on EtherCAT.
 ///
 /// `Display` writes the parts that are there, joined by commas:
 /// `operation_enabled, enable_operation, profile position`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Cia402Reading {
-    /// The drive: the node that owns the PDO, or whose SDO server the
-    /// transfer reached.
-    #[cfg_attr(feature = "serde", serde(skip))]
-    pub node: NodeId,
     /// The state, from a statusword (6041h).
     #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
     pub state: Option<Cia402State>,
@@ -30,9 +28,8 @@ pub struct Cia402Reading {
 }
 
 impl Cia402Reading {
-    pub(crate) const fn empty(node: NodeId) -> Self {
+    pub(crate) const fn empty() -> Self {
         Cia402Reading {
-            node,
             state: None,
             command: None,
             mode: None,
@@ -88,5 +85,43 @@ impl DriveState {
         let command = Cia402Command::from_controlword(cw, self.controlword, self.state);
         self.controlword = Some(cw);
         command
+    }
+
+    /// The reading of a PDO's signals (CAN) or a slave's process data
+    /// (EtherCAT): statusword 6041h, controlword 6040h and mode
+    /// 6060h/6061h where they are mapped with their own lengths; `None`
+    /// when none is.
+    pub(crate) fn read<'s>(
+        &mut self,
+        signals: impl IntoIterator<Item = &'s Signal>,
+    ) -> Option<Cia402Reading> {
+        let mut reading = Cia402Reading::empty();
+        let (mut sw, mut cw) = (None, None);
+        for signal in signals {
+            let raw = match signal.value {
+                Value::Unsigned(v) => v as i64,
+                Value::Signed(v) => v,
+                _ => continue,
+            };
+            match (
+                signal.entry.index(),
+                signal.entry.sub_index(),
+                signal.entry.bits(),
+            ) {
+                (0x6041, 0, 16) => sw = Some(raw as u16),
+                (0x6040, 0, 16) => cw = Some(raw as u16),
+                (0x6060 | 0x6061, 0, 8) => {
+                    reading.mode = Some(ModeOfOperation::from_i8(raw as i8));
+                }
+                _ => {}
+            }
+        }
+        if let Some(sw) = sw {
+            reading.state = self.observe_statusword(sw);
+        }
+        if let Some(cw) = cw {
+            reading.command = self.observe_controlword(cw);
+        }
+        (!reading.is_empty()).then_some(reading)
     }
 }

@@ -292,12 +292,24 @@ pub struct Decoded<'d> {
     /// (docs/canopen.md#signals); `None` when no mapping is known.
     pub pdo: Option<PdoReading<'d>>,
     /// What the frame tells of a drive's CiA 402 state machine: a drive's
-    /// PDO that maps its statusword, controlword or mode, or a completed
-    /// expedited SDO transfer of one of them (docs/output.md#cia402).
+    /// PDO that maps its statusword, controlword or mode (the drive is the
+    /// owner of [`pdo`](Self::pdo)'s mapping), or a completed expedited SDO
+    /// transfer of one of them (the drive is [`node`](Self::node))
+    /// (docs/output.md#cia402). [`Decoded::drive`] names the drive.
     pub cia402: Option<Cia402Reading>,
 }
 
 impl Decoded<'_> {
+    /// Return the drive [`cia402`](Self::cia402) is about: the owner of
+    /// the PDO's mapping, else the frame's node.
+    #[must_use]
+    pub fn drive(&self) -> Option<NodeId> {
+        match &self.pdo {
+            Some(pdo) => Some(pdo.map.node()),
+            None => self.node,
+        }
+    }
+
     /// Return the frame read as CANopen, or why its data could not be
     /// ([`CanOpenMessage::decode`]; worked out on each call, so that a
     /// caller that needs only the kind pays nothing for it).
@@ -531,7 +543,10 @@ impl Decoder {
     /// the [summary](crate::summary) reads (`Summarizer::add`).
     /// With the reading, the place of the frame's bus ([`bus`](Self::bus)).
     #[inline]
-    pub(crate) fn pdo_cia402(&mut self, frame: &LogFrame<'_>) -> (usize, Option<Cia402Reading>) {
+    pub(crate) fn pdo_cia402(
+        &mut self,
+        frame: &LogFrame<'_>,
+    ) -> (usize, Option<(NodeId, Cia402Reading)>) {
         let can = &frame.frame;
         let at = self.bus(frame.iface);
         let cob_id = can.id().raw() as u16;
@@ -539,14 +554,14 @@ impl Decoder {
             return (
                 at,
                 self.pdo_at(at, cob_id, can.data())
-                    .and_then(|(_, cia402)| cia402),
+                    .and_then(|(pdo, cia402)| Some((pdo.map.node(), cia402?))),
             );
         }
         let reading = self
             .buses
             .get_mut(at)
             .mapping(cob_id)
-            .and_then(|(map, state)| statusword_reading(map, state, can.data()));
+            .and_then(|(map, state)| Some((map.node(), statusword_reading(map, state, can.data())?)));
         (at, reading)
     }
 
@@ -692,7 +707,7 @@ impl Decoder {
         if !state.drive || m.sub_index != 0 {
             return None;
         }
-        let mut reading = Cia402Reading::empty(node);
+        let mut reading = Cia402Reading::empty();
         match m.index {
             0x6041 => reading.state = state.cia402.observe_statusword(value as u16),
             0x6040 => reading.command = state.cia402.observe_controlword(value as u16),
@@ -773,7 +788,6 @@ impl Decoder {
         data: &[u8],
     ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
         let (map, state) = self.buses.get_mut(at).mapping(cob_id)?;
-        let node = map.node();
         let drive = map.is_drive() || state.drive;
         self.signals.clear();
         if !self.config.signals {
@@ -789,37 +803,11 @@ impl Decoder {
                 .unpack(data)
                 .map(|s| s.map_err(CodecError::from)),
         );
-        let mut cia402 = None;
-        if drive {
-            let mut reading = Cia402Reading::empty(node);
-            let (mut sw, mut cw) = (None, None);
-            for signal in self.signals.iter().flatten() {
-                let raw = match signal.value {
-                    Value::Unsigned(v) => v as i64,
-                    Value::Signed(v) => v,
-                    _ => continue,
-                };
-                match (
-                    signal.entry.index(),
-                    signal.entry.sub_index(),
-                    signal.entry.bits(),
-                ) {
-                    (0x6041, 0, 16) => sw = Some(raw as u16),
-                    (0x6040, 0, 16) => cw = Some(raw as u16),
-                    (0x6060 | 0x6061, 0, 8) => {
-                        reading.mode = Some(ModeOfOperation::from_i8(raw as i8));
-                    }
-                    _ => {}
-                }
-            }
-            if let Some(sw) = sw {
-                reading.state = state.cia402.observe_statusword(sw);
-            }
-            if let Some(cw) = cw {
-                reading.command = state.cia402.observe_controlword(cw);
-            }
-            cia402 = (!reading.is_empty()).then_some(reading);
-        }
+        let cia402 = if drive {
+            state.cia402.read(self.signals.iter().flatten())
+        } else {
+            None
+        };
         let reading = PdoReading {
             map,
             signals: &self.signals,
@@ -998,7 +986,7 @@ fn statusword_reading(map: &PdoMap, state: &mut NodeState, data: &[u8]) -> Optio
         })?;
     Some(Cia402Reading {
         state: state.cia402.observe_statusword(sw),
-        ..Cia402Reading::empty(map.node())
+        ..Cia402Reading::empty()
     })
 }
 

@@ -328,7 +328,7 @@ impl Summarizer {
             decoded.kind,
             decoded.node,
             decoded.sdo.as_ref(),
-            decoded.cia402,
+            decoded.drive().zip(decoded.cia402),
             on_event,
         );
         Some(decoded)
@@ -364,7 +364,7 @@ impl Summarizer {
                         kind,
                         node,
                         Some(seen),
-                        cia402,
+                        cia402.map(|reading| (n, reading)),
                         |_| {},
                     );
                 });
@@ -440,7 +440,7 @@ fn add_classified(
     kind: MessageKind,
     node: Option<NodeId>,
     sdo: Option<&impl SdoFrameFacts>,
-    cia402: Option<Cia402Reading>,
+    cia402: Option<(NodeId, Cia402Reading)>,
     mut on_event: impl FnMut(SummaryEvent<'_>),
 ) {
     let now = log.timestamp.map(Timestamp::as_duration);
@@ -514,10 +514,10 @@ fn add_classified(
             on_event(sdo_ended(name, node, ended));
         }
     }
-    if let Some(reading) = cia402 {
+    if let Some((owner, reading)) = cia402 {
         // A PDO's drive is the node that owns it, which the log may
         // have moved to another node's COB-ID.
-        let drive = nodes[reading.node.index()].get_or_insert_with(|| NodeState::new(reading.node));
+        let drive = nodes[owner.index()].get_or_insert_with(|| NodeState::new(owner));
         let last_error = drive.last_error;
         if let Some((transition, fault)) =
             drive
@@ -525,7 +525,7 @@ fn add_classified(
                 .observe(position, log.timestamp, reading, last_error)
         {
             on_event(event(
-                Some(reading.node),
+                Some(owner),
                 SummaryEventKind::Cia402 { transition, fault },
             ));
         }

@@ -17,6 +17,8 @@
 //!   §5.4.1.2; Beckhoff's ESC datasheet, section I, table 7);
 //! - [`register`]: the ESC registers motionwire decodes, the AL state and
 //!   AL status code with the texts of ETG.1000.6 table 11 ([`AlStatusCode`]);
+//! - [`Fmmu`] and [`SyncManager`]: the configuration that says where a
+//!   slave's process data and mailbox are (ETG.1000.4 §6.6, §6.7);
 //! - [`MailboxHeader`] and [`MailboxError`] (ETG.1000.6 §5.6), the CoE
 //!   header ([`CoeHeader`]), CoE SDO messages ([`CoeSdo`]) and emergencies
 //!   (the CiA 301 EMCY of [`crate::canopen::Emcy`] after the CoE header).
@@ -52,6 +54,7 @@
 
 mod al;
 mod coe;
+mod config;
 mod datagram;
 mod frame;
 mod link;
@@ -62,6 +65,7 @@ mod tests;
 
 pub use al::{AlState, AlStatus, AlStatusCode};
 pub use coe::{CoeHeader, CoeSdo, CoeService, COE_HEADER_LEN};
+pub use config::{Fmmu, SyncManager, SyncManagerMode, FMMU_LEN, SYNC_MANAGER_LEN};
 pub use datagram::{Addressing, Command, Datagram, DatagramRepr, DATAGRAM_OVERHEAD};
 pub use frame::{Datagrams, EthercatFrame, FrameType, ETHERCAT_HEADER_LEN};
 pub use link::{Encapsulation, EthercatLink, Link, Mac, ETHERTYPE_ETHERCAT, UDP_PORT_ETHERCAT};

@@ -4,10 +4,12 @@
 //! them ([`DatagramRecord`], [`MeaningRecord`]). Built on the wire views of
 //! [`crate::ethercat`].
 
+mod config;
 mod network;
 mod record;
 mod session;
 
+pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
 pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND, RECORD_KINDS};
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
