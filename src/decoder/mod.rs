@@ -112,6 +112,8 @@ pub struct DecoderConfig {
     sdo_data_cap: usize,
     signals: bool,
     heartbeat: Option<Duration>,
+    ethercat_slaves: Vec<ethercat::SlaveConfig>,
+    servos: ethercat::ServoSlaves,
 }
 
 impl Default for DecoderConfig {
@@ -131,6 +133,8 @@ impl DecoderConfig {
             sdo_data_cap: SDO_DATA_CAP,
             signals: true,
             heartbeat: None,
+            ethercat_slaves: Vec::new(),
+            servos: ethercat::ServoSlaves::default(),
         }
     }
 
@@ -228,6 +232,38 @@ impl DecoderConfig {
     pub fn heartbeat_timeout(mut self, time: Duration) -> Self {
         self.heartbeat = Some(time);
         self
+    }
+
+    /// Return the configuration with what an ENI file
+    /// or a mapping given by hand says of
+    /// the EtherCAT slaves' process data (`--eni FILE`;
+    /// docs/ethercat.md#process-data); the capture's own start-up wins
+    /// where it writes the same.
+    #[must_use]
+    pub fn ethercat_slaves(mut self, slaves: Vec<ethercat::SlaveConfig>) -> Self {
+        self.ethercat_slaves = slaves;
+        self
+    }
+
+    /// Return the configuration that reads the slaves `servos` names as
+    /// servos of docs/servo.md (`--servo`; docs/ethercat.md#servo).
+    #[must_use]
+    pub fn servos(mut self, servos: ethercat::ServoSlaves) -> Self {
+        self.servos = servos;
+        self
+    }
+
+    /// Return the EtherCAT slaves' configuration given
+    /// ([`ethercat_slaves`](Self::ethercat_slaves)).
+    #[must_use]
+    pub fn ethercat_slave_configs(&self) -> &[ethercat::SlaveConfig] {
+        &self.ethercat_slaves
+    }
+
+    /// Return the slaves read as servos ([`servos`](Self::servos)).
+    #[must_use]
+    pub fn servo_slaves(&self) -> &ethercat::ServoSlaves {
+        &self.servos
     }
 
     /// Return the heartbeat consumer time the summary checks gaps against,
@@ -561,7 +597,9 @@ impl Decoder {
             .buses
             .get_mut(at)
             .mapping(cob_id)
-            .and_then(|(map, state)| Some((map.node(), statusword_reading(map, state, can.data())?)));
+            .and_then(|(map, state)| {
+                Some((map.node(), statusword_reading(map, state, can.data())?))
+            });
         (at, reading)
     }
 

@@ -486,7 +486,7 @@ fn pdo_json(obj: &mut Object<'_>, reading: &PdoReading<'_>, cia402: Option<&Cia4
 
 /// The `cia402` of docs/output.md#cia402: `state`, `command`, `mode` where the
 /// frame tells them.
-fn cia402_json(obj: &mut Object<'_>, reading: &Cia402Reading) {
+pub(crate) fn cia402_json(obj: &mut Object<'_>, reading: &Cia402Reading) {
     let out = obj.raw_after_first(b",\"cia402\":{");
     let mut sep: &[u8] = b"";
     if let Some(state) = reading.state {

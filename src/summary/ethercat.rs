@@ -392,6 +392,14 @@ pub(crate) struct EthercatSummarizer {
 }
 
 impl EthercatSummarizer {
+    /// A summarizer with the EtherCAT settings of `config`.
+    pub(crate) fn new(config: &crate::decoder::DecoderConfig) -> Self {
+        EthercatSummarizer {
+            session: Session::with_config(config),
+            ports: Vec::new(),
+        }
+    }
+
     /// Read one packet: its datagrams, what they tell, its streams.
     pub(crate) fn add(&mut self, position: Position, event: &EthercatPacket<'_>) {
         let Ok(packet) = self.session.read(position, event) else {

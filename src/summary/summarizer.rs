@@ -218,8 +218,9 @@ impl Summarizer {
     #[inline(never)]
     fn add_ethercat(&mut self, position: Position, packet: &EthercatPacket<'_>) {
         self.ethercat_packets += 1;
+        let config = self.decoder.config();
         self.ethercat
-            .get_or_insert_with(EthercatSummarizer::default)
+            .get_or_insert_with(|| EthercatSummarizer::new(config))
             .add(position, packet);
     }
 

@@ -178,7 +178,16 @@ impl SyncManager {
     pub const fn to_bytes(self) -> [u8; SYNC_MANAGER_LEN] {
         let s = self.start.to_le_bytes();
         let n = self.len.to_le_bytes();
-        [s[0], s[1], n[0], n[1], self.control, self.status, self.activate, 0]
+        [
+            s[0],
+            s[1],
+            n[0],
+            n[1],
+            self.control,
+            self.status,
+            self.activate,
+            0,
+        ]
     }
 
     /// Return the mode.

@@ -12,7 +12,10 @@ use std::time::Duration;
 
 use motionwire::can::{EthercatPacket, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
-use motionwire::decoder::ethercat::{DatagramRecord, MeaningRecord, Session, DATAGRAM_KIND};
+use motionwire::decoder::ethercat::{
+    DatagramRecord, MeaningRecord, ProcessRecord, Session, DATAGRAM_KIND, PROCESS_DATA_KIND,
+    SERVO_KIND,
+};
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::ethercat::Addressing;
 use motionwire::logs::candump::RelativeTimestamps;
@@ -210,6 +213,7 @@ impl<'a> Sink<'a> {
         if let Some(ms) = args.heartbeat_ms {
             config = config.heartbeat_timeout(Duration::from_millis(u64::from(ms)));
         }
+        config = config.servos(crate::args::servo_slaves(&args.reading.servo));
         let summary = (args.summary && !page).then(|| Summarizer::new(config.clone()));
         let recorder = page.then(|| Recorder::new(config.clone()));
         Ok(Sink {
@@ -239,11 +243,11 @@ impl<'a> Sink<'a> {
             progress_shown: false,
             frames: 0,
             decoder: Decoder::new(config.clone()),
+            ethercat: Session::with_config(&config),
             config,
             file: None,
             files,
             summary_written: false,
-            ethercat: Session::new(),
             input: String::new(),
         })
     }
@@ -362,6 +366,34 @@ impl<'a> Sink<'a> {
                     }
                     // One table of frames (docs/ethercat.md#records): the
                     // datagram's row holds the bytes.
+                    Output::Text | Output::Csv => {}
+                }
+            });
+            written?;
+            // Each slave's process data of a returned cyclic datagram.
+            let (json, out) = (&mut self.json, &mut self.out);
+            let mut written = Ok(());
+            self.ethercat.process_data(&packet, at, &datagram, |data| {
+                let record = ProcessRecord {
+                    packet: &packet,
+                    number: at + 1,
+                    data,
+                };
+                let station = data.slave.and_then(|s| s.station);
+                let process = shown.shows(PROCESS_DATA_KIND, station);
+                let servo = data.servo.is_some() && shown.shows(SERVO_KIND, station);
+                match output {
+                    Output::Json => {
+                        if process {
+                            record.append_json(json, file);
+                        }
+                        if servo {
+                            record.append_servo_json(json, file);
+                        }
+                    }
+                    Output::Text if written.is_ok() && (process || servo) => {
+                        written = record.write_text(out, file, process, servo);
+                    }
                     Output::Text | Output::Csv => {}
                 }
             });
@@ -517,7 +549,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             // A recording of its own: nothing learned from the file
             // before carries over (docs/output.md#several-files).
             sink.decoder = Decoder::new(sink.config.clone());
-            sink.ethercat = Session::new();
+            sink.ethercat = Session::with_config(sink.decoder.config());
             if args.summary && !page {
                 sink.summary = Some(Summarizer::new(sink.config.clone()));
             }

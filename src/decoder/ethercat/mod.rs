@@ -5,11 +5,17 @@
 //! [`crate::ethercat`].
 
 mod config;
+mod image;
 mod network;
+mod process;
 mod record;
 mod session;
 
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
-pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND, RECORD_KINDS};
+pub use process::{ProcessData, ServoReading, ServoSlaves};
+pub use record::{
+    DatagramRecord, Fields, MeaningRecord, ProcessRecord, DATAGRAM_KIND, PROCESS_DATA_KIND,
+    RECORD_KINDS, SERVO_KIND,
+};
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};

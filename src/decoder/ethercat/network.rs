@@ -4,18 +4,23 @@
 //! delivered: a write's or a read's returned copy with a working counter of
 //! at least 1.
 
+use crate::decoder::cia402::DriveState;
 use crate::ethercat::register::{self, covered};
 use crate::ethercat::{
-    Addressing, AlStatus, AlStatusCode, Command, Datagram, MailboxHeader, MailboxType,
-    MAILBOX_HEADER_LEN,
+    Addressing, AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, Fmmu,
+    MailboxHeader, MailboxType, SyncManager, SyncManagerMode, COE_HEADER_LEN, FMMU_LEN,
+    MAILBOX_HEADER_LEN, SYNC_MANAGER_LEN,
 };
 use crate::profiles::Profile;
+use crate::servo::{Command as ServoCommand, Feedback};
+
+use super::config::SlaveConfig;
+use super::image::{CoeObjects, Plan};
+use super::process::{ProcessData, ServoSlaves, ServoWatch};
 
 /// The sync managers a slave has at most (ESC datasheet: 16; the
 /// configuration the tests see uses 4).
 const SYNC_MANAGERS: usize = 16;
-/// A sync manager's configuration registers.
-const SYNC_MANAGER_LEN: u16 = 8;
 /// A mailbox area is at 0x1000 or above (the ESC's process memory).
 const PROCESS_MEMORY: u16 = 0x1000;
 /// The SII control word's read command (bit 8) and busy flag (bit 15).
@@ -198,26 +203,6 @@ pub enum Meaning<'a> {
     },
 }
 
-/// One sync manager's configuration as written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-struct SyncManager {
-    start: u16,
-    len: u16,
-    control: u8,
-}
-
-impl SyncManager {
-    /// Mode bits 0–1 = 0b10: a mailbox.
-    const fn mailbox(self) -> bool {
-        self.control & 0x03 == 0x02
-    }
-
-    /// Direction bits 2–3 = 0b01: written by the master.
-    const fn written_by_master(self) -> bool {
-        (self.control >> 2) & 0x03 == 0x01
-    }
-}
-
 /// What the port's traffic has shown of one slave.
 #[derive(Debug, Clone, Default)]
 struct Slave {
@@ -226,8 +211,22 @@ struct Slave {
     /// The word address of the last SII read command.
     sii_address: Option<u32>,
     sync_managers: [Option<SyncManager>; SYNC_MANAGERS],
+    fmmus: [Option<Fmmu>; SYNC_MANAGERS],
     vendor: Option<u32>,
     product: Option<u32>,
+    /// The PDO objects its CoE transfers showed.
+    coe: CoeObjects,
+    /// What a configuration file gives of it.
+    given: Option<SlaveConfig>,
+    /// How its process data is cut; `None` until needed after a change.
+    plan: Option<Plan>,
+    /// The last outputs and inputs images cut.
+    outputs: Vec<u8>,
+    inputs: Vec<u8>,
+    /// Its CiA 402 state machine as observed.
+    drive: DriveState,
+    /// Its servo handshakes, when it is read as a servo.
+    servo: Option<ServoWatch>,
 }
 
 impl Slave {
@@ -244,12 +243,15 @@ impl Slave {
         self.sync_managers
             .iter()
             .flatten()
-            .find(|sm| sm.mailbox() && sm.start == ado)
+            .find(|sm| sm.mode() == SyncManagerMode::Mailbox && sm.start == ado)
             .map(|sm| (sm.written_by_master(), sm.len))
     }
 
     fn has_mailbox(&self) -> bool {
-        self.sync_managers.iter().flatten().any(|sm| sm.mailbox())
+        self.sync_managers
+            .iter()
+            .flatten()
+            .any(|sm| sm.mode() == SyncManagerMode::Mailbox)
     }
 
     /// The profile its identity names.
@@ -265,9 +267,179 @@ impl Slave {
 #[derive(Debug, Default)]
 pub(super) struct Network {
     slaves: Vec<Slave>,
+    /// The slaves a datagram touches, reused.
+    touched: Vec<(usize, u16)>,
 }
 
+/// The most slaves of one datagram whose shares of a short working
+/// counter are searched for the one set that explains it.
+const SHARE_SEARCH: usize = 16;
+
 impl Network {
+    /// Take what a configuration file says of the slaves: each is found
+    /// by station address or position (added when new), and the capture's
+    /// own start-up wins for what it writes.
+    pub(super) fn configure(&mut self, slaves: &[SlaveConfig]) {
+        for config in slaves {
+            let at = match (config.station, config.position) {
+                (Some(station), Some(position)) => {
+                    let at = self.at_position(position);
+                    self.assign(at, station)
+                }
+                (Some(station), None) => self.at_station(station),
+                (None, Some(position)) => self.at_position(position),
+                (None, None) => continue,
+            };
+            let known = &mut self.slaves[at];
+            for &(n, fmmu) in &config.fmmus {
+                if let Some(slot) = known.fmmus.get_mut(usize::from(n)) {
+                    slot.get_or_insert(fmmu);
+                }
+            }
+            for &(n, sm) in &config.sync_managers {
+                if let Some(slot) = known.sync_managers.get_mut(usize::from(n)) {
+                    slot.get_or_insert(sm);
+                }
+            }
+            known.vendor = known.vendor.or(config.vendor);
+            known.product = known.product.or(config.product);
+            known.given = Some(config.clone());
+            known.plan = None;
+        }
+    }
+
+    /// Cut a cyclic datagram (LRW, LRD, LWR at `logical`) into each
+    /// slave's process data: outputs from `sent` (the sent copy's data,
+    /// `None` without one), inputs from `returned`; hand each to `on`
+    /// (docs/ethercat.md#process-data).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn process_data(
+        &mut self,
+        command: Command,
+        logical: u32,
+        sent: Option<&[u8]>,
+        returned: &[u8],
+        wkc: u16,
+        servos: &ServoSlaves,
+        mut on: impl FnMut(&ProcessData<'_>),
+    ) {
+        let end = logical.saturating_add(returned.len() as u32);
+        let mut touched = core::mem::take(&mut self.touched);
+        touched.clear();
+        let mut expected: u16 = 0;
+        for (i, slave) in self.slaves.iter_mut().enumerate() {
+            if slave.fmmus.iter().all(Option::is_none) {
+                continue;
+            }
+            let plan = slave.plan.get_or_insert_with(|| {
+                Plan::new(
+                    &slave.fmmus,
+                    &slave.sync_managers,
+                    &slave.coe,
+                    slave.given.as_ref(),
+                )
+            });
+            if plan.touches(logical, end) {
+                let share = plan.share(command, logical, end);
+                expected = expected.saturating_add(share);
+                touched.push((i, share));
+            }
+        }
+        if touched.is_empty() {
+            on(&ProcessData {
+                slave: None,
+                logical,
+                wkc,
+                expected_wkc: None,
+                confirmed: wkc > 0,
+                outputs: matches!(command, Command::Lrw | Command::Lwr)
+                    .then_some(sent.unwrap_or(returned)),
+                inputs: matches!(command, Command::Lrw | Command::Lrd).then_some(returned),
+                cia402: None,
+                servo: None,
+                plan: None,
+            });
+            self.touched = touched;
+            return;
+        }
+        let missing = missing(&touched, expected, wkc);
+        for &(i, share) in &touched {
+            let confirmed = share == 0 || !missing.contains(i);
+            let slave = &mut self.slaves[i];
+            let reference = slave.reference();
+            let Slave {
+                plan,
+                outputs,
+                inputs,
+                drive,
+                servo,
+                ..
+            } = slave;
+            let Some(plan) = plan.as_ref() else { continue };
+            let (held_out, held_in) =
+                plan.cut(logical, sent.unwrap_or(returned), returned, outputs, inputs);
+            let (out_len, in_len) = plan.lens();
+            let outputs = (out_len > 0 && held_out == out_len).then_some(&outputs[..]);
+            let inputs = (in_len > 0 && held_in == in_len).then_some(&inputs[..]);
+            let mut cia402 = None;
+            if plan.has_signals() {
+                let mut picked = Vec::new();
+                let mut pick =
+                    |_: &str, signal: Result<crate::canopen::Signal, crate::CodecError>| {
+                        if let Ok(signal) = signal {
+                            if matches!(signal.entry.index(), 0x6040 | 0x6041 | 0x6060 | 0x6061) {
+                                picked.push(signal);
+                            }
+                        }
+                    };
+                if let Some(image) = outputs {
+                    plan.for_each_signal(true, image, &mut pick);
+                }
+                if let (Some(image), true) = (inputs, confirmed) {
+                    plan.for_each_signal(false, image, &mut pick);
+                }
+                if !picked.is_empty() {
+                    cia402 = drive.read(picked.iter());
+                }
+            }
+            let mut servo_reading = None;
+            if let Some(mode) = servos.mode(reference.station, (out_len, in_len)) {
+                let watch = servo.get_or_insert_with(|| ServoWatch::new(mode));
+                if let Some(command) = outputs.and_then(|o| ServoCommand::parse(o).ok()) {
+                    let feedback = inputs
+                        .filter(|_| confirmed)
+                        .and_then(|i| Feedback::parse(i).ok());
+                    servo_reading = Some(watch.cycle(&command, feedback.as_ref()));
+                }
+            }
+            on(&ProcessData {
+                slave: Some(reference),
+                logical,
+                wkc,
+                expected_wkc: Some(expected),
+                confirmed,
+                outputs,
+                inputs,
+                cia402,
+                servo: servo_reading,
+                plan: Some(plan),
+            });
+        }
+        self.touched = touched;
+    }
+
+    /// Return the PDOs the capture or configuration maps past their sync
+    /// manager, per slave: slave, sync manager, PDO.
+    pub(super) fn too_long(&self) -> impl Iterator<Item = (SlaveRef, u8, u16)> + '_ {
+        self.slaves.iter().flat_map(|s| {
+            let reference = s.reference();
+            s.plan.iter().flat_map(move |p| {
+                p.too_long
+                    .iter()
+                    .map(move |&(sm, pdo)| (reference, sm, pdo))
+            })
+        })
+    }
     /// Read one datagram of a copy, `returned` when it came back through
     /// the slaves; `sent_adp` is the ADP it was sent with (a
     /// position-addressed datagram's position is its negation).
@@ -386,8 +558,41 @@ impl Network {
             && (command == Command::Fpwr || command == Command::Fprd)
         {
             if let Some(meaning) = self.mailbox(slave, command == Command::Fpwr, datagram) {
+                if let Meaning::Mailbox {
+                    written,
+                    accepted: true,
+                    header,
+                    body,
+                    ..
+                } = meaning
+                {
+                    self.coe_message(slave, written, header, body);
+                }
                 on(meaning);
             }
+        }
+    }
+
+    /// A delivered mailbox message: a CoE SDO transfer of a PDO object
+    /// teaches the slave's process image.
+    fn coe_message(&mut self, slave: usize, written: bool, header: MailboxHeader, body: &[u8]) {
+        if header.mailbox_type != MailboxType::Coe {
+            return;
+        }
+        let Ok(coe) = CoeHeader::parse(body) else {
+            return;
+        };
+        let request = match coe.service {
+            CoeService::SdoRequest if written => true,
+            CoeService::SdoResponse if !written => false,
+            _ => return,
+        };
+        let Ok(sdo) = CoeSdo::parse(&body[COE_HEADER_LEN..]) else {
+            return;
+        };
+        let known = &mut self.slaves[slave];
+        if known.coe.message(request, &sdo) {
+            known.plan = None;
         }
     }
 
@@ -436,16 +641,23 @@ impl Network {
         at
     }
 
-    /// Keep the sync-manager configuration a write covers.
+    /// Keep the sync-manager and FMMU configuration a write covers.
     fn sync_manager_writes(&mut self, slave: usize, ado: u16, data: &[u8]) {
-        for n in 0..SYNC_MANAGERS as u16 {
-            let base = register::SYNC_MANAGER_BASE + n * SYNC_MANAGER_LEN;
-            if let Some(b) = covered(ado, data, base, 8) {
-                self.slaves[slave].sync_managers[usize::from(n)] = Some(SyncManager {
-                    start: u16::from_le_bytes([b[0], b[1]]),
-                    len: u16::from_le_bytes([b[2], b[3]]),
-                    control: b[4],
-                });
+        let known = &mut self.slaves[slave];
+        for n in 0..SYNC_MANAGERS {
+            let base = register::SYNC_MANAGER_BASE + (n * SYNC_MANAGER_LEN) as u16;
+            if let Some(b) = covered(ado, data, base, SYNC_MANAGER_LEN) {
+                let mut bytes = [0; SYNC_MANAGER_LEN];
+                bytes.copy_from_slice(b);
+                known.sync_managers[n] = Some(SyncManager::from_bytes(bytes));
+                known.plan = None;
+            }
+            let base = register::FMMU_BASE + (n * FMMU_LEN) as u16;
+            if let Some(b) = covered(ado, data, base, FMMU_LEN) {
+                let mut bytes = [0; FMMU_LEN];
+                bytes.copy_from_slice(b);
+                known.fmmus[n] = Some(Fmmu::from_bytes(bytes));
+                known.plan = None;
             }
         }
     }
@@ -539,6 +751,63 @@ impl Network {
             body: &data[MAILBOX_HEADER_LEN..end],
             profile: known.profile(),
         })
+    }
+}
+
+/// The slaves (by their place in `touched`) whose inputs a short working
+/// counter leaves unconfirmed: the one set of slaves whose shares add up
+/// to the shortfall, when exactly one does; else every slave.
+fn missing(touched: &[(usize, u16)], expected: u16, wkc: u16) -> Missing {
+    if wkc >= expected {
+        return Missing::None;
+    }
+    let short = expected - wkc;
+    if touched.len() > SHARE_SEARCH {
+        return Missing::All;
+    }
+    let mut found = None;
+    for set in 1u32..(1 << touched.len()) {
+        let sum: u32 = touched
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| set & (1 << k) != 0)
+            .map(|(_, &(_, share))| u32::from(share))
+            .sum();
+        if sum == u32::from(short) {
+            if found.is_some() {
+                return Missing::All;
+            }
+            found = Some(set);
+        }
+    }
+    match found {
+        Some(set) => Missing::Set(
+            touched
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| set & (1 << k) != 0)
+                .map(|(_, &(i, _))| i)
+                .collect(),
+        ),
+        None => Missing::All,
+    }
+}
+
+/// Which slaves' inputs a working counter leaves unconfirmed.
+#[derive(Debug)]
+enum Missing {
+    None,
+    Set(Vec<usize>),
+    All,
+}
+
+impl Missing {
+    fn contains(&self, slave: usize) -> bool {
+        match self {
+            Missing::None => false,
+            Missing::Set(set) => set.contains(&slave),
+            Missing::All => true,
+        }
     }
 }
 

@@ -6,7 +6,9 @@ use std::io::{self, Write};
 
 use crate::can::Iface;
 use crate::canopen::Emcy;
-use crate::decoder::ethercat::{AlRegister, Meaning, Packet, SiiField, SlaveRef};
+use crate::decoder::ethercat::{
+    AlRegister, Meaning, Packet, ProcessData, ServoReading, SiiField, SlaveRef,
+};
 use crate::decoder::json::{self, Object};
 use crate::decoder::record::emcy_json;
 use crate::ethercat::register;
@@ -20,7 +22,7 @@ pub const DATAGRAM_KIND: &str = "ecat_datagram";
 /// Every kind of record `decode` writes for an EtherCAT capture, in the
 /// order docs/ethercat.md lists them: the datagram's, then what it tells
 /// ([`MeaningRecord::kind`]).
-pub const RECORD_KINDS: [&str; 9] = [
+pub const RECORD_KINDS: [&str; 11] = [
     DATAGRAM_KIND,
     "station",
     "al_state",
@@ -30,7 +32,14 @@ pub const RECORD_KINDS: [&str; 9] = [
     "mailbox",
     "coe_sdo",
     "coe_emcy",
+    PROCESS_DATA_KIND,
+    SERVO_KIND,
 ];
+
+/// The kind of a slave's process-data record (`"kind": "process_data"`).
+pub const PROCESS_DATA_KIND: &str = "process_data";
+/// The kind of a servo's record (`"kind": "servo"`).
+pub const SERVO_KIND: &str = "servo";
 
 /// One datagram of a packet, numbered in its frame from 1: the record
 /// `motionwire decode` writes for it (docs/ethercat.md#records).
@@ -728,5 +737,198 @@ fn text_prefix<W: Write>(out: &mut W, packet: &Packet<'_>, file: Option<&str>) -
         Some(Iface::Name(name)) => write!(out, "{name:<6} "),
         Some(Iface::Channel(channel)) => write!(out, "{channel:<6} "),
         None => write!(out, "{:<6} ", "-"),
+    }
+}
+
+/// One slave's process data in one cyclic datagram, as `decode` writes
+/// it (docs/ethercat.md#process-data): the `process_data` record, and for
+/// a servo the `servo` record after it.
+#[derive(Debug, Clone, Copy)]
+pub struct ProcessRecord<'r, 'p, 'a, 's> {
+    /// The returned packet the datagram is in.
+    pub packet: &'p Packet<'a>,
+    /// The datagram's place in its frame, from 1.
+    pub number: usize,
+    /// The slave's process data.
+    pub data: &'r ProcessData<'s>,
+}
+
+impl ProcessRecord<'_, '_, '_, '_> {
+    /// Append the `process_data` record as one JSON object and a newline:
+    /// the packet's keys, `kind`, `slave`, `position`, `logical`, `wkc`,
+    /// `expected_wkc`, `confirmed`, `outputs`, `inputs` (hex, null where
+    /// the datagram does not hold the whole image), `signals` (name →
+    /// value, outputs then inputs) and `cia402` where the slave is a
+    /// drive.
+    pub fn append_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
+        let d = self.data;
+        prefix(out, self.packet, self.number, file);
+        let mut obj = Object::after_first(out);
+        obj.name("kind", PROCESS_DATA_KIND);
+        slave_json(&mut obj, d.slave.unwrap_or_default());
+        obj.uint("logical", u64::from(d.logical));
+        obj.uint("wkc", u64::from(d.wkc));
+        match d.expected_wkc {
+            Some(n) => obj.uint("expected_wkc", u64::from(n)),
+            None => obj.null("expected_wkc"),
+        }
+        obj.bool("confirmed", d.confirmed);
+        for (key, image) in [("outputs", d.outputs), ("inputs", d.inputs)] {
+            match image {
+                Some(bytes) => json::hex_string(obj.key(key), bytes),
+                None => obj.null(key),
+            }
+        }
+        let buf = obj.key("signals");
+        buf.push(b'{');
+        let mut first = true;
+        let mut error = None;
+        d.for_each_signal(|_, name, signal| match signal {
+            Ok(signal) => {
+                if !first {
+                    buf.push(b',');
+                }
+                first = false;
+                json::string(buf, name);
+                buf.push(b':');
+                json::pdo_value(buf, &signal.value);
+            }
+            Err(e) => error = Some(e),
+        });
+        buf.push(b'}');
+        match d.cia402 {
+            Some(reading) => crate::decoder::record::cia402_json(&mut obj, &reading),
+            None => obj.null("cia402"),
+        }
+        match error {
+            Some(e) => obj.display("error", &e),
+            None => obj.null("error"),
+        }
+        obj.end();
+        out.push(b'\n');
+    }
+
+    /// Write the records as lines of `decode`'s text output: for
+    /// `process`, the slave, its images and signals; for `servo` (a servo
+    /// slave), its command, feedback and handshakes in words.
+    ///
+    /// # Errors
+    ///
+    /// Writing to `out` failed.
+    pub fn write_text<W: Write>(
+        &self,
+        out: &mut W,
+        file: Option<&str>,
+        process: bool,
+        servo: bool,
+    ) -> io::Result<()> {
+        let d = self.data;
+        let slave = d
+            .slave
+            .map_or_else(|| format!("logical {:#010x}", d.logical), |s| s.to_string());
+        if process {
+            text_prefix(out, self.packet, file)?;
+            write!(out, "{:>8}  {:<13}  {slave}", "", PROCESS_DATA_KIND)?;
+            if !d.confirmed {
+                write!(out, " (inputs unconfirmed: wkc {}", d.wkc)?;
+                if let Some(expected) = d.expected_wkc {
+                    write!(out, " of {expected}")?;
+                }
+                write!(out, ")")?;
+            }
+            let mut sep = ":";
+            let mut named = false;
+            d.for_each_signal(|_, name, signal| {
+                if let Ok(signal) = signal {
+                    let _ = write!(out, "{sep} {name} {}", signal.value);
+                    sep = ",";
+                    named = true;
+                }
+            });
+            if !named {
+                for (label, image) in [("outputs", d.outputs), ("inputs", d.inputs)] {
+                    if let Some(bytes) = image {
+                        write!(out, "{sep} {label} ")?;
+                        for b in bytes {
+                            write!(out, "{b:02x}")?;
+                        }
+                        sep = ",";
+                    }
+                }
+            }
+            if let Some(cia402) = d.cia402 {
+                write!(out, "; {cia402}")?;
+            }
+            writeln!(out)?;
+        }
+        if let (true, Some(s)) = (servo, d.servo) {
+            text_prefix(out, self.packet, file)?;
+            write!(
+                out,
+                "{:>8}  {:<13}  {slave}: SSP {}, SE 0b{:02b}; enable {}",
+                "",
+                SERVO_KIND,
+                s.command.speed_setpoint,
+                s.command.control.servo_enable().get(),
+                s.enable
+            )?;
+            if s.error_clear != crate::servo::HandshakePhase::Idle {
+                write!(out, ", error clear {}", s.error_clear)?;
+            }
+            if s.zero_pulse != crate::servo::HandshakePhase::Idle {
+                write!(out, ", zero pulse {}", s.zero_pulse)?;
+            }
+            match &s.feedback {
+                Some(feedback) => write!(
+                    out,
+                    "; ActPos {}, SSW {}, SEW {}",
+                    feedback.actual_position(),
+                    feedback.status,
+                    feedback.errors
+                )?,
+                None => write!(out, "; feedback unconfirmed")?,
+            }
+            writeln!(out)?;
+        }
+        Ok(())
+    }
+
+    /// Append the `servo` record of a servo slave (nothing for another):
+    /// the packet's keys, `kind`, `slave`, `position`, `command` (as
+    /// `motionwire servo command --json` writes it), `feedback` (as
+    /// `servo feedback --json`; null where the inputs are unconfirmed),
+    /// `enable`, `enable_cycles`, `error_clear`, `zero_pulse` (the
+    /// handshakes' phases) and `ready`.
+    pub fn append_servo_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
+        let Some(servo) = self.data.servo else { return };
+        prefix(out, self.packet, self.number, file);
+        let mut obj = Object::after_first(out);
+        obj.name("kind", SERVO_KIND);
+        slave_json(&mut obj, self.data.slave.unwrap_or_default());
+        servo_json(&mut obj, &servo);
+        obj.end();
+        out.push(b'\n');
+    }
+}
+
+/// The servo's values (docs/ethercat.md#servo).
+fn servo_json(obj: &mut Object<'_>, servo: &ServoReading) {
+    let command = crate::decoder::CommandRecord::from(&servo.command);
+    // The records serialize; writing to a Vec cannot fail.
+    let _ = serde_json::to_writer(&mut *obj.key("command"), &command);
+    match &servo.feedback {
+        Some(feedback) => {
+            let feedback = crate::decoder::FeedbackRecord::from(feedback);
+            let _ = serde_json::to_writer(&mut *obj.key("feedback"), &feedback);
+        }
+        None => obj.null("feedback"),
+    }
+    obj.name("enable", servo.enable.name());
+    obj.uint("enable_cycles", u64::from(servo.enable_cycles));
+    obj.name("error_clear", servo.error_clear.name());
+    obj.name("zero_pulse", servo.zero_pulse.name());
+    match servo.ready {
+        Some(ready) => obj.bool("ready", ready),
+        None => obj.null("ready"),
     }
 }

@@ -5,9 +5,11 @@
 use std::collections::VecDeque;
 
 use crate::can::{EthercatPacket, Iface, Timestamp};
-use crate::ethercat::{Datagram, Datagrams, EthercatFrame, FrameType, Mac};
+use crate::ethercat::{Command, Datagram, Datagrams, EthercatFrame, FrameType, Mac};
 
-use super::network::{Meaning, Network};
+use super::config::SlaveConfig;
+use super::network::{Meaning, Network, SlaveRef};
+use super::process::{ProcessData, ServoSlaves};
 use crate::logs::Position;
 use crate::LenError;
 
@@ -95,6 +97,9 @@ struct Pending {
     signature: u64,
     /// Every datagram's ADP, when one is position-addressed.
     adps: Vec<u16>,
+    /// The frame's bytes, when it holds a cyclic datagram (LRW, LRD,
+    /// LWR): its outputs are read from them.
+    payload: Option<Vec<u8>>,
 }
 
 /// What the session keeps per interface.
@@ -105,6 +110,11 @@ struct Port {
     pending: VecDeque<Pending>,
     /// The slaves the port's traffic shows.
     network: Network,
+    /// The sent copy of the last returned frame with cyclic datagrams:
+    /// its packet and bytes.
+    sent: Option<(Position, Vec<u8>)>,
+    /// Buffers of sent frames, reused.
+    spare: Vec<Vec<u8>>,
 }
 
 /// The counts a session keeps, per capture (docs/ethercat.md#direction).
@@ -201,6 +211,10 @@ pub struct Session {
     counts: Counts,
     /// The last packet's time.
     last_time: Option<Timestamp>,
+    /// What a configuration file says of the slaves.
+    config: Vec<SlaveConfig>,
+    /// Which slaves carry the servo frames.
+    servos: ServoSlaves,
 }
 
 impl Session {
@@ -208,6 +222,20 @@ impl Session {
     #[must_use]
     pub fn new() -> Self {
         Session::default()
+    }
+
+    /// Return a session with the EtherCAT settings of `config`: the slaves'
+    /// configuration ([`DecoderConfig::ethercat_slaves`]) and the servos
+    /// ([`DecoderConfig::servos`]).
+    ///
+    /// [`DecoderConfig::ethercat_slaves`]: crate::decoder::DecoderConfig::ethercat_slaves
+    /// [`DecoderConfig::servos`]: crate::decoder::DecoderConfig::servos
+    #[must_use]
+    pub fn with_config(config: &crate::decoder::DecoderConfig) -> Self {
+        let mut session = Session::new();
+        session.configure(config.ethercat_slave_configs().to_vec());
+        session.set_servos(config.servo_slaves().clone());
+        session
     }
 
     /// Read the packet at `position`.
@@ -287,6 +315,71 @@ impl Session {
         }
     }
 
+    /// Take what a configuration file (an ENI, `parse_eni`) or a mapping
+    /// given by hand says of the slaves' process data, for every port
+    /// (docs/ethercat.md#process-data). Where the capture's start-up
+    /// writes the same FMMU or sync manager, or shows a PDO's assignment
+    /// or mapping, the capture wins.
+    pub fn configure(&mut self, slaves: Vec<SlaveConfig>) {
+        for port in &mut self.ports {
+            port.network.configure(&slaves);
+        }
+        self.config = slaves;
+    }
+
+    /// Read the slaves `servos` names as servos of docs/servo.md: their
+    /// process data gives a [`ServoReading`](super::ServoReading) every
+    /// cycle.
+    pub fn set_servos(&mut self, servos: ServoSlaves) {
+        self.servos = servos;
+    }
+
+    /// Hand `on` each slave's process data in the datagram at `at` (from
+    /// 0) of `packet`, when it is a returned cyclic datagram (LRW, LRD,
+    /// LWR): outputs from its sent copy, inputs from it
+    /// (docs/ethercat.md#process-data). Call it after
+    /// [`meanings`](Self::meanings) for the same datagram. A sent copy
+    /// gives nothing: its inputs are the previous cycle's.
+    pub fn process_data(
+        &mut self,
+        packet: &Packet<'_>,
+        at: usize,
+        datagram: &Datagram<'_>,
+        on: impl FnMut(&ProcessData<'_>),
+    ) {
+        let command = datagram.command();
+        if !packet.copy.returned() || !is_cyclic(command) {
+            return;
+        }
+        let Some(port) = self.ports.get_mut(packet.port) else {
+            return;
+        };
+        let sent = match (packet.copy, &port.sent) {
+            (FrameCopy::Returned { sent }, Some((position, bytes))) if *position == sent => {
+                sent_datagram(bytes, at)
+            }
+            _ => None,
+        };
+        port.network.process_data(
+            command,
+            datagram.address(),
+            sent,
+            datagram.data(),
+            datagram.working_counter(),
+            &self.servos,
+            on,
+        );
+    }
+
+    /// Return the PDOs the configuration maps past their sync manager:
+    /// the slave, the sync manager and the PDO (docs/ethercat.md#process-data).
+    pub fn too_long(&self) -> Vec<(SlaveRef, u8, u16)> {
+        self.ports
+            .iter()
+            .flat_map(|p| p.network.too_long())
+            .collect()
+    }
+
     /// Count a packet whose datagrams the caller found damaged.
     pub fn count_damaged(&mut self) {
         self.counts.damaged += 1;
@@ -322,10 +415,14 @@ impl Session {
         let at = match self.ports.iter().position(is) {
             Some(at) => at,
             None => {
+                let mut network = Network::default();
+                network.configure(&self.config);
                 self.ports.push(Port {
                     name: iface.map(|i| i.to_string()),
                     pending: VecDeque::new(),
-                    network: Network::default(),
+                    network,
+                    sent: None,
+                    spare: Vec::new(),
                 });
                 self.ports.len() - 1
             }
@@ -344,8 +441,8 @@ impl Session {
         frame: &EthercatFrame<'_>,
     ) -> (FrameCopy, Vec<u16>) {
         let signature = signature(frame);
-        let pending = &mut self.ports[port].pending;
         if source.returned_bit() {
+            let pending = &mut self.ports[port].pending;
             let master = source.without_returned_bit();
             let found = pending
                 .iter()
@@ -356,11 +453,19 @@ impl Session {
             };
             // The frames sent before it are not coming back: a ring
             // returns frames in the order they were sent.
+            let port = &mut self.ports[port];
             for _ in 0..at {
-                pending.pop_front();
+                if let Some(lost) = port.pending.pop_front() {
+                    port.spare.extend(lost.payload);
+                }
                 self.counts.lost += 1;
             }
-            let sent = pending.pop_front().expect("found at the front");
+            let mut sent = port.pending.pop_front().expect("found at the front");
+            if let Some(payload) = sent.payload.take() {
+                if let Some((_, old)) = port.sent.replace((sent.position, payload)) {
+                    port.spare.push(old);
+                }
+            }
             self.counts.returned += 1;
             return (
                 FrameCopy::Returned {
@@ -369,8 +474,11 @@ impl Session {
                 sent.adps,
             );
         }
+        let pending = &mut self.ports[port].pending;
         if pending.len() == PAIRING_WINDOW {
-            pending.pop_front();
+            if let Some(lost) = pending.pop_front() {
+                self.ports[port].spare.extend(lost.payload);
+            }
             self.counts.lost += 1;
         }
         // A returned position-addressed datagram has another ADP: keep the
@@ -384,11 +492,22 @@ impl Session {
         } else {
             Vec::new()
         };
-        pending.push_back(Pending {
+        let cyclic = frame.datagrams().flatten().any(|d| is_cyclic(d.command()));
+        let port = &mut self.ports[port];
+        let payload = cyclic.then(|| {
+            let mut buffer = port.spare.pop().unwrap_or_default();
+            buffer.clear();
+            let header = frame.length() | u16::from(frame.frame_type().bits()) << 12;
+            buffer.extend_from_slice(&header.to_le_bytes());
+            buffer.extend_from_slice(frame.body());
+            buffer
+        });
+        port.pending.push_back(Pending {
             position,
             source,
             signature,
             adps,
+            payload,
         });
         self.counts.sent += 1;
         (FrameCopy::Sent, Vec::new())
@@ -415,6 +534,18 @@ fn named(iface: Iface<'_>, name: &str) -> bool {
             digits.get(at..) == Some(name.as_bytes())
         }
     }
+}
+
+/// Whether a command carries process data: LRW, LRD, LWR.
+const fn is_cyclic(command: Command) -> bool {
+    matches!(command, Command::Lrw | Command::Lrd | Command::Lwr)
+}
+
+/// The data of the datagram at `at` (from 0) of a frame's bytes.
+fn sent_datagram(bytes: &[u8], at: usize) -> Option<&[u8]> {
+    let frame = EthercatFrame::parse(bytes).ok()?;
+    let datagram = frame.datagrams().nth(at)?.ok()?;
+    Some(datagram.data())
 }
 
 /// A frame's datagrams' commands and indices in order, hashed (FNV-1a):

@@ -1,0 +1,670 @@
+//! A slave's process image as a capture's start-up or a configuration
+//! file describes it, and the cutting of a cyclic datagram into each
+//! slave's outputs and inputs (docs/ethercat.md#process-data).
+//!
+//! The FMMUs map logical ranges onto the slave's memory; the sync managers
+//! there say which bytes are outputs and which inputs, and carry the PDOs
+//! their assignment object (0x1C10 + n) lists; each PDO's mapping object
+//! gives its entries. The PDO assignment and mappings are learned from the
+//! CoE SDO transfers the capture shows ([`CoeObjects`]).
+
+use std::borrow::Cow;
+
+use crate::canopen::{
+    object_data_type, object_name, DataType, MappingEntry, PdoLayout, PdoMapping, Signal,
+};
+use crate::ethercat::{CoeSdo, Command, Fmmu, SyncManager, SyncManagerMode};
+use crate::CodecError;
+
+use super::config::SlaveConfig;
+
+/// The FMMUs and sync managers a slave has at most (ESC datasheet).
+pub(super) const UNITS: usize = 16;
+/// The entries a mapping object holds at most (sub-indices 1–255; the
+/// decoder keeps the first 64 a PDO mapping can hold).
+const MAX_ENTRIES: usize = 64;
+/// The data a CoE SDO transfer of a PDO object holds at most: sub-index
+/// 0, padding and 64 entries of 4 bytes.
+const MAX_OBJECT_BYTES: usize = 2 + 4 * MAX_ENTRIES;
+/// The dummy entry a gap is read as (index 0001h, which reading skips).
+const GAP: u16 = 0x0001;
+
+/// Whether `index` is an object the process image is learned from: the
+/// PDO assignment of a sync manager (0x1C10–0x1C2F) or a PDO mapping
+/// (0x1600–0x17FF receive, 0x1A00–0x1BFF transmit).
+pub(super) const fn is_pdo_object(index: u16) -> bool {
+    matches!(index, 0x1C10..=0x1C2F | 0x1600..=0x17FF | 0x1A00..=0x1BFF)
+}
+
+/// A CoE SDO transfer of a PDO object in progress.
+#[derive(Debug, Clone)]
+struct OpenTransfer {
+    index: u16,
+    sub_index: u8,
+    complete_access: bool,
+    /// A download (the master writes) or an upload.
+    download: bool,
+    /// The size the initiate message announced.
+    size: Option<usize>,
+    data: Vec<u8>,
+    /// A download's data is complete; it takes effect with the response.
+    last_sent: bool,
+}
+
+/// The PDO objects of one slave as its CoE SDO transfers wrote or read
+/// them: sub-index 0 (the count) and the entries.
+#[derive(Debug, Clone, Default)]
+pub(super) struct CoeObjects {
+    open: Option<OpenTransfer>,
+    /// 0x1C10 + n: count and PDO indices.
+    assignment: [Option<(u8, Vec<u16>)>; UNITS * 2],
+    /// Mapping objects: index, count and raw entries.
+    mappings: Vec<(u16, u8, Vec<u32>)>,
+}
+
+impl CoeObjects {
+    /// Read a CoE SDO message: `request` from the master, else the
+    /// slave's response. Return whether an object changed.
+    pub(super) fn message(&mut self, request: bool, sdo: &CoeSdo<'_>) -> bool {
+        let command = sdo.command();
+        let specifier = command >> 5;
+        if specifier == 4 {
+            // Abort, from either side.
+            self.open = None;
+            return false;
+        }
+        if request {
+            match specifier {
+                1 => {
+                    // Initiate download.
+                    let Some((index, sub_index)) = sdo.multiplexer() else {
+                        return false;
+                    };
+                    if !is_pdo_object(index) {
+                        self.open = None;
+                        return false;
+                    }
+                    let data = sdo.initiate_data();
+                    let expedited = command & 0x02 != 0;
+                    let sized = command & 0x01 != 0;
+                    let (size, bytes) = if expedited {
+                        let n = if sized {
+                            usize::from((command >> 2) & 0x03)
+                        } else {
+                            0
+                        };
+                        (Some(4 - n), data.get(..4 - n).unwrap_or(data))
+                    } else if data.len() >= 4 {
+                        let size = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
+                        (Some(size as usize), &data[4..])
+                    } else {
+                        (None, &data[..0])
+                    };
+                    let mut transfer = OpenTransfer {
+                        index,
+                        sub_index,
+                        complete_access: sdo.complete_access(),
+                        download: true,
+                        size,
+                        data: Vec::new(),
+                        last_sent: false,
+                    };
+                    take(&mut transfer.data, bytes, size);
+                    transfer.last_sent =
+                        expedited || size.is_some_and(|s| transfer.data.len() >= s);
+                    self.open = Some(transfer);
+                }
+                0 => {
+                    // Download segment.
+                    if let Some(open) = self.open.as_mut().filter(|o| o.download) {
+                        let bytes = segment(command, sdo.segment_data());
+                        take(&mut open.data, bytes, open.size);
+                        open.last_sent = command & 0x01 != 0;
+                    }
+                }
+                2 => {
+                    // Initiate upload.
+                    self.open = match sdo.multiplexer() {
+                        Some((index, sub_index)) if is_pdo_object(index) => Some(OpenTransfer {
+                            index,
+                            sub_index,
+                            complete_access: sdo.complete_access(),
+                            download: false,
+                            size: None,
+                            data: Vec::new(),
+                            last_sent: false,
+                        }),
+                        _ => None,
+                    };
+                }
+                _ => {}
+            }
+            return false;
+        }
+        let Some(open) = self.open.as_mut() else {
+            return false;
+        };
+        match (open.download, specifier) {
+            // Initiate download response, download segment response.
+            (true, 3) | (true, 1) if open.last_sent => {
+                let open = self.open.take().expect("open");
+                self.store(&open)
+            }
+            (false, 2) => {
+                // Initiate upload response.
+                let data = sdo.initiate_data();
+                if command & 0x02 != 0 {
+                    let n = if command & 0x01 != 0 {
+                        usize::from((command >> 2) & 0x03)
+                    } else {
+                        0
+                    };
+                    let bytes = data.get(..4 - n).unwrap_or(data);
+                    open.data.clear();
+                    take(&mut open.data, bytes, Some(4 - n));
+                    let open = self.open.take().expect("open");
+                    return self.store(&open);
+                }
+                if data.len() < 4 {
+                    self.open = None;
+                    return false;
+                }
+                let size = u32::from_le_bytes([data[0], data[1], data[2], data[3]]) as usize;
+                open.size = Some(size);
+                open.data.clear();
+                take(&mut open.data, &data[4..], Some(size));
+                if open.data.len() >= size {
+                    let open = self.open.take().expect("open");
+                    return self.store(&open);
+                }
+                false
+            }
+            (false, 0) => {
+                // Upload segment response.
+                let bytes = segment(command, sdo.segment_data());
+                take(&mut open.data, bytes, open.size);
+                if command & 0x01 != 0 {
+                    let open = self.open.take().expect("open");
+                    return self.store(&open);
+                }
+                false
+            }
+            _ => false,
+        }
+    }
+
+    /// Keep what a completed transfer wrote or read.
+    fn store(&mut self, transfer: &OpenTransfer) -> bool {
+        let data = &transfer.data;
+        let index = transfer.index;
+        let assignment = matches!(index, 0x1C10..=0x1C2F);
+        let width = if assignment { 2 } else { 4 };
+        let word = |bytes: &[u8]| -> u32 {
+            let mut b = [0u8; 4];
+            b[..bytes.len().min(4)].copy_from_slice(&bytes[..bytes.len().min(4)]);
+            u32::from_le_bytes(b)
+        };
+        // The values by sub-index: (sub-index, value).
+        let mut count = None;
+        let mut entries: Vec<(usize, u32)> = Vec::new();
+        if transfer.complete_access {
+            // Sub-index 0 takes 16 bits (a byte and a padding byte), the
+            // entries follow (ETG.1000.6 §5.6.2.1.1: complete access).
+            let mut rest = &data[..];
+            let mut sub = usize::from(transfer.sub_index);
+            if sub == 0 {
+                let Some(&n) = rest.first() else {
+                    return false;
+                };
+                count = Some(n);
+                rest = rest.get(2..).unwrap_or(&[]);
+                sub = 1;
+            }
+            for chunk in rest.chunks_exact(width) {
+                if sub > MAX_ENTRIES {
+                    break;
+                }
+                entries.push((sub, word(chunk)));
+                sub += 1;
+            }
+        } else if transfer.sub_index == 0 {
+            let Some(&n) = data.first() else {
+                return false;
+            };
+            count = Some(n);
+        } else if usize::from(transfer.sub_index) <= MAX_ENTRIES && data.len() >= width {
+            entries.push((usize::from(transfer.sub_index), word(&data[..width])));
+        } else {
+            return false;
+        }
+        if assignment {
+            let slot = &mut self.assignment[usize::from(index - 0x1C10)];
+            let (n, pdos) = slot.get_or_insert_with(|| (0, Vec::new()));
+            for (sub, value) in entries {
+                if pdos.len() < sub {
+                    pdos.resize(sub, 0);
+                }
+                pdos[sub - 1] = value as u16;
+            }
+            if let Some(c) = count {
+                *n = c;
+            }
+        } else {
+            let at = match self.mappings.iter().position(|m| m.0 == index) {
+                Some(at) => at,
+                None => {
+                    self.mappings.push((index, 0, Vec::new()));
+                    self.mappings.len() - 1
+                }
+            };
+            let (_, n, raw) = &mut self.mappings[at];
+            for (sub, value) in entries {
+                if raw.len() < sub {
+                    raw.resize(sub, 0);
+                }
+                raw[sub - 1] = value;
+            }
+            if let Some(c) = count {
+                *n = c;
+            }
+        }
+        true
+    }
+
+    /// The PDOs assigned to sync manager `sm`, `None` when the capture
+    /// did not show its assignment.
+    fn assigned(&self, sm: usize) -> Option<&[u16]> {
+        let (n, pdos) = self.assignment.get(sm)?.as_ref()?;
+        Some(&pdos[..usize::from(*n).min(pdos.len())])
+    }
+
+    /// The entries of mapping object `index`, `None` when not shown.
+    fn mapping(&self, index: u16) -> Option<&[u32]> {
+        let (_, n, raw) = self.mappings.iter().find(|m| m.0 == index)?;
+        Some(&raw[..usize::from(*n).min(raw.len())])
+    }
+}
+
+/// Append to `out` the bytes of `data` the transfer still expects.
+fn take(out: &mut Vec<u8>, data: &[u8], size: Option<usize>) {
+    let room = size
+        .unwrap_or(MAX_OBJECT_BYTES)
+        .min(MAX_OBJECT_BYTES)
+        .saturating_sub(out.len());
+    out.extend_from_slice(&data[..data.len().min(room)]);
+}
+
+/// A segment's data: all the bytes after the command byte when the
+/// mailbox holds more than the 7 of CiA 301's segment, else 7 less the
+/// unused count in bits 1–3.
+fn segment(command: u8, data: &[u8]) -> &[u8] {
+    if data.len() > 7 {
+        return data;
+    }
+    let unused = usize::from((command >> 1) & 0x07);
+    &data[..data.len().min(7 - unused.min(7))]
+}
+
+/// One byte area of the image: a sync manager's (or, where none is known
+/// there, an FMMU's own range).
+#[derive(Debug, Clone)]
+struct Segment {
+    output: bool,
+    /// The sync manager, where one holds it.
+    sm: Option<usize>,
+    physical: u16,
+    len: u16,
+    /// Where it starts in the outputs or the inputs image.
+    offset: usize,
+}
+
+/// A logical range an FMMU maps onto a segment.
+#[derive(Debug, Clone, Copy)]
+struct Area {
+    logical: u32,
+    len: u32,
+    segment: usize,
+    /// Where the range starts in its segment.
+    within: usize,
+}
+
+/// A PDO placed in the image.
+#[derive(Debug, Clone)]
+struct Piece {
+    /// Its first bit in the image.
+    bit: usize,
+    layout: PdoLayout,
+    /// Its bits.
+    bits: usize,
+    names: Vec<Cow<'static, str>>,
+}
+
+/// How one slave's image is cut from cyclic datagrams, worked out once
+/// per configuration.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Plan {
+    segments: Vec<Segment>,
+    areas: Vec<Area>,
+    /// FMMUs of register bits (a sync manager's status): counted in the
+    /// working counter, not part of the image.
+    bit_reads: Vec<(u32, u32)>,
+    outputs_len: usize,
+    inputs_len: usize,
+    outputs: Vec<Piece>,
+    inputs: Vec<Piece>,
+    /// PDOs that do not fit in their sync manager: sync manager, PDO.
+    pub(super) too_long: Vec<(u8, u16)>,
+}
+
+impl Plan {
+    /// Work out the plan of a slave from its configuration.
+    pub(super) fn new(
+        fmmus: &[Option<Fmmu>; UNITS],
+        sync_managers: &[Option<SyncManager>; UNITS],
+        coe: &CoeObjects,
+        given: Option<&SlaveConfig>,
+    ) -> Self {
+        let mut plan = Plan::default();
+        for fmmu in fmmus.iter().flatten().filter(|f| f.active) {
+            let Some((start, end)) = fmmu.logical_range() else {
+                continue;
+            };
+            if !fmmu.whole_bytes() {
+                if fmmu.reads() {
+                    plan.bit_reads.push((start, end));
+                }
+                continue;
+            }
+            let sm = sync_managers.iter().enumerate().find_map(|(n, sm)| {
+                let sm = (*sm)?;
+                (sm.mode() == SyncManagerMode::Buffered && sm.len > 0 && sm.holds(fmmu.physical))
+                    .then_some((n, sm))
+            });
+            let (segment, within) = match sm {
+                Some((n, sm)) => {
+                    let at = match plan.segments.iter().position(|s| s.sm == Some(n)) {
+                        Some(at) => at,
+                        None => {
+                            plan.segments.push(Segment {
+                                output: sm.written_by_master(),
+                                sm: Some(n),
+                                physical: sm.start,
+                                len: sm.len,
+                                offset: 0,
+                            });
+                            plan.segments.len() - 1
+                        }
+                    };
+                    (at, usize::from(fmmu.physical - sm.start))
+                }
+                None => {
+                    plan.segments.push(Segment {
+                        output: fmmu.writes() && !fmmu.reads(),
+                        sm: None,
+                        physical: fmmu.physical,
+                        len: fmmu.len,
+                        offset: 0,
+                    });
+                    (plan.segments.len() - 1, 0)
+                }
+            };
+            let room = usize::from(plan.segments[segment].len).saturating_sub(within);
+            plan.areas.push(Area {
+                logical: start,
+                len: (end - start).min(room as u32),
+                segment,
+                within,
+            });
+        }
+        // Segments in sync-manager order, outputs and inputs apart.
+        let mut order: Vec<usize> = (0..plan.segments.len()).collect();
+        order.sort_by_key(|&i| {
+            (
+                plan.segments[i].sm.unwrap_or(UNITS),
+                plan.segments[i].physical,
+            )
+        });
+        for i in order {
+            let segment = &mut plan.segments[i];
+            let len = usize::from(segment.len);
+            let image = if segment.output {
+                &mut plan.outputs_len
+            } else {
+                &mut plan.inputs_len
+            };
+            segment.offset = *image;
+            *image += len;
+            let Some(sm) = segment.sm else { continue };
+            let pdos = pdos_of(sm, coe, given);
+            let pieces = if segment.output {
+                &mut plan.outputs
+            } else {
+                &mut plan.inputs
+            };
+            let mut bit = segment.offset * 8;
+            let end = (segment.offset + len) * 8;
+            for (index, entries) in pdos {
+                let mut mapping = PdoMapping::new();
+                let mut names = Vec::new();
+                let mut types = Vec::new();
+                for (entry, name, data_type) in entries {
+                    // A gap (index 0, EtherCAT's padding) is a dummy entry
+                    // of its length: skipped when read.
+                    let entry = if entry.index() == 0 {
+                        MappingEntry::new(GAP, 0, entry.bits())
+                    } else {
+                        entry
+                    };
+                    if mapping.push(entry).is_err() {
+                        break;
+                    }
+                    if !entry.is_dummy() {
+                        names.push(name.unwrap_or_else(|| entry_name(entry)));
+                    }
+                    types.push((entry, data_type));
+                }
+                let bits = usize::from(mapping.bit_len());
+                if bit + bits > end {
+                    // A mapping longer than the sync manager: not read
+                    // (docs/ethercat.md#process-data).
+                    plan.too_long.push((sm as u8, index));
+                    break;
+                }
+                let lookup = |e: MappingEntry| {
+                    types
+                        .iter()
+                        .find(|(t, _)| *t == e)
+                        .and_then(|(_, d)| *d)
+                        .or_else(|| object_data_type(e.index(), e.sub_index(), None))
+                };
+                pieces.push(Piece {
+                    bit,
+                    layout: PdoLayout::new(&mapping, lookup),
+                    bits,
+                    names,
+                });
+                bit += bits;
+            }
+        }
+        plan
+    }
+
+    /// Return whether the slave has any FMMU in the range.
+    pub(super) fn touches(&self, start: u32, end: u32) -> bool {
+        self.areas
+            .iter()
+            .any(|a| a.logical < end && start < a.logical + a.len)
+            || self.bit_reads.iter().any(|&(s, e)| s < end && start < e)
+    }
+
+    /// The slave's share of a datagram's working counter over `[start,
+    /// end)` (ETG.1000.4 §5.4.1.2): a read FMMU there adds 1, a write
+    /// FMMU 1 (LWR) or 2 (LRW), once per slave.
+    pub(super) fn share(&self, command: Command, start: u32, end: u32) -> u16 {
+        let over = |a: &Area| a.logical < end && start < a.logical + a.len;
+        let mut reads = self.bit_reads.iter().any(|&(s, e)| s < end && start < e);
+        let mut writes = false;
+        for area in self.areas.iter().filter(|a| over(a)) {
+            if self.segments[area.segment].output {
+                writes = true;
+            } else {
+                reads = true;
+            }
+        }
+        match command {
+            Command::Lrw => u16::from(reads) + 2 * u16::from(writes),
+            Command::Lrd => u16::from(reads),
+            Command::Lwr => u16::from(writes),
+            _ => 0,
+        }
+    }
+
+    /// Copy the slave's bytes of a datagram at `logical` into its images:
+    /// outputs from `sent`, inputs from `returned`. Return how many bytes
+    /// of each image the datagram held.
+    pub(super) fn cut(
+        &self,
+        logical: u32,
+        sent: &[u8],
+        returned: &[u8],
+        outputs: &mut Vec<u8>,
+        inputs: &mut Vec<u8>,
+    ) -> (usize, usize) {
+        outputs.resize(self.outputs_len, 0);
+        inputs.resize(self.inputs_len, 0);
+        let end = logical.saturating_add(returned.len() as u32);
+        let mut held = (0, 0);
+        for area in &self.areas {
+            let from = area.logical.max(logical);
+            let to = (area.logical + area.len).min(end);
+            if from >= to {
+                continue;
+            }
+            let segment = &self.segments[area.segment];
+            let at = segment.offset + area.within + (from - area.logical) as usize;
+            let n = (to - from) as usize;
+            let source = (from - logical) as usize;
+            let (image, bytes, count) = if segment.output {
+                (&mut *outputs, sent, &mut held.0)
+            } else {
+                (&mut *inputs, returned, &mut held.1)
+            };
+            if let (Some(dst), Some(src)) =
+                (image.get_mut(at..at + n), bytes.get(source..source + n))
+            {
+                dst.copy_from_slice(src);
+                *count += n;
+            }
+        }
+        held
+    }
+
+    /// The images' lengths: outputs, inputs.
+    pub(super) const fn lens(&self) -> (usize, usize) {
+        (self.outputs_len, self.inputs_len)
+    }
+
+    /// Return whether any PDO is known.
+    pub(super) fn has_signals(&self) -> bool {
+        !self.outputs.is_empty() || !self.inputs.is_empty()
+    }
+
+    /// Call `f` with each signal of an image (`output` picks which) and
+    /// its name, in mapping order.
+    pub(super) fn for_each_signal(
+        &self,
+        output: bool,
+        image: &[u8],
+        mut f: impl FnMut(&str, Result<Signal, CodecError>),
+    ) {
+        let pieces = if output { &self.outputs } else { &self.inputs };
+        let mut shifted = Vec::new();
+        for piece in pieces {
+            let bytes = if piece.bit % 8 == 0 {
+                image.get(piece.bit / 8..).unwrap_or(&[])
+            } else {
+                shift(image, piece.bit, piece.bits, &mut shifted);
+                &shifted
+            };
+            for (name, signal) in piece.names.iter().zip(piece.layout.unpack(bytes)) {
+                f(name, signal.map_err(CodecError::from));
+            }
+        }
+    }
+}
+
+/// Copy `bits` bits of `image` from bit `from` into `out`, from its bit 0.
+fn shift(image: &[u8], from: usize, bits: usize, out: &mut Vec<u8>) {
+    out.clear();
+    out.resize(bits.div_ceil(8), 0);
+    for i in 0..bits {
+        let at = from + i;
+        let Some(byte) = image.get(at / 8) else {
+            out.truncate(i / 8);
+            return;
+        };
+        if byte >> (at % 8) & 1 != 0 {
+            out[i / 8] |= 1 << (i % 8);
+        }
+    }
+}
+
+/// An entry's name: the object table's, else `0x6041:00`.
+fn entry_name(entry: MappingEntry) -> Cow<'static, str> {
+    match object_name(entry.index(), None) {
+        Some(name) if entry.sub_index() == 0 => Cow::Borrowed(name),
+        Some(name) => Cow::Owned(format!("{name}.{:02X}", entry.sub_index())),
+        None => Cow::Owned(format!("0x{:04X}:{:02X}", entry.index(), entry.sub_index())),
+    }
+}
+
+/// An entry with the name and type a configuration gives it.
+type Entry = (MappingEntry, Option<Cow<'static, str>>, Option<DataType>);
+
+/// The PDOs of sync manager `sm`, in order, each with its entries: from
+/// the capture's CoE transfers first, then a given configuration.
+fn pdos_of(sm: usize, coe: &CoeObjects, given: Option<&SlaveConfig>) -> Vec<(u16, Vec<Entry>)> {
+    let from_config = |index: u16| -> Option<Vec<Entry>> {
+        let pdo = given?.pdos.iter().find(|p| p.index == index)?;
+        Some(
+            pdo.entries
+                .iter()
+                .map(|e| (e.entry, e.name.clone().map(Cow::Owned), e.data_type))
+                .collect(),
+        )
+    };
+    let assigned: Vec<u16> = match coe.assigned(sm) {
+        Some(pdos) => pdos.to_vec(),
+        None => {
+            match given.and_then(|g| g.assignment.iter().find(|(n, _)| usize::from(*n) == sm)) {
+                Some((_, pdos)) => pdos.clone(),
+                None => return Vec::new(),
+            }
+        }
+    };
+    assigned
+        .into_iter()
+        .filter_map(|index| {
+            let entries = match coe.mapping(index) {
+                Some(raw) => {
+                    // Names and types from the configuration, where it has
+                    // the same entries.
+                    let named = from_config(index).unwrap_or_default();
+                    raw.iter()
+                        .map(|&r| {
+                            let entry = MappingEntry::from_u32(r);
+                            let known = named.iter().find(|(e, _, _)| *e == entry);
+                            (
+                                entry,
+                                known.and_then(|k| k.1.clone()),
+                                known.and_then(|k| k.2),
+                            )
+                        })
+                        .collect()
+                }
+                None => from_config(index)?,
+            };
+            Some((index, entries))
+        })
+        .collect()
+}
