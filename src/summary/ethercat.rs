@@ -12,7 +12,7 @@ use serde::{Serialize, Serializer};
 use crate::can::{BusName, EthercatPacket, Timestamp};
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
-    AlRegister, Counts, FrameCopy, Meaning, Session, SlaveRef, ERROR_COUNTERS_LEN,
+    AlRegister, Counts, FrameCopy, Meaning, ProcessData, Session, SlaveRef, ERROR_COUNTERS_LEN,
 };
 use crate::ethercat::{
     AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, MailboxType,
@@ -21,6 +21,9 @@ use crate::ethercat::{
 use crate::logs::Position;
 use crate::profiles::Profile;
 
+use super::cia402::{Cia402Timeline, TimelineBuilder};
+use super::emcy::EmcySeen;
+use super::servo::ServoTimeline;
 use super::values::{Iface, Ts};
 
 /// The AL state changes a slave record keeps; more are counted.
@@ -123,6 +126,18 @@ pub struct SlaveSummary {
     /// Every rise of an error counter (a fall is a reset: not kept; at most
     /// [`MAX_AL_CHANGES`]).
     pub counter_rises: Vec<CounterRise>,
+    /// Cycles of process data read for the slave (returned cyclic
+    /// datagrams that hold its images).
+    pub process_cycles: u64,
+    /// Of them, cycles whose inputs the working counter left unconfirmed.
+    pub process_unconfirmed: u64,
+    /// The first of them: packet and working counter, expected count.
+    pub first_unconfirmed: Option<(u64, u16, Option<u16>)>,
+    /// The CiA 402 timeline of a slave whose PDOs map 6041h
+    /// (docs/summary.md#cia402, the same as a CAN drive's).
+    pub cia402: Option<Cia402Timeline>,
+    /// The servo timeline of a slave read as a servo (docs/ethercat.md#servo).
+    pub servo: Option<ServoTimeline>,
 }
 
 /// A CoE SDO abort, from either side.
@@ -249,6 +264,11 @@ impl SlaveSummary {
             dl_changes: Vec::new(),
             counters_last: [None; ERROR_COUNTERS_LEN],
             counter_rises: Vec::new(),
+            process_cycles: 0,
+            process_unconfirmed: 0,
+            first_unconfirmed: None,
+            cia402: None,
+            servo: None,
         }
     }
 }
@@ -380,6 +400,8 @@ struct Port {
     slaves: Vec<SlaveSummary>,
     /// Per slave (same index): the open SDO transfer and the latencies.
     sdo: Vec<(Option<OpenSdo>, Histogram)>,
+    /// Per slave (same index): the CiA 402 timeline of a drive.
+    drives: Vec<Option<TimelineBuilder>>,
     streams: Vec<Stream>,
     streams_dropped: u64,
 }
@@ -413,6 +435,7 @@ impl EthercatSummarizer {
                     name,
                     slaves: Vec::new(),
                     sdo: Vec::new(),
+                    drives: Vec::new(),
                     streams: Vec::new(),
                     streams_dropped: 0,
                 });
@@ -434,6 +457,10 @@ impl EthercatSummarizer {
             }
             let sent_adp = packet.sent_adp(at, &datagram);
             port.stream(packet.copy, packet.timestamp, number, &datagram, sent_adp);
+            let timestamp = packet.timestamp;
+            self.session.process_data(&packet, at, &datagram, |data| {
+                port.process_data(number, timestamp, data);
+            });
         }
     }
 
@@ -450,9 +477,12 @@ impl EthercatSummarizer {
                 counts: if at == 0 { counts } else { Counts::default() },
                 streams_dropped: port.streams_dropped,
             });
-            for (mut slave, (_, latencies)) in port.slaves.into_iter().zip(port.sdo) {
+            for ((mut slave, (_, latencies)), drive) in
+                port.slaves.into_iter().zip(port.sdo).zip(port.drives)
+            {
                 slave.sdo_latency_median_ns = latencies.quantile(0.5);
                 slave.sdo_latency_max_ns = latencies.max;
+                slave.cia402 = drive.map(TimelineBuilder::finish);
                 summary.slaves.push(slave);
             }
             for stream in port.streams {
@@ -532,6 +562,7 @@ impl Port {
             None => {
                 self.slaves.push(SlaveSummary::new(self.name.clone()));
                 self.sdo.push((None, Histogram::new()));
+                self.drives.push(None);
                 self.slaves.len() - 1
             }
         };
@@ -543,6 +574,40 @@ impl Port {
             found.position = slave.position;
         }
         Some(at)
+    }
+
+    /// One slave's process data in one cycle: its counts, its CiA 402
+    /// timeline (faults with the slave's last CoE emergency before them)
+    /// and its servo timeline.
+    fn process_data(&mut self, packet: u64, timestamp: Option<Timestamp>, data: &ProcessData<'_>) {
+        let Some(slave) = data.slave else { return };
+        let Some(at) = self.slave_at(slave) else {
+            return;
+        };
+        let s = &mut self.slaves[at];
+        s.process_cycles += 1;
+        if !data.confirmed {
+            s.process_unconfirmed += 1;
+            s.first_unconfirmed
+                .get_or_insert((packet, data.wkc, data.expected_wkc));
+        }
+        if let Some(reading) = data.cia402.filter(|r| r.state.is_some()) {
+            let last_error = s.emergencies.last().map(|e| EmcySeen {
+                line: e.packet,
+                timestamp: e.timestamp,
+                code: e.emcy.code,
+                register: e.emcy.register,
+                manufacturer: e.emcy.manufacturer,
+            });
+            self.drives[at]
+                .get_or_insert_with(TimelineBuilder::default)
+                .observe(packet, timestamp, reading, last_error);
+        }
+        if let Some(servo) = &data.servo {
+            s.servo
+                .get_or_insert_with(ServoTimeline::default)
+                .observe(packet, timestamp, servo);
+        }
     }
 
     fn meaning(&mut self, packet: u64, timestamp: Option<Timestamp>, meaning: Meaning<'_>) {
@@ -1056,7 +1121,17 @@ pub(super) fn slave_entries<M: SerializeMap>(
     let dl: Vec<_> = s.dl_changes.iter().map(DlJson).collect();
     map.serialize_entry("dl_status_changes", &dl)?;
     let rises: Vec<_> = s.counter_rises.iter().map(RiseJson).collect();
-    map.serialize_entry("error_counter_rises", &rises)
+    map.serialize_entry("error_counter_rises", &rises)?;
+    map.serialize_entry("process_cycles", &s.process_cycles)?;
+    map.serialize_entry("process_unconfirmed", &s.process_unconfirmed)?;
+    map.serialize_entry(
+        "first_unconfirmed",
+        &s.first_unconfirmed.map(|(packet, wkc, expected)| {
+            serde_json::json!({"packet": packet, "wkc": wkc, "expected_wkc": expected})
+        }),
+    )?;
+    map.serialize_entry("cia402", &s.cia402)?;
+    map.serialize_entry("servo", &s.servo)
 }
 
 /// An SDO abort as JSON: `{"packet", "ts", "index", "subindex",
@@ -1315,7 +1390,28 @@ impl fmt::Display for SlaveSummary {
                 self.counter_rises.len() - 4
             )?;
         }
-        writeln!(f)
+        if self.process_cycles > 0 {
+            write!(f, "; {} cycles of process data", self.process_cycles)?;
+            if let Some((packet, wkc, expected)) = self.first_unconfirmed {
+                write!(
+                    f,
+                    ", {} with inputs unconfirmed, first at packet {packet} (working counter {wkc}",
+                    self.process_unconfirmed
+                )?;
+                if let Some(expected) = expected {
+                    write!(f, " of {expected}")?;
+                }
+                f.write_str(")")?;
+            }
+        }
+        writeln!(f)?;
+        if let Some(cia402) = &self.cia402 {
+            fmt::Display::fmt(cia402, f)?;
+        }
+        if let Some(servo) = &self.servo {
+            fmt::Display::fmt(servo, f)?;
+        }
+        Ok(())
     }
 }
 

@@ -52,6 +52,7 @@ mod json;
 mod listed;
 mod record;
 mod sdo;
+mod servo;
 mod severity;
 mod summarizer;
 mod text;
@@ -74,6 +75,7 @@ pub use heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummar
 pub use listed::{Listed, ListedIter};
 pub use record::{BusSummary, FrameCounts, NodeSummary, Summary, SummaryItem, SummaryRecord};
 pub use sdo::{LatencyStats, SdoAbort, SdoSummary};
+pub use servo::{ServoChange, ServoEvent, ServoTimeline};
 pub use severity::Severity;
 pub use summarizer::Summarizer;
 pub use verdict::{Verdict, CAUSE_WINDOW};
