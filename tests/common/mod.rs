@@ -142,6 +142,17 @@ impl Run {
                             };
                             record.append_json(&mut out, several.then_some(file.as_str()));
                         }
+                        // docs/ethercat.md#process-data: a record per slave
+                        // of a returned cyclic datagram.
+                        ethercat.process_data(&packet, at, &datagram, |data| {
+                            let record = motionwire::decoder::ethercat::ProcessRecord {
+                                packet: &packet,
+                                number: at + 1,
+                                data,
+                            };
+                            record.append_json(&mut out, several.then_some(file.as_str()));
+                            record.append_servo_json(&mut out, several.then_some(file.as_str()));
+                        });
                     }
                 }
             }

@@ -11,7 +11,7 @@
 use std::borrow::Cow;
 
 use crate::canopen::{
-    object_data_type, object_name, DataType, MappingEntry, PdoLayout, PdoMapping, Signal,
+    object_data_type, object_name, DataType, MappingEntry, ObjectSet, PdoLayout, PdoMapping, Signal,
 };
 use crate::ethercat::{CoeSdo, Command, Fmmu, SyncManager, SyncManagerMode};
 use crate::CodecError;
@@ -416,6 +416,9 @@ impl Plan {
                 within,
             });
         }
+        // A slave whose PDOs map the statusword is a CiA 402 drive: its
+        // objects are named and typed by the drive profile.
+        let set = maps_statusword(coe, given).then_some(ObjectSet::Drive);
         // Segments in sync-manager order, outputs and inputs apart.
         let mut order: Vec<usize> = (0..plan.segments.len()).collect();
         order.sort_by_key(|&i| {
@@ -459,7 +462,7 @@ impl Plan {
                         break;
                     }
                     if !entry.is_dummy() {
-                        names.push(name.unwrap_or_else(|| entry_name(entry)));
+                        names.push(name.unwrap_or_else(|| entry_name(entry, set)));
                     }
                     types.push((entry, data_type));
                 }
@@ -475,7 +478,7 @@ impl Plan {
                         .iter()
                         .find(|(t, _)| *t == e)
                         .and_then(|(_, d)| *d)
-                        .or_else(|| object_data_type(e.index(), e.sub_index(), None))
+                        .or_else(|| object_data_type(e.index(), e.sub_index(), set))
                 };
                 pieces.push(Piece {
                     bit,
@@ -609,13 +612,27 @@ fn shift(image: &[u8], from: usize, bits: usize, out: &mut Vec<u8>) {
     }
 }
 
-/// An entry's name: the object table's, else `0x6041:00`.
-fn entry_name(entry: MappingEntry) -> Cow<'static, str> {
-    match object_name(entry.index(), None) {
+/// An entry's name: the object table's (the drive profile's for a
+/// drive), else `0x6041:00`.
+fn entry_name(entry: MappingEntry, set: Option<ObjectSet>) -> Cow<'static, str> {
+    match object_name(entry.index(), set) {
         Some(name) if entry.sub_index() == 0 => Cow::Borrowed(name),
         Some(name) => Cow::Owned(format!("{name}.{:02X}", entry.sub_index())),
         None => Cow::Owned(format!("0x{:04X}:{:02X}", entry.index(), entry.sub_index())),
     }
+}
+
+/// Whether any PDO the slave's transfers or configuration show maps the
+/// statusword 6041h.
+fn maps_statusword(coe: &CoeObjects, given: Option<&SlaveConfig>) -> bool {
+    coe.mappings
+        .iter()
+        .any(|(_, _, raw)| raw.iter().any(|&r| r >> 16 == 0x6041))
+        || given.is_some_and(|g| {
+            g.pdos
+                .iter()
+                .any(|p| p.entries.iter().any(|e| e.entry.index() == 0x6041))
+        })
 }
 
 /// An entry with the name and type a configuration gives it.
@@ -667,4 +684,222 @@ fn pdos_of(sm: usize, coe: &CoeObjects, given: Option<&SlaveConfig>) -> Vec<(u16
             Some((index, entries))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ethercat::CoeSdo;
+
+    /// Feed one SDO message (command byte onwards).
+    fn feed(coe: &mut CoeObjects, request: bool, bytes: &[u8]) -> bool {
+        coe.message(request, &CoeSdo::parse(bytes).unwrap())
+    }
+
+    /// An expedited download of `value` (`len` bytes) to index.sub, and
+    /// its response.
+    fn expedited(coe: &mut CoeObjects, index: u16, sub: u8, value: u32, len: usize) {
+        let n = (4 - len) as u8;
+        let i = index.to_le_bytes();
+        let v = value.to_le_bytes();
+        let request = [0x23 | n << 2, i[0], i[1], sub, v[0], v[1], v[2], v[3]];
+        assert!(!feed(coe, true, &request));
+        assert!(feed(coe, false, &[0x60, i[0], i[1], sub, 0, 0, 0, 0]));
+    }
+
+    #[test]
+    fn expedited_downloads_build_assignment_and_mapping() {
+        let mut coe = CoeObjects::default();
+        expedited(&mut coe, 0x1C12, 0, 0, 1);
+        expedited(&mut coe, 0x1600, 0, 0, 1);
+        expedited(&mut coe, 0x1600, 1, 0x6040_0010, 4);
+        expedited(&mut coe, 0x1600, 2, 0x607A_0020, 4);
+        expedited(&mut coe, 0x1600, 0, 2, 1);
+        expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
+        expedited(&mut coe, 0x1C12, 0, 1, 1);
+        assert_eq!(coe.assigned(2), Some(&[0x1600][..]));
+        assert_eq!(coe.mapping(0x1600), Some(&[0x6040_0010, 0x607A_0020][..]));
+        // Another object changes nothing; an abort closes the transfer.
+        let request = [0x2F, 0x60, 0x60, 0, 8, 0, 0, 0];
+        assert!(!feed(&mut coe, true, &request));
+        assert!(!feed(&mut coe, false, &[0x60, 0x60, 0x60, 0, 0, 0, 0, 0]));
+        assert!(!feed(&mut coe, true, &[0x23, 0x00, 0x16, 1, 0, 0, 0, 0]));
+        assert!(!feed(
+            &mut coe,
+            false,
+            &[0x80, 0x00, 0x16, 1, 0, 0, 0x02, 0x06]
+        ));
+        assert_eq!(coe.mapping(0x1600), Some(&[0x6040_0010, 0x607A_0020][..]));
+    }
+
+    #[test]
+    fn complete_access_download_and_upload() {
+        let mut coe = CoeObjects::default();
+        // TwinCAT: 0x1A00 complete access from sub-index 0: count, pad,
+        // three entries; normal transfer with its size.
+        let mut request = vec![0x31, 0x00, 0x1A, 0x00, 14, 0, 0, 0, 3, 0];
+        for entry in [0x6041_0010u32, 0x6064_0020, 0x6061_0008] {
+            request.extend(entry.to_le_bytes());
+        }
+        assert!(!feed(&mut coe, true, &request));
+        assert!(feed(&mut coe, false, &[0x60, 0x00, 0x1A, 0, 0, 0, 0, 0]));
+        assert_eq!(
+            coe.mapping(0x1A00),
+            Some(&[0x6041_0010, 0x6064_0020, 0x6061_0008][..])
+        );
+        // SOEM: 0x1C13 read back by a complete-access upload.
+        assert!(!feed(&mut coe, true, &[0x50, 0x13, 0x1C, 0, 0, 0, 0, 0]));
+        let response = [0x41, 0x13, 0x1C, 0, 4, 0, 0, 0, 1, 0, 0x00, 0x1A];
+        assert!(feed(&mut coe, false, &response));
+        assert_eq!(coe.assigned(3), Some(&[0x1A00][..]));
+    }
+
+    #[test]
+    fn segmented_upload() {
+        let mut coe = CoeObjects::default();
+        assert!(!feed(&mut coe, true, &[0x40, 0x00, 0x1A, 1, 0, 0, 0, 0]));
+        // Normal response, size 4, no data in it; one segment with 4 bytes.
+        assert!(!feed(&mut coe, false, &[0x41, 0x00, 0x1A, 1, 4, 0, 0, 0]));
+        assert!(!feed(&mut coe, true, &[0x60, 0, 0, 0, 0, 0, 0, 0]));
+        let segment = [0x07, 0x10, 0x00, 0x41, 0x60, 0, 0, 0];
+        assert!(feed(&mut coe, false, &segment));
+        // Sub-index 1 is kept; the count (sub-index 0) is not known yet.
+        assert_eq!(coe.mapping(0x1A00), Some(&[][..]));
+        expedited(&mut coe, 0x1A00, 0, 1, 1);
+        assert_eq!(coe.mapping(0x1A00), Some(&[0x6041_0010][..]));
+    }
+
+    /// A plan of one drive: 7 output bytes at logical 10, 7 input bytes
+    /// at logical 64, PDOs 0x1600/0x1A00, and SM1's status bit mapped.
+    fn drive_plan() -> Plan {
+        let mut fmmus = [None; UNITS];
+        let mut sms = [None; UNITS];
+        let fmmu = |logical, len, physical, kind| Fmmu {
+            logical,
+            len,
+            logical_start_bit: 0,
+            logical_end_bit: 7,
+            physical,
+            physical_start_bit: 0,
+            kind,
+            active: true,
+        };
+        fmmus[0] = Some(fmmu(10, 7, 0x1100, 2));
+        fmmus[1] = Some(fmmu(64, 7, 0x1180, 1));
+        fmmus[2] = Some(Fmmu {
+            logical_start_bit: 0,
+            logical_end_bit: 0,
+            physical_start_bit: 3,
+            ..fmmu(78, 1, 0x080D, 1)
+        });
+        let sm = |start, len, control| SyncManager {
+            start,
+            len,
+            control,
+            status: 0,
+            activate: 1,
+        };
+        sms[0] = Some(sm(0x1000, 128, 0x26));
+        sms[1] = Some(sm(0x1080, 128, 0x22));
+        sms[2] = Some(sm(0x1100, 7, 0x64));
+        sms[3] = Some(sm(0x1180, 7, 0x20));
+        let mut coe = CoeObjects::default();
+        for (index, entries) in [
+            (0x1600, [0x6040_0010u32, 0x607A_0020, 0x6060_0008]),
+            (0x1A00, [0x6041_0010, 0x6064_0020, 0x6061_0008]),
+        ] {
+            for (sub, entry) in entries.into_iter().enumerate() {
+                expedited(&mut coe, index, sub as u8 + 1, entry, 4);
+            }
+            expedited(&mut coe, index, 0, 3, 1);
+        }
+        expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
+        expedited(&mut coe, 0x1C12, 0, 1, 1);
+        expedited(&mut coe, 0x1C13, 1, 0x1A00, 2);
+        expedited(&mut coe, 0x1C13, 0, 1, 1);
+        Plan::new(&fmmus, &sms, &coe, None)
+    }
+
+    #[test]
+    fn cut_and_share() {
+        let plan = drive_plan();
+        assert_eq!(plan.lens(), (7, 7));
+        assert!(plan.touches(0, 79) && !plan.touches(17, 64));
+        // Reads (inputs and the status bit) and writes: 3 in an LRW.
+        assert_eq!(plan.share(Command::Lrw, 0, 79), 3);
+        assert_eq!(plan.share(Command::Lrd, 0, 79), 1);
+        assert_eq!(plan.share(Command::Lwr, 0, 79), 1);
+        assert_eq!(plan.share(Command::Lrw, 64, 79), 1);
+        let mut sent = [0u8; 79];
+        let mut returned = [0u8; 79];
+        sent[10..17].copy_from_slice(&[0x0F, 0, 0x10, 0x27, 0, 0, 8]);
+        // The sent copy carries last cycle's inputs; the returned one
+        // today's.
+        sent[64..71].copy_from_slice(&[0x33, 0x02, 0, 0, 0, 0, 8]);
+        returned[..].copy_from_slice(&sent);
+        returned[64..71].copy_from_slice(&[0x37, 0x02, 0x10, 0x27, 0, 0, 8]);
+        let (mut outputs, mut inputs) = (Vec::new(), Vec::new());
+        assert_eq!(
+            plan.cut(0, &sent, &returned, &mut outputs, &mut inputs),
+            (7, 7)
+        );
+        assert_eq!(outputs, [0x0F, 0, 0x10, 0x27, 0, 0, 8]);
+        assert_eq!(inputs, [0x37, 0x02, 0x10, 0x27, 0, 0, 8]);
+        let mut named = Vec::new();
+        plan.for_each_signal(false, &inputs, |name, signal| {
+            named.push((name.to_string(), signal.unwrap().value));
+        });
+        assert_eq!(named.len(), 3);
+        assert_eq!(named[0].0, "Statusword");
+        assert_eq!(named[0].1, crate::canopen::Value::Unsigned(0x0237));
+        assert_eq!(named[1].1, crate::canopen::Value::Signed(10_000));
+        // A datagram that holds only part of the inputs.
+        assert_eq!(
+            plan.cut(0, &sent[..66], &returned[..66], &mut outputs, &mut inputs),
+            (7, 2)
+        );
+    }
+
+    #[test]
+    fn a_mapping_longer_than_its_sync_manager_is_not_read() {
+        let mut fmmus = [None; UNITS];
+        let mut sms = [None; UNITS];
+        fmmus[0] = Some(Fmmu {
+            logical: 0,
+            len: 2,
+            logical_start_bit: 0,
+            logical_end_bit: 7,
+            physical: 0x1100,
+            physical_start_bit: 0,
+            kind: 2,
+            active: true,
+        });
+        sms[2] = Some(SyncManager {
+            start: 0x1100,
+            len: 2,
+            control: 0x64,
+            status: 0,
+            activate: 1,
+        });
+        let mut coe = CoeObjects::default();
+        expedited(&mut coe, 0x1600, 1, 0x607A_0020, 4);
+        expedited(&mut coe, 0x1600, 0, 1, 1);
+        expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
+        expedited(&mut coe, 0x1C12, 0, 1, 1);
+        let plan = Plan::new(&fmmus, &sms, &coe, None);
+        assert_eq!(plan.too_long, [(2, 0x1600)]);
+        assert!(!plan.has_signals());
+        assert_eq!(plan.lens(), (2, 0));
+    }
+
+    #[test]
+    fn shift_reads_bits_from_any_offset() {
+        let mut out = Vec::new();
+        shift(&[0b1010_0000, 0b0000_0101], 5, 6, &mut out);
+        assert_eq!(out, [0b0010_1101]);
+        // Past the image: only whole bytes are kept, and reading the entry
+        // says it is truncated.
+        shift(&[0xFF], 4, 12, &mut out);
+        assert!(out.is_empty());
+    }
 }
