@@ -12,6 +12,8 @@ mod common;
 
 #[cfg(feature = "blf")]
 mod blf;
+#[cfg(feature = "logs")]
+mod drives_capture;
 #[cfg(feature = "eds")]
 mod eds;
 #[cfg(all(feature = "decoder", feature = "logs"))]
