@@ -142,10 +142,12 @@ impl ServoTimeline {
         }
         let zero_before = before.map_or(HandshakePhase::Idle, |b| b.zero_pulse);
         if now.zero_pulse != zero_before {
-            let position = now
-                .feedback
+            // The ack came with the last cycle's feedback, and with it the
+            // zero-pulse position.
+            let position = self
+                .last_position
                 .filter(|_| now.zero_pulse == HandshakePhase::Acknowledged)
-                .and_then(|f| match f.actual_position() {
+                .and_then(|p| match p {
                     ActualPosition::Incremental {
                         zero_pulse_position,
                         ..
@@ -264,7 +266,9 @@ impl Serialize for ServoEvent {
 impl Serialize for ServoTimeline {
     /// `{"cycles", "unconfirmed", "events", "event_count", "faults_seen",
     /// "enable_unanswered", "enable", "ready", "first_position",
-    /// "last_position"}` (docs/ethercat.md#servo).
+    /// "last_position"}` (docs/ethercat.md#servo); a position is
+    /// `{"encoder", "position"}`, with `zero_pulse_position` for an
+    /// incremental encoder.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(None)?;
         map.serialize_entry("cycles", &self.cycles)?;
@@ -276,9 +280,33 @@ impl Serialize for ServoTimeline {
         map.serialize_entry("enable_unanswered", &self.enable_unanswered)?;
         map.serialize_entry("enable", &self.last.map(|l| l.enable.name()))?;
         map.serialize_entry("ready", &self.last.and_then(|l| l.ready))?;
-        let raw = |p: Option<ActualPosition>| p.map(|p| p.raw());
-        map.serialize_entry("first_position", &raw(self.first_position))?;
-        map.serialize_entry("last_position", &raw(self.last_position))?;
+        map.serialize_entry("first_position", &self.first_position.map(Position))?;
+        map.serialize_entry("last_position", &self.last_position.map(Position))?;
+        map.end()
+    }
+}
+
+/// An actual position as JSON: `{"encoder": "absolute", "position"}` or
+/// `{"encoder": "incremental", "position", "zero_pulse_position"}`.
+struct Position(ActualPosition);
+
+impl Serialize for Position {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        match self.0 {
+            ActualPosition::Absolute(position) => {
+                map.serialize_entry("encoder", "absolute")?;
+                map.serialize_entry("position", &position)?;
+            }
+            ActualPosition::Incremental {
+                position,
+                zero_pulse_position,
+            } => {
+                map.serialize_entry("encoder", "incremental")?;
+                map.serialize_entry("position", &position)?;
+                map.serialize_entry("zero_pulse_position", &zero_pulse_position)?;
+            }
+        }
         map.end()
     }
 }
@@ -302,6 +330,9 @@ impl fmt::Display for ServoTimeline {
         }
         if self.enable_unanswered > 0 {
             write!(f, "; {} enable edges unanswered", self.enable_unanswered)?;
+        }
+        if let Some(position) = self.last_position {
+            write!(f, "; last ActPos {position}")?;
         }
         writeln!(f)
     }

@@ -14,6 +14,8 @@ mod common;
 mod blf;
 #[cfg(feature = "logs")]
 mod drives_capture;
+#[cfg(all(feature = "decoder", feature = "logs"))]
+mod drives_model;
 #[cfg(feature = "eds")]
 mod eds;
 #[cfg(all(feature = "decoder", feature = "logs"))]

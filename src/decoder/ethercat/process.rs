@@ -6,8 +6,8 @@ use crate::canopen::Signal;
 use crate::decoder::Cia402Reading;
 use crate::servo::{
     servo_ready, Command, EnableHandshake, EnablePhase, ErrorClearHandshake, Feedback,
-    HandshakePhase, ServoControlWord, ServoEnable, ServoReadyMode, ZeroPulseHandshake, COMMAND_LEN,
-    FEEDBACK_LEN,
+    HandshakePhase, ServoControlWord, ServoEnable, ServoReadyMode, ServoStatusWord,
+    ZeroPulseHandshake, COMMAND_LEN, FEEDBACK_LEN,
 };
 use crate::CodecError;
 
@@ -83,6 +83,9 @@ pub(super) struct ServoWatch {
     enable: EnableHandshake,
     clear: ErrorClearHandshake,
     zero: ZeroPulseHandshake,
+    /// The last cycle's control word and the status word that came back
+    /// with it (`None`: unconfirmed).
+    last: Option<(ServoControlWord, Option<ServoStatusWord>)>,
 }
 
 impl ServoWatch {
@@ -92,16 +95,24 @@ impl ServoWatch {
             enable: EnableHandshake::new(),
             clear: ErrorClearHandshake::new(),
             zero: ZeroPulseHandshake::new(),
+            last: None,
         }
     }
 
     /// One cycle: the command on the wire and the feedback that came back
-    /// with it. The NC's decisions (start, cancel) are read from the
-    /// command; the handshakes then step as the NC's do.
+    /// with it. As an NC does each cycle, the handshakes first step on the
+    /// last cycle's control word and the status word it brought back; then
+    /// the NC's decisions (arm, withdraw, request) are read from this
+    /// cycle's command. The phases returned are the NC's as it wrote the
+    /// command.
     pub(super) fn cycle(&mut self, command: &Command, feedback: Option<&Feedback>) -> ServoReading {
+        if let Some((control, Some(status))) = self.last {
+            (self.enable, _) = self.enable.step(control, status);
+            (self.clear, _) = self.clear.step(control, status);
+            (self.zero, _) = self.zero.step(control, status);
+        }
         let control = command.control;
         let se = control.servo_enable();
-        // What the NC decided, as the command shows it.
         let enable = self.enable.phase();
         if se == ServoEnable::ARM
             && matches!(
@@ -137,14 +148,7 @@ impl ServoWatch {
         {
             self.zero = self.zero.start();
         }
-        let mut ready = None;
-        if let Some(feedback) = feedback {
-            let status = feedback.status;
-            (self.enable, _) = self.enable.step(control, status);
-            (self.clear, _) = self.clear.step(control, status);
-            (self.zero, _) = self.zero.step(control, status);
-            ready = Some(servo_ready(self.mode, status, feedback.errors));
-        }
+        self.last = Some((control, feedback.map(|f| f.status)));
         ServoReading {
             command: *command,
             feedback: feedback.copied(),
@@ -152,7 +156,7 @@ impl ServoWatch {
             enable_cycles: self.enable.cycles_in_phase(),
             error_clear: self.clear.phase(),
             zero_pulse: self.zero.phase(),
-            ready,
+            ready: feedback.map(|f| servo_ready(self.mode, f.status, f.errors)),
         }
     }
 }
