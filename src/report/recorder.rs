@@ -516,6 +516,7 @@ fn record(
                 row.mark(MarkKind::ErrorPassive, at, at, Detail::None);
             }
         }
+        SummaryEventKind::Ethercat(_) => {}
     }
 }
 
