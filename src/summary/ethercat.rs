@@ -261,6 +261,22 @@ impl SlaveSummary {
 }
 
 impl StreamSummary {
+    /// Return the stream's command and address as the text writes them:
+    /// `LRW logical 0x00000000`, `FRMW adp 0x1000 ado 0x0910`.
+    #[must_use]
+    pub fn key(&self) -> String {
+        if matches!(self.command, Command::Lrd | Command::Lwr | Command::Lrw) {
+            format!("{} logical {:#010x}", self.command.name(), self.address)
+        } else {
+            format!(
+                "{} adp {:#06x} ado {:#06x}",
+                self.command.name(),
+                self.address & 0xFFFF,
+                self.address >> 16
+            )
+        }
+    }
+
     /// Return whether the capture's clock resolves the cycle: fewer than
     /// half the intervals are 0 (docs/ethercat.md#cycle-health; TwinCAT's
     /// captures are often coarser).
@@ -1510,18 +1526,13 @@ impl fmt::Display for StreamSummary {
     /// 1000.0 µs, p99 1000.0 µs, max 1000.0 µs, jitter 0.0 µs; working
     /// counter 3, 50 mismatches from packet 460 (1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "stream {} {}", self.iface, self.command.name())?;
-        if matches!(self.command, Command::Lrd | Command::Lwr | Command::Lrw) {
-            write!(f, " logical {:#010x}", self.address)?;
-        } else {
-            write!(
-                f,
-                " adp {:#06x} ado {:#06x}",
-                self.address & 0xFFFF,
-                self.address >> 16
-            )?;
-        }
-        write!(f, ": {} frames", self.sent)?;
+        write!(
+            f,
+            "stream {} {}: {} frames",
+            self.iface,
+            self.key(),
+            self.sent
+        )?;
         if self.lost > 0 {
             write!(f, ", {} lost", self.lost)?;
         }
