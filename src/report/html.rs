@@ -6,20 +6,21 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::can::BusName;
-use crate::canopen::{ErrorCode, NodeId};
+use crate::canopen::ErrorCode;
 use crate::profiles::Profile;
 use crate::summary::{
-    Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, Timeouts,
+    Finding, FindingDetail, FindingKind, Listed, NodeSummary, Severity, SlaveSummary,
+    StreamSummary, Timeouts,
 };
 
 use super::layout::{seconds, Axis, Budget, AXIS, LEFT, PLOT, UNIX_FROM, WIDTH};
+use super::markup::slave_name;
 use super::markup::{device, esc, iface_attr};
 use super::recorder::{MarkKind, Recording, RowData};
 use super::series::At;
 use super::svg::{
     axis_ticks, chart, defs, drawn_bands, drawn_marks, legend, mark_text, marks, node_row, rate,
-    Drawn,
+    slave_row, stream_row, Drawn,
 };
 
 /// The most rows of the event table (docs/report.md#tables).
@@ -169,6 +170,9 @@ impl Report {
                     }
                 }
             }
+            for (_, row) in ethercat_rows(r) {
+                rows.push((axis, end, row));
+            }
         }
         rows
     }
@@ -186,7 +190,9 @@ impl Report {
         };
         let count_bands = |px: Option<f64>| -> usize {
             rows.iter()
-                .flat_map(|(axis, end, row)| [(axis, end, &row.nmt), (axis, end, &row.cia402)])
+                .flat_map(|(axis, end, row)| {
+                    [&row.nmt, &row.al, &row.cia402].map(|series| (axis, end, series))
+                })
                 .map(|(axis, end, s)| drawn_bands(axis, s, *end, px).len())
                 .sum()
         };
@@ -307,6 +313,28 @@ impl Report {
             buses.len(),
             esc(&buses.join(", "))
         );
+        for r in &self.recordings {
+            let ethercat = &r.summary.ethercat;
+            for port in &ethercat.ports {
+                let slaves = ethercat
+                    .slaves
+                    .iter()
+                    .filter(|s| s.iface == port.iface)
+                    .count();
+                let streams = ethercat
+                    .streams
+                    .iter()
+                    .filter(|s| s.iface == port.iface)
+                    .count();
+                let _ = writeln!(
+                    p,
+                    "<dt>EtherCAT</dt><dd>{}: {slaves} slave{}, {streams} cyclic stream{}</dd>",
+                    esc(port.to_string().trim_start_matches("ethercat").trim()),
+                    if slaves == 1 { "" } else { "s" },
+                    if streams == 1 { "" } else { "s" },
+                );
+            }
+        }
         if self.recordings.len() > 1 {
             // Read apart, each recording has its own axis.
             for r in &self.recordings {
@@ -590,7 +618,15 @@ impl Report {
             .map(|b| b.frames)
             .sum();
         let devices: usize = self.recordings.iter().map(|r| r.summary.nodes.len()).sum();
-        if frames == 0 {
+        let ethercat: u64 = self
+            .recordings
+            .iter()
+            .flat_map(|r| r.summary.ethercat.ports.iter())
+            .map(|p| p.counts.packets)
+            .sum();
+        if devices == 0 && ethercat > 0 {
+            format!("<p class=\"empty\" data-kind=\"ethercat\"><strong>This list does not cover EtherCAT yet:</strong> {ethercat} EtherCAT packet{} read; the timeline draws each slave's AL states, emergencies, SDO aborts, DL status changes and error counter rises, and each cyclic stream's lost frames and working-counter mismatches.</p>\n", if ethercat == 1 { "" } else { "s" })
+        } else if frames == 0 {
             "<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong> no frame was read, so nothing can be said of the machine.</p>\n".to_owned()
         } else if devices == 0 {
             format!("<p class=\"empty\" data-kind=\"no_device\"><strong>No CANopen device in this log:</strong> {frames} frame{} read, none of them from or to a CANopen node (no EMCY, heartbeat, node guarding, PDO or SDO of a node-ID).</p>\n", if frames == 1 { "" } else { "s" })
@@ -666,12 +702,8 @@ impl Report {
                     b.frames
                 );
                 if let Some(data) = data {
-                    rate(&mut body, axis, data, h);
-                    for kind in [
-                        MarkKind::ErrorFrame,
-                        MarkKind::BusOff,
-                        MarkKind::ErrorPassive,
-                    ] {
+                    rate(&mut body, axis, &data.row.rate, h);
+                    for kind in MarkKind::BUS {
                         marks(
                             &mut body,
                             axis,
@@ -688,6 +720,22 @@ impl Report {
                 for n in r.summary.nodes.iter().filter(|n| n.bus == b.bus) {
                     let row = data.and_then(|d| d.node_row(n.node));
                     let h = node_row(&mut body, axis, budget, n, row, &file, y, end);
+                    y += h + 4.0;
+                }
+            }
+            // Each EtherCAT interface: its slaves, then its streams.
+            let ethercat = &r.summary.ethercat;
+            for port in &ethercat.ports {
+                let rows = r.timeline.port(&port.iface);
+                let slaves = ethercat.slaves.iter().filter(|s| s.iface == port.iface);
+                for (place, s) in slaves.enumerate() {
+                    let row = rows.and_then(|rows| rows.slave_row(place));
+                    let h = slave_row(&mut body, axis, budget, s, row, &file, y, end);
+                    y += h + 4.0;
+                }
+                for s in ethercat.streams.iter().filter(|s| s.iface == port.iface) {
+                    let row = rows.and_then(|rows| rows.stream_row(s.command, s.address));
+                    let h = stream_row(&mut body, axis, budget, s, row, &file, y);
                     y += h + 4.0;
                 }
             }
@@ -777,34 +825,33 @@ impl Report {
     }
 
     fn events(&self, p: &mut String, budget: &Budget) {
-        struct Row<'a> {
+        struct Row {
             /// The recording, the place, the line and the row's number:
             /// rows at one place stay in the order they were made.
             key: (usize, u64, u64, usize),
             axis: Axis,
+            /// Its device's (or bus's, slave's, stream's) place in `names`.
             who: usize,
             kind: MarkKind,
             mark: Drawn,
-            bus: &'a BusName,
-            node: Option<NodeId>,
             profile: Profile,
             /// Set on a row that stands for every EMCY of one code of its
             /// device.
             code: Option<u16>,
         }
-        let mut all: Vec<Row<'_>> = Vec::new();
+        let mut all: Vec<Row> = Vec::new();
         let mut total = 0usize;
         // Only the first rows are written: whenever many are kept, the
         // first of them are, so that a storm of distinct codes stays small.
-        let keep_first = |all: &mut Vec<Row<'_>>| {
+        let keep_first = |all: &mut Vec<Row>| {
             if all.len() >= 4 * EVENT_ROWS {
                 all.select_nth_unstable_by_key(EVENT_ROWS, |r| r.key);
                 all.truncate(EVENT_ROWS);
             }
         };
-        // The devices' and buses' names, once each: a storm of distinct
-        // codes is many rows of few devices.
-        let mut names: Vec<String> = Vec::new();
+        // The devices' and buses' names and attributes, once each: a storm
+        // of distinct codes is many rows of few devices.
+        let mut names: Vec<(String, String)> = Vec::new();
         let (mut timed, mut unix) = (false, false);
         for (i, r) in self.recordings.iter().enumerate() {
             let axis = if self.recordings.len() > 1 {
@@ -820,56 +867,79 @@ impl Report {
                 .file
                 .as_deref()
                 .map_or_else(String::new, |f| format!("{f}: "));
+            // Every row: its name, its attributes, its profile, its data.
+            let mut rows: Vec<(String, String, Profile, &RowData)> = Vec::new();
             for bus in &r.timeline.buses {
-                let mut rows: Vec<(Option<NodeId>, Profile, &RowData)> =
-                    vec![(None, Profile::Generic, &bus.row)];
+                let iface = format!(" data-iface=\"{}\"", iface_attr(&bus.name));
+                rows.push((
+                    format!("{prefix}bus {}", bus.name),
+                    iface.clone(),
+                    Profile::Generic,
+                    &bus.row,
+                ));
                 for n in &r.summary.nodes {
                     if n.bus == bus.name {
                         if let Some(row) = bus.node_row(n.node) {
-                            rows.push((Some(n.node), n.profile, row));
+                            rows.push((
+                                format!("{prefix}{}", device(&bus.name, n.node)),
+                                format!("{iface} data-node=\"{}\"", n.node.get()),
+                                n.profile,
+                                row,
+                            ));
                         }
                     }
                 }
-                for (node, profile, row) in rows {
-                    names.push(match node {
-                        Some(node) => format!("{prefix}{}", device(&bus.name, node)),
-                        None => format!("{prefix}bus {}", bus.name),
-                    });
-                    let who = names.len() - 1;
-                    for kind in MarkKind::ALL {
-                        let marks = drawn_marks(axis, &row.marks[kind as usize], budget.radius);
-                        let emcy = matches!(kind, MarkKind::Emcy | MarkKind::EmcyReset);
-                        if emcy && marks.iter().any(|m| m.count > 1) {
-                            // A cluster would hide the codes in it: the
-                            // row's EMCYs of this kind one row per code.
-                            let reset = kind == MarkKind::EmcyReset;
-                            for (&code, run) in &row.codes {
-                                if ErrorCode::new(code).is_reset() != reset {
-                                    continue;
-                                }
-                                let mark = Drawn {
-                                    at: run.first,
-                                    end: run.last,
-                                    count: run.count,
-                                    detail: run.detail,
-                                };
-                                total += 1;
-                                keep_first(&mut all);
-                                all.push(Row {
-                                    key: (i, axis.key(mark.at), mark.at.line, total),
-                                    axis: *axis,
-                                    who,
-                                    kind,
-                                    mark,
-                                    bus: &bus.name,
-                                    node,
-                                    profile,
-                                    code: Some(code),
-                                });
+            }
+            for (owner, row) in ethercat_rows(r) {
+                let (name, attrs, profile) = match owner {
+                    Ethercat::Slave(s) => (
+                        slave_name(s),
+                        format!(
+                            " data-iface=\"{}\" data-slave=\"{}\"",
+                            iface_attr(&s.iface),
+                            s.station.map_or_else(String::new, |st| st.to_string())
+                        ),
+                        s.emergencies
+                            .first()
+                            .map_or(Profile::Generic, |e| e.profile),
+                    ),
+                    Ethercat::Stream(s) => (
+                        format!("{} stream {}", s.iface, s.key()),
+                        format!(
+                            " data-iface=\"{}\" data-stream=\"{}\"",
+                            iface_attr(&s.iface),
+                            esc(&s.key())
+                        ),
+                        Profile::Generic,
+                    ),
+                };
+                rows.push((format!("{prefix}{name}"), attrs, profile, row));
+            }
+            for (name, attrs, profile, row) in rows {
+                names.push((name, attrs));
+                let who = names.len() - 1;
+                for kind in MarkKind::ALL {
+                    let marks = drawn_marks(axis, &row.marks[kind as usize], budget.radius);
+                    let emcy = matches!(
+                        kind,
+                        MarkKind::Emcy | MarkKind::EmcyReset | MarkKind::CoeEmcy
+                    );
+                    if emcy && marks.iter().any(|m| m.count > 1) {
+                        // A cluster would hide the codes in it: the
+                        // row's EMCYs of this kind one row per code
+                        // (a CAN device's resets apart).
+                        let reset = kind == MarkKind::EmcyReset;
+                        for (&code, run) in &row.codes {
+                            if kind != MarkKind::CoeEmcy && ErrorCode::new(code).is_reset() != reset
+                            {
+                                continue;
                             }
-                            continue;
-                        }
-                        for mark in marks {
+                            let mark = Drawn {
+                                at: run.first,
+                                end: run.last,
+                                count: run.count,
+                                detail: run.detail,
+                            };
                             total += 1;
                             keep_first(&mut all);
                             all.push(Row {
@@ -878,12 +948,24 @@ impl Report {
                                 who,
                                 kind,
                                 mark,
-                                bus: &bus.name,
-                                node,
                                 profile,
-                                code: None,
+                                code: Some(code),
                             });
                         }
+                        continue;
+                    }
+                    for mark in marks {
+                        total += 1;
+                        keep_first(&mut all);
+                        all.push(Row {
+                            key: (i, axis.key(mark.at), mark.at.line, total),
+                            axis: *axis,
+                            who,
+                            kind,
+                            mark,
+                            profile,
+                            code: None,
+                        });
                     }
                 }
             }
@@ -917,9 +999,6 @@ impl Report {
             } else {
                 m.at.line.to_string()
             };
-            let node = row
-                .node
-                .map_or_else(String::new, |n| format!(" data-node=\"{}\"", n.get()));
             let axis = &row.axis;
             let mut what = mark_text(row.kind, &m, axis, row.profile);
             let mut code = String::new();
@@ -947,10 +1026,10 @@ impl Report {
             };
             let _ = writeln!(
                 p,
-                "<tr data-line=\"{}\" data-iface=\"{}\"{node}{code}><td>{lines}</td><td>{when}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr data-line=\"{}\"{}{code}><td>{lines}</td><td>{when}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 m.at.line,
-                iface_attr(row.bus),
-                esc(&names[row.who]),
+                names[row.who].1,
+                esc(&names[row.who].0),
                 row.kind.words(),
                 m.count,
                 esc(&what)
@@ -993,6 +1072,36 @@ impl Report {
         }
         out.write_all(&json[start..])
     }
+}
+
+/// An EtherCAT row of the timeline: a slave's or a stream's.
+enum Ethercat<'r> {
+    Slave(&'r SlaveSummary),
+    Stream(&'r StreamSummary),
+}
+
+/// The EtherCAT rows a recording's timeline draws, in its order: per
+/// interface, its slaves, then its streams (docs/report.md#ethercat).
+fn ethercat_rows(r: &Recording) -> Vec<(Ethercat<'_>, &RowData)> {
+    let ethercat = &r.summary.ethercat;
+    let mut rows = Vec::new();
+    for port in &ethercat.ports {
+        let Some(data) = r.timeline.port(&port.iface) else {
+            continue;
+        };
+        let slaves = ethercat.slaves.iter().filter(|s| s.iface == port.iface);
+        for (place, s) in slaves.enumerate() {
+            if let Some(row) = data.slave_row(place) {
+                rows.push((Ethercat::Slave(s), row));
+            }
+        }
+        for s in ethercat.streams.iter().filter(|s| s.iface == port.iface) {
+            if let Some(row) = data.stream_row(s.command, s.address) {
+                rows.push((Ethercat::Stream(s), row));
+            }
+        }
+    }
+    rows
 }
 
 /// Lines as `12, 40, 41`, the first 20 of a longer list and how many more.

@@ -4,9 +4,12 @@
 
 use crate::can::BusName;
 use crate::canopen::{NmtStateByte, NodeId};
+use crate::decoder::ethercat::SlaveRef;
 use crate::decoder::Device;
+use crate::ethercat::AlState;
+use crate::summary::SlaveSummary;
 
-use super::recorder::{cia402_state, SILENT};
+use super::recorder::{cia402_state, AL_ERROR, SILENT};
 
 /// Escape text for HTML text and quoted attributes.
 pub(super) fn esc(text: &str) -> String {
@@ -45,4 +48,35 @@ pub(super) fn nmt_name(state: u8) -> &'static str {
 
 pub(super) fn cia402_name(state: u8) -> &'static str {
     cia402_state(state).map_or("unknown", |s| s.name())
+}
+
+/// An AL band's state as the summary writes it (`init`, `preop`, `boot`,
+/// `safeop`, `op`; docs/ethercat.md#summary), `unknown` where the state
+/// bits name no one state.
+pub(super) fn al_name(state: u8) -> &'static str {
+    AlState::from_bits(state).map_or("unknown", AlState::name)
+}
+
+/// An AL band's error indicator, as an attribute.
+pub(super) fn al_error(state: u8) -> &'static str {
+    if state & AL_ERROR != 0 {
+        " data-error=\"true\""
+    } else {
+        ""
+    }
+}
+
+/// No attribute: a band whose state says it all.
+pub(super) fn no_flags(_: u8) -> &'static str {
+    ""
+}
+
+/// An EtherCAT slave as the page names it, as the text summary does:
+/// `enp2s0 slave 0x1001 (4097) at 1`.
+pub(super) fn slave_name(s: &SlaveSummary) -> String {
+    let slave = SlaveRef {
+        station: s.station,
+        position: s.position,
+    };
+    format!("{} {slave}", s.iface)
 }

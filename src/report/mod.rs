@@ -4,7 +4,9 @@
 //! drawn from the library's own [decoder](crate::decoder) and
 //! [summary](crate::summary): the faults first, a timeline with one row per
 //! bus and per device (NMT and CiA 402 state bands, a mark for every fact
-//! the summary records), drive signals, and the summary as tables and as the
+//! the summary records) and, for an EtherCAT capture, per slave (AL state
+//! bands and marks) and per cyclic stream (lost frames, working-counter
+//! mismatches; docs/report.md#ethercat), drive signals, and the summary as tables and as the
 //! embedded `decode --summary --json` records (docs/report.md#contract).
 //!
 //! A [`Recorder`] is fed every frame and bus event of a recording, as a

@@ -191,9 +191,16 @@
     // Logs read apart: the row of the finding's own file.
     var file = item.hasAttribute("data-file")
       ? "[data-file=\"" + CSS.escape(item.getAttribute("data-file")) + "\"]" : "";
-    var row = node === null
-      ? document.querySelector("g[data-row=\"bus\"][data-iface=\"" + item.getAttribute("data-iface") + "\"]" + file)
-      : document.querySelector("g[data-row=\"node\"][data-iface=\"" + item.getAttribute("data-iface") + "\"][data-node=\"" + node + "\"]" + file);
+    var iface = "[data-iface=\"" + CSS.escape(item.getAttribute("data-iface") || "") + "\"]";
+    var slave = item.getAttribute("data-slave");
+    var stream = item.getAttribute("data-stream");
+    var row = slave !== null
+      ? document.querySelector("g[data-row=\"slave\"]" + iface + "[data-slave=\"" + slave + "\"]" + file)
+      : stream !== null
+      ? document.querySelector("g[data-row=\"stream\"]" + iface + "[data-stream=\"" + CSS.escape(stream) + "\"]" + file)
+      : node === null
+      ? document.querySelector("g[data-row=\"bus\"]" + iface + file)
+      : document.querySelector("g[data-row=\"node\"]" + iface + "[data-node=\"" + node + "\"]" + file);
     var scope = row || document;
     var el = scope.querySelector("[data-kind][data-line=\"" + line + "\"]:not([data-kind$=\"_state\"])") ||
       scope.querySelector("[data-line=\"" + line + "\"]");

@@ -7,9 +7,11 @@ use std::collections::BTreeMap;
 use crate::can::{BusName, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
 use crate::decoder::DecoderConfig;
+use crate::ethercat::Command;
 use crate::logs::Position;
 use crate::summary::{
-    FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent, SummaryEventKind,
+    EthercatFact, FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent,
+    SummaryEventKind,
 };
 
 use super::series::{
@@ -46,11 +48,27 @@ pub enum MarkKind {
     BusOff,
     /// An error frame that says error-passive (`error_passive`).
     ErrorPassive,
+    /// A CoE emergency of an EtherCAT slave (`emcy_count` of its record,
+    /// docs/ethercat.md#summary).
+    CoeEmcy,
+    /// An AL status read with its error indicator set: a slave that
+    /// refused or left a state (the `al_timeline` entries with `error`).
+    AlError,
+    /// A change of an EtherCAT slave's DL status (`dl_status_changes`).
+    DlChange,
+    /// A rise of an EtherCAT slave's error counter (`error_counter_rises`).
+    ErrorCounter,
+    /// A frame of a cyclic stream sent and never returned (the stream
+    /// record's `lost`).
+    LostFrame,
+    /// A returned copy of a cyclic stream with another working counter
+    /// than its usual one (`wkc_mismatches`).
+    WkcMismatch,
 }
 
 impl MarkKind {
     /// Every kind, in the order of docs/report.md#marks.
-    pub const ALL: [MarkKind; 12] = [
+    pub const ALL: [MarkKind; 18] = [
         MarkKind::Emcy,
         MarkKind::EmcyReset,
         MarkKind::BootUp,
@@ -63,7 +81,45 @@ impl MarkKind {
         MarkKind::ErrorFrame,
         MarkKind::BusOff,
         MarkKind::ErrorPassive,
+        MarkKind::CoeEmcy,
+        MarkKind::AlError,
+        MarkKind::DlChange,
+        MarkKind::ErrorCounter,
+        MarkKind::LostFrame,
+        MarkKind::WkcMismatch,
     ];
+
+    /// The kinds a CAN device's row draws.
+    pub const NODE: [MarkKind; 9] = [
+        MarkKind::Emcy,
+        MarkKind::EmcyReset,
+        MarkKind::BootUp,
+        MarkKind::HeartbeatTimeout,
+        MarkKind::SdoAbort,
+        MarkKind::SdoBroken,
+        MarkKind::SdoTimeout,
+        MarkKind::ToggleError,
+        MarkKind::Cia402Fault,
+    ];
+
+    /// The kinds a CAN bus's row draws.
+    pub const BUS: [MarkKind; 3] = [
+        MarkKind::ErrorFrame,
+        MarkKind::BusOff,
+        MarkKind::ErrorPassive,
+    ];
+
+    /// The kinds an EtherCAT slave's row draws.
+    pub const SLAVE: [MarkKind; 5] = [
+        MarkKind::CoeEmcy,
+        MarkKind::AlError,
+        MarkKind::SdoAbort,
+        MarkKind::DlChange,
+        MarkKind::ErrorCounter,
+    ];
+
+    /// The kinds an EtherCAT stream's row draws.
+    pub const STREAM: [MarkKind; 2] = [MarkKind::LostFrame, MarkKind::WkcMismatch];
 
     /// Return the kind's name, its `data-kind` (docs/report.md#marks).
     #[must_use]
@@ -81,6 +137,12 @@ impl MarkKind {
             MarkKind::ErrorFrame => "error_frame",
             MarkKind::BusOff => "bus_off",
             MarkKind::ErrorPassive => "error_passive",
+            MarkKind::CoeEmcy => "coe_emcy",
+            MarkKind::AlError => "al_error",
+            MarkKind::DlChange => "dl_change",
+            MarkKind::ErrorCounter => "error_counter",
+            MarkKind::LostFrame => "lost_frame",
+            MarkKind::WkcMismatch => "wkc_mismatch",
         }
     }
 
@@ -100,6 +162,12 @@ impl MarkKind {
             MarkKind::ErrorFrame => "error frame",
             MarkKind::BusOff => "bus-off",
             MarkKind::ErrorPassive => "error-passive",
+            MarkKind::CoeEmcy => "CoE EMCY",
+            MarkKind::AlError => "AL error",
+            MarkKind::DlChange => "DL status change",
+            MarkKind::ErrorCounter => "error counter rise",
+            MarkKind::LostFrame => "lost frame",
+            MarkKind::WkcMismatch => "working counter mismatch",
         }
     }
 
@@ -116,11 +184,16 @@ pub(super) const CHARTED: [(u16, &str); 2] = [
 ];
 
 /// What a row of the timeline keeps: marks by kind, the state bands, a
-/// drive's signals, a bus's frame rate.
+/// drive's signals, a bus's or a stream's frame rate. A CAN device's row
+/// has NMT bands, an EtherCAT slave's AL bands; both have CiA 402 bands
+/// for a drive.
 #[derive(Debug, Clone)]
 pub(crate) struct RowData {
-    pub(crate) marks: [Series<MarkItem>; 12],
+    pub(crate) marks: [Series<MarkItem>; MarkKind::ALL.len()],
     pub(crate) nmt: Series<BandItem>,
+    /// An EtherCAT slave's AL states as it reported them; a band's state
+    /// is the AL status's low byte (state bits 0–3, error indicator bit 4).
+    pub(crate) al: Series<BandItem>,
     nmt_state: Option<u8>,
     /// Where the last NMT band begins.
     nmt_since: At,
@@ -150,6 +223,7 @@ impl RowData {
             nmt: Series::new(BUCKETS, BUCKETS, timed),
             nmt_state: None,
             nmt_since: At::default(),
+            al: Series::new(BUCKETS, BUCKETS, timed),
             cia402: Series::new(BUCKETS, BUCKETS, timed),
             signals: [None, None],
             rate: Series::new(0, SIGNAL_BUCKETS, timed),
@@ -164,6 +238,25 @@ impl RowData {
             count: 1,
             detail,
         });
+    }
+
+    /// An EMCY of `kind` (with its code's run, docs/report.md#events).
+    fn emcy(&mut self, kind: MarkKind, at: At, detail: Detail, code: u16, timed: bool) {
+        self.mark(kind, at, at, detail);
+        let run = self.codes.entry(code).or_insert(CodeRun {
+            count: 0,
+            first: at,
+            last: at,
+            detail,
+        });
+        run.count += 1;
+        if at.key(timed) < run.first.key(timed) {
+            run.first = at;
+            run.detail = detail;
+        }
+        if at.key(timed) >= run.last.key(timed) {
+            run.last = at;
+        }
     }
 
     fn band(series: &mut Series<BandItem>, at: At, state: u8) {
@@ -202,6 +295,77 @@ impl BusRows {
     }
 }
 
+/// An EtherCAT interface's rows: one per slave, at the slave's place
+/// among the interface's slave records, and one per stream.
+#[derive(Debug, Clone)]
+pub(crate) struct PortRows {
+    pub(crate) name: BusName,
+    slaves: Vec<RowData>,
+    pub(crate) streams: Vec<StreamRows>,
+}
+
+/// A datagram stream's row, and its returned copies by working counter
+/// until the summary says which is the usual one.
+#[derive(Debug, Clone)]
+pub(crate) struct StreamRows {
+    pub(crate) command: Command,
+    pub(crate) address: u32,
+    pub(crate) row: RowData,
+    /// The returned copies of each working counter the stream counts (at
+    /// most 64, as the summary counts them).
+    wkcs: Vec<(u16, Series<MarkItem>)>,
+}
+
+impl PortRows {
+    fn new(name: BusName) -> Self {
+        PortRows {
+            name,
+            slaves: Vec::new(),
+            streams: Vec::new(),
+        }
+    }
+
+    fn slave(&mut self, place: usize, timed: bool) -> &mut RowData {
+        while self.slaves.len() <= place {
+            self.slaves.push(RowData::new(timed));
+        }
+        &mut self.slaves[place]
+    }
+
+    /// The row of the slave at `place` among the interface's slave records.
+    pub(crate) fn slave_row(&self, place: usize) -> Option<&RowData> {
+        self.slaves.get(place)
+    }
+
+    fn stream(&mut self, command: Command, address: u32, timed: bool) -> &mut StreamRows {
+        let at = match self
+            .streams
+            .iter()
+            .position(|s| s.command == command && s.address == address)
+        {
+            Some(at) => at,
+            None => {
+                self.streams.push(StreamRows {
+                    command,
+                    address,
+                    row: RowData::new(timed),
+                    wkcs: Vec::new(),
+                });
+                self.streams.len() - 1
+            }
+        };
+        &mut self.streams[at]
+    }
+
+    /// The row of the stream of `command` at `address`.
+    pub(crate) fn stream_row(&self, command: Command, address: u32) -> Option<&RowData> {
+        self.streams
+            .iter()
+            .find(|s| s.command == command && s.address == address)
+            .map(|s| &s.row)
+    }
+}
+
 /// Microseconds of a time, saturating.
 fn micros(ts: Timestamp) -> u64 {
     u64::try_from(ts.as_micros()).unwrap_or(u64::MAX)
@@ -214,6 +378,8 @@ pub struct Recorder {
     summarizer: Summarizer,
     /// Each bus's rows, in the order of the buses' first frames.
     buses: Vec<BusRows>,
+    /// Each EtherCAT interface's rows, in the order of their first facts.
+    ports: Vec<PortRows>,
     /// The place in `buses` of each bus of the decoder's table, at the
     /// bus's place there ([`Summarizer::bus_at`]); `None` for a bus that
     /// no frame has been seen on yet (only status events).
@@ -245,6 +411,7 @@ impl Recorder {
         Recorder {
             summarizer: Summarizer::new(config),
             buses: Vec::new(),
+            ports: Vec::new(),
             rows_of: Vec::new(),
             timed: None,
             last_t: 0,
@@ -260,8 +427,38 @@ impl Recorder {
     pub fn add(&mut self, position: Position, event: &LogEvent<'_>) {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame, event),
-            LogEvent::Status(_) | LogEvent::Ethercat(_) => self.summarizer.add(position, event),
+            LogEvent::Status(_) => self.summarizer.add(position, event),
+            LogEvent::Ethercat(packet) => {
+                let at = self.place(position, packet.timestamp);
+                let timed = self.timed == Some(true);
+                let Recorder {
+                    summarizer, ports, ..
+                } = self;
+                let _ = summarizer.add_with(position, event, |event| {
+                    record_ethercat(ports, timed, at, &event);
+                });
+            }
         }
+    }
+
+    /// Where an entry read at `position` with `timestamp` lies: the first
+    /// entry says whether the recording is drawn by time; an entry
+    /// without a time in a recording drawn by time lies at the time of the
+    /// one before it.
+    fn place(&mut self, position: Position, timestamp: Option<Timestamp>) -> At {
+        let timed = *self.timed.get_or_insert(timestamp.is_some());
+        match timestamp {
+            Some(ts) => self.last_t = micros(ts),
+            None if timed => self.untimed += 1,
+            None => {}
+        }
+        let at = At {
+            t: self.last_t,
+            line: position.number(),
+        };
+        self.first.get_or_insert(at);
+        self.last = at;
+        at
     }
 
     /// The place in `buses` of the rows of the bus of `iface`, found by
@@ -292,18 +489,8 @@ impl Recorder {
 
     /// Add the frame `log` of the log entry `event`, read at `position`.
     fn add_frame(&mut self, position: Position, log: &LogFrame<'_>, event: &LogEvent<'_>) {
-        let timed = *self.timed.get_or_insert(log.timestamp.is_some());
-        match log.timestamp {
-            Some(ts) => self.last_t = micros(ts),
-            None if timed => self.untimed += 1,
-            None => {}
-        }
-        let at = At {
-            t: self.last_t,
-            line: position.number(),
-        };
-        self.first.get_or_insert(at);
-        self.last = at;
+        let at = self.place(position, log.timestamp);
+        let timed = self.timed == Some(true);
         let b = self.bus(log.iface, timed);
         let Recorder {
             summarizer, buses, ..
@@ -358,6 +545,7 @@ impl Recorder {
         let Recorder {
             summarizer,
             mut buses,
+            mut ports,
             timed,
             untimed,
             first,
@@ -372,6 +560,10 @@ impl Recorder {
         };
         let heartbeat = summarizer.decoder().config().heartbeat();
         let summary = summarizer.finish_with(|event| {
+            if let SummaryEventKind::Ethercat(_) = event.kind {
+                record_ethercat(&mut ports, timed, end, &event);
+                return;
+            }
             let at = match buses.iter().position(|b| &b.name == event.bus) {
                 Some(at) => at,
                 None => {
@@ -392,6 +584,21 @@ impl Recorder {
                 }
             }
         }
+        for port in &mut ports {
+            for stream in &mut port.streams {
+                let usual = summary
+                    .ethercat
+                    .streams
+                    .iter()
+                    .find(|s| {
+                        s.iface == port.name
+                            && s.command == stream.command
+                            && s.address == stream.address
+                    })
+                    .and_then(|s| s.wkc_usual);
+                stream.mismatches(usual);
+            }
+        }
         Recording {
             summary,
             timeline: Timeline {
@@ -400,6 +607,7 @@ impl Recorder {
                 first,
                 last: first.map(|_| last),
                 buses,
+                ports,
             },
             files: Vec::new(),
         }
@@ -446,21 +654,7 @@ fn record(
                 register: register.bits(),
                 manufacturer,
             };
-            row.mark(kind, at, at, detail);
-            let run = row.codes.entry(code.get()).or_insert(CodeRun {
-                count: 0,
-                first: at,
-                last: at,
-                detail,
-            });
-            run.count += 1;
-            if at.key(timed) < run.first.key(timed) {
-                run.first = at;
-                run.detail = detail;
-            }
-            if at.key(timed) >= run.last.key(timed) {
-                run.last = at;
-            }
+            row.emcy(kind, at, detail, code.get(), timed);
         }
         SummaryEventKind::Nmt { state, .. } => {
             let state = state.state_raw();
@@ -516,8 +710,149 @@ fn record(
                 row.mark(MarkKind::ErrorPassive, at, at, Detail::None);
             }
         }
+        // On an EtherCAT interface's rows (`record_ethercat`).
+        SummaryEventKind::Ethercat(_) => {}
     }
 }
+
+impl StreamRows {
+    /// The returned copies whose working counter is not `usual` (the
+    /// summary's `wkc_usual`) as the row's mismatch marks.
+    fn mismatches(&mut self, usual: Option<u16>) {
+        let Some(usual) = usual else {
+            self.wkcs.clear();
+            return;
+        };
+        let series = &mut self.row.marks[MarkKind::WkcMismatch.index()];
+        for (wkc, copies) in self.wkcs.drain(..) {
+            if wkc == usual {
+                continue;
+            }
+            for item in copies.items() {
+                series.add(MarkItem {
+                    detail: Detail::Wkc { wkc, usual },
+                    ..*item
+                });
+            }
+        }
+    }
+}
+
+/// Record one fact of an EtherCAT capture's slave or stream records on its
+/// row (docs/report.md#ethercat).
+fn record_ethercat(ports: &mut Vec<PortRows>, timed: bool, now: At, event: &SummaryEvent<'_>) {
+    let SummaryEventKind::Ethercat(fact) = event.kind else {
+        return;
+    };
+    let at = At {
+        t: event.timestamp.map_or(now.t, micros),
+        line: event.line,
+    };
+    let port = match ports.iter().position(|p| &p.name == event.bus) {
+        Some(port) => port,
+        None => {
+            ports.push(PortRows::new(event.bus.clone()));
+            ports.len() - 1
+        }
+    };
+    let port = &mut ports[port];
+    match fact {
+        EthercatFact::AlState { slave, change } => {
+            if change.requested {
+                return;
+            }
+            let row = port.slave(slave, timed);
+            let status = change.status;
+            let state = status.state_bits() | if status.error() { AL_ERROR } else { 0 };
+            RowData::band(&mut row.al, at, state);
+            if status.error() {
+                let detail = Detail::Al {
+                    state,
+                    code: change.code.map(|c| c.0),
+                };
+                row.mark(MarkKind::AlError, at, at, detail);
+            }
+        }
+        EthercatFact::AlCode { slave, of, code } => {
+            let row = port.slave(slave, timed);
+            if let Some(last) = row.marks[MarkKind::AlError.index()].last_mut() {
+                if let (true, Detail::Al { state, code: None }) = (last.at.line == of, last.detail)
+                {
+                    last.detail = Detail::Al {
+                        state,
+                        code: Some(code.0),
+                    };
+                }
+            }
+        }
+        EthercatFact::Emergency { slave, emergency } => {
+            let emcy = emergency.emcy;
+            let detail = Detail::Emcy {
+                code: emcy.code.get(),
+                register: emcy.register.bits(),
+                manufacturer: emcy.manufacturer,
+            };
+            port.slave(slave, timed)
+                .emcy(MarkKind::CoeEmcy, at, detail, emcy.code.get(), timed);
+        }
+        EthercatFact::SdoAbort { slave, abort } => {
+            let detail = Detail::Abort {
+                index: abort.index,
+                subindex: abort.subindex,
+                code: abort.code.get(),
+            };
+            port.slave(slave, timed)
+                .mark(MarkKind::SdoAbort, at, at, detail);
+        }
+        EthercatFact::DlChange { slave, .. } => {
+            port.slave(slave, timed)
+                .mark(MarkKind::DlChange, at, at, Detail::None);
+        }
+        EthercatFact::CounterRise { slave, rise } => {
+            let detail = Detail::Counter {
+                register: rise.register,
+                from: rise.from,
+                to: rise.to,
+            };
+            port.slave(slave, timed)
+                .mark(MarkKind::ErrorCounter, at, at, detail);
+        }
+        EthercatFact::StreamReturned {
+            command,
+            address,
+            wkc,
+        } => {
+            let stream = port.stream(command, address, timed);
+            stream.row.rate.add(RateBucket { at, frames: 1 });
+            let copies = match stream.wkcs.iter().position(|(w, _)| *w == wkc) {
+                Some(i) => &mut stream.wkcs[i].1,
+                None => {
+                    stream
+                        .wkcs
+                        .push((wkc, Series::new(EXACT_MARKS, BUCKETS, timed)));
+                    &mut stream.wkcs.last_mut().expect("just pushed").1
+                }
+            };
+            copies.add(MarkItem {
+                at,
+                end: at,
+                count: 1,
+                detail: Detail::None,
+            });
+        }
+        EthercatFact::StreamLost { command, address } => {
+            port.stream(command, address, timed).row.mark(
+                MarkKind::LostFrame,
+                at,
+                at,
+                Detail::None,
+            );
+        }
+    }
+}
+
+/// The AL error indicator in an AL band's state (bit 4 of AL status).
+pub(crate) const AL_ERROR: u8 = 0x10;
 
 /// The CiA 402 state of a band's index.
 pub(crate) fn cia402_state(index: u8) -> Option<Cia402State> {
@@ -543,9 +878,9 @@ fn mark_kind(finding: &Finding) -> Option<MarkKind> {
     })
 }
 
-/// A recording's timeline: per bus and device, the marks, state bands,
-/// signals and frame rate the page draws (docs/report.md#timeline), in
-/// bounded memory.
+/// A recording's timeline: per bus and device, and per EtherCAT slave and
+/// stream, the marks, state bands, signals and frame rate the page draws
+/// (docs/report.md#timeline), in bounded memory.
 #[derive(Debug, Clone)]
 pub struct Timeline {
     timed: bool,
@@ -553,6 +888,7 @@ pub struct Timeline {
     first: Option<At>,
     last: Option<At>,
     pub(crate) buses: Vec<BusRows>,
+    pub(crate) ports: Vec<PortRows>,
 }
 
 impl Timeline {
@@ -576,6 +912,38 @@ impl Timeline {
 
     pub(crate) fn rows(&self, bus: &BusName) -> Option<&BusRows> {
         self.buses.iter().find(|b| &b.name == bus)
+    }
+
+    /// The rows of the EtherCAT interface `iface`.
+    pub(crate) fn port(&self, iface: &BusName) -> Option<&PortRows> {
+        self.ports.iter().find(|p| &p.name == iface)
+    }
+
+    /// Return how many events of `kind` the row of the EtherCAT slave at
+    /// `place` among the slave records of `iface` holds
+    /// ([`EthercatFact`]): what its marks' `data-count`s add up to
+    /// (docs/report.md#ethercat).
+    #[must_use]
+    pub fn slave_mark_count(&self, iface: &BusName, place: usize, kind: MarkKind) -> u64 {
+        self.port(iface)
+            .and_then(|p| p.slave_row(place))
+            .map_or(0, |row| count(row, kind))
+    }
+
+    /// Return how many events of `kind` the row of the stream of
+    /// `command` at `address` (as its `StreamSummary` has them) on
+    /// `iface` holds (docs/report.md#ethercat).
+    #[must_use]
+    pub fn stream_mark_count(
+        &self,
+        iface: &BusName,
+        command: Command,
+        address: u32,
+        kind: MarkKind,
+    ) -> u64 {
+        self.port(iface)
+            .and_then(|p| p.stream_row(command, address))
+            .map_or(0, |row| count(row, kind))
     }
 
     fn row(&self, bus: &BusName, node: Option<NodeId>) -> Option<&RowData> {
@@ -642,14 +1010,17 @@ impl Timeline {
     /// up to (docs/report.md#marks).
     #[must_use]
     pub fn mark_count(&self, bus: &BusName, node: Option<NodeId>, kind: MarkKind) -> u64 {
-        self.row(bus, node).map_or(0, |row| {
-            row.marks[kind.index()]
-                .items()
-                .iter()
-                .map(|m| m.count)
-                .sum()
-        })
+        self.row(bus, node).map_or(0, |row| count(row, kind))
     }
+}
+
+/// How many events of `kind` a row holds.
+fn count(row: &RowData, kind: MarkKind) -> u64 {
+    row.marks[kind.index()]
+        .items()
+        .iter()
+        .map(|m| m.count)
+        .sum()
 }
 
 impl Recording {

@@ -100,6 +100,11 @@ impl<T: Item> Series<T> {
         self.items.len()
     }
 
+    /// The last item (or bucket), to complete what it says.
+    pub(crate) fn last_mut(&mut self) -> Option<&mut T> {
+        self.items.last_mut()
+    }
+
     /// Keep only the items (or buckets) for which `keep` holds.
     pub(crate) fn retain(&mut self, keep: impl FnMut(&T) -> bool) {
         self.items.retain(keep);
@@ -224,6 +229,29 @@ pub(crate) enum Detail {
     },
     /// A heartbeat gap, in microseconds.
     Gap(u64),
+    /// An AL status with its error indicator: the band's state byte, and
+    /// the AL status code where it was read.
+    Al {
+        state: u8,
+        code: Option<u16>,
+    },
+    /// An SDO abort's object and code.
+    Abort {
+        index: u16,
+        subindex: u8,
+        code: u32,
+    },
+    /// An error counter's register, and its value before and after.
+    Counter {
+        register: u16,
+        from: u8,
+        to: u8,
+    },
+    /// A returned copy's working counter, and the stream's usual one.
+    Wkc {
+        wkc: u16,
+        usual: u16,
+    },
 }
 
 impl Item for MarkItem {

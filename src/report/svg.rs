@@ -5,15 +5,19 @@
 
 use std::fmt::Write as _;
 
-use crate::canopen::{Emcy, ErrorCode, ErrorRegister};
+use crate::canopen::{Emcy, ErrorCode, ErrorRegister, SdoAbortCode};
+use crate::ethercat::register::error_counter_name;
+use crate::ethercat::{AlState, AlStatusCode};
 use crate::profiles::Profile;
-use crate::summary::{NodeSummary, ProfileReading};
+use crate::summary::{NodeSummary, ProfileReading, SlaveSummary, StreamSummary};
 
 use super::fixed::Fixed;
 use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
-use super::markup::{cia402_name, device, esc, iface_attr, nmt_name};
-use super::recorder::{BusRows, MarkKind, RowData, CHARTED, SILENT};
-use super::series::{At, BandItem, Detail, MarkItem, Series};
+use super::markup::{
+    al_error, al_name, cia402_name, device, esc, iface_attr, nmt_name, no_flags, slave_name,
+};
+use super::recorder::{MarkKind, RowData, AL_ERROR, CHARTED, SILENT};
+use super::series::{At, BandItem, Detail, MarkItem, RateBucket, Series};
 
 /// A mark as drawn: one event, or a cluster of neighbours.
 #[derive(Debug, Clone, Copy)]
@@ -161,6 +165,34 @@ pub(super) fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis, profile: Profile
         Detail::Gap(us) => {
             let _ = write!(text, "no heartbeat for {} ms", us as f64 / 1000.0);
         }
+        Detail::Al { state, code } => {
+            let _ = write!(text, "AL status {} with error", al_name(state));
+            match code {
+                Some(code) => {
+                    let _ = write!(text, " {}", AlStatusCode(code));
+                }
+                None => text.push_str(", code not read"),
+            }
+        }
+        Detail::Abort {
+            index,
+            subindex,
+            code,
+        } => {
+            let _ = write!(
+                text,
+                "{} {index:04X}sub{subindex} {}",
+                kind.words(),
+                SdoAbortCode::new(code)
+            );
+        }
+        Detail::Counter { register, from, to } => {
+            let name = error_counter_name(usize::from(register.wrapping_sub(0x0300)));
+            let _ = write!(text, "{} {from} → {to}", name.unwrap_or("error counter"));
+        }
+        Detail::Wkc { wkc, usual } => {
+            let _ = write!(text, "working counter {wkc}, usually {usual}");
+        }
         Detail::None => text.push_str(kind.words()),
     }
     let _ = write!(text, " (line {}, {})", m.at.line, axis.when(m.at));
@@ -175,6 +207,9 @@ pub(super) fn mark_y(kind: MarkKind) -> f64 {
         MarkKind::SdoAbort | MarkKind::SdoBroken | MarkKind::SdoTimeout => 19.0,
         MarkKind::Cia402Fault => 7.0,
         MarkKind::ErrorFrame | MarkKind::BusOff | MarkKind::ErrorPassive => 8.0,
+        MarkKind::CoeEmcy => 7.0,
+        MarkKind::AlError | MarkKind::DlChange | MarkKind::ErrorCounter => 19.0,
+        MarkKind::LostFrame | MarkKind::WkcMismatch => 12.0,
     }
 }
 
@@ -239,17 +274,17 @@ pub(super) fn marks(
     }
 }
 
-/// A bus row's frame rate, as an area chart (timed only).
-pub(super) fn rate(p: &mut String, axis: &Axis, rows: &BusRows, h: f64) {
+/// A bus's or a stream's frame rate, as an area chart (timed only).
+pub(super) fn rate(p: &mut String, axis: &Axis, series: &Series<RateBucket>, h: f64) {
     if !axis.timed {
         return;
     }
-    let items = rows.row.rate.items();
+    let items = series.items();
     if items.len() < 2 {
         return;
     }
     // Frames per second of each bucket: its frames over its width.
-    let width = rows.row.rate.width().max(1);
+    let width = series.width().max(1);
     let mut peak: f64 = 0.0;
     let mut points: Vec<(f64, f64, f64)> = Vec::with_capacity(items.len());
     for b in items {
@@ -295,39 +330,188 @@ pub(super) fn node_row(
         if drive { " · CiA 402" } else { "" }
     );
     if let Some(row) = row {
-        bands(p, axis, budget, &row.nmt, end, 2.0, "nmt_state", nmt_name);
-        let mut lane = 16.0;
-        if drive {
-            bands(
-                p,
-                axis,
-                budget,
-                &row.cia402,
-                end,
-                16.0,
-                "cia402_state",
-                cia402_name,
-            );
-            lane = 30.0;
-        }
-        for kind in MarkKind::ALL {
-            if matches!(
-                kind,
-                MarkKind::ErrorFrame | MarkKind::BusOff | MarkKind::ErrorPassive
-            ) {
-                continue;
-            }
-            let at = if kind == MarkKind::Cia402Fault {
-                16.0
-            } else {
-                lane
-            };
-            marks(p, axis, budget, row, kind, Some(at), n.profile);
+        device_lanes(
+            p,
+            axis,
+            budget,
+            row,
+            end,
+            (&row.nmt, &NMT_BANDS),
+            drive,
+            &MarkKind::NODE,
+            n.profile,
+        );
+    }
+    p.push_str("</g>\n</g>\n");
+    h
+}
+
+/// A device's lanes, shared by a CAN device's row and an EtherCAT slave's:
+/// its first band (`first`: NMT or AL states) from y 2, the CiA 402 state
+/// of a drive below it (`drive`), and its marks of `kinds` under the
+/// bands; a CiA 402 fault is drawn over the CiA 402 band.
+#[allow(clippy::too_many_arguments)]
+fn device_lanes(
+    p: &mut String,
+    axis: &Axis,
+    budget: &Budget,
+    row: &RowData,
+    end: At,
+    first: (&Series<BandItem>, &BandStyle),
+    drive: bool,
+    kinds: &[MarkKind],
+    profile: Profile,
+) {
+    bands(p, axis, budget, first.0, end, 2.0, first.1);
+    let mut lane = 16.0;
+    if drive {
+        bands(p, axis, budget, &row.cia402, end, 16.0, &CIA402_BANDS);
+        lane = 30.0;
+    }
+    for &kind in kinds {
+        let at = if kind == MarkKind::Cia402Fault {
+            16.0
+        } else {
+            lane
+        };
+        marks(p, axis, budget, row, kind, Some(at), profile);
+    }
+}
+
+/// An EtherCAT slave's row (docs/report.md#ethercat): its AL states as a
+/// band, a drive's CiA 402 states below, and its marks; `place` is its
+/// place among its interface's slave records. Returns its height.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn slave_row(
+    p: &mut String,
+    axis: &Axis,
+    budget: &Budget,
+    s: &SlaveSummary,
+    row: Option<&RowData>,
+    file: &str,
+    y: f64,
+    end: At,
+) -> f64 {
+    let drive = row.is_some_and(|row| row.cia402.len() > 0);
+    let h = if drive { 58.0 } else { 44.0 };
+    let position = s
+        .position
+        .map_or_else(String::new, |at| format!(" data-position=\"{at}\""));
+    let what = s
+        .vendor
+        .zip(s.product)
+        .and_then(|(v, p)| crate::summary::device_name(v, p))
+        .unwrap_or("slave");
+    let _ = write!(
+        p,
+        "<g class=\"row slave\" data-row=\"slave\" data-iface=\"{}\" data-slave=\"{}\"{position}{file} transform=\"translate(0,{y})\">\n<text class=\"label\" x=\"8\" y=\"14\"><title>{}</title>{}</text><text class=\"sub\" x=\"8\" y=\"28\">{} · AL{}</text>\n<g class=\"plot\" clip-path=\"url(#clip)\">\n",
+        iface_attr(&s.iface),
+        s.station.map_or_else(String::new, |st| st.to_string()),
+        esc(&slave_name(s)),
+        esc(&slave_name(s).replacen(&format!("{} ", s.iface), "", 1)),
+        esc(what),
+        if drive { " · CiA 402" } else { "" }
+    );
+    if let Some(row) = row {
+        let profile = s
+            .emergencies
+            .first()
+            .map_or(Profile::Generic, |e| e.profile);
+        device_lanes(
+            p,
+            axis,
+            budget,
+            row,
+            end,
+            (&row.al, &AL_BANDS),
+            drive,
+            &MarkKind::SLAVE,
+            profile,
+        );
+    }
+    p.push_str("</g>\n</g>\n");
+    h
+}
+
+/// A cyclic datagram stream's row (docs/report.md#ethercat): its returned
+/// frames per second, its lost frames and working-counter mismatches.
+/// Returns its height.
+pub(super) fn stream_row(
+    p: &mut String,
+    axis: &Axis,
+    budget: &Budget,
+    s: &StreamSummary,
+    row: Option<&RowData>,
+    file: &str,
+    y: f64,
+) -> f64 {
+    let h = 36.0;
+    let key = s.key();
+    let address = if matches!(
+        s.command,
+        crate::ethercat::Command::Lrd
+            | crate::ethercat::Command::Lrw
+            | crate::ethercat::Command::Lwr
+    ) {
+        format!(" data-logical=\"{}\"", s.address)
+    } else {
+        format!(
+            " data-adp=\"{}\" data-ado=\"{}\"",
+            s.address & 0xFFFF,
+            s.address >> 16
+        )
+    };
+    let _ = write!(
+        p,
+        "<g class=\"row stream\" data-row=\"stream\" data-iface=\"{}\" data-stream=\"{}\" data-cmd=\"{}\"{address}{file} transform=\"translate(0,{y})\">\n<text class=\"label\" x=\"8\" y=\"14\"><title>{} {}</title>stream {}</text><text class=\"sub\" x=\"8\" y=\"28\">{} frames</text>\n<g class=\"plot\" clip-path=\"url(#clip)\">\n",
+        iface_attr(&s.iface),
+        esc(&key),
+        s.command.name(),
+        esc(&s.iface.to_string()),
+        esc(&key),
+        esc(&key),
+        s.sent
+    );
+    if let Some(row) = row {
+        rate(p, axis, &row.rate, h);
+        for kind in MarkKind::STREAM {
+            marks(p, axis, budget, row, kind, None, Profile::Generic);
         }
     }
     p.push_str("</g>\n</g>\n");
     h
 }
+
+/// How a kind of state band is written: its `data-kind`, the name of a
+/// band's state, and the attributes it adds (a space before each).
+#[derive(Debug)]
+pub(super) struct BandStyle {
+    pub(super) kind: &'static str,
+    pub(super) name: fn(u8) -> &'static str,
+    pub(super) flags: fn(u8) -> &'static str,
+}
+
+/// A CAN device's NMT state.
+pub(super) const NMT_BANDS: BandStyle = BandStyle {
+    kind: "nmt_state",
+    name: nmt_name,
+    flags: no_flags,
+};
+
+/// A drive's CiA 402 state, on a CAN device's row and an EtherCAT slave's.
+pub(super) const CIA402_BANDS: BandStyle = BandStyle {
+    kind: "cia402_state",
+    name: cia402_name,
+    flags: no_flags,
+};
+
+/// An EtherCAT slave's AL state, with `data-error="true"` where the
+/// slave's AL status had its error indicator set.
+pub(super) const AL_BANDS: BandStyle = BandStyle {
+    kind: "al_state",
+    name: al_name,
+    flags: al_error,
+};
 
 /// A row's state bands, from `y`, 12 pixels high.
 #[allow(clippy::too_many_arguments)]
@@ -338,18 +522,19 @@ pub(super) fn bands(
     series: &Series<BandItem>,
     end: At,
     y: f64,
-    kind: &str,
-    name: fn(u8) -> &'static str,
+    style: &BandStyle,
 ) {
+    let (kind, name) = (style.kind, style.name);
     for band in drawn_bands(axis, series, end, budget.band_px) {
         let b = band.item;
         let state = name(b.state);
         let w = (band.x1 - band.x0).max(0.5);
         let _ = write!(
             p,
-            "<rect x=\"{}\" y=\"{y}\" width=\"{}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\" data-line=\"{}\" data-count=\"{}\"",
+            "<rect x=\"{}\" y=\"{y}\" width=\"{}\" height=\"12\" data-kind=\"{kind}\" data-state=\"{state}\"{} data-line=\"{}\" data-count=\"{}\"",
             Fixed::<3>(band.x0),
             Fixed::<3>(w),
+            (style.flags)(b.state),
             b.at.line,
             b.count,
         );
@@ -372,7 +557,16 @@ pub(super) fn bands(
                     axis.when(b.at)
                 )
             } else {
-                format!("{state} from line {} ({})", b.at.line, axis.when(b.at))
+                let error = if style.kind == AL_BANDS.kind && b.state & AL_ERROR != 0 {
+                    " with error"
+                } else {
+                    ""
+                };
+                format!(
+                    "{state}{error} from line {} ({})",
+                    b.at.line,
+                    axis.when(b.at)
+                )
             };
             let _ = write!(p, "><title>{}</title></rect>", esc(&title));
         } else {
@@ -408,6 +602,12 @@ pub(super) fn defs(p: &mut String) {
 <path id=\"s-error_frame\" d=\"M0,-6V6\"/>\n\
 <path id=\"s-bus_off\" d=\"M-5,-5H5V5H-5Z\"/>\n\
 <path id=\"s-error_passive\" d=\"M-4,-4H4V4H-4Z\"/>\n\
+<path id=\"s-coe_emcy\" d=\"M0,5L-5,-5H5Z\"/>\n\
+<path id=\"s-al_error\" d=\"M-1.5,-6H1.5V2H-1.5ZM-1.5,3.5H1.5V6.5H-1.5Z\"/>\n\
+<path id=\"s-dl_change\" d=\"M-6,2L-2,-4L2,4L6,-2\"/>\n\
+<path id=\"s-error_counter\" d=\"M0,6V-6M-4,-2L0,-6L4,-2\"/>\n\
+<path id=\"s-lost_frame\" d=\"M-4,-4L4,4M4,-4L-4,4M0,-6V6\"/>\n\
+<path id=\"s-wkc_mismatch\" d=\"M0,-6V6M-4,2L0,6L4,2\"/>\n\
 </defs>\n"
     );
 }
@@ -490,6 +690,20 @@ pub(super) fn legend(p: &mut String) {
         );
     }
     p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-unknown\" width=\"16\" height=\"12\"/></svg> NMT unknown: silent past the heartbeat consumer time</li>\n");
+    for state in [
+        AlState::Init,
+        AlState::PreOp,
+        AlState::Boot,
+        AlState::SafeOp,
+        AlState::Op,
+    ] {
+        let _ = writeln!(
+            p,
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-al-{0}\" width=\"16\" height=\"12\"/></svg> AL {0}</li>",
+            state.name()
+        );
+    }
+    p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-al-error\" width=\"16\" height=\"12\"/></svg> AL state with the error indicator</li>\n");
     for state in crate::canopen::Cia402State::ALL {
         let _ = writeln!(
             p,

@@ -5,6 +5,7 @@
 //! working-counter mismatches), read from what `ethercat::Session` tells.
 
 use core::fmt;
+use std::collections::VecDeque;
 
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
@@ -13,16 +14,18 @@ use crate::can::{BusName, EthercatPacket, Timestamp};
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
     AlRegister, Counts, FrameCopy, Meaning, ProcessData, Session, SlaveRef, ERROR_COUNTERS_LEN,
+    PAIRING_WINDOW,
 };
 use crate::ethercat::{
-    AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, MailboxType,
-    COE_HEADER_LEN,
+    AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, FrameType,
+    MailboxType, COE_HEADER_LEN,
 };
 use crate::logs::Position;
 use crate::profiles::Profile;
 
 use super::cia402::{Cia402Timeline, TimelineBuilder};
 use super::emcy::EmcySeen;
+use super::event::{EthercatFact, SummaryEvent, SummaryEventKind};
 use super::servo::ServoTimeline;
 use super::values::{Iface, Ts};
 
@@ -211,6 +214,11 @@ pub struct StreamSummary {
     pub sent: u64,
     /// Returned copies read.
     pub returned: u64,
+    /// Frames sent with it that never came back
+    /// (docs/ethercat.md#direction: pushed out of the pairing window,
+    /// passed over by a later frame's returned copy, or still waiting at
+    /// the end of the capture).
+    pub lost: u64,
     /// Intervals between sent frames measured (both times known).
     pub intervals: u64,
     /// Intervals of zero: the capture's clock could not tell the frames
@@ -274,6 +282,22 @@ impl SlaveSummary {
 }
 
 impl StreamSummary {
+    /// Return the stream's command and address as the text writes them:
+    /// `LRW logical 0x00000000`, `FRMW adp 0x1000 ado 0x0910`.
+    #[must_use]
+    pub fn key(&self) -> String {
+        if matches!(self.command, Command::Lrd | Command::Lwr | Command::Lrw) {
+            format!("{} logical {:#010x}", self.command.name(), self.address)
+        } else {
+            format!(
+                "{} adp {:#06x} ado {:#06x}",
+                self.command.name(),
+                self.address & 0xFFFF,
+                self.address >> 16
+            )
+        }
+    }
+
     /// Return whether the capture's clock resolves the cycle: fewer than
     /// half the intervals are 0 (docs/ethercat.md#cycle-health; TwinCAT's
     /// captures are often coarser).
@@ -381,6 +405,7 @@ struct Stream {
     address: u32,
     sent: u64,
     returned: u64,
+    lost: u64,
     last_sent: Option<Timestamp>,
     histogram: Histogram,
     zero: u64,
@@ -391,6 +416,16 @@ struct Stream {
     intervals: u64,
     /// Working counters seen, with how often and where first.
     wkcs: Vec<(u16, u64, u64, Option<Timestamp>)>,
+}
+
+/// A sent frame waiting for its returned copy, as the session's pairing
+/// window holds it (docs/ethercat.md#direction): its packet, time and how
+/// many of the port's `waiting_streams` are its streams' datagrams.
+#[derive(Debug, Clone, Copy)]
+struct Waiting {
+    packet: u64,
+    timestamp: Option<Timestamp>,
+    streams: usize,
 }
 
 /// A port as it is being read.
@@ -404,13 +439,39 @@ struct Port {
     drives: Vec<Option<TimelineBuilder>>,
     streams: Vec<Stream>,
     streams_dropped: u64,
+    /// The sent frames of datagrams waiting for their returned copy, in
+    /// the order the session's window keeps them, so that a lost frame's
+    /// streams are known.
+    waiting: VecDeque<Waiting>,
+    /// The streams (places in `streams`) of the waiting frames' datagrams,
+    /// in order.
+    waiting_streams: VecDeque<u16>,
 }
 
 /// Reads a capture's EtherCAT packets for the summary.
 #[derive(Debug, Default)]
 pub(crate) struct EthercatSummarizer {
     session: Session,
+    /// The interfaces' names, at their ports' places.
+    names: Vec<BusName>,
     ports: Vec<Port>,
+}
+
+/// Hand on a fact of the interface `iface` at `packet`.
+fn fact(
+    on_event: &mut impl FnMut(SummaryEvent<'_>),
+    iface: &BusName,
+    packet: u64,
+    timestamp: Option<Timestamp>,
+    fact: EthercatFact,
+) {
+    on_event(SummaryEvent {
+        bus: iface,
+        node: None,
+        line: packet,
+        timestamp,
+        kind: SummaryEventKind::Ethercat(fact),
+    });
 }
 
 impl EthercatSummarizer {
@@ -418,19 +479,26 @@ impl EthercatSummarizer {
     pub(crate) fn new(config: &crate::decoder::DecoderConfig) -> Self {
         EthercatSummarizer {
             session: Session::with_config(config),
-            ports: Vec::new(),
+            ..EthercatSummarizer::default()
         }
     }
 
-    /// Read one packet: its datagrams, what they tell, its streams.
-    pub(crate) fn add(&mut self, position: Position, event: &EthercatPacket<'_>) {
+    /// Read one packet: its datagrams, what they tell, its streams; hand
+    /// `on_event` each fact it adds to the slave and stream records.
+    pub(crate) fn add(
+        &mut self,
+        position: Position,
+        event: &EthercatPacket<'_>,
+        mut on_event: impl FnMut(SummaryEvent<'_>),
+    ) {
         let Ok(packet) = self.session.read(position, event) else {
             return;
         };
         let name = BusName::of(packet.iface);
-        let port = match self.ports.iter().position(|p| p.name == name) {
+        let port = match self.names.iter().position(|n| *n == name) {
             Some(at) => at,
             None => {
+                self.names.push(name.clone());
                 self.ports.push(Port {
                     name,
                     slaves: Vec::new(),
@@ -438,11 +506,28 @@ impl EthercatSummarizer {
                     drives: Vec::new(),
                     streams: Vec::new(),
                     streams_dropped: 0,
+                    waiting: VecDeque::new(),
+                    waiting_streams: VecDeque::new(),
                 });
                 self.ports.len() - 1
             }
         };
+        let iface = &self.names[port];
         let number = position.number();
+        let datagrams = packet.frame.frame_type() == FrameType::Datagrams;
+        let sent_frame = datagrams && packet.copy == FrameCopy::Sent;
+        {
+            let port = &mut self.ports[port];
+            match packet.copy {
+                FrameCopy::Returned { sent } => port.paired(sent.number(), iface, &mut on_event),
+                // The window is full: its oldest frame is lost.
+                FrameCopy::Sent if sent_frame && port.waiting.len() == PAIRING_WINDOW => {
+                    port.lose_first(iface, &mut on_event);
+                }
+                _ => {}
+            }
+        }
+        let mut streams = 0;
         for (at, datagram) in packet.datagrams().enumerate() {
             let Ok(datagram) = datagram else {
                 self.session.count_damaged();
@@ -453,24 +538,50 @@ impl EthercatSummarizer {
             self.session
                 .meanings(&packet, at, &datagram, |m| meanings.push(m));
             for meaning in meanings {
-                port.meaning(number, packet.timestamp, meaning);
+                port.meaning(number, packet.timestamp, meaning, &mut |f| {
+                    fact(&mut on_event, iface, number, packet.timestamp, f);
+                });
             }
             let sent_adp = packet.sent_adp(at, &datagram);
-            port.stream(packet.copy, packet.timestamp, number, &datagram, sent_adp);
+            let stream = port.stream(
+                packet.copy,
+                packet.timestamp,
+                number,
+                &datagram,
+                sent_adp,
+                &mut |f| fact(&mut on_event, iface, number, packet.timestamp, f),
+            );
+            if let (true, Some(stream)) = (sent_frame, stream) {
+                port.waiting_streams.push_back(stream);
+                streams += 1;
+            }
             let timestamp = packet.timestamp;
             self.session.process_data(&packet, at, &datagram, |data| {
                 port.process_data(number, timestamp, data);
             });
         }
+        if sent_frame {
+            self.ports[port].waiting.push_back(Waiting {
+                packet: number,
+                timestamp: packet.timestamp,
+                streams,
+            });
+        }
     }
 
-    /// The summary of what was read.
-    pub(crate) fn finish(mut self) -> EthercatSummary {
+    /// The summary of what was read; the frames still waiting are lost,
+    /// and handed to `on_event`.
+    pub(crate) fn finish(mut self, mut on_event: impl FnMut(SummaryEvent<'_>)) -> EthercatSummary {
         let counts = self.session.finish();
+        for (port, iface) in self.ports.iter_mut().zip(&self.names) {
+            while !port.waiting.is_empty() {
+                port.lose_first(iface, &mut on_event);
+            }
+        }
         let mut summary = EthercatSummary::default();
-        for (at, port) in self.ports.into_iter().enumerate() {
+        for (at, (port, name)) in self.ports.into_iter().zip(self.names).enumerate() {
             summary.ports.push(PortSummary {
-                iface: port.name.clone(),
+                iface: name.clone(),
                 // The session counts the whole capture: the first
                 // interface's record carries the counts
                 // (docs/ethercat.md#summary).
@@ -491,7 +602,7 @@ impl EthercatSummarizer {
                     Command::Lrd | Command::Lwr | Command::Lrw | Command::Armw | Command::Frmw
                 ) || stream.returned >= STATUS_STREAM_MIN;
                 if cyclic {
-                    summary.streams.push(stream.finish(port.name.clone()));
+                    summary.streams.push(stream.finish(name.clone()));
                 }
             }
         }
@@ -526,6 +637,7 @@ impl Stream {
             address: self.address,
             sent: self.sent,
             returned: self.returned,
+            lost: self.lost,
             intervals: self.intervals,
             zero_intervals: self.zero,
             cycle_median_ns: self.histogram.quantile(0.5),
@@ -540,9 +652,51 @@ impl Stream {
 }
 
 impl Port {
-    fn slave(&mut self, slave: SlaveRef) -> Option<&mut SlaveSummary> {
+    fn slave(&mut self, slave: SlaveRef) -> Option<(usize, &mut SlaveSummary)> {
         let at = self.slave_at(slave)?;
-        Some(&mut self.slaves[at])
+        Some((at, &mut self.slaves[at]))
+    }
+
+    /// A returned copy paired with the frame sent at `sent`: the frames
+    /// sent before it are lost (docs/ethercat.md#direction).
+    fn paired(&mut self, sent: u64, iface: &BusName, on_event: &mut impl FnMut(SummaryEvent<'_>)) {
+        if !self.waiting.iter().any(|w| w.packet == sent) {
+            return;
+        }
+        while let Some(first) = self.waiting.front().copied() {
+            if first.packet == sent {
+                self.waiting.pop_front();
+                for _ in 0..first.streams {
+                    self.waiting_streams.pop_front();
+                }
+                return;
+            }
+            self.lose_first(iface, on_event);
+        }
+    }
+
+    /// The oldest waiting frame is lost: each of its streams counts it.
+    fn lose_first(&mut self, iface: &BusName, on_event: &mut impl FnMut(SummaryEvent<'_>)) {
+        let Some(lost) = self.waiting.pop_front() else {
+            return;
+        };
+        for _ in 0..lost.streams {
+            let Some(at) = self.waiting_streams.pop_front() else {
+                break;
+            };
+            let Some(stream) = self.streams.get_mut(usize::from(at)) else {
+                continue;
+            };
+            stream.lost += 1;
+            let (command, address) = (stream.command, stream.address);
+            fact(
+                on_event,
+                iface,
+                lost.packet,
+                lost.timestamp,
+                EthercatFact::StreamLost { command, address },
+            );
+        }
     }
 
     /// The index of `slave`'s summary, added when new.
@@ -610,30 +764,44 @@ impl Port {
         }
     }
 
-    fn meaning(&mut self, packet: u64, timestamp: Option<Timestamp>, meaning: Meaning<'_>) {
+    /// Add what a datagram tells of a slave; hand `emit` each fact it
+    /// adds to the slave's record.
+    fn meaning(
+        &mut self,
+        packet: u64,
+        timestamp: Option<Timestamp>,
+        meaning: Meaning<'_>,
+        emit: &mut impl FnMut(EthercatFact),
+    ) {
         match meaning {
             Meaning::StationAddress { slave } => {
                 self.slave(slave);
             }
             Meaning::BroadcastAlStatus { .. } => {}
             Meaning::DlStatus { slave, low, high } => {
-                let Some(s) = self.slave(slave) else { return };
+                let Some((at, s)) = self.slave(slave) else {
+                    return;
+                };
                 let before = s.dl_last;
                 let after = (low.or(before.0), high.or(before.1));
                 let changed = (low.is_some() && before.0.is_some() && low != before.0)
                     || (high.is_some() && before.1.is_some() && high != before.1);
                 if changed && s.dl_changes.len() < MAX_AL_CHANGES {
-                    s.dl_changes.push(DlChange {
+                    let change = DlChange {
                         packet,
                         timestamp,
                         from: before,
                         to: after,
-                    });
+                    };
+                    s.dl_changes.push(change);
+                    emit(EthercatFact::DlChange { slave: at, change });
                 }
                 s.dl_last = after;
             }
             Meaning::ErrorCounters { slave, bytes } => {
-                let Some(s) = self.slave(slave) else { return };
+                let Some((place, s)) = self.slave(slave) else {
+                    return;
+                };
                 for (at, value) in bytes.iter().enumerate() {
                     let Some(value) = *value else { continue };
                     if let Some(before) = s.counters_last[at] {
@@ -641,13 +809,15 @@ impl Port {
                             && crate::ethercat::register::error_counter_name(at).is_some()
                             && s.counter_rises.len() < MAX_AL_CHANGES
                         {
-                            s.counter_rises.push(CounterRise {
+                            let rise = CounterRise {
                                 packet,
                                 timestamp,
                                 register: 0x0300 + at as u16,
                                 from: before,
                                 to: value,
-                            });
+                            };
+                            s.counter_rises.push(rise);
+                            emit(EthercatFact::CounterRise { slave: place, rise });
                         }
                     }
                     s.counters_last[at] = Some(value);
@@ -659,7 +829,9 @@ impl Port {
                 status,
                 code,
             } => {
-                let Some(s) = self.slave(slave) else { return };
+                let Some((at, s)) = self.slave(slave) else {
+                    return;
+                };
                 let requested = register == AlRegister::Control;
                 let status = match (status, s.al_last) {
                     (Some(status), _) => status,
@@ -670,6 +842,13 @@ impl Port {
                             if !kept.requested && kept.status == last.status && kept.code.is_none()
                             {
                                 kept.code = code;
+                                if let Some(code) = code {
+                                    emit(EthercatFact::AlCode {
+                                        slave: at,
+                                        of: kept.packet,
+                                        code,
+                                    });
+                                }
                             }
                         }
                         s.al_last = Some(change);
@@ -696,13 +875,16 @@ impl Port {
                     } else {
                         s.al_changes_dropped += 1;
                     }
+                    emit(EthercatFact::AlState { slave: at, change });
                 }
                 if !requested {
                     s.al_last = Some(change);
                 }
             }
             Meaning::Sii { slave, word, value } => {
-                let Some(s) = self.slave(slave) else { return };
+                let Some((_, s)) = self.slave(slave) else {
+                    return;
+                };
                 match word {
                     0x08 => s.vendor = Some(value),
                     0x0A => s.product = Some(value),
@@ -720,7 +902,9 @@ impl Port {
                 body,
                 profile,
             } => {
-                let Some(s) = self.slave(slave) else { return };
+                let Some((at, s)) = self.slave(slave) else {
+                    return;
+                };
                 if guessed {
                     s.mailbox_guessed += 1;
                 }
@@ -743,16 +927,21 @@ impl Port {
                 match coe.service {
                     CoeService::Emergency => {
                         if let Ok(emcy) = Emcy::parse(rest) {
+                            let emergency = CoeEmergency {
+                                packet,
+                                timestamp,
+                                emcy,
+                                profile,
+                            };
                             if s.emergencies.len() < MAX_EMERGENCIES {
-                                s.emergencies.push(CoeEmergency {
-                                    packet,
-                                    timestamp,
-                                    emcy,
-                                    profile,
-                                });
+                                s.emergencies.push(emergency);
                             } else {
                                 s.emergencies_dropped += 1;
                             }
+                            emit(EthercatFact::Emergency {
+                                slave: at,
+                                emergency,
+                            });
                         }
                     }
                     CoeService::SdoRequest | CoeService::SdoResponse => {
@@ -763,7 +952,7 @@ impl Port {
                             s.sdo_responses += 1;
                         }
                         if let Ok(sdo) = CoeSdo::parse(rest) {
-                            self.sdo_step(slave, request, written, &sdo, packet, timestamp);
+                            self.sdo_step(slave, request, written, &sdo, packet, timestamp, emit);
                         }
                     }
                     _ => {}
@@ -777,6 +966,7 @@ impl Port {
     /// initiate response, the last segment's, or the download segment
     /// response after the last segment ends it; an abort from either side
     /// ends it too (docs/ethercat.md#summary).
+    #[allow(clippy::too_many_arguments)]
     fn sdo_step(
         &mut self,
         slave: SlaveRef,
@@ -785,6 +975,7 @@ impl Port {
         sdo: &CoeSdo<'_>,
         packet: u64,
         timestamp: Option<Timestamp>,
+        emit: &mut impl FnMut(EthercatFact),
     ) {
         let Some(at) = self.slave_at(slave) else {
             return;
@@ -796,19 +987,21 @@ impl Port {
         if let Some(code) = sdo.abort_code() {
             summary.sdo_aborts += 1;
             let (index, subindex) = sdo.multiplexer().unwrap_or((0, 0));
+            let abort = CoeSdoAbort {
+                packet,
+                timestamp,
+                index,
+                subindex,
+                code,
+                // A slave's abort is read from its mailbox, in a response
+                // or, as real slaves send it, in a message of the request
+                // service.
+                from_slave: !written,
+            };
             if summary.sdo_abort_list.len() < MAX_EMERGENCIES {
-                summary.sdo_abort_list.push(CoeSdoAbort {
-                    packet,
-                    timestamp,
-                    index,
-                    subindex,
-                    code,
-                    // A slave's abort is read from its mailbox, in a
-                    // response or, as real slaves send it, in a message of
-                    // the request service.
-                    from_slave: !written,
-                });
+                summary.sdo_abort_list.push(abort);
             }
+            emit(EthercatFact::SdoAbort { slave: at, abort });
             *open = None;
             return;
         }
@@ -873,6 +1066,9 @@ impl Port {
         }
     }
 
+    /// Count a datagram in its stream, if it has one; return the stream's
+    /// place, and hand `emit` a returned copy whose working counter the
+    /// stream counts.
     fn stream(
         &mut self,
         copy: FrameCopy,
@@ -880,7 +1076,8 @@ impl Port {
         packet: u64,
         datagram: &Datagram<'_>,
         sent_adp: Option<u16>,
-    ) {
+        emit: &mut impl FnMut(EthercatFact),
+    ) -> Option<u16> {
         let command = datagram.command();
         if !matches!(
             command,
@@ -892,7 +1089,7 @@ impl Port {
                 | Command::Brd
                 | Command::Fprd
         ) {
-            return;
+            return None;
         }
         let address = match command {
             // A returned BRD's ADP is counted on: the register names it.
@@ -900,7 +1097,7 @@ impl Port {
             // So is an ARMW's: the sent copy's names the slave.
             Command::Armw => match sent_adp {
                 Some(adp) => (u32::from(datagram.ado()) << 16) | u32::from(adp),
-                None => return,
+                None => return None,
             },
             _ => datagram.address(),
         };
@@ -916,6 +1113,7 @@ impl Port {
                     address,
                     sent: 0,
                     returned: 0,
+                    lost: 0,
                     last_sent: None,
                     histogram: Histogram::new(),
                     zero: 0,
@@ -929,7 +1127,7 @@ impl Port {
             }
             None => {
                 self.streams_dropped += 1;
-                return;
+                return None;
             }
         };
         let stream = &mut self.streams[at];
@@ -960,13 +1158,25 @@ impl Port {
             FrameCopy::Returned { .. } | FrameCopy::ReturnedUnpaired => {
                 stream.returned += 1;
                 let wkc = datagram.working_counter();
-                if let Some(w) = stream.wkcs.iter_mut().find(|w| w.0 == wkc) {
+                let counted = if let Some(w) = stream.wkcs.iter_mut().find(|w| w.0 == wkc) {
                     w.1 += 1;
+                    true
                 } else if stream.wkcs.len() < 64 {
                     stream.wkcs.push((wkc, 1, packet, timestamp));
+                    true
+                } else {
+                    false
+                };
+                if counted {
+                    emit(EthercatFact::StreamReturned {
+                        command,
+                        address,
+                        wkc,
+                    });
                 }
             }
         }
+        u16::try_from(at).ok()
     }
 }
 
@@ -1215,6 +1425,7 @@ pub(super) fn stream_entries<M: SerializeMap>(
     }
     map.serialize_entry("sent", &s.sent)?;
     map.serialize_entry("returned", &s.returned)?;
+    map.serialize_entry("lost", &s.lost)?;
     map.serialize_entry("intervals", &s.intervals)?;
     map.serialize_entry("resolved", &s.resolved())?;
     let us = |ns: Option<u64>| ns.map(|ns| ns as f64 / 1000.0);
@@ -1420,18 +1631,16 @@ impl fmt::Display for StreamSummary {
     /// 1000.0 µs, p99 1000.0 µs, max 1000.0 µs, jitter 0.0 µs; working
     /// counter 3, 50 mismatches from packet 460 (1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "stream {} {}", self.iface, self.command.name())?;
-        if matches!(self.command, Command::Lrd | Command::Lwr | Command::Lrw) {
-            write!(f, " logical {:#010x}", self.address)?;
-        } else {
-            write!(
-                f,
-                " adp {:#06x} ado {:#06x}",
-                self.address & 0xFFFF,
-                self.address >> 16
-            )?;
+        write!(
+            f,
+            "stream {} {}: {} frames",
+            self.iface,
+            self.key(),
+            self.sent
+        )?;
+        if self.lost > 0 {
+            write!(f, ", {} lost", self.lost)?;
         }
-        write!(f, ": {} frames", self.sent)?;
         let us = |ns: u64| ns as f64 / 1000.0;
         if self.resolved() {
             if let (Some(median), Some(p99), Some(max)) =

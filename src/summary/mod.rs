@@ -68,7 +68,7 @@ pub use ethercat::{
     PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS,
     STATUS_STREAM_MIN,
 };
-pub use event::{SummaryEvent, SummaryEventKind};
+pub use event::{EthercatFact, SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingCause, FindingDetail, FindingKind};
 pub use heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};

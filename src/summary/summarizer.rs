@@ -216,12 +216,17 @@ impl Summarizer {
     /// An EtherCAT packet: read by the EtherCAT part of the summary.
     #[cold]
     #[inline(never)]
-    fn add_ethercat(&mut self, position: Position, packet: &EthercatPacket<'_>) {
+    fn add_ethercat(
+        &mut self,
+        position: Position,
+        packet: &EthercatPacket<'_>,
+        on_event: impl FnMut(SummaryEvent<'_>),
+    ) {
         self.ethercat_packets += 1;
         let config = self.decoder.config();
         self.ethercat
             .get_or_insert_with(|| EthercatSummarizer::new(config))
-            .add(position, packet);
+            .add(position, packet, on_event);
     }
 
     /// Return how many EtherCAT packets were added: the summary's
@@ -283,7 +288,7 @@ impl Summarizer {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
-            LogEvent::Ethercat(packet) => self.add_ethercat(position, packet),
+            LogEvent::Ethercat(packet) => self.add_ethercat(position, packet, |_| {}),
         }
     }
 
@@ -305,7 +310,7 @@ impl Summarizer {
                 return None;
             }
             LogEvent::Ethercat(packet) => {
-                self.add_ethercat(position, packet);
+                self.add_ethercat(position, packet, on_event);
                 return None;
             }
         };
@@ -696,7 +701,8 @@ impl Summarizer {
     /// Close the input, as [`finish`](Self::finish) does, and hand
     /// `on_event` the facts that only the end of the input shows: the
     /// transfers left open, the heartbeat gaps still open at the last
-    /// timestamp ([`SummaryEvent`]).
+    /// timestamp, the EtherCAT frames still waiting for their returned
+    /// copy, which are lost ([`SummaryEvent`]).
     #[must_use]
     pub fn finish_with(mut self, mut on_event: impl FnMut(SummaryEvent<'_>)) -> Summary {
         for open in self.decoder.finish() {
@@ -766,7 +772,7 @@ impl Summarizer {
             verdict: None,
             ethercat: self
                 .ethercat
-                .map(EthercatSummarizer::finish)
+                .map(|ethercat| ethercat.finish(&mut on_event))
                 .unwrap_or_default(),
         };
         for (name, bus) in buses {

@@ -536,3 +536,67 @@ fn coe_sdo_transfers_and_a_slave_abort_are_summarized() {
     let text = summary.to_string();
     assert!(text.contains("SDO abort 6041sub7 0x06020000"), "{text}");
 }
+
+/// A stream's frames that never come back are its `lost`, each handed on
+/// at its sent packet; its returned copies are handed on with their
+/// working counters, and the facts of `add_with` are the record's
+/// (docs/ethercat.md#cycle-health).
+#[test]
+fn a_streams_lost_frames_and_working_counters_are_its_records() {
+    use motionwire::can::{EthercatPacket, LogEvent, Timestamp};
+    use motionwire::ethercat::{Command, Encapsulation, EthercatLink, Mac};
+    use motionwire::summary::{EthercatFact, SummaryEventKind};
+    // Ten LRW cycles: cycle 4 never comes back (the return of cycle 5
+    // passes it over), cycle 6 comes back with working counter 2, cycle 9
+    // is still waiting at the end.
+    let cycles: Vec<[Vec<u8>; 2]> = (0..10u8)
+        .map(|i| copies(Command::Lrw, i, 0, &[0; 4], &[1; 4]))
+        .collect();
+    let mut packets: Vec<(Vec<u8>, [u8; 6])> = Vec::new();
+    for (i, [sent, returned]) in cycles.iter().enumerate() {
+        packets.push((sent.clone(), [0x10; 6]));
+        if i == 4 || i == 9 {
+            continue;
+        }
+        let mut returned = returned.clone();
+        let wkc = if i == 6 { 2u16 } else { 3 };
+        let end = returned.len();
+        returned[end - 2..].copy_from_slice(&wkc.to_le_bytes());
+        packets.push((returned, [0x12, 0x10, 0x10, 0x10, 0x10, 0x10]));
+    }
+    let mut summarizer = motionwire::summary::Summarizer::default();
+    let (mut lost_at, mut wkcs) = (Vec::new(), Vec::new());
+    let mut on_event = |event: motionwire::summary::SummaryEvent<'_>| match event.kind {
+        SummaryEventKind::Ethercat(EthercatFact::StreamLost { command, .. }) => {
+            assert_eq!(command, Command::Lrw);
+            lost_at.push(event.line);
+        }
+        SummaryEventKind::Ethercat(EthercatFact::StreamReturned { wkc, .. }) => wkcs.push(wkc),
+        _ => {}
+    };
+    for (n, (payload, source)) in packets.iter().enumerate() {
+        let number = n as u64 + 1;
+        let packet = EthercatPacket {
+            timestamp: Timestamp::new(1_700_000_000, number as u32 * 500),
+            iface: None,
+            link: EthercatLink {
+                destination: None,
+                source: Mac(*source),
+                encapsulation: Encapsulation::Ethernet,
+                payload,
+            },
+        };
+        let event = LogEvent::Ethercat(packet);
+        let _ = summarizer.add_with(logs::Position::Record(number), &event, &mut on_event);
+    }
+    let summary = summarizer.finish_with(&mut on_event);
+    let lrw = &summary.ethercat.streams[0];
+    assert_eq!((lrw.sent, lrw.returned, lrw.lost), (10, 8, 2));
+    assert_eq!((lrw.wkc_usual, lrw.wkc_mismatches), (Some(3), 1));
+    // Cycle 4 was sent as packet 9, cycle 9 as packet 18.
+    assert_eq!(lost_at, [9, 18]);
+    assert_eq!(wkcs.len(), 8);
+    assert_eq!(wkcs.iter().filter(|&&w| w != 3).count(), 1);
+    assert_eq!(summary.ethercat.ports[0].counts.lost, 2, "as the session");
+    assert!(summary.to_string().contains(": 10 frames, 2 lost,"));
+}

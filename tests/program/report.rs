@@ -6,7 +6,7 @@
 use std::io::Write;
 
 use crate::report_common::{
-    check_counts, parse, repo, run, scratch, summary_records, Element, Page,
+    check_counts, check_ethercat, parse, repo, run, scratch, summary_records, Element, Page,
 };
 use serde_json::Value;
 
@@ -983,4 +983,233 @@ fn logs_read_apart_have_an_axis_each() {
         .filter(|e| e.tag == "svg" && e.get("aria-label") == Some("timeline"))
         .count();
     assert_eq!(svgs, 1);
+}
+
+/// The EtherCAT captures of tests/data/ethercat.
+fn ethercat_captures() -> Vec<std::path::PathBuf> {
+    let mut captures: Vec<_> = std::fs::read_dir(repo("tests/data/ethercat"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "pcapng"))
+        .collect();
+    captures.sort();
+    captures
+}
+
+/// `report CAPTURE`: the page, read by its contract, and standard error.
+fn capture_page(capture: &std::path::Path, dir: &std::path::Path) -> (Page, String) {
+    let out = dir.join(format!(
+        "{}.html",
+        capture.file_stem().unwrap().to_string_lossy()
+    ));
+    let run = run(&[
+        "report",
+        capture.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{}: {stderr}", capture.display());
+    (parse(&std::fs::read_to_string(out).unwrap()), stderr)
+}
+
+/// Every capture's page draws a row per slave and per stream record, its
+/// AL bands and marks adding up to the records (docs/report.md#ethercat),
+/// on a time axis of the capture's span.
+#[test]
+fn every_ethercat_capture_draws_its_slaves_and_streams() {
+    let dir = scratch("ethercat");
+    let captures = ethercat_captures();
+    assert_eq!(captures.len(), 7);
+    let mut slaves = 0;
+    for capture in captures {
+        let (page, stderr) = capture_page(&capture, &dir);
+        assert!(!stderr.contains("does not draw"), "{stderr}");
+        let records = summary_records(&[capture.to_str().unwrap()]);
+        assert_eq!(page.summary(), records, "{}", capture.display());
+        check_counts(&page, &records);
+        check_ethercat(&page, &records);
+        slaves += page
+            .rows
+            .iter()
+            .filter(|r| r.row.get("data-row") == Some("slave"))
+            .count();
+        assert_eq!(page.body().get("data-axis"), Some("time"));
+        assert!(page.body().num("data-span") > 0);
+        // Not an empty log: the list says what it does not cover.
+        assert!(
+            page.elements
+                .iter()
+                .any(|e| e.tag == "p" && e.get("data-kind") == Some("ethercat")),
+            "{}",
+            capture.display()
+        );
+        // Every AL band says a state, every mark its line.
+        for row in &page.rows {
+            for band in row.kind("al_state") {
+                assert!(band.get("data-state").is_some() && band.get("data-line").is_some());
+            }
+        }
+    }
+    assert_eq!(slaves, 12, "the seven captures' slaves");
+}
+
+/// The synthetic AKD fault (docs/ethercat.md#summary): the drive's EMCY at
+/// packet 456, then its AL status safeop with error at 458, then the LRW
+/// stream's working counter falling from packet 460 — each where the
+/// records say, and said in the Events table.
+#[test]
+fn the_akd_fault_is_drawn_where_the_summary_says() {
+    let (page, _) = capture_page(
+        &repo("tests/data/ethercat/synthetic_akd_fault.pcapng"),
+        &scratch("akd-fault"),
+    );
+    let akd = page
+        .rows
+        .iter()
+        .find(|r| r.row.get("data-row") == Some("slave") && r.row.get("data-slave") == Some("4097"))
+        .unwrap();
+    assert_eq!(akd.row.get("data-iface"), Some("enp2s0"));
+    assert_eq!(akd.row.get("data-position"), Some("1"));
+    let states: Vec<(&str, u64, bool)> = akd
+        .kind("al_state")
+        .iter()
+        .map(|b| {
+            (
+                b.get("data-state").unwrap(),
+                b.num("data-line"),
+                b.get("data-error") == Some("true"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        states,
+        [
+            ("preop", 84, false),
+            ("safeop", 144, false),
+            ("op", 152, false),
+            ("safeop", 458, true)
+        ]
+    );
+    assert_eq!(akd.lines("coe_emcy"), [456]);
+    assert_eq!(akd.lines("al_error"), [458]);
+    let lrw = page
+        .rows
+        .iter()
+        .find(|r| r.row.get("data-row") == Some("stream"))
+        .unwrap();
+    assert_eq!(lrw.row.get("data-stream"), Some("LRW logical 0x00000000"));
+    assert_eq!(lrw.count("wkc_mismatch"), 50);
+    assert_eq!(lrw.lines("wkc_mismatch")[0], 460);
+    assert_eq!(lrw.count("lost_frame"), 0);
+    // Each mark an event row, with its row's attributes.
+    let events: Vec<&Element> = page
+        .elements
+        .iter()
+        .filter(|e| e.tag == "tr" && e.get("data-line").is_some())
+        .collect();
+    assert!(events
+        .iter()
+        .any(|e| e.num("data-line") == 456 && e.get("data-slave") == Some("4097")));
+    assert_eq!(
+        events
+            .iter()
+            .filter(|e| e.get("data-stream") == Some("LRW logical 0x00000000"))
+            .count(),
+        50
+    );
+    assert!(page
+        .html
+        .contains("AL status safeop with error 0x001b Sync manager watchdog"));
+}
+
+/// A pcap (link type Ethernet) of `cycles` LRW frames a millisecond apart,
+/// sent by an ethercrab master and returned through three slaves: `wkc`
+/// gives each cycle's returned working counter, `None` for a frame that
+/// never comes back.
+fn lrw_capture(path: &std::path::Path, cycles: usize, wkc: impl Fn(usize) -> Option<u16>) {
+    let mut out = Vec::new();
+    out.extend(0xa1b2_c3d4u32.to_le_bytes());
+    out.extend(2u16.to_le_bytes());
+    out.extend(4u16.to_le_bytes());
+    out.extend([0; 8]);
+    out.extend(65535u32.to_le_bytes());
+    out.extend(1u32.to_le_bytes());
+    let mut t = 1_700_000_000_000_000u64;
+    let packet = |out: &mut Vec<u8>, t: u64, source: u8, index: u8, wkc: u16| {
+        let data = [0u8; 4];
+        let mut frame = vec![0xff; 6];
+        frame.extend([source, 0x10, 0x10, 0x10, 0x10, 0x10]);
+        frame.extend([0x88, 0xa4]);
+        let len = 10 + data.len() + 2;
+        frame.extend(((len as u16) | 0x1000).to_le_bytes());
+        frame.extend([12, index]);
+        frame.extend(0u32.to_le_bytes());
+        frame.extend((data.len() as u16).to_le_bytes());
+        frame.extend(0u16.to_le_bytes());
+        frame.extend(data);
+        frame.extend(wkc.to_le_bytes());
+        out.extend(((t / 1_000_000) as u32).to_le_bytes());
+        out.extend(((t % 1_000_000) as u32).to_le_bytes());
+        out.extend((frame.len() as u32).to_le_bytes());
+        out.extend((frame.len() as u32).to_le_bytes());
+        out.extend(frame);
+    };
+    for cycle in 0..cycles {
+        let index = cycle as u8;
+        packet(&mut out, t, 0x10, index, 0);
+        if let Some(wkc) = wkc(cycle) {
+            packet(&mut out, t + 100, 0x12, index, wkc);
+        }
+        t += 1000;
+    }
+    std::fs::write(path, out).unwrap();
+}
+
+/// A busy stream: thousands of mismatches and lost frames are drawn as
+/// clusters (docs/report.md#clusters) whose counts add up to the stream
+/// record's, with the same code as the CAN rows.
+#[test]
+fn a_busy_stream_clusters_and_every_frame_is_counted() {
+    let dir = scratch("ecat-storm");
+    let capture = dir.join("storm.pcap");
+    // Cycle by cycle: 800 in a row lost and every 97th, every 3rd with
+    // working counter 2.
+    lrw_capture(&capture, 6000, |c| {
+        if (1000..1800).contains(&c) || c % 97 == 0 {
+            None
+        } else if c % 3 == 0 {
+            Some(2)
+        } else {
+            Some(3)
+        }
+    });
+    let (page, _) = capture_page(&capture, &dir);
+    let records = summary_records(&[capture.to_str().unwrap()]);
+    check_ethercat(&page, &records);
+    let stream = records
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["type"] == "stream")
+        .unwrap();
+    assert!(stream["lost"].as_u64().unwrap() > 800);
+    assert_eq!(stream["wkc_usual"], 3);
+    let row = page
+        .rows
+        .iter()
+        .find(|r| r.row.get("data-row") == Some("stream"))
+        .unwrap();
+    for kind in ["lost_frame", "wkc_mismatch"] {
+        let marks = row.kind(kind);
+        assert!(marks.len() < 1100, "{kind}: {} marks", marks.len());
+        assert!(
+            marks.iter().any(|m| m.num("data-count") > 1),
+            "{kind} clusters"
+        );
+        for m in marks.iter().filter(|m| m.num("data-count") > 1) {
+            assert!(m.num("data-last-line") > m.num("data-line"));
+        }
+    }
+    assert!(page.html.len() < 1_500_000, "{} bytes", page.html.len());
 }

@@ -12,7 +12,9 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::report_common::{check_counts, parse, repo, run, scratch, summary_records};
+use crate::report_common::{
+    check_counts, check_ethercat, parse, repo, run, scratch, summary_records,
+};
 
 /// The browser, or `None` (said) when it is not there and not required.
 fn chromium() -> Option<PathBuf> {
@@ -330,4 +332,31 @@ fn a_large_logs_verdict_and_findings_fit_the_first_screen() {
         "verdict at {verdict}, timeline at {timeline}"
     );
     assert!(timeline < 1000, "timeline at {timeline}");
+}
+
+/// An EtherCAT capture's page in the browser: the script runs without a
+/// console message over slave and stream rows, and the DOM after it ran
+/// still agrees with the records (docs/report.md#ethercat).
+#[test]
+fn an_ethercat_page_after_load_agrees_with_the_summary() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("browser-ecat");
+    let capture = repo("tests/data/ethercat/synthetic_akd_fault.pcapng");
+    let page = dir.join("akd.html");
+    let r = run(&[
+        "report",
+        capture.to_str().unwrap(),
+        "-o",
+        page.to_str().unwrap(),
+    ]);
+    assert!(r.status.success());
+    let (dom, log) = browse(&browser, &page, &["--dump-dom"]);
+    let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
+    assert!(console.is_empty(), "console messages: {console:#?}");
+    let dom = parse(&dom);
+    let html = dom.elements.iter().find(|e| e.tag == "html").unwrap();
+    assert_eq!(html.get("data-script"), Some("ready"));
+    let records = summary_records(&[capture.to_str().unwrap()]);
+    check_ethercat(&dom, &records);
+    assert_eq!(dom.summary(), records);
 }

@@ -377,3 +377,129 @@ pub fn check_counts(page: &Page, records: &Value) {
         );
     }
 }
+
+/// Check the EtherCAT rows against the summary's records
+/// (docs/report.md#ethercat): one row per slave and per stream record, the
+/// AL bands one per reported AL change, in order, and the `data-count`s of
+/// each kind adding up to the records' counts.
+pub fn check_ethercat(page: &Page, records: &Value) {
+    let records = records.as_array().unwrap();
+    let of = |row: &str| {
+        page.rows
+            .iter()
+            .filter(|r| r.row.get("data-row") == Some(row))
+            .count()
+    };
+    let slaves: Vec<&Value> = records.iter().filter(|r| r["type"] == "slave").collect();
+    let streams: Vec<&Value> = records.iter().filter(|r| r["type"] == "stream").collect();
+    assert_eq!(of("slave"), slaves.len(), "one row per slave");
+    assert_eq!(of("stream"), streams.len(), "one row per stream");
+    let text = |v: &Value| match v {
+        Value::Null => String::new(),
+        v => v.as_str().map_or_else(|| v.to_string(), str::to_owned),
+    };
+    for s in slaves {
+        let iface = text(&s["iface"]);
+        let row = page
+            .rows
+            .iter()
+            .find(|r| {
+                r.row.get("data-row") == Some("slave")
+                    && r.row.get("data-iface") == Some(iface.as_str())
+                    && r.row.get("data-slave") == Some(text(&s["slave"]).as_str())
+                    && r.row.get("data-position").map(str::to_owned)
+                        == s["position"].as_u64().map(|p| p.to_string())
+            })
+            .unwrap_or_else(|| panic!("row of {s}"));
+        let what = format!("{iface} slave {}", s["slave"]);
+        assert_eq!(s["al_timeline_dropped"], 0, "every change listed in {what}");
+        let reported: Vec<&Value> = s["al_timeline"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["requested"] == false)
+            .collect();
+        let bands = row.kind("al_state");
+        assert_eq!(
+            row.count("al_state"),
+            reported.len() as u64,
+            "AL bands of {what}"
+        );
+        if bands.iter().all(|b| b.num("data-count") == 1) {
+            for (band, change) in bands.iter().zip(&reported) {
+                let state = change["state"].as_str().unwrap_or("unknown");
+                assert_eq!(band.get("data-state"), Some(state), "{what}: {change}");
+                assert_eq!(band.num("data-line"), change["packet"].as_u64().unwrap());
+                assert_eq!(
+                    band.get("data-error") == Some("true"),
+                    change["error"] == true,
+                    "{what}: {change}"
+                );
+            }
+        }
+        let errors = reported.iter().filter(|c| c["error"] == true).count() as u64;
+        assert_eq!(row.count("al_error"), errors, "al_error of {what}");
+        assert_eq!(
+            row.count("coe_emcy"),
+            s["emcy_count"].as_u64().unwrap(),
+            "coe_emcy of {what}"
+        );
+        assert_eq!(
+            row.count("sdo_abort"),
+            s["sdo_aborts"].as_u64().unwrap(),
+            "sdo_abort of {what}"
+        );
+        let len = |key: &str| s[key].as_array().unwrap().len() as u64;
+        assert_eq!(row.count("dl_change"), len("dl_status_changes"), "{what}");
+        assert_eq!(
+            row.count("error_counter"),
+            len("error_counter_rises"),
+            "{what}"
+        );
+        for mark in &row.items {
+            if let Some(kind) = mark.get("data-kind") {
+                if kind != "al_state" {
+                    assert!(
+                        mark.get("data-line").is_some() && mark.get("data-count").is_some(),
+                        "{what}: {mark:?}"
+                    );
+                }
+            }
+        }
+    }
+    for s in streams {
+        let iface = text(&s["iface"]);
+        let cmd = s["cmd"].as_str().unwrap();
+        let row = page
+            .rows
+            .iter()
+            .find(|r| {
+                let same = |key: &str| {
+                    r.row.get(&format!("data-{key}")).map(str::to_owned)
+                        == s.get(key).map(|v| v.to_string())
+                };
+                r.row.get("data-row") == Some("stream")
+                    && r.row.get("data-iface") == Some(iface.as_str())
+                    && r.row.get("data-cmd") == Some(cmd)
+                    && same("logical")
+                    && same("adp")
+                    && same("ado")
+            })
+            .unwrap_or_else(|| panic!("row of {s}"));
+        let key = row.row.get("data-stream").unwrap();
+        assert!(key.starts_with(&format!("{cmd} ")), "{key}");
+        assert_eq!(
+            row.count("lost_frame"),
+            s["lost"].as_u64().unwrap(),
+            "{key}"
+        );
+        assert_eq!(
+            row.count("wkc_mismatch"),
+            s["wkc_mismatches"].as_u64().unwrap(),
+            "{key}"
+        );
+        if let Some(first) = s["first_mismatch_packet"].as_u64() {
+            assert_eq!(row.lines("wkc_mismatch")[0], first, "{key}");
+        }
+    }
+}

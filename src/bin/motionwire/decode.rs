@@ -807,16 +807,6 @@ fn take_recording(
         return Ok(());
     };
     let mut recording = recorder.finish();
-    let ethercat = recording.summary.ethercat.ports.len();
-    if ethercat > 0 {
-        // The summary's records embedded in the page hold the EtherCAT
-        // part; the drawing does not yet (docs/ethercat.md#summary).
-        writeln!(
-            sink.err,
-            "motionwire: the page does not draw EtherCAT yet: its summary records hold the capture's \
-             interfaces, slaves and streams (decode --summary says them)"
-        )?;
-    }
     recording.summary.file = file;
     recording.files = files;
     say_unchecked_timeouts(&mut sink.err, &recording.summary)?;
