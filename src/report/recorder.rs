@@ -795,6 +795,20 @@ fn record_ethercat(ports: &mut Vec<PortRows>, timed: bool, now: At, event: &Summ
             port.slave(slave, timed)
                 .emcy(MarkKind::CoeEmcy, at, detail, emcy.code.get(), timed);
         }
+        EthercatFact::Cia402 {
+            slave,
+            transition,
+            fault,
+        } => {
+            let row = port.slave(slave, timed);
+            RowData::band(&mut row.cia402, at, transition.to as u8);
+            if fault.is_some() {
+                row.mark(MarkKind::Cia402Fault, at, at, Detail::None);
+            }
+        }
+        // The servo's timeline is in the page's summary records; its row
+        // is drawn from them (docs/report.md#ethercat).
+        EthercatFact::Servo { .. } => {}
         EthercatFact::SdoAbort { slave, abort } => {
             let detail = Detail::Abort {
                 index: abort.index,

@@ -557,7 +557,9 @@ impl EthercatSummarizer {
             }
             let timestamp = packet.timestamp;
             self.session.process_data(&packet, at, &datagram, |data| {
-                port.process_data(number, timestamp, data);
+                port.process_data(number, timestamp, data, &mut |f| {
+                    fact(&mut on_event, iface, number, timestamp, f);
+                });
             });
         }
         if sent_frame {
@@ -733,7 +735,13 @@ impl Port {
     /// One slave's process data in one cycle: its counts, its CiA 402
     /// timeline (faults with the slave's last CoE emergency before them)
     /// and its servo timeline.
-    fn process_data(&mut self, packet: u64, timestamp: Option<Timestamp>, data: &ProcessData<'_>) {
+    fn process_data(
+        &mut self,
+        packet: u64,
+        timestamp: Option<Timestamp>,
+        data: &ProcessData<'_>,
+        emit: &mut impl FnMut(EthercatFact),
+    ) {
         let Some(slave) = data.slave else { return };
         let Some(at) = self.slave_at(slave) else {
             return;
@@ -753,14 +761,29 @@ impl Port {
                 register: e.emcy.register,
                 manufacturer: e.emcy.manufacturer,
             });
-            self.drives[at]
+            if let Some((transition, fault)) = self.drives[at]
                 .get_or_insert_with(TimelineBuilder::default)
-                .observe(packet, timestamp, reading, last_error);
+                .observe(packet, timestamp, reading, last_error)
+            {
+                emit(EthercatFact::Cia402 {
+                    slave: at,
+                    transition,
+                    fault,
+                });
+            }
         }
         if let Some(servo) = &data.servo {
-            s.servo
-                .get_or_insert_with(ServoTimeline::default)
-                .observe(packet, timestamp, servo);
+            let timeline = s.servo.get_or_insert_with(ServoTimeline::default);
+            let before = timeline.events.count();
+            timeline.observe(packet, timestamp, servo);
+            // The events this cycle added, newest last.
+            let added = (timeline.events.count() - before) as usize;
+            let kept = timeline.events.kept();
+            for i in kept.saturating_sub(added)..kept {
+                if let Some(&event) = timeline.events.get(i) {
+                    emit(EthercatFact::Servo { slave: at, event });
+                }
+            }
         }
     }
 

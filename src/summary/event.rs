@@ -14,7 +14,7 @@ use crate::ethercat::{AlStatusCode, Command};
 
 use super::{
     AlChange, Cia402Fault, Cia402Transition, CoeEmergency, CoeSdoAbort, CounterRise, DlChange,
-    HeartbeatGap, SdoAbort,
+    HeartbeatGap, SdoAbort, ServoEvent,
 };
 
 /// One fact the summary records, where it records it: the bus (or the
@@ -165,6 +165,24 @@ pub enum EthercatFact {
         address: u32,
         /// The working counter.
         wkc: u16,
+    },
+    /// A change of a CiA 402 drive's state from its process data, an entry
+    /// of the slave's `cia402.transitions`, with the fault it is, if any.
+    Cia402 {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The transition.
+        transition: Cia402Transition,
+        /// The fault it is.
+        fault: Option<Cia402Fault>,
+    },
+    /// A change of a servo's handshakes, faults or ServoRDY, an entry of
+    /// the slave's `servo.events`.
+    Servo {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The event.
+        event: ServoEvent,
     },
     /// A frame sent with the stream's datagram that never came back,
     /// counted in the stream's `lost`; the event's line is the sent
