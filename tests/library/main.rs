@@ -23,6 +23,8 @@ mod eds_names;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]
+mod ethercat_process;
+#[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
 #[cfg(feature = "logs")]
 mod logs;

@@ -345,9 +345,11 @@ struct Piece {
 pub(super) struct Plan {
     segments: Vec<Segment>,
     areas: Vec<Area>,
-    /// FMMUs of register bits (a sync manager's status): counted in the
-    /// working counter, not part of the image.
+    /// FMMUs of bits (a sync manager's status, a terminal packed into
+    /// part of a byte) read and written: counted in the working counter,
+    /// not part of the image.
     bit_reads: Vec<(u32, u32)>,
+    bit_writes: Vec<(u32, u32)>,
     outputs_len: usize,
     inputs_len: usize,
     outputs: Vec<Piece>,
@@ -372,6 +374,9 @@ impl Plan {
             if !fmmu.whole_bytes() {
                 if fmmu.reads() {
                     plan.bit_reads.push((start, end));
+                }
+                if fmmu.writes() {
+                    plan.bit_writes.push((start, end));
                 }
                 continue;
             }
@@ -497,7 +502,11 @@ impl Plan {
         self.areas
             .iter()
             .any(|a| a.logical < end && start < a.logical + a.len)
-            || self.bit_reads.iter().any(|&(s, e)| s < end && start < e)
+            || self
+                .bit_reads
+                .iter()
+                .chain(&self.bit_writes)
+                .any(|&(s, e)| s < end && start < e)
     }
 
     /// The slave's share of a datagram's working counter over `[start,
@@ -506,7 +515,7 @@ impl Plan {
     pub(super) fn share(&self, command: Command, start: u32, end: u32) -> u16 {
         let over = |a: &Area| a.logical < end && start < a.logical + a.len;
         let mut reads = self.bit_reads.iter().any(|&(s, e)| s < end && start < e);
-        let mut writes = false;
+        let mut writes = self.bit_writes.iter().any(|&(s, e)| s < end && start < e);
         for area in self.areas.iter().filter(|a| over(a)) {
             if self.segments[area.segment].output {
                 writes = true;
@@ -901,5 +910,43 @@ mod tests {
         // says it is truncated.
         shift(&[0xFF], 4, 12, &mut out);
         assert!(out.is_empty());
+    }
+
+    /// An FMMU of `bits` bits at logical 0, bit `first`, onto 0x0F00.
+    fn bit_fmmu(first: u8, bits: u8, kind: u8) -> Fmmu {
+        Fmmu {
+            logical: 0,
+            len: 1,
+            logical_start_bit: first,
+            logical_end_bit: first + bits - 1,
+            physical: 0x0F00,
+            physical_start_bit: 0,
+            kind,
+            active: true,
+        }
+    }
+
+    fn plan(fmmu: Fmmu) -> Plan {
+        let mut fmmus = [None; UNITS];
+        fmmus[0] = Some(fmmu);
+        Plan::new(&fmmus, &[None; UNITS], &CoeObjects::default(), None)
+    }
+
+    /// A terminal of fewer than 8 bits packed into part of a byte (as
+    /// SOEM maps bit-oriented slaves) counts in the working counter like
+    /// any FMMU: +2 written and +1 read in an LRW (ETG.1000.4 §5.4.1.2).
+    #[test]
+    fn bit_fmmus_count_in_the_working_counter() {
+        let outputs = plan(bit_fmmu(4, 4, 2));
+        assert!(outputs.touches(0, 1));
+        assert_eq!(outputs.share(Command::Lrw, 0, 1), 2);
+        assert_eq!(outputs.share(Command::Lwr, 0, 1), 1);
+        assert_eq!(outputs.share(Command::Lrd, 0, 1), 0);
+        let inputs = plan(bit_fmmu(0, 4, 1));
+        assert!(inputs.touches(0, 1));
+        assert_eq!(inputs.share(Command::Lrw, 0, 1), 1);
+        assert_eq!(inputs.share(Command::Lrd, 0, 1), 1);
+        assert_eq!(inputs.share(Command::Lwr, 0, 1), 0);
+        assert!(!inputs.touches(1, 2));
     }
 }

@@ -379,8 +379,15 @@ impl Network {
             let (held_out, held_in) =
                 plan.cut(logical, sent.unwrap_or(returned), returned, outputs, inputs);
             let (out_len, in_len) = plan.lens();
-            let outputs = (out_len > 0 && held_out == out_len).then_some(&outputs[..]);
-            let inputs = (in_len > 0 && held_in == in_len).then_some(&inputs[..]);
+            // An LRD writes no outputs, an LWR reads no inputs: the
+            // datagram does not hold that half whatever bytes it has there.
+            let outputs = (matches!(command, Command::Lrw | Command::Lwr)
+                && out_len > 0
+                && held_out == out_len)
+                .then_some(&outputs[..]);
+            let inputs =
+                (matches!(command, Command::Lrw | Command::Lrd) && in_len > 0 && held_in == in_len)
+                    .then_some(&inputs[..]);
             let mut cia402 = None;
             if plan.has_signals() {
                 let mut picked = Vec::new();
@@ -814,4 +821,85 @@ impl Missing {
 /// A write that may carry a mailbox message, recorded even when refused.
 const fn is_mailbox_write(command: Command) -> bool {
     matches!(command, Command::Fpwr)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slave whose 2 output bytes (SM2 at 0x1100) and 2 input bytes
+    /// (SM3 at 0x1180) share logical 0x0000–0x0001, as a master maps them
+    /// when inputs and outputs overlap.
+    fn overlapped() -> Network {
+        let fmmu = |physical, kind| Fmmu {
+            logical: 0,
+            len: 2,
+            logical_start_bit: 0,
+            logical_end_bit: 7,
+            physical,
+            physical_start_bit: 0,
+            kind,
+            active: true,
+        };
+        let sm = |start, control| SyncManager {
+            start,
+            len: 2,
+            control,
+            status: 0,
+            activate: 1,
+        };
+        let mut network = Network::default();
+        network.configure(&[SlaveConfig {
+            station: Some(0x1001),
+            fmmus: vec![(0, fmmu(0x1100, 2)), (1, fmmu(0x1180, 1))],
+            sync_managers: vec![(2, sm(0x1100, 0x64)), (3, sm(0x1180, 0x20))],
+            ..SlaveConfig::default()
+        }]);
+        network
+    }
+
+    /// The images one datagram gives: outputs and inputs, as hex.
+    fn cut(command: Command, sent: &[u8], returned: &[u8], wkc: u16) -> (String, String) {
+        let mut network = overlapped();
+        let mut images = None;
+        network.process_data(
+            command,
+            0,
+            Some(sent),
+            returned,
+            wkc,
+            &ServoSlaves::default(),
+            |data| {
+                let hex =
+                    |b: Option<&[u8]>| b.map_or_else(|| "-".to_owned(), |b| format!("{b:02x?}"));
+                images = Some((hex(data.outputs), hex(data.inputs)));
+            },
+        );
+        images.expect("one record")
+    }
+
+    /// An LRW carries both halves: the outputs the master sent, the
+    /// inputs the slave put in their place.
+    #[test]
+    fn lrw_gives_outputs_sent_and_inputs_returned() {
+        assert_eq!(
+            cut(Command::Lrw, &[0x11, 0x22], &[0x33, 0x44], 3),
+            ("[11, 22]".to_owned(), "[33, 44]".to_owned())
+        );
+    }
+
+    /// An LRD writes nothing: its sent bytes are no outputs of the slave.
+    /// An LWR reads nothing: its returned bytes are the master's outputs,
+    /// not the slave's inputs.
+    #[test]
+    fn lrd_gives_no_outputs_and_lwr_no_inputs() {
+        assert_eq!(
+            cut(Command::Lrd, &[0, 0], &[0x33, 0x44], 1),
+            ("-".to_owned(), "[33, 44]".to_owned())
+        );
+        assert_eq!(
+            cut(Command::Lwr, &[0x11, 0x22], &[0x11, 0x22], 1),
+            ("[11, 22]".to_owned(), "-".to_owned())
+        );
+    }
 }

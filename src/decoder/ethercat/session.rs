@@ -373,6 +373,7 @@ impl Session {
 
     /// Return the PDOs the configuration maps past their sync manager:
     /// the slave, the sync manager and the PDO (docs/ethercat.md#process-data).
+    #[must_use]
     pub fn too_long(&self) -> Vec<(SlaveRef, u8, u16)> {
         self.ports
             .iter()
