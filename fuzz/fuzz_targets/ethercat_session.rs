@@ -17,20 +17,30 @@
 //!   session does, and every record is one JSON object with its `type`;
 //! - what a datagram tells of the slaves comes from returned copies only,
 //!   and every meaning's record is one line of JSON of its kind, its text
-//!   one line.
+//!   one line;
+//! - process data comes from returned cyclic datagrams only; an image is
+//!   never longer than the datagram, a record is one line of JSON, a
+//!   servo record too (every slave is read as a servo when its images
+//!   are 10 and 40 bytes), and the text prints.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{EthercatPacket, Iface, LogEvent, Timestamp};
 use motionwire::summary::Summarizer;
 use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
-use motionwire::decoder::ethercat::{DatagramRecord, FrameCopy, MeaningRecord, Session};
+use motionwire::decoder::ethercat::{
+    DatagramRecord, FrameCopy, MeaningRecord, ProcessRecord, ServoSlaves, Session,
+};
 use motionwire::logs::Position;
 
 const NAMES: [&str; 4] = ["eth0", "eth1", "eth2", "eth3"];
 
 fuzz_target!(|data: &[u8]| {
     let mut session = Session::new();
+    session.set_servos(ServoSlaves {
+        auto: true,
+        stations: vec![(0x1001, None)],
+    });
     let mut summarizer = Summarizer::default();
     let mut rest = data;
     let mut number = 0u64;
@@ -109,6 +119,31 @@ fuzz_target!(|data: &[u8]| {
                 let mut text = Vec::new();
                 record.write_text(&mut text, datagram.command().name(), None).unwrap();
                 assert_eq!(text.iter().filter(|&&b| b == b'\n').count(), 1);
+            }
+            let mut cut = 0;
+            session.process_data(&read, at, &datagram, |data| {
+                cut += 1;
+                for image in [data.outputs, data.inputs].into_iter().flatten() {
+                    assert!(image.len() <= 0x7FF);
+                }
+                data.for_each_signal(|_, name, _| assert!(!name.is_empty()));
+                let record = ProcessRecord {
+                    packet: &read,
+                    number: at + 1,
+                    data,
+                };
+                let mut json = Vec::new();
+                record.append_json(&mut json, None);
+                record.append_servo_json(&mut json, None);
+                for line in json.split(|&b| b == b'\n').filter(|l| !l.is_empty()) {
+                    let value: serde_json::Value = serde_json::from_slice(line).unwrap();
+                    assert_eq!(value["packet"], number);
+                }
+                let mut text = Vec::new();
+                record.write_text(&mut text, None, true, true).unwrap();
+            });
+            if !read.copy.returned() {
+                assert_eq!(cut, 0, "a sent copy's inputs are last cycle's");
             }
         }
     }
