@@ -164,3 +164,138 @@ fn the_expected_working_counter_is_the_full_count() {
         assert_eq!(full, full_cycles, "{name}: records at the full count");
     }
 }
+
+/// A session fed exchanges built by hand: each a frame of datagrams sent
+/// and returned (the returned copy with the data and working counters
+/// given), for the configuration problems of docs/ethercat.md#process-data.
+mod problems {
+    use motionwire::can::EthercatPacket;
+    use motionwire::decoder::ethercat::{ImageError, Session};
+    use motionwire::ethercat::{Command, DatagramRepr, Encapsulation, EthercatLink, Mac};
+    use motionwire::logs::Position;
+
+    /// One datagram: command, address word, data as returned, working
+    /// counter as returned.
+    type Spec = (Command, u32, Vec<u8>, u16);
+
+    /// The frame's bytes, with each datagram's data and working counter.
+    fn frame(specs: &[Spec], returned: bool) -> Vec<u8> {
+        let mut body = Vec::new();
+        for (i, (command, address, data, wkc)) in specs.iter().enumerate() {
+            let repr = DatagramRepr {
+                command: *command,
+                index: i as u8,
+                address: *address,
+                circulating: false,
+                more_follows: i + 1 < specs.len(),
+                irq: 0,
+                data,
+                working_counter: if returned { *wkc } else { 0 },
+            };
+            let mut buffer = vec![0; 12 + data.len()];
+            repr.emit(&mut buffer).unwrap();
+            body.extend(buffer);
+        }
+        let mut bytes = (body.len() as u16 | 0x1000).to_le_bytes().to_vec();
+        bytes.extend(body);
+        bytes
+    }
+
+    /// Feed one exchange; return the problems said.
+    fn exchange(session: &mut Session, number: &mut u64, specs: &[Spec]) -> Vec<ImageError> {
+        for returned in [false, true] {
+            *number += 1;
+            let bytes = frame(specs, returned);
+            let mut source = [0x10; 6];
+            if returned {
+                source[0] |= Mac::RETURNED_BIT;
+            }
+            let packet = EthercatPacket {
+                timestamp: None,
+                iface: None,
+                link: EthercatLink {
+                    destination: None,
+                    source: Mac(source),
+                    encapsulation: Encapsulation::Ethernet,
+                    payload: &bytes,
+                },
+            };
+            let read = session.read(Position::Record(*number), &packet).unwrap();
+            for (at, datagram) in read.datagrams().enumerate() {
+                let datagram = datagram.unwrap();
+                session.meanings(&read, at, &datagram, |_| {});
+                session.process_data(&read, at, &datagram, |_| {});
+            }
+        }
+        let (problems, more) = session.take_problems();
+        assert_eq!(more, 0);
+        problems.into_iter().map(|p| p.error).collect()
+    }
+
+    /// FPWR of `data` at register `ado` of station `station`.
+    fn write(station: u16, ado: u16, data: Vec<u8>) -> Spec {
+        (
+            Command::Fpwr,
+            u32::from(station) | u32::from(ado) << 16,
+            data,
+            1,
+        )
+    }
+
+    /// An FMMU: `len` bytes at `logical` onto `physical`, of `kind`.
+    fn fmmu(logical: u32, len: u16, physical: u16, kind: u8) -> Vec<u8> {
+        motionwire::ethercat::Fmmu {
+            logical,
+            len,
+            logical_start_bit: 0,
+            logical_end_bit: 7,
+            physical,
+            physical_start_bit: 0,
+            kind,
+            active: true,
+        }
+        .to_bytes()
+        .to_vec()
+    }
+
+    #[test]
+    fn overlapping_outputs_are_said_once() {
+        let mut session = Session::new();
+        let mut n = 0;
+        // Two slaves whose output FMMUs both map logical 2..4.
+        let config = [
+            write(0x1001, 0x0600, fmmu(0, 4, 0x1000, 2)),
+            write(0x1002, 0x0600, fmmu(2, 4, 0x1000, 2)),
+        ];
+        assert!(exchange(&mut session, &mut n, &config).is_empty());
+        let cycle = [(Command::Lrw, 0, vec![0; 6], 4)];
+        let problems = exchange(&mut session, &mut n, &cycle);
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        let ImageError::OverlappingFmmus { other, start, end } = problems[0] else {
+            panic!("{problems:?}");
+        };
+        assert_eq!((other.station, start, end), (Some(0x1002), 2, 4));
+        // Said where the plans are made, not every cycle.
+        assert!(exchange(&mut session, &mut n, &cycle).is_empty());
+    }
+
+    #[test]
+    fn a_mailbox_message_past_its_sync_manager_is_said() {
+        let mut session = Session::new();
+        let mut n = 0;
+        // SM0: a 16-byte mailbox written by the master at 0x1000.
+        let sm0 = vec![0x00, 0x10, 16, 0, 0x26, 0, 1, 0];
+        assert!(exchange(&mut session, &mut n, &[write(0x1001, 0x0800, sm0)]).is_empty());
+        // A CoE message whose header says 100 bytes, in 16.
+        let mut message = vec![100, 0, 0, 0, 0, 0x03];
+        message.extend([0; 10]);
+        let problems = exchange(&mut session, &mut n, &[write(0x1001, 0x1000, message)]);
+        assert_eq!(
+            problems,
+            [ImageError::MailboxPastSyncManager {
+                length: 100,
+                room: 10
+            }]
+        );
+    }
+}

@@ -399,6 +399,26 @@ impl<'a> Sink<'a> {
             });
             written?;
         }
+        // What the configuration or a mailbox shows wrong
+        // (docs/ethercat.md#process-data): said with its packet.
+        let (problems, more) = self.ethercat.take_problems();
+        if !problems.is_empty() || more > 0 {
+            self.clear_progress()?;
+        }
+        for problem in problems {
+            writeln!(
+                self.err,
+                "{}:{}: {}: {}",
+                self.input, problem.position, problem.slave, problem.error
+            )?;
+        }
+        if more > 0 {
+            writeln!(
+                self.err,
+                "{}:{}: {more} more configuration problems",
+                self.input, position
+            )?;
+        }
         Ok(())
     }
 

@@ -17,6 +17,7 @@ use crate::ethercat::{CoeSdo, Command, Fmmu, SyncManager, SyncManagerMode};
 use crate::CodecError;
 
 use super::config::SlaveConfig;
+use super::process::ImageError;
 
 /// The FMMUs and sync managers a slave has at most (ESC datasheet).
 pub(super) const UNITS: usize = 16;
@@ -60,6 +61,9 @@ pub(super) struct CoeObjects {
     assignment: [Option<(u8, Vec<u16>)>; UNITS * 2],
     /// Mapping objects: index, count and raw entries.
     mappings: Vec<(u16, u8, Vec<u32>)>,
+    /// A transfer that announced more than a PDO object holds, not said
+    /// yet.
+    pub(super) oversized: Option<ImageError>,
 }
 
 impl CoeObjects {
@@ -96,6 +100,7 @@ impl CoeObjects {
                         (Some(4 - n), data.get(..4 - n).unwrap_or(data))
                     } else if data.len() >= 4 {
                         let size = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
+                        self.check_size(index, sub_index, size);
                         (Some(size as usize), &data[4..])
                     } else {
                         (None, &data[..0])
@@ -169,8 +174,17 @@ impl CoeObjects {
                     self.open = None;
                     return false;
                 }
-                let size = u32::from_le_bytes([data[0], data[1], data[2], data[3]]) as usize;
+                let announced = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
+                let size = announced as usize;
                 open.size = Some(size);
+                if size > MAX_OBJECT_BYTES {
+                    self.oversized = Some(ImageError::SdoSizePastObject {
+                        index: open.index,
+                        sub_index: open.sub_index,
+                        size: announced,
+                    });
+                }
+                let open = self.open.as_mut().expect("open");
                 open.data.clear();
                 take(&mut open.data, &data[4..], Some(size));
                 if open.data.len() >= size {
@@ -190,6 +204,17 @@ impl CoeObjects {
                 false
             }
             _ => false,
+        }
+    }
+
+    /// Note a transfer that announces more than a PDO object holds.
+    fn check_size(&mut self, index: u16, sub_index: u8, size: u32) {
+        if size as usize > MAX_OBJECT_BYTES {
+            self.oversized = Some(ImageError::SdoSizePastObject {
+                index,
+                sub_index,
+                size,
+            });
         }
     }
 
@@ -354,8 +379,8 @@ pub(super) struct Plan {
     inputs_len: usize,
     outputs: Vec<Piece>,
     inputs: Vec<Piece>,
-    /// PDOs that do not fit in their sync manager: sync manager, PDO.
-    pub(super) too_long: Vec<(u8, u16)>,
+    /// PDOs that do not fit in their sync manager.
+    pub(super) too_long: Vec<ImageError>,
 }
 
 impl Plan {
@@ -475,7 +500,12 @@ impl Plan {
                 if bit + bits > end {
                     // A mapping longer than the sync manager: not read
                     // (docs/ethercat.md#process-data).
-                    plan.too_long.push((sm as u8, index));
+                    plan.too_long.push(ImageError::MappingPastSyncManager {
+                        sm: sm as u8,
+                        pdo: index,
+                        end_bit: (bit + bits - segment.offset * 8) as u32,
+                        len: segment.len,
+                    });
                     break;
                 }
                 let lookup = |e: MappingEntry| {
@@ -495,6 +525,24 @@ impl Plan {
             }
         }
         plan
+    }
+
+    /// Return the first logical range both plans write, if any.
+    pub(super) fn output_overlap(&self, other: &Plan) -> Option<(u32, u32)> {
+        let outputs = |plan: &'_ Plan| -> Vec<(u32, u32)> {
+            plan.areas
+                .iter()
+                .filter(|a| plan.segments[a.segment].output)
+                .map(|a| (a.logical, a.logical + a.len))
+                .collect()
+        };
+        let theirs = outputs(other);
+        outputs(self).into_iter().find_map(|(s, e)| {
+            theirs.iter().find_map(|&(os, oe)| {
+                let (start, end) = (s.max(os), e.min(oe));
+                (start < end).then_some((start, end))
+            })
+        })
     }
 
     /// Return whether the slave has any FMMU in the range.
@@ -896,7 +944,15 @@ mod tests {
         expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
         expedited(&mut coe, 0x1C12, 0, 1, 1);
         let plan = Plan::new(&fmmus, &sms, &coe, None);
-        assert_eq!(plan.too_long, [(2, 0x1600)]);
+        assert_eq!(
+            plan.too_long,
+            [ImageError::MappingPastSyncManager {
+                sm: 2,
+                pdo: 0x1600,
+                end_bit: 32,
+                len: 2
+            }]
+        );
         assert!(!plan.has_signals());
         assert_eq!(plan.lens(), (2, 0));
     }

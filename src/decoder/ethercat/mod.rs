@@ -13,7 +13,7 @@ mod session;
 
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
-pub use process::{ProcessData, ServoReading, ServoSlaves};
+pub use process::{ImageError, ImageProblem, ProcessData, ServoReading, ServoSlaves};
 pub use record::{
     DatagramRecord, Fields, MeaningRecord, ProcessRecord, DATAGRAM_KIND, PROCESS_DATA_KIND,
     RECORD_KINDS, SERVO_KIND,

@@ -16,7 +16,8 @@ use crate::servo::{Command as ServoCommand, Feedback};
 
 use super::config::SlaveConfig;
 use super::image::{CoeObjects, Plan};
-use super::process::{ProcessData, ServoSlaves, ServoWatch};
+use super::process::{ImageError, ImageProblem, ProcessData, ServoSlaves, ServoWatch};
+use crate::logs::Position;
 
 /// The sync managers a slave has at most (ESC datasheet: 16; the
 /// configuration the tests see uses 4).
@@ -269,7 +270,14 @@ pub(super) struct Network {
     slaves: Vec<Slave>,
     /// The slaves a datagram touches, reused.
     touched: Vec<(usize, u16)>,
+    /// Problems not taken yet.
+    problems: Vec<ImageProblem>,
+    /// Problems past [`PROBLEMS_KEPT`].
+    problems_dropped: u64,
 }
+
+/// The problems a network keeps between two takes; more are counted.
+pub(super) const PROBLEMS_KEPT: usize = 100;
 
 /// The most slaves of one datagram whose shares of a short working
 /// counter are searched for the one set that explains it.
@@ -321,24 +329,36 @@ impl Network {
         returned: &[u8],
         wkc: u16,
         servos: &ServoSlaves,
+        position: Position,
         mut on: impl FnMut(&ProcessData<'_>),
     ) {
         let end = logical.saturating_add(returned.len() as u32);
         let mut touched = core::mem::take(&mut self.touched);
         touched.clear();
         let mut expected: u16 = 0;
-        for (i, slave) in self.slaves.iter_mut().enumerate() {
+        let mut planned = false;
+        for i in 0..self.slaves.len() {
+            let slave = &mut self.slaves[i];
             if slave.fmmus.iter().all(Option::is_none) {
                 continue;
             }
-            let plan = slave.plan.get_or_insert_with(|| {
-                Plan::new(
+            if slave.plan.is_none() {
+                let plan = Plan::new(
                     &slave.fmmus,
                     &slave.sync_managers,
                     &slave.coe,
                     slave.given.as_ref(),
-                )
-            });
+                );
+                let reference = slave.reference();
+                for error in plan.too_long.clone() {
+                    self.problem(position, reference, error);
+                }
+                self.slaves[i].plan = Some(plan);
+                planned = true;
+            }
+            let Some(plan) = self.slaves[i].plan.as_ref() else {
+                continue;
+            };
             if plan.touches(logical, end) {
                 let share = plan.share(command, logical, end);
                 expected = expected.saturating_add(share);
@@ -361,6 +381,9 @@ impl Network {
             });
             self.touched = touched;
             return;
+        }
+        if planned {
+            self.overlaps(&touched, position);
         }
         let missing = missing(&touched, expected, wkc);
         for &(i, share) in &touched {
@@ -435,23 +458,52 @@ impl Network {
         self.touched = touched;
     }
 
-    /// Return the PDOs the capture or configuration maps past their sync
-    /// manager, per slave: slave, sync manager, PDO.
-    pub(super) fn too_long(&self) -> impl Iterator<Item = (SlaveRef, u8, u16)> + '_ {
-        self.slaves.iter().flat_map(|s| {
-            let reference = s.reference();
-            s.plan.iter().flat_map(move |p| {
-                p.too_long
-                    .iter()
-                    .map(move |&(sm, pdo)| (reference, sm, pdo))
-            })
-        })
+    /// Say the output ranges two slaves of a datagram both map.
+    fn overlaps(&mut self, touched: &[(usize, u16)], position: Position) {
+        let mut found = Vec::new();
+        for (k, &(a, _)) in touched.iter().enumerate() {
+            for &(b, _) in &touched[k + 1..] {
+                let (Some(pa), Some(pb)) = (&self.slaves[a].plan, &self.slaves[b].plan) else {
+                    continue;
+                };
+                if let Some((start, end)) = pa.output_overlap(pb) {
+                    found.push((a, b, start, end));
+                }
+            }
+        }
+        for (a, b, start, end) in found {
+            let other = self.slaves[b].reference();
+            let error = ImageError::OverlappingFmmus { other, start, end };
+            self.problem(position, self.slaves[a].reference(), error);
+        }
     }
-    /// Read one datagram of a copy, `returned` when it came back through
+
+    /// Take the problems said since the last call, and how many more
+    /// were not kept.
+    pub(super) fn take_problems(&mut self) -> (Vec<ImageProblem>, u64) {
+        (
+            core::mem::take(&mut self.problems),
+            core::mem::take(&mut self.problems_dropped),
+        )
+    }
+
+    /// Keep a problem (at most [`PROBLEMS_KEPT`] between two takes).
+    fn problem(&mut self, position: Position, slave: SlaveRef, error: ImageError) {
+        if self.problems.len() < PROBLEMS_KEPT {
+            self.problems.push(ImageProblem {
+                position,
+                slave,
+                error,
+            });
+        } else {
+            self.problems_dropped += 1;
+        }
+    }
     /// the slaves; `sent_adp` is the ADP it was sent with (a
     /// position-addressed datagram's position is its negation).
     pub(super) fn datagram<'a>(
         &mut self,
+        position: Position,
         returned: bool,
         datagram: &Datagram<'a>,
         sent_adp: Option<u16>,
@@ -564,7 +616,8 @@ impl Network {
         if command.addressing() == Addressing::Station
             && (command == Command::Fpwr || command == Command::Fprd)
         {
-            if let Some(meaning) = self.mailbox(slave, command == Command::Fpwr, datagram) {
+            if let Some(meaning) = self.mailbox(position, slave, command == Command::Fpwr, datagram)
+            {
                 if let Meaning::Mailbox {
                     written,
                     accepted: true,
@@ -574,6 +627,10 @@ impl Network {
                 } = meaning
                 {
                     self.coe_message(slave, written, header, body);
+                    if let Some(error) = self.slaves[slave].coe.oversized.take() {
+                        let reference = self.slaves[slave].reference();
+                        self.problem(position, reference, error);
+                    }
                 }
                 on(meaning);
             }
@@ -718,6 +775,7 @@ impl Network {
     /// (or, with no sync manager seen, looks like one).
     fn mailbox<'a>(
         &mut self,
+        position: Position,
         slave: usize,
         written: bool,
         datagram: &Datagram<'a>,
@@ -734,8 +792,20 @@ impl Network {
         let plausible = header.length > 0
             && usize::from(header.length) <= room
             && !matches!(header.mailbox_type, MailboxType::Reserved(_));
+        let area = self.slaves[slave].mailbox_at(ado);
+        if let Some((master_writes, len)) = area {
+            let room = len.saturating_sub(MAILBOX_HEADER_LEN as u16);
+            if master_writes == written && header.length > room && (written || wkc >= 1) {
+                let reference = self.slaves[slave].reference();
+                let error = ImageError::MailboxPastSyncManager {
+                    length: header.length,
+                    room,
+                };
+                self.problem(position, reference, error);
+            }
+        }
         let known = &self.slaves[slave];
-        let guessed = match known.mailbox_at(ado) {
+        let guessed = match area {
             Some((master_writes, _)) if master_writes == written => false,
             Some(_) => return None,
             None if !known.has_mailbox() && ado >= PROCESS_MEMORY && plausible && wkc >= 1 => true,

@@ -8,8 +8,8 @@ use crate::can::{EthercatPacket, Iface, Timestamp};
 use crate::ethercat::{Command, Datagram, Datagrams, EthercatFrame, FrameType, Mac};
 
 use super::config::SlaveConfig;
-use super::network::{Meaning, Network, SlaveRef};
-use super::process::{ProcessData, ServoSlaves};
+use super::network::{Meaning, Network};
+use super::process::{ImageProblem, ProcessData, ServoSlaves};
 use crate::logs::Position;
 use crate::LenError;
 
@@ -310,8 +310,13 @@ impl Session {
     ) {
         let sent_adp = packet.sent_adp(at, datagram);
         if let Some(port) = self.ports.get_mut(packet.port) {
-            port.network
-                .datagram(packet.copy.returned(), datagram, sent_adp, on_meaning);
+            port.network.datagram(
+                packet.position,
+                packet.copy.returned(),
+                datagram,
+                sent_adp,
+                on_meaning,
+            );
         }
     }
 
@@ -367,18 +372,26 @@ impl Session {
             datagram.data(),
             datagram.working_counter(),
             &self.servos,
+            packet.position,
             on,
         );
     }
 
-    /// Return the PDOs the configuration maps past their sync manager:
-    /// the slave, the sync manager and the PDO (docs/ethercat.md#process-data).
-    #[must_use]
-    pub fn too_long(&self) -> Vec<(SlaveRef, u8, u16)> {
-        self.ports
-            .iter()
-            .flat_map(|p| p.network.too_long())
-            .collect()
+    /// Take the problems of the slaves' configuration and mailboxes said
+    /// since the last call ([`ImageProblem`]: a mapping past its sync
+    /// manager, overlapping FMMUs, a mailbox message past its sync
+    /// manager, an SDO size past a PDO object), in the order they showed;
+    /// and how many more there were than the session keeps between two
+    /// calls.
+    pub fn take_problems(&mut self) -> (Vec<ImageProblem>, u64) {
+        let mut all = Vec::new();
+        let mut dropped = 0;
+        for port in &mut self.ports {
+            let (problems, more) = port.network.take_problems();
+            all.extend(problems);
+            dropped += more;
+        }
+        (all, dropped)
     }
 
     /// Count a packet whose datagrams the caller found damaged.
