@@ -5,11 +5,15 @@
 //! [`crate::ethercat`].
 
 mod config;
+#[cfg(feature = "eni")]
+mod eni;
 mod network;
 mod record;
 mod session;
 
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
+#[cfg(feature = "eni")]
+pub use eni::{parse_eni, EniError, EniErrorKind};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
 pub use record::{DatagramRecord, Fields, MeaningRecord, DATAGRAM_KIND, RECORD_KINDS};
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
