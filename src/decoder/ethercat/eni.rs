@@ -34,7 +34,7 @@ use roxmltree::{Document, Node};
 
 use super::config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 use crate::canopen::{DataType, MappingEntry};
-use crate::ethercat::{Fmmu, SyncManager, SyncManagerMode, FMMU_LEN, SYNC_MANAGER_LEN};
+use crate::ethercat::{Command, Fmmu, SyncManager, SyncManagerMode, FMMU_LEN, SYNC_MANAGER_LEN};
 
 /// FMMUs and sync managers an ESC has at most (ESC datasheet, section II:
 /// 0x0600–0x06FF and 0x0800–0x087F, the reserved space after each).
@@ -43,14 +43,6 @@ const REGISTERS: usize = 16;
 const FMMU_BASE: u32 = 0x0600;
 /// The first sync manager's registers.
 const SYNC_MANAGER_BASE: u32 = 0x0800;
-/// The commands that write one slave's registers: APWR and FPWR
-/// (ETG.1000.4 table 9, the ENI's `Cmd`).
-const APWR: u64 = 2;
-const FPWR: u64 = 5;
-/// The logical commands of a cyclic frame: LRD, LWR, LRW.
-const LRD: u64 = 10;
-const LWR: u64 = 11;
-const LRW: u64 = 12;
 /// A datagram's header: a cyclic command's `InputOffs`/`OutputOffs` is
 /// where its datagram starts in the frame, its data follows 10 bytes on.
 const DATAGRAM_HEADER: u64 = 10;
@@ -238,15 +230,17 @@ struct Registers {
 }
 
 impl Registers {
-    /// Apply one InitCmd if it is an APWR or FPWR on the way to OP.
+    /// Apply one InitCmd if it is an APWR or FPWR (the commands that
+    /// write one slave's registers; `Cmd` is the datagram's command byte)
+    /// on the way to OP.
     fn apply(&mut self, command: Node) -> Result<(), EniError> {
         if !on_the_way_to_op(command) {
             return Ok(());
         }
-        let Some(cmd) = child_number(command, "Cmd", 8)? else {
+        let Some(cmd) = command_of(command)? else {
             return Ok(());
         };
-        if cmd != APWR && cmd != FPWR {
+        if !matches!(cmd, Command::Apwr | Command::Fpwr) {
             return Ok(());
         }
         let (Some(ado), Some(data)) = (child_number(command, "Ado", 16)?, data(command)?) else {
@@ -565,15 +559,19 @@ fn sync_managers(
 /// them is known.
 fn assigned_bytes(config: &SlaveConfig, number: u8) -> Option<u16> {
     let (_, indices) = config.assignment.iter().find(|(n, _)| *n == number)?;
-    let mut bits = 0u64;
-    for index in indices {
-        let pdo = config.pdos.iter().find(|pdo| pdo.index == *index)?;
-        bits += pdo
-            .entries
-            .iter()
-            .map(|e| u64::from(e.entry.bits()))
-            .sum::<u64>();
+    let mut pdo_bits = BTreeMap::new();
+    for pdo in &config.pdos {
+        pdo_bits.entry(pdo.index).or_insert_with(|| {
+            pdo.entries
+                .iter()
+                .map(|e| u64::from(e.entry.bits()))
+                .sum::<u64>()
+        });
     }
+    let bits = indices
+        .iter()
+        .map(|index| pdo_bits.get(index))
+        .sum::<Option<u64>>()?;
     u16::try_from(bits.div_ceil(8)).ok()
 }
 
@@ -791,10 +789,10 @@ fn cyclic_commands(config: Node) -> Result<Vec<CyclicCommand>, EniError> {
     let mut commands = Vec::new();
     for frame in grandchildren(config, "Cyclic", "Frame") {
         for command in children(frame, "Cmd") {
-            let (reads, writes) = match child_number(command, "Cmd", 8)? {
-                Some(LRD) => (true, false),
-                Some(LWR) => (false, true),
-                Some(LRW) => (true, true),
+            let (reads, writes) = match command_of(command)? {
+                Some(Command::Lrd) => (true, false),
+                Some(Command::Lwr) => (false, true),
+                Some(Command::Lrw) => (true, true),
                 _ => continue,
             };
             let Some(logical) = child_number(command, "Addr", 32)? else {
@@ -894,6 +892,12 @@ fn parse_number(text: &str, bits: u32) -> Result<u64, EniErrorKind> {
         true if value <= max / 2 + 1 => Ok(value.wrapping_neg() & max),
         _ => Err(out_of_range()),
     }
+}
+
+/// The datagram command an element's `Cmd` child names (ETG.1000.4 table
+/// 14).
+fn command_of(node: Node) -> Result<Option<Command>, EniError> {
+    Ok(child_number(node, "Cmd", 8)?.map(|byte| Command::from_byte(byte as u8)))
 }
 
 fn number_of(node: Node, bits: u32) -> Result<u64, EniError> {
