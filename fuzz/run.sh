@@ -28,9 +28,9 @@
 # readers of outside files.
 set -euo pipefail
 
-# The targets that read outside files: each log format's reader, detection
-# and the reading of any log.
-LONG_TARGETS="candump_line asc_line trc_line pcap blf mf4 log_detect logs_read"
+# The targets that read outside files: each log format's reader, detection,
+# the reading of any log, and the ENI reader.
+LONG_TARGETS="candump_line asc_line trc_line pcap blf mf4 log_detect logs_read eni"
 
 long="${FUZZ_LONG:-0}"
 if [ "${1:-}" = "--long" ]; then

@@ -1,10 +1,10 @@
 //! The integration tests of the library's `std` features: every log reader
-//! (`logs`, `pcap`, `blf`, `mf4`), the EDS reader (`eds`), and the decoder
-//! and the summary (`decoder`) read and written as the program would. One
-//! test binary (it needs `std`), so that the crate is linked once; each
-//! former test file is a module, built when the features it tests are on,
-//! so `cargo test --no-default-features --features pcap` still runs the
-//! pcap tests alone.
+//! (`logs`, `pcap`, `blf`, `mf4`), the EDS reader (`eds`), the ENI reader
+//! (`eni`), and the decoder and the summary (`decoder`) read and written as
+//! the program would. One test binary (it needs `std`), so that the crate
+//! is linked once; each former test file is a module, built when the
+//! features it tests are on, so `cargo test --no-default-features
+//! --features pcap` still runs the pcap tests alone.
 
 #[cfg(all(feature = "decoder", feature = "logs"))]
 #[path = "../common/mod.rs"]
@@ -20,6 +20,8 @@ mod drives_model;
 mod eds;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod eds_names;
+#[cfg(feature = "eni")]
+mod eni;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]

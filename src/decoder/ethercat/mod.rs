@@ -5,6 +5,8 @@
 //! [`crate::ethercat`].
 
 mod config;
+#[cfg(feature = "eni")]
+mod eni;
 mod image;
 mod network;
 mod process;
@@ -12,6 +14,8 @@ mod record;
 mod session;
 
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
+#[cfg(feature = "eni")]
+pub use eni::{parse_eni, EniError, EniErrorKind};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
 pub use process::{ImageError, ImageProblem, ProcessData, ServoReading, ServoSlaves};
 pub use record::{
