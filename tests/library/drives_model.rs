@@ -326,3 +326,93 @@ fn a_hundred_thousand_cycles_say_what_the_models_did() {
     check_summary(&capture, &model);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// What the session cuts of every cycle: packet, slave, images, signal
+/// values, CiA 402 reading.
+type Cut = (
+    u64,
+    Option<u16>,
+    Option<Vec<u8>>,
+    Option<Vec<u8>>,
+    Vec<String>,
+    String,
+);
+
+/// Read `path` from packet `from` on with `session`, and say every cut.
+fn cuts(path: &Path, mut session: Session, from: u64) -> Vec<Cut> {
+    let mut reader = logs::open(path).unwrap();
+    let mut out = Vec::new();
+    while let Some(record) = reader.next_event() {
+        let record = record.unwrap();
+        if record.position.number() < from {
+            continue;
+        }
+        let LogEvent::Ethercat(packet) = record.event else {
+            continue;
+        };
+        let Ok(packet) = session.read(record.position, &packet) else {
+            continue;
+        };
+        for (at, datagram) in packet.datagrams().enumerate() {
+            let datagram = datagram.unwrap();
+            session.meanings(&packet, at, &datagram, |_| {});
+            session.process_data(&packet, at, &datagram, |data| {
+                let mut values = Vec::new();
+                data.for_each_signal(|_, _, signal| {
+                    values.push(format!("{:?}", signal.map(|s| s.value)))
+                });
+                out.push((
+                    record.position.number(),
+                    data.slave.and_then(|s| s.station),
+                    data.outputs.map(<[u8]>::to_vec),
+                    data.inputs.map(<[u8]>::to_vec),
+                    values,
+                    format!("{:?}", data.cia402),
+                ));
+            });
+        }
+    }
+    out
+}
+
+/// A capture cut after its start-up, read with the master's ENI, gives
+/// every slave's images, signals and CiA 402 readings as the whole
+/// capture does — and the servo's signals, which only the ENI describes:
+/// the ENI's layout is the start-up's (both ENI files that
+/// describe the generated capture: the generator's, with PDO elements,
+/// and the reader's fixture, whose third slave has its PDOs in CoE
+/// InitCmds only).
+#[test]
+fn the_eni_gives_the_layout_the_start_up_gives() {
+    let capture = fixture("drives.pcapng");
+    // The first cycle's sent copy (tests/data/ethercat/README.md).
+    let first_cycle = 213;
+    let whole: Vec<Cut> = cuts(&capture, Session::with_config(&config()), 1)
+        .into_iter()
+        .filter(|c| c.0 >= first_cycle)
+        .collect();
+    assert!(whole.len() > 2_900);
+    assert!(whole.iter().any(|c| c.4.len() == 6), "the drives' signals");
+    for eni in ["drives.eni.xml", "eni/drives.eni.xml"] {
+        let text = std::fs::read_to_string(fixture(eni)).unwrap();
+        let slaves = motionwire::decoder::ethercat::parse_eni(&text).unwrap();
+        assert_eq!(slaves.len(), 3, "{eni}");
+        let session = Session::with_config(&config().ethercat_slaves(slaves));
+        let late = cuts(&capture, session, first_cycle);
+        assert_eq!(late.len(), whole.len(), "{eni}");
+        for (a, b) in late.iter().zip(&whole) {
+            if a.1 == Some(SERVO) {
+                // The servo has no CoE: its PDOs are in the ENI alone,
+                // which names its 10 and 40 bytes; the start-up gives
+                // bytes only.
+                assert_eq!((&a.0, &a.2, &a.3, &a.5), (&b.0, &b.2, &b.3, &b.5), "{eni}");
+                assert!(b.4.is_empty(), "{eni}");
+                // The generator's ENI describes the servo's PDOs; the
+                // reader's fixture leaves them out.
+                assert_eq!(a.4.is_empty(), eni != "drives.eni.xml", "{eni}");
+            } else {
+                assert_eq!(a, b, "{eni}");
+            }
+        }
+    }
+}

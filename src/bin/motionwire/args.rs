@@ -214,6 +214,12 @@ pub struct ReadingArgs {
     /// Servo_Ready_Mode 0 or 1; comma-separated (docs/ethercat.md#servo).
     #[arg(long, value_delimiter = ',', value_name = "auto|STATION[:MODE]", value_parser = parse_servo)]
     pub servo: Vec<ServoChoice>,
+    /// EtherCAT: the master's network information file (ENI, ETG.2100
+    /// XML; TwinCAT exports it): the slaves' FMMUs, sync managers and PDOs
+    /// for a capture that starts after the start-up; what the capture's
+    /// start-up writes wins (docs/ethercat.md#eni).
+    #[arg(long, value_name = "FILE")]
+    pub eni: Option<PathBuf>,
     /// Say every malformed line and damaged record on standard error; without
     /// it, the first 100 of each file are said one by one and the rest
     /// counted in one line (docs/output.md#stderr).

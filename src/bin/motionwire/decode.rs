@@ -172,6 +172,20 @@ struct Sink<'a> {
     input: String,
 }
 
+/// Read an ENI file: UTF-8 (a byte-order mark skipped), else Latin-1, as
+/// XML declares it.
+fn read_eni(
+    path: &std::path::Path,
+) -> Result<Vec<motionwire::decoder::ethercat::SlaveConfig>, String> {
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+    let text = match std::str::from_utf8(bytes) {
+        Ok(text) => std::borrow::Cow::Borrowed(text),
+        Err(_) => std::borrow::Cow::Owned(bytes.iter().map(|&b| char::from(b)).collect()),
+    };
+    motionwire::decoder::ethercat::parse_eni(&text).map_err(|e| e.to_string())
+}
+
 impl<'a> Sink<'a> {
     fn new(args: &'a DecodeArgs, page: bool, files: SeveralFiles) -> Result<Self, Failure> {
         // The page charts drives' signals (docs/report.md#signals).
@@ -214,6 +228,11 @@ impl<'a> Sink<'a> {
             config = config.heartbeat_timeout(Duration::from_millis(u64::from(ms)));
         }
         config = config.servos(crate::args::servo_slaves(&args.reading.servo));
+        if let Some(path) = &args.reading.eni {
+            let slaves = read_eni(path)
+                .map_err(|why| Failure::Usage(format!("--eni {}: {why}", path.display())))?;
+            config = config.ethercat_slaves(slaves);
+        }
         let summary = (args.summary && !page).then(|| Summarizer::new(config.clone()));
         let recorder = page.then(|| Recorder::new(config.clone()));
         Ok(Sink {
