@@ -77,8 +77,12 @@
 //!   session and the post-mortem (docs/output.md, docs/summary.md). Needs
 //!   `std`; enables `eds` and `serde`; adds `serde_json` (the summary's exact
 //!   times) and `itoa` (the JSON records).
-//! - `cli`: the `motionwire` program; enables `decoder`, `logs` and `eds`
-//!   and adds `clap`.
+//! - `eni`: `decoder::ethercat::parse_eni`, a master's EtherCAT network
+//!   information file (ETG.2100 XML) as the slaves' process-data
+//!   configuration (docs/ethercat.md#eni). Enables `decoder`; adds
+//!   `roxmltree`.
+//! - `cli`: the `motionwire` program; enables `decoder`, `logs`, `eds` and
+//!   `eni` and adds `clap`.
 //! - `pcap`: `logs::pcap::PcapReader`, pcap and pcapng captures of
 //!   SocketCAN interfaces (docs/formats.md#pcap). Needs `std`, no dependency.
 //! - `blf`: `logs::blf::BlfReader`, Vector BLF logs (docs/formats.md#blf).

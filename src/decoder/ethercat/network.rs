@@ -939,6 +939,7 @@ mod tests {
             returned,
             wkc,
             &ServoSlaves::default(),
+            Position::Record(1),
             |data| {
                 let hex =
                     |b: Option<&[u8]>| b.map_or_else(|| "-".to_owned(), |b| format!("{b:02x?}"));
