@@ -1293,6 +1293,8 @@ fn group_words(kind: FindingKind) -> &'static str {
         FindingKind::ToggleError => "guarding toggle errors",
         FindingKind::BusOff => "bus-offs",
         FindingKind::ErrorPassive => "error-passives",
+        FindingKind::AlError => "AL errors",
+        FindingKind::ServoFault => "servo faults",
     }
 }
 

@@ -889,6 +889,8 @@ fn mark_kind(finding: &Finding) -> Option<MarkKind> {
         FindingKind::ToggleError => MarkKind::ToggleError,
         FindingKind::BusOff => MarkKind::BusOff,
         FindingKind::ErrorPassive => MarkKind::ErrorPassive,
+        // Timed by the summary: placed at their own time.
+        FindingKind::AlError | FindingKind::ServoFault => return None,
     })
 }
 

@@ -14,7 +14,11 @@ use crate::profiles::Profile;
 
 use super::listed::ListedLines;
 use super::values::{Iface, Ts};
-use super::{BusErrorSeen, Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, Severity};
+use super::{
+    AlChange, BusErrorSeen, Cia402Fault, EmcySeen, HeartbeatGap, Listed, SdoAbort, ServoEvent,
+    Severity,
+};
+use crate::decoder::ethercat::SlaveRef;
 
 /// What a [`Finding`] is about: the summary list it comes from
 /// (docs/summary.md#findings).
@@ -49,12 +53,18 @@ pub enum FindingKind {
     BusOff,
     /// An error frame that says error-passive (`error_passive`).
     ErrorPassive,
+    /// An EtherCAT slave reporting an AL state with its error indicator
+    /// (a slave's `al_timeline`, docs/ethercat.md#summary).
+    AlError,
+    /// A fault of a servo's error word (the slave's `servo.events`,
+    /// docs/ethercat.md#servo): the drive drops its enable.
+    ServoFault,
 }
 
 impl FindingKind {
     /// Every kind, in the order a device's findings are listed before
     /// they are sorted by time (docs/summary.md#findings).
-    pub const ALL: [FindingKind; 11] = [
+    pub const ALL: [FindingKind; 13] = [
         FindingKind::FirstError,
         FindingKind::FirstWarning,
         FindingKind::Cia402Fault,
@@ -66,6 +76,8 @@ impl FindingKind {
         FindingKind::ToggleError,
         FindingKind::BusOff,
         FindingKind::ErrorPassive,
+        FindingKind::AlError,
+        FindingKind::ServoFault,
     ];
 
     /// Return the kind's name, as JSON and the Python package write it
@@ -84,6 +96,8 @@ impl FindingKind {
             FindingKind::ToggleError => "toggle_error",
             FindingKind::BusOff => "bus_off",
             FindingKind::ErrorPassive => "error_passive",
+            FindingKind::AlError => "al_error",
+            FindingKind::ServoFault => "servo_fault",
         }
     }
 
@@ -103,6 +117,8 @@ impl FindingKind {
             FindingKind::ToggleError => "guarding toggle error",
             FindingKind::BusOff => "bus-off",
             FindingKind::ErrorPassive => "error-passive",
+            FindingKind::AlError => "AL error",
+            FindingKind::ServoFault => "servo fault",
         }
     }
 }
@@ -137,6 +153,11 @@ pub enum FindingDetail {
     /// line alone (a broken or unanswered transfer, a toggle error, a
     /// bus-off or error-passive frame).
     Line,
+    /// The AL status with its error indicator ([`FindingKind::AlError`]).
+    AlError(AlChange),
+    /// The fault set in the servo's error word
+    /// ([`FindingKind::ServoFault`]).
+    ServoFault(ServoEvent),
     /// The entries the summary list omitted after the finding's line, the
     /// last it kept before them: how many (docs/summary.md#lists).
     Omitted(u64),
@@ -182,8 +203,11 @@ pub struct Finding {
     pub file: Option<String>,
     /// The bus.
     pub bus: BusName,
-    /// The device; `None` for a bus's findings (bus-off, error-passive).
+    /// The device; `None` for a bus's findings (bus-off, error-passive)
+    /// and an EtherCAT slave's.
     pub node: Option<NodeId>,
+    /// The EtherCAT slave, for a slave's findings (docs/ethercat.md#findings).
+    pub slave: Option<SlaveRef>,
     /// The line the finding is at: the EMCY's, the transition's, the
     /// abort's, the second boot-up's for a restart, the heartbeat's before
     /// a gap, a transfer's start; for omitted entries, the last entry the
@@ -238,7 +262,10 @@ impl Finding {
     pub fn timed_by_summary(&self) -> bool {
         matches!(
             self.detail,
-            FindingDetail::Emcy(_) | FindingDetail::Cia402Fault(_)
+            FindingDetail::Emcy(_)
+                | FindingDetail::Cia402Fault(_)
+                | FindingDetail::AlError(_)
+                | FindingDetail::ServoFault(_)
         )
     }
 }
@@ -250,11 +277,17 @@ impl fmt::Display for Text<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let finding = self.0;
         let line = finding.line;
+        // A capture's findings are at packets, a log's at lines.
+        let unit = if finding.slave.is_some() {
+            "packet"
+        } else {
+            "line"
+        };
         match &finding.detail {
             FindingDetail::Emcy(first) => {
                 write!(
                     f,
-                    "{}: EMCY {} {}{} at line {}",
+                    "{}: EMCY {} {}{} at {unit} {}",
                     finding.kind.words(),
                     first.code,
                     first.code.description(),
@@ -271,7 +304,9 @@ impl fmt::Display for Text<'_> {
                 }
                 Ok(())
             }
-            FindingDetail::Cia402Fault(fault) => write!(f, "{}", fault.sentence(finding.profile)),
+            FindingDetail::Cia402Fault(fault) => {
+                write!(f, "{}", fault.sentence_in(finding.profile, unit))
+            }
             FindingDetail::BootUps(boots) => {
                 let times = boots.count().saturating_sub(1);
                 write!(
@@ -294,6 +329,18 @@ impl fmt::Display for Text<'_> {
                 Ok(())
             }
             FindingDetail::SdoAbort(abort) => write!(f, "line {}: {abort}", abort.line),
+            FindingDetail::AlError(change) => {
+                match change.status.state() {
+                    Some(state) => write!(f, "{state} with error")?,
+                    None => write!(f, "AL states {:#04x} with error", change.status.state_bits())?,
+                }
+                match change.code {
+                    Some(code) => write!(f, " {code}")?,
+                    None => f.write_str(", code not read")?,
+                }
+                write!(f, " at packet {line}")
+            }
+            FindingDetail::ServoFault(event) => write!(f, "{} at packet {line}", event.change),
             FindingDetail::Line => match finding.kind {
                 FindingKind::SdoBroken => {
                     write!(f, "broken SDO transfer starting at line {line}")
@@ -324,9 +371,10 @@ impl fmt::Display for Subject<'_> {
         if let Some(file) = &finding.file {
             write!(f, "{file}: ")?;
         }
-        match finding.node {
-            Some(node) => write!(f, "{}", Device::new(&finding.bus, node)),
-            None => write!(f, "bus {}", finding.bus),
+        match (finding.node, finding.slave) {
+            (Some(node), _) => write!(f, "{}", Device::new(&finding.bus, node)),
+            (None, Some(slave)) => write!(f, "{} {slave}", finding.bus),
+            (None, None) => write!(f, "bus {}", finding.bus),
         }
     }
 }
@@ -339,7 +387,7 @@ impl fmt::Display for Finding {
 }
 
 impl serde::Serialize for Finding {
-    /// `{"file"?, "iface", "node", "line", "ts", "kind", "severity", "text"}`: `file`
+    /// `{"file"?, "iface", "node", "slave", "line", "ts", "kind", "severity", "text"}`: `file`
     /// only when the summary names one, `iface` as in every record
     /// (docs/output.md#common-keys), `ts` with the log's resolution.
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -350,6 +398,7 @@ impl serde::Serialize for Finding {
         }
         map.serialize_entry("iface", &Iface(&self.bus))?;
         map.serialize_entry("node", &self.node.map(NodeId::get))?;
+        map.serialize_entry("slave", &self.slave.and_then(|s| s.station))?;
         map.serialize_entry("line", &self.line)?;
         map.serialize_entry("ts", &self.timestamp.map(Ts))?;
         map.serialize_entry("kind", self.kind.name())?;
@@ -370,7 +419,10 @@ impl Severity {
             }
             (FindingKind::FirstError, _) => Severity::Error,
             (FindingKind::FirstWarning, _) => Severity::Warning,
-            (FindingKind::Cia402Fault | FindingKind::BusOff, _) => Severity::Fault,
+            (FindingKind::Cia402Fault | FindingKind::BusOff | FindingKind::ServoFault, _) => {
+                Severity::Fault
+            }
+            (FindingKind::AlError, _) => Severity::Error,
             (FindingKind::HeartbeatTimeout, _) => Severity::Error,
             (FindingKind::SdoAbort, _) => Severity::Notice,
             (

@@ -314,20 +314,30 @@ impl Cia402Fault {
     /// M)` for an AKD; `Display` is the sentence of a generic node.
     #[must_use]
     pub fn sentence(&self, profile: Profile) -> impl fmt::Display + '_ {
-        FaultSentence(self, profile)
+        FaultSentence(self, profile, "line")
+    }
+
+    /// The sentence with positions counted in `unit` (`packet` for a
+    /// capture's slave).
+    pub(crate) fn sentence_in(
+        &self,
+        profile: Profile,
+        unit: &'static str,
+    ) -> impl fmt::Display + '_ {
+        FaultSentence(self, profile, unit)
     }
 }
 
 /// [`Cia402Fault::sentence`].
-struct FaultSentence<'a>(&'a Cia402Fault, Profile);
+struct FaultSentence<'a>(&'a Cia402Fault, Profile, &'static str);
 
 impl fmt::Display for FaultSentence<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let FaultSentence(fault, profile) = *self;
+        let FaultSentence(fault, profile, unit) = *self;
         let t = fault.transition;
         write!(
             f,
-            "went {} → {} at line {}",
+            "went {} → {} at {unit} {}",
             t.from.map_or("-", Cia402State::name),
             t.to.name(),
             t.line
@@ -340,7 +350,7 @@ impl fmt::Display for FaultSentence<'_> {
                     let gap = at.duration_since(then).unwrap_or_default();
                     write!(
                         f,
-                        ", {:.1} ms after EMCY {code} {}{reading} (line {})",
+                        ", {:.1} ms after EMCY {code} {}{reading} ({unit} {})",
                         gap.as_secs_f64() * 1000.0,
                         code.description(),
                         emcy.line
@@ -348,7 +358,7 @@ impl fmt::Display for FaultSentence<'_> {
                 }
                 _ => write!(
                     f,
-                    ", after EMCY {code} {}{reading} (line {})",
+                    ", after EMCY {code} {}{reading} ({unit} {})",
                     code.description(),
                     emcy.line
                 )?,

@@ -117,34 +117,60 @@ impl fmt::Display for StopText<'_> {
         match (&stop.detail, v.cause) {
             (FindingDetail::Cia402Fault(fault), Some(cause)) => {
                 let t = fault.transition;
+                // A capture numbers packets, a log lines.
+                let unit = if stop.slave.is_some() {
+                    "packet"
+                } else {
+                    "line"
+                };
                 write!(
                     f,
-                    "{} went {} → {} at line {}{since}",
+                    "{} went {} → {} at {unit} {}{since}",
                     stop.subject(),
                     t.from.map_or("-", |s| s.name()),
                     t.to.name(),
                     t.line
                 )?;
-                let gap = t
-                    .timestamp
-                    .zip(cause.timestamp)
-                    .and_then(|(at, then)| at.duration_since(then))
-                    .unwrap_or_default();
-                write!(
-                    f,
-                    ", {:.1} ms after EMCY {} {}{} (line {})",
-                    gap.as_secs_f64() * 1000.0,
+                let what = format_args!(
+                    "EMCY {} {}{}",
                     cause.code,
                     cause.code.description(),
-                    cause.reading(v.profile),
-                    cause.line
-                )
+                    cause.reading(v.profile)
+                );
+                match t.timestamp.zip(cause.timestamp) {
+                    // A CoE emergency read after the fault: it waited in
+                    // the slave's mailbox (docs/ethercat.md#findings).
+                    Some((at, then)) if cause.line > t.line => {
+                        let gap = then.duration_since(at).unwrap_or_default();
+                        write!(
+                            f,
+                            ", with {what} read {:.1} ms later ({unit} {})",
+                            gap.as_secs_f64() * 1000.0,
+                            cause.line
+                        )
+                    }
+                    Some((at, then)) => {
+                        let gap = at.duration_since(then).unwrap_or_default();
+                        write!(
+                            f,
+                            ", {:.1} ms after {what} ({unit} {})",
+                            gap.as_secs_f64() * 1000.0,
+                            cause.line
+                        )
+                    }
+                    None => write!(f, ", after {what} ({unit} {})", cause.line),
+                }
             }
             (FindingDetail::Cia402Fault(fault), None) => {
                 let t = fault.transition;
+                let unit = if stop.slave.is_some() {
+                    "packet"
+                } else {
+                    "line"
+                };
                 write!(
                     f,
-                    "{} went {} → {} at line {}{since}",
+                    "{} went {} → {} at {unit} {}{since}",
                     stop.subject(),
                     t.from.map_or("-", |s| s.name()),
                     t.to.name(),
@@ -176,6 +202,7 @@ impl serde::Serialize for FindingJson<'_> {
         let mut map = serializer.serialize_map(None)?;
         map.serialize_entry("iface", &Iface(&finding.bus))?;
         map.serialize_entry("node", &finding.node.map(|n| n.get()))?;
+        map.serialize_entry("slave", &finding.slave.and_then(|s| s.station))?;
         map.serialize_entry("line", &finding.line)?;
         map.serialize_entry("ts", &finding.timestamp.map(Ts))?;
         map.serialize_entry("kind", finding.kind.name())?;

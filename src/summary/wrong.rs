@@ -4,11 +4,13 @@
 //! (docs/summary.md#verdict).
 
 use crate::can::Timestamp;
+use crate::decoder::ethercat::SlaveRef;
 use crate::profiles::Profile;
+use crate::servo::ServoFault;
 
 use super::{
-    EmcySeen, Finding, FindingCause, FindingDetail, FindingKind, Listed, NodeSummary, Severity,
-    Summary, Timeouts, Verdict,
+    EmcySeen, Finding, FindingCause, FindingDetail, FindingKind, Listed, NodeSummary, ServoChange,
+    Severity, Summary, Timeouts, Verdict, CAUSE_WINDOW,
 };
 
 impl Summary {
@@ -45,7 +47,7 @@ impl Summary {
     /// let json = serde_json::to_string(&findings[0])?;
     /// assert_eq!(
     ///     json,
-    ///     r#"{"iface":"can0","node":3,"line":2,"ts":1700000000.100000,"kind":"first_error","severity":"error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
+    ///     r#"{"iface":"can0","node":3,"slave":null,"line":2,"ts":1700000000.100000,"kind":"first_error","severity":"error","text":"first error: EMCY 0x8110 CAN overrun (objects lost) at line 2"}"#
     /// );
     /// # Ok::<(), serde_json::Error>(())
     /// ```
@@ -84,6 +86,7 @@ impl Summary {
                     file: self.file.clone(),
                     bus: n.bus.clone(),
                     node: Some(n.node),
+                    slave: None,
                     line,
                     timestamp: ts,
                     kind,
@@ -175,6 +178,7 @@ impl Summary {
                         file: self.file.clone(),
                         bus: b.bus.clone(),
                         node: None,
+                        slave: None,
                         line,
                         timestamp: None,
                         kind,
@@ -186,6 +190,7 @@ impl Summary {
                 });
             }
         }
+        self.slave_findings(&mut list);
         for finding in &mut list {
             if !finding.timed_by_summary() {
                 finding.timestamp = time_of(finding);
@@ -260,6 +265,113 @@ impl NodeSummary {
     }
 }
 
+impl Summary {
+    /// The findings of the EtherCAT slaves (docs/ethercat.md#findings):
+    /// each slave's first error emergency, its CiA 402 faults (caused by
+    /// an emergency read up to [`CAUSE_WINDOW`] before the fault, or after
+    /// it: a CoE emergency waits in the slave's mailbox until the master
+    /// reads it), its AL states with the error indicator, and its servo
+    /// faults.
+    fn slave_findings(&self, list: &mut Vec<Finding>) {
+        for s in &self.ethercat.slaves {
+            let slave = Some(SlaveRef {
+                station: s.station,
+                position: s.position,
+            });
+            let profile = s
+                .emergencies
+                .first()
+                .map_or(Profile::Generic, |e| e.profile);
+            let mut push = |kind, line, detail: FindingDetail, ts, cause| {
+                list.push(Finding {
+                    file: self.file.clone(),
+                    bus: s.iface.clone(),
+                    node: None,
+                    slave,
+                    line,
+                    timestamp: ts,
+                    kind,
+                    severity: Severity::of_finding(kind, &detail, profile),
+                    detail,
+                    profile,
+                    cause,
+                });
+            };
+            let seen = |e: &super::CoeEmergency| EmcySeen {
+                line: e.packet,
+                timestamp: e.timestamp,
+                code: e.emcy.code,
+                register: e.emcy.register,
+                manufacturer: e.emcy.manufacturer,
+            };
+            let errors: Vec<EmcySeen> = s
+                .emergencies
+                .iter()
+                .filter(|e| e.emcy.code.get() != 0)
+                .map(seen)
+                .collect();
+            if let Some(first) = errors.first() {
+                push(
+                    FindingKind::FirstError,
+                    first.line,
+                    FindingDetail::Emcy(*first),
+                    first.timestamp,
+                    None,
+                );
+            }
+            if let Some(faults) = s.cia402.as_ref().and_then(|c| c.faults.as_ref()) {
+                for fault in faults.iter() {
+                    let after = || {
+                        let at = fault.transition.timestamp?;
+                        errors.iter().copied().find(|e| {
+                            e.line > fault.transition.line
+                                && e.timestamp
+                                    .and_then(|t| t.duration_since(at))
+                                    .is_some_and(|gap| gap <= CAUSE_WINDOW)
+                        })
+                    };
+                    let cause = fault.cause().or_else(after).map(FindingCause::Emcy);
+                    push(
+                        FindingKind::Cia402Fault,
+                        fault.transition.line,
+                        FindingDetail::Cia402Fault(*fault),
+                        fault.transition.timestamp,
+                        cause,
+                    );
+                }
+            }
+            for change in s
+                .al_changes
+                .iter()
+                .filter(|c| !c.requested && c.status.error())
+            {
+                push(
+                    FindingKind::AlError,
+                    change.packet,
+                    FindingDetail::AlError(*change),
+                    change.timestamp,
+                    None,
+                );
+            }
+            if let Some(servo) = &s.servo {
+                for event in servo.events.iter() {
+                    if let ServoChange::FaultSet(fault) = event.change {
+                        if fault != ServoFault::ServoErrors {
+                            push(
+                                FindingKind::ServoFault,
+                                event.packet,
+                                FindingDetail::ServoFault(*event),
+                                event.timestamp,
+                                None,
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 impl Verdict {
     /// Return the verdict on `summary`'s findings ([`Summary::findings`]),
     /// or `None` when nothing stopped: no fault, no heartbeat timeout, no
@@ -271,7 +383,11 @@ impl Verdict {
             !f.is_omitted()
                 && matches!(
                     f.kind,
-                    FindingKind::Cia402Fault | FindingKind::HeartbeatTimeout | FindingKind::BusOff
+                    FindingKind::Cia402Fault
+                        | FindingKind::HeartbeatTimeout
+                        | FindingKind::BusOff
+                        | FindingKind::AlError
+                        | FindingKind::ServoFault
                 )
         })?;
         // A bus-off that caused heartbeat timeouts is not the end: the
@@ -292,8 +408,8 @@ impl Verdict {
         };
         let stop = &findings[at];
         let first_cause = &findings[first_cause(summary, &findings, at)];
-        let cause = match &stop.detail {
-            FindingDetail::Cia402Fault(fault) => fault.cause(),
+        let cause = match (&stop.detail, stop.cause) {
+            (FindingDetail::Cia402Fault(_), Some(FindingCause::Emcy(emcy))) => Some(emcy),
             _ => None,
         };
         let profile = stop
@@ -368,7 +484,8 @@ fn first_cause(summary: &Summary, findings: &[Finding], at: usize) -> usize {
                 !f.is_omitted()
                     && f.severity.is_fault_or_error()
                     && f.bus == r.bus
-                    && (r.node.is_none() || f.node == r.node)
+                    && ((r.node.is_none() && r.slave.is_none())
+                        || (f.node == r.node && f.slave == r.slave))
                     && (i == root
                         || (!chain.contains(&i) && linked(summary, findings, i) != Some(root)))
             })

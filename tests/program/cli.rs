@@ -1789,7 +1789,7 @@ fn the_summary_starts_with_its_verdict() {
     assert_eq!(verdict["type"], "verdict");
     assert_eq!(
         verdict["stop"],
-        json!({"iface": "can0", "node": 3, "line": 3239, "ts": 1700000008.820694,
+        json!({"iface": "can0", "node": 3, "slave": null, "line": 3239, "ts": 1700000008.820694,
                "kind": "cia402_fault", "severity": "fault",
                "text": "went operation_enabled → fault at line 3239, 16.1 ms after EMCY 0x7305 \
                         Incremental sensor 1 fault on axis 1, feedback 2 (line 3231)",
@@ -1944,7 +1944,7 @@ fn the_verdict_follows_bus_off_and_lost_heartbeats() {
     );
     assert_eq!(
         verdict["first_cause"],
-        json!({"iface": "can0", "node": null, "line": 5, "ts": null, "kind": "bus_off",
+        json!({"iface": "can0", "node": null, "slave": null, "line": 5, "ts": null, "kind": "bus_off",
                "severity": "fault", "text": "bus-off at line 5"})
     );
     let text = stdout(&run(&["decode", "--summary", "--heartbeat-ms", "300"], log));
