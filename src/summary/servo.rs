@@ -47,6 +47,23 @@ pub enum ServoChange {
     Ready(bool),
 }
 
+impl ServoChange {
+    /// Return whether the change is an enable edge the drive did not
+    /// answer: the enable handshake left `enabling` for another phase than
+    /// `enabled` (counted in [`ServoTimeline::enable_unanswered`]).
+    #[must_use]
+    pub fn is_unanswered_enable(&self) -> bool {
+        matches!(
+            self,
+            ServoChange::Enable {
+                from: EnablePhase::Enabling,
+                to,
+                ..
+            } if *to != EnablePhase::Enabled
+        )
+    }
+}
+
 /// One change, with where it was seen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ServoEvent {
@@ -156,12 +173,13 @@ impl ServoTimeline {
         let enable_before = before.map_or(EnablePhase::Disabled, |b| b.enable);
         if now.enable != enable_before {
             let cycles = before.map_or(0, |b| b.enable_cycles.saturating_add(1));
-            push(ServoChange::Enable {
+            let change = ServoChange::Enable {
                 from: enable_before,
                 to: now.enable,
                 cycles,
-            });
-            if enable_before == EnablePhase::Enabling && now.enable != EnablePhase::Enabled {
+            };
+            push(change);
+            if change.is_unanswered_enable() {
                 self.enable_unanswered += 1;
             }
         }
