@@ -4,9 +4,7 @@
 //! and in the summary — on the committed 1 000-cycle fixture and on a
 //! 100 000-cycle capture written for the test.
 
-#[path = "../common/ecat_drives.rs"]
-#[allow(dead_code)]
-mod ecat_drives;
+use crate::ecat_drives;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
