@@ -625,7 +625,7 @@ impl Report {
             .map(|p| p.counts.packets)
             .sum();
         if devices == 0 && ethercat > 0 {
-            format!("<p class=\"empty\" data-kind=\"ethercat\"><strong>This list does not cover EtherCAT yet:</strong> {ethercat} EtherCAT packet{} read; the timeline draws each slave's AL states, emergencies, SDO aborts, DL status changes and error counter rises, and each cyclic stream's lost frames and working-counter mismatches.</p>\n", if ethercat == 1 { "" } else { "s" })
+            format!("<p class=\"empty\" data-kind=\"ethercat\"><strong>This list does not cover EtherCAT yet:</strong> {ethercat} EtherCAT packet{} read; the timeline draws each slave's AL states, emergencies, SDO aborts, DL status changes and error counter rises, a drive's CiA 402 states and faults, a servo's enable phases, faults and handshakes, and each cyclic stream's lost frames and working-counter mismatches; Drive signals charts the drives' and servos' signals.</p>\n", if ethercat == 1 { "" } else { "s" })
         } else if frames == 0 {
             "<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong> no frame was read, so nothing can be said of the machine.</p>\n".to_owned()
         } else if devices == 0 {
