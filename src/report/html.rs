@@ -20,7 +20,7 @@ use super::recorder::{MarkKind, Recording, RowData};
 use super::series::At;
 use super::svg::{
     axis_ticks, chart, defs, drawn_bands, drawn_marks, legend, mark_text, marks, node_row, rate,
-    slave_row, stream_row, Drawn,
+    slave_row, stream_row, Charted, Drawn,
 };
 
 /// The most rows of the event table (docs/report.md#tables).
@@ -191,7 +191,7 @@ impl Report {
         let count_bands = |px: Option<f64>| -> usize {
             rows.iter()
                 .flat_map(|(axis, end, row)| {
-                    [&row.nmt, &row.al, &row.cia402].map(|series| (axis, end, series))
+                    [&row.nmt, &row.al, &row.cia402, &row.servo].map(|series| (axis, end, series))
                 })
                 .map(|(axis, end, s)| drawn_bands(axis, s, *end, px).len())
                 .sum()
@@ -625,7 +625,7 @@ impl Report {
             .map(|p| p.counts.packets)
             .sum();
         if devices == 0 && ethercat > 0 {
-            format!("<p class=\"empty\" data-kind=\"ethercat\"><strong>This list does not cover EtherCAT yet:</strong> {ethercat} EtherCAT packet{} read; the timeline draws each slave's AL states, emergencies, SDO aborts, DL status changes and error counter rises, and each cyclic stream's lost frames and working-counter mismatches.</p>\n", if ethercat == 1 { "" } else { "s" })
+            format!("<p class=\"empty\" data-kind=\"ethercat\"><strong>No slave in trouble:</strong> {ethercat} EtherCAT packet{} read, and no slave reported an error emergency, an AL state with its error indicator, a CiA 402 fault or a servo fault; the timeline draws each cyclic stream's lost frames and working-counter mismatches.</p>\n", if ethercat == 1 { "" } else { "s" })
         } else if frames == 0 {
             "<p class=\"empty\" data-kind=\"empty\"><strong>The log is empty:</strong> no frame was read, so nothing can be said of the machine.</p>\n".to_owned()
         } else if devices == 0 {
@@ -759,27 +759,39 @@ impl Report {
         p.push_str("<section id=\"signals\">\n<h2>Drive signals</h2>\n");
         let mut any = false;
         for r in &self.recordings {
+            let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
+            let axis = if self.recordings.len() > 1 {
+                Self::axis_of(r)
+            } else {
+                self.axis()
+            };
+            let mut charted = Vec::new();
             for n in &r.summary.nodes {
-                let Some(row) = r.timeline.rows(&n.bus).and_then(|b| b.node_row(n.node)) else {
-                    continue;
-                };
-                let has_signals = row.signals.iter().any(Option::is_some);
-                if n.cia402.is_none() && !has_signals {
-                    continue;
+                if let Some(row) = r.timeline.rows(&n.bus).and_then(|b| b.node_row(n.node)) {
+                    charted.push(Charted::node(n, row));
                 }
-                any = true;
-                let end = r.timeline.span().map_or(At::default(), |(_, last)| last);
-                let axis = if self.recordings.len() > 1 {
-                    Self::axis_of(r)
-                } else {
-                    self.axis()
+            }
+            // Each EtherCAT interface's slaves, as the timeline has them.
+            let ethercat = &r.summary.ethercat;
+            for port in &ethercat.ports {
+                let Some(rows) = r.timeline.port(&port.iface) else {
+                    continue;
                 };
-                chart(p, &axis, budget, n, row, end);
+                let slaves = ethercat.slaves.iter().filter(|s| s.iface == port.iface);
+                for (place, s) in slaves.enumerate() {
+                    if let Some(row) = rows.slave_row(place) {
+                        charted.push(Charted::slave(s, row));
+                    }
+                }
+            }
+            for who in charted.iter().filter(|who| who.any()) {
+                any = true;
+                chart(p, &axis, budget, who, end);
             }
         }
         if !any {
             p.push_str(
-                "<p>No drive in this log: no CiA 402 state, position or velocity to chart.</p>\n",
+                "<p>No drive in this log: no CiA 402 state, position or velocity, no servo's ActPos or speed set point to chart.</p>\n",
             );
         }
         p.push_str("</section>\n");

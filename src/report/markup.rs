@@ -9,7 +9,7 @@ use crate::decoder::Device;
 use crate::ethercat::AlState;
 use crate::summary::SlaveSummary;
 
-use super::recorder::{cia402_state, AL_ERROR, SILENT};
+use super::recorder::{cia402_state, enable_phase, AL_ERROR, SILENT};
 
 /// Escape text for HTML text and quoted attributes.
 pub(super) fn esc(text: &str) -> String {
@@ -48,6 +48,12 @@ pub(super) fn nmt_name(state: u8) -> &'static str {
 
 pub(super) fn cia402_name(state: u8) -> &'static str {
     cia402_state(state).map_or("unknown", |s| s.name())
+}
+
+/// A servo band's enable phase as the summary writes it (`disabled`, …,
+/// `dropped`; docs/ethercat.md#servo).
+pub(super) fn servo_enable_name(state: u8) -> &'static str {
+    enable_phase(state).map_or("unknown", |phase| phase.name())
 }
 
 /// An AL band's state as the summary writes it (`init`, `preop`, `boot`,

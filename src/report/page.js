@@ -202,7 +202,7 @@
       ? document.querySelector("g[data-row=\"bus\"]" + iface + file)
       : document.querySelector("g[data-row=\"node\"]" + iface + "[data-node=\"" + node + "\"]" + file);
     var scope = row || document;
-    var el = scope.querySelector("[data-kind][data-line=\"" + line + "\"]:not([data-kind$=\"_state\"])") ||
+    var el = scope.querySelector("[data-kind][data-line=\"" + line + "\"]:not([data-state])") ||
       scope.querySelector("[data-line=\"" + line + "\"]");
     if (!el) { return; }
     var i = rects.concat(uses).filter(function (r) { return r.el === el; })[0];

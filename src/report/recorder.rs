@@ -6,17 +6,19 @@ use std::collections::BTreeMap;
 
 use crate::can::{BusName, Iface, LogEvent, LogFrame, Timestamp};
 use crate::canopen::{Cia402State, NodeId, Value};
+use crate::decoder::ethercat::ProcessData;
 use crate::decoder::DecoderConfig;
 use crate::ethercat::Command;
 use crate::logs::Position;
+use crate::servo::{ActualPosition, EnablePhase, HandshakePhase};
 use crate::summary::{
-    EthercatFact, FileSpan, Finding, FindingKind, Summarizer, Summary, SummaryEvent,
+    EthercatFact, FileSpan, Finding, FindingKind, ServoChange, Summarizer, Summary, SummaryEvent,
     SummaryEventKind,
 };
 
 use super::series::{
     At, BandItem, Detail, MarkItem, RateBucket, Series, SignalBucket, BUCKETS, EXACT_MARKS,
-    SIGNAL_BUCKETS,
+    HANDSHAKE_PHASES, SIGNAL_BUCKETS,
 };
 
 /// What a mark on the timeline stands for: its `data-kind`
@@ -64,11 +66,22 @@ pub enum MarkKind {
     /// A returned copy of a cyclic stream with another working counter
     /// than its usual one (`wkc_mismatches`).
     WkcMismatch,
+    /// A fault of a servo's error word set (`servo.fault_set_count`,
+    /// docs/ethercat.md#servo).
+    ServoFault,
+    /// A servo's error-clear handshake requested (`servo.error_clear_count`).
+    ServoErrorClear,
+    /// A servo's zero-pulse handshake requested (`servo.zero_pulse_count`).
+    ServoZeroPulse,
+    /// ServoRDY seen low (`servo.not_ready_count`).
+    ServoNotReady,
+    /// An enable edge the servo did not answer (`servo.enable_unanswered`).
+    ServoEnableUnanswered,
 }
 
 impl MarkKind {
     /// Every kind, in the order of docs/report.md#marks.
-    pub const ALL: [MarkKind; 18] = [
+    pub const ALL: [MarkKind; 23] = [
         MarkKind::Emcy,
         MarkKind::EmcyReset,
         MarkKind::BootUp,
@@ -87,6 +100,11 @@ impl MarkKind {
         MarkKind::ErrorCounter,
         MarkKind::LostFrame,
         MarkKind::WkcMismatch,
+        MarkKind::ServoFault,
+        MarkKind::ServoErrorClear,
+        MarkKind::ServoZeroPulse,
+        MarkKind::ServoNotReady,
+        MarkKind::ServoEnableUnanswered,
     ];
 
     /// The kinds a CAN device's row draws.
@@ -110,12 +128,18 @@ impl MarkKind {
     ];
 
     /// The kinds an EtherCAT slave's row draws.
-    pub const SLAVE: [MarkKind; 5] = [
+    pub const SLAVE: [MarkKind; 11] = [
         MarkKind::CoeEmcy,
         MarkKind::AlError,
         MarkKind::SdoAbort,
         MarkKind::DlChange,
         MarkKind::ErrorCounter,
+        MarkKind::Cia402Fault,
+        MarkKind::ServoFault,
+        MarkKind::ServoErrorClear,
+        MarkKind::ServoZeroPulse,
+        MarkKind::ServoNotReady,
+        MarkKind::ServoEnableUnanswered,
     ];
 
     /// The kinds an EtherCAT stream's row draws.
@@ -143,6 +167,11 @@ impl MarkKind {
             MarkKind::ErrorCounter => "error_counter",
             MarkKind::LostFrame => "lost_frame",
             MarkKind::WkcMismatch => "wkc_mismatch",
+            MarkKind::ServoFault => "servo_fault",
+            MarkKind::ServoErrorClear => "servo_error_clear",
+            MarkKind::ServoZeroPulse => "servo_zero_pulse",
+            MarkKind::ServoNotReady => "servo_not_ready",
+            MarkKind::ServoEnableUnanswered => "servo_enable_unanswered",
         }
     }
 
@@ -168,6 +197,11 @@ impl MarkKind {
             MarkKind::ErrorCounter => "error counter rise",
             MarkKind::LostFrame => "lost frame",
             MarkKind::WkcMismatch => "working counter mismatch",
+            MarkKind::ServoFault => "servo fault",
+            MarkKind::ServoErrorClear => "servo error clear",
+            MarkKind::ServoZeroPulse => "servo zero pulse",
+            MarkKind::ServoNotReady => "ServoRDY low",
+            MarkKind::ServoEnableUnanswered => "unanswered enable edge",
         }
     }
 
@@ -176,12 +210,45 @@ impl MarkKind {
     }
 }
 
-/// The signals a drive's charts show (docs/report.md#signals): position
-/// actual value 6064h and velocity actual value 606Ch, sub-index 0.
-pub(super) const CHARTED: [(u16, &str); 2] = [
-    (0x6064, "Position actual value (6064h)"),
-    (0x606C, "Velocity actual value (606Ch)"),
+/// The signals a drive's charts show (docs/report.md#signals), in the
+/// charts' order: each its `data-signal` and its title. A CAN drive's
+/// position and velocity actual values 6064h and 606Ch ([`CAN_CHARTED`]),
+/// an EtherCAT CiA 402 drive's also the target position 607Ah and
+/// target velocity 60FFh ([`SLAVE_CHARTED`]), a servo's ActPos and speed
+/// set point ([`ACT_POS`], [`SPEED_SETPOINT`]).
+pub(super) const CHARTED: [(&str, &str); 6] = [
+    ("6064", "Position actual value (6064h)"),
+    ("607a", "Target position (607Ah)"),
+    ("606c", "Velocity actual value (606Ch)"),
+    ("60ff", "Target velocity (60FFh)"),
+    ("act_pos", "ActPos (actual position)"),
+    ("speed_setpoint", "Speed set point (SSP)"),
 ];
+
+/// The objects a CAN drive's PDOs are charted of, sub-index 0, with
+/// their places in [`CHARTED`].
+const CAN_CHARTED: [(u16, usize); 2] = [(0x6064, 0), (0x606C, 2)];
+
+/// The objects an EtherCAT slave's process data is charted of, sub-index
+/// 0, with their places in [`CHARTED`].
+const SLAVE_CHARTED: [(u16, usize); 4] = [(0x6064, 0), (0x607A, 1), (0x606C, 2), (0x60FF, 3)];
+
+/// A servo's ActPos in [`CHARTED`].
+const ACT_POS: usize = 4;
+/// A servo's speed set point in [`CHARTED`].
+const SPEED_SETPOINT: usize = 5;
+
+/// A signal's value as a chart plots it: a number, finite.
+fn plotted(value: &Value) -> Option<f64> {
+    let value = match *value {
+        Value::Signed(v) => v as f64,
+        Value::Unsigned(v) => v as f64,
+        Value::Real32(v) => f64::from(v),
+        Value::Real64(v) => v,
+        _ => return None,
+    };
+    value.is_finite().then_some(value)
+}
 
 /// What a row of the timeline keeps: marks by kind, the state bands, a
 /// drive's signals, a bus's or a stream's frame rate. A CAN device's row
@@ -198,8 +265,11 @@ pub(crate) struct RowData {
     /// Where the last NMT band begins.
     nmt_since: At,
     pub(crate) cia402: Series<BandItem>,
+    /// A servo's enable handshake phases (an `EnablePhase` as its index,
+    /// [`enable_phase`]).
+    pub(crate) servo: Series<BandItem>,
     /// Per entry of [`CHARTED`]: its values, once seen.
-    pub(crate) signals: [Option<Series<SignalBucket>>; 2],
+    pub(crate) signals: [Option<Series<SignalBucket>>; CHARTED.len()],
     pub(crate) rate: Series<RateBucket>,
     /// Its EMCYs by code: how many, the first and the last
     /// (docs/report.md#events: a cluster never hides a code).
@@ -225,7 +295,8 @@ impl RowData {
             nmt_since: At::default(),
             al: Series::new(BUCKETS, BUCKETS, timed),
             cia402: Series::new(BUCKETS, BUCKETS, timed),
-            signals: [None, None],
+            servo: Series::new(BUCKETS, BUCKETS, timed),
+            signals: Default::default(),
             rate: Series::new(0, SIGNAL_BUCKETS, timed),
             codes: BTreeMap::new(),
         }
@@ -256,6 +327,53 @@ impl RowData {
         }
         if at.key(timed) >= run.last.key(timed) {
             run.last = at;
+        }
+    }
+
+    /// A value of the signal at `chart` in [`CHARTED`].
+    fn plot(&mut self, chart: usize, at: At, value: f64, timed: bool) {
+        self.signals[chart]
+            .get_or_insert_with(|| Series::new(0, SIGNAL_BUCKETS, timed))
+            .add(SignalBucket {
+                at,
+                min: (at, value),
+                max: (at, value),
+            });
+    }
+
+    /// A phase of a servo's handshake of `kind`: a request is a new mark,
+    /// the phases after it complete the last one's detail.
+    fn handshake(&mut self, kind: MarkKind, at: At, phase: HandshakePhase, position: Option<i32>) {
+        if phase == HandshakePhase::Requested {
+            let detail = Detail::Handshake {
+                phases: [phase; HANDSHAKE_PHASES],
+                len: 1,
+                position,
+            };
+            self.mark(kind, at, at, detail);
+            return;
+        }
+        let Some(last) = self.marks[kind.index()].last_mut() else {
+            return;
+        };
+        if let (
+            1,
+            Detail::Handshake {
+                phases,
+                len,
+                position: at_ack,
+            },
+        ) = (last.count, &mut last.detail)
+        {
+            let n = usize::from(*len);
+            if phases[n - 1] == HandshakePhase::Done {
+                return;
+            }
+            phases[n.min(HANDSHAKE_PHASES - 1)] = phase;
+            *len = (n + 1).min(HANDSHAKE_PHASES) as u8;
+            if position.is_some() {
+                *at_ack = position;
+            }
         }
     }
 
@@ -380,6 +498,9 @@ pub struct Recorder {
     buses: Vec<BusRows>,
     /// Each EtherCAT interface's rows, in the order of their first facts.
     ports: Vec<PortRows>,
+    /// Each EtherCAT interface's slaves' signals, by the slave's place
+    /// among its records; they join the slaves' rows at the end.
+    plots: Vec<(BusName, Vec<RowData>)>,
     /// The place in `buses` of each bus of the decoder's table, at the
     /// bus's place there ([`Summarizer::bus_at`]); `None` for a bus that
     /// no frame has been seen on yet (only status events).
@@ -412,6 +533,7 @@ impl Recorder {
             summarizer: Summarizer::new(config),
             buses: Vec::new(),
             ports: Vec::new(),
+            plots: Vec::new(),
             rows_of: Vec::new(),
             timed: None,
             last_t: 0,
@@ -432,11 +554,17 @@ impl Recorder {
                 let at = self.place(position, packet.timestamp);
                 let timed = self.timed == Some(true);
                 let Recorder {
-                    summarizer, ports, ..
+                    summarizer,
+                    ports,
+                    plots,
+                    ..
                 } = self;
-                let _ = summarizer.add_with(position, event, |event| {
-                    record_ethercat(ports, timed, at, &event);
-                });
+                summarizer.add_ethercat_with(
+                    position,
+                    packet,
+                    |event| record_ethercat(ports, timed, at, &event),
+                    |iface, place, data| plot_process_data(plots, timed, at, iface, place, data),
+                );
             }
         }
     }
@@ -511,29 +639,15 @@ impl Recorder {
                 if entry.sub_index() != 0 {
                     continue;
                 }
-                let Some(i) = CHARTED
+                let Some(&(_, chart)) = CAN_CHARTED
                     .iter()
-                    .position(|(index, _)| *index == entry.index())
+                    .find(|(index, _)| *index == entry.index())
                 else {
                     continue;
                 };
-                let value = match signal.value {
-                    Value::Signed(v) => v as f64,
-                    Value::Unsigned(v) => v as f64,
-                    Value::Real32(v) => f64::from(v),
-                    Value::Real64(v) => v,
-                    _ => continue,
-                };
-                if !value.is_finite() {
-                    continue;
+                if let Some(value) = plotted(&signal.value) {
+                    rows.node(node, timed).plot(chart, at, value, timed);
                 }
-                let series = rows.node(node, timed).signals[i]
-                    .get_or_insert_with(|| Series::new(0, SIGNAL_BUCKETS, timed));
-                series.add(SignalBucket {
-                    at,
-                    min: (at, value),
-                    max: (at, value),
-                });
             }
         }
     }
@@ -546,6 +660,7 @@ impl Recorder {
             summarizer,
             mut buses,
             mut ports,
+            plots,
             timed,
             untimed,
             first,
@@ -581,6 +696,20 @@ impl Recorder {
                         Series::new(EXACT_MARKS, BUCKETS, timed);
                     // Nor is a silence drawn as if it were checked.
                     row.nmt.retain(|band| band.state != SILENT);
+                }
+            }
+        }
+        for (iface, slaves) in plots {
+            let at = match ports.iter().position(|p| p.name == iface) {
+                Some(at) => at,
+                None => {
+                    ports.push(PortRows::new(iface));
+                    ports.len() - 1
+                }
+            };
+            for (place, plotted) in slaves.into_iter().enumerate() {
+                if plotted.signals.iter().any(Option::is_some) {
+                    ports[at].slave(place, timed).signals = plotted.signals;
                 }
             }
         }
@@ -738,6 +867,72 @@ impl StreamRows {
     }
 }
 
+/// Plot one cycle of a slave's process data, the slave at `place` among
+/// the slave records of `iface` (docs/report.md#signals): a servo's
+/// ActPos (from confirmed feedback) and speed set point, and the position
+/// and velocity objects its PDOs map (inputs where confirmed).
+fn plot_process_data(
+    plots: &mut Vec<(BusName, Vec<RowData>)>,
+    timed: bool,
+    at: At,
+    iface: &BusName,
+    place: usize,
+    data: &ProcessData<'_>,
+) {
+    let port = match plots.iter().position(|(name, _)| name == iface) {
+        Some(port) => port,
+        None => {
+            plots.push((iface.clone(), Vec::new()));
+            plots.len() - 1
+        }
+    };
+    let slaves = &mut plots[port].1;
+    let row = |slaves: &mut Vec<RowData>| {
+        while slaves.len() <= place {
+            slaves.push(RowData::new(timed));
+        }
+    };
+    if let Some(servo) = &data.servo {
+        row(slaves);
+        let row = &mut slaves[place];
+        if let Some(feedback) = &servo.feedback {
+            let position = match feedback.actual_position() {
+                ActualPosition::Absolute(position) => position as f64,
+                ActualPosition::Incremental { position, .. } => f64::from(position),
+            };
+            row.plot(ACT_POS, at, position, timed);
+        }
+        let speed = f64::from(servo.command.speed_setpoint);
+        row.plot(SPEED_SETPOINT, at, speed, timed);
+    }
+    if !data.has_signals() {
+        return;
+    }
+    // Inputs the working counter leaves unconfirmed are not charted, as
+    // no state is read from them (docs/ethercat.md#process-data).
+    let confirmed = data.confirmed;
+    data.for_each_signal(|output, _, signal| {
+        let Ok(signal) = signal else { return };
+        if !output && !confirmed {
+            return;
+        }
+        let entry = signal.entry;
+        if entry.sub_index() != 0 {
+            return;
+        }
+        let Some(&(_, chart)) = SLAVE_CHARTED
+            .iter()
+            .find(|(index, _)| *index == entry.index())
+        else {
+            return;
+        };
+        if let Some(value) = plotted(&signal.value) {
+            row(slaves);
+            slaves[place].plot(chart, at, value, timed);
+        }
+    });
+}
+
 /// Record one fact of an EtherCAT capture's slave or stream records on its
 /// row (docs/report.md#ethercat).
 fn record_ethercat(ports: &mut Vec<PortRows>, timed: bool, now: At, event: &SummaryEvent<'_>) {
@@ -806,9 +1001,34 @@ fn record_ethercat(ports: &mut Vec<PortRows>, timed: bool, now: At, event: &Summ
                 row.mark(MarkKind::Cia402Fault, at, at, Detail::None);
             }
         }
-        // The servo's timeline is in the page's summary records; its row
-        // is drawn from them (docs/report.md#ethercat).
-        EthercatFact::Servo { .. } => {}
+        EthercatFact::Servo { slave, event } => {
+            let row = port.slave(slave, timed);
+            let change = event.change;
+            match change {
+                ServoChange::Enable { to, .. } => {
+                    RowData::band(&mut row.servo, at, to as u8);
+                    if change.is_unanswered_enable() {
+                        let kind = MarkKind::ServoEnableUnanswered;
+                        row.mark(kind, at, at, Detail::Servo(change));
+                    }
+                }
+                ServoChange::FaultSet(_) => {
+                    row.mark(MarkKind::ServoFault, at, at, Detail::Servo(change));
+                }
+                ServoChange::Ready(false) => {
+                    row.mark(MarkKind::ServoNotReady, at, at, Detail::Servo(change));
+                }
+                ServoChange::ErrorClear(phase) => {
+                    row.handshake(MarkKind::ServoErrorClear, at, phase, None);
+                }
+                ServoChange::ZeroPulse { phase, position } => {
+                    row.handshake(MarkKind::ServoZeroPulse, at, phase, position);
+                }
+                // What the error word and ServoRDY say after: the marks
+                // are where they went wrong.
+                ServoChange::FaultCleared(_) | ServoChange::Ready(true) => {}
+            }
+        }
         EthercatFact::SdoAbort { slave, abort } => {
             let detail = Detail::Abort {
                 index: abort.index,
@@ -867,6 +1087,24 @@ fn record_ethercat(ports: &mut Vec<PortRows>, timed: bool, now: At, event: &Summ
 
 /// The AL error indicator in an AL band's state (bit 4 of AL status).
 pub(crate) const AL_ERROR: u8 = 0x10;
+
+/// The enable handshake's phases, a servo band's state as its index.
+const ENABLE_PHASES: [EnablePhase; 6] = [
+    EnablePhase::Disabled,
+    EnablePhase::Disabling,
+    EnablePhase::Arming,
+    EnablePhase::Enabling,
+    EnablePhase::Enabled,
+    EnablePhase::Dropped,
+];
+
+/// The enable phase of a servo band's state.
+pub(crate) fn enable_phase(index: u8) -> Option<EnablePhase> {
+    ENABLE_PHASES
+        .iter()
+        .copied()
+        .find(|phase| *phase as u8 == index)
+}
 
 /// The CiA 402 state of a band's index.
 pub(crate) fn cia402_state(index: u8) -> Option<Cia402State> {

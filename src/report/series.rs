@@ -40,6 +40,9 @@ impl At {
     }
 }
 
+use crate::servo::HandshakePhase;
+use crate::summary::ServoChange;
+
 /// An item a [`Series`] can hold and merge.
 pub(crate) trait Item: Copy {
     /// Where it begins.
@@ -252,7 +255,21 @@ pub(crate) enum Detail {
         wkc: u16,
         usual: u16,
     },
+    /// A servo's change: a fault set, ServoRDY low, an unanswered enable
+    /// edge.
+    Servo(ServoChange),
+    /// A servo handshake's phases from its request on (the first `len`
+    /// of `phases`), and the zero-pulse position its ack brought.
+    Handshake {
+        phases: [HandshakePhase; HANDSHAKE_PHASES],
+        len: u8,
+        position: Option<i32>,
+    },
 }
+
+/// The most phases a handshake mark keeps: requested, acknowledged,
+/// releasing, done.
+pub(crate) const HANDSHAKE_PHASES: usize = 4;
 
 impl Item for MarkItem {
     fn at(&self) -> At {

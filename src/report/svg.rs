@@ -9,14 +9,16 @@ use crate::canopen::{Emcy, ErrorCode, ErrorRegister, SdoAbortCode};
 use crate::ethercat::register::error_counter_name;
 use crate::ethercat::{AlState, AlStatusCode};
 use crate::profiles::Profile;
-use crate::summary::{NodeSummary, ProfileReading, SlaveSummary, StreamSummary};
+use crate::servo::HandshakePhase;
+use crate::summary::{NodeSummary, ProfileReading, ServoChange, SlaveSummary, StreamSummary};
 
 use super::fixed::Fixed;
 use super::layout::{Axis, Budget, AXIS, EXACT_BANDS, LEFT, PLOT, WIDTH};
 use super::markup::{
-    al_error, al_name, cia402_name, device, esc, iface_attr, nmt_name, no_flags, slave_name,
+    al_error, al_name, cia402_name, device, esc, iface_attr, nmt_name, no_flags, servo_enable_name,
+    slave_name,
 };
-use super::recorder::{MarkKind, RowData, AL_ERROR, CHARTED, SILENT};
+use super::recorder::{enable_phase, MarkKind, RowData, AL_ERROR, CHARTED, SILENT};
 use super::series::{At, BandItem, Detail, MarkItem, RateBucket, Series};
 
 /// A mark as drawn: one event, or a cluster of neighbours.
@@ -193,6 +195,28 @@ pub(super) fn mark_text(kind: MarkKind, m: &Drawn, axis: &Axis, profile: Profile
         Detail::Wkc { wkc, usual } => {
             let _ = write!(text, "working counter {wkc}, usually {usual}");
         }
+        Detail::Servo(change) => match change {
+            ServoChange::FaultSet(fault) => {
+                let _ = write!(text, "servo {change}: {}", fault.description());
+            }
+            ServoChange::Ready(false) => text.push_str(kind.words()),
+            _ => {
+                let _ = write!(text, "{}: {change}", kind.words());
+            }
+        },
+        Detail::Handshake {
+            phases,
+            len,
+            position,
+        } => {
+            text.push_str(kind.words());
+            for (i, phase) in phases.iter().take(usize::from(len)).enumerate() {
+                let _ = write!(text, "{}{phase}", if i == 0 { " " } else { " → " });
+                if let (HandshakePhase::Acknowledged, Some(at)) = (phase, position) {
+                    let _ = write!(text, " (zero pulse at {at})");
+                }
+            }
+        }
         Detail::None => text.push_str(kind.words()),
     }
     let _ = write!(text, " (line {}, {})", m.at.line, axis.when(m.at));
@@ -210,6 +234,10 @@ pub(super) fn mark_y(kind: MarkKind) -> f64 {
         MarkKind::CoeEmcy => 7.0,
         MarkKind::AlError | MarkKind::DlChange | MarkKind::ErrorCounter => 19.0,
         MarkKind::LostFrame | MarkKind::WkcMismatch => 12.0,
+        MarkKind::ServoFault | MarkKind::ServoNotReady => 7.0,
+        MarkKind::ServoErrorClear | MarkKind::ServoZeroPulse | MarkKind::ServoEnableUnanswered => {
+            19.0
+        }
     }
 }
 
@@ -321,6 +349,10 @@ pub(super) fn node_row(
 ) -> f64 {
     let drive = n.cia402.is_some();
     let h = if drive { 58.0 } else { 44.0 };
+    let second: &[(&Series<BandItem>, &BandStyle)] = match row {
+        Some(row) if drive => &[(&row.cia402, &CIA402_BANDS)],
+        _ => &[],
+    };
     let _ = write!(
         p,
         "<g class=\"row node\" data-row=\"node\" data-iface=\"{}\" data-node=\"{}\"{file} transform=\"translate(0,{y})\">\n<text class=\"label\" x=\"8\" y=\"14\">{}</text><text class=\"sub\" x=\"8\" y=\"28\">NMT{}</text>\n<g class=\"plot\" clip-path=\"url(#clip)\">\n",
@@ -337,7 +369,7 @@ pub(super) fn node_row(
             row,
             end,
             (&row.nmt, &NMT_BANDS),
-            drive,
+            second,
             &MarkKind::NODE,
             n.profile,
         );
@@ -347,9 +379,10 @@ pub(super) fn node_row(
 }
 
 /// A device's lanes, shared by a CAN device's row and an EtherCAT slave's:
-/// its first band (`first`: NMT or AL states) from y 2, the CiA 402 state
-/// of a drive below it (`drive`), and its marks of `kinds` under the
-/// bands; a CiA 402 fault is drawn over the CiA 402 band.
+/// its first band (`first`: NMT or AL states) from y 2, the bands of
+/// `more` below it (a drive's CiA 402 states, a servo's enable phases),
+/// and its marks of `kinds` under the bands; a CiA 402 fault is drawn
+/// over the CiA 402 band.
 #[allow(clippy::too_many_arguments)]
 fn device_lanes(
     p: &mut String,
@@ -358,25 +391,32 @@ fn device_lanes(
     row: &RowData,
     end: At,
     first: (&Series<BandItem>, &BandStyle),
-    drive: bool,
+    more: &[(&Series<BandItem>, &BandStyle)],
     kinds: &[MarkKind],
     profile: Profile,
 ) {
     bands(p, axis, budget, first.0, end, 2.0, first.1);
     let mut lane = 16.0;
-    if drive {
-        bands(p, axis, budget, &row.cia402, end, 16.0, &CIA402_BANDS);
-        lane = 30.0;
+    let mut cia402 = lane;
+    for (series, style) in more {
+        if style.kind == CIA402_BANDS.kind {
+            cia402 = lane;
+        }
+        bands(p, axis, budget, series, end, lane, style);
+        lane += BAND_LANE;
     }
     for &kind in kinds {
         let at = if kind == MarkKind::Cia402Fault {
-            16.0
+            cia402
         } else {
             lane
         };
         marks(p, axis, budget, row, kind, Some(at), profile);
     }
 }
+
+/// The height a band lane takes in a row.
+const BAND_LANE: f64 = 14.0;
 
 /// An EtherCAT slave's row (docs/report.md#ethercat): its AL states as a
 /// band, a drive's CiA 402 states below, and its marks; `place` is its
@@ -393,7 +433,17 @@ pub(super) fn slave_row(
     end: At,
 ) -> f64 {
     let drive = row.is_some_and(|row| row.cia402.len() > 0);
-    let h = if drive { 58.0 } else { 44.0 };
+    let servo = row.is_some_and(|row| row.servo.len() > 0);
+    let mut more: Vec<(&Series<BandItem>, &BandStyle)> = Vec::new();
+    if let Some(row) = row {
+        if drive {
+            more.push((&row.cia402, &CIA402_BANDS));
+        }
+        if servo {
+            more.push((&row.servo, &SERVO_BANDS));
+        }
+    }
+    let h = 44.0 + BAND_LANE * more.len() as f64;
     let position = s
         .position
         .map_or_else(String::new, |at| format!(" data-position=\"{at}\""));
@@ -404,13 +454,14 @@ pub(super) fn slave_row(
         .unwrap_or("slave");
     let _ = write!(
         p,
-        "<g class=\"row slave\" data-row=\"slave\" data-iface=\"{}\" data-slave=\"{}\"{position}{file} transform=\"translate(0,{y})\">\n<text class=\"label\" x=\"8\" y=\"14\"><title>{}</title>{}</text><text class=\"sub\" x=\"8\" y=\"28\">{} · AL{}</text>\n<g class=\"plot\" clip-path=\"url(#clip)\">\n",
+        "<g class=\"row slave\" data-row=\"slave\" data-iface=\"{}\" data-slave=\"{}\"{position}{file} transform=\"translate(0,{y})\">\n<text class=\"label\" x=\"8\" y=\"14\"><title>{}</title>{}</text><text class=\"sub\" x=\"8\" y=\"28\">{} · AL{}{}</text>\n<g class=\"plot\" clip-path=\"url(#clip)\">\n",
         iface_attr(&s.iface),
         s.station.map_or_else(String::new, |st| st.to_string()),
         esc(&slave_name(s)),
         esc(&slave_name(s).replacen(&format!("{} ", s.iface), "", 1)),
         esc(what),
-        if drive { " · CiA 402" } else { "" }
+        if drive { " · CiA 402" } else { "" },
+        if servo { " · servo" } else { "" }
     );
     if let Some(row) = row {
         let profile = s
@@ -424,7 +475,7 @@ pub(super) fn slave_row(
             row,
             end,
             (&row.al, &AL_BANDS),
-            drive,
+            &more,
             &MarkKind::SLAVE,
             profile,
         );
@@ -511,6 +562,13 @@ pub(super) const AL_BANDS: BandStyle = BandStyle {
     kind: "al_state",
     name: al_name,
     flags: al_error,
+};
+
+/// A servo's enable handshake phase (docs/ethercat.md#servo).
+pub(super) const SERVO_BANDS: BandStyle = BandStyle {
+    kind: "servo_enable",
+    name: servo_enable_name,
+    flags: no_flags,
 };
 
 /// A row's state bands, from `y`, 12 pixels high.
@@ -608,6 +666,11 @@ pub(super) fn defs(p: &mut String) {
 <path id=\"s-error_counter\" d=\"M0,6V-6M-4,-2L0,-6L4,-2\"/>\n\
 <path id=\"s-lost_frame\" d=\"M-4,-4L4,4M4,-4L-4,4M0,-6V6\"/>\n\
 <path id=\"s-wkc_mismatch\" d=\"M0,-6V6M-4,2L0,6L4,2\"/>\n\
+<path id=\"s-servo_fault\" d=\"M0,-6L5,0L0,6L-5,0Z\"/>\n\
+<path id=\"s-servo_error_clear\" d=\"M-5,0L-1,4L5,-5\"/>\n\
+<path id=\"s-servo_zero_pulse\" d=\"M-5,0H5M0,-5V5M-3,-3H3V3H-3Z\"/>\n\
+<path id=\"s-servo_not_ready\" d=\"M-5,-3L0,3L5,-3\"/>\n\
+<path id=\"s-servo_enable_unanswered\" d=\"M0,-6L6,5H-6Z\"/>\n\
 </defs>\n"
     );
 }
@@ -711,24 +774,75 @@ pub(super) fn legend(p: &mut String) {
             state.name()
         );
     }
+    for phase in 0..=u8::MAX {
+        let Some(phase) = enable_phase(phase) else {
+            break;
+        };
+        let _ = writeln!(
+            p,
+            "<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-servo-{0}\" width=\"16\" height=\"12\"/></svg> servo enable {0}</li>",
+            phase.name()
+        );
+    }
     p.push_str("<li><svg width=\"16\" height=\"12\" aria-hidden=\"true\"><rect class=\"lb-mixed\" width=\"16\" height=\"12\"/></svg> several states within a pixel</li>\n</ul></div>\n");
 }
 
-/// A drive's charts: its CiA 402 state, position and velocity on the
-/// shared axis (docs/report.md#signals).
-pub(super) fn chart(
-    p: &mut String,
-    axis: &Axis,
-    budget: &Budget,
-    n: &NodeSummary,
-    row: &RowData,
-    end: At,
-) {
+/// Whose charts: a CAN device's or an EtherCAT slave's.
+pub(super) struct Charted<'a> {
+    /// Its name, as the page says it.
+    pub(super) name: String,
+    /// Its attributes on the chart's `svg`, a space before each.
+    pub(super) attrs: String,
+    /// Whether it is a drive, whose CiA 402 state is charted.
+    pub(super) drive: bool,
+    pub(super) row: &'a RowData,
+}
+
+impl<'a> Charted<'a> {
+    /// A CAN device's.
+    pub(super) fn node(n: &NodeSummary, row: &'a RowData) -> Self {
+        Charted {
+            name: device(&n.bus, n.node),
+            attrs: format!(
+                " data-node=\"{}\" data-iface=\"{}\"",
+                n.node.get(),
+                iface_attr(&n.bus)
+            ),
+            drive: n.cia402.is_some(),
+            row,
+        }
+    }
+
+    /// An EtherCAT slave's.
+    pub(super) fn slave(s: &SlaveSummary, row: &'a RowData) -> Self {
+        Charted {
+            name: slave_name(s),
+            attrs: format!(
+                " data-slave=\"{}\" data-iface=\"{}\"",
+                s.station.map_or_else(String::new, |st| st.to_string()),
+                iface_attr(&s.iface)
+            ),
+            drive: s.cia402.is_some(),
+            row,
+        }
+    }
+
+    /// Whether it has anything to chart.
+    pub(super) fn any(&self) -> bool {
+        self.drive || self.row.signals.iter().any(Option::is_some)
+    }
+}
+
+/// A drive's charts: its CiA 402 state, position and velocity, a servo's
+/// ActPos and speed set point, on the shared axis (docs/report.md#signals).
+pub(super) fn chart(p: &mut String, axis: &Axis, budget: &Budget, who: &Charted<'_>, end: At) {
     const H: f64 = 70.0;
+    let row = who.row;
+    let name = esc(&who.name);
     let mut body = String::new();
     let mut y = AXIS + 4.0;
     // The CiA 402 state, as a step line over the 8 states.
-    if n.cia402.is_some() {
+    if who.drive {
         let levels = crate::canopen::Cia402State::ALL.len() as f64;
         let bands = drawn_bands(axis, &row.cia402, end, budget.band_px);
         let mut d = String::new();
@@ -746,16 +860,15 @@ pub(super) fn chart(
         }
         let _ = write!(
             body,
-            "<g class=\"chart\" transform=\"translate(0,0)\"><text class=\"label\" x=\"8\" y=\"{}\">CiA 402 state</text><text class=\"sub\" x=\"8\" y=\"{}\">top: not ready</text><text class=\"sub\" x=\"8\" y=\"{}\">bottom: fault</text>\n<g class=\"plot\" clip-path=\"url(#clip-c)\"><path class=\"sig state\" d=\"{d}\" data-kind=\"signal\" data-signal=\"cia402_state\" data-points=\"{}\"><title>CiA 402 state of {}</title></path></g></g>\n",
+            "<g class=\"chart\" transform=\"translate(0,0)\"><text class=\"label\" x=\"8\" y=\"{}\">CiA 402 state</text><text class=\"sub\" x=\"8\" y=\"{}\">top: not ready</text><text class=\"sub\" x=\"8\" y=\"{}\">bottom: fault</text>\n<g class=\"plot\" clip-path=\"url(#clip-c)\"><path class=\"sig state\" d=\"{d}\" data-kind=\"signal\" data-signal=\"cia402_state\" data-points=\"{}\"><title>CiA 402 state of {name}</title></path></g></g>\n",
             y + 14.0,
             y + 28.0,
             y + 42.0,
             bands.len(),
-            esc(&device(&n.bus, n.node))
         );
         y += H + 8.0;
     }
-    for (i, (index, title)) in CHARTED.iter().enumerate() {
+    for (i, (key, title)) in CHARTED.iter().enumerate() {
         let Some(series) = &row.signals[i] else {
             continue;
         };
@@ -793,24 +906,20 @@ pub(super) fn chart(
         }
         let _ = write!(
             body,
-            "<g class=\"chart\"><text class=\"label\" x=\"8\" y=\"{}\">{}</text><text class=\"sub\" x=\"8\" y=\"{}\">max {hi}</text><text class=\"sub\" x=\"8\" y=\"{}\">min {lo}</text>\n<g class=\"plot\" clip-path=\"url(#clip-c)\"><path class=\"sig\" d=\"{d}\" data-kind=\"signal\" data-signal=\"{index:04x}\" data-points=\"{points}\"><title>{} of {}: from {lo} to {hi}, {points} points (minimum and maximum per bucket)</title></path></g></g>\n",
+            "<g class=\"chart\"><text class=\"label\" x=\"8\" y=\"{}\">{}</text><text class=\"sub\" x=\"8\" y=\"{}\">max {hi}</text><text class=\"sub\" x=\"8\" y=\"{}\">min {lo}</text>\n<g class=\"plot\" clip-path=\"url(#clip-c)\"><path class=\"sig\" d=\"{d}\" data-kind=\"signal\" data-signal=\"{key}\" data-points=\"{points}\" data-min=\"{lo}\" data-max=\"{hi}\"><title>{} of {name}: from {lo} to {hi}, {points} points (minimum and maximum per bucket)</title></path></g></g>\n",
             y + 14.0,
             esc(title.split(" (").next().unwrap_or(title)),
             y + 28.0,
             y + H - 4.0,
             esc(title),
-            esc(&device(&n.bus, n.node))
         );
         y += H + 8.0;
     }
     let height = y;
     let _ = write!(
         p,
-        "<h3>{}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {}\" data-node=\"{}\" data-iface=\"{}\" data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}>\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
-        esc(&device(&n.bus, n.node)),
-        esc(&device(&n.bus, n.node)),
-        n.node.get(),
-        iface_attr(&n.bus),
+        "<h3>{name}</h3>\n<svg class=\"tl chart\" viewBox=\"0 0 {WIDTH} {height}\" width=\"{WIDTH}\" height=\"{height}\" role=\"img\" aria-label=\"signals of {name}\"{} data-left=\"{LEFT}\" data-plot=\"{PLOT}\"{}>\n<defs><clipPath id=\"clip-c\"><rect x=\"{LEFT}\" y=\"0\" width=\"{PLOT}\" height=\"100000\"/></clipPath></defs>\n",
+        who.attrs,
         axis.attrs()
     );
     axis_ticks(p, axis, height);

@@ -484,12 +484,15 @@ impl EthercatSummarizer {
     }
 
     /// Read one packet: its datagrams, what they tell, its streams; hand
-    /// `on_event` each fact it adds to the slave and stream records.
+    /// `on_event` each fact it adds to the slave and stream records, and
+    /// `on_process` each slave's process data as the session cut it, with
+    /// the slave's interface and place among its interface's records.
     pub(crate) fn add(
         &mut self,
         position: Position,
         event: &EthercatPacket<'_>,
         mut on_event: impl FnMut(SummaryEvent<'_>),
+        mut on_process: impl FnMut(&BusName, usize, &ProcessData<'_>),
     ) {
         let Ok(packet) = self.session.read(position, event) else {
             return;
@@ -557,9 +560,12 @@ impl EthercatSummarizer {
             }
             let timestamp = packet.timestamp;
             self.session.process_data(&packet, at, &datagram, |data| {
-                port.process_data(number, timestamp, data, &mut |f| {
+                let place = port.process_data(number, timestamp, data, &mut |f| {
                     fact(&mut on_event, iface, number, timestamp, f);
                 });
+                if let Some(place) = place {
+                    on_process(iface, place, data);
+                }
             });
         }
         if sent_frame {
@@ -734,18 +740,16 @@ impl Port {
 
     /// One slave's process data in one cycle: its counts, its CiA 402
     /// timeline (faults with the slave's last CoE emergency before them)
-    /// and its servo timeline.
+    /// and its servo timeline. Return the slave's place among the
+    /// records, where the data is a slave's.
     fn process_data(
         &mut self,
         packet: u64,
         timestamp: Option<Timestamp>,
         data: &ProcessData<'_>,
         emit: &mut impl FnMut(EthercatFact),
-    ) {
-        let Some(slave) = data.slave else { return };
-        let Some(at) = self.slave_at(slave) else {
-            return;
-        };
+    ) -> Option<usize> {
+        let at = self.slave_at(data.slave?)?;
         let s = &mut self.slaves[at];
         s.process_cycles += 1;
         if !data.confirmed {
@@ -785,6 +789,7 @@ impl Port {
                 }
             }
         }
+        Some(at)
     }
 
     /// Add what a datagram tells of a slave; hand `emit` each fact it

@@ -47,6 +47,23 @@ pub enum ServoChange {
     Ready(bool),
 }
 
+impl ServoChange {
+    /// Return whether the change is an enable edge the drive did not
+    /// answer: the enable handshake left `enabling` for another phase than
+    /// `enabled` (counted in [`ServoTimeline::enable_unanswered`]).
+    #[must_use]
+    pub fn is_unanswered_enable(&self) -> bool {
+        matches!(
+            self,
+            ServoChange::Enable {
+                from: EnablePhase::Enabling,
+                to,
+                ..
+            } if *to != EnablePhase::Enabled
+        )
+    }
+}
+
 /// One change, with where it was seen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ServoEvent {
@@ -84,6 +101,19 @@ pub struct ServoTimeline {
     /// Enable edges the drive did not answer: the enable handshake left
     /// `enabling` for another phase than `enabled`.
     pub enable_unanswered: u64,
+    /// Changes of the enable handshake's phase (`enable` events).
+    pub enable_change_count: u64,
+    /// Faults of the error word that appeared (`fault_set` events).
+    pub fault_set_count: u64,
+    /// Error-clear handshakes requested (`error_clear` events of phase
+    /// `requested`).
+    pub error_clear_count: u64,
+    /// Zero-pulse handshakes requested (`zero_pulse` events of phase
+    /// `requested`).
+    pub zero_pulse_count: u64,
+    /// ServoRDY seen low where it was high or not yet known (`ready`
+    /// events of `false`).
+    pub not_ready_count: u64,
     /// The first and the last actual position read.
     pub first_position: Option<ActualPosition>,
     /// The last.
@@ -100,6 +130,11 @@ impl Default for ServoTimeline {
             events: Listed::new(),
             faults_seen: ServoErrorWord::empty(),
             enable_unanswered: 0,
+            enable_change_count: 0,
+            fault_set_count: 0,
+            error_clear_count: 0,
+            zero_pulse_count: 0,
+            not_ready_count: 0,
             first_position: None,
             last_position: None,
             last: None,
@@ -117,6 +152,17 @@ impl ServoTimeline {
     ) {
         self.cycles += 1;
         let mut push = |change| {
+            match change {
+                ServoChange::Enable { .. } => self.enable_change_count += 1,
+                ServoChange::FaultSet(_) => self.fault_set_count += 1,
+                ServoChange::ErrorClear(HandshakePhase::Requested) => self.error_clear_count += 1,
+                ServoChange::ZeroPulse {
+                    phase: HandshakePhase::Requested,
+                    ..
+                } => self.zero_pulse_count += 1,
+                ServoChange::Ready(false) => self.not_ready_count += 1,
+                _ => {}
+            }
             self.events.push(ServoEvent {
                 packet,
                 timestamp,
@@ -127,12 +173,13 @@ impl ServoTimeline {
         let enable_before = before.map_or(EnablePhase::Disabled, |b| b.enable);
         if now.enable != enable_before {
             let cycles = before.map_or(0, |b| b.enable_cycles.saturating_add(1));
-            push(ServoChange::Enable {
+            let change = ServoChange::Enable {
                 from: enable_before,
                 to: now.enable,
                 cycles,
-            });
-            if enable_before == EnablePhase::Enabling && now.enable != EnablePhase::Enabled {
+            };
+            push(change);
+            if change.is_unanswered_enable() {
                 self.enable_unanswered += 1;
             }
         }
@@ -265,8 +312,9 @@ impl Serialize for ServoEvent {
 
 impl Serialize for ServoTimeline {
     /// `{"cycles", "unconfirmed", "events", "event_count", "faults_seen",
-    /// "enable_unanswered", "enable", "ready", "first_position",
-    /// "last_position"}` (docs/ethercat.md#servo); a position is
+    /// "enable_unanswered", "enable_change_count", "fault_set_count",
+    /// "error_clear_count", "zero_pulse_count", "not_ready_count",
+    /// "enable", "ready", "first_position", "last_position"}` (docs/ethercat.md#servo); a position is
     /// `{"encoder", "position"}`, with `zero_pulse_position` for an
     /// incremental encoder.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -278,6 +326,11 @@ impl Serialize for ServoTimeline {
         let faults: Vec<&str> = self.faults_seen.faults().map(ServoFault::name).collect();
         map.serialize_entry("faults_seen", &faults)?;
         map.serialize_entry("enable_unanswered", &self.enable_unanswered)?;
+        map.serialize_entry("enable_change_count", &self.enable_change_count)?;
+        map.serialize_entry("fault_set_count", &self.fault_set_count)?;
+        map.serialize_entry("error_clear_count", &self.error_clear_count)?;
+        map.serialize_entry("zero_pulse_count", &self.zero_pulse_count)?;
+        map.serialize_entry("not_ready_count", &self.not_ready_count)?;
         map.serialize_entry("enable", &self.last.map(|l| l.enable.name()))?;
         map.serialize_entry("ready", &self.last.and_then(|l| l.ready))?;
         map.serialize_entry("first_position", &self.first_position.map(Position))?;

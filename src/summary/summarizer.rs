@@ -8,6 +8,7 @@ use crate::canopen::{
     Emcy, EmcyStorage, ErrorRegister, GuardingEvent, HeartbeatConsumer, HeartbeatEvent,
     MessageKind, NmtStateByte, NodeGuardingMaster, NodeId, SlotUpdate,
 };
+use crate::decoder::ethercat::ProcessData;
 use crate::decoder::{Cia402Reading, Decoded, Decoder, DecoderConfig, SdoSeen};
 use crate::logs::Position;
 
@@ -221,12 +222,33 @@ impl Summarizer {
         position: Position,
         packet: &EthercatPacket<'_>,
         on_event: impl FnMut(SummaryEvent<'_>),
+        on_process: impl FnMut(&BusName, usize, &ProcessData<'_>),
     ) {
         self.ethercat_packets += 1;
         let config = self.decoder.config();
         self.ethercat
             .get_or_insert_with(|| EthercatSummarizer::new(config))
-            .add(position, packet, on_event);
+            .add(position, packet, on_event, on_process);
+    }
+
+    /// Add one EtherCAT packet, as [`add_with`](Self::add_with) does:
+    /// hand `on_event` each fact it adds to the summary, in order, and
+    /// `on_process` each slave's process data in it as the session cut it
+    /// ([`Session::process_data`]; docs/ethercat.md#process-data) — its
+    /// signals, CiA 402 reading and servo frames — with the slave's
+    /// interface and its place among that interface's slave records
+    /// (as [`EthercatFact`](super::EthercatFact) names a slave). The
+    /// report charts the drives' signals from it (docs/report.md#signals).
+    ///
+    /// [`Session::process_data`]: crate::decoder::ethercat::Session::process_data
+    pub fn add_ethercat_with(
+        &mut self,
+        position: Position,
+        packet: &EthercatPacket<'_>,
+        on_event: impl FnMut(SummaryEvent<'_>),
+        on_process: impl FnMut(&BusName, usize, &ProcessData<'_>),
+    ) {
+        self.add_ethercat(position, packet, on_event, on_process);
     }
 
     /// Return how many EtherCAT packets were added: the summary's
@@ -288,7 +310,7 @@ impl Summarizer {
         match event {
             LogEvent::Frame(frame) => self.add_frame(position, frame),
             LogEvent::Status(status) => self.add_status(status),
-            LogEvent::Ethercat(packet) => self.add_ethercat(position, packet, |_| {}),
+            LogEvent::Ethercat(packet) => self.add_ethercat(position, packet, |_| {}, |_, _, _| {}),
         }
     }
 
@@ -310,7 +332,7 @@ impl Summarizer {
                 return None;
             }
             LogEvent::Ethercat(packet) => {
-                self.add_ethercat(position, packet, on_event);
+                self.add_ethercat(position, packet, on_event, |_, _, _| {});
                 return None;
             }
         };

@@ -5,8 +5,7 @@
 //! API as tshark reads it, and the model record names every fault at the
 //! packets that show it.
 
-#[path = "../common/ecat_drives.rs"]
-mod ecat_drives;
+use crate::ecat_drives;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -4,9 +4,7 @@
 //! and in the summary — on the committed 1 000-cycle fixture and on a
 //! 100 000-cycle capture written for the test.
 
-#[path = "../common/ecat_drives.rs"]
-#[allow(dead_code)]
-mod ecat_drives;
+use crate::ecat_drives;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -260,6 +258,32 @@ fn check_summary(capture: &Path, model: &[Value]) {
         .filter(|r| r["kind"] == "enable_timeout")
         .count() as u64;
     assert_eq!(servo.enable_unanswered, timeouts);
+    // The counts by kind are the model's, listed or not.
+    let of = |kind: &str, to: Option<&str>| {
+        model
+            .iter()
+            .filter(|r| {
+                r["slave"] == u64::from(SERVO)
+                    && r["kind"] == kind
+                    && to.map_or(true, |to| r["to"] == to)
+            })
+            .count() as u64
+    };
+    assert_eq!(servo.enable_change_count, of("servo_enable", None));
+    assert_eq!(
+        servo.error_clear_count,
+        of("error_clear", Some("requested"))
+    );
+    assert_eq!(servo.zero_pulse_count, of("zero_pulse", Some("requested")));
+    let rdy_low = model
+        .iter()
+        .filter(|r| {
+            r["slave"] == u64::from(SERVO) && r["kind"] == "servo_rdy" && r["value"] == false
+        })
+        .count() as u64;
+    assert_eq!(servo.not_ready_count, rdy_low);
+    // Each fault the model set, and the ServoErrors summary bit with it.
+    assert_eq!(servo.fault_set_count, 2 * of("sew_set", None));
     assert!(servo.faults_seen.contains(ServoErrorWord::FOLLOWER_ERR));
     assert!(servo.faults_seen.contains(ServoErrorWord::ENCODER_ERR));
     assert_eq!(servo.unconfirmed, 1);

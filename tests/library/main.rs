@@ -9,6 +9,11 @@
 #[cfg(all(feature = "decoder", feature = "logs"))]
 #[path = "../common/mod.rs"]
 mod common;
+/// The generated capture of tests/data/ethercat/drives.pcapng, shared by
+/// `drives_capture` and `drives_model`.
+#[cfg(feature = "logs")]
+#[path = "../common/ecat_drives.rs"]
+mod ecat_drives;
 
 #[cfg(feature = "blf")]
 mod blf;

@@ -5,6 +5,9 @@
 
 use std::io::Write;
 
+#[path = "../common/ecat_drives.rs"]
+mod ecat_drives;
+
 use crate::report_common::{
     check_counts, check_ethercat, parse, repo, run, scratch, summary_records, Element, Page,
 };
@@ -1013,6 +1016,29 @@ fn capture_page(capture: &std::path::Path, dir: &std::path::Path) -> (Page, Stri
     (parse(&std::fs::read_to_string(out).unwrap()), stderr)
 }
 
+/// How many findings the slave records of `records` make: their first
+/// error emergencies, AL errors, CiA 402 faults and servo faults
+/// (docs/ethercat.md#findings).
+fn summary_findings(records: &[serde_json::Value]) -> usize {
+    records
+        .iter()
+        .filter(|r| r["type"] == "slave")
+        .map(|s| {
+            let emcy = s["emcy"]
+                .as_array()
+                .is_some_and(|e| e.iter().any(|e| e["code"] != 0));
+            let al = s["al_timeline"].as_array().map_or(0, |t| {
+                t.iter()
+                    .filter(|c| c["requested"] == false && c["error"] == true)
+                    .count()
+            });
+            let cia402 = s["cia402"]["fault_count"].as_u64().unwrap_or(0) as usize;
+            let servo = s["servo"]["fault_set_count"].as_u64().unwrap_or(0) as usize;
+            usize::from(emcy) + al + cia402 + servo
+        })
+        .sum()
+}
+
 /// Every capture's page draws a row per slave and per stream record, its
 /// AL bands and marks adding up to the records (docs/report.md#ethercat),
 /// on a time axis of the capture's span.
@@ -1020,7 +1046,7 @@ fn capture_page(capture: &std::path::Path, dir: &std::path::Path) -> (Page, Stri
 fn every_ethercat_capture_draws_its_slaves_and_streams() {
     let dir = scratch("ethercat");
     let captures = ethercat_captures();
-    assert_eq!(captures.len(), 7);
+    assert_eq!(captures.len(), 9);
     let mut slaves = 0;
     for capture in captures {
         let (page, stderr) = capture_page(&capture, &dir);
@@ -1036,14 +1062,14 @@ fn every_ethercat_capture_draws_its_slaves_and_streams() {
             .count();
         assert_eq!(page.body().get("data-axis"), Some("time"));
         assert!(page.body().num("data-span") > 0);
-        // Not an empty log: the list says what it does not cover.
-        assert!(
-            page.elements
-                .iter()
-                .any(|e| e.tag == "p" && e.get("data-kind") == Some("ethercat")),
-            "{}",
-            capture.display()
-        );
+        // Not an empty log: "What went wrong" lists the slaves' findings
+        // (docs/ethercat.md#findings), or says no slave was in trouble.
+        let findings = summary_findings(records.as_array().unwrap());
+        let said = page
+            .elements
+            .iter()
+            .any(|e| e.tag == "p" && e.get("data-kind") == Some("ethercat"));
+        assert_eq!(said, findings == 0, "{}", capture.display());
         // Every AL band says a state, every mark its line.
         for row in &page.rows {
             for band in row.kind("al_state") {
@@ -1051,7 +1077,7 @@ fn every_ethercat_capture_draws_its_slaves_and_streams() {
             }
         }
     }
-    assert_eq!(slaves, 12, "the seven captures' slaves");
+    assert_eq!(slaves, 18, "the nine captures' slaves");
 }
 
 /// The synthetic AKD fault (docs/ethercat.md#summary): the drive's EMCY at
@@ -1212,4 +1238,287 @@ fn a_busy_stream_clusters_and_every_frame_is_counted() {
         }
     }
     assert!(page.html.len() < 1_500_000, "{} bytes", page.html.len());
+}
+
+/// The generated capture of a servo and two CiA 402 drives
+/// (tests/data/ethercat/drives.pcapng) read with `--servo 0x1001`: the
+/// page and its records.
+fn drives_page(dir: &std::path::Path) -> (Page, Value) {
+    let capture = repo("tests/data/ethercat/drives.pcapng");
+    let out = dir.join("drives.html");
+    let args = ["--servo", "0x1001", capture.to_str().unwrap()];
+    let r = run(&[&["report"][..], &args, &["-o", out.to_str().unwrap()]].concat());
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let page = parse(&std::fs::read_to_string(out).unwrap());
+    (page, summary_records(&args))
+}
+
+/// What the models did (tests/data/ethercat/drives.model.jsonl), record
+/// by record.
+fn drives_model() -> Vec<Value> {
+    std::fs::read_to_string(repo("tests/data/ethercat/drives.model.jsonl"))
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+/// A slave's row.
+fn slave_row(page: &Page, station: u64) -> &crate::report_common::Row {
+    page.rows
+        .iter()
+        .find(|r| {
+            r.row.get("data-row") == Some("slave")
+                && r.row.get("data-slave") == Some(station.to_string().as_str())
+        })
+        .unwrap_or_else(|| panic!("no row for slave {station}"))
+}
+
+/// The servo's row (docs/report.md#ethercat): one enable band per change
+/// of the enable handshake, in order, each the phase the model's NC went
+/// to at the packet it did, the summary's listed ones among them; each
+/// kind of servo mark adding up to the servo timeline's count, the faults
+/// with their E-codes and the handshakes with their phases in words; the
+/// drive 0x1002's CiA 402 band going to fault after its over-current.
+#[test]
+fn the_servo_and_the_drives_are_drawn_as_the_summary_says() {
+    let (page, records) = drives_page(&scratch("drives"));
+    assert_eq!(page.summary(), records);
+    check_counts(&page, &records);
+    check_ethercat(&page, &records);
+    let record = |station: u64| {
+        records
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["type"] == "slave" && r["slave"] == station)
+            .unwrap()
+    };
+    let servo = &record(0x1001)["servo"];
+    let row = slave_row(&page, 0x1001);
+    assert_eq!(row.row.get("data-position"), Some("0"));
+    let bands: Vec<(String, u64)> = row
+        .kind("servo_enable")
+        .iter()
+        .map(|b| {
+            assert_eq!(b.num("data-count"), 1);
+            (b.get("data-state").unwrap().to_owned(), b.num("data-line"))
+        })
+        .collect();
+    assert_eq!(
+        bands.len() as u64,
+        servo["enable_change_count"].as_u64().unwrap()
+    );
+    // The model's every enable change, in order.
+    let model: Vec<(String, u64)> = drives_model()
+        .iter()
+        .filter(|r| r["slave"] == 0x1001 && r["kind"] == "servo_enable")
+        .map(|r| {
+            (
+                r["to"].as_str().unwrap().to_owned(),
+                r["packet"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(bands, model);
+    // The summary's listed enable events are among them, in order.
+    let listed: Vec<(String, u64)> = servo["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|e| e["event"] == "enable")
+        .map(|e| {
+            (
+                e["to"].as_str().unwrap().to_owned(),
+                e["packet"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert!(listed.len() >= 8, "{listed:?}");
+    let mut rest = bands.iter();
+    for event in &listed {
+        assert!(
+            rest.any(|b| b == event),
+            "{event:?} in order among {bands:?}"
+        );
+    }
+    assert_eq!(bands[0], ("arming".to_owned(), 214));
+    assert_eq!(bands.last().unwrap().0, "enabled");
+    // The marks, each kind as many as the timeline counts.
+    for (kind, key, at_least) in [
+        ("servo_fault", "fault_set_count", 4),
+        ("servo_error_clear", "error_clear_count", 3),
+        ("servo_zero_pulse", "zero_pulse_count", 1),
+        ("servo_not_ready", "not_ready_count", 2),
+        ("servo_enable_unanswered", "enable_unanswered", 1),
+    ] {
+        assert_eq!(row.count(kind), servo[key].as_u64().unwrap(), "{kind}");
+        assert!(row.count(kind) >= at_least, "{kind}");
+    }
+    assert_eq!(row.lines("servo_error_clear")[0], 514);
+    assert_eq!(row.lines("servo_zero_pulse"), [712]);
+    assert!(page.html.contains("servo fault FollowerErr (E09) set"));
+    assert!(page.html.contains("servo fault EncoderErr (E01) set"));
+    assert!(page
+        .html
+        .contains("servo error clear requested → acknowledged → done"));
+    assert!(page
+        .html
+        .contains("servo zero pulse requested → acknowledged (zero pulse at"));
+    assert!(page
+        .html
+        .contains("unanswered enable edge: enable disabling"));
+    // The over-current's drive: its CiA 402 band goes to fault, marked.
+    let drive = record(0x1002);
+    let row = slave_row(&page, 0x1002);
+    let fault_band = row
+        .kind("cia402_state")
+        .into_iter()
+        .find(|b| b.get("data-state") == Some("fault"))
+        .expect("a fault band");
+    let fault_line = drive["cia402"]["transitions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["to"] == "fault")
+        .unwrap()["line"]
+        .as_u64()
+        .unwrap();
+    assert_eq!(fault_band.num("data-line"), fault_line);
+    assert_eq!(row.lines("cia402_fault"), [1611]);
+    assert_eq!(row.lines("coe_emcy")[0], 1613);
+    // Every event row names its slave.
+    assert!(page.elements.iter().any(|e| e.tag == "tr"
+        && e.get("data-slave") == Some("4097")
+        && e.num("data-line") == 712));
+}
+
+/// The charts of each slave of the drives capture
+/// (docs/report.md#signals): `data-signal` → (`data-points`, `data-min`,
+/// `data-max`), by station.
+fn charts(page: &Page) -> std::collections::BTreeMap<(u64, String), (u64, f64, f64)> {
+    let mut charts = std::collections::BTreeMap::new();
+    let mut slave = None;
+    for e in &page.elements {
+        if e.tag == "svg" {
+            slave = e.get("data-slave").map(|s| s.parse::<u64>().unwrap());
+        }
+        if let (Some(slave), Some("signal")) = (slave, e.get("data-kind")) {
+            let num = |key: &str| e.get(key).map_or(f64::NAN, |v| v.parse().unwrap());
+            let key = (slave, e.get("data-signal").unwrap().to_owned());
+            let old = charts.insert(
+                key,
+                (e.num("data-points"), num("data-min"), num("data-max")),
+            );
+            assert!(old.is_none(), "one chart of each signal");
+        }
+    }
+    charts
+}
+
+/// The servo's ActPos and speed set point and the drives' position and
+/// target position are charted (docs/report.md#signals): a point per cycle
+/// (fewer cycles than buckets), ActPos only where the feedback is
+/// confirmed, its range holding the model's last ActPos.
+#[test]
+fn the_servo_and_the_drives_signals_are_charted() {
+    let (page, records) = drives_page(&scratch("drives-signals"));
+    let charts = charts(&page);
+    let slave = |station: u64| {
+        records
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["type"] == "slave" && r["slave"] == station)
+            .unwrap()
+            .clone()
+    };
+    let servo = slave(0x1001)["servo"].clone();
+    let cycles = servo["cycles"].as_u64().unwrap();
+    let unconfirmed = servo["unconfirmed"].as_u64().unwrap();
+    assert_eq!((cycles, unconfirmed), (999, 1));
+    let act_pos = charts[&(0x1001, "act_pos".to_owned())];
+    assert_eq!(act_pos.0, cycles - unconfirmed);
+    let last = drives_model()
+        .iter()
+        .rev()
+        .find(|r| r["kind"] == "act_pos")
+        .unwrap()["value"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(last, 193_600.0);
+    assert!(act_pos.1 <= last && last <= act_pos.2, "{act_pos:?}");
+    assert_eq!(
+        servo["last_position"]["position"].as_f64().unwrap(),
+        last,
+        "the summary's last ActPos"
+    );
+    let speed = charts[&(0x1001, "speed_setpoint".to_owned())];
+    assert_eq!(speed.0, cycles);
+    assert!(speed.1 < 0.0 && speed.2 > 0.0, "{speed:?}");
+    // The servo has no CiA 402 chart; the drives theirs, and 6064h from
+    // confirmed inputs, 607Ah from every cycle's outputs.
+    assert!(!charts.contains_key(&(0x1001, "cia402_state".to_owned())));
+    for station in [0x1002, 0x1003] {
+        let record = slave(station);
+        let cycles = record["process_cycles"].as_u64().unwrap();
+        let unconfirmed = record["process_unconfirmed"].as_u64().unwrap();
+        let state = charts[&(station, "cia402_state".to_owned())];
+        assert_eq!(
+            state.0,
+            record["cia402"]["transition_count"].as_u64().unwrap()
+        );
+        let position = charts[&(station, "6064".to_owned())];
+        assert_eq!(position.0, cycles - unconfirmed, "6064h of {station}");
+        let target = charts[&(station, "607a".to_owned())];
+        assert_eq!(target.0, cycles, "607Ah of {station}");
+        assert!(target.1 < target.2, "607Ah of {station} moves");
+    }
+    assert!(page.html.len() < 400_000, "{} bytes", page.html.len());
+}
+
+/// A long capture of the same drives (30 000 cycles of
+/// tests/common/ecat_drives.rs, as the ecat_drives example writes them): each chart is reduced to at most 1 000 buckets, 2 000 points
+/// (docs/report.md#bounded), and the marks still add up.
+#[test]
+fn a_long_drives_capture_is_charted_in_buckets() {
+    let dir = scratch("drives-long");
+    let capture = dir.join("long.pcapng");
+    let model = dir.join("long.jsonl");
+    let eni = dir.join("long.xml");
+    ecat_drives::write_files(30_000, &capture, &model, &eni).unwrap();
+    let out = dir.join("long.html");
+    let args = ["--servo", "0x1001", capture.to_str().unwrap()];
+    let r = run(&[&["report"][..], &args, &["-o", out.to_str().unwrap()]].concat());
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let page = parse(&std::fs::read_to_string(&out).unwrap());
+    let records = summary_records(&args);
+    check_ethercat(&page, &records);
+    let charts = charts(&page);
+    for signal in ["act_pos", "speed_setpoint"] {
+        let (points, lo, hi) = charts[&(0x1001, signal.to_owned())];
+        // At most 1 000 buckets, each its minimum and maximum; at least
+        // 500 (half the cap, once the width has doubled).
+        assert!((500..=2000).contains(&points), "{signal}: {points} points");
+        assert!(lo < hi, "{signal}");
+    }
+    for station in [0x1002, 0x1003] {
+        let (points, ..) = charts[&(station, "6064".to_owned())];
+        assert!(
+            (1000..=2000).contains(&points),
+            "6064h of {station}: {points}"
+        );
+    }
+    let last = std::fs::read_to_string(&model)
+        .unwrap()
+        .lines()
+        .rev()
+        .map(|l| serde_json::from_str::<Value>(l).unwrap())
+        .find(|r| r["kind"] == "act_pos")
+        .unwrap()["value"]
+        .as_f64()
+        .unwrap();
+    let (_, lo, hi) = charts[&(0x1001, "act_pos".to_owned())];
+    assert!(lo <= last && last <= hi);
+    assert!(page.html.len() < 1_000_000, "{} bytes", page.html.len());
 }

@@ -334,29 +334,54 @@ fn a_large_logs_verdict_and_findings_fit_the_first_screen() {
     assert!(timeline < 1000, "timeline at {timeline}");
 }
 
-/// An EtherCAT capture's page in the browser: the script runs without a
-/// console message over slave and stream rows, and the DOM after it ran
-/// still agrees with the records (docs/report.md#ethercat).
+/// EtherCAT captures' pages in the browser — the synthetic AKD fault, and
+/// the drives capture with its servo (its enable bands, servo marks and
+/// signal charts) —: the script runs without a console message over slave
+/// and stream rows and charts, and the DOM after it ran still agrees with
+/// the records (docs/report.md#ethercat).
 #[test]
 fn an_ethercat_page_after_load_agrees_with_the_summary() {
     let Some(browser) = chromium() else { return };
     let dir = scratch("browser-ecat");
-    let capture = repo("tests/data/ethercat/synthetic_akd_fault.pcapng");
-    let page = dir.join("akd.html");
-    let r = run(&[
-        "report",
-        capture.to_str().unwrap(),
-        "-o",
-        page.to_str().unwrap(),
-    ]);
-    assert!(r.status.success());
-    let (dom, log) = browse(&browser, &page, &["--dump-dom"]);
-    let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
-    assert!(console.is_empty(), "console messages: {console:#?}");
-    let dom = parse(&dom);
-    let html = dom.elements.iter().find(|e| e.tag == "html").unwrap();
-    assert_eq!(html.get("data-script"), Some("ready"));
-    let records = summary_records(&[capture.to_str().unwrap()]);
-    check_ethercat(&dom, &records);
-    assert_eq!(dom.summary(), records);
+    for (name, capture, options) in [
+        (
+            "akd",
+            "tests/data/ethercat/synthetic_akd_fault.pcapng",
+            &[][..],
+        ),
+        (
+            "drives",
+            "tests/data/ethercat/drives.pcapng",
+            &["--servo", "0x1001"][..],
+        ),
+    ] {
+        let capture = repo(capture);
+        let page = dir.join(format!("{name}.html"));
+        let mut args = options.to_vec();
+        args.push(capture.to_str().unwrap());
+        let r = run(&[&["report"][..], &args, &["-o", page.to_str().unwrap()]].concat());
+        assert!(r.status.success(), "{name}");
+        let (dom, log) = browse(&browser, &page, &["--dump-dom"]);
+        let console: Vec<&str> = log.lines().filter(|l| l.contains(":CONSOLE")).collect();
+        assert!(console.is_empty(), "{name}: console messages: {console:#?}");
+        let dom = parse(&dom);
+        let html = dom.elements.iter().find(|e| e.tag == "html").unwrap();
+        assert_eq!(html.get("data-script"), Some("ready"), "{name}");
+        let records = summary_records(&args);
+        check_ethercat(&dom, &records);
+        assert_eq!(dom.summary(), records, "{name}");
+        if name == "drives" {
+            let signals = dom
+                .elements
+                .iter()
+                .filter(|e| e.get("data-kind") == Some("signal"))
+                .count();
+            // The servo's two, each drive's state, 6064h and 607Ah.
+            assert_eq!(signals, 2 + 2 * 3);
+            assert!(dom
+                .rows
+                .iter()
+                .any(|r| r.count("servo_enable") > 0 && r.count("servo_fault") > 0));
+        }
+    }
 }

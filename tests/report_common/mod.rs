@@ -456,6 +456,41 @@ pub fn check_ethercat(page: &Page, records: &Value) {
             len("error_counter_rises"),
             "{what}"
         );
+        // A servo's bands and marks add up to its timeline's counts
+        // (docs/report.md#marks); a slave not read as a servo has none.
+        let servo = &s["servo"];
+        let servo_count = |key: &str| {
+            if servo.is_null() {
+                0
+            } else {
+                servo[key]
+                    .as_u64()
+                    .unwrap_or_else(|| panic!("{key} of {what}"))
+            }
+        };
+        for (kind, key) in [
+            ("servo_enable", "enable_change_count"),
+            ("servo_fault", "fault_set_count"),
+            ("servo_error_clear", "error_clear_count"),
+            ("servo_zero_pulse", "zero_pulse_count"),
+            ("servo_not_ready", "not_ready_count"),
+            ("servo_enable_unanswered", "enable_unanswered"),
+        ] {
+            assert_eq!(row.count(kind), servo_count(key), "{kind} of {what}");
+        }
+        let cia402 = &s["cia402"];
+        if !cia402.is_null() {
+            assert_eq!(
+                row.count("cia402_state"),
+                cia402["transition_count"].as_u64().unwrap(),
+                "CiA 402 bands of {what}"
+            );
+            assert_eq!(
+                row.count("cia402_fault"),
+                cia402["fault_count"].as_u64().unwrap(),
+                "cia402_fault of {what}"
+            );
+        }
         for mark in &row.items {
             if let Some(kind) = mark.get("data-kind") {
                 if kind != "al_state" {
