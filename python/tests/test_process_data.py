@@ -377,3 +377,30 @@ def test_truncated_captures_never_end_the_interpreter(cut):
         assert table.num_rows <= full.num_rows
         # The rows up to the cut (the dictionaries hold the values seen).
         assert table.to_pylist() == full.slice(0, table.num_rows).to_pylist()
+
+
+def test_the_docs_examples():
+    """docs/python.md#process-data, #wide and #servo, as written there."""
+    t = motionwire.process_data(DRIVES, servo=0x1001)
+    assert t.filter(pc.field("packet") == 214).select(
+        ["slave", "direction", "name", "value"]).to_pylist()[:4] == [
+        {"slave": 4097, "direction": "output", "name": "speed_setpoint", "value": 0.0},
+        {"slave": 4097, "direction": "output", "name": "control", "value": 1029.0},
+        {"slave": 4097, "direction": "output", "name": "servo_enable", "value": 1.0},
+        {"slave": 4097, "direction": "input", "name": "position", "value": 0.0},
+    ]
+    df = t.to_pandas()
+    wide = df.pivot_table(index=["packet", "slave"], columns="name", values="value", observed=True)
+    assert wide.loc[(214, 4098), ["Controlword", "Statusword"]].to_dict() == {
+        "Controlword": 0.0, "Statusword": 576.0}
+    s = motionwire.servo(DRIVES)
+    assert s.filter(pc.field("packet") == 514).select(
+        ["enable", "error_clear", "faults", "e_codes"]).to_pylist() == [
+        {"enable": "dropped", "error_clear": "requested",
+         "faults": ["ServoErrors", "FollowerErr"], "e_codes": [None, "E09"]}]
+    polars = pytest.importorskip("polars")
+    w = polars.from_arrow(t).pivot(on="name", index=["packet", "slave"], values="value")
+    assert w.shape == (len(wide), 2 + len(wide.columns))
+    row = w.filter((polars.col("packet") == 214) & (polars.col("slave") == 4098))
+    assert row.select(["Controlword", "Statusword"]).to_dicts() == [
+        {"Controlword": 0.0, "Statusword": 576.0}]
