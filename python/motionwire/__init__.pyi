@@ -3,7 +3,8 @@
 Every format of docs/formats.md — candump log and screen output, Vector ASC
 and BLF, PEAK TRC, pcap and pcapng, ASAM MDF 4 — gzip-compressed or not,
 found from the content; EtherCAT captures (pcap, pcapng) datagram by
-datagram (docs/python.md#ethercat). Tables are built column by column in Rust and handed
+datagram (docs/python.md#ethercat), and their process data signal by
+signal (docs/python.md#process-data). Tables are built column by column in Rust and handed
 to pyarrow without a copy; pandas (`table.to_pandas()`), polars
 (`polars.from_arrow(table)`) and DuckDB (`duckdb.sql("… from table")`) read
 them as they are. The GIL is released while a log is read.
@@ -222,6 +223,67 @@ def findings(
     Lines skipped as malformed are said with a UserWarning (read_log lists
     them); so are a capture's EtherCAT packets, which the findings do not
     cover yet.
+    """
+
+#: `servo=`: the slaves read as the servo frames of docs/servo.md, as the
+#: program's ``--servo`` names them: ``"auto"`` (every slave of 10 output
+#: and 40 input bytes), a station address (``0x1001``), ``"0x1001:1"``
+#: (with its Servo_Ready_Mode, 0 or 1), comma-separated items in one
+#: string, or a list of these; None for none.
+Servo = Union[str, int, Iterable[Union[str, int]], None]
+
+def process_data(
+    source: Source,
+    *,
+    servo: Servo = None,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """The process data of an EtherCAT capture as a long table
+    (docs/python.md#process-data): one row per signal per slave per
+    returned cyclic datagram, the values of the program's ``process_data``
+    records' ``signals`` (outputs then inputs, in mapping order), then a
+    servo's values (``servo=``) as signals too.
+
+    Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts`` (float64
+    seconds, null without time), ``iface`` (dictionary string), ``slave``
+    (uint16 station address, null where no FMMU is known), ``position``
+    (uint16 ring position, nullable), ``direction`` (dictionary:
+    ``output``, ``input``), ``name`` (dictionary string: the key of
+    ``signals``, or a servo value's name: ``speed_setpoint``, ``control``,
+    ``servo_enable``; ``position``, ``zero_pulse_position`` (incremental
+    encoders), ``status``, ``errors``, ``message_code``,
+    ``message_value``), ``value`` (float64: the value as a number, a
+    boolean 0 or 1, null for bytes; integers exact up to 2**53), ``raw``
+    (int64: the value where it is an integer an int64 holds, else null),
+    ``confirmed`` (bool: the working counter confirms the inputs; true for
+    outputs).
+
+    Pivot it wide with pandas: ``df.pivot_table(index=["packet", "slave"],
+    columns="name", values="value")``. A log's CAN frames have no rows and
+    are said with a UserWarning; the schema metadata is read_log's.
+    """
+
+def servo(
+    source: Source,
+    *,
+    servo: Servo = "auto",
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """The servo frames of an EtherCAT capture (docs/python.md#servo): one
+    row per servo per cycle, the values of the program's ``servo``
+    records.
+
+    Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts``, ``iface``,
+    ``slave`` (uint16); the command: ``speed_setpoint`` (int32),
+    ``control`` (uint32, SCW), ``servo_enable`` (uint8, SE); the feedback,
+    null where the inputs are unconfirmed: ``position`` (int64, ActPos
+    raw), ``encoder`` (dictionary: ``absolute``, ``incremental``),
+    ``status`` (uint32, SSW), ``errors`` (uint32, SEW), ``faults``
+    (list of the set error bits' names), ``e_codes`` (list: each fault's
+    E-code, ``"E09"``, or null); the handshakes: ``enable``,
+    ``enable_cycles`` (uint32), ``error_clear``, ``zero_pulse``
+    (dictionary: the phases' names); ``ready`` (bool, ServoRDY by the
+    mode, null without feedback); ``confirmed`` (bool).
     """
 
 class Message:

@@ -23,6 +23,7 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 mod columns;
 mod error;
 mod ethercat;
+mod process;
 mod reader;
 mod source;
 mod table;
@@ -297,6 +298,69 @@ fn findings<'py>(
     Ok(table.into_pyarrow(py)?.unbind())
 }
 
+/// The process data of an EtherCAT capture as a long table: one row per
+/// signal per slave per returned cyclic datagram, a servo's values among
+/// them (docs/python.md#process-data).
+#[pyfunction]
+#[pyo3(
+    signature = (source, *, servo = process::Servos::none(), format = None),
+    text_signature = "(source, *, servo=None, format=None)"
+)]
+fn process_data(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    servo: process::Servos,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    process_table(py, source, servo, format, process::SignalColumns::default())
+}
+
+/// The servo frames of an EtherCAT capture: one row per servo per cycle,
+/// the command, the feedback and the handshakes' phases
+/// (docs/python.md#servo).
+#[pyfunction]
+#[pyo3(
+    signature = (source, *, servo = process::Servos::auto(), format = None),
+    text_signature = "(source, *, servo='auto', format=None)"
+)]
+fn servo(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    servo: process::Servos,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    process_table(py, source, servo, format, process::ServoColumns::new())
+}
+
+/// Read a capture's process data into the table of `rows`; a log's CAN
+/// frames are said with a `UserWarning`.
+fn process_table<R: process::Rows + Send>(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    servo: process::Servos,
+    format: Option<&str>,
+    rows: R,
+) -> PyResult<Py<PyAny>> {
+    let source = Source::extract(source)?;
+    let options = source::options(format)?;
+    let read = py.detach(|| process::read(&source, options, servo.0, rows))?;
+    if read.frames > 0 {
+        let s = if read.frames == 1 { "" } else { "s" };
+        warn(
+            py,
+            format!(
+                "{}: {} CAN frame{s} read: the process data of EtherCAT captures has rows, \
+                 CAN frames none (decode's records hold their PDO signals)",
+                source.name(),
+                read.frames
+            ),
+        )?;
+    }
+    let table = Table::try_new(read.batches, read.schema)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(table.into_pyarrow(py)?.unbind())
+}
+
 /// Warn that lines or records of `source` were skipped.
 fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
     if skipped > 0 {
@@ -395,6 +459,8 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(decode, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(findings, m)?)?;
+    m.add_function(wrap_pyfunction!(process_data, m)?)?;
+    m.add_function(wrap_pyfunction!(servo, m)?)?;
     m.add_class::<reader::Reader>()?;
     m.add_class::<reader::Message>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

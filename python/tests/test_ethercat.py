@@ -63,7 +63,9 @@ def capture_id(path: Path) -> str:
 
 def test_every_capture_is_here():
     assert [p.stem for p in CAPTURES] == [
+        "drives",
         "replay-dc",
+        "replay-ek1100-el2828-el2889",
         "replay-ek1914-el3004-configure",
         "replay-ek1914-segmented-upload",
         "soem-akd-sdo",

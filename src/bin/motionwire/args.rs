@@ -5,10 +5,9 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use motionwire::canopen::{MessageKind, NodeId};
-use motionwire::decoder::ethercat::ServoSlaves;
+use motionwire::decoder::ethercat::{ServoItem, ServoItemError};
 use motionwire::logs::LogFormat;
 use motionwire::profiles::{NodeProfiles, Profile};
-use motionwire::servo::ServoReadyMode;
 
 /// motionwire: read CAN logs of motion machines as CANopen — EMCYs with
 /// their root cause, heartbeats and guarding, SDO transfers, PDO signals,
@@ -213,7 +212,7 @@ pub struct ReadingArgs {
     /// bytes) or a station address (decimal or `0x` hex) with `:MODE`, its
     /// Servo_Ready_Mode 0 or 1; comma-separated (docs/ethercat.md#servo).
     #[arg(long, value_delimiter = ',', value_name = "auto|STATION[:MODE]", value_parser = parse_servo)]
-    pub servo: Vec<ServoChoice>,
+    pub servo: Vec<ServoItem>,
     /// EtherCAT: the master's network information file (ENI, ETG.2100
     /// XML; TwinCAT exports it): the slaves' FMMUs, sync managers and PDOs
     /// for a capture that starts after the start-up; what the capture's
@@ -227,44 +226,10 @@ pub struct ReadingArgs {
     pub verbose: bool,
 }
 
-/// One `--servo` item.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ServoChoice {
-    /// Every slave with 10 output and 40 input bytes.
-    Auto,
-    /// One slave by station address, with its Servo_Ready_Mode if given.
-    Station(u16, Option<ServoReadyMode>),
-}
-
-/// Parse one `--servo` item: `auto`, `STATION` or `STATION:MODE`.
-fn parse_servo(text: &str) -> Result<ServoChoice, String> {
-    if text == "auto" {
-        return Ok(ServoChoice::Auto);
-    }
-    let (station, mode) = match text.split_once(':') {
-        Some((station, mode)) => {
-            let mode = mode
-                .parse::<u8>()
-                .ok()
-                .and_then(ServoReadyMode::new)
-                .ok_or_else(|| format!("{mode:?} is not a Servo_Ready_Mode (0 or 1)"))?;
-            (station, Some(mode))
-        }
-        None => (text, None),
-    };
-    Ok(ServoChoice::Station(parse_station(station)?, mode))
-}
-
-/// The slaves `--servo` names.
-pub fn servo_slaves(choices: &[ServoChoice]) -> ServoSlaves {
-    let mut slaves = ServoSlaves::default();
-    for choice in choices {
-        match *choice {
-            ServoChoice::Auto => slaves.auto = true,
-            ServoChoice::Station(station, mode) => slaves.stations.push((station, mode)),
-        }
-    }
-    slaves
+/// Parse one `--servo` item: `auto`, `STATION` or `STATION:MODE` (the
+/// library's [`ServoItem`]).
+fn parse_servo(text: &str) -> Result<ServoItem, String> {
+    text.parse().map_err(|e: ServoItemError| e.to_string())
 }
 
 /// One `--profile` item: for every node, or for one node.

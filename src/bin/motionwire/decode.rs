@@ -227,7 +227,7 @@ impl<'a> Sink<'a> {
         if let Some(ms) = args.heartbeat_ms {
             config = config.heartbeat_timeout(Duration::from_millis(u64::from(ms)));
         }
-        config = config.servos(crate::args::servo_slaves(&args.reading.servo));
+        config = config.servos(args.reading.servo.iter().copied().collect());
         if let Some(path) = &args.reading.eni {
             let slaves = read_eni(path)
                 .map_err(|why| Failure::Usage(format!("--eni {}: {why}", path.display())))?;

@@ -17,7 +17,9 @@ pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};
 pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
-pub use process::{ImageError, ImageProblem, ProcessData, ServoReading, ServoSlaves};
+pub use process::{
+    ImageError, ImageProblem, ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves,
+};
 pub use record::{
     DatagramRecord, Fields, MeaningRecord, ProcessRecord, DATAGRAM_KIND, PROCESS_DATA_KIND,
     RECORD_KINDS, SERVO_KIND,

@@ -14,6 +14,77 @@ use crate::CodecError;
 use super::image::Plan;
 use super::SlaveRef;
 
+/// One item of `--servo` (docs/ethercat.md#servo): `auto`, or a station
+/// address (decimal or `0x` hex) with `:MODE`, its Servo_Ready_Mode, where
+/// given. The program and the Python package read the same text with
+/// [`str::parse`].
+///
+/// ```
+/// use motionwire::decoder::ethercat::{ServoItem, ServoSlaves};
+/// use motionwire::servo::ServoReadyMode;
+///
+/// let slaves: ServoSlaves = ["auto", "0x1001:1", "4098"]
+///     .iter()
+///     .map(|item| item.parse::<ServoItem>())
+///     .collect::<Result<_, _>>()?;
+/// assert!(slaves.auto);
+/// assert_eq!(
+///     slaves.stations,
+///     [(0x1001, Some(ServoReadyMode::EnabledAndErrorFree)), (0x1002, None)]
+/// );
+/// assert_eq!(
+///     "0x1001:2".parse::<ServoItem>().unwrap_err().to_string(),
+///     "\"2\" is not a Servo_Ready_Mode (0 or 1)"
+/// );
+/// # Ok::<(), motionwire::decoder::ethercat::ServoItemError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ServoItem {
+    /// Every slave whose outputs are 10 bytes and inputs 40.
+    Auto,
+    /// One slave by station address, with its Servo_Ready_Mode where given.
+    Station(u16, Option<ServoReadyMode>),
+}
+
+/// Why a `--servo` item does not read ([`ServoItem`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ServoItemError {
+    /// The station address is not a number of 0 to 65535.
+    #[error("{0:?} is not a station address (0 to 65535, decimal or 0x hex)")]
+    Station(String),
+    /// The mode after `:` is not 0 or 1.
+    #[error("{0:?} is not a Servo_Ready_Mode (0 or 1)")]
+    Mode(String),
+}
+
+impl core::str::FromStr for ServoItem {
+    type Err = ServoItemError;
+
+    /// Read `auto`, `STATION` or `STATION:MODE`.
+    fn from_str(text: &str) -> Result<Self, ServoItemError> {
+        if text == "auto" {
+            return Ok(ServoItem::Auto);
+        }
+        let (station, mode) = match text.split_once(':') {
+            Some((station, mode)) => {
+                let parsed = mode.parse::<u8>().ok().and_then(ServoReadyMode::new);
+                let mode = parsed.ok_or_else(|| ServoItemError::Mode(mode.to_owned()))?;
+                (station, Some(mode))
+            }
+            None => (text, None),
+        };
+        let parsed = match station
+            .strip_prefix("0x")
+            .or_else(|| station.strip_prefix("0X"))
+        {
+            Some(hex) => u16::from_str_radix(hex, 16),
+            None => station.parse(),
+        };
+        let station = parsed.map_err(|_| ServoItemError::Station(station.to_owned()))?;
+        Ok(ServoItem::Station(station, mode))
+    }
+}
+
 /// Which slaves carry the servo frames of docs/servo.md (`--servo`):
 /// named by station address, or found by their images' lengths.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -28,6 +99,15 @@ pub struct ServoSlaves {
 }
 
 impl ServoSlaves {
+    /// Add what `item` names: every slave of 10 and 40 bytes, or a
+    /// station.
+    pub fn add(&mut self, item: ServoItem) {
+        match item {
+            ServoItem::Auto => self.auto = true,
+            ServoItem::Station(station, mode) => self.stations.push((station, mode)),
+        }
+    }
+
     /// Return whether no slave is read as a servo.
     #[must_use]
     pub fn is_empty(&self) -> bool {
@@ -49,6 +129,16 @@ impl ServoSlaves {
             }
             None => None,
         }
+    }
+}
+
+impl FromIterator<ServoItem> for ServoSlaves {
+    fn from_iter<I: IntoIterator<Item = ServoItem>>(items: I) -> Self {
+        let mut slaves = ServoSlaves::default();
+        for item in items {
+            slaves.add(item);
+        }
+        slaves
     }
 }
 
