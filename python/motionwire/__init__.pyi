@@ -179,6 +179,7 @@ def summary(
     profiles: Optional[Profiles] = None,
     eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
     format: Optional[Format] = None,
+    servo: Any = None,
 ) -> list[dict[str, Any]]:
     """The post-mortem of a log: exactly the records of ``motionwire decode
     --summary --json`` (docs/summary.md): the verdict when something
@@ -202,6 +203,7 @@ def findings(
     profiles: Optional[Profiles] = None,
     eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
     format: Optional[Format] = None,
+    servo: Any = None,
 ) -> pyarrow.Table:
     """What went wrong (docs/summary.md#findings): one row per finding, the
     list of the report's "What went wrong" (``motionwire report``), in time

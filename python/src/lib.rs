@@ -223,7 +223,8 @@ fn decode(
 /// The post-mortem: the records of `motionwire decode --summary --json`
 /// (docs/python.md#summary).
 #[pyfunction]
-#[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None))]
+#[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, servo = None))]
+#[allow(clippy::too_many_arguments)]
 fn summary<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
@@ -231,10 +232,13 @@ fn summary<'py>(
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
+    servo: Option<process::Servos>,
 ) -> PyResult<Bound<'py, PyList>> {
     let source = Source::extract(source)?;
     let options = source::options(format)?;
-    let mut config = config(profiles, eds)?.signals(false);
+    let mut config = config(profiles, eds)?
+        .signals(false)
+        .servos(servo.map_or_else(Default::default, |s| s.0));
     if let Some(ms) = heartbeat_ms {
         config = config.heartbeat_timeout(Duration::from_millis(ms));
     }
@@ -263,7 +267,8 @@ fn summary<'py>(
 /// finding, the list of the report's "What went wrong"
 /// (docs/python.md#findings).
 #[pyfunction]
-#[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None))]
+#[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, servo = None))]
+#[allow(clippy::too_many_arguments)]
 fn findings<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
@@ -271,10 +276,13 @@ fn findings<'py>(
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
+    servo: Option<process::Servos>,
 ) -> PyResult<Py<PyAny>> {
     let source = Source::extract(source)?;
     let options = source::options(format)?;
-    let mut config = config(profiles, eds)?.signals(false);
+    let mut config = config(profiles, eds)?
+        .signals(false)
+        .servos(servo.map_or_else(Default::default, |s| s.0));
     if let Some(ms) = heartbeat_ms {
         config = config.heartbeat_timeout(Duration::from_millis(ms));
     }
@@ -292,7 +300,6 @@ fn findings<'py>(
         Ok((table, fed))
     })?;
     warn_skipped(py, &source, fed.skipped)?;
-    warn_ethercat(py, &source, fed.ethercat, "the findings do not")?;
     let table =
         Table::try_new(batches, schema).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(table.into_pyarrow(py)?.unbind())
@@ -369,24 +376,6 @@ fn warn_skipped(py: Python<'_>, source: &Source, skipped: u64) -> PyResult<()> {
             py,
             format!(
                 "{}: {skipped} malformed line{s} or damaged record{s} skipped (read_log lists them)",
-                source.name()
-            ),
-        )?;
-    }
-    Ok(())
-}
-
-/// Warn that `packets` EtherCAT packets of `source` were read and left
-/// out: the findings cover CAN logs (docs/ethercat.md#python). `what` is
-/// `the findings do not`.
-fn warn_ethercat(py: Python<'_>, source: &Source, packets: u64, what: &str) -> PyResult<()> {
-    if packets > 0 {
-        let s = if packets == 1 { "" } else { "s" };
-        warn(
-            py,
-            format!(
-                "{}: {packets} EtherCAT packet{s} read: {what} cover EtherCAT yet \
-                 (decode shows every datagram)",
                 source.name()
             ),
         )?;

@@ -522,6 +522,7 @@ pub fn findings(
         Field::new("ts", DataType::Float64, true),
         Field::new("iface", dictionary(DataType::Int32), true),
         Field::new("node", DataType::UInt8, true),
+        Field::new("slave", DataType::UInt16, true),
         Field::new("kind", dictionary(DataType::Int8), false),
         Field::new("severity", dictionary(DataType::Int8), false),
         Field::new("text", DataType::Utf8, false),
@@ -547,6 +548,9 @@ pub fn findings(
         )),
         Arc::new(UInt8Array::from_iter(
             findings.iter().map(|f| f.node.map(|n| n.get())),
+        )),
+        Arc::new(UInt16Array::from_iter(
+            findings.iter().map(|f| f.slave.and_then(|s| s.station)),
         )),
         Arc::new(DictionaryArray::<Int8Type>::from_iter(
             findings.iter().map(|f| f.kind.name()),

@@ -370,20 +370,30 @@ def test_read_logs_of_captures():
     )
 
 
-def test_summary_is_the_programs_and_findings_say_what_they_leave_out():
-    """summary gives the capture's interface, slave and stream records
-    (docs/ethercat.md#summary), as `decode --summary --json`; findings
-    cover CAN records, and an EtherCAT capture's packets are said with a
-    warning."""
+def test_summary_is_the_programs_and_findings_name_the_slaves():
+    """summary gives the capture's verdict, interface, slave and stream
+    records (docs/ethercat.md#summary), as `decode --summary --json`;
+    findings are the slaves' (docs/ethercat.md#findings)."""
     path = ETHERCAT / "soem-akd-sdo.pcapng"
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         records = motionwire.summary(path)
-    assert [r["type"] for r in records][:2] == ["ethercat", "slave"]
-    akd = records[1]
+        found = motionwire.findings(path)
+    assert [r["type"] for r in records][:3] == ["verdict", "ethercat", "slave"]
+    akd = records[2]
     assert (akd["slave"], akd["name"], akd["al_code"]) == (0x1001, "Kollmorgen AKD", 0x001D)
-    with pytest.warns(UserWarning, match="829 EtherCAT packets read: the findings do not cover EtherCAT yet"):
-        assert motionwire.findings(path).num_rows == 0
+    assert records[0]["stop"]["slave"] == 0x1001
+    assert records[0]["stop"]["kind"] == "al_error"
+    assert found.column("kind").to_pylist() == ["al_error"]
+    assert found.column("slave").to_pylist() == [0x1001]
+    assert found.column("node").to_pylist() == [None]
+    assert found.column("line").to_pylist() == [records[0]["stop"]["line"]]
+    # The drives capture's servo is read with servo=, its faults found.
+    drives = ETHERCAT / "drives.pcapng"
+    kinds = motionwire.findings(drives, servo=0x1001).column("kind").to_pylist()
+    assert kinds.count("servo_fault") == 2
+    assert "servo_fault" not in motionwire.findings(drives).column("kind").to_pylist()
+    assert motionwire.summary(drives, servo="0x1001")[0]["type"] == "verdict"
     # A CAN log: no such warning.
     with warnings.catch_warnings():
         warnings.simplefilter("error")

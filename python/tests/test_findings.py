@@ -20,6 +20,7 @@ FINDINGS_SCHEMA = [
     ("ts", pa.float64(), True),
     ("iface", pa.dictionary(pa.int32(), pa.string()), True),
     ("node", pa.uint8(), True),
+    ("slave", pa.uint16(), True),
     ("kind", pa.dictionary(pa.int8(), pa.string()), False),
     ("severity", pa.dictionary(pa.int8(), pa.string()), False),
     ("text", pa.string(), False),

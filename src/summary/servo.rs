@@ -105,6 +105,10 @@ pub struct ServoTimeline {
     pub enable_change_count: u64,
     /// Faults of the error word that appeared (`fault_set` events).
     pub fault_set_count: u64,
+    /// The faults set, each with where (the first and the last, and their
+    /// count: docs/summary.md#lists): the findings of the servo
+    /// (docs/ethercat.md#findings), whatever the changes around them.
+    pub faults: Listed<ServoEvent>,
     /// Error-clear handshakes requested (`error_clear` events of phase
     /// `requested`).
     pub error_clear_count: u64,
@@ -132,6 +136,7 @@ impl Default for ServoTimeline {
             enable_unanswered: 0,
             enable_change_count: 0,
             fault_set_count: 0,
+            faults: Listed::new(),
             error_clear_count: 0,
             zero_pulse_count: 0,
             not_ready_count: 0,
@@ -152,9 +157,19 @@ impl ServoTimeline {
     ) {
         self.cycles += 1;
         let mut push = |change| {
+            let event = ServoEvent {
+                packet,
+                timestamp,
+                change,
+            };
             match change {
                 ServoChange::Enable { .. } => self.enable_change_count += 1,
-                ServoChange::FaultSet(_) => self.fault_set_count += 1,
+                ServoChange::FaultSet(fault) => {
+                    self.fault_set_count += 1;
+                    if fault != ServoFault::ServoErrors {
+                        self.faults.push(event);
+                    }
+                }
                 ServoChange::ErrorClear(HandshakePhase::Requested) => self.error_clear_count += 1,
                 ServoChange::ZeroPulse {
                     phase: HandshakePhase::Requested,
@@ -163,11 +178,7 @@ impl ServoTimeline {
                 ServoChange::Ready(false) => self.not_ready_count += 1,
                 _ => {}
             }
-            self.events.push(ServoEvent {
-                packet,
-                timestamp,
-                change,
-            });
+            self.events.push(event);
         };
         let before = self.last;
         let enable_before = before.map_or(EnablePhase::Disabled, |b| b.enable);
@@ -312,7 +323,7 @@ impl Serialize for ServoEvent {
 
 impl Serialize for ServoTimeline {
     /// `{"cycles", "unconfirmed", "events", "event_count", "faults_seen",
-    /// "enable_unanswered", "enable_change_count", "fault_set_count",
+    /// "enable_unanswered", "enable_change_count", "fault_set_count", "faults",
     /// "error_clear_count", "zero_pulse_count", "not_ready_count",
     /// "enable", "ready", "first_position", "last_position"}` (docs/ethercat.md#servo); a position is
     /// `{"encoder", "position"}`, with `zero_pulse_position` for an
@@ -328,6 +339,7 @@ impl Serialize for ServoTimeline {
         map.serialize_entry("enable_unanswered", &self.enable_unanswered)?;
         map.serialize_entry("enable_change_count", &self.enable_change_count)?;
         map.serialize_entry("fault_set_count", &self.fault_set_count)?;
+        map.serialize_entry("faults", &self.faults)?;
         map.serialize_entry("error_clear_count", &self.error_clear_count)?;
         map.serialize_entry("zero_pulse_count", &self.zero_pulse_count)?;
         map.serialize_entry("not_ready_count", &self.not_ready_count)?;

@@ -6,11 +6,10 @@
 use crate::can::Timestamp;
 use crate::decoder::ethercat::SlaveRef;
 use crate::profiles::Profile;
-use crate::servo::ServoFault;
 
 use super::{
-    EmcySeen, Finding, FindingCause, FindingDetail, FindingKind, Listed, NodeSummary, ServoChange,
-    Severity, Summary, Timeouts, Verdict, CAUSE_WINDOW,
+    EmcySeen, Finding, FindingCause, FindingDetail, FindingKind, Listed, NodeSummary, Severity,
+    Summary, Timeouts, Verdict, CAUSE_WINDOW,
 };
 
 impl Summary {
@@ -354,19 +353,17 @@ impl Summary {
                 );
             }
             if let Some(servo) = &s.servo {
-                for event in servo.events.iter() {
-                    if let ServoChange::FaultSet(fault) = event.change {
-                        if fault != ServoFault::ServoErrors {
-                            push(
-                                FindingKind::ServoFault,
-                                event.packet,
-                                FindingDetail::ServoFault(*event),
-                                event.timestamp,
-                                None,
-                            );
-                        }
-                    }
-                }
+                each(
+                    &servo.faults,
+                    |event| event.packet,
+                    |line, event| {
+                        let (detail, ts) = match event {
+                            Ok(event) => (FindingDetail::ServoFault(*event), event.timestamp),
+                            Err(n) => (FindingDetail::Omitted(n), None),
+                        };
+                        push(FindingKind::ServoFault, line, detail, ts, None);
+                    },
+                );
             }
         }
     }
