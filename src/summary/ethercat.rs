@@ -13,8 +13,8 @@ use serde::{Serialize, Serializer};
 use crate::can::{BusName, EthercatPacket, Timestamp};
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
-    AlRegister, Counts, FrameCopy, Meaning, ProcessData, Session, SlaveRef, ERROR_COUNTERS_LEN,
-    PAIRING_WINDOW,
+    AlRegister, CoeSdoStep, Counts, FrameCopy, Meaning, ProcessData, Session, SlaveRef,
+    ERROR_COUNTERS_LEN, PAIRING_WINDOW,
 };
 use crate::ethercat::{
     AlStatus, AlStatusCode, CoeHeader, CoeSdo, CoeService, Command, Datagram, FrameType,
@@ -159,17 +159,6 @@ pub struct CoeSdoAbort {
     /// Whether the slave sent it (read from its mailbox, whatever the
     /// service) rather than the master.
     pub from_slave: bool,
-}
-
-/// A CoE SDO transfer waiting for its last confirmation.
-#[derive(Debug, Clone, Copy)]
-struct OpenSdo {
-    timestamp: Option<Timestamp>,
-    upload: bool,
-    /// Segments follow the initiate exchange.
-    segmented: bool,
-    /// The master sent the last download segment.
-    last_sent: bool,
 }
 
 /// A change of a slave's DL status.
@@ -433,8 +422,8 @@ struct Waiting {
 struct Port {
     name: BusName,
     slaves: Vec<SlaveSummary>,
-    /// Per slave (same index): the open SDO transfer and the latencies.
-    sdo: Vec<(Option<OpenSdo>, Histogram)>,
+    /// Per slave (same index): its SDO transfers' latencies.
+    sdo: Vec<Histogram>,
     /// Per slave (same index): the CiA 402 timeline of a drive.
     drives: Vec<Option<TimelineBuilder>>,
     streams: Vec<Stream>,
@@ -596,7 +585,7 @@ impl EthercatSummarizer {
                 counts: if at == 0 { counts } else { Counts::default() },
                 streams_dropped: port.streams_dropped,
             });
-            for ((mut slave, (_, latencies)), drive) in
+            for ((mut slave, latencies), drive) in
                 port.slaves.into_iter().zip(port.sdo).zip(port.drives)
             {
                 slave.sdo_latency_median_ns = latencies.quantile(0.5);
@@ -723,7 +712,7 @@ impl Port {
             Some(at) => at,
             None => {
                 self.slaves.push(SlaveSummary::new(self.name.clone()));
-                self.sdo.push((None, Histogram::new()));
+                self.sdo.push(Histogram::new());
                 self.drives.push(None);
                 self.slaves.len() - 1
             }
@@ -929,6 +918,7 @@ impl Port {
                 header,
                 body,
                 profile,
+                sdo: step,
             } => {
                 let Some((at, s)) = self.slave(slave) else {
                     return;
@@ -980,7 +970,7 @@ impl Port {
                             s.sdo_responses += 1;
                         }
                         if let Ok(sdo) = CoeSdo::parse(rest) {
-                            self.sdo_step(slave, request, written, &sdo, packet, timestamp, emit);
+                            self.sdo_step(slave, written, &sdo, step, packet, timestamp, emit);
                         }
                     }
                     _ => {}
@@ -989,18 +979,16 @@ impl Port {
         }
     }
 
-    /// Follow a slave's CoE SDO transfer by its messages (ETG.1000.6
-    /// §5.6.2): an initiate request opens it; an expedited or whole
-    /// initiate response, the last segment's, or the download segment
-    /// response after the last segment ends it; an abort from either side
-    /// ends it too (docs/ethercat.md#summary).
+    /// A slave's CoE SDO message, with what the session made of it in its
+    /// transfer (`step`, docs/ethercat.md#coe-sdo): an abort is listed, a
+    /// completed transfer counted and timed (docs/ethercat.md#summary).
     #[allow(clippy::too_many_arguments)]
     fn sdo_step(
         &mut self,
         slave: SlaveRef,
-        request: bool,
         written: bool,
         sdo: &CoeSdo<'_>,
+        step: Option<CoeSdoStep>,
         packet: u64,
         timestamp: Option<Timestamp>,
         emit: &mut impl FnMut(EthercatFact),
@@ -1008,9 +996,6 @@ impl Port {
         let Some(at) = self.slave_at(slave) else {
             return;
         };
-        let command = sdo.command();
-        let data = sdo.initiate_data();
-        let (open, latencies) = &mut self.sdo[at];
         let summary = &mut self.slaves[at];
         if let Some(code) = sdo.abort_code() {
             summary.sdo_aborts += 1;
@@ -1030,66 +1015,12 @@ impl Port {
                 summary.sdo_abort_list.push(abort);
             }
             emit(EthercatFact::SdoAbort { slave: at, abort });
-            *open = None;
             return;
         }
-        let mut done = false;
-        match (request, sdo.specifier()) {
-            // Initiate download: expedited, or with its size and as much
-            // data as the message holds.
-            (true, 1) => {
-                let expedited = command & 0x02 != 0;
-                let size = data
-                    .get(..4)
-                    .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-                let held = data.len().saturating_sub(4);
-                *open = Some(OpenSdo {
-                    timestamp,
-                    upload: false,
-                    segmented: !expedited && size.is_some_and(|size| size as usize > held),
-                    last_sent: false,
-                });
-            }
-            (true, 2) => {
-                *open = Some(OpenSdo {
-                    timestamp,
-                    upload: true,
-                    segmented: false,
-                    last_sent: false,
-                });
-            }
-            (true, 0) => {
-                if let Some(o) = open.as_mut() {
-                    o.last_sent = command & 0x01 != 0;
-                }
-            }
-            (false, 3) => done = open.is_some_and(|o| !o.upload && !o.segmented),
-            (false, 1) => done = open.is_some_and(|o| !o.upload && o.last_sent),
-            (false, 2) => {
-                let expedited = command & 0x02 != 0;
-                let size = data
-                    .get(..4)
-                    .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-                let held = data.len().saturating_sub(4);
-                let whole = expedited || size.is_some_and(|size| size as usize <= held);
-                if let Some(o) = open.as_mut() {
-                    o.segmented = !whole;
-                }
-                done = open.is_some_and(|o| o.upload) && whole;
-            }
-            (false, 0) => done = open.is_some_and(|o| o.upload) && command & 0x01 != 0,
-            _ => {}
-        }
-        if done {
-            if let Some(o) = open.take() {
-                summary.sdo_ok += 1;
-                if let (Some(start), Some(end)) = (o.timestamp, timestamp) {
-                    let ns = end
-                        .as_duration()
-                        .saturating_sub(start.as_duration())
-                        .as_nanos();
-                    latencies.add(u64::try_from(ns).unwrap_or(u64::MAX));
-                }
+        if let Some(transfer) = step.and_then(|s| s.ended) {
+            summary.sdo_ok += 1;
+            if let Some(latency) = transfer.latency {
+                self.sdo[at].add(u64::try_from(latency.as_nanos()).unwrap_or(u64::MAX));
             }
         }
     }

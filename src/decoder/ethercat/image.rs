@@ -13,9 +13,10 @@ use std::borrow::Cow;
 use crate::canopen::{
     object_data_type, object_name, DataType, MappingEntry, ObjectSet, PdoLayout, PdoMapping, Signal,
 };
-use crate::ethercat::{CoeSdo, Command, Fmmu, SyncManager, SyncManagerMode};
+use crate::ethercat::{Command, Fmmu, SyncManager, SyncManagerMode};
 use crate::CodecError;
 
+use super::coe::{CoeTransfer, COE_DATA_KEPT};
 use super::config::SlaveConfig;
 use super::process::ImageError;
 
@@ -24,9 +25,6 @@ pub(super) const UNITS: usize = 16;
 /// The entries a mapping object holds at most (sub-indices 1–255; the
 /// decoder keeps the first 64 a PDO mapping can hold).
 const MAX_ENTRIES: usize = 64;
-/// The data a CoE SDO transfer of a PDO object holds at most: sub-index
-/// 0, padding and 64 entries of 4 bytes.
-const MAX_OBJECT_BYTES: usize = 2 + 4 * MAX_ENTRIES;
 /// The dummy entry a gap is read as (index 0001h, which reading skips).
 const GAP: u16 = 0x0001;
 
@@ -37,26 +35,10 @@ pub(super) const fn is_pdo_object(index: u16) -> bool {
     matches!(index, 0x1C10..=0x1C2F | 0x1600..=0x17FF | 0x1A00..=0x1BFF)
 }
 
-/// A CoE SDO transfer of a PDO object in progress.
-#[derive(Debug, Clone)]
-struct OpenTransfer {
-    index: u16,
-    sub_index: u8,
-    complete_access: bool,
-    /// A download (the master writes) or an upload.
-    download: bool,
-    /// The size the initiate message announced.
-    size: Option<usize>,
-    data: Vec<u8>,
-    /// A download's data is complete; it takes effect with the response.
-    last_sent: bool,
-}
-
 /// The PDO objects of one slave as its CoE SDO transfers wrote or read
 /// them: sub-index 0 (the count) and the entries.
 #[derive(Debug, Clone, Default)]
 pub(super) struct CoeObjects {
-    open: Option<OpenTransfer>,
     /// 0x1C10 + n: count and PDO indices.
     assignment: [Option<(u8, Vec<u16>)>; UNITS * 2],
     /// Mapping objects: index, count and raw entries.
@@ -67,161 +49,30 @@ pub(super) struct CoeObjects {
 }
 
 impl CoeObjects {
-    /// Read a CoE SDO message: `request` from the master, else the
-    /// slave's response. Return whether an object changed.
-    pub(super) fn message(&mut self, request: bool, sdo: &CoeSdo<'_>) -> bool {
-        let command = sdo.command();
-        let specifier = command >> 5;
-        if specifier == 4 {
-            // Abort, from either side.
-            self.open = None;
+    /// Keep what a completed transfer of a PDO object wrote or read
+    /// (`data`, as kept by the channel); note one that carried more than
+    /// such an object holds. Return whether an object changed.
+    pub(super) fn transfer(&mut self, transfer: &CoeTransfer, data: &[u8]) -> bool {
+        if !is_pdo_object(transfer.index) {
             return false;
         }
-        if request {
-            match specifier {
-                1 => {
-                    // Initiate download.
-                    let Some((index, sub_index)) = sdo.multiplexer() else {
-                        return false;
-                    };
-                    if !is_pdo_object(index) {
-                        self.open = None;
-                        return false;
-                    }
-                    let data = sdo.initiate_data();
-                    let expedited = command & 0x02 != 0;
-                    let sized = command & 0x01 != 0;
-                    let (size, bytes) = if expedited {
-                        let n = if sized {
-                            usize::from((command >> 2) & 0x03)
-                        } else {
-                            0
-                        };
-                        (Some(4 - n), data.get(..4 - n).unwrap_or(data))
-                    } else if data.len() >= 4 {
-                        let size = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
-                        self.check_size(index, sub_index, size);
-                        (Some(size as usize), &data[4..])
-                    } else {
-                        (None, &data[..0])
-                    };
-                    let mut transfer = OpenTransfer {
-                        index,
-                        sub_index,
-                        complete_access: sdo.complete_access(),
-                        download: true,
-                        size,
-                        data: Vec::new(),
-                        last_sent: false,
-                    };
-                    take(&mut transfer.data, bytes, size);
-                    transfer.last_sent =
-                        expedited || size.is_some_and(|s| transfer.data.len() >= s);
-                    self.open = Some(transfer);
-                }
-                0 => {
-                    // Download segment.
-                    if let Some(open) = self.open.as_mut().filter(|o| o.download) {
-                        let bytes = segment(command, sdo.segment_data());
-                        take(&mut open.data, bytes, open.size);
-                        open.last_sent = command & 0x01 != 0;
-                    }
-                }
-                2 => {
-                    // Initiate upload.
-                    self.open = match sdo.multiplexer() {
-                        Some((index, sub_index)) if is_pdo_object(index) => Some(OpenTransfer {
-                            index,
-                            sub_index,
-                            complete_access: sdo.complete_access(),
-                            download: false,
-                            size: None,
-                            data: Vec::new(),
-                            last_sent: false,
-                        }),
-                        _ => None,
-                    };
-                }
-                _ => {}
-            }
-            return false;
-        }
-        let Some(open) = self.open.as_mut() else {
-            return false;
-        };
-        match (open.download, specifier) {
-            // Initiate download response, download segment response.
-            (true, 3) | (true, 1) if open.last_sent => {
-                let open = self.open.take().expect("open");
-                self.store(&open)
-            }
-            (false, 2) => {
-                // Initiate upload response.
-                let data = sdo.initiate_data();
-                if command & 0x02 != 0 {
-                    let n = if command & 0x01 != 0 {
-                        usize::from((command >> 2) & 0x03)
-                    } else {
-                        0
-                    };
-                    let bytes = data.get(..4 - n).unwrap_or(data);
-                    open.data.clear();
-                    take(&mut open.data, bytes, Some(4 - n));
-                    let open = self.open.take().expect("open");
-                    return self.store(&open);
-                }
-                if data.len() < 4 {
-                    self.open = None;
-                    return false;
-                }
-                let announced = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
-                let size = announced as usize;
-                open.size = Some(size);
-                if size > MAX_OBJECT_BYTES {
-                    self.oversized = Some(ImageError::SdoSizePastObject {
-                        index: open.index,
-                        sub_index: open.sub_index,
-                        size: announced,
-                    });
-                }
-                let open = self.open.as_mut().expect("open");
-                open.data.clear();
-                take(&mut open.data, &data[4..], Some(size));
-                if open.data.len() >= size {
-                    let open = self.open.take().expect("open");
-                    return self.store(&open);
-                }
-                false
-            }
-            (false, 0) => {
-                // Upload segment response.
-                let bytes = segment(command, sdo.segment_data());
-                take(&mut open.data, bytes, open.size);
-                if command & 0x01 != 0 {
-                    let open = self.open.take().expect("open");
-                    return self.store(&open);
-                }
-                false
-            }
-            _ => false,
-        }
-    }
-
-    /// Note a transfer that announces more than a PDO object holds.
-    fn check_size(&mut self, index: u16, sub_index: u8, size: u32) {
-        if size as usize > MAX_OBJECT_BYTES {
+        if transfer.size > COE_DATA_KEPT {
             self.oversized = Some(ImageError::SdoSizePastObject {
-                index,
-                sub_index,
-                size,
+                index: transfer.index,
+                sub_index: transfer.sub_index,
+                size: u32::try_from(transfer.size).unwrap_or(u32::MAX),
             });
         }
+        self.store(
+            transfer.index,
+            transfer.sub_index,
+            transfer.complete_access,
+            data,
+        )
     }
 
     /// Keep what a completed transfer wrote or read.
-    fn store(&mut self, transfer: &OpenTransfer) -> bool {
-        let data = &transfer.data;
-        let index = transfer.index;
+    fn store(&mut self, index: u16, sub_index: u8, complete_access: bool, data: &[u8]) -> bool {
         let assignment = matches!(index, 0x1C10..=0x1C2F);
         let width = if assignment { 2 } else { 4 };
         let word = |bytes: &[u8]| -> u32 {
@@ -232,11 +83,11 @@ impl CoeObjects {
         // The values by sub-index: (sub-index, value).
         let mut count = None;
         let mut entries: Vec<(usize, u32)> = Vec::new();
-        if transfer.complete_access {
+        if complete_access {
             // Sub-index 0 takes 16 bits (a byte and a padding byte), the
             // entries follow (ETG.1000.6 §5.6.2.1.1: complete access).
-            let mut rest = &data[..];
-            let mut sub = usize::from(transfer.sub_index);
+            let mut rest = data;
+            let mut sub = usize::from(sub_index);
             if sub == 0 {
                 let Some(&n) = rest.first() else {
                     return false;
@@ -252,13 +103,13 @@ impl CoeObjects {
                 entries.push((sub, word(chunk)));
                 sub += 1;
             }
-        } else if transfer.sub_index == 0 {
+        } else if sub_index == 0 {
             let Some(&n) = data.first() else {
                 return false;
             };
             count = Some(n);
-        } else if usize::from(transfer.sub_index) <= MAX_ENTRIES && data.len() >= width {
-            entries.push((usize::from(transfer.sub_index), word(&data[..width])));
+        } else if usize::from(sub_index) <= MAX_ENTRIES && data.len() >= width {
+            entries.push((usize::from(sub_index), word(&data[..width])));
         } else {
             return false;
         }
@@ -308,26 +159,6 @@ impl CoeObjects {
         let (_, n, raw) = self.mappings.iter().find(|m| m.0 == index)?;
         Some(&raw[..usize::from(*n).min(raw.len())])
     }
-}
-
-/// Append to `out` the bytes of `data` the transfer still expects.
-fn take(out: &mut Vec<u8>, data: &[u8], size: Option<usize>) {
-    let room = size
-        .unwrap_or(MAX_OBJECT_BYTES)
-        .min(MAX_OBJECT_BYTES)
-        .saturating_sub(out.len());
-    out.extend_from_slice(&data[..data.len().min(room)]);
-}
-
-/// A segment's data: all the bytes after the command byte when the
-/// mailbox holds more than the 7 of CiA 301's segment, else 7 less the
-/// unused count in bits 1–3.
-fn segment(command: u8, data: &[u8]) -> &[u8] {
-    if data.len() > 7 {
-        return data;
-    }
-    let unused = usize::from((command >> 1) & 0x07);
-    &data[..data.len().min(7 - unused.min(7))]
 }
 
 /// One byte area of the image: a sync manager's (or, where none is known
@@ -746,16 +577,38 @@ fn pdos_of(sm: usize, coe: &CoeObjects, given: Option<&SlaveConfig>) -> Vec<(u16
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::decoder::ethercat::coe::CoeChannel;
     use crate::ethercat::CoeSdo;
 
-    /// Feed one SDO message (command byte onwards).
-    fn feed(coe: &mut CoeObjects, request: bool, bytes: &[u8]) -> bool {
-        coe.message(request, &CoeSdo::parse(bytes).unwrap())
+    /// A slave's channel and its PDO objects.
+    #[derive(Default)]
+    struct Coe {
+        channel: CoeChannel,
+        objects: CoeObjects,
+    }
+
+    impl core::ops::Deref for Coe {
+        type Target = CoeObjects;
+        fn deref(&self) -> &CoeObjects {
+            &self.objects
+        }
+    }
+
+    /// Feed one SDO message (command byte onwards); return whether a PDO
+    /// object changed.
+    fn feed(coe: &mut Coe, request: bool, bytes: &[u8]) -> bool {
+        let step = coe
+            .channel
+            .message(request, &CoeSdo::parse(bytes).unwrap(), None);
+        match step.ended {
+            Some(transfer) => coe.objects.transfer(&transfer, coe.channel.ended_data()),
+            None => false,
+        }
     }
 
     /// An expedited download of `value` (`len` bytes) to index.sub, and
     /// its response.
-    fn expedited(coe: &mut CoeObjects, index: u16, sub: u8, value: u32, len: usize) {
+    fn expedited(coe: &mut Coe, index: u16, sub: u8, value: u32, len: usize) {
         let n = (4 - len) as u8;
         let i = index.to_le_bytes();
         let v = value.to_le_bytes();
@@ -766,7 +619,7 @@ mod tests {
 
     #[test]
     fn expedited_downloads_build_assignment_and_mapping() {
-        let mut coe = CoeObjects::default();
+        let mut coe = Coe::default();
         expedited(&mut coe, 0x1C12, 0, 0, 1);
         expedited(&mut coe, 0x1600, 0, 0, 1);
         expedited(&mut coe, 0x1600, 1, 0x6040_0010, 4);
@@ -791,7 +644,7 @@ mod tests {
 
     #[test]
     fn complete_access_download_and_upload() {
-        let mut coe = CoeObjects::default();
+        let mut coe = Coe::default();
         // TwinCAT: 0x1A00 complete access from sub-index 0: count, pad,
         // three entries; normal transfer with its size.
         let mut request = vec![0x31, 0x00, 0x1A, 0x00, 14, 0, 0, 0, 3, 0];
@@ -813,7 +666,7 @@ mod tests {
 
     #[test]
     fn segmented_upload() {
-        let mut coe = CoeObjects::default();
+        let mut coe = Coe::default();
         assert!(!feed(&mut coe, true, &[0x40, 0x00, 0x1A, 1, 0, 0, 0, 0]));
         // Normal response, size 4, no data in it; one segment with 4 bytes.
         assert!(!feed(&mut coe, false, &[0x41, 0x00, 0x1A, 1, 4, 0, 0, 0]));
@@ -860,7 +713,7 @@ mod tests {
         sms[1] = Some(sm(0x1080, 128, 0x22));
         sms[2] = Some(sm(0x1100, 7, 0x64));
         sms[3] = Some(sm(0x1180, 7, 0x20));
-        let mut coe = CoeObjects::default();
+        let mut coe = Coe::default();
         for (index, entries) in [
             (0x1600, [0x6040_0010u32, 0x607A_0020, 0x6060_0008]),
             (0x1A00, [0x6041_0010, 0x6064_0020, 0x6061_0008]),
@@ -874,7 +727,7 @@ mod tests {
         expedited(&mut coe, 0x1C12, 0, 1, 1);
         expedited(&mut coe, 0x1C13, 1, 0x1A00, 2);
         expedited(&mut coe, 0x1C13, 0, 1, 1);
-        Plan::new(&fmmus, &sms, &coe, None)
+        Plan::new(&fmmus, &sms, &coe.objects, None)
     }
 
     #[test]
@@ -938,12 +791,12 @@ mod tests {
             status: 0,
             activate: 1,
         });
-        let mut coe = CoeObjects::default();
+        let mut coe = Coe::default();
         expedited(&mut coe, 0x1600, 1, 0x607A_0020, 4);
         expedited(&mut coe, 0x1600, 0, 1, 1);
         expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
         expedited(&mut coe, 0x1C12, 0, 1, 1);
-        let plan = Plan::new(&fmmus, &sms, &coe, None);
+        let plan = Plan::new(&fmmus, &sms, &coe.objects, None);
         assert_eq!(
             plan.too_long,
             [ImageError::MappingPastSyncManager {

@@ -4,6 +4,7 @@
 //! them ([`DatagramRecord`], [`MeaningRecord`]). Built on the wire views of
 //! [`crate::ethercat`].
 
+mod coe;
 mod config;
 #[cfg(feature = "eni")]
 mod eni;
@@ -13,6 +14,7 @@ mod process;
 mod record;
 mod session;
 
+pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};

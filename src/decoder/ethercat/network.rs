@@ -14,9 +14,11 @@ use crate::ethercat::{
 use crate::profiles::Profile;
 use crate::servo::{Command as ServoCommand, Feedback};
 
+use super::coe::{CoeChannel, CoeSdoStep};
 use super::config::SlaveConfig;
 use super::image::{CoeObjects, Plan};
 use super::process::{ImageError, ImageProblem, ProcessData, ServoSlaves, ServoWatch};
+use crate::can::Timestamp;
 use crate::logs::Position;
 
 /// The sync managers a slave has at most (ESC datasheet: 16; the
@@ -201,6 +203,10 @@ pub enum Meaning<'a> {
         /// for a slave whose SII says Kollmorgen (vendor 0x6A) AKD (product
         /// 0x414B44), else CiA 301's (docs/ethercat.md#coe).
         profile: Profile,
+        /// For a CoE SDO message the slave took (a write with working
+        /// counter 1, a read), what it is in the slave's transfer
+        /// (docs/ethercat.md#coe-sdo).
+        sdo: Option<CoeSdoStep>,
     },
 }
 
@@ -215,6 +221,8 @@ struct Slave {
     fmmus: [Option<Fmmu>; SYNC_MANAGERS],
     vendor: Option<u32>,
     product: Option<u32>,
+    /// Its CoE SDO transfers.
+    channel: CoeChannel,
     /// The PDO objects its CoE transfers showed.
     coe: CoeObjects,
     /// What a configuration file gives of it.
@@ -501,9 +509,11 @@ impl Network {
     }
     /// the slaves; `sent_adp` is the ADP it was sent with (a
     /// position-addressed datagram's position is its negation).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn datagram<'a>(
         &mut self,
         position: Position,
+        timestamp: Option<Timestamp>,
         returned: bool,
         datagram: &Datagram<'a>,
         sent_adp: Option<u16>,
@@ -616,17 +626,19 @@ impl Network {
         if command.addressing() == Addressing::Station
             && (command == Command::Fpwr || command == Command::Fprd)
         {
-            if let Some(meaning) = self.mailbox(position, slave, command == Command::Fpwr, datagram)
+            if let Some(mut meaning) =
+                self.mailbox(position, slave, command == Command::Fpwr, datagram)
             {
                 if let Meaning::Mailbox {
                     written,
                     accepted: true,
                     header,
                     body,
+                    ref mut sdo,
                     ..
                 } = meaning
                 {
-                    self.coe_message(slave, written, header, body);
+                    *sdo = self.coe_message(slave, written, header, body, timestamp);
                     if let Some(error) = self.slaves[slave].coe.oversized.take() {
                         let reference = self.slaves[slave].reference();
                         self.problem(position, reference, error);
@@ -637,27 +649,36 @@ impl Network {
         }
     }
 
-    /// A delivered mailbox message: a CoE SDO transfer of a PDO object
-    /// teaches the slave's process image.
-    fn coe_message(&mut self, slave: usize, written: bool, header: MailboxHeader, body: &[u8]) {
+    /// A delivered mailbox message: a CoE SDO message steps the slave's
+    /// transfer; a completed transfer of a PDO object teaches the slave's
+    /// process image. Return the step.
+    fn coe_message(
+        &mut self,
+        slave: usize,
+        written: bool,
+        header: MailboxHeader,
+        body: &[u8],
+        timestamp: Option<Timestamp>,
+    ) -> Option<CoeSdoStep> {
         if header.mailbox_type != MailboxType::Coe {
-            return;
+            return None;
         }
-        let Ok(coe) = CoeHeader::parse(body) else {
-            return;
-        };
+        let coe = CoeHeader::parse(body).ok()?;
+        // A request is the master's whatever its service, an answer the
+        // slave's: real slaves abort in a message of the request service.
         let request = match coe.service {
-            CoeService::SdoRequest if written => true,
-            CoeService::SdoResponse if !written => false,
-            _ => return,
+            CoeService::SdoRequest | CoeService::SdoResponse => written,
+            _ => return None,
         };
-        let Ok(sdo) = CoeSdo::parse(&body[COE_HEADER_LEN..]) else {
-            return;
-        };
+        let sdo = CoeSdo::parse(&body[COE_HEADER_LEN..]).ok()?;
         let known = &mut self.slaves[slave];
-        if known.coe.message(request, &sdo) {
-            known.plan = None;
+        let step = known.channel.message(request, &sdo, timestamp);
+        if let Some(transfer) = step.ended {
+            if known.coe.transfer(&transfer, known.channel.ended_data()) {
+                known.plan = None;
+            }
         }
+        Some(step)
     }
 
     /// The slave at `position`, added when new.
@@ -827,6 +848,7 @@ impl Network {
             header,
             body: &data[MAILBOX_HEADER_LEN..end],
             profile: known.profile(),
+            sdo: None,
         })
     }
 }

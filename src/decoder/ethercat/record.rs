@@ -7,7 +7,8 @@ use std::io::{self, Write};
 use crate::can::Iface;
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
-    AlRegister, Meaning, Packet, ProcessData, ServoReading, SiiField, SlaveRef,
+    AlRegister, CoeSdoStep, CoeTransfer, Meaning, Packet, ProcessData, ServoReading, SiiField,
+    SlaveRef,
 };
 use crate::decoder::json::{self, Object};
 use crate::decoder::record::emcy_json;
@@ -308,6 +309,7 @@ impl MeaningRecord<'_, '_> {
                 header,
                 body,
                 profile,
+                sdo,
             } => {
                 slave_json(&mut obj, slave);
                 obj.name("direction", if written { "write" } else { "read" });
@@ -319,7 +321,7 @@ impl MeaningRecord<'_, '_> {
                 obj.uint("channel", u64::from(header.channel));
                 obj.uint("priority", u64::from(header.priority));
                 obj.uint("counter", u64::from(header.counter));
-                mailbox_json(&mut obj, header.mailbox_type, body, profile);
+                mailbox_json(&mut obj, header.mailbox_type, body, profile, sdo);
             }
         }
         obj.end();
@@ -571,6 +573,7 @@ fn mailbox_json(
     mailbox_type: MailboxType,
     body: &[u8],
     profile: crate::profiles::Profile,
+    step: Option<CoeSdoStep>,
 ) {
     match coe(mailbox_type, body) {
         Some((CoeService::Emergency, rest)) => {
@@ -616,6 +619,7 @@ fn mailbox_json(
                     };
                     let out = obj.key("data");
                     json::hex_string(out, data);
+                    transfer_json(obj, step.and_then(|s| s.ended));
                 }
                 Err(e) => obj.display("error", &e),
             }
@@ -633,6 +637,28 @@ fn mailbox_json(
         },
         None => {}
     }
+}
+
+/// `transfer`: the transfer the message completed (docs/ethercat.md#coe-sdo),
+/// or null.
+fn transfer_json(obj: &mut Object<'_>, transfer: Option<CoeTransfer>) {
+    let Some(t) = transfer else {
+        obj.null("transfer");
+        return;
+    };
+    let out = obj.key("transfer");
+    let mut inner = Object::begin(out);
+    inner.uint("index", u64::from(t.index));
+    inner.uint("subindex", u64::from(t.sub_index));
+    inner.name("direction", if t.upload { "upload" } else { "download" });
+    inner.bool("complete_access", t.complete_access);
+    inner.bool("segmented", t.segmented);
+    inner.uint("size", t.size as u64);
+    match t.latency {
+        Some(latency) => inner.float("latency_ms", latency.as_nanos() as f64 / 1e6),
+        None => inner.null("latency_ms"),
+    }
+    inner.end();
 }
 
 /// The ports (0–3) whose bit is set in `bits`, every `step` bits:

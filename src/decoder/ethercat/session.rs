@@ -312,6 +312,7 @@ impl Session {
         if let Some(port) = self.ports.get_mut(packet.port) {
             port.network.datagram(
                 packet.position,
+                packet.timestamp,
                 packet.copy.returned(),
                 datagram,
                 sent_adp,
