@@ -140,10 +140,8 @@ impl CoeChannel {
                 }
             }
             // Initiate download response, download segment response.
-            (false, 3 | 1) => {
-                if self.open.as_ref().is_some_and(|o| !o.upload && o.last_sent) {
-                    step.ended = self.end(timestamp);
-                }
+            (false, 3 | 1) if self.open.as_ref().is_some_and(|o| !o.upload && o.last_sent) => {
+                step.ended = self.end(timestamp);
             }
             (false, 2) => {
                 // Initiate upload response: expedited, or its size and as
