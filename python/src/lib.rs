@@ -50,7 +50,7 @@ fn fill(
         name,
         file,
     })?;
-    Ok(columns.finish())
+    Ok(columns.finish(name))
 }
 
 /// The pyarrow table of `logs`.
@@ -228,7 +228,7 @@ fn decode(
 fn summary<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
-    heartbeat_ms: Option<u64>,
+    heartbeat_ms: Option<i64>,
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
@@ -239,8 +239,8 @@ fn summary<'py>(
     let mut config = config(profiles, eds)?
         .signals(false)
         .servos(servo.map_or_else(Default::default, |s| s.0));
-    if let Some(ms) = heartbeat_ms {
-        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    if let Some(timeout) = heartbeat_timeout(heartbeat_ms)? {
+        config = config.heartbeat_timeout(timeout);
     }
     let (records, fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
@@ -263,6 +263,18 @@ fn summary<'py>(
     Ok(list)
 }
 
+/// The heartbeat timeout of `heartbeat_ms=`: milliseconds, 0 or more.
+fn heartbeat_timeout(ms: Option<i64>) -> PyResult<Option<Duration>> {
+    ms.map(|ms| {
+        u64::try_from(ms).map(Duration::from_millis).map_err(|_| {
+            PyValueError::new_err(format!(
+                "heartbeat_ms must be a number of milliseconds, 0 or more; not {ms}"
+            ))
+        })
+    })
+    .transpose()
+}
+
 /// What went wrong: the summary's findings as a pyarrow.Table, one row per
 /// finding, the list of the report's "What went wrong"
 /// (docs/python.md#findings).
@@ -272,7 +284,7 @@ fn summary<'py>(
 fn findings<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
-    heartbeat_ms: Option<u64>,
+    heartbeat_ms: Option<i64>,
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
@@ -283,8 +295,8 @@ fn findings<'py>(
     let mut config = config(profiles, eds)?
         .signals(false)
         .servos(servo.map_or_else(Default::default, |s| s.0));
-    if let Some(ms) = heartbeat_ms {
-        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    if let Some(timeout) = heartbeat_timeout(heartbeat_ms)? {
+        config = config.heartbeat_timeout(timeout);
     }
     let ((schema, batches), fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
