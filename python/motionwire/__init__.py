@@ -20,6 +20,7 @@ from ._motionwire import (
     read_log,
     read_logs,
     servo,
+    signals,
     summary,
 )
 
@@ -33,5 +34,6 @@ __all__ = [
     "read_log",
     "read_logs",
     "servo",
+    "signals",
     "summary",
 ]

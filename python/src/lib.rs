@@ -23,6 +23,7 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 mod columns;
 mod error;
 mod ethercat;
+mod pdo;
 mod process;
 mod reader;
 mod source;
@@ -218,6 +219,38 @@ fn decode(
         fill(&source, &source.name(), options, Some(&mut decoder), None)
     })?;
     to_pyarrow(py, vec![finished], None)
+}
+
+/// The PDO signals of a CAN log as a long table: one row per signal
+/// value of each PDO whose mapping the decoder knows (docs/python.md#signals).
+#[pyfunction]
+#[pyo3(signature = (source, *, profiles = None, eds = None, format = None))]
+fn signals(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    profiles: Option<&Bound<'_, PyAny>>,
+    eds: Option<&Bound<'_, PyDict>>,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    let source = Source::extract(source)?;
+    let options = source::options(format)?;
+    let config = config(profiles, eds)?;
+    let read = py.detach(|| pdo::read(&source, options, Decoder::new(config)))?;
+    if read.packets > 0 {
+        let s = if read.packets == 1 { "" } else { "s" };
+        warn(
+            py,
+            format!(
+                "{}: {} EtherCAT packet{s} read: the signals of CAN PDOs have rows, \
+                 EtherCAT packets none (process_data has their signals)",
+                source.name(),
+                read.packets
+            ),
+        )?;
+    }
+    let table = Table::try_new(read.batches, read.schema)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(table.into_pyarrow(py)?.unbind())
 }
 
 /// The post-mortem: the records of `motionwire decode --summary --json`
@@ -458,6 +491,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_log, m)?)?;
     m.add_function(wrap_pyfunction!(read_logs, m)?)?;
     m.add_function(wrap_pyfunction!(decode, m)?)?;
+    m.add_function(wrap_pyfunction!(signals, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add_function(wrap_pyfunction!(process_data, m)?)?;

@@ -119,12 +119,12 @@ impl Dictionary {
     }
 
     /// The dictionary of `values`, all different (an [`Ifaces`]').
-    fn of(values: Vec<String>) -> Self {
+    pub(crate) fn of(values: Vec<String>) -> Self {
         let keys = (0..).zip(&values).map(|(k, v)| (v.clone(), k)).collect();
         Dictionary { values, keys }
     }
 
-    fn key(&mut self, value: &str) -> i32 {
+    pub(crate) fn key(&mut self, value: &str) -> i32 {
         if let Some(&key) = self.keys.get(value) {
             return key;
         }
@@ -211,7 +211,7 @@ pub struct SignalColumns {
 
 /// A signal's value as `value` (a float) and `raw` (where it is an
 /// integer that an int64 holds): a boolean is 0 or 1, bytes are neither.
-fn number(value: &Value) -> (Option<f64>, Option<i64>) {
+pub(crate) fn number(value: &Value) -> (Option<f64>, Option<i64>) {
     match *value {
         Value::Bool(b) => (Some(f64::from(u8::from(b))), Some(i64::from(b))),
         Value::Signed(v) => (Some(v as f64), Some(v)),
@@ -389,7 +389,7 @@ fn common_fields(datagram: bool, clock: Clock) -> Vec<Field> {
     fields
 }
 
-fn dictionary(key: DataType) -> DataType {
+pub(crate) fn dictionary(key: DataType) -> DataType {
     DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8))
 }
 
@@ -754,7 +754,7 @@ pub fn read<R: Rows>(
 }
 
 /// The record batches, each dictionary column with its complete values.
-fn assemble(
+pub(crate) fn assemble(
     schema: &SchemaRef,
     parts: Vec<Vec<Part>>,
     dictionaries: &[Dictionary],

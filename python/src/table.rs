@@ -66,10 +66,14 @@ struct DecodedColumns {
     description_valid: Validity,
     state: Vec<i32>,
     state_valid: Validity,
+    /// The drive's CiA 402 state the frame tells (`cia402.state`).
+    cia402_state: Vec<i32>,
+    cia402_state_valid: Validity,
     record_offsets: Vec<i32>,
     record: Vec<u8>,
     descriptions: StaticNames,
     states: StaticNames,
+    cia402_states: StaticNames,
 }
 
 /// The frames of one log, column by column.
@@ -170,6 +174,9 @@ impl Columns {
             d.description_valid.push(&mut d.description, description);
             let state = columns.state.map(|state| d.states.key(state));
             d.state_valid.push(&mut d.state, state);
+            let cia402 = decoded.cia402.and_then(|reading| reading.state);
+            let cia402 = cia402.map(|state| d.cia402_states.key(state.name()));
+            d.cia402_state_valid.push(&mut d.cia402_state, cia402);
             decoded.write_json(&mut d.record).expect("writing to a Vec");
             // The record without its newline.
             d.record.pop();
@@ -267,6 +274,13 @@ impl Columns {
                     d.state_valid.0.finish(),
                 ),
                 d.states.array(),
+            )));
+            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
+                Int32Array::new(
+                    ScalarBuffer::from(std::mem::take(&mut d.cia402_state)),
+                    d.cia402_state_valid.0.finish(),
+                ),
+                d.cia402_states.array(),
             )));
             // The writer writes UTF-8 (Decoded::write_json); checked once
             // more here, at memory speed.
@@ -427,6 +441,7 @@ pub fn schema(
             Field::new("register", DataType::UInt8, true),
             Field::new("description", dictionary(DataType::Int32), true),
             Field::new("state", dictionary(DataType::Int32), true),
+            Field::new("cia402_state", dictionary(DataType::Int32), true),
             Field::new("record", DataType::Utf8, false),
         ]);
     }

@@ -148,3 +148,76 @@ def test_an_empty_file_says_so_in_the_metadata(tmp_path: Path):
     fleet = motionwire.read_logs([SAMPLE, b""])
     assert json.loads(fleet.schema.metadata[b"motionwire.empty"]) == ["<bytes 1>: 0 frames"]
     assert b"motionwire.empty" not in motionwire.read_log(SAMPLE).schema.metadata
+
+
+# ---------------------------------------------------------------------------
+# PDO signals and the CiA 402 state outside the record (docs/python.md#signals)
+
+PDO_LOG = FIXTURES / "pdo" / "python_canopen.log"
+PDO_EDS = {3: FIXTURES / "pdo" / "drive.eds"}
+
+
+@pytest.mark.parametrize("path, eds", [(SAMPLE, None), (PDO_LOG, PDO_EDS)], ids=["sample", "eds"])
+def test_signals_are_the_records_signals(path, eds):
+    table = motionwire.signals(path, eds=eds)
+    assert [(f.name, f.type, f.nullable) for f in table.schema] == [
+        ("line", pa.uint64(), False),
+        ("ts", pa.float64(), True),
+        ("time", UTC, True),
+        ("iface", pa.dictionary(pa.int32(), pa.string()), True),
+        ("node", pa.uint8(), False),
+        ("cob_id", pa.uint32(), False),
+        ("name", pa.dictionary(pa.int32(), pa.string()), False),
+        ("value", pa.float64(), True),
+        ("raw", pa.int64(), True),
+    ]
+    decoded = motionwire.decode(path, eds=eds)
+    expected = []
+    for row in decoded.to_pylist():
+        record = json.loads(row["record"])
+        for name, value in record.get("signals", {}).items():
+            expected.append({
+                "line": row["line"], "ts": row["ts"], "time": row["time"], "iface": row["iface"],
+                "node": record["node"], "cob_id": row["id"], "name": name,
+                # A REAL's raw is null; an integer's the integer.
+                "value": float(value), "raw": value if isinstance(value, int) else None,
+            })
+    assert len(expected) > 100
+    rows = table.to_pylist()
+    # node: the PDO's owner, whose mapping read it; the record's node is
+    # the identifier's, the same but for a COB-ID the owner chose (the
+    # drive's RPDO on 0x2C0 below: the record says node 64).
+    owners = [row.pop("node") for row in rows]
+    nodes = [row.pop("node") for row in expected]
+    if eds is None:
+        assert owners == nodes
+    else:
+        assert set(owners) == {3} and 64 in nodes
+    assert rows == expected
+
+
+def test_signals_pivot_wide_in_pandas():
+    pytest.importorskip("pandas")
+    frame = motionwire.signals(SAMPLE).to_pandas()
+    wide = frame.pivot_table(index=["line", "node"], columns="name", values="raw", observed=True)
+    assert wide.loc[(173, 3), "Statusword"] == 592
+    assert wide.loc[(173, 3), "Position actual value"] == 100000
+
+
+def test_signals_warn_of_ethercat_packets_and_profiles_are_decodes():
+    with pytest.warns(UserWarning, match="EtherCAT packets read: the signals of CAN PDOs"):
+        table = motionwire.signals(ETHERCAT / "soem-akd-sdo.pcapng")
+    assert table.num_rows == 0
+    assert motionwire.signals(SAMPLE, profiles={3: "akd"}).equals(motionwire.signals(SAMPLE))
+    with pytest.raises(ValueError, match="not a profile"):
+        motionwire.signals(SAMPLE, profiles="nope")
+
+
+def test_cia402_state_is_the_records():
+    table = motionwire.decode(SAMPLE)
+    assert table.schema.field("cia402_state").type == pa.dictionary(pa.int32(), pa.string())
+    states = table.column("cia402_state").to_pylist()
+    expected = [json.loads(r).get("cia402", {}).get("state") for r in table.column("record").to_pylist()]
+    assert states == expected
+    assert {"switch_on_disabled", "operation_enabled", "fault"} <= set(states)
+    assert states.count(None) > 0

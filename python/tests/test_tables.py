@@ -40,6 +40,7 @@ DECODE_SCHEMA = READ_LOG_SCHEMA + [
     ("register", pa.uint8(), True),
     ("description", pa.dictionary(pa.int32(), pa.string()), True),
     ("state", pa.dictionary(pa.int32(), pa.string()), True),
+    ("cia402_state", pa.dictionary(pa.int32(), pa.string()), True),
     ("record", pa.string(), False),
 ]
 
