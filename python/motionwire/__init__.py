@@ -9,6 +9,9 @@ messages. The work is done by the Rust library with the GIL
 released; this module only re-exports it.
 """
 
+import os
+from typing import Iterable, Literal, Mapping, Optional, Union
+
 from ._motionwire import (
     LogError,
     Message,
@@ -24,10 +27,23 @@ from ._motionwire import (
     summary,
 )
 
+# The types of the arguments, as __init__.pyi has them (each described
+# there), for annotations in users' code: `def load(src: motionwire.Source)`.
+Source = Union[str, "os.PathLike[str]", bytes, bytearray, memoryview]
+Format = Literal["candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4"]
+ProfileName = Literal["generic", "akd", "baumer"]
+Profiles = Union[ProfileName, Mapping[Optional[int], ProfileName]]
+Servo = Union[str, int, Iterable[Union[str, int]], None]
+
 __all__ = [
+    "Format",
     "LogError",
     "Message",
+    "ProfileName",
+    "Profiles",
     "Reader",
+    "Servo",
+    "Source",
     "decode",
     "findings",
     "process_data",

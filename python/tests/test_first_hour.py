@@ -221,3 +221,37 @@ def test_cia402_state_is_the_records():
     assert states == expected
     assert {"switch_on_disabled", "operation_enabled", "fault"} <= set(states)
     assert states.count(None) > 0
+
+
+# ---------------------------------------------------------------------------
+# help(): the docstrings are on the objects, the stubs' own
+
+
+def test_help_shows_the_stubs_docstrings():
+    import ast
+    import inspect
+
+    stub = ast.parse((ROOT / "python" / "motionwire" / "__init__.pyi").read_text())
+    documented = {
+        node.name: ast.get_docstring(node, clean=True)
+        for node in stub.body
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and ast.get_docstring(node)
+    }
+    assert set(documented) == {
+        "LogError", "read_log", "read_logs", "decode", "signals", "summary", "findings",
+        "process_data", "servo", "Message", "Reader",
+    }
+    for name, doc in documented.items():
+        assert inspect.getdoc(getattr(motionwire, name)) == doc, name
+    assert motionwire.decode.__text_signature__ == "(source, *, profiles=None, eds=None, format=None)"
+
+
+def test_the_stubs_types_are_there_at_run_time():
+    import typing
+
+    assert typing.get_args(motionwire.Format) == ("candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4")
+    assert typing.get_args(motionwire.ProfileName) == ("generic", "akd", "baumer")
+    assert bytes in typing.get_args(motionwire.Source)
+    assert sorted(motionwire.__all__) == sorted(
+        name for name in dir(motionwire) if not name.startswith("_") and name not in ("os", "Iterable", "Literal", "Mapping", "Optional", "Union")
+    )
