@@ -9,6 +9,9 @@ messages. The work is done by the Rust library with the GIL
 released; this module only re-exports it.
 """
 
+import os
+from typing import Iterable, Literal, Mapping, Optional, Union
+
 from ._motionwire import (
     LogError,
     Message,
@@ -20,18 +23,33 @@ from ._motionwire import (
     read_log,
     read_logs,
     servo,
+    signals,
     summary,
 )
 
+# The types of the arguments, as __init__.pyi has them (each described
+# there), for annotations in users' code: `def load(src: motionwire.Source)`.
+Source = Union[str, "os.PathLike[str]", bytes, bytearray, memoryview]
+Format = Literal["candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4"]
+ProfileName = Literal["generic", "akd", "baumer"]
+Profiles = Union[ProfileName, Mapping[Optional[int], ProfileName]]
+Servo = Union[str, int, Iterable[Union[str, int]], None]
+
 __all__ = [
+    "Format",
     "LogError",
     "Message",
+    "ProfileName",
+    "Profiles",
     "Reader",
+    "Servo",
+    "Source",
     "decode",
     "findings",
     "process_data",
     "read_log",
     "read_logs",
     "servo",
+    "signals",
     "summary",
 ]

@@ -15,11 +15,30 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable, Iterator, Mapping
 from types import TracebackType
-from typing import Any, Literal, Optional, Union
+from typing import Any, Literal, Optional, Union, final
 
 import pyarrow
 
 __version__: str
+
+__all__ = [
+    "Format",
+    "LogError",
+    "Message",
+    "ProfileName",
+    "Profiles",
+    "Reader",
+    "Servo",
+    "Source",
+    "decode",
+    "findings",
+    "process_data",
+    "read_log",
+    "read_logs",
+    "servo",
+    "signals",
+    "summary",
+]
 
 #: A log: its path, or the bytes of the file (gzip-compressed or not).
 Source = Union[str, "os.PathLike[str]", bytes, bytearray, memoryview]
@@ -63,6 +82,12 @@ def read_log(source: Source, format: Optional[Format] = None) -> pyarrow.Table:
     - ``ts`` (float64, null where the log has no time): seconds, absolute
       Unix time where the log records the date, else since the start of the
       recording (docs/formats.md#timestamps).
+    - ``time`` (null where ``ts`` is): the same instant to the nanosecond,
+      from the library's timestamps (never from the float):
+      ``timestamp[ns, tz=UTC]`` where every time of the table is a Unix
+      time (from 2001-09-09 on), else ``duration[ns]`` since the clock's
+      zero, the start of the recording (docs/python.md#time). pandas reads
+      them as ``datetime64[ns, UTC]`` and ``timedelta64[ns]``.
     - ``iface`` (dictionary string, null where the log names none): the
       interface name (``can0``) or channel number as the file writes it
       (``1``).
@@ -76,9 +101,11 @@ def read_log(source: Source, format: Optional[Format] = None) -> pyarrow.Table:
     Schema metadata: ``b"motionwire.format"`` (the format read),
     ``b"motionwire.skipped"`` (a JSON list of ``{"line": …, "reason": …}``,
     the first 1 000 lines or records skipped as malformed or damaged),
-    ``b"motionwire.skipped_count"`` (how many), and, where a binary log
+    ``b"motionwire.skipped_count"`` (how many), where a binary log
     had records without a CAN frame, ``b"motionwire.other"`` (what was
-    passed over, as the program says it).
+    passed over, as the program says it), and where the log gave no row,
+    ``b"motionwire.empty"`` (a JSON list of the program's words,
+    ``["empty.log: 0 frames"]``).
 
     An EtherCAT capture (docs/python.md#ethercat) gives one row per
     datagram instead, with the keys of ``motionwire decode --json``'s
@@ -87,7 +114,8 @@ def read_log(source: Source, format: Optional[Format] = None) -> pyarrow.Table:
     - ``packet`` (uint64): the capture's packet number, from 1.
     - ``datagram`` (uint16): the datagram's place in its frame, from 1.
     - ``ts`` (float64 seconds, null where the capture has no time),
-      ``iface`` (dictionary string, null where none): as for CAN frames.
+      ``time``, ``iface`` (dictionary string, null where none): as for CAN
+      frames.
     - ``kind`` (dictionary string): ``ecat_datagram``.
     - ``cmd`` (dictionary string): ``NOP``, ``APRD``, … ``FRMW``, or
       ``reserved``.
@@ -159,6 +187,10 @@ def decode(
     - ``state`` (dictionary string): the NMT state of a heartbeat, boot-up
       or guarding answer (``boot_up``, ``stopped``, ``operational``,
       ``pre_operational``, ``invalid``).
+    - ``cia402_state`` (dictionary string, null where the frame tells
+      none): the drive's CiA 402 state a statusword in the frame tells
+      (``switch_on_disabled``, ``operation_enabled``, ``fault``, …), the
+      record's ``cia402.state``.
     - ``record`` (string): the frame's whole JSON record, exactly the line
       ``motionwire decode --json`` writes (docs/output.md#json): SDO,
       transfer, signals, cia402 and every key of its kind.
@@ -170,6 +202,39 @@ def decode(
     An EtherCAT capture gives read_log's datagram columns and ``record``
     (string): the datagram's ``ecat_datagram`` record, the line
     ``motionwire decode --json`` writes (docs/ethercat.md#records).
+
+    For pandas, ``table.to_pandas(types_mapper=pandas.ArrowDtype)`` keeps
+    ``node``, ``code`` and ``register`` integers where they hold nulls
+    (plain ``to_pandas()`` makes them float64 with NaN).
+    """
+
+def signals(
+    source: Source,
+    *,
+    profiles: Optional[Profiles] = None,
+    eds: Optional[Mapping[int, Union[str, "os.PathLike[str]"]]] = None,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """The PDO signals of a CAN log as a long table (docs/python.md#signals):
+    one row per signal value of each PDO whose mapping the decoder knows
+    (learned from the log's SDO transfers, or from ``eds``), in the log's
+    order and the mapping's: the record's ``signals`` of decode, as
+    process_data's long table has EtherCAT's.
+
+    Columns: ``line`` (uint64), ``ts`` (float64 seconds, nullable),
+    ``time`` (as read_log's), ``iface`` (dictionary string, nullable),
+    ``node`` (uint8: the node whose PDO it is, the mapping's owner),
+    ``cob_id`` (uint32: the frame's identifier), ``name`` (dictionary
+    string: the signal's name, the EDS's or the object table's, else
+    ``0x6041:00``), ``value`` (float64: the value as a number, a boolean
+    0 or 1, null for bytes; integers exact up to 2**53), ``raw`` (int64:
+    the value where it is an integer an int64 holds, else null).
+
+    ``profiles``, ``eds`` and ``format`` are decode's. Pivot it wide with
+    pandas: ``df.pivot_table(index=["line", "node"], columns="name",
+    values="value", observed=True)``. An EtherCAT capture's packets have no
+    rows and are said with a UserWarning (process_data has their signals);
+    the schema metadata is read_log's.
     """
 
 def summary(
@@ -193,7 +258,8 @@ def summary(
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
     them). An EtherCAT capture gives one record per interface, slave and
-    cyclic stream (docs/ethercat.md#summary).
+    cyclic stream (docs/ethercat.md#summary). A negative ``heartbeat_ms``
+    is a ValueError.
     """
 
 def findings(
@@ -247,7 +313,8 @@ def process_data(
     servo's values (``servo=``) as signals too.
 
     Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts`` (float64
-    seconds, null without time), ``iface`` (dictionary string), ``slave``
+    seconds, null without time), ``time`` (as read_log's), ``iface``
+    (dictionary string), ``slave``
     (uint16 station address, null where no FMMU is known), ``position``
     (uint16 ring position, nullable), ``direction`` (dictionary:
     ``output``, ``input``), ``name`` (dictionary string: the key of
@@ -275,8 +342,8 @@ def servo(
     row per servo per cycle, the values of the program's ``servo``
     records.
 
-    Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts``, ``iface``,
-    ``slave`` (uint16); the command: ``speed_setpoint`` (int32),
+    Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts``, ``time``,
+    ``iface``, ``slave`` (uint16); the command: ``speed_setpoint`` (int32),
     ``control`` (uint32, SCW), ``servo_enable`` (uint8, SE); the feedback,
     null where the inputs are unconfirmed: ``position`` (int64, ActPos
     raw), ``encoder`` (dictionary: ``absolute``, ``incremental``),
@@ -288,6 +355,7 @@ def servo(
     mode, null without feedback); ``confirmed`` (bool).
     """
 
+@final
 class Message:
     """A CAN frame with python-can's attribute names: what Reader yields
     when python-can is not installed."""
@@ -317,6 +385,7 @@ class Message:
     @property
     def is_rx(self) -> bool: ...
 
+@final
 class Reader:
     """A log as python-can messages: a drop-in for python-can's
     ``can.LogReader`` (docs/python.md#reader), for every format of
@@ -339,7 +408,7 @@ class Reader:
     Lines skipped as malformed are in ``skipped`` and ``skipped_count``.
     """
 
-    def __init__(self, source: Source, format: Optional[Format] = None) -> None: ...
+    def __new__(cls, source: Source, format: Optional[Format] = None) -> Reader: ...
     def __iter__(self) -> Iterator[Any]: ...
     def __next__(self) -> Any: ...
     def __enter__(self) -> Reader: ...

@@ -5,9 +5,10 @@
 
 use std::collections::HashMap;
 
-use arrow_array::{ArrayRef, Int32Array};
+use arrow_array::{Array, ArrayRef, Int32Array};
 use arrow_buffer::{NullBufferBuilder, OffsetBuffer, ScalarBuffer};
-use motionwire::can::Iface;
+use arrow_schema::{ArrowError, DataType, Field, TimeUnit};
+use motionwire::can::{Iface, Timestamp};
 use serde_json::{json, Value};
 
 /// The most rows one record batch holds.
@@ -164,4 +165,76 @@ pub fn offset(len: usize) -> i32 {
 pub fn offsets(offsets: &mut Vec<i32>) -> OffsetBuffer<i32> {
     let taken = std::mem::replace(offsets, vec![0]);
     OffsetBuffer::new(ScalarBuffer::from(taken))
+}
+
+/// The `time` column beside `ts` (docs/python.md#time): the library's
+/// timestamps to the nanosecond, as Arrow `timestamp[ns, tz=UTC]` where
+/// every time of the table reads as Unix time
+/// ([`Timestamp::is_unix_time`]), else as `duration[ns]` since the clock's
+/// zero (the start of the recording). Built as int64 nanoseconds; the type
+/// is the table's, known when every log is read.
+#[derive(Debug, Clone, Copy)]
+pub struct Clock {
+    /// Some time was seen.
+    timed: bool,
+    /// Every time seen reads as Unix time.
+    unix: bool,
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Clock {
+            timed: false,
+            unix: true,
+        }
+    }
+}
+
+impl Clock {
+    /// The nanoseconds of `ts` since the clock's zero, the clock told of
+    /// it (an int64 of nanoseconds reaches the year 2262).
+    #[inline]
+    pub fn nanos(&mut self, ts: Option<Timestamp>) -> Option<i64> {
+        let ts = ts?;
+        self.timed = true;
+        self.unix &= ts.is_unix_time();
+        Some(i64::try_from(ts.as_duration().as_nanos()).unwrap_or(i64::MAX))
+    }
+
+    /// The clock of a table of several logs.
+    pub fn merge(&mut self, other: Clock) {
+        self.timed |= other.timed;
+        self.unix &= other.unix;
+    }
+
+    /// Whether `time` is a timestamp (else a duration).
+    pub fn is_unix(self) -> bool {
+        self.timed && self.unix
+    }
+
+    /// The `time` field.
+    pub fn field(self) -> Field {
+        let data_type = if self.is_unix() {
+            DataType::Timestamp(TimeUnit::Nanosecond, Some("UTC".into()))
+        } else {
+            DataType::Duration(TimeUnit::Nanosecond)
+        };
+        Field::new("time", data_type, true)
+    }
+
+    /// The `time` column of `nanos` with the field's type, without a copy.
+    pub fn array(self, nanos: &ArrayRef) -> Result<ArrayRef, ArrowError> {
+        retype(nanos, self.field().data_type())
+    }
+}
+
+/// The int64 `nanos` as the `time` type `to` (a timestamp or a duration
+/// of nanoseconds: the same 64 bits), without a copy.
+pub fn retype(nanos: &ArrayRef, to: &DataType) -> Result<ArrayRef, ArrowError> {
+    let data = nanos
+        .to_data()
+        .into_builder()
+        .data_type(to.clone())
+        .build()?;
+    Ok(arrow_array::make_array(data))
 }

@@ -12,11 +12,7 @@ pyo3::create_exception!(
     motionwire,
     LogError,
     PyValueError,
-    "A log that cannot be read: unrecognised (none of the formats of \
-     docs/formats.md), a binary log whose header is damaged, or an input \
-     that fails while it is read. The message names the source and the \
-     reason, e.g. `<bytes>: unrecognised log format: expected a candump log \
-     or screen output, …`. A subclass of ValueError."
+    "A log that cannot be read: none of the formats of docs/formats.md\n(unrecognised), a binary log whose header is damaged, or an input that\nfails while it is read (a damaged gzip stream). The message names the\nsource and the reason:\n\n    <bytes>: unrecognised log format: expected a candump log or screen\n    output, Vector ASC or BLF, PEAK TRC, pcap or pcapng, ASAM MDF 4\n    (gzip-compressed or not)\n\nA malformed line inside a recognised log is no LogError: it is skipped\nand listed in the table's schema metadata. A path that cannot be opened\nraises the OSError that Python's open() would (FileNotFoundError, …)."
 );
 
 /// Why a call failed, without the GIL.

@@ -8,8 +8,8 @@ use std::sync::Arc;
 
 use arrow_array::types::Int8Type;
 use arrow_array::{
-    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int8Array,
-    StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
+    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array,
+    Int8Array, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
 };
 use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{DataType, Field};
@@ -18,15 +18,17 @@ use motionwire::decoder::ethercat::{Counts, DatagramRecord, Packet, Session, DAT
 use motionwire::ethercat::{Addressing, Command, Datagram};
 use motionwire::logs::Position;
 
-use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
+use crate::columns::{
+    offset, offsets, Chunk, Clock, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS,
+};
 
 /// The key of the `cmd` dictionary for commands 15–255, all named
 /// `reserved` by the library; commands 0–14 are their own keys.
 const RESERVED_KEY: u8 = 15;
 
 /// Where the `iface` column sits among the columns of a datagram
-/// (`packet`, `datagram`, `ts`, `iface`, …).
-pub const IFACE_AT: usize = 3;
+/// (`packet`, `datagram`, `ts`, `time`, `iface`, …).
+pub const IFACE_AT: usize = 4;
 
 /// The datagrams of one capture, column by column.
 pub struct EthercatColumns {
@@ -35,6 +37,9 @@ pub struct EthercatColumns {
     datagram: Vec<u16>,
     ts: Vec<f64>,
     ts_valid: Validity,
+    /// `time`'s nanoseconds, null where `ts` is.
+    time: Vec<i64>,
+    clock: Clock,
     iface: Vec<i32>,
     iface_valid: Validity,
     cmd: Vec<i8>,
@@ -66,6 +71,8 @@ impl EthercatColumns {
             datagram: Vec::new(),
             ts: Vec::new(),
             ts_valid: Validity::default(),
+            time: Vec::new(),
+            clock: Clock::default(),
             iface: Vec::new(),
             iface_valid: Validity::default(),
             cmd: Vec::new(),
@@ -130,6 +137,8 @@ impl EthercatColumns {
             .push(u16::try_from(number).unwrap_or(u16::MAX));
         self.ts_valid
             .push(&mut self.ts, packet.timestamp.map(|ts| ts.as_secs_f64()));
+        let nanos = self.clock.nanos(packet.timestamp);
+        self.time.push(nanos.unwrap_or_default());
         let iface = packet.iface.map(|iface| self.ifaces.key(iface));
         self.iface_valid.push(&mut self.iface, iface);
         let command = datagram.command();
@@ -177,6 +186,7 @@ impl EthercatColumns {
         }
         let kinds: ArrayRef = Arc::new(StringArray::from_iter_values([DATAGRAM_KIND]));
         let rows = self.packet.len();
+        let ts_nulls = self.ts_valid.0.finish();
         let mut columns: Vec<ArrayRef> = vec![
             Arc::new(UInt64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.packet)),
@@ -188,7 +198,11 @@ impl EthercatColumns {
             )),
             Arc::new(Float64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                self.ts_valid.0.finish(),
+                ts_nulls.clone(),
+            )),
+            Arc::new(Int64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.time)),
+                ts_nulls,
             )),
             Arc::new(DictionaryArray::<Int8Type>::new(
                 Int8Array::new(ScalarBuffer::from(vec![0; rows]), None),
@@ -254,6 +268,7 @@ impl EthercatColumns {
             chunks: self.chunks,
             ifaces: self.ifaces.values,
             counts: self.session.finish(),
+            clock: self.clock,
         }
     }
 }
@@ -263,6 +278,7 @@ pub struct EthercatFinished {
     pub chunks: Vec<Chunk>,
     pub ifaces: Vec<String>,
     pub counts: Counts,
+    pub clock: Clock,
 }
 
 /// The values of the `cmd` dictionary: the library's names of commands
@@ -275,12 +291,13 @@ fn command_names() -> ArrayRef {
 
 /// The fields of a datagram's row, after `file` (`read_logs`) and with
 /// `record` last for `decode` (docs/python.md#ethercat).
-pub fn fields(record: bool) -> Vec<Field> {
+pub fn fields(record: bool, clock: Clock) -> Vec<Field> {
     let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let mut fields = vec![
         Field::new("packet", DataType::UInt64, false),
         Field::new("datagram", DataType::UInt16, false),
         Field::new("ts", DataType::Float64, true),
+        clock.field(),
         Field::new("iface", dictionary(DataType::Int32), true),
         Field::new("kind", dictionary(DataType::Int8), false),
         Field::new("cmd", dictionary(DataType::Int8), false),

@@ -23,6 +23,7 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 mod columns;
 mod error;
 mod ethercat;
+mod pdo;
 mod process;
 mod reader;
 mod source;
@@ -50,7 +51,7 @@ fn fill(
         name,
         file,
     })?;
-    Ok(columns.finish())
+    Ok(columns.finish(name))
 }
 
 /// The pyarrow table of `logs`.
@@ -67,7 +68,74 @@ fn to_pyarrow(
     Ok(table.into_pyarrow(py)?.unbind())
 }
 
-/// Read a log into a pyarrow.Table, one row per frame (docs/python.md#read-log).
+/// Read a log into a table, one row per CAN frame, in the log's order
+/// (MF4: time order across its channel groups).
+///
+/// Columns (docs/python.md#read-log; each as the JSON record's key of the
+/// same name, docs/output.md#common-keys):
+///
+/// - ``line`` (uint64): the 1-based line of a text log, or the packet,
+///   object or record number of a binary one (docs/formats.md#positions).
+/// - ``ts`` (float64, null where the log has no time): seconds, absolute
+///   Unix time where the log records the date, else since the start of the
+///   recording (docs/formats.md#timestamps).
+/// - ``time`` (null where ``ts`` is): the same instant to the nanosecond,
+///   from the library's timestamps (never from the float):
+///   ``timestamp[ns, tz=UTC]`` where every time of the table is a Unix
+///   time (from 2001-09-09 on), else ``duration[ns]`` since the clock's
+///   zero, the start of the recording (docs/python.md#time). pandas reads
+///   them as ``datetime64[ns, UTC]`` and ``timedelta64[ns]``.
+/// - ``iface`` (dictionary string, null where the log names none): the
+///   interface name (``can0``) or channel number as the file writes it
+///   (``1``).
+/// - ``id`` (uint32): the identifier; of an error frame, its class bits.
+/// - ``extended``, ``rtr``, ``fd``, ``brs``, ``esi``, ``error`` (bool).
+/// - ``dlc`` (uint8): the data length code: the number of bytes of a
+///   classic frame, the requested length of a remote request, the code
+///   0–15 of a CAN FD frame (12 bytes: 9; 64 bytes: 15).
+/// - ``data`` (binary): the data bytes; empty for a remote request.
+///
+/// Schema metadata: ``b"motionwire.format"`` (the format read),
+/// ``b"motionwire.skipped"`` (a JSON list of ``{"line": …, "reason": …}``,
+/// the first 1 000 lines or records skipped as malformed or damaged),
+/// ``b"motionwire.skipped_count"`` (how many), where a binary log
+/// had records without a CAN frame, ``b"motionwire.other"`` (what was
+/// passed over, as the program says it), and where the log gave no row,
+/// ``b"motionwire.empty"`` (a JSON list of the program's words,
+/// ``["empty.log: 0 frames"]``).
+///
+/// An EtherCAT capture (docs/python.md#ethercat) gives one row per
+/// datagram instead, with the keys of ``motionwire decode --json``'s
+/// ``ecat_datagram`` record as columns, in that order:
+///
+/// - ``packet`` (uint64): the capture's packet number, from 1.
+/// - ``datagram`` (uint16): the datagram's place in its frame, from 1.
+/// - ``ts`` (float64 seconds, null where the capture has no time),
+///   ``time``, ``iface`` (dictionary string, null where none): as for CAN
+///   frames.
+/// - ``kind`` (dictionary string): ``ecat_datagram``.
+/// - ``cmd`` (dictionary string): ``NOP``, ``APRD``, … ``FRMW``, or
+///   ``reserved``.
+/// - ``index`` (uint8).
+/// - ``adp``, ``ado`` (uint16): slave and register address; null for
+///   LRD, LWR and LRW.
+/// - ``logical`` (uint32): the logical address of LRD, LWR and LRW; null
+///   for the others.
+/// - ``length``, ``irq``, ``wkc`` (uint16): the data's length, the IRQ
+///   field, the working counter.
+/// - ``returned`` (bool): the copy that came back through the slaves
+///   (paired with its sent copy or not), as the library's session tells.
+/// - ``data`` (binary).
+///
+/// Its metadata adds ``b"motionwire.ethercat"``: the session's counts as
+/// a JSON object (``packets``, ``sent``, ``returned``,
+/// ``returned_unpaired``, ``lost``, ``other_frame_types``, ``damaged``).
+/// A table holds CAN frames or EtherCAT datagrams, not both: the CAN
+/// frames where the input has any, the EtherCAT packets then counted in
+/// ``b"motionwire.other"``.
+///
+/// Raises LogError for an input that is no log; OSError for a path that
+/// cannot be opened.
 #[pyfunction]
 #[pyo3(signature = (source, format = None))]
 fn read_log(
@@ -82,8 +150,21 @@ fn read_log(
     to_pyarrow(py, vec![finished], None)
 }
 
-/// Read many logs on Rust threads into one pyarrow.Table with a `file`
-/// column (docs/python.md#read-logs).
+/// Read many logs at once on Rust threads (``threads``: by default one
+/// per core) into one table: a ``file`` column (dictionary string: the
+/// path as given, ``<bytes N>`` for the N-th source given as bytes) before
+/// the columns of read_log, each log's rows in the order of ``sources``.
+/// Each log is read on its own: nothing carries over from one to the next.
+/// EtherCAT captures give read_log's datagram columns after ``file`` when
+/// no log of the table has a CAN frame; else their packets are counted in
+/// ``b"motionwire.other"``.
+///
+/// The way to take a fleet's logs to pandas, polars or DuckDB, and on to
+/// Parquet (``pyarrow.parquet.write_table``). The skipped lines of every log
+/// are in the metadata, each with its ``file``.
+///
+/// Raises LogError naming the first source (in the order given) that is no
+/// log.
 #[pyfunction]
 #[pyo3(signature = (sources, threads = None, *, format = None))]
 fn read_logs(
@@ -200,7 +281,41 @@ fn config(
     Ok(config)
 }
 
-/// Decode a log: the columns of `read_log` and the decoder's (docs/python.md#decode).
+/// Decode a log as CANopen: the columns of read_log, then what the
+/// decoder session reads in each frame, with SDO transfers followed, PDO
+/// mappings learned from the log (or ``eds``) and each drive's CiA 402 state
+/// (docs/python.md#decode):
+///
+/// - ``kind`` (dictionary string): ``emcy``, ``heartbeat``,
+///   ``guard_request``, ``guard_answer``, ``nmt_command``, ``sync``,
+///   ``time``, ``pdo``,
+///   ``sdo``, ``error_frame``, ``other`` (docs/canopen.md#identifiers).
+/// - ``node`` (uint8, null for kinds without one).
+/// - ``code`` (uint16), ``register`` (uint8), ``description`` (dictionary
+///   string): an EMCY's error code, error register and the code's
+///   description (a truncated EMCY: the code and register its bytes hold).
+/// - ``state`` (dictionary string): the NMT state of a heartbeat, boot-up
+///   or guarding answer (``boot_up``, ``stopped``, ``operational``,
+///   ``pre_operational``, ``invalid``).
+/// - ``cia402_state`` (dictionary string, null where the frame tells
+///   none): the drive's CiA 402 state a statusword in the frame tells
+///   (``switch_on_disabled``, ``operation_enabled``, ``fault``, …), the
+///   record's ``cia402.state``.
+/// - ``record`` (string): the frame's whole JSON record, exactly the line
+///   ``motionwire decode --json`` writes (docs/output.md#json): SDO,
+///   transfer, signals, cia402 and every key of its kind.
+///
+/// ``profiles``: ``"akd"`` for every node, or ``{3: "akd", 5: "baumer"}``
+/// (``--profile``; the key None sets the default). ``eds``: ``{node:
+/// path}``, an EDS or DCF file describing that node (``--eds``).
+///
+/// An EtherCAT capture gives read_log's datagram columns and ``record``
+/// (string): the datagram's ``ecat_datagram`` record, the line
+/// ``motionwire decode --json`` writes (docs/ethercat.md#records).
+///
+/// For pandas, ``table.to_pandas(types_mapper=pandas.ArrowDtype)`` keeps
+/// ``node``, ``code`` and ``register`` integers where they hold nulls
+/// (plain ``to_pandas()`` makes them float64 with NaN).
 #[pyfunction]
 #[pyo3(signature = (source, *, profiles = None, eds = None, format = None))]
 fn decode(
@@ -220,15 +335,77 @@ fn decode(
     to_pyarrow(py, vec![finished], None)
 }
 
-/// The post-mortem: the records of `motionwire decode --summary --json`
-/// (docs/python.md#summary).
+/// The PDO signals of a CAN log as a long table (docs/python.md#signals):
+/// one row per signal value of each PDO whose mapping the decoder knows
+/// (learned from the log's SDO transfers, or from ``eds``), in the log's
+/// order and the mapping's: the record's ``signals`` of decode, as
+/// process_data's long table has EtherCAT's.
+///
+/// Columns: ``line`` (uint64), ``ts`` (float64 seconds, nullable),
+/// ``time`` (as read_log's), ``iface`` (dictionary string, nullable),
+/// ``node`` (uint8: the node whose PDO it is, the mapping's owner),
+/// ``cob_id`` (uint32: the frame's identifier), ``name`` (dictionary
+/// string: the signal's name, the EDS's or the object table's, else
+/// ``0x6041:00``), ``value`` (float64: the value as a number, a boolean
+/// 0 or 1, null for bytes; integers exact up to 2**53), ``raw`` (int64:
+/// the value where it is an integer an int64 holds, else null).
+///
+/// ``profiles``, ``eds`` and ``format`` are decode's. Pivot it wide with
+/// pandas: ``df.pivot_table(index=["line", "node"], columns="name",
+/// values="value", observed=True)``. An EtherCAT capture's packets have no
+/// rows and are said with a UserWarning (process_data has their signals);
+/// the schema metadata is read_log's.
+#[pyfunction]
+#[pyo3(signature = (source, *, profiles = None, eds = None, format = None))]
+fn signals(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    profiles: Option<&Bound<'_, PyAny>>,
+    eds: Option<&Bound<'_, PyDict>>,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    let source = Source::extract(source)?;
+    let options = source::options(format)?;
+    let config = config(profiles, eds)?;
+    let read = py.detach(|| pdo::read(&source, options, Decoder::new(config)))?;
+    if read.packets > 0 {
+        let s = if read.packets == 1 { "" } else { "s" };
+        warn(
+            py,
+            format!(
+                "{}: {} EtherCAT packet{s} read: the signals of CAN PDOs have rows, \
+                 EtherCAT packets none (process_data has their signals)",
+                source.name(),
+                read.packets
+            ),
+        )?;
+    }
+    let table = Table::try_new(read.batches, read.schema)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(table.into_pyarrow(py)?.unbind())
+}
+
+/// The post-mortem of a log: exactly the records of ``motionwire decode
+/// --summary --json`` (docs/summary.md): the verdict when something
+/// stopped (``type`` ``verdict``, docs/summary.md#verdict), then one dict
+/// per node and per bus:
+/// frame counts, first and active error with the CiA 405 root cause,
+/// heartbeat boot-ups and gaps over ``heartbeat_ms``, node-guarding toggle
+/// errors, SDO requests, transfers, aborts and latencies, each drive's CiA
+/// 402 timeline. Each list holds the first 10 and the last 10 events of its
+/// kind, and the count key after it counts them all (docs/summary.md#lists).
+///
+/// Lines skipped as malformed are said with a UserWarning (read_log lists
+/// them). An EtherCAT capture gives one record per interface, slave and
+/// cyclic stream (docs/ethercat.md#summary). A negative ``heartbeat_ms``
+/// is a ValueError.
 #[pyfunction]
 #[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, servo = None))]
 #[allow(clippy::too_many_arguments)]
 fn summary<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
-    heartbeat_ms: Option<u64>,
+    heartbeat_ms: Option<i64>,
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
@@ -239,8 +416,8 @@ fn summary<'py>(
     let mut config = config(profiles, eds)?
         .signals(false)
         .servos(servo.map_or_else(Default::default, |s| s.0));
-    if let Some(ms) = heartbeat_ms {
-        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    if let Some(timeout) = heartbeat_timeout(heartbeat_ms)? {
+        config = config.heartbeat_timeout(timeout);
     }
     let (records, fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
@@ -263,16 +440,45 @@ fn summary<'py>(
     Ok(list)
 }
 
-/// What went wrong: the summary's findings as a pyarrow.Table, one row per
-/// finding, the list of the report's "What went wrong"
-/// (docs/python.md#findings).
+/// The heartbeat timeout of `heartbeat_ms=`: milliseconds, 0 or more.
+fn heartbeat_timeout(ms: Option<i64>) -> PyResult<Option<Duration>> {
+    ms.map(|ms| {
+        u64::try_from(ms).map(Duration::from_millis).map_err(|_| {
+            PyValueError::new_err(format!(
+                "heartbeat_ms must be a number of milliseconds, 0 or more; not {ms}"
+            ))
+        })
+    })
+    .transpose()
+}
+
+/// What went wrong (docs/summary.md#findings): one row per finding, the
+/// list of the report's "What went wrong" (``motionwire report``), in time
+/// order: first errors and warnings, CiA 402 faults, restarts, heartbeat timeouts over
+/// ``heartbeat_ms``, SDO aborts, broken and unanswered SDO transfers,
+/// node-guarding toggle errors, bus-off and error-passive frames; where the
+/// summary omitted entries of a list, one row says how many.
+///
+/// Columns: ``line`` (uint64), ``ts`` (float64 seconds, null where the log
+/// has no time), ``iface`` (dictionary, null for an unnamed bus), ``node``
+/// (uint8, null for a bus's findings), ``kind`` (dictionary:
+/// ``first_error``, ``first_warning``, ``cia402_fault``, ``restarts``,
+/// ``heartbeat_timeout``,
+/// ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
+/// ``bus_off``, ``error_passive``), ``severity`` (dictionary: ``fault``,
+/// ``error``, ``warning``, ``notice``; docs/summary.md#severity), ``text``
+/// (what it says, without the device).
+///
+/// Lines skipped as malformed are said with a UserWarning (read_log lists
+/// them); so are a capture's EtherCAT packets, which the findings do not
+/// cover yet.
 #[pyfunction]
 #[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, servo = None))]
 #[allow(clippy::too_many_arguments)]
 fn findings<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyAny>,
-    heartbeat_ms: Option<u64>,
+    heartbeat_ms: Option<i64>,
     profiles: Option<&Bound<'py, PyAny>>,
     eds: Option<&Bound<'py, PyDict>>,
     format: Option<&str>,
@@ -283,8 +489,8 @@ fn findings<'py>(
     let mut config = config(profiles, eds)?
         .signals(false)
         .servos(servo.map_or_else(Default::default, |s| s.0));
-    if let Some(ms) = heartbeat_ms {
-        config = config.heartbeat_timeout(Duration::from_millis(ms));
+    if let Some(timeout) = heartbeat_timeout(heartbeat_ms)? {
+        config = config.heartbeat_timeout(timeout);
     }
     let ((schema, batches), fed) = py.detach(|| -> Result<_, Failure> {
         let name = source.name();
@@ -305,9 +511,30 @@ fn findings<'py>(
     Ok(table.into_pyarrow(py)?.unbind())
 }
 
-/// The process data of an EtherCAT capture as a long table: one row per
-/// signal per slave per returned cyclic datagram, a servo's values among
-/// them (docs/python.md#process-data).
+/// The process data of an EtherCAT capture as a long table
+/// (docs/python.md#process-data): one row per signal per slave per
+/// returned cyclic datagram, the values of the program's ``process_data``
+/// records' ``signals`` (outputs then inputs, in mapping order), then a
+/// servo's values (``servo=``) as signals too.
+///
+/// Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts`` (float64
+/// seconds, null without time), ``time`` (as read_log's), ``iface``
+/// (dictionary string), ``slave``
+/// (uint16 station address, null where no FMMU is known), ``position``
+/// (uint16 ring position, nullable), ``direction`` (dictionary:
+/// ``output``, ``input``), ``name`` (dictionary string: the key of
+/// ``signals``, or a servo value's name: ``speed_setpoint``, ``control``,
+/// ``servo_enable``; ``position``, ``zero_pulse_position`` (incremental
+/// encoders), ``status``, ``errors``, ``message_code``,
+/// ``message_value``), ``value`` (float64: the value as a number, a
+/// boolean 0 or 1, null for bytes; integers exact up to 2**53), ``raw``
+/// (int64: the value where it is an integer an int64 holds, else null),
+/// ``confirmed`` (bool: the working counter confirms the inputs; true for
+/// outputs).
+///
+/// Pivot it wide with pandas: ``df.pivot_table(index=["packet", "slave"],
+/// columns="name", values="value")``. A log's CAN frames have no rows and
+/// are said with a UserWarning; the schema metadata is read_log's.
 #[pyfunction]
 #[pyo3(
     signature = (source, *, servo = process::Servos::none(), format = None),
@@ -322,9 +549,21 @@ fn process_data(
     process_table(py, source, servo, format, process::SignalColumns::default())
 }
 
-/// The servo frames of an EtherCAT capture: one row per servo per cycle,
-/// the command, the feedback and the handshakes' phases
-/// (docs/python.md#servo).
+/// The servo frames of an EtherCAT capture (docs/python.md#servo): one
+/// row per servo per cycle, the values of the program's ``servo``
+/// records.
+///
+/// Columns: ``packet`` (uint64), ``datagram`` (uint16), ``ts``, ``time``,
+/// ``iface``, ``slave`` (uint16); the command: ``speed_setpoint`` (int32),
+/// ``control`` (uint32, SCW), ``servo_enable`` (uint8, SE); the feedback,
+/// null where the inputs are unconfirmed: ``position`` (int64, ActPos
+/// raw), ``encoder`` (dictionary: ``absolute``, ``incremental``),
+/// ``status`` (uint32, SSW), ``errors`` (uint32, SEW), ``faults``
+/// (list of the set error bits' names), ``e_codes`` (list: each fault's
+/// E-code, ``"E09"``, or null); the handshakes: ``enable``,
+/// ``enable_cycles`` (uint32), ``error_clear``, ``zero_pulse``
+/// (dictionary: the phases' names); ``ready`` (bool, ServoRDY by the
+/// mode, null without feedback); ``confirmed`` (bool).
 #[pyfunction]
 #[pyo3(
     signature = (source, *, servo = process::Servos::auto(), format = None),
@@ -446,6 +685,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_log, m)?)?;
     m.add_function(wrap_pyfunction!(read_logs, m)?)?;
     m.add_function(wrap_pyfunction!(decode, m)?)?;
+    m.add_function(wrap_pyfunction!(signals, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add_function(wrap_pyfunction!(process_data, m)?)?;

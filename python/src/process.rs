@@ -31,7 +31,7 @@ use pyo3::types::PyString;
 use pyo3::Borrowed;
 use serde_json::Value as Json;
 
-use crate::columns::{offset, offsets, Ifaces, Skipped, Validity, BATCH_ROWS};
+use crate::columns::{offset, offsets, retype, Clock, Ifaces, Skipped, Validity, BATCH_ROWS};
 use crate::error::Failure;
 use crate::ethercat::counts_json;
 use crate::source::Source;
@@ -119,12 +119,12 @@ impl Dictionary {
     }
 
     /// The dictionary of `values`, all different (an [`Ifaces`]').
-    fn of(values: Vec<String>) -> Self {
+    pub(crate) fn of(values: Vec<String>) -> Self {
         let keys = (0..).zip(&values).map(|(k, v)| (v.clone(), k)).collect();
         Dictionary { values, keys }
     }
 
-    fn key(&mut self, value: &str) -> i32 {
+    pub(crate) fn key(&mut self, value: &str) -> i32 {
         if let Some(&key) = self.keys.get(value) {
             return key;
         }
@@ -155,6 +155,8 @@ struct Common {
     packet: u64,
     datagram: u16,
     ts: Option<f64>,
+    /// `time`'s nanoseconds.
+    nanos: Option<i64>,
     iface: Option<i32>,
     slave: Option<u16>,
     position: Option<u16>,
@@ -166,6 +168,10 @@ pub trait Rows {
     /// Add the rows of one slave's process data in the `number`-th
     /// datagram (from 1) of `packet`.
     fn push(&mut self, packet: &Packet<'_>, number: usize, data: &ProcessData<'_>);
+
+    /// The clock of `time`, told of every packet (a table without rows
+    /// still has the capture's type of time).
+    fn clock(&mut self) -> &mut Clock;
 
     /// The table's fields, its batches' columns, and its dictionaries.
     fn finish(self) -> (Vec<Field>, Vec<Vec<Part>>, Vec<Dictionary>);
@@ -183,6 +189,8 @@ pub struct SignalColumns {
     datagram: Vec<u16>,
     ts: Vec<f64>,
     ts_valid: Validity,
+    time: Vec<i64>,
+    clock: Clock,
     iface: Vec<i32>,
     iface_valid: Validity,
     slave: Vec<u16>,
@@ -203,7 +211,7 @@ pub struct SignalColumns {
 
 /// A signal's value as `value` (a float) and `raw` (where it is an
 /// integer that an int64 holds): a boolean is 0 or 1, bytes are neither.
-fn number(value: &Value) -> (Option<f64>, Option<i64>) {
+pub(crate) fn number(value: &Value) -> (Option<f64>, Option<i64>) {
     match *value {
         Value::Bool(b) => (Some(f64::from(u8::from(b))), Some(i64::from(b))),
         Value::Signed(v) => (Some(v as f64), Some(v)),
@@ -220,6 +228,7 @@ impl SignalColumns {
         self.packet.push(common.packet);
         self.datagram.push(common.datagram);
         self.ts_valid.push(&mut self.ts, common.ts);
+        self.time.push(common.nanos.unwrap_or_default());
         self.iface_valid.push(&mut self.iface, common.iface);
         self.slave_valid.push(&mut self.slave, common.slave);
         self.position_valid
@@ -305,6 +314,7 @@ impl SignalColumns {
         if self.packet.is_empty() {
             return;
         }
+        let ts_nulls = self.ts_valid.0.finish();
         let parts = vec![
             Part::Array(Arc::new(UInt64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.packet)),
@@ -316,7 +326,11 @@ impl SignalColumns {
             ))),
             Part::Array(Arc::new(Float64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                self.ts_valid.0.finish(),
+                ts_nulls.clone(),
+            ))),
+            Part::Array(Arc::new(Int64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.time)),
+                ts_nulls,
             ))),
             Part::Keys32(
                 Int32Array::new(
@@ -361,20 +375,21 @@ impl SignalColumns {
 }
 
 /// The fields every table of process data starts with.
-fn common_fields(datagram: bool) -> Vec<Field> {
+fn common_fields(datagram: bool, clock: Clock) -> Vec<Field> {
     let mut fields = vec![Field::new("packet", DataType::UInt64, false)];
     if datagram {
         fields.push(Field::new("datagram", DataType::UInt16, false));
     }
     fields.extend([
         Field::new("ts", DataType::Float64, true),
+        clock.field(),
         Field::new("iface", dictionary(DataType::Int32), true),
         Field::new("slave", DataType::UInt16, true),
     ]);
     fields
 }
 
-fn dictionary(key: DataType) -> DataType {
+pub(crate) fn dictionary(key: DataType) -> DataType {
     DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8))
 }
 
@@ -384,12 +399,14 @@ fn common(
     number: usize,
     data: &ProcessData<'_>,
     ifaces: &mut Ifaces,
+    clock: &mut Clock,
 ) -> Common {
     Common {
         packet: packet.position.number(),
         // A frame's 11-bit length holds at most 170 datagrams.
         datagram: u16::try_from(number).unwrap_or(u16::MAX),
         ts: packet.timestamp.map(|ts| ts.as_secs_f64()),
+        nanos: clock.nanos(packet.timestamp),
         iface: packet.iface.map(|iface| ifaces.key(iface)),
         slave: data.slave.and_then(|s| s.station),
         position: data.slave.and_then(|s| s.position),
@@ -397,8 +414,12 @@ fn common(
 }
 
 impl Rows for SignalColumns {
+    fn clock(&mut self) -> &mut Clock {
+        &mut self.clock
+    }
+
     fn push(&mut self, packet: &Packet<'_>, number: usize, data: &ProcessData<'_>) {
-        let common = common(packet, number, data, &mut self.ifaces);
+        let common = common(packet, number, data, &mut self.ifaces, &mut self.clock);
         // The outputs are what the master wrote: nothing to confirm.
         data.for_each_signal(|output, name, signal| {
             if let Ok(signal) = signal {
@@ -421,7 +442,7 @@ impl Rows for SignalColumns {
 
     fn finish(mut self) -> (Vec<Field>, Vec<Vec<Part>>, Vec<Dictionary>) {
         self.flush();
-        let mut fields = common_fields(true);
+        let mut fields = common_fields(true, self.clock);
         fields.extend([
             Field::new("position", DataType::UInt16, true),
             Field::new("direction", dictionary(DataType::Int8), false),
@@ -450,6 +471,8 @@ pub struct ServoColumns {
     datagram: Vec<u16>,
     ts: Vec<f64>,
     ts_valid: Validity,
+    time: Vec<i64>,
+    clock: Clock,
     iface: Vec<i32>,
     iface_valid: Validity,
     slave: Vec<u16>,
@@ -500,6 +523,7 @@ impl ServoColumns {
         if self.packet.is_empty() {
             return;
         }
+        let ts_nulls = self.ts_valid.0.finish();
         let faults_valid = self.faults_valid.0.finish();
         let fault_offsets: OffsetBuffer<i32> = offsets(&mut self.fault_offsets);
         let item = Arc::new(Field::new_list_field(DataType::Utf8, true));
@@ -537,7 +561,11 @@ impl ServoColumns {
             ))),
             Part::Array(Arc::new(Float64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                self.ts_valid.0.finish(),
+                ts_nulls.clone(),
+            ))),
+            Part::Array(Arc::new(Int64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.time)),
+                ts_nulls,
             ))),
             Part::Keys32(
                 Int32Array::new(
@@ -596,12 +624,17 @@ impl ServoColumns {
 }
 
 impl Rows for ServoColumns {
+    fn clock(&mut self) -> &mut Clock {
+        &mut self.clock
+    }
+
     fn push(&mut self, packet: &Packet<'_>, number: usize, data: &ProcessData<'_>) {
         let Some(servo) = &data.servo else { return };
-        let common = common(packet, number, data, &mut self.ifaces);
+        let common = common(packet, number, data, &mut self.ifaces, &mut self.clock);
         self.packet.push(common.packet);
         self.datagram.push(common.datagram);
         self.ts_valid.push(&mut self.ts, common.ts);
+        self.time.push(common.nanos.unwrap_or_default());
         self.iface_valid.push(&mut self.iface, common.iface);
         self.slave_valid.push(&mut self.slave, common.slave);
         let command = &servo.command;
@@ -647,7 +680,7 @@ impl Rows for ServoColumns {
     fn finish(mut self) -> (Vec<Field>, Vec<Vec<Part>>, Vec<Dictionary>) {
         self.flush();
         let list = DataType::List(Arc::new(Field::new_list_field(DataType::Utf8, true)));
-        let mut fields = common_fields(true);
+        let mut fields = common_fields(true, self.clock);
         fields.extend([
             Field::new("speed_setpoint", DataType::Int32, false),
             Field::new("control", DataType::UInt32, false),
@@ -721,7 +754,7 @@ pub fn read<R: Rows>(
 }
 
 /// The record batches, each dictionary column with its complete values.
-fn assemble(
+pub(crate) fn assemble(
     schema: &SchemaRef,
     parts: Vec<Vec<Part>>,
     dictionaries: &[Dictionary],
@@ -733,8 +766,13 @@ fn assemble(
             let columns =
                 batch
                     .into_iter()
-                    .map(|part| {
+                    .zip(schema.fields())
+                    .map(|(part, field)| {
                         Ok(match part {
+                            // `time`: int64 nanoseconds made the table's type.
+                            Part::Array(array) if field.name() == "time" => {
+                                retype(&array, field.data_type())?
+                            }
                             Part::Array(array) => array,
                             Part::Keys32(keys, at) => Arc::new(
                                 DictionaryArray::<Int32Type>::try_new(keys, values[at].clone())?,
@@ -793,6 +831,7 @@ impl<'a, R: Rows> LogVisitor for Visit<'a, R> {
                 }
                 LogEvent::Status(_) => continue,
             };
+            c.rows.clock().nanos(packet.timestamp);
             let number = record.position.number();
             let packet = match c.session.read(record.position, packet) {
                 Ok(packet) => packet,

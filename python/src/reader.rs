@@ -132,8 +132,25 @@ impl State {
     }
 }
 
-/// A log as python-can messages: `can.Message` when python-can is
-/// installed, else `motionwire.Message` with the same attributes.
+/// A log as python-can messages: a drop-in for python-can's
+/// ``can.LogReader`` (docs/python.md#reader), for every format of
+/// docs/formats.md.
+///
+///     with motionwire.Reader("trace.blf") as reader:
+///         for msg in reader:          # can.Message
+///             ...
+///
+/// Each message is python-can's ``can.Message`` when python-can is
+/// installed (else ``motionwire.Message``, with the same attributes):
+/// ``timestamp`` (0.0 where the log has no time), ``arbitration_id``,
+/// ``is_extended_id``, ``is_remote_frame``, ``is_error_frame``, ``is_fd``,
+/// ``bitrate_switch``, ``error_state_indicator``, ``dlc`` (python-can's:
+/// the data length of a CAN FD frame), ``data``, ``channel`` (the interface
+/// name, the channel number as the file writes it — from 1 where python-can
+/// counts from 0 — or None) and ``is_rx`` (True where the log does not
+/// say). Frames are read in blocks with the GIL released.
+///
+/// Lines skipped as malformed are in ``skipped`` and ``skipped_count``.
 #[pyclass(module = "motionwire")]
 pub struct Reader {
     state: Mutex<State>,
@@ -282,7 +299,7 @@ impl Reader {
     }
 }
 
-/// A CAN frame with python-can's attribute names: what `Reader` yields
+/// A CAN frame with python-can's attribute names: what Reader yields
 /// when python-can is not installed.
 #[pyclass(module = "motionwire", get_all, frozen)]
 pub struct Message {

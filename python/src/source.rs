@@ -59,10 +59,16 @@ impl Source {
                 // A path that cannot be opened is an OSError with its name
                 // (FileNotFoundError, PermissionError, …); past that,
                 // anything the content does wrong is a LogError.
-                File::open(path).map_err(|error| Failure::Open {
+                let open = |error| Failure::Open {
                     path: path.clone(),
                     error,
-                })?;
+                };
+                let file = File::open(path).map_err(open)?;
+                // A directory opens on Unix and fails at the first read:
+                // said as Python's open() says it, IsADirectoryError.
+                if file.metadata().map_err(open)?.is_dir() {
+                    return Err(open(is_a_directory()));
+                }
                 options.open(path).map_err(|e| Failure::log(name, e))
             }
             Source::Bytes(bytes) => options
@@ -70,6 +76,12 @@ impl Source {
                 .map_err(|e| Failure::log(name, e)),
         }
     }
+}
+
+/// The error of opening a directory to read it (EISDIR, 21 on Linux,
+/// macOS and the BSDs; Windows refuses to open a directory already).
+fn is_a_directory() -> std::io::Error {
+    std::io::Error::from_raw_os_error(21)
 }
 
 /// The sources of a Python sequence.

@@ -10,8 +10,8 @@ use std::sync::Arc;
 
 use arrow_array::types::{Int32Type, Int8Type};
 use arrow_array::{
-    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int8Array,
-    RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
+    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array,
+    Int8Array, RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
 };
 use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
@@ -22,7 +22,9 @@ use motionwire::decoder::Decoder;
 use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, ReadLog};
 use serde_json::Value;
 
-use crate::columns::{offset, offsets, Chunk, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS};
+use crate::columns::{
+    offset, offsets, Chunk, Clock, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS,
+};
 use crate::error::Failure;
 use crate::ethercat::{self, EthercatColumns, EthercatFinished};
 
@@ -64,10 +66,14 @@ struct DecodedColumns {
     description_valid: Validity,
     state: Vec<i32>,
     state_valid: Validity,
+    /// The drive's CiA 402 state the frame tells (`cia402.state`).
+    cia402_state: Vec<i32>,
+    cia402_state_valid: Validity,
     record_offsets: Vec<i32>,
     record: Vec<u8>,
     descriptions: StaticNames,
     states: StaticNames,
+    cia402_states: StaticNames,
 }
 
 /// The frames of one log, column by column.
@@ -75,6 +81,9 @@ pub struct Columns {
     line: Vec<u64>,
     ts: Vec<f64>,
     ts_valid: Validity,
+    /// `time`'s nanoseconds, null where `ts` is.
+    time: Vec<i64>,
+    clock: Clock,
     iface: Vec<i32>,
     iface_valid: Validity,
     id: Vec<u32>,
@@ -101,6 +110,8 @@ impl Columns {
             line: Vec::new(),
             ts: Vec::new(),
             ts_valid: Validity::default(),
+            time: Vec::new(),
+            clock: Clock::default(),
             iface: Vec::new(),
             iface_valid: Validity::default(),
             id: Vec::new(),
@@ -130,6 +141,8 @@ impl Columns {
         self.line.push(position.number());
         self.ts_valid
             .push(&mut self.ts, frame.timestamp.map(|ts| ts.as_secs_f64()));
+        let nanos = self.clock.nanos(frame.timestamp);
+        self.time.push(nanos.unwrap_or_default());
         let iface = frame.iface.map(|iface| self.ifaces.key(iface));
         self.iface_valid.push(&mut self.iface, iface);
         self.id.push(can.id().raw());
@@ -161,6 +174,9 @@ impl Columns {
             d.description_valid.push(&mut d.description, description);
             let state = columns.state.map(|state| d.states.key(state));
             d.state_valid.push(&mut d.state, state);
+            let cia402 = decoded.cia402.and_then(|reading| reading.state);
+            let cia402 = cia402.map(|state| d.cia402_states.key(state.name()));
+            d.cia402_state_valid.push(&mut d.cia402_state, cia402);
             decoded.write_json(&mut d.record).expect("writing to a Vec");
             // The record without its newline.
             d.record.pop();
@@ -194,6 +210,7 @@ impl Columns {
         if self.line.is_empty() {
             return;
         }
+        let ts_nulls = self.ts_valid.0.finish();
         let mut columns: Vec<ArrayRef> = vec![
             Arc::new(UInt64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.line)),
@@ -201,7 +218,11 @@ impl Columns {
             )),
             Arc::new(Float64Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                self.ts_valid.0.finish(),
+                ts_nulls.clone(),
+            )),
+            Arc::new(Int64Array::new(
+                ScalarBuffer::from(std::mem::take(&mut self.time)),
+                ts_nulls,
             )),
             Arc::new(UInt32Array::new(
                 ScalarBuffer::from(std::mem::take(&mut self.id)),
@@ -254,6 +275,13 @@ impl Columns {
                 ),
                 d.states.array(),
             )));
+            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
+                Int32Array::new(
+                    ScalarBuffer::from(std::mem::take(&mut d.cia402_state)),
+                    d.cia402_state_valid.0.finish(),
+                ),
+                d.cia402_states.array(),
+            )));
             // The writer writes UTF-8 (Decoded::write_json); checked once
             // more here, at memory speed.
             columns.push(Arc::new(
@@ -274,12 +302,14 @@ impl Columns {
 
     /// The rows read, as record batches; the interface dictionary and the
     /// log's other columns apart.
-    pub fn finish(mut self) -> Finished {
+    pub fn finish(mut self, name: &str) -> Finished {
         self.flush();
         Finished {
+            name: name.to_owned(),
             chunks: self.chunks,
             ifaces: self.ifaces.values,
             frames: self.frames,
+            clock: self.clock,
             ethercat: self.ethercat.finish(),
             skipped: self.skipped,
             format: self.format,
@@ -290,9 +320,12 @@ impl Columns {
 
 /// The columns of a log read in full.
 pub struct Finished {
+    /// The log's name, as messages give it.
+    name: String,
     chunks: Vec<Chunk>,
     ifaces: Vec<String>,
     frames: u64,
+    clock: Clock,
     ethercat: EthercatFinished,
     pub skipped: Skipped,
     pub format: Option<LogFormat>,
@@ -360,27 +393,35 @@ impl Rows {
     /// Where the `iface` column sits among a row's columns (after `file`).
     fn iface_at(self) -> usize {
         match self {
-            Rows::Can => 2,
+            Rows::Can => 3,
             Rows::Ethercat => ethercat::IFACE_AT,
         }
     }
 }
 
 /// The schema of `read_log` (with `file` first for `read_logs`) or of
-/// `decode`, for CAN frames or EtherCAT datagrams.
-pub fn schema(rows: Rows, decoded: bool, file: bool, metadata: HashMap<String, String>) -> Schema {
+/// `decode`, for CAN frames or EtherCAT datagrams, `time` typed by the
+/// table's `clock`.
+pub fn schema(
+    rows: Rows,
+    decoded: bool,
+    file: bool,
+    clock: Clock,
+    metadata: HashMap<String, String>,
+) -> Schema {
     let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let mut fields = Vec::new();
     if file {
         fields.push(Field::new("file", dictionary(DataType::Int32), false));
     }
     if rows == Rows::Ethercat {
-        fields.extend(ethercat::fields(decoded));
+        fields.extend(ethercat::fields(decoded, clock));
         return Schema::new(fields).with_metadata(metadata);
     }
     fields.extend([
         Field::new("line", DataType::UInt64, false),
         Field::new("ts", DataType::Float64, true),
+        clock.field(),
         Field::new("iface", dictionary(DataType::Int32), true),
         Field::new("id", DataType::UInt32, false),
         Field::new("extended", DataType::Boolean, false),
@@ -400,6 +441,7 @@ pub fn schema(rows: Rows, decoded: bool, file: bool, metadata: HashMap<String, S
             Field::new("register", DataType::UInt8, true),
             Field::new("description", dictionary(DataType::Int32), true),
             Field::new("state", dictionary(DataType::Int32), true),
+            Field::new("cia402_state", dictionary(DataType::Int32), true),
             Field::new("record", DataType::Utf8, false),
         ]);
     }
@@ -428,6 +470,8 @@ pub fn batches(
     let mut skipped = Skipped::default();
     let mut format = None;
     let mut counts = Counts::default();
+    let mut clock = Clock::default();
+    let mut empty = Vec::new();
     let mut parts = Vec::with_capacity(logs.len());
     for mut log in logs {
         format = format.or(log.format);
@@ -450,9 +494,32 @@ pub fn batches(
             );
         }
         skipped.extend(log.skipped);
+        let rows_of_log = match rows {
+            Rows::Can => log.frames,
+            Rows::Ethercat => log
+                .ethercat
+                .chunks
+                .iter()
+                .map(|c| c.iface.len() as u64)
+                .sum(),
+        };
+        if rows_of_log == 0 {
+            // As the program says it on standard error (docs/output.md#stderr).
+            let unit = match rows {
+                Rows::Can => "frames",
+                Rows::Ethercat => "datagrams",
+            };
+            empty.push(Value::from(format!("{}: 0 {unit}", log.name)));
+        }
         parts.push(match rows {
-            Rows::Can => (log.chunks, log.ifaces),
-            Rows::Ethercat => (log.ethercat.chunks, log.ethercat.ifaces),
+            Rows::Can => {
+                clock.merge(log.clock);
+                (log.chunks, log.ifaces)
+            }
+            Rows::Ethercat => {
+                clock.merge(log.ethercat.clock);
+                (log.ethercat.chunks, log.ethercat.ifaces)
+            }
         });
     }
     let mut metadata = skipped.metadata();
@@ -467,7 +534,13 @@ pub fn batches(
             ethercat::counts_json(&counts),
         );
     }
-    let schema = Arc::new(schema(rows, decoded, files.is_some(), metadata));
+    if !empty.is_empty() {
+        metadata.insert(
+            "motionwire.empty".to_owned(),
+            Value::Array(empty).to_string(),
+        );
+    }
+    let schema = Arc::new(schema(rows, decoded, files.is_some(), clock, metadata));
     // One interface dictionary for the whole table: each log's keys mapped
     // onto it.
     let mut ifaces = Ifaces::default();
@@ -498,7 +571,12 @@ pub fn batches(
                     values.clone(),
                 )?) as ArrayRef);
             }
-            let mut rest = chunk.columns.into_iter();
+            let mut own = chunk.columns;
+            // `time`, just before `iface`: int64 nanoseconds made the
+            // table's type.
+            let time = rows.iface_at() - 1;
+            own[time] = clock.array(&own[time])?;
+            let mut rest = own.into_iter();
             columns.extend(rest.by_ref().take(rows.iface_at()));
             columns.push(Arc::new(DictionaryArray::<Int32Type>::try_new(
                 keys,

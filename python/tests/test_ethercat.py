@@ -30,6 +30,7 @@ READ_LOG_SCHEMA = [
     ("packet", pa.uint64(), False),
     ("datagram", pa.uint16(), False),
     ("ts", pa.float64(), True),
+    ("time", pa.timestamp("ns", tz="UTC"), True),
     ("iface", DICTIONARY, True),
     ("kind", NAMES, False),
     ("cmd", NAMES, False),
@@ -105,6 +106,10 @@ def test_first_rows_of_twincat():
     assert table.num_rows == 511
     rows = table.to_pylist()
     row = next(r for r in rows if r["packet"] == 305)
+    # time: the capture's nanoseconds, exact (docs/python.md#time).
+    at = rows.index(row)
+    assert table.column("time").cast(pa.int64())[at].as_py() == 1655654779674105000
+    del row["time"]
     assert row == {
         "packet": 305,
         "datagram": 1,
@@ -130,7 +135,7 @@ def test_first_rows_of_twincat():
 def record_columns(record: dict) -> dict:
     """A row as the JSON record gives it: the data from hex, the address
     keys the record leaves out null."""
-    row = {key: record.get(key) for key, _, _ in READ_LOG_SCHEMA}
+    row = {key: record.get(key) for key, _, _ in READ_LOG_SCHEMA if key != "time"}
     row["data"] = bytes.fromhex(record["data"])
     return row
 
@@ -139,6 +144,10 @@ def assert_rows_are_records(table, records):
     assert table.num_rows == len(records)
     for row, record in zip(table.to_pylist(), records):
         expected = record_columns(record)
+        # time: the record's ts to the nanosecond (test_time.py holds
+        # every digit to it).
+        time = row.pop("time")
+        assert time is None or abs(time.timestamp() - record["ts"]) < 1e-6, record
         # ts: a float keeps about a microsecond of a Unix time; the record
         # keeps the capture's digits (docs/python.md#columns).
         assert abs(row.pop("ts") - expected.pop("ts")) < 1e-6, record
@@ -265,6 +274,7 @@ def test_pandas_dtypes():
         "packet": "uint64",
         "datagram": "uint16",
         "ts": "float64",
+        "time": "datetime64[ns, UTC]",
         "iface": "category",
         "kind": "category",
         "cmd": "category",
@@ -339,7 +349,7 @@ def test_can_and_ethercat_in_one_capture():
     # The CAN packets are the first 1 or come after the capture's 830.
     for data, before in ((can + ecat, 0), (ecat + can, 830)):
         table = motionwire.read_log(data)
-        assert table.schema.names[:3] == ["line", "ts", "iface"]
+        assert table.schema.names[:4] == ["line", "ts", "time", "iface"]
         assert table.drop_columns(["line"]).equals(alone.drop_columns(["line"]))
         lines = alone.column("line").to_pylist()
         assert table.column("line").to_pylist() == [line + before for line in lines]

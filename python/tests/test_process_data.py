@@ -30,6 +30,7 @@ SIGNAL_SCHEMA = [
     ("packet", pa.uint64(), False),
     ("datagram", pa.uint16(), False),
     ("ts", pa.float64(), True),
+    ("time", pa.timestamp("ns", tz="UTC"), True),
     ("iface", DICTIONARY, True),
     ("slave", pa.uint16(), True),
     ("position", pa.uint16(), True),
@@ -43,6 +44,7 @@ SERVO_SCHEMA = [
     ("packet", pa.uint64(), False),
     ("datagram", pa.uint16(), False),
     ("ts", pa.float64(), True),
+    ("time", pa.timestamp("ns", tz="UTC"), True),
     ("iface", DICTIONARY, True),
     ("slave", pa.uint16(), True),
     ("speed_setpoint", pa.int32(), False),
@@ -323,12 +325,14 @@ def test_a_can_log_is_an_empty_table_and_a_warning():
     with pytest.warns(UserWarning, match="3765 CAN frames read: the process data of EtherCAT"):
         table = motionwire.process_data(SAMPLE)
     assert table.num_rows == 0
-    assert fields(table.schema) == SIGNAL_SCHEMA
+    # No EtherCAT packet: no time read as Unix time (docs/python.md#time).
+    duration = ("time", pa.duration("ns"), True)
+    assert fields(table.schema) == [duration if f[0] == "time" else f for f in SIGNAL_SCHEMA]
     assert b"motionwire.ethercat" not in table.schema.metadata
     with pytest.warns(UserWarning, match="CAN frames read"):
         servo = motionwire.servo(SAMPLE)
     assert servo.num_rows == 0
-    assert fields(servo.schema) == SERVO_SCHEMA
+    assert fields(servo.schema) == [duration if f[0] == "time" else f for f in SERVO_SCHEMA]
 
 
 def test_sources_and_no_warning_for_a_capture():

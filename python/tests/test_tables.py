@@ -21,6 +21,7 @@ from conftest import FIXTURES, ROOT, SAMPLE
 READ_LOG_SCHEMA = [
     ("line", pa.uint64(), False),
     ("ts", pa.float64(), True),
+    ("time", pa.timestamp("ns", tz="UTC"), True),
     ("iface", pa.dictionary(pa.int32(), pa.string()), True),
     ("id", pa.uint32(), False),
     ("extended", pa.bool_(), False),
@@ -39,6 +40,7 @@ DECODE_SCHEMA = READ_LOG_SCHEMA + [
     ("register", pa.uint8(), True),
     ("description", pa.dictionary(pa.int32(), pa.string()), True),
     ("state", pa.dictionary(pa.int32(), pa.string()), True),
+    ("cia402_state", pa.dictionary(pa.int32(), pa.string()), True),
     ("record", pa.string(), False),
 ]
 
@@ -63,6 +65,8 @@ def test_read_log_schema():
     assert fields(table.schema) == READ_LOG_SCHEMA
     assert table.num_rows == 3765
     first = table.slice(0, 1).to_pylist()[0]
+    assert table.column("time").cast(pa.int64())[0].as_py() == 1700000000000526000
+    del first["time"]
     assert first == {
         "line": 1,
         "ts": 1700000000.000526,

@@ -95,9 +95,9 @@ impl Axis {
     }
 }
 
-/// The first microsecond the page reads as a Unix time (2001-09-09): a
-/// log's own clock from its start counts far less.
-pub(super) const UNIX_FROM: u64 = 1_000_000_000_000_000;
+/// The first microsecond the page reads as a Unix time: the library's
+/// [`Timestamp::UNIX_FROM`](crate::can::Timestamp::UNIX_FROM).
+pub(super) const UNIX_FROM: u64 = crate::can::Timestamp::UNIX_FROM.as_micros() as u64;
 
 /// Microseconds as seconds with six decimals.
 pub(super) fn seconds(us: u64) -> String {

@@ -115,6 +115,31 @@ impl Timestamp {
         }
     }
 
+    /// The first time read as Unix time: 2001-09-09 01:46:40 UTC, 10⁹
+    /// seconds after the epoch. A recording's own clock, counted from its
+    /// start, stays far below it; a logger's clock that counts Unix time
+    /// is past it for any recording of this century.
+    pub const UNIX_FROM: Timestamp = Timestamp {
+        since_zero: Duration::from_secs(1_000_000_000),
+    };
+
+    /// Return whether this time reads as Unix time (UTC), a date and a
+    /// time of day: at or after [`Timestamp::UNIX_FROM`]. Below it, the
+    /// time is a duration since the start of the recording (or since a
+    /// logger's boot, where its clock was never set).
+    ///
+    /// ```
+    /// use motionwire_codec::can::Timestamp;
+    ///
+    /// assert!(Timestamp::new(1_700_000_000, 500).unwrap().is_unix_time());
+    /// assert!(!Timestamp::new(2, 3641).unwrap().is_unix_time());
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn is_unix_time(self) -> bool {
+        self.since_zero.as_secs() >= Self::UNIX_FROM.since_zero.as_secs()
+    }
+
     /// Return the timestamp that lies `since_zero` after the clock's zero.
     #[inline]
     #[must_use]
