@@ -141,8 +141,11 @@ def test_rows_are_the_programs_records():
     assert len(rows) == len(expected)
     assert len(rows) > 20000
     for row, want in zip(rows, expected):
-        # ts: a float keeps about a microsecond of a Unix time.
-        assert abs(row.pop("ts") - want.pop("ts")) < 1e-6, want
+        # ts: a float keeps about a microsecond of a Unix time; time is
+        # the same instant to the nanosecond (docs/python.md#time).
+        ts = want.pop("ts")
+        assert abs(row.pop("ts") - ts) < 1e-6, want
+        assert abs(row.pop("time").timestamp() - ts) < 1e-6, want
         raw = row.pop("raw")
         assert row == want, want
         value = want["value"]
@@ -181,6 +184,7 @@ def test_servo_rows_are_the_programs_servo_records():
             "confirmed": confirmed[(r["packet"], r["slave"])],
         }
         assert abs(row.pop("ts") - r["ts"]) < 1e-6
+        assert abs(row.pop("time").timestamp() - r["ts"]) < 1e-6
         assert row == want, r
 
 
