@@ -2088,3 +2088,43 @@ fn a_pipe_on_standard_input_is_not_announced() {
         assert_eq!(stderr(&out), "", "{args:?}");
     }
 }
+
+/// README.md, "The program on your PATH": every `motionwire …` command
+/// there runs on the checkout and writes something (the installed program
+/// is this binary).
+#[test]
+fn the_readme_commands_after_install_run() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let section = readme
+        .split("### The program on your PATH")
+        .nth(1)
+        .expect("the README says how to install the program");
+    let install = section
+        .find("cargo install --path . --features cli")
+        .unwrap();
+    let commands: Vec<&str> = section[install..]
+        .split("\n```\n")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .filter(|line| line.starts_with("motionwire "))
+        .collect();
+    assert!(commands.len() >= 3, "{commands:?}");
+    let page = temp_file("readme_page.html", "");
+    for command in commands {
+        let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
+        if let Some(at) = args.iter().position(|a| *a == "-o") {
+            args[at + 1] = page.to_str().unwrap();
+        }
+        let out = bin().args(&args).current_dir(&root).output().unwrap();
+        assert!(out.status.success(), "{command}: {}", stderr(&out));
+        assert_eq!(stderr(&out), "", "{command}");
+        let written = if args.contains(&"-o") {
+            std::fs::read_to_string(&page).unwrap()
+        } else {
+            stdout(&out)
+        };
+        assert!(!written.is_empty(), "{command} wrote nothing");
+    }
+}
