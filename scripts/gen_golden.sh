@@ -65,6 +65,10 @@ done
   echo "decode tests/fixtures/pcap/sll_mixed.pcapng"
   echo "decode --json tests/fixtures/pcap/sll.pcap"
   echo "decode --summary --json tests/fixtures/pcap/sll2.pcapng"
+  # The time window and interfaces (docs/output.md#window).
+  echo "decode --from 2 --to 2.05 samples/machine.log"
+  echo "decode --summary --json --from 2023-11-14T22:13:22Z --to 2023-11-14T22:13:25Z samples/machine.log"
+  echo "decode --summary --iface vcan1 tests/fixtures/pcap/multi.pcapng"
   # EtherCAT captures (docs/ethercat.md): the three outputs and the summary.
   echo "decode tests/data/ethercat/twincat-akd-startup.pcapng"
   echo "decode --json tests/data/ethercat/replay-ek1914-segmented-upload.pcapng"

@@ -28,6 +28,7 @@
 //! | `reader.rs` | `LogReader`: `open`, `read`, `ReadOptions` — detection, gzip, dispatch | feature `logs` |
 //! | `bytes.rs` | the integers of a binary record at a byte offset, in the file's byte order | `pcap`, `blf` or `mf4` |
 //! | `calendar.rs` | logged dates as Unix time | |
+//! | `filter.rs` | `EventFilter`, `TimeBound`: a log's events by time window and interface (docs/output.md#window) | `std` |
 //!
 //! Without the standard library, each text format parses lines from a
 //! buffer without allocating ([`candump::parse_line`], [`candump::lines`],
@@ -62,6 +63,8 @@ mod calendar;
 pub mod candump;
 mod detect;
 mod error;
+#[cfg(feature = "std")]
+mod filter;
 mod lex;
 #[cfg(feature = "mf4")]
 pub mod mf4;
@@ -78,6 +81,8 @@ pub use detect::{detect, Detected, DETECT_LEN, DETECT_MAX_UNDECIDED};
 pub use error::{BinaryError, FormatError, Found, LogFormat, SyntaxError};
 #[cfg(feature = "std")]
 pub use error::{LogError, LogErrorKind};
+#[cfg(feature = "std")]
+pub use filter::{EventFilter, TimeBound, TimeBoundError};
 #[cfg(feature = "logs")]
 pub use reader::{open, read, LogReader, LogVisitor, ReadOptions};
 pub use record::{LogRecord, Position, MAX_RECORD_LEN};

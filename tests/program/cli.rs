@@ -1981,3 +1981,150 @@ fn the_verdict_follows_bus_off_and_lost_heartbeats() {
          node 5&#39;s heartbeat timeout after line 3"
     ));
 }
+
+/// docs/output.md#window: `--from` and `--to` count from the recording's
+/// first time or name a UTC time, the window is `from <= ts < to`, and
+/// `--iface` names interfaces or channels; the summary is the frames kept.
+#[test]
+fn time_window_and_interface_filters() {
+    let log = "(1700000000.000000) can0 705#05\n\
+               (1700000000.500000) can1 706#05\n\
+               (1700000001.000000) can0 705#05\n\
+               (1700000001.500000) can1 706#05\n\
+               (1700000002.000000) can0 705#05\n";
+    let lines = |args: &[&str]| -> Vec<u64> {
+        let mut all = vec!["decode", "--json"];
+        all.extend_from_slice(args);
+        let out = run(&all, log);
+        assert!(out.status.success(), "{}", stderr(&out));
+        records(&out)
+            .iter()
+            .map(|r| r["line"].as_u64().unwrap())
+            .collect()
+    };
+    assert_eq!(lines(&["--from", "1"]), [3, 4, 5]);
+    assert_eq!(lines(&["--to", "1"]), [1, 2]);
+    assert_eq!(lines(&["--from", "0.5", "--to", "1.5"]), [2, 3]);
+    assert_eq!(
+        lines(&[
+            "--from",
+            "2023-11-14T22:13:20.5Z",
+            "--to",
+            "2023-11-14T22:13:22Z"
+        ]),
+        [2, 3, 4]
+    );
+    assert_eq!(lines(&["--iface", "can1"]), [2, 4]);
+    assert_eq!(lines(&["--iface", "can1,can0"]), [1, 2, 3, 4, 5]);
+    assert_eq!(
+        lines(&["--iface", "can0", "--iface", "can1"]),
+        [1, 2, 3, 4, 5]
+    );
+    assert_eq!(lines(&["--iface", "can0", "--from", "0.5"]), [3, 5]);
+    // With the other filters: a frame must pass all of them.
+    assert_eq!(lines(&["--node", "5", "--to", "1.5"]), [1, 3]);
+
+    // The summary counts the frames kept.
+    let summary = run(&["decode", "--summary", "--json", "--iface", "can0"], log);
+    let nodes: Vec<(String, u64)> = node_records(&summary)
+        .iter()
+        .map(|r| {
+            (
+                r["iface"].as_str().unwrap().to_owned(),
+                r["frames"]["heartbeat"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(nodes, [("can0".to_owned(), 3)]);
+    let summary = run(&["decode", "--summary", "--json", "--from", "1"], log);
+    let heartbeats: u64 = node_records(&summary)
+        .iter()
+        .map(|r| r["frames"]["heartbeat"].as_u64().unwrap())
+        .sum();
+    assert_eq!(heartbeats, 3);
+
+    // Nothing kept is said, not left to an empty output.
+    let out = run(&["decode", "--iface", "2", "--to", "9"], log);
+    assert!(out.status.success());
+    assert_eq!(stdout(&out), "");
+    assert_eq!(
+        stderr(&out),
+        "<stdin>: none of its 5 frames passes --to 9 --iface 2\n"
+    );
+    // A bad time is refused with what a time is.
+    let out = run(&["decode", "--from", "2023-11-14 22:13:20"], log);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("UTC time (2023-11-14T22:13:20Z)"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// docs/output.md#window: each recording counts `--from` from its own
+/// start; `--joined` files are one recording.
+#[test]
+fn the_window_starts_with_each_recording() {
+    let a = temp_file("window_a.log", "(10.0) can0 705#05\n(11.0) can0 705#05\n");
+    let b = temp_file("window_b.log", "(20.0) can0 705#05\n(21.0) can0 705#05\n");
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let count = |args: &[&str]| {
+        let mut all = vec!["decode", "--json", "--from", "1"];
+        all.extend_from_slice(args);
+        records(&run(&all, "")).len()
+    };
+    assert_eq!(count(&[a, b]), 2);
+    assert_eq!(count(&["--joined", a, b]), 3);
+}
+
+/// docs/output.md#stdin: reading standard input is said on a terminal
+/// only; a pipe stays silent (the terminal case is the unit test of
+/// `says_reading_stdin`).
+#[test]
+fn a_pipe_on_standard_input_is_not_announced() {
+    for args in [&["decode"][..], &["decode", "-"], &["report", "-o", "-"]] {
+        let out = run(args, "(1.0) can0 705#05\n");
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert_eq!(stderr(&out), "", "{args:?}");
+    }
+}
+
+/// README.md, "The program on your PATH": every `motionwire …` command
+/// there runs on the checkout and writes something (the installed program
+/// is this binary).
+#[test]
+fn the_readme_commands_after_install_run() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let section = readme
+        .split("### The program on your PATH")
+        .nth(1)
+        .expect("the README says how to install the program");
+    let install = section
+        .find("cargo install --path . --features cli")
+        .unwrap();
+    let commands: Vec<&str> = section[install..]
+        .split("\n```\n")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .filter(|line| line.starts_with("motionwire "))
+        .collect();
+    assert!(commands.len() >= 3, "{commands:?}");
+    let page = temp_file("readme_page.html", "");
+    for command in commands {
+        let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
+        if let Some(at) = args.iter().position(|a| *a == "-o") {
+            args[at + 1] = page.to_str().unwrap();
+        }
+        let out = bin().args(&args).current_dir(&root).output().unwrap();
+        assert!(out.status.success(), "{command}: {}", stderr(&out));
+        assert_eq!(stderr(&out), "", "{command}");
+        let written = if args.contains(&"-o") {
+            std::fs::read_to_string(&page).unwrap()
+        } else {
+            stdout(&out)
+        };
+        assert!(!written.is_empty(), "{command} wrote nothing");
+    }
+}

@@ -1522,3 +1522,71 @@ fn a_long_drives_capture_is_charted_in_buckets() {
     assert!(lo <= last && last <= hi);
     assert!(page.html.len() < 1_000_000, "{} bytes", page.html.len());
 }
+
+/// docs/report.md#command: `--from`, `--to`, `--iface`, `--node` and `--id`
+/// make the page of the frames kept: its records are `decode --summary`'s
+/// of those frames; `--only` is refused.
+#[test]
+fn the_page_of_the_frames_kept() {
+    let dir = scratch("kept");
+    let sample = repo("samples/machine.log");
+    let page = |args: &[&str]| {
+        let out = dir.join("page.html");
+        let mut all = vec!["report"];
+        all.extend_from_slice(args);
+        all.extend([sample.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let r = run(&all);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        parse(&std::fs::read_to_string(out).unwrap())
+    };
+    let window = ["--from", "2", "--to", "6.5", "--iface", "can0"];
+    let mut summary_args = window.to_vec();
+    summary_args.push(sample.to_str().unwrap());
+    let windowed = page(&window);
+    assert_eq!(windowed.summary(), summary_records(&summary_args));
+    check_counts(&windowed, &summary_records(&summary_args));
+    assert_ne!(
+        windowed.summary(),
+        summary_records(&[sample.to_str().unwrap()])
+    );
+
+    let node3 = page(&["--node", "3"]);
+    let nodes: Vec<u64> = node3
+        .summary()
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["type"] == "node")
+        .map(|r| r["node"].as_u64().unwrap())
+        .collect();
+    assert_eq!(nodes, [3]);
+    let ids = page(&["--id", "0x083,0x703"]);
+    let frames: Vec<Value> = ids
+        .summary()
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["type"] == "node")
+        .map(|r| r["frames"].clone())
+        .collect();
+    assert_eq!(frames.len(), 1);
+    let counted: Vec<&String> = frames[0]
+        .as_object()
+        .unwrap()
+        .iter()
+        .filter(|(_, n)| n.as_u64() != Some(0))
+        .map(|(kind, _)| kind)
+        .collect();
+    assert_eq!(counted, ["emcy", "heartbeat"]);
+
+    let refused = run(&[
+        "report",
+        "--only",
+        "emcy",
+        sample.to_str().unwrap(),
+        "-o",
+        "-",
+    ]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("report takes no --only"));
+}

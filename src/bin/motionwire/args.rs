@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use motionwire::canopen::{MessageKind, NodeId};
 use motionwire::decoder::ethercat::{ServoItem, ServoItemError};
-use motionwire::logs::LogFormat;
+use motionwire::logs::{EventFilter, LogFormat, TimeBound, TimeBoundError};
 use motionwire::profiles::{NodeProfiles, Profile};
 
 /// motionwire: read CAN logs of motion machines as CANopen — EMCYs with
@@ -62,14 +62,16 @@ pub struct ReportArgs {
     /// timeouts.
     #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u16).range(1..))]
     pub heartbeat_ms: Option<u16>,
-    /// Accepted as `decode --summary` accepts it; the page, like the
-    /// summary, counts every frame.
-    #[arg(long, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
+    /// Refused: the page reads every kind of frame to draw the states it
+    /// shows (docs/report.md#command).
+    #[arg(long, hide = true, value_delimiter = ',', value_name = "KIND[,KIND]", value_parser = parse_kind)]
     pub only: Vec<Kind>,
-    /// Accepted as `decode --summary` accepts it; the page counts every frame.
+    /// Make the page of the CAN frames that carry these node-IDs
+    /// (comma-separated): its summary, timeline and signals are theirs.
     #[arg(long, value_delimiter = ',', value_name = "NODE[,NODE]", value_parser = parse_node)]
     pub node: Vec<NodeId>,
-    /// Accepted as `decode --summary` accepts it; the page counts every frame.
+    /// Make the page of the CAN frames with these identifiers: values or
+    /// ranges `FROM-TO`, comma-separated, as `decode --id`.
     #[arg(long, value_delimiter = ',', value_name = "ID[-ID][,…]", value_parser = parse_id_range)]
     pub id: Vec<IdRange>,
     /// Log files to read; none, or `-`, reads standard input.
@@ -219,11 +221,47 @@ pub struct ReadingArgs {
     /// start-up writes wins (docs/ethercat.md#eni).
     #[arg(long, value_name = "FILE")]
     pub eni: Option<PathBuf>,
+    /// Keep only what was logged at this time or later: seconds from the
+    /// recording's first time (`12.5`) or a UTC time
+    /// (`2023-11-14T22:13:20Z`); the summary and the page are those of the
+    /// frames kept (docs/output.md#window).
+    #[arg(long, value_name = "SECONDS|UTC", value_parser = parse_time_bound)]
+    pub from: Option<TimeBound>,
+    /// Keep only what was logged before this time: seconds from the
+    /// recording's first time or a UTC time, as --from.
+    #[arg(long, value_name = "SECONDS|UTC", value_parser = parse_time_bound)]
+    pub to: Option<TimeBound>,
+    /// Keep only what was logged on these interfaces: names (`can0`) or
+    /// channel numbers (`1`), comma-separated or repeated; the summary and
+    /// the page are those of the frames kept (docs/output.md#window).
+    #[arg(long, value_delimiter = ',', value_name = "NAME[,NAME]")]
+    pub iface: Vec<String>,
     /// Say every malformed line and damaged record on standard error; without
     /// it, the first 100 of each file are said one by one and the rest
     /// counted in one line (docs/output.md#stderr).
     #[arg(long)]
     pub verbose: bool,
+}
+
+impl ReadingArgs {
+    /// The library's filter of `--from`, `--to` and `--iface`.
+    pub fn event_filter(&self) -> EventFilter {
+        let mut filter = EventFilter::new();
+        if let Some(from) = self.from {
+            filter = filter.from(from);
+        }
+        if let Some(to) = self.to {
+            filter = filter.to(to);
+        }
+        for name in &self.iface {
+            filter = filter.iface(name.as_str());
+        }
+        filter
+    }
+}
+
+fn parse_time_bound(text: &str) -> Result<TimeBound, String> {
+    text.parse().map_err(|e: TimeBoundError| e.to_string())
 }
 
 /// Parse one `--servo` item: `auto`, `STATION` or `STATION:MODE` (the

@@ -5,7 +5,7 @@
 //! and renders.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Read, StderrLock, StdoutLock, Write};
+use std::io::{self, BufWriter, IsTerminal, Read, StderrLock, StdoutLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -19,7 +19,9 @@ use motionwire::decoder::ethercat::{
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::ethercat::Addressing;
 use motionwire::logs::candump::RelativeTimestamps;
-use motionwire::logs::{LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions};
+use motionwire::logs::{
+    EventFilter, LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions,
+};
 use motionwire::report::{Recorder, Report, ReportInput};
 use motionwire::summary::{FileSpan, SeveralFiles, Summarizer, Summary};
 
@@ -35,12 +37,16 @@ struct EthercatFilter {
     slaves: Vec<u16>,
     /// A CAN filter (`--node`, `--id`) is set: no EtherCAT record.
     none: bool,
+    /// The packet being read is outside `--from`, `--to`, `--iface`: none
+    /// of its records.
+    outside: bool,
 }
 
 impl EthercatFilter {
     /// Whether a record of `kind` about `station` is written.
     fn shows(&self, kind: &str, station: Option<u16>) -> bool {
         !self.none
+            && !self.outside
             && self
                 .kinds
                 .as_ref()
@@ -59,6 +65,14 @@ struct Input {
 /// Open the inputs; a file named twice (by any path) is opened once, and
 /// returned among the names said twice.
 fn open_inputs(files: &[PathBuf]) -> Result<(Vec<Input>, Vec<String>), Failure> {
+    if says_reading_stdin(files, io::stdin().is_terminal()) {
+        // Said once, before anything is read: a program that waits on a
+        // terminal for what the user meant as a file looks hung.
+        let _ = writeln!(
+            io::stderr(),
+            "motionwire: reading a log from standard input (end it with Ctrl-D, or name a FILE)"
+        );
+    }
     if files.is_empty() {
         return Ok((vec![stdin_input()], Vec::new()));
     }
@@ -90,6 +104,14 @@ fn open_inputs(files: &[PathBuf]) -> Result<(Vec<Input>, Vec<String>), Failure> 
         });
     }
     Ok((inputs, twice))
+}
+
+/// Whether reading standard input is said on standard error: when the
+/// inputs `files` name it (none named, or `-`) and it is a terminal, where
+/// someone may be waiting; a pipe or a file stays silent
+/// (docs/output.md#stdin).
+fn says_reading_stdin(files: &[PathBuf], stdin_is_terminal: bool) -> bool {
+    stdin_is_terminal && (files.is_empty() || files.iter().any(|f| f.as_os_str() == "-"))
 }
 
 fn stdin_input() -> Input {
@@ -136,6 +158,11 @@ struct Sink<'a> {
     ethercat_shown: EthercatFilter,
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
+    /// `--from`, `--to`, `--iface`: what is read at all, the summary and
+    /// the page included (docs/output.md#window).
+    filter: EventFilter,
+    /// Frames of the file being read that the filter keeps.
+    file_kept: u64,
     skipped: u64,
     /// Damaged records of binary logs reported.
     damaged: u64,
@@ -213,6 +240,7 @@ impl<'a> Sink<'a> {
             kinds: (!args.only.is_empty()).then_some(ethercat_kinds),
             slaves: args.slave.clone(),
             none: can_filtered,
+            outside: false,
         };
         if !args.slave.is_empty() {
             kinds = [false; MessageKind::ALL.len()];
@@ -253,6 +281,8 @@ impl<'a> Sink<'a> {
             ethercat_shown,
             nodes,
             ids: &args.id,
+            filter: args.reading.event_filter(),
+            file_kept: 0,
             skipped: 0,
             damaged: 0,
             file_skipped: 0,
@@ -272,9 +302,12 @@ impl<'a> Sink<'a> {
     }
 
     #[inline]
-    fn frame(&mut self, position: Position, frame: &LogFrame<'_>) -> io::Result<()> {
+    fn frame(&mut self, position: Position, frame: &LogFrame<'_>, kept: bool) -> io::Result<()> {
         // Every frame teaches the decoder, shown or not.
         let decoded = self.decoder.decode(position, frame);
+        if !kept {
+            return Ok(());
+        }
         if !self.ids.is_empty() {
             let id = frame.frame.id().raw();
             if !self.ids.iter().any(|range| range.contains(id)) {
@@ -314,7 +347,15 @@ impl<'a> Sink<'a> {
     /// An EtherCAT packet: one record per datagram
     /// (docs/ethercat.md#records); a damaged header or datagram said on
     /// standard error with the packet's number, and counted.
-    fn ethercat(&mut self, position: Position, packet: &EthercatPacket<'_>) -> io::Result<()> {
+    fn ethercat(
+        &mut self,
+        position: Position,
+        packet: &EthercatPacket<'_>,
+        kept: bool,
+    ) -> io::Result<()> {
+        // Outside the window or interfaces: the session still reads the
+        // packet (which copy it is, frames lost), no record of it is written.
+        self.ethercat_shown.outside = !kept;
         let packet = match self.ethercat.read(position, packet) {
             Ok(packet) => packet,
             Err(damaged) => {
@@ -444,21 +485,52 @@ impl<'a> Sink<'a> {
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
         self.entries += 1;
+        let kept = self.filter.keeps(event);
         if let LogEvent::Frame(_) | LogEvent::Ethercat(_) = event {
             self.frames += 1;
+            self.file_kept += u64::from(kept);
         }
+        // The summary and the page are those of the events kept.
         if let Some(summary) = self.summary.as_mut() {
-            summary.add(position, event);
+            if kept {
+                summary.add(position, event);
+            }
             return Ok(());
         }
-        if let Some(recorder) = self.recorder.as_mut() {
-            recorder.add(position, event);
+        if self.recorder.is_some() {
+            if kept && self.page_keeps(event) {
+                if let Some(recorder) = self.recorder.as_mut() {
+                    recorder.add(position, event);
+                }
+            }
             return Ok(());
         }
         match event {
-            LogEvent::Frame(frame) => self.frame(position, frame),
+            LogEvent::Frame(frame) => self.frame(position, frame, kept),
             LogEvent::Status(_) => Ok(()),
-            LogEvent::Ethercat(packet) => self.ethercat(position, packet),
+            LogEvent::Ethercat(packet) => self.ethercat(position, packet, kept),
+        }
+    }
+
+    /// With `motionwire report`: whether `--node` and `--id` keep the event
+    /// for the page (docs/report.md#command): a CAN frame that carries one of
+    /// the node-IDs in its identifier and has one of the identifiers; with
+    /// either option, no bus event or EtherCAT packet.
+    fn page_keeps(&self, event: &LogEvent<'_>) -> bool {
+        if self.nodes.is_none() && self.ids.is_empty() {
+            return true;
+        }
+        let LogEvent::Frame(frame) = event else {
+            return false;
+        };
+        let id = frame.frame.id().raw();
+        if !self.ids.is_empty() && !self.ids.iter().any(|range| range.contains(id)) {
+            return false;
+        }
+        match (&self.nodes, MessageKind::classify(&frame.frame).1) {
+            (None, _) => true,
+            (Some(nodes), Some(node)) => nodes[usize::from(node.get())],
+            (Some(_), None) => false,
         }
     }
 
@@ -589,6 +661,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             // before carries over (docs/output.md#several-files).
             sink.decoder = Decoder::new(sink.config.clone());
             sink.ethercat = Session::with_config(sink.decoder.config());
+            sink.filter.restart();
             if args.summary && !page {
                 sink.summary = Some(Summarizer::new(sink.config.clone()));
             }
@@ -621,6 +694,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         let entries_before = sink.entries;
         sink.file_skipped = 0;
         sink.file_damaged = 0;
+        sink.file_kept = 0;
         let reversals_before = sink.ethercat.counts().time_reversals;
         let last = log.visit(ReadAll {
             sink: &mut sink,
@@ -665,6 +739,16 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         if sink.frames == before {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
+        } else if sink.file_kept == 0 && !sink.filter.is_empty() {
+            // A UTC window on a log of relative times, a channel number
+            // for a named interface: said, not left to an empty output.
+            let read = sink.frames - before;
+            writeln!(
+                sink.err,
+                "{name}: none of its {read} frame{} passes {}",
+                if read == 1 { "" } else { "s" },
+                filter_words(&args.reading)
+            )?;
         }
         if let Some(report) = sink.report.as_mut() {
             report.add_input(ReportInput {
@@ -798,6 +882,22 @@ impl LogVisitor for ReadAll<'_, '_, '_> {
         }
         Ok(number)
     }
+}
+
+/// The `--from`, `--to` and `--iface` given, as the message about a file
+/// they keep nothing of says them.
+fn filter_words(reading: &crate::args::ReadingArgs) -> String {
+    let mut words = Vec::new();
+    if let Some(from) = reading.from {
+        words.push(format!("--from {from}"));
+    }
+    if let Some(to) = reading.to {
+        words.push(format!("--to {to}"));
+    }
+    if !reading.iface.is_empty() {
+        words.push(format!("--iface {}", reading.iface.join(",")));
+    }
+    words.join(" ")
 }
 
 /// Write the summary of the recording read so far (with `--summary`),
@@ -972,5 +1072,20 @@ fn read_failure(name: &str, path: Option<&Path>, source: io::Error) -> Failure {
     Failure::File {
         path: path.map_or_else(|| PathBuf::from(name), Path::to_path_buf),
         source,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standard_input_is_said_only_on_a_terminal() {
+        let files = |names: &[&str]| names.iter().map(PathBuf::from).collect::<Vec<_>>();
+        assert!(says_reading_stdin(&files(&[]), true));
+        assert!(says_reading_stdin(&files(&["a.log", "-"]), true));
+        assert!(!says_reading_stdin(&files(&["a.log"]), true));
+        assert!(!says_reading_stdin(&files(&[]), false));
+        assert!(!says_reading_stdin(&files(&["-"]), false));
     }
 }

@@ -8,8 +8,10 @@
 //!
 //! ```text
 //! motionwire decode [--json] [--profile generic|akd|baumer|NODE=PROFILE,…] [--summary]
-//!                   [--heartbeat-ms N] [--only KIND[,KIND]] [FILE…]
+//!                   [--heartbeat-ms N] [--only KIND[,KIND]] [--node …] [--id …]
+//!                   [--from T] [--to T] [--iface NAME[,NAME]] [FILE…]
 //! motionwire report [--heartbeat-ms N] [--profile …] [--eds …] [--format …]
+//!                   [--node …] [--id …] [--from T] [--to T] [--iface …]
 //!                   [--joined] LOG… -o FILE.html
 //! motionwire servo command  [--json] HEX
 //! motionwire servo feedback [--json] HEX

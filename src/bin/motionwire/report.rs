@@ -11,6 +11,15 @@ use crate::decode;
 use crate::failure::Failure;
 
 pub fn run(args: &ReportArgs) -> Result<ExitCode, Failure> {
+    if !args.only.is_empty() {
+        // docs/report.md#command: the page's states come from every kind.
+        return Err(Failure::Usage(
+            "report takes no --only: the page reads every kind of frame to draw its states \
+             (PDOs are mapped by SDO, NMT states come from heartbeats); narrow it with --node, \
+             --id, --iface, --from or --to"
+                .to_owned(),
+        ));
+    }
     let to_stdout = args.output.as_os_str() == "-";
     // A folder that is not there is said before the logs are read.
     if !to_stdout {
