@@ -21,10 +21,17 @@ beside each a JSON file with what a real reader reads back, frame by frame.
   Statistic and chip status lines; truth: python-can's ASCReader (which, in
   4.6, returns relative times as written) with, beside each frame, the time
   since the start: the deltas of every event line added up.
+- canoe15.asc: hand-written in the shapes of CANoe 15's logs and of CSS
+  Electronics' ASC conversions: `TriggerEvent: TriggerBlock[Logging]
+  Start/Stop DirectLogging` lines, and classic-syntax lines with DLC 9
+  followed by 12 data bytes (the recording's 12-byte CAN FD frames), by 8
+  (a classic frame of DLC 9), and with CANoe's statistics after the data;
+  truth: python-can's ASCReader.
 
 Run: python3 scripts/gen_asc_fixtures.py   (python-can 4.x; can-utils'
 log2asc and asc2log on the PATH, e.g. Debian's can-utils package)
      python3 scripts/gen_asc_fixtures.py canoe   (canoe.asc alone: python-can only)
+     python3 scripts/gen_asc_fixtures.py canoe15   (canoe15.asc alone)
 """
 import json
 import os
@@ -270,13 +277,48 @@ def canoe():
         f.write("\n")
 
 
+CANOE15 = """date Tue Oct 1 10:00:00.000 am 2024
+base hex  timestamps absolute
+internal events logged
+// version 15.0.0
+Begin TriggerBlock Tue Oct 1 10:00:00.000 am 2024
+   0.000000 Start of measurement
+   0.000000 TriggerEvent: TriggerBlock[Logging] Start DirectLogging
+   0.001000 1  181             Rx   d 8 01 02 03 04 05 06 07 08
+   0.002000 1  2A1             Rx   d 9 01 02 03 04 05 06 07 08 09 0A 0B 0C
+   0.003000 1  2A2             Rx   d 9 11 12 13 14 15 16 17 18
+   0.004000 1  181             Rx   d 2 01 02  Length = 228000 BitCount = 117 ID = 385
+   0.005000 2  18FF1234x       Tx   d 9 00 01 02 03 04 05 06 07 08 09 0A 0B  Length = 300000 BitCount = 150 ID = 419369524x
+   0.006000 TriggerEvent: TriggerBlock[Logging] Stop DirectLogging
+End TriggerBlock
+"""
+
+
+def canoe15():
+    path = os.path.join(OUT, "canoe15.asc")
+    with open(path, "w") as f:
+        f.write(CANOE15)
+    with can.ASCReader(path, relative_timestamp=True) as reader:
+        read = [message_json(m, True) for m in reader]
+    with open(path.replace(".asc", ".json"), "w") as f:
+        json.dump({"python_can": can.__version__, "read_from": "canoe15.asc",
+                   "note": "ASCReader(relative_timestamp=True): times as written; channel "
+                           "is python-can's plus 1",
+                   "frames": read}, f, indent=1)
+        f.write("\n")
+
+
 if __name__ == "__main__":
     import sys
     os.makedirs(OUT, exist_ok=True)
     if sys.argv[1:] == ["canoe"]:
         canoe()
         sys.exit(0)
+    if sys.argv[1:] == ["canoe15"]:
+        canoe15()
+        sys.exit(0)
     python_can()
     can_utils()
     handmade()
     canoe()
+    canoe15()

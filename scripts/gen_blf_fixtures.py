@@ -11,13 +11,24 @@ back.
 - python_can_many.blf: 600 frames in containers of 1 KiB, so objects
   continue from one container into the next (truth as short rows: time,
   channel, id, data).
+- error_ext.blf: CAN_ERROR_EXT objects written through BLFWriter's own
+  object writer (its containers and headers; python-can's error frames
+  carry flags 0): CANoe 10's form (flags 0xFFFE, bit 0 clear and bit 1
+  set: the error byte 0x81 is a Vector CAN-Core code, form error,
+  received; extended flags 0x2060 say the same), an SJA1000 error code
+  capture (flags 1, byte 0xA3: stuff error, received, segment 3), a
+  CAN-Core CRC error while sending (0xC4) and python-can's own (flags 0),
+  between two data frames. `python3 scripts/gen_blf_fixtures.py
+  error_ext` writes only this one.
 
 Run: python3 scripts/gen_blf_fixtures.py   (python-can 4.x)
 """
 import json
 import os
+import sys
 
 import can
+from can.io.blf import CAN_ERROR_EXT, CAN_ERROR_EXT_STRUCT
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "fixtures", "blf")
@@ -93,8 +104,43 @@ def write(name, messages, short=False, **options):
         f.write("\n")
 
 
+def error_ext():
+    """error_ext.blf (see the module's documentation)."""
+    name = "error_ext.blf"
+    path = os.path.join(OUT, name)
+    data_frame = can.Message(timestamp=T0, channel=0, arbitration_id=0x181, data=b"\x01\x02",
+                             is_extended_id=False)
+    # (channel as the file writes it, flags, error byte, extended flags).
+    objects = [(1, 0xFFFE, 0x81, 0x2060), (2, 0x1, 0xA3, 0x0), (1, 0xFFFE, 0xC4, 0x3000),
+               (1, 0x0, 0x0, 0x0)]
+    with can.BLFWriter(path) as writer:
+        writer.on_message_received(data_frame)
+        for i, (channel, flags, ecc, flags_ext) in enumerate(objects):
+            body = CAN_ERROR_EXT_STRUCT.pack(channel, 0, flags, ecc, 0, 0, 0, 0, flags_ext,
+                                             bytes(8))
+            writer._add_object(CAN_ERROR_EXT, body, T0 + 0.001 * (i + 1))  # noqa: SLF001
+        data_frame.timestamp = T0 + 0.01
+        writer.on_message_received(data_frame)
+    with can.BLFReader(path) as reader:
+        start = reader.start_timestamp
+        read = [message_json(m) for m in reader]
+    with open(path.replace(".blf", ".json"), "w") as f:
+        json.dump({"python_can": can.__version__, "read_from": name,
+                   "start_timestamp": f"{start:.3f}",
+                   "note": "channel is python-can's plus 1 (python-can counts from 0); "
+                           "timestamps are python-can's floats; python-can reads a "
+                           "CAN_ERROR_EXT as the object's identifier and data",
+                   "written": [{"channel": c, "flags": f, "ecc": e, "flags_ext": x}
+                               for c, f, e, x in objects],
+                   "frames": read}, f, indent=1)
+        f.write("\n")
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
+    if sys.argv[1:2] == ["error_ext"]:
+        error_ext()
+        sys.exit(0)
     write("python_can.blf", frames())
     write("python_can_stored.blf", frames(), compression_level=0)
     many = []
@@ -104,3 +150,4 @@ if __name__ == "__main__":
                                 data=bytes([(i + k) % 256 for k in range(i % 9)]),
                                 is_extended_id=False))
     write("python_can_many.blf", many, short=True, max_container_size=1024)
+    error_ext()

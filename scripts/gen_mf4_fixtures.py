@@ -25,6 +25,14 @@ key order), gzip-compressed.
 - asammdf_sd.mf4: canedge_vlsd.mf4 sorted and saved by asammdf
   (compression=2): DataBytes a VLSD channel whose data is an SD block in a
   DZ block.
+- finalized_empty_groups.mf4: a finalized file (`MDF     `, unfinalized
+  flags 0) whose empty groups have header-only DT blocks, as CSS
+  Electronics' tools finalize a CANedge recording: python-can's MF4Writer
+  (compression_level=0) with data frames only, an empty LIN_Frame group
+  appended by asammdf and saved as 4.11; then each empty data group (cycle
+  count 0) given a DT block of length 24, and the CAN_DataFrame DT moved
+  after them, so that a DT read to the end of the file would run over it.
+  `python3 scripts/gen_mf4_fixtures.py empty` writes only this one.
 - canedge_vlsd.mf4 and canedge_01_07.mf4 are not written here: they are two
   real CANedge log files (CSS Electronics' public api-examples repository,
   MIT licence: examples/data-processing/LOG/17BD1DB7/00000006/00000170.MF4
@@ -44,6 +52,7 @@ does not matter: the start time is set in UTC)
 import gzip
 import json
 import os
+import struct
 import sys
 from datetime import datetime, timezone
 
@@ -200,7 +209,72 @@ def write_signals():
     truth("asammdf_signals.mf4", short=True)
 
 
+def write_empty_groups():
+    """finalized_empty_groups.mf4 (see the module's documentation)."""
+    name = "finalized_empty_groups.mf4"
+    path = os.path.join(OUT, name)
+    plain = os.path.join(OUT, "empty_groups_plain.tmp.mf4")
+    data_frames = [m for m in frames() if not (m.is_error_frame or m.is_remote_frame)]
+    writer = MF4Writer(plain, compression_level=0)
+    writer._mdf.header.start_time = datetime.fromtimestamp(T0, timezone.utc)  # noqa: SLF001
+    writer._start_time = writer.last_timestamp = T0  # noqa: SLF001
+    for msg in data_frames:
+        writer.on_message_received(msg)
+    writer.stop()
+    source = MDF(plain)
+    empty = np.array([], dtype=np.uint8)
+    source.append([Signal(empty, np.array([], dtype=np.float64), name="LIN_Frame.ID")],
+                  acq_name="LIN_Frame")
+    source = source.convert("4.11")
+    source.save(path, overwrite=True, compression=0)
+    source.close()
+    os.remove(plain)
+
+    data = bytearray(open(path, "rb").read())
+    assert data[:8] == b"MDF     " and struct.unpack_from("<H", data, 60)[0] == 0
+
+    def block(at):
+        return bytes(data[at:at + 4]), *struct.unpack_from("<QQ", data, at + 8)
+
+    def align():
+        data.extend(bytes(-len(data) % 8))
+
+    dg = struct.unpack_from("<Q", data, 64 + 24)[0]
+    filled = None
+    empties = []
+    while dg:
+        _, _, links = block(dg)
+        next_dg, cg, link = struct.unpack_from("<QQQ", data, dg + 24)
+        _, _, cg_links = block(cg)
+        cycles = struct.unpack_from("<Q", data, cg + 24 + 8 * cg_links + 8)[0]
+        if cycles == 0:
+            assert link == 0, "an empty group with data"
+            empties.append(dg)
+        else:
+            filled = (dg, link)
+        dg = next_dg
+    assert filled and len(empties) == 3, (filled, empties)
+    for dg in empties:
+        align()
+        struct.pack_into("<Q", data, dg + 24 + 16, len(data))
+        data.extend(b"##DT" + bytes(4) + struct.pack("<QQ", 24, 0))
+    dg, link = filled
+    kind, length, _ = block(link)
+    assert kind == b"##DT"
+    align()
+    struct.pack_into("<Q", data, dg + 24 + 16, len(data))
+    data.extend(data[link:link + length])
+    # The DT left behind is no block any more: zeros.
+    data[link:link + length] = bytes(length)
+    with open(path, "wb") as f:
+        f.write(data)
+    truth(name)
+
+
 if __name__ == "__main__":
+    if sys.argv[1:2] == ["empty"]:
+        write_empty_groups()
+        sys.exit(0)
     if sys.argv[1:2] == ["bench"]:
         write_asammdf(sys.argv[2], 1_000_000)
         sys.exit(0)
@@ -220,3 +294,4 @@ if __name__ == "__main__":
     truth("asammdf_sd.mf4", short=True)
     truth("canedge_vlsd.mf4", short=True)
     truth("canedge_01_07.mf4", short=True)
+    write_empty_groups()

@@ -609,6 +609,13 @@ pub enum SyntaxError {
         /// What stood there.
         found: Found,
     },
+    /// Something after a Vector ASC classic frame's data that is neither
+    /// another byte the DLC allows nor CANoe's statistics (`Length = …
+    /// BitCount = … ID = …`; docs/formats.md#asc).
+    AscTrailing {
+        /// What stood there.
+        found: Found,
+    },
     /// A Vector ASC `CANFD` BRS or ESI column that is not `0` or `1`.
     AscFdColumn {
         /// What stood there.
@@ -793,6 +800,9 @@ impl core::fmt::Display for SyntaxError {
             }
             SyntaxError::AscDataLength { found } => {
                 write!(f, "expected a CAN FD data length (0 to 8, 12, 16, 20, 24, 32, 48, 64) that fits the DLC, found {found}")
+            }
+            SyntaxError::AscTrailing { found } => {
+                write!(f, "expected the end of the line or CANoe's statistics ('Length = …') after the frame's data, found {found}")
             }
             SyntaxError::AscFdColumn { found } => {
                 write!(f, "expected a BRS or ESI column 0 or 1, found {found}")

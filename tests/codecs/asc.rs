@@ -253,3 +253,57 @@ fn canoe_lines_as_python_can_reads_them() {
         ]
     );
 }
+
+/// CANoe 15's `TriggerEvent:` lines are trigger events, not frames and not
+/// malformed; a classic-syntax line with DLC 9 and 12 data bytes is a
+/// 12-byte CAN FD frame, with 8 a classic frame (docs/formats.md#asc).
+/// python-can agrees on every frame's time, channel, identifier and
+/// direction, and keeps only the first 8 bytes of the 12 (where it
+/// disagrees with the file, the file wins).
+#[test]
+fn canoe15_trigger_events_and_fd_frames_in_classic_syntax() {
+    let (text, truth) = fixture("canoe15");
+    let (frames, status) = read(&text);
+    assert_eq!(status, 0);
+    assert_eq!(frames.len(), truth.len());
+    for (i, (frame, want)) in frames.iter().zip(&truth).enumerate() {
+        let at = format!("frame {i}");
+        assert_eq!(
+            time(frame),
+            format!("0.{}", &want["timestamp"].as_str().unwrap()[2..])
+        );
+        let can = &frame.frame;
+        assert_eq!(
+            frame.iface,
+            Some(Iface::Channel(want["channel"].as_u64().unwrap() as u16)),
+            "{at}"
+        );
+        assert_eq!(u64::from(can.id().raw()), want["id"], "{at}");
+        assert_eq!(can.is_extended(), want["extended"], "{at}");
+        let direction = if want["rx"] == true {
+            Direction::Rx
+        } else {
+            Direction::Tx
+        };
+        assert_eq!(frame.direction, Some(direction), "{at}");
+        // python-can's bytes are ours, or the first 8 of our 12.
+        let theirs = want["data"].as_str().unwrap();
+        assert!(hex(can.data()).starts_with(theirs), "{at}");
+    }
+    let shapes: Vec<_> = frames
+        .iter()
+        .map(|f| (f.frame.id().raw(), f.frame.is_fd(), f.frame.data().len()))
+        .collect();
+    assert_eq!(
+        shapes,
+        [
+            (0x181, false, 8),
+            (0x2A1, true, 12),
+            (0x2A2, false, 8),
+            (0x181, false, 2),
+            (0x18FF_1234, true, 12),
+        ]
+    );
+    assert_eq!(hex(frames[1].frame.data()), "0102030405060708090a0b0c");
+    assert_eq!(frames[1].frame.fd_flags(), FdFlags::EMPTY);
+}

@@ -7,9 +7,10 @@
 //! One documented difference (`motionwire::logs::blf`'s decision): python-can
 //! reads a `CAN_ERROR_EXT` object as an error frame with the object's
 //! identifier and data bytes; the crate gives Linux's layout of the
-//! object's error code capture (classes bus_error and protocol).
+//! object's error byte, read as its flags say (classes bus_error and
+//! protocol).
 
-use motionwire::can::{Direction, FdFlags, Iface, LogEvent};
+use motionwire::can::{Direction, ErrorClasses, ErrorFrame, FdFlags, Iface, LogEvent};
 use motionwire::logs::blf::BlfReader;
 use motionwire::logs::{LogRecord, ReadLog};
 use serde_json::Value;
@@ -119,4 +120,50 @@ fn objects_across_many_containers() {
             .collect();
         assert_eq!(data, row[3].as_str().unwrap());
     }
+}
+
+/// `CAN_ERROR_EXT` objects read by their flags (Vector's definition;
+/// docs/formats.md#blf): CANoe 10's flags 0xFFFE (bit 1, CAN-Core) with
+/// error byte 0x81 are a form error, received; an SJA1000 register with
+/// flags bit 0; nothing known with neither. python-can reads each as an
+/// error frame on the same channel at the same time (with the object's
+/// identifier and data, which say nothing here).
+#[test]
+fn error_ext_by_its_flags() {
+    let (file, truth) = fixture("error_ext");
+    let frames = read(&file);
+    let want = truth["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), want.len());
+    for ((_, got), want) in frames.iter().zip(want) {
+        close(got, want["timestamp"].as_str().unwrap());
+        assert_eq!(
+            got.iface,
+            Some(Iface::Channel(want["channel"].as_u64().unwrap() as u16))
+        );
+        assert_eq!(got.frame.is_error(), want["error"]);
+    }
+    let errors: Vec<_> = frames[1..5]
+        .iter()
+        .map(|(_, got)| {
+            let error = ErrorFrame::from_frame(&got.frame).unwrap();
+            assert_eq!(
+                error.classes,
+                ErrorClasses::BUS_ERROR.union(ErrorClasses::PROTOCOL)
+            );
+            (error.protocol(), got.direction)
+        })
+        .collect();
+    assert_eq!(
+        errors,
+        [
+            // 0x81: form error, received (not "stuff error while sending").
+            (Some((0x02, 0x00)), Some(Direction::Rx)),
+            // SJA1000 0xA3: stuff error, received, segment 3.
+            (Some((0x04, 0x03)), Some(Direction::Rx)),
+            // CAN-Core 0xC4: CRC error while sending: the CRC sequence.
+            (Some((0x80, 0x08)), Some(Direction::Tx)),
+            // Flags 0 (python-can's): nothing known.
+            (Some((0x00, 0x00)), None),
+        ]
+    );
 }

@@ -253,3 +253,16 @@ fn canedge_01_07_virtual_channels_many_groups() {
         .windows(2)
         .all(|w| w[0].1.timestamp <= w[1].1.timestamp));
 }
+
+/// A finalized file whose empty groups have DT blocks of no data (cycle
+/// count 0, block length 24) before the frames' DT: each empty block holds
+/// nothing and its group no record; the frames are read as asammdf reads
+/// them, nothing skipped.
+#[test]
+fn finalized_file_with_empty_data_blocks() {
+    let (frames, others, skipped) = fixture("finalized_empty_groups");
+    assert_eq!((frames.len(), others, skipped), (37, 0, 0));
+    let mut log = logs::open(format!("{DIR}finalized_empty_groups.mf4")).unwrap();
+    while log.next_event().is_some() {}
+    assert!(log.other_kinds().is_empty(), "{:?}", log.other_kinds());
+}

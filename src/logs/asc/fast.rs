@@ -46,9 +46,8 @@ impl AscParser {
     /// parser unchanged.
     #[inline]
     pub(super) fn parse_fast(&mut self, line: &[u8]) -> Option<LogEvent<'static>> {
-        let (mut logged, end) = self.read_fast(line)?;
-        // What follows the frame's last word is white space, or nothing.
-        if line.get(end).is_some_and(|&b| !is_space(b)) {
+        let (mut logged, end, classic) = self.read_fast(line)?;
+        if !ends_line(line.get(end..).unwrap_or_default(), classic) {
             return None;
         }
         self.count_time(&mut logged);
@@ -65,8 +64,8 @@ impl AscParser {
         &mut self,
         text: &[u8],
     ) -> Option<(LogEvent<'static>, usize)> {
-        let (mut logged, end) = self.read_fast(text)?;
-        let next = line_after(text, end)?;
+        let (mut logged, end, classic) = self.read_fast(text)?;
+        let next = line_after(text, end, classic)?;
         self.count_time(&mut logged);
         Some((LogEvent::Frame(logged), next))
     }
@@ -74,9 +73,9 @@ impl AscParser {
     /// The frame of the line at the start of `text`, its time as written,
     /// and where its last word read ends: a word ends at any byte up to
     /// `b' '`, so that the line's end (`\r`, `\n`) ends it, and the caller
-    /// tells what that byte may be.
+    /// tells what that byte may be; and whether the line is a classic one.
     #[inline(always)]
-    fn read_fast(&self, text: &[u8]) -> Option<(LogFrame<'static>, usize)> {
+    fn read_fast(&self, text: &[u8]) -> Option<(LogFrame<'static>, usize, bool)> {
         if !self.hex {
             return None;
         }
@@ -98,6 +97,7 @@ impl AscParser {
                 second => Some(channel(second)?),
             },
         };
+        let is_classic = classic_channel.is_some();
         let (frame, channel, direction) = match classic_channel {
             Some(channel) => {
                 let (frame, direction) = classic(&mut words)?;
@@ -111,7 +111,7 @@ impl AscParser {
             iface: Some(Iface::Channel(channel)),
             direction: Some(direction),
         };
-        Some((logged, words.pos))
+        Some((logged, words.pos, is_classic))
     }
 
     /// Count the time of a frame read (add it up, with relative times).
@@ -130,7 +130,7 @@ impl AscParser {
 /// otherwise.
 #[cfg(any(feature = "std", test))]
 #[inline(always)]
-fn line_after(text: &[u8], end: usize) -> Option<usize> {
+fn line_after(text: &[u8], end: usize, classic: bool) -> Option<usize> {
     // The line ends right after its last word: the usual case.
     match text.get(end) {
         None => return Some(end),
@@ -142,13 +142,19 @@ fn line_after(text: &[u8], end: usize) -> Option<usize> {
         Some(i) => (rest.get(..i)?, end + i + 1),
         None => (rest, text.len()),
     };
-    // Trailing white space (a `\r` too), or words the frame does not
-    // read after a space.
-    if trim_end(line).is_empty() || line.first().is_some_and(|&b| is_space(b)) {
-        Some(next)
-    } else {
-        None
-    }
+    ends_line(line, classic).then_some(next)
+}
+
+/// Whether `rest`, what follows the last word a frame's line read, may
+/// end it: white space (a `\r` too), or words after a space that the
+/// frame does not read — after a classic frame's data only CANoe's
+/// statistics (anything else is the general parser's to judge and
+/// report), after a `CANFD` line's flags CANoe's further columns.
+fn ends_line(rest: &[u8], classic: bool) -> bool {
+    let rest = trim_end(rest);
+    rest.is_empty()
+        || (rest.first().is_some_and(|&b| is_space(b))
+            && (!classic || super::parser::is_classic_trailer(rest)))
 }
 
 /// Whether `b` ends a word for the fast path: a space or a tab, or a

@@ -30,7 +30,11 @@
 //! - `base dec` applies to identifiers and data bytes, of classic and
 //!   `CANFD` lines alike (as python-can reads them; can-utils' `asc2log`
 //!   reads `CANFD` lines in hex whatever the base). The DLC is one hex
-//!   digit in both bases; 9 to F on a classic frame carry 8 bytes.
+//!   digit in both bases. On a classic line a code above 8 followed by
+//!   exactly its CAN FD length of bytes (9: 12, … F: 64) is a CAN FD frame
+//!   without BRS and ESI, followed by 8 a classic frame of 8 bytes; any
+//!   other count of bytes, and anything after them but CANoe's statistics,
+//!   is an error (python-can keeps 8 bytes).
 //! - A `CANFD` line is a CAN FD frame only when its flags field has
 //!   EDL/FDF (0x1000) set, with BRS (0x2000) and ESI (0x4000) from the same
 //!   field; without it the line carries a classic frame, a remote request
@@ -47,7 +51,8 @@
 //!   it (python-can gives identifier 0 and no data).
 //! - Not frames, and not reported: blank lines, `//` comments, the header
 //!   lines above, `End TriggerBlock`, `Start of measurement`, `Log trigger
-//!   event`, bus `Statistic:`, `J1939TP` and system-variable (`SV:`) lines
+//!   event` and CANoe 15's `TriggerEvent: TriggerBlock[Logging] Start
+//!   DirectLogging` (and `Stop`), bus `Statistic:`, `J1939TP` and system-variable (`SV:`) lines
 //!   and `TxRq` (transmit request) lines, which announce a frame the log
 //!   shows again when it is on the bus. Chip status lines (`CAN 1
 //!   Status:…`) and `OverloadFrame` lines are [`LogEvent::Status`]. Every

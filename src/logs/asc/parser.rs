@@ -178,8 +178,11 @@ impl AscParser {
         let timestamp = self.time(written);
         let rest = line.get(at..).unwrap_or_default();
         // Events that hold no frame.
+        // `TriggerEvent: TriggerBlock[Logging] Start DirectLogging` is
+        // CANoe 15's form of `Log trigger event`.
         if starts_with_ignore_case(rest, b"start of measurement")
             || starts_with_ignore_case(rest, b"log trigger event")
+            || starts_with_ignore_case(rest, b"triggerevent:")
         {
             return Ok(None);
         }
@@ -264,17 +267,7 @@ impl AscParser {
             let dlc = dlc.unwrap_or(0).min(CLASSIC_MAX_LEN as u8);
             CanFrame::new_remote(id, dlc)
         } else {
-            let len = usize::from(dlc.unwrap_or(0)).min(CLASSIC_MAX_LEN);
-            let mut data = [0u8; CLASSIC_MAX_LEN];
-            for slot in data.iter_mut().take(len) {
-                let (at, byte) = tokens.expect(|found| SyntaxError::AscDataByte { found })?;
-                *slot = self.parse_byte(byte).ok_or_else(|| {
-                    tokens.error_at(at, |found| SyntaxError::AscDataByte { found })
-                })?;
-            }
-            // What follows (`Length = …`, `BitCount = …`, `ID = …`) is
-            // bus timing and the symbolic name: not part of the frame.
-            CanFrame::new(id, data.get(..len).unwrap_or_default())
+            self.classic_data(line, id, dlc.unwrap_or(0), &mut tokens)?
         };
         let frame =
             frame.map_err(|_| tokens.error_at(at, |found| SyntaxError::AscDlc { found }))?;
@@ -284,6 +277,53 @@ impl AscParser {
                 .with_iface(iface)
                 .with_direction(direction),
         )))
+    }
+
+    /// The data frame of a classic line from its DLC code `dlc` on
+    /// (docs/formats.md#asc): as many bytes as the code says (a code above
+    /// 8 followed by exactly its CAN FD length of bytes is a CAN FD frame,
+    /// followed by 8 a classic frame of 8), then nothing or CANoe's
+    /// statistics. A byte missing, or anything else after the data, is an
+    /// error: nothing is dropped silently.
+    fn classic_data(
+        &self,
+        line: &[u8],
+        id: CanId,
+        dlc: u8,
+        tokens: &mut Tokens<'_>,
+    ) -> core::result::Result<core::result::Result<CanFrame, crate::RangeError>, FormatError> {
+        let fd_len = usize::from(FD_LENGTHS[usize::from(dlc & 0xF)]);
+        let mut data = [0u8; FD_MAX_LEN];
+        let mut len = 0;
+        // The bytes present, up to the code's length.
+        while len < fd_len {
+            let mut ahead = tokens.clone();
+            let byte = match ahead.next_token() {
+                Some((_, word)) => self.parse_byte(word),
+                None => None,
+            };
+            let Some(byte) = byte else { break };
+            data[len] = byte;
+            len += 1;
+            *tokens = ahead;
+        }
+        let fd = len == fd_len && fd_len > CLASSIC_MAX_LEN;
+        if len < fd_len && !(fd_len > CLASSIC_MAX_LEN && len == CLASSIC_MAX_LEN) {
+            // A byte missing where one was due.
+            let (at, _) = tokens.clone().next_token().unwrap_or((line.len(), b""));
+            return Err(tokens.error_at(at, |found| SyntaxError::AscDataByte { found }));
+        }
+        if let Some((at, _)) = tokens.clone().next_token() {
+            if !is_classic_trailer(line.get(at..).unwrap_or_default()) {
+                return Err(tokens.error_at(at, |found| SyntaxError::AscTrailing { found }));
+            }
+        }
+        let bytes = data.get(..len).unwrap_or_default();
+        Ok(if fd {
+            CanFrame::new_fd(id, FdFlags::EMPTY, bytes)
+        } else {
+            CanFrame::new(id, bytes)
+        })
     }
 
     /// `CANFD ch dir id [name] brs esi dlc len data… duration bits flags …`.
@@ -506,4 +546,24 @@ fn bad_time_at(field: &[u8]) -> usize {
         }
     }
     field.len()
+}
+
+/// Whether `rest`, what follows a classic frame's data, is CANoe's
+/// statistics: `Length = N BitCount = N ID = N[x]`, any of the three, in
+/// any order (docs/formats.md#asc).
+pub(super) fn is_classic_trailer(rest: &[u8]) -> bool {
+    let mut words = rest
+        .split(|&b| b == b' ' || b == b'\t')
+        .filter(|word| !word.is_empty());
+    let mut any = false;
+    while let Some(name) = words.next() {
+        if !matches!(name, b"Length" | b"BitCount" | b"ID")
+            || words.next() != Some(b"=".as_slice())
+            || words.next().is_none()
+        {
+            return false;
+        }
+        any = true;
+    }
+    any
 }

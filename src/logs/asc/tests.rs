@@ -223,3 +223,65 @@ fn the_writer_writes_what_python_can_writes() {
     write_line(&logged, &mut text).unwrap();
     assert_eq!(text, "        0.001000 1  81              Rx   d 2 30 81");
 }
+
+/// docs/formats.md#asc: a classic line's DLC code and the bytes present
+/// decide; what cannot be read is reported, nothing dropped silently.
+#[test]
+fn classic_data_as_its_dlc_code_and_bytes_say() {
+    use Found::{Byte, EndOfLine};
+    let read = |line: &str| {
+        let mut parser = AscParser::new();
+        parse(&mut parser, line)
+    };
+    let frame = |line: &str| match read(line) {
+        Ok(Some(LogEvent::Frame(frame))) => frame.frame,
+        other => panic!("{line}: {other:?}"),
+    };
+    let twelve = "1.0 1 2A1 Rx d 9 01 02 03 04 05 06 07 08 09 0A 0B 0C";
+    assert!(frame(twelve).is_fd());
+    assert_eq!(frame(twelve).data().len(), 12);
+    assert_eq!(frame("1.0 1 2A1 Rx d F 00 01 02 03 04 05 06 07 08 09 0A 0B 0C 0D 0E 0F 10 11 12 13 14 15 16 17 18 19 1A 1B 1C 1D 1E 1F 20 21 22 23 24 25 26 27 28 29 2A 2B 2C 2D 2E 2F 30 31 32 33 34 35 36 37 38 39 3A 3B 3C 3D 3E 3F").data().len(), 64);
+    // A code above 8 with 8 bytes: a classic frame of 8.
+    let eight = frame("1.0 1 2A1 Rx d 9 01 02 03 04 05 06 07 08");
+    assert!(!eight.is_fd());
+    assert_eq!(eight.data().len(), 8);
+    // CANoe's statistics after the data are read past.
+    assert_eq!(
+        frame("1.0 1 181 Rx d 2 01 02  Length = 228000 BitCount = 117 ID = 385").data(),
+        [1, 2]
+    );
+    let error = |line: &str| match read(line) {
+        Err(FormatError::Syntax { column, reason, .. }) => (column, reason),
+        other => panic!("{line}: {other:?}"),
+    };
+    // 10 bytes after code 9: neither 8 nor 12.
+    assert_eq!(
+        error("1.0 1 2A1 Rx d 9 01 02 03 04 05 06 07 08 09 0A"),
+        (47, K::AscDataByte { found: EndOfLine })
+    );
+    // 13 bytes after code 9: one too many.
+    assert_eq!(
+        error("1.0 1 2A1 Rx d 9 01 02 03 04 05 06 07 08 09 0A 0B 0C 0D"),
+        (54, K::AscTrailing { found: Byte(b'0') })
+    );
+    // Stray tokens after a classic frame's data.
+    assert_eq!(
+        error("1.0 1 181 Rx d 2 01 02 03"),
+        (24, K::AscTrailing { found: Byte(b'0') })
+    );
+    assert_eq!(
+        error("1.0 1 181 Rx d 2 01 02 foo"),
+        (24, K::AscTrailing { found: Byte(b'f') })
+    );
+    assert_eq!(
+        error("1.0 1 181 Rx d 2 01 02 Length ="),
+        (24, K::AscTrailing { found: Byte(b'L') })
+    );
+    // CANoe 15's trigger events are no frames and no errors.
+    for line in [
+        "   0.000000 TriggerEvent: TriggerBlock[Logging] Start DirectLogging",
+        "   9.500000 TriggerEvent: TriggerBlock[Logging] Stop DirectLogging",
+    ] {
+        assert!(matches!(read(line), Ok(None)), "{line}");
+    }
+}

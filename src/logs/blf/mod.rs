@@ -35,11 +35,16 @@
 //!   with zeros; a remote request has no data whatever the object stores
 //!   (docs/formats.md#blf). A classic frame's DLC above 8 carries 8 bytes.
 //! - `CAN_ERROR_EXT` is an error frame of classes `bus_error | protocol`
-//!   whose data is Linux's layout (docs/formats.md#error-frames) of what the
-//!   object's error code capture (ECC, SJA1000's register) says: byte 2 the
-//!   error type (bit 0x01, form 0x02, stuff 0x04, other 0) with 0x80 when it
-//!   happened while sending, byte 3 the location (the ECC's segment code).
-//!   python-can gives the object's identifier and data bytes instead.
+//!   whose data is Linux's layout (docs/formats.md#error-frames) of the
+//!   object's error byte, read as its flags say (Vector's definition):
+//!   with bit 0 set it is SJA1000's error code capture register, with bit
+//!   1 set (and 0 clear) Vector's CAN-Core error code (code and direction),
+//!   with neither it says nothing. Byte 2 is the error type (bit 0x01,
+//!   form 0x02, stuff 0x04, other 0) with 0x80 when it happened while
+//!   sending, byte 3 the location (SJA1000's segment; CRC sequence 0x08
+//!   or ACK delimiter 0x1B for CAN-Core's CRC and ACK errors); the
+//!   direction is the frame's where the byte says it. python-can gives
+//!   the object's identifier and data bytes instead.
 //! - Objects inside a container follow each other after their size, with
 //!   up to 7 bytes of padding skipped before the next `LOBJ` (writers pad
 //!   differently); top-level objects are followed by `size % 4` padding
@@ -767,19 +772,13 @@ fn decode_object(
             // CAN_ERROR_EXT: channel, length, flags, ECC, position, DLC, …
             need(16)?;
             let channel = u16_le(body, 0);
-            let ecc = body[8];
-            let error_type = match ecc >> 6 {
-                0 => 0x01, // bit error
-                1 => 0x02, // form error
-                2 => 0x04, // stuff error
-                _ => 0x00, // other
-            };
-            let sending = ecc & 0x20 == 0;
-            let mut data = [0u8; CLASSIC_MAX_LEN];
-            data[2] = error_type | if sending { 0x80 } else { 0 };
-            data[3] = ecc & 0x1F;
+            let (data, sent) = error_ext(u32_le(body, 4), body[8]);
             let classes = ErrorClasses::BUS_ERROR.union(ErrorClasses::PROTOCOL);
-            (channel, CanFrame::new_error(classes.bits(), &data), None)
+            (
+                channel,
+                CanFrame::new_error(classes.bits(), &data),
+                sent.and_then(tx),
+            )
         }
     };
     let frame = frame.map_err(|_| BinaryError::BadLength {
@@ -790,6 +789,55 @@ fn decode_object(
         .with_iface(Iface::Channel(channel));
     logged.direction = direction;
     Ok(Some(logged))
+}
+
+/// `CAN_ERROR_EXT` flags bit 0: the error byte is an SJA1000 error code
+/// capture register.
+const ERROR_EXT_SJA1000: u32 = 0x1;
+/// `CAN_ERROR_EXT` flags bit 1: the error byte is a Vector CAN-Core error
+/// code.
+const ERROR_EXT_CAN_CORE: u32 = 0x2;
+
+/// Linux's error frame data (docs/formats.md#error-frames) of a
+/// `CAN_ERROR_EXT` object's `flags` and error byte `ecc`, read as the
+/// flags say (docs/formats.md#blf), and whether the error happened while
+/// sending, where the byte says.
+///
+/// - SJA1000 (flags bit 0): bits 6–7 the type (bit, form, stuff, other),
+///   bit 5 the direction (1: received), bits 0–4 the segment, Linux's
+///   location code.
+/// - Vector CAN-Core (flags bit 1, bit 0 clear): bits 0–5 the code (0 bit,
+///   1 form, 2 stuff, 3 other, 4 CRC, 5 ACK delimiter error), bits 6–7
+///   the direction (0 received, not acknowledged; 1 sent, not
+///   acknowledged; 2 received; 3 sent). CRC and ACK delimiter errors are
+///   Linux's locations 0x08 and 0x1B with an unspecified type.
+/// - Neither: the byte means nothing; type and location unspecified.
+fn error_ext(flags: u32, ecc: u8) -> ([u8; CLASSIC_MAX_LEN], Option<bool>) {
+    let (error_type, location, sent) = if flags & ERROR_EXT_SJA1000 != 0 {
+        let error_type = match ecc >> 6 {
+            0 => 0x01, // bit error
+            1 => 0x02, // form error
+            2 => 0x04, // stuff error
+            _ => 0x00, // other
+        };
+        (error_type, ecc & 0x1F, Some(ecc & 0x20 == 0))
+    } else if flags & ERROR_EXT_CAN_CORE != 0 {
+        let (error_type, location) = match ecc & 0x3F {
+            0 => (0x01, 0x00), // bit error
+            1 => (0x02, 0x00), // form error
+            2 => (0x04, 0x00), // stuff error
+            4 => (0x00, 0x08), // CRC error: the CRC sequence
+            5 => (0x00, 0x1B), // ACK delimiter error
+            _ => (0x00, 0x00), // other
+        };
+        (error_type, location, Some(ecc & 0x40 != 0))
+    } else {
+        (0x00, 0x00, None)
+    };
+    let mut data = [0u8; CLASSIC_MAX_LEN];
+    data[2] = error_type | if sent == Some(true) { 0x80 } else { 0 };
+    data[3] = location;
+    (data, sent)
 }
 
 const fn tx(sent: bool) -> Option<Direction> {

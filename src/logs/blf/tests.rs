@@ -271,6 +271,7 @@ fn damaged_files() {
 fn error_ext_in_linux_layout() {
     let mut body = vec![0u8; 32];
     body[0] = 2; // channel
+    body[4] = 0x1; // flags: the error byte is SJA1000's ECC
     body[8] = 0b1010_0011; // ECC: stuff error, received, segment 3
     let mut file = file_header(2023, 1, 1, 0, 0, 0, 0);
     file.extend(container(

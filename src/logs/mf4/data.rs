@@ -55,9 +55,11 @@ pub(super) struct DataStream {
     offset: u64,
     /// The part of a DT or SD block not yet read: from, to.
     chunk: Option<(u64, u64)>,
-    /// A DT that is the data link itself may run to the end of the file
-    /// (docs/formats.md#mf4, unfinalized files).
-    direct: bool,
+    /// A DT whose length is its header and that is the data link itself
+    /// runs to the end of the file: in an unfinalized file its length was
+    /// never written (docs/formats.md#mf4). In a finalized file a block's
+    /// length is the data it holds.
+    open_ended: bool,
     /// What this stream counts in `budget`.
     held: usize,
     budget: Budget,
@@ -91,10 +93,13 @@ struct Dz {
 }
 
 impl DataStream {
-    /// A stream over what `link` leads to (0: an empty stream).
+    /// A stream over what `link` leads to (0: an empty stream); `open_ended`
+    /// in an unfinalized file, where a DT block of no length runs to the
+    /// end of the file.
     pub(super) fn new<R: Read + Seek>(
         source: &mut Source<R>,
         link: u64,
+        open_ended: bool,
         budget: Budget,
     ) -> Result<Self, LogError> {
         let blocks = if link == 0 {
@@ -120,14 +125,14 @@ impl DataStream {
                 _ => Blocks::One(Some(link)),
             }
         };
-        let direct = matches!(blocks, Blocks::One(Some(_)));
+        let open_ended = open_ended && matches!(blocks, Blocks::One(Some(_)));
         Ok(DataStream {
             blocks,
             buf: Vec::new(),
             pos: 0,
             offset: 0,
             chunk: None,
-            direct,
+            open_ended,
             held: 0,
             budget,
         })
@@ -269,7 +274,7 @@ impl DataStream {
             }
             let from = link + HEADER_LEN + 8 * links;
             let mut to = link.saturating_add(len);
-            if len == HEADER_LEN && self.direct {
+            if len == HEADER_LEN && self.open_ended {
                 // Unfinalized: the length was never written
                 // (docs/formats.md#mf4).
                 to = source.len;
@@ -408,7 +413,7 @@ impl DataStream {
             let (id, len, links) = source.header(link, "##DT|##SD|##DV|##DZ")?;
             total = total.saturating_add(if &id == b"##DZ" {
                 dz_header(source, link, len, links)?.org_len
-            } else if len == HEADER_LEN && self.direct {
+            } else if len == HEADER_LEN && self.open_ended {
                 source.len.saturating_sub(link + HEADER_LEN)
             } else {
                 link.saturating_add(len).min(source.len)

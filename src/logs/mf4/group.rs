@@ -193,6 +193,11 @@ pub(super) struct GroupReader {
     base: u64,
     /// Records read.
     records: u64,
+    /// The records the data holds in a finalized file (its channel
+    /// groups' cycle counts); `None`: until the data end.
+    bound: Option<u64>,
+    /// Whether a data block of no length runs to the end of the file.
+    open_ended: bool,
     pool: VecDeque<Pooled>,
     waiting: VecDeque<Waiting>,
     ready: VecDeque<Output>,
@@ -267,7 +272,7 @@ impl GroupReader {
         let several = cans.len() > 1;
         Ok(GroupReader {
             dg,
-            stream: DataStream::new(source, group.data, budget.clone())?,
+            stream: DataStream::new(source, group.data, group.open_ended, budget.clone())?,
             record_id_len: usize::from(group.record_id_len),
             slots,
             cans,
@@ -276,6 +281,8 @@ impl GroupReader {
             start_ns,
             base,
             records: 0,
+            bound: group.records,
+            open_ended: group.open_ended,
             pool: VecDeque::new(),
             waiting: VecDeque::new(),
             ready: VecDeque::new(),
@@ -327,9 +334,12 @@ impl GroupReader {
             let len = self.slots.first().and_then(|s| s.len).unwrap_or(0);
             let stream = std::mem::replace(
                 &mut self.stream,
-                DataStream::new(source, 0, self.budget.clone())?,
+                DataStream::new(source, 0, false, self.budget.clone())?,
             );
-            let records = stream.len(source)?.checked_div(len).unwrap_or(0);
+            let mut records = stream.len(source)?.checked_div(len).unwrap_or(0);
+            if let Some(bound) = self.bound {
+                records = records.min(bound);
+            }
             for other in &mut self.others {
                 other.1 = records;
             }
@@ -364,6 +374,11 @@ impl GroupReader {
         source: &mut Source<R>,
     ) -> Result<Option<(Slot, usize)>, LogError> {
         let id_len = self.record_id_len;
+        if self.bound.is_some_and(|bound| self.records >= bound) {
+            // Finalized: the cycle counts say how many records there are;
+            // the bytes after them are no records (docs/formats.md#mf4).
+            return Ok(None);
+        }
         if !self.stream.fill(source, id_len.max(1))? {
             return self.cut(id_len.max(1));
         }
@@ -593,7 +608,12 @@ impl GroupReader {
             .as_mut()
             .map_or(true, |stream| !stream.rewind(offset));
         if restart {
-            signal.stream = Some(DataStream::new(source, signal.link, self.budget.clone())?);
+            signal.stream = Some(DataStream::new(
+                source,
+                signal.link,
+                self.open_ended,
+                self.budget.clone(),
+            )?);
         }
         let Some(stream) = signal.stream.as_mut() else {
             return Ok(());

@@ -103,6 +103,9 @@ pub(super) struct Group {
     /// The bytes of a record after the record id (data and invalidation
     /// bytes); `None` for a VLSD group.
     pub(super) record_len: Option<u64>,
+    /// The records the group holds, as its cycle count says (read only in
+    /// a finalized file).
+    pub(super) cycles: u64,
     pub(super) kind: Kind,
 }
 
@@ -116,6 +119,13 @@ pub(super) struct DataGroup {
     /// The bytes of the record id before each record: 0, 1, 2, 4 or 8.
     pub(super) record_id_len: u8,
     pub(super) groups: Vec<Group>,
+    /// In a finalized file, the records of its data: the sum of its
+    /// channel groups' cycle counts; `None` in an unfinalized file, whose
+    /// records run until the data end.
+    pub(super) records: Option<u64>,
+    /// Whether a data block whose length is its header runs to the end of
+    /// the file (an unfinalized file: the length was never written).
+    pub(super) open_ended: bool,
 }
 
 /// What the metadata of a file says.
@@ -194,6 +204,10 @@ pub(super) fn read<R: Read + Seek>(source: &mut Source<R>) -> Result<Layout, Log
             },
         ));
     }
+    // Finalized: `MDF     ` and, from version 4.10, no unfinalized flag
+    // (`id_unfin_flags` at 60), as asammdf decides it.
+    let finalized =
+        magic == b"MDF     " && (version < 410 || u16::from_le_bytes(padded(&id, 60)) == 0);
     let mut reader = Reader { source, blocks: 0 };
     let hd = reader.block(64, "##HD", 32)?;
     let start_ns = hd.u64(0);
@@ -203,7 +217,7 @@ pub(super) fn read<R: Read + Seek>(source: &mut Source<R>) -> Result<Layout, Log
     while next != 0 {
         chain.visit(next, reader.source.len)?;
         let dg = reader.block(next, "##DG", 8)?;
-        data_groups.push(data_group(&mut reader, &dg)?);
+        data_groups.push(data_group(&mut reader, &dg, finalized)?);
         next = dg.link(0);
     }
     Ok(Layout {
@@ -216,6 +230,7 @@ pub(super) fn read<R: Read + Seek>(source: &mut Source<R>) -> Result<Layout, Log
 fn data_group<R: Read + Seek>(
     reader: &mut Reader<'_, R>,
     dg: &Block,
+    finalized: bool,
 ) -> Result<DataGroup, LogError> {
     let record_id_len = dg.u8(0);
     if !matches!(record_id_len, 0 | 1 | 2 | 4 | 8) {
@@ -235,11 +250,22 @@ fn data_group<R: Read + Seek>(
         groups.push(channel_group(reader, &cg)?);
         next = cg.link(0);
     }
+    // A sorted group holds one channel group's records (the reader reads
+    // no other).
+    let counted = if record_id_len == 0 { 1 } else { groups.len() };
+    let records = finalized.then(|| {
+        groups
+            .iter()
+            .take(counted)
+            .fold(0u64, |sum, group| sum.saturating_add(group.cycles))
+    });
     Ok(DataGroup {
         at: dg.at,
         data: dg.link(2),
         record_id_len,
         groups,
+        records,
+        open_ended: !finalized,
     })
 }
 
@@ -254,12 +280,14 @@ fn channel_group<R: Read + Seek>(
     cg: &Block,
 ) -> Result<Group, LogError> {
     let record_id = cg.u64(0);
+    let cycles = cg.u64(8);
     let flags = cg.u16(16);
     if flags & CG_VLSD != 0 {
         return Ok(Group {
             at: cg.at,
             record_id,
             record_len: None,
+            cycles,
             kind: Kind::Vlsd,
         });
     }
@@ -315,6 +343,7 @@ fn channel_group<R: Read + Seek>(
             at: cg.at,
             record_id,
             record_len: Some(record_len),
+            cycles,
             kind: Kind::Other(name),
         });
     };
@@ -358,6 +387,7 @@ fn channel_group<R: Read + Seek>(
         at: cg.at,
         record_id,
         record_len: Some(record_len),
+        cycles,
         kind: Kind::Can(Box::new(group)),
     })
 }

@@ -49,9 +49,15 @@
 //!   `ErrorType`: 1 bit, 2 form, 3 stuff error in byte 2 (0x01, 0x02, 0x04), 4
 //!   CRC and 5 ACK in byte 3 (0x08, 0x19), byte 2 | 0x80 when `Dir` is Tx. Its
 //!   `ID` and `DataBytes` are not used (python-can gives its own frame's).
-//! - Unfinalized files (every CANedge file): cycle counts are ignored,
-//!   records are read until the data end, a DT block whose length is its
-//!   header runs to the end of the file.
+//! - A finalized file (`MDF     `, and from version 4.10 no unfinalized
+//!   flag in the identification block, as asammdf decides it) is read as
+//!   its blocks say: a data block's length is the data it holds (a DT of
+//!   length 24 holds none), and a data group's records are as many as its
+//!   channel groups' cycle counts add up to; bytes after them are none.
+//! - Unfinalized files (`UnFinMF `, every CANedge file as it records, or
+//!   unfinalized flags set): cycle counts are ignored, records are read
+//!   until the data end, a DT block whose length is its header runs to the
+//!   end of the file.
 //! - Frames come out stable-sorted by time (data group, channel group,
 //!   record order break ties), as python-can's `MF4Reader` merges them:
 //!   the data groups are merged by time, and the channel groups of one

@@ -54,6 +54,12 @@ impl Builder {
         at
     }
 
+    /// Set the cycle count of the CG block at `cg` (its records).
+    pub(crate) fn cycles(&mut self, cg: u64, records: u64) {
+        let at = cg as usize + 24 + 8 * 6 + 8;
+        self.bytes[at..at + 8].copy_from_slice(&records.to_le_bytes());
+    }
+
     /// Set link `i` of the block at `at`.
     pub(crate) fn link(&mut self, at: u64, i: usize, to: u64) {
         let at = at as usize + 24 + 8 * i;
@@ -200,6 +206,14 @@ pub(crate) fn file(id_len: u8, groups: &[(&str, u64)], data: &[u8], storage: Sto
         .collect();
     for pair in cgs.windows(2) {
         file.link(pair[0], 0, pair[1]);
+    }
+    // Each group's cycle count is at least its records (every record, a
+    // cut one too): the data decide where the records end.
+    let records = data
+        .len()
+        .div_ceil(usize::from(id_len) + RECORD_LEN as usize) as u64;
+    for &cg in &cgs {
+        file.cycles(cg, records);
     }
     let mut dg = vec![id_len];
     dg.resize(8, 0);
@@ -593,10 +607,13 @@ fn loops_end_with_one_error() {
         let error = Mf4Reader::new(Cursor::new(bytes)).unwrap_err();
         assert_eq!(reason(&error), BinaryError::LinkLoop, "{id:?}");
     }
-    // A data list whose next link is itself: the reading ends.
+    // A data list whose next link is itself: the reading ends (the cycle
+    // count claims a third record, so the reader looks for it).
     let mut bytes = file(0, &[("CAN_DataFrame", 0)], &two_frames(), Storage::List);
     let at = find(&bytes, b"DL");
     bytes[at + 24..at + 32].copy_from_slice(&(at as u64).to_le_bytes());
+    let cg = find(&bytes, b"CG") + 80;
+    bytes[cg..cg + 8].copy_from_slice(&3u64.to_le_bytes());
     let events = read_all(&bytes).unwrap();
     let last = events.last().unwrap().as_ref().unwrap_err();
     assert_eq!(reason(last), BinaryError::LinkLoop);
@@ -702,6 +719,7 @@ fn vlsd_file(signal: impl FnOnce(&mut Builder) -> u64, frames: &[(u64, u8)]) -> 
     let hd = file.block(b"HD", &[0, 0, 0, 0, 0, 0], &hd);
     let sd = signal(&mut file);
     let cg = can_group_with(&mut file, "CAN_DataFrame", 0, sd);
+    file.cycles(cg, frames.len() as u64);
     let mut data = Vec::new();
     for (i, (offset, length)) in frames.iter().enumerate() {
         let mut record = record(i as f64, 0x100, &[0; 8], false);
@@ -904,4 +922,34 @@ proptest! {
         }
         drain(bytes)?;
     }
+}
+
+/// docs/formats.md#mf4: in a finalized file a group's cycle count bounds
+/// its records (the bytes after them are none, as asammdf reads them) and
+/// a DT block's length is its data; in an unfinalized file the data decide.
+#[test]
+fn cycle_counts_and_block_lengths_of_a_finalized_file() {
+    let mut bytes = file(0, &[("CAN_DataFrame", 0)], &two_frames(), Storage::Dt);
+    let cg = find(&bytes, b"CG") + 80;
+    bytes[cg..cg + 8].copy_from_slice(&1u64.to_le_bytes());
+    let frames = read_all(&bytes).unwrap();
+    let [Ok((1, frame))] = &frames[..] else {
+        panic!("{frames:?}")
+    };
+    assert_eq!(frame.frame.id().raw(), 0x081);
+    // The same file unfinalized (flag: cycle counters not updated): both.
+    bytes[60] = 1;
+    assert_eq!(read_all(&bytes).unwrap().len(), 2);
+
+    // An empty group: cycle count 0, a DT of its header only, before the
+    // records of the file's last bytes.
+    let mut bytes = file(0, &[("CAN_DataFrame", 0)], &[], Storage::Dt);
+    let dt = find(&bytes, b"DT");
+    assert_eq!(bytes[dt + 8], 24);
+    bytes.extend(two_frames());
+    let events = read_all(&bytes).unwrap();
+    assert!(events.is_empty(), "{events:?}");
+    // Unfinalized, the DT of no length runs to the end of the file.
+    bytes[..8].copy_from_slice(b"UnFinMF ");
+    assert_eq!(read_all(&bytes).unwrap().len(), 2);
 }
