@@ -23,10 +23,9 @@ use crate::ethercat::{
 use crate::logs::Position;
 use crate::profiles::Profile;
 
-use super::cia402::{Cia402Timeline, TimelineBuilder};
+use super::cia402::{Cia402Fault, Cia402Timeline, Cia402Transition, TimelineBuilder};
 use super::emcy::EmcySeen;
-use super::event::{EthercatFact, SummaryEvent, SummaryEventKind};
-use super::servo::ServoTimeline;
+use super::servo::{ServoEvent, ServoTimeline};
 use super::values::{Iface, Ts};
 
 /// The AL state changes a slave record keeps; more are counted.
@@ -446,20 +445,132 @@ pub(crate) struct EthercatSummarizer {
     ports: Vec<Port>,
 }
 
+/// A fact an EtherCAT capture adds to its slave and stream records
+/// (docs/ethercat.md#summary), handed over as a [`SummaryEvent`](super::SummaryEvent) whose
+/// `bus` is the interface and whose `line` is the packet the record names.
+///
+/// A slave is named by its place among the slave records of its interface,
+/// in the order [`EthercatSummary::slaves`](super::EthercatSummary::slaves)
+/// keeps them; a stream by its command and address, as its
+/// [`StreamSummary`](super::StreamSummary) has them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EthercatFact {
+    /// A change of AL state requested or reported: an entry of
+    /// `al_timeline`, or one of those `al_timeline_dropped` counts.
+    AlState {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The change.
+        change: AlChange,
+    },
+    /// An AL status code read alone, which completes the status read at
+    /// `of` (its `al_timeline` entry then has the code).
+    AlCode {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The packet of the status read the code completes.
+        of: u64,
+        /// The code.
+        code: AlStatusCode,
+    },
+    /// A CoE emergency, counted in `emcy_count`.
+    Emergency {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The emergency.
+        emergency: CoeEmergency,
+    },
+    /// A CoE SDO abort, counted in `sdo_aborts`.
+    SdoAbort {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The abort.
+        abort: CoeSdoAbort,
+    },
+    /// A change of DL status, an entry of `dl_status_changes`.
+    DlChange {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The change.
+        change: DlChange,
+    },
+    /// A rise of an error counter, an entry of `error_counter_rises`.
+    CounterRise {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The rise.
+        rise: CounterRise,
+    },
+    /// A returned copy of a stream's datagram whose working counter the
+    /// stream record counts: `wkc_mismatches` counts those whose `wkc` is
+    /// not the record's `wkc_usual`, which only the end of the capture
+    /// tells.
+    StreamReturned {
+        /// The stream's command.
+        command: Command,
+        /// The stream's address word.
+        address: u32,
+        /// The working counter.
+        wkc: u16,
+    },
+    /// A change of a CiA 402 drive's state from its process data, an entry
+    /// of the slave's `cia402.transitions`, with the fault it is, if any.
+    Cia402 {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The transition.
+        transition: Cia402Transition,
+        /// The fault it is.
+        fault: Option<Cia402Fault>,
+    },
+    /// A change of a servo's handshakes, faults or ServoRDY, an entry of
+    /// the slave's `servo.events`.
+    Servo {
+        /// The slave's place among its interface's slave records.
+        slave: usize,
+        /// The event.
+        event: ServoEvent,
+    },
+    /// A frame sent with the stream's datagram that never came back,
+    /// counted in the stream's `lost`; the event's line is the sent
+    /// copy's packet.
+    StreamLost {
+        /// The stream's command.
+        command: Command,
+        /// The stream's address word.
+        address: u32,
+    },
+}
+
+/// A fact of the slave and stream records, where it was recorded: the
+/// interface, the packet and its time. The summarizer hands it on as a
+/// `SummaryEvent`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FactAt<'s> {
+    /// The interface.
+    pub(crate) iface: &'s BusName,
+    /// The packet.
+    pub(crate) packet: u64,
+    /// Its time.
+    pub(crate) timestamp: Option<Timestamp>,
+    /// The fact.
+    pub(crate) fact: EthercatFact,
+}
+
 /// Hand on a fact of the interface `iface` at `packet`.
 fn fact(
-    on_event: &mut impl FnMut(SummaryEvent<'_>),
+    on_event: &mut impl FnMut(FactAt<'_>),
     iface: &BusName,
     packet: u64,
     timestamp: Option<Timestamp>,
     fact: EthercatFact,
 ) {
-    on_event(SummaryEvent {
-        bus: iface,
-        node: None,
-        line: packet,
+    on_event(FactAt {
+        iface,
+        packet,
         timestamp,
-        kind: SummaryEventKind::Ethercat(fact),
+        fact,
     });
 }
 
@@ -480,7 +591,7 @@ impl EthercatSummarizer {
         &mut self,
         position: Position,
         event: &EthercatPacket<'_>,
-        mut on_event: impl FnMut(SummaryEvent<'_>),
+        mut on_event: impl FnMut(FactAt<'_>),
         mut on_process: impl FnMut(&BusName, usize, &ProcessData<'_>),
     ) {
         let Ok(packet) = self.session.read(position, event) else {
@@ -568,7 +679,7 @@ impl EthercatSummarizer {
 
     /// The summary of what was read; the frames still waiting are lost,
     /// and handed to `on_event`.
-    pub(crate) fn finish(mut self, mut on_event: impl FnMut(SummaryEvent<'_>)) -> EthercatSummary {
+    pub(crate) fn finish(mut self, mut on_event: impl FnMut(FactAt<'_>)) -> EthercatSummary {
         let counts = self.session.finish();
         for (port, iface) in self.ports.iter_mut().zip(&self.names) {
             while !port.waiting.is_empty() {
@@ -656,7 +767,7 @@ impl Port {
 
     /// A returned copy paired with the frame sent at `sent`: the frames
     /// sent before it are lost (docs/ethercat.md#direction).
-    fn paired(&mut self, sent: u64, iface: &BusName, on_event: &mut impl FnMut(SummaryEvent<'_>)) {
+    fn paired(&mut self, sent: u64, iface: &BusName, on_event: &mut impl FnMut(FactAt<'_>)) {
         if !self.waiting.iter().any(|w| w.packet == sent) {
             return;
         }
@@ -673,7 +784,7 @@ impl Port {
     }
 
     /// The oldest waiting frame is lost: each of its streams counts it.
-    fn lose_first(&mut self, iface: &BusName, on_event: &mut impl FnMut(SummaryEvent<'_>)) {
+    fn lose_first(&mut self, iface: &BusName, on_event: &mut impl FnMut(FactAt<'_>)) {
         let Some(lost) = self.waiting.pop_front() else {
             return;
         };

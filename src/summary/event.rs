@@ -10,12 +10,23 @@ use core::time::Duration;
 use crate::can::{BusName, Timestamp};
 use crate::canopen::sdo::SdoTransfer;
 use crate::canopen::{ErrorCode, ErrorRegister, NmtStateByte, NodeId};
-use crate::ethercat::{AlStatusCode, Command};
 
-use super::{
-    AlChange, Cia402Fault, Cia402Transition, CoeEmergency, CoeSdoAbort, CounterRise, DlChange,
-    HeartbeatGap, SdoAbort, ServoEvent,
-};
+use super::ethercat::FactAt;
+use super::{Cia402Fault, Cia402Transition, EthercatFact, HeartbeatGap, SdoAbort};
+
+impl<'s> From<FactAt<'s>> for SummaryEvent<'s> {
+    /// The fact as the summary's event: its interface the bus, its
+    /// packet the line.
+    fn from(f: FactAt<'s>) -> Self {
+        SummaryEvent {
+            bus: f.iface,
+            node: None,
+            line: f.packet,
+            timestamp: f.timestamp,
+            kind: SummaryEventKind::Ethercat(f.fact),
+        }
+    }
+}
 
 /// One fact the summary records, where it records it: the bus (or the
 /// EtherCAT interface), the node (none for a bus's facts and for
@@ -95,104 +106,6 @@ pub enum SummaryEventKind<'s> {
     /// A fact of an EtherCAT capture's slave or stream record
     /// (docs/ethercat.md#summary).
     Ethercat(EthercatFact),
-}
-
-/// A fact an EtherCAT capture adds to its slave and stream records
-/// (docs/ethercat.md#summary), handed over as a [`SummaryEvent`] whose
-/// `bus` is the interface and whose `line` is the packet the record names.
-///
-/// A slave is named by its place among the slave records of its interface,
-/// in the order [`EthercatSummary::slaves`](super::EthercatSummary::slaves)
-/// keeps them; a stream by its command and address, as its
-/// [`StreamSummary`](super::StreamSummary) has them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum EthercatFact {
-    /// A change of AL state requested or reported: an entry of
-    /// `al_timeline`, or one of those `al_timeline_dropped` counts.
-    AlState {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The change.
-        change: AlChange,
-    },
-    /// An AL status code read alone, which completes the status read at
-    /// `of` (its `al_timeline` entry then has the code).
-    AlCode {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The packet of the status read the code completes.
-        of: u64,
-        /// The code.
-        code: AlStatusCode,
-    },
-    /// A CoE emergency, counted in `emcy_count`.
-    Emergency {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The emergency.
-        emergency: CoeEmergency,
-    },
-    /// A CoE SDO abort, counted in `sdo_aborts`.
-    SdoAbort {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The abort.
-        abort: CoeSdoAbort,
-    },
-    /// A change of DL status, an entry of `dl_status_changes`.
-    DlChange {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The change.
-        change: DlChange,
-    },
-    /// A rise of an error counter, an entry of `error_counter_rises`.
-    CounterRise {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The rise.
-        rise: CounterRise,
-    },
-    /// A returned copy of a stream's datagram whose working counter the
-    /// stream record counts: `wkc_mismatches` counts those whose `wkc` is
-    /// not the record's `wkc_usual`, which only the end of the capture
-    /// tells.
-    StreamReturned {
-        /// The stream's command.
-        command: Command,
-        /// The stream's address word.
-        address: u32,
-        /// The working counter.
-        wkc: u16,
-    },
-    /// A change of a CiA 402 drive's state from its process data, an entry
-    /// of the slave's `cia402.transitions`, with the fault it is, if any.
-    Cia402 {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The transition.
-        transition: Cia402Transition,
-        /// The fault it is.
-        fault: Option<Cia402Fault>,
-    },
-    /// A change of a servo's handshakes, faults or ServoRDY, an entry of
-    /// the slave's `servo.events`.
-    Servo {
-        /// The slave's place among its interface's slave records.
-        slave: usize,
-        /// The event.
-        event: ServoEvent,
-    },
-    /// A frame sent with the stream's datagram that never came back,
-    /// counted in the stream's `lost`; the event's line is the sent
-    /// copy's packet.
-    StreamLost {
-        /// The stream's command.
-        command: Command,
-        /// The stream's address word.
-        address: u32,
-    },
 }
 
 impl SummaryEventKind<'_> {

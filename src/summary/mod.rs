@@ -64,11 +64,11 @@ pub use causes::LOST_HEARTBEAT;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::{EmcySeen, ProfileReading};
 pub use ethercat::{
-    device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DlChange, EthercatSummary,
-    PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS,
-    STATUS_STREAM_MIN,
+    device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DlChange, EthercatFact,
+    EthercatSummary, PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES,
+    MAX_STREAMS, STATUS_STREAM_MIN,
 };
-pub use event::{EthercatFact, SummaryEvent, SummaryEventKind};
+pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};
 pub use findings::{Finding, FindingCause, FindingDetail, FindingKind};
 pub use heartbeat::{BusErrorSeen, GuardingSummary, HeartbeatGap, HeartbeatSummary, Timeouts};

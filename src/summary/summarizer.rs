@@ -221,14 +221,14 @@ impl Summarizer {
         &mut self,
         position: Position,
         packet: &EthercatPacket<'_>,
-        on_event: impl FnMut(SummaryEvent<'_>),
+        mut on_event: impl FnMut(SummaryEvent<'_>),
         on_process: impl FnMut(&BusName, usize, &ProcessData<'_>),
     ) {
         self.ethercat_packets += 1;
         let config = self.decoder.config();
         self.ethercat
             .get_or_insert_with(|| EthercatSummarizer::new(config))
-            .add(position, packet, on_event, on_process);
+            .add(position, packet, |f| on_event(f.into()), on_process);
     }
 
     /// Add one EtherCAT packet, as [`add_with`](Self::add_with) does:
@@ -794,7 +794,7 @@ impl Summarizer {
             verdict: None,
             ethercat: self
                 .ethercat
-                .map(|ethercat| ethercat.finish(&mut on_event))
+                .map(|ethercat| ethercat.finish(|f| on_event(f.into())))
                 .unwrap_or_default(),
         };
         for (name, bus) in buses {

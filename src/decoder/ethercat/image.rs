@@ -18,7 +18,7 @@ use crate::CodecError;
 
 use super::coe::{CoeTransfer, COE_DATA_KEPT};
 use super::config::SlaveConfig;
-use super::process::ImageError;
+use super::problem::ImageError;
 
 /// The FMMUs and sync managers a slave has at most (ESC datasheet).
 pub(super) const UNITS: usize = 16;

@@ -10,20 +10,22 @@ mod config;
 mod eni;
 mod image;
 mod network;
+mod problem;
 mod process;
 mod record;
 mod session;
+mod slave;
 
 pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};
-pub use network::{AlRegister, Meaning, SiiField, SlaveRef, ERROR_COUNTERS_LEN};
-pub use process::{
-    ImageError, ImageProblem, ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves,
-};
+pub use network::{AlRegister, Meaning, SiiField, ERROR_COUNTERS_LEN};
+pub use problem::{ImageError, ImageProblem};
+pub use process::{ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves};
 pub use record::{
     DatagramRecord, Fields, MeaningRecord, ProcessRecord, DATAGRAM_KIND, PROCESS_DATA_KIND,
     RECORD_KINDS, SERVO_KIND,
 };
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
+pub use slave::SlaveRef;

@@ -17,7 +17,9 @@ use crate::servo::{Command as ServoCommand, Feedback};
 use super::coe::{CoeChannel, CoeSdoStep};
 use super::config::SlaveConfig;
 use super::image::{CoeObjects, Plan};
-use super::process::{ImageError, ImageProblem, ProcessData, ServoSlaves, ServoWatch};
+use super::problem::{ImageError, ImageProblem};
+use super::process::{ProcessData, ServoSlaves, ServoWatch};
+use super::slave::SlaveRef;
 use crate::can::Timestamp;
 use crate::logs::Position;
 
@@ -37,29 +39,6 @@ const AKD_PRODUCT: u32 = 0x0041_4B44;
 
 /// The error counters' registers: 0x0300 to 0x0313.
 pub const ERROR_COUNTERS_LEN: usize = 0x14;
-
-/// Which slave a meaning is about: its configured station address and its
-/// position, as far as the capture has shown them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct SlaveRef {
-    /// The configured station address (register 0x0010).
-    pub station: Option<u16>,
-    /// The position on the ring, from 0.
-    pub position: Option<u16>,
-}
-
-impl core::fmt::Display for SlaveRef {
-    /// `slave 0x1001 (4097) at 1`, `slave 0x1001 (4097)`, `slave at 1`;
-    /// `every slave` for neither (a broadcast).
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match (self.station, self.position) {
-            (Some(s), Some(p)) => write!(f, "slave {s:#06x} ({s}) at {p}"),
-            (Some(s), None) => write!(f, "slave {s:#06x} ({s})"),
-            (None, Some(p)) => write!(f, "slave at {p}"),
-            (None, None) => f.write_str("every slave"),
-        }
-    }
-}
 
 /// Which register an AL state meaning was read from or written to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -9,7 +9,8 @@ use crate::ethercat::{Command, Datagram, Datagrams, EthercatFrame, FrameType, Ma
 
 use super::config::SlaveConfig;
 use super::network::{Meaning, Network};
-use super::process::{ImageProblem, ProcessData, ServoSlaves};
+use super::problem::ImageProblem;
+use super::process::{ProcessData, ServoSlaves};
 use crate::logs::Position;
 use crate::LenError;
 
