@@ -25,9 +25,7 @@ use super::parser::{fd_frame, AscParser};
 use crate::can::{CanFrame, CanId, Direction, FrameType, Iface, LogEvent, LogFrame, Timestamp};
 use crate::can::{CLASSIC_MAX_LEN, FD_LENGTHS, FD_MAX_LEN};
 use crate::logs::lex::swar::decimal8;
-#[cfg(any(feature = "std", test))]
-use crate::logs::lex::trim_end;
-use crate::logs::lex::{hex, hex_value, is_space, HEX_TABLE, POW10_NANOS};
+use crate::logs::lex::{hex, hex_value, is_space, trim_end, HEX_TABLE, POW10_NANOS};
 
 /// The lanes (bytes) of ` HH HH HH HH HH` that hold a space (0, 3, …,
 /// 12) …
