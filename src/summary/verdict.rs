@@ -131,7 +131,7 @@ impl fmt::Display for StopText<'_> {
                     t.to.name(),
                     t.line
                 )?;
-                let what = format_args!(
+                let what = format!(
                     "EMCY {} {}{}",
                     cause.code,
                     cause.code.description(),
