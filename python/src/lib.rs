@@ -23,6 +23,7 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 mod columns;
 mod error;
 mod ethercat;
+mod fleet;
 mod reader;
 mod source;
 mod table;
@@ -395,6 +396,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(decode, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(findings, m)?)?;
+    m.add_function(wrap_pyfunction!(fleet::post_mortem, m)?)?;
     m.add_class::<reader::Reader>()?;
     m.add_class::<reader::Message>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
