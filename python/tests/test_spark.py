@@ -528,3 +528,14 @@ def test_eds_files_go_to_the_executors(spark, tmp_path):
     assert [r["record"] for r in rows] == expected
     assert any('"signals"' in r for r in expected)
     assert expected != motionwire.decode(str(log)).column("record").to_pylist()
+
+
+@needs_spark
+def test_the_readme_block(spark, monkeypatch):
+    """README.md, "From Python": the block of motionwire.spark, run with
+    this module's session as `spark`."""
+    from test_readme import blocks
+
+    (block,) = blocks(spark=True)
+    monkeypatch.chdir(ROOT)
+    exec(compile(block, "README.md, From Python, the Spark block", "exec"), {"spark": spark})
