@@ -167,7 +167,7 @@ def frames(spark: SparkSession, paths: Paths, *, format: Optional[str] = None) -
     EtherCAT capture's datagram columns beside them), with `file` and
     `file_error`; schema `FRAMES` (docs/spark.md#frames)."""
     _check(format=format)
-    work = functools.partial(_frames_of, format=format, decoded=False, options={})
+    work = functools.partial(_frames_of, format=format, decoded=False, options={}, rows=BATCH_ROWS)
     return _run(spark, paths, work, FRAMES, per_batch=False)
 
 
@@ -185,7 +185,11 @@ def decode(
     handed to the executors."""
     eds_files = _check(format=format, profiles=profiles, eds=eds)
     work = functools.partial(
-        _frames_of, format=format, decoded=True, options={"profiles": profiles, "eds": eds_files}
+        _frames_of,
+        format=format,
+        decoded=True,
+        options={"profiles": profiles, "eds": eds_files},
+        rows=BATCH_ROWS,
     )
     return _run(spark, paths, work, DECODE, per_batch=False)
 
@@ -284,40 +288,33 @@ def _run(
     per_batch: bool,
     empty_files: bool = False,
 ) -> DataFrame:
-    """The DataFrame of `work` over every file. Files up to Spark's
-    `binaryFile` limit come with their content; the longer ones without it
-    (the `length` filter is pushed into the source, which then never loads
-    them) and are read by path on the executor. `empty_files`: the files
-    of 0 bytes too, which Spark's file sources leave out of their scans
-    (`summary` gives each of them its row)."""
+    """The DataFrame of `work` over every file, in one Python stage.
+
+    Files up to Spark's `binaryFile` limit come with their content, one
+    task per file partition. The others come as `(path, null, length)`
+    rows, gathered into one more task: those longer than the limit (the
+    `length` filter is pushed into the source, which then never loads
+    them), read by path on the executor; and with `empty_files` the files
+    of 0 bytes, which Spark's file scans leave out (`summary` gives each
+    its row). Finding them is the JVM's work alone (a scan of the files'
+    lengths, the listing's `inputFiles()`, a broadcast anti-join): a Python
+    task costs a worker's round trip even when it has no row, so there is
+    one Python task per partition of content and one for the rest."""
     from pyspark.sql import functions as F
 
     files = _files(spark, paths)
     limit = int(spark.conf.get(MAX_LENGTH_KEY, str(_MAX_LENGTH_DEFAULT)))
-    spark_schema = ddl(schema)
-    held = files.filter(F.col("length") <= limit).select("path", "content")
-    out = held.mapInArrow(
-        functools.partial(_map_content, work=work, schema=schema, per_batch=per_batch), spark_schema
-    )
-    large = files.filter(F.col("length") > limit).select("path", "length")
-    out = out.unionByName(
-        large.mapInArrow(
-            functools.partial(_map_large, work=work, schema=schema, per_batch=per_batch, limit=limit),
-            spark_schema,
-        )
-    )
+    held = files.filter(F.col("length") <= limit).select("path", "content", "length")
+    rest = files.filter(F.col("length") > limit).select("path", "length")
     if empty_files:
         # The files the listing found (inputFiles(), as URIs) that the scan
-        # does not give (Hadoop paths, as the `path` column names them):
-        # the empty ones. The scan's paths are broadcast, not shuffled.
+        # does not give (Hadoop paths, as the `path` column names them).
         listed = spark.createDataFrame([(hadoop_path(uri),) for uri in files.inputFiles()], "path string")
         empty = listed.join(F.broadcast(files.select("path")), "path", "left_anti")
-        out = out.unionByName(
-            empty.mapInArrow(
-                functools.partial(_map_empty, work=work, schema=schema, per_batch=per_batch), spark_schema
-            )
-        )
-    return out
+        rest = rest.unionByName(empty.select("path", F.lit(0).cast("long").alias("length")))
+    rest = rest.repartition(1).select("path", F.lit(None).cast("binary").alias("content"), "length")
+    mapper = functools.partial(_map_files, work=work, schema=schema, per_batch=per_batch, limit=limit)
+    return held.unionByName(rest).mapInArrow(mapper, ddl(schema))
 
 
 def hadoop_path(uri: str) -> str:
@@ -335,47 +332,37 @@ def hadoop_path(uri: str) -> str:
 # The executors' part: pure Python and pyarrow, no pyspark.
 
 
-def _map_content(
-    batches: Iterator[pa.RecordBatch], *, work, schema: pa.Schema, per_batch: bool
-) -> Iterator[pa.RecordBatch]:
-    """`mapInArrow` over `(path, content)` batches: each file's content
-    read from memory."""
-    for batch in batches:
-        paths = batch.column(0).to_pylist()
-        contents = batch.column(1)
-        yield from _emit(
-            ((path, contents[i].as_py()) for i, path in enumerate(paths)), work, schema, per_batch
-        )
-
-
-def _map_empty(
-    batches: Iterator[pa.RecordBatch], *, work, schema: pa.Schema, per_batch: bool
-) -> Iterator[pa.RecordBatch]:
-    """`mapInArrow` over `(path)` batches of empty files."""
-    for batch in batches:
-        yield from _emit(((path, b"") for path in batch.column(0).to_pylist()), work, schema, per_batch)
-
-
-def _map_large(
+def _map_files(
     batches: Iterator[pa.RecordBatch], *, work, schema: pa.Schema, per_batch: bool, limit: int
 ) -> Iterator[pa.RecordBatch]:
-    """`mapInArrow` over `(path, length)` batches of files longer than a
-    `binaryFile` row holds: read by path where the executor sees them
-    (a `file:` path), else a `file_error` row."""
-
-    def sources():
-        for path, length in zip(batch.column(0).to_pylist(), batch.column(1).to_pylist()):
-            local = local_path(path)
-            if local is None:
-                yield path, _TooLarge(
-                    f"{length} bytes, more than a Spark binaryFile row holds ({MAX_LENGTH_KEY} = "
-                    f"{limit}), and not on a file system the executors share (a file: path): not read"
-                )
-            else:
-                yield path, local
-
+    """`mapInArrow` over `(path, content, length)` batches: a file's
+    content read from memory; without content, an empty file (length 0)
+    or one longer than a `binaryFile` row, read by path where the
+    executor sees it (a `file:` path), else given an error row."""
     for batch in batches:
-        yield from _emit(sources(), work, schema, per_batch)
+        paths = batch.column(0).to_pylist()
+        contents, lengths = batch.column(1), batch.column(2)
+        yield from _emit(_sources(paths, contents, lengths, limit), work, schema, per_batch)
+
+
+def _sources(paths, contents, lengths, limit: int):
+    for i, path in enumerate(paths):
+        content = contents[i]
+        if content.is_valid:
+            yield path, content.as_py()
+            continue
+        length = lengths[i].as_py()
+        if length == 0:
+            yield path, b""
+            continue
+        local = local_path(path)
+        if local is None:
+            yield path, _TooLarge(
+                f"{length} bytes, more than a Spark binaryFile row holds ({MAX_LENGTH_KEY} = "
+                f"{limit}), and not on a file system the executors share (a file: path): not read"
+            )
+        else:
+            yield path, local
 
 
 class _TooLarge:
@@ -467,8 +454,11 @@ def _error_batch(schema: pa.Schema, path: str, reason: str) -> pa.RecordBatch:
 BATCH_ROWS = 1 << 16
 
 
-def _frames_of(path: str, source, *, format, decoded: bool, options: dict) -> Iterator[pa.RecordBatch]:
-    """The batches of `frames` (or `decode`) of one file."""
+def _frames_of(
+    path: str, source, *, format, decoded: bool, options: dict, rows: int = BATCH_ROWS
+) -> Iterator[pa.RecordBatch]:
+    """The batches of `frames` (or `decode`) of one file, of at most `rows`
+    rows (the driver's `BATCH_ROWS` when the DataFrame was made)."""
     schema = DECODE if decoded else FRAMES
     if isinstance(source, _TooLarge):
         yield _error_batch(schema, path, source.reason)
@@ -484,7 +474,7 @@ def _frames_of(path: str, source, *, format, decoded: bool, options: dict) -> It
     if reason is not None:
         yield _error_batch(schema, path, reason)
         return
-    for batch in table.to_batches(max_chunksize=BATCH_ROWS):
+    for batch in table.to_batches(max_chunksize=rows):
         yield conform(batch, path, schema)
 
 

@@ -223,12 +223,13 @@ def test_a_file_too_large_for_spark_and_not_local_is_an_error_row(tmp_path):
     batch = pa.RecordBatch.from_pydict(
         {
             "path": ["s3a://fleet/machine=7/big.mf4", "file:" + str(SAMPLE), "file:" + str(tmp_path / "gone.log")],
+            "content": pa.nulls(3, pa.binary()),
             "length": [3_000_000_000, SAMPLE.stat().st_size, 3_000_000_000],
         }
     )
     work = functools.partial(mws._frames_of, format=None, decoded=False, options={})
     out = pa.Table.from_batches(
-        list(mws._map_large(iter([batch]), work=work, schema=mws.FRAMES, per_batch=False, limit=2**31 - 1))
+        list(mws._map_files(iter([batch]), work=work, schema=mws.FRAMES, per_batch=False, limit=2**31 - 1))
     )
     assert out.schema == mws.FRAMES
     by_file = defaultdict(list)
