@@ -478,7 +478,7 @@ def test_files_longer_than_a_binaryfile_row_are_read_by_path(spark, fleet):
     spark.conf.set(mws.MAX_LENGTH_KEY, "4096")
     try:
         files = spark.read.format("binaryFile").option("recursiveFileLookup", "true").load(str(fleet))
-        assert files.filter(f"length > 4096").count() >= 40
+        assert files.filter("length > 4096").count() >= 40
         got = sorted(map(tuple, mws.summary(spark, str(fleet), **OPTIONS).collect()), key=repr)
     finally:
         spark.conf.unset(mws.MAX_LENGTH_KEY)
