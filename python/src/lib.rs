@@ -23,6 +23,7 @@ use pyo3::types::{PyDict, PyList, PyTuple};
 mod columns;
 mod error;
 mod ethercat;
+mod fleet;
 mod pdo;
 mod process;
 mod reader;
@@ -690,6 +691,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add_function(wrap_pyfunction!(process_data, m)?)?;
     m.add_function(wrap_pyfunction!(servo, m)?)?;
+    m.add_function(wrap_pyfunction!(fleet::post_mortem, m)?)?;
     m.add_class::<reader::Reader>()?;
     m.add_class::<reader::Message>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

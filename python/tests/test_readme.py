@@ -11,14 +11,18 @@ import pytest
 from conftest import ROOT
 
 
-def blocks():
+def blocks(spark: bool = False):
+    """The section's Python blocks; those of `motionwire.spark`
+    (`spark=True`) need a SparkSession and run in test_spark.py."""
     text = (ROOT / "README.md").read_text()
     section = text.split("## From Python", 1)[1].split("\n## ", 1)[0]
-    return re.findall(r"```python\n(.*?)```", section, re.S)
+    found = re.findall(r"```python\n(.*?)```", section, re.S)
+    return [b for b in found if ("motionwire import spark" in b) == spark]
 
 
 def test_the_section_has_its_blocks():
     assert len(blocks()) == 3
+    assert len(blocks(spark=True)) == 1
 
 
 @pytest.mark.parametrize("n", range(3))
