@@ -93,6 +93,7 @@ DECODE = pa.schema(
         pa.field("register", pa.int16()),
         pa.field("description", pa.string()),
         pa.field("state", pa.string()),
+        pa.field("cia402_state", pa.string()),
         pa.field("record", pa.string()),
     ]
 )
@@ -129,6 +130,7 @@ FINDINGS = pa.schema(
         pa.field("ts", pa.float64()),
         pa.field("iface", pa.string()),
         pa.field("node", pa.int16()),
+        pa.field("slave", pa.int32()),
         pa.field("kind", pa.string()),
         pa.field("line", pa.int64()),
         pa.field("code", pa.int64()),
@@ -584,12 +586,13 @@ def _findings_of(path: str, source, *, options: dict) -> list:
             "ts": ts,
             "iface": iface,
             "node": node,
+            "slave": slave,
             "kind": kind,
             "severity": severity,
             "code": code,
             "text": text,
         }
-        for line, ts, iface, node, kind, severity, code, text in found
+        for line, ts, iface, node, slave, kind, severity, code, text in found
     ]
     for record in records:
         if record.startswith('{"type":"verdict"'):
@@ -604,12 +607,15 @@ def verdict_rows(path: str, verdict: dict, found: list) -> list:
     file's findings rows: the report timeline's time of a heartbeat
     timeout); the code is that of the EMCY that caused the stop, else the
     finding's."""
-    by_key = {(r["iface"], r["node"], r["line"], r["kind"]): r for r in found}
+    by_key = {(r["iface"], r["node"], r["slave"], r["line"], r["kind"]): r for r in found}
     rows = []
     for kind in ("stop", "first_cause"):
         finding = verdict[kind]
         cause = finding.get("cause") or {}
-        same = by_key.get((finding.get("iface"), finding.get("node"), finding["line"], finding["kind"]), {})
+        same = by_key.get(
+            (finding.get("iface"), finding.get("node"), finding.get("slave"), finding["line"], finding["kind"]),
+            {},
+        )
         ts = finding.get("ts")
         rows.append(
             {
@@ -618,6 +624,7 @@ def verdict_rows(path: str, verdict: dict, found: list) -> list:
                 "ts": ts if ts is not None else same.get("ts"),
                 "iface": finding.get("iface"),
                 "node": finding.get("node"),
+                "slave": finding.get("slave"),
                 "kind": kind,
                 "severity": finding["severity"],
                 "code": cause.get("code", same.get("code")),

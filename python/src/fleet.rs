@@ -23,13 +23,14 @@ use crate::source::{self, Source};
 /// `skipped_count` counts them all).
 const SKIPPED_LISTED: usize = 10;
 
-/// One finding as a row: `line`, `ts`, `iface`, `node`, `kind`,
+/// One finding as a row: `line`, `ts`, `iface`, `node`, `slave`, `kind`,
 /// `severity`, `code`, `text`.
 type FindingRow = (
     u64,
     Option<f64>,
     Option<String>,
     Option<u8>,
+    Option<u16>,
     &'static str,
     &'static str,
     Option<u32>,
@@ -40,8 +41,8 @@ type FindingRow = (
 /// tuple `(file, records, findings)`. `file` is the file's JSON record
 /// (`{"type": "file", "format", "frames", "ethercat_packets", "skipped",
 /// "skipped_count"}`), `records` the JSON records of `decode --summary
-/// --json` as strings, `findings` a list of `(line, ts, iface, node, kind,
-/// severity, code, text)` with `findings=True`, else None. An unreadable
+/// --json` as strings, `findings` a list of `(line, ts, iface, node, slave,
+/// kind, severity, code, text)` with `findings=True`, else None. An unreadable
 /// log raises what `summary` raises.
 #[pyfunction]
 #[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, findings = false))]
@@ -142,6 +143,7 @@ fn row(finding: &Finding) -> FindingRow {
         finding.timestamp.map(|ts| ts.as_secs_f64()),
         iface,
         finding.node.map(|node| node.get()),
+        finding.slave.and_then(|slave| slave.station),
         finding.kind.name(),
         finding.severity.name(),
         code,

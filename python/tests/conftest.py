@@ -192,6 +192,17 @@ class Oracle:
             fd = False
             if not theirs["data"]:
                 rtr = ours["rtr"]
+        theirs_data, length = theirs["data"], theirs["length"]
+        if self.suffix == ".asc" and not theirs["fd"] and theirs["length"] > 8:
+            # ASC: a classic line whose DLC code is above 8. Followed by its
+            # CAN FD length of bytes it is a CAN FD frame, python-can keeps 8
+            # of them and reads it classic; followed by 8 it is a classic
+            # frame of 8, python-can gives the code's length
+            # (docs/formats.md#asc; the disagreements' table).
+            if ours["fd"] and ours["data"][:8] == theirs_data:
+                fd, theirs_data, length = True, ours["data"], len(ours["data"])
+            elif not ours["fd"] and len(theirs_data) == 8:
+                length = 8
         check("rtr", rtr, ours["rtr"])
         check("fd", fd, ours["fd"])
         brs = theirs["brs"]
@@ -203,8 +214,7 @@ class Oracle:
             check("brs", brs, ours["brs"])
             check("esi", theirs["esi"], ours["esi"])
         if not ours["rtr"]:
-            check("data", theirs["data"], ours["data"])
-        length = theirs["length"]
+            check("data", theirs_data, ours["data"])
         if self.suffix == ".trc" and theirs["fd"]:
             # python-can's TRCReader gives a CAN FD frame's DLC code as its
             # dlc (9 for 12 bytes), its other readers the length.
