@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import pyarrow as pa
 
-from . import _motionwire
+from . import _motionwire  # type: ignore[attr-defined]
 
 if TYPE_CHECKING:
     from pyspark.sql import DataFrame, SparkSession
@@ -273,7 +273,7 @@ def _files(spark: SparkSession, paths: Paths) -> DataFrame:
     """The `binaryFile` DataFrame of `paths` (directories read
     recursively), or `paths` when it is one already."""
     if hasattr(paths, "schema") and hasattr(paths, "mapInArrow"):
-        return paths
+        return paths  # type: ignore[return-value]
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
     names = [os.fspath(p) for p in paths]
@@ -305,7 +305,7 @@ def _run(
     from pyspark.sql import functions as F
 
     files = _files(spark, paths)
-    limit = int(spark.conf.get(MAX_LENGTH_KEY, str(_MAX_LENGTH_DEFAULT)))
+    limit = int(spark.conf.get(MAX_LENGTH_KEY, str(_MAX_LENGTH_DEFAULT)) or _MAX_LENGTH_DEFAULT)
     held = files.filter(F.col("length") <= limit).select("path", "content", "length")
     rest = files.filter(F.col("length") > limit).select("path", "length")
     if empty_files:
