@@ -9,9 +9,9 @@ that are no log (the fixtures' JSON, TSV, EDS and README files, random
 bytes) and an empty file. Each DataFrame must equal, file by file, what
 the single-process functions of docs/python.md give for that file.
 
-Skipped, with the reason, without pyspark or Java; `.ci/run` installs
-both and sets MOTIONWIRE_SPARK=required, which turns the skip into a
-failure.
+Spark is part of the test suite (the `test` extra installs pyspark;
+Java 17 runs it): without pyspark or Java the module fails at once and
+says which is missing, as `.ci/run` would.
 """
 
 from __future__ import annotations
@@ -38,9 +38,6 @@ import motionwire
 from motionwire import spark as mws
 from conftest import FIXTURES, ROOT, SAMPLE
 
-REQUIRED = os.environ.get("MOTIONWIRE_SPARK") == "required"
-
-
 def _missing() -> str | None:
     try:
         import pyspark  # noqa: F401
@@ -53,10 +50,8 @@ def _missing() -> str | None:
 
 
 MISSING = _missing()
-if MISSING and REQUIRED:
-    raise RuntimeError(f"MOTIONWIRE_SPARK=required but {MISSING}")
-
-needs_spark = pytest.mark.skipif(MISSING is not None, reason=MISSING or "")
+if MISSING:
+    raise RuntimeError(f"the Spark tests need Spark: {MISSING}")
 
 #: The options of every call: the sample's devices (docs/python.md#summary).
 OPTIONS = dict(heartbeat_ms=300, profiles={3: "akd", 5: "baumer"})
@@ -260,7 +255,6 @@ def test_the_schemas_are_the_documented_ones():
 # On Spark
 
 
-@needs_spark
 def test_the_dataframes_have_the_fixed_schemas(spark, fleet):
     for call, schema in ((mws.frames, mws.FRAMES), (mws.decode, mws.DECODE), (mws.summary, mws.SUMMARY), (mws.findings, mws.FINDINGS)):
         df = call(spark, str(fleet))
@@ -328,12 +322,10 @@ def _check_frames(spark, fleet, tmp_path, decoded: bool):
     assert errors >= 80 and len(expected) - errors >= 70, (errors, len(expected))
 
 
-@needs_spark
 def test_frames_equal_read_log_file_by_file(spark, fleet, tmp_path):
     _check_frames(spark, fleet, tmp_path, decoded=False)
 
 
-@needs_spark
 def test_decode_equals_decode_file_by_file(spark, fleet, tmp_path):
     _check_frames(spark, fleet, tmp_path, decoded=True)
 
@@ -368,7 +360,6 @@ def _typed(record: dict) -> dict:
 TYPED = [f.name for f in mws.SUMMARY][2:-3]
 
 
-@needs_spark
 def test_summary_equals_summary_file_by_file(spark, fleet):
     got = _by_file([r.asDict() for r in mws.summary(spark, str(fleet), **OPTIONS).collect()])
     files = _files(fleet)
@@ -417,7 +408,6 @@ def test_summary_equals_summary_file_by_file(spark, fleet):
         assert kinds[kind] > 0, kind
 
 
-@needs_spark
 def test_findings_equal_findings_file_by_file(spark, fleet):
     got = _by_file([r.asDict() for r in mws.findings(spark, str(fleet), **OPTIONS).collect()])
     with_findings = 0
@@ -482,7 +472,6 @@ def test_findings_equal_findings_file_by_file(spark, fleet):
     assert with_findings >= 10
 
 
-@needs_spark
 def test_files_longer_than_a_binaryfile_row_are_read_by_path(spark, fleet):
     """Above Spark's binaryFile limit a file is read by path on the
     executor (the file: paths of local[2]); the rows are the same. The
@@ -498,7 +487,6 @@ def test_files_longer_than_a_binaryfile_row_are_read_by_path(spark, fleet):
     assert got == expected
 
 
-@needs_spark
 def test_paths_globs_and_a_binaryfile_dataframe(spark, fleet):
     """A list of paths, a glob, and a binaryFile DataFrame of the caller's
     options select the same files' rows."""
@@ -516,7 +504,6 @@ def test_paths_globs_and_a_binaryfile_dataframe(spark, fleet):
     assert len(names(mf4)) >= 10
 
 
-@needs_spark
 def test_wrong_arguments_raise_on_the_driver(spark, fleet):
     with pytest.raises(ValueError, match="is not a profile"):
         mws.summary(spark, str(fleet), profiles={3: "no-such-drive"})
@@ -528,7 +515,6 @@ def test_wrong_arguments_raise_on_the_driver(spark, fleet):
         mws.decode(spark, str(fleet), eds={2: str(fleet / "no-such.eds")})
 
 
-@needs_spark
 def test_eds_files_go_to_the_executors(spark, tmp_path):
     """decode's `eds` files are read on the driver and written for the
     executors: the records of a drive's log whose PDOs only its EDS maps
@@ -544,7 +530,6 @@ def test_eds_files_go_to_the_executors(spark, tmp_path):
     assert expected != motionwire.decode(str(log)).column("record").to_pylist()
 
 
-@needs_spark
 def test_the_readme_block(spark, monkeypatch):
     """README.md, "From Python": the block of motionwire.spark, run with
     this module's session as `spark`."""
