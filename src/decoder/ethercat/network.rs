@@ -400,12 +400,18 @@ impl Network {
                     .then_some(&inputs[..]);
             let mut cia402 = None;
             if plan.has_signals() {
-                let mut picked = Vec::new();
+                // The CiA 402 objects of the cycle, without an allocation:
+                // a drive maps each at most once or twice.
+                let mut picked = [None; 8];
+                let mut n = 0;
                 let mut pick =
                     |_: &str, signal: Result<crate::canopen::Signal, crate::CodecError>| {
                         if let Ok(signal) = signal {
-                            if matches!(signal.entry.index(), 0x6040 | 0x6041 | 0x6060 | 0x6061) {
-                                picked.push(signal);
+                            if matches!(signal.entry.index(), 0x6040 | 0x6041 | 0x6060 | 0x6061)
+                                && n < picked.len()
+                            {
+                                picked[n] = Some(signal);
+                                n += 1;
                             }
                         }
                     };
@@ -415,8 +421,8 @@ impl Network {
                 if let (Some(image), true) = (inputs, confirmed) {
                     plan.for_each_signal(false, image, &mut pick);
                 }
-                if !picked.is_empty() {
-                    cia402 = drive.read(picked.iter());
+                if n > 0 {
+                    cia402 = drive.read(picked[..n].iter().flatten());
                 }
             }
             let mut servo_reading = None;
