@@ -5,8 +5,9 @@
 # command line (arguments after `motionwire`); its stdout, stderr and exit
 # status are kept gzip-compressed in tests/golden/NAME.gz, NAME the case's
 # arguments joined by `_`, `tests/fixtures/` left out and every other `/`
-# written `-` (`golden_name` in tests/common/mod.rs, the same rule): adding
-# a case adds one file and renames none.
+# and every `:` written `-`, a name every file system holds (`golden_name`
+# in tests/common/mod.rs, the same rule): adding a case adds one file and
+# renames none.
 #
 # Made with the build of commit c5dd14a (before the move); run it again only
 # when the output is meant to change, and say so in the CHANGELOG.
@@ -83,6 +84,7 @@ while read -r line; do
   name=${line//tests\/fixtures\//}
   name=${name// /_}
   name=${name//\//-}
+  name=${name//:/-}
   # shellcheck disable=SC2086
   { set +e; "$bin" $line >"$out/stdout" 2>"$out/stderr"; status=$?; set -e; }
   {

@@ -17,8 +17,9 @@ SAMPLE = ROOT / "samples" / "machine.log"
 def golden_name(line: str) -> str:
     """The snapshot's file name for a case of tests/golden/cases.txt: the
     arguments joined by `_`, `tests/fixtures/` left out and every other `/`
-    written `-` (`golden_name` in tests/common/mod.rs)."""
-    return "_".join(line.split()).replace("tests/fixtures/", "").replace("/", "-") + ".gz"
+    and every `:` written `-` (`golden_name` in tests/common/mod.rs)."""
+    name = "_".join(line.split()).replace("tests/fixtures/", "")
+    return name.replace("/", "-").replace(":", "-") + ".gz"
 
 
 def golden_cases() -> list[tuple[str, list[str]]]:

@@ -192,7 +192,8 @@ pub fn path(rel: &str) -> String {
 /// The file name of a case's snapshot in `tests/golden/` (the case one line
 /// of `tests/golden/cases.txt`, the arguments after `motionwire`): the
 /// arguments joined by `_`, with the fixtures' directory `tests/fixtures/`
-/// left out and every other `/` written `-`, then `.gz`. `decode --json
+/// left out and every other `/` and every `:` written `-` (a name every file
+/// system holds, Windows' too), then `.gz`. `decode --json
 /// tests/fixtures/pcap/sll.pcap` is `decode_--json_pcap-sll.pcap.gz`.
 /// `scripts/gen_golden.sh` and the Python tests name them by the same rule.
 pub fn golden_name(case: &str) -> String {
@@ -200,6 +201,6 @@ pub fn golden_name(case: &str) -> String {
     let name = words
         .join("_")
         .replace("tests/fixtures/", "")
-        .replace('/', "-");
+        .replace(['/', ':'], "-");
     format!("{name}.gz")
 }
