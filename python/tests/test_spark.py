@@ -140,14 +140,16 @@ def spark():
 
     # The executors' Python is this one, which has the package.
     os.environ["PYSPARK_PYTHON"] = sys.executable
-    session = (
-        SparkSession.builder.master("local[2]")
-        .appName("motionwire-tests")
-        .config("spark.ui.enabled", "false")
-        .config("spark.sql.shuffle.partitions", "2")
-        .getOrCreate()
-    )
-    session.sparkContext.setLogLevel("ERROR")
+    # MOTIONWIRE_SPARK_REMOTE runs the module through Spark Connect
+    # instead (pyspark 4: "local[2]" starts a local Connect server).
+    remote = os.environ.get("MOTIONWIRE_SPARK_REMOTE")
+    if remote:
+        builder = SparkSession.builder.remote(remote)
+    else:
+        builder = SparkSession.builder.master("local[2]").config("spark.ui.enabled", "false")
+    session = builder.appName("motionwire-tests").config("spark.sql.shuffle.partitions", "2").getOrCreate()
+    if not remote:
+        session.sparkContext.setLogLevel("ERROR")
     yield session
     session.stop()
 
