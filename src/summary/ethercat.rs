@@ -25,6 +25,7 @@ use crate::profiles::Profile;
 
 use super::cia402::{Cia402Fault, Cia402Timeline, Cia402Transition, TimelineBuilder};
 use super::emcy::EmcySeen;
+pub use super::ethercat_regs::{DcSummary, SlaveRegisters};
 use super::servo::{ServoEvent, ServoTimeline};
 use super::values::{Iface, Ts};
 
@@ -140,6 +141,8 @@ pub struct SlaveSummary {
     pub cia402: Option<Cia402Timeline>,
     /// The servo timeline of a slave read as a servo (docs/ethercat.md#servo).
     pub servo: Option<ServoTimeline>,
+    /// Its station alias, mailbox polls and repeats, distributed clock.
+    pub registers: SlaveRegisters,
 }
 
 /// A CoE SDO abort, from either side.
@@ -265,6 +268,7 @@ impl SlaveSummary {
             first_unconfirmed: None,
             cia402: None,
             servo: None,
+            registers: SlaveRegisters::default(),
         }
     }
 }
@@ -1026,6 +1030,7 @@ impl Port {
                 written,
                 accepted,
                 guessed,
+                repeated,
                 header,
                 body,
                 profile,
@@ -1036,6 +1041,10 @@ impl Port {
                 };
                 if guessed {
                     s.mailbox_guessed += 1;
+                }
+                if repeated {
+                    s.registers.mailbox_repeated += 1;
+                    return;
                 }
                 if written && !accepted {
                     s.mailbox_refused += 1;
@@ -1085,6 +1094,11 @@ impl Port {
                         }
                     }
                     _ => {}
+                }
+            }
+            other => {
+                if let Some((_, s)) = registers_slave(&other).and_then(|slave| self.slave(slave)) {
+                    s.registers.observe(&other);
                 }
             }
         }
@@ -1411,7 +1425,21 @@ pub(super) fn slave_entries<M: SerializeMap>(
         }),
     )?;
     map.serialize_entry("cia402", &s.cia402)?;
-    map.serialize_entry("servo", &s.servo)
+    map.serialize_entry("servo", &s.servo)?;
+    s.registers.entries(map)
+}
+
+/// The slave of a meaning of the alias, the mailbox protocol or the clock
+/// (a broadcast of the alias bit names none: no slave's).
+fn registers_slave(meaning: &Meaning<'_>) -> Option<SlaveRef> {
+    match *meaning {
+        Meaning::StationAlias { slave, .. }
+        | Meaning::Dc { slave, .. }
+        | Meaning::DcDistribution { slave, .. }
+        | Meaning::MailboxPoll { slave, .. }
+        | Meaning::MailboxRepeat { slave, .. } => Some(slave),
+        _ => None,
+    }
 }
 
 /// An SDO abort as JSON: `{"packet", "ts", "index", "subindex",
@@ -1685,6 +1713,7 @@ impl fmt::Display for SlaveSummary {
                 f.write_str(")")?;
             }
         }
+        fmt::Display::fmt(&self.registers, f)?;
         writeln!(f)?;
         if let Some(cia402) = &self.cia402 {
             fmt::Display::fmt(cia402, f)?;
