@@ -111,7 +111,31 @@ pub const fn time_difference(raw: u32) -> i64 {
 
 #[cfg(test)]
 mod tests {
+    use proptest::prelude::*;
+
     use super::*;
+
+    proptest! {
+        /// Any datagram: no panic; a write decodes the configuration alone,
+        /// and the same registers as the read of the same bytes.
+        #[test]
+        fn any_datagram_decodes_or_is_none(ado: u16, data in proptest::collection::vec(any::<u8>(), 0..64)) {
+            let read = DcRegisters::covered(ado, &data, true);
+            let written = DcRegisters::covered(ado, &data, false);
+            if let Some(written) = written {
+                prop_assert_eq!(written.receive_times, [None; 4]);
+                prop_assert_eq!(written.system_time, None);
+                prop_assert_eq!(written.time_difference_ns, None);
+                let read = read.unwrap();
+                prop_assert_eq!(read.activation, written.activation);
+                prop_assert_eq!(read.sync0_cycle_ns, written.sync0_cycle_ns);
+                prop_assert_eq!(read.sync1_cycle_ns, written.sync1_cycle_ns);
+            }
+            if let Some(ns) = read.and_then(|r| r.time_difference_ns) {
+                prop_assert!(ns.abs() <= 0x7FFF_FFFF);
+            }
+        }
+    }
 
     /// TwinCAT's APRD of 0x0900 with 32 bytes: the four receive times and
     /// the 64-bit system time; 0x0918 is not one of them.
