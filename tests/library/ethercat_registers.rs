@@ -33,7 +33,7 @@ enum Told {
 }
 
 fn told(name: &str) -> (BTreeMap<(u64, usize), Vec<Told>>, Session) {
-    let mut log = logs::open(&path(&format!("{name}.pcapng"))).unwrap();
+    let mut log = logs::open(path(&format!("{name}.pcapng"))).unwrap();
     let mut session = Session::new();
     let mut all: BTreeMap<(u64, usize), Vec<Told>> = BTreeMap::new();
     while let Some(record) = log.next_event() {
@@ -302,7 +302,7 @@ fn the_generated_registers_capture_reads_as_written() {
     assert_eq!(distributions.len(), 10);
 
     // The summary counts the repeated message once.
-    let mut log = logs::open(&path("synthetic_registers.pcapng")).unwrap();
+    let mut log = logs::open(path("synthetic_registers.pcapng")).unwrap();
     let mut summarizer = motionwire::summary::Summarizer::default();
     while let Some(record) = log.next_event() {
         let record = record.unwrap();
@@ -341,7 +341,7 @@ fn the_generated_registers_capture_reads_as_written() {
 /// fourth lost).
 #[test]
 fn a_master_whose_mac_has_the_bit_is_paired_by_order() {
-    let mut log = logs::open(&path("synthetic_local_mac.pcapng")).unwrap();
+    let mut log = logs::open(path("synthetic_local_mac.pcapng")).unwrap();
     let mut session = Session::new();
     let mut copies = Vec::new();
     while let Some(record) = log.next_event() {
