@@ -438,6 +438,8 @@ struct Port {
     /// The streams (places in `streams`) of the waiting frames' datagrams,
     /// in order.
     waiting_streams: VecDeque<u16>,
+    /// DL control's alias bit as a BWR last set it for every slave.
+    alias_broadcast: Option<bool>,
 }
 
 /// Reads a capture's EtherCAT packets for the summary.
@@ -615,6 +617,7 @@ impl EthercatSummarizer {
                     streams_dropped: 0,
                     waiting: VecDeque::new(),
                     waiting_streams: VecDeque::new(),
+                    alias_broadcast: None,
                 });
                 self.ports.len() - 1
             }
@@ -826,7 +829,9 @@ impl Port {
         let at = match at {
             Some(at) => at,
             None => {
-                self.slaves.push(SlaveSummary::new(self.name.clone()));
+                let mut new = SlaveSummary::new(self.name.clone());
+                new.registers.alias_enabled = self.alias_broadcast;
+                self.slaves.push(new);
                 self.sdo.push(Histogram::new());
                 self.drives.push(None);
                 self.slaves.len() - 1
@@ -1094,6 +1099,21 @@ impl Port {
                         }
                     }
                     _ => {}
+                }
+            }
+            // A BWR of the alias bit: every slave's.
+            Meaning::StationAlias {
+                slave:
+                    SlaveRef {
+                        station: None,
+                        position: None,
+                    },
+                enabled: Some(enabled),
+                ..
+            } => {
+                self.alias_broadcast = Some(enabled);
+                for s in &mut self.slaves {
+                    s.registers.alias_enabled = Some(enabled);
                 }
             }
             other => {
