@@ -332,7 +332,10 @@ fn the_generated_registers_capture_reads_as_written() {
     );
     assert_eq!(dc.distributions, 0);
     // The BWR of 0x0103 before the slaves were known is every slave's.
-    assert_eq!(summary.ethercat.slaves[0].registers.alias_enabled, Some(false));
+    assert_eq!(
+        summary.ethercat.slaves[0].registers.alias_enabled,
+        Some(false)
+    );
     let reference = summary.ethercat.slaves[0].registers.dc.unwrap();
     assert_eq!(reference.distributions, 10);
 }
