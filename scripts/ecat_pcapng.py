@@ -425,17 +425,140 @@ def write_akd_fault(path):
     return bus
 
 
+# ------------------------------------------- registers: alias, repeat, DC --
+
+def frmw(station, ado, length, ret_data, wkc):
+    return Datagram(FRMW, station, ado, data=bytes(length),
+                    ret_data=ret_data, wkc=wkc)
+
+
+REG_MBX_OUT, REG_MBX_IN, REG_MBX_SIZE = 0x1000, 0x1080, 0x80
+ALIAS = 0x0077
+
+
+def write_registers(path):
+    """The registers SPEC §12.2 and §12.3 name that the real fixtures do
+    not show (tests/data/ethercat/README.md): the station alias enabled and
+    used, SM1 status polls, a mailbox message repeated after a repeat
+    request, and the distributed clock configured, read and distributed."""
+    pcap = Pcapng(path, iface="enp2s0")
+    bus = Bus(pcap, MASTER, n_slaves=2)
+    t = T0_NS
+    step = 200_000
+
+    def ex(datagrams, note=""):
+        nonlocal t
+        bus.exchange(t, datagrams, note)
+        t += step
+
+    ex([bwr(0x0010, b"\0\0", wkc=2)], "clear station addresses")
+    ex([bwr(0x0103, b"\0", wkc=2)], "DL control: alias off on every slave")
+    for position, station in enumerate((COUPLER, AKD)):
+        ex([apwr(position, 0x0010, struct.pack("<H", station))],
+           "station address")
+    ex([fprd(AKD, 0x0012, 2, struct.pack("<H", ALIAS))], "alias read")
+    ex([fpwr(AKD, 0x0103, b"\x01")], "DL control: alias on")
+    ex([fprd(ALIAS, 0x0130, 2, al_status(INIT))], "AL status by alias")
+
+    # Mailbox SM0/SM1, an SDO upload whose response is read twice: the
+    # master asks for it again (0x080E bit 1), the slave acknowledges
+    # (0x080F bit 1) and puts the same message (counter 1) back.
+    ex([fpwr(AKD, 0x0800, sm(REG_MBX_OUT, REG_MBX_SIZE, 0x26)
+             + sm(REG_MBX_IN, REG_MBX_SIZE, 0x22))], "SM0/SM1 mailbox")
+    req = sdo_upload_request(1, 0x1018, 1).ljust(REG_MBX_SIZE, b"\0")
+    res = sdo_upload_response(1, 0x1018, 1, 0x6A, 4).ljust(REG_MBX_SIZE,
+                                                           b"\0")
+    ex([fpwr(AKD, REG_MBX_OUT, req)], "SDO upload request")
+    ex([fprd(AKD, 0x080D, 1, b"\x00")], "SM1 status: empty")
+    ex([fprd(AKD, 0x080D, 1, b"\x08")], "SM1 status: full")
+    ex([fprd(AKD, REG_MBX_IN, REG_MBX_SIZE, res)], "SDO upload response")
+    ex([fprd(AKD, 0x080D, 2, b"\x00\x01")], "SM1 status and activate")
+    ex([fpwr(AKD, 0x080D, b"\x00\x03")], "repeat request (0x080E bit 1)")
+    ex([fprd(AKD, 0x080F, 1, b"\x02")], "repeat acknowledge (0x080F bit 1)")
+    ex([fprd(AKD, 0x080D, 1, b"\x08")], "SM1 status: full again")
+    ex([fprd(AKD, REG_MBX_IN, REG_MBX_SIZE, res)], "the response repeated")
+    req = sdo_upload_request(2, 0x1018, 2).ljust(REG_MBX_SIZE, b"\0")
+    res = sdo_upload_response(2, 0x1018, 2, 0x414B44, 4).ljust(
+        REG_MBX_SIZE, b"\0")
+    ex([fpwr(AKD, REG_MBX_OUT, req)], "SDO upload request")
+    ex([fprd(AKD, REG_MBX_IN, REG_MBX_SIZE, res)], "SDO upload response")
+
+    # Distributed clock: latch, receive times, SYNC0 at 1 ms, difference
+    # reads, then the reference clock's time distributed every cycle.
+    ex([bwr(0x0900, b"\0\0\0\0", wkc=2)], "latch receive times")
+    ex([aprd(1, 0x0900, 16, struct.pack("<IIII", 1000, 1400, 0, 0))],
+       "receive times")
+    ex([fprd(AKD, 0x0910, 8, struct.pack("<Q", 820_454_400_000_000_000))],
+       "system time")
+    ex([fpwr(AKD, 0x09A0, struct.pack("<II", 1_000_000, 0))],
+       "SYNC0/SYNC1 cycle times")
+    ex([fpwr(AKD, 0x0981, b"\x03")], "SYNC activation: cyclic, SYNC0")
+    for raw in (0x0000_0014, 0x8000_0009, 0x0000_0003):
+        ex([fprd(AKD, 0x092C, 4, struct.pack("<I", raw))],
+           "system time difference")
+    t = (t // 1_000_000 + 1) * 1_000_000
+    for cycle in range(10):
+        now = 820_454_400_000_000_000 + 1_000_000 * (cycle + 1)
+        bus.exchange(t, [frmw(COUPLER, 0x0910, 8, struct.pack("<Q", now),
+                              2)], "DC distribution %d" % (cycle + 1))
+        t += 1_000_000
+    pcap.close()
+    return bus
+
+
+LOCAL_MASTER = "02:00:00:00:00:01"
+
+
+def write_local_mac(path):
+    """A master whose own MAC has bit 0x02 set (a locally administered
+    address): its sent and returned copies carry the same MAC, and order
+    decides (SPEC §12.1). Six exchanges, the fourth lost."""
+    pcap = Pcapng(path, iface="eth0")
+    bus = Bus(pcap, LOCAL_MASTER, n_slaves=1)
+    t = T0_NS
+    bus.exchange(t, [brd(0x0000, 1, b"\x11", wkc=1)], "count slaves")
+    t += 200_000
+    bus.exchange(t, [apwr(0, 0x0010, struct.pack("<H", COUPLER))],
+                 "station address")
+    t += 200_000
+    bus.exchange(t, [fprd(COUPLER, 0x0130, 2, al_status(INIT))], "AL status")
+    t += 200_000
+    bus.exchange(t, [fprd(COUPLER, 0x0130, 2, al_status(INIT))], "AL status",
+                 lost=True)
+    t += 200_000
+    bus.exchange(t, [fprd(COUPLER, 0x0130, 2, al_status(INIT))], "AL status")
+    t += 200_000
+    bus.exchange(t, [brd(0x0130, 2, al_status(INIT), wkc=1)], "BRD AL status")
+    pcap.close()
+    return bus
+
+
+FIXTURES = {
+    "akd_fault": ("synthetic_akd_fault.pcapng", write_akd_fault),
+    "registers": ("synthetic_registers.pcapng", write_registers),
+    "local_mac": ("synthetic_local_mac.pcapng", write_local_mac),
+}
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     default = os.path.join(os.path.dirname(here), "tests", "data",
                            "ethercat", "synthetic_akd_fault.pcapng")
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default=default)
+    ap.add_argument("--fixture", choices=sorted(FIXTURES),
+                    default="akd_fault",
+                    help="which capture: the AKD fault (default), the "
+                         "registers of SPEC 12.2/12.3, a master whose MAC "
+                         "has bit 0x02 set")
+    ap.add_argument("--out", default=None)
     ap.add_argument("--list", action="store_true",
                     help="print the sent packet number and note of each "
                          "exchange")
     args = ap.parse_args()
-    bus = write_akd_fault(args.out)
+    name, write = FIXTURES[args.fixture]
+    if args.out is None:
+        args.out = os.path.join(os.path.dirname(default), name)
+    bus = write(args.out)
     if args.list:
         for number, datagrams, note in bus.exchanges:
             print("%d\t%d\t%s" % (number, len(datagrams), note))

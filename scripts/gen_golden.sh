@@ -77,6 +77,12 @@ done
   echo "decode --summary tests/data/ethercat/soem-akd-sdo.pcapng"
   echo "decode --summary tests/data/ethercat/synthetic_akd_fault.pcapng"
   echo "decode --summary --json tests/data/ethercat/synthetic_akd_fault.pcapng"
+  # The alias, the clock, the mailbox's polls and repeat; a master whose
+  # MAC has bit 0x02 set (docs/ethercat.md#alias, #dc, #mailbox-repeat).
+  echo "decode --json tests/data/ethercat/synthetic_registers.pcapng"
+  echo "decode --summary --json tests/data/ethercat/synthetic_registers.pcapng"
+  echo "decode --only mailbox_poll,dc_distribution tests/data/ethercat/synthetic_registers.pcapng"
+  echo "decode --summary tests/data/ethercat/synthetic_local_mac.pcapng"
 } > "$out/cases.txt"
 n=0
 while read -r line; do

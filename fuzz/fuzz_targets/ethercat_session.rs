@@ -4,7 +4,8 @@
 //!
 //! Arbitrary bytes → packets: each starts with a length byte and a flags
 //! byte (bit 0: the returned bit of the source MAC, bits 1–2: one of four
-//! interfaces, bit 3: another master), then its EtherCAT payload. Invariants:
+//! interfaces, bit 3: another master, bit 4: a master whose own MAC has the
+//! returned bit), then its EtherCAT payload. Invariants:
 //! - nothing panics; a damaged packet is an error naming its position;
 //! - a returned copy pairs only with an earlier sent packet;
 //! - the counts add up: every packet is sent, returned, returned without
@@ -52,7 +53,8 @@ fuzz_target!(|data: &[u8]| {
         rest = after;
         number += 1;
         let mut source = [if flags & 8 != 0 { 0x20 } else { 0x10 }; 6];
-        if flags & 1 != 0 {
+        // Bit 4: a master whose own MAC has the bit, paired by order.
+        if flags & 1 != 0 || flags & 0x10 != 0 {
             source[0] |= Mac::RETURNED_BIT;
         }
         let packet = EthercatPacket {

@@ -23,6 +23,9 @@ from conftest import FIXTURES, ROOT, golden_stdout
 
 ETHERCAT = ROOT / "tests" / "data" / "ethercat"
 CAPTURES = sorted(ETHERCAT.glob("*.pcapng"))
+#: Captures of a master whose own MAC has bit 0x02 set: its sent copies
+#: carry the bit too, and order tells them apart (docs/ethercat.md#direction).
+OWN_BIT_MASTERS = {"synthetic_local_mac"}
 
 DICTIONARY = pa.dictionary(pa.int32(), pa.string())
 NAMES = pa.dictionary(pa.int8(), pa.string())
@@ -226,7 +229,8 @@ def test_rows_are_tsharks_dissection(path):
         assert row["wkc"] == int(tshark["wkc"]), where
         assert row["irq"] == int(tshark["irq"], 16), where
         assert row["data"].hex() == tshark["data"], where
-        assert row["returned"] == bool(int(tshark["eth_src"][:2], 16) & 0x02), where
+        if path.stem not in OWN_BIT_MASTERS:
+            assert row["returned"] == bool(int(tshark["eth_src"][:2], 16) & 0x02), where
 
 
 def test_lost_and_unpaired_frames_are_counted():

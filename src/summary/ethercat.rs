@@ -25,6 +25,7 @@ use crate::profiles::Profile;
 
 use super::cia402::{Cia402Fault, Cia402Timeline, Cia402Transition, TimelineBuilder};
 use super::emcy::EmcySeen;
+pub use super::ethercat_regs::{DcSummary, SlaveRegisters};
 use super::servo::{ServoEvent, ServoTimeline};
 use super::values::{Iface, Ts};
 
@@ -140,6 +141,8 @@ pub struct SlaveSummary {
     pub cia402: Option<Cia402Timeline>,
     /// The servo timeline of a slave read as a servo (docs/ethercat.md#servo).
     pub servo: Option<ServoTimeline>,
+    /// Its station alias, mailbox polls and repeats, distributed clock.
+    pub registers: SlaveRegisters,
 }
 
 /// A CoE SDO abort, from either side.
@@ -265,6 +268,7 @@ impl SlaveSummary {
             first_unconfirmed: None,
             cia402: None,
             servo: None,
+            registers: SlaveRegisters::default(),
         }
     }
 }
@@ -434,6 +438,8 @@ struct Port {
     /// The streams (places in `streams`) of the waiting frames' datagrams,
     /// in order.
     waiting_streams: VecDeque<u16>,
+    /// DL control's alias bit as a BWR last set it for every slave.
+    alias_broadcast: Option<bool>,
 }
 
 /// Reads a capture's EtherCAT packets for the summary.
@@ -611,6 +617,7 @@ impl EthercatSummarizer {
                     streams_dropped: 0,
                     waiting: VecDeque::new(),
                     waiting_streams: VecDeque::new(),
+                    alias_broadcast: None,
                 });
                 self.ports.len() - 1
             }
@@ -822,7 +829,9 @@ impl Port {
         let at = match at {
             Some(at) => at,
             None => {
-                self.slaves.push(SlaveSummary::new(self.name.clone()));
+                let mut new = SlaveSummary::new(self.name.clone());
+                new.registers.alias_enabled = self.alias_broadcast;
+                self.slaves.push(new);
                 self.sdo.push(Histogram::new());
                 self.drives.push(None);
                 self.slaves.len() - 1
@@ -1026,6 +1035,7 @@ impl Port {
                 written,
                 accepted,
                 guessed,
+                repeated,
                 header,
                 body,
                 profile,
@@ -1036,6 +1046,10 @@ impl Port {
                 };
                 if guessed {
                     s.mailbox_guessed += 1;
+                }
+                if repeated {
+                    s.registers.mailbox_repeated += 1;
+                    return;
                 }
                 if written && !accepted {
                     s.mailbox_refused += 1;
@@ -1085,6 +1099,26 @@ impl Port {
                         }
                     }
                     _ => {}
+                }
+            }
+            // A BWR of the alias bit: every slave's.
+            Meaning::StationAlias {
+                slave:
+                    SlaveRef {
+                        station: None,
+                        position: None,
+                    },
+                enabled: Some(enabled),
+                ..
+            } => {
+                self.alias_broadcast = Some(enabled);
+                for s in &mut self.slaves {
+                    s.registers.alias_enabled = Some(enabled);
+                }
+            }
+            other => {
+                if let Some((_, s)) = registers_slave(&other).and_then(|slave| self.slave(slave)) {
+                    s.registers.observe(&other);
                 }
             }
         }
@@ -1411,7 +1445,21 @@ pub(super) fn slave_entries<M: SerializeMap>(
         }),
     )?;
     map.serialize_entry("cia402", &s.cia402)?;
-    map.serialize_entry("servo", &s.servo)
+    map.serialize_entry("servo", &s.servo)?;
+    s.registers.entries(map)
+}
+
+/// The slave of a meaning of the alias, the mailbox protocol or the clock
+/// (a broadcast of the alias bit names none: no slave's).
+fn registers_slave(meaning: &Meaning<'_>) -> Option<SlaveRef> {
+    match *meaning {
+        Meaning::StationAlias { slave, .. }
+        | Meaning::Dc { slave, .. }
+        | Meaning::DcDistribution { slave, .. }
+        | Meaning::MailboxPoll { slave, .. }
+        | Meaning::MailboxRepeat { slave, .. } => Some(slave),
+        _ => None,
+    }
 }
 
 /// An SDO abort as JSON: `{"packet", "ts", "index", "subindex",
@@ -1685,6 +1733,7 @@ impl fmt::Display for SlaveSummary {
                 f.write_str(")")?;
             }
         }
+        fmt::Display::fmt(&self.registers, f)?;
         writeln!(f)?;
         if let Some(cia402) = &self.cia402 {
             fmt::Display::fmt(cia402, f)?;

@@ -44,6 +44,7 @@ mod causes;
 mod cia402;
 mod emcy;
 mod ethercat;
+mod ethercat_regs;
 mod event;
 mod file;
 mod findings;
@@ -64,9 +65,9 @@ pub use causes::LOST_HEARTBEAT;
 pub use cia402::{Cia402Fault, Cia402Timeline, Cia402Transition};
 pub use emcy::{EmcySeen, ProfileReading};
 pub use ethercat::{
-    device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DlChange, EthercatFact,
-    EthercatSummary, PortSummary, SlaveSummary, StreamSummary, MAX_AL_CHANGES, MAX_EMERGENCIES,
-    MAX_STREAMS, STATUS_STREAM_MIN,
+    device_name, AlChange, CoeEmergency, CoeSdoAbort, CounterRise, DcSummary, DlChange,
+    EthercatFact, EthercatSummary, PortSummary, SlaveRegisters, SlaveSummary, StreamSummary,
+    MAX_AL_CHANGES, MAX_EMERGENCIES, MAX_STREAMS, STATUS_STREAM_MIN,
 };
 pub use event::{SummaryEvent, SummaryEventKind};
 pub use file::{FileSpan, SeveralFiles};

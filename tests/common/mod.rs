@@ -140,6 +140,11 @@ impl Run {
                                 number: at + 1,
                                 meaning,
                             };
+                            // docs/ethercat.md#filters: a record a cycle or
+                            // a poll only when `--only` names it.
+                            if motionwire::decoder::ethercat::QUIET_KINDS.contains(&record.kind()) {
+                                continue;
+                            }
                             record.append_json(&mut out, several.then_some(file.as_str()));
                         }
                         // docs/ethercat.md#process-data: a record per slave

@@ -1046,7 +1046,7 @@ fn summary_findings(records: &[serde_json::Value]) -> usize {
 fn every_ethercat_capture_draws_its_slaves_and_streams() {
     let dir = scratch("ethercat");
     let captures = ethercat_captures();
-    assert_eq!(captures.len(), 9);
+    assert_eq!(captures.len(), 11);
     let mut slaves = 0;
     for capture in captures {
         let (page, stderr) = capture_page(&capture, &dir);
@@ -1077,7 +1077,7 @@ fn every_ethercat_capture_draws_its_slaves_and_streams() {
             }
         }
     }
-    assert_eq!(slaves, 18, "the nine captures' slaves");
+    assert_eq!(slaves, 21, "the eleven captures' slaves");
 }
 
 /// The synthetic AKD fault (docs/ethercat.md#summary): the drive's EMCY at

@@ -39,8 +39,32 @@ pub const SII_DATA: u16 = 0x0508;
 pub const FMMU_BASE: u16 = 0x0600;
 /// The first sync manager (8 bytes each).
 pub const SYNC_MANAGER_BASE: u16 = 0x0800;
+/// The byte of DL control whose bit 0 enables the station alias.
+pub const DL_CONTROL_ALIAS: u16 = 0x0103;
+/// Sync manager n's status byte is this far into its 8 bytes (SM1's,
+/// 0x080D, bit 3: the mailbox is full).
+pub const SYNC_MANAGER_STATUS: u16 = 5;
+/// Sync manager n's activate byte (bit 1: the master's repeat request).
+pub const SYNC_MANAGER_ACTIVATE: u16 = 6;
+/// Sync manager n's PDI control byte (bit 1: the slave's repeat
+/// acknowledge).
+pub const SYNC_MANAGER_PDI_CONTROL: u16 = 7;
+/// DC receive times of ports 0–3 (4 bytes each).
+pub const RECEIVE_TIMES: u16 = 0x0900;
 /// DC system time (8 bytes).
 pub const SYSTEM_TIME: u16 = 0x0910;
+/// DC system time difference (4 bytes: the mean difference in bits 0–30,
+/// bit 31 set when the local copy is the smaller).
+pub const SYSTEM_TIME_DIFFERENCE: u16 = 0x092C;
+/// DC cyclic unit control (1 byte).
+pub const CYCLIC_UNIT_CONTROL: u16 = 0x0980;
+/// DC activation (1 byte: bit 0 cyclic operation, bit 1 SYNC0, bit 2
+/// SYNC1).
+pub const SYNC_ACTIVATION: u16 = 0x0981;
+/// DC SYNC0 cycle time (4 bytes, ns).
+pub const SYNC0_CYCLE_TIME: u16 = 0x09A0;
+/// DC SYNC1 cycle time (4 bytes, ns).
+pub const SYNC1_CYCLE_TIME: u16 = 0x09A4;
 
 /// Return the bytes of the register at `register`, `len` bytes long, in
 /// the data of a datagram that starts at register `ado`, when the datagram

@@ -14,7 +14,7 @@ use motionwire::can::{EthercatPacket, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
 use motionwire::decoder::ethercat::{
     DatagramRecord, MeaningRecord, ProcessRecord, Session, DATAGRAM_KIND, PROCESS_DATA_KIND,
-    SERVO_KIND,
+    QUIET_KINDS, SERVO_KIND,
 };
 use motionwire::decoder::{Decoder, DecoderConfig};
 use motionwire::ethercat::Addressing;
@@ -31,7 +31,8 @@ use crate::record::{Record, CSV_HEADER};
 
 /// Which EtherCAT records `decode` writes (docs/ethercat.md#filters).
 struct EthercatFilter {
-    /// The kinds `--only` names; `None`: every kind.
+    /// The kinds `--only` names; `None`: every kind but the quiet ones
+    /// (`ethercat::QUIET_KINDS`: a record a cycle or a poll).
     kinds: Option<Vec<&'static str>>,
     /// The stations `--slave` names; empty: every slave.
     slaves: Vec<u16>,
@@ -47,10 +48,10 @@ impl EthercatFilter {
     fn shows(&self, kind: &str, station: Option<u16>) -> bool {
         !self.none
             && !self.outside
-            && self
-                .kinds
-                .as_ref()
-                .map_or(true, |kinds| kinds.contains(&kind))
+            && self.kinds.as_ref().map_or_else(
+                || !QUIET_KINDS.contains(&kind),
+                |kinds| kinds.contains(&kind),
+            )
             && (self.slaves.is_empty() || station.is_some_and(|s| self.slaves.contains(&s)))
     }
 }

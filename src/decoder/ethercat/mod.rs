@@ -6,6 +6,7 @@
 
 mod coe;
 mod config;
+mod dc;
 #[cfg(feature = "eni")]
 mod eni;
 mod image;
@@ -13,11 +14,13 @@ mod network;
 mod problem;
 mod process;
 mod record;
+mod record_regs;
 mod session;
 mod slave;
 
 pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
+pub use dc::{time_difference, DcRegisters};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};
 pub use network::{AlRegister, Meaning, SiiField, ERROR_COUNTERS_LEN};
@@ -27,5 +30,6 @@ pub use record::{
     DatagramRecord, Fields, MeaningRecord, ProcessRecord, DATAGRAM_KIND, PROCESS_DATA_KIND,
     RECORD_KINDS, SERVO_KIND,
 };
+pub use record_regs::QUIET_KINDS;
 pub use session::{Counts, DamagedPacket, FrameCopy, Packet, Session, PAIRING_WINDOW};
 pub use slave::SlaveRef;

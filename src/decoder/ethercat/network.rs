@@ -16,6 +16,7 @@ use crate::servo::{Command as ServoCommand, Feedback};
 
 use super::coe::{CoeChannel, CoeSdoStep};
 use super::config::SlaveConfig;
+use super::dc::DcRegisters;
 use super::image::{CoeObjects, Plan};
 use super::problem::{ImageError, ImageProblem};
 use super::process::{ProcessData, ServoSlaves, ServoWatch};
@@ -173,6 +174,10 @@ pub enum Meaning<'a> {
         /// Whether the area was guessed (no sync-manager configuration
         /// seen for the slave; docs/ethercat.md#mailbox).
         guessed: bool,
+        /// Whether it is a message read again after the master's repeat
+        /// request, with the counter of the message read before it: the
+        /// same message, counted once (docs/ethercat.md#mailbox-repeat).
+        repeated: bool,
         /// The header.
         header: MailboxHeader,
         /// The message's body (after the header), as far as the datagram
@@ -186,6 +191,59 @@ pub enum Meaning<'a> {
         /// counter 1, a read), what it is in the slave's transfer
         /// (docs/ethercat.md#coe-sdo).
         sdo: Option<CoeSdoStep>,
+    },
+    /// A read of the status byte of a slave's mailbox-in sync manager
+    /// (SM1's 0x080D): the master polls it for a message
+    /// (docs/ethercat.md#mailbox-repeat).
+    MailboxPoll {
+        /// The slave.
+        slave: SlaveRef,
+        /// Bit 3: the mailbox is full, a message waits.
+        full: bool,
+    },
+    /// The mailbox repeat protocol: the master toggles bit 1 of the
+    /// mailbox-in sync manager's activate byte (SM1's 0x080E) to ask for
+    /// the last message again; the slave acknowledges with the same bit of
+    /// its PDI control byte (0x080F) (docs/ethercat.md#mailbox-repeat).
+    MailboxRepeat {
+        /// The slave.
+        slave: SlaveRef,
+        /// `false` for the request (written), `true` for the acknowledge
+        /// (read, the first that matches the request).
+        acknowledged: bool,
+    },
+    /// The station alias (0x0012) read or written, or DL control's alias
+    /// bit (0x0103 bit 0) read or written; a BWR of 0x0103 sets the bit of
+    /// every slave and names none (docs/ethercat.md#alias).
+    StationAlias {
+        /// The slave (neither station nor position for a BWR).
+        slave: SlaveRef,
+        /// The alias, where the datagram covers 0x0012.
+        alias: Option<u16>,
+        /// Whether FPxx reach the slave by its alias, where the datagram
+        /// covers 0x0103.
+        enabled: Option<bool>,
+    },
+    /// Distributed-clock registers of one slave, read or written
+    /// (docs/ethercat.md#dc).
+    Dc {
+        /// The slave.
+        slave: SlaveRef,
+        /// Written by the master (`true`) or read.
+        written: bool,
+        /// The registers the datagram covers.
+        registers: DcRegisters,
+    },
+    /// The cyclic distribution of the reference clock's system time: an
+    /// ARMW or FRMW of 0x0910 reads it from the addressed slave and writes
+    /// it to every slave after (docs/ethercat.md#dc).
+    DcDistribution {
+        /// The reference clock: the addressed slave.
+        slave: SlaveRef,
+        /// Its system time as read (the low 32 bits for a 4-byte datagram).
+        system_time: Option<u64>,
+        /// The working counter.
+        wkc: u16,
     },
 }
 
@@ -215,6 +273,27 @@ struct Slave {
     drive: DriveState,
     /// Its servo handshakes, when it is read as a servo.
     servo: Option<ServoWatch>,
+    /// Its station alias (0x0012) as read.
+    alias: Option<u16>,
+    /// DL control's alias bit as last written or read to it alone.
+    alias_enabled: Option<bool>,
+    /// Its mailbox's repeat protocol.
+    repeat: Repeat,
+}
+
+/// Where a slave's mailbox repeat protocol stands
+/// (docs/ethercat.md#mailbox-repeat).
+#[derive(Debug, Clone, Copy, Default)]
+struct Repeat {
+    /// Bit 1 of the mailbox-in sync manager's activate byte as last
+    /// written or read.
+    request_bit: Option<bool>,
+    /// A request waits for its message.
+    pending: bool,
+    /// The request's acknowledge was said.
+    acknowledged: bool,
+    /// The last message read: its counter and type.
+    last: Option<(u8, MailboxType)>,
 }
 
 impl Slave {
@@ -233,6 +312,21 @@ impl Slave {
             .flatten()
             .find(|sm| sm.mode() == SyncManagerMode::Mailbox && sm.start == ado)
             .map(|sm| (sm.written_by_master(), sm.len))
+    }
+
+    /// The first register of the sync manager the master reads messages
+    /// from (SM1 where none is known).
+    fn mailbox_in_base(&self) -> u16 {
+        let n = self
+            .sync_managers
+            .iter()
+            .position(|sm| {
+                sm.is_some_and(|sm| {
+                    sm.mode() == SyncManagerMode::Mailbox && !sm.written_by_master()
+                })
+            })
+            .unwrap_or(1);
+        register::SYNC_MANAGER_BASE + (n * SYNC_MANAGER_LEN) as u16
     }
 
     fn has_mailbox(&self) -> bool {
@@ -261,6 +355,9 @@ pub(super) struct Network {
     problems: Vec<ImageProblem>,
     /// Problems past [`PROBLEMS_KEPT`].
     problems_dropped: u64,
+    /// DL control's alias bit as a BWR of 0x0103 last set it for every
+    /// slave.
+    alias_broadcast: Option<bool>,
 }
 
 /// The problems a network keeps between two takes; more are counted.
@@ -521,15 +618,44 @@ impl Network {
             }
             return;
         }
-        if wkc == 0 && !is_mailbox_write(command) {
+        if command == Command::Bwr && wkc >= 1 {
+            if let Some(b) = covered(ado, data, register::DL_CONTROL_ALIAS, 1) {
+                let enabled = b[0] & 0x01 != 0;
+                self.alias_broadcast = Some(enabled);
+                for slave in &mut self.slaves {
+                    slave.alias_enabled = None;
+                }
+                on(Meaning::StationAlias {
+                    slave: SlaveRef::default(),
+                    alias: None,
+                    enabled: Some(enabled),
+                });
+            }
             return;
+        }
+        if wkc == 0 {
+            // An empty mailbox: what a repeat brings after it is news.
+            if command == Command::Fprd {
+                if let Some(at) = self.addressed(datagram.adp()) {
+                    let known = &mut self.slaves[at];
+                    if known.mailbox_at(ado).is_some_and(|(writes, _)| !writes) {
+                        known.repeat.last = None;
+                    }
+                }
+            }
+            if !is_mailbox_write(command) {
+                return;
+            }
         }
         let slave = match command.addressing() {
             Addressing::Position => match sent_adp {
                 Some(adp) => self.at_position(0u16.wrapping_sub(adp)),
                 None => return,
             },
-            Addressing::Station => self.at_station(datagram.adp()),
+            Addressing::Station => match self.addressed(datagram.adp()) {
+                Some(at) => at,
+                None => self.at_station(datagram.adp()),
+            },
             _ => return,
         };
         // A register is taken from a copy that proves it was delivered;
@@ -548,6 +674,9 @@ impl Network {
             }
         }
         let reference = self.slaves[slave].reference();
+        if delivered {
+            self.registers(slave, command, ado, data, wkc, &mut on);
+        }
         if writes {
             if let Some(bytes) = covered(ado, data, register::AL_CONTROL, 2) {
                 on(Meaning::AlState {
@@ -617,6 +746,7 @@ impl Network {
                 if let Meaning::Mailbox {
                     written,
                     accepted: true,
+                    repeated: false,
                     header,
                     body,
                     ref mut sdo,
@@ -664,6 +794,114 @@ impl Network {
             }
         }
         Some(step)
+    }
+
+    /// The slave an FPxx at `adp` reaches: the one of that station
+    /// address, else the one whose enabled alias it is
+    /// (docs/ethercat.md#alias).
+    fn addressed(&self, adp: u16) -> Option<usize> {
+        let broadcast = self.alias_broadcast;
+        self.slaves
+            .iter()
+            .position(|s| s.station == Some(adp))
+            .or_else(|| {
+                self.slaves.iter().position(|s| {
+                    s.alias == Some(adp) && s.alias_enabled.or(broadcast) == Some(true)
+                })
+            })
+    }
+
+    /// The registers of docs/ethercat.md#alias, #dc and #mailbox-repeat a
+    /// delivered datagram covers.
+    fn registers<'a>(
+        &mut self,
+        slave: usize,
+        command: Command,
+        ado: u16,
+        data: &[u8],
+        wkc: u16,
+        on: &mut impl FnMut(Meaning<'a>),
+    ) {
+        let reads = command.reads();
+        let writes = command.writes();
+        let reference = self.slaves[slave].reference();
+        if matches!(command, Command::Armw | Command::Frmw) {
+            // The reference clock's time, every cycle: its own kind.
+            if covered(ado, data, register::SYSTEM_TIME, 4).is_some() {
+                let system_time = DcRegisters::covered(ado, data, true).and_then(|d| d.system_time);
+                on(Meaning::DcDistribution {
+                    slave: reference,
+                    system_time,
+                    wkc,
+                });
+            }
+            return;
+        }
+        let alias = covered(ado, data, register::STATION_ALIAS, 2)
+            .map(|b| u16::from_le_bytes([b[0], b[1]]));
+        let enabled = covered(ado, data, register::DL_CONTROL_ALIAS, 1).map(|b| b[0] & 0x01 != 0);
+        if alias.is_some() || enabled.is_some() {
+            let known = &mut self.slaves[slave];
+            known.alias = alias.or(known.alias);
+            known.alias_enabled = enabled.or(known.alias_enabled);
+            on(Meaning::StationAlias {
+                slave: reference,
+                alias,
+                enabled,
+            });
+        }
+        if let Some(registers) = DcRegisters::covered(ado, data, reads) {
+            on(Meaning::Dc {
+                slave: reference,
+                written: !reads,
+                registers,
+            });
+        }
+        // The mailbox-in sync manager's status, activate and PDI control.
+        let known = &mut self.slaves[slave];
+        let base = known.mailbox_in_base();
+        let status = base + register::SYNC_MANAGER_STATUS;
+        let request_bit =
+            covered(ado, data, base + register::SYNC_MANAGER_ACTIVATE, 1).map(|b| b[0] & 0x02 != 0);
+        if writes && !reads {
+            if let Some(bit) = request_bit {
+                // A request writes the byte (SOEM with the status before
+                // it); a write of the whole sync manager configures it.
+                let toggled =
+                    ado >= status && known.repeat.request_bit.is_some_and(|before| before != bit);
+                known.repeat.request_bit = Some(bit);
+                if toggled {
+                    known.repeat.pending = true;
+                    known.repeat.acknowledged = false;
+                    on(Meaning::MailboxRepeat {
+                        slave: reference,
+                        acknowledged: false,
+                    });
+                }
+            }
+        } else if reads {
+            known.repeat.request_bit = request_bit.or(known.repeat.request_bit);
+            let ack = covered(ado, data, base + register::SYNC_MANAGER_PDI_CONTROL, 1)
+                .map(|b| b[0] & 0x02 != 0);
+            let repeat = &mut known.repeat;
+            if repeat.pending && !repeat.acknowledged && ack.is_some() && ack == repeat.request_bit
+            {
+                repeat.acknowledged = true;
+                on(Meaning::MailboxRepeat {
+                    slave: reference,
+                    acknowledged: true,
+                });
+            }
+            // A poll reads the status byte, with at most the two after it.
+            if ado == status && data.len() <= 3 {
+                if let Some(b) = data.first() {
+                    on(Meaning::MailboxPoll {
+                        slave: reference,
+                        full: b & 0x08 != 0,
+                    });
+                }
+            }
+        }
     }
 
     /// The slave at `position`, added when new.
@@ -719,7 +957,11 @@ impl Network {
             if let Some(b) = covered(ado, data, base, SYNC_MANAGER_LEN) {
                 let mut bytes = [0; SYNC_MANAGER_LEN];
                 bytes.copy_from_slice(b);
-                known.sync_managers[n] = Some(SyncManager::from_bytes(bytes));
+                let sm = SyncManager::from_bytes(bytes);
+                if sm.mode() == SyncManagerMode::Mailbox && !sm.written_by_master() {
+                    known.repeat.request_bit = Some(sm.activate & 0x02 != 0);
+                }
+                known.sync_managers[n] = Some(sm);
                 known.plan = None;
             }
             let base = register::FMMU_BASE + (n * FMMU_LEN) as u16;
@@ -825,11 +1067,21 @@ impl Network {
             return None;
         }
         let end = (MAILBOX_HEADER_LEN + usize::from(header.length)).min(data.len());
+        let mut repeated = false;
+        if !written {
+            let repeat = &mut self.slaves[slave].repeat;
+            let this = (header.counter, header.mailbox_type);
+            repeated = repeat.pending && repeat.last == Some(this);
+            repeat.pending = false;
+            repeat.last = Some(this);
+        }
+        let known = &self.slaves[slave];
         Some(Meaning::Mailbox {
             slave: known.reference(),
             written,
             accepted: wkc >= 1,
             guessed,
+            repeated,
             header,
             body: &data[MAILBOX_HEADER_LEN..end],
             profile: known.profile(),

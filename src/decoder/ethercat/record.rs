@@ -23,7 +23,7 @@ pub const DATAGRAM_KIND: &str = "ecat_datagram";
 /// Every kind of record `decode` writes for an EtherCAT capture, in the
 /// order docs/ethercat.md lists them: the datagram's, then what it tells
 /// ([`MeaningRecord::kind`]).
-pub const RECORD_KINDS: [&str; 11] = [
+pub const RECORD_KINDS: [&str; 16] = [
     DATAGRAM_KIND,
     "station",
     "al_state",
@@ -35,6 +35,11 @@ pub const RECORD_KINDS: [&str; 11] = [
     "coe_emcy",
     PROCESS_DATA_KIND,
     SERVO_KIND,
+    "alias",
+    "dc",
+    "dc_distribution",
+    "mailbox_poll",
+    "mailbox_repeat",
 ];
 
 /// The kind of a slave's process-data record (`"kind": "process_data"`).
@@ -239,6 +244,7 @@ impl MeaningRecord<'_, '_> {
                 Some((CoeService::SdoRequest | CoeService::SdoResponse, _)) => "coe_sdo",
                 _ => "mailbox",
             },
+            ref other => super::record_regs::kind(other).unwrap_or("mailbox"),
         }
     }
 
@@ -254,6 +260,7 @@ impl MeaningRecord<'_, '_> {
             | Meaning::ErrorCounters { slave, .. }
             | Meaning::Mailbox { slave, .. } => slave,
             Meaning::BroadcastAlStatus { .. } => SlaveRef::default(),
+            ref other => super::record_regs::slave(other).unwrap_or_default(),
         }
     }
 
@@ -306,6 +313,7 @@ impl MeaningRecord<'_, '_> {
                 written,
                 accepted,
                 guessed,
+                repeated,
                 header,
                 body,
                 profile,
@@ -315,6 +323,7 @@ impl MeaningRecord<'_, '_> {
                 obj.name("direction", if written { "write" } else { "read" });
                 obj.bool("accepted", accepted);
                 obj.bool("guessed", guessed);
+                obj.bool("repeated", repeated);
                 obj.name("type", header.mailbox_type.name());
                 obj.uint("length", u64::from(header.length));
                 obj.uint("address", u64::from(header.address));
@@ -322,6 +331,10 @@ impl MeaningRecord<'_, '_> {
                 obj.uint("priority", u64::from(header.priority));
                 obj.uint("counter", u64::from(header.counter));
                 mailbox_json(&mut obj, header.mailbox_type, body, profile, sdo);
+            }
+            ref other => {
+                slave_json(&mut obj, self.slave());
+                super::record_regs::append_json(&mut obj, other);
             }
         }
         obj.end();
@@ -440,6 +453,7 @@ impl fmt::Display for Words<'_, '_, '_> {
                 written,
                 accepted,
                 guessed,
+                repeated,
                 header,
                 body,
                 ..
@@ -458,6 +472,9 @@ impl fmt::Display for Words<'_, '_, '_> {
                 }
                 if guessed {
                     f.write_str(" (area guessed)")?;
+                }
+                if repeated {
+                    f.write_str(" (repeated, counted once)")?;
                 }
                 match coe(header.mailbox_type, body) {
                     Some((CoeService::Emergency, rest)) => match Emcy::parse(rest) {
@@ -496,6 +513,10 @@ impl fmt::Display for Words<'_, '_, '_> {
                     }
                     None => Ok(()),
                 }
+            }
+            ref other => {
+                slave(f, self.0.slave())?;
+                super::record_regs::words(f, other)
             }
         }
     }

@@ -116,7 +116,13 @@ struct Port {
     sent: Option<(Position, Vec<u8>)>,
     /// Buffers of sent frames, reused.
     spare: Vec<Vec<u8>>,
+    /// The source MACs seen sending with the bit clear (the first
+    /// [`SENDERS_KEPT`]): their returned copies are never sent frames.
+    senders: Vec<Mac>,
 }
+
+/// The masters' MACs a port keeps.
+const SENDERS_KEPT: usize = 16;
 
 /// The counts a session keeps, per capture (docs/ethercat.md#direction).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
@@ -439,6 +445,7 @@ impl Session {
                     network,
                     sent: None,
                     spare: Vec::new(),
+                    senders: Vec::new(),
                 });
                 self.ports.len() - 1
             }
@@ -457,16 +464,14 @@ impl Session {
         frame: &EthercatFrame<'_>,
     ) -> (FrameCopy, Vec<u16>) {
         let signature = signature(frame);
-        if source.returned_bit() {
-            let pending = &mut self.ports[port].pending;
-            let master = source.without_returned_bit();
-            let found = pending
-                .iter()
-                .position(|p| p.signature == signature && p.source == master);
-            let Some(at) = found else {
-                self.counts.returned_unpaired += 1;
-                return (FrameCopy::ReturnedUnpaired, Vec::new());
-            };
+        let master = source.without_returned_bit();
+        // A master whose own MAC has the bit: its sent frames wait under
+        // that MAC, and order decides (docs/ethercat.md#direction).
+        let found = self.ports[port]
+            .pending
+            .iter()
+            .position(|p| p.signature == signature && (p.source == master || p.source == source));
+        if let (true, Some(at)) = (source.returned_bit(), found) {
             // The frames sent before it are not coming back: a ring
             // returns frames in the order they were sent.
             let port = &mut self.ports[port];
@@ -489,6 +494,22 @@ impl Session {
                 },
                 sent.adps,
             );
+        }
+        if source.returned_bit() {
+            // Sent by a master whose MAC has the bit set, if no master is
+            // known by the MAC without it and no slave has counted yet.
+            let counted = frame
+                .datagrams()
+                .any(|d| d.map_or(true, |d| d.working_counter() != 0));
+            if counted || self.ports[port].senders.contains(&master) {
+                self.counts.returned_unpaired += 1;
+                return (FrameCopy::ReturnedUnpaired, Vec::new());
+            }
+        } else {
+            let senders = &mut self.ports[port].senders;
+            if senders.len() < SENDERS_KEPT && !senders.contains(&source) {
+                senders.push(source);
+            }
         }
         let pending = &mut self.ports[port].pending;
         if pending.len() == PAIRING_WINDOW {
