@@ -5,6 +5,7 @@
 //! [`crate::ethercat`].
 
 mod coe;
+mod columns;
 mod config;
 #[cfg(feature = "eni")]
 mod eni;
@@ -17,6 +18,7 @@ mod session;
 mod slave;
 
 pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
+pub use columns::MeaningColumns;
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};

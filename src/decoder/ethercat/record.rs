@@ -510,7 +510,7 @@ fn state_words(status: crate::ethercat::AlStatus) -> String {
 }
 
 /// A CoE message's service and the bytes after its header.
-fn coe(mailbox_type: MailboxType, body: &[u8]) -> Option<(CoeService, &[u8])> {
+pub(super) fn coe(mailbox_type: MailboxType, body: &[u8]) -> Option<(CoeService, &[u8])> {
     if mailbox_type != MailboxType::Coe {
         return None;
     }
