@@ -2,10 +2,10 @@
 
 Every format of docs/formats.md (candump, ASC, TRC, BLF, pcap/pcapng, MF4,
 gzip-compressed or not) read into Arrow tables built in Rust, EtherCAT
-captures datagram by datagram and their process data (signals, servo
-frames) as tables, the CANopen decoder's columns and JSON
-records, the post-mortem summary and what went wrong, and python-can
-messages. The work is done by the Rust library with the GIL
+captures datagram by datagram, their process data (signals, servo frames)
+and what they tell of the slaves as tables, the CANopen decoder's columns
+and JSON records, the post-mortem summary and what went wrong, and
+python-can messages. The work is done by the Rust library with the GIL
 released; this module only re-exports it.
 """
 
@@ -18,6 +18,7 @@ from ._motionwire import (
     Reader,
     __version__,
     decode,
+    ethercat_records,
     findings,
     process_data,
     read_log,
@@ -34,6 +35,24 @@ Format = Literal["candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4"]
 ProfileName = Literal["generic", "akd", "baumer"]
 Profiles = Union[ProfileName, Mapping[Optional[int], ProfileName]]
 Servo = Union[str, int, Iterable[Union[str, int]], None]
+RecordKind = Literal[
+    "ecat_datagram",
+    "station",
+    "al_state",
+    "sii",
+    "dl_status",
+    "error_counters",
+    "mailbox",
+    "coe_sdo",
+    "coe_emcy",
+    "process_data",
+    "servo",
+    "alias",
+    "dc",
+    "dc_distribution",
+    "mailbox_poll",
+    "mailbox_repeat",
+]
 
 __all__ = [
     "Format",
@@ -42,9 +61,11 @@ __all__ = [
     "ProfileName",
     "Profiles",
     "Reader",
+    "RecordKind",
     "Servo",
     "Source",
     "decode",
+    "ethercat_records",
     "findings",
     "process_data",
     "read_log",

@@ -3,8 +3,9 @@
 Every format of docs/formats.md — candump log and screen output, Vector ASC
 and BLF, PEAK TRC, pcap and pcapng, ASAM MDF 4 — gzip-compressed or not,
 found from the content; EtherCAT captures (pcap, pcapng) datagram by
-datagram (docs/python.md#ethercat), and their process data signal by
-signal (docs/python.md#process-data). Tables are built column by column in Rust and handed
+datagram (docs/python.md#ethercat), what the datagrams tell of the slaves
+record by record (docs/python.md#ethercat-records), and their process data
+signal by signal (docs/python.md#process-data). Tables are built column by column in Rust and handed
 to pyarrow without a copy; pandas (`table.to_pandas()`), polars
 (`polars.from_arrow(table)`) and DuckDB (`duckdb.sql("… from table")`) read
 them as they are. The GIL is released while a log is read.
@@ -28,9 +29,11 @@ __all__ = [
     "ProfileName",
     "Profiles",
     "Reader",
+    "RecordKind",
     "Servo",
     "Source",
     "decode",
+    "ethercat_records",
     "findings",
     "process_data",
     "read_log",
@@ -273,24 +276,27 @@ def findings(
 ) -> pyarrow.Table:
     """What went wrong (docs/summary.md#findings): one row per finding, the
     list of the report's "What went wrong" (``motionwire report``), in time
-    order: first errors and warnings, CiA 402 faults, restarts, heartbeat timeouts over
-    ``heartbeat_ms``, SDO aborts, broken and unanswered SDO transfers,
-    node-guarding toggle errors, bus-off and error-passive frames; where the
+    order: first errors and warnings, CiA 402 faults, restarts, heartbeat
+    timeouts over ``heartbeat_ms``, SDO aborts, broken and unanswered SDO
+    transfers, node-guarding toggle errors, bus-off and error-passive frames;
+    an EtherCAT capture's slaves' AL errors and servo faults
+    (docs/ethercat.md#findings, ``servo=`` as process_data's); where the
     summary omitted entries of a list, one row says how many.
 
-    Columns: ``line`` (uint64), ``ts`` (float64 seconds, null where the log
-    has no time), ``iface`` (dictionary, null for an unnamed bus), ``node``
-    (uint8, null for a bus's findings), ``kind`` (dictionary:
+    Columns: ``line`` (uint64: the line, or an EtherCAT capture's packet),
+    ``ts`` (float64 seconds, null where the log has no time), ``iface``
+    (dictionary, null for an unnamed bus), ``node`` (uint8, null for a bus's
+    findings and an EtherCAT slave's), ``slave`` (uint16, the EtherCAT
+    slave's station address, null for CAN), ``kind`` (dictionary:
     ``first_error``, ``first_warning``, ``cia402_fault``, ``restarts``,
-    ``heartbeat_timeout``,
-    ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
-    ``bus_off``, ``error_passive``), ``severity`` (dictionary: ``fault``,
-    ``error``, ``warning``, ``notice``; docs/summary.md#severity), ``text``
-    (what it says, without the device).
+    ``heartbeat_timeout``, ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``,
+    ``toggle_error``, ``bus_off``, ``error_passive``, ``al_error``,
+    ``servo_fault``), ``severity`` (dictionary: ``fault``, ``error``,
+    ``warning``, ``notice``; docs/summary.md#severity), ``text`` (what it
+    says, without the device).
 
     Lines skipped as malformed are said with a UserWarning (read_log lists
-    them); so are a capture's EtherCAT packets, which the findings do not
-    cover yet.
+    them).
     """
 
 #: `servo=`: the slaves read as the servo frames of docs/servo.md, as the
@@ -353,6 +359,83 @@ def servo(
     ``enable_cycles`` (uint32), ``error_clear``, ``zero_pulse``
     (dictionary: the phases' names); ``ready`` (bool, ServoRDY by the
     mode, null without feedback); ``confirmed`` (bool).
+    """
+
+#: A kind of record ``motionwire decode --json`` writes for an EtherCAT
+#: capture (docs/ethercat.md#records, docs/ethercat.md#meanings): the
+#: program's ``--only`` names.
+RecordKind = Literal[
+    "ecat_datagram",
+    "station",
+    "al_state",
+    "sii",
+    "dl_status",
+    "error_counters",
+    "mailbox",
+    "coe_sdo",
+    "coe_emcy",
+    "process_data",
+    "servo",
+    "alias",
+    "dc",
+    "dc_distribution",
+    "mailbox_poll",
+    "mailbox_repeat",
+]
+
+def ethercat_records(
+    source: Source,
+    *,
+    kinds: Union[RecordKind, Iterable[RecordKind], None] = None,
+    servo: Servo = None,
+    format: Optional[Format] = None,
+) -> pyarrow.Table:
+    """The records an EtherCAT capture's datagrams tell of its slaves, as a
+    table (docs/python.md#ethercat-records): one row per record that
+    ``motionwire decode --json`` writes, in its order, of the kinds
+    ``kinds`` names.
+
+    ``kinds`` (a kind, or a list of them; the program's ``--only``): by
+    default ``station``, ``al_state``, ``sii``, ``dl_status``,
+    ``error_counters``, ``mailbox``, ``coe_sdo``, ``coe_emcy``, ``alias``,
+    ``dc``, ``mailbox_repeat`` (docs/ethercat.md#meanings);
+    ``ecat_datagram`` (decode's rows), ``process_data`` and ``servo`` (the
+    process data, one record per slave per cycle), ``dc_distribution`` and
+    ``mailbox_poll`` (a record a cycle or a poll, which ``decode`` too
+    writes only when named) when named. ``servo`` (process_data's ``servo=``): the
+    slaves read as servos, whose cycles get ``servo`` records.
+
+    Columns: the keys every record has, then those of the meanings'
+    records, each the key of the same name (null where the row's kind has
+    no such key or the record says null; on the rows of ``ecat_datagram``,
+    ``process_data`` and ``servo`` all are null but ``slave`` and
+    ``position``):
+
+    - ``packet`` (uint64), ``datagram`` (uint16), ``ts`` (float64 seconds),
+      ``time`` (as read_log's), ``iface`` (dictionary string).
+    - ``kind`` (dictionary string).
+    - ``slave`` (uint16 station address), ``position`` (uint16 ring
+      position).
+    - ``al_state``: ``al_register`` (the record's ``register``:
+      ``al_control``, ``al_status``, ``al_status_code``), ``state``
+      (``init``, ``preop``, ``boot``, ``safeop``, ``op``), ``al_error``
+      (bool, the record's ``error``), ``code`` (uint16, AL status code)
+      and ``code_text``.
+    - ``sii``: ``word`` (uint32), ``value`` (uint32), ``field``.
+    - ``mailbox``, ``coe_sdo``, ``coe_emcy``: ``direction`` (``write``,
+      ``read``), ``type`` (the mailbox type), ``service`` (a CoE message's).
+    - ``coe_sdo``: ``index`` (uint16), ``subindex`` (uint8), null in a
+      segment; ``abort_code`` (uint32) and ``abort`` (its text).
+    - ``coe_emcy``: ``code`` (uint16, the EMCY error code), ``register``
+      (uint8, the error register), ``description``.
+    - ``record`` (string): the whole JSON record, exactly the line
+      ``motionwire decode --json`` writes (every key of its kind: a
+      ``coe_sdo``'s ``transfer``, a ``coe_emcy``'s AKD fields …).
+
+    Query it in DuckDB: ``duckdb.sql("select packet, slave, state from t
+    where kind = 'al_state'")``. A log's CAN frames have no rows and are
+    said with a UserWarning; the schema metadata is read_log's. An unknown
+    kind is a ValueError.
     """
 
 @final

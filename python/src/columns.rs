@@ -1,13 +1,20 @@
-//! What the tables of CAN frames and of EtherCAT datagrams share
-//! (docs/python.md#memory): columns built in plain vectors and bit buffers
-//! that become Arrow arrays without a copy, cut into record batches, the
-//! interface dictionary, and what was skipped.
+//! What every table shares (docs/python.md#memory): columns built in plain
+//! vectors and bit buffers that become Arrow arrays without a copy
+//! ([`take`], [`Nullable`], [`Times`], [`Bytes`]), cut into record
+//! batches, dictionary columns whose values are known at the end
+//! ([`Dictionary`], [`Part`], [`assemble`]), the interface dictionary, and
+//! what was skipped.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
-use arrow_array::{Array, ArrayRef, Int32Array};
-use arrow_buffer::{NullBufferBuilder, OffsetBuffer, ScalarBuffer};
-use arrow_schema::{ArrowError, DataType, Field, TimeUnit};
+use arrow_array::types::{Float64Type, Int32Type, Int64Type, Int8Type};
+use arrow_array::{
+    Array, ArrayRef, ArrowPrimitiveType, BinaryArray, DictionaryArray, Int32Array, Int8Array,
+    PrimitiveArray, RecordBatch, StringArray,
+};
+use arrow_buffer::{Buffer, NullBuffer, NullBufferBuilder, OffsetBuffer, ScalarBuffer};
+use arrow_schema::{ArrowError, DataType, Field, SchemaRef, TimeUnit};
 use motionwire::can::{Iface, Timestamp};
 use serde_json::{json, Value};
 
@@ -237,4 +244,257 @@ pub fn retype(nanos: &ArrayRef, to: &DataType) -> Result<ArrayRef, ArrowError> {
         .data_type(to.clone())
         .build()?;
     Ok(arrow_array::make_array(data))
+}
+
+/// The values of a column without nulls as an Arrow array, without a copy;
+/// the vector is left empty for the next batch.
+#[inline]
+pub fn take<A: ArrowPrimitiveType>(values: &mut Vec<A::Native>) -> PrimitiveArray<A> {
+    PrimitiveArray::new(ScalarBuffer::from(std::mem::take(values)), None)
+}
+
+/// [`take`] as an [`ArrayRef`].
+#[inline]
+pub fn array<A: ArrowPrimitiveType>(values: &mut Vec<A::Native>) -> ArrayRef {
+    Arc::new(take::<A>(values))
+}
+
+/// A column with nulls: its values (a default where null) and which are
+/// there, pushed together.
+pub struct Nullable<T> {
+    values: Vec<T>,
+    valid: Validity,
+}
+
+impl<T> Default for Nullable<T> {
+    fn default() -> Self {
+        Nullable {
+            values: Vec::new(),
+            valid: Validity::default(),
+        }
+    }
+}
+
+impl<T: Default> Nullable<T> {
+    #[inline]
+    pub fn push(&mut self, value: Option<T>) {
+        self.valid.push(&mut self.values, value);
+    }
+}
+
+impl<T: arrow_buffer::ArrowNativeType> Nullable<T> {
+    /// The rows pushed since the last batch as an Arrow array of `A`.
+    pub fn take<A: ArrowPrimitiveType<Native = T>>(&mut self) -> PrimitiveArray<A> {
+        PrimitiveArray::new(
+            ScalarBuffer::from(std::mem::take(&mut self.values)),
+            self.valid.0.finish(),
+        )
+    }
+
+    /// [`take`](Self::take) as an [`ArrayRef`].
+    pub fn array<A: ArrowPrimitiveType<Native = T>>(&mut self) -> ArrayRef {
+        Arc::new(self.take::<A>())
+    }
+}
+
+/// `ts` and `time` (docs/python.md#time): float64 seconds and int64
+/// nanoseconds of the same instants, null together.
+#[derive(Default)]
+pub struct Times {
+    ts: Nullable<f64>,
+    nanos: Vec<i64>,
+}
+
+impl Times {
+    /// Add a row's time: its seconds and the nanoseconds [`Clock::nanos`]
+    /// gave for it.
+    #[inline]
+    pub fn push(&mut self, ts: Option<f64>, nanos: Option<i64>) {
+        self.ts.push(ts);
+        self.nanos.push(nanos.unwrap_or_default());
+    }
+
+    /// The `ts` column and `time` as int64 nanoseconds (typed by the
+    /// table's [`Clock`] once every log is read).
+    pub fn arrays(&mut self) -> [ArrayRef; 2] {
+        let ts = self.ts.take::<Float64Type>();
+        let nulls: Option<NullBuffer> = ts.nulls().cloned();
+        let time = PrimitiveArray::<Int64Type>::new(
+            ScalarBuffer::from(std::mem::take(&mut self.nanos)),
+            nulls,
+        );
+        [Arc::new(ts), Arc::new(time)]
+    }
+}
+
+/// A binary or string column: every row's bytes one after another, and
+/// where each ends.
+pub struct Bytes {
+    offsets: Vec<i32>,
+    bytes: Vec<u8>,
+}
+
+impl Default for Bytes {
+    fn default() -> Self {
+        Bytes {
+            offsets: vec![0],
+            bytes: Vec::new(),
+        }
+    }
+}
+
+impl Bytes {
+    /// Add a row of `value`.
+    #[inline]
+    pub fn push(&mut self, value: &[u8]) {
+        self.bytes.extend_from_slice(value);
+        self.end_row();
+    }
+
+    /// The bytes written so far, to append a row's to before
+    /// [`end_row`](Self::end_row).
+    #[inline]
+    pub fn buffer(&mut self) -> &mut Vec<u8> {
+        &mut self.bytes
+    }
+
+    /// End the row at the bytes written so far.
+    #[inline]
+    pub fn end_row(&mut self) {
+        self.offsets.push(offset(self.bytes.len()));
+    }
+
+    /// The bytes of the rows since the last batch.
+    pub fn len(&self) -> usize {
+        self.bytes.len()
+    }
+
+    /// The rows since the last batch as a binary array.
+    pub fn binary(&mut self) -> ArrayRef {
+        Arc::new(BinaryArray::new(
+            offsets(&mut self.offsets),
+            Buffer::from_vec(std::mem::take(&mut self.bytes)),
+            None,
+        ))
+    }
+
+    /// The rows since the last batch as a string array: the library's JSON
+    /// records, UTF-8 as written, checked once more here at memory speed.
+    pub fn strings(&mut self) -> ArrayRef {
+        Arc::new(
+            StringArray::try_new(
+                offsets(&mut self.offsets),
+                Buffer::from_vec(std::mem::take(&mut self.bytes)),
+                None,
+            )
+            .expect("the records are UTF-8"),
+        )
+    }
+}
+
+/// The type of a dictionary column of strings keyed by `key`.
+pub fn dictionary(key: DataType) -> DataType {
+    DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8))
+}
+
+/// A dictionary column's values, each once, and the key of each; keys
+/// stay the same as values are added, so that every batch takes the
+/// dictionary complete at the end.
+#[derive(Default)]
+pub struct Dictionary {
+    values: Vec<String>,
+    keys: HashMap<String, i32>,
+}
+
+impl Dictionary {
+    /// The dictionary of `values` in this order.
+    pub fn with(values: &[&str]) -> Self {
+        let mut dictionary = Dictionary::default();
+        for value in values {
+            dictionary.key(value);
+        }
+        dictionary
+    }
+
+    /// The dictionary of `values`, all different (an [`Ifaces`]').
+    pub fn of(values: Vec<String>) -> Self {
+        let keys = (0..).zip(&values).map(|(k, v)| (v.clone(), k)).collect();
+        Dictionary { values, keys }
+    }
+
+    pub fn key(&mut self, value: &str) -> i32 {
+        if let Some(&key) = self.keys.get(value) {
+            return key;
+        }
+        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
+        self.keys.insert(value.to_owned(), key);
+        self.values.push(value.to_owned());
+        key
+    }
+
+    /// The key of `value` in a dictionary of few values (int8 keys).
+    pub fn key8(&mut self, value: &str) -> i8 {
+        i8::try_from(self.key(value)).unwrap_or(i8::MAX)
+    }
+
+    pub fn array(&self) -> ArrayRef {
+        Arc::new(StringArray::from_iter_values(self.values.iter()))
+    }
+}
+
+/// One column of a batch: an array, or the keys of a dictionary column
+/// whose values are known at the end (the interface, a signal's name).
+pub enum Part {
+    Array(ArrayRef),
+    /// Keys into the table's dictionary number `.1`, int32.
+    Keys32(Int32Array, usize),
+    /// Keys into the table's dictionary number `.1`, int8.
+    Keys8(Int8Array, usize),
+}
+
+impl Part {
+    /// The keys of `keys` into dictionary number `at`, int32.
+    pub fn keys32(keys: &mut Nullable<i32>, at: usize) -> Part {
+        Part::Keys32(keys.take::<Int32Type>(), at)
+    }
+
+    /// The keys of `keys` into dictionary number `at`, int8.
+    pub fn keys8(keys: &mut Nullable<i8>, at: usize) -> Part {
+        Part::Keys8(keys.take::<Int8Type>(), at)
+    }
+}
+
+/// The record batches, each dictionary column with its complete values.
+pub fn assemble(
+    schema: &SchemaRef,
+    parts: Vec<Vec<Part>>,
+    dictionaries: &[Dictionary],
+) -> Result<Vec<RecordBatch>, ArrowError> {
+    let values: Vec<ArrayRef> = dictionaries.iter().map(Dictionary::array).collect();
+    parts
+        .into_iter()
+        .map(|batch| {
+            let columns =
+                batch
+                    .into_iter()
+                    .zip(schema.fields())
+                    .map(|(part, field)| {
+                        Ok(match part {
+                            // `time`: int64 nanoseconds made the table's type.
+                            Part::Array(array) if field.name() == "time" => {
+                                retype(&array, field.data_type())?
+                            }
+                            Part::Array(array) => array,
+                            Part::Keys32(keys, at) => Arc::new(
+                                DictionaryArray::<Int32Type>::try_new(keys, values[at].clone())?,
+                            ) as ArrayRef,
+                            Part::Keys8(keys, at) => Arc::new(
+                                DictionaryArray::<Int8Type>::try_new(keys, values[at].clone())?,
+                            ),
+                        })
+                    })
+                    .collect::<Result<Vec<_>, ArrowError>>()?;
+            RecordBatch::try_new(schema.clone(), columns)
+        })
+        .collect()
 }

@@ -6,12 +6,9 @@
 
 use std::sync::Arc;
 
-use arrow_array::types::Int8Type;
-use arrow_array::{
-    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array,
-    Int8Array, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
-};
-use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
+use arrow_array::types::{Int32Type, Int8Type, UInt16Type, UInt32Type, UInt64Type, UInt8Type};
+use arrow_array::{ArrayRef, BooleanArray, DictionaryArray, Int8Array, StringArray};
+use arrow_buffer::{BooleanBufferBuilder, ScalarBuffer};
 use arrow_schema::{DataType, Field};
 use motionwire::can::EthercatPacket;
 use motionwire::decoder::ethercat::{Counts, DatagramRecord, Packet, Session, DATAGRAM_KIND};
@@ -19,7 +16,8 @@ use motionwire::ethercat::{Addressing, Command, Datagram};
 use motionwire::logs::Position;
 
 use crate::columns::{
-    offset, offsets, Chunk, Clock, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS,
+    array, dictionary, take, Bytes, Chunk, Clock, Ifaces, Nullable, Skipped, Times, BATCH_BYTES,
+    BATCH_ROWS,
 };
 
 /// The key of the `cmd` dictionary for commands 15–255, all named
@@ -35,29 +33,21 @@ pub struct EthercatColumns {
     session: Session,
     packet: Vec<u64>,
     datagram: Vec<u16>,
-    ts: Vec<f64>,
-    ts_valid: Validity,
-    /// `time`'s nanoseconds, null where `ts` is.
-    time: Vec<i64>,
+    times: Times,
     clock: Clock,
-    iface: Vec<i32>,
-    iface_valid: Validity,
+    iface: Nullable<i32>,
     cmd: Vec<i8>,
     index: Vec<u8>,
-    adp: Vec<u16>,
-    adp_valid: Validity,
-    ado: Vec<u16>,
-    ado_valid: Validity,
-    logical: Vec<u32>,
-    logical_valid: Validity,
+    adp: Nullable<u16>,
+    ado: Nullable<u16>,
+    logical: Nullable<u32>,
     length: Vec<u16>,
     irq: Vec<u16>,
     wkc: Vec<u16>,
     returned: BooleanBufferBuilder,
-    data_offsets: Vec<i32>,
-    data: Vec<u8>,
+    data: Bytes,
     /// `decode`'s `record` column: each datagram's JSON record.
-    record: Option<(Vec<i32>, Vec<u8>)>,
+    record: Option<Bytes>,
     chunks: Vec<Chunk>,
     ifaces: Ifaces,
 }
@@ -69,27 +59,20 @@ impl EthercatColumns {
             session: Session::new(),
             packet: Vec::new(),
             datagram: Vec::new(),
-            ts: Vec::new(),
-            ts_valid: Validity::default(),
-            time: Vec::new(),
+            times: Times::default(),
             clock: Clock::default(),
-            iface: Vec::new(),
-            iface_valid: Validity::default(),
+            iface: Nullable::default(),
             cmd: Vec::new(),
             index: Vec::new(),
-            adp: Vec::new(),
-            adp_valid: Validity::default(),
-            ado: Vec::new(),
-            ado_valid: Validity::default(),
-            logical: Vec::new(),
-            logical_valid: Validity::default(),
+            adp: Nullable::default(),
+            ado: Nullable::default(),
+            logical: Nullable::default(),
             length: Vec::new(),
             irq: Vec::new(),
             wkc: Vec::new(),
             returned: BooleanBufferBuilder::new(0),
-            data_offsets: vec![0],
-            data: Vec::new(),
-            record: record.then(|| (vec![0], Vec::new())),
+            data: Bytes::default(),
+            record: record.then(Bytes::default),
             chunks: Vec::new(),
             ifaces: Ifaces::default(),
         }
@@ -135,45 +118,41 @@ impl EthercatColumns {
         // A frame's 11-bit length holds at most 170 datagrams.
         self.datagram
             .push(u16::try_from(number).unwrap_or(u16::MAX));
-        self.ts_valid
-            .push(&mut self.ts, packet.timestamp.map(|ts| ts.as_secs_f64()));
         let nanos = self.clock.nanos(packet.timestamp);
-        self.time.push(nanos.unwrap_or_default());
+        self.times
+            .push(packet.timestamp.map(|ts| ts.as_secs_f64()), nanos);
         let iface = packet.iface.map(|iface| self.ifaces.key(iface));
-        self.iface_valid.push(&mut self.iface, iface);
+        self.iface.push(iface);
         let command = datagram.command();
         self.cmd.push(command.byte().min(RESERVED_KEY) as i8);
         self.index.push(datagram.index());
         let logical = command.addressing() == Addressing::Logical;
-        self.adp_valid
-            .push(&mut self.adp, (!logical).then(|| datagram.adp()));
-        self.ado_valid
-            .push(&mut self.ado, (!logical).then(|| datagram.ado()));
-        self.logical_valid
-            .push(&mut self.logical, logical.then(|| datagram.address()));
+        self.adp.push((!logical).then(|| datagram.adp()));
+        self.ado.push((!logical).then(|| datagram.ado()));
+        self.logical.push(logical.then(|| datagram.address()));
         self.length.push(datagram.length());
         self.irq.push(datagram.irq());
         self.wkc.push(datagram.working_counter());
         self.returned.append(packet.copy.returned());
-        self.data.extend_from_slice(datagram.data());
-        self.data_offsets.push(offset(self.data.len()));
-        if let Some((offsets, record)) = self.record.as_mut() {
+        self.data.push(datagram.data());
+        if let Some(record) = self.record.as_mut() {
+            let out = record.buffer();
             DatagramRecord {
                 packet,
                 number,
                 datagram,
             }
-            .append_json(record, None);
+            .append_json(out, None);
             // The record without its newline.
-            record.pop();
-            offsets.push(offset(record.len()));
+            out.pop();
+            record.end_row();
         }
         if self.packet.len() >= BATCH_ROWS
             || self.data.len() >= BATCH_BYTES
             || self
                 .record
                 .as_ref()
-                .is_some_and(|(_, record)| record.len() >= BATCH_BYTES)
+                .is_some_and(|record| record.len() >= BATCH_BYTES)
         {
             self.flush();
         }
@@ -186,77 +165,34 @@ impl EthercatColumns {
         }
         let kinds: ArrayRef = Arc::new(StringArray::from_iter_values([DATAGRAM_KIND]));
         let rows = self.packet.len();
-        let ts_nulls = self.ts_valid.0.finish();
+        let [ts, time] = self.times.arrays();
         let mut columns: Vec<ArrayRef> = vec![
-            Arc::new(UInt64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.packet)),
-                None,
-            )),
-            Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.datagram)),
-                None,
-            )),
-            Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                ts_nulls.clone(),
-            )),
-            Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.time)),
-                ts_nulls,
-            )),
+            array::<UInt64Type>(&mut self.packet),
+            array::<UInt16Type>(&mut self.datagram),
+            ts,
+            time,
             Arc::new(DictionaryArray::<Int8Type>::new(
                 Int8Array::new(ScalarBuffer::from(vec![0; rows]), None),
                 kinds,
             )),
             Arc::new(DictionaryArray::<Int8Type>::new(
-                Int8Array::new(ScalarBuffer::from(std::mem::take(&mut self.cmd)), None),
+                take::<Int8Type>(&mut self.cmd),
                 command_names(),
             )),
-            Arc::new(UInt8Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.index)),
-                None,
-            )),
-            Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.adp)),
-                self.adp_valid.0.finish(),
-            )),
-            Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ado)),
-                self.ado_valid.0.finish(),
-            )),
-            Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.logical)),
-                self.logical_valid.0.finish(),
-            )),
+            array::<UInt8Type>(&mut self.index),
+            self.adp.array::<UInt16Type>(),
+            self.ado.array::<UInt16Type>(),
+            self.logical.array::<UInt32Type>(),
+            array::<UInt16Type>(&mut self.length),
+            array::<UInt16Type>(&mut self.irq),
+            array::<UInt16Type>(&mut self.wkc),
+            Arc::new(BooleanArray::new(self.returned.finish(), None)),
+            self.data.binary(),
         ];
-        for values in [&mut self.length, &mut self.irq, &mut self.wkc] {
-            columns.push(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(values)),
-                None,
-            )));
+        if let Some(record) = self.record.as_mut() {
+            columns.push(record.strings());
         }
-        columns.push(Arc::new(BooleanArray::new(self.returned.finish(), None)));
-        columns.push(Arc::new(BinaryArray::new(
-            offsets(&mut self.data_offsets),
-            Buffer::from_vec(std::mem::take(&mut self.data)),
-            None,
-        )));
-        if let Some((record_offsets, record)) = self.record.as_mut() {
-            // DatagramRecord::append_json writes UTF-8; checked once more
-            // here, at memory speed.
-            columns.push(Arc::new(
-                StringArray::try_new(
-                    offsets(record_offsets),
-                    Buffer::from_vec(std::mem::take(record)),
-                    None,
-                )
-                .expect("the records are UTF-8"),
-            ));
-        }
-        let iface = Int32Array::new(
-            ScalarBuffer::from(std::mem::take(&mut self.iface)),
-            self.iface_valid.0.finish(),
-        );
+        let iface = self.iface.take::<Int32Type>();
         self.chunks.push(Chunk { columns, iface });
     }
 
@@ -292,7 +228,6 @@ fn command_names() -> ArrayRef {
 /// The fields of a datagram's row, after `file` (`read_logs`) and with
 /// `record` last for `decode` (docs/python.md#ethercat).
 pub fn fields(record: bool, clock: Clock) -> Vec<Field> {
-    let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let mut fields = vec![
         Field::new("packet", DataType::UInt64, false),
         Field::new("datagram", DataType::UInt16, false),

@@ -27,6 +27,7 @@ mod fleet;
 mod pdo;
 mod process;
 mod reader;
+mod records;
 mod source;
 mod table;
 
@@ -455,24 +456,27 @@ fn heartbeat_timeout(ms: Option<i64>) -> PyResult<Option<Duration>> {
 
 /// What went wrong (docs/summary.md#findings): one row per finding, the
 /// list of the report's "What went wrong" (``motionwire report``), in time
-/// order: first errors and warnings, CiA 402 faults, restarts, heartbeat timeouts over
-/// ``heartbeat_ms``, SDO aborts, broken and unanswered SDO transfers,
-/// node-guarding toggle errors, bus-off and error-passive frames; where the
+/// order: first errors and warnings, CiA 402 faults, restarts, heartbeat
+/// timeouts over ``heartbeat_ms``, SDO aborts, broken and unanswered SDO
+/// transfers, node-guarding toggle errors, bus-off and error-passive frames;
+/// an EtherCAT capture's slaves' AL errors and servo faults
+/// (docs/ethercat.md#findings, ``servo=`` as process_data's); where the
 /// summary omitted entries of a list, one row says how many.
 ///
-/// Columns: ``line`` (uint64), ``ts`` (float64 seconds, null where the log
-/// has no time), ``iface`` (dictionary, null for an unnamed bus), ``node``
-/// (uint8, null for a bus's findings), ``kind`` (dictionary:
+/// Columns: ``line`` (uint64: the line, or an EtherCAT capture's packet),
+/// ``ts`` (float64 seconds, null where the log has no time), ``iface``
+/// (dictionary, null for an unnamed bus), ``node`` (uint8, null for a bus's
+/// findings and an EtherCAT slave's), ``slave`` (uint16, the EtherCAT
+/// slave's station address, null for CAN), ``kind`` (dictionary:
 /// ``first_error``, ``first_warning``, ``cia402_fault``, ``restarts``,
-/// ``heartbeat_timeout``,
-/// ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``, ``toggle_error``,
-/// ``bus_off``, ``error_passive``), ``severity`` (dictionary: ``fault``,
-/// ``error``, ``warning``, ``notice``; docs/summary.md#severity), ``text``
-/// (what it says, without the device).
+/// ``heartbeat_timeout``, ``sdo_abort``, ``sdo_broken``, ``sdo_timeout``,
+/// ``toggle_error``, ``bus_off``, ``error_passive``, ``al_error``,
+/// ``servo_fault``), ``severity`` (dictionary: ``fault``, ``error``,
+/// ``warning``, ``notice``; docs/summary.md#severity), ``text`` (what it
+/// says, without the device).
 ///
 /// Lines skipped as malformed are said with a UserWarning (read_log lists
-/// them); so are a capture's EtherCAT packets, which the findings do not
-/// cover yet.
+/// them).
 #[pyfunction]
 #[pyo3(signature = (source, *, heartbeat_ms = None, profiles = None, eds = None, format = None, servo = None))]
 #[allow(clippy::too_many_arguments)]
@@ -547,8 +551,20 @@ fn process_data(
     servo: process::Servos,
     format: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
-    process_table(py, source, servo, format, process::SignalColumns::default())
+    process_table(
+        py,
+        source,
+        servo,
+        format,
+        process::SignalColumns::default(),
+        PROCESS_CAN,
+    )
 }
+
+/// What the tables of process data say of a log's CAN frames.
+const PROCESS_CAN: &str =
+    "the process data of EtherCAT captures has rows, CAN frames none (decode's records hold \
+     their PDO signals)";
 
 /// The servo frames of an EtherCAT capture (docs/python.md#servo): one
 /// row per servo per cycle, the values of the program's ``servo``
@@ -576,17 +592,129 @@ fn servo(
     servo: process::Servos,
     format: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
-    process_table(py, source, servo, format, process::ServoColumns::new())
+    process_table(
+        py,
+        source,
+        servo,
+        format,
+        process::ServoColumns::new(),
+        PROCESS_CAN,
+    )
 }
 
-/// Read a capture's process data into the table of `rows`; a log's CAN
-/// frames are said with a `UserWarning`.
+/// The records an EtherCAT capture's datagrams tell of its slaves, as a
+/// table (docs/python.md#ethercat-records): one row per record that
+/// ``motionwire decode --json`` writes, in its order, of the kinds
+/// ``kinds`` names.
+///
+/// ``kinds`` (a kind, or a list of them; the program's ``--only``): by
+/// default ``station``, ``al_state``, ``sii``, ``dl_status``,
+/// ``error_counters``, ``mailbox``, ``coe_sdo``, ``coe_emcy``, ``alias``,
+/// ``dc``, ``mailbox_repeat`` (docs/ethercat.md#meanings);
+/// ``ecat_datagram`` (decode's rows), ``process_data`` and ``servo`` (the
+/// process data, one record per slave per cycle), ``dc_distribution`` and
+/// ``mailbox_poll`` (a record a cycle or a poll, which ``decode`` too
+/// writes only when named) when named. ``servo`` (process_data's ``servo=``): the
+/// slaves read as servos, whose cycles get ``servo`` records.
+///
+/// Columns: the keys every record has, then those of the meanings'
+/// records, each the key of the same name (null where the row's kind has
+/// no such key or the record says null; on the rows of ``ecat_datagram``,
+/// ``process_data`` and ``servo`` all are null but ``slave`` and
+/// ``position``):
+///
+/// - ``packet`` (uint64), ``datagram`` (uint16), ``ts`` (float64 seconds),
+///   ``time`` (as read_log's), ``iface`` (dictionary string).
+/// - ``kind`` (dictionary string).
+/// - ``slave`` (uint16 station address), ``position`` (uint16 ring
+///   position).
+/// - ``al_state``: ``al_register`` (the record's ``register``:
+///   ``al_control``, ``al_status``, ``al_status_code``), ``state``
+///   (``init``, ``preop``, ``boot``, ``safeop``, ``op``), ``al_error``
+///   (bool, the record's ``error``), ``code`` (uint16, AL status code)
+///   and ``code_text``.
+/// - ``sii``: ``word`` (uint32), ``value`` (uint32), ``field``.
+/// - ``mailbox``, ``coe_sdo``, ``coe_emcy``: ``direction`` (``write``,
+///   ``read``), ``type`` (the mailbox type), ``service`` (a CoE message's).
+/// - ``coe_sdo``: ``index`` (uint16), ``subindex`` (uint8), null in a
+///   segment; ``abort_code`` (uint32) and ``abort`` (its text).
+/// - ``coe_emcy``: ``code`` (uint16, the EMCY error code), ``register``
+///   (uint8, the error register), ``description``.
+/// - ``record`` (string): the whole JSON record, exactly the line
+///   ``motionwire decode --json`` writes (every key of its kind: a
+///   ``coe_sdo``'s ``transfer``, a ``coe_emcy``'s AKD fields …).
+///
+/// Query it in DuckDB: ``duckdb.sql("select packet, slave, state from t
+/// where kind = 'al_state'")``. A log's CAN frames have no rows and are
+/// said with a UserWarning; the schema metadata is read_log's. An unknown
+/// kind is a ValueError.
+#[pyfunction]
+#[pyo3(
+    signature = (source, *, kinds = None, servo = process::Servos::none(), format = None),
+    text_signature = "(source, *, kinds=None, servo=None, format=None)"
+)]
+fn ethercat_records(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    kinds: Option<&Bound<'_, PyAny>>,
+    servo: process::Servos,
+    format: Option<&str>,
+) -> PyResult<Py<PyAny>> {
+    let kinds = record_kinds(kinds)?;
+    process_table(
+        py,
+        source,
+        servo,
+        format,
+        records::RecordColumns::new(&kinds),
+        "the records of EtherCAT captures have rows, CAN frames none (decode has theirs)",
+    )
+}
+
+/// The kinds of `kinds=`: a kind, a list of kinds, or None for
+/// [`records::MEANING_KINDS`].
+fn record_kinds(kinds: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<&'static str>> {
+    use motionwire::decoder::ethercat::RECORD_KINDS;
+    let Some(kinds) = kinds.filter(|k| !k.is_none()) else {
+        return Ok(records::MEANING_KINDS.to_vec());
+    };
+    let names: Vec<String> = if let Ok(name) = kinds.extract::<String>() {
+        vec![name]
+    } else {
+        kinds
+            .try_iter()
+            .map_err(|_| {
+                PyTypeError::new_err("kinds must be a kind's name or a list of kinds' names")
+            })?
+            .map(|kind| kind?.extract::<String>())
+            .collect::<PyResult<_>>()?
+    };
+    names
+        .iter()
+        .map(|name| {
+            RECORD_KINDS
+                .iter()
+                .copied()
+                .find(|kind| kind == name)
+                .ok_or_else(|| {
+                    PyValueError::new_err(format!(
+                        "{name:?} is not a kind of EtherCAT record; one of {}",
+                        RECORD_KINDS.join(", ")
+                    ))
+                })
+        })
+        .collect()
+}
+
+/// Read a capture into the table of `rows`; a log's CAN frames are said
+/// with a `UserWarning`, `why` they have no rows.
 fn process_table<R: process::Rows + Send>(
     py: Python<'_>,
     source: &Bound<'_, PyAny>,
     servo: process::Servos,
     format: Option<&str>,
     rows: R,
+    why: &str,
 ) -> PyResult<Py<PyAny>> {
     let source = Source::extract(source)?;
     let options = source::options(format)?;
@@ -596,8 +724,7 @@ fn process_table<R: process::Rows + Send>(
         warn(
             py,
             format!(
-                "{}: {} CAN frame{s} read: the process data of EtherCAT captures has rows, \
-                 CAN frames none (decode's records hold their PDO signals)",
+                "{}: {} CAN frame{s} read: {why}",
                 source.name(),
                 read.frames
             ),
@@ -636,8 +763,8 @@ fn warn(py: Python<'_>, message: String) -> PyResult<()> {
 
 /// The loop of `summary` and `findings` over a log, compiled for its
 /// format's reader: every entry fed to `feed` (a `Summarizer`'s or a
-/// `Recorder`'s `add`), the malformed lines and damaged records and the
-/// EtherCAT packets counted, a read error the end.
+/// `Recorder`'s `add`), the malformed lines and damaged records counted, a
+/// read error the end.
 struct Feed<'a, F> {
     feed: F,
     name: &'a str,
@@ -652,12 +779,7 @@ impl<F: FnMut(motionwire::logs::Position, &motionwire::can::LogEvent<'_>)>
         let mut fed = Fed::default();
         while let Some(next) = log.next_event() {
             match next {
-                Ok(record) => {
-                    if let motionwire::can::LogEvent::Ethercat(_) = record.event {
-                        fed.ethercat += 1;
-                    }
-                    (self.feed)(record.position, &record.event);
-                }
+                Ok(record) => (self.feed)(record.position, &record.event),
                 Err(error) => {
                     if matches!(error.kind(), motionwire::logs::LogErrorKind::Io(_)) {
                         return Err(Failure::log(self.name, error));
@@ -675,8 +797,6 @@ impl<F: FnMut(motionwire::logs::Position, &motionwire::can::LogEvent<'_>)>
 struct Fed {
     /// Lines or records skipped.
     skipped: u64,
-    /// EtherCAT packets: the summary and the findings do not cover them.
-    ethercat: u64,
 }
 
 /// The module `motionwire._motionwire`, re-exported by `motionwire`.
@@ -691,6 +811,7 @@ fn _motionwire(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add_function(wrap_pyfunction!(process_data, m)?)?;
     m.add_function(wrap_pyfunction!(servo, m)?)?;
+    m.add_function(wrap_pyfunction!(ethercat_records, m)?)?;
     m.add_function(wrap_pyfunction!(fleet::post_mortem, m)?)?;
     m.add_class::<reader::Reader>()?;
     m.add_class::<reader::Message>()?;

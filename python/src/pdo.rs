@@ -6,18 +6,20 @@
 
 use std::sync::Arc;
 
+use arrow_array::types::{Float64Type, Int32Type, Int64Type, UInt32Type, UInt64Type, UInt8Type};
 use arrow_array::RecordBatch;
-use arrow_array::{Float64Array, Int32Array, Int64Array, UInt32Array, UInt64Array, UInt8Array};
-use arrow_buffer::ScalarBuffer;
 use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use motionwire::can::LogEvent;
 use motionwire::decoder::Decoder;
 use motionwire::logs::{LogErrorKind, LogFormat, LogVisitor, ReadLog};
 use serde_json::Value as Json;
 
-use crate::columns::{Clock, Ifaces, Skipped, Validity, BATCH_ROWS};
+use crate::columns::{
+    array, assemble, dictionary, take, Clock, Dictionary, Ifaces, Nullable, Part, Skipped, Times,
+    BATCH_ROWS,
+};
 use crate::error::Failure;
-use crate::process::{assemble, dictionary, number, Dictionary, Part};
+use crate::process::number;
 use crate::source::Source;
 
 /// The dictionary numbers of the table.
@@ -28,19 +30,14 @@ const NAME: usize = 1;
 #[derive(Default)]
 struct SignalRows {
     line: Vec<u64>,
-    ts: Vec<f64>,
-    ts_valid: Validity,
-    time: Vec<i64>,
+    times: Times,
     clock: Clock,
-    iface: Vec<i32>,
-    iface_valid: Validity,
+    iface: Nullable<i32>,
     node: Vec<u8>,
     cob_id: Vec<u32>,
     name: Vec<i32>,
-    value: Vec<f64>,
-    value_valid: Validity,
-    raw: Vec<i64>,
-    raw_valid: Validity,
+    value: Nullable<f64>,
+    raw: Nullable<i64>,
     ifaces: Ifaces,
     names: Dictionary,
     batches: Vec<Vec<Part>>,
@@ -51,47 +48,17 @@ impl SignalRows {
         if self.line.is_empty() {
             return;
         }
-        let ts_nulls = self.ts_valid.0.finish();
+        let [ts, time] = self.times.arrays();
         let parts = vec![
-            Part::Array(Arc::new(UInt64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.line)),
-                None,
-            ))),
-            Part::Array(Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                ts_nulls.clone(),
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.time)),
-                ts_nulls,
-            ))),
-            Part::Keys32(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut self.iface)),
-                    self.iface_valid.0.finish(),
-                ),
-                IFACE,
-            ),
-            Part::Array(Arc::new(UInt8Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.node)),
-                None,
-            ))),
-            Part::Array(Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.cob_id)),
-                None,
-            ))),
-            Part::Keys32(
-                Int32Array::new(ScalarBuffer::from(std::mem::take(&mut self.name)), None),
-                NAME,
-            ),
-            Part::Array(Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.value)),
-                self.value_valid.0.finish(),
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.raw)),
-                self.raw_valid.0.finish(),
-            ))),
+            Part::Array(array::<UInt64Type>(&mut self.line)),
+            Part::Array(ts),
+            Part::Array(time),
+            Part::keys32(&mut self.iface, IFACE),
+            Part::Array(array::<UInt8Type>(&mut self.node)),
+            Part::Array(array::<UInt32Type>(&mut self.cob_id)),
+            Part::Keys32(take::<Int32Type>(&mut self.name), NAME),
+            Part::Array(self.value.array::<Float64Type>()),
+            Part::Array(self.raw.array::<Int64Type>()),
         ];
         self.batches.push(parts);
     }
@@ -202,15 +169,14 @@ impl<'a> LogVisitor for Visit<'a> {
             for (name, signal) in pdo.named() {
                 let (value, raw) = number(&signal.value);
                 rows.line.push(record.position.number());
-                rows.ts_valid.push(&mut rows.ts, ts);
-                rows.time.push(nanos.unwrap_or_default());
-                rows.iface_valid.push(&mut rows.iface, iface);
+                rows.times.push(ts, nanos);
+                rows.iface.push(iface);
                 rows.node.push(node);
                 rows.cob_id.push(cob_id);
                 let key = rows.names.key(name);
                 rows.name.push(key);
-                rows.value_valid.push(&mut rows.value, value);
-                rows.raw_valid.push(&mut rows.raw, raw);
+                rows.value.push(value);
+                rows.raw.push(raw);
             }
             if rows.line.len() >= BATCH_ROWS {
                 rows.flush();

@@ -7,22 +7,21 @@
 //! handshakes (`ServoReading`); this module only moves the values into
 //! Arrow columns, in record batches of at most [`BATCH_ROWS`] rows.
 
-use std::collections::HashMap;
 use std::sync::Arc;
 
-use arrow_array::types::{Int32Type, Int8Type};
-use arrow_array::{
-    ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array, Int8Array,
-    ListArray, RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
+use arrow_array::types::{
+    Float64Type, Int32Type, Int64Type, Int8Type, UInt16Type, UInt32Type, UInt64Type, UInt8Type,
 };
-use arrow_buffer::{OffsetBuffer, ScalarBuffer};
-use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
+use arrow_array::{BooleanArray, ListArray, RecordBatch, StringArray};
+use arrow_buffer::OffsetBuffer;
+use arrow_schema::{DataType, Field, Schema, SchemaRef};
 use motionwire::can::LogEvent;
 use motionwire::canopen::Value;
 use motionwire::decoder::ethercat::{
-    Packet, ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves, Session,
+    Meaning, Packet, ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves, Session,
 };
 use motionwire::decoder::DecoderConfig;
+use motionwire::ethercat::Datagram;
 use motionwire::logs::{LogErrorKind, LogFormat, LogVisitor, ReadLog};
 use motionwire::servo::ActualPosition;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -31,7 +30,10 @@ use pyo3::types::PyString;
 use pyo3::Borrowed;
 use serde_json::Value as Json;
 
-use crate::columns::{offset, offsets, retype, Clock, Ifaces, Skipped, Validity, BATCH_ROWS};
+use crate::columns::{
+    array, assemble, dictionary, offset, offsets, take, Clock, Dictionary, Ifaces, Nullable, Part,
+    Skipped, Times, Validity, BATCH_ROWS,
+};
 use crate::error::Failure;
 use crate::ethercat::counts_json;
 use crate::source::Source;
@@ -100,55 +102,6 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Servos {
     }
 }
 
-/// A dictionary column's values, each once, and the key of each; keys
-/// stay the same as values are added, so that every batch takes the
-/// dictionary complete at the end.
-#[derive(Default)]
-pub struct Dictionary {
-    values: Vec<String>,
-    keys: HashMap<String, i32>,
-}
-
-impl Dictionary {
-    fn with(values: &[&str]) -> Self {
-        let mut dictionary = Dictionary::default();
-        for value in values {
-            dictionary.key(value);
-        }
-        dictionary
-    }
-
-    /// The dictionary of `values`, all different (an [`Ifaces`]').
-    pub(crate) fn of(values: Vec<String>) -> Self {
-        let keys = (0..).zip(&values).map(|(k, v)| (v.clone(), k)).collect();
-        Dictionary { values, keys }
-    }
-
-    pub(crate) fn key(&mut self, value: &str) -> i32 {
-        if let Some(&key) = self.keys.get(value) {
-            return key;
-        }
-        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
-        self.keys.insert(value.to_owned(), key);
-        self.values.push(value.to_owned());
-        key
-    }
-
-    fn array(&self) -> ArrayRef {
-        Arc::new(StringArray::from_iter_values(self.values.iter()))
-    }
-}
-
-/// One column of a batch: an array, or the keys of a dictionary column
-/// whose values are known at the end (the interface, a signal's name).
-pub enum Part {
-    Array(ArrayRef),
-    /// Keys into the table's dictionary number `.1`, int32.
-    Keys32(Int32Array, usize),
-    /// Keys into the table's dictionary number `.1`, int8.
-    Keys8(Int8Array, usize),
-}
-
 /// What the rows of every cyclic datagram share: the packet, the
 /// datagram, the time, the interface and the slave.
 struct Common {
@@ -162,11 +115,21 @@ struct Common {
     position: Option<u16>,
 }
 
-/// Rows made of each slave's process data ([`SignalColumns`],
-/// [`ServoColumns`]).
+/// Rows made of a capture's datagrams, in the order `decode --json` writes
+/// its records: each slave's process data ([`SignalColumns`],
+/// [`ServoColumns`]), or the records themselves
+/// ([`RecordColumns`](crate::records::RecordColumns)).
 pub trait Rows {
+    /// Add the rows of the `number`-th datagram (from 1) of `packet`
+    /// itself (none by default).
+    fn datagram(&mut self, _packet: &Packet<'_>, _number: usize, _datagram: Datagram<'_>) {}
+
+    /// Add the rows of what that datagram told of a slave, after the
+    /// datagram's (none by default).
+    fn meaning<'a>(&mut self, _packet: &Packet<'a>, _number: usize, _meaning: Meaning<'a>) {}
+
     /// Add the rows of one slave's process data in the `number`-th
-    /// datagram (from 1) of `packet`.
+    /// datagram (from 1) of `packet`, after what it told.
     fn push(&mut self, packet: &Packet<'_>, number: usize, data: &ProcessData<'_>);
 
     /// The clock of `time`, told of every packet (a table without rows
@@ -187,22 +150,15 @@ const DIRECTION: usize = 2;
 pub struct SignalColumns {
     packet: Vec<u64>,
     datagram: Vec<u16>,
-    ts: Vec<f64>,
-    ts_valid: Validity,
-    time: Vec<i64>,
+    times: Times,
     clock: Clock,
-    iface: Vec<i32>,
-    iface_valid: Validity,
-    slave: Vec<u16>,
-    slave_valid: Validity,
-    position: Vec<u16>,
-    position_valid: Validity,
+    iface: Nullable<i32>,
+    slave: Nullable<u16>,
+    position: Nullable<u16>,
     direction: Vec<i8>,
     name: Vec<i32>,
-    value: Vec<f64>,
-    value_valid: Validity,
-    raw: Vec<i64>,
-    raw_valid: Validity,
+    value: Nullable<f64>,
+    raw: Nullable<i64>,
     confirmed: Vec<bool>,
     ifaces: Ifaces,
     names: Dictionary,
@@ -227,18 +183,16 @@ impl SignalColumns {
         let (value, raw) = number(value);
         self.packet.push(common.packet);
         self.datagram.push(common.datagram);
-        self.ts_valid.push(&mut self.ts, common.ts);
-        self.time.push(common.nanos.unwrap_or_default());
-        self.iface_valid.push(&mut self.iface, common.iface);
-        self.slave_valid.push(&mut self.slave, common.slave);
-        self.position_valid
-            .push(&mut self.position, common.position);
+        self.times.push(common.ts, common.nanos);
+        self.iface.push(common.iface);
+        self.slave.push(common.slave);
+        self.position.push(common.position);
         // The direction dictionary: 0 `output`, 1 `input`.
         self.direction.push(i8::from(!output));
         let key = self.names.key(name);
         self.name.push(key);
-        self.value_valid.push(&mut self.value, value);
-        self.raw_valid.push(&mut self.raw, raw);
+        self.value.push(value);
+        self.raw.push(raw);
         self.confirmed.push(confirmed);
     }
 
@@ -314,58 +268,19 @@ impl SignalColumns {
         if self.packet.is_empty() {
             return;
         }
-        let ts_nulls = self.ts_valid.0.finish();
+        let [ts, time] = self.times.arrays();
         let parts = vec![
-            Part::Array(Arc::new(UInt64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.packet)),
-                None,
-            ))),
-            Part::Array(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.datagram)),
-                None,
-            ))),
-            Part::Array(Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                ts_nulls.clone(),
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.time)),
-                ts_nulls,
-            ))),
-            Part::Keys32(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut self.iface)),
-                    self.iface_valid.0.finish(),
-                ),
-                IFACE,
-            ),
-            Part::Array(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.slave)),
-                self.slave_valid.0.finish(),
-            ))),
-            Part::Array(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.position)),
-                self.position_valid.0.finish(),
-            ))),
-            Part::Keys8(
-                Int8Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut self.direction)),
-                    None,
-                ),
-                DIRECTION,
-            ),
-            Part::Keys32(
-                Int32Array::new(ScalarBuffer::from(std::mem::take(&mut self.name)), None),
-                NAME,
-            ),
-            Part::Array(Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.value)),
-                self.value_valid.0.finish(),
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.raw)),
-                self.raw_valid.0.finish(),
-            ))),
+            Part::Array(array::<UInt64Type>(&mut self.packet)),
+            Part::Array(array::<UInt16Type>(&mut self.datagram)),
+            Part::Array(ts),
+            Part::Array(time),
+            Part::keys32(&mut self.iface, IFACE),
+            Part::Array(self.slave.array::<UInt16Type>()),
+            Part::Array(self.position.array::<UInt16Type>()),
+            Part::Keys8(take::<Int8Type>(&mut self.direction), DIRECTION),
+            Part::Keys32(take::<Int32Type>(&mut self.name), NAME),
+            Part::Array(self.value.array::<Float64Type>()),
+            Part::Array(self.raw.array::<Int64Type>()),
             Part::Array(Arc::new(BooleanArray::from(std::mem::take(
                 &mut self.confirmed,
             )))),
@@ -387,10 +302,6 @@ fn common_fields(datagram: bool, clock: Clock) -> Vec<Field> {
         Field::new("slave", DataType::UInt16, true),
     ]);
     fields
-}
-
-pub(crate) fn dictionary(key: DataType) -> DataType {
-    DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8))
 }
 
 /// The rows' [`Common`] part.
@@ -469,25 +380,17 @@ const ZERO_PULSE: usize = 4;
 pub struct ServoColumns {
     packet: Vec<u64>,
     datagram: Vec<u16>,
-    ts: Vec<f64>,
-    ts_valid: Validity,
-    time: Vec<i64>,
+    times: Times,
     clock: Clock,
-    iface: Vec<i32>,
-    iface_valid: Validity,
-    slave: Vec<u16>,
-    slave_valid: Validity,
+    iface: Nullable<i32>,
+    slave: Nullable<u16>,
     speed_setpoint: Vec<i32>,
     control: Vec<u32>,
     servo_enable: Vec<u8>,
-    position: Vec<i64>,
-    position_valid: Validity,
-    encoder: Vec<i8>,
-    encoder_valid: Validity,
-    status: Vec<u32>,
-    status_valid: Validity,
-    errors: Vec<u32>,
-    errors_valid: Validity,
+    position: Nullable<i64>,
+    encoder: Nullable<i8>,
+    status: Nullable<u32>,
+    errors: Nullable<u32>,
     /// `faults` and `e_codes`: one offset list, the lists null together.
     fault_offsets: Vec<i32>,
     faults_valid: Validity,
@@ -516,14 +419,13 @@ impl ServoColumns {
 
     fn key8(&mut self, dictionary: usize, name: &str) -> i8 {
         // Six names at most: the phases of a handshake.
-        i8::try_from(self.names[dictionary - ENCODER].key(name)).unwrap_or(i8::MAX)
+        self.names[dictionary - ENCODER].key8(name)
     }
 
     fn flush(&mut self) {
         if self.packet.is_empty() {
             return;
         }
-        let ts_nulls = self.ts_valid.0.finish();
         let faults_valid = self.faults_valid.0.finish();
         let fault_offsets: OffsetBuffer<i32> = offsets(&mut self.fault_offsets);
         let item = Arc::new(Field::new_list_field(DataType::Utf8, true));
@@ -541,77 +443,27 @@ impl ServoColumns {
             Arc::new(StringArray::from(std::mem::take(&mut self.e_codes))),
             faults_valid,
         );
-        let key8 = |keys: &mut Vec<i8>, valid: Option<&mut Validity>, at| {
-            Part::Keys8(
-                Int8Array::new(
-                    ScalarBuffer::from(std::mem::take(keys)),
-                    valid.and_then(|v| v.0.finish()),
-                ),
-                at,
-            )
-        };
+        let [ts, time] = self.times.arrays();
         let parts = vec![
-            Part::Array(Arc::new(UInt64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.packet)),
-                None,
-            ))),
-            Part::Array(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.datagram)),
-                None,
-            ))),
-            Part::Array(Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                ts_nulls.clone(),
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.time)),
-                ts_nulls,
-            ))),
-            Part::Keys32(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut self.iface)),
-                    self.iface_valid.0.finish(),
-                ),
-                0,
-            ),
-            Part::Array(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.slave)),
-                self.slave_valid.0.finish(),
-            ))),
-            Part::Array(Arc::new(Int32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.speed_setpoint)),
-                None,
-            ))),
-            Part::Array(Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.control)),
-                None,
-            ))),
-            Part::Array(Arc::new(UInt8Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.servo_enable)),
-                None,
-            ))),
-            Part::Array(Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.position)),
-                self.position_valid.0.finish(),
-            ))),
-            key8(&mut self.encoder, Some(&mut self.encoder_valid), ENCODER),
-            Part::Array(Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.status)),
-                self.status_valid.0.finish(),
-            ))),
-            Part::Array(Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.errors)),
-                self.errors_valid.0.finish(),
-            ))),
+            Part::Array(array::<UInt64Type>(&mut self.packet)),
+            Part::Array(array::<UInt16Type>(&mut self.datagram)),
+            Part::Array(ts),
+            Part::Array(time),
+            Part::keys32(&mut self.iface, 0),
+            Part::Array(self.slave.array::<UInt16Type>()),
+            Part::Array(array::<Int32Type>(&mut self.speed_setpoint)),
+            Part::Array(array::<UInt32Type>(&mut self.control)),
+            Part::Array(array::<UInt8Type>(&mut self.servo_enable)),
+            Part::Array(self.position.array::<Int64Type>()),
+            Part::keys8(&mut self.encoder, ENCODER),
+            Part::Array(self.status.array::<UInt32Type>()),
+            Part::Array(self.errors.array::<UInt32Type>()),
             Part::Array(Arc::new(faults)),
             Part::Array(Arc::new(e_codes)),
-            key8(&mut self.enable, None, ENABLE),
-            Part::Array(Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.enable_cycles)),
-                None,
-            ))),
-            key8(&mut self.error_clear, None, ERROR_CLEAR),
-            key8(&mut self.zero_pulse, None, ZERO_PULSE),
+            Part::Keys8(take::<Int8Type>(&mut self.enable), ENABLE),
+            Part::Array(array::<UInt32Type>(&mut self.enable_cycles)),
+            Part::Keys8(take::<Int8Type>(&mut self.error_clear), ERROR_CLEAR),
+            Part::Keys8(take::<Int8Type>(&mut self.zero_pulse), ZERO_PULSE),
             Part::Array(Arc::new(BooleanArray::from(std::mem::take(
                 &mut self.ready,
             )))),
@@ -633,23 +485,19 @@ impl Rows for ServoColumns {
         let common = common(packet, number, data, &mut self.ifaces, &mut self.clock);
         self.packet.push(common.packet);
         self.datagram.push(common.datagram);
-        self.ts_valid.push(&mut self.ts, common.ts);
-        self.time.push(common.nanos.unwrap_or_default());
-        self.iface_valid.push(&mut self.iface, common.iface);
-        self.slave_valid.push(&mut self.slave, common.slave);
+        self.times.push(common.ts, common.nanos);
+        self.iface.push(common.iface);
+        self.slave.push(common.slave);
         let command = &servo.command;
         self.speed_setpoint.push(command.speed_setpoint);
         self.control.push(command.control.bits());
         self.servo_enable.push(command.control.servo_enable().get());
         let feedback = servo.feedback.as_ref();
-        self.position_valid
-            .push(&mut self.position, feedback.map(|f| f.position));
+        self.position.push(feedback.map(|f| f.position));
         let encoder = feedback.map(|f| self.key8(ENCODER, f.status.encoder().name()));
-        self.encoder_valid.push(&mut self.encoder, encoder);
-        self.status_valid
-            .push(&mut self.status, feedback.map(|f| f.status.bits()));
-        self.errors_valid
-            .push(&mut self.errors, feedback.map(|f| f.errors.bits()));
+        self.encoder.push(encoder);
+        self.status.push(feedback.map(|f| f.status.bits()));
+        self.errors.push(feedback.map(|f| f.errors.bits()));
         let nulls = &mut self.faults_valid.0;
         match feedback {
             Some(feedback) => {
@@ -753,41 +601,6 @@ pub fn read<R: Rows>(
     })
 }
 
-/// The record batches, each dictionary column with its complete values.
-pub(crate) fn assemble(
-    schema: &SchemaRef,
-    parts: Vec<Vec<Part>>,
-    dictionaries: &[Dictionary],
-) -> Result<Vec<RecordBatch>, ArrowError> {
-    let values: Vec<ArrayRef> = dictionaries.iter().map(Dictionary::array).collect();
-    parts
-        .into_iter()
-        .map(|batch| {
-            let columns =
-                batch
-                    .into_iter()
-                    .zip(schema.fields())
-                    .map(|(part, field)| {
-                        Ok(match part {
-                            // `time`: int64 nanoseconds made the table's type.
-                            Part::Array(array) if field.name() == "time" => {
-                                retype(&array, field.data_type())?
-                            }
-                            Part::Array(array) => array,
-                            Part::Keys32(keys, at) => Arc::new(
-                                DictionaryArray::<Int32Type>::try_new(keys, values[at].clone())?,
-                            ) as ArrayRef,
-                            Part::Keys8(keys, at) => Arc::new(
-                                DictionaryArray::<Int8Type>::try_new(keys, values[at].clone())?,
-                            ),
-                        })
-                    })
-                    .collect::<Result<Vec<_>, ArrowError>>()?;
-            RecordBatch::try_new(schema.clone(), columns)
-        })
-        .collect()
-}
-
 /// A capture being read: the session, the rows, what was skipped.
 struct Capture<'a, R> {
     session: Session,
@@ -799,10 +612,11 @@ struct Capture<'a, R> {
 }
 
 /// The loop over a capture's packets, compiled for its format's reader:
-/// each packet read by the session, each datagram's meanings followed
-/// (the session learns the slaves and their process images from them),
-/// each returned cyclic datagram's process data made rows. A damaged
-/// packet or datagram is skipped as `read_log` skips it.
+/// each packet read by the session, and for each datagram, in the order
+/// of `decode --json`'s records, the datagram, what it tells (the session
+/// learns the slaves and their process images from it) and each slave's
+/// process data of a returned cyclic datagram handed to the rows. A
+/// damaged packet or datagram is skipped as `read_log` skips it.
 struct Visit<'a, R>(Capture<'a, R>);
 
 impl<'a, R: Rows> LogVisitor for Visit<'a, R> {
@@ -850,8 +664,11 @@ impl<'a, R: Rows> LogVisitor for Visit<'a, R> {
                         break;
                     }
                 };
-                c.session.meanings(&packet, at, &datagram, |_| {});
                 let rows = &mut c.rows;
+                rows.datagram(&packet, at + 1, datagram);
+                c.session.meanings(&packet, at, &datagram, |meaning| {
+                    rows.meaning(&packet, at + 1, meaning);
+                });
                 c.session.process_data(&packet, at, &datagram, |data| {
                     rows.push(&packet, at + 1, data);
                 });

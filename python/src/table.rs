@@ -8,12 +8,12 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use arrow_array::types::{Int32Type, Int8Type};
+use arrow_array::types::{Int32Type, Int8Type, UInt16Type, UInt32Type, UInt64Type, UInt8Type};
 use arrow_array::{
-    ArrayRef, BinaryArray, BooleanArray, DictionaryArray, Float64Array, Int32Array, Int64Array,
-    Int8Array, RecordBatch, StringArray, UInt16Array, UInt32Array, UInt64Array, UInt8Array,
+    ArrayRef, BooleanArray, DictionaryArray, Float64Array, Int32Array, RecordBatch, StringArray,
+    UInt16Array, UInt64Array, UInt8Array,
 };
-use arrow_buffer::{BooleanBufferBuilder, Buffer, ScalarBuffer};
+use arrow_buffer::BooleanBufferBuilder;
 use arrow_schema::{ArrowError, DataType, Field, Schema, SchemaRef};
 use motionwire::can::{FdFlags, LogEvent, LogFrame};
 use motionwire::canopen::MessageKind;
@@ -23,75 +23,42 @@ use motionwire::logs::{LogError, LogErrorKind, LogFormat, LogVisitor, Position, 
 use serde_json::Value;
 
 use crate::columns::{
-    offset, offsets, Chunk, Clock, Ifaces, Skipped, Validity, BATCH_BYTES, BATCH_ROWS,
+    array, dictionary, take, Bytes, Chunk, Clock, Dictionary, Ifaces, Nullable, Skipped, Times,
+    BATCH_BYTES, BATCH_ROWS,
 };
 use crate::error::Failure;
 use crate::ethercat::{self, EthercatColumns, EthercatFinished};
-
-/// The dictionary of a column of the library's names (`&'static str`: an
-/// EMCY code's description, a heartbeat's state).
-#[derive(Default)]
-struct StaticNames {
-    values: Vec<&'static str>,
-    keys: HashMap<&'static str, i32>,
-}
-
-impl StaticNames {
-    fn key(&mut self, name: &'static str) -> i32 {
-        if let Some(&key) = self.keys.get(name) {
-            return key;
-        }
-        let key = i32::try_from(self.values.len()).unwrap_or(i32::MAX);
-        self.values.push(name);
-        self.keys.insert(name, key);
-        key
-    }
-
-    fn array(&self) -> ArrayRef {
-        Arc::new(StringArray::from_iter_values(self.values.iter()))
-    }
-}
 
 /// The columns `decode` adds (docs/python.md#decode).
 #[derive(Default)]
 struct DecodedColumns {
     kind: Vec<i8>,
-    node: Vec<u8>,
-    node_valid: Validity,
-    code: Vec<u16>,
-    code_valid: Validity,
-    register: Vec<u8>,
-    register_valid: Validity,
-    description: Vec<i32>,
-    description_valid: Validity,
-    state: Vec<i32>,
-    state_valid: Validity,
+    node: Nullable<u8>,
+    code: Nullable<u16>,
+    register: Nullable<u8>,
+    description: Nullable<i32>,
+    state: Nullable<i32>,
     /// The drive's CiA 402 state the frame tells (`cia402.state`).
-    cia402_state: Vec<i32>,
-    cia402_state_valid: Validity,
-    record_offsets: Vec<i32>,
-    record: Vec<u8>,
-    descriptions: StaticNames,
-    states: StaticNames,
-    cia402_states: StaticNames,
+    cia402_state: Nullable<i32>,
+    record: Bytes,
+    /// The library's names: an EMCY code's description, a heartbeat's
+    /// state, a CiA 402 state.
+    descriptions: Dictionary,
+    states: Dictionary,
+    cia402_states: Dictionary,
 }
 
 /// The frames of one log, column by column.
 pub struct Columns {
     line: Vec<u64>,
-    ts: Vec<f64>,
-    ts_valid: Validity,
-    /// `time`'s nanoseconds, null where `ts` is.
-    time: Vec<i64>,
+    times: Times,
     clock: Clock,
-    iface: Vec<i32>,
-    iface_valid: Validity,
+    iface: Nullable<i32>,
     id: Vec<u32>,
     /// extended, rtr, fd, brs, esi, error.
     flags: [BooleanBufferBuilder; 6],
     dlc: Vec<u8>,
-    data_offsets: Vec<i32>,
-    data: Vec<u8>,
+    data: Bytes,
     decoded: Option<Box<DecodedColumns>>,
     chunks: Vec<Chunk>,
     ifaces: Ifaces,
@@ -106,19 +73,15 @@ pub struct Columns {
 impl Columns {
     /// Columns for `read_log`, or for `decode` (with `decoded`).
     pub fn new(decoded: bool) -> Self {
-        let mut columns = Columns {
+        Columns {
             line: Vec::new(),
-            ts: Vec::new(),
-            ts_valid: Validity::default(),
-            time: Vec::new(),
+            times: Times::default(),
             clock: Clock::default(),
-            iface: Vec::new(),
-            iface_valid: Validity::default(),
+            iface: Nullable::default(),
             id: Vec::new(),
             flags: std::array::from_fn(|_| BooleanBufferBuilder::new(0)),
             dlc: Vec::new(),
-            data_offsets: vec![0],
-            data: Vec::new(),
+            data: Bytes::default(),
             decoded: decoded.then(Box::default),
             chunks: Vec::new(),
             ifaces: Ifaces::default(),
@@ -126,11 +89,7 @@ impl Columns {
             ethercat: EthercatColumns::new(decoded),
             skipped: Skipped::default(),
             format: None,
-        };
-        if let Some(d) = columns.decoded.as_mut() {
-            d.record_offsets.push(0);
         }
-        columns
     }
 
     /// Add a frame, decoded by `decoder` for `decode`'s columns.
@@ -139,12 +98,11 @@ impl Columns {
         let can = &frame.frame;
         self.frames += 1;
         self.line.push(position.number());
-        self.ts_valid
-            .push(&mut self.ts, frame.timestamp.map(|ts| ts.as_secs_f64()));
         let nanos = self.clock.nanos(frame.timestamp);
-        self.time.push(nanos.unwrap_or_default());
+        self.times
+            .push(frame.timestamp.map(|ts| ts.as_secs_f64()), nanos);
         let iface = frame.iface.map(|iface| self.ifaces.key(iface));
-        self.iface_valid.push(&mut self.iface, iface);
+        self.iface.push(iface);
         self.id.push(can.id().raw());
         let fd = can.fd_flags();
         for (builder, flag) in self.flags.iter_mut().zip([
@@ -158,29 +116,26 @@ impl Columns {
             builder.append(flag);
         }
         self.dlc.push(can.dlc());
-        self.data.extend_from_slice(can.data());
-        self.data_offsets.push(offset(self.data.len()));
+        self.data.push(can.data());
         if let (Some(d), Some(decoder)) = (self.decoded.as_deref_mut(), decoder) {
             let decoded = decoder.decode(position, frame);
             d.kind.push(decoded.kind.index() as i8);
-            d.node_valid
-                .push(&mut d.node, decoded.node.map(|node| node.get()));
+            d.node.push(decoded.node.map(|node| node.get()));
             let columns = decoded.columns();
-            d.code_valid
-                .push(&mut d.code, columns.code.map(|code| code.get()));
-            d.register_valid
-                .push(&mut d.register, columns.register.map(|r| r.bits()));
+            d.code.push(columns.code.map(|code| code.get()));
+            d.register.push(columns.register.map(|r| r.bits()));
             let description = columns.description.map(|text| d.descriptions.key(text));
-            d.description_valid.push(&mut d.description, description);
+            d.description.push(description);
             let state = columns.state.map(|state| d.states.key(state));
-            d.state_valid.push(&mut d.state, state);
+            d.state.push(state);
             let cia402 = decoded.cia402.and_then(|reading| reading.state);
             let cia402 = cia402.map(|state| d.cia402_states.key(state.name()));
-            d.cia402_state_valid.push(&mut d.cia402_state, cia402);
-            decoded.write_json(&mut d.record).expect("writing to a Vec");
+            d.cia402_state.push(cia402);
+            let out = d.record.buffer();
+            decoded.write_json(&mut *out).expect("writing to a Vec");
             // The record without its newline.
-            d.record.pop();
-            d.record_offsets.push(offset(d.record.len()));
+            out.pop();
+            d.record.end_row();
         }
         if self.line.len() >= BATCH_ROWS
             || self.data.len() >= BATCH_BYTES
@@ -210,93 +165,42 @@ impl Columns {
         if self.line.is_empty() {
             return;
         }
-        let ts_nulls = self.ts_valid.0.finish();
+        let [ts, time] = self.times.arrays();
         let mut columns: Vec<ArrayRef> = vec![
-            Arc::new(UInt64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.line)),
-                None,
-            )),
-            Arc::new(Float64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.ts)),
-                ts_nulls.clone(),
-            )),
-            Arc::new(Int64Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.time)),
-                ts_nulls,
-            )),
-            Arc::new(UInt32Array::new(
-                ScalarBuffer::from(std::mem::take(&mut self.id)),
-                None,
-            )),
+            array::<UInt64Type>(&mut self.line),
+            ts,
+            time,
+            array::<UInt32Type>(&mut self.id),
         ];
         for builder in &mut self.flags {
             columns.push(Arc::new(BooleanArray::new(builder.finish(), None)));
         }
-        columns.push(Arc::new(UInt8Array::new(
-            ScalarBuffer::from(std::mem::take(&mut self.dlc)),
-            None,
-        )));
-        columns.push(Arc::new(BinaryArray::new(
-            offsets(&mut self.data_offsets),
-            Buffer::from_vec(std::mem::take(&mut self.data)),
-            None,
-        )));
+        columns.push(array::<UInt8Type>(&mut self.dlc));
+        columns.push(self.data.binary());
         if let Some(d) = self.decoded.as_deref_mut() {
             let kinds: ArrayRef = Arc::new(StringArray::from_iter_values(
                 MessageKind::ALL.iter().map(|kind| kind.name()),
             ));
             columns.push(Arc::new(DictionaryArray::<Int8Type>::new(
-                Int8Array::new(ScalarBuffer::from(std::mem::take(&mut d.kind)), None),
+                take::<Int8Type>(&mut d.kind),
                 kinds,
             )));
-            columns.push(Arc::new(UInt8Array::new(
-                ScalarBuffer::from(std::mem::take(&mut d.node)),
-                d.node_valid.0.finish(),
-            )));
-            columns.push(Arc::new(UInt16Array::new(
-                ScalarBuffer::from(std::mem::take(&mut d.code)),
-                d.code_valid.0.finish(),
-            )));
-            columns.push(Arc::new(UInt8Array::new(
-                ScalarBuffer::from(std::mem::take(&mut d.register)),
-                d.register_valid.0.finish(),
-            )));
-            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut d.description)),
-                    d.description_valid.0.finish(),
-                ),
-                d.descriptions.array(),
-            )));
-            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut d.state)),
-                    d.state_valid.0.finish(),
-                ),
-                d.states.array(),
-            )));
-            columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
-                Int32Array::new(
-                    ScalarBuffer::from(std::mem::take(&mut d.cia402_state)),
-                    d.cia402_state_valid.0.finish(),
-                ),
-                d.cia402_states.array(),
-            )));
-            // The writer writes UTF-8 (Decoded::write_json); checked once
-            // more here, at memory speed.
-            columns.push(Arc::new(
-                StringArray::try_new(
-                    offsets(&mut d.record_offsets),
-                    Buffer::from_vec(std::mem::take(&mut d.record)),
-                    None,
-                )
-                .expect("the records are UTF-8"),
-            ));
+            columns.push(d.node.array::<UInt8Type>());
+            columns.push(d.code.array::<UInt16Type>());
+            columns.push(d.register.array::<UInt8Type>());
+            for (keys, values) in [
+                (&mut d.description, &d.descriptions),
+                (&mut d.state, &d.states),
+                (&mut d.cia402_state, &d.cia402_states),
+            ] {
+                columns.push(Arc::new(DictionaryArray::<Int32Type>::new(
+                    keys.take::<Int32Type>(),
+                    values.array(),
+                )));
+            }
+            columns.push(d.record.strings());
         }
-        let iface = Int32Array::new(
-            ScalarBuffer::from(std::mem::take(&mut self.iface)),
-            self.iface_valid.0.finish(),
-        );
+        let iface = self.iface.take::<Int32Type>();
         self.chunks.push(Chunk { columns, iface });
     }
 
@@ -409,7 +313,6 @@ pub fn schema(
     clock: Clock,
     metadata: HashMap<String, String>,
 ) -> Schema {
-    let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let mut fields = Vec::new();
     if file {
         fields.push(Field::new("file", dictionary(DataType::Int32), false));
@@ -594,7 +497,6 @@ pub fn batches(
 pub fn findings(
     findings: &[motionwire::summary::Finding],
 ) -> Result<(SchemaRef, Vec<RecordBatch>), ArrowError> {
-    let dictionary = |key: DataType| DataType::Dictionary(Box::new(key), Box::new(DataType::Utf8));
     let schema = Arc::new(Schema::new(vec![
         Field::new("line", DataType::UInt64, false),
         Field::new("ts", DataType::Float64, true),

@@ -12,6 +12,7 @@ import json
 import os
 import struct
 import subprocess
+import typing
 import warnings
 from pathlib import Path
 
@@ -412,3 +413,177 @@ def test_summary_is_the_programs_and_findings_name_the_slaves():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         motionwire.summary(FIXTURES / "pcap" / "can.pcapng")
+
+
+# ---------------------------------------------------------------------------
+# ethercat_records: the records of what the datagrams tell
+# (docs/python.md#ethercat-records)
+
+RECORD_KINDS = list(typing.get_args(motionwire.RecordKind))
+MEANING_KINDS = [
+    "station", "al_state", "sii", "dl_status", "error_counters", "mailbox", "coe_sdo", "coe_emcy",
+    "alias", "dc", "mailbox_repeat",
+]
+#: The kinds `decode` writes only when `--only` names them.
+QUIET_KINDS = ["dc_distribution", "mailbox_poll"]
+RECORDS_SCHEMA = [
+    ("packet", pa.uint64(), False),
+    ("datagram", pa.uint16(), False),
+    ("ts", pa.float64(), True),
+    ("time", pa.timestamp("ns", tz="UTC"), True),
+    ("iface", DICTIONARY, True),
+    ("kind", NAMES, False),
+    ("slave", pa.uint16(), True),
+    ("position", pa.uint16(), True),
+    ("al_register", NAMES, True),
+    ("state", NAMES, True),
+    ("al_error", pa.bool_(), True),
+    ("code", pa.uint16(), True),
+    ("code_text", DICTIONARY, True),
+    ("word", pa.uint32(), True),
+    ("value", pa.uint32(), True),
+    ("field", NAMES, True),
+    ("direction", NAMES, True),
+    ("type", NAMES, True),
+    ("service", NAMES, True),
+    ("index", pa.uint16(), True),
+    ("subindex", pa.uint8(), True),
+    ("abort_code", pa.uint32(), True),
+    ("abort", DICTIONARY, True),
+    ("register", pa.uint8(), True),
+    ("description", DICTIONARY, True),
+    ("record", pa.string(), False),
+]
+#: The typed columns and the kinds whose records have each, by the key of
+#: the record it holds.
+TYPED = {
+    "al_register": ({"al_state"}, "register"),
+    "state": ({"al_state"}, "state"),
+    "al_error": ({"al_state"}, "error"),
+    "code": ({"al_state", "coe_emcy"}, "code"),
+    "code_text": ({"al_state"}, "code_text"),
+    "word": ({"sii"}, "word"),
+    "value": ({"sii"}, "value"),
+    "field": ({"sii"}, "field"),
+    "direction": ({"mailbox", "coe_sdo", "coe_emcy"}, "direction"),
+    "type": ({"mailbox", "coe_sdo", "coe_emcy"}, "type"),
+    "service": ({"mailbox", "coe_sdo", "coe_emcy"}, "service"),
+    "index": ({"coe_sdo"}, "index"),
+    "subindex": ({"coe_sdo"}, "subindex"),
+    "abort_code": ({"coe_sdo"}, "abort_code"),
+    "abort": ({"coe_sdo"}, "abort"),
+    "register": ({"coe_emcy"}, "register"),
+    "description": ({"coe_emcy"}, "description"),
+}
+
+
+def programs_records(path: Path, *args: str) -> list[str]:
+    binary = program()
+    if binary is None:
+        pytest.skip("the program is not built (cargo build --features cli; or MOTIONWIRE_BIN)")
+    out = subprocess.run([binary, "decode", "--json", *args, str(path)], capture_output=True, text=True)
+    assert out.returncode in (0, 1), out.stderr
+    return out.stdout.splitlines()
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_records_are_the_programs_decode_json(path):
+    """Every record `motionwire decode --json` writes for the capture, one
+    row each in its order: by default the meanings, with every kind named
+    all of them (the quiet kinds as `--only` names them)."""
+    lines = programs_records(path)
+    loud = [kind for kind in RECORD_KINDS if kind not in QUIET_KINDS]
+    everything = motionwire.ethercat_records(path, kinds=loud)
+    assert everything.column("record").to_pylist() == lines
+    quiet = motionwire.ethercat_records(path, kinds=QUIET_KINDS)
+    assert quiet.column("record").to_pylist() == programs_records(path, "--only", ",".join(QUIET_KINDS))
+    meanings = [line for line in lines if json.loads(line)["kind"] in MEANING_KINDS]
+    table = motionwire.ethercat_records(path)
+    assert fields(table.schema) == RECORDS_SCHEMA
+    assert table.column("record").to_pylist() == meanings
+    assert table.schema.metadata[b"motionwire.format"] == b"pcapng"
+    assert b"motionwire.ethercat" in table.schema.metadata
+    # The datagrams' rows are decode's.
+    datagrams = motionwire.ethercat_records(path, kinds="ecat_datagram")
+    assert datagrams.column("record").equals(motionwire.decode(path).column("record"))
+
+
+def test_servo_records_are_the_programs():
+    """With servo=, the servo records of `decode --json --servo`; the
+    process data's records when named."""
+    path = ETHERCAT / "drives.pcapng"
+    lines = programs_records(path, "--servo", "0x1001", "--only", "process_data,servo")
+    table = motionwire.ethercat_records(path, kinds=["process_data", "servo"], servo=0x1001)
+    assert table.column("record").to_pylist() == lines
+    kinds = table.column("kind").to_pylist()
+    assert kinds.count("servo") > 100
+    servo = [json.loads(r) for k, r in zip(kinds, table.column("record").to_pylist()) if k == "servo"]
+    assert {r["slave"] for r in servo} == {0x1001}
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=capture_id)
+def test_record_columns_are_the_records_keys(path):
+    """Each column holds its key of the row's record, null where the kind
+    has none."""
+    table = motionwire.ethercat_records(path, kinds=RECORD_KINDS)
+    for row in table.to_pylist():
+        record = json.loads(row["record"])
+        assert row["packet"] == record["packet"]
+        assert row["datagram"] == record["datagram"]
+        assert row["kind"] == record["kind"]
+        assert row["iface"] == record["iface"]
+        assert row["slave"] == record.get("slave"), record
+        assert row["position"] == record.get("position"), record
+        assert (row["ts"] is None) == (record["ts"] is None)
+        for column, (kinds, key) in TYPED.items():
+            expected = record.get(key) if record["kind"] in kinds else None
+            assert row[column] == expected, (column, record)
+
+
+def test_what_the_akd_fault_capture_tells():
+    """The synthetic AKD's fault: its emergency (docs/ethercat.md's
+    example) and AL states; the EK1914's name in an SDO transfer."""
+    table = motionwire.ethercat_records(ETHERCAT / "synthetic_akd_fault.pcapng")
+    rows = table.to_pylist()
+    emcy = next(r for r in rows if r["kind"] == "coe_emcy")
+    assert (emcy["packet"], emcy["slave"], emcy["position"]) == (456, 4097, 1)
+    assert (emcy["code"], emcy["register"], emcy["description"]) == (
+        0x7305, 0x81, "Incremental sensor 1 fault",
+    )
+    assert (emcy["direction"], emcy["type"], emcy["service"]) == ("read", "coe", "emergency")
+    assert json.loads(emcy["record"])["axis"] == 1
+    states = {r["state"] for r in rows if r["kind"] == "al_state"}
+    assert {"preop", "safeop", "op"} <= states
+    # The EK1914's name, read by an upload of 0x1008
+    # (docs/ethercat.md#coe-sdo): the transfer's data in the record.
+    sdo = motionwire.ethercat_records(ETHERCAT / "replay-ek1914-segmented-upload.pcapng", kinds="coe_sdo")
+    name = next(r for r in sdo.to_pylist() if r["packet"] == 964)
+    assert (name["slave"], name["index"], name["subindex"], name["service"]) == (
+        0x1000, 0x1008, 0, "sdo_response",
+    )
+    transfer = json.loads(name["record"])["transfer"]
+    assert bytes.fromhex(transfer["data"]) == b"EK1914"
+    assert transfer["object"] == "Manufacturer device name"
+    # DuckDB reads the table as it is.
+    duckdb = pytest.importorskip("duckdb")
+    records = table  # noqa: F841 (read by DuckDB by its name)
+    found = duckdb.sql(
+        "select count(*) from records where kind = 'coe_emcy' and description is not null"
+    ).fetchall()
+    assert found == [(sum(r["kind"] == "coe_emcy" and r["description"] is not None for r in rows),)]
+
+
+def test_record_kinds_and_can_logs():
+    path = ETHERCAT / "soem-akd-sdo.pcapng"
+    one = motionwire.ethercat_records(path, kinds="coe_sdo")
+    assert set(one.column("kind").to_pylist()) == {"coe_sdo"}
+    assert motionwire.ethercat_records(path, kinds=("coe_sdo",)).equals(one)
+    with pytest.raises(ValueError, match='"sdo" is not a kind of EtherCAT record; one of ecat_datagram'):
+        motionwire.ethercat_records(path, kinds=["sdo"])
+    with pytest.raises(TypeError):
+        motionwire.ethercat_records(path, kinds=3)
+    # A CAN log: no rows, said with a UserWarning; the schema all the same.
+    with pytest.warns(UserWarning, match="CAN frames? read: the records of EtherCAT captures"):
+        table = motionwire.ethercat_records(FIXTURES / "pcap" / "can.pcapng")
+    assert table.num_rows == 0
+    assert [f.name for f in table.schema] == [name for name, _, _ in RECORDS_SCHEMA]

@@ -239,7 +239,7 @@ def test_help_shows_the_stubs_docstrings():
     }
     assert set(documented) == {
         "LogError", "read_log", "read_logs", "decode", "signals", "summary", "findings",
-        "process_data", "servo", "Message", "Reader",
+        "process_data", "servo", "ethercat_records", "Message", "Reader",
     }
     for name, doc in documented.items():
         assert inspect.getdoc(getattr(motionwire, name)) == doc, name
@@ -251,6 +251,9 @@ def test_the_stubs_types_are_there_at_run_time():
 
     assert typing.get_args(motionwire.Format) == ("candump", "asc", "trc", "pcap", "pcapng", "blf", "mf4")
     assert typing.get_args(motionwire.ProfileName) == ("generic", "akd", "baumer")
+    # Every kind of the program's EtherCAT records (--only), in its order.
+    assert typing.get_args(motionwire.RecordKind)[0] == "ecat_datagram"
+    assert len(typing.get_args(motionwire.RecordKind)) == 11
     assert bytes in typing.get_args(motionwire.Source)
     # Submodules a test imported (motionwire.spark) are attributes too, and
     # not in __all__ (import motionwire never imports them).

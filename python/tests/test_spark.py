@@ -253,6 +253,40 @@ def test_the_schemas_are_the_documented_ones():
         assert documented == [[f.name, mws._SPARK_TYPES[f.type]] for f in schema], name
 
 
+#: The Spark type each Arrow type of the single-process tables becomes
+#: (docs/spark.md#schemas): unsigned integers the next wider signed type,
+#: dictionaries plain strings.
+WIDER = {pa.uint8(): pa.int16(), pa.uint16(): pa.int32(), pa.uint32(): pa.int64(), pa.uint64(): pa.int64()}
+
+
+def _spark_type(arrow_type: pa.DataType) -> pa.DataType:
+    if pa.types.is_dictionary(arrow_type):
+        return arrow_type.value_type
+    return WIDER.get(arrow_type, arrow_type)
+
+
+def test_the_schemas_hold_the_native_tables_columns():
+    """The Spark schemas are written out (docs/spark.md lists them); every
+    column of the single-process tables they carry is there with its
+    widened type, so that a native column's type cannot change under
+    them unseen."""
+    capture = ROOT / "tests" / "data" / "ethercat" / "synthetic_akd_fault.pcapng"
+    for schema, tables in (
+        (mws.FRAMES, [motionwire.read_log(SAMPLE), motionwire.read_log(capture)]),
+        (mws.DECODE, [motionwire.decode(SAMPLE), motionwire.decode(capture)]),
+        (mws.FINDINGS, [motionwire.findings(SAMPLE, **OPTIONS), motionwire.findings(capture)]),
+    ):
+        spark_types = {f.name: f.type for f in schema}
+        for table in tables:
+            for field in table.schema:
+                # `time` is not kept, a datagram's `packet` is `line`, and
+                # `frames` leaves out the datagrams' constant `kind`.
+                if field.name == "time" or (schema is mws.FRAMES and field.name == "kind"):
+                    continue
+                name = "line" if field.name == "packet" else field.name
+                assert spark_types.get(name) == _spark_type(field.type), (field, schema.names)
+
+
 # ---------------------------------------------------------------------------
 # On Spark
 

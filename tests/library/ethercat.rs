@@ -602,3 +602,33 @@ fn a_streams_lost_frames_and_working_counters_are_its_records() {
     assert_eq!(summary.ethercat.ports[0].counts.lost, 2, "as the session");
     assert!(summary.to_string().contains(": 10 frames, 2 lost,"));
 }
+
+/// The `coe_sdo` record that completes a transfer carries its data, the
+/// object's name and whether the data was cut (docs/ethercat.md#coe-sdo):
+/// the EK1914 answers the upload of 0x1008 with its name, and every
+/// transfer of the fixtures keeps all it carried (none passes 258 bytes).
+#[test]
+fn a_completed_coe_transfer_carries_its_data_and_object() {
+    use crate::common::{decode, path, records};
+    use motionwire::decoder::ethercat::COE_DATA_KEPT;
+    let mut transfers = 0;
+    for name in CAPTURES {
+        let file = path(&format!("tests/data/ethercat/{name}.pcapng"));
+        for record in records(&decode(&["--json", &file])) {
+            let Some(transfer) = record.get("transfer").filter(|t| !t.is_null()) else {
+                continue;
+            };
+            transfers += 1;
+            let size = transfer["size"].as_u64().unwrap() as usize;
+            let data = transfer["data"].as_str().unwrap();
+            assert_eq!(data.len() / 2, size.min(COE_DATA_KEPT), "{record}");
+            assert_eq!(transfer["truncated"], size > COE_DATA_KEPT, "{record}");
+            if transfer["index"] == 0x1008 {
+                assert_eq!(transfer["object"], "Manufacturer device name");
+                // "EK1914" in ASCII.
+                assert_eq!(data, "454b31393134", "{record}");
+            }
+        }
+    }
+    assert!(transfers > 20, "{transfers} transfers");
+}

@@ -15,7 +15,7 @@ use crate::ethercat::CoeSdo;
 pub const COE_DATA_KEPT: usize = 2 + 4 * 64;
 
 /// A CoE SDO transfer a message completed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CoeTransfer {
     /// The object.
     pub index: u16,
@@ -32,10 +32,22 @@ pub struct CoeTransfer {
     /// From the request that opened it to the message that completed it,
     /// where both have a time.
     pub latency: Option<Duration>,
+    /// The data the messages carried: its first [`COE_DATA_KEPT`] bytes
+    /// ([`truncated`](Self::truncated) when there were more).
+    pub data: Vec<u8>,
+}
+
+impl CoeTransfer {
+    /// Return whether the transfer carried more bytes than
+    /// [`data`](Self::data) keeps ([`COE_DATA_KEPT`]).
+    #[must_use]
+    pub fn truncated(&self) -> bool {
+        self.size > self.data.len()
+    }
 }
 
 /// What one CoE SDO message is in its slave's transfer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct CoeSdoStep {
     /// The message opened a transfer (an initiate request).
     pub started: bool,
@@ -69,8 +81,6 @@ struct Open {
 #[derive(Debug, Clone, Default)]
 pub(super) struct CoeChannel {
     open: Option<Open>,
-    /// The data of the transfer the last message completed.
-    ended: Vec<u8>,
 }
 
 impl CoeChannel {
@@ -173,12 +183,6 @@ impl CoeChannel {
         step
     }
 
-    /// The data of the transfer the last message completed (its first
-    /// [`COE_DATA_KEPT`] bytes).
-    pub(super) fn ended_data(&self) -> &[u8] {
-        &self.ended
-    }
-
     /// Complete the open transfer.
     fn end(&mut self, now: Option<Timestamp>) -> Option<CoeTransfer> {
         let open = self.open.take()?;
@@ -186,7 +190,6 @@ impl CoeChannel {
             .started
             .zip(now)
             .map(|(start, end)| end.as_duration().saturating_sub(start.as_duration()));
-        self.ended = open.data;
         Some(CoeTransfer {
             index: open.index,
             sub_index: open.sub_index,
@@ -195,6 +198,7 @@ impl CoeChannel {
             segmented: open.segmented,
             size: open.carried,
             latency,
+            data: open.data,
         })
     }
 }
@@ -286,8 +290,9 @@ mod tests {
         );
         assert_eq!(ended.size, 300);
         assert_eq!(ended.latency, Some(Duration::from_millis(5)));
-        assert_eq!(channel.ended_data().len(), COE_DATA_KEPT);
-        assert!(channel.ended_data().starts_with(b"aaaab"));
+        assert_eq!(ended.data.len(), COE_DATA_KEPT);
+        assert!(ended.data.starts_with(b"aaaab"));
+        assert!(ended.truncated());
     }
 
     #[test]
@@ -302,7 +307,8 @@ mod tests {
             (ended.size, ended.upload, ended.segmented),
             (1, false, false)
         );
-        assert_eq!(channel.ended_data(), [8]);
+        assert_eq!(ended.data, [8]);
+        assert!(!ended.truncated());
         // A confirmation with nothing open completes nothing.
         assert_eq!(
             step(&mut channel, false, &[0x60, 0x60, 0x60, 0, 0, 0, 0, 0], 12),

@@ -601,7 +601,7 @@ mod tests {
             .channel
             .message(request, &CoeSdo::parse(bytes).unwrap(), None);
         match step.ended {
-            Some(transfer) => coe.objects.transfer(&transfer, coe.channel.ended_data()),
+            Some(transfer) => coe.objects.transfer(&transfer, &transfer.data),
             None => false,
         }
     }

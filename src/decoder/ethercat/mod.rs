@@ -5,6 +5,7 @@
 //! [`crate::ethercat`].
 
 mod coe;
+mod columns;
 mod config;
 mod dc;
 #[cfg(feature = "eni")]
@@ -19,6 +20,7 @@ mod session;
 mod slave;
 
 pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
+pub use columns::MeaningColumns;
 pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 pub use dc::{time_difference, DcRegisters};
 #[cfg(feature = "eni")]

@@ -105,7 +105,7 @@ impl SiiField {
 }
 
 /// Something a datagram tells of the slaves (docs/ethercat.md#slaves).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Meaning<'a> {
     /// The master gave the slave at a position its station address
     /// (APWR 0x0010).
@@ -788,8 +788,8 @@ impl Network {
         let sdo = CoeSdo::parse(&body[COE_HEADER_LEN..]).ok()?;
         let known = &mut self.slaves[slave];
         let step = known.channel.message(request, &sdo, timestamp);
-        if let Some(transfer) = step.ended {
-            if known.coe.transfer(&transfer, known.channel.ended_data()) {
+        if let Some(transfer) = &step.ended {
+            if known.coe.transfer(transfer, &transfer.data) {
                 known.plan = None;
             }
         }

@@ -218,7 +218,7 @@ fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&s
 
 /// What a datagram told of a slave, as `decode` writes it: one record per
 /// [`Meaning`] (docs/ethercat.md#meanings), after the datagram's own.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct MeaningRecord<'p, 'a> {
     /// The packet the datagram is in.
     pub packet: &'p Packet<'a>,
@@ -317,7 +317,7 @@ impl MeaningRecord<'_, '_> {
                 header,
                 body,
                 profile,
-                sdo,
+                ref sdo,
             } => {
                 slave_json(&mut obj, slave);
                 obj.name("direction", if written { "write" } else { "read" });
@@ -330,7 +330,7 @@ impl MeaningRecord<'_, '_> {
                 obj.uint("channel", u64::from(header.channel));
                 obj.uint("priority", u64::from(header.priority));
                 obj.uint("counter", u64::from(header.counter));
-                mailbox_json(&mut obj, header.mailbox_type, body, profile, sdo);
+                mailbox_json(&mut obj, header.mailbox_type, body, profile, sdo.as_ref());
             }
             ref other => {
                 slave_json(&mut obj, self.slave());
@@ -531,7 +531,7 @@ fn state_words(status: crate::ethercat::AlStatus) -> String {
 }
 
 /// A CoE message's service and the bytes after its header.
-fn coe(mailbox_type: MailboxType, body: &[u8]) -> Option<(CoeService, &[u8])> {
+pub(super) fn coe(mailbox_type: MailboxType, body: &[u8]) -> Option<(CoeService, &[u8])> {
     if mailbox_type != MailboxType::Coe {
         return None;
     }
@@ -594,7 +594,7 @@ fn mailbox_json(
     mailbox_type: MailboxType,
     body: &[u8],
     profile: crate::profiles::Profile,
-    step: Option<CoeSdoStep>,
+    step: Option<&CoeSdoStep>,
 ) {
     match coe(mailbox_type, body) {
         Some((CoeService::Emergency, rest)) => {
@@ -640,7 +640,7 @@ fn mailbox_json(
                     };
                     let out = obj.key("data");
                     json::hex_string(out, data);
-                    transfer_json(obj, step.and_then(|s| s.ended));
+                    transfer_json(obj, step.and_then(|s| s.ended.as_ref()), profile);
                 }
                 Err(e) => obj.display("error", &e),
             }
@@ -661,8 +661,13 @@ fn mailbox_json(
 }
 
 /// `transfer`: the transfer the message completed (docs/ethercat.md#coe-sdo),
-/// or null.
-fn transfer_json(obj: &mut Object<'_>, transfer: Option<CoeTransfer>) {
+/// or null; its object named as CAN's transfers name it, by the slave's
+/// profile.
+fn transfer_json(
+    obj: &mut Object<'_>,
+    transfer: Option<&CoeTransfer>,
+    profile: crate::profiles::Profile,
+) {
     let Some(t) = transfer else {
         obj.null("transfer");
         return;
@@ -679,6 +684,12 @@ fn transfer_json(obj: &mut Object<'_>, transfer: Option<CoeTransfer>) {
         Some(latency) => inner.float("latency_ms", latency.as_nanos() as f64 / 1e6),
         None => inner.null("latency_ms"),
     }
+    match crate::canopen::object_name(t.index, profile.object_set()) {
+        Some(name) => inner.name("object", name),
+        None => inner.null("object"),
+    }
+    json::hex_string(inner.key("data"), &t.data);
+    inner.bool("truncated", t.truncated());
     inner.end();
 }
 
