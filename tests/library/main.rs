@@ -32,6 +32,8 @@ mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_process;
 #[cfg(all(feature = "decoder", feature = "logs"))]
+mod ethercat_startup;
+#[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
 #[cfg(feature = "logs")]
 mod logs;
