@@ -78,6 +78,9 @@ fn fmmu(logical: u32, len: u16, physical: u16, kind: u8) -> Vec<u8> {
     .to_vec()
 }
 
+/// A mapped entry: object index, sub-index, bit length.
+type Mapped = (u16, u8, u8);
+
 /// One slave's process data in a cycle, as the session handed it on.
 #[derive(Debug, Clone)]
 struct Rec {
@@ -253,7 +256,7 @@ impl Bus {
     /// The PDO assignment of `sm` and the mapping of each of its PDOs
     /// (index, entries as index, sub-index, bits), downloaded one
     /// sub-index at a time as drive A of drives.pcapng is configured.
-    fn coe_pdos(&mut self, station: u16, sm: u8, pdos: &[(u16, Vec<(u16, u8, u8)>)]) {
+    fn coe_pdos(&mut self, station: u16, sm: u8, pdos: &[(u16, Vec<Mapped>)]) {
         let mut counter = 0;
         let mut next = || {
             counter = counter % 7 + 1;
@@ -567,7 +570,7 @@ proptest! {
                     (2u8, 0x1600u16, 0x7000u16, &spec.rx, spec.out_len),
                     (3, 0x1A00, 0x6000, &spec.tx, spec.in_len),
                 ] {
-                    let entries: Vec<(u16, u8, u8)> = bits
+                    let entries: Vec<Mapped> = bits
                         .iter()
                         .enumerate()
                         .map(|(n, &b)| (object, n as u8 + 1, b))

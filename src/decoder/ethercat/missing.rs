@@ -6,8 +6,6 @@
 
 use crate::ethercat::{AlState, AlStatus};
 
-use super::network::ERROR_COUNTERS_LEN;
-
 /// The slaves of one datagram whose shares of a short working counter
 /// are searched for the one set that explains it.
 const SHARE_SEARCH: usize = 16;
@@ -126,10 +124,11 @@ impl Watch {
         self.links = Some(links);
     }
 
-    /// An error-counters read: a lost-link counter that rose is an event,
-    /// one that fell a reset.
-    pub(super) fn error_counters(&mut self, bytes: &[Option<u8>; ERROR_COUNTERS_LEN]) {
-        for (kept, now) in self.lost_links.iter_mut().zip(&bytes[LOST_LINKS]) {
+    /// An error-counters read (`bytes` from 0x0300, each where read): a
+    /// lost-link counter that rose is an event, one that fell a reset.
+    pub(super) fn error_counters(&mut self, bytes: &[Option<u8>]) {
+        let lost = bytes.get(LOST_LINKS).unwrap_or(&[]);
+        for (kept, now) in self.lost_links.iter_mut().zip(lost) {
             if let (Some(before), Some(now)) = (*kept, *now) {
                 if now > before {
                     self.event = Some(Evidence::LostLink);
@@ -283,7 +282,7 @@ mod tests {
     fn link_events_last_until_a_whole_cycle() {
         let op = watch(0x08);
         let mut lost = watch(0x08);
-        let mut counters = [None; ERROR_COUNTERS_LEN];
+        let mut counters = [None; 0x14];
         counters[0x11] = Some(0);
         lost.error_counters(&counters);
         assert_eq!(lost.named(), None);
