@@ -14,6 +14,8 @@
 //! flags 16 bits). A category whose header was not read hides every one
 //! after it; a PDO of which a byte was not read is left out.
 
+use std::collections::BTreeMap;
+
 use crate::canopen::{DataType, MappingEntry};
 
 use super::config::{PdoConfig, PdoEntryConfig, SlaveConfig};
@@ -38,11 +40,11 @@ const PDO_ENTRY: usize = 8;
 /// PDO to none.
 const SYNC_MANAGERS: u8 = 16;
 
-/// One slave's SII words as the capture read them.
+/// One slave's SII words as the capture read them: kept by address, so
+/// that memory grows with the words read, not with their addresses.
 #[derive(Debug, Clone, Default)]
 pub(super) struct SiiImage {
-    /// Each word from 0 up to the highest read, `None` where not read.
-    words: Vec<Option<u16>>,
+    words: BTreeMap<u32, u16>,
 }
 
 impl SiiImage {
@@ -54,19 +56,14 @@ impl SiiImage {
             let Some(at) = word.checked_add(k as u32).filter(|&w| w < SII_WORDS) else {
                 break;
             };
-            let at = at as usize;
-            if self.words.len() <= at {
-                self.words.resize(at + 1, None);
-            }
-            let value = Some(u16::from_le_bytes([pair[0], pair[1]]));
-            changed |= self.words[at] != value;
-            self.words[at] = value;
+            let value = u16::from_le_bytes([pair[0], pair[1]]);
+            changed |= self.words.insert(at, value) != Some(value);
         }
         changed
     }
 
     fn word(&self, at: usize) -> Option<u16> {
-        self.words.get(at).copied().flatten()
+        self.words.get(&u32::try_from(at).ok()?).copied()
     }
 
     fn byte(&self, at: usize) -> Option<u8> {
@@ -88,9 +85,10 @@ impl SiiImage {
     /// of each sync manager a PDO names, in the SII's order. `None` where
     /// no PDO was read.
     pub(super) fn layout(&self) -> Option<SlaveConfig> {
-        if self.words.len() <= CATEGORIES {
-            return None;
-        }
+        let last = match self.words.last_key_value() {
+            Some((&last, _)) if last as usize > CATEGORIES => last as usize,
+            _ => return None,
+        };
         let mut strings = Vec::new();
         let mut pdos = Vec::new();
         let mut at = CATEGORIES;
@@ -109,7 +107,7 @@ impl SiiImage {
                 _ => {}
             }
             at = end;
-            if at >= self.words.len() {
+            if at > last {
                 break;
             }
         }
