@@ -22,7 +22,9 @@
 //! - process data comes from returned cyclic datagrams only; an image is
 //!   never longer than the datagram, a record is one line of JSON, a
 //!   servo record too (every slave is read as a servo when its images
-//!   are 10 and 40 bytes), and the text prints.
+//!   are 10 and 40 bytes), and the text prints; a slave's inputs are
+//!   confirmed as its working-counter verdict says, which is short only
+//!   when the count is.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -129,6 +131,12 @@ fuzz_target!(|data: &[u8]| {
                     assert!(image.len() <= 0x7FF);
                 }
                 data.for_each_signal(|_, name, _| assert!(!name.is_empty()));
+                if data.slave.is_some() {
+                    // A short count's verdict is what confirms the inputs.
+                    assert_eq!(data.confirmed, data.missed.confirmed());
+                    let short = data.expected_wkc.is_some_and(|e| data.wkc < e);
+                    assert!(!data.missed.short() || short);
+                }
                 let record = ProcessRecord {
                     packet: &read,
                     number: at + 1,

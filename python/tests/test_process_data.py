@@ -308,21 +308,32 @@ def test_pandas_pivot():
     assert set(wide.columns) == set(table.column("name").unique().to_pylist())
 
 
-def test_a_capture_without_pdo_mappings_has_no_signals():
-    """replay-dc.pcapng: output-only terminals whose PDOs the capture does
-    not show: the program writes their bytes, no signals; the table is
-    empty, with its schema."""
+def test_terminals_without_coe_are_read_by_their_sii():
+    """replay-dc.pcapng: output-only terminals without CoE (EL2828,
+    EL2889) whose PDOs the capture's SII reads give
+    (docs/ethercat.md#sii-pdos): one BOOLEAN output per bit, 257 cycles of
+    8 + 16 outputs; the same values as the program's records; no servo."""
     path = ETHERCAT / "replay-dc.pcapng"
     table = motionwire.process_data(path)
-    assert table.num_rows == 0
     assert fields(table.schema) == SIGNAL_SCHEMA
     assert json.loads(table.schema.metadata[b"motionwire.ethercat"])["packets"] == 3604
+    assert table.num_rows == 257 * (8 + 16)
+    assert set(table.column("direction").to_pylist()) == {"output"}
+    el2889 = table.filter(pc.equal(table["slave"], 0x1002))
+    assert el2889.column("name").unique().to_pylist() == [
+        f"0x{0x7000 + 0x10 * k:04X}:01" for k in range(16)
+    ]
     servo = motionwire.servo(path)
     assert servo.num_rows == 0
     assert fields(servo.schema) == SERVO_SCHEMA
+    signals: dict = {}
+    for row in table.select(["packet", "slave", "name", "value"]).to_pylist():
+        signals.setdefault((row["packet"], row["slave"]), {})[row["name"]] = row["value"]
     records = decode_json("--only", "process_data", str(path))
-    assert len(records) > 100
-    assert all(r["signals"] == {} for r in records)
+    assert len(records) == 257 * 2
+    for r in records:
+        want = {name: float(value) for name, value in r["signals"].items()}
+        assert signals[(r["packet"], r["slave"])] == want
 
 
 def test_a_can_log_is_an_empty_table_and_a_warning():

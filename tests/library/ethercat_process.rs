@@ -165,6 +165,65 @@ fn the_expected_working_counter_is_the_full_count() {
     }
 }
 
+/// The EL2828 (8 outputs) and EL2889 (16 outputs) have no CoE: their
+/// PDOs are only in their SII, whose RxPDO category ethercrab's start-up
+/// reads (FPWR 0x0502, FPRD 0x0508, 8 bytes a read; the EL2828's at words
+/// 0xDA–0x11B, the EL2889's at 0xE9–0x16A, as tshark shows the reads):
+/// PDOs 0x1600 + k, each one entry 0x7000 + 0x10·k:01, BOOLEAN of 1 bit,
+/// 0x1600–0x1607 on SM0 and the EL2889's 0x1608–0x160F on SM1. The
+/// strings category was read only as far as the device's name, so the
+/// entries keep their index as name. Each cycle's signals are the bits of
+/// the bytes tshark shows at the terminal's FMMU, in order.
+#[test]
+fn output_terminals_are_read_by_their_sii_pdos() {
+    for (name, rows) in [("replay-dc", 514), ("replay-ek1100-el2828-el2889", 263)] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/ethercat")
+            .join(format!("{name}.pcapng"));
+        let mut log = logs::open(&path).unwrap();
+        let mut session = Session::new();
+        let mut ours = Vec::new();
+        while let Some(record) = log.next_event() {
+            let record = record.unwrap();
+            let LogEvent::Ethercat(packet) = record.event else {
+                continue;
+            };
+            let packet = session.read(record.position, &packet).unwrap();
+            for (at, datagram) in packet.datagrams().enumerate() {
+                let datagram = datagram.unwrap();
+                session.meanings(&packet, at, &datagram, |_| {});
+                session.process_data(&packet, at, &datagram, |data| {
+                    let mut signals = Vec::new();
+                    data.for_each_signal(|output, name, signal| {
+                        assert!(output, "{name}: an output terminal");
+                        signals.push(format!("{name}={}", signal.unwrap().value));
+                    });
+                    let station = data.slave.and_then(|s| s.station);
+                    ours.push(((record.position.number(), at, station), signals));
+                });
+            }
+        }
+        ours.sort_by_key(|(key, _)| *key);
+        let theirs = theirs(name);
+        assert_eq!(theirs.len(), rows, "{name}");
+        assert_eq!(ours.len(), rows, "{name}");
+        for ((_, signals), row) in ours.iter().zip(&theirs) {
+            let cells: Vec<&str> = row.split('\t').collect();
+            let outputs: Vec<u8> = (0..cells[6].len())
+                .step_by(2)
+                .map(|i| u8::from_str_radix(&cells[6][i..i + 2], 16).unwrap())
+                .collect();
+            let expected: Vec<String> = (0..outputs.len() * 8)
+                .map(|k| {
+                    let bit = outputs[k / 8] >> (k % 8) & 1 != 0;
+                    format!("0x{:04X}:01={bit}", 0x7000 + 0x10 * k)
+                })
+                .collect();
+            assert_eq!(*signals, expected, "{name}: {row}");
+        }
+    }
+}
+
 /// A session fed exchanges built by hand: each a frame of datagrams sent
 /// and returned (the returned copy with the data and working counters
 /// given), for the configuration problems of docs/ethercat.md#process-data.

@@ -33,6 +33,7 @@ mod ethercat;
 mod ethercat_process;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_registers;
+mod ethercat_startup;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
 #[cfg(feature = "logs")]

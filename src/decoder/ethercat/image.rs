@@ -215,12 +215,15 @@ pub(super) struct Plan {
 }
 
 impl Plan {
-    /// Work out the plan of a slave from its configuration.
+    /// Work out the plan of a slave from its configuration: what the
+    /// capture's start-up wrote (`fmmus`, `sync_managers`, `coe`), then
+    /// the configurations `given`, the first that has an object wins (an
+    /// ENI's, then the SII's).
     pub(super) fn new(
         fmmus: &[Option<Fmmu>; UNITS],
         sync_managers: &[Option<SyncManager>; UNITS],
         coe: &CoeObjects,
-        given: Option<&SlaveConfig>,
+        given: &[&SlaveConfig],
     ) -> Self {
         let mut plan = Plan::default();
         for fmmu in fmmus.iter().flatten().filter(|f| f.active) {
@@ -510,13 +513,13 @@ fn entry_name(entry: MappingEntry, set: Option<ObjectSet>) -> Cow<'static, str> 
     }
 }
 
-/// Whether any PDO the slave's transfers or configuration show maps the
+/// Whether any PDO the slave's transfers or configurations show maps the
 /// statusword 6041h.
-fn maps_statusword(coe: &CoeObjects, given: Option<&SlaveConfig>) -> bool {
+fn maps_statusword(coe: &CoeObjects, given: &[&SlaveConfig]) -> bool {
     coe.mappings
         .iter()
         .any(|(_, _, raw)| raw.iter().any(|&r| r >> 16 == 0x6041))
-        || given.is_some_and(|g| {
+        || given.iter().any(|g| {
             g.pdos
                 .iter()
                 .any(|p| p.entries.iter().any(|e| e.entry.index() == 0x6041))
@@ -527,49 +530,62 @@ fn maps_statusword(coe: &CoeObjects, given: Option<&SlaveConfig>) -> bool {
 type Entry = (MappingEntry, Option<Cow<'static, str>>, Option<DataType>);
 
 /// The PDOs of sync manager `sm`, in order, each with its entries: from
-/// the capture's CoE transfers first, then a given configuration.
-fn pdos_of(sm: usize, coe: &CoeObjects, given: Option<&SlaveConfig>) -> Vec<(u16, Vec<Entry>)> {
-    let from_config = |index: u16| -> Option<Vec<Entry>> {
-        let pdo = given?.pdos.iter().find(|p| p.index == index)?;
-        Some(
-            pdo.entries
+/// the capture's CoE transfers first, then the configurations in their
+/// order (a file's, then the SII's), object by object. An entry takes its
+/// name and type from the first configuration that has it in the same
+/// PDO with a name or a type.
+fn pdos_of(sm: usize, coe: &CoeObjects, given: &[&SlaveConfig]) -> Vec<(u16, Vec<Entry>)> {
+    let pdo =
+        |config: &&SlaveConfig, index: u16| config.pdos.iter().find(|p| p.index == index).cloned();
+    // An entry's name or type where its own source gives none: the first
+    // configuration that has the same entry in the same PDO with one.
+    let describe = |index: u16, (entry, name, data_type): Entry| -> Entry {
+        let same = |config: &&SlaveConfig| {
+            let pdo = config.pdos.iter().find(|p| p.index == index)?;
+            pdo.entries.iter().find(|e| e.entry == entry).cloned()
+        };
+        let name = name.or_else(|| {
+            given
                 .iter()
-                .map(|e| (e.entry, e.name.clone().map(Cow::Owned), e.data_type))
-                .collect(),
-        )
+                .find_map(|g| same(g).and_then(|e| e.name))
+                .map(Cow::Owned)
+        });
+        let data_type =
+            data_type.or_else(|| given.iter().find_map(|g| same(g).and_then(|e| e.data_type)));
+        (entry, name, data_type)
     };
     let assigned: Vec<u16> = match coe.assigned(sm) {
         Some(pdos) => pdos.to_vec(),
-        None => {
-            match given.and_then(|g| g.assignment.iter().find(|(n, _)| usize::from(*n) == sm)) {
-                Some((_, pdos)) => pdos.clone(),
-                None => return Vec::new(),
-            }
-        }
+        None => match given.iter().find_map(|g| {
+            g.assignment
+                .iter()
+                .find(|(n, _)| usize::from(*n) == sm)
+                .map(|(_, pdos)| pdos.clone())
+        }) {
+            Some(pdos) => pdos,
+            None => return Vec::new(),
+        },
     };
     assigned
         .into_iter()
         .filter_map(|index| {
-            let entries = match coe.mapping(index) {
-                Some(raw) => {
-                    // Names and types from the configuration, where it has
-                    // the same entries.
-                    let named = from_config(index).unwrap_or_default();
-                    raw.iter()
-                        .map(|&r| {
-                            let entry = MappingEntry::from_u32(r);
-                            let known = named.iter().find(|(e, _, _)| *e == entry);
-                            (
-                                entry,
-                                known.and_then(|k| k.1.clone()),
-                                known.and_then(|k| k.2),
-                            )
-                        })
-                        .collect()
-                }
-                None => from_config(index)?,
+            let entries: Vec<Entry> = match coe.mapping(index) {
+                Some(raw) => raw
+                    .iter()
+                    .map(|&r| (MappingEntry::from_u32(r), None, None))
+                    .collect(),
+                None => given
+                    .iter()
+                    .find_map(|g| pdo(g, index))?
+                    .entries
+                    .into_iter()
+                    .map(|e| (e.entry, e.name.map(Cow::Owned), e.data_type))
+                    .collect(),
             };
-            Some((index, entries))
+            Some((
+                index,
+                entries.into_iter().map(|e| describe(index, e)).collect(),
+            ))
         })
         .collect()
 }
@@ -727,7 +743,7 @@ mod tests {
         expedited(&mut coe, 0x1C12, 0, 1, 1);
         expedited(&mut coe, 0x1C13, 1, 0x1A00, 2);
         expedited(&mut coe, 0x1C13, 0, 1, 1);
-        Plan::new(&fmmus, &sms, &coe.objects, None)
+        Plan::new(&fmmus, &sms, &coe.objects, &[])
     }
 
     #[test]
@@ -796,7 +812,7 @@ mod tests {
         expedited(&mut coe, 0x1600, 0, 1, 1);
         expedited(&mut coe, 0x1C12, 1, 0x1600, 2);
         expedited(&mut coe, 0x1C12, 0, 1, 1);
-        let plan = Plan::new(&fmmus, &sms, &coe.objects, None);
+        let plan = Plan::new(&fmmus, &sms, &coe.objects, &[]);
         assert_eq!(
             plan.too_long,
             [ImageError::MappingPastSyncManager {
@@ -838,7 +854,7 @@ mod tests {
     fn plan(fmmu: Fmmu) -> Plan {
         let mut fmmus = [None; UNITS];
         fmmus[0] = Some(fmmu);
-        Plan::new(&fmmus, &[None; UNITS], &CoeObjects::default(), None)
+        Plan::new(&fmmus, &[None; UNITS], &CoeObjects::default(), &[])
     }
 
     /// A terminal of fewer than 8 bits packed into part of a byte (as

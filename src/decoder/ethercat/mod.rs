@@ -11,12 +11,14 @@ mod dc;
 #[cfg(feature = "eni")]
 mod eni;
 mod image;
+mod missing;
 mod network;
 mod problem;
 mod process;
 mod record;
 mod record_regs;
 mod session;
+mod sii;
 mod slave;
 
 pub use coe::{CoeSdoStep, CoeTransfer, COE_DATA_KEPT};
@@ -25,6 +27,7 @@ pub use config::{PdoConfig, PdoEntryConfig, SlaveConfig};
 pub use dc::{time_difference, DcRegisters};
 #[cfg(feature = "eni")]
 pub use eni::{parse_eni, EniError, EniErrorKind};
+pub use missing::{Evidence, Missed};
 pub use network::{AlRegister, Meaning, SiiField, ERROR_COUNTERS_LEN};
 pub use problem::{ImageError, ImageProblem};
 pub use process::{ProcessData, ServoItem, ServoItemError, ServoReading, ServoSlaves};

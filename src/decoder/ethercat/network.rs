@@ -18,8 +18,10 @@ use super::coe::{CoeChannel, CoeSdoStep};
 use super::config::SlaveConfig;
 use super::dc::DcRegisters;
 use super::image::{CoeObjects, Plan};
+use super::missing::{missed, Missed, Watch};
 use super::problem::{ImageError, ImageProblem};
 use super::process::{ProcessData, ServoSlaves, ServoWatch};
+use super::sii::SiiImage;
 use super::slave::SlaveRef;
 use crate::can::Timestamp;
 use crate::logs::Position;
@@ -258,6 +260,10 @@ struct Slave {
     fmmus: [Option<Fmmu>; SYNC_MANAGERS],
     vendor: Option<u32>,
     product: Option<u32>,
+    /// Its SII words as read.
+    sii: SiiImage,
+    /// What its registers say of its taking part in the cycles.
+    watch: Watch,
     /// Its CoE SDO transfers.
     channel: CoeChannel,
     /// The PDO objects its CoE transfers showed.
@@ -351,6 +357,8 @@ pub(super) struct Network {
     slaves: Vec<Slave>,
     /// The slaves a datagram touches, reused.
     touched: Vec<(usize, u16)>,
+    /// What the working counter says of each, reused.
+    missed: Vec<Missed>,
     /// Problems not taken yet.
     problems: Vec<ImageProblem>,
     /// Problems past [`PROBLEMS_KEPT`].
@@ -362,10 +370,6 @@ pub(super) struct Network {
 
 /// The problems a network keeps between two takes; more are counted.
 pub(super) const PROBLEMS_KEPT: usize = 100;
-
-/// The most slaves of one datagram whose shares of a short working
-/// counter are searched for the one set that explains it.
-const SHARE_SEARCH: usize = 16;
 
 impl Network {
     /// Take what a configuration file says of the slaves: each is found
@@ -427,12 +431,11 @@ impl Network {
                 continue;
             }
             if slave.plan.is_none() {
-                let plan = Plan::new(
-                    &slave.fmmus,
-                    &slave.sync_managers,
-                    &slave.coe,
-                    slave.given.as_ref(),
-                );
+                // The layout's sources after the capture's own start-up:
+                // a configuration file's, then the SII's.
+                let sii = slave.sii.layout();
+                let given: Vec<&SlaveConfig> = slave.given.iter().chain(sii.as_ref()).collect();
+                let plan = Plan::new(&slave.fmmus, &slave.sync_managers, &slave.coe, &given);
                 let reference = slave.reference();
                 for error in plan.too_long.clone() {
                     self.problem(position, reference, error);
@@ -456,6 +459,7 @@ impl Network {
                 wkc,
                 expected_wkc: None,
                 confirmed: wkc > 0,
+                missed: Missed::No,
                 outputs: matches!(command, Command::Lrw | Command::Lwr)
                     .then_some(sent.unwrap_or(returned)),
                 inputs: matches!(command, Command::Lrw | Command::Lrd).then_some(returned),
@@ -469,10 +473,20 @@ impl Network {
         if planned {
             self.overlaps(&touched, position);
         }
-        let missing = missing(&touched, expected, wkc);
-        for &(i, share) in &touched {
-            let confirmed = share == 0 || !missing.contains(i);
+        let mut verdicts = core::mem::take(&mut self.missed);
+        missed(
+            &touched,
+            |i| &self.slaves[i].watch,
+            expected,
+            wkc,
+            &mut verdicts,
+        );
+        for (&(i, _), &missed) in touched.iter().zip(&verdicts) {
+            let confirmed = missed.confirmed();
             let slave = &mut self.slaves[i];
+            if wkc >= expected {
+                slave.watch.whole();
+            }
             let reference = slave.reference();
             let Slave {
                 plan,
@@ -538,6 +552,7 @@ impl Network {
                 wkc,
                 expected_wkc: Some(expected),
                 confirmed,
+                missed,
                 outputs,
                 inputs,
                 cia402,
@@ -546,6 +561,7 @@ impl Network {
             });
         }
         self.touched = touched;
+        self.missed = verdicts;
     }
 
     /// Say the output ranges two slaves of a datagram both map.
@@ -704,6 +720,9 @@ impl Network {
                 .map(|b| AlStatus(u16::from_le_bytes([b[0], b[1]])));
             let code = covered(ado, data, register::AL_STATUS_CODE, 2)
                 .map(|b| AlStatusCode(u16::from_le_bytes([b[0], b[1]])));
+            if let Some(status) = status {
+                self.slaves[slave].watch.al_status(status);
+            }
             if status.is_some() || code.is_some() {
                 on(Meaning::AlState {
                     slave: reference,
@@ -719,6 +738,9 @@ impl Network {
             self.sii_read(slave, ado, data, &mut on);
             let low = covered(ado, data, register::DL_STATUS, 1).map(|b| b[0]);
             let high = covered(ado, data, register::DL_STATUS + 1, 1).map(|b| b[0]);
+            if let Some(low) = low {
+                self.slaves[slave].watch.dl_status(low);
+            }
             if low.is_some() || high.is_some() {
                 on(Meaning::DlStatus {
                     slave: reference,
@@ -731,6 +753,7 @@ impl Network {
                 *byte = covered(ado, data, register::RX_ERROR_COUNTERS + i as u16, 1).map(|b| b[0]);
             }
             if bytes.iter().any(Option::is_some) {
+                self.slaves[slave].watch.error_counters(&bytes);
                 on(Meaning::ErrorCounters {
                     slave: reference,
                     bytes,
@@ -1006,6 +1029,9 @@ impl Network {
             };
             let value = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
             let known = &mut self.slaves[slave];
+            if known.sii.store(word, b) {
+                known.plan = None;
+            }
             match SiiField::at(word) {
                 Some(SiiField::Vendor) => known.vendor = Some(value),
                 Some(SiiField::Product) => known.product = Some(value),
@@ -1087,63 +1113,6 @@ impl Network {
             profile: known.profile(),
             sdo: None,
         })
-    }
-}
-
-/// The slaves (by their place in `touched`) whose inputs a short working
-/// counter leaves unconfirmed: the one set of slaves whose shares add up
-/// to the shortfall, when exactly one does; else every slave.
-fn missing(touched: &[(usize, u16)], expected: u16, wkc: u16) -> Missing {
-    if wkc >= expected {
-        return Missing::None;
-    }
-    let short = expected - wkc;
-    if touched.len() > SHARE_SEARCH {
-        return Missing::All;
-    }
-    let mut found = None;
-    for set in 1u32..(1 << touched.len()) {
-        let sum: u32 = touched
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| set & (1 << k) != 0)
-            .map(|(_, &(_, share))| u32::from(share))
-            .sum();
-        if sum == u32::from(short) {
-            if found.is_some() {
-                return Missing::All;
-            }
-            found = Some(set);
-        }
-    }
-    match found {
-        Some(set) => Missing::Set(
-            touched
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| set & (1 << k) != 0)
-                .map(|(_, &(i, _))| i)
-                .collect(),
-        ),
-        None => Missing::All,
-    }
-}
-
-/// Which slaves' inputs a working counter leaves unconfirmed.
-#[derive(Debug)]
-enum Missing {
-    None,
-    Set(Vec<usize>),
-    All,
-}
-
-impl Missing {
-    fn contains(&self, slave: usize) -> bool {
-        match self {
-            Missing::None => false,
-            Missing::Set(set) => set.contains(&slave),
-            Missing::All => true,
-        }
     }
 }
 

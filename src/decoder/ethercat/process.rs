@@ -12,6 +12,7 @@ use crate::servo::{
 use crate::CodecError;
 
 use super::image::Plan;
+use super::missing::Missed;
 use super::slave::SlaveRef;
 
 /// One item of `--servo` (docs/ethercat.md#servo): `auto`, or a station
@@ -272,6 +273,10 @@ pub struct ProcessData<'s> {
     /// Whether the inputs are confirmed: the working counter is the
     /// expected one, or the shortfall can only be other slaves'.
     pub confirmed: bool,
+    /// What a short working counter says of this slave: whether the
+    /// evidence names it, and which (docs/ethercat.md#wkc); [`Missed::No`]
+    /// for a whole count and for a record of no slave.
+    pub missed: Missed,
     /// The outputs image, when the datagram holds all of it (from the
     /// sent copy; the returned one where the capture has no sent copy).
     pub outputs: Option<&'s [u8]>,

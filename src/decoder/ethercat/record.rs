@@ -7,8 +7,8 @@ use std::io::{self, Write};
 use crate::can::Iface;
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
-    AlRegister, CoeSdoStep, CoeTransfer, Meaning, Packet, ProcessData, ServoReading, SiiField,
-    SlaveRef,
+    AlRegister, CoeSdoStep, CoeTransfer, Meaning, Missed, Packet, ProcessData, ServoReading,
+    SiiField, SlaveRef,
 };
 use crate::decoder::json::{self, Object};
 use crate::decoder::record::emcy_json;
@@ -814,7 +814,9 @@ pub struct ProcessRecord<'r, 'p, 'a, 's> {
 impl ProcessRecord<'_, '_, '_, '_> {
     /// Append the `process_data` record as one JSON object and a newline:
     /// the packet's keys, `kind`, `slave`, `position`, `logical`, `wkc`,
-    /// `expected_wkc`, `confirmed`, `outputs`, `inputs` (hex, null where
+    /// `expected_wkc`, `confirmed`, `missing` (where the count is short:
+    /// why this slave is taken as one that missed it, or null), `outputs`,
+    /// `inputs` (hex, null where
     /// the datagram does not hold the whole image), `signals` (name →
     /// value, outputs then inputs) and `cia402` where the slave is a
     /// drive.
@@ -831,6 +833,14 @@ impl ProcessRecord<'_, '_, '_, '_> {
             None => obj.null("expected_wkc"),
         }
         obj.bool("confirmed", d.confirmed);
+        // A short count says why this slave is taken as one that missed
+        // it, or null where others are.
+        match d.missed {
+            Missed::No => {}
+            Missed::Others => obj.null("missing"),
+            Missed::Named(evidence) => obj.name("missing", evidence.name()),
+            Missed::Unknown => obj.name("missing", "unknown"),
+        }
         for (key, image) in [("outputs", d.outputs), ("inputs", d.inputs)] {
             match image {
                 Some(bytes) => json::hex_string(obj.key(key), bytes),
@@ -891,6 +901,9 @@ impl ProcessRecord<'_, '_, '_, '_> {
                 write!(out, " (inputs unconfirmed: wkc {}", d.wkc)?;
                 if let Some(expected) = d.expected_wkc {
                     write!(out, " of {expected}")?;
+                }
+                if let Missed::Named(evidence) = d.missed {
+                    write!(out, ", named by {}", evidence.text())?;
                 }
                 write!(out, ")")?;
             }
