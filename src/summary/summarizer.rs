@@ -363,8 +363,9 @@ impl Summarizer {
     }
 
     /// A frame, for [`add`](Self::add): the decoder reads the SDO and PDO
-    /// data frames it keeps state for (the other kinds teach it nothing),
-    /// and the summary reads what the decoder read, where it was read.
+    /// data frames and the error-control frames it keeps state for (the
+    /// other kinds teach it nothing), and the summary reads what the
+    /// decoder read, where it was read.
     #[inline]
     fn add_frame(&mut self, at_position: Position, log: &LogFrame<'_>) {
         let position = at_position.number();
@@ -378,7 +379,7 @@ impl Summarizer {
             ..
         } = self;
         let times = (last_time, untimed);
-        match (kind, node) {
+        let (at, kind) = match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
                 decoder.sdo_frame(at_position, log, n, |at, seen, cia402| {
                     let (name, bus) =
@@ -396,6 +397,7 @@ impl Summarizer {
                         |_| {},
                     );
                 });
+                return;
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let (at, cia402) = decoder.pdo_cia402(log);
@@ -413,32 +415,28 @@ impl Summarizer {
                     cia402,
                     |_| {},
                 );
+                return;
             }
-            _ => {
-                // A data frame on 0x700 + node is a guarding answer or a
-                // heartbeat by the frames before it: the decoder tells.
-                let (at, kind) = match (kind, node) {
-                    (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
-                        decoder.error_control_frame(log, kind, n)
-                    }
-                    _ => (decoder.bus(log.iface), kind),
-                };
-                let (name, bus) =
-                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
-                add_classified(
-                    bus,
-                    name,
-                    times,
-                    position,
-                    log,
-                    kind,
-                    node,
-                    NO_SDO,
-                    None,
-                    |_| {},
-                );
+            // A data frame on 0x700 + node is a guarding answer or a
+            // heartbeat by the frames before it: the decoder tells.
+            (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
+                decoder.error_control_frame(log, kind, n)
             }
-        }
+            _ => (decoder.bus(log.iface), kind),
+        };
+        let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+        add_classified(
+            bus,
+            name,
+            times,
+            position,
+            log,
+            kind,
+            node,
+            NO_SDO,
+            None,
+            |_| {},
+        );
     }
 
     /// Count a log entry that is not a frame (a TRC status row).
