@@ -391,10 +391,10 @@ struct BusState {
     /// COB-ID → index + 1 into `maps` (0: no mapping).
     by_cob: Box<[u16; 2048]>,
     maps: Vec<PdoMap>,
-    /// Bit `n`: a guard request (RTR on 0x700 + node `n`) was seen and not
+    /// By node-ID: a guard request (RTR on 0x700 + node) was seen and not
     /// yet answered, so the next data frame on that identifier is its
     /// answer (docs/output.md#heartbeat).
-    guard_requests: u128,
+    guard_requests: [bool; 128],
 }
 
 impl BusState {
@@ -416,7 +416,7 @@ impl BusState {
             nodes: (0..128).map(|_| None).collect(),
             by_cob: Box::new([0; 2048]),
             maps: Vec::new(),
-            guard_requests: 0,
+            guard_requests: [false; 128],
         }
     }
 
@@ -522,15 +522,14 @@ impl Decoder {
         node: NodeId,
     ) -> (usize, MessageKind) {
         let at = self.bus(frame.iface);
-        let pending = &mut self.buses.get_mut(at).guard_requests;
-        let bit = 1u128 << node.get();
+        let pending = &mut self.buses.get_mut(at).guard_requests[usize::from(node.get())];
         let kind = match kind {
             MessageKind::GuardRequest => {
-                *pending |= bit;
+                *pending = true;
                 kind
             }
-            MessageKind::Heartbeat if *pending & bit != 0 => {
-                *pending &= !bit;
+            MessageKind::Heartbeat if *pending => {
+                *pending = false;
                 MessageKind::GuardAnswer
             }
             _ => kind,

@@ -648,35 +648,38 @@ fn add_classified(
             state.heartbeats += 1;
             state.last_state = Some(byte);
             // The gap this heartbeat closes comes first: it lies before it.
-            if let (Some(consumer), Some(now), Some(nmt)) = (consumer.as_mut(), now, byte.state()) {
-                for event in consumer.on_heartbeat(now, node, nmt) {
-                    match event {
-                        HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                            state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
-                        }
-                        HeartbeatEvent::Recovered { at, .. }
-                        | HeartbeatEvent::RemoteReset { at, .. } => {
-                            if let Some((after_line, last)) = state.open_gap.take() {
-                                let gap = HeartbeatGap {
-                                    after_line,
-                                    gap: at.saturating_sub(last),
-                                    since: Timestamp::from_duration(last),
-                                    due: Timestamp::from_duration(
-                                        last + heartbeat.unwrap_or_default(),
-                                    ),
-                                    cause: state.gap_cause,
-                                };
-                                state.timeouts.push(gap);
-                                on_event(SummaryEvent {
-                                    bus: name,
-                                    node: Some(node),
-                                    line: after_line,
-                                    timestamp: Some(Timestamp::from_duration(last)),
-                                    kind: SummaryEventKind::HeartbeatTimeout(gap),
-                                });
+            // The state is read only when a consumer watches the node.
+            if let (Some(consumer), Some(now)) = (consumer.as_mut(), now) {
+                if let Some(nmt) = byte.state() {
+                    for event in consumer.on_heartbeat(now, node, nmt) {
+                        match event {
+                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
                             }
+                            HeartbeatEvent::Recovered { at, .. }
+                            | HeartbeatEvent::RemoteReset { at, .. } => {
+                                if let Some((after_line, last)) = state.open_gap.take() {
+                                    let gap = HeartbeatGap {
+                                        after_line,
+                                        gap: at.saturating_sub(last),
+                                        since: Timestamp::from_duration(last),
+                                        due: Timestamp::from_duration(
+                                            last + heartbeat.unwrap_or_default(),
+                                        ),
+                                        cause: state.gap_cause,
+                                    };
+                                    state.timeouts.push(gap);
+                                    on_event(SummaryEvent {
+                                        bus: name,
+                                        node: Some(node),
+                                        line: after_line,
+                                        timestamp: Some(Timestamp::from_duration(last)),
+                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                    });
+                                }
+                            }
+                            HeartbeatEvent::CapacityExceeded { .. } => {}
                         }
-                        HeartbeatEvent::CapacityExceeded { .. } => {}
                     }
                 }
             }
