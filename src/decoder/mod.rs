@@ -382,10 +382,6 @@ struct NodeState {
     pdos: HashMap<(bool, u16), PdoParams>,
     drive: bool,
     cia402: DriveState,
-    /// A guard request (RTR on 0x700 + node) was seen and not yet
-    /// answered: the next data frame on that identifier is its answer
-    /// (docs/output.md#heartbeat).
-    guard_request_pending: bool,
 }
 
 /// What the decoder knows of one interface.
@@ -395,6 +391,10 @@ struct BusState {
     /// COB-ID → index + 1 into `maps` (0: no mapping).
     by_cob: Box<[u16; 2048]>,
     maps: Vec<PdoMap>,
+    /// By node-ID: a guard request (RTR on 0x700 + node) was seen and not
+    /// yet answered, so the next data frame on that identifier is its
+    /// answer (docs/output.md#heartbeat).
+    guard_requests: [bool; 128],
 }
 
 impl BusState {
@@ -416,6 +416,7 @@ impl BusState {
             nodes: (0..128).map(|_| None).collect(),
             by_cob: Box::new([0; 2048]),
             maps: Vec::new(),
+            guard_requests: [false; 128],
         }
     }
 
@@ -521,14 +522,14 @@ impl Decoder {
         node: NodeId,
     ) -> (usize, MessageKind) {
         let at = self.bus(frame.iface);
-        let state = self.buses.get_mut(at).node(node, &self.config.profiles);
+        let pending = &mut self.buses.get_mut(at).guard_requests[usize::from(node.get())];
         let kind = match kind {
             MessageKind::GuardRequest => {
-                state.guard_request_pending = true;
+                *pending = true;
                 kind
             }
-            MessageKind::Heartbeat if state.guard_request_pending => {
-                state.guard_request_pending = false;
+            MessageKind::Heartbeat if *pending => {
+                *pending = false;
                 MessageKind::GuardAnswer
             }
             _ => kind,

@@ -254,6 +254,9 @@ pub struct EventFilter {
     channels: Vec<u16>,
     /// The recording's first time, once an event with one is shown.
     start: Option<Timestamp>,
+    /// Whether a window or a name is set: what [`keeps`](Self::keeps)
+    /// asks first of every event.
+    narrows: bool,
 }
 
 impl EventFilter {
@@ -267,6 +270,7 @@ impl EventFilter {
     #[must_use]
     pub fn from(mut self, bound: TimeBound) -> Self {
         self.from = Some(bound);
+        self.narrows = true;
         self
     }
 
@@ -274,6 +278,7 @@ impl EventFilter {
     #[must_use]
     pub fn to(mut self, bound: TimeBound) -> Self {
         self.to = Some(bound);
+        self.narrows = true;
         self
     }
 
@@ -286,13 +291,14 @@ impl EventFilter {
             self.channels.push(channel);
         }
         self.names.push(name);
+        self.narrows = true;
         self
     }
 
     /// Whether the filter keeps every event.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.from.is_none() && self.to.is_none() && self.names.is_empty()
+        !self.narrows
     }
 
     /// Whether the filter has a time window.
@@ -317,11 +323,10 @@ impl EventFilter {
     /// is kept.
     #[inline]
     pub fn keeps(&mut self, event: &LogEvent<'_>) -> bool {
-        let time = event.timestamp();
         if self.start.is_none() {
-            self.start = time;
+            self.start = event.timestamp();
         }
-        if self.is_empty() {
+        if !self.narrows {
             return true;
         }
         if !self.names.is_empty() {
@@ -337,7 +342,7 @@ impl EventFilter {
         if !self.has_window() {
             return true;
         }
-        let (Some(time), Some(start)) = (time, self.start) else {
+        let (Some(time), Some(start)) = (event.timestamp(), self.start) else {
             return false;
         };
         let at = |bound: TimeBound| match bound {

@@ -363,8 +363,9 @@ impl Summarizer {
     }
 
     /// A frame, for [`add`](Self::add): the decoder reads the SDO and PDO
-    /// data frames it keeps state for (the other kinds teach it nothing),
-    /// and the summary reads what the decoder read, where it was read.
+    /// data frames and the error-control frames it keeps state for (the
+    /// other kinds teach it nothing), and the summary reads what the
+    /// decoder read, where it was read.
     #[inline]
     fn add_frame(&mut self, at_position: Position, log: &LogFrame<'_>) {
         let position = at_position.number();
@@ -378,7 +379,7 @@ impl Summarizer {
             ..
         } = self;
         let times = (last_time, untimed);
-        match (kind, node) {
+        let (at, kind) = match (kind, node) {
             (MessageKind::Sdo, Some(n)) if !log.frame.is_rtr() => {
                 decoder.sdo_frame(at_position, log, n, |at, seen, cia402| {
                     let (name, bus) =
@@ -396,6 +397,7 @@ impl Summarizer {
                         |_| {},
                     );
                 });
+                return;
             }
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let (at, cia402) = decoder.pdo_cia402(log);
@@ -413,32 +415,28 @@ impl Summarizer {
                     cia402,
                     |_| {},
                 );
+                return;
             }
-            _ => {
-                // A data frame on 0x700 + node is a guarding answer or a
-                // heartbeat by the frames before it: the decoder tells.
-                let (at, kind) = match (kind, node) {
-                    (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
-                        decoder.error_control_frame(log, kind, n)
-                    }
-                    _ => (decoder.bus(log.iface), kind),
-                };
-                let (name, bus) =
-                    Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
-                add_classified(
-                    bus,
-                    name,
-                    times,
-                    position,
-                    log,
-                    kind,
-                    node,
-                    NO_SDO,
-                    None,
-                    |_| {},
-                );
+            // A data frame on 0x700 + node is a guarding answer or a
+            // heartbeat by the frames before it: the decoder tells.
+            (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
+                decoder.error_control_frame(log, kind, n)
             }
-        }
+            _ => (decoder.bus(log.iface), kind),
+        };
+        let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
+        add_classified(
+            bus,
+            name,
+            times,
+            position,
+            log,
+            kind,
+            node,
+            NO_SDO,
+            None,
+            |_| {},
+        );
     }
 
     /// Count a log entry that is not a frame (a TRC status row).
@@ -650,35 +648,38 @@ fn add_classified(
             state.heartbeats += 1;
             state.last_state = Some(byte);
             // The gap this heartbeat closes comes first: it lies before it.
-            if let (Some(consumer), Some(now), Some(nmt)) = (consumer.as_mut(), now, byte.state()) {
-                for event in consumer.on_heartbeat(now, node, nmt) {
-                    match event {
-                        HeartbeatEvent::Timeout { last_heartbeat, .. } => {
-                            state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
-                        }
-                        HeartbeatEvent::Recovered { at, .. }
-                        | HeartbeatEvent::RemoteReset { at, .. } => {
-                            if let Some((after_line, last)) = state.open_gap.take() {
-                                let gap = HeartbeatGap {
-                                    after_line,
-                                    gap: at.saturating_sub(last),
-                                    since: Timestamp::from_duration(last),
-                                    due: Timestamp::from_duration(
-                                        last + heartbeat.unwrap_or_default(),
-                                    ),
-                                    cause: state.gap_cause,
-                                };
-                                state.timeouts.push(gap);
-                                on_event(SummaryEvent {
-                                    bus: name,
-                                    node: Some(node),
-                                    line: after_line,
-                                    timestamp: Some(Timestamp::from_duration(last)),
-                                    kind: SummaryEventKind::HeartbeatTimeout(gap),
-                                });
+            // The state is read only when a consumer watches the node.
+            if let (Some(consumer), Some(now)) = (consumer.as_mut(), now) {
+                if let Some(nmt) = byte.state() {
+                    for event in consumer.on_heartbeat(now, node, nmt) {
+                        match event {
+                            HeartbeatEvent::Timeout { last_heartbeat, .. } => {
+                                state.open_gap = Some((state.last_heartbeat_line, last_heartbeat));
                             }
+                            HeartbeatEvent::Recovered { at, .. }
+                            | HeartbeatEvent::RemoteReset { at, .. } => {
+                                if let Some((after_line, last)) = state.open_gap.take() {
+                                    let gap = HeartbeatGap {
+                                        after_line,
+                                        gap: at.saturating_sub(last),
+                                        since: Timestamp::from_duration(last),
+                                        due: Timestamp::from_duration(
+                                            last + heartbeat.unwrap_or_default(),
+                                        ),
+                                        cause: state.gap_cause,
+                                    };
+                                    state.timeouts.push(gap);
+                                    on_event(SummaryEvent {
+                                        bus: name,
+                                        node: Some(node),
+                                        line: after_line,
+                                        timestamp: Some(Timestamp::from_duration(last)),
+                                        kind: SummaryEventKind::HeartbeatTimeout(gap),
+                                    });
+                                }
+                            }
+                            HeartbeatEvent::CapacityExceeded { .. } => {}
                         }
-                        HeartbeatEvent::CapacityExceeded { .. } => {}
                     }
                 }
             }
