@@ -5,20 +5,40 @@ use core::fmt;
 use std::io::{self, Write};
 
 use crate::can::Iface;
+use crate::can::Timestamp;
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
     AlRegister, CoeSdoStep, CoeTransfer, Meaning, Packet, ProcessData, ServoReading, SiiField,
     SlaveRef,
 };
-use crate::decoder::json::{self, Object};
+use crate::decoder::json::{self, Block, Object, Padded};
 use crate::decoder::record::emcy_json;
 use crate::ethercat::register;
 use crate::ethercat::{
-    Addressing, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType, COE_HEADER_LEN,
+    Addressing, CoeHeader, CoeSdo, CoeService, Command, Datagram, MailboxError, MailboxType,
+    COE_HEADER_LEN,
 };
 
 /// The kind of a datagram's record (`"kind": "ecat_datagram"`).
 pub const DATAGRAM_KIND: &str = "ecat_datagram";
+
+/// The keys after `iface` up to `index`'s value, by command byte (the
+/// last for every reserved one): `,"kind":"ecat_datagram","cmd":"LRW","index":`.
+const COMMANDS: [Padded<64>; 16] = {
+    let mut table = [Padded::EMPTY; 16];
+    let mut byte = 0;
+    while byte < table.len() {
+        table[byte] = Padded::concat(&[
+            b",\"kind\":\"",
+            DATAGRAM_KIND.as_bytes(),
+            b"\",\"cmd\":\"",
+            Command::from_byte(byte as u8).name().as_bytes(),
+            b"\",\"index\":",
+        ]);
+        byte += 1;
+    }
+    table
+};
 
 /// Every kind of record `decode` writes for an EtherCAT capture, in the
 /// order docs/ethercat.md lists them: the datagram's, then what it tells
@@ -66,54 +86,46 @@ impl DatagramRecord<'_, '_> {
     /// `returned`, `data`.
     pub fn append_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
         let d = &self.datagram;
-        match file {
-            None => out.extend_from_slice(b"{\"packet\":"),
-            Some(file) => {
-                out.extend_from_slice(b"{\"file\":");
-                json::string(out, file);
-                out.extend_from_slice(b",\"packet\":");
-            }
+        // In one block: the prefix (62 bytes and the shared keys' 128),
+        // then the rest: the longest (a logical address, every field at
+        // its largest, 16 data bytes) 213 bytes, a piece writing up to 34
+        // bytes past its end.
+        let mut b = Block::<448>::new();
+        if !prefix_into(&mut b, out, self.packet, self.number, file) {
+            b.truncate(0);
         }
-        json::uint(out, self.packet.position.number());
-        out.extend_from_slice(b",\"datagram\":");
-        json::uint(out, self.number as u64);
-        out.extend_from_slice(b",\"ts\":");
-        match self.packet.timestamp {
-            Some(ts) => json::timestamp(out, ts),
-            None => out.extend_from_slice(b"null"),
-        }
-        out.extend_from_slice(b",\"iface\":");
-        match self.packet.iface {
-            Some(Iface::Name(name)) => json::string(out, name),
-            Some(Iface::Channel(channel)) => json::uint(out, u64::from(channel)),
-            None => out.extend_from_slice(b"null"),
-        }
-        out.extend_from_slice(b",\"kind\":\"ecat_datagram\",\"cmd\":");
-        json::string(out, d.command().name());
-        out.extend_from_slice(b",\"index\":");
-        json::uint(out, u64::from(d.index()));
+        b.padded(&COMMANDS[usize::from(d.command().byte()).min(COMMANDS.len() - 1)]);
+        b.uint(u64::from(d.index()));
         if d.command().addressing() == Addressing::Logical {
-            out.extend_from_slice(b",\"logical\":");
-            json::uint(out, u64::from(d.address()));
+            b.text(b",\"logical\":");
+            b.uint(u64::from(d.address()));
         } else {
-            out.extend_from_slice(b",\"adp\":");
-            json::uint(out, u64::from(d.adp()));
-            out.extend_from_slice(b",\"ado\":");
-            json::uint(out, u64::from(d.ado()));
+            b.text(b",\"adp\":");
+            b.uint(u64::from(d.adp()));
+            b.text(b",\"ado\":");
+            b.uint(u64::from(d.ado()));
         }
-        out.extend_from_slice(b",\"length\":");
-        json::uint(out, u64::from(d.length()));
-        out.extend_from_slice(b",\"irq\":");
-        json::uint(out, u64::from(d.irq()));
-        out.extend_from_slice(b",\"wkc\":");
-        json::uint(out, u64::from(d.working_counter()));
-        out.extend_from_slice(if self.packet.copy.returned() {
-            b",\"returned\":true,\"data\":"
+        b.text(b",\"length\":");
+        b.uint(u64::from(d.length()));
+        b.text(b",\"irq\":");
+        b.uint(u64::from(d.irq()));
+        b.text(b",\"wkc\":");
+        b.uint(u64::from(d.working_counter()));
+        if self.packet.copy.returned() {
+            b.text(b",\"returned\":true,\"data\":");
         } else {
-            b",\"returned\":false,\"data\":"
-        });
-        json::hex_string(out, d.data());
-        out.extend_from_slice(b"}\n");
+            b.text(b",\"returned\":false,\"data\":");
+        }
+        if b.short_hex_string(d.data()) {
+            b.text(b"}\n");
+            b.flush(out);
+        } else {
+            b.byte(b'"');
+            b.flush(out);
+            json::hex_digits(out, d.data());
+            out.extend_from_slice(b"\"}\n");
+        }
+        debug_assert!(!b.is_full());
     }
 
     /// Write the record as one line of `decode`'s text output
@@ -186,18 +198,84 @@ impl fmt::Display for Fields<'_, '_, '_> {
 
 /// Write the keys every record of a packet starts with: `file` (when
 /// given), `packet`, `datagram`, `ts`, `iface`.
+#[inline]
 fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&str>) {
-    match file {
-        None => out.extend_from_slice(b"{\"packet\":"),
-        Some(file) => {
-            out.extend_from_slice(b"{\"file\":");
-            json::string(out, file);
-            out.extend_from_slice(b",\"packet\":");
+    let mut b = Block::<192>::new();
+    if prefix_into(&mut b, out, packet, number, file) {
+        b.flush(out);
+    }
+}
+
+/// Write the keys of [`prefix`] into the block `b`, `ts` and `iface` as
+/// the packet's first record made them ([`SharedKeys`]); where they do not
+/// fit in [`SHARED_LEN`] bytes, write `b` and them into `out` and return
+/// `false`. `b` holds `N` ≥ 192 bytes.
+#[inline(always)]
+fn prefix_into<const N: usize>(
+    b: &mut Block<N>,
+    out: &mut Vec<u8>,
+    packet: &Packet<'_>,
+    number: usize,
+    file: Option<&str>,
+) -> bool {
+    if let Some(file) = file {
+        out.extend_from_slice(b"{\"file\":");
+        json::string(out, file);
+    }
+    // 10 + 20 + 12 + 20 bytes at most, then the shared keys.
+    b.text(if file.is_some() {
+        b",\"packet\":"
+    } else {
+        b"{\"packet\":"
+    });
+    b.uint(packet.position.number());
+    b.text(b",\"datagram\":");
+    b.uint(number as u64);
+    let iface = IfaceKey::of(packet.iface);
+    if let Some(shared) = packet.shared_keys.get() {
+        if shared.timestamp == packet.timestamp && shared.iface == iface {
+            b.padded(&shared.text);
+            return true;
         }
     }
-    json::uint(out, packet.position.number());
-    out.extend_from_slice(b",\"datagram\":");
-    json::uint(out, number as u64);
+    // The packet's first record: the keys written here, then kept.
+    let start = b.len();
+    b.text(b",\"ts\":");
+    match packet.timestamp {
+        Some(ts) => b.timestamp(ts),
+        None => b.text(b"null"),
+    }
+    b.text(b",\"iface\":");
+    match packet.iface {
+        Some(Iface::Name(name)) => b.string(name),
+        Some(Iface::Channel(channel)) => b.uint(u64::from(channel)),
+        None => b.text(b"null"),
+    }
+    match b.padded_from::<SHARED_LEN>(start) {
+        Some(text) if !b.is_full() => {
+            let _ = packet.shared_keys.set(SharedKeys {
+                timestamp: packet.timestamp,
+                iface,
+                text,
+            });
+            true
+        }
+        // A long interface name: written out, not kept.
+        _ => {
+            b.truncate(start);
+            b.flush(out);
+            shared_keys(out, packet);
+            false
+        }
+    }
+}
+
+/// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
+/// interface name of up to about 80 bytes.
+const SHARED_LEN: usize = 128;
+
+/// `,"ts":…,"iface":…`, written into `out`.
+fn shared_keys(out: &mut Vec<u8>, packet: &Packet<'_>) {
     out.extend_from_slice(b",\"ts\":");
     match packet.timestamp {
         Some(ts) => json::timestamp(out, ts),
@@ -208,6 +286,40 @@ fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&s
         Some(Iface::Name(name)) => json::string(out, name),
         Some(Iface::Channel(channel)) => json::uint(out, u64::from(channel)),
         None => out.extend_from_slice(b"null"),
+    }
+}
+
+/// The keys every record of a packet writes after `datagram`, `ts` and
+/// `iface` (`,"ts":1700000000.000500,"iface":"eth0"`), as the packet's
+/// first record wrote them: a packet of cyclic traffic has a record for
+/// each of its datagrams and more for what they tell. Kept with the time
+/// and interface they were made of (the name by where it lies and its
+/// length), and written again for a packet whose time or interface was
+/// changed since.
+#[derive(Debug, Clone)]
+pub(crate) struct SharedKeys {
+    timestamp: Option<Timestamp>,
+    iface: IfaceKey,
+    text: Padded<SHARED_LEN>,
+}
+
+/// An interface as [`SharedKeys`] compare it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum IfaceKey {
+    None,
+    Channel(u16),
+    /// The name's address and length.
+    Name(usize, usize),
+}
+
+impl IfaceKey {
+    #[inline(always)]
+    fn of(iface: Option<Iface<'_>>) -> Self {
+        match iface {
+            None => IfaceKey::None,
+            Some(Iface::Channel(channel)) => IfaceKey::Channel(channel),
+            Some(Iface::Name(name)) => IfaceKey::Name(name.as_ptr() as usize, name.len()),
+        }
     }
 }
 

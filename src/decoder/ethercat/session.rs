@@ -2,6 +2,7 @@
 //! copy of a frame each packet is, and which sent frames never came back
 //! (docs/ethercat.md#direction).
 
+use std::cell::OnceCell;
 use std::collections::VecDeque;
 
 use crate::can::{EthercatPacket, Iface, Timestamp};
@@ -11,6 +12,7 @@ use super::config::SlaveConfig;
 use super::network::{Meaning, Network};
 use super::problem::ImageProblem;
 use super::process::{ProcessData, ServoSlaves};
+use super::record::SharedKeys;
 use crate::logs::Position;
 use crate::LenError;
 
@@ -67,6 +69,9 @@ pub struct Packet<'a> {
     /// the frame holds a position-addressed datagram (whose returned ADP
     /// the slaves counted on).
     sent_adps: Vec<u16>,
+    /// The JSON keys every record of the packet writes after `datagram`
+    /// (`ts`, `iface`), made by its first record.
+    pub(super) shared_keys: OnceCell<SharedKeys>,
 }
 
 impl<'a> Packet<'a> {
@@ -295,6 +300,7 @@ impl Session {
             frame,
             port,
             sent_adps,
+            shared_keys: OnceCell::new(),
         })
     }
 
