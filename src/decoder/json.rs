@@ -167,7 +167,7 @@ impl<'w> Object<'w> {
 /// copy of the whole array cut to the text's length: a copy of a length
 /// known at compile time is a few moves, where a length known only at run
 /// time is a call to `memcpy`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Padded<const N: usize> {
     bytes: [u8; N],
     len: u8,

@@ -2,6 +2,7 @@
 //! (docs/ethercat.md#records).
 
 use core::fmt;
+use std::cell::Cell;
 use std::io::{self, Write};
 
 use crate::can::Iface;
@@ -247,7 +248,7 @@ fn prefix_into<const N: usize>(
     }
     b.text(b",\"iface\":");
     match packet.iface {
-        Some(Iface::Name(name)) => b.string(name),
+        Some(Iface::Name(name)) => iface_name(b, name),
         Some(Iface::Channel(channel)) => b.uint(u64::from(channel)),
         None => b.text(b"null"),
     }
@@ -268,6 +269,41 @@ fn prefix_into<const N: usize>(
             false
         }
     }
+}
+
+/// Write an interface's name as a JSON string: a name of up to 64 bytes
+/// that is not a short string without escapes (a Windows capture's
+/// `\Device\NPF_{…}`, 50 bytes and two backslashes, named by every
+/// packet) escaped once for all the packets that name it in a row
+/// ([`LAST_LONG_NAME`]).
+#[inline(always)]
+fn iface_name<const N: usize>(b: &mut Block<N>, name: &str) {
+    if b.short_string(name) {
+        return;
+    }
+    let Some(raw) = Padded::<64>::new(name.as_bytes()) else {
+        b.string(name);
+        return;
+    };
+    LAST_LONG_NAME.with(|last| {
+        if let Some((was, text)) = last.get() {
+            if was == raw {
+                b.padded(&text);
+                return;
+            }
+        }
+        let start = b.len();
+        b.string(name);
+        if let Some(text) = b.padded_from::<96>(start) {
+            last.set(Some((raw, text)));
+        }
+    });
+}
+
+thread_local! {
+    /// The last interface name [`iface_name`] escaped, as it is and as a
+    /// JSON string.
+    static LAST_LONG_NAME: Cell<Option<(Padded<64>, Padded<96>)>> = const { Cell::new(None) };
 }
 
 /// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
