@@ -228,9 +228,11 @@ impl<const N: usize> Padded<N> {
 /// what is written, which then moves on by the piece's length, so that a
 /// record of twenty keys costs one check of the buffer's capacity, not
 /// twenty. A piece that would pass the array's end is dropped and the
-/// block marked full; the writers size their blocks for the longest
-/// record they build (`largest_records_fit` in the tests), and a full
-/// block is written out another way ([`is_full`](Self::is_full)).
+/// block marked full ([`is_full`](Self::is_full)): a writer sizes its
+/// block for the longest record it builds from values of fixed size
+/// (`datagram_records_as_the_plain_writer` in tests/library checks them at
+/// their largest), and writes a text from the input that may not fit (an
+/// interface name) another way when the block is full.
 #[derive(Debug, Clone)]
 pub(crate) struct Block<const N: usize> {
     bytes: [u8; N],
@@ -402,6 +404,13 @@ impl<const N: usize> Block<N> {
     #[inline(always)]
     pub(crate) fn len(&self) -> usize {
         self.len
+    }
+
+    /// Empty the block, full or not.
+    #[inline(always)]
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.full = false;
     }
 
     /// Keep the first `len` bytes written.

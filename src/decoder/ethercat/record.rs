@@ -92,9 +92,7 @@ impl DatagramRecord<'_, '_> {
         // its largest, 16 data bytes) 213 bytes, a piece writing up to 34
         // bytes past its end.
         let mut b = Block::<448>::new();
-        if !prefix_into(&mut b, out, self.packet, self.number, file) {
-            b.truncate(0);
-        }
+        prefix_into(&mut b, out, self.packet, self.number, file);
         b.padded(&COMMANDS[usize::from(d.command().byte()).min(COMMANDS.len() - 1)]);
         b.uint(u64::from(d.index()));
         if d.command().addressing() == Addressing::Logical {
@@ -202,15 +200,14 @@ impl fmt::Display for Fields<'_, '_, '_> {
 #[inline]
 fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&str>) {
     let mut b = Block::<192>::new();
-    if prefix_into(&mut b, out, packet, number, file) {
-        b.flush(out);
-    }
+    prefix_into(&mut b, out, packet, number, file);
+    b.flush(out);
 }
 
 /// Write the keys of [`prefix`] into the block `b`, `ts` and `iface` as
 /// the packet's first record made them ([`SharedKeys`]); where they do not
-/// fit in [`SHARED_LEN`] bytes, write `b` and them into `out` and return
-/// `false`. `b` holds `N` ≥ 192 bytes.
+/// fit in [`SHARED_LEN`] bytes, write `b` and them into `out`, leaving `b`
+/// empty. `b` holds `N` ≥ 192 bytes.
 #[inline(always)]
 fn prefix_into<const N: usize>(
     b: &mut Block<N>,
@@ -218,7 +215,7 @@ fn prefix_into<const N: usize>(
     packet: &Packet<'_>,
     number: usize,
     file: Option<&str>,
-) -> bool {
+) {
     if let Some(file) = file {
         out.extend_from_slice(b"{\"file\":");
         json::string(out, file);
@@ -236,7 +233,7 @@ fn prefix_into<const N: usize>(
     if let Some(shared) = packet.shared_keys.get() {
         if shared.timestamp == packet.timestamp && shared.iface == iface {
             b.padded(&shared.text);
-            return true;
+            return;
         }
     }
     // The packet's first record: the keys written here, then kept.
@@ -259,14 +256,13 @@ fn prefix_into<const N: usize>(
                 iface,
                 text,
             });
-            true
         }
         // A long interface name: written out, not kept.
         _ => {
             b.truncate(start);
             b.flush(out);
+            b.clear();
             shared_keys(out, packet);
-            false
         }
     }
 }
