@@ -5,8 +5,8 @@ use core::fmt;
 use std::cell::Cell;
 use std::io::{self, Write};
 
+use super::session::{IfaceKey, SharedKeys, SHARED_LEN};
 use crate::can::Iface;
-use crate::can::Timestamp;
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
     AlRegister, CoeSdoStep, CoeTransfer, Meaning, Packet, ProcessData, ServoReading, SiiField,
@@ -302,10 +302,6 @@ thread_local! {
     static LAST_LONG_NAME: Cell<Option<(Padded<64>, Padded<96>)>> = const { Cell::new(None) };
 }
 
-/// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
-/// interface name of up to about 80 bytes.
-const SHARED_LEN: usize = 128;
-
 /// `,"ts":…,"iface":…`, written into `out`.
 fn shared_keys(out: &mut Vec<u8>, packet: &Packet<'_>) {
     out.extend_from_slice(b",\"ts\":");
@@ -318,40 +314,6 @@ fn shared_keys(out: &mut Vec<u8>, packet: &Packet<'_>) {
         Some(Iface::Name(name)) => json::string(out, name),
         Some(Iface::Channel(channel)) => json::uint(out, u64::from(channel)),
         None => out.extend_from_slice(b"null"),
-    }
-}
-
-/// The keys every record of a packet writes after `datagram`, `ts` and
-/// `iface` (`,"ts":1700000000.000500,"iface":"eth0"`), as the packet's
-/// first record wrote them: a packet of cyclic traffic has a record for
-/// each of its datagrams and more for what they tell. Kept with the time
-/// and interface they were made of (the name by where it lies and its
-/// length), and written again for a packet whose time or interface was
-/// changed since.
-#[derive(Debug, Clone)]
-pub(crate) struct SharedKeys {
-    timestamp: Option<Timestamp>,
-    iface: IfaceKey,
-    text: Padded<SHARED_LEN>,
-}
-
-/// An interface as [`SharedKeys`] compare it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum IfaceKey {
-    None,
-    Channel(u16),
-    /// The name's address and length.
-    Name(usize, usize),
-}
-
-impl IfaceKey {
-    #[inline(always)]
-    fn of(iface: Option<Iface<'_>>) -> Self {
-        match iface {
-            None => IfaceKey::None,
-            Some(Iface::Channel(channel)) => IfaceKey::Channel(channel),
-            Some(Iface::Name(name)) => IfaceKey::Name(name.as_ptr() as usize, name.len()),
-        }
     }
 }
 

@@ -12,7 +12,7 @@ use super::config::SlaveConfig;
 use super::network::{Meaning, Network};
 use super::problem::ImageProblem;
 use super::process::{ProcessData, ServoSlaves};
-use super::record::SharedKeys;
+use crate::decoder::json::Padded;
 use crate::logs::Position;
 use crate::LenError;
 
@@ -149,6 +149,44 @@ pub struct Counts {
     pub time_reversals: u64,
     /// The first of them, and how far back it went.
     pub first_reversal: Option<(Position, core::time::Duration)>,
+}
+
+/// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
+/// interface name of up to about 80 bytes.
+pub(super) const SHARED_LEN: usize = 128;
+
+/// The keys every JSON record of a packet writes after `datagram`, `ts`
+/// and `iface` (`,"ts":1700000000.000500,"iface":"eth0"`), as the packet's
+/// first record wrote them: a packet of cyclic traffic has a record for
+/// each of its datagrams and more for what they tell. Kept with the time
+/// and interface they were made of (the name by where it lies and its
+/// length), and written again for a packet whose time or interface was
+/// changed since.
+#[derive(Debug, Clone)]
+pub(crate) struct SharedKeys {
+    pub(super) timestamp: Option<Timestamp>,
+    pub(super) iface: IfaceKey,
+    pub(super) text: Padded<SHARED_LEN>,
+}
+
+/// An interface as [`SharedKeys`] compare it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum IfaceKey {
+    None,
+    Channel(u16),
+    /// The name's address and length.
+    Name(usize, usize),
+}
+
+impl IfaceKey {
+    #[inline(always)]
+    pub(super) fn of(iface: Option<Iface<'_>>) -> Self {
+        match iface {
+            None => IfaceKey::None,
+            Some(Iface::Channel(channel)) => IfaceKey::Channel(channel),
+            Some(Iface::Name(name)) => IfaceKey::Name(name.as_ptr() as usize, name.len()),
+        }
+    }
 }
 
 /// A packet whose EtherCAT header or datagram is damaged: where, and why
