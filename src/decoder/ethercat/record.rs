@@ -87,9 +87,10 @@ impl DatagramRecord<'_, '_> {
     /// `returned`, `data`.
     pub fn append_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
         let d = &self.datagram;
-        // In one block: the prefix (62 bytes and the shared keys' 128),
+        // In one block: the prefix (62 bytes, then `ts` and `iface`: the
+        // kept 64, or up to 203 with a piece's overrun when written here),
         // then the rest: the longest (a logical address, every field at
-        // its largest, 16 data bytes) 213 bytes, a piece writing up to 34
+        // its largest, 16 data bytes) 178 bytes, a piece writing up to 64
         // bytes past its end.
         let mut b = Block::<448>::new();
         prefix_into(&mut b, out, self.packet, self.number, file);
@@ -199,15 +200,16 @@ impl fmt::Display for Fields<'_, '_, '_> {
 /// given), `packet`, `datagram`, `ts`, `iface`.
 #[inline]
 fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&str>) {
-    let mut b = Block::<192>::new();
+    let mut b = Block::<256>::new();
     prefix_into(&mut b, out, packet, number, file);
     b.flush(out);
 }
 
 /// Write the keys of [`prefix`] into the block `b`, `ts` and `iface` as
-/// the packet's first record made them ([`SharedKeys`]); where they do not
-/// fit in [`SHARED_LEN`] bytes, write `b` and them into `out`, leaving `b`
-/// empty. `b` holds `N` ≥ 192 bytes.
+/// the packet's first record made them ([`SharedKeys`]: kept when they fit
+/// in [`SHARED_LEN`] bytes); where they are longer, write `b` into `out`
+/// and empty it, and where they do not fit in `b`, write `b` and them
+/// into `out`, leaving `b` empty. `b` holds `N` ≥ 256 bytes.
 #[inline(always)]
 fn prefix_into<const N: usize>(
     b: &mut Block<N>,
@@ -249,21 +251,23 @@ fn prefix_into<const N: usize>(
         Some(Iface::Channel(channel)) => b.uint(u64::from(channel)),
         None => b.text(b"null"),
     }
-    match b.padded_from::<SHARED_LEN>(start) {
-        Some(text) if !b.is_full() => {
-            let _ = packet.shared_keys.set(SharedKeys {
-                timestamp: packet.timestamp,
-                iface,
-                text,
-            });
-        }
-        // A long interface name: written out, not kept.
-        _ => {
-            b.truncate(start);
-            b.flush(out);
-            b.clear();
-            shared_keys(out, packet);
-        }
+    if b.is_full() {
+        // A long interface name: written into `out`, not kept.
+        b.truncate(start);
+        b.flush(out);
+        b.clear();
+        shared_keys(out, packet);
+    } else if let Some(text) = b.padded_from::<SHARED_LEN>(start) {
+        let _ = packet.shared_keys.set(SharedKeys {
+            timestamp: packet.timestamp,
+            iface,
+            text,
+        });
+    } else {
+        // Longer than the kept keys: written, the block emptied for the
+        // rest of the record.
+        b.flush(out);
+        b.clear();
     }
 }
 

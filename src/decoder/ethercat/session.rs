@@ -152,8 +152,9 @@ pub struct Counts {
 }
 
 /// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
-/// interface name of up to about 80 bytes.
-pub(super) const SHARED_LEN: usize = 128;
+/// interface name of up to about 20 bytes (`eth0`, `enp2s0`); a longer
+/// one is written by each record.
+pub(super) const SHARED_LEN: usize = 64;
 
 /// The keys every JSON record of a packet writes after `datagram`, `ts`
 /// and `iface` (`,"ts":1700000000.000500,"iface":"eth0"`), as the packet's
