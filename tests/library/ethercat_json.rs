@@ -64,6 +64,8 @@ fn ifaces() -> impl Strategy<Value = Option<(bool, String, u16)>> {
             "[a-z\"\\\\\u{1}\n é]{1,20}",
             Just("\\Device\\NPF_{DCEDC919-0A20-47A2-9788-FC57D0169EDB}".to_owned()),
             "[a-z\\\\]{60,200}",
+            // Up to 64 bytes, escaped to six times as many.
+            "[\u{1}\u{2}a]{40,64}",
         ],
         any::<u16>(),
     ))

@@ -294,8 +294,9 @@ fn iface_name<const N: usize>(b: &mut Block<N>, name: &str) {
         }
         let start = b.len();
         b.string(name);
-        if let Some(text) = b.padded_from::<96>(start) {
-            last.set(Some((raw, text)));
+        match b.padded_from::<96>(start) {
+            Some(text) if !b.is_full() => last.set(Some((raw, text))),
+            _ => {}
         }
     });
 }
