@@ -167,7 +167,7 @@ impl<'w> Object<'w> {
 /// copy of the whole array cut to the text's length: a copy of a length
 /// known at compile time is a few moves, where a length known only at run
 /// time is a call to `memcpy`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Padded<const N: usize> {
     bytes: [u8; N],
     len: u8,
@@ -219,6 +219,235 @@ impl<const N: usize> Padded<N> {
         let end = out.len() + usize::from(self.len);
         out.extend_from_slice(&self.bytes);
         out.truncate(end);
+    }
+}
+
+/// A record's bytes, or a run of them, built in an array of `N` bytes on
+/// the stack and appended to the buffer in one write ([`flush`](Self::flush)):
+/// each piece is a copy of a length known at compile time to the end of
+/// what is written, which then moves on by the piece's length, so that a
+/// record of twenty keys costs one check of the buffer's capacity, not
+/// twenty. A piece that would pass the array's end is dropped and the
+/// block marked full ([`is_full`](Self::is_full)): a writer sizes its
+/// block for the longest record it builds from values of fixed size
+/// (`datagram_records_as_the_plain_writer` in tests/library checks them at
+/// their largest), and writes a text from the input that may not fit (an
+/// interface name) another way when the block is full.
+#[derive(Debug, Clone)]
+pub(crate) struct Block<const N: usize> {
+    bytes: [u8; N],
+    len: usize,
+    full: bool,
+}
+
+impl<const N: usize> Block<N> {
+    /// An empty block.
+    #[inline(always)]
+    pub(crate) fn new() -> Self {
+        Block {
+            bytes: [0; N],
+            len: 0,
+            full: false,
+        }
+    }
+
+    /// Write the `M` bytes of `piece` and move on by `len` of them (at
+    /// most `M`): the rest are overwritten by the next piece or cut.
+    #[inline(always)]
+    fn put<const M: usize>(&mut self, piece: [u8; M], len: usize) {
+        debug_assert!(len <= M);
+        match self.bytes.get_mut(self.len..self.len + M) {
+            Some(to) => {
+                to.copy_from_slice(&piece);
+                self.len += len.min(M);
+            }
+            None => self.full = true,
+        }
+    }
+
+    /// Write a constant text (a key with its comma and colon).
+    #[inline(always)]
+    pub(crate) fn text<const M: usize>(&mut self, text: &[u8; M]) {
+        self.put(*text, M);
+    }
+
+    /// Write a text of the writer's own kept padded ([`Padded`]).
+    #[inline(always)]
+    pub(crate) fn padded<const M: usize>(&mut self, text: &Padded<M>) {
+        self.put(text.bytes, usize::from(text.len));
+    }
+
+    /// Write one byte.
+    #[inline(always)]
+    pub(crate) fn byte(&mut self, byte: u8) {
+        self.put([byte], 1);
+    }
+
+    /// Write an unsigned integer in decimal, as [`uint`] does.
+    #[inline(always)]
+    pub(crate) fn uint(&mut self, v: u64) {
+        if v < 10 {
+            self.byte(b'0' + v as u8);
+        } else if let Some((text, len)) = decimal(v) {
+            self.put(text.to_le_bytes(), len);
+        } else {
+            let mut digits = itoa::Buffer::new();
+            let digits = digits.format(v).as_bytes();
+            let mut text = [0u8; 20];
+            if let Some(to) = text.get_mut(..digits.len()) {
+                to.copy_from_slice(digits);
+            }
+            self.put(text, digits.len());
+        }
+    }
+
+    /// Write a timestamp, as [`timestamp`] does.
+    #[inline]
+    pub(crate) fn timestamp(&mut self, ts: crate::can::Timestamp) {
+        match timestamp_text(ts) {
+            Some((text, len)) => self.put(text, len),
+            None => {
+                let mut buf = [0; crate::can::SECONDS_LEN];
+                let seconds = ts.format_seconds(&mut buf);
+                let mut text = [0u8; crate::can::SECONDS_LEN];
+                if let Some(to) = text.get_mut(..seconds.len()) {
+                    to.copy_from_slice(seconds);
+                }
+                let len = seconds.len();
+                self.put(text, len);
+            }
+        }
+    }
+
+    /// Write at most 16 bytes as a JSON string of lowercase hex digits;
+    /// `false`, and nothing written, for more.
+    #[inline(always)]
+    pub(crate) fn short_hex_string(&mut self, bytes: &[u8]) -> bool {
+        let Some((first, second)) = load16(bytes) else {
+            return false;
+        };
+        let mut block = [0u8; 16];
+        block[..8].copy_from_slice(&first.to_le_bytes());
+        block[8..].copy_from_slice(&second.to_le_bytes());
+        let digits = hex32(&block);
+        let mut text = [0u8; 34];
+        text[0] = b'"';
+        text[1..33].copy_from_slice(&digits);
+        // The closing quote after the digits kept.
+        let len = 2 * bytes.len();
+        text[1 + len] = b'"';
+        self.put(text, len + 2);
+        true
+    }
+
+    /// Write a text from the input as a JSON string when it is at most 16
+    /// bytes and needs no escaping; `false`, and nothing written, else.
+    #[inline(always)]
+    pub(crate) fn short_string(&mut self, value: &str) -> bool {
+        let Some(text) = short_text(value.as_bytes()) else {
+            return false;
+        };
+        let mut piece = [0u8; 18];
+        piece[0] = b'"';
+        piece[1..17].copy_from_slice(&text.to_le_bytes());
+        piece[1 + value.len()] = b'"';
+        self.put(piece, value.len() + 2);
+        true
+    }
+
+    /// Write a text from the input as a JSON string with RFC 8259
+    /// escaping, as [`string`] does: the bytes between characters to
+    /// escape 8 at a time.
+    #[inline]
+    pub(crate) fn string(&mut self, value: &str) {
+        if self.short_string(value) {
+            return;
+        }
+        self.byte(b'"');
+        let bytes = value.as_bytes();
+        let mut i = 0;
+        while i < bytes.len() {
+            if let Some(word) = bytes.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
+                let mask = escape_mask(u64::from_le_bytes(*word));
+                let clean = (mask.trailing_zeros() / 8) as usize;
+                self.put(*word, clean.min(8));
+                i += clean.min(8);
+                if mask == 0 {
+                    continue;
+                }
+            }
+            let Some(&b) = bytes.get(i) else {
+                break;
+            };
+            i += 1;
+            match b {
+                b'"' => self.text(b"\\\""),
+                b'\\' => self.text(b"\\\\"),
+                b'\n' => self.text(b"\\n"),
+                b'\r' => self.text(b"\\r"),
+                b'\t' => self.text(b"\\t"),
+                0x00..=0x1F => self.text(&[
+                    b'\\',
+                    b'u',
+                    b'0',
+                    b'0',
+                    HEX_DIGITS[usize::from(b >> 4)],
+                    HEX_DIGITS[usize::from(b & 0xF)],
+                ]),
+                _ => self.byte(b),
+            }
+        }
+        self.byte(b'"');
+    }
+
+    /// How many bytes are written.
+    #[inline(always)]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Empty the block, full or not.
+    #[inline(always)]
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.full = false;
+    }
+
+    /// Keep the first `len` bytes written.
+    #[inline(always)]
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.len = self.len.min(len);
+    }
+
+    /// The bytes written from `start` as a [`Padded`] text of `M` bytes
+    /// (a copy of `M` bytes); `None` when there are more, or the block
+    /// does not hold `M` bytes from `start`.
+    #[inline(always)]
+    pub(crate) fn padded_from<const M: usize>(&self, start: usize) -> Option<Padded<M>> {
+        let len = self.len.checked_sub(start)?;
+        let bytes = *self.bytes.get(start..)?.first_chunk::<M>()?;
+        Some(Padded {
+            bytes,
+            len: u8::try_from(len).ok().filter(|&l| usize::from(l) <= M)?,
+        })
+    }
+
+    /// Whether a piece did not fit: the block's bytes are not the text.
+    #[inline(always)]
+    pub(crate) fn is_full(&self) -> bool {
+        self.full
+    }
+
+    /// The bytes written.
+    #[inline(always)]
+    pub(crate) fn as_bytes(&self) -> &[u8] {
+        self.bytes.get(..self.len).unwrap_or_default()
+    }
+
+    /// Append the bytes written to `out`.
+    #[inline(always)]
+    pub(crate) fn flush(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(self.as_bytes());
     }
 }
 
@@ -389,6 +618,18 @@ fn escaped(out: &mut Vec<u8>, value: &str) {
     out.extend_from_slice(&bytes[start..]);
 }
 
+/// The two decimal digits of every number below 100, in order.
+const PAIRS: [u8; 200] = {
+    let mut pairs = [0u8; 200];
+    let mut n = 0;
+    while n < 100 {
+        pairs[2 * n] = b'0' + (n / 10) as u8;
+        pairs[2 * n + 1] = b'0' + (n % 10) as u8;
+        n += 1;
+    }
+    pairs
+};
+
 const HEX_DIGITS: &[u8; 16] = b"0123456789abcdef";
 
 /// The 8 decimal digits of `v` (below 10^8, with leading zeros) as ASCII,
@@ -409,46 +650,76 @@ pub(crate) const fn digits8(v: u32) -> u64 {
     x | 0x3030_3030_3030_3030
 }
 
-/// Write an unsigned integer in decimal: for numbers below 10^8, the
-/// digits of [`digits8`] with the leading zeros shifted out, in one write
-/// of 8 bytes cut to the length; below 10^10, one or two digits and
-/// eight in one write; below 10^16, two writes of eight.
+/// Write an unsigned integer in decimal: below 10^16, the digits of
+/// [`decimal`] in one write of 16 bytes cut to their length; one digit as
+/// one byte.
 #[inline(always)]
 pub(crate) fn uint(out: &mut Vec<u8>, v: u64) {
     if v < 10 {
         // One digit (a toggle, a sub-index, a count): one byte.
         out.push(b'0' + v as u8);
+    } else if let Some((text, len)) = decimal(v) {
+        let end = out.len() + len;
+        out.extend_from_slice(&text.to_le_bytes());
+        out.truncate(end);
+    } else {
+        out.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
+    }
+}
+
+/// The decimal digits of `v` below 10^16 in one 128-bit word, the first
+/// digit in the low byte, and how many there are; `None` from 10^16.
+/// Below 10^8 the digits of [`digits8`] with their leading zeros shifted
+/// out; below 10^10 one or two digits and eight; else the high eight,
+/// their leading zeros cut, then the low eight.
+#[inline(always)]
+pub(crate) fn decimal(v: u64) -> Option<(u128, usize)> {
+    if v < 100 {
+        // A count, an index, a working counter: the pair from a table.
+        let pair = PAIRS
+            .get(2 * v as usize..2 * v as usize + 2)
+            .unwrap_or_default();
+        let (Some(&tens), Some(&units)) = (pair.first(), pair.get(1)) else {
+            return None;
+        };
+        let skip = usize::from(v < 10);
+        let text = (u128::from(tens) | u128::from(units) << 8) >> (8 * skip);
+        Some((text, 2 - skip))
+    } else if v < 10_000 {
+        // A register or station address: two pairs from the table.
+        let (high, low) = (v / 100, v % 100);
+        let pair = |n: u64| {
+            PAIRS
+                .get(2 * n as usize..2 * n as usize + 2)
+                .map_or(0, |p| u128::from(p[0]) | u128::from(p[1]) << 8)
+        };
+        let skip = usize::from(high < 10);
+        let text = (pair(high) | pair(low) << 16) >> (8 * skip);
+        Some((text, 4 - skip))
     } else if v < 100_000_000 {
         let digits = digits8(v as u32);
         // Leading zeros: the low bytes equal to '0' (all but one for 0).
         let zeros = (((digits ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize).min(7);
-        let bytes = (digits >> (8 * zeros)).to_le_bytes();
-        out.extend_from_slice(&bytes);
-        out.truncate(out.len() - zeros);
+        Some((u128::from(digits >> (8 * zeros)), 8 - zeros))
     } else if v < 10_000_000_000 {
-        // 9 or 10 digits (a 32-bit value): the first one or two, then the
-        // last eight, in one write of 16 bytes cut to the length.
+        // 9 or 10 digits (a 32-bit value).
         let high = (v / 100_000_000) as u32;
         let low = digits8((v % 100_000_000) as u32);
         let tens = high / 10;
         let pair = u128::from(b'0' + tens as u8) | u128::from(b'0' + (high % 10) as u8) << 8;
         let skip = usize::from(tens == 0);
-        let end = out.len() + 10 - skip;
-        let text = pair >> (8 * skip) | u128::from(low) << (8 * (2 - skip));
-        out.extend_from_slice(&text.to_le_bytes());
-        out.truncate(end);
+        Some((
+            pair >> (8 * skip) | u128::from(low) << (8 * (2 - skip)),
+            10 - skip,
+        ))
     } else if v < 10_000_000_000_000_000 {
-        // Up to 16 digits: the high eight, their leading zeros cut, then
-        // the low eight.
         let high = digits8((v / 100_000_000) as u32);
         let low = digits8((v % 100_000_000) as u32);
         let zeros = ((high ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize;
-        let end = out.len() + 8 - zeros;
-        out.extend_from_slice(&(high >> (8 * zeros)).to_le_bytes());
-        out.truncate(end);
-        out.extend_from_slice(&low.to_le_bytes());
+        let text = u128::from(high >> (8 * zeros)) | u128::from(low) << (8 * (8 - zeros));
+        Some((text, 16 - zeros))
     } else {
-        out.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
+        None
     }
 }
 
@@ -465,53 +736,55 @@ pub(crate) fn int(out: &mut Vec<u8>, v: i64) {
 /// nine when it is not a whole number of microseconds (`ts` in
 /// docs/output.md#common-keys; docs/formats.md#timestamps: exact to the
 /// format's resolution, no float rounding). A time of today's ten digits
-/// of seconds is written in one piece, microseconds or nanoseconds.
+/// of seconds is written in one piece ([`timestamp_text`]).
 #[inline]
 pub(crate) fn timestamp(out: &mut Vec<u8>, ts: crate::can::Timestamp) {
+    match timestamp_text(ts) {
+        Some((text, len)) => {
+            let end = out.len() + len;
+            out.extend_from_slice(&text);
+            out.truncate(end);
+        }
+        None => {
+            let mut buf = [0; crate::can::SECONDS_LEN];
+            out.extend_from_slice(ts.format_seconds(&mut buf));
+        }
+    }
+}
+
+/// The text of a time of ten digits of seconds (from 2001 to 2286) in 24
+/// bytes and its length: six decimals, or nine when it is not a whole
+/// number of microseconds; `None` for another time.
+#[inline]
+pub(crate) fn timestamp_text(ts: crate::can::Timestamp) -> Option<([u8; 24], usize)> {
     let secs = ts.secs();
     let nanos = ts.subsec_nanos();
-    if (1_000_000_000..10_000_000_000).contains(&secs) && nanos % 1000 == 0 {
-        let top = (secs / 100_000_000) as u32;
-        let mut text = [0u8; 24];
-        text[0] = b'0' + (top / 10) as u8;
-        text[1] = b'0' + (top % 10) as u8;
-        let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
+    if !(1_000_000_000..10_000_000_000).contains(&secs) {
+        return None;
+    }
+    let top = (secs / 100_000_000) as u32;
+    let mut text = [0u8; 24];
+    text[0] = b'0' + (top / 10) as u8;
+    text[1] = b'0' + (top % 10) as u8;
+    let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
+    if let Some(a) = text.get_mut(2..10) {
+        a.copy_from_slice(&rest);
+    }
+    text[10] = b'.';
+    if nanos % 1000 == 0 {
         let fraction = (digits8(nanos / 1000) >> 16).to_le_bytes();
-        if let Some(a) = text.get_mut(2..10) {
-            a.copy_from_slice(&rest);
-        }
         if let Some(b) = text.get_mut(11..19) {
             b.copy_from_slice(&fraction);
         }
-        text[10] = b'.';
-        if let Some(head) = text.first_chunk::<17>() {
-            out.extend_from_slice(head);
-        }
-        return;
+        return Some((text, 17));
     }
-    if (1_000_000_000..10_000_000_000).contains(&secs) {
-        // Nine decimals (a capture in nanoseconds): the first, then eight.
-        let top = (secs / 100_000_000) as u32;
-        let mut text = [0u8; 24];
-        text[0] = b'0' + (top / 10) as u8;
-        text[1] = b'0' + (top % 10) as u8;
-        let rest = digits8((secs % 100_000_000) as u32).to_le_bytes();
-        let fraction = digits8(nanos % 100_000_000).to_le_bytes();
-        if let Some(a) = text.get_mut(2..10) {
-            a.copy_from_slice(&rest);
-        }
-        text[10] = b'.';
-        text[11] = b'0' + (nanos / 100_000_000) as u8;
-        if let Some(b) = text.get_mut(12..20) {
-            b.copy_from_slice(&fraction);
-        }
-        if let Some(head) = text.first_chunk::<20>() {
-            out.extend_from_slice(head);
-        }
-        return;
+    // Nine decimals (a capture in nanoseconds): the first, then eight.
+    text[11] = b'0' + (nanos / 100_000_000) as u8;
+    let fraction = digits8(nanos % 100_000_000).to_le_bytes();
+    if let Some(b) = text.get_mut(12..20) {
+        b.copy_from_slice(&fraction);
     }
-    let mut buf = [0; crate::can::SECONDS_LEN];
-    out.extend_from_slice(ts.format_seconds(&mut buf));
+    Some((text, 20))
 }
 
 const ONES: u64 = 0x0101_0101_0101_0101;

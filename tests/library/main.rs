@@ -30,6 +30,8 @@ mod eni;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat;
 #[cfg(all(feature = "decoder", feature = "logs"))]
+mod ethercat_json;
+#[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_process;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_registers;

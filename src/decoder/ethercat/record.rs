@@ -2,23 +2,44 @@
 //! (docs/ethercat.md#records).
 
 use core::fmt;
+use std::cell::Cell;
 use std::io::{self, Write};
 
+use super::session::{IfaceKey, SharedKeys, SHARED_LEN};
 use crate::can::Iface;
 use crate::canopen::Emcy;
 use crate::decoder::ethercat::{
     AlRegister, CoeSdoStep, CoeTransfer, Meaning, Missed, Packet, ProcessData, ServoReading,
     SiiField, SlaveRef,
 };
-use crate::decoder::json::{self, Object};
+use crate::decoder::json::{self, Block, Object, Padded};
 use crate::decoder::record::emcy_json;
 use crate::ethercat::register;
 use crate::ethercat::{
-    Addressing, CoeHeader, CoeSdo, CoeService, Datagram, MailboxError, MailboxType, COE_HEADER_LEN,
+    Addressing, CoeHeader, CoeSdo, CoeService, Command, Datagram, MailboxError, MailboxType,
+    COE_HEADER_LEN,
 };
 
 /// The kind of a datagram's record (`"kind": "ecat_datagram"`).
 pub const DATAGRAM_KIND: &str = "ecat_datagram";
+
+/// The keys after `iface` up to `index`'s value, by command byte (the
+/// last for every reserved one): `,"kind":"ecat_datagram","cmd":"LRW","index":`.
+const COMMANDS: [Padded<64>; 16] = {
+    let mut table = [Padded::EMPTY; 16];
+    let mut byte = 0;
+    while byte < table.len() {
+        table[byte] = Padded::concat(&[
+            b",\"kind\":\"",
+            DATAGRAM_KIND.as_bytes(),
+            b"\",\"cmd\":\"",
+            Command::from_byte(byte as u8).name().as_bytes(),
+            b"\",\"index\":",
+        ]);
+        byte += 1;
+    }
+    table
+};
 
 /// Every kind of record `decode` writes for an EtherCAT capture, in the
 /// order docs/ethercat.md lists them: the datagram's, then what it tells
@@ -71,54 +92,45 @@ impl DatagramRecord<'_, '_> {
     /// `returned`, `data`.
     pub fn append_json(&self, out: &mut Vec<u8>, file: Option<&str>) {
         let d = &self.datagram;
-        match file {
-            None => out.extend_from_slice(b"{\"packet\":"),
-            Some(file) => {
-                out.extend_from_slice(b"{\"file\":");
-                json::string(out, file);
-                out.extend_from_slice(b",\"packet\":");
-            }
-        }
-        json::uint(out, self.packet.position.number());
-        out.extend_from_slice(b",\"datagram\":");
-        json::uint(out, self.number as u64);
-        out.extend_from_slice(b",\"ts\":");
-        match self.packet.timestamp {
-            Some(ts) => json::timestamp(out, ts),
-            None => out.extend_from_slice(b"null"),
-        }
-        out.extend_from_slice(b",\"iface\":");
-        match self.packet.iface {
-            Some(Iface::Name(name)) => json::string(out, name),
-            Some(Iface::Channel(channel)) => json::uint(out, u64::from(channel)),
-            None => out.extend_from_slice(b"null"),
-        }
-        out.extend_from_slice(b",\"kind\":\"ecat_datagram\",\"cmd\":");
-        json::string(out, d.command().name());
-        out.extend_from_slice(b",\"index\":");
-        json::uint(out, u64::from(d.index()));
+        // In one block: the prefix (62 bytes, then `ts` and `iface`: the
+        // kept 64, or up to 203 with a piece's overrun when written here),
+        // then the rest: the longest (a logical address, every field at
+        // its largest, 16 data bytes) 178 bytes, a piece writing up to 64
+        // bytes past its end.
+        let mut b = Block::<448>::new();
+        prefix_into(&mut b, out, self.packet, self.number, file);
+        b.padded(&COMMANDS[usize::from(d.command().byte()).min(COMMANDS.len() - 1)]);
+        b.uint(u64::from(d.index()));
         if d.command().addressing() == Addressing::Logical {
-            out.extend_from_slice(b",\"logical\":");
-            json::uint(out, u64::from(d.address()));
+            b.text(b",\"logical\":");
+            b.uint(u64::from(d.address()));
         } else {
-            out.extend_from_slice(b",\"adp\":");
-            json::uint(out, u64::from(d.adp()));
-            out.extend_from_slice(b",\"ado\":");
-            json::uint(out, u64::from(d.ado()));
+            b.text(b",\"adp\":");
+            b.uint(u64::from(d.adp()));
+            b.text(b",\"ado\":");
+            b.uint(u64::from(d.ado()));
         }
-        out.extend_from_slice(b",\"length\":");
-        json::uint(out, u64::from(d.length()));
-        out.extend_from_slice(b",\"irq\":");
-        json::uint(out, u64::from(d.irq()));
-        out.extend_from_slice(b",\"wkc\":");
-        json::uint(out, u64::from(d.working_counter()));
-        out.extend_from_slice(if self.packet.copy.returned() {
-            b",\"returned\":true,\"data\":"
+        b.text(b",\"length\":");
+        b.uint(u64::from(d.length()));
+        b.text(b",\"irq\":");
+        b.uint(u64::from(d.irq()));
+        b.text(b",\"wkc\":");
+        b.uint(u64::from(d.working_counter()));
+        if self.packet.copy.returned() {
+            b.text(b",\"returned\":true,\"data\":");
         } else {
-            b",\"returned\":false,\"data\":"
-        });
-        json::hex_string(out, d.data());
-        out.extend_from_slice(b"}\n");
+            b.text(b",\"returned\":false,\"data\":");
+        }
+        if b.short_hex_string(d.data()) {
+            b.text(b"}\n");
+            b.flush(out);
+        } else {
+            b.byte(b'"');
+            b.flush(out);
+            json::hex_digits(out, d.data());
+            out.extend_from_slice(b"\"}\n");
+        }
+        debug_assert!(!b.is_full());
     }
 
     /// Write the record as one line of `decode`'s text output
@@ -191,18 +203,117 @@ impl fmt::Display for Fields<'_, '_, '_> {
 
 /// Write the keys every record of a packet starts with: `file` (when
 /// given), `packet`, `datagram`, `ts`, `iface`.
+#[inline]
 fn prefix(out: &mut Vec<u8>, packet: &Packet<'_>, number: usize, file: Option<&str>) {
-    match file {
-        None => out.extend_from_slice(b"{\"packet\":"),
-        Some(file) => {
-            out.extend_from_slice(b"{\"file\":");
-            json::string(out, file);
-            out.extend_from_slice(b",\"packet\":");
+    let mut b = Block::<256>::new();
+    prefix_into(&mut b, out, packet, number, file);
+    b.flush(out);
+}
+
+/// Write the keys of [`prefix`] into the block `b`, `ts` and `iface` as
+/// the packet's first record made them ([`SharedKeys`]: kept when they fit
+/// in [`SHARED_LEN`] bytes); where they are longer, write `b` into `out`
+/// and empty it, and where they do not fit in `b`, write `b` and them
+/// into `out`, leaving `b` empty. `b` holds `N` ≥ 256 bytes.
+#[inline(always)]
+fn prefix_into<const N: usize>(
+    b: &mut Block<N>,
+    out: &mut Vec<u8>,
+    packet: &Packet<'_>,
+    number: usize,
+    file: Option<&str>,
+) {
+    if let Some(file) = file {
+        out.extend_from_slice(b"{\"file\":");
+        json::string(out, file);
+    }
+    // 10 + 20 + 12 + 20 bytes at most, then the shared keys.
+    b.text(if file.is_some() {
+        b",\"packet\":"
+    } else {
+        b"{\"packet\":"
+    });
+    b.uint(packet.position.number());
+    b.text(b",\"datagram\":");
+    b.uint(number as u64);
+    let iface = IfaceKey::of(packet.iface);
+    if let Some(shared) = packet.shared_keys.get() {
+        if shared.timestamp == packet.timestamp && shared.iface == iface {
+            b.padded(&shared.text);
+            return;
         }
     }
-    json::uint(out, packet.position.number());
-    out.extend_from_slice(b",\"datagram\":");
-    json::uint(out, number as u64);
+    // The packet's first record: the keys written here, then kept.
+    let start = b.len();
+    b.text(b",\"ts\":");
+    match packet.timestamp {
+        Some(ts) => b.timestamp(ts),
+        None => b.text(b"null"),
+    }
+    b.text(b",\"iface\":");
+    match packet.iface {
+        Some(Iface::Name(name)) => iface_name(b, name),
+        Some(Iface::Channel(channel)) => b.uint(u64::from(channel)),
+        None => b.text(b"null"),
+    }
+    if b.is_full() {
+        // A long interface name: written into `out`, not kept.
+        b.truncate(start);
+        b.flush(out);
+        b.clear();
+        shared_keys(out, packet);
+    } else if let Some(text) = b.padded_from::<SHARED_LEN>(start) {
+        let _ = packet.shared_keys.set(SharedKeys {
+            timestamp: packet.timestamp,
+            iface,
+            text,
+        });
+    } else {
+        // Longer than the kept keys: written, the block emptied for the
+        // rest of the record.
+        b.flush(out);
+        b.clear();
+    }
+}
+
+/// Write an interface's name as a JSON string: a name of up to 64 bytes
+/// that is not a short string without escapes (a Windows capture's
+/// `\Device\NPF_{…}`, 50 bytes and two backslashes, named by every
+/// packet) escaped once for all the packets that name it in a row
+/// ([`LAST_LONG_NAME`]).
+#[inline(always)]
+fn iface_name<const N: usize>(b: &mut Block<N>, name: &str) {
+    if b.short_string(name) {
+        return;
+    }
+    let Some(raw) = Padded::<64>::new(name.as_bytes()) else {
+        b.string(name);
+        return;
+    };
+    LAST_LONG_NAME.with(|last| {
+        if let Some((was, text)) = last.get() {
+            if was == raw {
+                b.padded(&text);
+                return;
+            }
+        }
+        let start = b.len();
+        b.string(name);
+        match b.padded_from::<96>(start) {
+            Some(text) if !b.is_full() => last.set(Some((raw, text))),
+            _ => {}
+        }
+    });
+}
+
+thread_local! {
+    /// The last interface name [`iface_name`] escaped, as it is and as a
+    /// JSON string.
+    static LAST_LONG_NAME: Cell<Option<(Padded<64>, Padded<96>)>> = const { Cell::new(None) };
+}
+
+/// `,"ts":…,"iface":…`, written into `out`.
+fn shared_keys(out: &mut Vec<u8>, packet: &Packet<'_>) {
     out.extend_from_slice(b",\"ts\":");
     match packet.timestamp {
         Some(ts) => json::timestamp(out, ts),

@@ -2,6 +2,7 @@
 //! copy of a frame each packet is, and which sent frames never came back
 //! (docs/ethercat.md#direction).
 
+use std::cell::OnceCell;
 use std::collections::VecDeque;
 
 use crate::can::{EthercatPacket, Iface, Timestamp};
@@ -11,6 +12,7 @@ use super::config::SlaveConfig;
 use super::network::{Meaning, Network};
 use super::problem::ImageProblem;
 use super::process::{ProcessData, ServoSlaves};
+use crate::decoder::json::Padded;
 use crate::logs::Position;
 use crate::LenError;
 
@@ -67,6 +69,9 @@ pub struct Packet<'a> {
     /// the frame holds a position-addressed datagram (whose returned ADP
     /// the slaves counted on).
     sent_adps: Vec<u16>,
+    /// The JSON keys every record of the packet writes after `datagram`
+    /// (`ts`, `iface`), made by its first record.
+    pub(super) shared_keys: OnceCell<SharedKeys>,
 }
 
 impl<'a> Packet<'a> {
@@ -150,6 +155,45 @@ pub struct Counts {
     pub time_reversals: u64,
     /// The first of them, and how far back it went.
     pub first_reversal: Option<(Position, core::time::Duration)>,
+}
+
+/// The longest `ts` and `iface` keys kept per packet ([`SharedKeys`]): an
+/// interface name of up to about 20 bytes (`eth0`, `enp2s0`); a longer
+/// one is written by each record.
+pub(super) const SHARED_LEN: usize = 64;
+
+/// The keys every JSON record of a packet writes after `datagram`, `ts`
+/// and `iface` (`,"ts":1700000000.000500,"iface":"eth0"`), as the packet's
+/// first record wrote them: a packet of cyclic traffic has a record for
+/// each of its datagrams and more for what they tell. Kept with the time
+/// and interface they were made of (the name by where it lies and its
+/// length), and written again for a packet whose time or interface was
+/// changed since.
+#[derive(Debug, Clone)]
+pub(crate) struct SharedKeys {
+    pub(super) timestamp: Option<Timestamp>,
+    pub(super) iface: IfaceKey,
+    pub(super) text: Padded<SHARED_LEN>,
+}
+
+/// An interface as [`SharedKeys`] compare it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum IfaceKey {
+    None,
+    Channel(u16),
+    /// The name's address and length.
+    Name(usize, usize),
+}
+
+impl IfaceKey {
+    #[inline(always)]
+    pub(super) fn of(iface: Option<Iface<'_>>) -> Self {
+        match iface {
+            None => IfaceKey::None,
+            Some(Iface::Channel(channel)) => IfaceKey::Channel(channel),
+            Some(Iface::Name(name)) => IfaceKey::Name(name.as_ptr() as usize, name.len()),
+        }
+    }
 }
 
 /// A packet whose EtherCAT header or datagram is damaged: where, and why
@@ -301,6 +345,7 @@ impl Session {
             frame,
             port,
             sent_adps,
+            shared_keys: OnceCell::new(),
         })
     }
 
