@@ -76,6 +76,8 @@ def test_every_capture_is_here():
         "soem-akd-sdo",
         "soem-single-lan9252",
         "synthetic_akd_fault",
+        "synthetic_local_mac",
+        "synthetic_registers",
         "twincat-akd-startup",
     ]
 

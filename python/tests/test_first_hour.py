@@ -253,7 +253,7 @@ def test_the_stubs_types_are_there_at_run_time():
     assert typing.get_args(motionwire.ProfileName) == ("generic", "akd", "baumer")
     # Every kind of the program's EtherCAT records (--only), in its order.
     assert typing.get_args(motionwire.RecordKind)[0] == "ecat_datagram"
-    assert len(typing.get_args(motionwire.RecordKind)) == 11
+    assert len(typing.get_args(motionwire.RecordKind)) == 16
     assert bytes in typing.get_args(motionwire.Source)
     # Submodules a test imported (motionwire.spark) are attributes too, and
     # not in __all__ (import motionwire never imports them).
