@@ -68,9 +68,16 @@ impl<T> Listed<T> {
     /// counted in any case.
     pub fn push(&mut self, entry: T) {
         self.count += 1;
+        // Each part is allocated once, at its size, on its first entry.
         if self.head.len() < Self::FIRST {
+            if self.head.capacity() == 0 {
+                self.head.reserve_exact(Self::FIRST);
+            }
             self.head.push(entry);
         } else if self.tail.len() < Self::LAST {
+            if self.tail.capacity() == 0 {
+                self.tail.reserve_exact(Self::LAST);
+            }
             self.tail.push(entry);
         } else {
             self.tail[self.start] = entry;

@@ -195,10 +195,12 @@ impl Summary {
                 finding.timestamp = time_of(finding);
             }
         }
+        // A finding is large: the keys are sorted, then the findings moved
+        // once each.
         if list.iter().all(|f| f.timestamp.is_some()) {
-            list.sort_by_key(|f| (f.timestamp, f.line));
+            list.sort_by_cached_key(|f| (f.timestamp, f.line));
         } else {
-            list.sort_by_key(|f| f.line);
+            list.sort_by_cached_key(|f| f.line);
         }
         list
     }
