@@ -594,6 +594,7 @@ impl Network {
     }
 
     /// Return whether a problem was said since the last take.
+    #[inline]
     pub(super) fn has_problems(&self) -> bool {
         !self.problems.is_empty() || self.problems_dropped > 0
     }

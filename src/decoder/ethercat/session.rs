@@ -436,7 +436,16 @@ impl Session {
     /// manager, an SDO size past a PDO object), in the order they showed;
     /// and how many more there were than the session keeps between two
     /// calls.
+    #[inline]
     pub fn take_problems(&mut self) -> (Vec<ImageProblem>, u64) {
+        if !self.ports.iter().any(|port| port.network.has_problems()) {
+            return (Vec::new(), 0);
+        }
+        self.take_kept_problems()
+    }
+
+    /// [`take_problems`](Self::take_problems) when a port has some.
+    fn take_kept_problems(&mut self) -> (Vec<ImageProblem>, u64) {
         let mut all = Vec::new();
         let mut dropped = 0;
         for port in &mut self.ports {
