@@ -593,6 +593,12 @@ impl Network {
         )
     }
 
+    /// Return whether a problem was said since the last take.
+    #[inline]
+    pub(super) fn has_problems(&self) -> bool {
+        !self.problems.is_empty() || self.problems_dropped > 0
+    }
+
     /// Keep a problem (at most [`PROBLEMS_KEPT`] between two takes).
     fn problem(&mut self, position: Position, slave: SlaveRef, error: ImageError) {
         if self.problems.len() < PROBLEMS_KEPT {

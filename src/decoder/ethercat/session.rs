@@ -436,10 +436,22 @@ impl Session {
     /// manager, an SDO size past a PDO object), in the order they showed;
     /// and how many more there were than the session keeps between two
     /// calls.
+    #[inline]
     pub fn take_problems(&mut self) -> (Vec<ImageProblem>, u64) {
+        if !self.ports.iter().any(|port| port.network.has_problems()) {
+            return (Vec::new(), 0);
+        }
+        self.take_kept_problems()
+    }
+
+    /// [`take_problems`](Self::take_problems) when a port has some.
+    fn take_kept_problems(&mut self) -> (Vec<ImageProblem>, u64) {
         let mut all = Vec::new();
         let mut dropped = 0;
         for port in &mut self.ports {
+            if !port.network.has_problems() {
+                continue;
+            }
             let (problems, more) = port.network.take_problems();
             all.extend(problems);
             dropped += more;
@@ -508,7 +520,8 @@ impl Session {
         source: Mac,
         frame: &EthercatFrame<'_>,
     ) -> (FrameCopy, Vec<u16>) {
-        let signature = signature(frame);
+        let shape = Shape::of(frame);
+        let signature = shape.signature;
         let master = source.without_returned_bit();
         // A master whose own MAC has the bit: its sent frames wait under
         // that MAC, and order decides (docs/ethercat.md#direction).
@@ -543,10 +556,7 @@ impl Session {
         if source.returned_bit() {
             // Sent by a master whose MAC has the bit set, if no master is
             // known by the MAC without it and no slave has counted yet.
-            let counted = frame
-                .datagrams()
-                .any(|d| d.map_or(true, |d| d.working_counter() != 0));
-            if counted || self.ports[port].senders.contains(&master) {
+            if shape.counted || self.ports[port].senders.contains(&master) {
                 self.counts.returned_unpaired += 1;
                 return (FrameCopy::ReturnedUnpaired, Vec::new());
             }
@@ -565,18 +575,13 @@ impl Session {
         }
         // A returned position-addressed datagram has another ADP: keep the
         // sent ones (start-up frames only; a cyclic frame keeps none).
-        let positioned = frame
-            .datagrams()
-            .flatten()
-            .any(|d| d.command().addressing() == crate::ethercat::Addressing::Position);
-        let adps = if positioned {
+        let adps = if shape.positioned {
             frame.datagrams().flatten().map(|d| d.adp()).collect()
         } else {
             Vec::new()
         };
-        let cyclic = frame.datagrams().flatten().any(|d| is_cyclic(d.command()));
         let port = &mut self.ports[port];
-        let payload = cyclic.then(|| {
+        let payload = shape.cyclic.then(|| {
             let mut buffer = port.spare.pop().unwrap_or_default();
             buffer.clear();
             let header = frame.length() | u16::from(frame.frame_type().bits()) << 12;
@@ -630,25 +635,52 @@ fn sent_datagram(bytes: &[u8], at: usize) -> Option<&[u8]> {
     Some(datagram.data())
 }
 
-/// A frame's datagrams' commands and indices in order, hashed (FNV-1a):
-/// what a returned copy keeps of its sent one.
-fn signature(frame: &EthercatFrame<'_>) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut mix = |byte: u8| {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    };
-    mix(frame.frame_type().bits());
-    for datagram in frame.datagrams() {
-        match datagram {
-            Ok(datagram) => {
-                mix(datagram.command().byte());
-                mix(datagram.index());
+/// What pairing needs of a frame's datagrams, read in one pass.
+struct Shape {
+    /// The datagrams' commands and indices in order, hashed (FNV-1a):
+    /// what a returned copy keeps of its sent one.
+    signature: u64,
+    /// Whether a datagram's working counter is not 0, or a datagram is
+    /// damaged.
+    counted: bool,
+    /// Whether a whole datagram is position-addressed.
+    positioned: bool,
+    /// Whether a whole datagram carries process data.
+    cyclic: bool,
+}
+
+impl Shape {
+    fn of(frame: &EthercatFrame<'_>) -> Self {
+        let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut mix = |byte: u8| {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        };
+        mix(frame.frame_type().bits());
+        let (mut counted, mut positioned, mut cyclic) = (false, false, false);
+        for datagram in frame.datagrams() {
+            match datagram {
+                Ok(datagram) => {
+                    let command = datagram.command();
+                    mix(command.byte());
+                    mix(datagram.index());
+                    counted |= datagram.working_counter() != 0;
+                    positioned |= command.addressing() == crate::ethercat::Addressing::Position;
+                    cyclic |= is_cyclic(command);
+                }
+                Err(_) => {
+                    mix(0xff);
+                    counted = true;
+                }
             }
-            Err(_) => mix(0xff),
+        }
+        Shape {
+            signature: hash,
+            counted,
+            positioned,
+            cyclic,
         }
     }
-    hash
 }
 
 #[cfg(test)]

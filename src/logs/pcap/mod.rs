@@ -313,6 +313,9 @@ pub struct PcapReader<R: Read> {
     /// [`next_block_fd`](Self::next_block_fd)). Cleared, every record takes
     /// the general path (the property tests compare the two).
     fast: bool,
+    /// The current section has an interface of link type 227, whose
+    /// blocks the pcapng fast paths read: without one they are not tried.
+    socketcan: bool,
     /// Ethernet packets shorter than a header they announce, skipped.
     skipped: u64,
     /// A pcap file's times are in nanoseconds (its interface's resolution,
@@ -358,6 +361,7 @@ impl<R: Read> PcapReader<R> {
             other: OtherCounts::default(),
             done: false,
             fast: false,
+            socketcan: false,
             skipped: 0,
             nanos: false,
         };
@@ -746,6 +750,7 @@ impl<R: Read> PcapReader<R> {
         }
         self.interfaces.clear();
         self.interface_bytes = 0;
+        self.socketcan = false;
         Ok(())
     }
 
@@ -805,6 +810,7 @@ impl<R: Read> PcapReader<R> {
             return Err(self.fail(0, too_large(total as u64)));
         }
         self.interface_bytes = total;
+        self.socketcan |= interface.link_type == LINKTYPE_CAN_SOCKETCAN;
         self.interfaces.push(interface);
         Ok(())
     }
@@ -953,7 +959,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
                         return Some(Ok(self.fast_event(frame, timestamp, None)));
                     }
                 }
-                Layout::Pcapng { .. } => {
+                Layout::Pcapng { .. } if self.socketcan => {
                     if let Some((frame, timestamp, id)) = self.next_block_classic() {
                         return Some(Ok(self.fast_event(frame, timestamp, Some(id))));
                     }
@@ -961,6 +967,7 @@ impl<R: Read> ReadLog for PcapReader<R> {
                         return Some(Ok(self.fast_event(frame, timestamp, Some(id))));
                     }
                 }
+                Layout::Pcapng { .. } => {}
             }
             let packet = match self.next_packet() {
                 Ok(Some(packet)) => packet,
