@@ -40,7 +40,20 @@ from . import _motionwire  # type: ignore[attr-defined]
 if TYPE_CHECKING:
     from pyspark.sql import DataFrame, SparkSession
 
-__all__ = ["frames", "decode", "summary", "findings", "FRAMES", "DECODE", "SUMMARY", "FINDINGS"]
+__all__ = [
+    "frames",
+    "decode",
+    "summary",
+    "findings",
+    "content_limit",
+    "jvm_bytes",
+    "FRAMES",
+    "DECODE",
+    "SUMMARY",
+    "FINDINGS",
+    "HEAP_SHARE",
+    "MAX_LENGTH_KEY",
+]
 
 # ---------------------------------------------------------------------------
 # The schemas (docs/spark.md#schemas), as the Arrow batches the executors
@@ -241,6 +254,52 @@ def findings(
 #: Java byte array's length): files longer than it are read by path.
 MAX_LENGTH_KEY = "spark.sql.sources.binaryFile.maxLength"
 _MAX_LENGTH_DEFAULT = 2**31 - 1
+#: A file's content comes in a `binaryFile` row only up to this share of
+#: the heap of the JVM that reads it (`spark.executor.memory`; in local
+#: mode `spark.driver.memory`; Spark's default 1g): the bytes are copied
+#: several times on their way to the Python worker (the file's growing
+#: array, the row, the Arrow batch), and a task that runs out of heap
+#: fails the job — in local mode its job never returns. On Spark 3.5's
+#: default 1 GB heap a 100 MB log went through and a 150 MB one did not
+#: (bench/spark_large.py). Longer files are read by path.
+HEAP_SHARE = 16
+_MEMORY_DEFAULT = "1g"
+_UNITS = {"k": 1 << 10, "m": 1 << 20, "g": 1 << 30, "t": 1 << 40, "p": 1 << 50}
+
+
+def jvm_bytes(text: str) -> int:
+    """The bytes of a JVM memory setting as Spark reads it (``"1g"``,
+    ``"512m"``, ``"4096k"``, ``"2gb"``; a bare number is MiB, as for
+    `spark.executor.memory`)."""
+    value = text.strip().lower().removesuffix("b")
+    if value and value[-1] in _UNITS:
+        return int(value[:-1]) * _UNITS[value[-1]]
+    return int(value) << 20
+
+
+def content_limit(spark: SparkSession) -> tuple[int, str]:
+    """The longest file whose content Spark hands over in a row, and what
+    sets it: Spark's `binaryFile` limit, or 1/`HEAP_SHARE` of the heap
+    that reads it (`spark.driver.memory` in local mode, else
+    `spark.executor.memory`)."""
+
+    def conf(key: str, default: str) -> str:
+        try:
+            return spark.conf.get(key, default) or default
+        except Exception:  # a Connect server may refuse a key it hides
+            return default
+
+    max_length = int(conf(MAX_LENGTH_KEY, str(_MAX_LENGTH_DEFAULT)))
+    local = conf("spark.master", "").startswith("local")
+    key = "spark.driver.memory" if local else "spark.executor.memory"
+    memory = conf(key, _MEMORY_DEFAULT)
+    try:
+        heap = jvm_bytes(memory) // HEAP_SHARE
+    except ValueError:
+        heap = max_length
+    if heap < max_length:
+        return heap, f"1/{HEAP_SHARE} of the heap that reads it ({key} = {memory})"
+    return max_length, f"a Spark binaryFile row holds ({MAX_LENGTH_KEY} = {max_length})"
 
 
 def _check(*, format=None, profiles=None, eds=None, heartbeat_ms=None) -> Optional[dict]:
@@ -292,9 +351,10 @@ def _run(
 ) -> DataFrame:
     """The DataFrame of `work` over every file, in one Python stage.
 
-    Files up to Spark's `binaryFile` limit come with their content, one
-    task per file partition. The others come as `(path, null, length)`
-    rows, gathered into one more task: those longer than the limit (the
+    Files up to Spark's `binaryFile` limit and 1/`HEAP_SHARE` of the
+    reading JVM's heap (`content_limit`) come with their content, one task per
+    file partition. The others come as `(path, null, length)` rows,
+    gathered into one more task: those longer than the limit (the
     `length` filter is pushed into the source, which then never loads
     them), read by path on the executor; and with `empty_files` the files
     of 0 bytes, which Spark's file scans leave out (`summary` gives each
@@ -305,7 +365,7 @@ def _run(
     from pyspark.sql import functions as F
 
     files = _files(spark, paths)
-    limit = int(spark.conf.get(MAX_LENGTH_KEY, str(_MAX_LENGTH_DEFAULT)) or _MAX_LENGTH_DEFAULT)
+    limit, why = content_limit(spark)
     held = files.filter(F.col("length") <= limit).select("path", "content", "length")
     rest = files.filter(F.col("length") > limit).select("path", "length")
     if empty_files:
@@ -315,7 +375,7 @@ def _run(
         empty = listed.join(F.broadcast(files.select("path")), "path", "left_anti")
         rest = rest.unionByName(empty.select("path", F.lit(0).cast("long").alias("length")))
     rest = rest.repartition(1).select("path", F.lit(None).cast("binary").alias("content"), "length")
-    mapper = functools.partial(_map_files, work=work, schema=schema, per_batch=per_batch, limit=limit)
+    mapper = functools.partial(_map_files, work=work, schema=schema, per_batch=per_batch, limit=limit, why=why)
     return held.unionByName(rest).mapInArrow(mapper, ddl(schema))
 
 
@@ -335,7 +395,13 @@ def hadoop_path(uri: str) -> str:
 
 
 def _map_files(
-    batches: Iterator[pa.RecordBatch], *, work, schema: pa.Schema, per_batch: bool, limit: int
+    batches: Iterator[pa.RecordBatch],
+    *,
+    work,
+    schema: pa.Schema,
+    per_batch: bool,
+    limit: int,
+    why: Optional[str] = None,
 ) -> Iterator[pa.RecordBatch]:
     """`mapInArrow` over `(path, content, length)` batches: a file's
     content read from memory; without content, an empty file (length 0)
@@ -344,10 +410,11 @@ def _map_files(
     for batch in batches:
         paths = batch.column(0).to_pylist()
         contents, lengths = batch.column(1), batch.column(2)
-        yield from _emit(_sources(paths, contents, lengths, limit), work, schema, per_batch)
+        reason = why or f"a Spark binaryFile row holds ({MAX_LENGTH_KEY} = {limit})"
+        yield from _emit(_sources(paths, contents, lengths, reason), work, schema, per_batch)
 
 
-def _sources(paths, contents, lengths, limit: int):
+def _sources(paths, contents, lengths, why: str):
     for i, path in enumerate(paths):
         content = contents[i]
         if content.is_valid:
@@ -360,8 +427,8 @@ def _sources(paths, contents, lengths, limit: int):
         local = local_path(path)
         if local is None:
             yield path, _TooLarge(
-                f"{length} bytes, more than a Spark binaryFile row holds ({MAX_LENGTH_KEY} = "
-                f"{limit}), and not on a file system the executors share (a file: path): not read"
+                f"{length} bytes, more than {why}, and not on a file system the executors share "
+                "(a file: path): not read"
             )
         else:
             yield path, local

@@ -213,6 +213,55 @@ def test_local_paths_are_file_uris_only():
     assert mws.local_path("/data/a.log") is None
 
 
+class _Conf:
+    def __init__(self, values: dict):
+        self.values = values
+
+    def get(self, key, default=None):
+        return self.values.get(key, default)
+
+
+class _Session:
+    def __init__(self, **values):
+        self.conf = _Conf({key.replace("_", "."): value for key, value in values.items()})
+
+
+def test_jvm_memory_settings_are_read_as_spark_reads_them():
+    assert mws.jvm_bytes("1g") == 1 << 30
+    assert mws.jvm_bytes("512m") == 512 << 20
+    assert mws.jvm_bytes("4096K") == 4 << 20
+    assert mws.jvm_bytes("2gb") == 2 << 30
+    assert mws.jvm_bytes("1024") == 1 << 30
+    with pytest.raises(ValueError):
+        mws.jvm_bytes("lots")
+
+
+def test_the_content_limit_is_a_share_of_the_heap_that_reads_it():
+    """A file's content in a row is copied several times over: above
+    1/16 of the reading JVM's heap (local mode: the driver's) a file goes
+    by path; Spark's own binaryFile limit caps it."""
+    # Spark's defaults: 1g of heap, so 64 MiB.
+    assert mws.content_limit(_Session(spark_master="local[2]")) == (
+        64 << 20,
+        "1/16 of the heap that reads it (spark.driver.memory = 1g)",
+    )
+    assert mws.content_limit(_Session(spark_master="yarn", spark_executor_memory="4g")) == (
+        256 << 20,
+        "1/16 of the heap that reads it (spark.executor.memory = 4g)",
+    )
+    # 64g: a sixteenth is more than a row holds.
+    assert mws.content_limit(_Session(spark_master="yarn", spark_executor_memory="64g")) == (
+        2**31 - 1,
+        "a Spark binaryFile row holds (spark.sql.sources.binaryFile.maxLength = 2147483647)",
+    )
+    lowered = _Session(spark_master="local[*]", spark_driver_memory="64g")
+    lowered.conf.values[mws.MAX_LENGTH_KEY] = "4096"
+    assert mws.content_limit(lowered) == (
+        4096,
+        "a Spark binaryFile row holds (spark.sql.sources.binaryFile.maxLength = 4096)",
+    )
+
+
 def test_a_file_too_large_for_spark_and_not_local_is_an_error_row(tmp_path):
     """What an executor does with a file longer than a binaryFile row:
     one it cannot open by path (object storage) gives an error row saying
