@@ -35,6 +35,7 @@ mod ethercat_json;
 mod ethercat_process;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_registers;
+#[cfg(all(feature = "decoder", feature = "logs"))]
 mod ethercat_startup;
 #[cfg(all(feature = "decoder", feature = "logs"))]
 mod library;
