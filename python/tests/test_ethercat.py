@@ -589,3 +589,13 @@ def test_record_kinds_and_can_logs():
         table = motionwire.ethercat_records(FIXTURES / "pcap" / "can.pcapng")
     assert table.num_rows == 0
     assert [f.name for f in table.schema] == [name for name, _, _ in RECORDS_SCHEMA]
+
+
+def test_record_kind_is_the_librarys_list_of_kinds():
+    """`motionwire.RecordKind` is written out for type checkers; it must
+    name the library's kinds (`decoder::ethercat::RECORD_KINDS`) in its
+    order, as an unknown kind's ValueError lists them."""
+    with pytest.raises(ValueError) as error:
+        motionwire.ethercat_records(ETHERCAT / "drives.pcapng", kinds="nope")
+    listed = str(error.value).split("; one of ", 1)[1].split(", ")
+    assert list(typing.get_args(motionwire.RecordKind)) == listed
