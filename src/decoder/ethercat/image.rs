@@ -184,14 +184,16 @@ struct Area {
     within: usize,
 }
 
+/// The CiA 402 objects a drive's state is read from (CiA 402-2): the
+/// controlword, the statusword, the mode of operation and its display.
+pub(super) const CIA402_OBJECTS: [u16; 4] = [0x6040, 0x6041, 0x6060, 0x6061];
+
 /// A PDO placed in the image.
 #[derive(Debug, Clone)]
 struct Piece {
     /// Its first bit in the image.
     bit: usize,
     layout: PdoLayout,
-    /// Its bits.
-    bits: usize,
     names: Vec<Cow<'static, str>>,
 }
 
@@ -210,6 +212,8 @@ pub(super) struct Plan {
     inputs_len: usize,
     outputs: Vec<Piece>,
     inputs: Vec<Piece>,
+    /// Some PDO maps one of [`CIA402_OBJECTS`].
+    cia402: bool,
     /// PDOs that do not fit in their sync manager.
     pub(super) too_long: Vec<ImageError>,
 }
@@ -328,6 +332,7 @@ impl Plan {
                     if !entry.is_dummy() {
                         names.push(name.unwrap_or_else(|| entry_name(entry, set)));
                     }
+                    plan.cia402 |= CIA402_OBJECTS.contains(&entry.index());
                     types.push((entry, data_type));
                 }
                 let bits = usize::from(mapping.bit_len());
@@ -352,7 +357,6 @@ impl Plan {
                 pieces.push(Piece {
                     bit,
                     layout: PdoLayout::new(&mapping, lookup),
-                    bits,
                     names,
                 });
                 bit += bits;
@@ -463,6 +467,12 @@ impl Plan {
         !self.outputs.is_empty() || !self.inputs.is_empty()
     }
 
+    /// Return whether some PDO maps one of [`CIA402_OBJECTS`]: the
+    /// slave's drive state can be read from its process data.
+    pub(super) const fn maps_cia402(&self) -> bool {
+        self.cia402
+    }
+
     /// Call `f` with each signal of an image (`output` picks which) and
     /// its name, in mapping order.
     pub(super) fn for_each_signal(
@@ -472,33 +482,14 @@ impl Plan {
         mut f: impl FnMut(&str, Result<Signal, CodecError>),
     ) {
         let pieces = if output { &self.outputs } else { &self.inputs };
-        let mut shifted = Vec::new();
         for piece in pieces {
-            let bytes = if piece.bit % 8 == 0 {
-                image.get(piece.bit / 8..).unwrap_or(&[])
-            } else {
-                shift(image, piece.bit, piece.bits, &mut shifted);
-                &shifted
-            };
-            for (name, signal) in piece.names.iter().zip(piece.layout.unpack(bytes)) {
+            for (name, signal) in piece
+                .names
+                .iter()
+                .zip(piece.layout.unpack_at(image, piece.bit))
+            {
                 f(name, signal.map_err(CodecError::from));
             }
-        }
-    }
-}
-
-/// Copy `bits` bits of `image` from bit `from` into `out`, from its bit 0.
-fn shift(image: &[u8], from: usize, bits: usize, out: &mut Vec<u8>) {
-    out.clear();
-    out.resize(bits.div_ceil(8), 0);
-    for i in 0..bits {
-        let at = from + i;
-        let Some(byte) = image.get(at / 8) else {
-            out.truncate(i / 8);
-            return;
-        };
-        if byte >> (at % 8) & 1 != 0 {
-            out[i / 8] |= 1 << (i % 8);
         }
     }
 }
@@ -824,17 +815,6 @@ mod tests {
         );
         assert!(!plan.has_signals());
         assert_eq!(plan.lens(), (2, 0));
-    }
-
-    #[test]
-    fn shift_reads_bits_from_any_offset() {
-        let mut out = Vec::new();
-        shift(&[0b1010_0000, 0b0000_0101], 5, 6, &mut out);
-        assert_eq!(out, [0b0010_1101]);
-        // Past the image: only whole bytes are kept, and reading the entry
-        // says it is truncated.
-        shift(&[0xFF], 4, 12, &mut out);
-        assert!(out.is_empty());
     }
 
     /// An FMMU of `bits` bits at logical 0, bit `first`, onto 0x0F00.

@@ -17,7 +17,7 @@ use crate::servo::{Command as ServoCommand, Feedback};
 use super::coe::{CoeChannel, CoeSdoStep};
 use super::config::SlaveConfig;
 use super::dc::DcRegisters;
-use super::image::{CoeObjects, Plan};
+use super::image::{CoeObjects, Plan, CIA402_OBJECTS};
 use super::missing::{missed, Missed, Watch};
 use super::problem::{ImageError, ImageProblem};
 use super::process::{ProcessData, ServoSlaves, ServoWatch};
@@ -510,7 +510,7 @@ impl Network {
                 (matches!(command, Command::Lrw | Command::Lrd) && in_len > 0 && held_in == in_len)
                     .then_some(&inputs[..]);
             let mut cia402 = None;
-            if plan.has_signals() {
+            if plan.maps_cia402() {
                 // The CiA 402 objects of the cycle, without an allocation:
                 // a drive maps each at most once or twice.
                 let mut picked = [None; 8];
@@ -518,9 +518,7 @@ impl Network {
                 let mut pick =
                     |_: &str, signal: Result<crate::canopen::Signal, crate::CodecError>| {
                         if let Ok(signal) = signal {
-                            if matches!(signal.entry.index(), 0x6040 | 0x6041 | 0x6060 | 0x6061)
-                                && n < picked.len()
-                            {
+                            if CIA402_OBJECTS.contains(&signal.entry.index()) && n < picked.len() {
                                 picked[n] = Some(signal);
                                 n += 1;
                             }

@@ -16,20 +16,24 @@ const fn mask(bits: u8) -> u64 {
 
 /// Read `bits` (1..=64) bits from bit `offset` of `payload`, little-endian.
 /// The caller has checked that they lie inside the payload.
-fn read_bits(payload: &[u8], offset: u16, bits: u8) -> u64 {
-    let start = usize::from(offset / 8);
+fn read_bits(payload: &[u8], offset: usize, bits: u8) -> u64 {
+    let start = offset / 8;
+    // One bit (a digital channel, a flag): one byte.
+    if bits == 1 {
+        return u64::from(payload[start] >> (offset % 8) & 1);
+    }
     // Fast path: an 8-byte word that holds the field — from its first byte,
     // or the payload's last 8 bytes when it starts less than 8 from the end.
     if payload.len() >= 8 {
         let word_start = start.min(payload.len() - 8);
-        let shift = u32::from(offset) - 8 * word_start as u32;
+        let shift = (offset - 8 * word_start) as u32;
         if shift + u32::from(bits) <= 64 {
             let mut word = [0u8; 8];
             word.copy_from_slice(&payload[word_start..word_start + 8]);
             return (u64::from_le_bytes(word) >> shift) & mask(bits);
         }
     }
-    let shift = u32::from(offset % 8);
+    let shift = (offset % 8) as u32;
     let len = (shift as usize + usize::from(bits)).div_ceil(8);
     // Byte-aligned entries of whole bytes, most of a drive's process data:
     // one little-endian load.
@@ -76,7 +80,7 @@ fn write_bits(buf: &mut [u8], offset: u16, bits: u8, value: u64) {
 
 /// Decode the entry at `offset` as `kind` (from [`ValueKind::for_entry`],
 /// which has checked the length for the numeric kinds).
-pub(super) fn decode(payload: &[u8], offset: u16, bits: u8, kind: ValueKind) -> Value {
+pub(super) fn decode(payload: &[u8], offset: usize, bits: u8, kind: ValueKind) -> Value {
     match kind {
         ValueKind::Bool => Value::Bool(read_bits(payload, offset, bits) != 0),
         ValueKind::Unsigned => Value::Unsigned(read_bits(payload, offset, bits)),
@@ -91,8 +95,8 @@ pub(super) fn decode(payload: &[u8], offset: u16, bits: u8, kind: ValueKind) -> 
             let mut bytes = [0u8; MAX_OCTETS];
             let len = usize::from(bits).div_ceil(8);
             for (i, byte) in bytes[..len].iter_mut().enumerate() {
-                let done = 8 * i as u16;
-                let take = (u16::from(bits) - done).min(8) as u8;
+                let done = 8 * i;
+                let take = (usize::from(bits) - done).min(8) as u8;
                 *byte = read_bits(payload, offset + done, take) as u8;
             }
             Value::Octets(Octets { bytes, bits })
@@ -121,8 +125,8 @@ pub(super) const fn is_aligned(offset: u16, bits: u8, kind: ValueKind) -> bool {
 /// little-endian load, no bit window. An entry past the payload (which the
 /// caller has excluded) goes to [`decode`].
 #[inline(always)]
-pub(super) fn decode_aligned(payload: &[u8], offset: u16, bytes: u8, kind: ValueKind) -> Value {
-    let rest = payload.get(usize::from(offset / 8)..).unwrap_or(&[]);
+pub(super) fn decode_aligned(payload: &[u8], offset: usize, bytes: u8, kind: ValueKind) -> Value {
+    let rest = payload.get(offset / 8..).unwrap_or(&[]);
     let raw = match bytes {
         1 => rest.first().map(|&b| u64::from(b)),
         2 => rest
@@ -255,8 +259,8 @@ mod proptests {
                     prop_assert!(offset % 8 != 0 || !matches!(bits, 8 | 16 | 32 | 64) || kind == ValueKind::Octets);
                     continue;
                 }
-                let fast = decode_aligned(&payload, offset, bits / 8, kind);
-                let general = decode(&payload, offset, bits, kind);
+                let fast = decode_aligned(&payload, usize::from(offset), bits / 8, kind);
+                let general = decode(&payload, usize::from(offset), bits, kind);
                 prop_assert!(same(fast, general), "{offset} {bits} {kind:?}: {fast:?} != {general:?}");
             }
         }

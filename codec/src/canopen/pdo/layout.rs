@@ -92,9 +92,33 @@ impl PdoLayout {
     /// [`PdoMapping::unpack_with`] reads them.
     #[must_use]
     pub fn unpack<'a>(&'a self, payload: &'a [u8]) -> LayoutSignals<'a> {
+        self.unpack_at(payload, 0)
+    }
+
+    /// Read the PDO placed at bit `bit` of `image` (an EtherCAT slave's
+    /// process data image holds its PDOs one after the other, ETG.1000.6
+    /// 5.6.7.4): what [`unpack`](Self::unpack) gives of the PDO's own bits
+    /// moved to bit 0. Each signal's `offset` is its bit in the PDO; a
+    /// truncated entry's `needed` counts the PDO's bytes, `found` the
+    /// whole bytes of `image` from `bit` on.
+    ///
+    /// ```
+    /// use motionwire_codec::canopen::{DataType, MappingEntry, PdoLayout, PdoMapping, Value};
+    ///
+    /// // Two 1-bit outputs from bit 3 of the image.
+    /// let mapping = PdoMapping::from_u32s(&[0x7000_0101, 0x7010_0101])?;
+    /// let layout = PdoLayout::new(&mapping, |_: MappingEntry| Some(DataType::Boolean));
+    /// let image = [0b0001_0000];
+    /// let values: Vec<Value> = layout.unpack_at(&image, 3).map(|s| s.unwrap().value).collect();
+    /// assert_eq!(values, [Value::Bool(false), Value::Bool(true)]);
+    /// # Ok::<(), motionwire_codec::Error>(())
+    /// ```
+    #[must_use]
+    pub fn unpack_at<'a>(&'a self, image: &'a [u8], bit: usize) -> LayoutSignals<'a> {
         LayoutSignals {
             planned: &self.planned[..self.len],
-            payload,
+            payload: image,
+            base: bit,
         }
     }
 }
@@ -114,6 +138,7 @@ impl PdoLayout {
         LayoutSignals {
             planned: core::slice::from_ref(p),
             payload,
+            base: 0,
         }
         .next()
     }
@@ -132,6 +157,8 @@ impl PdoLayout {
 pub struct LayoutSignals<'a> {
     planned: &'a [Planned],
     payload: &'a [u8],
+    /// The payload's bit where the PDO starts.
+    base: usize,
 }
 
 impl Iterator for LayoutSignals<'_> {
@@ -148,13 +175,15 @@ impl Iterator for LayoutSignals<'_> {
                 offset: p.offset,
                 reason,
             };
-            if end > self.payload.len() * 8 {
+            let bits = self.payload.len() * 8;
+            if self.base + end > bits {
                 self.planned = &[];
                 return Some(Err(error(PdoEntryReason::Truncated {
                     needed: end.div_ceil(8),
-                    found: self.payload.len(),
+                    found: bits.saturating_sub(self.base) / 8,
                 })));
             }
+            let offset = self.base + usize::from(p.offset);
             if p.entry.is_dummy() {
                 continue;
             }
@@ -165,10 +194,10 @@ impl Iterator for LayoutSignals<'_> {
                     data_type: p.data_type,
                     // One load for whole bytes from a byte boundary, the
                     // bit window else.
-                    value: if p.aligned != 0 {
-                        decode_aligned(self.payload, p.offset, p.aligned, kind)
+                    value: if p.aligned != 0 && self.base % 8 == 0 {
+                        decode_aligned(self.payload, offset, p.aligned, kind)
                     } else {
-                        decode(self.payload, p.offset, p.entry.bits(), kind)
+                        decode(self.payload, offset, p.entry.bits(), kind)
                     },
                 }),
                 Err(reason) => Err(error(reason)),
@@ -249,6 +278,64 @@ mod proptests {
                     None => break,
                 }
             }
+        }
+
+        /// A PDO read at any bit of a larger image reads as its own bits
+        /// moved to bit 0, up to the first entry the image does not hold
+        /// whole: that one is truncated, counting the PDO's bytes it needs
+        /// and the image's whole bytes from the PDO's first bit.
+        #[test]
+        fn a_pdo_reads_the_same_at_any_bit(
+            raw in proptest::collection::vec(any::<u32>(), 0..12),
+            seed in type_lookup_seed(),
+            image in proptest::collection::vec(any::<u8>(), 0..40),
+            bit in 0usize..340,
+        ) {
+            let mut mapping = PdoMapping::new();
+            for value in raw {
+                // Short entries, so that the PDOs fit the images often.
+                let entry = MappingEntry::from_u32((value & 0xFFFF_FF00) | ((value & 0x0F) + 1));
+                if mapping.push(entry).is_err() {
+                    break;
+                }
+            }
+            let types = |entry: MappingEntry| data_type_for(seed, entry);
+            let layout = PdoLayout::new(&mapping, types);
+            // The PDO's bits from bit 0, those past the image as zeros.
+            let len = usize::from(mapping.bit_len());
+            let left = (image.len() * 8).saturating_sub(bit);
+            let mut moved = vec![0u8; len.div_ceil(8)];
+            for i in 0..len.min(left) {
+                let at = bit + i;
+                if image[at / 8] >> (at % 8) & 1 != 0 {
+                    moved[i / 8] |= 1 << (i % 8);
+                }
+            }
+            let same = |r: Result<Signal, PdoEntryError>| r.map(|s| match s.value {
+                Value::Real32(x) => (s.entry, s.offset, Value::Unsigned(u64::from(x.to_bits()))),
+                Value::Real64(x) => (s.entry, s.offset, Value::Unsigned(x.to_bits())),
+                v => (s.entry, s.offset, v),
+            });
+            let mut alone = layout.unpack(&moved).map(same);
+            let mut expected = Vec::new();
+            let mut offset = 0u16;
+            for &entry in mapping.entries() {
+                let end = usize::from(offset) + usize::from(entry.bits());
+                if end > left {
+                    expected.push(Err(PdoEntryError {
+                        entry,
+                        offset,
+                        reason: PdoEntryReason::Truncated { needed: end.div_ceil(8), found: left / 8 },
+                    }));
+                    break;
+                }
+                if !entry.is_dummy() {
+                    expected.push(alone.next().unwrap());
+                }
+                offset += u16::from(entry.bits());
+            }
+            let at: Vec<_> = layout.unpack_at(&image, bit).map(same).collect();
+            prop_assert_eq!(at, expected);
         }
     }
 }

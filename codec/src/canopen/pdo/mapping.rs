@@ -500,7 +500,7 @@ impl<T: TypeLookup> Iterator for Signals<'_, T> {
             }
             let data_type = self.types.data_type(entry);
             let value = ValueKind::for_entry(data_type, entry.bits)
-                .map(|kind| decode(self.payload, offset, entry.bits, kind));
+                .map(|kind| decode(self.payload, usize::from(offset), entry.bits, kind));
             return Some(match value {
                 Ok(value) => Ok(Signal {
                     entry,
