@@ -815,6 +815,61 @@ fn without_timestamps_timeouts_are_not_checked() {
     assert!(stderr(&timed).is_empty());
 }
 
+/// An output of many blocks (docs/output.md#writing): through a pipe and
+/// into a file, where a thread of its own writes it, the same bytes, every
+/// record once and in the order of the log; the text and CSV too.
+#[test]
+fn a_large_output_is_written_whole_and_in_order() {
+    let lines = 60_000;
+    let log: String = (0..lines)
+        .map(|i| {
+            format!(
+                "({}.{:06}) can0 18{}#{:016X}\n",
+                1000 + i / 1000,
+                (i % 1000) * 1000,
+                i % 10,
+                i
+            )
+        })
+        .collect();
+    let path = temp_file("large-output.log", &log);
+    let file = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-tests/large-output.out");
+    for format in ["--json", "--csv", "--text"] {
+        let args: Vec<&str> = ["decode", path.to_str().unwrap()]
+            .into_iter()
+            .chain((format != "--text").then_some(format))
+            .collect();
+        let piped = bin().args(&args).output().unwrap();
+        assert!(piped.status.success(), "{}", stderr(&piped));
+        let status = bin()
+            .args(&args)
+            .stdout(std::fs::File::create(&file).unwrap())
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let written = std::fs::read(&file).unwrap();
+        assert!(
+            written.len() > 3 << 20,
+            "{format}: {} bytes, fewer than 3 blocks",
+            written.len()
+        );
+        assert!(
+            written == piped.stdout,
+            "{format}: the file and the pipe differ"
+        );
+        if format == "--json" {
+            for (i, record) in written
+                .split(|&b| b == b'\n')
+                .filter(|r| !r.is_empty())
+                .enumerate()
+            {
+                let value: Value = serde_json::from_slice(record).unwrap();
+                assert_eq!(value["line"], i + 1);
+            }
+        }
+    }
+}
+
 /// docs/output.md#live, live use: `candump -L can0 | motionwire decode --json
 /// -` prints each record as soon as its line arrives, while the input is still
 /// open.

@@ -5,7 +5,7 @@
 //! and renders.
 
 use std::fs::File;
-use std::io::{self, BufWriter, IsTerminal, Read, StderrLock, StdoutLock, Write};
+use std::io::{self, BufWriter, IsTerminal, Read, StderrLock, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -27,6 +27,7 @@ use motionwire::summary::{FileSpan, SeveralFiles, Summarizer, Summary};
 
 use crate::args::{node_profiles, DecodeArgs, IdRange, Kind, TimestampBase};
 use crate::failure::Failure;
+use crate::out::Out;
 use crate::record::{Record, CSV_HEADER};
 
 /// Which EtherCAT records `decode` writes (docs/ethercat.md#filters).
@@ -128,9 +129,6 @@ fn stdin_input() -> Input {
 /// line (docs/output.md#stderr).
 pub const COMPLAINTS_PER_FILE: u64 = 100;
 
-/// How many bytes of JSON records are built before they are written out.
-const JSON_BLOCK: usize = 1 << 16;
-
 /// How records are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Output {
@@ -143,10 +141,9 @@ enum Output {
 /// rendered, or added to the summary (which sees every frame,
 /// docs/output.md#filters).
 struct Sink<'a> {
-    out: BufWriter<StdoutLock<'static>>,
-    /// JSON records built and not yet written to `out`
-    /// (`Decoded::append_json`), written in blocks of [`JSON_BLOCK`].
-    json: Vec<u8>,
+    /// Standard output: records are built into its block, which its own
+    /// thread writes.
+    out: Out,
     err: BufWriter<StderrLock<'static>>,
     summary: Option<Summarizer>,
     /// With `motionwire report`: the recording's timeline and summary, and
@@ -265,8 +262,7 @@ impl<'a> Sink<'a> {
         let summary = (args.summary && !page).then(|| Summarizer::new(config.clone()));
         let recorder = page.then(|| Recorder::new(config.clone()));
         Ok(Sink {
-            out: BufWriter::with_capacity(1 << 16, io::stdout().lock()),
-            json: Vec::with_capacity(JSON_BLOCK + 4096),
+            out: Out::new(),
             err: BufWriter::new(io::stderr().lock()),
             summary,
             recorder,
@@ -325,12 +321,8 @@ impl<'a> Sink<'a> {
             }
         }
         if self.output == Output::Json {
-            decoded.append_json(&mut self.json, self.file.as_deref());
-            if self.json.len() >= JSON_BLOCK {
-                self.out.write_all(&self.json)?;
-                self.json.clear();
-            }
-            return Ok(());
+            decoded.append_json(self.out.block(), self.file.as_deref());
+            return self.out.wrote();
         }
         let record = Record {
             line: position.number(),
@@ -391,11 +383,7 @@ impl<'a> Sink<'a> {
             if self.ethercat_shown.shows(DATAGRAM_KIND, station) {
                 match self.output {
                     Output::Json => {
-                        record.append_json(&mut self.json, self.file.as_deref());
-                        if self.json.len() >= JSON_BLOCK {
-                            self.out.write_all(&self.json)?;
-                            self.json.clear();
-                        }
+                        record.append_json(self.out.block(), self.file.as_deref());
                     }
                     Output::Text => record.write_text(&mut self.out, self.file.as_deref())?,
                     Output::Csv => crate::record::write_datagram_csv(
@@ -408,7 +396,7 @@ impl<'a> Sink<'a> {
             // What the datagram tells, after its record: written as the
             // session hands it over.
             let (output, file) = (self.output, self.file.as_deref());
-            let (json, out) = (&mut self.json, &mut self.out);
+            let out = &mut self.out;
             let shown = &self.ethercat_shown;
             let mut written = Ok(());
             self.ethercat.meanings(&packet, at, &datagram, |meaning| {
@@ -421,7 +409,7 @@ impl<'a> Sink<'a> {
                     return;
                 }
                 match output {
-                    Output::Json => record.append_json(json, file),
+                    Output::Json => record.append_json(out.block(), file),
                     Output::Text if written.is_ok() => {
                         written = record.write_text(out, datagram.command().name(), file);
                     }
@@ -432,7 +420,7 @@ impl<'a> Sink<'a> {
             });
             written?;
             // Each slave's process data of a returned cyclic datagram.
-            let (json, out) = (&mut self.json, &mut self.out);
+            let out = &mut self.out;
             let mut written = Ok(());
             self.ethercat.process_data(&packet, at, &datagram, |data| {
                 let record = ProcessRecord {
@@ -446,10 +434,10 @@ impl<'a> Sink<'a> {
                 match output {
                     Output::Json => {
                         if process {
-                            record.append_json(json, file);
+                            record.append_json(out.block(), file);
                         }
                         if servo {
-                            record.append_servo_json(json, file);
+                            record.append_servo_json(out.block(), file);
                         }
                     }
                     Output::Text if written.is_ok() && (process || servo) => {
@@ -459,6 +447,7 @@ impl<'a> Sink<'a> {
                 }
             });
             written?;
+            self.out.wrote()?;
         }
         // What the configuration or a mailbox shows wrong
         // (docs/ethercat.md#process-data): said with its packet.
@@ -586,15 +575,6 @@ impl<'a> Sink<'a> {
             .join(", ")
     }
 
-    /// Write out the JSON records built so far.
-    fn write_json(&mut self) -> io::Result<()> {
-        if !self.json.is_empty() {
-            self.out.write_all(&self.json)?;
-            self.json.clear();
-        }
-        Ok(())
-    }
-
     /// Erase the progress line, so that the next message starts on a
     /// clean line.
     fn clear_progress(&mut self) -> io::Result<()> {
@@ -606,7 +586,6 @@ impl<'a> Sink<'a> {
     }
 
     fn flush(&mut self) -> io::Result<()> {
-        self.write_json()?;
         self.out.flush()?;
         self.err.flush()
     }
@@ -772,9 +751,8 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         take_recording(&mut sink, None, spans)?;
     }
 
-    sink.write_json()?;
     let Sink {
-        mut out,
+        out,
         mut err,
         skipped,
         damaged,
@@ -796,7 +774,7 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
             ));
         }
     }
-    out.flush()?;
+    out.finish()?;
     if skipped > 0 || damaged > 0 {
         let plural = |n: u64| if n == 1 { "" } else { "s" };
         match (skipped, damaged) {

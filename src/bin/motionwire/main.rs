@@ -20,6 +20,7 @@
 mod args;
 mod decode;
 mod failure;
+mod out;
 mod record;
 mod report;
 mod servo;
