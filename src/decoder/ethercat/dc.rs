@@ -96,9 +96,19 @@ impl DcRegisters {
     }
 }
 
-/// The system-time difference register's value in ns, signed: bits 0–30
-/// the mean difference, bit 31 set when the local copy is smaller than the
-/// received time.
+/// The system-time difference register's value in ns, signed, the local
+/// copy of the system time minus the received system time: bits 0–30 the
+/// mean difference, bit 31 set when the local copy is smaller than the
+/// received time — a sign and a magnitude, not two's complement.
+///
+/// This is the register description of Beckhoff's ESC datasheet (section
+/// II, 0x092C:0x092F: bit 31 "0: local copy of System Time greater than or
+/// equal received System Time, 1: local copy of System Time smaller than
+/// received System Time"), which Infineon's XMC4800 reference manual
+/// repeats for its ESC (`ECAT0.DC_SYS_TIME_DIFF`, field `CPY`). Masters
+/// read it so: ethercrab's `examples/dc.rs` and SOEM's
+/// `test/linux/red_test/red_test.c` negate the magnitude when bit 31 is
+/// set.
 #[must_use]
 pub const fn time_difference(raw: u32) -> i64 {
     let magnitude = (raw & 0x7FFF_FFFF) as i64;
