@@ -340,6 +340,39 @@ fn the_generated_registers_capture_reads_as_written() {
     assert_eq!(reference.distributions, 10);
 }
 
+/// `Session::station`: an FPxx names the slave it reaches — by its
+/// station address, or by the alias DL control enabled (packets 13 and
+/// 14 read AL status at alias 0x0077, the slave 0x1001's) — and a
+/// datagram addressed otherwise names none
+/// (scripts/ecat_pcapng.py --fixture registers).
+#[test]
+fn a_datagram_to_an_enabled_alias_names_the_station_it_reaches() {
+    let mut log = logs::open(path("synthetic_registers.pcapng")).unwrap();
+    let mut session = Session::new();
+    let (mut by_alias, mut by_station, mut none) = (Vec::new(), 0, 0);
+    while let Some(record) = log.next_event() {
+        let record = record.unwrap();
+        let LogEvent::Ethercat(packet) = record.event else {
+            continue;
+        };
+        let packet = session.read(record.position, &packet).unwrap();
+        for (at, datagram) in packet.datagrams().enumerate() {
+            let datagram = datagram.unwrap();
+            match session.station(&packet, &datagram) {
+                Some(station) if station != datagram.adp() => {
+                    by_alias.push((record.position.number(), datagram.adp(), station));
+                }
+                Some(_) => by_station += 1,
+                None => none += 1,
+            }
+            session.meanings(&packet, at, &datagram, |_| {});
+        }
+    }
+    assert_eq!(by_alias, [(13, 0x0077, 0x1001), (14, 0x0077, 0x1001)]);
+    // The other FPRD, FPWR and FRMW; the APRD, APWR and BWR.
+    assert_eq!((by_station, none), (60, 12));
+}
+
 /// A master whose own MAC has bit 0x02 set sends frames that look
 /// returned: order decides, the first of a pair is the sent copy
 /// (scripts/ecat_pcapng.py --fixture local_mac: six exchanges, the
