@@ -148,7 +148,8 @@ const FRMW: u8 = 14;
 /// (`tshark -T fields -e ecat.cmd -e ecat.ado`: TwinCAT's APRD of 0x0900
 /// with 32 bytes, FPWR of 0x0980 and ARMW of 0x0910; the replays' FPWR
 /// of 0x0981 and 0x09A0, FPRD of 0x092C and 0x0012, FRMW of 0x0910;
-/// SOEM's FPRD of 0x0012 and 0x0910): every register tshark shows covered
+/// SOEM's FPRD of 0x0012 and 0x0910; the offset 0x0920 and delay 0x0928
+/// that TwinCAT, SOEM and ethercrab write): every register tshark shows covered
 /// in a returned datagram that a slave took is decoded with its value.
 #[test]
 fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
@@ -207,6 +208,28 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
                         *checked.entry("receive time").or_insert(0) += 1;
                     }
                 }
+                if let Some(b) = at(&row, 0x0920, 4) {
+                    let offset = match at(&row, 0x0920, 8) {
+                        Some(b) => i64::from_le_bytes(b.try_into().unwrap()),
+                        None => i64::from(le32(b) as i32),
+                    };
+                    let (w, r) = dc.expect(&what);
+                    assert_eq!(
+                        (w, r.system_time_offset_ns),
+                        (written, Some(offset)),
+                        "{what}"
+                    );
+                    *checked.entry("system time offset").or_insert(0) += 1;
+                }
+                if let Some(b) = at(&row, 0x0928, 4) {
+                    let (w, r) = dc.expect(&what);
+                    assert_eq!(
+                        (w, r.system_time_delay_ns),
+                        (written, Some(le32(b))),
+                        "{what}"
+                    );
+                    *checked.entry("system time delay").or_insert(0) += 1;
+                }
                 if let Some(b) = at(&row, 0x092C, 4).filter(|_| read) {
                     let raw = le32(b);
                     let magnitude = i64::from(raw & 0x7FFF_FFFF);
@@ -236,7 +259,11 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
     // receive times, TwinCAT's 20 APRD of 32 bytes (4 each), the replays'
     // 2 × 3 FPRD of 16 bytes, SOEM's 2 × 4 FPRD of 4; the replay's 2 FPWR
     // of 0x09A0 and 2 FPRD of 0x092C; the replays' 357 + 100 FRMW and
-    // TwinCAT's 36 ARMW of 0x0910.
+    // TwinCAT's 36 ARMW of 0x0910; the system-time offset, the replays'
+    // 2 × 2 FPWR of 0x0920 (ethercrab: negative offsets), SOEM's 2 FPWR
+    // and TwinCAT's APWR; its delay, the replays' 2 × 2 FPWR of 0x0928
+    // and TwinCAT's APWR (the writes to a slave without a clock, working
+    // counter 0, and the BWRs name no value).
     assert_eq!(
         checked,
         BTreeMap::from([
@@ -245,6 +272,8 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
             ("distribution", 493),
             ("receive time", 112),
             ("sync0 cycle", 2),
+            ("system time delay", 5),
+            ("system time offset", 7),
             ("time difference", 2),
         ])
     );
