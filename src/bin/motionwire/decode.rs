@@ -385,8 +385,13 @@ impl<'a> Sink<'a> {
                 number: at + 1,
                 datagram,
             };
-            // The slave it reaches, by station address or alias.
-            let station = self.ethercat.station(&packet, &datagram);
+            // The slave it reaches, by station address or alias: asked
+            // only when `--slave` selects.
+            let station = if self.ethercat_shown.slaves.is_empty() {
+                None
+            } else {
+                self.ethercat.station(&packet, &datagram)
+            };
             if self.ethercat_shown.shows(DATAGRAM_KIND, station) {
                 match self.output {
                     Output::Json => {
