@@ -38,8 +38,8 @@ pub struct DcRegisters {
     /// The system-time offset (0x0920), read or written: what the slave
     /// adds to its local time to give the system time, in ns, as a
     /// two's-complement number — 64 bits, or 32 where the datagram covers
-    /// 4 bytes (a slave with a 32-bit clock). The ESC datasheet calls it
-    /// unsigned; the addition wraps either way, and masters write
+    /// 4 bytes (a slave with a 32-bit clock). The specification types it
+    /// unsigned, but the addition wraps either way and masters write
     /// negative offsets (ethercrab: the master's time minus the slave's
     /// receive time).
     pub system_time_offset_ns: Option<i64>,
