@@ -83,6 +83,9 @@ done
   echo "decode --summary --json tests/data/ethercat/synthetic_registers.pcapng"
   echo "decode --only mailbox_poll,dc_distribution tests/data/ethercat/synthetic_registers.pcapng"
   echo "decode --summary tests/data/ethercat/synthetic_local_mac.pcapng"
+  # A real start-up's CoE SDO transfers and their objects' names
+  # (docs/ethercat.md#coe-sdo): 0x1C00, 0x1C12, 0x1C13 among them.
+  echo "decode --json --only coe_sdo tests/data/ethercat/soem-single-lan9252.pcapng"
 } > "$out/cases.txt"
 n=0
 while read -r line; do

@@ -16,6 +16,8 @@
 //!   docs/ethercat.md#records, and its text prints;
 //! - the summary of the same packets (`Summarizer`) counts them as the
 //!   session does, and every record is one JSON object with its `type`;
+//! - a datagram names a slave's station (`Session::station`) exactly when
+//!   it is station-addressed;
 //! - what a datagram tells of the slaves comes from returned copies only,
 //!   and every meaning's record is one line of JSON of its kind, its text
 //!   one line;
@@ -30,7 +32,7 @@
 use libfuzzer_sys::fuzz_target;
 use motionwire::can::{EthercatPacket, Iface, LogEvent, Timestamp};
 use motionwire::summary::Summarizer;
-use motionwire::ethercat::{Encapsulation, EthercatLink, Mac};
+use motionwire::ethercat::{Addressing, Encapsulation, EthercatLink, Mac};
 use motionwire::decoder::ethercat::{
     DatagramRecord, FrameCopy, MeaningRecord, ProcessRecord, ServoSlaves, Session,
 };
@@ -104,6 +106,13 @@ fuzz_target!(|data: &[u8]| {
             let mut text = Vec::new();
             record.write_text(&mut text, None).unwrap();
             assert_eq!(text.iter().filter(|&&b| b == b'\n').count(), 1);
+            // A station-addressed datagram names the slave it reaches, by
+            // station address or alias; no other one names a slave.
+            let station = session.station(&read, &datagram);
+            assert_eq!(
+                station.is_some(),
+                datagram.command().addressing() == Addressing::Station
+            );
             let mut meanings = Vec::new();
             session.meanings(&read, at, &datagram, |m| meanings.push(m));
             if !read.copy.returned() {

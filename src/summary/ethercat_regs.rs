@@ -49,6 +49,10 @@ pub struct DcSummary {
     pub receive_times: [Option<u32>; 4],
     /// The system time as last read (0x0910).
     pub system_time: Option<u64>,
+    /// The system-time offset as last written or read, ns (0x0920).
+    pub system_time_offset_ns: Option<i64>,
+    /// The system-time delay as last written or read, ns (0x0928).
+    pub system_time_delay_ns: Option<u32>,
     /// Reads of the system-time difference (0x092C).
     pub time_difference_reads: u64,
     /// The last, ns (local copy minus received time).
@@ -94,6 +98,8 @@ impl SlaveRegisters {
             dc.receive_times = r.receive_times;
         }
         dc.system_time = r.system_time.or(dc.system_time);
+        dc.system_time_offset_ns = r.system_time_offset_ns.or(dc.system_time_offset_ns);
+        dc.system_time_delay_ns = r.system_time_delay_ns.or(dc.system_time_delay_ns);
         if let Some(ns) = r.time_difference_ns {
             dc.time_difference_reads += 1;
             dc.time_difference_last_ns = Some(ns);
@@ -124,7 +130,7 @@ impl serde::Serialize for DcJson<'_> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let dc = self.0;
         let bit = |n: u8| dc.activation.map(|a| a & (1 << n) != 0);
-        let mut map = serializer.serialize_map(Some(15))?;
+        let mut map = serializer.serialize_map(Some(17))?;
         map.serialize_entry("reference_clock", &(dc.distributions > 0))?;
         map.serialize_entry("distributions", &dc.distributions)?;
         map.serialize_entry("cyclic_unit_control", &dc.cyclic_unit_control)?;
@@ -136,6 +142,8 @@ impl serde::Serialize for DcJson<'_> {
         map.serialize_entry("sync1_cycle_ns", &dc.sync1_cycle_ns)?;
         map.serialize_entry("receive_times", &dc.receive_times)?;
         map.serialize_entry("system_time", &dc.system_time)?;
+        map.serialize_entry("system_time_offset_ns", &dc.system_time_offset_ns)?;
+        map.serialize_entry("system_time_delay_ns", &dc.system_time_delay_ns)?;
         map.serialize_entry("time_difference_reads", &dc.time_difference_reads)?;
         map.serialize_entry("time_difference_last_ns", &dc.time_difference_last_ns)?;
         map.serialize_entry("time_difference_min_ns", &dc.time_difference_min_ns)?;
@@ -179,6 +187,12 @@ impl fmt::Display for SlaveRegisters {
             }
             if let Some(ns) = dc.sync1_cycle_ns.filter(|&ns| ns != 0) {
                 write!(f, "; SYNC1 cycle {ns} ns")?;
+            }
+            if let Some(ns) = dc.system_time_offset_ns {
+                write!(f, "; system time offset {ns} ns")?;
+            }
+            if let Some(ns) = dc.system_time_delay_ns {
+                write!(f, "; system time delay {ns} ns")?;
             }
             if let (Some(last), Some(min), Some(max)) = (
                 dc.time_difference_last_ns,

@@ -148,7 +148,8 @@ const FRMW: u8 = 14;
 /// (`tshark -T fields -e ecat.cmd -e ecat.ado`: TwinCAT's APRD of 0x0900
 /// with 32 bytes, FPWR of 0x0980 and ARMW of 0x0910; the replays' FPWR
 /// of 0x0981 and 0x09A0, FPRD of 0x092C and 0x0012, FRMW of 0x0910;
-/// SOEM's FPRD of 0x0012 and 0x0910): every register tshark shows covered
+/// SOEM's FPRD of 0x0012 and 0x0910; the offset 0x0920 and delay 0x0928
+/// that TwinCAT, SOEM and ethercrab write): every register tshark shows covered
 /// in a returned datagram that a slave took is decoded with its value.
 #[test]
 fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
@@ -207,6 +208,28 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
                         *checked.entry("receive time").or_insert(0) += 1;
                     }
                 }
+                if let Some(b) = at(&row, 0x0920, 4) {
+                    let offset = match at(&row, 0x0920, 8) {
+                        Some(b) => i64::from_le_bytes(b.try_into().unwrap()),
+                        None => i64::from(le32(b) as i32),
+                    };
+                    let (w, r) = dc.expect(&what);
+                    assert_eq!(
+                        (w, r.system_time_offset_ns),
+                        (written, Some(offset)),
+                        "{what}"
+                    );
+                    *checked.entry("system time offset").or_insert(0) += 1;
+                }
+                if let Some(b) = at(&row, 0x0928, 4) {
+                    let (w, r) = dc.expect(&what);
+                    assert_eq!(
+                        (w, r.system_time_delay_ns),
+                        (written, Some(le32(b))),
+                        "{what}"
+                    );
+                    *checked.entry("system time delay").or_insert(0) += 1;
+                }
                 if let Some(b) = at(&row, 0x092C, 4).filter(|_| read) {
                     let raw = le32(b);
                     let magnitude = i64::from(raw & 0x7FFF_FFFF);
@@ -236,7 +259,11 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
     // receive times, TwinCAT's 20 APRD of 32 bytes (4 each), the replays'
     // 2 × 3 FPRD of 16 bytes, SOEM's 2 × 4 FPRD of 4; the replay's 2 FPWR
     // of 0x09A0 and 2 FPRD of 0x092C; the replays' 357 + 100 FRMW and
-    // TwinCAT's 36 ARMW of 0x0910.
+    // TwinCAT's 36 ARMW of 0x0910; the system-time offset, the replays'
+    // 2 × 2 FPWR of 0x0920 (ethercrab: negative offsets), SOEM's 2 FPWR
+    // and TwinCAT's APWR; its delay, the replays' 2 × 2 FPWR of 0x0928
+    // and TwinCAT's APWR (the writes to a slave without a clock, working
+    // counter 0, and the BWRs name no value).
     assert_eq!(
         checked,
         BTreeMap::from([
@@ -245,6 +272,8 @@ fn dc_and_alias_registers_read_as_tshark_shows_their_bytes() {
             ("distribution", 493),
             ("receive time", 112),
             ("sync0 cycle", 2),
+            ("system time delay", 5),
+            ("system time offset", 7),
             ("time difference", 2),
         ])
     );
@@ -338,6 +367,39 @@ fn the_generated_registers_capture_reads_as_written() {
     );
     let reference = summary.ethercat.slaves[0].registers.dc.unwrap();
     assert_eq!(reference.distributions, 10);
+}
+
+/// `Session::station`: an FPxx names the slave it reaches — by its
+/// station address, or by the alias DL control enabled (packets 13 and
+/// 14 read AL status at alias 0x0077, the slave 0x1001's) — and a
+/// datagram addressed otherwise names none
+/// (scripts/ecat_pcapng.py --fixture registers).
+#[test]
+fn a_datagram_to_an_enabled_alias_names_the_station_it_reaches() {
+    let mut log = logs::open(path("synthetic_registers.pcapng")).unwrap();
+    let mut session = Session::new();
+    let (mut by_alias, mut by_station, mut none) = (Vec::new(), 0, 0);
+    while let Some(record) = log.next_event() {
+        let record = record.unwrap();
+        let LogEvent::Ethercat(packet) = record.event else {
+            continue;
+        };
+        let packet = session.read(record.position, &packet).unwrap();
+        for (at, datagram) in packet.datagrams().enumerate() {
+            let datagram = datagram.unwrap();
+            match session.station(&packet, &datagram) {
+                Some(station) if station != datagram.adp() => {
+                    by_alias.push((record.position.number(), datagram.adp(), station));
+                }
+                Some(_) => by_station += 1,
+                None => none += 1,
+            }
+            session.meanings(&packet, at, &datagram, |_| {});
+        }
+    }
+    assert_eq!(by_alias, [(13, 0x0077, 0x1001), (14, 0x0077, 0x1001)]);
+    // The other FPRD, FPWR and FRMW; the APRD, APWR and BWR.
+    assert_eq!((by_station, none), (60, 12));
 }
 
 /// A master whose own MAC has bit 0x02 set sends frames that look

@@ -1927,6 +1927,63 @@ fn ethercat_records_are_filtered_by_kind_and_slave() {
     assert!(stderr(&out).contains("\"al_status\" is not a kind; one of emcy,"));
 }
 
+/// docs/ethercat.md#filters: `--slave` keeps the datagrams sent to a
+/// slave's enabled alias with its own (scripts/ecat_pcapng.py --fixture
+/// registers: packets 13 and 14 read AL status at alias 0x0077, which is
+/// slave 0x1001's), and their records of what they tell.
+#[test]
+fn the_slave_filter_keeps_datagrams_sent_to_its_alias() {
+    let capture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/ethercat/synthetic_registers.pcapng"
+    );
+    let out = run(
+        &[
+            "decode",
+            "--json",
+            "--only",
+            "ecat_datagram,al_state",
+            "--slave",
+            "0x1001",
+            capture,
+        ],
+        "",
+    );
+    let all = records(&out);
+    let by_alias: Vec<_> = all
+        .iter()
+        .filter(|r| r["adp"] == 0x0077)
+        .map(|r| {
+            (
+                r["packet"].as_u64().unwrap(),
+                r["returned"].as_bool().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(by_alias, [(13, false), (14, true)]);
+    assert!(all
+        .iter()
+        .any(|r| r["packet"] == 14 && r["kind"] == "al_state" && r["slave"] == 0x1001));
+    assert!(all
+        .iter()
+        .filter(|r| r["kind"] == "ecat_datagram")
+        .all(|r| r["adp"] == 0x1001 || r["adp"] == 0x0077));
+    // The alias is no station: nothing is sent to 0x0077 as such.
+    let out = run(
+        &[
+            "decode",
+            "--json",
+            "--only",
+            "ecat_datagram",
+            "--slave",
+            "0x0077",
+            capture,
+        ],
+        "",
+    );
+    assert_eq!(stdout(&out), "");
+}
+
 /// docs/ethercat.md#reading: a capture whose times go back is read in its
 /// order, and said once.
 #[test]

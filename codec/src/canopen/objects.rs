@@ -186,6 +186,20 @@ const fn row(
 ///   lely-core's CiA conformance list names them; only the objects whose
 ///   names two sources agree on (CanFestival's DS-302 profile for 1F20h,
 ///   1F22h, 1F50h, 1F51h).
+/// - **Communication, 1C00h–1C33h**: the sync manager objects of CANopen
+///   over EtherCAT (indices the CiA sources above name nothing at):
+///   ETG.1000.6 (EtherCAT application layer, the CoE object dictionary)
+///   defines 1C00h, the sync manager communication type (sub-index n:
+///   SM n-1's type, 1 mailbox out, 2 mailbox in, 3 outputs, 4 inputs),
+///   the PDO assignment of SM n at 1C10h + n — 1C12h the outputs'
+///   (RxPDOs), 1C13h the inputs' (TxPDOs) on the usual layout — and the
+///   synchronization of SM n at 1C30h + n; ETG.1020 (EtherCAT protocol
+///   enhancements, synchronization) names 1C32h and 1C33h, the output and
+///   input sync manager parameters (sync mode, cycle time, shift times).
+///   1C00h is named as ETG.1000.6 names it, the others as ETG.1020 and
+///   the ESI files of Beckhoff's devices do; only these indices, not the
+///   whole ranges, since what 1C10h + n and 1C30h + n hold depends on the
+///   device's sync manager layout.
 /// - **Drive**: CiA 402 part 2 (IEC 61800-7-201), the objects of the common
 ///   entries, device control, the factor group and the operating modes
 ///   (vl, pp, pv, tq, hm, ip, touch probe); checked against CiA DSP 402
@@ -246,6 +260,12 @@ pub const OBJECT_NAMES: &[ObjectName] = &[
     comm_numbered(0x1600, 0x17FF, "RPDO mapping parameter"),
     comm_numbered(0x1800, 0x19FF, "TPDO communication parameter"),
     comm_numbered(0x1A00, 0x1BFF, "TPDO mapping parameter"),
+    // ETG.1000.6 and ETG.1020: the sync manager objects of CoE.
+    comm(0x1C00, "Sync manager communication type"),
+    comm(0x1C12, "RxPDO assign"),
+    comm(0x1C13, "TxPDO assign"),
+    comm(0x1C32, "SM output parameter"),
+    comm(0x1C33, "SM input parameter"),
     // CiA 302-3: configuration manager and program download.
     comm(0x1F20, "Store DCF"),
     comm(0x1F22, "Concise DCF"),
@@ -687,7 +707,15 @@ mod tests {
             (0x19FF, Some("TPDO communication parameter")),
             (0x1A00, Some("TPDO mapping parameter")),
             (0x1BFF, Some("TPDO mapping parameter")),
-            (0x1C00, None),
+            (0x1C00, Some("Sync manager communication type")),
+            (0x1C01, None),
+            (0x1C11, None),
+            (0x1C12, Some("RxPDO assign")),
+            (0x1C13, Some("TxPDO assign")),
+            (0x1C14, None),
+            (0x1C32, Some("SM output parameter")),
+            (0x1C33, Some("SM input parameter")),
+            (0x1C34, None),
             (0x1F9F, None),
             (0x1FA0, Some("Object scanner list")),
             (0x1FCF, Some("Object scanner list")),

@@ -53,6 +53,12 @@ pub const SYNC_MANAGER_PDI_CONTROL: u16 = 7;
 pub const RECEIVE_TIMES: u16 = 0x0900;
 /// DC system time (8 bytes).
 pub const SYSTEM_TIME: u16 = 0x0910;
+/// DC system time offset (8 bytes, or 4 on a slave with a 32-bit clock:
+/// added to the local time to give the system time).
+pub const SYSTEM_TIME_OFFSET: u16 = 0x0920;
+/// DC system time delay (4 bytes, ns: the propagation delay from the
+/// reference clock).
+pub const SYSTEM_TIME_DELAY: u16 = 0x0928;
 /// DC system time difference (4 bytes: the mean difference in bits 0–30,
 /// bit 31 set when the local copy is the smaller).
 pub const SYSTEM_TIME_DIFFERENCE: u16 = 0x092C;

@@ -17,7 +17,6 @@ use motionwire::decoder::ethercat::{
     QUIET_KINDS, SERVO_KIND,
 };
 use motionwire::decoder::{Decoder, DecoderConfig};
-use motionwire::ethercat::Addressing;
 use motionwire::logs::candump::RelativeTimestamps;
 use motionwire::logs::{
     EventFilter, LogError, LogErrorKind, LogVisitor, Position, ReadLog, ReadOptions,
@@ -378,8 +377,13 @@ impl<'a> Sink<'a> {
                 number: at + 1,
                 datagram,
             };
-            let station =
-                (datagram.command().addressing() == Addressing::Station).then(|| datagram.adp());
+            // The slave it reaches, by station address or alias: asked
+            // only when `--slave` selects.
+            let station = if self.ethercat_shown.slaves.is_empty() {
+                None
+            } else {
+                self.ethercat.station(&packet, &datagram)
+            };
             if self.ethercat_shown.shows(DATAGRAM_KIND, station) {
                 match self.output {
                     Output::Json => {

@@ -1,7 +1,8 @@
 //! The distributed-clock registers a datagram covers
 //! (docs/ethercat.md#dc): port receive times, system time, the system-time
-//! difference, SYNC activation and the SYNC0/SYNC1 cycle times (Beckhoff's
-//! ESC datasheet, section II, 0x0900–0x09A7).
+//! offset and delay, the system-time difference, SYNC activation and the
+//! SYNC0/SYNC1 cycle times (Beckhoff's ESC datasheet, section II,
+//! 0x0900–0x09A7).
 
 use crate::ethercat::register::{self, covered};
 
@@ -19,6 +20,12 @@ use crate::ethercat::register::{self, covered};
 /// assert_eq!((written.sync0(), written.sync1()), (Some(true), Some(false)));
 /// // A write of 0x0910 is the drift compensation's, no register here.
 /// assert_eq!(DcRegisters::covered(0x0910, &[0; 8], false), None);
+/// // ethercrab's write of the offset and, in the next datagram, the delay.
+/// let offset = (-1_000_000_000i64).to_le_bytes();
+/// let written = DcRegisters::covered(0x0920, &offset, false).unwrap();
+/// assert_eq!(written.system_time_offset_ns, Some(-1_000_000_000));
+/// let written = DcRegisters::covered(0x0928, &[0x2c, 0x01, 0, 0], false).unwrap();
+/// assert_eq!(written.system_time_delay_ns, Some(300));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct DcRegisters {
@@ -28,6 +35,17 @@ pub struct DcRegisters {
     /// The system time (0x0910, ns since 2000-01-01), read: 64 bits, or
     /// the low 32 where the read covers 4 bytes.
     pub system_time: Option<u64>,
+    /// The system-time offset (0x0920), read or written: what the slave
+    /// adds to its local time to give the system time, in ns, as a
+    /// two's-complement number — 64 bits, or 32 where the datagram covers
+    /// 4 bytes (a slave with a 32-bit clock). The specification types it
+    /// unsigned, but the addition wraps either way and masters write
+    /// negative offsets (ethercrab: the master's time minus the slave's
+    /// receive time).
+    pub system_time_offset_ns: Option<i64>,
+    /// The system-time delay (0x0928), read or written: the propagation
+    /// delay from the reference clock to the slave, in ns.
+    pub system_time_delay_ns: Option<u32>,
     /// The system-time difference (0x092C), read: the local copy minus
     /// the received time, in ns (bits 0–30 the magnitude, bit 31 the sign).
     pub time_difference_ns: Option<i64>,
@@ -44,18 +62,27 @@ pub struct DcRegisters {
 
 impl DcRegisters {
     /// Return the registers a datagram at `ado` with `data` covers: every
-    /// one for a read (`read`), the configuration (cyclic unit control,
-    /// activation, cycle times) for a write — a write of the receive
-    /// times latches them and one of the system time is the drift
-    /// compensation's, neither a value of the slave. `None` when it
-    /// covers none.
+    /// one for a read (`read`), the configuration (system-time offset and
+    /// delay, cyclic unit control, activation, cycle times) for a write —
+    /// a write of the receive times latches them and one of the system
+    /// time is the drift compensation's, neither a value of the slave.
+    /// `None` when it covers none.
     #[must_use]
     pub fn covered(ado: u16, data: &[u8], read: bool) -> Option<Self> {
         let u32_at = |reg: u16| {
             covered(ado, data, reg, 4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         };
         let byte_at = |reg: u16| covered(ado, data, reg, 1).map(|b| b[0]);
+        let offset = match covered(ado, data, register::SYSTEM_TIME_OFFSET, 8) {
+            Some(b) => Some(i64::from_le_bytes([
+                b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7],
+            ])),
+            None => covered(ado, data, register::SYSTEM_TIME_OFFSET, 4)
+                .map(|b| i64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+        };
         let mut dc = DcRegisters {
+            system_time_offset_ns: offset,
+            system_time_delay_ns: u32_at(register::SYSTEM_TIME_DELAY),
             cyclic_unit_control: byte_at(register::CYCLIC_UNIT_CONTROL),
             activation: byte_at(register::SYNC_ACTIVATION),
             sync0_cycle_ns: u32_at(register::SYNC0_CYCLE_TIME),
@@ -96,9 +123,19 @@ impl DcRegisters {
     }
 }
 
-/// The system-time difference register's value in ns, signed: bits 0–30
-/// the mean difference, bit 31 set when the local copy is smaller than the
-/// received time.
+/// The system-time difference register's value in ns, signed, the local
+/// copy of the system time minus the received system time: bits 0–30 the
+/// mean difference, bit 31 set when the local copy is smaller than the
+/// received time — a sign and a magnitude, not two's complement.
+///
+/// This is the register description of Beckhoff's ESC datasheet (section
+/// II, 0x092C:0x092F: bit 31 "0: local copy of System Time greater than or
+/// equal received System Time, 1: local copy of System Time smaller than
+/// received System Time"), which Infineon's XMC4800 reference manual
+/// repeats for its ESC (`ECAT0.DC_SYS_TIME_DIFF`, field `CPY`). Masters
+/// read it so: ethercrab's `examples/dc.rs` and SOEM's
+/// `test/linux/red_test/red_test.c` negate the magnitude when bit 31 is
+/// set.
 #[must_use]
 pub const fn time_difference(raw: u32) -> i64 {
     let magnitude = (raw & 0x7FFF_FFFF) as i64;
@@ -128,6 +165,8 @@ mod tests {
                 prop_assert_eq!(written.time_difference_ns, None);
                 let read = read.unwrap();
                 prop_assert_eq!(read.activation, written.activation);
+                prop_assert_eq!(read.system_time_offset_ns, written.system_time_offset_ns);
+                prop_assert_eq!(read.system_time_delay_ns, written.system_time_delay_ns);
                 prop_assert_eq!(read.sync0_cycle_ns, written.sync0_cycle_ns);
                 prop_assert_eq!(read.sync1_cycle_ns, written.sync1_cycle_ns);
             }
@@ -155,6 +194,38 @@ mod tests {
         assert_eq!(dc.time_difference_ns, None);
         // Written, the same bytes latch the times: nothing to decode.
         assert_eq!(DcRegisters::covered(0x0900, &data, false), None);
+    }
+
+    /// TwinCAT's APWR of 0x0920 with 12 bytes: the offset and the delay;
+    /// a 4-byte offset is a 32-bit clock's, signed as well.
+    #[test]
+    fn the_offset_and_the_delay_are_read_or_written() {
+        let mut data = [0u8; 12];
+        data[..8].copy_from_slice(&0x0000_02AB_CDEF_0123u64.to_le_bytes());
+        data[8..].copy_from_slice(&450u32.to_le_bytes());
+        for read in [true, false] {
+            let dc = DcRegisters::covered(0x0920, &data, read).unwrap();
+            assert_eq!(dc.system_time_offset_ns, Some(0x0000_02AB_CDEF_0123));
+            assert_eq!(dc.system_time_delay_ns, Some(450));
+            assert_eq!(dc.time_difference_ns, None);
+        }
+        let narrow = DcRegisters::covered(0x0920, &[0xff, 0xff, 0xff, 0xff], false).unwrap();
+        assert_eq!(narrow.system_time_offset_ns, Some(-1));
+        assert_eq!(narrow.system_time_delay_ns, None);
+        // A read from 0x0910 with 32 bytes covers every one of them.
+        let mut wide = [0u8; 32];
+        wide[16..24].copy_from_slice(&(-5i64).to_le_bytes());
+        wide[28..].copy_from_slice(&0x8000_0007u32.to_le_bytes());
+        let dc = DcRegisters::covered(0x0910, &wide, true).unwrap();
+        assert_eq!(
+            (
+                dc.system_time,
+                dc.system_time_offset_ns,
+                dc.system_time_delay_ns,
+                dc.time_difference_ns
+            ),
+            (Some(0), Some(-5), Some(0), Some(-7))
+        );
     }
 
     #[test]

@@ -838,6 +838,15 @@ impl Network {
             })
     }
 
+    /// The station address of the slave an FPxx at `adp` reaches
+    /// ([`addressed`](Self::addressed)); `adp` where no slave known by
+    /// its station address answers to it.
+    pub(super) fn station_reached(&self, adp: u16) -> u16 {
+        self.addressed(adp)
+            .and_then(|at| self.slaves[at].station)
+            .unwrap_or(adp)
+    }
+
     /// The registers of docs/ethercat.md#alias, #dc and #mailbox-repeat a
     /// delivered datagram covers.
     fn registers<'a>(

@@ -85,6 +85,15 @@ fn dc_json(obj: &mut Object<'_>, dc: &DcRegisters) {
     }
     out.push(b']');
     opt_uint(obj, "system_time", dc.system_time);
+    match dc.system_time_offset_ns {
+        Some(ns) => json::int(obj.key("system_time_offset_ns"), ns),
+        None => obj.null("system_time_offset_ns"),
+    }
+    opt_uint(
+        obj,
+        "system_time_delay_ns",
+        dc.system_time_delay_ns.map(u64::from),
+    );
     match dc.time_difference_ns {
         Some(ns) => json::int(obj.key("time_difference_ns"), ns),
         None => obj.null("time_difference_ns"),
@@ -164,6 +173,12 @@ fn dc_words(f: &mut fmt::Formatter<'_>, dc: &DcRegisters) -> fmt::Result {
     }
     if let Some(time) = dc.system_time {
         write!(f, " system time {time} ns")?;
+    }
+    if let Some(ns) = dc.system_time_offset_ns {
+        write!(f, " system time offset {ns} ns")?;
+    }
+    if let Some(ns) = dc.system_time_delay_ns {
+        write!(f, " system time delay {ns} ns")?;
     }
     if let Some(ns) = dc.time_difference_ns {
         write!(f, " system time difference {ns} ns")?;

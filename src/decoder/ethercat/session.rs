@@ -6,7 +6,7 @@ use std::cell::OnceCell;
 use std::collections::VecDeque;
 
 use crate::can::{EthercatPacket, Iface, Timestamp};
-use crate::ethercat::{Command, Datagram, Datagrams, EthercatFrame, FrameType, Mac};
+use crate::ethercat::{Addressing, Command, Datagram, Datagrams, EthercatFrame, FrameType, Mac};
 
 use super::config::SlaveConfig;
 use super::network::{Meaning, Network};
@@ -373,6 +373,28 @@ impl Session {
         }
     }
 
+    /// Return the station address of the slave a station-addressed
+    /// datagram (FPRD, FPWR, FPRW, FRMW) of `packet` reaches: the slave of
+    /// that station address, else the one whose enabled station alias its
+    /// ADP is, as the datagrams read so far set it up
+    /// (docs/ethercat.md#alias); the ADP itself where the session knows
+    /// neither. `None` for a datagram addressed otherwise (by position,
+    /// broadcast, logical), which names no one slave. `decode --slave`
+    /// keeps a slave's datagrams so, whichever way they were addressed
+    /// (docs/ethercat.md#filters).
+    #[must_use]
+    pub fn station(&self, packet: &Packet<'_>, datagram: &Datagram<'_>) -> Option<u16> {
+        if datagram.command().addressing() != Addressing::Station {
+            return None;
+        }
+        let adp = datagram.adp();
+        Some(
+            self.ports
+                .get(packet.port)
+                .map_or(adp, |port| port.network.station_reached(adp)),
+        )
+    }
+
     /// Take what a configuration file (an ENI, `parse_eni`) or a mapping
     /// given by hand says of the slaves' process data, for every port
     /// (docs/ethercat.md#process-data). Where the capture's start-up
@@ -665,7 +687,7 @@ impl Shape {
                     mix(command.byte());
                     mix(datagram.index());
                     counted |= datagram.working_counter() != 0;
-                    positioned |= command.addressing() == crate::ethercat::Addressing::Position;
+                    positioned |= command.addressing() == Addressing::Position;
                     cyclic |= is_cyclic(command);
                 }
                 Err(_) => {
