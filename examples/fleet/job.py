@@ -6,6 +6,7 @@ the fleet's questions answered from them in Spark SQL and in DuckDB
 
     python3 examples/fleet/generate.py /tmp/fleet
     python3 examples/fleet/job.py /tmp/fleet            # local[*]
+    python3 examples/fleet/job.py /tmp/fleet --remote sc://host:15002   # Spark Connect
 
 Writes FLEET/tables/summary and FLEET/tables/findings (Parquet), prints
 the answers as Markdown tables, and checks them against the generator's
@@ -95,7 +96,12 @@ def markdown(columns: list[str], rows: list) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("fleet", type=Path)
-    parser.add_argument("--master", default="local[*]")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--master", default="local[*]", help="a classic session's master")
+    where.add_argument(
+        "--remote",
+        help="a Spark Connect server (sc://host:port, or local[2] for pyspark 4's own)",
+    )
     args = parser.parse_args(argv)
     logs, tables = args.fleet / "logs", args.fleet / "tables"
 
@@ -103,16 +109,21 @@ def main(argv=None) -> int:
 
     os.environ.setdefault("PYSPARK_PYTHON", sys.executable)
     started = time.perf_counter()
+    builder = SparkSession.builder.appName("motionwire-fleet")
+    if args.remote:
+        builder = builder.remote(args.remote)
+    else:
+        builder = builder.master(args.master).config("spark.ui.enabled", "false")
     spark = (
-        SparkSession.builder.master(args.master)
-        .appName("motionwire-fleet")
-        .config("spark.ui.enabled", "false")
-        .config("spark.ui.showConsoleProgress", "false")
+        builder.config("spark.ui.showConsoleProgress", "false")
         .config("spark.sql.shuffle.partitions", "8")
         .getOrCreate()
     )
-    spark.sparkContext.setLogLevel("ERROR")
-    print(f"Spark {spark.version} on {args.master}: session in {time.perf_counter() - started:.1f} s")
+    if not args.remote:
+        # A Connect session has no SparkContext; its server logs apart.
+        spark.sparkContext.setLogLevel("ERROR")
+    on = args.remote or args.master
+    print(f"Spark {spark.version} on {on}: session in {time.perf_counter() - started:.1f} s")
 
     for name, make in (("summary", mws.summary), ("findings", mws.findings)):
         t = time.perf_counter()
