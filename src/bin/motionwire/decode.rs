@@ -162,8 +162,8 @@ struct Sink<'a> {
     /// `--from`, `--to`, `--iface`: what is read at all, the summary and
     /// the page included (docs/output.md#window).
     filter: EventFilter,
-    /// Frames of the file being read that the filter keeps.
-    file_kept: u64,
+    /// Frames of the file being read that the filter leaves out.
+    file_dropped: u64,
     skipped: u64,
     /// Damaged records of binary logs reported.
     damaged: u64,
@@ -173,8 +173,9 @@ struct Sink<'a> {
     /// Say every complaint, not only the first [`COMPLAINTS_PER_FILE`] of
     /// each file.
     verbose: bool,
-    /// Log entries read (frames and bus events), from every input.
-    entries: u64,
+    /// Bus events read (log entries that are not frames), from every
+    /// input.
+    bus_events: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
     /// Frames read so far, from every input.
@@ -283,13 +284,13 @@ impl<'a> Sink<'a> {
             nodes,
             ids: &args.id,
             filter: args.reading.event_filter(),
-            file_kept: 0,
+            file_dropped: 0,
             skipped: 0,
             damaged: 0,
             file_skipped: 0,
             file_damaged: 0,
             verbose: args.reading.verbose,
-            entries: 0,
+            bus_events: 0,
             progress_shown: false,
             frames: 0,
             decoder: Decoder::new(config.clone()),
@@ -485,11 +486,14 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
-        self.entries += 1;
         let kept = self.filter.keeps(event);
-        if let LogEvent::Frame(_) | LogEvent::Ethercat(_) = event {
+        if let LogEvent::Status(_) = event {
+            self.bus_events += 1;
+        } else {
             self.frames += 1;
-            self.file_kept += u64::from(kept);
+            if !kept {
+                self.file_dropped += 1;
+            }
         }
         // The summary and the page are those of the events kept.
         if let Some(summary) = self.summary.as_mut() {
@@ -692,10 +696,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
         sink.input.clone_from(&name);
-        let entries_before = sink.entries;
+        let bus_events_before = sink.bus_events;
         sink.file_skipped = 0;
         sink.file_damaged = 0;
-        sink.file_kept = 0;
+        sink.file_dropped = 0;
         let reversals_before = sink.ethercat.counts().time_reversals;
         let last = log.visit(ReadAll {
             sink: &mut sink,
@@ -719,7 +723,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
                 back.as_secs_f64()
             )?;
         }
-        if sink.file_skipped + sink.file_damaged > 0 && sink.entries == entries_before {
+        if sink.file_skipped + sink.file_damaged > 0
+            && sink.frames == before
+            && sink.bus_events == bus_events_before
+        {
             // Nothing read but complaints: the input is not what it was
             // read as (`--format trc` on a candump log), said in one line.
             sink.flush()?;
@@ -740,10 +747,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         if sink.frames == before {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
-        } else if sink.file_kept == 0 && !sink.filter.is_empty() {
+        } else if sink.file_dropped == sink.frames - before && !sink.filter.is_empty() {
             // A UTC window on a log of relative times, a channel number
             // for a named interface: said, not left to an empty output.
-            let read = sink.frames - before;
+            let read = sink.file_dropped;
             writeln!(
                 sink.err,
                 "{name}: none of its {read} frame{} passes {}",
