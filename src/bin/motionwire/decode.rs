@@ -160,7 +160,8 @@ struct Sink<'a> {
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
     /// `--from`, `--to`, `--iface`: what is read at all, the summary and
-    /// the page included (docs/output.md#window).
+    /// the page included (docs/output.md#window). Without them every event
+    /// is kept, and the filter is not asked.
     filter: EventFilter,
     /// Frames of the file being read that the filter leaves out.
     file_dropped: u64,
@@ -486,24 +487,21 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
-        let kept = self.filter.keeps(event);
         if let LogEvent::Status(_) = event {
             self.bus_events += 1;
         } else {
             self.frames += 1;
-            if !kept {
-                self.file_dropped += 1;
-            }
+        }
+        if !self.filter.is_empty() && !self.filter.keeps(event) {
+            return self.left_out(position, event);
         }
         // The summary and the page are those of the events kept.
         if let Some(summary) = self.summary.as_mut() {
-            if kept {
-                summary.add(position, event);
-            }
+            summary.add(position, event);
             return Ok(());
         }
         if self.recorder.is_some() {
-            if kept && self.page_keeps(event) {
+            if self.page_keeps(event) {
                 if let Some(recorder) = self.recorder.as_mut() {
                     recorder.add(position, event);
                 }
@@ -511,9 +509,28 @@ impl<'a> Sink<'a> {
             return Ok(());
         }
         match event {
-            LogEvent::Frame(frame) => self.frame(position, frame, kept),
+            LogEvent::Frame(frame) => self.frame(position, frame, true),
             LogEvent::Status(_) => Ok(()),
-            LogEvent::Ethercat(packet) => self.ethercat(position, packet, kept),
+            LogEvent::Ethercat(packet) => self.ethercat(position, packet, true),
+        }
+    }
+
+    /// An event that `--from`, `--to` or `--iface` leave out: a frame or
+    /// packet is counted and, outside the summary and the page, still
+    /// teaches the decoder or the EtherCAT session; no record is written.
+    #[cold]
+    fn left_out(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
+        if let LogEvent::Status(_) = event {
+            return Ok(());
+        }
+        self.file_dropped += 1;
+        if self.summary.is_some() || self.recorder.is_some() {
+            return Ok(());
+        }
+        match event {
+            LogEvent::Frame(frame) => self.frame(position, frame, false),
+            LogEvent::Status(_) => Ok(()),
+            LogEvent::Ethercat(packet) => self.ethercat(position, packet, false),
         }
     }
 
