@@ -442,6 +442,9 @@ pub struct Decoder {
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, CodecError>>,
     next_map: u32,
+    /// The guard requests not yet answered, on every bus: with none, a
+    /// heartbeat is one without a look at its bus's requests.
+    guard_requests: u32,
 }
 
 impl Decoder {
@@ -460,6 +463,7 @@ impl Decoder {
             names,
             signals: Vec::with_capacity(64),
             next_map: 0,
+            guard_requests: 0,
         }
     }
 
@@ -522,14 +526,21 @@ impl Decoder {
         node: NodeId,
     ) -> (usize, MessageKind) {
         let at = self.bus(frame.iface);
+        if kind == MessageKind::Heartbeat && self.guard_requests == 0 {
+            return (at, kind);
+        }
         let pending = &mut self.buses.get_mut(at).guard_requests[usize::from(node.get())];
         let kind = match kind {
             MessageKind::GuardRequest => {
-                *pending = true;
+                if !*pending {
+                    *pending = true;
+                    self.guard_requests += 1;
+                }
                 kind
             }
             MessageKind::Heartbeat if *pending => {
                 *pending = false;
+                self.guard_requests -= 1;
                 MessageKind::GuardAnswer
             }
             _ => kind,
