@@ -288,9 +288,11 @@ impl Summarizer {
         at: usize,
         name: impl FnOnce() -> BusName,
     ) -> (&BusName, &mut BusState) {
-        if at >= buses.len() {
-            Self::new_bus(buses, heartbeat, name());
+        if at < buses.len() {
+            let (name, bus) = &mut buses[at];
+            return (name, bus);
         }
+        Self::new_bus(buses, heartbeat, name());
         let (name, bus) = &mut buses[at];
         (name, bus)
     }
