@@ -488,10 +488,9 @@ impl<'a> Sink<'a> {
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
         if let LogEvent::Status(_) = event {
-            self.bus_events += 1;
-        } else {
-            self.frames += 1;
+            return self.bus_event(position, event);
         }
+        self.frames += 1;
         if !self.filter.is_empty() && !self.filter.keeps(event) {
             return self.left_out(position, event);
         }
@@ -515,14 +514,31 @@ impl<'a> Sink<'a> {
         }
     }
 
-    /// An event that `--from`, `--to` or `--iface` leave out: a frame or
-    /// packet is counted and, outside the summary and the page, still
-    /// teaches the decoder or the EtherCAT session; no record is written.
+    /// A bus event (a TRC status row): counted, and added to the summary
+    /// or the page when the filter keeps it; it has no record.
     #[cold]
-    fn left_out(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
-        if let LogEvent::Status(_) = event {
+    fn bus_event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
+        self.bus_events += 1;
+        if !self.filter.is_empty() && !self.filter.keeps(event) {
             return Ok(());
         }
+        if let Some(summary) = self.summary.as_mut() {
+            // `add_with` rather than `add`: with a second call, `add` would
+            // no longer be compiled into the frames' path (`event`).
+            summary.add_with(position, event, |_| {});
+        } else if self.recorder.is_some() && self.page_keeps(event) {
+            if let Some(recorder) = self.recorder.as_mut() {
+                recorder.add(position, event);
+            }
+        }
+        Ok(())
+    }
+
+    /// A frame or packet that `--from`, `--to` or `--iface` leave out:
+    /// counted and, outside the summary and the page, still read by the
+    /// decoder or the EtherCAT session; no record is written.
+    #[cold]
+    fn left_out(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
         self.file_dropped += 1;
         if self.summary.is_some() || self.recorder.is_some() {
             return Ok(());
