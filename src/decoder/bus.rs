@@ -63,15 +63,16 @@ impl<T> Default for Buses<T> {
 
 impl<T> Buses<T> {
     /// Return the index of the bus of `iface`, made with `make` on first
-    /// sight; the second value says whether it was made now.
+    /// sight; the second value says whether it was made now. The interface
+    /// is read where the frame holds it, not copied for the search.
     #[inline(always)]
     pub(crate) fn find_or_insert(
         &mut self,
-        iface: Option<Iface<'_>>,
+        iface: &Option<Iface<'_>>,
         make: impl FnOnce(&BusName) -> T,
     ) -> (usize, bool) {
         if let Some((name, _)) = self.buses.get(self.last) {
-            if name.is(iface) {
+            if name.is(*iface) {
                 return (self.last, false);
             }
         }
@@ -81,13 +82,13 @@ impl<T> Buses<T> {
     #[inline(never)]
     fn find_or_insert_slow(
         &mut self,
-        iface: Option<Iface<'_>>,
+        iface: &Option<Iface<'_>>,
         make: impl FnOnce(&BusName) -> T,
     ) -> (usize, bool) {
-        let (at, made) = match self.buses.iter().position(|(name, _)| name.is(iface)) {
+        let (at, made) = match self.buses.iter().position(|(name, _)| name.is(*iface)) {
             Some(at) => (at, false),
             None => {
-                let name = BusName::of(iface);
+                let name = BusName::of(*iface);
                 let value = make(&name);
                 self.buses.push((name, value));
                 (self.buses.len() - 1, true)

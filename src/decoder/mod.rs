@@ -442,6 +442,9 @@ pub struct Decoder {
     /// The signals of the last PDO (reused: no allocation per frame).
     signals: Vec<Result<Signal, CodecError>>,
     next_map: u32,
+    /// The guard requests not yet answered, on every bus: with none, a
+    /// heartbeat is one without a look at its bus's requests.
+    guard_requests: u32,
 }
 
 impl Decoder {
@@ -460,6 +463,7 @@ impl Decoder {
             names,
             signals: Vec::with_capacity(64),
             next_map: 0,
+            guard_requests: 0,
         }
     }
 
@@ -521,15 +525,22 @@ impl Decoder {
         kind: MessageKind,
         node: NodeId,
     ) -> (usize, MessageKind) {
-        let at = self.bus(frame.iface);
+        let at = self.bus(&frame.iface);
+        if kind == MessageKind::Heartbeat && self.guard_requests == 0 {
+            return (at, kind);
+        }
         let pending = &mut self.buses.get_mut(at).guard_requests[usize::from(node.get())];
         let kind = match kind {
             MessageKind::GuardRequest => {
-                *pending = true;
+                if !*pending {
+                    *pending = true;
+                    self.guard_requests += 1;
+                }
                 kind
             }
             MessageKind::Heartbeat if *pending => {
                 *pending = false;
+                self.guard_requests -= 1;
                 MessageKind::GuardAnswer
             }
             _ => kind,
@@ -585,7 +596,7 @@ impl Decoder {
         frame: &LogFrame<'_>,
     ) -> (usize, Option<(NodeId, Cia402Reading)>) {
         let can = &frame.frame;
-        let at = self.bus(frame.iface);
+        let at = self.bus(&frame.iface);
         let cob_id = can.id().raw() as u16;
         if self.config.signals {
             return (
@@ -621,7 +632,7 @@ impl Decoder {
     /// log shows them): the summary keeps what it learns of a bus at the
     /// same place. A new bus starts with the nodes' descriptions.
     #[inline(always)]
-    pub(crate) fn bus(&mut self, iface: Option<Iface<'_>>) -> usize {
+    pub(crate) fn bus(&mut self, iface: &Option<Iface<'_>>) -> usize {
         let (at, made) = self.buses.find_or_insert(iface, |_| BusState::new());
         if made {
             self.describe(at);
@@ -672,7 +683,7 @@ impl Decoder {
         position: Position,
         then: impl FnOnce(usize, &SdoSeen<'_, 'd>, Option<Cia402Reading>) -> R,
     ) -> R {
-        let at = self.bus(frame.iface);
+        let at = self.bus(&frame.iface);
         let bytes = frame.frame.data();
         let cap = self.config.sdo_data_cap;
         let state = self.buses.get_mut(at).node(node, &self.config.profiles);
@@ -814,7 +825,7 @@ impl Decoder {
         cob_id: u16,
         data: &[u8],
     ) -> Option<(PdoReading<'_>, Option<Cia402Reading>)> {
-        let at = self.bus(iface);
+        let at = self.bus(&iface);
         self.pdo_at(at, cob_id, data)
     }
 

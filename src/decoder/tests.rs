@@ -603,3 +603,28 @@ fn the_first_data_frame_after_a_guard_request_is_its_answer() {
         "{json}"
     );
 }
+
+/// A request repeated before its answer is answered once; the requests of
+/// several nodes each get their own answer, and once all are answered,
+/// every data frame is a heartbeat again.
+#[test]
+fn each_waiting_guard_request_gets_one_answer() {
+    let mut decoder = Decoder::new(DecoderConfig::new());
+    let frames = [
+        (guard_request(0, 0x70A), MessageKind::GuardRequest),
+        (guard_request(1, 0x70A), MessageKind::GuardRequest),
+        (guard_request(2, 0x70B), MessageKind::GuardRequest),
+        (at(3, 0x70A, &[0x05]), MessageKind::GuardAnswer),
+        (at(4, 0x70A, &[0x05]), MessageKind::Heartbeat),
+        (at(5, 0x70B, &[0x85]), MessageKind::GuardAnswer),
+        (at(6, 0x70B, &[0x05]), MessageKind::Heartbeat),
+        (at(7, 0x70A, &[0x05]), MessageKind::Heartbeat),
+        (guard_request(8, 0x70B), MessageKind::GuardRequest),
+        (at(9, 0x70A, &[0x05]), MessageKind::Heartbeat),
+        (at(10, 0x70B, &[0x05]), MessageKind::GuardAnswer),
+    ];
+    for (i, (frame, kind)) in frames.iter().enumerate() {
+        let decoded = decoder.decode(Position::Line(i as u64 + 1), frame);
+        assert_eq!(decoded.kind, *kind, "line {}", i + 1);
+    }
+}

@@ -274,7 +274,7 @@ impl Summarizer {
     #[cfg(feature = "report")]
     #[inline]
     pub(crate) fn bus_at(&mut self, iface: Option<crate::can::Iface<'_>>) -> usize {
-        self.decoder.bus(iface)
+        self.decoder.bus(&iface)
     }
 
     /// What the summary keeps of the bus at `at` in the decoder's table,
@@ -288,9 +288,11 @@ impl Summarizer {
         at: usize,
         name: impl FnOnce() -> BusName,
     ) -> (&BusName, &mut BusState) {
-        if at >= buses.len() {
-            Self::new_bus(buses, heartbeat, name());
+        if at < buses.len() {
+            let (name, bus) = &mut buses[at];
+            return (name, bus);
         }
+        Self::new_bus(buses, heartbeat, name());
         let (name, bus) = &mut buses[at];
         (name, bus)
     }
@@ -344,7 +346,7 @@ impl Summarizer {
             untimed,
             ..
         } = self;
-        let at = decoder.bus(log.iface);
+        let at = decoder.bus(&log.iface);
         let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
         let decoded = decoder.decode(position, log);
         add_classified(
@@ -426,7 +428,7 @@ impl Summarizer {
             (MessageKind::Heartbeat | MessageKind::GuardRequest, Some(n)) => {
                 decoder.error_control_frame(log, kind, n)
             }
-            _ => (decoder.bus(log.iface), kind),
+            _ => (decoder.bus(&log.iface), kind),
         };
         let (name, bus) = Self::bus_state(buses, *heartbeat, at, || decoder.bus_name(at).clone());
         add_classified(
@@ -445,7 +447,7 @@ impl Summarizer {
 
     /// Count a log entry that is not a frame (a TRC status row).
     fn add_status(&mut self, status: &BusStatus<'_>) {
-        let at = self.decoder.bus(status.iface);
+        let at = self.decoder.bus(&status.iface);
         let decoder = &self.decoder;
         let (_, bus) = Self::bus_state(&mut self.buses, self.heartbeat, at, || {
             decoder.bus_name(at).clone()

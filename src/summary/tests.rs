@@ -372,6 +372,63 @@ fn adding_is_decoding_then_adding_on_every_log() {
     assert!(frames > 1_000, "{frames}");
 }
 
+/// docs/summary.md#verdict: a summary has a verdict exactly when one of
+/// its findings stops the recording (a fault, a heartbeat timeout, a
+/// bus-off, an AL error, a servo fault), on every log of the repository,
+/// with a heartbeat consumer time and without; a log with findings but no
+/// such one among them has none.
+#[cfg(feature = "logs")]
+#[test]
+fn a_verdict_exactly_when_a_finding_stops_on_every_log() {
+    use crate::logs::ReadLog;
+    let stops = |f: &Finding| {
+        !f.is_omitted()
+            && matches!(
+                f.kind,
+                FindingKind::Cia402Fault
+                    | FindingKind::HeartbeatTimeout
+                    | FindingKind::BusOff
+                    | FindingKind::AlError
+                    | FindingKind::ServoFault
+            )
+    };
+    let (mut with, mut without) = (0, 0);
+    for path in &repository_logs() {
+        for heartbeat in [None, Some(Duration::from_millis(150))] {
+            let mut config = DecoderConfig::new();
+            if let Some(time) = heartbeat {
+                config = config.heartbeat_timeout(time);
+            }
+            let mut summarizer = Summarizer::new(config);
+            let Ok(mut log) = crate::logs::open(path) else {
+                continue;
+            };
+            while let Some(record) = log.next_event() {
+                if let Ok(record) = record {
+                    summarizer.add(record.position, &record.event);
+                }
+            }
+            let summary = summarizer.finish();
+            let findings = summary.findings();
+            assert_eq!(
+                summary.verdict().is_some(),
+                findings.iter().any(stops),
+                "{}, heartbeat {heartbeat:?}",
+                path.display()
+            );
+            if summary.verdict().is_some() {
+                with += 1;
+            } else if !findings.is_empty() {
+                without += 1;
+            }
+        }
+    }
+    assert!(
+        with > 0 && without > 0,
+        "{with} with a verdict, {without} without"
+    );
+}
+
 /// The summary keeps each bus at its place in the decoder's table: frames
 /// of two interfaces in turns, SDO and not, count each on its own bus.
 #[test]

@@ -377,6 +377,9 @@ impl Verdict {
     /// bus-off.
     #[must_use]
     pub fn of(summary: &Summary) -> Option<Verdict> {
+        if !summary.may_stop() {
+            return None;
+        }
         let findings = summary.findings();
         let at = findings.iter().rposition(|f| {
             !f.is_omitted()
@@ -423,6 +426,26 @@ impl Verdict {
             first_cause: first_cause.clone(),
             start,
         })
+    }
+}
+
+impl Summary {
+    /// Whether the summary may hold a finding that stops the recording: a
+    /// CiA 402 fault, a heartbeat timeout or a bus-off listed, or an
+    /// EtherCAT slave (whose AL errors and servo faults stop it too).
+    /// Without one, [`Verdict::of`] has nothing to find and builds no
+    /// findings.
+    fn may_stop(&self) -> bool {
+        let node_stops = |n: &NodeSummary| {
+            n.cia402
+                .as_ref()
+                .and_then(|c| c.faults.as_ref())
+                .is_some_and(|faults| !faults.is_empty())
+                || matches!(&n.heartbeat.timeouts, Timeouts::Checked(gaps) if !gaps.is_empty())
+        };
+        self.nodes.iter().any(node_stops)
+            || self.buses.iter().any(|b| !b.bus_off.is_empty())
+            || !self.ethercat.slaves.is_empty()
     }
 }
 

@@ -156,10 +156,11 @@ struct Sink<'a> {
     nodes: Option<[bool; 128]>,
     ids: &'a [IdRange],
     /// `--from`, `--to`, `--iface`: what is read at all, the summary and
-    /// the page included (docs/output.md#window).
+    /// the page included (docs/output.md#window). Without them every event
+    /// is kept, and the filter is not asked.
     filter: EventFilter,
-    /// Frames of the file being read that the filter keeps.
-    file_kept: u64,
+    /// Frames of the file being read that the filter leaves out.
+    file_dropped: u64,
     skipped: u64,
     /// Damaged records of binary logs reported.
     damaged: u64,
@@ -169,8 +170,9 @@ struct Sink<'a> {
     /// Say every complaint, not only the first [`COMPLAINTS_PER_FILE`] of
     /// each file.
     verbose: bool,
-    /// Log entries read (frames and bus events), from every input.
-    entries: u64,
+    /// Bus events read (log entries that are not frames), from every
+    /// input.
+    bus_events: u64,
     /// A progress line is on the terminal (standard error).
     progress_shown: bool,
     /// Frames read so far, from every input.
@@ -278,13 +280,13 @@ impl<'a> Sink<'a> {
             nodes,
             ids: &args.id,
             filter: args.reading.event_filter(),
-            file_kept: 0,
+            file_dropped: 0,
             skipped: 0,
             damaged: 0,
             file_skipped: 0,
             file_damaged: 0,
             verbose: args.reading.verbose,
-            entries: 0,
+            bus_events: 0,
             progress_shown: false,
             frames: 0,
             decoder: Decoder::new(config.clone()),
@@ -478,21 +480,20 @@ impl<'a> Sink<'a> {
 
     #[inline]
     fn event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
-        self.entries += 1;
-        let kept = self.filter.keeps(event);
-        if let LogEvent::Frame(_) | LogEvent::Ethercat(_) = event {
-            self.frames += 1;
-            self.file_kept += u64::from(kept);
+        if let LogEvent::Status(_) = event {
+            return self.bus_event(position, event);
+        }
+        self.frames += 1;
+        if !self.filter.is_empty() && !self.filter.keeps(event) {
+            return self.left_out(position, event);
         }
         // The summary and the page are those of the events kept.
         if let Some(summary) = self.summary.as_mut() {
-            if kept {
-                summary.add(position, event);
-            }
+            summary.add(position, event);
             return Ok(());
         }
         if self.recorder.is_some() {
-            if kept && self.page_keeps(event) {
+            if self.page_keeps(event) {
                 if let Some(recorder) = self.recorder.as_mut() {
                     recorder.add(position, event);
                 }
@@ -500,9 +501,45 @@ impl<'a> Sink<'a> {
             return Ok(());
         }
         match event {
-            LogEvent::Frame(frame) => self.frame(position, frame, kept),
+            LogEvent::Frame(frame) => self.frame(position, frame, true),
             LogEvent::Status(_) => Ok(()),
-            LogEvent::Ethercat(packet) => self.ethercat(position, packet, kept),
+            LogEvent::Ethercat(packet) => self.ethercat(position, packet, true),
+        }
+    }
+
+    /// A bus event (a TRC status row): counted, and added to the summary
+    /// or the page when the filter keeps it; it has no record.
+    #[cold]
+    fn bus_event(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
+        self.bus_events += 1;
+        if !self.filter.is_empty() && !self.filter.keeps(event) {
+            return Ok(());
+        }
+        if let Some(summary) = self.summary.as_mut() {
+            // `add_with` rather than `add`: with a second call, `add` would
+            // no longer be compiled into the frames' path (`event`).
+            summary.add_with(position, event, |_| {});
+        } else if self.recorder.is_some() && self.page_keeps(event) {
+            if let Some(recorder) = self.recorder.as_mut() {
+                recorder.add(position, event);
+            }
+        }
+        Ok(())
+    }
+
+    /// A frame or packet that `--from`, `--to` or `--iface` leave out:
+    /// counted and, outside the summary and the page, still read by the
+    /// decoder or the EtherCAT session; no record is written.
+    #[cold]
+    fn left_out(&mut self, position: Position, event: &LogEvent<'_>) -> io::Result<()> {
+        self.file_dropped += 1;
+        if self.summary.is_some() || self.recorder.is_some() {
+            return Ok(());
+        }
+        match event {
+            LogEvent::Frame(frame) => self.frame(position, frame, false),
+            LogEvent::Status(_) => Ok(()),
+            LogEvent::Ethercat(packet) => self.ethercat(position, packet, false),
         }
     }
 
@@ -675,10 +712,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         let mut progress = Progress::new(&name, size.filter(|_| !log.is_gzip()));
         let before = sink.frames;
         sink.input.clone_from(&name);
-        let entries_before = sink.entries;
+        let bus_events_before = sink.bus_events;
         sink.file_skipped = 0;
         sink.file_damaged = 0;
-        sink.file_kept = 0;
+        sink.file_dropped = 0;
         let reversals_before = sink.ethercat.counts().time_reversals;
         let last = log.visit(ReadAll {
             sink: &mut sink,
@@ -702,7 +739,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
                 back.as_secs_f64()
             )?;
         }
-        if sink.file_skipped + sink.file_damaged > 0 && sink.entries == entries_before {
+        if sink.file_skipped + sink.file_damaged > 0
+            && sink.frames == before
+            && sink.bus_events == bus_events_before
+        {
             // Nothing read but complaints: the input is not what it was
             // read as (`--format trc` on a candump log), said in one line.
             sink.flush()?;
@@ -723,10 +763,10 @@ fn run_with(args: &DecodeArgs, page: bool) -> Result<(ExitCode, Option<Report>),
         if sink.frames == before {
             // Nothing to write is not nothing to say (docs/output.md#stderr).
             writeln!(sink.err, "{name}: 0 frames")?;
-        } else if sink.file_kept == 0 && !sink.filter.is_empty() {
+        } else if sink.file_dropped == sink.frames - before && !sink.filter.is_empty() {
             // A UTC window on a log of relative times, a channel number
             // for a named interface: said, not left to an empty output.
-            let read = sink.frames - before;
+            let read = sink.file_dropped;
             writeln!(
                 sink.err,
                 "{name}: none of its {read} frame{} passes {}",
