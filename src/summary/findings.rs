@@ -256,6 +256,23 @@ impl Finding {
         matches!(self.detail, FindingDetail::Omitted(_))
     }
 
+    /// Return whether the finding is one that stops the recording, which
+    /// the [verdict](super::Verdict) looks for (docs/summary.md#verdict):
+    /// a CiA 402 fault, a heartbeat timeout, a bus-off, an EtherCAT AL
+    /// error or a servo fault, not one standing for omitted entries.
+    #[must_use]
+    pub fn stops(&self) -> bool {
+        !self.is_omitted()
+            && matches!(
+                self.kind,
+                FindingKind::Cia402Fault
+                    | FindingKind::HeartbeatTimeout
+                    | FindingKind::BusOff
+                    | FindingKind::AlError
+                    | FindingKind::ServoFault
+            )
+    }
+
     /// Return whether the summary itself keeps the finding's time: its
     /// `ts` is the EMCY's or the transition's, not a caller's.
     #[must_use]

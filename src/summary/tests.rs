@@ -381,17 +381,6 @@ fn adding_is_decoding_then_adding_on_every_log() {
 #[test]
 fn a_verdict_exactly_when_a_finding_stops_on_every_log() {
     use crate::logs::ReadLog;
-    let stops = |f: &Finding| {
-        !f.is_omitted()
-            && matches!(
-                f.kind,
-                FindingKind::Cia402Fault
-                    | FindingKind::HeartbeatTimeout
-                    | FindingKind::BusOff
-                    | FindingKind::AlError
-                    | FindingKind::ServoFault
-            )
-    };
     let (mut with, mut without) = (0, 0);
     for path in &repository_logs() {
         for heartbeat in [None, Some(Duration::from_millis(150))] {
@@ -412,7 +401,7 @@ fn a_verdict_exactly_when_a_finding_stops_on_every_log() {
             let findings = summary.findings();
             assert_eq!(
                 summary.verdict().is_some(),
-                findings.iter().any(stops),
+                findings.iter().any(Finding::stops),
                 "{}, heartbeat {heartbeat:?}",
                 path.display()
             );

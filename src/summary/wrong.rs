@@ -381,17 +381,7 @@ impl Verdict {
             return None;
         }
         let findings = summary.findings();
-        let at = findings.iter().rposition(|f| {
-            !f.is_omitted()
-                && matches!(
-                    f.kind,
-                    FindingKind::Cia402Fault
-                        | FindingKind::HeartbeatTimeout
-                        | FindingKind::BusOff
-                        | FindingKind::AlError
-                        | FindingKind::ServoFault
-                )
-        })?;
+        let at = findings.iter().rposition(Finding::stops)?;
         // A bus-off that caused heartbeat timeouts is not the end: the
         // loss of the devices it silenced is, the last of them.
         let at = if findings[at].kind == FindingKind::BusOff {
