@@ -603,10 +603,10 @@ impl EthercatSummarizer {
         let Ok(packet) = self.session.read(position, event) else {
             return;
         };
-        let name = BusName::of(packet.iface);
-        let port = match self.names.iter().position(|n| *n == name) {
+        let port = match self.names.iter().position(|n| n.is(packet.iface)) {
             Some(at) => at,
             None => {
+                let name = BusName::of(packet.iface);
                 self.names.push(name.clone());
                 self.ports.push(Port {
                     name,
@@ -644,14 +644,11 @@ impl EthercatSummarizer {
                 break;
             };
             let port = &mut self.ports[port];
-            let mut meanings = Vec::new();
-            self.session
-                .meanings(&packet, at, &datagram, |m| meanings.push(m));
-            for meaning in meanings {
+            self.session.meanings(&packet, at, &datagram, |meaning| {
                 port.meaning(number, packet.timestamp, meaning, &mut |f| {
                     fact(&mut on_event, iface, number, packet.timestamp, f);
                 });
-            }
+            });
             let sent_adp = packet.sent_adp(at, &datagram);
             let stream = port.stream(
                 packet.copy,
