@@ -14,18 +14,20 @@
 #              decode --json F | cat >/dev/null
 #              cat J | cat >/dev/null      (J: decode --json's output, kept
 #                                           in a file: the same bytes piped)
+#              decode --json F >FILE, cat J >FILE  (into a file in BENCH_DIR)
 #              tshark -T fields            (the peer: the fields below)
 #            the goals: tshark / --summary ≥ 50×, tshark / --json ≥ 10×,
 #            --json within 1.5× of cat piping the same bytes: read both
 #            ways, --json / cat F and --json | cat / cat J | cat
 #   memory   peak resident memory (/usr/bin/time -f %M) of decode --summary,
-#            --json and text at 100 000 and 1 000 000 datagrams
+#            --json and text at 100 000 and 1 000 000 datagrams, and of
+#            --json into a pipe (where a thread of its own writes it)
 #
 # Every command runs BENCH_RUNS times after one warm-up, tshark included
 # (a second each). The load average is recorded before each step: compare
 # the ratios within a session, not times across runs. With
 # MOTIONWIRE_BEFORE set to another build (e.g. main's), its --summary,
-# --json and text run in the same session.
+# --json, text and --json | cat run in the same session.
 #
 # Usage: bench/ecat.sh [MIX...]        (default: cyclic fault sdo)
 #        bench/ecat.sh table           print the table from the results
@@ -72,7 +74,8 @@ time_mix() {
     if [[ -n $MOTIONWIRE_BEFORE ]]; then
         before=(-n "before: decode --summary" "$MOTIONWIRE_BEFORE decode --summary $f >/dev/null 2>&1"
             -n "before: decode --json" "$MOTIONWIRE_BEFORE decode --json $f >/dev/null 2>&1"
-            -n "before: decode" "$MOTIONWIRE_BEFORE decode $f >/dev/null 2>&1")
+            -n "before: decode" "$MOTIONWIRE_BEFORE decode $f >/dev/null 2>&1"
+            -n "before: decode --json | cat" "$MOTIONWIRE_BEFORE decode --json $f 2>/dev/null | cat >/dev/null")
     fi
     load "$mix-time"
     hyperfine --warmup 1 --runs "$RUNS" --export-json "$RESULTS/$mix-time.json" \
@@ -83,8 +86,11 @@ time_mix() {
         -n "cat F | cat >/dev/null" "cat $f | cat >/dev/null" \
         -n "decode --json | cat" "$MOTIONWIRE decode --json $f 2>/dev/null | cat >/dev/null" \
         -n "cat J | cat >/dev/null" "cat $j | cat >/dev/null" \
+        -n "decode --json >FILE" "$MOTIONWIRE decode --json $f >$BENCH_DIR/out.json 2>/dev/null" \
+        -n "cat J >FILE" "cat $j >$BENCH_DIR/out.json" \
         -n "tshark -T fields" "${TSHARK[*]} -r $f >/dev/null 2>&1" \
         "${before[@]}"
+    rm -f "$BENCH_DIR/out.json"
 }
 
 memory() {
@@ -96,6 +102,11 @@ memory() {
             kb=$(/usr/bin/time -f %M "$MOTIONWIRE" $args "$file" 2>&1 >/dev/null | tail -n 1)
             printf '%s\t%s\t%s\n' "$(basename "$file")" "$args" "$kb" | tee -a "$out"
         done
+        local kb
+        /usr/bin/time -f %M -o "$out.kb" "$MOTIONWIRE" decode --json "$file" 2>/dev/null | cat >/dev/null
+        kb=$(tail -n 1 "$out.kb")
+        rm -f "$out.kb"
+        printf '%s\t%s\t%s\n' "$(basename "$file")" "decode --json | cat" "$kb" | tee -a "$out"
     done
 }
 
@@ -143,11 +154,23 @@ for mix in mixes:
           f"| {ms(jc)} | {ms(cj)} | {ts['mean']:.2f} ± {ts['stddev']:.2f} "
           f"| {goal(ts['mean']/s['mean'], 50, True)} | {goal(ts['mean']/j['mean'], 10, True)} "
           f"| {goal(j['mean']/cc['mean'], 1.5, False)} | {goal(jc['mean']/cj['mean'], 1.5, False)} | {load} |")
-    for name in ("before: decode --summary", "before: decode --json", "before: decode"):
+    for name in ("before: decode --summary", "before: decode --json", "before: decode",
+                 "before: decode --json | cat"):
         if name in runs:
             now = runs[name.removeprefix("before: ")]
-            befores.append(f"| {mix} | `{name.removeprefix('before: ')}` | {ms(runs[name])} ms | {ms(now)} ms "
+            shown = name.removeprefix("before: ").replace("|", "\\|")
+            befores.append(f"| {mix} | `{shown}` | {ms(runs[name])} ms | {ms(now)} ms "
                            f"| {runs[name]['mean']/now['mean']:.2f}× | {load} |")
+files = [(mix, runs) for mix in mixes
+         for runs in [{r["command"]: r for r in json.load(open(os.path.join(results, mix + "-time.json")))["results"]}]
+         if "cat J >FILE" in runs]
+if files:
+    print()
+    print("| mix | `--json >FILE` | `cat J >FILE` | ratio |")
+    print("|---|---|---|---|")
+    for mix, runs in files:
+        jf, cf = runs["decode --json >FILE"], runs["cat J >FILE"]
+        print(f"| {mix} | {ms(jf)} | {ms(cf)} | {jf['mean']/cf['mean']:.2f}× |")
 if befores:
     print()
     print("| mix | command | before | now | faster | load |")
@@ -164,7 +187,8 @@ for mix in mem:
     for f, args, kb in rows:
         by.setdefault(args, []).append(int(kb))
     for args, kbs in by.items():
-        print(f"| {mix} | `{args}` | " + " | ".join(f"{kb/1024:.1f} MiB" for kb in kbs) + " |")
+        shown = args.replace("|", "\\|")
+        print(f"| {mix} | `{shown}` | " + " | ".join(f"{kb/1024:.1f} MiB" for kb in kbs) + " |")
 EOF
 }
 
