@@ -64,7 +64,7 @@ impl<T> Default for Buses<T> {
 impl<T> Buses<T> {
     /// Return the index of the bus of `iface`, made with `make` on first
     /// sight; the second value says whether it was made now. The interface
-    /// is read where the frame holds it, not copied for the search.
+    /// is borrowed from the frame that holds it.
     #[inline(always)]
     pub(crate) fn find_or_insert(
         &mut self,

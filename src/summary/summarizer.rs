@@ -402,9 +402,9 @@ impl Summarizer {
                 return;
             }
             // The PDO arm keeps its own call rather than passing its
-            // CiA 402 reading to the shared one below: on the bench's
-            // mixes that fall-through measured more instructions a frame
-            // on every mix (BENCHMARKS.md, the summary's second cut).
+            // CiA 402 reading to the shared one below, which then compiles
+            // worse for every frame (BENCHMARKS.md, the summary's second
+            // cut).
             (MessageKind::Pdo, Some(_)) if !log.frame.is_rtr() => {
                 let (at, cia402) = decoder.pdo_cia402(log);
                 let (name, bus) =
